@@ -1,0 +1,415 @@
+// VS Code client for the fanuc-macro language server (fanuc-macro-ls).
+import * as os from 'node:os';
+import * as vscode from 'vscode';
+import {
+  ExecuteCommandRequest,
+  LanguageClient,
+  State,
+  TransportKind,
+  type LanguageClientOptions,
+  type ServerOptions,
+} from 'vscode-languageclient/node';
+import { DEFAULT_PROBE_TIMEOUT_MS, probeCandidate } from './probe';
+import {
+  buildCandidates,
+  describeAttempts,
+  type ProbeResult,
+  type ServerCandidate,
+} from './serverCandidates';
+import {
+  parseThreadDesignation,
+  parseThreadLength,
+  threadModuleText,
+  validateThreadDesignation,
+  validateThreadLength,
+  type ThreadModuleArgs,
+} from './threadDesignation';
+import { formatTrace, traceResultError, type TraceResult } from './traceFormat';
+
+const LANGUAGE_ID = 'fanuc-macro';
+const CONFIG_SECTION = 'fanuc-macro';
+const SERVER_PATH_SETTING = `${CONFIG_SECTION}.server.path`;
+
+/** Server-side commands (workspace/executeCommand). */
+export const SERVER_COMMAND_TRACE = 'fanuc-macro.trace';
+export const SERVER_COMMAND_THREAD_MODULE = 'fanuc-macro.threadModule';
+
+let client: LanguageClient | undefined;
+let output: vscode.OutputChannel | undefined;
+/** Serialises start/stop/restart so that commands and setting changes do not race. */
+let lifecycle: Promise<unknown> = Promise.resolve();
+
+function outputChannel(): vscode.OutputChannel {
+  output ??= vscode.window.createOutputChannel('FANUC Macro Language Server');
+  return output;
+}
+
+function log(message: string): void {
+  outputChannel().appendLine(`[${new Date().toLocaleTimeString()}] ${message}`);
+}
+
+function enqueue<T>(task: () => Promise<T>): Promise<T> {
+  const next = lifecycle.then(task, task);
+  lifecycle = next.catch(() => undefined);
+  return next;
+}
+
+/** The `fanuc-macro` settings as a plain JSON object (sent as initializationOptions). */
+function settingsObject(): Record<string, unknown> {
+  const config = vscode.workspace.getConfiguration(CONFIG_SECTION);
+  const plain: unknown = JSON.parse(JSON.stringify(config));
+  return typeof plain === 'object' && plain !== null ? (plain as Record<string, unknown>) : {};
+}
+
+const PYTHON_EXTENSION_TIMEOUT_MS = 10000;
+
+function withTimeout<T>(promise: Thenable<T>, ms: number): Promise<T | undefined> {
+  return new Promise<T | undefined>((resolve, reject) => {
+    const timer = setTimeout(() => resolve(undefined), ms);
+    promise.then(
+      (value) => {
+        clearTimeout(timer);
+        resolve(value);
+      },
+      (err: unknown) => {
+        clearTimeout(timer);
+        reject(err instanceof Error ? err : new Error(String(err)));
+      },
+    );
+  });
+}
+
+/** Interpreter selected in the Python extension, if that extension is installed and answers. */
+async function pythonExtensionInterpreter(): Promise<string | undefined> {
+  try {
+    const extension = vscode.extensions.getExtension('ms-python.python');
+    if (extension === undefined) {
+      return undefined;
+    }
+    const api: unknown = extension.isActive
+      ? extension.exports
+      : await withTimeout(extension.activate(), PYTHON_EXTENSION_TIMEOUT_MS);
+    const environments = (api as { environments?: unknown } | undefined)?.environments as
+      | {
+          getActiveEnvironmentPath?: (resource?: vscode.Uri) => { path?: unknown } | undefined;
+          resolveEnvironment?: (
+            env: unknown,
+          ) => Promise<{ executable?: { uri?: vscode.Uri } } | undefined>;
+        }
+      | undefined;
+    if (typeof environments?.getActiveEnvironmentPath !== 'function') {
+      return undefined;
+    }
+    const resource = vscode.workspace.workspaceFolders?.[0]?.uri;
+    const active = environments.getActiveEnvironmentPath(resource);
+    if (active === undefined) {
+      return undefined;
+    }
+    // `path` may be an environment folder rather than an interpreter: resolve it when possible.
+    if (typeof environments.resolveEnvironment === 'function') {
+      try {
+        const resolved = await environments.resolveEnvironment(active);
+        const executable = resolved?.executable?.uri?.fsPath;
+        if (typeof executable === 'string' && executable !== '') {
+          return executable;
+        }
+      } catch {
+        // fall back to the raw path below
+      }
+    }
+    return typeof active.path === 'string' && active.path !== '' ? active.path : undefined;
+  } catch (err) {
+    log(`Python extension did not give an interpreter: ${String(err)}`);
+    return undefined;
+  }
+}
+
+interface FoundServer {
+  readonly candidate: ServerCandidate;
+  readonly version: string;
+}
+
+/** Tries the candidates in order and returns the first that answers `--version`. */
+async function findServer(): Promise<
+  { found: FoundServer; failures: string[] } | { found: undefined; failures: string[] }
+> {
+  const config = vscode.workspace.getConfiguration(CONFIG_SECTION);
+  const candidates = buildCandidates({
+    settingPath: config.get<string>('server.path', ''),
+    pythonExtensionInterpreter: await pythonExtensionInterpreter(),
+    platform: process.platform,
+    homeDir: os.homedir(),
+    workspaceFolder: vscode.workspace.workspaceFolders?.[0]?.uri.fsPath,
+  });
+  const attempts: Array<{ candidate: ServerCandidate; result: ProbeResult }> = [];
+  for (const candidate of candidates) {
+    log(`Trying ${candidate.description}`);
+    const result = await probeCandidate(candidate, DEFAULT_PROBE_TIMEOUT_MS);
+    attempts.push({ candidate, result });
+    log(`  ${describeAttempts([{ candidate, result }])[0] ?? ''}`);
+    if (result.ok) {
+      return {
+        found: { candidate, version: result.version },
+        failures: describeAttempts(attempts.filter((a) => !a.result.ok)),
+      };
+    }
+  }
+  return { found: undefined, failures: describeAttempts(attempts) };
+}
+
+async function showServerNotFound(failures: readonly string[]): Promise<void> {
+  const tried = failures.map((f) => `• ${f}`).join('\n');
+  const message =
+    'FANUC Macro: the language server fanuc-macro-ls was not found, so only highlighting and snippets work. ' +
+    'Install it with "pip install fanuc-macro" (in the Python environment VS Code uses), ' +
+    `or set "${SERVER_PATH_SETTING}" to the fanuc-macro-ls executable or to a Python interpreter that has the package. ` +
+    `Tried: ${failures.join('; ')}.`;
+  log(`Language server not found. Tried:\n${tried}`);
+  const openSetting = 'Open Setting';
+  const showLog = 'Show Log';
+  const choice = await vscode.window.showErrorMessage(message, openSetting, showLog);
+  if (choice === openSetting) {
+    await vscode.commands.executeCommand('workbench.action.openSettings', SERVER_PATH_SETTING);
+  } else if (choice === showLog) {
+    outputChannel().show(true);
+  }
+}
+
+async function startClient(): Promise<void> {
+  const { found, failures } = await findServer();
+  if (found === undefined) {
+    void showServerNotFound(failures);
+    return;
+  }
+  const { candidate, version } = found;
+  log(`Starting ${candidate.description} (fanuc-macro-ls ${version})`);
+  const configured = vscode.workspace.getConfiguration(CONFIG_SECTION).get<string>('server.path', '');
+  if (candidate.source !== 'setting' && configured.trim() !== '') {
+    void vscode.window.showWarningMessage(
+      `FANUC Macro: "${SERVER_PATH_SETTING}" (${configured}) does not start fanuc-macro-ls ` +
+        `(${failures[0] ?? 'unknown reason'}); using ${candidate.description} instead.`,
+    );
+  }
+
+  const executable = {
+    command: candidate.command,
+    args: [...candidate.args],
+    transport: TransportKind.stdio,
+    options: { env: { ...process.env, PYTHONUNBUFFERED: '1' } },
+  };
+  const serverOptions: ServerOptions = { run: executable, debug: executable };
+  const clientOptions: LanguageClientOptions = {
+    documentSelector: [
+      { scheme: 'file', language: LANGUAGE_ID },
+      { scheme: 'untitled', language: LANGUAGE_ID },
+    ],
+    initializationOptions: settingsObject(),
+    synchronize: { configurationSection: CONFIG_SECTION },
+    outputChannel: outputChannel(),
+    traceOutputChannel: outputChannel(),
+  };
+  const newClient = new LanguageClient(
+    LANGUAGE_ID,
+    'FANUC Macro Language Server',
+    serverOptions,
+    clientOptions,
+  );
+  client = newClient;
+  try {
+    await newClient.start();
+  } catch (err) {
+    client = undefined;
+    log(`The language server failed to start: ${String(err)}`);
+    const showLog = 'Show Log';
+    const choice = await vscode.window.showErrorMessage(
+      `FANUC Macro: the language server (${candidate.description}) failed to start: ${errorText(err)}`,
+      showLog,
+    );
+    if (choice === showLog) outputChannel().show(true);
+  }
+}
+
+async function stopClient(): Promise<void> {
+  const current = client;
+  client = undefined;
+  if (current === undefined) {
+    return;
+  }
+  try {
+    if (current.state !== State.Stopped) {
+      await current.stop(5000);
+    }
+  } catch (err) {
+    log(`Stopping the language server failed: ${String(err)}`);
+  }
+  try {
+    await current.dispose(2000);
+  } catch {
+    // already stopped
+  }
+}
+
+function restart(): Promise<void> {
+  return enqueue(async () => {
+    await stopClient();
+    await startClient();
+  });
+}
+
+function errorText(err: unknown): string {
+  if (err instanceof Error) return err.message;
+  if (typeof err === 'object' && err !== null && 'message' in err) {
+    return String((err as { message: unknown }).message);
+  }
+  return String(err);
+}
+
+/** Waits for pending start-ups and returns a running client, or tells the user there is none. */
+async function runningClient(): Promise<LanguageClient | undefined> {
+  await lifecycle;
+  if (client === undefined || client.state !== State.Running) {
+    const restartLabel = 'Restart Server';
+    const choice = await vscode.window.showErrorMessage(
+      'FANUC Macro: the language server is not running.',
+      restartLabel,
+    );
+    if (choice === restartLabel) {
+      await vscode.commands.executeCommand('fanuc-macro.restartServer');
+    }
+    return undefined;
+  }
+  return client;
+}
+
+async function executeServerCommand(
+  languageClient: LanguageClient,
+  command: string,
+  args: unknown[],
+): Promise<unknown> {
+  return languageClient.sendRequest(ExecuteCommandRequest.type, { command, arguments: args });
+}
+
+async function showTrace(): Promise<void> {
+  const editor = vscode.window.activeTextEditor;
+  if (editor === undefined || editor.document.languageId !== LANGUAGE_ID) {
+    void vscode.window.showErrorMessage('FANUC Macro: open a FANUC macro program to trace it.');
+    return;
+  }
+  const languageClient = await runningClient();
+  if (languageClient === undefined) return;
+  const document = editor.document;
+  const uri = document.uri.toString();
+  let answer: unknown;
+  try {
+    answer = await vscode.window.withProgress(
+      { location: vscode.ProgressLocation.Window, title: 'FANUC Macro: tracing program' },
+      () => executeServerCommand(languageClient, SERVER_COMMAND_TRACE, [uri]),
+    );
+  } catch (err) {
+    void vscode.window.showErrorMessage(`FANUC Macro: trace failed: ${errorText(err)}`);
+    return;
+  }
+  const error = traceResultError(answer);
+  if (error !== undefined) {
+    void vscode.window.showErrorMessage(`FANUC Macro: trace failed: ${error}`);
+    return;
+  }
+  const source = document.isUntitled ? document.uri.toString() : document.uri.fsPath;
+  const content = formatTrace(answer as TraceResult, source);
+  const traceDocument = await vscode.workspace.openTextDocument({ content, language: 'plaintext' });
+  await vscode.window.showTextDocument(traceDocument, {
+    viewColumn: vscode.ViewColumn.Beside,
+    preview: false,
+    preserveFocus: false,
+  });
+}
+
+async function insertThreadModule(): Promise<void> {
+  const editor = vscode.window.activeTextEditor;
+  if (editor === undefined) {
+    void vscode.window.showErrorMessage('FANUC Macro: open a program to insert the thread module into.');
+    return;
+  }
+  const designationInput = await vscode.window.showInputBox({
+    title: 'Symmetric Thread Module (1/3)',
+    prompt: 'Metric thread designation: lower-case tolerance for external (M50x3-5g6g), upper case for internal (M50x3-6H)',
+    placeHolder: 'M50x3-5g6g',
+    ignoreFocusOut: true,
+    validateInput: validateThreadDesignation,
+  });
+  if (designationInput === undefined) return;
+  const designation = parseThreadDesignation(designationInput);
+  if (typeof designation === 'string') {
+    void vscode.window.showErrorMessage(`FANUC Macro: ${designation}`);
+    return;
+  }
+  const lengthInput = await vscode.window.showInputBox({
+    title: 'Symmetric Thread Module (2/3)',
+    prompt: `Thread length of ${designation.text} in mm`,
+    placeHolder: '40',
+    ignoreFocusOut: true,
+    validateInput: validateThreadLength,
+  });
+  if (lengthInput === undefined) return;
+  const length = parseThreadLength(lengthInput);
+  if (typeof length === 'string') {
+    void vscode.window.showErrorMessage(`FANUC Macro: ${length}`);
+    return;
+  }
+  let internal = designation.internal;
+  if (internal === null) {
+    const external = { label: 'External thread', description: 'bolt, turned on the outside', internal: false };
+    const inner = { label: 'Internal thread', description: 'nut, bored on the inside', internal: true };
+    const picked = await vscode.window.showQuickPick([external, inner], {
+      title: 'Symmetric Thread Module (3/3)',
+      placeHolder: `${designation.text} has no tolerance class: is it an external or an internal thread?`,
+      ignoreFocusOut: true,
+    });
+    if (picked === undefined) return;
+    internal = picked.internal;
+  }
+  const languageClient = await runningClient();
+  if (languageClient === undefined) return;
+  const args: ThreadModuleArgs = { designation: designation.text, length, internal };
+  let answer: unknown;
+  try {
+    answer = await executeServerCommand(languageClient, SERVER_COMMAND_THREAD_MODULE, [args]);
+  } catch (err) {
+    void vscode.window.showErrorMessage(`FANUC Macro: thread module failed: ${errorText(err)}`);
+    return;
+  }
+  const result = threadModuleText(answer);
+  if ('error' in result) {
+    void vscode.window.showErrorMessage(`FANUC Macro: thread module failed: ${result.error}`);
+    return;
+  }
+  // The editor may have changed while the user answered the prompts.
+  const target = vscode.window.activeTextEditor ?? editor;
+  const position = target.selection.active;
+  const applied = await target.edit((builder) => builder.insert(position, result.text));
+  if (!applied) {
+    void vscode.window.showErrorMessage('FANUC Macro: the thread module could not be inserted.');
+  }
+}
+
+export function activate(context: vscode.ExtensionContext): void {
+  context.subscriptions.push(outputChannel());
+
+  context.subscriptions.push(
+    vscode.commands.registerCommand('fanuc-macro.restartServer', restart),
+    vscode.commands.registerCommand('fanuc-macro.showTrace', showTrace),
+    vscode.commands.registerCommand('fanuc-macro.insertThreadModule', insertThreadModule),
+    vscode.workspace.onDidChangeConfiguration((event) => {
+      if (event.affectsConfiguration(SERVER_PATH_SETTING)) {
+        log(`${SERVER_PATH_SETTING} changed: restarting the language server`);
+        void restart();
+      }
+    }),
+  );
+
+  void enqueue(startClient);
+}
+
+export async function deactivate(): Promise<void> {
+  await enqueue(stopClient);
+}

@@ -1,0 +1,226 @@
+// Runs client/src/extension.ts against the fakes in ./fakes (the test build
+// aliases `vscode` and `vscode-languageclient/node` to them), with real
+// --version probes of small shell scripts standing in for the server.
+import assert from 'node:assert/strict';
+import { chmodSync, mkdtempSync, rmSync, writeFileSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
+import { after, describe, it } from 'node:test';
+import type { ExtensionContext } from 'vscode';
+import { activate, deactivate } from '../src/extension';
+import { clients, serverAnswers, type LanguageClient } from './fakes/languageclient';
+import * as fake from './fakes/vscode';
+
+const dir = mkdtempSync(join(tmpdir(), 'fanuc-macro-ext-'));
+function script(name: string, body: string): string {
+  const path = join(dir, name);
+  writeFileSync(path, `#!/bin/sh\n${body}\n`);
+  chmodSync(path, 0o755);
+  return path;
+}
+
+const server = script('fanuc-macro-ls', 'echo "fanuc-macro-ls 0.1.0"');
+const python = script(
+  'python3',
+  'if [ "$1 $2 $3" = "-m fanuc_macro.lsp.server --version" ]; then echo "fanuc-macro-ls 0.1.0"; else exit 2; fi',
+);
+
+const baseSettings = {
+  'server.path': server,
+  controller: '0i-TF',
+  'machine.maxSpindleSpeed': 4000,
+  'machine.maxThreadingFeed': 5000,
+  'threading.maxDepthPerPass': 0.5,
+  'rules.disabled': ['MB101'],
+  'rules.severity': { MB102: 'hint' },
+  'analysis.debounceMs': 250,
+  'trace.server': 'off',
+};
+
+function lastClient(): LanguageClient {
+  const client = clients[clients.length - 1];
+  assert.ok(client, 'a language client was created');
+  return client;
+}
+
+/** Runs a command and waits until the extension has settled. */
+async function run(command: string): Promise<void> {
+  await fake.commands.executeCommand(command);
+}
+
+describe('extension', { skip: process.platform === 'win32' }, () => {
+  const context = { subscriptions: [] as Array<{ dispose(): unknown }> };
+  after(async () => {
+    await deactivate();
+    rmSync(dir, { recursive: true, force: true });
+  });
+
+  it('starts the server from fanuc-macro.server.path with the settings', async () => {
+    fake.setSettings({ ...baseSettings });
+    activate(context as unknown as ExtensionContext);
+    await run('fanuc-macro.restartServer'); // queued after the start-up: waits for it
+    const client = lastClient();
+    assert.equal(client.id, 'fanuc-macro');
+    const options = client.serverOptions as { run: { command: string; args: string[]; transport: number } };
+    assert.equal(options.run.command, server);
+    assert.deepEqual(options.run.args, []);
+    assert.equal(options.run.transport, 0);
+    assert.deepEqual(client.clientOptions['documentSelector'], [
+      { scheme: 'file', language: 'fanuc-macro' },
+      { scheme: 'untitled', language: 'fanuc-macro' },
+    ]);
+    assert.deepEqual(client.clientOptions['synchronize'], { configurationSection: 'fanuc-macro' });
+    assert.deepEqual(client.clientOptions['initializationOptions'], {
+      server: { path: server },
+      controller: '0i-TF',
+      machine: { maxSpindleSpeed: 4000, maxThreadingFeed: 5000 },
+      threading: { maxDepthPerPass: 0.5 },
+      rules: { disabled: ['MB101'], severity: { MB102: 'hint' } },
+      analysis: { debounceMs: 250 },
+      trace: { server: 'off' },
+    });
+    assert.ok(clients.slice(0, -1).every((c) => c.stopped), 'the previous client was stopped');
+  });
+
+  it('shows the trace of the current program beside the editor', async () => {
+    fake.resetRecorded();
+    fake.window.activeTextEditor = fake.makeEditor('/p/O3331.nc');
+    serverAnswers.set('fanuc-macro.trace', () => ({
+      motions: [{ program: 'O3331', line: 23, code: 'G92', words: { X: 49.816, W: -60, F: 3 } }],
+      summary: { passes: 1 },
+    }));
+    await run('fanuc-macro.showTrace');
+    const request = lastClient().requests.pop();
+    assert.deepEqual(request, {
+      method: 'workspace/executeCommand',
+      params: { command: 'fanuc-macro.trace', arguments: ['file:///p/O3331.nc'] },
+    });
+    assert.equal(fake.recorded.openedDocuments[0]?.language, 'plaintext');
+    assert.match(fake.recorded.openedDocuments[0]?.content ?? '', /^O3331 line 23 {2}G92 {2}X49\.816 W-60\. F3\.$/m);
+    assert.match(fake.recorded.openedDocuments[0]?.content ?? '', /Summary\n {2}passes: 1/);
+    assert.deepEqual(fake.recorded.shownDocuments[0]?.options, {
+      viewColumn: fake.ViewColumn.Beside,
+      preview: false,
+      preserveFocus: false,
+    });
+    assert.deepEqual(fake.recorded.errors, []);
+  });
+
+  it('shows the error of a failed trace', async () => {
+    fake.resetRecorded();
+    serverAnswers.set('fanuc-macro.trace', () => ({ error: 'vacant #101 in O3331 line 12' }));
+    await run('fanuc-macro.showTrace');
+    assert.equal(fake.recorded.openedDocuments.length, 0);
+    assert.match(fake.recorded.errors[0]?.message ?? '', /vacant #101 in O3331 line 12/);
+  });
+
+  it('inserts an external thread module at the cursor', async () => {
+    fake.resetRecorded();
+    fake.answers.inputBox.push(' M50x3-5g6g ', '40');
+    serverAnswers.set('fanuc-macro.threadModule', () => ({ text: '#100=50.\nM98 P0013331\n' }));
+    await run('fanuc-macro.insertThreadModule');
+    assert.deepEqual(lastClient().requests.pop()?.params, {
+      command: 'fanuc-macro.threadModule',
+      arguments: [{ designation: 'M50x3-5g6g', length: 40, internal: false }],
+    });
+    assert.deepEqual(fake.recorded.inserts, [
+      { position: new fake.Position(4, 0), text: '#100=50.\nM98 P0013331\n' },
+    ]);
+  });
+
+  it('asks external or internal when the designation does not say', async () => {
+    fake.resetRecorded();
+    fake.answers.inputBox.push('M50x3', '32.5');
+    fake.answers.quickPick.push((items) => items.find((i) => i.label.startsWith('Internal')));
+    await run('fanuc-macro.insertThreadModule');
+    assert.deepEqual(lastClient().requests.pop()?.params.arguments, [
+      { designation: 'M50x3', length: 32.5, internal: true },
+    ]);
+  });
+
+  it('stops when a prompt is dismissed', async () => {
+    fake.resetRecorded();
+    fake.answers.inputBox.push('M50x3-6g', undefined);
+    const before = lastClient().requests.length;
+    await run('fanuc-macro.insertThreadModule');
+    assert.equal(lastClient().requests.length, before);
+    assert.deepEqual(fake.recorded.errors, []);
+    assert.equal(fake.answers.inputBox.length, 0);
+  });
+
+  it('validates the designation', async () => {
+    fake.resetRecorded();
+    fake.answers.inputValidation.length = 0;
+    fake.answers.inputBox.push('M50x3-5g6H');
+    const before = lastClient().requests.length;
+    await run('fanuc-macro.insertThreadModule');
+    assert.match(fake.answers.inputValidation[0] ?? '', /mixes an internal/);
+    assert.equal(lastClient().requests.length, before);
+  });
+
+  it('shows the error of the thread module command', async () => {
+    fake.resetRecorded();
+    fake.answers.inputBox.push('M50x3-6H', '40');
+    serverAnswers.set('fanuc-macro.threadModule', () => ({ error: 'pitch 3 is not standard for M50' }));
+    await run('fanuc-macro.insertThreadModule');
+    assert.equal(fake.recorded.inserts.length, 0);
+    assert.match(fake.recorded.errors[0]?.message ?? '', /pitch 3 is not standard for M50/);
+  });
+
+  it("uses the Python extension's interpreter when no path is set", async () => {
+    fake.setSettings({ ...baseSettings, 'server.path': '' });
+    fake.setPythonExtension({
+      isActive: true,
+      exports: { environments: { getActiveEnvironmentPath: () => ({ id: 'x', path: python }) } },
+    });
+    await run('fanuc-macro.restartServer');
+    const options = lastClient().serverOptions as { run: { command: string; args: string[] } };
+    assert.equal(options.run.command, python);
+    assert.deepEqual(options.run.args, ['-m', 'fanuc_macro.lsp.server']);
+    fake.setPythonExtension(undefined);
+  });
+
+  it('restarts when fanuc-macro.server.path changes', async () => {
+    const count = clients.length;
+    fake.setSettings({ ...baseSettings });
+    fake.fireConfigurationChange('fanuc-macro.server.path');
+    await run('fanuc-macro.restartServer');
+    assert.equal(clients.length, count + 2);
+    assert.equal((lastClient().serverOptions as { run: { command: string } }).run.command, server);
+  });
+
+  it('says what was tried and offers the setting when no server works', async () => {
+    fake.resetRecorded();
+    const count = clients.length;
+    const savedPath = process.env['PATH'];
+    process.env['PATH'] = mkdtempSync(join(dir, 'empty-path-'));
+    fake.setSettings({ ...baseSettings, 'server.path': join(dir, 'missing-ls') });
+    fake.answers.errorChoice.push('Open Setting');
+    try {
+      await run('fanuc-macro.restartServer');
+      // the error message is shown without blocking the start-up queue
+      await new Promise((resolve) => setTimeout(resolve, 50));
+    } finally {
+      process.env['PATH'] = savedPath;
+    }
+    assert.equal(clients.length, count);
+    const error = fake.recorded.errors[0];
+    assert.ok(error);
+    assert.match(error.message, /pip install fanuc-macro/);
+    assert.match(error.message, /fanuc-macro\.server\.path/);
+    assert.match(error.message, /missing-ls: not found/);
+    assert.match(error.message, /python3 -m fanuc_macro\.lsp\.server: /);
+    assert.deepEqual(error.items, ['Open Setting', 'Show Log']);
+    assert.deepEqual(
+      fake.recorded.executed.find((e) => e.command === 'workbench.action.openSettings'),
+      { command: 'workbench.action.openSettings', args: ['fanuc-macro.server.path'] },
+    );
+  });
+
+  it('tells the user when a command needs the server and it is not running', async () => {
+    fake.resetRecorded();
+    fake.window.activeTextEditor = fake.makeEditor('/p/O3331.nc');
+    await run('fanuc-macro.showTrace');
+    assert.match(fake.recorded.errors[0]?.message ?? '', /not running/);
+  });
+});

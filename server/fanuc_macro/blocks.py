@@ -1,0 +1,165 @@
+"""Text to lines: decoding, line ends, comments, end of block and tape marks.
+
+This is the layer below the grammar. It takes what the control itself strips before it reads a
+block's words: ``( ... )`` comments (FANUC ends one at the first ``)``), the end-of-block ``;``
+and the tape mark ``%``. Comments are replaced by spaces so that the grammar's columns stay the
+columns of the line.
+"""
+
+from __future__ import annotations
+
+import codecs
+import re
+from dataclasses import dataclass
+
+from .syntax import Comment, LineNote, Span
+
+_LINE_BREAK = re.compile(r"\r\n|\r|\n")
+
+
+@dataclass(frozen=True, slots=True)
+class DecodedText:
+    text: str
+    encoding: str
+    note: str | None  # set when the bytes were not clean UTF-8
+
+
+def _kana_count(text: str) -> int:
+    return sum(1 for ch in text if "\u3040" <= ch <= "\u30ff")
+
+
+def _halfwidth_kana_count(text: str) -> int:
+    return sum(1 for ch in text if "\uff61" <= ch <= "\uff9f")
+
+
+def decode_bytes(data: bytes) -> DecodedText:
+    """Decode a program file. UTF-8 first; then GB18030 or Shift-JIS (common in comments).
+
+    Both legacy encodings accept most byte strings, so the choice is made on what the text
+    looks like: Japanese comments have kana, Chinese ones do not; GB18030 bytes read as
+    Shift-JIS turn into half-width katakana.
+    """
+    if data.startswith(codecs.BOM_UTF8):
+        data = data[len(codecs.BOM_UTF8) :]
+    try:
+        return DecodedText(data.decode("utf-8"), "utf-8", None)
+    except UnicodeDecodeError:
+        pass
+    candidates: list[tuple[int, str, str]] = []
+    for encoding in ("gb18030", "shift_jis"):
+        try:
+            text = data.decode(encoding)
+        except UnicodeDecodeError:
+            continue
+        score = _kana_count(text) * 3 - _halfwidth_kana_count(text) * 5
+        if encoding == "gb18030":
+            score -= _kana_count(text) * 4  # kana decoded from GB bytes are unlikely
+        candidates.append((score, encoding, text))
+    if candidates:
+        candidates.sort(key=lambda c: -c[0])
+        _, encoding, text = candidates[0]
+        return DecodedText(text, encoding, f"file is not UTF-8; read as {encoding.upper()}")
+    text = data.decode("latin-1")
+    return DecodedText(text, "latin-1", "file is not UTF-8, GB18030 or Shift-JIS; read as Latin-1")
+
+
+def split_lines(text: str) -> list[str]:
+    """Lines of a program; CRLF, CR and LF all end a line (the control's EOB is LF)."""
+    lines = _LINE_BREAK.split(text)
+    if len(lines) > 1 and lines[-1] == "":
+        lines.pop()
+    return lines
+
+
+@dataclass(frozen=True, slots=True)
+class LineCode:
+    """A line with its comments cut out: what the grammar parses."""
+
+    code: str  # same length as the line; comments, ";" and "%" are spaces
+    comments: tuple[Comment, ...]
+    tape_mark: bool
+    notes: tuple[LineNote, ...]
+
+
+def _balanced_close(line: str, open_at: int) -> int | None:
+    depth = 0
+    for k in range(open_at, len(line)):
+        if line[k] == "(":
+            depth += 1
+        elif line[k] == ")":
+            depth -= 1
+            if depth == 0:
+                return k
+    return None
+
+
+def cut_comments(line: str) -> LineCode:
+    """Separate comments, EOB and tape marks from code, keeping columns."""
+    if "(" not in line and ";" not in line and "%" not in line and ")" not in line:
+        return LineCode(line, (), False, ())
+    chars = list(line)
+    comments: list[Comment] = []
+    notes: list[LineNote] = []
+    tape_mark = False
+    i = 0
+    n = len(line)
+    while i < n:
+        ch = line[i]
+        if ch == "(":
+            close = line.find(")", i + 1)
+            if close < 0:
+                comments.append(Comment(line[i + 1 :], Span(i, n), closed=False))
+                notes.append(
+                    LineNote(
+                        "unclosed-comment",
+                        "comment opened with '(' is not closed with ')' on this line",
+                        Span(i, n),
+                    )
+                )
+                for k in range(i, n):
+                    chars[k] = " "
+                break
+            end = close
+            if line.find("(", i + 1, close) >= 0:
+                balanced = _balanced_close(line, i)
+                if balanced is not None and balanced > close:
+                    # FANUC ends the comment at the first ")" and reads the rest as program
+                    # text. Real files do this by mistake, so take the comment to the ")" that
+                    # balances it and say so, instead of reporting the stray text as syntax.
+                    end = balanced
+                    notes.append(
+                        LineNote(
+                            "nested-comment",
+                            "parentheses nested in a comment: FANUC ends the comment at the "
+                            f"first ')' (column {close + 1}) and reads "
+                            f"{line[close + 1 : end + 1]!r} as program text",
+                            Span(i, end + 1),
+                        )
+                    )
+            comments.append(Comment(line[i + 1 : end], Span(i, end + 1)))
+            for k in range(i, end + 1):
+                chars[k] = " "
+            i = end + 1
+            continue
+        if ch == ";":
+            chars[i] = " "
+            rest = line.find("(", i + 1)
+            tail_end = n if rest < 0 else rest
+            if line[i + 1 : tail_end].strip(" \t;%"):
+                # Everything after the EOB belongs to no block the control would read as one.
+                notes.append(
+                    LineNote(
+                        "text-after-eob",
+                        f"text after the end of block ';': {line[i + 1 : tail_end].strip()!r}",
+                        Span(i + 1, tail_end),
+                    )
+                )
+                for k in range(i + 1, tail_end):
+                    chars[k] = " "
+                i = tail_end
+                continue
+        elif ch == "%":
+            tape_mark = True
+            chars[i] = " "
+        i += 1
+    return LineCode("".join(chars), tuple(comments), tape_mark, tuple(notes))

@@ -1,0 +1,121 @@
+"""The command line: ``fanuc-macro check``, ``trace`` and ``thread``."""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from collections.abc import Sequence
+from pathlib import Path
+
+from . import __version__
+from .analysis import analyse
+from .config import CONTROLLERS, Config
+from .diagnostics import Diagnostic, Severity
+from .workspace import Workspace, is_program_file
+
+EXIT_OK = 0
+EXIT_ERRORS = 1
+EXIT_USAGE = 2
+
+
+class UsageError(Exception):
+    pass
+
+
+def collect_files(paths: Sequence[str]) -> list[Path]:
+    files: list[Path] = []
+    for raw in paths:
+        path = Path(raw)
+        if path.is_dir():
+            files.extend(p for p in sorted(path.rglob("*")) if p.is_file() and is_program_file(p))
+        elif path.is_file():
+            files.append(path)
+        else:
+            raise UsageError(f"fanuc-macro: no such file or directory: {raw}")
+    return files
+
+
+def _format_text(path: str, d: Diagnostic) -> str:
+    return f"{path}:{d.line + 1}:{d.column + 1}: {d.code} {d.severity.value} {d.message}"
+
+
+def _as_json(path: str, d: Diagnostic) -> dict[str, object]:
+    return {
+        "path": path,
+        "line": d.line + 1,
+        "column": d.column + 1,
+        "end_line": d.end_line + 1,
+        "end_column": d.end_column + 1,
+        "severity": d.severity.value,
+        "code": d.code,
+        "message": d.message,
+    }
+
+
+def _config(args: argparse.Namespace) -> Config:
+    disabled = frozenset(c.strip().upper() for c in (args.disable or "").split(",") if c.strip())
+    return Config(controller=args.controller, disabled=disabled)
+
+
+def cmd_check(args: argparse.Namespace) -> int:
+    files = collect_files(args.paths)
+    config = _config(args)
+    workspace = Workspace(config)
+    for path in files:
+        workspace.add_bytes(str(path), path.read_bytes())
+    programs = workspace.program_numbers()
+    records: list[dict[str, object]] = []
+    any_error = False
+    out = sys.stdout
+    for path in files:
+        analysis = workspace.analyse(str(path), workspace_programs=programs)
+        for d in analysis.diagnostics:
+            any_error |= d.severity is Severity.ERROR
+            if args.format == "json":
+                records.append(_as_json(str(path), d))
+            else:
+                out.write(_format_text(str(path), d) + "\n")
+    if args.format == "json":
+        json.dump(records, out, ensure_ascii=False, indent=1)
+        out.write("\n")
+    return EXIT_ERRORS if any_error else EXIT_OK
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(
+        prog="fanuc-macro", description="Check FANUC Custom Macro B programs."
+    )
+    parser.add_argument("--version", action="version", version=f"fanuc-macro {__version__}")
+    sub = parser.add_subparsers(dest="command", required=True)
+
+    check = sub.add_parser("check", help="report problems in programs (files or folders)")
+    check.add_argument("paths", nargs="+", metavar="PATH")
+    check.add_argument("--format", choices=("text", "json"), default="text")
+    check.add_argument("--controller", choices=CONTROLLERS, default="0i-TF")
+    check.add_argument("--disable", metavar="CODES", help="comma-separated rule codes to skip")
+    check.set_defaults(func=cmd_check)
+    return parser
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    parser = build_parser()
+    try:
+        args = parser.parse_args(argv)
+    except SystemExit as exc:  # argparse exits 2 on a usage problem, 0 for --help
+        return int(exc.code or 0)
+    try:
+        result: int = args.func(args)
+        return result
+    except UsageError as err:
+        sys.stderr.write(f"{err}\n")
+        return EXIT_USAGE
+    except BrokenPipeError:
+        return EXIT_OK
+
+
+if __name__ == "__main__":
+    sys.exit(main())
+
+
+__all__ = ["analyse", "main"]

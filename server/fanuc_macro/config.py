@@ -1,0 +1,69 @@
+"""Settings of an analysis: the controller, the machine's limits, rules on and off."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any
+
+from .diagnostics import Severity
+
+CONTROLLERS = ("0i-TF", "0i-MF", "30i")
+
+
+@dataclass(frozen=True)
+class Config:
+    controller: str = "0i-TF"
+    max_spindle_speed: float = 4000.0  # rpm
+    max_threading_feed: float = 5000.0  # mm/min: S x pitch must stay under it
+    max_depth_per_pass: float = 0.5  # mm, radius, for a threading pass
+    disabled: frozenset[str] = frozenset()
+    severities: dict[str, Severity] = field(default_factory=dict)
+    step_budget: int = 2_000_000  # blocks the evaluator may execute from one entry
+    time_budget: float = 2.0  # seconds of evaluation per document
+
+    @property
+    def is_lathe(self) -> bool:
+        return self.controller.endswith("T") or self.controller.endswith("TF")
+
+    @property
+    def four_digit_programs(self) -> bool:
+        """0i/16i program numbers have four digits (M98 P0013331 = 1 x O3331)."""
+        return self.controller != "30i"
+
+    @classmethod
+    def from_settings(cls, settings: dict[str, Any] | None) -> Config:
+        """Read the ``fanuc-macro`` settings object of the editor (unknown keys are ignored)."""
+        if not settings:
+            return cls()
+        machine = settings.get("machine") or {}
+        threading = settings.get("threading") or {}
+        rules = settings.get("rules") or {}
+        analysis = settings.get("analysis") or {}
+        severities: dict[str, Severity] = {}
+        for code, value in (rules.get("severity") or {}).items():
+            try:
+                severities[str(code).upper()] = Severity(str(value).lower())
+            except ValueError:
+                continue
+        controller = str(settings.get("controller") or "0i-TF")
+        default = cls()
+        return cls(
+            controller=controller if controller in CONTROLLERS else "0i-TF",
+            max_spindle_speed=_number(machine.get("maxSpindleSpeed"), default.max_spindle_speed),
+            max_threading_feed=_number(
+                machine.get("maxThreadingFeed"), default.max_threading_feed
+            ),
+            max_depth_per_pass=_number(
+                threading.get("maxDepthPerPass"), default.max_depth_per_pass
+            ),
+            disabled=frozenset(str(c).upper() for c in rules.get("disabled") or ()),
+            severities=severities,
+            step_budget=int(_number(analysis.get("stepBudget"), default.step_budget)),
+            time_budget=_number(analysis.get("timeBudget"), default.time_budget),
+        )
+
+
+def _number(value: Any, default: float) -> float:
+    if isinstance(value, bool) or not isinstance(value, int | float) or value <= 0:
+        return default
+    return float(value)

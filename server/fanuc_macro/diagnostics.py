@@ -1,0 +1,102 @@
+"""Diagnostics and the registry of rules that produce them.
+
+Every diagnostic has a code (``MB101``), documented in docs/rules.md with what it means, why it
+matters on the machine, and an example. Positions are 0-based lines and columns in characters.
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Iterable
+from dataclasses import dataclass, field, replace
+from enum import Enum
+
+
+class Severity(str, Enum):
+    ERROR = "error"
+    WARNING = "warning"
+    INFORMATION = "information"
+    HINT = "hint"
+
+
+@dataclass(frozen=True, slots=True)
+class Related:
+    """Another place that explains a diagnostic (the assignment that produced a bad value)."""
+
+    line: int
+    column: int
+    end_column: int
+    message: str
+    uri: str | None = None  # None: the same document
+
+
+@dataclass(frozen=True, slots=True)
+class Diagnostic:
+    code: str
+    severity: Severity
+    message: str
+    line: int
+    column: int
+    end_line: int
+    end_column: int
+    related: tuple[Related, ...] = ()
+    data: dict[str, object] | None = field(default=None, compare=False, hash=False)
+
+    def with_severity(self, severity: Severity) -> Diagnostic:
+        return replace(self, severity=severity)
+
+
+@dataclass(frozen=True, slots=True)
+class RuleInfo:
+    code: str
+    name: str  # kebab-case, e.g. "goto-missing-label"
+    severity: Severity
+    summary: str
+    family: str
+
+
+RULES: dict[str, RuleInfo] = {}
+
+
+def register(*infos: RuleInfo) -> None:
+    for info in infos:
+        if info.code in RULES and RULES[info.code] != info:
+            raise ValueError(f"rule code {info.code} registered twice")
+        RULES[info.code] = info
+
+
+def make(
+    code: str,
+    message: str,
+    line: int,
+    column: int,
+    end_column: int,
+    *,
+    end_line: int | None = None,
+    related: Iterable[Related] = (),
+    severity: Severity | None = None,
+    data: dict[str, object] | None = None,
+) -> Diagnostic:
+    info = RULES[code]
+    return Diagnostic(
+        code,
+        severity or info.severity,
+        message,
+        line,
+        column,
+        line if end_line is None else end_line,
+        max(end_column, column),
+        tuple(related),
+        data,
+    )
+
+
+_SUPPRESS = re.compile(r"fanuc-macro\s*:\s*ignore\b\s*((?:MB\d+[\s,]*)*)", re.I)
+
+
+def suppressed_codes(comment_text: str) -> set[str] | None:
+    """Codes named by ``(fanuc-macro: ignore MB301 MB302)``; an empty set means every code."""
+    m = _SUPPRESS.search(comment_text)
+    if m is None:
+        return None
+    return {c.upper() for c in re.findall(r"MB\d+", m.group(1), re.I)}

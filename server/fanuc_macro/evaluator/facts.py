@@ -1,0 +1,125 @@
+"""What the evaluator learned: per block runs, values read and written, jumps, motions, findings.
+
+These are the facts the rules, the hover and the inlay hints read. They carry no LSP types.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from .values import Unknown, Value, fmt
+
+
+class ValueSummary:
+    """The values one variable had at one block over every execution."""
+
+    __slots__ = ("count", "first", "last", "maximum", "minimum", "unknown", "vacant")
+
+    def __init__(self) -> None:
+        self.count = 0
+        self.first: Value = None
+        self.last: Value = None
+        self.minimum = float("inf")
+        self.maximum = float("-inf")
+        self.vacant = 0
+        self.unknown: Unknown | None = None
+
+    def add(self, value: Value) -> None:
+        if self.count == 0:
+            self.first = value
+        self.count += 1
+        self.last = value
+        if value is None:
+            self.vacant += 1
+        elif isinstance(value, Unknown):
+            self.unknown = value
+        else:
+            if value < self.minimum:
+                self.minimum = value
+            if value > self.maximum:
+                self.maximum = value
+
+    @property
+    def numeric(self) -> bool:
+        return self.minimum <= self.maximum
+
+    @property
+    def constant(self) -> bool:
+        return self.numeric and self.minimum == self.maximum and self.vacant == 0
+
+    def describe(self) -> str:
+        """``1.907`` or ``0.092 → 1.887 (88 values, min 0.092, max 1.887)``."""
+        if self.count == 0:
+            return "never evaluated"
+        if self.count == 1 or (self.constant and self.unknown is None):
+            return fmt(self.first)
+        if not self.numeric:
+            return fmt(self.last)
+        text = (f"{fmt(self.first)} → {fmt(self.last)} ({self.count} times, min "
+                f"{fmt(self.minimum)}, max {fmt(self.maximum)})")
+        if self.vacant:
+            text += f", vacant {self.vacant} times"
+        return text
+
+
+@dataclass
+class Motion:
+    program: str
+    line: int
+    code: str
+    words: dict[str, float]
+    uri: str = ""
+
+
+@dataclass
+class Finding:
+    """Something to report at a block: an alarm, a bad address value, a loop that never ends."""
+
+    kind: str
+    line: int
+    column: int
+    end_column: int
+    message: str
+    uri: str = ""
+    related_line: int | None = None
+    related_message: str = ""
+
+
+@dataclass
+class JumpCount:
+    taken: int = 0
+    not_taken: int = 0
+    undecided: int = 0
+
+
+@dataclass
+class DocumentFacts:
+    """Facts about one document's blocks, across every run that reached them."""
+
+    runs: dict[int, int] = field(default_factory=dict)
+    reads: dict[tuple[int, int], ValueSummary] = field(default_factory=dict)
+    writes: dict[int, tuple[int, ValueSummary]] = field(default_factory=dict)
+    jumps: dict[int, JumpCount] = field(default_factory=dict)
+    findings: list[Finding] = field(default_factory=list)
+    analysed_programs: set[int] = field(default_factory=set)  # first lines of programs run
+    incomplete_programs: set[int] = field(default_factory=set)  # runs that stopped early
+
+    def read_summary(self, line: int, number: int) -> ValueSummary | None:
+        return self.reads.get((line, number))
+
+    def write_summary(self, line: int) -> tuple[int, ValueSummary] | None:
+        return self.writes.get(line)
+
+
+@dataclass
+class Facts:
+    by_uri: dict[str, DocumentFacts] = field(default_factory=dict)
+    motions: list[Motion] = field(default_factory=list)
+    steps: int = 0
+    stopped: str | None = None  # why a run stopped early ("budget", "alarm", ...)
+
+    def document(self, uri: str) -> DocumentFacts:
+        facts = self.by_uri.get(uri)
+        if facts is None:
+            facts = self.by_uri[uri] = DocumentFacts()
+        return facts

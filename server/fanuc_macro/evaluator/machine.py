@@ -1,0 +1,820 @@
+"""Running programs as the control would: blocks, jumps, loops, calls, modal state.
+
+The run starts from each entry program (one nothing calls; a file's first) with a step and a
+time budget, and records facts (:mod:`.facts`) as it goes. Values the analysis cannot know are
+:class:`Unknown`; a branch on an unknown condition takes the fall-through path (and a WHILE on
+an unknown condition runs its body once), so a program analysed alone still gets its values.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+
+from ..config import Config
+from ..index import Program, ProgramIndex, constant_value
+from ..syntax import (
+    Assign,
+    Document,
+    End,
+    Goto,
+    IfGoto,
+    IfNc,
+    IfThen,
+    Mixed,
+    NcStatement,
+    ProgramStart,
+    Statement,
+    Var,
+    While,
+)
+from ..variables import ARGUMENT_VARIABLES, classify
+from ..walk import subexpressions, top_expressions
+from .compiler import CondEvaluator, Evaluator, compile_cond, compile_expr
+from .facts import DocumentFacts, Facts, Finding, JumpCount, Motion, ValueSummary
+from .values import MacroAlarm, Unknown, Value, fmt
+
+# Block kinds of the compiled program.
+K_EMPTY, K_ASSIGN, K_GOTO, K_IFGOTO, K_IFTHEN, K_WHILE, K_END, K_NC, K_HEADER, K_OTHER = range(10)
+
+MOTION_GROUP = {0.0, 1.0, 2.0, 3.0, 32.0, 33.0, 34.0}
+LATHE_CYCLES = {90.0, 92.0, 94.0}  # G-code system A: modal canned cycles of group 01
+ONE_SHOT_CYCLES = {70.0, 71.0, 72.0, 73.0, 74.0, 75.0, 76.0}
+AXES = frozenset("XYZUVWABC")
+INTEGER_ADDRESSES = frozenset("MSTLHD")  # P too, when it names a program (M98, G65, M99)
+MAX_MACRO_LEVEL = 5  # G65/G66 levels (0i-D/30i); 16i has 4
+MAX_NESTING = 10
+
+
+@dataclass(slots=True)
+class CompiledWord:
+    address: str
+    evaluate: Evaluator
+    start: int
+    end: int
+
+
+@dataclass(slots=True)
+class CompiledLine:
+    kind: int
+    line: int
+    reads: tuple[int, ...] = ()  # direct variables the block reads (for the facts)
+    target: Evaluator | None = None  # assignment target index (indirect) or GOTO target
+    target_number: int | None = None  # direct assignment target
+    value: Evaluator | None = None
+    cond: CondEvaluator | None = None
+    words: tuple[CompiledWord, ...] = ()
+    nc: NcStatement | None = None
+    node: Statement | None = None
+    second: CompiledLine | None = None  # the macro part of a mixed block
+
+
+def _direct_reads(statement: Statement) -> tuple[int, ...]:
+    numbers: list[int] = []
+    skip_target: Var | None = None
+    if isinstance(statement, Assign):
+        skip_target = statement.target
+    elif isinstance(statement, IfThen):
+        skip_target = statement.then.target
+    for top in top_expressions(statement):
+        for node in subexpressions(top):
+            if node is skip_target:
+                continue
+            if isinstance(node, Var) and node.number is not None and node.number == int(
+                node.number
+            ):
+                n = int(node.number)
+                if n and n not in numbers:
+                    numbers.append(n)
+    return tuple(numbers)
+
+
+def _compile_assign(kind: int, line: int, assign: Assign) -> CompiledLine:
+    target = assign.target
+    compiled = CompiledLine(kind, line, value=compile_expr(assign.value), node=assign)
+    if target.number is not None:
+        compiled.target_number = int(target.number) if target.number == int(target.number) else -1
+    else:
+        assert target.index is not None
+        compiled.target = compile_expr(target.index)
+    return compiled
+
+
+def compile_statement(line: int, statement: Statement | None) -> CompiledLine:
+    if statement is None:
+        return CompiledLine(K_EMPTY, line)
+    reads = _direct_reads(statement)
+    if isinstance(statement, Mixed):
+        first = compile_statement(line, statement.nc)
+        first.second = compile_statement(line, statement.macro)
+        first.reads = reads
+        return first
+    if isinstance(statement, Assign):
+        c = _compile_assign(K_ASSIGN, line, statement)
+    elif isinstance(statement, IfThen):
+        c = _compile_assign(K_IFTHEN, line, statement.then)
+        c.cond = compile_cond(statement.cond)
+        c.node = statement
+    elif isinstance(statement, Goto):
+        c = CompiledLine(K_GOTO, line, target=compile_expr(statement.target), node=statement)
+    elif isinstance(statement, IfGoto):
+        c = CompiledLine(K_IFGOTO, line, target=compile_expr(statement.goto.target),
+                         cond=compile_cond(statement.cond), node=statement)
+    elif isinstance(statement, While):
+        cond = compile_cond(statement.cond) if statement.cond is not None else None
+        c = CompiledLine(K_WHILE, line, cond=cond, node=statement)
+    elif isinstance(statement, End):
+        c = CompiledLine(K_END, line, node=statement)
+    elif isinstance(statement, NcStatement):
+        c = _compile_nc(line, statement)
+    elif isinstance(statement, IfNc):
+        c = _compile_nc(line, statement.words)
+        c.cond = compile_cond(statement.cond)
+    elif isinstance(statement, ProgramStart):
+        c = CompiledLine(K_HEADER, line, node=statement)
+    else:
+        c = CompiledLine(K_OTHER, line, node=statement)
+    c.reads = reads
+    return c
+
+
+def _compile_nc(line: int, nc: NcStatement) -> CompiledLine:
+    words = tuple(
+        CompiledWord(w.address, compile_expr(w.value), w.span.start, w.span.end) for w in nc.words
+    )
+    return CompiledLine(K_NC, line, words=words, nc=nc, node=nc)
+
+
+@dataclass
+class ProgramContext:
+    uri: str
+    doc: Document
+    program: Program
+    lines: list[CompiledLine]  # indexed by document line
+    loop_end: dict[int, int]  # DO line -> END line
+    loop_do: dict[int, int]  # END line -> DO line
+    facts: DocumentFacts
+    is_main: bool  # ends with M30/M02: locals start vacant
+
+    @property
+    def name(self) -> str:
+        return self.program.display_name
+
+
+class Activation:
+    """One running program: its place, its locals and how it returns."""
+
+    __slots__ = (
+        "caller",
+        "ctx",
+        "locals",
+        "macro_level",
+        "machine",
+        "pc",
+        "repeats_left",
+        "return_pc",
+        "store",
+        "undecided_loops",
+    )
+
+    def __init__(self, machine: Machine, ctx: ProgramContext, locals_: list[Value],
+                 macro_level: int, caller: Activation | None, return_pc: int,
+                 repeats_left: int) -> None:
+        self.machine = machine
+        self.ctx = ctx
+        self.locals = locals_
+        self.store = machine.store
+        self.macro_level = macro_level
+        self.caller = caller
+        self.return_pc = return_pc
+        self.repeats_left = repeats_left
+        self.pc = ctx.program.first_line
+        self.undecided_loops: set[int] = set()
+
+    def read_global(self, number: int) -> Value:
+        return self.machine.unknown_of(number)
+
+    def read_indirect(self, index: Value, node: Var) -> Value:
+        if isinstance(index, Unknown):
+            return index
+        n = 0 if index is None else int(round(index))
+        if n == 0:
+            return None
+        if 1 <= n <= 33:
+            return self.locals[n]
+        if classify(n).kind == "none":
+            raise MacroAlarm("PS0115", "no-such-variable",
+                             f"#[...] refers to #{n}, which does not exist (VARIABLE NO. OUT OF "
+                             "RANGE)", float(n))
+        v = self.store.get(n, self)
+        return self.read_global(n) if v is self else v  # type: ignore[return-value]
+
+
+class _Stop(Exception):
+    def __init__(self, reason: str) -> None:
+        super().__init__(reason)
+        self.reason = reason
+
+
+@dataclass
+class Modal:
+    motion: float | None = None  # group 01
+    absolute: bool = True  # G90/G91 (mill)
+    feed: Value = None
+    speed: Value = None
+    feed_per_rev: bool = True  # G99 (lathe default)
+    modal_call: tuple[ProgramContext, list[Value], int] | None = None  # G66
+    position: dict[str, Value] = field(default_factory=dict)
+
+
+class Machine:
+    def __init__(self, programs: dict[int, ProgramContext], config: Config, facts: Facts) -> None:
+        self.programs = programs
+        self.config = config
+        self.facts = facts
+        self.store: dict[int, Value] = {}
+        self._unknowns: dict[int, Unknown] = {}
+        self._seen_findings: set[tuple[str, int, int]] = set()
+        self.steps = 0
+        self._steps = 0
+        self.deadline = 0.0
+        self.budget = config.step_budget
+
+    def unknown_of(self, number: int) -> Unknown:
+        u = self._unknowns.get(number)
+        if u is None:
+            u = self._unknowns[number] = Unknown(frozenset({number}))
+        return u
+
+    # ---- the run ---------------------------------------------------------------------------
+    def run(self, entry: ProgramContext, deadline: float) -> str:
+        """Run from ``entry``; returns why the run ended."""
+        self.store = {}
+        self.deadline = deadline
+        self.modal = Modal()
+        if entry.is_main:
+            locals_: list[Value] = [None] * 34
+        else:
+            # A macro analysed alone: its arguments are unknown, not vacant.
+            locals_ = [None] + [self.unknown_of(n) for n in range(1, 34)]
+        act = Activation(self, entry, locals_, 0, None, 0, 0)
+        entry.facts.analysed_programs.add(entry.program.first_line)
+        try:
+            self._loop(act)
+        except _Stop as stop:
+            return stop.reason
+        finally:
+            self.steps = self._steps
+        return "end"
+
+    def _finding(self, ctx: ProgramContext, kind: str, line: int, start: int, end: int,
+                 message: str, related_line: int | None = None, related_message: str = "") -> None:
+        key = (kind, line, start)
+        seen = self._seen_findings
+        if key in seen:
+            return
+        seen.add(key)
+        ctx.facts.findings.append(Finding(kind, line, start, end, message, ctx.uri, related_line,
+                                          related_message))
+
+    def _loop(self, act: Activation) -> None:
+        steps = self._steps = 0
+        check_every = 4096
+        next_check = steps + check_every
+        budget = self.budget
+        while True:
+            ctx = act.ctx
+            pc = act.pc
+            if pc >= ctx.program.end_line:
+                act = self._return(act, None, ctx.program.end_line - 1)
+                continue
+            cl = ctx.lines[pc]
+            kind = cl.kind
+            steps += 1
+            self._steps = steps
+            if steps >= next_check:
+                self.steps = steps
+                next_check = steps + check_every
+                if steps >= budget or time.monotonic() > self.deadline:
+                    self._budget_spent(act)
+                    self._mark_incomplete(act)
+                    raise _Stop("budget")
+            facts = ctx.facts
+            runs = facts.runs
+            runs[pc] = runs.get(pc, 0) + 1
+            if cl.reads:
+                self._record_reads(act, cl, facts)
+            try:
+                if kind == K_EMPTY or kind == K_OTHER:
+                    act.pc = pc + 1
+                elif kind == K_ASSIGN:
+                    self._assign(act, cl, facts)
+                    act.pc = pc + 1
+                elif kind == K_IFGOTO:
+                    assert cl.cond is not None
+                    result = cl.cond(act)
+                    jc = facts.jumps.get(pc)
+                    if jc is None:
+                        jc = facts.jumps[pc] = JumpCount()
+                    if result is True:
+                        jc.taken += 1
+                        act.pc = self._goto(act, cl)
+                    else:
+                        if result is False:
+                            jc.not_taken += 1
+                        else:
+                            jc.undecided += 1
+                        act.pc = pc + 1
+                elif kind == K_GOTO:
+                    act.pc = self._goto(act, cl)
+                elif kind == K_IFTHEN:
+                    assert cl.cond is not None
+                    result = cl.cond(act)
+                    jc = facts.jumps.get(pc)
+                    if jc is None:
+                        jc = facts.jumps[pc] = JumpCount()
+                    if result is True:
+                        jc.taken += 1
+                        self._assign(act, cl, facts)
+                    elif result is False:
+                        jc.not_taken += 1
+                    else:
+                        jc.undecided += 1
+                        self._assign(act, cl, facts, unknown=result)
+                    act.pc = pc + 1
+                elif kind == K_WHILE:
+                    act.pc = self._while(act, cl, facts)
+                elif kind == K_END:
+                    do_line = ctx.loop_do.get(pc)
+                    act.pc = pc + 1 if do_line is None else do_line
+                elif kind == K_NC:
+                    act = self._nc(act, cl)
+                    if cl.second is not None and act.ctx is ctx and act.pc == pc + 1:
+                        act.pc = pc
+                        self._run_second(act, cl.second, facts)
+                elif kind == K_HEADER:
+                    act.pc = pc + 1
+            except MacroAlarm as alarm:
+                self.steps = steps
+                self._alarm(act, cl, alarm)
+                self._mark_incomplete(act)
+                raise _Stop("alarm") from None
+            except _Stop as stop:
+                if stop.reason != "end of program":
+                    self._mark_incomplete(act)
+                raise
+
+    @staticmethod
+    def _mark_incomplete(act: Activation | None) -> None:
+        """Programs on the call stack when a run stops early: their unrun blocks prove nothing."""
+        while act is not None:
+            act.ctx.facts.incomplete_programs.add(act.ctx.program.first_line)
+            act = act.caller
+
+    def _run_second(self, act: Activation, cl: CompiledLine, facts: DocumentFacts) -> None:
+        if cl.kind == K_ASSIGN:
+            self._assign(act, cl, facts)
+            act.pc = cl.line + 1
+        elif cl.kind == K_GOTO:
+            act.pc = self._goto(act, cl)
+        else:
+            act.pc = cl.line + 1
+
+    def _record_reads(self, act: Activation, cl: CompiledLine, facts: DocumentFacts) -> None:
+        reads = facts.reads
+        line = cl.line
+        locals_ = act.locals
+        store = self.store
+        for n in cl.reads:
+            key = (line, n)
+            summary = reads.get(key)
+            if summary is None:
+                summary = reads[key] = ValueSummary()
+            if n <= 33:
+                summary.add(locals_[n])
+            else:
+                v = store.get(n, act)
+                summary.add(self.unknown_of(n) if v is act else v)  # type: ignore[arg-type]
+
+    def _assign(self, act: Activation, cl: CompiledLine, facts: DocumentFacts,
+                unknown: Unknown | None = None) -> None:
+        assert cl.value is not None
+        value = cl.value(act)
+        if unknown is not None:
+            # IF [unknown] THEN #n=...: afterwards #n may or may not have changed.
+            deps = set(unknown.deps)
+            if isinstance(value, Unknown):
+                deps |= value.deps
+            value = Unknown(frozenset(deps))
+        n = cl.target_number
+        if n is None:
+            assert cl.target is not None
+            index = cl.target(act)
+            if isinstance(index, Unknown):
+                return
+            n = 0 if index is None else int(round(index))
+            kind = classify(n)
+            if kind.kind == "none":
+                raise MacroAlarm("PS0115", "no-such-variable",
+                                 f"#[...] = ... writes #{n}, which does not exist (VARIABLE NO. "
+                                 "OUT OF RANGE)", float(n))
+            if kind.read_only:
+                raise MacroAlarm("PS0116", "write-read-only",
+                                 f"#[...] = ... writes #{n}, which is read-only ({kind.meaning})",
+                                 float(n))
+        if n < 0:
+            return  # #30001.116 and the like: not FANUC, reported by MB002
+        if 1 <= n <= 33:
+            act.locals[n] = value
+        elif n == 0:
+            raise MacroAlarm("PS0116", "write-read-only", "#0 is read-only", 0.0)
+        else:
+            if n == 3000 and value is not None and not isinstance(value, Unknown):
+                raise MacroAlarm("3000", "macro-alarm",
+                                 f"#3000 = {fmt(value)}: the program raises macro alarm "
+                                 f"{3000 + int(value)}", value)
+            if not _volatile(n):
+                self.store[n] = value
+        write = facts.writes.get(cl.line)
+        if write is None:
+            write = facts.writes[cl.line] = (n, ValueSummary())
+        write[1].add(value)
+
+    def _goto(self, act: Activation, cl: CompiledLine) -> int:
+        assert cl.target is not None
+        target = cl.target(act)
+        ctx = act.ctx
+        if isinstance(target, Unknown):
+            raise _Stop("unknown jump")
+        if target is None or target != int(target) or not 1 <= target <= 99999:
+            raise MacroAlarm("PS0128", "goto-target",
+                             f"GOTO {fmt(target)}: not a sequence number 1-99999 (ILLEGAL MACRO "
+                             "SEQUENCE NUMBER)", target if target is not None else 0.0)
+        line = self._label(ctx, int(target), cl.line)
+        if line is None:
+            raise MacroAlarm("PS0128", "goto-missing",
+                             f"GOTO {int(target)}: no N{int(target)} in {ctx.name} (ILLEGAL MACRO "
+                             "SEQUENCE NUMBER)", target)
+        return line
+
+    @staticmethod
+    def _label(ctx: ProgramContext, seq: int, from_line: int) -> int | None:
+        lines = ctx.program.labels.get(seq)
+        if not lines:
+            return None
+        for ln in lines:  # the control searches forward first, then from the head
+            if ln > from_line:
+                return ln
+        return lines[0]
+
+    def _while(self, act: Activation, cl: CompiledLine, facts: DocumentFacts) -> int:
+        pc = cl.line
+        end = act.ctx.loop_end.get(pc)
+        result: object = True if cl.cond is None else cl.cond(act)
+        jc = facts.jumps.get(pc)
+        if jc is None:
+            jc = facts.jumps[pc] = JumpCount()
+        if result is True:
+            jc.taken += 1
+            return pc + 1
+        if result is False:
+            jc.not_taken += 1
+        else:
+            jc.undecided += 1
+            if pc not in act.undecided_loops:
+                act.undecided_loops.add(pc)  # run the body once to learn its values
+                return pc + 1
+        act.undecided_loops.discard(pc)
+        if end is None:
+            raise _Stop("no END")
+        return end + 1
+
+    # ---- NC blocks -------------------------------------------------------------------------
+    def _nc(self, act: Activation, cl: CompiledLine) -> Activation:
+        ctx = act.ctx
+        if cl.cond is not None:  # Haas IF [c] <words>
+            result = cl.cond(act)
+            if result is not True:
+                act.pc = cl.line + 1
+                return act
+        values: dict[str, Value] = {}
+        g_codes: list[float] = []
+        m_codes: list[float] = []
+        order: list[tuple[str, Value, CompiledWord]] = []
+        for w in cl.words:
+            v = w.evaluate(act)
+            if v is None:
+                continue  # a vacant variable omits the word
+            order.append((w.address, v, w))
+            if w.address == "G" and not isinstance(v, Unknown):
+                g_codes.append(round(v, 1))
+            elif w.address == "M" and not isinstance(v, Unknown):
+                m_codes.append(v)
+            if w.address not in values:
+                values[w.address] = v
+        self._check_addresses(act, cl, order)
+        modal = self.modal
+        call_kind: str | None = None
+        for g in g_codes:
+            if g in MOTION_GROUP or (self.config.is_lathe and g in LATHE_CYCLES):
+                modal.motion = g
+            elif g == 65.0:
+                call_kind = "G65"
+            elif g in (66.0, 66.1):
+                call_kind = "G66"
+            elif g == 67.0:
+                modal.modal_call = None
+            elif g == 90.0 and not self.config.is_lathe:
+                modal.absolute = True
+            elif g == 91.0 and not self.config.is_lathe:
+                modal.absolute = False
+            elif g == 98.0:
+                modal.feed_per_rev = False
+            elif g == 99.0:
+                modal.feed_per_rev = True
+        if "F" in values and call_kind is None:
+            modal.feed = values["F"]
+        if "S" in values and call_kind is None:
+            modal.speed = values["S"]
+        if call_kind == "G65":
+            return self._macro_call(act, cl, order, modal_call=False)
+        if call_kind == "G66":
+            self._macro_call(act, cl, order, modal_call=True)
+            act.pc = cl.line + 1
+            return act
+        moved = self._motion(act, cl, values, g_codes)
+        for m in m_codes:
+            if m == 98.0:
+                return self._sub_call(act, cl, values)
+            if m == 99.0:
+                return self._return(act, values.get("P"), cl.line)
+            if m in (2.0, 30.0):
+                raise _Stop("end of program")
+        act.pc = cl.line + 1
+        if moved and modal.modal_call is not None:
+            callee, args, _ = modal.modal_call
+            return self._enter(act, callee, list(args), True, cl.line + 1, 1)
+        return act
+
+    def _motion(self, act: Activation, cl: CompiledLine, values: dict[str, Value],
+                g_codes: list[float]) -> bool:
+        one_shot = next((g for g in g_codes if g in ONE_SHOT_CYCLES), None)
+        has_axis = any(a in AXES for a in values)
+        modal = self.modal
+        if one_shot is not None:
+            code = one_shot
+        elif has_axis and modal.motion is not None:
+            code = modal.motion
+        else:
+            return False
+        words: dict[str, float] = {}
+        for address, v in values.items():
+            if address in ("G", "M", "N") or isinstance(v, Unknown) or v is None:
+                continue
+            words[address] = round(v, 3)  # the least input increment (IS-B)
+        if "F" not in words and isinstance(modal.feed, float) and code not in (0.0,):
+            words["F"] = modal.feed
+        motions = self.facts.motions
+        if len(motions) < 200_000:
+            motions.append(Motion(act.ctx.name, cl.line, _g_name(code), words, act.ctx.uri))
+        position = modal.position
+        for axis in ("X", "Z", "Y"):
+            if axis in values and code not in LATHE_CYCLES:
+                position[axis] = values[axis]
+        return True
+
+    def _check_addresses(self, act: Activation, cl: CompiledLine,
+                         order: list[tuple[str, Value, CompiledWord]]) -> None:
+        calls = any(
+            a in ("M", "G") and isinstance(v, float) and v in (98.0, 99.0, 65.0, 66.0)
+            for a, v, _ in order
+        )
+        for address, v, w in order:
+            if isinstance(v, Unknown) or v is None:
+                continue
+            if (address in INTEGER_ADDRESSES or (address == "P" and calls)) and v != int(v):
+                self._finding(act.ctx, "address-non-integer", cl.line, w.start, w.end,
+                              f"{address} gets {fmt(v)}: {address} takes a whole number")
+            elif address == "G" and round(v, 1) != v:
+                self._finding(act.ctx, "address-non-integer", cl.line, w.start, w.end,
+                              f"G gets {fmt(v)}: not a G code")
+            elif address in ("S", "T", "M", "H", "D", "F") and v < 0:
+                self._finding(act.ctx, "address-range", cl.line, w.start, w.end,
+                              f"{address} gets {fmt(v)}: {address} cannot be negative")
+            elif address == "S" and v > self.config.max_spindle_speed:
+                self._finding(act.ctx, "address-range", cl.line, w.start, w.end,
+                              f"S gets {fmt(v)} rpm, above the machine's maximum "
+                              f"{fmt(self.config.max_spindle_speed)} rpm")
+
+    # ---- calls -----------------------------------------------------------------------------
+    def _find(self, act: Activation, cl: CompiledLine, number: Value, what: str) -> (
+            ProgramContext | None):
+        if isinstance(number, Unknown) or number is None:
+            return None
+        ctx = self.programs.get(int(number))
+        if ctx is None:
+            self._finding(act.ctx, "program-not-found", cl.line, 0, len(act.ctx.doc.blocks[
+                cl.line].text), f"{what} calls O{int(number):04d}, which the analysis does not "
+                "have; the call is skipped")
+        return ctx
+
+    def _sub_call(self, act: Activation, cl: CompiledLine, values: dict[str, Value]) -> Activation:
+        p = values.get("P")
+        l_value = values.get("L")
+        repeat = 1
+        if isinstance(p, float) and l_value is None and self.config.four_digit_programs and (
+            p >= 10000
+        ):
+            repeat = int(p) // 10000
+            p = float(int(p) % 10000)
+        elif isinstance(l_value, float):
+            repeat = int(l_value)
+        callee = self._find(act, cl, p, "M98")
+        if callee is None or repeat <= 0:
+            act.pc = cl.line + 1
+            return act
+        # M98 opens no new local level: the callee shares the caller's locals.
+        return self._enter(act, callee, act.locals, False, cl.line + 1, repeat)
+
+    def _macro_call(self, act: Activation, cl: CompiledLine,
+                    order: list[tuple[str, Value, CompiledWord]], modal_call: bool) -> Activation:
+        p: Value = None
+        repeat = 1
+        args: list[Value] = [None] * 34
+        seen_g = False
+        ijk_set = -1
+        ijk_seen: set[str] = set()
+        for address, v, _w in order:
+            if address == "G" and not seen_g:
+                seen_g = True
+                continue
+            if address == "P":
+                p = v
+            elif address == "L":
+                repeat = int(v) if isinstance(v, float) else 1
+            elif address in "IJK":
+                # Specification II: repeated I/J/K fill #4-#33 in sets of three.
+                if ijk_set < 0 or address in ijk_seen or "IJK".index(address) < max(
+                    "IJK".index(a) for a in ijk_seen
+                ):
+                    ijk_set += 1
+                    ijk_seen = set()
+                ijk_seen.add(address)
+                n = 4 + 3 * ijk_set + "IJK".index(address)
+                if n <= 33:
+                    args[n] = v
+            elif address in ARGUMENT_VARIABLES:
+                args[ARGUMENT_VARIABLES[address]] = v
+        callee = self._find(act, cl, p, "G66" if modal_call else "G65")
+        if callee is None:
+            act.pc = cl.line + 1
+            return act
+        if modal_call:
+            self.modal.modal_call = (callee, args, repeat)
+            return act
+        return self._enter(act, callee, args, True, cl.line + 1, repeat)
+
+    def _enter(self, act: Activation, callee: ProgramContext, locals_: list[Value],
+               new_level: bool, return_pc: int, repeat: int) -> Activation:
+        depth = 0
+        level = act.macro_level
+        a: Activation | None = act
+        while a is not None:
+            depth += 1
+            a = a.caller
+        if new_level:
+            level += 1
+            if level > MAX_MACRO_LEVEL:
+                raise MacroAlarm("PS0077", "nesting", f"macro call nesting deeper than "
+                                 f"{MAX_MACRO_LEVEL} levels (TOO MANY SUB,MACRO NESTING)")
+        if depth > MAX_NESTING:
+            raise MacroAlarm("PS0077", "nesting", f"call nesting deeper than {MAX_NESTING} "
+                             "(TOO MANY SUB,MACRO NESTING)")
+        callee.facts.analysed_programs.add(callee.program.first_line)
+        locals_list = list(locals_) if new_level else locals_
+        new = Activation(self, callee, locals_list, level, act, return_pc, repeat - 1)
+        new.undecided_loops = set()
+        return new
+
+    def _return(self, act: Activation, p: Value, line: int) -> Activation:
+        if act.repeats_left > 0:
+            act.repeats_left -= 1
+            act.pc = act.ctx.program.first_line
+            return act
+        caller = act.caller
+        if caller is None:
+            raise _Stop("end of program")  # M99 in a program nobody called: it would restart
+        if isinstance(p, float):
+            target = self._label(caller.ctx, int(p), caller.pc)
+            if target is None:
+                raise MacroAlarm("PS0078", "return-missing",
+                                 f"M99 P{int(p)}: no N{int(p)} in {caller.ctx.name} (SEQUENCE "
+                                 "NUMBER NOT FOUND)", p)
+            caller.pc = target
+        else:
+            caller.pc = act.return_pc
+        return caller
+
+    # ---- ends ------------------------------------------------------------------------------
+    def _alarm(self, act: Activation, cl: CompiledLine, alarm: MacroAlarm) -> None:
+        ctx = act.ctx
+        block = ctx.doc.blocks[cl.line]
+        node = alarm.node
+        span = getattr(node, "span", None) or getattr(cl.node, "span", None)
+        start, end = (span.start, span.end) if span is not None else (0, len(block.text))
+        detail = ""
+        if node is not None:
+            args = getattr(node, "args", None) or (getattr(node, "right", None),)
+            arg = args[0]
+            if arg is not None:
+                detail = f" = {block.source(arg.span).strip()}"
+                shown: list[str] = []
+                for sub in subexpressions(arg):
+                    if isinstance(sub, Var) and sub.number is not None:
+                        n = int(sub.number)
+                        v = act.locals[n] if 1 <= n <= 33 else self.store.get(n)
+                        text = f"#{n}={fmt(v)}"
+                        if text not in shown:
+                            shown.append(text)
+                if shown:
+                    detail += " with " + ", ".join(shown)
+        message = f"{alarm.message}{detail} (alarm {alarm.alarm}) in {ctx.name}"
+        self._finding(ctx, f"alarm:{alarm.kind}", cl.line, start, end, message)
+
+    def _budget_spent(self, act: Activation) -> None:
+        ctx = act.ctx
+        facts = ctx.facts
+        loops = ctx.program.enclosing_loops(act.pc)
+        head: int | None = loops[-1].do_line if loops else None
+        if head is None:
+            # A GOTO loop: the backward jump taken most often.
+            best = 0
+            for line, jc in facts.jumps.items():
+                if ctx.program.contains(line) and jc.taken > best:
+                    best = jc.taken
+                    head = line
+        if head is None:
+            head = act.pc
+        cl = ctx.lines[head]
+        still = [n for n in cl.reads if (s := facts.reads.get((head, n))) and s.constant]
+        moving = [n for n in cl.reads if n not in still]
+        if still:
+            why = ", ".join(f"#{n} stays {fmt(facts.reads[(head, n)].first)}" for n in still)
+        elif moving:
+            why = "the condition stays true although " + ", ".join(f"#{n}" for n in moving) + \
+                " change"
+        else:
+            why = "nothing in the condition changes"
+        runs = facts.runs.get(head, 0)
+        self._finding(ctx, "endless-loop", head, 0, len(ctx.doc.blocks[head].text),
+                      f"loop never ends: the block ran {runs} times before the analysis budget "
+                      f"({self.budget} blocks) ran out; {why}")
+
+
+def _volatile(number: int) -> bool:
+    """System variables the control changes by itself: clocks, signals, positions."""
+    return number in (3001, 3002) or 1000 <= number <= 1133 or 5001 <= number <= 5120 or (
+        4001 <= number <= 4430
+    )
+
+
+def _g_name(code: float) -> str:
+    if code == int(code):
+        return f"G{int(code):02d}"
+    return f"G{code:g}"
+
+
+def build_contexts(
+    docs: list[tuple[str, Document, ProgramIndex]], facts: Facts
+) -> tuple[dict[int, ProgramContext], list[ProgramContext]]:
+    """Compile every program of the given documents: by number, and all in order."""
+    contexts: dict[int, ProgramContext] = {}
+    every: list[ProgramContext] = []
+    for uri, doc, index in docs:
+        for ctx in contexts_of(uri, doc, index, facts):
+            every.append(ctx)
+            if ctx.program.number is not None and ctx.program.number not in contexts:
+                contexts[ctx.program.number] = ctx
+    return contexts, every
+
+
+def _ends_program(statement: Statement | None) -> bool:
+    nc = statement.nc if isinstance(statement, Mixed) else statement
+    return isinstance(nc, NcStatement) and any(
+        w.address == "M" and constant_value(w.value) in (2.0, 30.0) for w in nc.words
+    )
+
+
+def contexts_of(uri: str, doc: Document, index: ProgramIndex, facts: Facts) -> list[ProgramContext]:
+    doc_facts = facts.document(uri)
+    lines = [compile_statement(b.line, b.statement) for b in doc.blocks]
+    out: list[ProgramContext] = []
+    for program in index.programs:
+        loop_end = {lp.do_line: lp.end_line for lp in program.loops if lp.end_line is not None}
+        loop_do = {e: d for d, e in loop_end.items()}
+        is_main = any(
+            _ends_program(doc.blocks[ln].statement)
+            for ln in range(program.first_line, program.end_line)
+        )
+        out.append(ProgramContext(uri, doc, program, lines, loop_end, loop_do, doc_facts, is_main))
+    return out

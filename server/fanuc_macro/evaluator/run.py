@@ -1,0 +1,69 @@
+"""Evaluating a set of documents: choose the entry programs, run each, collect the facts."""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Sequence
+
+from ..config import Config
+from ..index import ProgramIndex
+from ..syntax import Document
+from .facts import Facts
+from .machine import Machine, ProgramContext, build_contexts
+
+
+def entry_programs(every: Sequence[ProgramContext], only_uri: str | None) -> list[ProgramContext]:
+    """Programs nothing calls (by a constant P), in file order; a file's first if all are called."""
+    called: set[int] = set()
+    for ctx in every:
+        for call in ctx.program.calls:
+            if call.program is not None:
+                called.add(call.program)
+    entries = [
+        ctx
+        for ctx in every
+        if (only_uri is None or ctx.uri == only_uri)
+        and (ctx.program.number is None or ctx.program.number not in called)
+    ]
+    if not entries:
+        firsts: dict[str, ProgramContext] = {}
+        for ctx in every:
+            if only_uri is None or ctx.uri == only_uri:
+                firsts.setdefault(ctx.uri, ctx)
+        entries = list(firsts.values())
+    return entries
+
+
+def evaluate(
+    docs: Sequence[tuple[str, Document, ProgramIndex]],
+    config: Config | None = None,
+    only_uri: str | None = None,
+    entry: int | None = None,
+) -> Facts:
+    """Run every entry program (or O``entry``) of ``docs`` within the configured budgets."""
+    config = config or Config()
+    facts = Facts()
+    programs, every = build_contexts(list(docs), facts)
+    if entry is not None:
+        chosen = programs.get(entry)
+        entries = [chosen] if chosen is not None else []
+    else:
+        entries = entry_programs(every, only_uri)
+    deadline = time.monotonic() + config.time_budget
+    machine = Machine(programs, config, facts)
+    reasons: list[str] = []
+    for ctx in entries:
+        machine.steps = 0
+        per_entry = min(deadline, time.monotonic() + config.time_budget)
+        reasons.append(machine.run(ctx, per_entry))
+        facts.steps += machine.steps
+    # Programs nothing ran (a subprogram whose caller is elsewhere): analyse them alone.
+    for ctx in every:
+        if only_uri is not None and ctx.uri != only_uri:
+            continue
+        if ctx.program.first_line in ctx.facts.analysed_programs:
+            continue
+        machine.steps = 0
+        reasons.append(machine.run(ctx, min(deadline + 0.5, time.monotonic() + 0.5)))
+    facts.stopped = next((r for r in reasons if r == "budget"), None)
+    return facts

@@ -1,0 +1,261 @@
+"""Macro values as a FANUC control holds them, plus "unknown" for a static analysis.
+
+A value is a ``float``, ``None`` (vacant, ``<空>``) or :class:`Unknown` (the analysis cannot know
+it: a common or system variable nobody set, or something computed from one). FANUC's vacancy
+rules: a vacant variable is 0 in arithmetic and in GT/LT/GE/LE, differs from 0 in EQ/NE, and a
+plain copy ``#2=#1`` keeps it vacant; trigonometry is in degrees.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Union
+
+
+@dataclass(frozen=True, slots=True)
+class Unknown:
+    """A value the analysis cannot compute; ``deps`` are the variables it comes from."""
+
+    deps: frozenset[int]
+
+    def describe(self) -> str:
+        if not self.deps:
+            return "unknown"
+        names = ", ".join(f"#{n}" for n in sorted(self.deps)[:6])
+        more = "..." if len(self.deps) > 6 else ""
+        return f"depends on {names}{more}"
+
+
+Value = Union[float, None, Unknown]
+
+NO_DEPS: frozenset[int] = frozenset()
+UNKNOWN = Unknown(NO_DEPS)
+
+
+def merge_unknown(*values: Value) -> Unknown:
+    deps: set[int] = set()
+    for v in values:
+        if isinstance(v, Unknown):
+            deps |= v.deps
+    return Unknown(frozenset(deps))
+
+
+class MacroAlarm(Exception):
+    """An alarm the control would raise (``PS0112 ZERO DIVIDE`` ...)."""
+
+    def __init__(self, alarm: str, kind: str, message: str, operand: float | None = None) -> None:
+        super().__init__(message)
+        self.alarm = alarm
+        self.kind = kind  # "zero-divide", "sqrt-negative", "asin-range", "ln-domain", ...
+        self.message = message
+        self.operand = operand
+        self.node: object | None = None  # the AST node, set by the compiled closure
+
+
+def fmt(value: Value) -> str:
+    """A value as the control's display shows it (8 significant digits at most)."""
+    if value is None:
+        return "<vacant>"
+    if isinstance(value, Unknown):
+        return value.describe()
+    if value != value:
+        return "NaN"
+    if math.isinf(value):
+        return "overflow"
+    if value == int(value) and abs(value) < 1e15:
+        return f"{int(value)}."
+    text = f"{value:.8g}"
+    if "e" in text:
+        return text
+    if "." not in text:
+        text += "."
+    return text
+
+
+def fmt_address(value: float) -> str:
+    """An address value rounded to 0.001 (the usual least input increment, IS-B)."""
+    rounded = round(value, 3)
+    if rounded == int(rounded):
+        return f"{int(rounded)}."
+    return f"{rounded:.3f}".rstrip("0")
+
+
+# ---- functions (degrees) ---------------------------------------------------------------------
+
+
+def _num(v: float | None) -> float:
+    return 0.0 if v is None else v
+
+
+def f_sin(x: float) -> float:
+    return math.sin(math.radians(x))
+
+
+def f_cos(x: float) -> float:
+    return math.cos(math.radians(x))
+
+
+def f_tan(x: float) -> float:
+    c = math.cos(math.radians(x))
+    if abs(c) < 1e-12:
+        raise MacroAlarm("PS0112", "zero-divide", f"TAN[{fmt(x)}]: the tangent of {fmt(x)} "
+                         "degrees is infinite (ZERO DIVIDE)", x)
+    return math.sin(math.radians(x)) / c
+
+
+def f_asin(x: float) -> float:
+    if not -1.0 <= x <= 1.0:
+        raise MacroAlarm("PS0119", "asin-range", f"ASIN argument {fmt(x)} is outside [-1, 1]", x)
+    return math.degrees(math.asin(x))
+
+
+def f_acos(x: float) -> float:
+    if not -1.0 <= x <= 1.0:
+        raise MacroAlarm("PS0119", "acos-range", f"ACOS argument {fmt(x)} is outside [-1, 1]", x)
+    return math.degrees(math.acos(x))
+
+
+def f_atan(x: float) -> float:
+    # One-argument form (30i): the result of FANUC's ATAN is 0 to 360 degrees by default.
+    return math.degrees(math.atan(x)) % 360.0
+
+
+def f_atan2(a: float, b: float) -> float:
+    if a == 0.0 and b == 0.0:
+        raise MacroAlarm("PS0119", "atan-zero", "ATAN[0]/[0] has no angle", 0.0)
+    return math.degrees(math.atan2(a, b)) % 360.0
+
+
+def f_sqrt(x: float) -> float:
+    if x < 0.0:
+        raise MacroAlarm("PS0119", "sqrt-negative", f"SQRT argument {fmt(x)} is negative", x)
+    return math.sqrt(x)
+
+
+def f_ln(x: float) -> float:
+    if x <= 0.0:
+        raise MacroAlarm("PS0119", "ln-domain", f"LN argument {fmt(x)} is not positive", x)
+    return math.log(x)
+
+
+def f_exp(x: float) -> float:
+    try:
+        return math.exp(x)
+    except OverflowError:
+        raise MacroAlarm("PS0111", "overflow", f"EXP[{fmt(x)}] overflows", x) from None
+
+
+def f_round(x: float) -> float:
+    # FANUC rounds halves away from zero.
+    return float(math.floor(abs(x) + 0.5)) * (1.0 if x >= 0 else -1.0)
+
+
+def f_fix(x: float) -> float:
+    return float(math.trunc(x))
+
+
+def f_fup(x: float) -> float:
+    t = math.trunc(x)
+    return float(t if t == x else t + (1 if x > 0 else -1))
+
+
+def f_abs(x: float) -> float:
+    return abs(x)
+
+
+def f_bin(x: float) -> float:
+    """BCD to binary."""
+    if x < 0:
+        raise MacroAlarm("PS0119", "bin-range", f"BIN argument {fmt(x)} is negative", x)
+    n = int(x)
+    result = 0
+    scale = 1
+    while n:
+        digit = n & 0xF
+        if digit > 9:
+            raise MacroAlarm("PS0119", "bin-range", f"BIN argument {fmt(x)} is not BCD", x)
+        result += digit * scale
+        scale *= 10
+        n >>= 4
+    return float(result)
+
+
+def f_bcd(x: float) -> float:
+    """Binary to BCD."""
+    if x < 0:
+        raise MacroAlarm("PS0119", "bcd-range", f"BCD argument {fmt(x)} is negative", x)
+    n = int(x)
+    result = 0
+    shift = 0
+    while n:
+        result |= (n % 10) << shift
+        shift += 4
+        n //= 10
+    return float(result)
+
+
+def f_adp(x: float) -> float:
+    # ADP adds the decimal point an argument was passed without; this analysis takes values
+    # as written in mm, so it leaves them as they are.
+    return x
+
+
+def f_pow(a: float, b: float) -> float:
+    try:
+        result = math.pow(a, b)
+    except (OverflowError, ValueError):
+        raise MacroAlarm("PS0119", "pow-range", f"POW[{fmt(a)},{fmt(b)}] has no real value",
+                         a) from None
+    return result
+
+
+ONE_ARG = {
+    "SIN": f_sin, "COS": f_cos, "TAN": f_tan, "ASIN": f_asin, "ACOS": f_acos, "ATAN": f_atan,
+    "SQRT": f_sqrt, "ABS": f_abs, "ROUND": f_round, "FIX": f_fix, "FUP": f_fup, "LN": f_ln,
+    "EXP": f_exp, "BIN": f_bin, "BCD": f_bcd, "ADP": f_adp,
+}  # fmt: skip
+TWO_ARG = {"ATAN": f_atan2, "POW": f_pow}
+
+
+def divide(a: float, b: float) -> float:
+    if b == 0.0:
+        raise MacroAlarm("PS0112", "zero-divide", f"division of {fmt(a)} by zero (ZERO DIVIDE)", b)
+    return a / b
+
+
+def modulo(a: float, b: float) -> float:
+    ia, ib = int(a), int(b)
+    if ib == 0:
+        raise MacroAlarm("PS0112", "zero-divide", f"{fmt(a)} MOD 0 (ZERO DIVIDE)", b)
+    return float(math.fmod(ia, ib))
+
+
+def bit_and(a: float, b: float) -> float:
+    return float(int(a) & int(b))
+
+
+def bit_or(a: float, b: float) -> float:
+    return float(int(a) | int(b))
+
+
+def bit_xor(a: float, b: float) -> float:
+    return float(int(a) ^ int(b))
+
+
+def compare(op: str, a: Value, b: Value) -> bool | None:
+    """A FANUC comparison; None when an operand is unknown."""
+    if isinstance(a, Unknown) or isinstance(b, Unknown):
+        return None
+    if op == "EQ":
+        return a == b if a is None or b is None else a == b
+    if op == "NE":
+        return not (a == b if a is None or b is None else a == b)
+    x, y = _num(a), _num(b)
+    if op == "GT":
+        return x > y
+    if op == "LT":
+        return x < y
+    if op == "GE":
+        return x >= y
+    return x <= y  # LE

@@ -1,0 +1,315 @@
+"""The program index of one file: O programs, N labels, DO/END pairs, jumps and calls.
+
+Built from the parsed blocks in one pass, with no evaluation: what can be known from the text
+alone. Jump targets and call targets written as constants are resolved here; computed ones
+(``GOTO#1``, ``M98 P#891``) are left to the evaluator.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from .syntax import (
+    Block,
+    Bracket,
+    Document,
+    End,
+    Expr,
+    Goto,
+    IfGoto,
+    IfNc,
+    IfThen,
+    Mixed,
+    NcStatement,
+    Num,
+    ProgramStart,
+    Span,
+    Unary,
+    While,
+    Word,
+)
+
+
+def constant_value(expr: Expr) -> float | None:
+    """The value of an expression written as a constant (``10``, ``-5.``, ``[10]``)."""
+    if isinstance(expr, Num):
+        return expr.value
+    if isinstance(expr, Bracket):
+        return constant_value(expr.inner)
+    if isinstance(expr, Unary):
+        inner = constant_value(expr.operand)
+        if inner is None:
+            return None
+        return -inner if expr.op == "-" else inner
+    return None
+
+
+@dataclass(frozen=True, slots=True)
+class Loop:
+    loop_id: float
+    do_line: int
+    end_line: int | None  # None: no END
+    depth: int  # 1 for an outermost loop
+
+
+@dataclass(frozen=True, slots=True)
+class LoopProblem:
+    kind: str  # "no-end", "no-do", "bad-id", "too-deep", "crossed"
+    line: int
+    span: Span
+    loop_id: float
+    other_line: int | None = None
+
+
+@dataclass(frozen=True, slots=True)
+class Jump:
+    line: int
+    span: Span  # the GOTO statement
+    target: int | None  # None: computed (GOTO#1) or not an integer
+    target_span: Span
+    conditional: bool
+    constant: float | None = None  # the target when written as a constant, integer or not
+
+
+@dataclass(frozen=True, slots=True)
+class Call:
+    """M98, G65, G66, G66.1 (and Haas M97) with what the text says of its target."""
+
+    line: int
+    kind: str  # "M98", "G65", "G66", "G66.1", "M97"
+    span: Span  # the word that makes the call
+    program: int | None  # None: computed (P#1) or missing
+    program_span: Span | None
+    repeat: int | None
+    arguments: tuple[Word, ...]
+
+
+@dataclass(slots=True)
+class Program:
+    """One O program of the file (``number`` None for text before the first O number)."""
+
+    number: int | None
+    name: str | None
+    header_line: int | None
+    first_line: int  # first block of the program (the header line when there is one)
+    end_line: int  # exclusive
+    labels: dict[int, list[int]] = field(default_factory=dict)
+    loops: list[Loop] = field(default_factory=list)
+    loop_problems: list[LoopProblem] = field(default_factory=list)
+    jumps: list[Jump] = field(default_factory=list)
+    calls: list[Call] = field(default_factory=list)
+    returns: list[int] = field(default_factory=list)  # lines with M99
+    loop_of_line: dict[int, Loop] = field(default_factory=dict)  # innermost loop
+
+    @property
+    def display_name(self) -> str:
+        if self.number is None:
+            return self.name or "(main)"
+        return f"O{self.number:04d}"
+
+    def contains(self, line: int) -> bool:
+        return self.first_line <= line < self.end_line
+
+    def label_line(self, seq: int) -> int | None:
+        lines = self.labels.get(seq)
+        return lines[0] if lines else None
+
+    def enclosing_loops(self, line: int) -> list[Loop]:
+        """Loops whose body holds ``line`` (between DO and END, END included), outermost first."""
+        return [
+            loop
+            for loop in self.loops
+            if loop.end_line is not None and loop.do_line < line <= loop.end_line
+        ]
+
+
+@dataclass(frozen=True, slots=True)
+class ProgramIndex:
+    programs: tuple[Program, ...]
+
+    def program_at(self, line: int) -> Program | None:
+        for program in self.programs:
+            if program.contains(line):
+                return program
+        return None
+
+    def by_number(self, number: int) -> Program | None:
+        for program in self.programs:
+            if program.number == number:
+                return program
+        return None
+
+
+MAX_LOOP_DEPTH = 3
+
+
+def _call_words(nc: NcStatement) -> tuple[str, Word] | None:
+    for word in nc.words:
+        value = constant_value(word.value)
+        if word.address == "G" and value in (65.0, 66.0, 66.1):
+            return ("G66.1" if value == 66.1 else f"G{int(value)}", word)
+        if word.address == "M" and value in (98.0, 97.0):
+            return (f"M{int(value)}", word)
+    return None
+
+
+def _p_number(word: Word | None) -> tuple[int | None, str | None]:
+    if word is None:
+        return None, None
+    value = constant_value(word.value)
+    if value is None or value != int(value) or value < 0:
+        return None, None
+    text = word.value.text if isinstance(word.value, Num) else None
+    return int(value), text
+
+
+def call_of(line: int, nc: NcStatement) -> Call | None:
+    found = _call_words(nc)
+    if found is None:
+        return None
+    kind, call_word = found
+    p_word = nc.find("P")
+    l_word = nc.find("L")
+    program, p_text = _p_number(p_word)
+    repeat: int | None = None
+    if l_word is not None:
+        l_value = constant_value(l_word.value)
+        repeat = int(l_value) if l_value is not None and l_value == int(l_value) else None
+    elif kind == "M98" and program is not None and p_text is not None:
+        digits = p_text.split(".")[0].lstrip("+")
+        if len(digits) > 4:
+            # M98 P0013331: the leading digits are the repeat count, the last four the program.
+            repeat = int(digits[:-4]) or 1
+            program = int(digits[-4:])
+    if repeat is None and kind != "G66" and kind != "G66.1":
+        repeat = 1 if l_word is None else None
+    arguments: tuple[Word, ...] = ()
+    if kind in ("G65", "G66", "G66.1"):
+        after = False
+        args: list[Word] = []
+        for word in nc.words:
+            if word is call_word:
+                after = True
+                continue
+            if after and word.address not in ("P", "L"):
+                args.append(word)
+        arguments = tuple(args)
+    return Call(
+        line,
+        kind,
+        call_word.span,
+        program,
+        p_word.span if p_word is not None else None,
+        repeat,
+        arguments,
+    )
+
+
+def has_m99(nc: NcStatement) -> bool:
+    return any(w.address == "M" and constant_value(w.value) == 99.0 for w in nc.words)
+
+
+def build_index(doc: Document) -> ProgramIndex:
+    programs: list[Program] = []
+    current: Program | None = None
+    open_loops: list[tuple[float, int, Span]] = []
+    pending: list[Loop] = []
+
+    def close_program(end: int) -> None:
+        nonlocal current
+        if current is None:
+            return
+        for loop_id, do_line, span in open_loops:
+            current.loop_problems.append(LoopProblem("no-end", do_line, span, loop_id))
+            pending.append(Loop(loop_id, do_line, None, 0))
+        open_loops.clear()
+        current.loops = sorted(pending, key=lambda lp: lp.do_line)
+        pending.clear()
+        current.end_line = end
+        for loop in current.loops:
+            if loop.end_line is None:
+                continue
+            for ln in range(loop.do_line + 1, loop.end_line + 1):
+                inner = current.loop_of_line.get(ln)
+                if inner is None or inner.depth < loop.depth:
+                    current.loop_of_line[ln] = loop
+        programs.append(current)
+        current = None
+
+    for block in doc.blocks:
+        parsed = block.parsed
+        statement = parsed.statement
+        line = block.line
+        if isinstance(statement, ProgramStart):
+            close_program(line)
+            current = Program(statement.number, statement.name, line, line, line + 1)
+            continue
+        if current is None:
+            if parsed.is_empty and not parsed.tape_mark:
+                continue
+            if parsed.tape_mark and statement is None and parsed.seq is None:
+                continue
+            current = Program(None, None, None, line, line + 1)
+        if parsed.seq is not None:
+            current.labels.setdefault(parsed.seq, []).append(line)
+        _index_statement(current, block, open_loops, pending)
+    close_program(len(doc.blocks))
+    return ProgramIndex(tuple(programs))
+
+
+def _index_statement(
+    program: Program,
+    block: Block,
+    open_loops: list[tuple[float, int, Span]],
+    loops: list[Loop],
+) -> None:
+    statement = block.statement
+    line = block.line
+    parts = (statement.nc, statement.macro) if isinstance(statement, Mixed) else (statement,)
+    for part in parts:
+        if isinstance(part, NcStatement):
+            call = call_of(line, part)
+            if call is not None:
+                program.calls.append(call)
+            if has_m99(part):
+                program.returns.append(line)
+        elif isinstance(part, Goto | IfGoto):
+            goto = part if isinstance(part, Goto) else part.goto
+            value = constant_value(goto.target)
+            target = int(value) if value is not None and value == int(value) else None
+            program.jumps.append(
+                Jump(line, goto.span, target, goto.target.span, isinstance(part, IfGoto), value)
+            )
+        elif isinstance(part, IfNc):
+            call = call_of(line, part.words)
+            if call is not None:
+                program.calls.append(call)
+        elif isinstance(part, While):
+            if part.loop_id not in (1.0, 2.0, 3.0):
+                program.loop_problems.append(LoopProblem("bad-id", line, part.id_span, part.loop_id))
+            if len(open_loops) >= MAX_LOOP_DEPTH:
+                program.loop_problems.append(
+                    LoopProblem("too-deep", line, part.span, part.loop_id, open_loops[0][1])
+                )
+            open_loops.append((part.loop_id, line, part.span))
+        elif isinstance(part, End):
+            if part.loop_id not in (1.0, 2.0, 3.0):
+                program.loop_problems.append(LoopProblem("bad-id", line, part.id_span, part.loop_id))
+            if open_loops and open_loops[-1][0] == part.loop_id:
+                loop_id, do_line, _ = open_loops.pop()
+                loops.append(Loop(loop_id, do_line, line, len(open_loops) + 1))
+            else:
+                match = [i for i, (lid, _, _) in enumerate(open_loops) if lid == part.loop_id]
+                if match:
+                    # DO1 ... DO2 ... END1: ranges cross, which FANUC forbids.
+                    i = match[-1]
+                    inner_line = open_loops[-1][1]
+                    program.loop_problems.append(
+                        LoopProblem("crossed", line, part.span, part.loop_id, inner_line)
+                    )
+                    loop_id, do_line, _ = open_loops.pop(i)
+                    loops.append(Loop(loop_id, do_line, line, i + 1))
+                else:
+                    program.loop_problems.append(LoopProblem("no-do", line, part.span, part.loop_id))
+        elif isinstance(part, IfThen):
+            pass

@@ -1,0 +1,479 @@
+"""A lean LALR(1) driver over the tables Lark has already built for a grammar.
+
+Lark's general machinery (lexer thread, line counter, per-token ``ParserState.feed_token``) costs
+most of the time of a one-line parse. :class:`TableParser` keeps everything Lark computed — the
+parse table, the terminal definitions and the callbacks built from the transformer — and runs
+them with compiled master regexes and one flat shift/reduce loop. It returns what
+``lark.parse(code)`` returns and raises the same exception classes with the same data
+(``UnexpectedToken.state`` and ``.interactive_parser`` are left ``None``).
+
+Only what :mod:`fanuc_macro.parser` uses is supported: ``parser="lalr"``, ``lexer="basic"``, a
+``str`` input, no ``postlex``, no ``lexer_callbacks``, no ``use_bytes``.
+"""
+
+from __future__ import annotations
+
+import importlib
+import re
+import sys
+from collections.abc import Callable, Collection, Iterable, Mapping
+from typing import Any
+
+from lark import Lark, Token
+from lark.exceptions import UnexpectedCharacters, UnexpectedToken
+from lark.lexer import PatternRE, PatternStr, TerminalDef
+from lark.parse_tree_builder import ExpandSingleChild
+from lark.parsers.lalr_analysis import Shift
+
+__all__ = ["TableParser"]
+
+_Callback = Callable[[list[Any]], Any]
+_Match = Callable[[str, int], Any]
+# A reduction: (arity, nonterminal to go to, callback, unit chain or None). A unit chain maps
+# the state under the top one to the state reached after a run of one-child `?rule`
+# reductions that return their child unchanged, so the run costs one step.
+_Rule = tuple[int, str, _Callback, dict[int, int] | None]
+
+_END = "$END"
+_ASCII = frozenset(chr(i) for i in range(128))
+_new_str = str.__new__
+
+
+def _children(children: list[Any]) -> Any:
+    """The value of a reduction when Lark built no callbacks (no tree, no transformer)."""
+    return children
+
+
+def _only_child(children: list[Any]) -> Any:
+    """ExpandSingleChild with one child: the child itself."""
+    return children[0]
+
+
+def _has_newline(regexp: str) -> bool:
+    """Lark's test of whether a terminal may span lines (only those update the line count)."""
+    return (
+        "\n" in regexp
+        or "\\n" in regexp
+        or "\\s" in regexp
+        or "[^" in regexp
+        or ("(?s" in regexp and "." in regexp)
+    )
+
+
+def _order_key(term: TerminalDef) -> tuple[int, int, int, str]:
+    # The order BasicLexer tries terminals in: priority, then longest possible match.
+    return (-term.priority, -term.pattern.max_width, -len(term.pattern.value), term.name)
+
+
+# ---- first characters of a regex (to split the master regex by the next input character)
+#
+# A regex alternation is tried branch by branch, so one master regex of 35 terminals spends
+# most of its time failing branches. Each ASCII character gets its own master regex holding
+# only the terminals that can start with it, in Lark's order: the first branch that matches is
+# the same. The analysis may say "any" (None) when unsure; that only costs speed.
+
+_sre: Any = importlib.import_module("re._parser")
+_sc: Any = importlib.import_module("re._constants")
+
+
+def _class_first(items: Iterable[tuple[Any, Any]], ignorecase: bool) -> frozenset[str] | None:
+    """ASCII characters a character class [...] accepts, or None if unsure."""
+    negate = False
+    members: set[str] = set()
+    for op, av in items:
+        if op is _sc.NEGATE:
+            negate = True
+        elif op is _sc.LITERAL:
+            if av >= 128 and ignorecase:
+                return None  # e.g. KELVIN SIGN matches "k" when case is ignored
+            members.add(chr(av))
+        elif op is _sc.RANGE:
+            lo, hi = av
+            if hi >= 128 and ignorecase:
+                return None
+            members.update(chr(c) for c in range(lo, min(hi, 127) + 1))
+        else:  # categories (\d, \s, \w) and the rest: not worth modelling
+            return None
+    if ignorecase:
+        if negate:
+            return None
+        members |= {c.swapcase() for c in members}
+    found = frozenset(members) & _ASCII
+    return _ASCII - found if negate else found
+
+
+def _seq_first(items: Iterable[tuple[Any, Any]], flags: int) -> tuple[frozenset[str] | None, bool]:
+    """(ASCII characters a match can start with or None if unsure, can it match empty)."""
+    first: set[str] = set()
+    for op, av in items:
+        ignorecase = bool(flags & _sc.SRE_FLAG_IGNORECASE)
+        part: frozenset[str] | None
+        nullable = False
+        if op is _sc.LITERAL:
+            ch = chr(av)
+            if av >= 128:
+                part = None if ignorecase else frozenset()
+            else:
+                part = frozenset({ch, ch.swapcase()}) if ignorecase else frozenset(ch)
+        elif op is _sc.IN:
+            part = _class_first(av, ignorecase)
+        elif op is _sc.BRANCH:
+            part, nullable = frozenset(), False
+            for alt in av[1]:
+                alt_first, alt_nullable = _seq_first(alt, flags)
+                if alt_first is None:
+                    return None, False
+                part |= alt_first
+                nullable = nullable or alt_nullable
+        elif op is _sc.SUBPATTERN:
+            _group, add_flags, del_flags, sub = av
+            part, nullable = _seq_first(sub, (flags | add_flags) & ~del_flags)
+        elif op in (_sc.MAX_REPEAT, _sc.MIN_REPEAT, _sc.POSSESSIVE_REPEAT):
+            low, _high, sub = av
+            part, nullable = _seq_first(sub, flags)
+            nullable = nullable or low == 0
+        elif op is _sc.ATOMIC_GROUP:
+            part, nullable = _seq_first(av, flags)
+        elif op in (_sc.AT, _sc.ASSERT, _sc.ASSERT_NOT):
+            part, nullable = frozenset(), True  # zero width: the next item decides
+        else:  # ANY, NOT_LITERAL, group references, ...
+            return None, False
+        if part is None:
+            return None, False
+        first |= part
+        if not nullable:
+            return frozenset(first), False
+    return frozenset(first), True
+
+
+def _regex_first(regexp: str, flags: int) -> frozenset[str] | None:
+    try:
+        parsed = _sre.parse(regexp, flags)
+    except Exception:  # a syntax this analysis does not know: stay correct, just slower
+        return None
+    first, nullable = _seq_first(parsed, parsed.state.flags)
+    return None if nullable else first
+
+
+class TableParser:
+    """Parses one text with the tables of a ``Lark(parser="lalr", lexer="basic")`` object.
+
+    ``parse`` keeps all its state in locals, so one instance serves several threads.
+    """
+
+    def __init__(self, lark: Lark, start: str | None = None) -> None:
+        frontend: Any = lark.parser  # lark.parser_frontends.ParsingFrontend
+        conf: Any = lark.lexer_conf
+        if lark.options.parser != "lalr" or conf.lexer_type != "basic":
+            raise ValueError("TableParser needs parser='lalr' and lexer='basic'")
+        if conf.postlex is not None or conf.callbacks or conf.use_bytes:
+            raise ValueError("TableParser supports neither postlex, lexer_callbacks nor use_bytes")
+        starts: list[str] = list(frontend.parser_conf.start)
+        if start is None:
+            if len(starts) != 1:
+                raise ValueError(f"several start rules, choose one of {starts}")
+            start = starts[0]
+        lalr: Any = frontend.parser.parser  # lark.parsers.lalr_parser._Parser
+        self._build_lexer(conf)
+        self._build_parser(lalr.parse_table, lalr.callbacks, start)
+
+    # ---- set-up: lexer
+
+    def _build_lexer(self, conf: Any) -> None:
+        re_module: Any = conf.re_module
+        flags: int = conf.g_regex_flags
+        terminals = sorted(conf.terminals, key=_order_key)
+        # A string terminal that a regex terminal of the same priority also matches is found
+        # through the regex and then renamed (Lark's "unless" rule, e.g. keywords vs. NAME).
+        embedded: set[str] = set()
+        retype: dict[str, Any] = {}
+        strings = [t for t in terminals if isinstance(t.pattern, PatternStr)]
+        for term in terminals:
+            if not isinstance(term.pattern, PatternRE):
+                continue
+            regexp = term.pattern.to_regexp()
+            unless: list[TerminalDef] = []
+            for stok in strings:
+                if stok.priority != term.priority:
+                    continue
+                m = re_module.match(regexp, stok.pattern.value, flags)
+                if m is not None and m.group(0) == stok.pattern.value:
+                    unless.append(stok)
+                    if stok.pattern.flags <= term.pattern.flags:
+                        embedded.add(stok.name)
+            if unless:
+                retype[term.name] = re_module.compile(_alternation(unless), flags)
+        scanned = [t for t in terminals if t.name not in embedded]
+
+        def compile_match(terms: list[TerminalDef]) -> _Match:
+            if not terms:
+                return re_module.compile("(?!)").match  # matches nothing
+            match: _Match = re_module.compile(_alternation(terms), flags).match
+            return match
+
+        self._master_match = compile_match(scanned)
+        dispatch: dict[str, _Match] = {}
+        if re_module is re:  # the analysis reads the syntax of the standard re module
+            firsts = [_regex_first(t.pattern.to_regexp(), flags) for t in scanned]
+            by_subset: dict[tuple[int, ...], _Match] = {}
+            for ch in sorted(_ASCII):
+                subset = tuple(i for i, f in enumerate(firsts) if f is None or ch in f)
+                if subset not in by_subset:
+                    by_subset[subset] = compile_match([scanned[i] for i in subset])
+                dispatch[ch] = by_subset[subset]
+        self._dispatch = dispatch
+        self._scanned_names = tuple(t.name for t in scanned)  # for tests: Lark's order
+        self._retype: Mapping[str, Any] = retype
+        self._ignore = frozenset(conf.ignore)
+        self._newline_types = frozenset(
+            t.name for t in conf.terminals if _has_newline(t.pattern.to_regexp())
+        )
+        allowed = {t.name for t in scanned} - self._ignore
+        self._allowed = frozenset(allowed or {"<END-OF-FILE>"})
+        self._terminals_by_name: dict[str, TerminalDef] = conf.terminals_by_name
+
+    # ---- set-up: parser
+
+    def _build_parser(self, table: Any, callbacks: Mapping[Any, Any], start: str) -> None:
+        lark_states: Mapping[int, Mapping[Any, tuple[Any, Any]]] = table.states
+        if sorted(lark_states) != list(range(len(lark_states))):
+            raise ValueError("expected Lark's IntParseTable (states numbered 0..n-1)")
+        self._start_state: int = table.start_states[start]
+        self._end_state: int = table.end_states[start]
+        rule_index: dict[Any, int] = {}
+        rules: list[_Rule] = []
+        passes_child: list[bool] = []
+        # Actions become ints: a shift (or goto) is the target state, a reduce is ~rule index.
+        rows: list[dict[str, int]] = []
+        for state in range(len(lark_states)):
+            row: dict[str, int] = {}
+            for name, (action, arg) in lark_states[state].items():
+                # Lark's names are often Token objects; plain str keys keep lookups in C
+                # (Token.__eq__ is Python code).
+                symbol = sys.intern(str(name))
+                if action is Shift:
+                    row[symbol] = arg
+                    continue
+                index = rule_index.get(arg)
+                if index is None:
+                    index = rule_index[arg] = len(rules)
+                    entry, passes = _rule_entry(arg, callbacks)
+                    rules.append(entry)
+                    passes_child.append(passes)
+                row[symbol] = ~index
+            rows.append(row)
+        # What Lark's feed_token reports: the state's terminals (nonterminals are lowercase).
+        self._expected = tuple(frozenset(s for s in row if s.isupper()) for row in rows)
+        self._fold_unit_chains(rows, rules, passes_child)
+        self._rows = tuple(rows)
+        self._rules = tuple(rules)
+        # Lark also calls a transformer method named after a terminal on each shifted token.
+        self._token_callbacks: dict[str, Callable[[Token], Any]] = {
+            sys.intern(str(k)): v for k, v in callbacks.items() if isinstance(k, str)
+        }
+
+    def _fold_unit_chains(
+        self, rows: list[dict[str, int]], rules: list[_Rule], passes_child: list[bool]
+    ) -> None:
+        """Replace each terminal's pass-through reduce by one entry with its whole chain.
+
+        The state reached after reducing a one-symbol rule is goto(state below, rule), and the
+        state below does not change along a chain of them; so the chain's end is a function of
+        (state below, top state, lookahead), computed here for every possible state below.
+        """
+        below: list[set[int]] = [set() for _ in rows]
+        for state, row in enumerate(rows):
+            for action in row.values():
+                if action >= 0:
+                    below[action].add(state)
+        folded: list[tuple[int, str, dict[int, int]]] = []
+        for top, row in enumerate(rows):
+            for kind, action in row.items():
+                if action >= 0 or not passes_child[~action] or not kind.isupper():
+                    continue
+                chain: dict[int, int] | None = {}
+                for under in below[top]:
+                    end = _chain_end(rows, rules, passes_child, under, top, kind, self._end_state)
+                    if end is None:
+                        chain = None  # leave this one to the general reduce step
+                        break
+                    chain[under] = end
+                if chain:
+                    folded.append((top, kind, chain))
+        for top, kind, chain in folded:
+            size, origin, callback, _ = rules[~rows[top][kind]]
+            rows[top][kind] = ~len(rules)
+            rules.append((size, origin, callback, chain))
+            passes_child.append(False)
+
+    # ---- parsing
+
+    def parse(self, code: str) -> Any:
+        """What ``lark.parse(code)`` returns, or the exception it raises."""
+        dispatch = self._dispatch
+        master = self._master_match
+        ignore = self._ignore
+        retype = self._retype
+        token_callbacks = self._token_callbacks
+        rows = self._rows
+        rules = self._rules
+        end_state = self._end_state
+        new_str = _new_str
+        has_newline = "\n" in code
+        newline_types = self._newline_types
+
+        state_stack = [self._start_state]
+        value_stack: list[Any] = []
+        row = rows[self._start_state]
+        pos = 0
+        size_text = len(code)
+        line = 1
+        line_start = 0  # position of the first character of the current line
+        last: Token | None = None
+
+        while True:
+            # ---- the next token (the basic lexer never depends on the parser state)
+            if pos < size_text:
+                try:
+                    m = dispatch[code[pos]](code, pos)
+                except KeyError:  # not ASCII
+                    m = master(code, pos)
+                if m is None:
+                    raise self._unexpected_characters(code, pos, line, pos - line_start + 1, last)
+                kind: str = m.lastgroup
+                value: str = m.group()
+                end = m.end()
+                if kind in ignore:
+                    if has_newline and kind in newline_types and "\n" in value:
+                        line += value.count("\n")
+                        line_start = pos + value.rindex("\n") + 1
+                    pos = end
+                    continue
+                if retype and kind in retype:
+                    full = retype[kind].fullmatch(value)
+                    if full is not None:
+                        kind = full.lastgroup
+                # Filling the slots here skips Token.__new__'s argument handling.
+                tok: Token = new_str(Token, value)
+                tok.type = kind
+                tok.value = value
+                tok.start_pos = pos
+                tok.end_pos = end
+                tok.line = line
+                tok.column = pos - line_start + 1
+                if has_newline and kind in newline_types and "\n" in value:
+                    line += value.count("\n")
+                    line_start = pos + value.rindex("\n") + 1
+                tok.end_line = line
+                tok.end_column = end - line_start + 1
+                pos = end
+                last = tok
+            else:
+                kind = _END
+            # ---- feed it: reduce as long as the table says so, then shift (or accept)
+            while True:
+                try:
+                    action = row[kind]
+                except KeyError:
+                    raise self._unexpected_token(state_stack[-1], kind, last) from None
+                if action >= 0:
+                    state_stack.append(action)
+                    if token_callbacks and kind in token_callbacks:
+                        value_stack.append(token_callbacks[kind](tok))
+                    else:
+                        value_stack.append(tok)
+                    row = rows[action]
+                    break
+                size, origin, callback, chain = rules[~action]
+                if chain is not None:
+                    goto = chain[state_stack[-2]]
+                    state_stack[-1] = goto
+                    row = rows[goto]
+                    continue
+                if size:
+                    children = value_stack[-size:]
+                    del state_stack[-size:]
+                    del value_stack[-size:]
+                else:
+                    children = []
+                result = callback(children)
+                goto = rows[state_stack[-1]][origin]
+                if goto == end_state and kind == _END:
+                    return result
+                state_stack.append(goto)
+                value_stack.append(result)
+                row = rows[goto]
+
+    # ---- errors, with the data Lark puts in them
+
+    def _unexpected_characters(
+        self, code: str, pos: int, line: int, column: int, last: Token | None
+    ) -> UnexpectedCharacters:
+        return UnexpectedCharacters(
+            code,
+            pos,
+            line,
+            column,
+            allowed=set(self._allowed),
+            token_history=[last] if last is not None else None,
+            terminals_by_name=self._terminals_by_name,
+        )
+
+    def _unexpected_token(self, state: int, kind: str, last: Token | None) -> UnexpectedToken:
+        token: Token
+        if kind != _END:
+            assert last is not None
+            token = last
+        elif last is not None:  # Lark's $END borrows the position of the last token
+            token = Token.new_borrow_pos(_END, "", last)
+        else:
+            token = Token(_END, "", 0, 1, 1)
+        expected: Collection[str] = set(self._expected[state])
+        return UnexpectedToken(token, expected)
+
+
+def _alternation(terms: Iterable[TerminalDef]) -> str:
+    return "|".join(f"(?P<{t.name}>{t.pattern.to_regexp()})" for t in terms)
+
+
+def _rule_entry(rule: Any, callbacks: Mapping[Any, Any]) -> tuple[_Rule, bool]:
+    """The reduce entry of a Lark rule, and whether it returns its only child unchanged."""
+    size = len(rule.expansion)
+    origin = sys.intern(str(rule.origin.name))
+    if not callbacks:
+        return (size, origin, _children, None), False
+    callback = callbacks[rule]
+    if type(callback) is ExpandSingleChild:
+        # ExpandSingleChild (a `?rule` without alias) tests len(children) == 1 on each call;
+        # with LALR that length is the arity, so decide it once here.
+        if size == 1:
+            return (size, origin, _only_child, None), True
+        inner: _Callback = callback.node_builder
+        return (size, origin, inner, None), False
+    return (size, origin, callback, None), False
+
+
+def _chain_end(
+    rows: list[dict[str, int]],
+    rules: list[_Rule],
+    passes_child: list[bool],
+    under: int,
+    top: int,
+    kind: str,
+    end_state: int,
+) -> int | None:
+    """The top state after the pass-through reductions from `top` on lookahead `kind`.
+
+    None when a step has no goto or reaches the end state (where Lark checks for acceptance).
+    """
+    action = rows[top][kind]
+    for _ in range(len(rows)):  # a chain visits each state at most once
+        goto = rows[under].get(rules[~action][1])
+        if goto is None or goto == end_state:
+            return None
+        top = goto
+        next_action = rows[top].get(kind)
+        if next_action is None or next_action >= 0 or not passes_child[~next_action]:
+            return top
+        action = next_action
+    return None

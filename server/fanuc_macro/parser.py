@@ -1,0 +1,491 @@
+"""Block-by-block parsing with the Lark LALR grammar ``grammars/macro_b.lark``.
+
+A program is parsed one line at a time, as the control reads it: a bad block yields one
+:class:`SyntaxProblem` and the rest of the file still parses. Parsed lines are cached by their
+text, so an edit re-parses only the lines it changed.
+"""
+
+from __future__ import annotations
+
+import re
+import threading
+from collections import OrderedDict
+from collections.abc import Iterable, Sequence
+from importlib import resources
+from typing import Any
+
+from lark import Lark, Token, Transformer
+from lark.exceptions import UnexpectedCharacters, UnexpectedEOF, UnexpectedInput, UnexpectedToken
+
+from . import dialects
+from .blocks import cut_comments, decode_bytes, split_lines
+from .syntax import (
+    Assign,
+    BareCond,
+    Binary,
+    Block,
+    BlockIf,
+    Bracket,
+    Call,
+    Compare,
+    Cond,
+    Document,
+    End,
+    Expr,
+    Goto,
+    IfGoto,
+    IfNc,
+    IfThen,
+    Logic,
+    MacroStatement,
+    Mixed,
+    NcStatement,
+    Num,
+    ParsedLine,
+    Print,
+    ProgramStart,
+    Span,
+    Statement,
+    SyntaxProblem,
+    Unary,
+    Var,
+    While,
+    Word,
+)
+
+
+def grammar_text() -> str:
+    return resources.files("fanuc_macro").joinpath("data/macro_b.lark").read_text("utf-8")
+
+
+def _span(node: Any) -> Span:
+    if isinstance(node, Token):
+        start = node.start_pos or 0
+        end = node.end_pos if node.end_pos is not None else start + len(node)
+        return Span(start, end)
+    span: Span = node.span
+    return span
+
+
+def _cover(first: Any, last: Any) -> Span:
+    return Span(_span(first).start, _span(last).end)
+
+
+def _number(token: Token) -> float:
+    return float(str(token).replace(" ", "").replace("\t", ""))
+
+
+class _ToAst(Transformer[Token, Any]):
+    """Builds :mod:`fanuc_macro.syntax` nodes while the LALR parser reduces (no parse tree)."""
+
+    # ---- expressions
+    def num(self, c: list[Any]) -> Num:
+        if len(c) == 2:  # "-" NUMBER in a GOTO target
+            return Num(-_number(c[1]), "-" + str(c[1]), _cover(c[0], c[1]))
+        tok = c[0]
+        return Num(_number(tok), str(tok).replace(" ", ""), _span(tok))
+
+    neg_num = num
+
+    def var_direct(self, c: list[Any]) -> Var:
+        return Var(_number(c[1]), None, _cover(c[0], c[1]))
+
+    def var_indirect(self, c: list[Any]) -> Var:
+        return Var(None, c[2], _cover(c[0], c[3]))
+
+    def binary(self, c: list[Any]) -> Binary:
+        return Binary(str(c[1]).upper(), c[0], c[2], _cover(c[0], c[2]))
+
+    def neg(self, c: list[Any]) -> Unary:
+        return Unary("-", c[1], _cover(c[0], c[1]))
+
+    def pos(self, c: list[Any]) -> Unary:
+        return Unary("+", c[1], _cover(c[0], c[1]))
+
+    def bracket(self, c: list[Any]) -> Bracket:
+        if len(c) == 4:  # "+" "[" expr "]" after an address
+            return Bracket(c[2], _cover(c[0], c[3]))
+        return Bracket(c[1], _cover(c[0], c[2]))
+
+    def neg_bracket(self, c: list[Any]) -> Unary:
+        inner = Bracket(c[2], _cover(c[1], c[3]))
+        return Unary("-", inner, _cover(c[0], c[3]))
+
+    def call(self, c: list[Any]) -> Call:
+        return Call(str(c[0]).upper(), (c[2],), _cover(c[0], c[3]), _span(c[0]))
+
+    def call2(self, c: list[Any]) -> Call:
+        return Call(str(c[0]).upper(), (c[2], c[4]), _cover(c[0], c[5]), _span(c[0]))
+
+    def atan_slash(self, c: list[Any]) -> Call:
+        # ATAN[a]/[b]: FANUC's two-argument arctangent, not a division.
+        return Call("ATAN", (c[2], c[6]), _cover(c[0], c[7]), _span(c[0]), slash_form=True)
+
+    # ---- conditions
+    def compare(self, c: list[Any]) -> Compare:
+        return Compare(str(c[1]).upper(), c[0], c[2], _cover(c[0], c[2]))
+
+    def cond_term(self, c: list[Any]) -> Any:
+        return c[1]
+
+    def logic(self, c: list[Any]) -> Logic:
+        terms = [x for x in c if not (isinstance(x, Token) and x.type in ("LSQB", "RSQB"))]
+        first = terms[0]
+        rest: list[tuple[str, Cond]] = []
+        for i in range(1, len(terms), 2):
+            rest.append((str(terms[i]).upper(), terms[i + 1]))
+        return Logic(first, tuple(rest), _cover(c[0], c[-1]))
+
+    def bare_cond(self, c: list[Any]) -> BareCond:
+        return BareCond(c[0], _span(c[0]))
+
+    # ---- statements
+    def assign(self, c: list[Any]) -> Assign:
+        return Assign(c[0], c[2], _cover(c[0], c[2]))
+
+    def goto(self, c: list[Any]) -> Goto:
+        return Goto(c[1], _cover(c[0], c[1]))
+
+    def if_goto(self, c: list[Any]) -> IfGoto:
+        return IfGoto(c[2], c[4], _cover(c[0], c[4]))
+
+    def if_then(self, c: list[Any]) -> IfThen:
+        return IfThen(c[2], c[5], _cover(c[0], c[5]))
+
+    def if_then_nc(self, c: list[Any]) -> IfNc:
+        return IfNc(c[2], c[5], True, _cover(c[0], c[5]))
+
+    def if_nc(self, c: list[Any]) -> IfNc:
+        return IfNc(c[2], c[4], False, _cover(c[0], c[4]))
+
+    def if_block_open(self, c: list[Any]) -> BlockIf:
+        return BlockIf("IF", c[2], _cover(c[0], c[4]))
+
+    def else_stmt(self, c: list[Any]) -> BlockIf:
+        return BlockIf("ELSE", None, _span(c[0]))
+
+    def endif_stmt(self, c: list[Any]) -> BlockIf:
+        return BlockIf("ENDIF", None, _span(c[0]))
+
+    def while_do(self, c: list[Any]) -> While:
+        return While(c[2], _number(c[5]), _span(c[5]), _cover(c[0], c[5]))
+
+    def do_forever(self, c: list[Any]) -> While:
+        return While(None, _number(c[1]), _span(c[1]), _cover(c[0], c[1]))
+
+    def end_loop(self, c: list[Any]) -> End:
+        return End(_number(c[1]), _span(c[1]), _cover(c[0], c[1]))
+
+    def print_stmt(self, c: list[Any]) -> Print:
+        text = str(c[0])
+        return Print(text[:5].upper(), text, _span(c[0]))
+
+    def popen(self, c: list[Any]) -> Print:
+        return Print("POPEN", str(c[0]), _span(c[0]))
+
+    def pclos(self, c: list[Any]) -> Print:
+        return Print("PCLOS", str(c[0]), _span(c[0]))
+
+    def word(self, c: list[Any]) -> Word:
+        letter = str(c[0])
+        return Word(letter.upper(), c[1], _cover(c[0], c[1]), letter.islower())
+
+    def nc_words(self, c: list[Any]) -> NcStatement:
+        return NcStatement(tuple(c), _cover(c[0], c[-1]))
+
+    def mixed_nc_macro(self, c: list[Any]) -> Mixed:
+        return Mixed(c[0], c[1], _cover(c[0], c[1]))
+
+    def mixed_macro_nc(self, c: list[Any]) -> Mixed:
+        return Mixed(c[1], c[0], _cover(c[0], c[1]))
+
+    # ---- the line
+    def signed_num(self, c: list[Any]) -> Num:
+        sign = -1.0 if str(c[0]) == "-" else 1.0
+        text = str(c[1]).replace(" ", "")
+        return Num(sign * _number(c[1]), str(c[0]) + text, _cover(c[0], c[1]))
+
+    def skip(self, c: list[Any]) -> tuple[str, int, Span]:
+        level = int(_number(c[1])) if len(c) > 1 else 0
+        return ("skip", level, _cover(c[0], c[-1]))
+
+    def seqnum(self, c: list[Any]) -> tuple[str, float, Span]:
+        return ("seq", _number(c[1]), _cover(c[0], c[1]))
+
+    def program_number(self, c: list[Any]) -> ProgramStart:
+        number: int | None = None
+        name: str | None = None
+        for tok in c[1:]:
+            if tok.type == "NUMBER":
+                number = int(_number(tok))
+            elif tok.type == "PROGRAM_NAME":
+                name = str(tok)[1:-1]
+        return ProgramStart(number, name, _cover(c[0], c[-1]))
+
+    def start(self, c: list[Any]) -> list[Any]:
+        return c
+
+    def program_start(self, c: list[Any]) -> list[Any]:
+        return c
+
+
+_FAST_VALUE = r"(?:[-+]?[ \t]*(?:[0-9]+\.?[0-9]*|\.[0-9]+)|-?[ \t]*#[ \t]*[0-9]+)"
+_FAST_WORD = re.compile(r"([A-MP-Z])[ \t]*(" + _FAST_VALUE + r")[ \t]*", re.I)
+_FAST_LINE = re.compile(
+    r"[ \t]*(?:(/)[ \t]*([0-9]+\.?[0-9]*|\.[0-9]+)?[ \t]*)?(?:(N)[ \t]*([0-9]+\.?[0-9]*|\.[0-9]+)[ \t]*)?"
+    r"((?:[A-MP-Z][ \t]*" + _FAST_VALUE + r"[ \t]*)*)",
+    re.I,
+)
+
+
+def _fast_value(text: str, start: int) -> Expr:
+    """Value of a plain word: a number, #n or -#n (spans as the grammar gives them)."""
+    end = start + len(text)
+    body = text.lstrip("-+ \t")
+    if body.startswith("#"):
+        hash_col = start + text.index("#")
+        var = Var(float(body[1:].strip()), None, Span(hash_col, end))
+        if text.startswith("-"):
+            return Unary("-", var, Span(start, end))
+        return var
+    compact = text.replace(" ", "").replace("\t", "")
+    return Num(float(compact), compact, Span(start, end))
+
+
+def fast_parse(code: str) -> tuple[int | None, int | None, Span | None, NcStatement | None] | None:
+    """Blocks of NC words with plain values, the bulk of real programs, without Lark.
+
+    Returns None when the block is anything else; then the grammar decides. The result must
+    equal the grammar's: tests/test_parser.py compares the two on every line it has.
+    """
+    m = _FAST_LINE.fullmatch(code)
+    if m is None:
+        return None
+    slash, level, n_letter, n_value, words_text = m.group(1, 2, 3, 4, 5)
+    skip = None if slash is None else int(float(level)) if level else 0
+    seq: int | None = None
+    seq_span: Span | None = None
+    if n_letter is not None:
+        seq = int(float(n_value))
+        seq_span = Span(m.start(3), m.end(4))
+    if not words_text:
+        return skip, seq, seq_span, None
+    words: list[Word] = []
+    for wm in _FAST_WORD.finditer(code, m.start(5), m.end(5)):
+        value = _fast_value(wm.group(2), wm.start(2))
+        letter = wm.group(1)
+        words.append(Word(letter.upper(), value, Span(wm.start(1), wm.end(2)), letter.islower()))
+    return skip, seq, seq_span, NcStatement(tuple(words), Span(words[0].span.start, words[-1].span.end))
+
+
+class BlockParser:
+    """Parses lines; thread-safe; caches parsed lines by text (LRU)."""
+
+    def __init__(self, cache_size: int = 200_000, use_fast_path: bool = True) -> None:
+        self.use_fast_path = use_fast_path
+        self._lark = Lark(
+            grammar_text(),
+            parser="lalr",
+            lexer="basic",
+            transformer=_ToAst(),
+            keep_all_tokens=True,
+            maybe_placeholders=False,
+        )
+        self._cache: OrderedDict[str, ParsedLine] = OrderedDict()
+        self._cache_size = cache_size
+        self._lock = threading.Lock()
+
+    def parse_line(self, text: str) -> ParsedLine:
+        with self._lock:
+            cached = self._cache.get(text)
+            if cached is not None:
+                self._cache.move_to_end(text)
+                return cached
+        parsed = self._parse_uncached(text)
+        with self._lock:
+            self._cache[text] = parsed
+            if len(self._cache) > self._cache_size:
+                self._cache.popitem(last=False)
+        return parsed
+
+    def _parse_uncached(self, text: str) -> ParsedLine:
+        cut = cut_comments(text)
+        code = cut.code
+        has_lower = any(ch.islower() for ch in code)
+        if not code.strip():
+            return ParsedLine(text, cut.tape_mark, None, None, None, None, cut.comments, None,
+                              cut.notes, False)
+        if self.use_fast_path:
+            fast = fast_parse(code)
+            if fast is not None:
+                skip, seq, seq_span, nc = fast
+                return ParsedLine(text, cut.tape_mark, skip, seq, seq_span, nc, cut.comments,
+                                  None, cut.notes, has_lower)
+        try:
+            items: list[Any] = self._lark.parse(code)
+        except UnexpectedInput as err:
+            problem = _describe(code, err)
+            return ParsedLine(text, cut.tape_mark, None, None, None, None, cut.comments, problem,
+                              cut.notes, has_lower)
+        except (ValueError, OverflowError) as err:  # a number the float type cannot hold
+            problem = SyntaxProblem(f"cannot read a number: {err}", Span(0, len(text)))
+            return ParsedLine(text, cut.tape_mark, None, None, None, None, cut.comments, problem,
+                              cut.notes, has_lower)
+        skip: int | None = None
+        seq: int | None = None
+        seq_span: Span | None = None
+        statement: Statement | None = None
+        for item in items:
+            if isinstance(item, tuple):
+                if item[0] == "skip":
+                    skip = item[1]
+                else:
+                    seq = int(item[1])
+                    seq_span = item[2]
+            else:
+                statement = item
+        return ParsedLine(text, cut.tape_mark, skip, seq, seq_span, statement, cut.comments, None,
+                          cut.notes, has_lower)
+
+    def parse_lines(self, lines: Iterable[str]) -> list[ParsedLine]:
+        return [self.parse_line(line) for line in lines]
+
+
+_TOKEN_NAMES = {
+    "NUMBER": "a number",
+    "SIGNED_NUMBER": "a number",
+    "ADDRESS": "an address letter",
+    "LSQB": "'['",
+    "RSQB": "']'",
+    "EQUAL": "'='",
+    "RELOP": "EQ/NE/GT/GE/LT/LE",
+    "HASH": "'#'",
+    "MINUS": "'-'",
+    "PLUS": "'+'",
+    "COMMA": "','",
+    "FUNC": "a function",
+    "ADD_OP": "an operator",
+    "MUL_OP": "an operator",
+    "$END": "end of block",
+}
+
+
+def _expected_words(expected: Iterable[str]) -> tuple[str, ...]:
+    words: list[str] = []
+    for name in sorted(expected):
+        word = _TOKEN_NAMES.get(name)
+        if word is None:
+            if name.startswith("__ANON") or name.startswith("_"):
+                continue
+            word = name.replace("LOGIC_", "")
+        if word not in words:
+            words.append(word)
+    return tuple(words)
+
+
+def _describe(code: str, err: UnexpectedInput) -> SyntaxProblem:
+    """A message a CNC programmer can act on: what was found, where, what would do."""
+    if isinstance(err, UnexpectedCharacters):
+        col = err.column - 1 if err.column and err.column > 0 else err.pos_in_stream or 0
+        found = code[col : col + 1]
+        expected = _expected_words(err.allowed or ())
+    elif isinstance(err, UnexpectedToken):
+        tok = err.token
+        col = tok.start_pos if tok.start_pos is not None else len(code.rstrip())
+        found = "end of block" if tok.type == "$END" else str(tok)
+        expected = _expected_words(err.expected or ())
+    elif isinstance(err, UnexpectedEOF):
+        col = len(code.rstrip())
+        found = "end of block"
+        expected = _expected_words(err.expected or ())
+    else:  # pragma: no cover - Lark raises only the three above
+        col, found, expected = 0, "", ()
+    if found == "end of block" or col >= len(code.rstrip()):
+        end = max(col, len(code.rstrip()))
+        span = Span(max(0, end - 1), end) if end > 0 else Span(0, 0)
+    else:
+        span = Span(col, col + max(1, len(found)))
+    unknown = _unknown_function(code, col)
+    if unknown is not None:
+        name, name_col = unknown
+        return SyntaxProblem(
+            f"unknown function {name!r}: FANUC has SIN COS TAN ASIN ACOS ATAN SQRT ABS ROUND FIX "
+            "FUP LN EXP POW ADP BIN BCD",
+            Span(name_col, name_col + len(name)),
+            expected,
+            None,
+            name.upper(),
+        )
+    dialect = dialects.recognise(code, col)
+    if dialect is not None:
+        return SyntaxProblem(dialect.message, span, expected, dialect.name)
+    shown = found if found == "end of block" else repr(found)
+    message = f"unexpected {shown} at column {col + 1}"
+    if expected:
+        message += "; expected " + ", ".join(expected[:8])
+    return SyntaxProblem(message, span, expected, None)
+
+
+_KNOWN_FUNCTIONS = frozenset(
+    "SIN COS TAN ASIN ACOS ATAN SQRT ABS ROUND FIX FUP LN EXP POW ADP BIN BCD".split()
+)
+_WORD_BEFORE_BRACKET = re.compile(r"([A-Z]{2,})\s*\[", re.I)
+
+
+def _unknown_function(code: str, col: int) -> tuple[str, int] | None:
+    """A name written like a function (``FOO[``) that FANUC does not have, near the error."""
+    for m in _WORD_BEFORE_BRACKET.finditer(code):
+        name = m.group(1).upper()
+        # "GOTO[", "IF[", "WHILE[", "DPRNT[" are statements; a trailing known name is a call.
+        if name in _KNOWN_FUNCTIONS or name in ("IF", "WHILE", "WH", "GOTO", "DPRNT", "BPRNT"):
+            continue
+        if any(name.endswith(f) for f in _KNOWN_FUNCTIONS) or name.endswith(("IF", "GOTO")):
+            continue
+        if m.start() <= col <= m.end():
+            return m.group(1), m.start()
+    return None
+
+
+_default_parser: BlockParser | None = None
+_default_lock = threading.Lock()
+
+
+def default_parser() -> BlockParser:
+    global _default_parser
+    with _default_lock:
+        if _default_parser is None:
+            _default_parser = BlockParser()
+        return _default_parser
+
+
+def parse_text(text: str, uri: str = "", parser: BlockParser | None = None) -> Document:
+    bp = parser or default_parser()
+    lines = split_lines(text)
+    blocks = tuple(Block(i, bp.parse_line(line)) for i, line in enumerate(lines))
+    return Document(uri, blocks, "utf-8", None, len(lines))
+
+
+def parse_bytes(data: bytes, uri: str = "", parser: BlockParser | None = None) -> Document:
+    decoded = decode_bytes(data)
+    doc = parse_text(decoded.text, uri, parser)
+    return Document(uri, doc.blocks, decoded.encoding, decoded.note, doc.line_count)
+
+
+def statements_of(statement: Statement | None) -> Sequence[Statement]:
+    """The statements a block holds: one, or two for a mixed NC + macro block."""
+    if statement is None:
+        return ()
+    if isinstance(statement, Mixed):
+        return (statement.nc, statement.macro)
+    return (statement,)
+
+
+__all__ = [
+    "BlockParser",
+    "Expr",
+    "MacroStatement",
+    "default_parser",
+    "parse_bytes",
+    "parse_text",
+    "statements_of",
+]

@@ -1,0 +1,45 @@
+"""What a rule sees: the document, its program index, the workspace and the settings."""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Iterable, Iterator
+from dataclasses import dataclass, field
+
+from ..config import Config
+from ..diagnostics import Diagnostic
+from ..evaluator.facts import DocumentFacts, Facts, Finding
+from ..index import ProgramIndex
+from ..syntax import Block, Document, Statement
+
+
+@dataclass(frozen=True)
+class RuleContext:
+    doc: Document
+    index: ProgramIndex
+    config: Config = field(default_factory=Config)
+    # Program numbers defined anywhere in the workspace (None: only this file is known).
+    workspace_programs: frozenset[int] | None = None
+    facts: Facts | None = None  # the evaluator's, when it ran
+
+    def doc_facts(self) -> DocumentFacts | None:
+        return None if self.facts is None else self.facts.by_uri.get(self.doc.uri)
+
+    def findings(self, *kinds: str) -> Iterator[Finding]:
+        """The evaluator's findings in this document whose kind starts with one of ``kinds``."""
+        facts = self.doc_facts()
+        if facts is None:
+            return
+        for finding in facts.findings:
+            if finding.kind.startswith(kinds):
+                yield finding
+
+    def statements(self) -> Iterator[tuple[Block, Statement]]:
+        """Every statement with its block; a mixed block gives its NC and macro parts."""
+        from ..parser import statements_of
+
+        for block in self.doc.blocks:
+            for statement in statements_of(block.statement):
+                yield block, statement
+
+
+Check = Callable[[RuleContext], Iterable[Diagnostic]]

@@ -1,0 +1,80 @@
+"""MB9xx: how variables are used at run time: vacant reads, indirect writes and indexes."""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+
+from ..diagnostics import Diagnostic, RuleInfo, Severity, make, register
+from ..syntax import Assign, IfThen, Var
+from ..walk import subexpressions, top_expressions
+from .context import RuleContext
+
+FAMILY = "variable-use"
+register(
+    RuleInfo("MB901", "vacant-local-read", Severity.WARNING,
+             "A local variable read while vacant: never assigned in the program and not an "
+             "argument it receives.", FAMILY),
+    RuleInfo("MB902", "indirect-write-read-only", Severity.ERROR,
+             "#[...] = ... writes #0 or a read-only system variable at run time (PS0116).",
+             FAMILY),
+    RuleInfo("MB903", "indirect-no-such-variable", Severity.ERROR,
+             "#[...] refers to a variable number that does not exist (PS0115).", FAMILY),
+)  # fmt: skip
+
+
+def check(ctx: RuleContext) -> Iterator[Diagnostic]:
+    facts = ctx.doc_facts()
+    if facts is None:
+        return
+    for f in ctx.findings("alarm:write-read-only"):
+        yield make("MB902", f.message, f.line, f.column, f.end_column)
+    for f in ctx.findings("alarm:no-such-variable"):
+        yield make("MB903", f.message, f.line, f.column, f.end_column)
+    for program in ctx.index.programs:
+        assigned: set[int] = set()
+        checked: set[int] = set()
+        for line in range(program.first_line, program.end_line):
+            statement = ctx.doc.blocks[line].statement
+            if statement is None:
+                continue
+            target = statement.then if isinstance(statement, IfThen) else statement
+            if isinstance(target, Assign) and target.target.number is not None:
+                assigned.add(int(target.target.number))
+            _vacancy_checks(statement, checked)
+        reported: set[int] = set()
+        for (line, n), summary in sorted(facts.reads.items()):
+            if not program.contains(line) or not 1 <= n <= 33 or n in reported:
+                continue
+            if summary.vacant and summary.vacant == summary.count and n not in assigned and (
+                n not in checked
+            ):
+                reported.add(n)
+                span = _var_span(ctx, line, n)
+                yield make("MB901", f"#{n} is read while vacant: {program.display_name} never "
+                           f"sets it and no caller passes it (a vacant local counts as 0 in "
+                           "arithmetic, and omits the word in an address)", line, span[0],
+                           span[1])
+
+
+def _vacancy_checks(statement: object, checked: set[int]) -> None:
+    """Locals compared with #0 (argument checks): vacancy there is expected."""
+    from ..syntax import IfGoto, While
+    from ..walk import cond_exprs
+
+    cond = getattr(statement, "cond", None)
+    if not isinstance(statement, IfGoto | IfThen | While) or cond is None:
+        return
+    for expr in cond_exprs(cond):
+        for node in subexpressions(expr):
+            if isinstance(node, Var) and node.number is not None:
+                checked.add(int(node.number))
+
+
+def _var_span(ctx: RuleContext, line: int, number: int) -> tuple[int, int]:
+    statement = ctx.doc.blocks[line].statement
+    if statement is not None:
+        for top in top_expressions(statement):
+            for node in subexpressions(top):
+                if isinstance(node, Var) and node.number == number:
+                    return node.span.start, node.span.end
+    return 0, len(ctx.doc.blocks[line].text)

@@ -1,0 +1,310 @@
+"""The typed AST of one block.
+
+Every node is a frozen dataclass with a ``span``: the columns it covers in its line (0-based, end
+exclusive, in characters). Nodes never hold a line number, so a parsed line can be shared by every
+block whose text is the same (see :mod:`fanuc_macro.parser`); the block adds the line. The node's
+original text is ``block.text[node.span.start:node.span.end]`` (:meth:`Block.source`).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Union
+
+
+@dataclass(frozen=True, slots=True)
+class Span:
+    start: int
+    end: int
+
+
+# ---- expressions -----------------------------------------------------------------------------
+
+
+@dataclass(frozen=True, slots=True)
+class Num:
+    value: float
+    text: str  # as written: "10." and "10" differ for an NC address (decimal point rules)
+    span: Span
+
+    @property
+    def has_decimal_point(self) -> bool:
+        return "." in self.text
+
+
+@dataclass(frozen=True, slots=True)
+class Var:
+    """``#100`` (``number`` set) or ``#[expr]`` (``index`` set)."""
+
+    number: float | None
+    index: Expr | None
+    span: Span
+
+    @property
+    def is_direct(self) -> bool:
+        return self.number is not None
+
+
+@dataclass(frozen=True, slots=True)
+class Unary:
+    op: str  # "-" or "+"
+    operand: Expr
+    span: Span
+
+
+@dataclass(frozen=True, slots=True)
+class Binary:
+    op: str  # + - * / OR XOR AND MOD (upper case)
+    left: Expr
+    right: Expr
+    span: Span
+
+
+@dataclass(frozen=True, slots=True)
+class Bracket:
+    """``[expr]``: kept as a node because FANUC limits bracket nesting to five."""
+
+    inner: Expr
+    span: Span
+
+
+@dataclass(frozen=True, slots=True)
+class Call:
+    """A function: SIN[x], ATAN[a]/[b] (``slash_form``), ATAN[a,b], POW[a,b]."""
+
+    name: str  # upper case
+    args: tuple[Expr, ...]
+    span: Span
+    name_span: Span
+    slash_form: bool = False
+
+
+Expr = Union[Num, Var, Unary, Binary, Bracket, Call]
+
+
+@dataclass(frozen=True, slots=True)
+class Compare:
+    op: str  # EQ NE GT GE LT LE
+    left: Expr
+    right: Expr
+    span: Span
+
+
+@dataclass(frozen=True, slots=True)
+class Logic:
+    """``[c1] AND [c2] OR [c3]``: evaluated left to right."""
+
+    first: Cond
+    rest: tuple[tuple[str, Cond], ...]
+    span: Span
+
+
+@dataclass(frozen=True, slots=True)
+class BareCond:
+    """``IF [#1] GOTO 5``: a value as a condition (Haas NGC, not FANUC)."""
+
+    value: Expr
+    span: Span
+
+
+Cond = Union[Compare, Logic, BareCond]
+
+
+# ---- statements ------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True, slots=True)
+class Word:
+    """An NC word: address letter and value (``X10.``, ``G#8``, ``Z[#26-1.]``, ``X-#24``)."""
+
+    address: str  # upper case
+    value: Expr
+    span: Span
+    address_lowercase: bool = False
+
+
+@dataclass(frozen=True, slots=True)
+class NcStatement:
+    words: tuple[Word, ...]
+    span: Span
+
+    def find(self, address: str) -> Word | None:
+        for word in self.words:
+            if word.address == address:
+                return word
+        return None
+
+    def find_all(self, address: str) -> list[Word]:
+        return [w for w in self.words if w.address == address]
+
+
+@dataclass(frozen=True, slots=True)
+class Assign:
+    target: Var
+    value: Expr
+    span: Span
+
+
+@dataclass(frozen=True, slots=True)
+class Goto:
+    target: Expr
+    span: Span
+
+
+@dataclass(frozen=True, slots=True)
+class IfGoto:
+    cond: Cond
+    goto: Goto
+    span: Span
+
+
+@dataclass(frozen=True, slots=True)
+class IfThen:
+    cond: Cond
+    then: Assign
+    span: Span
+
+
+@dataclass(frozen=True, slots=True)
+class IfNc:
+    """``IF [c] THEN M31`` / ``IF [c] S#20 F#30``: Haas forms, not FANUC."""
+
+    cond: Cond
+    words: NcStatement
+    has_then: bool
+    span: Span
+
+
+@dataclass(frozen=True, slots=True)
+class BlockIf:
+    """``IF [c] THEN`` / ``ELSE`` / ``ENDIF`` (Haas NGC block IF, not FANUC 0i/16i/30i)."""
+
+    keyword: str  # IF, ELSE, ENDIF
+    cond: Cond | None
+    span: Span
+
+
+@dataclass(frozen=True, slots=True)
+class While:
+    """``WHILE [c] DOm``, or ``DOm`` alone (``cond`` None: loops forever)."""
+
+    cond: Cond | None
+    loop_id: float
+    id_span: Span
+    span: Span
+
+
+@dataclass(frozen=True, slots=True)
+class End:
+    loop_id: float
+    id_span: Span
+    span: Span
+
+
+@dataclass(frozen=True, slots=True)
+class Print:
+    """DPRNT[...] / BPRNT[...] / POPEN / PCLOS."""
+
+    keyword: str
+    text: str
+    span: Span
+
+
+@dataclass(frozen=True, slots=True)
+class Mixed:
+    """An NC statement and a macro statement in one block (FANUC alarm PS0127)."""
+
+    nc: NcStatement
+    macro: MacroStatement
+    span: Span
+
+
+@dataclass(frozen=True, slots=True)
+class ProgramStart:
+    """``O3331``, ``:3331``, ``O9123<HOLE BORE>`` or ``O<NAME>`` (30i)."""
+
+    number: int | None
+    name: str | None
+    span: Span
+
+
+MacroStatement = Union[Assign, Goto, IfGoto, IfThen, IfNc, BlockIf, While, End, Print]
+Statement = Union[MacroStatement, NcStatement, Mixed, ProgramStart]
+
+
+# ---- one line --------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True, slots=True)
+class Comment:
+    text: str  # between the parentheses
+    span: Span  # including the parentheses
+    closed: bool = True
+
+
+@dataclass(frozen=True, slots=True)
+class SyntaxProblem:
+    message: str
+    span: Span
+    expected: tuple[str, ...] = ()
+    dialect: str | None = None  # "Haas", "Mitsubishi/Citizen", "LinuxCNC", ... when recognised
+    unknown_function: str | None = None  # "FOO" in "#1=FOO[2]"
+
+
+@dataclass(frozen=True, slots=True)
+class LineNote:
+    """Something the block reader noticed that is not a syntax error (nested comment...)."""
+
+    kind: str
+    message: str
+    span: Span
+
+
+@dataclass(frozen=True, slots=True)
+class ParsedLine:
+    """Everything known about one line of text, independent of where the line stands."""
+
+    text: str
+    tape_mark: bool  # the line holds "%"
+    skip: int | None  # block delete: 0 for "/", 1-9 for "/1".."/9"
+    seq: int | None  # N number
+    seq_span: Span | None
+    statement: Statement | None
+    comments: tuple[Comment, ...]
+    problem: SyntaxProblem | None
+    notes: tuple[LineNote, ...] = ()
+    has_lowercase: bool = False
+
+    @property
+    def is_empty(self) -> bool:
+        return self.statement is None and self.seq is None and self.problem is None
+
+
+@dataclass(frozen=True, slots=True)
+class Block:
+    """A parsed line at its place in a document (``line`` is 0-based)."""
+
+    line: int
+    parsed: ParsedLine
+
+    @property
+    def text(self) -> str:
+        return self.parsed.text
+
+    @property
+    def statement(self) -> Statement | None:
+        return self.parsed.statement
+
+    def source(self, span: Span) -> str:
+        return self.parsed.text[span.start : span.end]
+
+
+@dataclass(frozen=True, slots=True)
+class Document:
+    """A whole file: its blocks, in order, one per line."""
+
+    uri: str
+    blocks: tuple[Block, ...]
+    encoding: str = "utf-8"
+    decode_note: str | None = None
+    line_count: int = field(default=0)
