@@ -1,8 +1,11 @@
 // Validation of ISO metric thread designations such as `M50x3-5g6g` for the
-// "Insert Symmetric Thread Module..." command. Pure: unit-tested without VS Code.
+// "Insert Symmetric Thread Module..." command. It follows the rules of the
+// server's parser (server/fanuc_macro/threads/designation.py) closely enough
+// to catch typing mistakes early; the server has the last word.
+// Pure: unit-tested without VS Code.
 
 export interface ThreadDesignation {
-  /** The designation as sent to the server: whitespace removed, `×` written `x`. */
+  /** The designation as sent to the server: as typed, without whitespace. */
   readonly text: string;
   /** Nominal diameter in mm. */
   readonly nominal: number;
@@ -12,28 +15,42 @@ export interface ThreadDesignation {
   readonly tolerance: string | undefined;
   /**
    * true for an internal thread (upper-case tolerance position, `6H`), false
-   * for an external one (lower case, `6g`), null when the designation has no
-   * tolerance class and so does not say.
+   * for an external one (lower case, `6g`), null when the designation does
+   * not say: no tolerance class, or an all-capital string such as
+   * `M50X3-6G` (as written in CNC comments) with a position that exists for
+   * both kinds (G, H).
    */
   readonly internal: boolean | null;
 }
 
-const DESIGNATION =
-  /^M(\d+(?:\.\d+)?)(?:X(\d+(?:\.\d+)?|\.\d+))?(?:-(([3-9])([a-hA-H])(?:([3-9])([a-hA-H]))?))?((?:-(?:LH|[SNL]))*)$/i;
+const NUMBER = String.raw`\d+(?:[.,]\d+)?`;
+const HEAD = new RegExp(String.raw`^M(${NUMBER})(?:[xX×*](${NUMBER}))?(LH|RH)?$`, 'i');
+const CLASS = /^([3-9])([A-Za-z])(?:([3-9])([A-Za-z]))?$/;
+const EXTERNAL_POSITIONS = 'efgh';
+const INTERNAL_POSITIONS = 'GH';
 
-/** Parses a designation, or returns a message that says what is wrong with it. */
+function toNumber(text: string): number {
+  return Number(text.replace(',', '.'));
+}
+
+const EXAMPLE = 'write it like M50x3-5g6g (external) or M50x3-6H (internal)';
+
+/**
+ * Parses an ISO metric thread designation (`M50x3-5g6g`, `M20x1.5LH-6H`,
+ * `M10-6g`, `M50X3-5G6G`), or returns a message that says what is wrong.
+ */
 export function parseThreadDesignation(input: string): ThreadDesignation | string {
-  const text = input.replace(/\s+/g, '').replace(/×/g, 'x');
+  const text = input.replace(/\s+/g, '');
   if (text === '') {
-    return 'Enter a metric thread designation such as M50x3-5g6g (external) or M50x3-6H (internal).';
+    return `Enter a metric thread designation: ${EXAMPLE}.`;
   }
-  // Match case-insensitively for M and x, but read the tolerance letters as typed.
-  const match = DESIGNATION.exec(text);
+  const [head = '', ...tail] = text.split('-');
+  const match = HEAD.exec(head);
   if (match === null) {
-    return `"${input.trim()}" is not a metric thread designation; write it like M50x3-5g6g (external) or M50x3-6H (internal).`;
+    return `"${input.trim()}" is not an ISO metric thread designation; ${EXAMPLE}.`;
   }
-  const nominal = Number(match[1]);
-  const pitch = match[2] === undefined ? undefined : Number(match[2]);
+  const nominal = toNumber(match[1] ?? '');
+  const pitch = match[2] === undefined ? undefined : toNumber(match[2]);
   if (!(nominal > 0)) {
     return 'The nominal diameter must be greater than zero.';
   }
@@ -43,23 +60,46 @@ export function parseThreadDesignation(input: string): ThreadDesignation | strin
   if (pitch !== undefined && pitch >= nominal) {
     return 'The pitch must be smaller than the nominal diameter.';
   }
-  const tolerance = match[3];
-  const first = match[5];
-  const second = match[7];
+  let tolerance: string | undefined;
+  let classMatch: RegExpExecArray | null = null;
+  for (const part of tail) {
+    if (/^(LH|RH|S|N|L)$/i.test(part)) {
+      continue;
+    }
+    const m = CLASS.exec(part);
+    if (m !== null && tolerance === undefined) {
+      tolerance = part;
+      classMatch = m;
+      continue;
+    }
+    return part === ''
+      ? `"${input.trim()}" has an empty part between dashes; ${EXAMPLE}.`
+      : `"${input.trim()}": unexpected part "${part}"; ${EXAMPLE}.`;
+  }
   let internal: boolean | null = null;
-  if (first !== undefined) {
-    const firstInternal = first === first.toUpperCase();
-    if (second !== undefined && (second === second.toUpperCase()) !== firstInternal) {
-      return `The tolerance class "${tolerance ?? ''}" mixes an internal (upper-case) and an external (lower-case) position.`;
+  if (classMatch !== null) {
+    const letters = [classMatch[2], classMatch[4]].filter((l): l is string => l !== undefined);
+    // Case tells internal from external only if the writer could use lower case.
+    const caseMeaningful = /[a-z]/.test(text) || text.includes('×');
+    if (caseMeaningful) {
+      const upper = letters.map((l) => l === l.toUpperCase());
+      if (upper.some((u) => u !== upper[0])) {
+        return `The tolerance class "${tolerance ?? ''}" mixes an internal (upper-case) and an external (lower-case) position.`;
+      }
+      internal = upper[0] ?? null;
+      const allowed = internal ? INTERNAL_POSITIONS : EXTERNAL_POSITIONS;
+      if (!letters.every((l) => allowed.includes(l))) {
+        return internal
+          ? 'Internal threads use tolerance positions G or H (for example 6H).'
+          : 'External threads use tolerance positions e, f, g or h (for example 6g).';
+      }
+    } else {
+      if (!letters.every((l) => 'EFGH'.includes(l))) {
+        return 'Tolerance positions are e, f, g, h (external) or G, H (internal), for example 6g or 6H.';
+      }
+      // E and F exist only for external threads; G and H for both.
+      internal = letters.every((l) => INTERNAL_POSITIONS.includes(l)) ? null : false;
     }
-    const letters = second === undefined ? [first] : [first, second];
-    const valid = firstInternal ? /^[EFGH]$/ : /^[efgh]$/;
-    if (!letters.every((l) => valid.test(l))) {
-      return firstInternal
-        ? 'Internal threads use tolerance positions G or H (for example 6H).'
-        : 'External threads use tolerance positions e, f, g or h (for example 6g).';
-    }
-    internal = firstInternal;
   }
   return { text, nominal, pitch, tolerance, internal };
 }

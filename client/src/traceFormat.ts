@@ -91,10 +91,16 @@ export function formatSummary(summary: unknown, indent = '  '): string[] {
   }
   for (const [key, value] of Object.entries(summary)) {
     if (isPlainObject(value)) {
+      if (Object.keys(value).length === 0) {
+        lines.push(`${indent}${key}: (none)`);
+        continue;
+      }
       lines.push(`${indent}${key}:`);
       lines.push(...formatSummary(value, `${indent}  `));
     } else if (Array.isArray(value)) {
-      if (value.every((v) => !isPlainObject(v) && !Array.isArray(v))) {
+      if (value.length === 0) {
+        lines.push(`${indent}${key}: (none)`);
+      } else if (value.every((v) => !isPlainObject(v) && !Array.isArray(v))) {
         lines.push(`${indent}${key}: ${value.map(formatScalar).join(', ')}`);
       } else {
         lines.push(`${indent}${key}:`);

@@ -202,3 +202,18 @@ describe('probeCandidate', { skip: process.platform === 'win32' }, () => {
     assert.ok(Date.now() - started < 5000);
   });
 });
+
+describe('the installed fanuc-macro-ls', { skip: process.platform === 'win32' }, () => {
+  it('answers --version as the client expects', async (t) => {
+    const result = await probeCandidate(candidateFromPath('fanuc-macro-ls', 'path'), 60000);
+    if (!result.ok && result.reason === 'not found') {
+      t.skip('fanuc-macro-ls is not installed');
+      return;
+    }
+    if (!result.ok && /No module named '?fanuc_macro\.lsp/.test(result.reason)) {
+      t.skip('the fanuc_macro.lsp package is not written yet');
+      return;
+    }
+    assert.equal(result.ok, true, result.ok ? '' : result.reason);
+  });
+});

@@ -30,14 +30,23 @@ describe('parseThreadDesignation', () => {
     assert.equal(typeof d !== 'string' && d.pitch, undefined);
     const e = parseThreadDesignation('M50×3');
     assert.equal(typeof e !== 'string' && e.internal, null);
-    assert.equal(typeof e !== 'string' && e.text, 'M50x3');
+    assert.equal(typeof e !== 'string' && e.text, 'M50×3');
   });
-  it('accepts left hand and length of engagement suffixes', () => {
-    assert.equal(validateThreadDesignation('M16x1.5-6g-LH'), undefined);
-    assert.equal(validateThreadDesignation('M16x1.5-6H-L-LH'), undefined);
+  it('does not read the case of an all-capital designation', () => {
+    const d = parseThreadDesignation('M50X3-5G6G');
+    assert.equal(typeof d !== 'string' && d.internal, null);
+    const e = parseThreadDesignation('M50X3-6E');
+    assert.equal(typeof e !== 'string' && e.internal, false);
+    const f = parseThreadDesignation('M50×3-6H');
+    assert.equal(typeof f !== 'string' && f.internal, true);
+  });
+  it('accepts the other forms the server reads', () => {
+    for (const good of ['M16x1.5-6g-LH', 'M16x1.5-6H-L-LH', 'M20x1.5LH-6H', 'M20x2-7g6g-L', 'M50*3-6g', 'M10,5x1-6h', 'M10-6g']) {
+      assert.equal(validateThreadDesignation(good), undefined, good);
+    }
   });
   it('rejects bad designations', () => {
-    for (const bad of ['', '50x3', 'M50x', 'M50x3-6', 'M50x3-5g6H', 'M50x3-6k', 'M50x3-6K', 'M3x3-6g', 'Tr40x7-7e']) {
+    for (const bad of ['', '50x3', 'M50x', 'M50x3-6', 'M50x3-5g6H', 'M50x3-6k', 'M50x3-6E', 'M50X3-6K', 'M3x3-6g', 'Tr40x7-7e', 'M50x3--6g', 'M50x3-6g-6g']) {
       assert.equal(typeof validateThreadDesignation(bad), 'string', bad);
     }
   });

@@ -74,6 +74,13 @@ describe('formatSummary', () => {
       '    s: 800',
     ]);
   });
+  it('marks empty lists and objects', () => {
+    assert.deepEqual(formatSummary({ findings: [], by_code: {}, stopped: false }), [
+      '  findings: (none)',
+      '  by_code: (none)',
+      '  stopped: false',
+    ]);
+  });
   it('lists arrays of objects', () => {
     assert.deepEqual(formatSummary({ warnings: [{ line: 3, message: 'x' }] }), [
       '  warnings:',

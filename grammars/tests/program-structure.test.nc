@@ -55,5 +55,9 @@ G1 X1. (UNTERMINATED COMMENT
 (       ^^^^^^^^^^^ comment.block.fanuc-macro
 G0X0;
 (   ^ punctuation.terminator.end-of-block.fanuc-macro
+(TOOL (T0101) BORING BAR)
+(^^^^^^^^^^^ comment.block.fanuc-macro
+(           ^ comment.block.fanuc-macro punctuation.definition.comment.end.fanuc-macro
+(                       ^ invalid.illegal.unmatched-parenthesis.fanuc-macro - comment.block.fanuc-macro
 %
 (<- keyword.other.tape-mark.fanuc-macro

@@ -65,7 +65,7 @@ def decode_bytes(data: bytes) -> DecodedText:
 
 def split_lines(text: str) -> list[str]:
     """Lines of a program; CRLF, CR and LF all end a line (the control's EOB is LF)."""
-    lines = _LINE_BREAK.split(text)
+    lines = text.split("\n") if "\r" not in text else _LINE_BREAK.split(text)
     if len(lines) > 1 and lines[-1] == "":
         lines.pop()
     return lines

@@ -12,6 +12,8 @@ from . import __version__
 from .analysis import analyse
 from .config import CONTROLLERS, Config
 from .diagnostics import Diagnostic, Severity
+from .evaluator.values import fmt_address
+from .trace import trace
 from .workspace import Workspace, is_program_file
 
 EXIT_OK = 0
@@ -82,6 +84,50 @@ def cmd_check(args: argparse.Namespace) -> int:
     return EXIT_ERRORS if any_error else EXIT_OK
 
 
+def _program_number(text: str) -> int:
+    digits = text.upper().lstrip("O")
+    if not digits.isdigit():
+        raise argparse.ArgumentTypeError(f"not a program number: {text!r} (write O4009 or 4009)")
+    return int(digits)
+
+
+def cmd_trace(args: argparse.Namespace) -> int:
+    path = Path(args.file)
+    if not path.is_file():
+        raise UsageError(f"fanuc-macro: no such file: {args.file}")
+    config = _config(args)
+    workspace = Workspace(config)
+    uri = str(path)
+    workspace.add_bytes(uri, path.read_bytes())
+    for extra in collect_files(args.with_files or []):
+        if str(extra) != uri:
+            workspace.add_bytes(str(extra), extra.read_bytes())
+    doc = workspace.document(uri)
+    assert doc is not None
+    others = workspace.others(uri)
+    if args.entry is not None and workspace.find_program(args.entry) is None:
+        raise UsageError(f"fanuc-macro: no program O{args.entry:04d} in {args.file}")
+    result = trace(uri, doc, workspace.index(uri), others, config, args.entry)
+    out = sys.stdout
+    if args.format == "json":
+        json.dump(result, out, ensure_ascii=False, indent=1)
+        out.write("\n")
+        return EXIT_OK
+    for m in result["motions"]:
+        words = " ".join(f"{k}{fmt_address(v)}" for k, v in m["words"].items())
+        out.write(f"{m['program']:<6} line {m['line']:<5} {m['code']:<4} {words}\n")
+    summary = result["summary"]
+    by_code = ", ".join(f"{k} {v}" for k, v in summary["by_code"].items())
+    out.write(
+        f"{summary['motions']} motions ({by_code}); {summary['blocks_executed']} blocks executed\n"
+    )
+    if summary["stopped"]:
+        out.write(f"stopped early: {summary['stopped']}\n")
+    for f in summary["findings"]:
+        out.write(f"line {f['line']}: {f['message']}\n")
+    return EXIT_OK
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="fanuc-macro", description="Check FANUC Custom Macro B programs."
@@ -95,6 +141,21 @@ def build_parser() -> argparse.ArgumentParser:
     check.add_argument("--controller", choices=CONTROLLERS, default="0i-TF")
     check.add_argument("--disable", metavar="CODES", help="comma-separated rule codes to skip")
     check.set_defaults(func=cmd_check)
+
+    tr = sub.add_parser("trace", help="print the motion blocks a program executes")
+    tr.add_argument("file", metavar="FILE")
+    tr.add_argument("--entry", type=_program_number, help="program to start from, e.g. O4009")
+    tr.add_argument(
+        "--with",
+        dest="with_files",
+        nargs="*",
+        metavar="PATH",
+        help="more files or folders with the programs it calls",
+    )
+    tr.add_argument("--format", choices=("text", "json"), default="text")
+    tr.add_argument("--controller", choices=CONTROLLERS, default="0i-TF")
+    tr.add_argument("--disable", help=argparse.SUPPRESS)
+    tr.set_defaults(func=cmd_trace)
     return parser
 
 

@@ -14,12 +14,12 @@ CONTROLLERS = ("0i-TF", "0i-MF", "30i")
 class Config:
     controller: str = "0i-TF"
     max_spindle_speed: float = 4000.0  # rpm
-    max_threading_feed: float = 5000.0  # mm/min: S x pitch must stay under it
+    max_threading_feed: float = 10000.0  # mm/min: S x pitch must stay under it
     max_depth_per_pass: float = 0.5  # mm, radius, for a threading pass
     disabled: frozenset[str] = frozenset()
     severities: dict[str, Severity] = field(default_factory=dict)
-    step_budget: int = 2_000_000  # blocks the evaluator may execute from one entry
-    time_budget: float = 2.0  # seconds of evaluation per document
+    step_budget: int = 500_000  # blocks the evaluator may execute from one entry
+    time_budget: float = 0.8  # seconds of evaluation per document
 
     @property
     def is_lathe(self) -> bool:
@@ -50,9 +50,7 @@ class Config:
         return cls(
             controller=controller if controller in CONTROLLERS else "0i-TF",
             max_spindle_speed=_number(machine.get("maxSpindleSpeed"), default.max_spindle_speed),
-            max_threading_feed=_number(
-                machine.get("maxThreadingFeed"), default.max_threading_feed
-            ),
+            max_threading_feed=_number(machine.get("maxThreadingFeed"), default.max_threading_feed),
             max_depth_per_pass=_number(
                 threading.get("maxDepthPerPass"), default.max_depth_per_pass
             ),

@@ -99,7 +99,6 @@ class Program:
     jumps: list[Jump] = field(default_factory=list)
     calls: list[Call] = field(default_factory=list)
     returns: list[int] = field(default_factory=list)  # lines with M99
-    loop_of_line: dict[int, Loop] = field(default_factory=dict)  # innermost loop
 
     @property
     def display_name(self) -> str:
@@ -205,8 +204,31 @@ def call_of(line: int, nc: NcStatement) -> Call | None:
     )
 
 
+_CALL_CODES = {("G", 65.0), ("G", 66.0), ("G", 66.1), ("M", 98.0), ("M", 97.0), ("M", 99.0)}
+
+
+def mentions_call(statement: object) -> bool:
+    """Whether a statement has a word that calls or returns (decided once per parsed line)."""
+    if isinstance(statement, Mixed):
+        statement = statement.nc
+    elif isinstance(statement, IfNc):
+        statement = statement.words
+    if not isinstance(statement, NcStatement):
+        return False
+    for word in statement.words:
+        if word.address in ("G", "M") and (word.address, constant_value(word.value)) in _CALL_CODES:
+            return True
+    return False
+
+
 def has_m99(nc: NcStatement) -> bool:
     return any(w.address == "M" and constant_value(w.value) == 99.0 for w in nc.words)
+
+
+# Statements the index records; assignments and plain NC blocks (most lines) it skips.
+INDEXED_STATEMENTS: frozenset[type] = frozenset(
+    {Goto, IfGoto, IfNc, While, End, Mixed, ProgramStart}
+)
 
 
 def build_index(doc: Document) -> ProgramIndex:
@@ -226,18 +248,15 @@ def build_index(doc: Document) -> ProgramIndex:
         current.loops = sorted(pending, key=lambda lp: lp.do_line)
         pending.clear()
         current.end_line = end
-        for loop in current.loops:
-            if loop.end_line is None:
-                continue
-            for ln in range(loop.do_line + 1, loop.end_line + 1):
-                inner = current.loop_of_line.get(ln)
-                if inner is None or inner.depth < loop.depth:
-                    current.loop_of_line[ln] = loop
         programs.append(current)
         current = None
 
     for block in doc.blocks:
         parsed = block.parsed
+        if not parsed.indexed:
+            if current is None and parsed.statement is not None:
+                current = Program(None, None, None, block.line, block.line + 1)
+            continue
         statement = parsed.statement
         line = block.line
         if isinstance(statement, ProgramStart):
@@ -252,7 +271,8 @@ def build_index(doc: Document) -> ProgramIndex:
             current = Program(None, None, None, line, line + 1)
         if parsed.seq is not None:
             current.labels.setdefault(parsed.seq, []).append(line)
-        _index_statement(current, block, open_loops, pending)
+        if statement is not None:
+            _index_statement(current, block, open_loops, pending)
     close_program(len(doc.blocks))
     return ProgramIndex(tuple(programs))
 
@@ -286,7 +306,9 @@ def _index_statement(
                 program.calls.append(call)
         elif isinstance(part, While):
             if part.loop_id not in (1.0, 2.0, 3.0):
-                program.loop_problems.append(LoopProblem("bad-id", line, part.id_span, part.loop_id))
+                program.loop_problems.append(
+                    LoopProblem("bad-id", line, part.id_span, part.loop_id)
+                )
             if len(open_loops) >= MAX_LOOP_DEPTH:
                 program.loop_problems.append(
                     LoopProblem("too-deep", line, part.span, part.loop_id, open_loops[0][1])
@@ -294,7 +316,9 @@ def _index_statement(
             open_loops.append((part.loop_id, line, part.span))
         elif isinstance(part, End):
             if part.loop_id not in (1.0, 2.0, 3.0):
-                program.loop_problems.append(LoopProblem("bad-id", line, part.id_span, part.loop_id))
+                program.loop_problems.append(
+                    LoopProblem("bad-id", line, part.id_span, part.loop_id)
+                )
             if open_loops and open_loops[-1][0] == part.loop_id:
                 loop_id, do_line, _ = open_loops.pop()
                 loops.append(Loop(loop_id, do_line, line, len(open_loops) + 1))
@@ -310,6 +334,8 @@ def _index_statement(
                     loop_id, do_line, _ = open_loops.pop(i)
                     loops.append(Loop(loop_id, do_line, line, i + 1))
                 else:
-                    program.loop_problems.append(LoopProblem("no-do", line, part.span, part.loop_id))
+                    program.loop_problems.append(
+                        LoopProblem("no-do", line, part.span, part.loop_id)
+                    )
         elif isinstance(part, IfThen):
             pass

@@ -29,9 +29,9 @@ __all__ = ["TableParser"]
 
 _Callback = Callable[[list[Any]], Any]
 _Match = Callable[[str, int], Any]
-# A reduction: (arity, nonterminal to go to, callback, unit chain or None). A unit chain maps
-# the state under the top one to the state reached after a run of one-child `?rule`
-# reductions that return their child unchanged, so the run costs one step.
+# A reduction: (2 * arity = its length on the parse stack, nonterminal to go to, callback,
+# unit chain or None). A unit chain maps the state under the top one to the state reached after
+# a run of one-child `?rule` reductions that return their child unchanged: one step for the run.
 _Rule = tuple[int, str, _Callback, dict[int, int] | None]
 
 _END = "$END"
@@ -206,25 +206,35 @@ class TableParser:
         scanned = [t for t in terminals if t.name not in embedded]
 
         def compile_match(terms: list[TerminalDef]) -> _Match:
-            if not terms:
-                return re_module.compile("(?!)").match  # matches nothing
-            match: _Match = re_module.compile(_alternation(terms), flags).match
+            regexp = _alternation(terms) if terms else "(?!)"  # "(?!)" matches nothing
+            match: _Match = re_module.compile(regexp, flags).match
             return match
 
         self._master_match = compile_match(scanned)
-        dispatch: dict[str, _Match] = {}
+        # Per ASCII character: the terminal's name when the first terminal that can start with
+        # it is that very character as a literal (it always wins: the alternation takes the
+        # first branch that matches), else a master regex of just the terminals that can.
+        singles: dict[str, str] = {}
+        scanners: dict[str, _Match] = {}
+        ignore = frozenset(conf.ignore)
         if re_module is re:  # the analysis reads the syntax of the standard re module
             firsts = [_regex_first(t.pattern.to_regexp(), flags) for t in scanned]
             by_subset: dict[tuple[int, ...], _Match] = {}
             for ch in sorted(_ASCII):
                 subset = tuple(i for i, f in enumerate(firsts) if f is None or ch in f)
+                if subset:
+                    head = scanned[subset[0]]
+                    if head.name not in ignore and _is_char_literal(head, ch, flags):
+                        singles[ch] = sys.intern(head.name)
+                        continue
                 if subset not in by_subset:
                     by_subset[subset] = compile_match([scanned[i] for i in subset])
-                dispatch[ch] = by_subset[subset]
-        self._dispatch = dispatch
+                scanners[ch] = by_subset[subset]
+        self._singles = singles
+        self._scanners = scanners
         self._scanned_names = tuple(t.name for t in scanned)  # for tests: Lark's order
         self._retype: Mapping[str, Any] = retype
-        self._ignore = frozenset(conf.ignore)
+        self._ignore = ignore
         self._newline_types = frozenset(
             t.name for t in conf.terminals if _has_newline(t.pattern.to_regexp())
         )
@@ -291,26 +301,27 @@ class TableParser:
             for kind, action in row.items():
                 if action >= 0 or not passes_child[~action] or not kind.isupper():
                     continue
-                chain: dict[int, int] | None = {}
+                chain: dict[int, int] = {}
                 for under in below[top]:
                     end = _chain_end(rows, rules, passes_child, under, top, kind, self._end_state)
                     if end is None:
-                        chain = None  # leave this one to the general reduce step
-                        break
+                        break  # leave this one to the general reduce step
                     chain[under] = end
-                if chain:
-                    folded.append((top, kind, chain))
+                else:
+                    if chain:
+                        folded.append((top, kind, chain))
         for top, kind, chain in folded:
-            size, origin, callback, _ = rules[~rows[top][kind]]
+            span, origin, callback, _ = rules[~rows[top][kind]]
             rows[top][kind] = ~len(rules)
-            rules.append((size, origin, callback, chain))
+            rules.append((span, origin, callback, chain))
             passes_child.append(False)
 
     # ---- parsing
 
     def parse(self, code: str) -> Any:
         """What ``lark.parse(code)`` returns, or the exception it raises."""
-        dispatch = self._dispatch
+        singles = self._singles
+        scanners = self._scanners
         master = self._master_match
         ignore = self._ignore
         retype = self._retype
@@ -322,8 +333,8 @@ class TableParser:
         has_newline = "\n" in code
         newline_types = self._newline_types
 
-        state_stack = [self._start_state]
-        value_stack: list[Any] = []
+        # One stack for both: state, value, state, value, ..., state (the top one is last).
+        stack: list[Any] = [self._start_state]
         row = rows[self._start_state]
         pos = 0
         size_text = len(code)
@@ -334,25 +345,30 @@ class TableParser:
         while True:
             # ---- the next token (the basic lexer never depends on the parser state)
             if pos < size_text:
-                try:
-                    m = dispatch[code[pos]](code, pos)
-                except KeyError:  # not ASCII
-                    m = master(code, pos)
-                if m is None:
-                    raise self._unexpected_characters(code, pos, line, pos - line_start + 1, last)
-                kind: str = m.lastgroup
-                value: str = m.group()
-                end = m.end()
-                if kind in ignore:
-                    if has_newline and kind in newline_types and "\n" in value:
-                        line += value.count("\n")
-                        line_start = pos + value.rindex("\n") + 1
-                    pos = end
-                    continue
-                if retype and kind in retype:
-                    full = retype[kind].fullmatch(value)
-                    if full is not None:
-                        kind = full.lastgroup
+                value = code[pos]
+                single = singles.get(value)
+                if single is not None:
+                    kind = single
+                    end = pos + 1
+                else:
+                    m = scanners.get(value, master)(code, pos)
+                    if m is None:
+                        raise self._unexpected_characters(
+                            code, pos, line, pos - line_start + 1, last
+                        )
+                    kind = m.lastgroup
+                    value = m.group()
+                    end = m.end()
+                    if kind in ignore:
+                        if has_newline and kind in newline_types and "\n" in value:
+                            line += value.count("\n")
+                            line_start = pos + value.rindex("\n") + 1
+                        pos = end
+                        continue
+                    if retype and kind in retype:
+                        full = retype[kind].fullmatch(value)
+                        if full is not None:
+                            kind = full.lastgroup
                 # Filling the slots here skips Token.__new__'s argument handling.
                 tok: Token = new_str(Token, value)
                 tok.type = kind
@@ -375,33 +391,32 @@ class TableParser:
                 try:
                     action = row[kind]
                 except KeyError:
-                    raise self._unexpected_token(state_stack[-1], kind, last) from None
+                    raise self._unexpected_token(stack[-1], kind, last) from None
                 if action >= 0:
-                    state_stack.append(action)
                     if token_callbacks and kind in token_callbacks:
-                        value_stack.append(token_callbacks[kind](tok))
+                        stack.append(token_callbacks[kind](tok))
                     else:
-                        value_stack.append(tok)
+                        stack.append(tok)
+                    stack.append(action)
                     row = rows[action]
                     break
-                size, origin, callback, chain = rules[~action]
+                span, origin, callback, chain = rules[~action]
                 if chain is not None:
-                    goto = chain[state_stack[-2]]
-                    state_stack[-1] = goto
+                    goto = chain[stack[-3]]
+                    stack[-1] = goto
                     row = rows[goto]
                     continue
-                if size:
-                    children = value_stack[-size:]
-                    del state_stack[-size:]
-                    del value_stack[-size:]
+                if span:
+                    children = stack[-span::2]
+                    del stack[-span:]
                 else:
                     children = []
                 result = callback(children)
-                goto = rows[state_stack[-1]][origin]
+                goto = rows[stack[-1]][origin]
                 if goto == end_state and kind == _END:
                     return result
-                state_stack.append(goto)
-                value_stack.append(result)
+                stack.append(result)
+                stack.append(goto)
                 row = rows[goto]
 
     # ---- errors, with the data Lark puts in them
@@ -409,7 +424,7 @@ class TableParser:
     def _unexpected_characters(
         self, code: str, pos: int, line: int, column: int, last: Token | None
     ) -> UnexpectedCharacters:
-        return UnexpectedCharacters(
+        return UnexpectedCharacters(  # type: ignore[no-untyped-call]
             code,
             pos,
             line,
@@ -429,7 +444,15 @@ class TableParser:
         else:
             token = Token(_END, "", 0, 1, 1)
         expected: Collection[str] = set(self._expected[state])
-        return UnexpectedToken(token, expected)
+        return UnexpectedToken(token, expected)  # type: ignore[no-untyped-call]
+
+
+def _is_char_literal(term: TerminalDef, ch: str, flags: int) -> bool:
+    """Does `term` match exactly the one character `ch` (then nothing else can come first)?"""
+    pattern = term.pattern
+    if not isinstance(pattern, PatternStr) or len(pattern.value) != 1:
+        return False
+    return re.fullmatch(pattern.to_regexp(), ch, flags) is not None
 
 
 def _alternation(terms: Iterable[TerminalDef]) -> str:
@@ -439,18 +462,19 @@ def _alternation(terms: Iterable[TerminalDef]) -> str:
 def _rule_entry(rule: Any, callbacks: Mapping[Any, Any]) -> tuple[_Rule, bool]:
     """The reduce entry of a Lark rule, and whether it returns its only child unchanged."""
     size = len(rule.expansion)
+    span = 2 * size  # a value and a state per symbol
     origin = sys.intern(str(rule.origin.name))
     if not callbacks:
-        return (size, origin, _children, None), False
+        return (span, origin, _children, None), False
     callback = callbacks[rule]
     if type(callback) is ExpandSingleChild:
         # ExpandSingleChild (a `?rule` without alias) tests len(children) == 1 on each call;
         # with LALR that length is the arity, so decide it once here.
         if size == 1:
-            return (size, origin, _only_child, None), True
+            return (span, origin, _only_child, None), True
         inner: _Callback = callback.node_builder
-        return (size, origin, inner, None), False
-    return (size, origin, callback, None), False
+        return (span, origin, inner, None), False
+    return (span, origin, callback, None), False
 
 
 def _chain_end(

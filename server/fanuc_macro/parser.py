@@ -9,16 +9,16 @@ from __future__ import annotations
 
 import re
 import threading
-from collections import OrderedDict
 from collections.abc import Iterable, Sequence
 from importlib import resources
-from typing import Any
+from typing import Any, cast
 
 from lark import Lark, Token, Transformer
 from lark.exceptions import UnexpectedCharacters, UnexpectedEOF, UnexpectedInput, UnexpectedToken
 
 from . import dialects
-from .blocks import cut_comments, decode_bytes, split_lines
+from .blocks import LineCode, cut_comments, decode_bytes, split_lines
+from .index import INDEXED_STATEMENTS, mentions_call
 from .syntax import (
     Assign,
     BareCond,
@@ -232,7 +232,8 @@ class _ToAst(Transformer[Token, Any]):
 _FAST_VALUE = r"(?:[-+]?[ \t]*(?:[0-9]+\.?[0-9]*|\.[0-9]+)|-?[ \t]*#[ \t]*[0-9]+)"
 _FAST_WORD = re.compile(r"([A-MP-Z])[ \t]*(" + _FAST_VALUE + r")[ \t]*", re.I)
 _FAST_LINE = re.compile(
-    r"[ \t]*(?:(/)[ \t]*([0-9]+\.?[0-9]*|\.[0-9]+)?[ \t]*)?(?:(N)[ \t]*([0-9]+\.?[0-9]*|\.[0-9]+)[ \t]*)?"
+    r"[ \t]*(?:(/)[ \t]*([0-9]+\.?[0-9]*|\.[0-9]+)?[ \t]*)?"
+    r"(?:(N)[ \t]*([0-9]+\.?[0-9]*|\.[0-9]+)[ \t]*)?"
     r"((?:[A-MP-Z][ \t]*" + _FAST_VALUE + r"[ \t]*)*)",
     re.I,
 )
@@ -275,7 +276,45 @@ def fast_parse(code: str) -> tuple[int | None, int | None, Span | None, NcStatem
         value = _fast_value(wm.group(2), wm.start(2))
         letter = wm.group(1)
         words.append(Word(letter.upper(), value, Span(wm.start(1), wm.end(2)), letter.islower()))
-    return skip, seq, seq_span, NcStatement(tuple(words), Span(words[0].span.start, words[-1].span.end))
+    return (
+        skip,
+        seq,
+        seq_span,
+        NcStatement(tuple(words), Span(words[0].span.start, words[-1].span.end)),
+    )
+
+
+def _line(
+    text: str,
+    cut: LineCode,
+    skip: int | None,
+    seq: int | None,
+    seq_span: Span | None,
+    statement: Statement | None,
+    problem: SyntaxProblem | None,
+    has_lower: bool,
+) -> ParsedLine:
+    has_call = mentions_call(statement)
+    indexed = (
+        seq is not None
+        or cut.tape_mark
+        or has_call
+        or (statement is not None and type(statement) in INDEXED_STATEMENTS)
+    )
+    return ParsedLine(
+        text,
+        cut.tape_mark,
+        skip,
+        seq,
+        seq_span,
+        statement,
+        cut.comments,
+        problem,
+        cut.notes,
+        has_lower,
+        has_call,
+        indexed,
+    )
 
 
 class BlockParser:
@@ -291,46 +330,42 @@ class BlockParser:
             keep_all_tokens=True,
             maybe_placeholders=False,
         )
-        self._cache: OrderedDict[str, ParsedLine] = OrderedDict()
+        # Insertion-ordered dict as a cheap LRU: hits are not refreshed, and when it is full
+        # the oldest quarter goes (lines of open documents come back on their next parse).
+        self._cache: dict[str, ParsedLine] = {}
         self._cache_size = cache_size
         self._lock = threading.Lock()
 
     def parse_line(self, text: str) -> ParsedLine:
-        with self._lock:
-            cached = self._cache.get(text)
-            if cached is not None:
-                self._cache.move_to_end(text)
-                return cached
+        cached = self._cache.get(text)
+        if cached is not None:
+            return cached
         parsed = self._parse_uncached(text)
         with self._lock:
             self._cache[text] = parsed
             if len(self._cache) > self._cache_size:
-                self._cache.popitem(last=False)
+                for key in list(self._cache)[: self._cache_size // 4]:
+                    del self._cache[key]
         return parsed
 
     def _parse_uncached(self, text: str) -> ParsedLine:
         cut = cut_comments(text)
         code = cut.code
-        has_lower = any(ch.islower() for ch in code)
         if not code.strip():
-            return ParsedLine(text, cut.tape_mark, None, None, None, None, cut.comments, None,
-                              cut.notes, False)
+            return _line(text, cut, None, None, None, None, None, False)
+        has_lower = any(ch.islower() for ch in code)
         if self.use_fast_path:
             fast = fast_parse(code)
             if fast is not None:
-                skip, seq, seq_span, nc = fast
-                return ParsedLine(text, cut.tape_mark, skip, seq, seq_span, nc, cut.comments,
-                                  None, cut.notes, has_lower)
+                return _line(text, cut, *fast, None, has_lower)
         try:
-            items: list[Any] = self._lark.parse(code)
+            # The transformer's start() makes the result a list, not a tree.
+            items = cast("list[Any]", self._lark.parse(code))
         except UnexpectedInput as err:
-            problem = _describe(code, err)
-            return ParsedLine(text, cut.tape_mark, None, None, None, None, cut.comments, problem,
-                              cut.notes, has_lower)
+            return _line(text, cut, None, None, None, None, _describe(code, err), has_lower)
         except (ValueError, OverflowError) as err:  # a number the float type cannot hold
             problem = SyntaxProblem(f"cannot read a number: {err}", Span(0, len(text)))
-            return ParsedLine(text, cut.tape_mark, None, None, None, None, cut.comments, problem,
-                              cut.notes, has_lower)
+            return _line(text, cut, None, None, None, None, problem, has_lower)
         skip: int | None = None
         seq: int | None = None
         seq_span: Span | None = None
@@ -344,11 +379,12 @@ class BlockParser:
                     seq_span = item[2]
             else:
                 statement = item
-        return ParsedLine(text, cut.tape_mark, skip, seq, seq_span, statement, cut.comments, None,
-                          cut.notes, has_lower)
+        return _line(text, cut, skip, seq, seq_span, statement, None, has_lower)
 
     def parse_lines(self, lines: Iterable[str]) -> list[ParsedLine]:
-        return [self.parse_line(line) for line in lines]
+        get = self._cache.get
+        parse = self.parse_line
+        return [get(line) or parse(line) for line in lines]
 
 
 _TOKEN_NAMES = {
@@ -427,7 +463,7 @@ def _describe(code: str, err: UnexpectedInput) -> SyntaxProblem:
 
 
 _KNOWN_FUNCTIONS = frozenset(
-    "SIN COS TAN ASIN ACOS ATAN SQRT ABS ROUND FIX FUP LN EXP POW ADP BIN BCD".split()
+    "SIN COS TAN ASIN ACOS ATAN SQRT ABS ROUND FIX FUP LN EXP POW ADP BIN BCD".split()  # noqa: SIM905
 )
 _WORD_BEFORE_BRACKET = re.compile(r"([A-Z]{2,})\s*\[", re.I)
 
@@ -458,10 +494,22 @@ def default_parser() -> BlockParser:
         return _default_parser
 
 
-def parse_text(text: str, uri: str = "", parser: BlockParser | None = None) -> Document:
+def parse_text(
+    text: str, uri: str = "", parser: BlockParser | None = None, previous: Document | None = None
+) -> Document:
+    """Parse a document; with ``previous`` (its last version) unchanged lines keep their blocks."""
     bp = parser or default_parser()
     lines = split_lines(text)
-    blocks = tuple(Block(i, bp.parse_line(line)) for i, line in enumerate(lines))
+    parsed = bp.parse_lines(lines)
+    if previous is None:
+        blocks = tuple(map(Block, range(len(lines)), parsed))
+    else:
+        old = previous.blocks
+        n_old = len(old)
+        blocks = tuple(
+            old[i] if i < n_old and old[i].parsed is p else Block(i, p)
+            for i, p in enumerate(parsed)
+        )
     return Document(uri, blocks, "utf-8", None, len(lines))
 
 

@@ -9,7 +9,7 @@ original text is ``block.text[node.span.start:node.span.end]`` (:meth:`Block.sou
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Union
+from typing import NamedTuple
 
 
 @dataclass(frozen=True, slots=True)
@@ -79,7 +79,7 @@ class Call:
     slash_form: bool = False
 
 
-Expr = Union[Num, Var, Unary, Binary, Bracket, Call]
+Expr = Num | Var | Unary | Binary | Bracket | Call
 
 
 @dataclass(frozen=True, slots=True)
@@ -107,7 +107,7 @@ class BareCond:
     span: Span
 
 
-Cond = Union[Compare, Logic, BareCond]
+Cond = Compare | Logic | BareCond
 
 
 # ---- statements ------------------------------------------------------------------------------
@@ -228,8 +228,8 @@ class ProgramStart:
     span: Span
 
 
-MacroStatement = Union[Assign, Goto, IfGoto, IfThen, IfNc, BlockIf, While, End, Print]
-Statement = Union[MacroStatement, NcStatement, Mixed, ProgramStart]
+MacroStatement = Assign | Goto | IfGoto | IfThen | IfNc | BlockIf | While | End | Print
+Statement = MacroStatement | NcStatement | Mixed | ProgramStart
 
 
 # ---- one line --------------------------------------------------------------------------------
@@ -274,15 +274,22 @@ class ParsedLine:
     problem: SyntaxProblem | None
     notes: tuple[LineNote, ...] = ()
     has_lowercase: bool = False
+    # The block has an M98/M97/M99/G65/G66 word: the program index looks closer only then.
+    has_call: bool = False
+    # The program index needs this line (label, jump, loop, call, program start, tape mark).
+    indexed: bool = False
 
     @property
     def is_empty(self) -> bool:
         return self.statement is None and self.seq is None and self.problem is None
 
 
-@dataclass(frozen=True, slots=True)
-class Block:
-    """A parsed line at its place in a document (``line`` is 0-based)."""
+class Block(NamedTuple):
+    """A parsed line at its place in a document (``line`` is 0-based).
+
+    A named tuple, not a dataclass: a document of 100,000 lines makes 100,000 of them on every
+    edit, and a tuple is the cheapest object Python builds.
+    """
 
     line: int
     parsed: ParsedLine

@@ -21,8 +21,9 @@ def trace(
     entry: int | None = None,
 ) -> dict[str, Any]:
     """``{"motions": [{program, line, code, words}], "summary": {...}}``; lines are 1-based."""
-    facts = evaluate([(uri, doc, index), *others], config, only_uri=None if entry else uri,
-                     entry=entry)
+    facts = evaluate(
+        [(uri, doc, index), *others], config, only_uri=None if entry else uri, entry=entry
+    )
     motions = [
         {"program": m.program, "line": m.line + 1, "code": m.code, "words": m.words}
         | ({"path": m.uri} if m.uri != uri else {})

@@ -55,8 +55,9 @@ class Workspace:
         decoded = decode_bytes(data)
         doc = parse_text(decoded.text, uri, self.parser)
         doc = Document(uri, doc.blocks, decoded.encoding, decoded.note, doc.line_count)
-        self._entries[uri] = _Entry(decoded.text, doc, build_index(doc), decoded.encoding,
-                                    decoded.note)
+        self._entries[uri] = _Entry(
+            decoded.text, doc, build_index(doc), decoded.encoding, decoded.note
+        )
         return doc
 
     def remove(self, uri: str) -> None:
@@ -68,6 +69,13 @@ class Workspace:
     def document(self, uri: str) -> Document | None:
         entry = self._entries.get(uri)
         return entry.doc if entry else None
+
+    def index(self, uri: str) -> ProgramIndex:
+        return self._entries[uri].index
+
+    def others(self, uri: str) -> list[tuple[str, Document, ProgramIndex]]:
+        """The other documents, for the calls a document makes into them."""
+        return [(u, e.doc, e.index) for u, e in self._entries.items() if u != uri]
 
     def program_numbers(self) -> frozenset[int]:
         return frozenset(
@@ -88,6 +96,13 @@ class Workspace:
     def analyse(self, uri: str, workspace_programs: frozenset[int] | None = None) -> Analysis:
         entry = self._entries[uri]
         programs = self.program_numbers() if workspace_programs is None else workspace_programs
-        others = [(u, e.doc, e.index) for u, e in self._entries.items() if u != uri]
-        return analyse(entry.text, uri, self.config, programs, self.parser, doc=entry.doc,
-                       index=entry.index, other_documents=others)
+        return analyse(
+            entry.text,
+            uri,
+            self.config,
+            programs,
+            self.parser,
+            doc=entry.doc,
+            index=entry.index,
+            other_documents=self.others(uri),
+        )

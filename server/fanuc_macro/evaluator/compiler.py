@@ -35,7 +35,7 @@ class Frame(Protocol):
 
 
 Evaluator = Callable[[Frame], Value]
-CondEvaluator = Callable[[Frame], "bool | None | Unknown"]
+CondEvaluator = Callable[[Frame], "bool | Unknown | None"]
 
 _float = float
 
@@ -67,7 +67,7 @@ def compile_expr(expr: Expr) -> Evaluator:
         def negate(f: Frame) -> Value:
             v = inner(f)
             if v.__class__ is _float:
-                return -v  # type: ignore[operator]
+                return -v
             if v is None:
                 return 0.0
             return v
@@ -153,7 +153,7 @@ def _compile_binary(expr: Binary) -> Evaluator:
             a = left(f)
             b = right(f)
             if a.__class__ is _float and b.__class__ is _float:
-                return a + b  # type: ignore[operator]
+                return a + b
             return slow(a, b)
 
         return add
@@ -163,7 +163,7 @@ def _compile_binary(expr: Binary) -> Evaluator:
             a = left(f)
             b = right(f)
             if a.__class__ is _float and b.__class__ is _float:
-                return a - b  # type: ignore[operator]
+                return a - b
             return slow(a, b)
 
         return sub
@@ -173,7 +173,7 @@ def _compile_binary(expr: Binary) -> Evaluator:
             a = left(f)
             b = right(f)
             if a.__class__ is _float and b.__class__ is _float:
-                return a * b  # type: ignore[operator]
+                return a * b
             return slow(a, b)
 
         return mul
@@ -183,7 +183,7 @@ def _compile_binary(expr: Binary) -> Evaluator:
             a = left(f)
             b = right(f)
             if a.__class__ is _float and b.__class__ is _float and b:
-                return a / b  # type: ignore[operator]
+                return a / b
             return slow(a, b)
 
         return div
@@ -222,7 +222,7 @@ def _compile_call(expr: Call) -> Evaluator:
             if isinstance(a, Unknown):
                 return a
         try:
-            return fn1(a)  # type: ignore[arg-type]
+            return fn1(a)
         except MacroAlarm as alarm:
             alarm.node = expr
             raise
@@ -237,7 +237,7 @@ def compile_cond(cond: Cond) -> CondEvaluator:
         right = compile_expr(cond.right)
         op = cond.op
 
-        def cmp(f: Frame) -> bool | None | Unknown:
+        def cmp(f: Frame) -> bool | Unknown | None:
             a = left(f)
             b = right(f)
             result = compare(op, a, b)
@@ -249,7 +249,7 @@ def compile_cond(cond: Cond) -> CondEvaluator:
     if isinstance(cond, BareCond):
         value = compile_expr(cond.value)
 
-        def bare(f: Frame) -> bool | None | Unknown:
+        def bare(f: Frame) -> bool | Unknown | None:
             v = value(f)
             if isinstance(v, Unknown):
                 return v
@@ -260,13 +260,14 @@ def compile_cond(cond: Cond) -> CondEvaluator:
     first = compile_cond(cond.first)
     rest = [(op, compile_cond(c)) for op, c in cond.rest]
 
-    def logic(f: Frame) -> bool | None | Unknown:
+    def logic(f: Frame) -> bool | Unknown | None:
         acc = first(f)
         for op, c in rest:
             b = c(f)
             if isinstance(acc, Unknown) or isinstance(b, Unknown):
-                acc = merge_unknown(acc if isinstance(acc, Unknown) else None,
-                                    b if isinstance(b, Unknown) else None)
+                acc = merge_unknown(
+                    acc if isinstance(acc, Unknown) else None, b if isinstance(b, Unknown) else None
+                )
                 continue
             if op == "AND":
                 acc = bool(acc) and bool(b)

@@ -55,8 +55,10 @@ class ValueSummary:
             return fmt(self.first)
         if not self.numeric:
             return fmt(self.last)
-        text = (f"{fmt(self.first)} → {fmt(self.last)} ({self.count} times, min "
-                f"{fmt(self.minimum)}, max {fmt(self.maximum)})")
+        text = (
+            f"{fmt(self.first)} → {fmt(self.last)} ({self.count} times, min "
+            f"{fmt(self.minimum)}, max {fmt(self.maximum)})"
+        )
         if self.vacant:
             text += f", vacant {self.vacant} times"
         return text
@@ -69,6 +71,9 @@ class Motion:
     code: str
     words: dict[str, float]
     uri: str = ""
+    x: float | None = None  # the diameter the move or cut reaches (G32 Z-only: where it is)
+    rpm: float | None = None  # spindle speed in G97 (None in G96 or unknown)
+    program_line: int = 0  # first line of the program the motion belongs to
 
 
 @dataclass

@@ -80,8 +80,10 @@ def _direct_reads(statement: Statement) -> tuple[int, ...]:
         for node in subexpressions(top):
             if node is skip_target:
                 continue
-            if isinstance(node, Var) and node.number is not None and node.number == int(
-                node.number
+            if (
+                isinstance(node, Var)
+                and node.number is not None
+                and node.number == int(node.number)
             ):
                 n = int(node.number)
                 if n and n not in numbers:
@@ -118,8 +120,13 @@ def compile_statement(line: int, statement: Statement | None) -> CompiledLine:
     elif isinstance(statement, Goto):
         c = CompiledLine(K_GOTO, line, target=compile_expr(statement.target), node=statement)
     elif isinstance(statement, IfGoto):
-        c = CompiledLine(K_IFGOTO, line, target=compile_expr(statement.goto.target),
-                         cond=compile_cond(statement.cond), node=statement)
+        c = CompiledLine(
+            K_IFGOTO,
+            line,
+            target=compile_expr(statement.goto.target),
+            cond=compile_cond(statement.cond),
+            node=statement,
+        )
     elif isinstance(statement, While):
         cond = compile_cond(statement.cond) if statement.cond is not None else None
         c = CompiledLine(K_WHILE, line, cond=cond, node=statement)
@@ -168,8 +175,8 @@ class Activation:
         "caller",
         "ctx",
         "locals",
-        "macro_level",
         "machine",
+        "macro_level",
         "pc",
         "repeats_left",
         "return_pc",
@@ -177,9 +184,16 @@ class Activation:
         "undecided_loops",
     )
 
-    def __init__(self, machine: Machine, ctx: ProgramContext, locals_: list[Value],
-                 macro_level: int, caller: Activation | None, return_pc: int,
-                 repeats_left: int) -> None:
+    def __init__(
+        self,
+        machine: Machine,
+        ctx: ProgramContext,
+        locals_: list[Value],
+        macro_level: int,
+        caller: Activation | None,
+        return_pc: int,
+        repeats_left: int,
+    ) -> None:
         self.machine = machine
         self.ctx = ctx
         self.locals = locals_
@@ -197,15 +211,18 @@ class Activation:
     def read_indirect(self, index: Value, node: Var) -> Value:
         if isinstance(index, Unknown):
             return index
-        n = 0 if index is None else int(round(index))
+        n = 0 if index is None else round(index)
         if n == 0:
             return None
         if 1 <= n <= 33:
             return self.locals[n]
         if classify(n).kind == "none":
-            raise MacroAlarm("PS0115", "no-such-variable",
-                             f"#[...] refers to #{n}, which does not exist (VARIABLE NO. OUT OF "
-                             "RANGE)", float(n))
+            raise MacroAlarm(
+                "PS0115",
+                "no-such-variable",
+                f"#[...] refers to #{n}, which does not exist (VARIABLE NO. OUT OF RANGE)",
+                float(n),
+            )
         v = self.store.get(n, self)
         return self.read_global(n) if v is self else v  # type: ignore[return-value]
 
@@ -223,6 +240,7 @@ class Modal:
     feed: Value = None
     speed: Value = None
     feed_per_rev: bool = True  # G99 (lathe default)
+    constant_surface_speed: bool = False  # G96: S is m/min, not rpm
     modal_call: tuple[ProgramContext, list[Value], int] | None = None  # G66
     position: dict[str, Value] = field(default_factory=dict)
 
@@ -252,11 +270,11 @@ class Machine:
         self.store = {}
         self.deadline = deadline
         self.modal = Modal()
-        if entry.is_main:
-            locals_: list[Value] = [None] * 34
-        else:
+        locals_: list[Value] = [None] * 34
+        if not entry.is_main:
             # A macro analysed alone: its arguments are unknown, not vacant.
-            locals_ = [None] + [self.unknown_of(n) for n in range(1, 34)]
+            for n in range(1, 34):
+                locals_[n] = self.unknown_of(n)
         act = Activation(self, entry, locals_, 0, None, 0, 0)
         entry.facts.analysed_programs.add(entry.program.first_line)
         try:
@@ -267,15 +285,25 @@ class Machine:
             self.steps = self._steps
         return "end"
 
-    def _finding(self, ctx: ProgramContext, kind: str, line: int, start: int, end: int,
-                 message: str, related_line: int | None = None, related_message: str = "") -> None:
+    def _finding(
+        self,
+        ctx: ProgramContext,
+        kind: str,
+        line: int,
+        start: int,
+        end: int,
+        message: str,
+        related_line: int | None = None,
+        related_message: str = "",
+    ) -> None:
         key = (kind, line, start)
         seen = self._seen_findings
         if key in seen:
             return
         seen.add(key)
-        ctx.facts.findings.append(Finding(kind, line, start, end, message, ctx.uri, related_line,
-                                          related_message))
+        ctx.facts.findings.append(
+            Finding(kind, line, start, end, message, ctx.uri, related_line, related_message)
+        )
 
     def _loop(self, act: Activation) -> None:
         steps = self._steps = 0
@@ -305,7 +333,7 @@ class Machine:
             if cl.reads:
                 self._record_reads(act, cl, facts)
             try:
-                if kind == K_EMPTY or kind == K_OTHER:
+                if kind in (K_EMPTY, K_OTHER):
                     act.pc = pc + 1
                 elif kind == K_ASSIGN:
                     self._assign(act, cl, facts)
@@ -396,8 +424,13 @@ class Machine:
                 v = store.get(n, act)
                 summary.add(self.unknown_of(n) if v is act else v)  # type: ignore[arg-type]
 
-    def _assign(self, act: Activation, cl: CompiledLine, facts: DocumentFacts,
-                unknown: Unknown | None = None) -> None:
+    def _assign(
+        self,
+        act: Activation,
+        cl: CompiledLine,
+        facts: DocumentFacts,
+        unknown: Unknown | None = None,
+    ) -> None:
         assert cl.value is not None
         value = cl.value(act)
         if unknown is not None:
@@ -412,16 +445,22 @@ class Machine:
             index = cl.target(act)
             if isinstance(index, Unknown):
                 return
-            n = 0 if index is None else int(round(index))
+            n = 0 if index is None else round(index)
             kind = classify(n)
             if kind.kind == "none":
-                raise MacroAlarm("PS0115", "no-such-variable",
-                                 f"#[...] = ... writes #{n}, which does not exist (VARIABLE NO. "
-                                 "OUT OF RANGE)", float(n))
+                raise MacroAlarm(
+                    "PS0115",
+                    "no-such-variable",
+                    f"#[...] = ... writes #{n}, which does not exist (VARIABLE NO. OUT OF RANGE)",
+                    float(n),
+                )
             if kind.read_only:
-                raise MacroAlarm("PS0116", "write-read-only",
-                                 f"#[...] = ... writes #{n}, which is read-only ({kind.meaning})",
-                                 float(n))
+                raise MacroAlarm(
+                    "PS0116",
+                    "write-read-only",
+                    f"#[...] = ... writes #{n}, which is read-only ({kind.meaning})",
+                    float(n),
+                )
         if n < 0:
             return  # #30001.116 and the like: not FANUC, reported by MB002
         if 1 <= n <= 33:
@@ -430,9 +469,12 @@ class Machine:
             raise MacroAlarm("PS0116", "write-read-only", "#0 is read-only", 0.0)
         else:
             if n == 3000 and value is not None and not isinstance(value, Unknown):
-                raise MacroAlarm("3000", "macro-alarm",
-                                 f"#3000 = {fmt(value)}: the program raises macro alarm "
-                                 f"{3000 + int(value)}", value)
+                raise MacroAlarm(
+                    "3000",
+                    "macro-alarm",
+                    f"#3000 = {fmt(value)}: the program raises macro alarm {3000 + int(value)}",
+                    value,
+                )
             if not _volatile(n):
                 self.store[n] = value
         write = facts.writes.get(cl.line)
@@ -447,14 +489,22 @@ class Machine:
         if isinstance(target, Unknown):
             raise _Stop("unknown jump")
         if target is None or target != int(target) or not 1 <= target <= 99999:
-            raise MacroAlarm("PS0128", "goto-target",
-                             f"GOTO {fmt(target)}: not a sequence number 1-99999 (ILLEGAL MACRO "
-                             "SEQUENCE NUMBER)", target if target is not None else 0.0)
+            raise MacroAlarm(
+                "PS0128",
+                "goto-target",
+                f"GOTO {fmt(target)}: not a sequence number 1-99999 (ILLEGAL MACRO "
+                "SEQUENCE NUMBER)",
+                target if target is not None else 0.0,
+            )
         line = self._label(ctx, int(target), cl.line)
         if line is None:
-            raise MacroAlarm("PS0128", "goto-missing",
-                             f"GOTO {int(target)}: no N{int(target)} in {ctx.name} (ILLEGAL MACRO "
-                             "SEQUENCE NUMBER)", target)
+            raise MacroAlarm(
+                "PS0128",
+                "goto-missing",
+                f"GOTO {int(target)}: no N{int(target)} in {ctx.name} (ILLEGAL MACRO "
+                "SEQUENCE NUMBER)",
+                target,
+            )
         return line
 
     @staticmethod
@@ -491,7 +541,6 @@ class Machine:
 
     # ---- NC blocks -------------------------------------------------------------------------
     def _nc(self, act: Activation, cl: CompiledLine) -> Activation:
-        ctx = act.ctx
         if cl.cond is not None:  # Haas IF [c] <words>
             result = cl.cond(act)
             if result is not True:
@@ -528,6 +577,10 @@ class Machine:
                 modal.absolute = True
             elif g == 91.0 and not self.config.is_lathe:
                 modal.absolute = False
+            elif g == 96.0:
+                modal.constant_surface_speed = True
+            elif g == 97.0:
+                modal.constant_surface_speed = False
             elif g == 98.0:
                 modal.feed_per_rev = False
             elif g == 99.0:
@@ -556,8 +609,9 @@ class Machine:
             return self._enter(act, callee, list(args), True, cl.line + 1, 1)
         return act
 
-    def _motion(self, act: Activation, cl: CompiledLine, values: dict[str, Value],
-                g_codes: list[float]) -> bool:
+    def _motion(
+        self, act: Activation, cl: CompiledLine, values: dict[str, Value], g_codes: list[float]
+    ) -> bool:
         one_shot = next((g for g in g_codes if g in ONE_SHOT_CYCLES), None)
         has_axis = any(a in AXES for a in values)
         modal = self.modal
@@ -574,17 +628,40 @@ class Machine:
             words[address] = round(v, 3)  # the least input increment (IS-B)
         if "F" not in words and isinstance(modal.feed, float) and code not in (0.0,):
             words["F"] = modal.feed
+        position = modal.position
+        x = values.get("X")
+        if not isinstance(x, float):
+            x = None
+            here = position.get("X")
+            u = values.get("U")
+            if isinstance(here, float):
+                x = here + u if isinstance(u, float) else here if u is None else None
         motions = self.facts.motions
         if len(motions) < 200_000:
-            motions.append(Motion(act.ctx.name, cl.line, _g_name(code), words, act.ctx.uri))
-        position = modal.position
-        for axis in ("X", "Z", "Y"):
-            if axis in values and code not in LATHE_CYCLES:
-                position[axis] = values[axis]
+            rpm = modal.speed if isinstance(modal.speed, float) else None
+            motions.append(
+                Motion(
+                    act.ctx.name,
+                    cl.line,
+                    _g_name(code),
+                    words,
+                    act.ctx.uri,
+                    x,
+                    None if modal.constant_surface_speed else rpm,
+                    act.ctx.program.first_line,
+                )
+            )
+        if code not in LATHE_CYCLES and code not in ONE_SHOT_CYCLES:  # cycles end where they began
+            if x is not None or "X" in values or "U" in values:
+                position["X"] = x
+            for axis in ("Z", "Y"):
+                if axis in values:
+                    position[axis] = values[axis]
         return True
 
-    def _check_addresses(self, act: Activation, cl: CompiledLine,
-                         order: list[tuple[str, Value, CompiledWord]]) -> None:
+    def _check_addresses(
+        self, act: Activation, cl: CompiledLine, order: list[tuple[str, Value, CompiledWord]]
+    ) -> None:
         calls = any(
             a in ("M", "G") and isinstance(v, float) and v in (98.0, 99.0, 65.0, 66.0)
             for a, v, _ in order
@@ -593,37 +670,71 @@ class Machine:
             if isinstance(v, Unknown) or v is None:
                 continue
             if (address in INTEGER_ADDRESSES or (address == "P" and calls)) and v != int(v):
-                self._finding(act.ctx, "address-non-integer", cl.line, w.start, w.end,
-                              f"{address} gets {fmt(v)}: {address} takes a whole number")
+                self._finding(
+                    act.ctx,
+                    "address-non-integer",
+                    cl.line,
+                    w.start,
+                    w.end,
+                    f"{address} gets {fmt(v)}: {address} takes a whole number",
+                )
             elif address == "G" and round(v, 1) != v:
-                self._finding(act.ctx, "address-non-integer", cl.line, w.start, w.end,
-                              f"G gets {fmt(v)}: not a G code")
+                self._finding(
+                    act.ctx,
+                    "address-non-integer",
+                    cl.line,
+                    w.start,
+                    w.end,
+                    f"G gets {fmt(v)}: not a G code",
+                )
             elif address in ("S", "T", "M", "H", "D", "F") and v < 0:
-                self._finding(act.ctx, "address-range", cl.line, w.start, w.end,
-                              f"{address} gets {fmt(v)}: {address} cannot be negative")
+                self._finding(
+                    act.ctx,
+                    "address-range",
+                    cl.line,
+                    w.start,
+                    w.end,
+                    f"{address} gets {fmt(v)}: {address} cannot be negative",
+                )
             elif address == "S" and v > self.config.max_spindle_speed:
-                self._finding(act.ctx, "address-range", cl.line, w.start, w.end,
-                              f"S gets {fmt(v)} rpm, above the machine's maximum "
-                              f"{fmt(self.config.max_spindle_speed)} rpm")
+                self._finding(
+                    act.ctx,
+                    "address-range",
+                    cl.line,
+                    w.start,
+                    w.end,
+                    f"S gets {fmt(v)} rpm, above the machine's maximum "
+                    f"{fmt(self.config.max_spindle_speed)} rpm",
+                )
 
     # ---- calls -----------------------------------------------------------------------------
-    def _find(self, act: Activation, cl: CompiledLine, number: Value, what: str) -> (
-            ProgramContext | None):
+    def _find(
+        self, act: Activation, cl: CompiledLine, number: Value, what: str
+    ) -> ProgramContext | None:
         if isinstance(number, Unknown) or number is None:
             return None
         ctx = self.programs.get(int(number))
         if ctx is None:
-            self._finding(act.ctx, "program-not-found", cl.line, 0, len(act.ctx.doc.blocks[
-                cl.line].text), f"{what} calls O{int(number):04d}, which the analysis does not "
-                "have; the call is skipped")
+            self._finding(
+                act.ctx,
+                "program-not-found",
+                cl.line,
+                0,
+                len(act.ctx.doc.blocks[cl.line].text),
+                f"{what} calls O{int(number):04d}, which the analysis does not "
+                "have; the call is skipped",
+            )
         return ctx
 
     def _sub_call(self, act: Activation, cl: CompiledLine, values: dict[str, Value]) -> Activation:
         p = values.get("P")
         l_value = values.get("L")
         repeat = 1
-        if isinstance(p, float) and l_value is None and self.config.four_digit_programs and (
-            p >= 10000
+        if (
+            isinstance(p, float)
+            and l_value is None
+            and self.config.four_digit_programs
+            and (p >= 10000)
         ):
             repeat = int(p) // 10000
             p = float(int(p) % 10000)
@@ -636,8 +747,13 @@ class Machine:
         # M98 opens no new local level: the callee shares the caller's locals.
         return self._enter(act, callee, act.locals, False, cl.line + 1, repeat)
 
-    def _macro_call(self, act: Activation, cl: CompiledLine,
-                    order: list[tuple[str, Value, CompiledWord]], modal_call: bool) -> Activation:
+    def _macro_call(
+        self,
+        act: Activation,
+        cl: CompiledLine,
+        order: list[tuple[str, Value, CompiledWord]],
+        modal_call: bool,
+    ) -> Activation:
         p: Value = None
         repeat = 1
         args: list[Value] = [None] * 34
@@ -654,8 +770,10 @@ class Machine:
                 repeat = int(v) if isinstance(v, float) else 1
             elif address in "IJK":
                 # Specification II: repeated I/J/K fill #4-#33 in sets of three.
-                if ijk_set < 0 or address in ijk_seen or "IJK".index(address) < max(
-                    "IJK".index(a) for a in ijk_seen
+                if (
+                    ijk_set < 0
+                    or address in ijk_seen
+                    or "IJK".index(address) < max("IJK".index(a) for a in ijk_seen)
                 ):
                     ijk_set += 1
                     ijk_seen = set()
@@ -674,8 +792,15 @@ class Machine:
             return act
         return self._enter(act, callee, args, True, cl.line + 1, repeat)
 
-    def _enter(self, act: Activation, callee: ProgramContext, locals_: list[Value],
-               new_level: bool, return_pc: int, repeat: int) -> Activation:
+    def _enter(
+        self,
+        act: Activation,
+        callee: ProgramContext,
+        locals_: list[Value],
+        new_level: bool,
+        return_pc: int,
+        repeat: int,
+    ) -> Activation:
         depth = 0
         level = act.macro_level
         a: Activation | None = act
@@ -685,11 +810,18 @@ class Machine:
         if new_level:
             level += 1
             if level > MAX_MACRO_LEVEL:
-                raise MacroAlarm("PS0077", "nesting", f"macro call nesting deeper than "
-                                 f"{MAX_MACRO_LEVEL} levels (TOO MANY SUB,MACRO NESTING)")
+                raise MacroAlarm(
+                    "PS0077",
+                    "nesting",
+                    f"macro call nesting deeper than "
+                    f"{MAX_MACRO_LEVEL} levels (TOO MANY SUB,MACRO NESTING)",
+                )
         if depth > MAX_NESTING:
-            raise MacroAlarm("PS0077", "nesting", f"call nesting deeper than {MAX_NESTING} "
-                             "(TOO MANY SUB,MACRO NESTING)")
+            raise MacroAlarm(
+                "PS0077",
+                "nesting",
+                f"call nesting deeper than {MAX_NESTING} (TOO MANY SUB,MACRO NESTING)",
+            )
         callee.facts.analysed_programs.add(callee.program.first_line)
         locals_list = list(locals_) if new_level else locals_
         new = Activation(self, callee, locals_list, level, act, return_pc, repeat - 1)
@@ -707,9 +839,12 @@ class Machine:
         if isinstance(p, float):
             target = self._label(caller.ctx, int(p), caller.pc)
             if target is None:
-                raise MacroAlarm("PS0078", "return-missing",
-                                 f"M99 P{int(p)}: no N{int(p)} in {caller.ctx.name} (SEQUENCE "
-                                 "NUMBER NOT FOUND)", p)
+                raise MacroAlarm(
+                    "PS0078",
+                    "return-missing",
+                    f"M99 P{int(p)}: no N{int(p)} in {caller.ctx.name} (SEQUENCE NUMBER NOT FOUND)",
+                    p,
+                )
             caller.pc = target
         else:
             caller.pc = act.return_pc
@@ -761,20 +896,32 @@ class Machine:
         if still:
             why = ", ".join(f"#{n} stays {fmt(facts.reads[(head, n)].first)}" for n in still)
         elif moving:
-            why = "the condition stays true although " + ", ".join(f"#{n}" for n in moving) + \
-                " change"
+            why = (
+                "the condition stays true although "
+                + ", ".join(f"#{n}" for n in moving)
+                + " change"
+            )
         else:
             why = "nothing in the condition changes"
         runs = facts.runs.get(head, 0)
-        self._finding(ctx, "endless-loop", head, 0, len(ctx.doc.blocks[head].text),
-                      f"loop never ends: the block ran {runs} times before the analysis budget "
-                      f"({self.budget} blocks) ran out; {why}")
+        self._finding(
+            ctx,
+            "endless-loop",
+            head,
+            0,
+            len(ctx.doc.blocks[head].text),
+            f"loop never ends: the block ran {runs} times before the analysis budget "
+            f"({self.budget} blocks) ran out; {why}",
+        )
 
 
 def _volatile(number: int) -> bool:
     """System variables the control changes by itself: clocks, signals, positions."""
-    return number in (3001, 3002) or 1000 <= number <= 1133 or 5001 <= number <= 5120 or (
-        4001 <= number <= 4430
+    return (
+        number in (3001, 3002)
+        or 1000 <= number <= 1133
+        or 5001 <= number <= 5120
+        or (4001 <= number <= 4430)
     )
 
 

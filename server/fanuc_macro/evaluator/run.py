@@ -58,12 +58,13 @@ def evaluate(
         reasons.append(machine.run(ctx, per_entry))
         facts.steps += machine.steps
     # Programs nothing ran (a subprogram whose caller is elsewhere): analyse them alone.
-    for ctx in every:
+    for ctx in every if entry is None else ():
         if only_uri is not None and ctx.uri != only_uri:
             continue
         if ctx.program.first_line in ctx.facts.analysed_programs:
             continue
         machine.steps = 0
         reasons.append(machine.run(ctx, min(deadline + 0.5, time.monotonic() + 0.5)))
+        facts.steps += machine.steps
     facts.stopped = next((r for r in reasons if r == "budget"), None)
     return facts

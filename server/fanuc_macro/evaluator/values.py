@@ -10,7 +10,6 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Union
 
 
 @dataclass(frozen=True, slots=True)
@@ -27,7 +26,7 @@ class Unknown:
         return f"depends on {names}{more}"
 
 
-Value = Union[float, None, Unknown]
+Value = float | Unknown | None
 
 NO_DEPS: frozenset[int] = frozenset()
 UNKNOWN = Unknown(NO_DEPS)
@@ -99,8 +98,12 @@ def f_cos(x: float) -> float:
 def f_tan(x: float) -> float:
     c = math.cos(math.radians(x))
     if abs(c) < 1e-12:
-        raise MacroAlarm("PS0112", "zero-divide", f"TAN[{fmt(x)}]: the tangent of {fmt(x)} "
-                         "degrees is infinite (ZERO DIVIDE)", x)
+        raise MacroAlarm(
+            "PS0112",
+            "zero-divide",
+            f"TAN[{fmt(x)}]: the tangent of {fmt(x)} degrees is infinite (ZERO DIVIDE)",
+            x,
+        )
     return math.sin(math.radians(x)) / c
 
 
@@ -205,8 +208,9 @@ def f_pow(a: float, b: float) -> float:
     try:
         result = math.pow(a, b)
     except (OverflowError, ValueError):
-        raise MacroAlarm("PS0119", "pow-range", f"POW[{fmt(a)},{fmt(b)}] has no real value",
-                         a) from None
+        raise MacroAlarm(
+            "PS0119", "pow-range", f"POW[{fmt(a)},{fmt(b)}] has no real value", a
+        ) from None
     return result
 
 
@@ -247,10 +251,11 @@ def compare(op: str, a: Value, b: Value) -> bool | None:
     """A FANUC comparison; None when an operand is unknown."""
     if isinstance(a, Unknown) or isinstance(b, Unknown):
         return None
+    # Vacant equals vacant and nothing else: None == 0.0 is False, as FANUC has it.
     if op == "EQ":
-        return a == b if a is None or b is None else a == b
+        return a == b
     if op == "NE":
-        return not (a == b if a is None or b is None else a == b)
+        return a != b
     x, y = _num(a), _num(b)
     if op == "GT":
         return x > y

@@ -12,6 +12,7 @@ from . import (
     math_domain,
     reading,
     statements,
+    threading,
     variable_use,
 )
 from .context import Check, RuleContext
@@ -27,6 +28,7 @@ ALL_CHECKS: tuple[Check, ...] = (
     addresses.check,
     flow.check,
     variable_use.check,
+    threading.check,
 )
 
 __all__ = ["ALL_CHECKS", "Check", "RuleContext"]

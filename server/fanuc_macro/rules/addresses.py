@@ -31,8 +31,9 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
             if origin is not None:
                 line, text = origin
                 message += f" (#{n} set at line {line + 1}: {text})"
-                related.append(Related(line, 0, len(ctx.doc.blocks[line].text),
-                                       f"#{n} is set here"))
+                related.append(
+                    Related(line, 0, len(ctx.doc.blocks[line].text), f"#{n} is set here")
+                )
                 hint = _likely_meant(ctx, f.line, word.address)
                 if hint:
                     message += f"; did you mean {word.address}{hint}?"

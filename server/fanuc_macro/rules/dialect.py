@@ -21,30 +21,62 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
     for block in ctx.doc.blocks:
         problem = block.parsed.problem
         if problem is not None and problem.dialect is not None:
-            yield make("MB002", f"{problem.dialect}: {problem.message}", block.line,
-                       problem.span.start, problem.span.end)
+            yield make(
+                "MB002",
+                f"{problem.dialect}: {problem.message}",
+                block.line,
+                problem.span.start,
+                problem.span.end,
+            )
     for block, statement in ctx.statements():
         line = block.line
         span = statement.span
         if isinstance(statement, IfNc):
             form = "IF [...] THEN <NC words>" if statement.has_then else "IF [...] <NC words>"
-            yield make("MB002", f"Haas: '{form}' is not FANUC; FANUC's IF takes GOTO n, or THEN "
-                       "with one macro statement (alarm PS0125)", line, span.start, span.end)
+            yield make(
+                "MB002",
+                f"Haas: '{form}' is not FANUC; FANUC's IF takes GOTO n, or THEN "
+                "with one macro statement (alarm PS0125)",
+                line,
+                span.start,
+                span.end,
+            )
         elif isinstance(statement, BlockIf):
-            yield make("MB002", f"Haas NGC: block {statement.keyword} (IF ... THEN / ELSE / ENDIF "
-                       "on their own lines) is not FANUC 0i/16i/30i; use IF [...] GOTO n",
-                       line, span.start, span.end)
+            yield make(
+                "MB002",
+                f"Haas NGC: block {statement.keyword} (IF ... THEN / ELSE / ENDIF "
+                "on their own lines) is not FANUC 0i/16i/30i; use IF [...] GOTO n",
+                line,
+                span.start,
+                span.end,
+            )
         elif isinstance(statement, NcStatement):
             for word in statement.words:
                 if word.address == "M" and constant_value(word.value) == 97.0:
-                    yield make("MB002", "Haas: M97 (local subroutine at an N number) is not FANUC;"
-                               " use M98 P<program>", line, word.span.start, word.span.end)
+                    yield make(
+                        "MB002",
+                        "Haas: M97 (local subroutine at an N number) is not FANUC;"
+                        " use M98 P<program>",
+                        line,
+                        word.span.start,
+                        word.span.end,
+                    )
         if isinstance(statement, (IfGoto, While)) and isinstance(statement.cond, BareCond):
             c = statement.cond
-            yield make("MB002", "Haas NGC: a bare value as a condition is not FANUC; compare it, "
-                       "e.g. [#1 NE 0]", line, c.span.start, c.span.end)
+            yield make(
+                "MB002",
+                "Haas NGC: a bare value as a condition is not FANUC; compare it, e.g. [#1 NE 0]",
+                line,
+                c.span.start,
+                c.span.end,
+            )
         for var in variables(statement):
             if isinstance(var, Var) and var.number is not None and var.number != int(var.number):
-                yield make("MB002", f"Haas NGC: #{block.source(var.span)[1:].strip()} (a variable "
-                           "number with a decimal part) is not FANUC (alarm PS0115)",
-                           line, var.span.start, var.span.end)
+                yield make(
+                    "MB002",
+                    f"Haas NGC: #{block.source(var.span)[1:].strip()} (a variable "
+                    "number with a decimal part) is not FANUC (alarm PS0115)",
+                    line,
+                    var.span.start,
+                    var.span.end,
+                )

@@ -30,21 +30,36 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
         for expr in top_expressions(statement):
             depth = bracket_depth(expr)
             if depth > MAX_BRACKET_NESTING:
-                yield make("MB301", f"brackets nested {depth} deep; FANUC allows "
-                           f"{MAX_BRACKET_NESTING} (alarm PS0118)", line, expr.span.start,
-                           expr.span.end)
+                yield make(
+                    "MB301",
+                    f"brackets nested {depth} deep; FANUC allows "
+                    f"{MAX_BRACKET_NESTING} (alarm PS0118)",
+                    line,
+                    expr.span.start,
+                    expr.span.end,
+                )
         for var in variables(statement):
             if var.number is None or var.number != int(var.number):
                 continue
             number = int(var.number)
             kind = classify(number)
             if kind.kind == "none":
-                yield make("MB302", f"#{number} does not exist on a FANUC control (alarm "
-                           "PS0115): locals are #1-#33, commons #100-#199 and #500-#999",
-                           line, var.span.start, var.span.end)
+                yield make(
+                    "MB302",
+                    f"#{number} does not exist on a FANUC control (alarm "
+                    "PS0115): locals are #1-#33, commons #100-#199 and #500-#999",
+                    line,
+                    var.span.start,
+                    var.span.end,
+                )
             elif kind.kind == "extended-common":
-                yield make("MB303", f"#{number} exists only with the extended common variable "
-                           "option (0i-F / 30i)", line, var.span.start, var.span.end)
+                yield make(
+                    "MB303",
+                    f"#{number} exists only with the extended common variable option (0i-F / 30i)",
+                    line,
+                    var.span.start,
+                    var.span.end,
+                )
         targets = [statement] if isinstance(statement, Assign) else []
         if isinstance(statement, IfThen):
             targets.append(statement.then)
@@ -55,5 +70,10 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
             kind = classify(int(target.number))
             if kind.read_only:
                 what = "#0 is always vacant" if target.number == 0 else kind.meaning
-                yield make("MB304", f"#{int(target.number)} is read-only ({what}); writing it "
-                           "raises alarm PS0116", line, target.span.start, target.span.end)
+                yield make(
+                    "MB304",
+                    f"#{int(target.number)} is read-only ({what}); writing it raises alarm PS0116",
+                    line,
+                    target.span.start,
+                    target.span.end,
+                )

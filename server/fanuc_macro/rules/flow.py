@@ -48,9 +48,7 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
     for program in ctx.index.programs:
         if program.first_line not in facts.analysed_programs:
             continue
-        undecided = any(
-            jc.undecided for ln, jc in facts.jumps.items() if program.contains(ln)
-        )
+        undecided = any(jc.undecided for ln, jc in facts.jumps.items() if program.contains(ln))
         for line, jc in sorted(facts.jumps.items()):
             if not program.contains(line) or jc.undecided:
                 continue
@@ -63,8 +61,14 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
             outcome = "true" if jc.taken else "false"
             effect = _effect(statement, jc.taken > 0)
             c = statement.cond.span
-            yield make("MB701", f"condition is always {outcome} for the values that reach it "
-                       f"({total} time{'s' if total > 1 else ''}): {effect}", line, c.start, c.end)
+            yield make(
+                "MB701",
+                f"condition is always {outcome} for the values that reach it "
+                f"({total} time{'s' if total > 1 else ''}): {effect}",
+                line,
+                c.start,
+                c.end,
+            )
         if program.first_line in facts.incomplete_programs or undecided:
             continue
         yield from _dead_blocks(ctx, program.first_line, program.end_line, facts.runs)
@@ -91,8 +95,9 @@ def _constant_call(ctx: RuleContext, line: int) -> bool:
     )
 
 
-def _dead_blocks(ctx: RuleContext, first: int, end: int, runs: dict[int, int]) -> Iterator[
-        Diagnostic]:
+def _dead_blocks(
+    ctx: RuleContext, first: int, end: int, runs: dict[int, int]
+) -> Iterator[Diagnostic]:
     start: int | None = None
     last = first
     for line in range(first, end + 1):
@@ -107,7 +112,14 @@ def _dead_blocks(ctx: RuleContext, first: int, end: int, runs: dict[int, int]) -
         elif start is not None:
             count = sum(1 for ln in range(start, last + 1) if ctx.doc.blocks[ln].statement)
             text = ctx.doc.blocks[last].text
-            yield make("MB702", f"{count} block{'s' if count > 1 else ''} never executed "
-                       f"(lines {start + 1}-{last + 1}): no path of the analysed runs reaches "
-                       "them", start, 0, len(text), end_line=last)
+            yield make(
+                "MB702",
+                f"{count} block{'s' if count > 1 else ''} never executed "
+                f"(lines {start + 1}-{last + 1}): no path of the analysed runs reaches "
+                "them",
+                start,
+                0,
+                len(text),
+                end_line=last,
+            )
             start = None

@@ -28,22 +28,56 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
         for p in program.loop_problems:
             n = f"{p.loop_id:g}"
             if p.kind == "no-end":
-                yield make("MB201", f"DO{n} has no END{n} in {name} (alarm PS0124)",
-                           p.line, p.span.start, p.span.end, data={"loop_id": n})
+                yield make(
+                    "MB201",
+                    f"DO{n} has no END{n} in {name} (alarm PS0124)",
+                    p.line,
+                    p.span.start,
+                    p.span.end,
+                    data={"loop_id": n},
+                )
             elif p.kind == "no-do":
-                yield make("MB202", f"END{n} closes no open DO{n} in {name} (alarm PS0126)",
-                           p.line, p.span.start, p.span.end)
+                yield make(
+                    "MB202",
+                    f"END{n} closes no open DO{n} in {name} (alarm PS0126)",
+                    p.line,
+                    p.span.start,
+                    p.span.end,
+                )
             elif p.kind == "bad-id":
-                yield make("MB203", f"loop number {n} is outside 1-3 (alarm PS0126)",
-                           p.line, p.span.start, p.span.end)
+                yield make(
+                    "MB203",
+                    f"loop number {n} is outside 1-3 (alarm PS0126)",
+                    p.line,
+                    p.span.start,
+                    p.span.end,
+                )
             elif p.kind == "too-deep":
-                related = [] if p.other_line is None else [
-                    Related(p.other_line, 0, 0, "outermost loop starts here")]
-                yield make("MB204", f"DO{n} is a fourth nested loop; FANUC nests at most three",
-                           p.line, p.span.start, p.span.end, related=related)
+                related = (
+                    []
+                    if p.other_line is None
+                    else [Related(p.other_line, 0, 0, "outermost loop starts here")]
+                )
+                yield make(
+                    "MB204",
+                    f"DO{n} is a fourth nested loop; FANUC nests at most three",
+                    p.line,
+                    p.span.start,
+                    p.span.end,
+                    related=related,
+                )
             elif p.kind == "crossed":
-                related = [] if p.other_line is None else [
-                    Related(p.other_line, 0, 0, "inner loop opened here is still open")]
-                yield make("MB205", f"END{n} closes DO{n} while a loop opened inside it (line "
-                           f"{(p.other_line or 0) + 1}) is still open: loop ranges cross",
-                           p.line, p.span.start, p.span.end, related=related)
+                related = (
+                    []
+                    if p.other_line is None
+                    else [Related(p.other_line, 0, 0, "inner loop opened here is still open")]
+                )
+                yield make(
+                    "MB205",
+                    f"END{n} closes DO{n} while a loop opened inside it (line "
+                    f"{(p.other_line or 0) + 1}) is still open: loop ranges cross",
+                    p.line,
+                    p.span.start,
+                    p.span.end,
+                    related=related,
+                )

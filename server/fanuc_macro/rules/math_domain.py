@@ -19,8 +19,16 @@ register(
 )  # fmt: skip
 
 _CODES = {"zero-divide": "MB502", "macro-alarm": "MB503", "overflow": "MB501"}
-_DOMAIN = ("sqrt-negative", "asin-range", "acos-range", "ln-domain", "bin-range", "bcd-range",
-           "pow-range", "atan-zero")
+_DOMAIN = (
+    "sqrt-negative",
+    "asin-range",
+    "acos-range",
+    "ln-domain",
+    "bin-range",
+    "bcd-range",
+    "pow-range",
+    "atan-zero",
+)
 
 
 def check(ctx: RuleContext) -> Iterator[Diagnostic]:

@@ -38,8 +38,9 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
             code = "MB008" if problem.unknown_function else "MB001"
             yield make(code, problem.message, block.line, problem.span.start, problem.span.end)
         for note in parsed.notes:
-            yield make(_NOTE_CODES[note.kind], note.message, block.line, note.span.start,
-                       note.span.end)
+            yield make(
+                _NOTE_CODES[note.kind], note.message, block.line, note.span.start, note.span.end
+            )
         if parsed.has_lowercase and problem is None:
             col = next(
                 (i for i, ch in enumerate(parsed.text) if ch.islower() and _outside(parsed, i)),
@@ -50,7 +51,9 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
                     "MB006",
                     f"lowercase {parsed.text[col]!r} at column {col + 1}: FANUC program text is "
                     "uppercase; the control may reject it",
-                    block.line, col, col + 1,
+                    block.line,
+                    col,
+                    col + 1,
                 )
 
 

@@ -5,7 +5,6 @@ from __future__ import annotations
 from collections.abc import Iterator
 
 from ..diagnostics import Diagnostic, RuleInfo, Severity, make, register
-from ..index import constant_value
 from ..syntax import Mixed, Num
 from ..variables import FORBIDDEN_ARGUMENTS
 from .context import RuleContext
@@ -32,9 +31,15 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
         statement = block.statement
         if isinstance(statement, Mixed):
             m = statement.macro.span
-            yield make("MB401", f"macro statement {block.source(m)!r} in the same block as NC "
-                       f"words {block.source(statement.nc.span)!r}: FANUC raises PS0127; put "
-                       "them in separate blocks", block.line, m.start, m.end)
+            yield make(
+                "MB401",
+                f"macro statement {block.source(m)!r} in the same block as NC "
+                f"words {block.source(statement.nc.span)!r}: FANUC raises PS0127; put "
+                "them in separate blocks",
+                block.line,
+                m.start,
+                m.end,
+            )
     local_programs = {p.number for p in ctx.index.programs if p.number is not None}
     known = local_programs | set(ctx.workspace_programs or ())
     for program in ctx.index.programs:
@@ -44,29 +49,55 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
             if call.kind == "M97":
                 continue  # Haas local subroutine: MB002 says so
             if call.program_span is None:
-                yield make("MB405", f"{call.kind} without P: no program to call", line,
-                           span.start, span.end)
+                yield make(
+                    "MB405",
+                    f"{call.kind} without P: no program to call",
+                    line,
+                    span.start,
+                    span.end,
+                )
                 continue
             if call.program is not None and call.program not in known:
                 where = "this file" if ctx.workspace_programs is None else "the workspace"
                 ps = call.program_span
-                yield make("MB403", f"{call.kind} calls O{call.program:04d}, which is not in "
-                           f"{where} (alarm PS0076 if it is not in the control's memory)",
-                           line, ps.start, ps.end, data={"program": call.program})
+                yield make(
+                    "MB403",
+                    f"{call.kind} calls O{call.program:04d}, which is not in "
+                    f"{where} (alarm PS0076 if it is not in the control's memory)",
+                    line,
+                    ps.start,
+                    ps.end,
+                    data={"program": call.program},
+                )
             if call.repeat is not None and not 1 <= call.repeat <= 9999:
-                yield make("MB405", f"{call.kind} repeat count {call.repeat} is outside 1-9999",
-                           line, span.start, span.end)
+                yield make(
+                    "MB405",
+                    f"{call.kind} repeat count {call.repeat} is outside 1-9999",
+                    line,
+                    span.start,
+                    span.end,
+                )
             for word in call.arguments:
                 if word.address in FORBIDDEN_ARGUMENTS and not (
                     call.kind == "G66.1" and word.address == "G"
                 ):
-                    yield make("MB402", f"{word.address} cannot be a {call.kind} argument; "
-                               "arguments are A-Z except G, L, N, O, P", line,
-                               word.span.start, word.span.end)
+                    yield make(
+                        "MB402",
+                        f"{word.address} cannot be a {call.kind} argument; "
+                        "arguments are A-Z except G, L, N, O, P",
+                        line,
+                        word.span.start,
+                        word.span.end,
+                    )
                 elif isinstance(word.value, Num) and not word.value.has_decimal_point:
-                    value = constant_value(word.value)
-                    yield make("MB404", f"argument {word.address}{word.value.text} has no decimal "
-                               f"point: the macro receives {value:g} x the least input "
-                               f"increment (e.g. {value / 1000:g} on IS-B), not {value:g}; write "
-                               f"{word.address}{word.value.text}.", line, word.span.start,
-                               word.span.end)
+                    value = word.value.value
+                    yield make(
+                        "MB404",
+                        f"argument {word.address}{word.value.text} has no decimal "
+                        f"point: the macro receives {value:g} x the least input "
+                        f"increment (e.g. {value / 1000:g} on IS-B), not {value:g}; write "
+                        f"{word.address}{word.value.text}.",
+                        line,
+                        word.span.start,
+                        word.span.end,
+                    )

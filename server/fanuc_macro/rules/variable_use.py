@@ -45,15 +45,23 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
         for (line, n), summary in sorted(facts.reads.items()):
             if not program.contains(line) or not 1 <= n <= 33 or n in reported:
                 continue
-            if summary.vacant and summary.vacant == summary.count and n not in assigned and (
-                n not in checked
+            if (
+                summary.vacant
+                and summary.vacant == summary.count
+                and n not in assigned
+                and (n not in checked)
             ):
                 reported.add(n)
                 span = _var_span(ctx, line, n)
-                yield make("MB901", f"#{n} is read while vacant: {program.display_name} never "
-                           f"sets it and no caller passes it (a vacant local counts as 0 in "
-                           "arithmetic, and omits the word in an address)", line, span[0],
-                           span[1])
+                yield make(
+                    "MB901",
+                    f"#{n} is read while vacant: {program.display_name} never "
+                    f"sets it and no caller passes it (a vacant local counts as 0 in "
+                    "arithmetic, and omits the word in an address)",
+                    line,
+                    span[0],
+                    span[1],
+                )
 
 
 def _vacancy_checks(statement: object, checked: set[int]) -> None:

@@ -1,0 +1,193 @@
+"""Benchmark of the parser, the program index and the evaluator (a script, not a test).
+
+    python bench/bench.py            # all figures
+    python bench/bench.py --quick    # smaller sizes
+
+Programs are generated: a lathe/mill mix of motion blocks and macro statements in the
+proportion of the corpus of real programs (about 45% plain NC blocks), with numbers varied so
+that no two blocks repeat (the parse cache does not help the cold figures).
+"""
+
+from __future__ import annotations
+
+import argparse
+import platform
+import random
+import resource
+import subprocess
+import sys
+import time
+from collections.abc import Callable
+from functools import partial
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT / "server"))
+
+from fanuc_macro.analysis import analyse  # noqa: E402
+from fanuc_macro.evaluator import evaluate  # noqa: E402
+from fanuc_macro.index import build_index  # noqa: E402
+from fanuc_macro.parser import BlockParser, parse_text  # noqa: E402
+from fanuc_macro.syntax import Document  # noqa: E402
+
+
+def generate(blocks: int, seed: int = 1) -> str:
+    rnd = random.Random(seed)
+    out = ["%", "O1000 (GENERATED BENCHMARK PROGRAM)"]
+    n = 0
+    label = 10
+    while len(out) < blocks + 2:
+        k = n % 20
+        n += 1
+        x, z = rnd.uniform(0, 100), rnd.uniform(-80, 0)
+        v = rnd.randint(1, 33)
+        if k < 9:
+            out.append(f"G01 X{x:.3f} Z{z:.3f} F{rnd.uniform(0.05, 0.4):.2f}")
+        elif k == 9:
+            out.append(f"N{label} G00 X{x:.2f} Z{z:.2f}")
+            label += 10
+        elif k == 10:
+            out.append(f"#{v}=#{rnd.randint(1, 33)}*{rnd.uniform(0, 5):.4f}+SQRT[#{v}]")
+        elif k == 11:
+            out.append(f"#{100 + v}=[#{v}+{rnd.uniform(0, 9):.3f}]*COS[{rnd.uniform(0, 90):.2f}]")
+        elif k == 12:
+            out.append(f"IF[#{v}GT{rnd.uniform(0, 100):.1f}]GOTO{label - 10}")
+        elif k == 13:
+            out.append(f"G92 X[#100-2.*#{v}] W[-#2-#102-#1] R0 F#101 (PASS {n})")
+        elif k == 14:
+            out.append(f"G02 X{x:.3f} Z{z:.3f} R{rnd.uniform(1, 9):.2f}")
+        elif k == 15:
+            out.append(f"#{v}=#{v}+{rnd.random():.4f} (STEP {n})")
+        elif k == 16:
+            out.append(f"WHILE[#{v}LT{rnd.randint(1, 9)}]DO1")
+            out.append(f"#{v}=#{v}+1.")
+            out.append("END1")
+        elif k == 17:
+            out.append(f"G00 X[#{v}+{x:.2f}] Z{z:.2f}")
+        elif k == 18:
+            out.append(f"M98 P{rnd.randint(1000, 9999)} L{rnd.randint(1, 3)}")
+        else:
+            out.append(f"T{rnd.randint(1, 12):02d}{rnd.randint(1, 12):02d} (TOOL {n})")
+    out.append("M30")
+    out.append("%")
+    return "\n".join(out) + "\n"
+
+
+def best_of(fn: Callable[[], object], repeat: int = 3) -> float:
+    times = []
+    for _ in range(repeat):
+        t = time.perf_counter()
+        fn()
+        times.append(time.perf_counter() - t)
+    return min(times)
+
+
+def parse_cold(text: str) -> None:
+    build_index(parse_text(text, "bench", BlockParser()))
+
+
+def parse_edit(text: str, parser: BlockParser, previous: Document) -> None:
+    build_index(parse_text(text, "bench", parser, previous))
+
+
+def bench_parse(sizes: list[int]) -> None:
+    print("parse + index (cold: a new parser, no cache; edit: one line changed, as the language")
+    print("server does it: cached lines and the previous version's blocks reused)")
+    for size in sizes:
+        text = generate(size)
+        cold_s = best_of(partial(parse_cold, text), 2 if size > 20000 else 3)
+        parser = BlockParser()
+        previous = parse_text(text, "bench", parser)
+        edited = text.splitlines()
+        edited[len(edited) // 2] = "G01 X12.345 Z-6.789 F0.25 (EDITED)"
+        edit_s = best_of(partial(parse_edit, "\n".join(edited) + "\n", parser, previous), 5)
+        print(
+            f"  {size:>7} blocks: cold {cold_s * 1000:8.1f} ms  ({size / cold_s:9.0f} blocks/s)"
+            f"   one-line edit {edit_s * 1000:7.1f} ms"
+        )
+
+
+def _rss_mb() -> float:
+    """Peak RSS of this process. VmHWM, not ru_maxrss: Linux carries ru_maxrss across exec,
+    so a child started from a big parent would report the parent's peak."""
+    try:
+        for line in Path("/proc/self/status").read_text().splitlines():
+            if line.startswith("VmHWM:"):
+                return int(line.split()[1]) / 1024
+    except OSError:
+        pass
+    return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
+
+
+def memory_child(size: int) -> None:
+    text = generate(size)
+    base = _rss_mb()
+    doc = parse_text(text, "bench", BlockParser())
+    build_index(doc)
+    print(f"{_rss_mb():.0f} {base:.0f}")
+
+
+def bench_memory(size: int) -> None:
+    # A fresh process, so that the peak RSS is this parse's alone.
+    out = subprocess.run(
+        [sys.executable, __file__, "--memory-child", str(size)],
+        capture_output=True,
+        text=True,
+        check=True,
+    ).stdout.split()
+    peak, base = float(out[0]), float(out[1])
+    print(
+        f"memory: {size} blocks parsed and indexed: peak RSS {peak:.0f} MB "
+        f"({base:.0f} MB before parsing: interpreter, Lark, the program text)"
+    )
+
+
+def bench_eval() -> None:
+    seed = ROOT / "tests" / "fixtures" / "seeds" / "o4009_external_m50x3.nc"
+    text = seed.read_text("utf-8")
+    doc = parse_text(text, str(seed))
+    index = build_index(doc)
+    t = best_of(lambda: evaluate([(str(seed), doc, index)]), 5)
+    facts = evaluate([(str(seed), doc, index)])
+    g92 = sum(1 for m in facts.motions if m.code == "G92")
+    print(
+        f"evaluator: seed O4009/O3331 traced in {t * 1000:.1f} ms ({facts.steps} blocks, "
+        f"{g92} G92 cuts)"
+    )
+    loop = "O1\n#1=0\n#2=0\nWHILE[#1LT200000]DO1\n#1=#1+1\n#2=#2+#1*0.5\nEND1\nM30\n"
+    doc = parse_text(loop, "loop")
+    index = build_index(doc)
+    t = best_of(lambda: evaluate([("loop", doc, index)]), 3)
+    facts = evaluate([("loop", doc, index)])
+    print(
+        f"evaluator: {facts.steps} blocks of a WHILE loop in {t * 1000:.0f} ms = "
+        f"{facts.steps / t:,.0f} macro statements/s"
+    )
+    endless = "O2\n#1=0\nWHILE[#1LT10]DO1\n#2=#2+1\nEND1\nM30\n"
+    t = time.perf_counter()
+    result = analyse(endless, "endless")
+    dt = time.perf_counter() - t
+    codes = sorted({d.code for d in result.diagnostics})
+    print(f"evaluator: endless loop stopped and reported in {dt * 1000:.0f} ms ({codes})")
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--quick", action="store_true")
+    ap.add_argument("--memory-child", type=int, help=argparse.SUPPRESS)
+    args = ap.parse_args()
+    if args.memory_child:
+        memory_child(args.memory_child)
+        return
+    print(
+        f"machine: {platform.processor() or platform.machine()}, {platform.python_version()}, "
+        f"{resource.getpagesize()} B pages"
+    )
+    sizes = [1000, 5000] if args.quick else [1000, 20000, 100000]
+    bench_parse(sizes)
+    bench_memory(sizes[-1])
+    bench_eval()
+
+
+if __name__ == "__main__":
+    main()

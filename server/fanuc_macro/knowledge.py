@@ -1,0 +1,621 @@
+"""What G codes, M codes, macro functions, keywords and addresses mean: hover and completion texts.
+
+Lathe meanings are those of FANUC G code system A (the 0i-TF default); mill meanings those of
+0i-MF. Where a code means something else on the other machine type, both are kept, so the hover
+can say which one applies under the configured controller and what the other would be. Facts
+that the shared reference (macro-b.md) marks as unverified are worded with that caution.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+# ---- G and M codes ---------------------------------------------------------------------------
+
+
+@dataclass(frozen=True, slots=True)
+class Meaning:
+    title: str  # a few words: the completion detail
+    text: str = ""  # markdown: use, format, pitfalls
+    modal: str = ""  # "modal, group 01", "one-shot" ...
+
+
+@dataclass(frozen=True, slots=True)
+class CodeInfo:
+    code: str  # "G00", "G66.1", "M98"
+    lathe: Meaning | None  # None: no meaning on a lathe (G code system A)
+    mill: Meaning | None  # None: no meaning on a mill
+
+    def for_machine(self, lathe: bool) -> Meaning | None:
+        return self.lathe if lathe else self.mill
+
+    @property
+    def same_on_both(self) -> bool:
+        return self.lathe is self.mill
+
+
+def _both(title: str, text: str = "", modal: str = "") -> tuple[Meaning, Meaning]:
+    m = Meaning(title, text, modal)
+    return m, m
+
+
+_G: list[tuple[str, Meaning | None, Meaning | None]] = [
+    ("G00", *_both(
+        "Rapid positioning",
+        "Moves to the end point at rapid traverse. Depending on a parameter the axes move "
+        "independently, so the path need not be a straight line: keep clear of the part.",
+        "modal, group 01")),
+    ("G01", *_both(
+        "Linear interpolation",
+        "Straight move at the feed F. On a lathe F is usually per revolution (G99), on a mill "
+        "per minute (G94).",
+        "modal, group 01")),
+    ("G02", *_both(
+        "Circular interpolation, clockwise",
+        "Arc to the end point, with the radius R or the centre offsets I/J/K from the start "
+        "point. On a lathe X is a diameter and I/K are radius values; the direction is as seen "
+        "from the +Y side of the ZX plane, so it depends on where the turret is.",
+        "modal, group 01")),
+    ("G03", *_both(
+        "Circular interpolation, counter-clockwise",
+        "Arc to the end point, with R or I/J/K as for G02.",
+        "modal, group 01")),
+    ("G04", *_both(
+        "Dwell",
+        "Waits before the next block: `G04 X1.5` (or `U1.5` on a lathe) waits 1.5 s; "
+        "`G04 P1500` waits 1500 ms; P takes no decimal point.",
+        "one-shot")),
+    ("G05.1", *_both(
+        "AI contour control / look-ahead",
+        "`G05.1 Q1` switches AI (advanced preview) contour control on, `G05.1 Q0` off. Programs "
+        "switch it off before they poll variables so that macro statements are not executed "
+        "blocks ahead of the motion.",
+        "modal")),
+    ("G07.1", *_both(
+        "Cylindrical interpolation",
+        "Programs a rotary axis as a distance on the cylinder's surface (option).", "modal")),
+    ("G09", *_both(
+        "Exact stop", "Decelerates and checks the in-position at the end of this block only.",
+        "one-shot")),
+    ("G10", *_both(
+        "Programmable data input",
+        "Writes offsets or parameters from the program, e.g. `G10 L2 P1 X.. Z..` sets the G54 "
+        "work offset. The macro system variables (#2001..., #5221...) do the same from "
+        "expressions.",
+        "one-shot")),
+    ("G11", *_both("Programmable data input cancel", "", "modal")),
+    ("G12.1", Meaning(
+        "Polar coordinate interpolation",
+        "Lathe with a C axis and live tools: X and C are programmed as a Cartesian plane (option).",
+        "modal"), None),
+    ("G13.1", Meaning("Polar coordinate interpolation cancel", "", "modal"), None),
+    ("G17", *_both("XY plane", "Plane for arcs and cutter compensation (mill default).",
+                   "modal, group 02 (mill) / 16 (lathe)")),
+    ("G18", *_both("ZX plane", "Plane for arcs and nose radius compensation (lathe default).",
+                   "modal, group 02 (mill) / 16 (lathe)")),
+    ("G19", *_both("YZ plane", "", "modal, group 02 (mill) / 16 (lathe)")),
+    ("G20", *_both(
+        "Inch input",
+        "Values are inches. Program it alone at the head of the program, before the work "
+        "coordinate system is set; mixing units in one program is a classic crash.",
+        "modal, group 06")),
+    ("G21", *_both("Metric input", "Values are millimetres. See G20.", "modal, group 06")),
+    ("G27", *_both("Reference position return check", "", "one-shot")),
+    ("G28", *_both(
+        "Return to reference position",
+        "Moves through the intermediate point given in the block to the machine reference "
+        "position. Lathe: `G28 U0 W0` (incremental zero: straight home); mill: `G91 G28 Z0`.",
+        "one-shot")),
+    ("G30", *_both(
+        "Return to 2nd/3rd/4th reference position",
+        "`G30 P2 ...` (P2 to P4) via the intermediate point, like G28.", "one-shot")),
+    ("G31", *_both(
+        "Skip function",
+        "Linear move that stops when the skip signal (probe) comes on; the position where it "
+        "stopped is in #5061 and up.",
+        "one-shot")),
+    ("G32",
+     Meaning(
+         "Thread cutting (constant lead)",
+         "One threading pass along the programmed path at the lead F; the spindle encoder "
+         "synchronises the start. Each pass, with its infeed and retract, is programmed "
+         "separately (G92 and G76 do it as cycles). Feed hold and override are not effective.",
+         "modal, group 01"),
+     None),
+    ("G33",
+     Meaning("Thread cutting (G code systems B/C)", "System A uses G32.", "modal, group 01"),
+     Meaning("Thread cutting", "Constant-lead thread cutting along Z.", "modal, group 01")),
+    ("G34", Meaning("Variable lead thread cutting", "K is the lead change per revolution.",
+                    "modal, group 01"), None),
+    ("G40",
+     Meaning("Tool nose radius compensation cancel",
+             "Cancel with a move, not on an arc.", "modal, group 07"),
+     Meaning("Cutter radius compensation cancel",
+             "Cancel with a move, not on an arc.", "modal, group 07")),
+    ("G41",
+     Meaning("Tool nose radius compensation, left",
+             "The tool is on the left of the path, looking in the direction of motion; the "
+             "nose radius and imaginary tip number come from the tool's offset (T).",
+             "modal, group 07"),
+     Meaning("Cutter radius compensation, left",
+             "The cutter is on the left of the path (climb milling with a right-hand cutter); "
+             "the radius is offset D.", "modal, group 07")),
+    ("G42",
+     Meaning("Tool nose radius compensation, right", "See G41.", "modal, group 07"),
+     Meaning("Cutter radius compensation, right",
+             "The cutter is on the right of the path (conventional milling); radius from D.",
+             "modal, group 07")),
+    ("G43", None, Meaning("Tool length compensation +",
+                          "Adds the length offset H to Z: `G43 H01 Z..`.", "modal, group 08")),
+    ("G44", None, Meaning("Tool length compensation -", "", "modal, group 08")),
+    ("G49", None, Meaning("Tool length compensation cancel", "", "modal, group 08")),
+    ("G50",
+     Meaning("Coordinate system setting / maximum spindle speed",
+             "`G50 X.. Z..` makes the current position these coordinates (prefer G54-G59 "
+             "work offsets). `G50 S2000` clamps the spindle speed under constant surface speed "
+             "(G96): always set it before G96, or small diameters can over-speed the chuck.",
+             "one-shot"),
+     Meaning("Scaling cancel", "", "modal, group 11")),
+    ("G51", None, Meaning("Scaling", "Scales the programmed path about a centre (option).",
+                          "modal, group 11")),
+    ("G52", *_both("Local coordinate system",
+                   "Shifts the work coordinate system by the given values until `G52` with "
+                   "zeros.", "one-shot")),
+    ("G53", *_both("Machine coordinate system",
+                   "Moves to machine coordinates in this block only (absolute, rapid); "
+                   "it stops look-ahead.", "one-shot")),
+    *[
+        (f"G{54 + k}", *_both(
+            f"Work coordinate system {k + 1}",
+            f"Selects work offset {k + 1}; its values are #{5221 + 20 * k}-"
+            f"#{5240 + 20 * k} (axis = number - {5220 + 20 * k}).",
+            "modal, group 14"))
+        for k in range(6)
+    ],
+    ("G54.1", *_both("Additional work coordinate systems",
+                     "`G54.1 P1`..`P48` (#7001 and up), P1-P300 as an option.",
+                     "modal, group 14")),
+    ("G61", *_both("Exact stop mode", "", "modal, group 15")),
+    ("G62", *_both("Automatic corner override", "", "modal, group 15")),
+    ("G63", *_both("Tapping mode", "", "modal, group 15")),
+    ("G64", *_both("Cutting mode", "Blocks blend without an exact stop.", "modal, group 15")),
+    ("G65", *_both(
+        "Macro call",
+        "`G65 P<program> [L<repeat>] <arguments>` runs the macro once (or L times) with a new "
+        "set of locals #1-#33: the argument letters fill them (specification I: A #1, B #2, "
+        "C #3, I #4, J #5, K #6, D #7, E #8, F #9, H #11, M #13, Q #17, R #18, S #19, T #20, "
+        "U #21, V #22, W #23, X #24, Y #25, Z #26), all other locals start vacant. G, L, N, O "
+        "and P cannot be arguments. Write arguments with a decimal point: `X10` may arrive as "
+        "0.01 on an IS-B machine.",
+        "one-shot, group 00")),
+    ("G66", *_both(
+        "Modal macro call (after each move)",
+        "`G66 P<program> <arguments>` calls the macro after every following block that moves "
+        "an axis, until G67.",
+        "modal, group 12")),
+    ("G66.1", *_both(
+        "Modal macro call (every block)",
+        "`G66.1 P<program> <arguments>` calls the macro for every following block, whose words "
+        "become the arguments (G too), until G67.",
+        "modal, group 12")),
+    ("G67", *_both("Modal macro call cancel", "Ends G66 / G66.1.", "modal, group 12")),
+    ("G68",
+     Meaning("Mirror image for double turrets / balance cut",
+             "Option- and builder-dependent on lathes.", "modal"),
+     Meaning("Coordinate rotation", "`G68 X.. Y.. R<angle>` rotates the program about a "
+             "centre.", "modal, group 16")),
+    ("G69",
+     Meaning("Mirror image for double turrets cancel", "", "modal"),
+     Meaning("Coordinate rotation cancel", "", "modal, group 16")),
+    ("G70",
+     Meaning("Finishing cycle",
+             "`G70 P<ns> Q<nf>` runs the finishing shape (blocks Nns to Nnf) described for a "
+             "G71/G72/G73 roughing cycle, with the F, S, T of that shape.",
+             "one-shot, group 00"),
+     None),
+    ("G71",
+     Meaning("Stock removal in turning (rough OD/ID)",
+             "`G71 U<depth> R<retract>` then `G71 P<ns> Q<nf> U<X allowance> W<Z allowance> "
+             "F..`: roughs the shape Nns..Nnf in passes along Z, leaving the allowances for "
+             "G70. The shape must be monotonic in X (type I).",
+             "one-shot, group 00"),
+     None),
+    ("G72",
+     Meaning("Stock removal in facing",
+             "`G72 W<depth> R<retract>` then `G72 P<ns> Q<nf> U.. W.. F..`: like G71 but the "
+             "passes run along X.",
+             "one-shot, group 00"),
+     None),
+    ("G73",
+     Meaning("Pattern repeating cycle",
+             "`G73 U<X relief> W<Z relief> R<passes>` then `G73 P<ns> Q<nf> U.. W.. F..`: "
+             "repeats the shape offset inwards, for forged or cast blanks.",
+             "one-shot, group 00"),
+     Meaning("High-speed peck drilling cycle",
+             "Pecks of Q with a small retract (parameter) instead of a full return.",
+             "modal, group 09")),
+    ("G74",
+     Meaning("End face peck drilling / face grooving cycle",
+             "`G74 R<retract>` then `G74 X(U).. Z(W).. P<X step> Q<Z peck> F..` (P and Q in "
+             "least increments, no decimal point).",
+             "one-shot, group 00"),
+     Meaning("Left-hand tapping cycle",
+             "Counter tapping: spindle CCW in, reverses at the bottom.", "modal, group 09")),
+    ("G75",
+     Meaning("Outer/inner diameter grooving cycle",
+             "`G75 R<retract>` then `G75 X(U).. Z(W).. P<X peck> Q<Z step> F..`.",
+             "one-shot, group 00"),
+     None),
+    ("G76",
+     Meaning("Multiple threading cycle",
+             "`G76 P<m><r><a> Q<min depth> R<finish allowance>` then `G76 X(U).. Z(W).. "
+             "R<taper> P<thread height> Q<first depth> F<lead>`: m finishing passes, r chamfer, "
+             "a tool angle; depths in least increments (no decimal point). Each pass cuts "
+             "equal area, with flank infeed.",
+             "one-shot, group 00"),
+     Meaning("Fine boring cycle",
+             "Bores, orients the spindle at the bottom, shifts by Q away from the wall and "
+             "retracts at rapid.",
+             "modal, group 09")),
+    ("G80", *_both("Canned cycle cancel", "Cancels the drilling cycles (G81-G89 / G83-G89 on "
+                   "lathes).", "modal, group 09")),
+    ("G81", None, Meaning("Drilling cycle, spot drilling",
+                          "Feed to Z, rapid out to the R point (G99) or initial level (G98).",
+                          "modal, group 09")),
+    ("G82", None, Meaning("Drilling cycle with dwell (counterboring)",
+                          "Like G81 with a dwell P at the bottom.", "modal, group 09")),
+    ("G83",
+     Meaning("Face drilling cycle", "Live-tool drilling along Z (C-axis lathes).",
+             "modal, group 10"),
+     Meaning("Peck drilling cycle", "Pecks of Q, retracting to the R point after each.",
+             "modal, group 09")),
+    ("G84",
+     Meaning("Face tapping cycle", "Live-tool tapping along Z.", "modal, group 10"),
+     Meaning("Tapping cycle",
+             "Spindle CW in, reverses at the bottom. In G94 F = pitch x S; with M29 it is "
+             "rigid tapping.",
+             "modal, group 09")),
+    ("G85",
+     Meaning("Face boring cycle", "", "modal, group 10"),
+     Meaning("Boring cycle", "Feed in, feed out.", "modal, group 09")),
+    ("G86", None, Meaning("Boring cycle", "Feed in, spindle stop at the bottom, rapid out "
+                          "(leaves a line).", "modal, group 09")),
+    ("G87",
+     Meaning("Side drilling cycle", "Live-tool drilling along X.", "modal, group 10"),
+     Meaning("Back boring cycle", "", "modal, group 09")),
+    ("G88",
+     Meaning("Side tapping cycle", "", "modal, group 10"),
+     Meaning("Boring cycle", "Dwell and spindle stop at the bottom, then manual retract.",
+             "modal, group 09")),
+    ("G89",
+     Meaning("Side boring cycle", "", "modal, group 10"),
+     Meaning("Boring cycle", "Dwell at the bottom, feed out.", "modal, group 09")),
+    ("G90",
+     Meaning("Outer/inner diameter cutting cycle",
+             "`G90 X(U).. Z(W).. [R<taper>] F..`: one roughing pass (rapid in, feed along Z, "
+             "feed out, rapid back). Modal: the next blocks with only X repeat it at new "
+             "depths. On a lathe (system A) there is no G90/G91 absolute/incremental: X/Z are "
+             "absolute, U/W incremental.",
+             "modal, group 01"),
+     Meaning("Absolute programming", "Coordinates are positions in the work system.",
+             "modal, group 03")),
+    ("G91",
+     None,
+     Meaning("Incremental programming", "Coordinates are distances from the current "
+             "position.", "modal, group 03")),
+    ("G92",
+     Meaning("Threading cycle",
+             "`G92 X(U).. Z(W).. [R<taper>] F<lead>`: one threading pass from the start point "
+             "(rapid in to X, thread along Z, rapid out, rapid back). Modal: blocks with only X "
+             "repeat it at new depths. Approach distance must allow the spindle to "
+             "synchronise; S x lead is limited by the machine's threading feed.",
+             "modal, group 01"),
+     Meaning("Workpiece coordinate system setting",
+             "`G92 X.. Y.. Z..` declares the current position to have these coordinates (a "
+             "G54-G59 offset is safer).",
+             "one-shot, group 00")),
+    ("G94",
+     Meaning("End face turning cycle",
+             "`G94 X(U).. Z(W).. [R..] F..`: one facing pass along X.", "modal, group 01"),
+     Meaning("Feed per minute", "F is mm/min (inch/min).", "modal, group 05")),
+    ("G95", None, Meaning("Feed per revolution", "F is mm/rev.", "modal, group 05")),
+    ("G96", *_both(
+        "Constant surface speed",
+        "S is the cutting speed in m/min (ft/min): the spindle speeds up as the diameter gets "
+        "smaller. Clamp it first (`G50 S..` on lathes). Threading uses G97.",
+        "modal, group 02 (lathe) / 13 (mill)")),
+    ("G97", *_both("Constant surface speed cancel", "S is spindle speed in rpm.",
+                   "modal, group 02 (lathe) / 13 (mill)")),
+    ("G98",
+     Meaning("Feed per minute", "F is mm/min (system A lathe).", "modal, group 05"),
+     Meaning("Canned cycle: return to initial level", "", "modal, group 10")),
+    ("G99",
+     Meaning("Feed per revolution", "F is mm/rev: the lathe's power-on default; for threading "
+             "F is the lead.", "modal, group 05"),
+     Meaning("Canned cycle: return to R point level", "", "modal, group 10")),
+]  # fmt: skip
+
+_M: list[tuple[str, str, str]] = [
+    ("M00", "Program stop",
+     "Stops after the block; cycle start resumes. Stops look-ahead, so macro statements after "
+     "it wait for it."),
+    ("M01", "Optional stop", "Like M00 when the optional stop switch is on."),
+    ("M02", "End of program", "Ends and resets the program (locals become vacant)."),
+    ("M03", "Spindle on clockwise (forward)", "Speed from S."),
+    ("M04", "Spindle on counter-clockwise (reverse)", "Speed from S."),
+    ("M05", "Spindle stop", ""),
+    ("M06", "Tool change", "Mill ATC; the sequence is the machine builder's."),
+    ("M07", "Mist coolant on", "Builder-defined."),
+    ("M08", "Coolant on", ""),
+    ("M09", "Coolant off", ""),
+    ("M19", "Spindle orientation", "Builder-defined."),
+    ("M29", "Rigid tapping", "Before G84: the spindle follows the Z axis (parameter-dependent "
+     "M code)."),
+    ("M30", "End of program and rewind",
+     "Ends, resets and returns to the program head; locals become vacant; parts count #3901 "
+     "goes up."),
+    ("M96", "Interrupt-type macro enable", "Option; parameter-dependent M code."),
+    ("M97", "Interrupt-type macro disable (FANUC) / local subprogram call (Haas)",
+     "On Haas `M97 P<n>` calls the block Nn of the same program; FANUC controls have no such "
+     "call."),
+    ("M98", "Subprogram call",
+     "`M98 P<program> [L<repeat>]`, or on 4-digit controls `M98 P<rrrr><pppp>`: M98 "
+     "P0013331 runs O3331 once, P50010 runs O0010 five times. No arguments and no new local "
+     "level: the subprogram shares the caller's #1-#33."),
+    ("M99", "End of subprogram (return)",
+     "Returns to the block after the call; `M99 P<n>` returns to Nn of the caller instead. In a "
+     "main program M99 restarts it from the head (an endless repetition)."),
+]
+
+G_CODES: dict[str, CodeInfo] = {code: CodeInfo(code, lathe, mill) for code, lathe, mill in _G}
+M_CODES: dict[str, CodeInfo] = {
+    code: CodeInfo(code, m, m) for code, m in ((c, Meaning(t, x)) for c, t, x in _M)
+}
+
+_BUILDER_M = (
+    "Not a standard FANUC code: M codes other than M00-M02, M30, M98 and M99 are defined by "
+    "the machine builder (or call macros O9020-O9029 by parameter)."
+)
+
+
+def code_name(letter: str, value: float) -> str:
+    """``G1.`` -> ``G01``, ``G66.1`` -> ``G66.1``, ``M3`` -> ``M03``."""
+    letter = letter.upper()
+    rounded = round(value, 1)
+    if rounded == int(rounded):
+        return f"{letter}{int(rounded):02d}"
+    whole = int(rounded)
+    return f"{letter}{whole:02d}.{round((rounded - whole) * 10):d}"
+
+
+def code_info(letter: str, value: float) -> CodeInfo | None:
+    table = G_CODES if letter.upper() == "G" else M_CODES if letter.upper() == "M" else None
+    if table is None:
+        return None
+    return table.get(code_name(letter, value))
+
+
+def code_markdown(letter: str, value: float, lathe: bool) -> str | None:
+    """Hover text of a G or M code under the configured machine type."""
+    name = code_name(letter, value)
+    info = code_info(letter, value)
+    machine = "lathe" if lathe else "mill"
+    other_name = "mill" if lathe else "lathe"
+    if info is None:
+        if letter.upper() == "M":
+            return f"**{name}**\n\n{_BUILDER_M}"
+        return f"**{name}**\n\nNot a G code this checker knows (builder option or other control)."
+    here = info.for_machine(lathe)
+    other = info.for_machine(not lathe)
+    parts: list[str] = []
+    if here is not None:
+        head = f"**{name}** — {here.title}"
+        if here.modal:
+            head += f" *({here.modal})*"
+        parts.append(head)
+        if here.text:
+            parts.append(here.text)
+    else:
+        parts.append(f"**{name}** — no meaning on a {machine} (G code system A)"
+                     if lathe else f"**{name}** — no meaning on a {machine}")
+    if not info.same_on_both and other is not None:
+        parts.append(f"On a {other_name}: {other.title}." + (f" {other.text}" if other.text
+                                                             else ""))
+    return "\n\n".join(parts)
+
+
+def completion_codes(lathe: bool) -> list[tuple[str, str]]:
+    """(code, title) of the G and M codes that mean something on this machine type."""
+    out: list[tuple[str, str]] = []
+    for info in (*G_CODES.values(), *M_CODES.values()):
+        meaning = info.for_machine(lathe)
+        if meaning is not None:
+            out.append((info.code, meaning.title))
+    return out
+
+
+# ---- macro functions -------------------------------------------------------------------------
+
+
+@dataclass(frozen=True, slots=True)
+class FunctionInfo:
+    name: str
+    signature: str
+    title: str
+    text: str
+    snippet: str  # LSP snippet syntax
+
+
+_DEG = "Angles are in degrees."
+_FUNCTIONS: list[FunctionInfo] = [
+    FunctionInfo("SIN", "SIN[a]", "Sine", f"{_DEG} `SIN[30]` = 0.5.", "SIN[$1]"),
+    FunctionInfo("COS", "COS[a]", "Cosine", f"{_DEG} `COS[60]` = 0.5.", "COS[$1]"),
+    FunctionInfo("TAN", "TAN[a]", "Tangent",
+                 f"{_DEG} Computed as SIN/COS, so `TAN[90]` stops with alarm PS0112 ZERO "
+                 "DIVIDE.", "TAN[$1]"),
+    FunctionInfo("ASIN", "ASIN[x]", "Arcsine",
+                 "Result in degrees, -90 to 90 (a parameter can give 270 to 90). An argument "
+                 "outside -1..1 stops with alarm PS0119 ARGUMENT VALUE OUT OF RANGE.",
+                 "ASIN[$1]"),
+    FunctionInfo("ACOS", "ACOS[x]", "Arccosine",
+                 "Result in degrees, 0 to 180. An argument outside -1..1 stops with alarm "
+                 "PS0119.", "ACOS[$1]"),
+    FunctionInfo("ATAN", "ATAN[a]/[b]", "Arctangent",
+                 "`ATAN[a]/[b]` is the angle of the point (b, a): the signs choose the "
+                 "quadrant, it is *not* a division. The result is 0 to 360 degrees by default "
+                 "(parameter NAT, 6004#0, gives -180 to 180; unverified). `ATAN[a,b]` and the "
+                 "one-argument `ATAN[x]` exist on 30i-class controls only; 16i has the slash "
+                 "form only. `ATAN[0]/[0]` has no angle.", "ATAN[$1]/[$2]"),
+    FunctionInfo("SQRT", "SQRT[x]", "Square root",
+                 "A negative argument stops with alarm PS0119 ARGUMENT VALUE OUT OF RANGE; a "
+                 "vacant one counts as 0.", "SQRT[$1]"),
+    FunctionInfo("ABS", "ABS[x]", "Absolute value", "", "ABS[$1]"),
+    FunctionInfo("ROUND", "ROUND[x]", "Round",
+                 "In a macro statement: to the nearest integer, halves away from zero "
+                 "(`ROUND[-1.5]` = -2). Inside an NC address (`X[ROUND[#1]]`) it rounds to the "
+                 "address's least input increment instead.", "ROUND[$1]"),
+    FunctionInfo("FIX", "FIX[x]", "Truncate",
+                 "Drops the fraction, towards zero: `FIX[1.7]` = 1, `FIX[-1.2]` = -1. Values "
+                 "computed as 2.9999999 become 2: add a small epsilon when the exact value is "
+                 "an integer.", "FIX[$1]"),
+    FunctionInfo("FUP", "FUP[x]", "Round up",
+                 "Raises any fraction to the next integer away from zero: `FUP[1.2]` = 2, "
+                 "`FUP[-1.2]` = -2; integers stay.", "FUP[$1]"),
+    FunctionInfo("LN", "LN[x]", "Natural logarithm",
+                 "An argument of 0 or less stops with alarm PS0119.", "LN[$1]"),
+    FunctionInfo("EXP", "EXP[x]", "Exponential (e^x)",
+                 "A result too large stops with alarm PS0111 OVERFLOW.", "EXP[$1]"),
+    FunctionInfo("POW", "POW[a,b]", "Power (a^b)",
+                 "30i-B class controls only (unverified for 0i-F). No real result (negative "
+                 "base with a fractional exponent) stops with alarm PS0119.", "POW[$1,$2]"),
+    FunctionInfo("ADP", "ADP[#n]", "Add decimal point",
+                 "Rescales an argument (#1-#33) that was passed without a decimal point, so "
+                 "that `X10` means 10. rather than 10 least increments. Exact behaviour is "
+                 "unverified.", "ADP[$1]"),
+    FunctionInfo("BIN", "BIN[x]", "BCD to binary",
+                 "For PMC signals. A negative argument or a digit above 9 stops with alarm "
+                 "PS0119.", "BIN[$1]"),
+    FunctionInfo("BCD", "BCD[x]", "Binary to BCD",
+                 "For PMC signals. A negative argument stops with alarm PS0119.", "BCD[$1]"),
+]
+FUNCTIONS: dict[str, FunctionInfo] = {f.name: f for f in _FUNCTIONS}
+
+
+def function_markdown(name: str) -> str | None:
+    info = FUNCTIONS.get(name.upper())
+    if info is None:
+        return None
+    text = f"**{info.signature}** — {info.title}"
+    return f"{text}\n\n{info.text}" if info.text else text
+
+
+# ---- keywords and operators ------------------------------------------------------------------
+
+_VACANT_NOTE = (
+    "A vacant variable counts as 0 in GT/GE/LT/LE but differs from 0 in EQ/NE "
+    "(`#1 EQ #0` is true only when #1 is vacant)."
+)
+
+KEYWORDS: dict[str, tuple[str, str]] = {
+    "IF": ("Conditional", "`IF [cond] GOTO n` jumps when the condition is true; `IF [cond] "
+           "THEN <one macro statement>` runs one assignment. An NC statement after THEN is not "
+           "FANUC (Haas)."),
+    "THEN": ("Conditional statement", "`IF [cond] THEN #1=...`: exactly one macro statement."),
+    "GOTO": ("Branch", "`GOTO n` jumps to the block Nn of the same program. The control "
+             "searches forward from here, then from the program head, so backward jumps are "
+             "slower. n may be an expression (`GOTO#10`); a missing or out-of-range n stops "
+             "with alarm PS0128 (ILLEGAL MACRO SEQUENCE NUMBER)."),
+    "WHILE": ("Loop", "`WHILE [cond] DOm` ... `ENDm` repeats the blocks while the condition is "
+              "true; m is 1, 2 or 3, loops nest at most three deep and must not cross. Jumping "
+              "out of a loop is allowed, into one is not."),
+    "WH": ("Loop (abbreviation of WHILE)", "Accepted on input by FANUC controls."),
+    "DO": ("Loop start", "`DOm` without WHILE loops forever. m is 1-3 (alarm PS0126 "
+           "otherwise); a DO without its END stops with alarm PS0124."),
+    "END": ("Loop end", "`ENDm` goes back to the WHILE of the same number; the number must "
+            "match the open DO (alarm PS0126)."),
+    "EQ": ("Equal", _VACANT_NOTE),
+    "NE": ("Not equal", _VACANT_NOTE),
+    "GT": ("Greater than", _VACANT_NOTE),
+    "GE": ("Greater than or equal", _VACANT_NOTE),
+    "LT": ("Less than", _VACANT_NOTE),
+    "LE": ("Less than or equal", _VACANT_NOTE),
+    "AND": ("And", "Between conditions in IF/WHILE: logical (`[[c1] AND [c2]]`, compound "
+            "conditions need a recent control). In an expression: bitwise on the integer "
+            "values, with the priority of `*`."),
+    "OR": ("Or", "Logical between conditions; bitwise on integers in an expression, with the "
+           "priority of `+`."),
+    "XOR": ("Exclusive or", "Logical between conditions; bitwise on integers in an expression."),
+    "MOD": ("Remainder", "`a MOD b` on the integer parts (30i / 0i-F; not on 16i). `MOD 0` "
+            "stops with alarm PS0112."),
+    "DPRNT": ("Print data", "`DPRNT[text#100[53]]` sends text and variables (3 integer and 5 "
+              "decimal digits here) to the output device; `*` prints a space. Open the device "
+              "with POPEN first."),
+    "BPRNT": ("Print binary data", "Like DPRNT with variables in binary."),
+    "POPEN": ("Open output device", "Before DPRNT/BPRNT."),
+    "PCLOS": ("Close output device", "After DPRNT/BPRNT."),
+}
+
+
+def keyword_markdown(word: str) -> str | None:
+    entry = KEYWORDS.get(word.upper())
+    if entry is None:
+        return None
+    title, text = entry
+    return f"**{word.upper()}** — {title}\n\n{text}"
+
+
+# ---- addresses -------------------------------------------------------------------------------
+
+# letter: (lathe, mill); one text when the same.
+_ADDRESSES: dict[str, tuple[str, str]] = {
+    "A": ("A axis (rotary about X) or chamfer angle", "A axis (rotary about X)"),
+    "B": ("B axis or second auxiliary function", "B axis (rotary about Y)"),
+    "C": ("C axis (spindle as an axis) or chamfer size", "C axis (rotary about Z)"),
+    "D": ("Depth in some cycles", "Cutter radius offset number (G41/G42)"),
+    "E": ("Thread lead, precise", "Thread lead, precise"),
+    "F": ("Feed (mm/rev in G99, mm/min in G98); the lead in threading",
+          "Feed (mm/min in G94, mm/rev in G95)"),
+    "G": ("Preparatory function", "Preparatory function"),
+    "H": ("Incremental C axis (some machines)", "Tool length offset number (G43/G44)"),
+    "I": ("Arc centre X offset (radius) / cycle parameter",
+          "Arc centre X offset / cycle parameter"),
+    "J": ("Arc centre Y offset", "Arc centre Y offset"),
+    "K": ("Arc centre Z offset / cycle parameter", "Arc centre Z offset / repeat count of "
+          "drilling cycles"),
+    "L": ("Repeat count (M98, G65)", "Repeat count (M98, G65)"),
+    "M": ("Miscellaneous function", "Miscellaneous function"),
+    "N": ("Sequence number (GOTO target)", "Sequence number (GOTO target)"),
+    "O": ("Program number", "Program number"),
+    "P": ("Program number (M98, G65), dwell in ms (G04), first block of a cycle shape",
+          "Program number (M98, G65), dwell in ms (G04, G82)"),
+    "Q": ("Last block of a cycle shape / cycle depth", "Peck depth (G73, G83) / shift (G76)"),
+    "R": ("Arc radius, taper of a cycle, retract", "Arc radius, R point of a drilling cycle"),
+    "S": ("Spindle speed (rpm in G97, m/min in G96); maximum speed with G50",
+          "Spindle speed"),
+    "T": ("Tool and offset: T0101 = tool 1, offset 1; T0100 cancels the offset",
+          "Tool number"),
+    "U": ("Incremental X (diameter)", "U axis"),
+    "V": ("Incremental Y", "V axis"),
+    "W": ("Incremental Z", "W axis"),
+    "X": ("X position, a diameter", "X position"),
+    "Y": ("Y position", "Y position"),
+    "Z": ("Z position", "Z position"),
+}
+
+
+def address_markdown(letter: str, lathe: bool) -> str | None:
+    entry = _ADDRESSES.get(letter.upper())
+    if entry is None:
+        return None
+    return f"**{letter.upper()}** — {entry[0] if lathe else entry[1]}"
+
+
+# ---- system variables worth offering in completion -------------------------------------------
+
+SYSTEM_VARIABLES: tuple[int, ...] = (
+    0, 1000, 1032, 1100, 1132, 2001, 2201, 2501, 2601, 2701, 3000, 3001, 3002, 3003, 3004,
+    3005, 3006, 3007, 3011, 3012, 3901, 3902, 4000, 4001, 4002, 4003, 4005, 4006, 4007,
+    4008, 4014, 4102, 4107, 4109, 4111, 4113, 4114, 4115, 4119, 4120, 5001, 5002, 5003,
+    5021, 5022, 5023, 5041, 5042, 5043, 5061, 5062, 5063, 5081, 5083, 5101, 5201, 5221,
+    5222, 5223, 5241, 5261, 5281, 5301, 5321, 7001,
+)  # fmt: skip

@@ -1,0 +1,170 @@
+"""Between the package's positions (code points) and the protocol's (client code units), and from
+package diagnostics to LSP diagnostics.
+
+The package counts columns in characters. LSP counts UTF-16 code units unless the client and
+server agreed on another encoding, so a character outside the Basic Multilingual Plane counts
+twice. Lines here are split as LSP splits them: on CRLF, CR and LF only (``str.splitlines``
+would also split on form feeds and U+2028, and shift every line after them).
+"""
+
+from __future__ import annotations
+
+import json
+import re
+from collections.abc import Callable, Sequence
+
+from lsprotocol import types
+
+from ..diagnostics import RULES, Diagnostic, Severity
+
+LINE_BREAK = re.compile(r"\r\n|\r|\n")
+SOURCE = "fanuc-macro"
+RULES_URL = "https://github.com/fanuc-macro/fanuc-macro/blob/main/docs/rules.md"
+
+UTF8 = types.PositionEncodingKind.Utf8.value
+UTF16 = types.PositionEncodingKind.Utf16.value
+UTF32 = types.PositionEncodingKind.Utf32.value
+
+
+def lsp_lines(text: str) -> list[str]:
+    """The lines of ``text`` as LSP numbers them (a final line break opens an empty line)."""
+    return LINE_BREAK.split(text)
+
+
+class Codec:
+    """Column conversion for one position encoding."""
+
+    def __init__(self, encoding: str | None = UTF16) -> None:
+        self.encoding = encoding if encoding in (UTF8, UTF16, UTF32) else UTF16
+
+    def units(self, text: str) -> int:
+        if self.encoding == UTF32 or text.isascii():
+            return len(text)
+        if self.encoding == UTF16:
+            return len(text.encode("utf-16-le", "surrogatepass")) // 2
+        return len(text.encode("utf-8", "surrogatepass"))
+
+    def to_client(self, line: str, column: int) -> int:
+        """Code-point column -> client units; past the end of the line counts one per column."""
+        column = max(0, column)
+        if column <= len(line):
+            return self.units(line[:column])
+        return self.units(line) + column - len(line)
+
+    def from_client(self, line: str, units: int) -> int:
+        """Client units -> code-point column, clamped to the line; a split pair goes before."""
+        if units <= 0:
+            return 0
+        if self.encoding == UTF32 or line.isascii():
+            return min(units, len(line))
+        count = 0
+        for i, ch in enumerate(line):
+            width = self._width(ch)
+            if count + width > units:
+                return i
+            count += width
+        return len(line)
+
+    def _width(self, ch: str) -> int:
+        code = ord(ch)
+        if self.encoding == UTF16:
+            return 2 if code > 0xFFFF else 1
+        if code < 0x80:
+            return 1
+        if code < 0x800:
+            return 2
+        if code < 0x10000:
+            return 3
+        return 4
+
+
+class Lines:
+    """The lines of one analysed text, with conversions of positions in it."""
+
+    def __init__(self, lines: Sequence[str], codec: Codec) -> None:
+        self.lines = lines
+        self.codec = codec
+
+    def text(self, line: int) -> str:
+        return self.lines[line] if 0 <= line < len(self.lines) else ""
+
+    def position(self, line: int, column: int) -> types.Position:
+        line = max(0, line)
+        return types.Position(line=line, character=self.codec.to_client(self.text(line), column))
+
+    def range(self, line: int, column: int, end_line: int, end_column: int) -> types.Range:
+        return types.Range(
+            start=self.position(line, column), end=self.position(end_line, end_column)
+        )
+
+    def column(self, position: types.Position) -> int:
+        return self.codec.from_client(self.text(position.line), position.character)
+
+
+SEVERITY = {
+    Severity.ERROR: types.DiagnosticSeverity.Error,
+    Severity.WARNING: types.DiagnosticSeverity.Warning,
+    Severity.INFORMATION: types.DiagnosticSeverity.Information,
+    Severity.HINT: types.DiagnosticSeverity.Hint,
+}
+
+
+def rule_url(code: str) -> str:
+    """The section of docs/rules.md: headings are ``MBxxx name``, anchors ``mbxxx-name``."""
+    info = RULES.get(code)
+    anchor = code.lower() if info is None else f"{code.lower()}-{info.name}"
+    return f"{RULES_URL}#{anchor}"
+
+
+def _json_safe(data: dict[str, object]) -> dict[str, object]:
+    out: dict[str, object] = {}
+    for key, value in data.items():
+        try:
+            json.dumps(value)
+        except (TypeError, ValueError):
+            value = str(value)
+        out[str(key)] = value
+    return out
+
+
+Resolver = Callable[[str], "tuple[str, Lines] | None"]
+
+
+def to_lsp_diagnostic(
+    diag: Diagnostic, key: str, uri: str, lines: Lines, resolve: Resolver | None = None
+) -> types.Diagnostic:
+    """One package diagnostic in the protocol's terms.
+
+    ``key`` is the document's name in the package, ``uri`` the client's name for it. A related
+    place in another document is converted with that document's lines and client URI, which
+    ``resolve`` gives for a package key.
+    """
+    related: list[types.DiagnosticRelatedInformation] = []
+    for r in diag.related:
+        r_uri, r_lines = uri, lines
+        if r.uri is not None and r.uri != key:
+            found = resolve(r.uri) if resolve is not None else None
+            r_uri, r_lines = found if found is not None else (r.uri, Lines((), lines.codec))
+        related.append(
+            types.DiagnosticRelatedInformation(
+                location=types.Location(
+                    uri=r_uri, range=r_lines.range(r.line, r.column, r.line, r.end_column)
+                ),
+                message=r.message,
+            )
+        )
+    tags = [types.DiagnosticTag.Unnecessary] if diag.code == "MB702" else None
+    data: dict[str, object] = {"code": diag.code}
+    if diag.data:
+        data.update(_json_safe(diag.data))
+    return types.Diagnostic(
+        range=lines.range(diag.line, diag.column, diag.end_line, diag.end_column),
+        message=diag.message,
+        severity=SEVERITY.get(diag.severity, types.DiagnosticSeverity.Warning),
+        code=diag.code,
+        code_description=types.CodeDescription(href=rule_url(diag.code)),
+        source=SOURCE,
+        related_information=related or None,
+        tags=tags,
+        data=data,
+    )

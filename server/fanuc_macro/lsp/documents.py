@@ -1,0 +1,55 @@
+"""The open documents' texts, kept in step with the client by incremental changes.
+
+Kept here rather than in pygls' workspace because pygls splits lines with ``str.splitlines``,
+which also breaks at form feeds, U+0085 and U+2028: an edit after such a character (random
+bytes read as Latin-1 have them) would land on the wrong line.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from lsprotocol import types
+
+from .convert import LINE_BREAK, Codec
+
+
+@dataclass
+class OpenDocument:
+    uri: str  # as the client names it
+    key: str  # as the package names it (see Engine.key)
+    text: str
+    version: int | None
+    language_id: str = ""
+    _starts: list[int] | None = field(default=None, repr=False)
+
+    def _line_starts(self) -> list[int]:
+        if self._starts is None:
+            self._starts = [0, *(m.end() for m in LINE_BREAK.finditer(self.text))]
+        return self._starts
+
+    def line(self, number: int) -> str:
+        starts = self._line_starts()
+        if not 0 <= number < len(starts):
+            return ""
+        start = starts[number]
+        end = starts[number + 1] if number + 1 < len(starts) else len(self.text)
+        return self.text[start:end].rstrip("\r\n")
+
+    def offset(self, position: types.Position, codec: Codec) -> int:
+        starts = self._line_starts()
+        if position.line < 0:
+            return 0
+        if position.line >= len(starts):
+            return len(self.text)
+        line = self.line(position.line)
+        return starts[position.line] + codec.from_client(line, position.character)
+
+    def apply(self, change: types.TextDocumentContentChangeEvent, codec: Codec) -> None:
+        if isinstance(change, types.TextDocumentContentChangePartial):
+            start = self.offset(change.range.start, codec)
+            end = max(start, self.offset(change.range.end, codec))
+            self.text = self.text[:start] + change.text + self.text[end:]
+        else:
+            self.text = change.text
+        self._starts = None

@@ -1,0 +1,197 @@
+"""The symmetric thread module for a document that enters the thread in ``#100``-``#104``.
+
+A main program in the shape of the paper's O4009 / O4010 assigns ``#100`` D, ``#101`` P,
+``#102`` L, ``#103`` es/EI (a magnitude) and ``#104`` Td2/TD2, then calls the sub-program.
+:func:`module_from_document` reads those values by running the document with the evaluator
+(so ``#102=2*#101`` works too), fills what is missing from a designation written in a
+comment (``(M50X3-5G6G)``), and returns the module generated for them: the language server
+offers it as a completion item.  Pure: text in, text out, no LSP types.
+"""
+
+from __future__ import annotations
+
+import re
+
+from ..evaluator import evaluate
+from ..index import ProgramIndex, build_index
+from ..parser import default_parser, parse_text
+from ..syntax import Assign, Document, IfThen
+from .designation import ThreadDesignation, parse_designation
+from .generator import build_module_from_values, default_program_numbers
+from .iso965 import tolerances
+
+__all__ = ["module_from_document"]
+
+_URI = "snippet:thread-module.nc"
+_VARIABLES = range(100, 105)
+
+# A designation needs a pitch or a class, so the M8 of "M03 M8" in a comment is not one.
+_DESIGNATION = re.compile(
+    r"(?<![A-Za-z0-9])M\d+(?:[.,]\d+)?"
+    r"(?:(?:\s*[xX×*]\s*\d+(?:[.,]\d+)?(?:LH)?(?:-\d[A-Za-z](?:\d[A-Za-z])?)?)"
+    r"|(?:-\d[A-Za-z](?:\d[A-Za-z])?))"
+    r"(?:-LH)?",
+)
+_INTERNAL_WORDS = ("INTERNAL", "内螺纹", "內螺紋", "NUT")
+_EXTERNAL_WORDS = ("EXTERNAL", "外螺纹", "外螺紋", "BOLT")
+
+
+def _assigned_lines(doc: Document) -> dict[int, list[int]]:
+    """Lines that assign #100-#104, by variable."""
+    found: dict[int, list[int]] = {}
+    for block in doc.blocks:
+        statement = block.statement
+        target = statement.then if isinstance(statement, IfThen) else statement
+        if isinstance(target, Assign) and target.target.number is not None:
+            number = int(target.target.number)
+            if number in _VARIABLES and number == target.target.number:
+                found.setdefault(number, []).append(block.line)
+    return found
+
+
+def _comments(doc: Document) -> list[str]:
+    return [c.text for block in doc.blocks for c in block.parsed.comments]
+
+
+def _designation_texts(comments: list[str]) -> list[str]:
+    return [m.group(0) for text in comments for m in _DESIGNATION.finditer(text)]
+
+
+def _side_from_words(comments: list[str]) -> bool | None:
+    text = " ".join(comments).upper()
+    internal = any(w in text for w in _INTERNAL_WORDS)
+    external = any(w in text for w in _EXTERNAL_WORDS)
+    if internal != external:
+        return internal
+    return None
+
+
+def _side_from_programs(index: ProgramIndex) -> bool | None:
+    """The paper's numbering: O3330 is the internal sub-program, O3331 the external one."""
+    numbers = {p.number for p in index.programs if p.number is not None}
+    numbers |= {c.program for p in index.programs for c in p.calls if c.program is not None}
+    internal_sub = default_program_numbers(True)[1] in numbers
+    external_sub = default_program_numbers(False)[1] in numbers
+    if internal_sub != external_sub:
+        return internal_sub
+    return None
+
+
+def _side_from_tables(
+    diameter: float, pitch: float, deviation: float, pitch_tolerance: float
+) -> bool | None:
+    """Which side's ISO 965-1 cells give these |es|/EI and Td2/TD2, if only one does."""
+    matches: set[bool] = set()
+    for internal, positions, grades in ((False, "efgh", "3456789"), (True, "GH", "45678")):
+        for position in positions:
+            for grade in grades:
+                try:
+                    tol = tolerances(f"M{diameter:g}x{pitch:g}-{grade}{position}")
+                except ValueError:
+                    continue
+                if abs(abs(tol.fundamental_deviation) - deviation) < 5e-4 and (
+                    abs(tol.pitch_diameter_tolerance - pitch_tolerance) < 5e-4
+                ):
+                    matches.add(internal)
+    return matches.pop() if len(matches) == 1 else None
+
+
+def _parse(text: str, internal: bool | None) -> ThreadDesignation | None:
+    try:
+        return parse_designation(text, internal=internal)
+    except ValueError:
+        return None
+
+
+def _numbers(doc: Document, index: ProgramIndex, first_line: int) -> tuple[int | None, int | None]:
+    """The number of the program that enters the values, and the program it calls first."""
+    program = index.program_at(first_line)
+    if program is None or program.number is None:
+        return None, None
+    call = next((c for c in program.calls if c.kind == "M98" and c.program is not None), None)
+    return program.number, None if call is None else call.program
+
+
+def module_from_document(text: str) -> str | None:
+    """The symmetric thread module for the thread this document enters in #100-#104.
+
+    None when the document assigns none of #100-#104, or when D, P, L, es/EI and Td2/TD2
+    cannot all be found (from the executed assignments, else from a designation comment),
+    or when they do not make a thread.
+    """
+    doc = parse_text(text, _URI, default_parser())
+    assigned = _assigned_lines(doc)
+    if not assigned:
+        return None
+    index = build_index(doc)
+    facts = evaluate([(_URI, doc, index)], only_uri=_URI)
+    writes = facts.document(_URI).writes
+    values: dict[int, float] = {}
+    for number, lines in assigned.items():
+        for line in lines:  # the last assignment in the text that produced a number wins
+            write = writes.get(line)
+            if write is not None and isinstance(write[1].last, float):
+                values[number] = write[1].last
+
+    comments = _comments(doc)
+    texts = _designation_texts(comments)
+    des = next((d for d in (_parse(t, None) for t in texts) if d is not None), None)
+    internal: bool | None = None
+    if des is not None and not des.internal_ambiguous:
+        internal = des.internal
+    if internal is None:
+        internal = _side_from_words(comments)
+    if internal is None:
+        internal = _side_from_programs(index)
+    if internal is None and all(n in values for n in (100, 101, 103, 104)):
+        internal = _side_from_tables(values[100], values[101], values[103], values[104])
+    if internal is None:
+        internal = des.internal if des is not None else False
+    if des is not None and des.internal != internal:
+        des = _parse(des.text, internal)
+
+    deviation = values.get(103)
+    pitch_tolerance = values.get(104)
+    if des is not None and (deviation is None or pitch_tolerance is None):
+        try:
+            tol = tolerances(des)
+        except ValueError:
+            return None
+        if deviation is None:
+            deviation = abs(tol.fundamental_deviation)
+        if pitch_tolerance is None:
+            pitch_tolerance = tol.pitch_diameter_tolerance
+    diameter = values.get(100, des.nominal_diameter if des is not None else None)
+    pitch = values.get(101, des.pitch if des is not None else None)
+    length = values.get(102)
+    if diameter is None or pitch is None or length is None:
+        return None
+    if deviation is None or pitch_tolerance is None:
+        return None
+    if des is not None and (
+        abs(des.nominal_diameter - diameter) > 1e-9 or abs(des.pitch - pitch) > 1e-9
+    ):
+        des = None  # the comment names another thread than the values enter
+
+    main, sub = _numbers(doc, index, min(line for lines in assigned.values() for line in lines))
+    default_main, default_sub = default_program_numbers(internal)
+    if main is not None and sub is not None and main == sub:
+        main = sub = None
+    if main is not None and sub is None and main == default_sub:
+        main = None
+    if sub is not None and main is None and sub == default_main:
+        sub = None
+    try:
+        return build_module_from_values(
+            diameter,
+            pitch,
+            length,
+            deviation,
+            pitch_tolerance,
+            internal=internal,
+            main_number=main,
+            sub_number=sub,
+            designation=des,
+        ).text
+    except ValueError:
+        return None

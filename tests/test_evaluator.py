@@ -1,0 +1,192 @@
+"""The evaluator runs the seed programs as a FANUC control would: thread-math.md's numbers."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import pytest
+
+from fanuc_macro.analysis import analyse
+from fanuc_macro.evaluator import Facts, Unknown, evaluate
+from fanuc_macro.evaluator.values import f_fix, f_fup, f_round
+from fanuc_macro.index import build_index
+from fanuc_macro.parser import parse_text
+
+SEEDS = Path(__file__).parent / "fixtures" / "seeds"
+
+
+def run(text: str, uri: str = "t.nc") -> tuple[Facts, object]:
+    doc = parse_text(text, uri)
+    index = build_index(doc)
+    return evaluate([(uri, doc, index)], only_uri=uri), doc
+
+
+def seed(name: str) -> tuple[Facts, str]:
+    path = SEEDS / name
+    facts, _ = run(path.read_text("utf-8"), str(path))
+    return facts, str(path)
+
+
+def written(facts: Facts, uri: str, text: str, needle: str) -> list[float | None]:
+    """Values written by the first assignment line that starts with ``needle``."""
+    lines = text.splitlines()
+    line = next(i for i, t in enumerate(lines) if t.startswith(needle))
+    write = facts.document(uri).writes[line]
+    s = write[1]
+    return [s.first, s.last, s.count]  # type: ignore[list-item]
+
+
+@pytest.mark.parametrize(
+    ("name", "h", "ap_max", "ap_min", "u1", "passes", "g92"),
+    [
+        ("o4009_external_m50x3.nc", 1.907, 0.0921, 0.0202, 1.0361, 88, 186),
+        ("o4010_internal_m50x3.nc", 1.777, 0.0889, 0.0199, 0.9632, 83, 176),
+    ],
+)
+def test_symmetric_module_numbers(name, h, ap_max, ap_min, u1, passes, g92) -> None:
+    facts, uri = seed(name)
+    text = Path(uri).read_text("utf-8")
+    assert round(written(facts, uri, text, "#4=")[0], 3) == h
+    assert round(written(facts, uri, text, "#5=")[0], 4) == ap_max
+    assert round(written(facts, uri, text, "#6=")[0], 4) == ap_min
+    assert round(written(facts, uri, text, "#10=")[0], 4) == u1
+    # "#7=#7+1." runs once per rough pass; the last increment ends the loop.
+    assert written(facts, uri, text, "#7=#7+1.")[2] == passes
+    cuts = [m for m in facts.motions if m.code == "G92"]
+    assert len(cuts) == g92
+    # The modal G92: the block "X[...]" alone repeats the cycle, and is its own record.
+    assert any(set(m.words) == {"X", "F"} for m in cuts)
+
+
+def test_external_final_x_and_trace_words() -> None:
+    facts, _ = seed("o4009_external_m50x3.nc")
+    cuts = [m for m in facts.motions if m.code == "G92"]
+    first = cuts[0]
+    assert first.words["X"] == pytest.approx(49.816, abs=5e-4)
+    assert first.words["W"] == -60.0
+    assert first.words["F"] == 3.0
+    assert cuts[-1].words["X"] == pytest.approx(50 - 2 * 1.906804, abs=1e-3)
+
+
+def test_arc_thread_layers_and_m1_bug() -> None:
+    facts, uri = seed("o2_arc_thread_roughing.nc")
+    g32 = [m for m in facts.motions if m.code == "G32"]
+    assert len(g32) == 14  # 7 cuts per layer, two layers (O3 and O4)
+    text = Path(uri).read_text("utf-8")
+    lines = text.splitlines()
+    line10 = next(i for i, t in enumerate(lines) if t.startswith("N16 #10"))
+    assert facts.document(uri).writes[line10][1].first == pytest.approx(45.15, abs=0.01)
+    line11 = next(i for i, t in enumerate(lines) if t.startswith("N17 #11"))
+    assert facts.document(uri).writes[line11][1].first == pytest.approx(7.84, abs=0.01)
+    line12 = next(i for i, t in enumerate(lines) if t.startswith("N18 #12"))
+    assert facts.document(uri).writes[line12][1].first == pytest.approx(13.93, abs=0.01)
+    alphas = facts.document(uri).reads
+    line25 = next(i for i, t in enumerate(lines) if t.startswith("N25 G00"))
+    s = alphas[(line25, 16)]
+    assert s.count == 7
+    assert s.first == pytest.approx(51.24, abs=0.01)
+    # The paper's 134.82 is 37.31 + 7 x 13.93 with its rounded angles; unrounded: 134.846.
+    assert s.last == pytest.approx(134.82, abs=0.03)
+    findings = [f for f in facts.document(uri).findings if f.kind == "address-non-integer"]
+    assert findings and "93.82" in findings[0].message
+
+
+def test_arc_thread_finishing_19_cuts() -> None:
+    facts, _ = seed("o5_arc_thread_finishing.nc")
+    assert sum(1 for m in facts.motions if m.code == "G32") == 19
+
+
+def test_vacancy_rules() -> None:
+    text = (
+        "O1\n#2=#1\n#3=#1*5\n#4=#1+#1\n#5=#0+1\n#6=-#1\nIF[#1EQ#0]THEN#7=1\n"
+        "IF[#1EQ0]THEN#8=1\nM30\n"
+    )
+    facts, _ = run(text)
+    w = facts.document("t.nc").writes
+    assert w[1][1].first is None  # a plain copy keeps vacancy
+    assert w[2][1].first == 0.0
+    assert w[3][1].first == 0.0
+    assert w[4][1].first == 1.0
+    assert w[5][1].first == 0.0
+    assert w[6][1].first == 1.0  # vacant EQ #0
+    assert 7 not in w  # vacant is not 0 for EQ
+
+
+def test_functions_in_degrees_and_rounding() -> None:
+    text = (
+        "O1\n#1=SIN[30]\n#2=ATAN[1]/[1]\n#3=ATAN[-1,-1]\n#4=FIX[-1.2]\n#5=FUP[-1.2]\n"
+        "#6=ROUND[2.5]\n#7=27 MOD 20\n#8=[[48/#7]+[8*4]]/[3+[[4*3]/2]+3]\nM30\n"
+    )
+    facts, _ = run(text)
+    w = {line: s[1].first for line, s in facts.document("t.nc").writes.items()}
+    assert w[1] == pytest.approx(0.5)
+    assert w[2] == pytest.approx(45.0)
+    assert w[3] == pytest.approx(225.0)
+    assert w[4] == -1.0
+    assert w[5] == -2.0
+    assert w[6] == 3.0
+    assert w[7] == 7.0
+    assert w[8] == pytest.approx((48 / 7 + 32) / 12)
+    assert f_round(-2.5) == -3.0 and f_fix(2.9) == 2.0 and f_fup(2.1) == 3.0
+
+
+def test_g65_arguments_spec_i_and_ii() -> None:
+    text = "O1\nG65 P1000 A1.0 B2.0 I-3.0 I4.0 D5.0\nM30\nO1000\n#30=#4\n#31=#7\n#32=#1\nM99\n"
+    facts, _ = run(text)
+    w = {line: s[1].first for line, s in facts.document("t.nc").writes.items()}
+    assert w[4] == -3.0  # #4 from the first I
+    assert w[5] == 5.0  # D overrides the second I (#7)
+    assert w[6] == 1.0
+
+
+def test_m98_repeat_and_shared_locals() -> None:
+    text = "O1\n#1=0\nM98 P0032000\n#2=#1\nM30\nO2000\n#1=#1+1\nM99\n"
+    facts, _ = run(text)
+    w = facts.document("t.nc").writes
+    assert w[3][1].first == 3.0  # O2000 ran three times on the caller's locals
+
+
+def test_m99_p_returns_to_label() -> None:
+    text = "O1\nM98 P2000\n#1=1\nN50 #2=2\nM30\nO2000\nM99 P50\n"
+    facts, _ = run(text)
+    w = facts.document("t.nc").writes
+    assert 2 not in w and w[3][1].first == 2.0
+
+
+def test_endless_loop_is_stopped_and_named() -> None:
+    text = "O1\n#1=0\nWHILE[#1LT10]DO1\n#2=#2+1\nEND1\nM30\n"
+    result = analyse(text, "loop.nc")
+    d = [x for x in result.diagnostics if x.code == "MB703"]
+    assert d and d[0].line == 2 and "#1 stays 0." in d[0].message
+
+
+def test_unknown_inputs_give_dependencies() -> None:
+    text = "O3331\n#1=1.*#101\n#4=SQRT[#1]\nIF[#4GT1]GOTO10\n#5=1\nN10 M99\n"
+    facts, _ = run(text)
+    w = facts.document("t.nc").writes
+    assert isinstance(w[1][1].first, Unknown)
+    assert w[1][1].first.describe() == "depends on #101"
+    assert isinstance(w[2][1].first, Unknown)
+    assert facts.document("t.nc").jumps[3].undecided == 1
+
+
+def test_math_domain_message_names_values() -> None:
+    text = "O3\n#1=93.82\n#4=10\n#5=125\n#10=ASIN[[[#5-#1]/2]/#4]\nM30\n"
+    result = analyse(text, "asin.nc")
+    d = next(x for x in result.diagnostics if x.code == "MB501")
+    assert "1.559" in d.message and "#5=125." in d.message and "#4=10." in d.message
+
+
+def test_zero_divide_and_runtime_goto() -> None:
+    result = analyse("O1\n#1=0\n#2=5/#1\nM30\n", "z.nc")
+    assert any(d.code == "MB502" for d in result.diagnostics)
+    result = analyse("O1\n#1=7\nGOTO#1\nM30\n", "g.nc")
+    assert any(d.code == "MB704" for d in result.diagnostics)
+
+
+def test_statements_per_second_budget_is_sane() -> None:
+    facts, _ = run("O1\n#1=0\nWHILE[#1LT1000]DO1\n#1=#1+1\nEND1\nM30\n")
+    assert facts.stopped is None
+    assert facts.document("t.nc").writes[3][1].last == 1000.0
+    assert math.isclose(facts.document("t.nc").writes[3][1].count, 1000)

@@ -1,0 +1,319 @@
+"""Rule fixtures, the rule documentation, suppression comments and rule settings.
+
+Each fixture ``tests/fixtures/rules/MBxxx_<name>[_<variant>].nc`` is a small program in which
+every line that must produce a diagnostic carries ``(expect: MBxxx)`` (several codes:
+``(expect: MB101 MB103)``). The codes a fixture is about are the one in its file name and those
+of its expect comments; for those codes, the diagnostics must stand exactly on the expected
+lines, and nowhere else in the file.
+
+The lists of codes are read from ``fanuc_macro.diagnostics.RULES`` when the tests are
+collected, so a rule registered later (the evaluator's MB5xx-MB9xx) is covered as soon as it is
+registered: it needs a section in docs/rules.md and a fixture.
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Iterator
+from functools import cache
+from pathlib import Path
+
+import pytest
+
+import fanuc_macro.analysis  # noqa: F401  (importing it registers every rule)
+from fanuc_macro.analysis import Analysis, analyse
+from fanuc_macro.blocks import decode_bytes
+from fanuc_macro.config import Config
+from fanuc_macro.diagnostics import RULES, Diagnostic, Severity
+from fanuc_macro.parser import parse_bytes
+from fanuc_macro.rules.context import RuleContext
+
+ROOT = Path(__file__).resolve().parents[1]
+FIXTURES = ROOT / "tests" / "fixtures" / "rules"
+DOCS = ROOT / "docs" / "rules.md"
+
+EXPECT = re.compile(r"\(expect:([^)]*)\)")
+CODE = re.compile(r"MB\d{3}")
+HEADING = re.compile(r"^## (MB\d{3}) (\S+)\s*$", re.M)
+FENCE = re.compile(r"^```nc\n(.*?)^```", re.M | re.S)
+
+ALL_CODES = sorted(RULES)
+FIXTURE_FILES = sorted(FIXTURES.glob("MB*.nc"))
+
+
+# ---- helpers ---------------------------------------------------------------------------------
+
+
+def fixture_code(path: Path) -> str:
+    return path.name.split("_")[0]
+
+
+@cache
+def fixture_analysis(path: Path) -> tuple[Analysis, dict[int, set[str]]]:
+    """The analysis of a fixture, read from bytes as the CLI does, and its expect comments."""
+    data = path.read_bytes()
+    text = decode_bytes(data).text
+    doc = parse_bytes(data, str(path))
+    expected: dict[int, set[str]] = {}
+    for block in doc.blocks:
+        for m in EXPECT.finditer(block.text):
+            expected.setdefault(block.line, set()).update(CODE.findall(m.group(1)))
+    return analyse(text, str(path), doc=doc), expected
+
+
+@cache
+def doc_sections() -> dict[str, tuple[str, str]]:
+    """code -> (name in the heading, text of the section up to the next heading)."""
+    text = DOCS.read_text("utf-8")
+    heads = list(HEADING.finditer(text))
+    sections: dict[str, tuple[str, str]] = {}
+    for i, m in enumerate(heads):
+        end = heads[i + 1].start() if i + 1 < len(heads) else len(text)
+        code = m.group(1)
+        assert code not in sections, f"docs/rules.md has two sections for {code}"
+        sections[code] = (m.group(2), text[m.end() : end])
+    return sections
+
+
+def pairs(diags: list[Diagnostic], *codes: str) -> set[tuple[int, str]]:
+    return {(d.line, d.code) for d in diags if d.code in codes}
+
+
+def codes_of(text: str, config: Config | None = None) -> set[str]:
+    return {d.code for d in analyse(text, config=config).diagnostics}
+
+
+# ---- fixtures ----------------------------------------------------------------------------------
+
+
+def test_there_are_fixtures() -> None:
+    assert len(FIXTURE_FILES) >= len([c for c in ALL_CODES if c < "MB500"])
+
+
+@pytest.mark.parametrize("path", FIXTURE_FILES, ids=lambda p: p.name)
+def test_fixture_name(path: Path) -> None:
+    code, name, *_variant = path.stem.split("_")
+    assert code in RULES, f"{path.name}: {code} is not a registered rule"
+    assert name == RULES[code].name, f"{path.name}: the rule {code} is named {RULES[code].name}"
+
+
+@pytest.mark.parametrize("path", FIXTURE_FILES, ids=lambda p: p.name)
+def test_fixture_diagnostics(path: Path) -> None:
+    analysis, expected = fixture_analysis(path)
+    about = {fixture_code(path)} | {c for codes in expected.values() for c in codes}
+    want = {(line, code) for line, codes in expected.items() for code in codes}
+    got = pairs(analysis.diagnostics, *about)
+    shown = {(line + 1, code) for line, code in got}  # 1-based in the messages, as in editors
+    assert got == want, (
+        f"missing (1-based line, code): {sorted((ln + 1, c) for ln, c in want - got)}; "
+        f"unexpected: {sorted((ln + 1, c) for ln, c in got - want)}; all: {sorted(shown)}"
+    )
+
+
+@pytest.mark.parametrize("path", FIXTURE_FILES, ids=lambda p: p.name)
+def test_fixture_has_a_negative_part(path: Path) -> None:
+    """Blocks without an expect comment: correct code that must not trigger the rule."""
+    analysis, expected = fixture_analysis(path)
+    quiet = [
+        b
+        for b in analysis.doc.blocks
+        if b.parsed.statement is not None and fixture_code(path) not in expected.get(b.line, ())
+    ]
+    assert len(quiet) >= 2
+
+
+@pytest.mark.parametrize("path", FIXTURE_FILES, ids=lambda p: p.name)
+def test_fixture_never_fails_internally(path: Path) -> None:
+    analysis, _ = fixture_analysis(path)
+    assert not [d for d in analysis.diagnostics if d.code == "MB000"]
+
+
+# ---- every registered rule: documented, with a fixture ---------------------------------------
+
+
+@pytest.mark.parametrize("code", ALL_CODES)
+def test_rule_has_doc_section_and_fixture(code: str) -> None:
+    info = RULES[code]
+    sections = doc_sections()
+    assert code in sections, f"docs/rules.md has no section '## {code} {info.name}'"
+    name, body = sections[code]
+    assert name == info.name, f"docs/rules.md names {code} '{name}', the rule is '{info.name}'"
+    assert info.severity.value in body, f"the section of {code} does not give its severity"
+    fixtures = [p for p in FIXTURE_FILES if fixture_code(p) == code]
+    assert fixtures, f"no fixture tests/fixtures/rules/{code}_{info.name}.nc"
+
+
+def test_doc_sections_are_registered_rules() -> None:
+    stale = {code for code in doc_sections() if code not in RULES}
+    assert not stale, f"docs/rules.md documents codes that are not registered: {sorted(stale)}"
+
+
+def test_doc_sections_in_code_order() -> None:
+    codes = list(doc_sections())
+    assert codes == sorted(codes)
+
+
+def _example(code: str) -> str:
+    m = FENCE.search(doc_sections()[code][1])
+    assert m is not None, f"the section of {code} has no ```nc example"
+    return m.group(1)
+
+
+@pytest.mark.parametrize("code", [c for c in ALL_CODES if c != "MB000"])
+def test_doc_example_triggers_its_rule(code: str) -> None:
+    """The example of each section produces the diagnostic it illustrates.
+
+    MB000 has none: no correct program makes the analyser fail.
+    """
+    text = _example(code)
+    if code == "MB007":  # the example is a file saved in GB18030
+        data = text.encode("gb18030")
+        analysis = analyse(text, "example.nc", doc=parse_bytes(data, "example.nc"))
+    else:
+        analysis = analyse(text, "example.nc")
+    assert code in {d.code for d in analysis.diagnostics}, text
+
+
+# ---- MB000: a failing rule is reported, the others still run -----------------------------------
+
+
+def test_failing_rule_gives_mb000_and_others_still_report() -> None:
+    def broken(ctx: RuleContext) -> Iterator[Diagnostic]:
+        raise RuntimeError("rule bug")
+        yield  # pragma: no cover
+
+    analysis = analyse("O1000\nGOTO 5\nM30\n", extra_checks=[broken])
+    internal = [d for d in analysis.diagnostics if d.code == "MB000"]
+    assert len(internal) == 1
+    assert internal[0].severity is Severity.ERROR
+    assert "rule bug" in internal[0].message
+    assert "MB101" in {d.code for d in analysis.diagnostics}
+
+
+# ---- suppression comments ----------------------------------------------------------------------
+
+DEEP = "#1=SIN[[[[[[#2]]]]]]"  # six levels: MB301
+
+
+def test_deep_brackets_trigger_without_a_comment() -> None:
+    assert "MB301" in codes_of(f"O1000\n{DEEP}\nM30\n")
+
+
+@pytest.mark.parametrize(
+    "comment",
+    [
+        "(fanuc-macro: ignore MB301)",
+        "(FANUC-MACRO: IGNORE mb301)",
+        "(fanuc-macro:ignore MB301 - checked by hand)",
+        "(fanuc-macro: ignore MB101 MB301)",
+        "(fanuc-macro: ignore MB101, MB301)",
+        "(fanuc-macro: ignore)",
+    ],
+)
+def test_suppression_comment_hides_the_code(comment: str) -> None:
+    assert "MB301" not in codes_of(f"O1000\n{DEEP} {comment}\nM30\n")
+
+
+def test_suppression_names_only_some_codes() -> None:
+    text = "O1000\nG00 X#50 Z#200 (fanuc-macro: ignore MB302)\nM30\n"
+    found = codes_of(text)
+    assert "MB302" not in found
+    assert "MB303" in found
+
+
+def test_suppression_of_several_codes() -> None:
+    text = "O1000\nG00 X#50 Z#200 (fanuc-macro: ignore MB302 MB303)\nM30\n"
+    assert not codes_of(text) & {"MB302", "MB303"}
+
+
+def test_suppression_without_code_hides_everything_on_its_line_only() -> None:
+    text = "O1000\nGOTO 5 (fanuc-macro: ignore)\nGOTO 6\nM30\n"
+    diags = analyse(text).diagnostics
+    assert pairs(diags, "MB101") == {(2, "MB101")}
+    assert not [d for d in diags if d.line == 1]
+
+
+def test_suppression_comment_before_the_code_of_the_line() -> None:
+    text = f"O1000\n(fanuc-macro: ignore MB301) {DEEP}\nM30\n"
+    assert "MB301" not in codes_of(text)
+
+
+def test_other_comment_does_not_suppress() -> None:
+    text = f"O1000\n{DEEP} (IGNORE MB301)\nM30\n"
+    assert "MB301" in codes_of(text)
+
+
+def test_suppression_of_a_file_diagnostic_on_the_first_line() -> None:
+    def mb007(first_comment: str) -> set[str]:
+        text = f"O1000 ({first_comment})\n(中文注释 螺纹)\nM30\n"
+        data = text.encode("gb18030")
+        return {d.code for d in analyse(text, doc=parse_bytes(data)).diagnostics}
+
+    assert "MB007" in mb007("MAIN")
+    assert "MB007" not in mb007("fanuc-macro: ignore MB007")
+
+
+# ---- Config: disabled rules and severities ------------------------------------------------------
+
+ERRORS = "O1000\nGOTO 5\nG00 X#50\nM98 P2000\nM30\n"  # MB101, MB302, MB403
+
+
+def test_default_config_reports_the_errors() -> None:
+    assert {"MB101", "MB302", "MB403"} <= codes_of(ERRORS)
+
+
+def test_config_disabled() -> None:
+    found = codes_of(ERRORS, Config(disabled=frozenset({"MB101", "MB403"})))
+    assert "MB101" not in found
+    assert "MB403" not in found
+    assert "MB302" in found
+
+
+@pytest.mark.parametrize("code", ALL_CODES)
+def test_config_disables_each_rule(code: str) -> None:
+    """A disabled code never appears, whatever the program (here: its fixtures)."""
+    config = Config(disabled=frozenset({code}))
+    for path in FIXTURE_FILES:
+        if fixture_code(path) != code:
+            continue
+        analysis, _ = fixture_analysis(path)
+        if code == "MB007":
+            again = analyse("", str(path), config=config, doc=analysis.doc)
+        else:
+            again = analyse(decode_bytes(path.read_bytes()).text, str(path), config=config)
+        assert code not in {d.code for d in again.diagnostics}
+
+
+def test_config_severities() -> None:
+    default = {d.code: d for d in analyse(ERRORS).diagnostics}
+    config = Config(severities={"MB101": Severity.WARNING, "MB403": Severity.ERROR})
+    changed = {d.code: d for d in analyse(ERRORS, config=config).diagnostics}
+    assert default["MB101"].severity is Severity.ERROR
+    assert changed["MB101"].severity is Severity.WARNING
+    assert default["MB403"].severity is Severity.WARNING
+    assert changed["MB403"].severity is Severity.ERROR
+    assert changed["MB302"].severity is default["MB302"].severity
+    assert changed["MB101"].message == default["MB101"].message
+    assert (changed["MB101"].line, changed["MB101"].column) == (
+        default["MB101"].line,
+        default["MB101"].column,
+    )
+
+
+def test_config_from_editor_settings() -> None:
+    config = Config.from_settings(
+        {"rules": {"disabled": ["mb403"], "severity": {"MB101": "Warning", "MB302": "nonsense"}}}
+    )
+    assert config.disabled == frozenset({"MB403"})
+    assert config.severities == {"MB101": Severity.WARNING}
+    diags = {d.code: d for d in analyse(ERRORS, config=config).diagnostics}
+    assert "MB403" not in diags
+    assert diags["MB101"].severity is Severity.WARNING
+    assert diags["MB302"].severity is Severity.ERROR
+
+
+def test_default_severities_are_the_registered_ones() -> None:
+    for path in FIXTURE_FILES:
+        analysis, _ = fixture_analysis(path)
+        for d in analysis.diagnostics:
+            assert d.severity is RULES[d.code].severity, (path.name, d)
