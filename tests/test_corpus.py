@@ -27,14 +27,15 @@ if not CORPUS.is_dir():
 FILES = sorted(p for p in CORPUS.iterdir() if p.is_file() and p.suffix not in (".md", ".tsv"))
 REJECTION_CODES = ("MB001", "MB002", "MB008")
 
-HAAS_M97 = "Haas M97 P: local subroutine at an N number; FANUC calls no subroutine with M97"
-DECIMAL_VAR = "Haas NGC #30001.116-style variable (number with a decimal part); PS0115 on FANUC"
-UNBRACKETED = "Citizen/Mitsubishi expression after an address without [ ]; FANUC: format error"
-SPINDLE_SELECT = "Citizen/Mitsubishi 'S1=500' spindle selection; '=' after an NC word on FANUC"
-PATH_SELECT = "Citizen/Mitsubishi '$n' path selection; '$' is no FANUC address"
-PATH_WAIT = "Citizen/Mitsubishi '!L1' path wait; '!' is no FANUC address"
-NO_ADDRESS = "a variable where the address letter belongs ('X' missing): FANUC reads an"
-NO_ADDRESS += " assignment without '=' (format error)"
+# Reasons that repeat, named in the entries below:
+#   HAAS_M97: Haas 'M97 P': a local subroutine at an N number; FANUC calls no subroutine with M97.
+#   DECIMAL_VAR: Haas NGC '#30001.116'-style variable (a number with a decimal part): PS0115.
+#   UNBRACKETED: Citizen/Mitsubishi expression after an address without [ ]: format error.
+#   SPINDLE_SELECT: Citizen/Mitsubishi 'S1=500' spindle selection: '=' after an NC word.
+#   PATH_SELECT: Citizen/Mitsubishi '$n' path selection: '$' is no FANUC address.
+#   PATH_WAIT: Citizen/Mitsubishi '!L1' path wait: '!' is no FANUC address.
+#   NO_ADDRESS: a variable where the address letter belongs ('X' missing): FANUC reads an
+#     assignment without '=' (format error).
 
 # file name -> sorted (1-based line, code) of every error-severity MB001/MB002/MB008.
 REJECTED: dict[str, list[tuple[int, str]]] = {

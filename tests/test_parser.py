@@ -43,7 +43,6 @@ SEEDS = ROOT / "tests" / "fixtures" / "seeds"
 CORPUS = ROOT.parent / "shared" / "corpus"
 
 GRAMMAR = BlockParser(use_fast_path=False)  # every line through Lark
-FAST = BlockParser()  # plain NC blocks through fast_parse
 
 
 def line(text: str) -> ParsedLine:
@@ -637,10 +636,7 @@ def test_100000_lines() -> None:
 # ---- bytes and encodings -----------------------------------------------------------------------
 
 CHINESE = (
-    "O4009 (外螺纹 M50X3 主程序)\n"
-    "#1=50. (螺纹公称直径)\n"
-    "G00 X[#1+10.] Z10. (快速定位到起点)\n"
-    "M30\n"
+    "O4009 (外螺纹 M50X3 主程序)\n#1=50. (螺纹公称直径)\nG00 X[#1+10.] Z10. (快速定位到起点)\nM30\n"
 )
 JAPANESE = "O1000 (ねじ切り加工プログラム)\nG00 X100. Z100. (工具を逃がす)\nM30\n"
 
@@ -695,6 +691,18 @@ def test_random_bytes_never_raise() -> None:
         assert len(doc.blocks) == doc.line_count
         for b in doc.blocks:
             assert (b.parsed.problem is None) or (b.parsed.statement is None)
+
+
+@pytest.mark.parametrize(
+    "text",
+    ["N" + "9" * 400, "/" + "9" * 400 + " X1.", "O" + "9" * 400, "G01 X" + "9" * 400],
+    ids=["N", "block-skip", "O", "X"],
+)
+def test_numbers_too_large_for_a_float_never_raise(text: str) -> None:
+    """A corrupt file may hold any digits: the reader reports, it does not crash."""
+    doc = parse_bytes(text.encode("ascii"))
+    assert len(doc.blocks) == 1
+    assert GRAMMAR.parse_line(text).text == text
 
 
 # ---- the fast path gives what the grammar gives -----------------------------------------------

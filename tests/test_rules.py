@@ -310,10 +310,3 @@ def test_config_from_editor_settings() -> None:
     assert "MB403" not in diags
     assert diags["MB101"].severity is Severity.WARNING
     assert diags["MB302"].severity is Severity.ERROR
-
-
-def test_default_severities_are_the_registered_ones() -> None:
-    for path in FIXTURE_FILES:
-        analysis, _ = fixture_analysis(path)
-        for d in analysis.diagnostics:
-            assert d.severity is RULES[d.code].severity, (path.name, d)

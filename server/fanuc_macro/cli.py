@@ -10,6 +10,7 @@ from pathlib import Path
 
 from . import __version__
 from .analysis import analyse
+from .cli_thread import add_thread_command
 from .config import CONTROLLERS, Config
 from .diagnostics import Diagnostic, Severity
 from .evaluator.values import fmt_address
@@ -156,6 +157,8 @@ def build_parser() -> argparse.ArgumentParser:
     tr.add_argument("--controller", choices=CONTROLLERS, default="0i-TF")
     tr.add_argument("--disable", help=argparse.SUPPRESS)
     tr.set_defaults(func=cmd_trace)
+
+    add_thread_command(sub)
     return parser
 
 

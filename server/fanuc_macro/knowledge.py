@@ -336,9 +336,12 @@ _G: list[tuple[str, Meaning | None, Meaning | None]] = [
 ]  # fmt: skip
 
 _M: list[tuple[str, str, str]] = [
-    ("M00", "Program stop",
-     "Stops after the block; cycle start resumes. Stops look-ahead, so macro statements after "
-     "it wait for it."),
+    (
+        "M00",
+        "Program stop",
+        "Stops after the block; cycle start resumes. Stops look-ahead, so macro statements after "
+        "it wait for it.",
+    ),
     ("M01", "Optional stop", "Like M00 when the optional stop switch is on."),
     ("M02", "End of program", "Ends and resets the program (locals become vacant)."),
     ("M03", "Spindle on clockwise (forward)", "Speed from S."),
@@ -349,22 +352,37 @@ _M: list[tuple[str, str, str]] = [
     ("M08", "Coolant on", ""),
     ("M09", "Coolant off", ""),
     ("M19", "Spindle orientation", "Builder-defined."),
-    ("M29", "Rigid tapping", "Before G84: the spindle follows the Z axis (parameter-dependent "
-     "M code)."),
-    ("M30", "End of program and rewind",
-     "Ends, resets and returns to the program head; locals become vacant; parts count #3901 "
-     "goes up."),
+    (
+        "M29",
+        "Rigid tapping",
+        "Before G84: the spindle follows the Z axis (parameter-dependent M code).",
+    ),
+    (
+        "M30",
+        "End of program and rewind",
+        "Ends, resets and returns to the program head; locals become vacant; parts count #3901 "
+        "goes up.",
+    ),
     ("M96", "Interrupt-type macro enable", "Option; parameter-dependent M code."),
-    ("M97", "Interrupt-type macro disable (FANUC) / local subprogram call (Haas)",
-     "On Haas `M97 P<n>` calls the block Nn of the same program; FANUC controls have no such "
-     "call."),
-    ("M98", "Subprogram call",
-     "`M98 P<program> [L<repeat>]`, or on 4-digit controls `M98 P<rrrr><pppp>`: M98 "
-     "P0013331 runs O3331 once, P50010 runs O0010 five times. No arguments and no new local "
-     "level: the subprogram shares the caller's #1-#33."),
-    ("M99", "End of subprogram (return)",
-     "Returns to the block after the call; `M99 P<n>` returns to Nn of the caller instead. In a "
-     "main program M99 restarts it from the head (an endless repetition)."),
+    (
+        "M97",
+        "Interrupt-type macro disable (FANUC) / local subprogram call (Haas)",
+        "On Haas `M97 P<n>` calls the block Nn of the same program; FANUC controls have no such "
+        "call.",
+    ),
+    (
+        "M98",
+        "Subprogram call",
+        "`M98 P<program> [L<repeat>]`, or on 4-digit controls `M98 P<rrrr><pppp>`: M98 "
+        "P0013331 runs O3331 once, P50010 runs O0010 five times. No arguments and no new local "
+        "level: the subprogram shares the caller's #1-#33.",
+    ),
+    (
+        "M99",
+        "End of subprogram (return)",
+        "Returns to the block after the call; `M99 P<n>` returns to Nn of the caller instead. In a "
+        "main program M99 restarts it from the head (an endless repetition).",
+    ),
 ]
 
 G_CODES: dict[str, CodeInfo] = {code: CodeInfo(code, lathe, mill) for code, lathe, mill in _G}
@@ -416,11 +434,15 @@ def code_markdown(letter: str, value: float, lathe: bool) -> str | None:
         if here.text:
             parts.append(here.text)
     else:
-        parts.append(f"**{name}** — no meaning on a {machine} (G code system A)"
-                     if lathe else f"**{name}** — no meaning on a {machine}")
+        parts.append(
+            f"**{name}** — no meaning on a {machine} (G code system A)"
+            if lathe
+            else f"**{name}** — no meaning on a {machine}"
+        )
     if not info.same_on_both and other is not None:
-        parts.append(f"On a {other_name}: {other.title}." + (f" {other.text}" if other.text
-                                                             else ""))
+        parts.append(
+            f"On a {other_name}: {other.title}." + (f" {other.text}" if other.text else "")
+        )
     return "\n\n".join(parts)
 
 
@@ -450,53 +472,119 @@ _DEG = "Angles are in degrees."
 _FUNCTIONS: list[FunctionInfo] = [
     FunctionInfo("SIN", "SIN[a]", "Sine", f"{_DEG} `SIN[30]` = 0.5.", "SIN[$1]"),
     FunctionInfo("COS", "COS[a]", "Cosine", f"{_DEG} `COS[60]` = 0.5.", "COS[$1]"),
-    FunctionInfo("TAN", "TAN[a]", "Tangent",
-                 f"{_DEG} Computed as SIN/COS, so `TAN[90]` stops with alarm PS0112 ZERO "
-                 "DIVIDE.", "TAN[$1]"),
-    FunctionInfo("ASIN", "ASIN[x]", "Arcsine",
-                 "Result in degrees, -90 to 90 (a parameter can give 270 to 90). An argument "
-                 "outside -1..1 stops with alarm PS0119 ARGUMENT VALUE OUT OF RANGE.",
-                 "ASIN[$1]"),
-    FunctionInfo("ACOS", "ACOS[x]", "Arccosine",
-                 "Result in degrees, 0 to 180. An argument outside -1..1 stops with alarm "
-                 "PS0119.", "ACOS[$1]"),
-    FunctionInfo("ATAN", "ATAN[a]/[b]", "Arctangent",
-                 "`ATAN[a]/[b]` is the angle of the point (b, a): the signs choose the "
-                 "quadrant, it is *not* a division. The result is 0 to 360 degrees by default "
-                 "(parameter NAT, 6004#0, gives -180 to 180; unverified). `ATAN[a,b]` and the "
-                 "one-argument `ATAN[x]` exist on 30i-class controls only; 16i has the slash "
-                 "form only. `ATAN[0]/[0]` has no angle.", "ATAN[$1]/[$2]"),
-    FunctionInfo("SQRT", "SQRT[x]", "Square root",
-                 "A negative argument stops with alarm PS0119 ARGUMENT VALUE OUT OF RANGE; a "
-                 "vacant one counts as 0.", "SQRT[$1]"),
+    FunctionInfo(
+        "TAN",
+        "TAN[a]",
+        "Tangent",
+        f"{_DEG} Computed as SIN/COS, so `TAN[90]` stops with alarm PS0112 ZERO DIVIDE.",
+        "TAN[$1]",
+    ),
+    FunctionInfo(
+        "ASIN",
+        "ASIN[x]",
+        "Arcsine",
+        "Result in degrees, -90 to 90 (a parameter can give 270 to 90). An argument "
+        "outside -1..1 stops with alarm PS0119 ARGUMENT VALUE OUT OF RANGE.",
+        "ASIN[$1]",
+    ),
+    FunctionInfo(
+        "ACOS",
+        "ACOS[x]",
+        "Arccosine",
+        "Result in degrees, 0 to 180. An argument outside -1..1 stops with alarm PS0119.",
+        "ACOS[$1]",
+    ),
+    FunctionInfo(
+        "ATAN",
+        "ATAN[a]/[b]",
+        "Arctangent",
+        "`ATAN[a]/[b]` is the angle of the point (b, a): the signs choose the "
+        "quadrant, it is *not* a division. The result is 0 to 360 degrees by default "
+        "(parameter NAT, 6004#0, gives -180 to 180; unverified). `ATAN[a,b]` and the "
+        "one-argument `ATAN[x]` exist on 30i-class controls only; 16i has the slash "
+        "form only. `ATAN[0]/[0]` has no angle.",
+        "ATAN[$1]/[$2]",
+    ),
+    FunctionInfo(
+        "SQRT",
+        "SQRT[x]",
+        "Square root",
+        "A negative argument stops with alarm PS0119 ARGUMENT VALUE OUT OF RANGE; a "
+        "vacant one counts as 0.",
+        "SQRT[$1]",
+    ),
     FunctionInfo("ABS", "ABS[x]", "Absolute value", "", "ABS[$1]"),
-    FunctionInfo("ROUND", "ROUND[x]", "Round",
-                 "In a macro statement: to the nearest integer, halves away from zero "
-                 "(`ROUND[-1.5]` = -2). Inside an NC address (`X[ROUND[#1]]`) it rounds to the "
-                 "address's least input increment instead.", "ROUND[$1]"),
-    FunctionInfo("FIX", "FIX[x]", "Truncate",
-                 "Drops the fraction, towards zero: `FIX[1.7]` = 1, `FIX[-1.2]` = -1. Values "
-                 "computed as 2.9999999 become 2: add a small epsilon when the exact value is "
-                 "an integer.", "FIX[$1]"),
-    FunctionInfo("FUP", "FUP[x]", "Round up",
-                 "Raises any fraction to the next integer away from zero: `FUP[1.2]` = 2, "
-                 "`FUP[-1.2]` = -2; integers stay.", "FUP[$1]"),
-    FunctionInfo("LN", "LN[x]", "Natural logarithm",
-                 "An argument of 0 or less stops with alarm PS0119.", "LN[$1]"),
-    FunctionInfo("EXP", "EXP[x]", "Exponential (e^x)",
-                 "A result too large stops with alarm PS0111 OVERFLOW.", "EXP[$1]"),
-    FunctionInfo("POW", "POW[a,b]", "Power (a^b)",
-                 "30i-B class controls only (unverified for 0i-F). No real result (negative "
-                 "base with a fractional exponent) stops with alarm PS0119.", "POW[$1,$2]"),
-    FunctionInfo("ADP", "ADP[#n]", "Add decimal point",
-                 "Rescales an argument (#1-#33) that was passed without a decimal point, so "
-                 "that `X10` means 10. rather than 10 least increments. Exact behaviour is "
-                 "unverified.", "ADP[$1]"),
-    FunctionInfo("BIN", "BIN[x]", "BCD to binary",
-                 "For PMC signals. A negative argument or a digit above 9 stops with alarm "
-                 "PS0119.", "BIN[$1]"),
-    FunctionInfo("BCD", "BCD[x]", "Binary to BCD",
-                 "For PMC signals. A negative argument stops with alarm PS0119.", "BCD[$1]"),
+    FunctionInfo(
+        "ROUND",
+        "ROUND[x]",
+        "Round",
+        "In a macro statement: to the nearest integer, halves away from zero "
+        "(`ROUND[-1.5]` = -2). Inside an NC address (`X[ROUND[#1]]`) it rounds to the "
+        "address's least input increment instead.",
+        "ROUND[$1]",
+    ),
+    FunctionInfo(
+        "FIX",
+        "FIX[x]",
+        "Truncate",
+        "Drops the fraction, towards zero: `FIX[1.7]` = 1, `FIX[-1.2]` = -1. Values "
+        "computed as 2.9999999 become 2: add a small epsilon when the exact value is "
+        "an integer.",
+        "FIX[$1]",
+    ),
+    FunctionInfo(
+        "FUP",
+        "FUP[x]",
+        "Round up",
+        "Raises any fraction to the next integer away from zero: `FUP[1.2]` = 2, "
+        "`FUP[-1.2]` = -2; integers stay.",
+        "FUP[$1]",
+    ),
+    FunctionInfo(
+        "LN",
+        "LN[x]",
+        "Natural logarithm",
+        "An argument of 0 or less stops with alarm PS0119.",
+        "LN[$1]",
+    ),
+    FunctionInfo(
+        "EXP",
+        "EXP[x]",
+        "Exponential (e^x)",
+        "A result too large stops with alarm PS0111 OVERFLOW.",
+        "EXP[$1]",
+    ),
+    FunctionInfo(
+        "POW",
+        "POW[a,b]",
+        "Power (a^b)",
+        "30i-B class controls only (unverified for 0i-F). No real result (negative "
+        "base with a fractional exponent) stops with alarm PS0119.",
+        "POW[$1,$2]",
+    ),
+    FunctionInfo(
+        "ADP",
+        "ADP[#n]",
+        "Add decimal point",
+        "Rescales an argument (#1-#33) that was passed without a decimal point, so "
+        "that `X10` means 10. rather than 10 least increments. Exact behaviour is "
+        "unverified.",
+        "ADP[$1]",
+    ),
+    FunctionInfo(
+        "BIN",
+        "BIN[x]",
+        "BCD to binary",
+        "For PMC signals. A negative argument or a digit above 9 stops with alarm PS0119.",
+        "BIN[$1]",
+    ),
+    FunctionInfo(
+        "BCD",
+        "BCD[x]",
+        "Binary to BCD",
+        "For PMC signals. A negative argument stops with alarm PS0119.",
+        "BCD[$1]",
+    ),
 ]
 FUNCTIONS: dict[str, FunctionInfo] = {f.name: f for f in _FUNCTIONS}
 
@@ -517,39 +605,65 @@ _VACANT_NOTE = (
 )
 
 KEYWORDS: dict[str, tuple[str, str]] = {
-    "IF": ("Conditional", "`IF [cond] GOTO n` jumps when the condition is true; `IF [cond] "
-           "THEN <one macro statement>` runs one assignment. An NC statement after THEN is not "
-           "FANUC (Haas)."),
+    "IF": (
+        "Conditional",
+        "`IF [cond] GOTO n` jumps when the condition is true; `IF [cond] "
+        "THEN <one macro statement>` runs one assignment. An NC statement after THEN is not "
+        "FANUC (Haas).",
+    ),
     "THEN": ("Conditional statement", "`IF [cond] THEN #1=...`: exactly one macro statement."),
-    "GOTO": ("Branch", "`GOTO n` jumps to the block Nn of the same program. The control "
-             "searches forward from here, then from the program head, so backward jumps are "
-             "slower. n may be an expression (`GOTO#10`); a missing or out-of-range n stops "
-             "with alarm PS0128 (ILLEGAL MACRO SEQUENCE NUMBER)."),
-    "WHILE": ("Loop", "`WHILE [cond] DOm` ... `ENDm` repeats the blocks while the condition is "
-              "true; m is 1, 2 or 3, loops nest at most three deep and must not cross. Jumping "
-              "out of a loop is allowed, into one is not."),
+    "GOTO": (
+        "Branch",
+        "`GOTO n` jumps to the block Nn of the same program. The control "
+        "searches forward from here, then from the program head, so backward jumps are "
+        "slower. n may be an expression (`GOTO#10`); a missing or out-of-range n stops "
+        "with alarm PS0128 (ILLEGAL MACRO SEQUENCE NUMBER).",
+    ),
+    "WHILE": (
+        "Loop",
+        "`WHILE [cond] DOm` ... `ENDm` repeats the blocks while the condition is "
+        "true; m is 1, 2 or 3, loops nest at most three deep and must not cross. Jumping "
+        "out of a loop is allowed, into one is not.",
+    ),
     "WH": ("Loop (abbreviation of WHILE)", "Accepted on input by FANUC controls."),
-    "DO": ("Loop start", "`DOm` without WHILE loops forever. m is 1-3 (alarm PS0126 "
-           "otherwise); a DO without its END stops with alarm PS0124."),
-    "END": ("Loop end", "`ENDm` goes back to the WHILE of the same number; the number must "
-            "match the open DO (alarm PS0126)."),
+    "DO": (
+        "Loop start",
+        "`DOm` without WHILE loops forever. m is 1-3 (alarm PS0126 "
+        "otherwise); a DO without its END stops with alarm PS0124.",
+    ),
+    "END": (
+        "Loop end",
+        "`ENDm` goes back to the WHILE of the same number; the number must "
+        "match the open DO (alarm PS0126).",
+    ),
     "EQ": ("Equal", _VACANT_NOTE),
     "NE": ("Not equal", _VACANT_NOTE),
     "GT": ("Greater than", _VACANT_NOTE),
     "GE": ("Greater than or equal", _VACANT_NOTE),
     "LT": ("Less than", _VACANT_NOTE),
     "LE": ("Less than or equal", _VACANT_NOTE),
-    "AND": ("And", "Between conditions in IF/WHILE: logical (`[[c1] AND [c2]]`, compound "
-            "conditions need a recent control). In an expression: bitwise on the integer "
-            "values, with the priority of `*`."),
-    "OR": ("Or", "Logical between conditions; bitwise on integers in an expression, with the "
-           "priority of `+`."),
+    "AND": (
+        "And",
+        "Between conditions in IF/WHILE: logical (`[[c1] AND [c2]]`, compound "
+        "conditions need a recent control). In an expression: bitwise on the integer "
+        "values, with the priority of `*`.",
+    ),
+    "OR": (
+        "Or",
+        "Logical between conditions; bitwise on integers in an expression, with the "
+        "priority of `+`.",
+    ),
     "XOR": ("Exclusive or", "Logical between conditions; bitwise on integers in an expression."),
-    "MOD": ("Remainder", "`a MOD b` on the integer parts (30i / 0i-F; not on 16i). `MOD 0` "
-            "stops with alarm PS0112."),
-    "DPRNT": ("Print data", "`DPRNT[text#100[53]]` sends text and variables (3 integer and 5 "
-              "decimal digits here) to the output device; `*` prints a space. Open the device "
-              "with POPEN first."),
+    "MOD": (
+        "Remainder",
+        "`a MOD b` on the integer parts (30i / 0i-F; not on 16i). `MOD 0` stops with alarm PS0112.",
+    ),
+    "DPRNT": (
+        "Print data",
+        "`DPRNT[text#100[53]]` sends text and variables (3 integer and 5 "
+        "decimal digits here) to the output device; `*` prints a space. Open the device "
+        "with POPEN first.",
+    ),
     "BPRNT": ("Print binary data", "Like DPRNT with variables in binary."),
     "POPEN": ("Open output device", "Before DPRNT/BPRNT."),
     "PCLOS": ("Close output device", "After DPRNT/BPRNT."),
@@ -573,27 +687,33 @@ _ADDRESSES: dict[str, tuple[str, str]] = {
     "C": ("C axis (spindle as an axis) or chamfer size", "C axis (rotary about Z)"),
     "D": ("Depth in some cycles", "Cutter radius offset number (G41/G42)"),
     "E": ("Thread lead, precise", "Thread lead, precise"),
-    "F": ("Feed (mm/rev in G99, mm/min in G98); the lead in threading",
-          "Feed (mm/min in G94, mm/rev in G95)"),
+    "F": (
+        "Feed (mm/rev in G99, mm/min in G98); the lead in threading",
+        "Feed (mm/min in G94, mm/rev in G95)",
+    ),
     "G": ("Preparatory function", "Preparatory function"),
     "H": ("Incremental C axis (some machines)", "Tool length offset number (G43/G44)"),
-    "I": ("Arc centre X offset (radius) / cycle parameter",
-          "Arc centre X offset / cycle parameter"),
+    "I": (
+        "Arc centre X offset (radius) / cycle parameter",
+        "Arc centre X offset / cycle parameter",
+    ),
     "J": ("Arc centre Y offset", "Arc centre Y offset"),
-    "K": ("Arc centre Z offset / cycle parameter", "Arc centre Z offset / repeat count of "
-          "drilling cycles"),
+    "K": (
+        "Arc centre Z offset / cycle parameter",
+        "Arc centre Z offset / repeat count of drilling cycles",
+    ),
     "L": ("Repeat count (M98, G65)", "Repeat count (M98, G65)"),
     "M": ("Miscellaneous function", "Miscellaneous function"),
     "N": ("Sequence number (GOTO target)", "Sequence number (GOTO target)"),
     "O": ("Program number", "Program number"),
-    "P": ("Program number (M98, G65), dwell in ms (G04), first block of a cycle shape",
-          "Program number (M98, G65), dwell in ms (G04, G82)"),
+    "P": (
+        "Program number (M98, G65), dwell in ms (G04), first block of a cycle shape",
+        "Program number (M98, G65), dwell in ms (G04, G82)",
+    ),
     "Q": ("Last block of a cycle shape / cycle depth", "Peck depth (G73, G83) / shift (G76)"),
     "R": ("Arc radius, taper of a cycle, retract", "Arc radius, R point of a drilling cycle"),
-    "S": ("Spindle speed (rpm in G97, m/min in G96); maximum speed with G50",
-          "Spindle speed"),
-    "T": ("Tool and offset: T0101 = tool 1, offset 1; T0100 cancels the offset",
-          "Tool number"),
+    "S": ("Spindle speed (rpm in G97, m/min in G96); maximum speed with G50", "Spindle speed"),
+    "T": ("Tool and offset: T0101 = tool 1, offset 1; T0100 cancels the offset", "Tool number"),
     "U": ("Incremental X (diameter)", "U axis"),
     "V": ("Incremental Y", "V axis"),
     "W": ("Incremental Z", "W axis"),

@@ -7,9 +7,11 @@ text, so an edit re-parses only the lines it changed.
 
 from __future__ import annotations
 
+import gc
 import re
 import threading
-from collections.abc import Iterable, Sequence
+from collections.abc import Iterable, Iterator, Sequence
+from contextlib import contextmanager
 from importlib import resources
 from typing import Any, cast
 
@@ -19,6 +21,7 @@ from lark.exceptions import UnexpectedCharacters, UnexpectedEOF, UnexpectedInput
 from . import dialects
 from .blocks import LineCode, cut_comments, decode_bytes, split_lines
 from .index import INDEXED_STATEMENTS, mentions_call
+from .lalr_driver import TableParser
 from .syntax import (
     Assign,
     BareCond,
@@ -58,21 +61,24 @@ def grammar_text() -> str:
     return resources.files("fanuc_macro").joinpath("data/macro_b.lark").read_text("utf-8")
 
 
+# Every node's span comes from these: they run a few hundred thousand times on a cold parse.
 def _span(node: Any) -> Span:
-    if isinstance(node, Token):
-        start = node.start_pos or 0
-        end = node.end_pos if node.end_pos is not None else start + len(node)
-        return Span(start, end)
+    if type(node) is Token:
+        return Span(node.start_pos, node.end_pos)  # type: ignore[arg-type]
     span: Span = node.span
     return span
 
 
 def _cover(first: Any, last: Any) -> Span:
-    return Span(_span(first).start, _span(last).end)
+    start = first.start_pos if type(first) is Token else first.span.start
+    end = last.end_pos if type(last) is Token else last.span.end
+    return Span(start, end)
 
 
 def _number(token: Token) -> float:
-    return float(str(token).replace(" ", "").replace("\t", ""))
+    text = str(token)
+    return float(text if " " not in text and "\t" not in text else text.replace(" ", "").replace(
+        "\t", ""))
 
 
 class _ToAst(Transformer[Token, Any]):
@@ -317,12 +323,29 @@ def _line(
     )
 
 
+@contextmanager
+def quiet_gc() -> Iterator[None]:
+    """No cyclic garbage collection while a document is parsed, and none of it rescanned after.
+
+    The AST has no cycles, so reference counting frees it. Left on, the collector rescans the
+    parse cache's growing heap again and again: it took more time than the parse itself.
+    """
+    collecting = gc.isenabled()
+    gc.disable()
+    try:
+        yield
+    finally:
+        if collecting:
+            gc.freeze()  # what exists now is long-lived: keep it out of future collections
+            gc.enable()
+
+
 class BlockParser:
     """Parses lines; thread-safe; caches parsed lines by text (LRU)."""
 
     def __init__(self, cache_size: int = 200_000, use_fast_path: bool = True) -> None:
         self.use_fast_path = use_fast_path
-        self._lark = Lark(
+        lark = Lark(
             grammar_text(),
             parser="lalr",
             lexer="basic",
@@ -330,6 +353,9 @@ class BlockParser:
             keep_all_tokens=True,
             maybe_placeholders=False,
         )
+        # Lark builds the grammar's tables; our driver runs them faster than Lark's loop.
+        self._lark = lark
+        self._table = TableParser(lark)
         # Insertion-ordered dict as a cheap LRU: hits are not refreshed, and when it is full
         # the oldest quarter goes (lines of open documents come back on their next parse).
         self._cache: dict[str, ParsedLine] = {}
@@ -353,14 +379,14 @@ class BlockParser:
         code = cut.code
         if not code.strip():
             return _line(text, cut, None, None, None, None, None, False)
-        has_lower = any(ch.islower() for ch in code)
+        has_lower = code != code.upper()
         if self.use_fast_path:
             fast = fast_parse(code)
             if fast is not None:
                 return _line(text, cut, *fast, None, has_lower)
         try:
             # The transformer's start() makes the result a list, not a tree.
-            items = cast("list[Any]", self._lark.parse(code))
+            items = cast("list[Any]", self._table.parse(code))
         except UnexpectedInput as err:
             return _line(text, cut, None, None, None, None, _describe(code, err), has_lower)
         except (ValueError, OverflowError) as err:  # a number the float type cannot hold
@@ -384,7 +410,8 @@ class BlockParser:
     def parse_lines(self, lines: Iterable[str]) -> list[ParsedLine]:
         get = self._cache.get
         parse = self.parse_line
-        return [get(line) or parse(line) for line in lines]
+        with quiet_gc():
+            return [get(line) or parse(line) for line in lines]
 
 
 _TOKEN_NAMES = {
@@ -500,16 +527,17 @@ def parse_text(
     """Parse a document; with ``previous`` (its last version) unchanged lines keep their blocks."""
     bp = parser or default_parser()
     lines = split_lines(text)
-    parsed = bp.parse_lines(lines)
-    if previous is None:
-        blocks = tuple(map(Block, range(len(lines)), parsed))
-    else:
-        old = previous.blocks
-        n_old = len(old)
-        blocks = tuple(
-            old[i] if i < n_old and old[i].parsed is p else Block(i, p)
-            for i, p in enumerate(parsed)
-        )
+    with quiet_gc():
+        parsed = bp.parse_lines(lines)
+        if previous is None:
+            blocks = tuple(map(Block, range(len(lines)), parsed))
+        else:
+            old = previous.blocks
+            n_old = len(old)
+            blocks = tuple(
+                old[i] if i < n_old and old[i].parsed is p else Block(i, p)
+                for i, p in enumerate(parsed)
+            )
     return Document(uri, blocks, "utf-8", None, len(lines))
 
 

@@ -561,7 +561,6 @@ class Machine:
                 m_codes.append(v)
             if w.address not in values:
                 values[w.address] = v
-        self._check_addresses(act, cl, order)
         modal = self.modal
         call_kind: str | None = None
         for g in g_codes:
@@ -585,6 +584,10 @@ class Machine:
                 modal.feed_per_rev = False
             elif g == 99.0:
                 modal.feed_per_rev = True
+        if call_kind is None:
+            self._check_addresses(act, cl, order)
+        else:  # after G65/G66 the words are arguments (#1-#26): only P names a program
+            self._check_addresses(act, cl, [w for w in order if w[0] == "P"], calls=True)
         if "F" in values and call_kind is None:
             modal.feed = values["F"]
         if "S" in values and call_kind is None:
@@ -660,11 +663,15 @@ class Machine:
         return True
 
     def _check_addresses(
-        self, act: Activation, cl: CompiledLine, order: list[tuple[str, Value, CompiledWord]]
+        self,
+        act: Activation,
+        cl: CompiledLine,
+        order: list[tuple[str, Value, CompiledWord]],
+        calls: bool = False,
     ) -> None:
-        calls = any(
-            a in ("M", "G") and isinstance(v, float) and v in (98.0, 99.0, 65.0, 66.0)
-            for a, v, _ in order
+        # P is a program or sequence number with M98/M99/G65 (a whole number); with G04 a dwell.
+        calls = calls or any(
+            a == "M" and isinstance(v, float) and v in (98.0, 99.0) for a, v, _ in order
         )
         for address, v, w in order:
             if isinstance(v, Unknown) or v is None:

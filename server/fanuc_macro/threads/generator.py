@@ -17,9 +17,11 @@ with them; comments do not change what runs, so the values hold for the final te
 
 from __future__ import annotations
 
+import itertools
 import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
+from typing import Any
 
 from ..analysis import Analysis, analyse
 from ..evaluator import Facts, Motion
@@ -82,6 +84,12 @@ def _mm(value: float) -> str:
     """A measured length for a comment, to the least input increment (0.001 mm)."""
     text = f"{value:.3f}"
     return "0.000" if text == "-0.000" else text
+
+
+def _count(n: int, word: str) -> str:
+    """``1 SPRING PASS``, ``8 SPRING PASSES``."""
+    plural = word + ("ES" if word.endswith("S") else "S")
+    return f"{n} {word if n == 1 else plural}"
 
 
 def _clean_comment(text: str) -> str:
@@ -195,15 +203,15 @@ def _coefficient_text(coefficient: float) -> str:
     """``0.2/3.`` for the paper's molybdenum coefficient, else the number."""
     if not coefficient > 0 or not math.isfinite(coefficient):
         raise ValueError(f"depth coefficient {coefficient!r} must be a positive number")
-    for divisor in (3, 7, 9, 11):
+    for divisor in range(2, 13):
         top = coefficient * divisor
-        # A third of a short decimal (0.2/3) is entered as the paper does, exactly.
+        # A fraction of a short decimal (0.2/3) is entered as the paper does, exactly.
         if abs(coefficient - round(coefficient, 6)) > 1e-12 and abs(top - round(top, 6)) < 1e-12:
             return f"{_num(round(top, 6), 6)}/{divisor}."
     if abs(coefficient - round(coefficient, 8)) > 1e-15:
         raise ValueError(
             f"depth coefficient {coefficient!r} has more than 8 decimals; "
-            "give it as a short decimal or a third of one (0.2/3)"
+            "give it as a short decimal or a fraction of one (0.2/3)"
         )
     return _num(coefficient, 8)
 
@@ -281,14 +289,10 @@ def _render_module(spec: _ModuleSpec, notes: Mapping[str, str]) -> _Lines:
     out.add("#2=2.*#101+#101+FIX[#102/#101]*#101-#102", "RUN-IN DELTA1")
     if internal:
         out.add("#3=#101/[16*SIN[60]]", note("r", "TOOL NOSE RADIUS"), key="r")
-        out.add(
-            "#4=[6./8.]*SIN[60]*#101-#3+#103/2.+#104/4.", note("h", "THREAD HEIGHT"), key="h"
-        )
+        out.add("#4=[6./8.]*SIN[60]*#101-#3+#103/2.+#104/4.", note("h", "THREAD HEIGHT"), key="h")
     else:
         out.add("#3=#101/[8*SIN[60]]", note("r", "TOOL NOSE RADIUS"), key="r")
-        out.add(
-            "#4=[7./8.]*SIN[60]*#101-#3+#103/2.+#104/4.", note("h", "THREAD HEIGHT"), key="h"
-        )
+        out.add("#4=[7./8.]*SIN[60]*#101-#3+#103/2.+#104/4.", note("h", "THREAD HEIGHT"), key="h")
     out.add(f"#5=[{coef}]*SQRT[#4]", note("apmax", "FIRST DEPTH AP MAX"), key="apmax")
     out.add(f"#6=[{coef}]*SQRT[#5]", note("apmin", "MIN DEPTH AND ALLOWANCE AP MIN"), key="apmin")
     out.add("#7=1.", "PASS NUMBER")
@@ -325,9 +329,7 @@ def _render_module(spec: _ModuleSpec, notes: Mapping[str, str]) -> _Lines:
         note("loop", "UNTIL THE TOTAL DEPTH REACHES H-AP MIN"),
         key="loop",
     )
-    out.add(
-        f"G92 X[{ref}{sign}2.*#4{back}2.*#6] {cut}", "STRAIGHT INFEED ROUGH - LEAVE AP MIN"
-    )
+    out.add(f"G92 X[{ref}{sign}2.*#4{back}2.*#6] {cut}", "STRAIGHT INFEED ROUGH - LEAVE AP MIN")
     out.add(f"X[{ref}{sign}2.*#4]", note("finish", "STRAIGHT INFEED FINISH"), key="finish")
     if spec.spring_passes >= 1:
         out.add(f"N20 G92 X[{ref}{sign}2.*#4] {cut}", note("spring", "SPRING PASS"), key="spring")
@@ -384,9 +386,9 @@ def build_module_from_values(
     which = "EI" if internal else "ES"
     if deviation_note is None:
         signed = deviation if internal else -deviation
-        deviation_note = f"{which}={_num(signed)}" + ("" if internal else " AS A MAGNITUDE")
+        deviation_note = f"{which}={signed:g}" + ("" if internal else " AS A MAGNITUDE")
     if tolerance_note is None:
-        tolerance_note = "TD2 PITCH DIAMETER TOLERANCE"
+        tolerance_note = "TD2 TOLERANCE"
     spec = _ModuleSpec(
         diameter=diameter,
         pitch=pitch,
@@ -426,10 +428,10 @@ def build_module_from_values(
         "apmax": f"FIRST DEPTH AP MAX={_mm(first)}",
         "apmin": f"MIN DEPTH AND FINISH ALLOWANCE AP MIN={_mm(smallest)}",
         "u": f"SIDE OFFSET U={_mm(u)} OF THE FIRST PASS",
-        "loop": f"UNTIL THE TOTAL DEPTH REACHES H-AP MIN: {passes} ROUGH PASSES, "
+        "loop": f"UNTIL THE TOTAL DEPTH REACHES H-AP MIN: {_count(passes, 'ROUGH PASS')}, "
         f"{2 * passes} G92 CUTS",
         "finish": f"STRAIGHT INFEED FINISH AT X{_mm(final_x)}",
-        "spring": f"{spring_passes} SPRING PASSES AT X{_mm(final_x)}",
+        "spring": f"{_count(spring_passes, 'SPRING PASS')} AT X{_mm(final_x)}",
         "call": f"CALL O{sub:04d}: {len(g92)} G92 CUTS, FINAL X{_mm(final_x)}",
     }
     if internal:
@@ -438,7 +440,7 @@ def build_module_from_values(
     bases = {
         "if_ge": "AP-N GE AP-MIN",
         "if_lt": "AP-N LT AP-MIN",
-        "loop": f"LOOP CONDITION: {passes} ROUGH PASS{'ES' if passes > 1 else ''},",
+        "loop": f"LOOP CONDITION: {_count(passes, 'ROUGH PASS')},",
     }
     for line, outcome in _constant_conditions(analysis, keyed).items():
         # The paper's statements are kept for every thread; for this one the branch is
@@ -502,9 +504,8 @@ def build_module(
         deviation_note = f"{which} MAGNITUDE {_num(abs(deviation_override))} GIVEN"
         deviation = abs(deviation_override)
     else:
-        signed = _num(deviation)
         position = f"{grade.position}".upper()
-        deviation_note = f"{which}={signed} POSITION {position} ISO 965-1" + (
+        deviation_note = f"{which}={deviation:g} POSITION {position} ISO 965-1" + (
             "" if des.internal else ", AS A MAGNITUDE"
         )
     if td2_override is not None:
@@ -749,6 +750,12 @@ def build_arc_thread(
     }
     if len(numbers) != 3:
         raise ValueError("the main program and the two macros need three different numbers")
+    highest = max([*layers, finishing_diameter, outer_diameter])
+    if not retract_x > highest or not start_x >= retract_x:
+        raise ValueError(
+            f"retract X{retract_x:g} must clear the largest diameter {highest:g} the tool "
+            f"reaches, and the start point X{start_x:g} must not be below it"
+        )
     tangency = tool_radius / (big_r - tool_radius)
     _asin_argument(
         "tangency correction #11",
@@ -857,7 +864,7 @@ def _split_by_calls(motions: Sequence[Motion], calls: int) -> list[list[Motion]]
         elif chunks:
             chunks[-1].append(m)
     if len(chunks) != calls:
-        raise RuntimeError(f"expected {calls} macro calls in the executed motions, found {len(chunks)}")
+        raise RuntimeError(f"expected {calls} macro calls in the motions, found {len(chunks)}")
     return chunks
 
 
@@ -876,7 +883,7 @@ def generate_arc_thread(
     cuts_per_layer: int = 7,
     finishing_diameter: float = 100.0,
     finishing_cuts: int = 19,
-    **options: float | int | None,
+    **options: Any,
 ) -> str:
     """Main program + roughing G65 macro (called once per layer) + finishing G65 macro.
 
@@ -896,7 +903,7 @@ def generate_arc_thread(
         cuts_per_layer,
         finishing_diameter,
         finishing_cuts,
-        **options,  # type: ignore[arg-type]
+        **options,
     ).text
 
 
@@ -922,8 +929,8 @@ class DrumGrooveProgram:
 
 
 def build_drum_groove(
-    points: Sequence[tuple[float, float]] | None = None,
-    pitch: float = 10.0,
+    points: Sequence[tuple[float, float]] | None,
+    pitch: float,
     layers: int = 9,
     radial_step: float = 0.8,
     axial_step: float = 0.5,
@@ -954,12 +961,10 @@ def build_drum_groove(
         raise ValueError(f"clearance {clearance!r} must be positive")
     if not 1 <= spindle_speed <= 99999:
         raise ValueError(f"spindle speed S{spindle_speed} is outside 1-99999")
-    if {_program_number(main_number, "main"), _program_number(macro_number, "macro")} == {
-        main_number
-    } and main_number == macro_number:
+    if _program_number(main_number, "main") == _program_number(macro_number, "macro"):
         raise ValueError(f"the main program and the macro are both O{main_number:04d}")
     sense = math.copysign(1.0, pts[0][1] - pts[1][1])  # +1: cutting toward -Z
-    for i, ((x0, z0), (x1, z1)) in enumerate(zip(pts, pts[1:], strict=False), 1):
+    for i, ((x0, z0), (x1, z1)) in enumerate(itertools.pairwise(pts), 1):
         dz = z0 - z1
         if dz == 0 or math.copysign(1.0, dz) != sense:
             raise ValueError(
@@ -987,10 +992,9 @@ def build_drum_groove(
         out.add("%")
         out.add(f"O{main_number:04d}", "DRUM SPIRAL GROOVE - CHAINED TAPER THREADS")
         last = len(pts)
-        out.add(
-            "",
-            f"PROFILE: X IN #{_X_BASE + 1}-#{_X_BASE + last}, Z IN #{_Z_BASE + 1}-#{_Z_BASE + last}",
-        )
+        xs = f"#{_X_BASE + 1}-#{_X_BASE + last}"
+        zs = f"#{_Z_BASE + 1}-#{_Z_BASE + last}"
+        out.add("", f"PROFILE: X IN {xs}, Z IN {zs}")
         for i, (x, z) in enumerate(pts, 1):
             out.add(f"#{_X_BASE + i}={_num(x)}", f"POINT {i} X")
             out.add(f"#{_Z_BASE + i}={_num(z)}", f"POINT {i} Z")
@@ -1010,7 +1014,7 @@ def build_drum_groove(
                 f"V{_num(retract_x)}",
             ]
         )
-        out.add(call, f"{layers} LAYERS {notes.get('call', '')}", key="call")
+        out.add(call, f"{_count(layers, 'LAYER')} {notes.get('call', '')}", key="call")
         out.add(f"G00 X{_num(retract_x)} Z{_num(start_z)}", "BACK TO THE START POINT")
         out.add("M05", "SPINDLE STOP")
         out.add("M30", "END OF PROGRAM")
@@ -1057,8 +1061,8 @@ def build_drum_groove(
     if passes == 0 or segments % passes:
         raise RuntimeError("executing the drum groove macro gave no whole passes")
     notes = {
-        "call": f"X {cuts_per_layer} CUTS = {passes} PASSES OF {segments // passes} TAPER "
-        f"SEGMENTS, {len(g32)} G32 BLOCKS"
+        "call": f"X {_count(cuts_per_layer, 'CUT')} = {_count(passes, 'PASS')} OF "
+        f"{segments // passes} TAPER SEGMENTS, {len(g32)} G32 BLOCKS"
     }
     return DrumGrooveProgram(
         text=render(notes).text(),
@@ -1069,16 +1073,16 @@ def build_drum_groove(
 
 
 def generate_drum_groove(
-    points: Sequence[tuple[float, float]] | None = None,
-    pitch: float = 10.0,
+    points: Sequence[tuple[float, float]] | None,
+    pitch: float,
     layers: int = 9,
     radial_step: float = 0.8,
     axial_step: float = 0.5,
-    **options: int | float,
+    **options: Any,
 ) -> str:
     """A main program and one G65 macro that cut the drum groove layer by layer.
 
-    ``points`` are (X diameter, Z) of the profile (default: the paper's 12 points); each
+    ``points`` are (X diameter, Z) of the profile (None: the paper's 12 points); each
     pass is a straight G32 run-in to point 1 and a chain of G32 taper threads through the
     rest, at the layer's depth (``radial_step`` per layer, radius).  ``cuts_per_layer``
     cuts per layer step ``axial_step`` along Z (``direction`` -1: right to left, as the
@@ -1090,7 +1094,7 @@ def generate_drum_groove(
         layers,
         radial_step,
         axial_step,
-        **options,  # type: ignore[arg-type]
+        **options,
     ).text
 
 

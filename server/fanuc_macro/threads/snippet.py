@@ -145,8 +145,12 @@ def module_from_document(text: str) -> str | None:
         internal = _side_from_programs(index)
     if internal is None and all(n in values for n in (100, 101, 103, 104)):
         internal = _side_from_tables(values[100], values[101], values[103], values[104])
+    if internal is None and des is not None:
+        # All capitals and no other hint: 6g bolts are common and internal G rare, while
+        # H is the usual nut; read G as external, H as internal.
+        internal = des.pitch_class.position.upper() == "H"
     if internal is None:
-        internal = des.internal if des is not None else False
+        internal = False
     if des is not None and des.internal != internal:
         des = _parse(des.text, internal)
 

@@ -1,0 +1,132 @@
+"""``fanuc-macro thread DESIGNATION --length L``: print the symmetric thread module.
+
+The main program (O4009 shape, O4010 internal) enters D, P, L, es/EI and Td2/TD2 from the
+ISO 965-1 tables; the sub-program (O3331 / O3330) is the seed paper's.  A designation that
+cannot be read or is not in the tables exits 2 with a one-line message.
+"""
+
+from __future__ import annotations
+
+import argparse
+import re
+import sys
+
+from .threads.generator import MATERIAL_COEFFICIENTS, generate_module
+
+__all__ = ["add_thread_command", "cmd_thread"]
+
+EXIT_OK = 0
+EXIT_USAGE = 2
+
+
+def _coefficient(text: str) -> float:
+    """``0.2``, ``0.2/3`` (a fraction as the paper writes it), ``steel`` or ``molybdenum``."""
+    named = MATERIAL_COEFFICIENTS.get(text.strip().lower())
+    if named is not None:
+        return named
+    match = re.fullmatch(r"\s*(\d+(?:\.\d*)?|\.\d+)\s*(?:/\s*(\d+(?:\.\d*)?)\s*)?", text)
+    if match is None:
+        raise argparse.ArgumentTypeError(
+            f"{text!r} is not a coefficient (e.g. 0.2, 0.2/3, steel, molybdenum)"
+        )
+    value = float(match.group(1))
+    if match.group(2) is not None:
+        divisor = float(match.group(2))
+        if divisor == 0:
+            raise argparse.ArgumentTypeError(f"{text!r} divides by zero")
+        value /= divisor
+    if value <= 0:
+        raise argparse.ArgumentTypeError(f"coefficient {text!r} must be positive")
+    return value
+
+
+def _program(text: str) -> int:
+    """``O4009``, ``o4009`` or ``4009``."""
+    match = re.fullmatch(r"\s*[Oo]?(\d{1,4})\s*", text)
+    if match is None or int(match.group(1)) == 0:
+        raise argparse.ArgumentTypeError(f"{text!r} is not a program number O0001-O9999")
+    return int(match.group(1))
+
+
+def _count(text: str) -> int:
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not a whole number") from None
+    if value < 0:
+        raise argparse.ArgumentTypeError(f"{text!r} must not be negative")
+    return value
+
+
+def cmd_thread(args: argparse.Namespace) -> int:
+    try:
+        text = generate_module(
+            args.designation,
+            args.length,
+            args.internal,
+            coefficient=args.coefficient,
+            spring_passes=args.spring_passes,
+            main_number=args.main,
+            sub_number=args.sub,
+            td2_override=args.td2,
+            deviation_override=args.deviation,
+        )
+    except ValueError as err:
+        message = " ".join(str(err).split())
+        sys.stderr.write(f"fanuc-macro thread: {message}\n")
+        return EXIT_USAGE
+    sys.stdout.write(text)
+    return EXIT_OK
+
+
+def add_thread_command(
+    subparsers: argparse._SubParsersAction[argparse.ArgumentParser],
+) -> argparse.ArgumentParser:
+    """Register ``thread`` on the ``fanuc-macro`` sub-command parsers."""
+    thread = subparsers.add_parser(
+        "thread",
+        help="print the symmetric thread module (main + sub-program) for an ISO metric thread",
+        description="Print the symmetric thread module of the seed paper (main program O4009 "
+        "external / O4010 internal, sub-program O3331 / O3330) for an ISO metric thread, "
+        "with es/EI and Td2/TD2 from ISO 965-1 and the computed values in comments.",
+    )
+    thread.add_argument("designation", metavar="DESIGNATION", help="e.g. M50x3-5g6g, M10-6H")
+    thread.add_argument(
+        "--length", type=float, required=True, metavar="L", help="thread length L (mm)"
+    )
+    side = thread.add_mutually_exclusive_group()
+    side.add_argument(
+        "--internal",
+        dest="internal",
+        action="store_const",
+        const=True,
+        default=None,
+        help="internal thread (needed only when the designation is all capitals)",
+    )
+    side.add_argument(
+        "--external", dest="internal", action="store_const", const=False, help="external thread"
+    )
+    thread.add_argument(
+        "--coefficient",
+        type=_coefficient,
+        default=MATERIAL_COEFFICIENTS["molybdenum"],
+        metavar="C",
+        help="depth coefficient: 0.2 (steel) or 0.2/3 (molybdenum, the paper's; default)",
+    )
+    thread.add_argument(
+        "--spring-passes", type=_count, default=8, metavar="N", help="spring passes (default 8)"
+    )
+    thread.add_argument("--main", type=_program, default=None, metavar="O4009")
+    thread.add_argument("--sub", type=_program, default=None, metavar="O3331")
+    thread.add_argument(
+        "--td2", type=float, default=None, metavar="MM", help="Td2/TD2 instead of the table's"
+    )
+    thread.add_argument(
+        "--deviation",
+        type=float,
+        default=None,
+        metavar="MM",
+        help="es/EI magnitude instead of the table's",
+    )
+    thread.set_defaults(func=cmd_thread)
+    return thread

@@ -1,0 +1,571 @@
+"""Scheduling the package's analysis for the language server.
+
+One worker thread owns the package :class:`~fanuc_macro.workspace.Workspace`: every change to it
+and every analysis runs there, one at a time, so the workspace needs no lock and the event loop
+never waits for an analysis. The loop side keeps the open documents' texts and asks the worker
+to make a document fresh; the worker always takes the newest text when it starts, so a request
+for an older version that is still queued analyses the newer one instead, and a result that is
+overtaken by an edit while it runs is not published.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import logging
+import os
+import threading
+import time
+import traceback
+from collections.abc import Callable, Iterable, Sequence
+from concurrent.futures import ThreadPoolExecutor
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, TypeVar
+
+from lsprotocol import types
+from pygls.uris import from_fs_path, to_fs_path
+
+from ..analysis import Analysis
+from ..config import Config
+from ..index import ProgramIndex, build_index
+from ..syntax import Document
+from ..workspace import Workspace, is_program_file
+from .convert import Codec, Lines, lsp_lines, to_lsp_diagnostic
+from .documents import OpenDocument
+
+log = logging.getLogger(__name__)
+
+T = TypeVar("T")
+
+DEFAULT_DEBOUNCE_MS = 250.0
+SCAN_MAX_FILES = 2000
+SCAN_MAX_BYTES = 2 * 1024 * 1024
+SCAN_CHUNK = 25  # files per worker job, so that edits are analysed between chunks
+SKIP_DIRS = frozenset({"node_modules", "__pycache__", "site-packages", "venv", "env"})
+FAULT_ENV = "FANUC_MACRO_LS_FAULT"  # tests: analysing a text that contains it raises
+
+
+def key_of(uri: str) -> str:
+    """The package's name of a document: file URIs in one normal form, so that a URI the client
+    sends and one made from a path found on disk name the same file."""
+    if uri.startswith("file:"):
+        path = to_fs_path(uri)
+        if path:
+            normal = from_fs_path(path)
+            if normal:
+                return str(normal)
+    return uri
+
+
+@dataclass(frozen=True)
+class Result:
+    """One analysis of one version of a document, ready for the protocol."""
+
+    key: str
+    version: int | None
+    generation: int  # of the workspace it was analysed in
+    lines: Lines
+    analysis: Analysis | None
+    diagnostics: list[types.Diagnostic]
+    seconds: float
+    changed_workspace: bool  # this run put a new text of the document into the workspace
+    error: str | None = None
+
+
+@dataclass(frozen=True)
+class _Text:
+    seq: int  # increases with every text the loop side receives
+    version: int | None
+    text: str
+    uri: str
+
+
+@dataclass
+class _Waiter:
+    version: int | None
+    future: asyncio.Future[Result | None] = field(repr=False)
+
+
+class Engine:
+    def __init__(
+        self,
+        publish: Callable[[OpenDocument, Result], None],
+        log_message: Callable[[str, types.MessageType], None],
+        codec: Codec | None = None,
+    ) -> None:
+        self.publish = publish
+        self.log_message = log_message
+        self.codec = codec or Codec()
+        self.config = Config()
+        self.debounce = DEFAULT_DEBOUNCE_MS / 1000.0
+        self.docs: dict[str, OpenDocument] = {}  # by key
+        self.results: dict[str, Result] = {}  # newest analysis of each open document
+        # Read by the loop, replaced (never mutated) by the worker: every workspace document.
+        self.indexes: dict[str, tuple[Document, ProgramIndex]] = {}
+        self.folders: list[Path] = []
+        self.scan_done = asyncio.Event()
+        self.scanned_files = 0
+        self._executor = ThreadPoolExecutor(max_workers=1, thread_name_prefix="fanuc-macro")
+        self._loop: asyncio.AbstractEventLoop | None = None
+        self._lock = threading.Lock()  # guards _texts and _queued, shared with the worker
+        self._texts: dict[str, _Text] = {}
+        self._queued: set[str] = set()
+        self._seq = 0
+        self._timers: dict[str, asyncio.TimerHandle] = {}
+        self._waiters: dict[str, list[_Waiter]] = {}
+        self._closed = False
+        # Worker-only state.
+        self._ws = Workspace(self.config)
+        self._ws_seq: dict[str, int | None] = {}  # which text of each document is in _ws
+        self._analysed: dict[str, tuple[int, int]] = {}  # key -> (text seq, generation)
+        self.generation = 0  # written by the worker only
+        self._fault = os.environ.get(FAULT_ENV) or None
+
+    # ---- helpers ---------------------------------------------------------------------------
+    @property
+    def loop(self) -> asyncio.AbstractEventLoop:
+        if self._loop is None:
+            self._loop = asyncio.get_running_loop()
+        return self._loop
+
+    def bind_loop(self, loop: asyncio.AbstractEventLoop) -> None:
+        self._loop = loop
+
+    @property
+    def bound_loop(self) -> asyncio.AbstractEventLoop | None:
+        """The event loop, once the server runs (any thread may read it)."""
+        return self._loop
+
+    def client_uri(self, key: str) -> str:
+        doc = self.docs.get(key)
+        return doc.uri if doc is not None else key
+
+    def document(self, uri: str) -> OpenDocument | None:
+        return self.docs.get(key_of(uri))
+
+    async def in_worker(self, fn: Callable[[], T]) -> T:
+        """Run ``fn`` in the worker thread, after the work queued before it."""
+        return await self.loop.run_in_executor(self._executor, fn)
+
+    def shutdown(self) -> None:
+        self._closed = True
+        for timer in self._timers.values():
+            timer.cancel()
+        self._timers.clear()
+        self._executor.shutdown(wait=False, cancel_futures=True)
+
+    # ---- settings --------------------------------------------------------------------------
+    def configure(self, settings: dict[str, Any] | None) -> None:
+        config = Config.from_settings(settings)
+        analysis = (settings or {}).get("analysis") or {}
+        debounce = analysis.get("debounceMs") if isinstance(analysis, dict) else None
+        if isinstance(debounce, int | float) and not isinstance(debounce, bool) and debounce >= 0:
+            self.debounce = float(debounce) / 1000.0
+        if config == self.config:
+            return
+        self.config = config
+
+        def apply() -> None:
+            self._ws.config = config
+            self.generation += 1
+
+        self._submit(apply, then=lambda _: self.schedule_all(0.0))
+
+    # ---- documents -------------------------------------------------------------------------
+    def _set_text(self, key: str, doc: OpenDocument) -> None:
+        with self._lock:
+            self._seq += 1
+            self._texts[key] = _Text(self._seq, doc.version, doc.text, doc.uri)
+
+    def open(self, uri: str, text: str, version: int | None, language_id: str = "") -> None:
+        key = key_of(uri)
+        doc = OpenDocument(uri, key, text, version, language_id)
+        self.docs[key] = doc
+        self._set_text(key, doc)
+        self.schedule(key, 0.0)
+
+    def change(
+        self, uri: str, version: int | None, changes: Sequence[types.TextDocumentContentChangeEvent]
+    ) -> None:
+        key = key_of(uri)
+        doc = self.docs.get(key)
+        if doc is None:
+            return
+        for change in changes:
+            doc.apply(change, self.codec)
+        doc.version = version
+        self._set_text(key, doc)
+        self.schedule(key, self.debounce)
+
+    def close(self, uri: str) -> None:
+        key = key_of(uri)
+        self.docs.pop(key, None)
+        self.results.pop(key, None)
+        timer = self._timers.pop(key, None)
+        if timer is not None:
+            timer.cancel()
+        with self._lock:
+            self._texts.pop(key, None)
+        for waiter in self._waiters.pop(key, []):
+            if not waiter.future.done():
+                waiter.future.set_result(None)
+        path = _path_of(key)
+        keep = path is not None and self._in_folders(path)
+
+        def reload() -> None:
+            # A closed file stays in the workspace as it is on disk, for the others' calls.
+            data = _read_program(path) if keep and path is not None else None
+            if data is not None:
+                self._add_file(key, data)
+            else:
+                self._remove(key)
+
+        self._submit(reload, then=lambda _: self.schedule_all(self.debounce))
+
+    # ---- scheduling ------------------------------------------------------------------------
+    def schedule(self, key: str, delay: float) -> None:
+        """Analyse ``key`` after ``delay`` seconds without a newer request (the debounce)."""
+        if self._closed or key not in self.docs:
+            return
+        timer = self._timers.pop(key, None)
+        if timer is not None:
+            timer.cancel()
+        if delay <= 0:
+            self._request(key)
+        else:
+            self._timers[key] = self.loop.call_later(delay, self._request, key)
+
+    def schedule_all(self, delay: float, but: str | None = None) -> None:
+        for key in list(self.docs):
+            if key != but:
+                self.schedule(key, delay)
+
+    def _request(self, key: str) -> None:
+        self._timers.pop(key, None)
+        if self._closed or key not in self.docs:
+            return
+        with self._lock:
+            if key in self._queued:
+                return  # the queued job will read the newest text when it starts
+            self._queued.add(key)
+        self._submit(lambda: self._analyse_job(key), then=lambda r: self._deliver(key, r))
+
+    def _submit(self, fn: Callable[[], T], then: Callable[[T], None] | None = None) -> None:
+        if self._closed:
+            return
+        try:
+            future = self.loop.run_in_executor(self._executor, fn)
+        except RuntimeError:  # executor shut down
+            return
+
+        def done(f: asyncio.Future[T]) -> None:
+            if f.cancelled():
+                return
+            error = f.exception()
+            if error is not None:
+                self._report(f"fanuc-macro: internal error: {error!r}", error)
+                return
+            if then is not None:
+                try:
+                    then(f.result())
+                except Exception as err:  # a bug on the loop side must not stop the server
+                    self._report(f"fanuc-macro: internal error: {err!r}", err)
+
+        future.add_done_callback(done)
+
+    def _report(self, message: str, error: BaseException | None = None) -> None:
+        if error is not None:
+            detail = "".join(traceback.format_exception(error))
+            log.error("%s\n%s", message, detail)
+            message = f"{message}\n{detail}"
+        self.log_message(message, types.MessageType.Error)
+
+    async def fresh(self, uri: str, timeout: float = 60.0) -> Result | None:
+        """The analysis of the document's current version (waits for it, at most ``timeout``);
+        the newest one there is when it does not come in time."""
+        key = key_of(uri)
+        doc = self.docs.get(key)
+        if doc is None:
+            return None
+        current = self.results.get(key)
+        if current is not None and current.version == doc.version:
+            return current
+        waiter = _Waiter(doc.version, self.loop.create_future())
+        self._waiters.setdefault(key, []).append(waiter)
+        self.schedule(key, 0.0)  # someone is waiting: skip the debounce
+        try:
+            return await asyncio.wait_for(asyncio.shield(waiter.future), timeout)
+        except asyncio.TimeoutError:
+            return self.results.get(key)
+        finally:
+            waiters = self._waiters.get(key)
+            if waiters and waiter in waiters:
+                waiters.remove(waiter)
+
+    # ---- the worker side -------------------------------------------------------------------
+    def _analyse_job(self, key: str) -> Result | None:
+        with self._lock:
+            self._queued.discard(key)
+            text = self._texts.get(key)
+        if text is None:
+            return None  # closed meanwhile
+        changed = self._ensure_text(key, text)
+        if self._analysed.get(key) == (text.seq, self.generation):
+            return None  # already fresh: a duplicate request
+        started = time.perf_counter()
+        lines = Lines(lsp_lines(text.text), self.codec)
+        generation = self.generation
+        try:
+            if self._fault is not None and self._fault in text.text:
+                raise RuntimeError("fault injected for testing")
+            analysis = self._ws.analyse(key)
+            self._set_index(key, analysis.doc, analysis.index)
+            diagnostics = [
+                to_lsp_diagnostic(d, key, text.uri, lines, self._resolve)
+                for d in analysis.diagnostics
+            ]
+        except Exception as err:  # logged and shown; the server goes on with other work
+            self._report(f"fanuc-macro: the analysis of {text.uri} failed: {err!r}", err)
+            message = (
+                f"fanuc-macro could not analyse this document ({err!r}); the language "
+                "server's log has the details"
+            )
+            failure = types.Diagnostic(
+                range=lines.range(0, 0, 0, len(lines.text(0))),
+                message=message,
+                severity=types.DiagnosticSeverity.Error,
+                code="MB000",
+                source="fanuc-macro",
+            )
+            self._analysed[key] = (text.seq, generation)
+            return Result(
+                key,
+                text.version,
+                generation,
+                lines,
+                None,
+                [failure],
+                time.perf_counter() - started,
+                changed,
+                repr(err),
+            )
+        self._analysed[key] = (text.seq, generation)
+        return Result(
+            key,
+            text.version,
+            generation,
+            lines,
+            analysis,
+            diagnostics,
+            time.perf_counter() - started,
+            changed,
+        )
+
+    def _ensure_text(self, key: str, text: _Text) -> bool:
+        """Put the newest text of an open document into the workspace; True if it was not."""
+        if self._ws_seq.get(key) == text.seq:
+            return False
+        self._ws.add_text(key, text.text)
+        self._ws_seq[key] = text.seq
+        self.generation += 1
+        doc = self._ws.document(key)
+        if doc is not None:
+            self._set_index(key, doc, build_index(doc))
+        return True
+
+    def _set_index(self, key: str, doc: Document, index: ProgramIndex) -> None:
+        indexes = dict(self.indexes)
+        indexes[key] = (doc, index)
+        self.indexes = indexes
+
+    def _add_file(self, key: str, data: bytes) -> None:
+        doc = self._ws.add_bytes(key, data)
+        self._ws_seq[key] = None
+        self.generation += 1
+        self._set_index(key, doc, build_index(doc))
+
+    def _remove(self, key: str) -> None:
+        self._ws.remove(key)
+        self._ws_seq.pop(key, None)
+        self._analysed.pop(key, None)
+        self.generation += 1
+        indexes = dict(self.indexes)
+        indexes.pop(key, None)
+        self.indexes = indexes
+
+    def _resolve(self, key: str) -> tuple[str, Lines] | None:
+        doc = self._ws.document(key)
+        if doc is None:
+            return None
+        return self.client_uri(key), Lines([b.text for b in doc.blocks], self.codec)
+
+    # ---- back on the loop ------------------------------------------------------------------
+    def _deliver(self, key: str, result: Result | None) -> None:
+        doc = self.docs.get(key)
+        if doc is None:
+            return
+        if result is None:
+            # Nothing was run (a duplicate request): whoever waits gets what there is.
+            current = self.results.get(key)
+            if current is not None:
+                self._wake(key, current)
+            return
+        previous = self.results.get(key)
+        if previous is None or _newer_or_same(result.version, previous.version):
+            self.results[key] = result
+        if result.version == doc.version:
+            self.publish(doc, result)
+        self._wake(key, result)
+        if result.changed_workspace:
+            # Another open document may call a program of this one (or be called by it).
+            self.schedule_all(self.debounce, but=key)
+
+    def _wake(self, key: str, result: Result) -> None:
+        for waiter in list(self._waiters.get(key, [])):
+            if not waiter.future.done() and _newer_or_same(result.version, waiter.version):
+                waiter.future.set_result(result)
+
+    # ---- workspace folders -----------------------------------------------------------------
+    def _in_folders(self, path: Path) -> bool:
+        for folder in self.folders:
+            try:
+                path.relative_to(folder)
+                return True
+            except ValueError:
+                continue
+        return False
+
+    def start_scan(self, folders: Iterable[str]) -> None:
+        """Add the program files of the workspace folders (once, bounded), in chunks."""
+        paths: list[Path] = []
+        for folder in folders:
+            path = _path_of(folder)
+            if path is not None and path.is_dir():
+                paths.append(path)
+        self.folders = paths
+        if not paths:
+            self.scan_done.set()
+            return
+
+        def walk() -> list[Path]:
+            return list(_program_files(paths, SCAN_MAX_FILES))
+
+        self._submit(walk, then=self._scan_chunk)
+
+    def _scan_chunk(self, files: list[Path]) -> None:
+        chunk, rest = files[:SCAN_CHUNK], files[SCAN_CHUNK:]
+
+        def add() -> None:
+            for path in chunk:
+                key = key_of(from_fs_path(str(path)) or path.as_uri())
+                with self._lock:
+                    is_open = key in self._texts
+                if is_open or key in self._ws_seq:
+                    continue
+                data = _read_program(path)
+                if data is None:
+                    continue
+                try:
+                    self._add_file(key, data)
+                    self.scanned_files += 1
+                except Exception as err:  # one unreadable file must not end the scan
+                    self._report(f"fanuc-macro: cannot read {path}: {err!r}", err)
+
+        def next_chunk(_: None) -> None:
+            if rest:
+                self._scan_chunk(rest)
+            else:
+                self.scan_done.set()
+                self.schedule_all(0.0)
+
+        self._submit(add, then=next_chunk)
+
+    def files_changed(self, events: Sequence[types.FileEvent]) -> None:
+        """Files changed on disk (workspace/didChangeWatchedFiles): those not open are reread."""
+        todo: list[tuple[str, Path | None, bool]] = []
+        for event in events:
+            key = key_of(event.uri)
+            if key in self.docs:
+                continue  # the editor's text wins
+            path = _path_of(key)
+            deleted = event.type == types.FileChangeType.Deleted
+            if path is None or (not deleted and not is_program_file(path)):
+                continue
+            todo.append((key, path, deleted))
+        if not todo:
+            return
+
+        def apply() -> None:
+            for key, path, deleted in todo:
+                data = None if deleted or path is None else _read_program(path)
+                if data is None:
+                    self._remove(key)
+                else:
+                    self._add_file(key, data)
+
+        self._submit(apply, then=lambda _: self.schedule_all(self.debounce))
+
+    # ---- for commands ----------------------------------------------------------------------
+    def workspace_documents(self) -> list[tuple[str, Document, ProgramIndex]]:
+        """Every document of the workspace (worker thread: the newest texts included)."""
+        with self._lock:
+            texts = dict(self._texts)
+        for key, text in texts.items():
+            self._ensure_text(key, text)
+        return [(key, doc, index) for key, (doc, index) in self.indexes.items()]
+
+    def load(self, key: str) -> bool:
+        """Worker thread: make sure ``key`` is in the workspace, reading it from disk if need be."""
+        if key in self.indexes:
+            return True
+        path = _path_of(key)
+        data = _read_program(path) if path is not None else None
+        if data is None:
+            return False
+        self._add_file(key, data)
+        return True
+
+
+def _newer_or_same(version: int | None, than: int | None) -> bool:
+    if version is None or than is None:
+        return True
+    return version >= than
+
+
+def _path_of(uri: str) -> Path | None:
+    if not uri.startswith("file:"):
+        return None
+    path = to_fs_path(uri)
+    return Path(path) if path else None
+
+
+def _read_program(path: Path) -> bytes | None:
+    try:
+        if not path.is_file() or path.stat().st_size > SCAN_MAX_BYTES:
+            return None
+        return path.read_bytes()
+    except OSError:
+        return None
+
+
+def _program_files(folders: Sequence[Path], limit: int) -> Iterable[Path]:
+    """Program files under ``folders``, hidden and tool folders skipped, at most ``limit``."""
+    count = 0
+    seen: set[Path] = set()
+    for folder in folders:
+        for root, dirs, files in os.walk(folder):
+            dirs[:] = sorted(d for d in dirs if not d.startswith(".") and d not in SKIP_DIRS)
+            for name in sorted(files):
+                path = Path(root, name)
+                if name.startswith(".") or path in seen:
+                    continue
+                try:
+                    if path.stat().st_size > SCAN_MAX_BYTES or not is_program_file(path):
+                        continue
+                except OSError:
+                    continue
+                seen.add(path)
+                yield path
+                count += 1
+                if count >= limit:
+                    return

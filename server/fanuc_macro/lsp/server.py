@@ -1,0 +1,407 @@
+"""fanuc-macro-ls: the language server. It translates between the protocol and the package.
+
+Run ``fanuc-macro-ls`` (or ``python -m fanuc_macro.lsp.server``); it speaks LSP over stdio.
+"""
+
+from __future__ import annotations
+
+import argparse
+import asyncio
+import contextlib
+import logging
+import sys
+from collections.abc import Callable, Sequence
+from typing import Any, TypeVar
+
+from lsprotocol import types
+from pygls.lsp.server import LanguageServer
+
+from .. import __version__
+from .commands import THREAD_MODULE, TRACE, run_thread_module, run_trace
+from .convert import Codec
+from .documents import OpenDocument
+from .engine import Engine, Result
+from .features import (
+    CompletionSupport,
+    View,
+    code_actions,
+    completion,
+    definition,
+    document_symbols,
+    hover,
+    inlay_hints,
+    references,
+)
+
+log = logging.getLogger(__name__)
+
+NAME = "fanuc-macro-ls"
+SETTINGS_SECTION = "fanuc-macro"
+PROGRAM_GLOB = "**/*.{nc,NC,mac,MAC,tap,TAP,cnc,CNC,eia,EIA}"
+FEATURE_TIMEOUT = 60.0  # seconds a request waits for the analysis of the current version
+
+T = TypeVar("T")
+
+
+class FanucMacroLanguageServer(LanguageServer):
+    def __init__(self) -> None:
+        super().__init__(
+            NAME, __version__, text_document_sync_kind=types.TextDocumentSyncKind.Incremental
+        )
+        self.engine = Engine(self.publish_result, self.log_to_client)
+        self.completion_support = CompletionSupport()
+        self.markdown_hover = True
+        self.inlay_refresh = False
+        self.watch_files = False
+        self.pull_configuration = False
+
+    # ---- to the client ---------------------------------------------------------------------
+    def log_to_client(self, message: str, kind: types.MessageType) -> None:
+        try:
+            self.window_log_message(types.LogMessageParams(type=kind, message=message))
+        except Exception:  # no client yet, or the connection is gone
+            log.debug("cannot send a log message", exc_info=True)
+
+    def publish_result(self, doc: OpenDocument, result: Result) -> None:
+        self.text_document_publish_diagnostics(
+            types.PublishDiagnosticsParams(
+                uri=doc.uri, diagnostics=result.diagnostics, version=doc.version
+            )
+        )
+        if self.inlay_refresh:
+            # The hints show values of this analysis: ask the client to fetch them again.
+            self.workspace_inlay_hint_refresh(None)
+
+    # ---- helpers for the features ----------------------------------------------------------
+    async def view(self, uri: str) -> View | None:
+        result = await self.engine.fresh(uri, FEATURE_TIMEOUT)
+        if result is None or result.analysis is None:
+            return None
+        return self.make_view(result)
+
+    def make_view(self, result: Result) -> View:
+        return View(
+            key=result.key,
+            uri=self.engine.client_uri(result.key),
+            analysis=result.analysis,  # type: ignore[arg-type]
+            lines=result.lines,
+            config=self.engine.config,
+            workspace=self.engine.indexes,
+            client_uri=self.engine.client_uri,
+            markdown=self.markdown_hover,
+        )
+
+    async def compute(self, what: str, fn: Callable[[], T]) -> T | None:
+        """Run a feature off the event loop; a bug in it is logged and answers nothing."""
+        try:
+            return await asyncio.to_thread(fn)
+        except Exception as err:
+            log.exception("%s failed", what)
+            self.log_to_client(f"fanuc-macro: {what} failed: {err!r}", types.MessageType.Error)
+            return None
+
+
+def _settings_of(value: Any) -> dict[str, Any] | None:
+    """The ``fanuc-macro`` settings object, whether sent bare or under its section name."""
+    if not isinstance(value, dict):
+        return None
+    inner = value.get(SETTINGS_SECTION)
+    if isinstance(inner, dict):
+        return inner
+    return value
+
+
+def _capability(root: Any, path: str) -> Any:
+    for name in path.split("."):
+        root = getattr(root, name, None)
+        if root is None:
+            return None
+    return root
+
+
+def create_server() -> FanucMacroLanguageServer:
+    server = FanucMacroLanguageServer()
+    engine = server.engine
+
+    @server.feature(types.INITIALIZE)
+    def initialize(ls: FanucMacroLanguageServer, params: types.InitializeParams) -> None:
+        engine.bind_loop(asyncio.get_running_loop())
+        engine.codec = Codec(str(ls.workspace.position_encoding or "utf-16"))
+        caps = params.capabilities
+        ls.completion_support = CompletionSupport(
+            snippets=bool(
+                _capability(caps, "text_document.completion.completion_item.snippet_support")
+            ),
+            markdown=types.MarkupKind.Markdown
+            in (
+                _capability(caps, "text_document.completion.completion_item.documentation_format")
+                or []
+            ),
+            builtin_snippets="visual studio code"
+            in (params.client_info.name.lower() if params.client_info else ""),
+        )
+        hover_formats = _capability(caps, "text_document.hover.content_format")
+        ls.markdown_hover = hover_formats is None or types.MarkupKind.Markdown in hover_formats
+        ls.inlay_refresh = bool(_capability(caps, "workspace.inlay_hint.refresh_support"))
+        ls.watch_files = bool(
+            _capability(caps, "workspace.did_change_watched_files.dynamic_registration")
+        )
+        settings = _settings_of(params.initialization_options)
+        ls.pull_configuration = settings is None and bool(
+            _capability(caps, "workspace.configuration")
+        )
+        engine.configure(settings)
+
+    @server.feature(types.INITIALIZED)
+    async def initialized(ls: FanucMacroLanguageServer, params: types.InitializedParams) -> None:
+        folders = [f.uri for f in ls.workspace.folders.values()]
+        if not folders and ls.workspace.root_uri:
+            folders = [ls.workspace.root_uri]
+        engine.start_scan(folders)
+        if ls.watch_files:
+            registration = types.Registration(
+                id="fanuc-macro-watch",
+                method=types.WORKSPACE_DID_CHANGE_WATCHED_FILES,
+                register_options=types.DidChangeWatchedFilesRegistrationOptions(
+                    watchers=[types.FileSystemWatcher(glob_pattern=PROGRAM_GLOB)]
+                ),
+            )
+            try:
+                await ls.client_register_capability_async(
+                    types.RegistrationParams(registrations=[registration])
+                )
+            except Exception:
+                log.warning("the client refused the file watcher", exc_info=True)
+        if ls.pull_configuration:
+            await pull_configuration(ls)
+
+    async def pull_configuration(ls: FanucMacroLanguageServer) -> None:
+        try:
+            values = await ls.workspace_configuration_async(
+                types.ConfigurationParams(items=[types.ConfigurationItem(section=SETTINGS_SECTION)])
+            )
+        except Exception:
+            log.warning("workspace/configuration failed", exc_info=True)
+            return
+        if values:
+            engine.configure(_settings_of(values[0]))
+
+    @server.feature(types.SHUTDOWN)
+    def shutdown(ls: FanucMacroLanguageServer, params: None) -> None:
+        engine.shutdown()
+
+    # ---- documents -------------------------------------------------------------------------
+    @server.feature(types.TEXT_DOCUMENT_DID_OPEN)
+    def did_open(ls: FanucMacroLanguageServer, params: types.DidOpenTextDocumentParams) -> None:
+        doc = params.text_document
+        engine.open(doc.uri, doc.text, doc.version, doc.language_id)
+
+    @server.feature(types.TEXT_DOCUMENT_DID_CHANGE)
+    def did_change(ls: FanucMacroLanguageServer, params: types.DidChangeTextDocumentParams) -> None:
+        engine.change(
+            params.text_document.uri, params.text_document.version, params.content_changes
+        )
+
+    @server.feature(types.TEXT_DOCUMENT_DID_CLOSE)
+    def did_close(ls: FanucMacroLanguageServer, params: types.DidCloseTextDocumentParams) -> None:
+        engine.close(params.text_document.uri)
+        ls.text_document_publish_diagnostics(
+            types.PublishDiagnosticsParams(uri=params.text_document.uri, diagnostics=[])
+        )
+
+    @server.feature(types.WORKSPACE_DID_CHANGE_CONFIGURATION)
+    async def did_change_configuration(
+        ls: FanucMacroLanguageServer, params: types.DidChangeConfigurationParams
+    ) -> None:
+        settings = _settings_of(params.settings)
+        if settings is None or not settings:
+            if _capability(ls.client_capabilities, "workspace.configuration"):
+                await pull_configuration(ls)
+            return
+        engine.configure(settings)
+
+    @server.feature(types.WORKSPACE_DID_CHANGE_WATCHED_FILES)
+    def did_change_watched_files(
+        ls: FanucMacroLanguageServer, params: types.DidChangeWatchedFilesParams
+    ) -> None:
+        engine.files_changed(params.changes)
+
+    # ---- features --------------------------------------------------------------------------
+    @server.feature(types.TEXT_DOCUMENT_HOVER)
+    async def on_hover(
+        ls: FanucMacroLanguageServer, params: types.HoverParams
+    ) -> types.Hover | None:
+        view = await ls.view(params.text_document.uri)
+        if view is None:
+            return None
+        return await ls.compute("hover", lambda: hover(view, params.position))
+
+    @server.feature(types.TEXT_DOCUMENT_INLAY_HINT, types.InlayHintOptions(resolve_provider=False))
+    async def on_inlay_hint(
+        ls: FanucMacroLanguageServer, params: types.InlayHintParams
+    ) -> list[types.InlayHint] | None:
+        view = await ls.view(params.text_document.uri)
+        if view is None:
+            return None
+        r = params.range
+        return await ls.compute("inlay hints", lambda: inlay_hints(view, r.start.line, r.end.line))
+
+    @server.feature(types.TEXT_DOCUMENT_DEFINITION)
+    async def on_definition(
+        ls: FanucMacroLanguageServer, params: types.DefinitionParams
+    ) -> list[types.Location] | None:
+        view = await ls.view(params.text_document.uri)
+        if view is None:
+            return None
+        found = await ls.compute("definition", lambda: definition(view, params.position))
+        if found is None and not engine.scan_done.is_set():
+            # A program in a file the workspace scan has not reached yet.
+            try:
+                await asyncio.wait_for(engine.scan_done.wait(), FEATURE_TIMEOUT)
+            except asyncio.TimeoutError:
+                return None
+            later = await ls.view(params.text_document.uri)
+            if later is not None:
+                found = await ls.compute("definition", lambda: definition(later, params.position))
+        return found
+
+    @server.feature(types.TEXT_DOCUMENT_REFERENCES)
+    async def on_references(
+        ls: FanucMacroLanguageServer, params: types.ReferenceParams
+    ) -> list[types.Location] | None:
+        view = await ls.view(params.text_document.uri)
+        if view is None:
+            return None
+        others = [
+            ls.make_view(r)
+            for r in engine.results.values()
+            if r.analysis is not None and r.key != view.key
+        ]
+        include = params.context.include_declaration
+        return await ls.compute(
+            "references", lambda: references(view, params.position, include, others)
+        )
+
+    @server.feature(types.TEXT_DOCUMENT_DOCUMENT_SYMBOL)
+    async def on_document_symbol(
+        ls: FanucMacroLanguageServer, params: types.DocumentSymbolParams
+    ) -> list[types.DocumentSymbol] | None:
+        view = await ls.view(params.text_document.uri)
+        if view is None:
+            return None
+        return await ls.compute("document symbols", lambda: document_symbols(view))
+
+    @server.feature(
+        types.TEXT_DOCUMENT_COMPLETION,
+        types.CompletionOptions(trigger_characters=["#"], resolve_provider=False),
+    )
+    async def on_completion(
+        ls: FanucMacroLanguageServer, params: types.CompletionParams
+    ) -> types.CompletionList | None:
+        doc = engine.document(params.text_document.uri)
+        if doc is None:
+            return None
+        line_text = doc.line(params.position.line)
+        column = engine.codec.from_client(line_text, params.position.character)
+        # Completion must not wait for an analysis: the newest one there is will do.
+        result = engine.results.get(doc.key)
+        view = ls.make_view(result) if result is not None and result.analysis else None
+        support = ls.completion_support
+        config = engine.config
+        return await ls.compute(
+            "completion",
+            lambda: completion(
+                line_text, params.position.line, column, engine.codec, config, support, view
+            ),
+        )
+
+    @server.feature(
+        types.TEXT_DOCUMENT_CODE_ACTION,
+        types.CodeActionOptions(code_action_kinds=[types.CodeActionKind.QuickFix]),
+    )
+    async def on_code_action(
+        ls: FanucMacroLanguageServer, params: types.CodeActionParams
+    ) -> list[types.CodeAction] | None:
+        doc = engine.document(params.text_document.uri)
+        view = await ls.view(params.text_document.uri)
+        if view is None or doc is None:
+            return None
+        eol = "\r\n" if "\r\n" in doc.text[:65536] else "\n"
+        diagnostics = params.context.diagnostics
+        return await ls.compute("code actions", lambda: code_actions(view, diagnostics, eol))
+
+    # ---- commands --------------------------------------------------------------------------
+    @server.command(TRACE)
+    async def trace_command(ls: FanucMacroLanguageServer, *args: Any) -> dict[str, Any]:
+        return await run_trace(engine, args)
+
+    @server.command(THREAD_MODULE)
+    async def thread_module_command(ls: FanucMacroLanguageServer, *args: Any) -> dict[str, Any]:
+        return await run_thread_module(args)
+
+    _forward_package_errors(server)
+    return server
+
+
+class _ClientLogHandler(logging.Handler):
+    """Errors logged by the package (a rule that failed...) go to the client's log too."""
+
+    def __init__(self, server: FanucMacroLanguageServer) -> None:
+        super().__init__(logging.ERROR)
+        self.server = server
+
+    def emit(self, record: logging.LogRecord) -> None:
+        if record.name.startswith("fanuc_macro.lsp"):
+            return  # the server reports its own errors
+        loop = self.server.engine.bound_loop
+        if loop is None or loop.is_closed():
+            return
+        message = f"fanuc-macro: {self.format(record)}"
+        with contextlib.suppress(RuntimeError):  # the loop closed meanwhile
+            loop.call_soon_threadsafe(self.server.log_to_client, message, types.MessageType.Error)
+
+
+def _forward_package_errors(server: FanucMacroLanguageServer) -> None:
+    package = logging.getLogger("fanuc_macro")
+    for handler in list(package.handlers):
+        if isinstance(handler, _ClientLogHandler):
+            package.removeHandler(handler)
+    package.addHandler(_ClientLogHandler(server))
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(
+        prog=NAME, description="Language server for FANUC Custom Macro B programs (LSP, stdio)."
+    )
+    parser.add_argument("--version", action="store_true", help="print the version and exit")
+    parser.add_argument(
+        "--stdio", action="store_true", help="speak LSP on stdin/stdout (the default)"
+    )
+    parser.add_argument("--log-file", help="write the server's log to this file")
+    parser.add_argument(
+        "--log-level", default="WARNING", choices=["DEBUG", "INFO", "WARNING", "ERROR"]
+    )
+    args = parser.parse_args(argv)
+    if args.version:
+        print(f"{NAME} {__version__}")
+        return 0
+    handler: logging.Handler = (
+        logging.FileHandler(args.log_file, encoding="utf-8")
+        if args.log_file
+        else logging.StreamHandler(sys.stderr)
+    )
+    logging.basicConfig(
+        level=args.log_level,
+        handlers=[handler],
+        format="%(asctime)s %(levelname)s %(name)s: %(message)s",
+    )
+    stdin, stdout = sys.stdin.buffer, sys.stdout.buffer
+    sys.stdout = sys.stderr  # a stray print must not corrupt the protocol stream
+    create_server().start_io(stdin, stdout)
+    return 0
+
+
+__all__ = ["FanucMacroLanguageServer", "create_server", "main"]
+
+if __name__ == "__main__":
+    sys.exit(main())

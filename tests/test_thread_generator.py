@@ -1,0 +1,503 @@
+"""Tests for the thread program generators, the module snippet and ``fanuc-macro thread``.
+
+Test vectors: thread-math.md sections 1-3.  Every count here is taken by executing the
+generated text with the evaluator; the formulas of threads.geometry only cross-check.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import os
+import re
+import subprocess
+import sys
+from collections import Counter
+from pathlib import Path
+
+import pytest
+
+from fanuc_macro import cli
+from fanuc_macro.analysis import Analysis, analyse
+from fanuc_macro.cli_thread import add_thread_command
+from fanuc_macro.evaluator import Motion
+from fanuc_macro.threads import parse_designation, plan_from_tolerances, tolerances
+from fanuc_macro.threads.generator import (
+    DRUM_PROFILE,
+    build_arc_thread,
+    build_drum_groove,
+    build_module,
+    generate_arc_thread,
+    generate_drum_groove,
+    generate_module,
+)
+from fanuc_macro.threads.snippet import module_from_document
+
+ROOT = Path(__file__).resolve().parent.parent
+SEEDS = ROOT / "tests" / "fixtures" / "seeds"
+URI = "test:generated.nc"
+
+
+def run(text: str) -> Analysis:
+    analysis = analyse(text, URI)
+    assert analysis.facts is not None
+    assert analysis.facts.stopped is None
+    return analysis
+
+
+def motions(analysis: Analysis, code: str | None = None) -> list[Motion]:
+    assert analysis.facts is not None
+    return [m for m in analysis.facts.motions if code is None or m.code == code]
+
+
+def line_of(text: str, pattern: str) -> int:
+    """0-based line of the first line that starts with ``pattern``."""
+    for number, line in enumerate(text.splitlines()):
+        if line.startswith(pattern):
+            return number
+    raise AssertionError(f"no line starts with {pattern!r}")
+
+
+def assert_clean(text: str) -> None:
+    """What the brief asks of generated text, beyond the checker."""
+    for line in text.splitlines():
+        assert line.isascii(), line
+        code = re.sub(r"\([^()]*\)", "", line)
+        assert "(" not in code and ")" not in code, f"nested or unclosed comment: {line}"
+        assert code == code.upper(), f"lower case outside a comment: {line}"
+        for comment in re.findall(r"\(([^()]*)\)", line):
+            assert comment == comment.upper(), line
+
+
+def assert_no_diagnostics(text: str, tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    diags = run(text).diagnostics
+    assert diags == [], [(d.code, d.line + 1, d.message) for d in diags]
+    path = tmp_path / "generated.nc"
+    path.write_text(text, encoding="utf-8")
+    capsys.readouterr()
+    assert cli.main(["check", str(path)]) == 0
+    assert capsys.readouterr().out == ""
+
+
+# ---------------------------------------------------------------------------------------------
+# Symmetric thread module (thread-math.md section 1)
+# ---------------------------------------------------------------------------------------------
+
+
+def test_m50x3_5g6g_external_module() -> None:
+    module = build_module("M50x3-5g6g", 50)
+    text = module.text
+    assert text == generate_module("M50x3-5g6g", 50)
+    assert module.main_number == 4009 and module.sub_number == 3331
+    # Main program: the ISO values, es as a magnitude, and the call.
+    for line in ("#100=50.", "#101=3.", "#102=50.", "#103=0.048", "#104=0.17", "M98 P0013331"):
+        assert any(row.startswith(line + " ") for row in text.splitlines()), line
+    assert "O4009 (" in text and "O3331 (" in text
+    assert "#5=[0.2/3.]*SQRT[#4]" in text and "#6=[0.2/3.]*SQRT[#5]" in text
+    assert "#12=8. " in text
+    # Comments carry the executed values.
+    for fragment in (
+        "R=0.433",
+        "H=1.907",
+        "AP MAX=0.092",
+        "AP MIN=0.020",
+        "U=1.036 OF THE FIRST PASS",
+        "88 ROUGH PASSES, 176 G92 CUTS",
+        "186 G92 CUTS, FINAL X46.186",
+        "8 SPRING PASSES AT X46.186",
+    ):
+        assert fragment in text, fragment
+    assert module.rough_passes == 88
+    assert module.g92_cuts == 186
+    assert module.height == pytest.approx(1.9068, abs=1e-4)
+    assert module.ap_max == pytest.approx(0.0921, abs=1e-4)
+    assert module.ap_min == pytest.approx(0.0202, abs=1e-4)
+    assert module.first_offset == pytest.approx(1.0361, abs=1e-4)
+    assert module.final_x == pytest.approx(46.186, abs=1e-3)
+    assert_clean(text)
+
+    # Execute the final text again: the numbers in the comments are what it does.
+    analysis = run(text)
+    g92 = motions(analysis, "G92")
+    assert len(g92) == 186
+    assert g92[-1].words["X"] == pytest.approx(46.186, abs=1e-3)
+    facts = analysis.facts
+    assert facts is not None
+    runs = facts.document(URI).runs
+    assert runs[line_of(text, "N10 ")] == 88
+    writes = facts.document(URI).writes
+    assert writes[line_of(text, "#4=")][1].first == pytest.approx(module.height)
+
+
+def test_m50x3_4h5h_internal_module() -> None:
+    module = build_module("M50x3-4H5H", 50)
+    text = module.text
+    assert module.internal
+    assert module.main_number == 4010 and module.sub_number == 3330
+    assert "#103=0. " in text and "#104=0.18 " in text and "M98 P0013330 " in text
+    assert "#11=#100-2.*[5./8.]*SIN[60]*#101" in text
+    assert "H=1.777" in text and "83 ROUGH PASSES" in text and "176 G92 CUTS" in text
+    assert "D1=46.752" in text
+    assert module.rough_passes == 83
+    assert module.g92_cuts == 176
+    assert module.height == pytest.approx(1.7771, abs=1e-4)
+    assert module.ap_max == pytest.approx(0.0889, abs=1e-4)
+    assert module.first_offset == pytest.approx(0.9632, abs=1e-4)
+    assert len(motions(run(text), "G92")) == 176
+    assert_clean(text)
+
+
+def test_m10x1_5_6g_table_values() -> None:
+    text = generate_module("M10x1.5-6g", 20)
+    rows = text.splitlines()
+    assert any(row.startswith("#103=0.032 (ES=-0.032") for row in rows)
+    assert any(row.startswith("#104=0.132 (TD2 GRADE 6") for row in rows)
+    assert "#100=10. " in text and "#101=1.5 " in text
+
+
+@pytest.mark.parametrize(
+    ("designation", "length", "internal", "coefficient"),
+    [
+        ("M50x3-5g6g", 50.0, None, 0.2 / 3),
+        ("M50x3-4H5H", 50.0, None, 0.2 / 3),
+        ("M10x1.5-6g", 20.0, None, 0.2 / 3),
+        ("M10-6H", 15.0, None, 0.2),
+        ("M24x2-6g", 30.0, None, 0.2),
+        ("M64X6-6H", 80.0, True, 0.2 / 3),
+        ("M3x0.5-6g", 8.0, None, 0.2),  # square-root rule never applies: MB701 noted
+        ("M1.2x0.25-6h", 4.0, None, 0.2),  # a single rough pass
+    ],
+)
+def test_module_matches_geometry_and_checks_clean(
+    designation: str,
+    length: float,
+    internal: bool | None,
+    coefficient: float,
+    tmp_path: Path,
+    capsys: pytest.CaptureFixture[str],
+) -> None:
+    module = build_module(designation, length, internal, coefficient=coefficient)
+    des = parse_designation(designation, internal=internal)
+    plan = plan_from_tolerances(tolerances(des), length=length, coefficient=coefficient)
+    assert module.nose_radius == pytest.approx(plan.nose_radius)
+    assert module.height == pytest.approx(plan.height)
+    assert module.ap_max == pytest.approx(plan.ap_max)
+    assert module.ap_min == pytest.approx(plan.ap_min)
+    assert module.first_offset == pytest.approx(plan.passes[0].offset)
+    assert module.rough_passes == plan.rough_pass_count
+    assert module.g92_cuts == plan.g92_cut_count
+    assert_clean(module.text)
+    assert_no_diagnostics(module.text, tmp_path, capsys)
+
+
+def test_constant_branches_are_explained_only_when_needed() -> None:
+    assert "IGNORE" not in generate_module("M50x3-5g6g", 50)
+    steel = generate_module("M3x0.5-6g", 8, coefficient=0.2)
+    assert "#5=[0.2]*SQRT[#4]" in steel
+    marked = [row for row in steel.splitlines() if "IGNORE MB701" in row]
+    assert [row.split(" (")[0] for row in marked] == [
+        "IF[#8GE#6] THEN #9=#5*SQRT[#7]",
+        "IF[#8LT#6] THEN #9=#9+#6",
+    ]
+    assert "ALWAYS FALSE" in marked[0] and "ALWAYS TRUE" in marked[1]
+
+
+@pytest.mark.parametrize("spring", [0, 1, 2, 5])
+def test_spring_passes_option(
+    spring: int, tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    module = build_module("M20x2.5-6g", 30, spring_passes=spring)
+    assert module.g92_cuts == 2 * module.rough_passes + 2 + spring
+    assert len(motions(run(module.text), "G92")) == module.g92_cuts
+    assert (f"#12={spring}." in module.text) == (spring >= 2)
+    assert ("N20 " in module.text) == (spring >= 1)
+    assert_no_diagnostics(module.text, tmp_path, capsys)
+
+
+def test_program_numbers_and_overrides() -> None:
+    module = build_module(
+        "M50X3-5G6G",
+        50,
+        internal=False,
+        main_number=100,
+        sub_number=1234,
+        td2_override=0.2,
+        deviation_override=-0.05,
+    )
+    text = module.text
+    assert text.splitlines()[1].startswith("O0100 (MAIN - EXTERNAL THREAD M50X3-5G6G")
+    assert "M98 P0011234 " in text and "\nO1234 (" in text
+    assert "#103=0.05 (ES MAGNITUDE 0.05 GIVEN)" in text
+    assert "#104=0.2 (TD2 0.2 GIVEN)" in text
+    # Overrides make threads outside the tables possible.
+    odd = build_module("M50x3.7-6g", 40, td2_override=0.2, deviation_override=0.05)
+    assert odd.rough_passes > 0
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "fragment"),
+    [
+        ({"designation": "M50x3-5q", "length": 50}, "'q'"),
+        ({"designation": "Tr20x4-7e", "length": 50}, "trapezoidal"),
+        ({"designation": "M50x3.7-6g", "length": 50}, "3.7"),
+        ({"designation": "M20x1.5LH-6g", "length": 20}, "left-hand"),
+        ({"designation": "M20x1.5-6g", "length": -1}, "length"),
+        ({"designation": "M20x1.5-6g", "length": 20, "main_number": 5, "sub_number": 5}, "O0005"),
+        ({"designation": "M20x1.5-6g", "length": 20, "coefficient": 0.0}, "coefficient"),
+    ],
+)
+def test_module_bad_inputs(kwargs: dict[str, object], fragment: str) -> None:
+    with pytest.raises(ValueError, match=re.escape(fragment)):
+        generate_module(**kwargs)  # type: ignore[arg-type]
+
+
+# ---------------------------------------------------------------------------------------------
+# Arc thread by the fitting method (thread-math.md section 2)
+# ---------------------------------------------------------------------------------------------
+
+
+def test_arc_thread_paper_inputs(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    program = build_arc_thread()
+    text = program.text
+    assert text == generate_arc_thread()
+    analysis = run(text)
+    by_program = Counter(m.program.split()[0] for m in motions(analysis, "G32"))
+    assert by_program == {"O0003": 14, "O0005": 19}
+    assert program.layer_cuts == (7, 7)
+    assert program.finishing_cuts == 19
+    # Layer 1: 51.24 and 134.82 deg in the paper (rounded intermediates); exactly 51.249 and
+    # 134.847 (= 180 - ASIN[0.709]); the angles here come from the executed X/Z words.
+    first, last = program.layer_angles[0]
+    assert first == pytest.approx(51.24, abs=0.02)
+    assert last == pytest.approx(134.82, abs=0.04)
+    assert last == pytest.approx(180 - math.degrees(math.asin(0.709)), abs=0.01)
+    assert program.finishing_angles[0] == pytest.approx(18.0, abs=0.01)
+    assert program.finishing_angles[1] == pytest.approx(162.0, abs=0.01)
+    assert "G65 P0003 A93.82 B113. C25. I10. J108. K50. D7. M3. R1.2 S300. T1. U1." in text
+    assert "G54 S#19 M#13" in text  # not the paper's M#1
+    assert "7 CUTS, ANGLE 51.25 TO 134.85 DEG" in text
+    assert "19 CUTS, ANGLE 18.00 TO 162.00 DEG" in text
+    assert_clean(text)
+    assert_no_diagnostics(text, tmp_path, capsys)
+
+
+def _cut_starts(analysis: Analysis, program: str) -> list[tuple[float, float]]:
+    """(X, Z) where each G32 of ``program`` starts."""
+    starts: list[tuple[float, float]] = []
+    x = z = math.nan
+    for m in motions(analysis):
+        if not m.program.startswith(program):
+            continue
+        if m.code == "G32":
+            starts.append((x, z))
+        x = m.words.get("X", x)
+        z = m.words.get("Z", z)
+    return starts
+
+
+def test_arc_thread_cuts_where_the_papers_programs_cut() -> None:
+    ours = run(generate_arc_thread())
+    paper_rough = run((SEEDS / "o2_arc_thread_roughing.nc").read_text(encoding="utf-8"))
+    paper_finish = run((SEEDS / "o5_arc_thread_finishing.nc").read_text(encoding="utf-8"))
+    rough = _cut_starts(ours, "O0003")
+    expected_rough = _cut_starts(paper_rough, "O0003") + _cut_starts(paper_rough, "O0004")
+    assert len(rough) == len(expected_rough) == 14
+    for got, want in zip(rough, expected_rough, strict=True):
+        assert got == pytest.approx(want, abs=2e-3)
+    finish = _cut_starts(ours, "O0005")
+    expected_finish = _cut_starts(paper_finish, "O0005")
+    assert len(finish) == len(expected_finish) == 19
+    for got, want in zip(finish, expected_finish, strict=True):
+        # The paper starts at 18 deg exactly; ASIN[0.309] is 17.9984 deg.
+        assert got == pytest.approx(want, abs=2e-3)
+    ends = {m.words["Z"] for m in motions(ours, "G32")}
+    assert ends == {-113.0}
+
+
+def test_arc_thread_options() -> None:
+    program = build_arc_thread(layers=[110.0, 106.0, 102.0], cuts_per_layer=5, finishing_cuts=10)
+    assert program.layer_cuts == (5, 5, 5)
+    assert program.finishing_cuts == 10
+    assert len(motions(run(program.text), "G32")) == 25
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "fragments"),
+    [
+        ({"layers": [130.0]}, ["roughing layer 1", "[[130-93.82]/2]/10", "1.809"]),
+        ({"finishing_diameter": 70.0}, ["finishing", "[[70-93.82]/2]/10", "-1.191"]),
+        ({"tool_radius": 10.0}, ["r = 10", "R = 10"]),
+        ({"tool_radius": 12.0, "groove_radius": 10.0}, ["r = 12", "R = 10"]),
+        ({"tool_radius": 6.0}, ["#11", "6/[10-6]", "1.5"]),
+        ({"layers": []}, ["at least one"]),
+        ({"cuts_per_layer": 0}, ["cuts per layer 0"]),
+        ({"retract_x": 105.0}, ["retract X105", "108"]),
+    ],
+)
+def test_arc_thread_bad_inputs(kwargs: dict[str, object], fragments: list[str]) -> None:
+    with pytest.raises(ValueError) as info:
+        generate_arc_thread(**kwargs)  # type: ignore[arg-type]
+    for fragment in fragments:
+        assert fragment in str(info.value)
+
+
+# ---------------------------------------------------------------------------------------------
+# Drum-shaped spiral groove (thread-math.md section 3)
+# ---------------------------------------------------------------------------------------------
+
+
+def _segment_line(text: str) -> int:
+    return line_of(text, "G32 X[#[110+#10]")
+
+
+def test_drum_groove_defaults() -> None:
+    program = build_drum_groove(None, 12.0)
+    text = program.text
+    assert text == generate_drum_groove(None, 12.0)
+    analysis = run(text)
+    g32 = motions(analysis, "G32")
+    segment = _segment_line(text)
+    segments = [m for m in g32 if m.line == segment]
+    assert len(segments) == 9 * 11  # 9 layers x 11 taper segments per pass
+    assert len(g32) == 9 * 12  # plus one straight run-in per pass
+    assert (program.passes, program.segments_per_pass, program.g32_cuts) == (9, 11, 108)
+    # Pass k cuts through points 2..12 at depth k x 0.8 (radius).
+    for k in range(9):
+        chunk = segments[11 * k : 11 * (k + 1)]
+        for m, (x, z) in zip(chunk, DRUM_PROFILE[1:], strict=True):
+            assert m.words["X"] == pytest.approx(x - 2 * 0.8 * (k + 1), abs=1e-3)
+            assert m.words["Z"] == pytest.approx(z, abs=1e-3)
+            assert m.words["F"] == 12.0
+    # The profile is passed in common variables #111-#122 / #131-#142.
+    assert "#111=298.91 " in text and "#142=-160. " in text
+    assert "G65 P0001 A12. B1. C9. D0.8 E-0.5 F12. K10. V330." in text
+    assert "9 PASSES OF 11 TAPER SEGMENTS, 108 G32 BLOCKS" in text
+    assert text.count("WHILE[") == 3
+    assert_clean(text)
+
+
+def test_drum_groove_cuts_per_layer_step_along_z() -> None:
+    program = build_drum_groove(None, 12.0, cuts_per_layer=3, direction=-1)
+    analysis = run(program.text)
+    segment = _segment_line(program.text)
+    segments = [m for m in motions(analysis, "G32") if m.line == segment]
+    assert len(segments) == 9 * 3 * 11
+    # Cut j of a layer is shifted j x 0.5 toward -Z (right to left, as the paper's T1).
+    for j in range(3):
+        first = segments[11 * j]
+        assert first.words["Z"] == pytest.approx(DRUM_PROFILE[1][1] - 0.5 * j, abs=1e-3)
+        assert first.words["X"] == pytest.approx(DRUM_PROFILE[1][0] - 1.6, abs=1e-3)
+
+
+def test_drum_groove_check_is_clean_except_known_evaluator_bug() -> None:
+    diags = run(generate_drum_groove(None, 12.0)).diagnostics
+    others = [d for d in diags if not (d.code == "MB601" and "D gets 0.8" in d.message)]
+    assert others == [], [(d.code, d.line + 1, d.message) for d in others]
+
+
+def test_drum_groove_check_is_clean(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    assert_no_diagnostics(generate_drum_groove(None, 12.0), tmp_path, capsys)
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "fragment"),
+    [
+        ({"points": [(300.0, 10.0), (301.0, 20.0), (302.0, 0.0)]}, "one direction"),
+        ({"points": [(300.0, 10.0), (330.0, 0.0)]}, "steeper than 45 degrees"),
+        ({"points": [(300.0, float(-i)) for i in range(20)]}, "20 profile points"),
+        ({"points": None, "layers": 0}, "layers 0"),
+        ({"points": None, "pitch": 0.0}, "pitch 0.0"),
+        ({"points": None, "radial_step": 200.0}, "deep"),
+    ],
+)
+def test_drum_groove_bad_inputs(kwargs: dict[str, object], fragment: str) -> None:
+    kwargs.setdefault("pitch", 12.0)
+    with pytest.raises(ValueError, match=re.escape(fragment)):
+        generate_drum_groove(**kwargs)  # type: ignore[arg-type]
+
+
+# ---------------------------------------------------------------------------------------------
+# The module as a completion item
+# ---------------------------------------------------------------------------------------------
+
+
+def test_snippet_from_the_papers_main_programs() -> None:
+    external = module_from_document((SEEDS / "o4009_external_m50x3.nc").read_text("utf-8"))
+    assert external is not None
+    assert "O4009 (MAIN - EXTERNAL THREAD M50X3-5G6G" in external
+    assert "186 G92 CUTS" in external and "H=1.907" in external
+    internal = module_from_document((SEEDS / "o4010_internal_m50x3.nc").read_text("utf-8"))
+    assert internal is not None
+    assert "O4010 (MAIN - INTERNAL THREAD M50X3-4H5H" in internal
+    assert "176 G92 CUTS" in internal
+
+
+def test_snippet_from_values_and_from_a_designation() -> None:
+    values = "O0001\n#100=10.\n#101=1.5\n#102=2.*10.\n#103=0.032\n#104=0.132\nM30\n"
+    module = module_from_document(values)
+    assert module is not None
+    assert "#102=20. " in module  # read by executing the document
+    assert "#103=0.032 " in module and "#104=0.132 " in module
+    assert "\nO0001 (MAIN - EXTERNAL THREAD M10X1.5 " in module  # the tables say 6g
+    assert "M98 P0013331 " in module
+    # A designation in a comment fills what the document does not assign.
+    partial = module_from_document("O0001 (M10X1.5-6G)\n#100=10.\n#102=20.\nM30\n")
+    assert partial is not None
+    assert "#101=1.5 " in partial and "#103=0.032 " in partial and "#104=0.132 " in partial
+    nut = module_from_document("O0002 (NUT M10X1.5-6H)\n#102=15.\nM30\n")
+    assert nut is not None and "INTERNAL THREAD M10X1.5-6H" in nut and "#104=0.18 " in nut
+
+
+def test_snippet_none_without_values() -> None:
+    assert module_from_document("O0001\n#1=10.\nM30\n") is None
+    assert module_from_document("O0001\n#100=10.\nM30\n") is None  # no pitch, no length
+    assert module_from_document("O0001 (M10X1.5-6G)\n#100=10.\nM30\n") is None  # no length
+
+
+# ---------------------------------------------------------------------------------------------
+# CLI
+# ---------------------------------------------------------------------------------------------
+
+
+def _harness(argv: list[str]) -> int:
+    parser = argparse.ArgumentParser(prog="fanuc-macro")
+    add_thread_command(parser.add_subparsers(dest="command", required=True))
+    args = parser.parse_args(argv)
+    result: int = args.func(args)
+    return result
+
+
+def test_cli_thread_harness(capsys: pytest.CaptureFixture[str]) -> None:
+    assert _harness(["thread", "M50x3-5g6g", "--length", "50"]) == 0
+    out = capsys.readouterr().out
+    assert out == generate_module("M50x3-5g6g", 50)
+    assert _harness(
+        ["thread", "M50X3-4H5H", "--internal", "--length", "50", "--coefficient", "steel",
+         "--spring-passes", "3", "--main", "O10", "--sub", "20"]
+    ) == 0  # fmt: skip
+    out = capsys.readouterr().out
+    assert "\nO0010 (" in out and "M98 P0010020 " in out and "#5=[0.2]*SQRT[#4]" in out
+    assert "#12=3. " in out
+    assert _harness(["thread", "M50x3-5g6g", "--length", "50", "--coefficient", "0.2/3"]) == 0
+    assert "#5=[0.2/3.]*SQRT[#4]" in capsys.readouterr().out
+
+
+def test_cli_thread_bad_designation(capsys: pytest.CaptureFixture[str]) -> None:
+    assert _harness(["thread", "M50x3-5q", "--length", "50"]) == 2
+    captured = capsys.readouterr()
+    assert captured.out == ""
+    assert captured.err.count("\n") == 1
+    assert captured.err.startswith("fanuc-macro thread: ")
+
+
+def test_cli_thread_subprocess() -> None:
+    env = {**os.environ, "PYTHONPATH": str(ROOT / "server")}
+    command = [sys.executable, "-m", "fanuc_macro.cli", "thread", "M50x3-5g6g", "--length", "50"]
+    done = subprocess.run(command, capture_output=True, text=True, env=env, timeout=60)
+    assert done.returncode == 0, done.stderr
+    assert done.stdout == generate_module("M50x3-5g6g", 50)
+    bad = [sys.executable, "-m", "fanuc_macro.cli", "thread", "M50x3-5q", "--length", "50"]
+    done = subprocess.run(bad, capture_output=True, text=True, env=env, timeout=60)
+    assert done.returncode == 2
+    assert done.stdout == ""
+    assert len(done.stderr.strip().splitlines()) == 1
