@@ -117,6 +117,7 @@ REJECTED: dict[str, list[tuple[int, str]]] = {
         (142, "MB002"),  # 'G0 X#814+.1': UNBRACKETED
         (166, "MB002"),  # '$2': PATH_SELECT
         (175, "MB002"),  # '!L1': PATH_WAIT
+        (180, "MB002"),  # 'M98 H1': Citizen call to a sequence number (FANUC needs P)
         (199, "MB002"),  # '$0': PATH_SELECT (Citizen variable-dump section follows)
         (200, "MB001"),  # 'A': header of the Citizen $0 dump, an address without a value
     ],
@@ -136,6 +137,7 @@ REJECTED: dict[str, list[tuple[int, str]]] = {
         (56, "MB002"),  # 'G0 X#814+.1': UNBRACKETED
         (78, "MB002"),  # '$2': PATH_SELECT
         (87, "MB002"),  # '!L1': PATH_WAIT
+        (92, "MB002"),  # 'M98 H1': Citizen call to a sequence number (FANUC needs P)
         (111, "MB002"),  # '$0': PATH_SELECT (Citizen variable-dump section follows)
         (112, "MB001"),  # 'A': header of the Citizen $0 dump, an address without a value
     ],

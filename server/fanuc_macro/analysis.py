@@ -90,13 +90,23 @@ def analyse(
     if index is None:
         index = build_index(doc)
     facts: Facts | None = None
+    failed: list[Diagnostic] = []
     if run_evaluator:
         try:
             facts = evaluate([(uri, doc, index), *other_documents], config, only_uri=uri)
-        except Exception:  # the structural rules still report
+        except Exception as err:  # the structural rules still report
             log.exception("evaluation of %s failed", uri)
+            failed.append(
+                make(
+                    "MB000",
+                    f"internal error in the evaluator: {err!r}; the evaluator's rules did not run",
+                    0,
+                    0,
+                    0,
+                )
+            )
     ctx = RuleContext(doc, index, config, workspace_programs, facts)
-    found = run_checks(ctx, [*ALL_CHECKS, *extra_checks])
+    found = failed + run_checks(ctx, [*ALL_CHECKS, *extra_checks])
     return Analysis(doc, index, _apply_settings(found, doc, config), facts)
 
 

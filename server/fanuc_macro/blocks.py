@@ -32,6 +32,22 @@ def _halfwidth_kana_count(text: str) -> int:
     return sum(1 for ch in text if "\uff61" <= ch <= "\uff9f")
 
 
+def _rare_hanzi_count(text: str) -> int:
+    """Ideographs outside GB2312, the everyday Chinese set.
+
+    Shift-JIS kanji read as GB18030 land mostly in GBK's extension rows: rare characters that
+    no Chinese comment would be written in.
+    """
+    rare = 0
+    for ch in text:
+        if "\u4e00" <= ch <= "\u9fff":
+            try:
+                ch.encode("gb2312")
+            except UnicodeEncodeError:
+                rare += 1
+    return rare
+
+
 def decode_bytes(data: bytes) -> DecodedText:
     """Decode a program file. UTF-8 first; then GB18030 or Shift-JIS (common in comments).
 
@@ -54,6 +70,7 @@ def decode_bytes(data: bytes) -> DecodedText:
         score = _kana_count(text) * 3 - _halfwidth_kana_count(text) * 5
         if encoding == "gb18030":
             score -= _kana_count(text) * 4  # kana decoded from GB bytes are unlikely
+            score -= _rare_hanzi_count(text) * 2
         candidates.append((score, encoding, text))
     if candidates:
         candidates.sort(key=lambda c: -c[0])

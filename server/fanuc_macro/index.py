@@ -109,9 +109,16 @@ class Program:
     def contains(self, line: int) -> bool:
         return self.first_line <= line < self.end_line
 
-    def label_line(self, seq: int) -> int | None:
+    def label_line(self, seq: int, from_line: int = -1) -> int | None:
+        """The N``seq`` a GOTO at ``from_line`` reaches: the control searches forward from the
+        block after the GOTO, then from the head of the program."""
         lines = self.labels.get(seq)
-        return lines[0] if lines else None
+        if not lines:
+            return None
+        for line in lines:
+            if line > from_line:
+                return line
+        return lines[0]
 
     def enclosing_loops(self, line: int) -> list[Loop]:
         """Loops whose body holds ``line`` (between DO and END, END included), outermost first."""

@@ -75,10 +75,19 @@ def _cover(first: Any, last: Any) -> Span:
     return Span(start, end)
 
 
+MAX_DIGITS = 12  # FANUC takes 8 (0i) to 12 (30i) digits; more is a typo, and would overflow
+
+
 def _number(token: Token) -> float:
-    text = str(token)
-    return float(text if " " not in text and "\t" not in text else text.replace(" ", "").replace(
-        "\t", ""))
+    return _to_float(str(token))
+
+
+def _to_float(text: str) -> float:
+    if " " in text or "\t" in text:
+        text = text.replace(" ", "").replace("\t", "")
+    if sum(ch.isdigit() for ch in text) > MAX_DIGITS:
+        raise ValueError(f"the number {text[:16]}... has more than {MAX_DIGITS} digits")
+    return float(text)
 
 
 class _ToAst(Transformer[Token, Any]):
@@ -251,12 +260,12 @@ def _fast_value(text: str, start: int) -> Expr:
     body = text.lstrip("-+ \t")
     if body.startswith("#"):
         hash_col = start + text.index("#")
-        var = Var(float(body[1:].strip()), None, Span(hash_col, end))
+        var = Var(_to_float(body[1:]), None, Span(hash_col, end))
         if text.startswith("-"):
             return Unary("-", var, Span(start, end))
         return var
     compact = text.replace(" ", "").replace("\t", "")
-    return Num(float(compact), compact, Span(start, end))
+    return Num(_to_float(compact), compact, Span(start, end))
 
 
 def fast_parse(code: str) -> tuple[int | None, int | None, Span | None, NcStatement | None] | None:
@@ -269,11 +278,11 @@ def fast_parse(code: str) -> tuple[int | None, int | None, Span | None, NcStatem
     if m is None:
         return None
     slash, level, n_letter, n_value, words_text = m.group(1, 2, 3, 4, 5)
-    skip = None if slash is None else int(float(level)) if level else 0
+    skip = None if slash is None else int(_to_float(level)) if level else 0
     seq: int | None = None
     seq_span: Span | None = None
     if n_letter is not None:
-        seq = int(float(n_value))
+        seq = int(_to_float(n_value))
         seq_span = Span(m.start(3), m.end(4))
     if not words_text:
         return skip, seq, seq_span, None
@@ -380,17 +389,20 @@ class BlockParser:
         if not code.strip():
             return _line(text, cut, None, None, None, None, None, False)
         has_lower = code != code.upper()
-        if self.use_fast_path:
-            fast = fast_parse(code)
-            if fast is not None:
-                return _line(text, cut, *fast, None, has_lower)
+        try:
+            fast = fast_parse(code) if self.use_fast_path else None
+        except ValueError as err:  # a number too long to be one
+            problem = SyntaxProblem(f"cannot read a number: {err}", Span(0, len(text.rstrip())))
+            return _line(text, cut, None, None, None, None, problem, has_lower)
+        if fast is not None:
+            return _line(text, cut, *fast, None, has_lower)
         try:
             # The transformer's start() makes the result a list, not a tree.
             items = cast("list[Any]", self._table.parse(code))
         except UnexpectedInput as err:
             return _line(text, cut, None, None, None, None, _describe(code, err), has_lower)
-        except (ValueError, OverflowError) as err:  # a number the float type cannot hold
-            problem = SyntaxProblem(f"cannot read a number: {err}", Span(0, len(text)))
+        except (ValueError, OverflowError) as err:  # a number too long to be one
+            problem = SyntaxProblem(f"cannot read a number: {err}", Span(0, len(text.rstrip())))
             return _line(text, cut, None, None, None, None, problem, has_lower)
         skip: int | None = None
         seq: int | None = None

@@ -255,6 +255,7 @@ class Machine:
         self._seen_findings: set[tuple[str, int, int]] = set()
         self.steps = 0
         self._steps = 0
+        self.speculative = False
         self.deadline = 0.0
         self.budget = config.step_budget
 
@@ -268,6 +269,7 @@ class Machine:
     def run(self, entry: ProgramContext, deadline: float) -> str:
         """Run from ``entry``; returns why the run ended."""
         self.store = {}
+        self.speculative = False  # the path went through a condition that was not decided
         self.deadline = deadline
         self.modal = Modal()
         locals_: list[Value] = [None] * 34
@@ -323,8 +325,9 @@ class Machine:
             if steps >= next_check:
                 self.steps = steps
                 next_check = steps + check_every
-                if steps >= budget or time.monotonic() > self.deadline:
-                    self._budget_spent(act)
+                by_time = time.monotonic() > self.deadline
+                if steps >= budget or by_time:
+                    self._budget_spent(act, by_time)
                     self._mark_incomplete(act)
                     raise _Stop("budget")
             facts = ctx.facts
@@ -347,12 +350,21 @@ class Machine:
                     if result is True:
                         jc.taken += 1
                         act.pc = self._goto(act, cl)
-                    else:
-                        if result is False:
-                            jc.not_taken += 1
-                        else:
-                            jc.undecided += 1
+                    elif result is False:
+                        jc.not_taken += 1
                         act.pc = pc + 1
+                    else:
+                        jc.undecided += 1
+                        self.speculative = True
+                        # Unknown: fall through the first time; if the path comes back here,
+                        # it is a loop whose exit is unknown, so take the jump to leave it.
+                        seen = act.undecided_loops
+                        if pc in seen:
+                            seen.discard(pc)
+                            act.pc = self._goto(act, cl)
+                        else:
+                            seen.add(pc)
+                            act.pc = pc + 1
                 elif kind == K_GOTO:
                     act.pc = self._goto(act, cl)
                 elif kind == K_IFTHEN:
@@ -368,6 +380,7 @@ class Machine:
                         jc.not_taken += 1
                     else:
                         jc.undecided += 1
+                        self.speculative = True
                         self._assign(act, cl, facts, unknown=result)
                     act.pc = pc + 1
                 elif kind == K_WHILE:
@@ -468,7 +481,11 @@ class Machine:
         elif n == 0:
             raise MacroAlarm("PS0116", "write-read-only", "#0 is read-only", 0.0)
         else:
-            if n == 3000 and value is not None and not isinstance(value, Unknown):
+            if n == 3000 and self.speculative:
+                # Reached through a condition the analysis could not decide (an argument
+                # check, typically): the control may never come here.
+                pass
+            elif n == 3000 and value is not None and not isinstance(value, Unknown):
                 raise MacroAlarm(
                     "3000",
                     "macro-alarm",
@@ -509,13 +526,7 @@ class Machine:
 
     @staticmethod
     def _label(ctx: ProgramContext, seq: int, from_line: int) -> int | None:
-        lines = ctx.program.labels.get(seq)
-        if not lines:
-            return None
-        for ln in lines:  # the control searches forward first, then from the head
-            if ln > from_line:
-                return ln
-        return lines[0]
+        return ctx.program.label_line(seq, from_line)
 
     def _while(self, act: Activation, cl: CompiledLine, facts: DocumentFacts) -> int:
         pc = cl.line
@@ -883,20 +894,39 @@ class Machine:
         message = f"{alarm.message}{detail} (alarm {alarm.alarm}) in {ctx.name}"
         self._finding(ctx, f"alarm:{alarm.kind}", cl.line, start, end, message)
 
-    def _budget_spent(self, act: Activation) -> None:
+    def _budget_spent(self, act: Activation, by_time: bool) -> None:
         ctx = act.ctx
         facts = ctx.facts
-        loops = ctx.program.enclosing_loops(act.pc)
-        head: int | None = loops[-1].do_line if loops else None
-        if head is None:
-            # A GOTO loop: the backward jump taken most often.
-            best = 0
-            for line, jc in facts.jumps.items():
-                if ctx.program.contains(line) and jc.taken > best:
-                    best = jc.taken
-                    head = line
-        if head is None:
-            head = act.pc
+        program = ctx.program
+        top = max((n for ln, n in facts.runs.items() if program.contains(ln)), default=0)
+        hot = sorted(ln for ln, n in facts.runs.items() if program.contains(ln) and n * 2 >= top)
+        tests = [ln for ln in hot if ctx.lines[ln].kind in (K_IFGOTO, K_WHILE)]
+        loops = program.enclosing_loops(act.pc)
+        head = loops[-1].do_line if loops else tests[0] if tests else act.pc
+        read = {n for ln in tests for n in ctx.lines[ln].reads}
+        written = {ctx.lines[ln].target_number for ln in hot}
+        budget = (
+            f"the time budget ({self.config.time_budget:g} s)"
+            if by_time
+            else f"the step budget ({self.budget} blocks)"
+        )
+        runs = facts.runs.get(head, 0)
+        width = len(ctx.doc.blocks[head].text)
+        if read and all(n >= 100 for n in read) and not read & written:
+            # Nothing in the loop changes what it tests: it waits for the PMC, a FOCAS client
+            # or another path to write a common or system variable.
+            names = ", ".join(f"#{n}" for n in sorted(read))
+            self._finding(
+                ctx,
+                "polling-loop",
+                head,
+                0,
+                width,
+                f"loop waits for {names} to be changed from outside the program (PMC, "
+                f"FOCAS, another path): nothing in it writes {names}; the analysis "
+                f"stopped after {runs} turns ({budget})",
+            )
+            return
         cl = ctx.lines[head]
         still = [n for n in cl.reads if (s := facts.reads.get((head, n))) and s.constant]
         moving = [n for n in cl.reads if n not in still]
@@ -906,19 +936,17 @@ class Machine:
             why = (
                 "the condition stays true although "
                 + ", ".join(f"#{n}" for n in moving)
-                + " change"
+                + (" change")
             )
         else:
             why = "nothing in the condition changes"
-        runs = facts.runs.get(head, 0)
         self._finding(
             ctx,
             "endless-loop",
             head,
             0,
-            len(ctx.doc.blocks[head].text),
-            f"loop never ends: the block ran {runs} times before the analysis budget "
-            f"({self.budget} blocks) ran out; {why}",
+            width,
+            f"loop never ends: the block ran {runs} times before {budget} ran out; {why}",
         )
 
 

@@ -396,7 +396,7 @@ def hover_program(view: View, number: int, line: int | None = None) -> str:
     kind = "subprogram (ends with M99)" if program.returns else "main program"
     parts[-1] += f" · {kind}"
     callers: list[str] = []
-    for c_key, (_, c_index) in {view.key: (view.doc, view.index), **view.workspace}.items():
+    for c_key, (_, c_index) in {**view.workspace, view.key: (view.doc, view.index)}.items():
         for c_program in c_index.programs:
             for call in c_program.calls:
                 if call.program == number and (c_key != view.key or call.line != line):
@@ -444,6 +444,11 @@ def hover_word(view: View, block: Block, hit: Hit) -> str | None:
     if word.address in ("G", "M") and value is not None:
         return knowledge.code_markdown(word.address, value, lathe)
     parts: list[str] = []
+    if call is not None and any(arg is word for arg in call.arguments):
+        target = f"O{call.program:04d}" if call.program is not None else "the macro"
+        number = ARGUMENT_VARIABLES.get(word.address)
+        if number is not None:
+            parts.append(f"{call.kind} argument **{word.address}** → **#{number}** in {target}")
     address = knowledge.address_markdown(word.address, lathe)
     if address is not None:
         parts.append(address)

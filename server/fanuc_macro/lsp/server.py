@@ -39,6 +39,7 @@ NAME = "fanuc-macro-ls"
 SETTINGS_SECTION = "fanuc-macro"
 PROGRAM_GLOB = "**/*.{nc,NC,mac,MAC,tap,TAP,cnc,CNC,eia,EIA}"
 FEATURE_TIMEOUT = 60.0  # seconds a request waits for the analysis of the current version
+SCAN_WAIT = 15.0  # seconds a definition waits for the workspace scan to find its target
 
 T = TypeVar("T")
 
@@ -70,7 +71,8 @@ class FanucMacroLanguageServer(LanguageServer):
         )
         if self.inlay_refresh:
             # The hints show values of this analysis: ask the client to fetch them again.
-            self.workspace_inlay_hint_refresh(None)
+            future = self.workspace_inlay_hint_refresh(None)
+            future.add_done_callback(_ignore_failure)
 
     # ---- helpers for the features ----------------------------------------------------------
     async def view(self, uri: str) -> View | None:
@@ -99,6 +101,12 @@ class FanucMacroLanguageServer(LanguageServer):
             log.exception("%s failed", what)
             self.log_to_client(f"fanuc-macro: {what} failed: {err!r}", types.MessageType.Error)
             return None
+
+
+def _ignore_failure(future: Any) -> None:
+    """A refresh the client did not take is no error of ours."""
+    if not future.cancelled() and future.exception() is not None:
+        log.debug("the client refused a refresh: %s", future.exception())
 
 
 def _settings_of(value: Any) -> dict[str, Any] | None:
@@ -257,7 +265,7 @@ def create_server() -> FanucMacroLanguageServer:
         if found is None and not engine.scan_done.is_set():
             # A program in a file the workspace scan has not reached yet.
             try:
-                await asyncio.wait_for(engine.scan_done.wait(), FEATURE_TIMEOUT)
+                await asyncio.wait_for(engine.scan_done.wait(), SCAN_WAIT)
             except asyncio.TimeoutError:
                 return None
             later = await ls.view(params.text_document.uri)

@@ -51,8 +51,20 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
                 span.end,
             )
         elif isinstance(statement, NcStatement):
+            has_p = statement.find("P") is not None
             for word in statement.words:
-                if word.address == "M" and constant_value(word.value) == 97.0:
+                value = constant_value(word.value)
+                if word.address == "M" and value == 98.0 and statement.find("H") and not has_p:
+                    yield make(
+                        "MB002",
+                        "Mitsubishi/Citizen: M98 H<n> (a call to a sequence "
+                        "number) is not FANUC; FANUC's M98 takes P<program>",
+                        line,
+                        word.span.start,
+                        word.span.end,
+                    )
+                # A bare M97 is an ordinary M code on FANUC; with P it is Haas's local call.
+                if word.address == "M" and value == 97.0 and has_p:
                     yield make(
                         "MB002",
                         "Haas: M97 (local subroutine at an N number) is not FANUC;"

@@ -6,7 +6,8 @@ from __future__ import annotations
 from collections.abc import Iterator
 
 from ..diagnostics import Diagnostic, RuleInfo, Severity, make, register
-from ..syntax import IfGoto, IfThen, While
+from ..index import constant_value
+from ..syntax import Goto, IfGoto, IfThen, While
 from .context import RuleContext
 
 FAMILY = "flow"
@@ -26,6 +27,9 @@ register(
     RuleInfo("MB706", "call-target-unknown", Severity.WARNING,
              "A call whose program number, computed at run time, is not in the workspace.",
              FAMILY),
+    RuleInfo("MB707", "waits-for-outside", Severity.INFORMATION,
+             "A loop that waits for a common or system variable that only something outside "
+             "the program (PMC, FOCAS, another path) changes.", FAMILY),
 )  # fmt: skip
 
 
@@ -35,9 +39,11 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
         return
     for f in ctx.findings("endless-loop"):
         yield make("MB703", f.message, f.line, f.column, f.end_column)
+    for f in ctx.findings("polling-loop"):
+        yield make("MB707", f.message, f.line, f.column, f.end_column)
     for f in ctx.findings("alarm:goto-", "alarm:return-missing"):
         statement = ctx.doc.blocks[f.line].statement
-        constant = isinstance(statement, IfGoto) and _is_constant(statement)
+        constant = isinstance(statement, IfGoto | Goto) and _is_constant(statement)
         if not constant:  # constant targets are MB101's
             yield make("MB704", f.message, f.line, f.column, f.end_column)
     for f in ctx.findings("alarm:nesting"):
@@ -82,10 +88,9 @@ def _effect(statement: IfGoto | IfThen | While, taken: bool) -> str:
     return "the loop body never runs" if not taken else "the loop always repeats"
 
 
-def _is_constant(statement: IfGoto) -> bool:
-    from ..index import constant_value
-
-    return constant_value(statement.goto.target) is not None
+def _is_constant(statement: IfGoto | Goto) -> bool:
+    goto = statement.goto if isinstance(statement, IfGoto) else statement
+    return constant_value(goto.target) is not None
 
 
 def _constant_call(ctx: RuleContext, line: int) -> bool:

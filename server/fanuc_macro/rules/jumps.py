@@ -67,7 +67,8 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
                     ts.end,
                     related=related,
                 )
-            target_line = lines[0]
+            target_line = program.label_line(jump.target, jump.line)
+            assert target_line is not None
             target_loops = program.enclosing_loops(target_line)
             source_loops = program.enclosing_loops(jump.line)
             for loop in target_loops:

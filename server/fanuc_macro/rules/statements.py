@@ -5,7 +5,8 @@ from __future__ import annotations
 from collections.abc import Iterator
 
 from ..diagnostics import Diagnostic, RuleInfo, Severity, make, register
-from ..syntax import Mixed, Num
+from ..parser import statements_of
+from ..syntax import IfNc, Mixed, NcStatement, Num, Word
 from ..variables import FORBIDDEN_ARGUMENTS
 from .context import RuleContext
 
@@ -48,7 +49,10 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
             span = call.span
             if call.kind == "M97":
                 continue  # Haas local subroutine: MB002 says so
+            words = _words(ctx, line)
             if call.program_span is None:
+                if call.kind == "M98" and any(w.address == "H" for w in words):
+                    continue  # Citizen's M98 H<n>: MB002 says so
                 yield make(
                     "MB405",
                     f"{call.kind} without P: no program to call",
@@ -70,12 +74,14 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
                     data={"program": call.program},
                 )
             if call.repeat is not None and not 1 <= call.repeat <= 9999:
+                l_word = next((w for w in words if w.address == "L"), None)
+                where = l_word.span if l_word is not None else span
                 yield make(
                     "MB405",
                     f"{call.kind} repeat count {call.repeat} is outside 1-9999",
                     line,
-                    span.start,
-                    span.end,
+                    where.start,
+                    where.end,
                 )
             for word in call.arguments:
                 if word.address in FORBIDDEN_ARGUMENTS and not (
@@ -89,7 +95,11 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
                         word.span.start,
                         word.span.end,
                     )
-                elif isinstance(word.value, Num) and not word.value.has_decimal_point:
+                elif (
+                    word.address != "G"  # a G code in a G66.1 block, not an argument
+                    and isinstance(word.value, Num)
+                    and not word.value.has_decimal_point
+                ):
                     value = word.value.value
                     yield make(
                         "MB404",
@@ -101,3 +111,11 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
                         word.span.start,
                         word.span.end,
                     )
+
+
+def _words(ctx: RuleContext, line: int) -> tuple[Word, ...]:
+    for statement in statements_of(ctx.doc.blocks[line].statement):
+        nc = statement.words if isinstance(statement, IfNc) else statement
+        if isinstance(nc, NcStatement):
+            return nc.words
+    return ()

@@ -1,0 +1,232 @@
+"""Measures fanuc-macro-ls as an editor sees it: a real server process over stdio.
+
+Prints: the first analysis of a 20,000-block program, keystroke -> diagnostics latency (total
+and after the debounce), how many analyses a burst of typing publishes, hover latency while the
+analysis is fresh, and the server's resident memory. Not a test: figures depend on the machine.
+
+    PYTHONPATH=server python bench/bench_lsp.py [--blocks 20000] [--debounce 250]
+"""
+
+from __future__ import annotations
+
+import argparse
+import asyncio
+import os
+import statistics
+import sys
+import time
+from pathlib import Path
+
+from lsprotocol import types
+from pygls.lsp.client import LanguageClient
+
+ROOT = Path(__file__).resolve().parents[1]
+SEEDS = ROOT / "tests" / "fixtures" / "seeds"
+
+
+def program(blocks: int) -> str:
+    """A main program of about ``blocks`` blocks in the style of the seeds: thread passes
+    computed by macro statements, with comments in Chinese, a loop and a subprogram call."""
+    lines = ["%", "O1000 (性能测试 主程序)", "T0101 (外螺纹车刀)", "G97 S400 M03 M8",
+             "#100=50. (公称直径)", "#101=3. (螺距)", "#102=50. (长度)"]
+    i = 0
+    while len(lines) < blocks - 12:
+        i += 1
+        lines += [
+            f"#{1 + i % 30}=#101*{i % 7 + 1}.+SQRT[{i % 11 + 1}.] (计算 {i})",
+            f"G00 X[#100+{i % 5 + 1}.] Z{i % 9 + 2}.",
+            f"G92 X[#100-0.{i % 9 + 1}] W-[#102+#101] F#101 (螺纹加工 {i})",
+            f"G01 W[{i % 3}.*0.1] (偏移)",
+        ]
+    lines += ["#20=0", "WHILE[#20LT25]DO1", "#20=#20+1 (计数)", "G01 U-0.1 W0.1", "END1",
+              "M98 P0013331 (调用子程序)", "G00 X100. Z100.", "M5", "M9", "M30", "%"]
+    return "\n".join(lines) + "\n"
+
+
+class Bench:
+    def __init__(self) -> None:
+        self.client = LanguageClient("fanuc-macro-bench", "0.1")
+        self.published: list[tuple[float, str, int | None, int]] = []
+        self.event = asyncio.Event()
+
+        @self.client.feature(types.TEXT_DOCUMENT_PUBLISH_DIAGNOSTICS)
+        def on_diagnostics(params: types.PublishDiagnosticsParams) -> None:
+            self.published.append(
+                (time.perf_counter(), params.uri, params.version, len(params.diagnostics))
+            )
+            self.event.set()
+
+        @self.client.feature(types.WINDOW_LOG_MESSAGE)
+        def on_log(params: types.LogMessageParams) -> None:
+            print(f"  server log: {params.message[:200]}", file=sys.stderr)
+
+    async def wait_version(self, uri: str, version: int, timeout: float = 120.0) -> float:
+        deadline = time.perf_counter() + timeout
+        while True:
+            for at, p_uri, p_version, _ in self.published:
+                if p_uri == uri and p_version is not None and p_version >= version:
+                    return at
+            self.event.clear()
+            remaining = deadline - time.perf_counter()
+            if remaining <= 0:
+                raise TimeoutError(f"no diagnostics for version {version}")
+            try:
+                await asyncio.wait_for(self.event.wait(), remaining)
+            except asyncio.TimeoutError:
+                pass
+
+
+def rss_kib(pid: int) -> dict[str, int]:
+    out: dict[str, int] = {}
+    try:
+        for line in Path(f"/proc/{pid}/status").read_text().splitlines():
+            if line.startswith(("VmRSS:", "VmHWM:")):
+                out[line.split(":")[0]] = int(line.split()[1])
+    except OSError:
+        pass
+    return out
+
+
+def ms(seconds: float) -> str:
+    return f"{seconds * 1000:.0f} ms"
+
+
+async def main(blocks: int, debounce_ms: int, keystrokes: int, hovers: int) -> None:
+    bench = Bench()
+    client = bench.client
+    env = {**os.environ, "PYTHONPATH": str(ROOT / "server")}
+    await client.start_io(sys.executable, "-m", "fanuc_macro.lsp.server", env=env)
+    server = client._server
+    assert server is not None
+    started = time.perf_counter()
+    await client.initialize_async(
+        types.InitializeParams(
+            capabilities=types.ClientCapabilities(),
+            root_uri=SEEDS.as_uri(),
+            workspace_folders=[types.WorkspaceFolder(uri=SEEDS.as_uri(), name="seeds")],
+            initialization_options={"analysis": {"debounceMs": debounce_ms}},
+        )
+    )
+    client.initialized(types.InitializedParams())
+    print(f"initialize: {ms(time.perf_counter() - started)}")
+    print(f"server RSS after start: {rss_kib(server.pid)}")
+
+    text = program(blocks)
+    lines = text.split("\n")
+    uri = "untitled:bench.nc"
+    version = 1
+    t0 = time.perf_counter()
+    client.text_document_did_open(
+        types.DidOpenTextDocumentParams(
+            text_document=types.TextDocumentItem(
+                uri=uri, language_id="fanuc-macro", version=version, text=text
+            )
+        )
+    )
+    first = await bench.wait_version(uri, version)
+    print(f"document: {len(lines) - 1} lines; open -> first diagnostics: {ms(first - t0)}")
+
+    # Keystrokes: type a digit into a comment, one at a time, waiting for each analysis.
+    target_line = len(lines) // 2
+    column = lines[target_line].index("(") + 1
+    latencies: list[float] = []
+    for k in range(keystrokes):
+        version += 1
+        sent = time.perf_counter()
+        client.text_document_did_change(
+            types.DidChangeTextDocumentParams(
+                text_document=types.VersionedTextDocumentIdentifier(uri=uri, version=version),
+                content_changes=[
+                    types.TextDocumentContentChangePartial(
+                        range=types.Range(
+                            start=types.Position(line=target_line, character=column + k),
+                            end=types.Position(line=target_line, character=column + k),
+                        ),
+                        text=str(k % 10),
+                    )
+                ],
+            )
+        )
+        latencies.append(await bench.wait_version(uri, version) - sent)
+    median = statistics.median(latencies)
+    print(
+        f"keystroke -> diagnostics ({keystrokes} edits, debounce {debounce_ms} ms): median "
+        f"{ms(median)}, max {ms(max(latencies))}; after the debounce: median "
+        f"{ms(median - debounce_ms / 1000)}"
+    )
+
+    # A burst of typing faster than the debounce: only the last version should be analysed.
+    before = len(bench.published)
+    burst = 20
+    for k in range(burst):
+        version += 1
+        client.text_document_did_change(
+            types.DidChangeTextDocumentParams(
+                text_document=types.VersionedTextDocumentIdentifier(uri=uri, version=version),
+                content_changes=[
+                    types.TextDocumentContentChangePartial(
+                        range=types.Range(
+                            start=types.Position(line=target_line, character=column),
+                            end=types.Position(line=target_line, character=column),
+                        ),
+                        text="x",
+                    )
+                ],
+            )
+        )
+        await asyncio.sleep(debounce_ms / 1000 / 4)
+    await bench.wait_version(uri, version)
+    publishes = len(bench.published) - before
+    print(f"burst of {burst} edits every {debounce_ms // 4} ms: {publishes} publish(es)")
+
+    # Hover on a variable read in a G92 block, with the analysis fresh.
+    hover_line = next(i for i, line in enumerate(lines) if line.startswith("G92"))
+    hover_col = lines[hover_line].index("#100") + 1
+    times: list[float] = []
+    for _ in range(hovers):
+        t = time.perf_counter()
+        result = await client.text_document_hover_async(
+            types.HoverParams(
+                text_document=types.TextDocumentIdentifier(uri=uri),
+                position=types.Position(line=hover_line, character=hover_col),
+            )
+        )
+        times.append(time.perf_counter() - t)
+        assert result is not None
+    times.sort()
+    print(
+        f"hover ({hovers} requests): median {ms(statistics.median(times))}, "
+        f"p95 {ms(times[int(len(times) * 0.95) - 1])}"
+    )
+
+    seed = (SEEDS / "o4009_external_m50x3.nc").as_uri()
+    client.text_document_did_open(
+        types.DidOpenTextDocumentParams(
+            text_document=types.TextDocumentItem(
+                uri=seed, language_id="fanuc-macro", version=1,
+                text=(SEEDS / "o4009_external_m50x3.nc").read_text("utf-8"),
+            )
+        )
+    )
+    t = time.perf_counter()
+    await client.text_document_hover_async(
+        types.HoverParams(
+            text_document=types.TextDocumentIdentifier(uri=seed),
+            position=types.Position(line=21, character=1),
+        )
+    )
+    print(f"open seed o4009 + hover (includes its analysis): {ms(time.perf_counter() - t)}")
+    print(f"server RSS at the end: {rss_kib(server.pid)}")
+    await client.shutdown_async(None)
+    client.exit(None)
+    await client.stop()
+
+
+if __name__ == "__main__":
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--blocks", type=int, default=20_000)
+    parser.add_argument("--debounce", type=int, default=250, help="analysis.debounceMs")
+    parser.add_argument("--keystrokes", type=int, default=10)
+    parser.add_argument("--hovers", type=int, default=50)
+    args = parser.parse_args()
+    asyncio.run(main(args.blocks, args.debounce, args.keystrokes, args.hovers))

@@ -1,0 +1,593 @@
+"""The language server end to end: a real server process over stdio, driven by pytest-lsp."""
+
+from __future__ import annotations
+
+import asyncio
+import importlib.util
+import os
+import random
+import subprocess
+import sys
+import time
+from collections.abc import AsyncIterator, Callable, Sequence
+from pathlib import Path
+from typing import Any
+
+import pytest
+import pytest_lsp
+from lsprotocol import types
+from pytest_lsp import ClientServerConfig, LanguageClient
+
+ROOT = Path(__file__).resolve().parents[1]
+SEEDS = ROOT / "tests" / "fixtures" / "seeds"
+FAULT = "@@fanuc-macro-test-crash@@"
+SERVER = [sys.executable, "-m", "fanuc_macro.lsp.server"]
+ENV = {
+    **os.environ,
+    "PYTHONPATH": os.pathsep.join(
+        p for p in (str(ROOT / "server"), os.environ.get("PYTHONPATH", "")) if p
+    ),
+    "FANUC_MACRO_LS_FAULT": FAULT,
+}
+WAIT = 60.0  # seconds: generous for a loaded 2-core machine
+
+CAPABILITIES = types.ClientCapabilities(
+    general=types.GeneralClientCapabilities(
+        position_encodings=[types.PositionEncodingKind.Utf16]
+    ),
+    text_document=types.TextDocumentClientCapabilities(
+        hover=types.HoverClientCapabilities(
+            content_format=[types.MarkupKind.Markdown, types.MarkupKind.PlainText]
+        ),
+        completion=types.CompletionClientCapabilities(
+            completion_item=types.ClientCompletionItemOptions(
+                snippet_support=True,
+                documentation_format=[types.MarkupKind.Markdown, types.MarkupKind.PlainText],
+            )
+        ),
+        publish_diagnostics=types.PublishDiagnosticsClientCapabilities(
+            related_information=True, version_support=True, code_description_support=True
+        ),
+    ),
+    workspace=types.WorkspaceClientCapabilities(configuration=False),
+)
+
+
+@pytest_lsp.fixture(config=ClientServerConfig(server_command=SERVER, server_env=ENV))
+async def client(lsp_client: LanguageClient) -> AsyncIterator[None]:
+    yield
+    if lsp_client.capabilities is not None:
+        await asyncio.wait_for(lsp_client.shutdown_session(), WAIT)
+
+
+async def start(
+    client: LanguageClient, folder: Path | None = SEEDS, options: dict[str, Any] | None = None
+) -> None:
+    settings = {"analysis": {"debounceMs": 20}, **(options or {})}
+    await asyncio.wait_for(
+        client.initialize_session(
+            types.InitializeParams(
+                capabilities=CAPABILITIES,
+                root_uri=folder.as_uri() if folder else None,
+                workspace_folders=(
+                    [types.WorkspaceFolder(uri=folder.as_uri(), name=folder.name)]
+                    if folder
+                    else None
+                ),
+                initialization_options=settings,
+            )
+        ),
+        WAIT,
+    )
+
+
+def uri_of(name: str) -> str:
+    return (SEEDS / name).as_uri()
+
+
+def open_text(client: LanguageClient, uri: str, text: str, version: int = 1) -> None:
+    client.text_document_did_open(
+        types.DidOpenTextDocumentParams(
+            text_document=types.TextDocumentItem(
+                uri=uri, language_id="fanuc-macro", version=version, text=text
+            )
+        )
+    )
+
+
+def open_seed(client: LanguageClient, name: str) -> str:
+    uri = uri_of(name)
+    open_text(client, uri, (SEEDS / name).read_text("utf-8"))
+    return uri
+
+
+def edit(client: LanguageClient, uri: str, version: int, changes: Sequence[Any]) -> None:
+    client.text_document_did_change(
+        types.DidChangeTextDocumentParams(
+            text_document=types.VersionedTextDocumentIdentifier(uri=uri, version=version),
+            content_changes=list(changes),
+        )
+    )
+
+
+def replace(line: int, start: int, end: int, text: str) -> types.TextDocumentContentChangePartial:
+    return types.TextDocumentContentChangePartial(
+        range=types.Range(
+            start=types.Position(line=line, character=start),
+            end=types.Position(line=line, character=end),
+        ),
+        text=text,
+    )
+
+
+async def diagnostics(
+    client: LanguageClient,
+    uri: str,
+    until: Callable[[Sequence[types.Diagnostic]], bool] = lambda d: True,
+    timeout: float = WAIT,
+) -> Sequence[types.Diagnostic]:
+    deadline = time.monotonic() + timeout
+    while True:
+        found = client.diagnostics.get(uri)
+        if found is not None and until(found):
+            return found
+        if time.monotonic() > deadline:
+            raise AssertionError(f"no such diagnostics for {uri} in {timeout} s: {found}")
+        await asyncio.sleep(0.02)
+
+
+async def hover(client: LanguageClient, uri: str, line: int, character: int) -> str:
+    result = await asyncio.wait_for(
+        client.text_document_hover_async(
+            types.HoverParams(
+                text_document=types.TextDocumentIdentifier(uri=uri),
+                position=types.Position(line=line, character=character),
+            )
+        ),
+        WAIT,
+    )
+    if result is None:
+        return ""
+    assert isinstance(result.contents, types.MarkupContent)
+    return result.contents.value
+
+
+def codes(found: Sequence[types.Diagnostic]) -> set[str]:
+    return {str(d.code) for d in found}
+
+
+# ---- the executable --------------------------------------------------------------------------
+
+
+def test_version() -> None:
+    done = subprocess.run(
+        [*SERVER, "--version"], env=ENV, capture_output=True, text=True, timeout=WAIT
+    )
+    assert done.returncode == 0
+    assert done.stdout.strip() == "fanuc-macro-ls 0.1.0"
+
+
+# ---- diagnostics -----------------------------------------------------------------------------
+
+
+async def test_diagnostics_of_arc_thread(client: LanguageClient) -> None:
+    await start(client)
+    uri = open_seed(client, "o2_arc_thread_roughing.nc")
+    found = await diagnostics(client, uri, lambda d: "MB601" in codes(d))
+    mb601 = [d for d in found if d.code == "MB601" and d.range.start.line == 29]
+    assert mb601, found
+    diag = mb601[0]
+    assert "93.82" in diag.message
+    assert diag.source == "fanuc-macro"
+    assert diag.severity == types.DiagnosticSeverity.Error
+    assert diag.code_description is not None
+    assert diag.code_description.href.endswith("docs/rules.md#mb601-" + diag.code_description
+                                               .href.rsplit("#mb601-", 1)[1])
+    assert diag.related_information, "the assignment of #1 is related"
+    assert diag.related_information[0].location.uri == uri
+    assert diag.related_information[0].location.range.start.line == 8
+
+
+async def test_edit_updates_diagnostics(client: LanguageClient) -> None:
+    await start(client, None)
+    uri = "untitled:edit.nc"
+    open_text(client, uri, "O1000\nGOTO 99\nN10 M30\n")
+    found = await diagnostics(client, uri, lambda d: "MB101" in codes(d))
+    assert any(d.range.start.line == 1 for d in found if d.code == "MB101")
+    edit(client, uri, 2, [replace(1, 5, 7, "10")])  # GOTO 99 -> GOTO 10
+    await diagnostics(client, uri, lambda d: "MB101" not in codes(d))
+
+
+async def test_never_executed_is_unnecessary(client: LanguageClient) -> None:
+    await start(client, None)
+    uri = "untitled:dead.nc"
+    open_text(client, uri, "O1000\n#1=1\nGOTO 10\n#2=2\nN10 M30\n")
+    found = await diagnostics(client, uri, lambda d: "MB702" in codes(d))
+    dead = next(d for d in found if d.code == "MB702")
+    assert dead.range.start.line == 3
+    assert list(dead.tags or []) == [types.DiagnosticTag.Unnecessary]
+
+
+async def test_settings_from_did_change_configuration(client: LanguageClient) -> None:
+    await start(client)
+    uri = open_seed(client, "o2_arc_thread_roughing.nc")
+    await diagnostics(client, uri, lambda d: "MB601" in codes(d))
+    client.workspace_did_change_configuration(
+        types.DidChangeConfigurationParams(
+            settings={"fanuc-macro": {"rules": {"disabled": ["MB601"]}}}
+        )
+    )
+    await diagnostics(client, uri, lambda d: "MB601" not in codes(d))
+
+
+async def test_endless_loop_is_reported_in_time(client: LanguageClient) -> None:
+    await start(client, None)
+    uri = "untitled:endless.nc"
+    started = time.monotonic()
+    open_text(client, uri, "O1000\n#1=0\nWHILE[1EQ1]DO1\n#1=#1+1\nEND1\nM30\n")
+    await diagnostics(client, uri, lambda d: "MB703" in codes(d))
+    elapsed = time.monotonic() - started
+    print(f"endless loop: diagnostics after {elapsed:.2f} s")
+    assert elapsed < 10.0  # ~2.5 s here: the evaluator's budget is 2 s
+
+
+# ---- hover -----------------------------------------------------------------------------------
+
+
+async def test_hover_on_an_assignment_shows_value_and_formula(client: LanguageClient) -> None:
+    await start(client)
+    uri = open_seed(client, "o4009_external_m50x3.nc")
+    text = await hover(client, uri, 21, 1)  # #4=[7./8.]*SIN[60]*#101-#3+#103/2.+#104/4.
+    assert "#4" in text
+    assert "argument **I**" in text
+    assert "1.906804" in text and "1.907" in text
+    assert "[0.875]*SIN[60]*3.-0.4330127+0.048/2.+0.17/4." in text
+    assert "计算外螺纹牙高" in text
+
+
+async def test_hover_on_a_read_shows_the_values_over_the_passes(client: LanguageClient) -> None:
+    await start(client)
+    uri = open_seed(client, "o4009_external_m50x3.nc")
+    text = await hover(client, uri, 31, 14)  # #9 in G92 X[#100-2.*#9] ...
+    assert "#9" in text
+    assert "0.092058049 →" in text
+    assert "88 times" in text
+    assert "计算总切削深度" in text  # the comment of its assignment
+
+
+async def test_hover_on_codes_labels_and_calls(client: LanguageClient) -> None:
+    await start(client)
+    uri = open_seed(client, "o4009_external_m50x3.nc")
+    assert "Threading cycle" in await hover(client, uri, 31, 1)  # G92 on a lathe
+    assert "Subprogram call" in await hover(client, uri, 10, 1)  # M98
+    program = await hover(client, uri, 10, 6)  # P0013331
+    assert "O3331" in program and "外螺纹子程序" in program
+    label = await hover(client, uri, 30, 1)  # N10
+    assert "GOTO10" in label and "taken 87 of 88" in label
+    goto = await hover(client, uri, 40, 18)  # GOTO10
+    assert "line 31" in goto
+    assert "Square root" in await hover(client, uri, 22, 15)  # SQRT
+
+
+async def test_hover_counts_utf16_columns(client: LanguageClient) -> None:
+    await start(client, None)
+    uri = "untitled:astral.nc"
+    # The emoji is two UTF-16 units but one character: "#1" starts at unit 5, not 4.
+    open_text(client, uri, "O1000\n(\U0001f600) #1=2.5\nGOTO 99 (\U0001f600)\nM30\n")
+    found = await diagnostics(client, uri, lambda d: "MB101" in codes(d))
+    assert "#1" in await hover(client, uri, 1, 5)
+    result = await client.text_document_hover_async(
+        types.HoverParams(
+            text_document=types.TextDocumentIdentifier(uri=uri),
+            position=types.Position(line=1, character=6),
+        )
+    )
+    assert result is not None and result.range is not None
+    assert (result.range.start.character, result.range.end.character) == (5, 7)
+    assert found
+
+
+# ---- navigation ------------------------------------------------------------------------------
+
+
+async def definition(client: LanguageClient, uri: str, line: int, character: int) -> list[Any]:
+    result = await asyncio.wait_for(
+        client.text_document_definition_async(
+            types.DefinitionParams(
+                text_document=types.TextDocumentIdentifier(uri=uri),
+                position=types.Position(line=line, character=character),
+            )
+        ),
+        WAIT,
+    )
+    if result is None:
+        return []
+    return list(result) if isinstance(result, list) else [result]
+
+
+async def test_definition_of_goto_and_call(client: LanguageClient) -> None:
+    await start(client)
+    uri = open_seed(client, "o4009_external_m50x3.nc")
+    [label] = await definition(client, uri, 40, 18)  # GOTO10
+    assert label.uri == uri and label.range.start.line == 30  # N10 G01 W[-#10]
+    [program] = await definition(client, uri, 10, 6)  # M98 P0013331
+    assert program.uri == uri and program.range.start.line == 17  # O3331
+    writes = await definition(client, uri, 31, 14)  # #9: its assignments
+    assert {loc.range.start.line for loc in writes} == {26, 37, 38}
+
+
+async def test_definition_across_files(client: LanguageClient, tmp_path: Path) -> None:
+    (tmp_path / "main.nc").write_text("O1000\nM98 P1234\nM30\n", "utf-8")
+    (tmp_path / "sub.nc").write_text("%\nO1234 (SUB)\n#1=1\nM99\n%\n", "utf-8")
+    await start(client, tmp_path)
+    uri = (tmp_path / "main.nc").as_uri()
+    open_text(client, uri, (tmp_path / "main.nc").read_text("utf-8"))
+    [target] = await definition(client, uri, 1, 5)
+    assert target.uri == (tmp_path / "sub.nc").as_uri()
+    assert target.range.start.line == 1
+
+
+async def test_references_of_a_local(client: LanguageClient) -> None:
+    await start(client)
+    uri = open_seed(client, "o4009_external_m50x3.nc")
+    result = await client.text_document_references_async(
+        types.ReferenceParams(
+            text_document=types.TextDocumentIdentifier(uri=uri),
+            position=types.Position(line=31, character=14),
+            context=types.ReferenceContext(include_declaration=True),
+        )
+    )
+    assert result is not None
+    lines = sorted(loc.range.start.line for loc in result)
+    assert lines == [26, 27, 31, 33, 37, 38, 38, 39, 40]
+
+
+async def test_document_symbols(client: LanguageClient) -> None:
+    await start(client)
+    uri = open_seed(client, "o4009_external_m50x3.nc")
+    result = await client.text_document_document_symbol_async(
+        types.DocumentSymbolParams(text_document=types.TextDocumentIdentifier(uri=uri))
+    )
+    assert result is not None
+    symbols = {s.name: s for s in result if isinstance(s, types.DocumentSymbol)}
+    assert set(symbols) == {"O4009", "O3331"}
+    assert symbols["O3331"].kind == types.SymbolKind.Function
+    children = [c.name for c in symbols["O3331"].children or []]
+    assert children == ["N10", "N20"]
+    loop_uri = "untitled:loops.nc"
+    open_text(client, loop_uri, "O1\n#1=0\nWHILE[#1LT3]DO1\nN5 #1=#1+1\nIF[#1EQ2]GOTO5\nEND1\nM30\n")
+    loops = await client.text_document_document_symbol_async(
+        types.DocumentSymbolParams(text_document=types.TextDocumentIdentifier(uri=loop_uri))
+    )
+    assert loops is not None
+    [program] = loops
+    assert isinstance(program, types.DocumentSymbol)
+    [loop] = program.children or []
+    assert loop.name == "WHILE[#1LT3]DO1"
+    assert (loop.range.start.line, loop.range.end.line) == (2, 5)
+    assert [c.name for c in loop.children or []] == ["N5"]
+
+
+async def test_inlay_hints(client: LanguageClient) -> None:
+    await start(client)
+    uri = open_seed(client, "o4009_external_m50x3.nc")
+    result = await client.text_document_inlay_hint_async(
+        types.InlayHintParams(
+            text_document=types.TextDocumentIdentifier(uri=uri),
+            range=types.Range(
+                start=types.Position(line=0, character=0),
+                end=types.Position(line=48, character=0),
+            ),
+        )
+    )
+    assert result is not None
+    labels = {h.position.line: h.label for h in result}
+    assert labels[21] == "= 1.907"
+    assert labels[35] == "= 2. → 89. ×88"
+    assert 0 not in labels and 1 not in labels
+
+
+async def test_completion(client: LanguageClient) -> None:
+    await start(client, None)
+    uri = "untitled:complete.nc"
+    open_text(client, uri, "O1\n#1=SQ\nG9\n#30\n")
+    await diagnostics(client, uri)
+
+    async def complete(line: int, character: int) -> list[types.CompletionItem]:
+        result = await client.text_document_completion_async(
+            types.CompletionParams(
+                text_document=types.TextDocumentIdentifier(uri=uri),
+                position=types.Position(line=line, character=character),
+            )
+        )
+        assert isinstance(result, types.CompletionList)
+        return list(result.items)
+
+    items = {i.label: i for i in await complete(1, 5)}
+    sqrt = items["SQRT"]
+    assert sqrt.insert_text_format == types.InsertTextFormat.Snippet
+    assert isinstance(sqrt.text_edit, types.TextEdit)
+    assert sqrt.text_edit.new_text == "SQRT[$1]"
+    assert sqrt.text_edit.range.start.character == 3  # replaces "SQ"
+    assert "WHILE" in items and "while" in items  # keyword and snippet
+    g_codes = {i.label: i.detail for i in await complete(2, 2)}
+    assert g_codes["G92"] == "Threading cycle"
+    variables = {i.label: i.detail for i in await complete(3, 3)}
+    assert "#3000" in variables and "#5221" in variables
+
+
+# ---- code actions ----------------------------------------------------------------------------
+
+
+async def code_actions(
+    client: LanguageClient, uri: str, found: Sequence[types.Diagnostic]
+) -> list[types.CodeAction]:
+    result = await client.text_document_code_action_async(
+        types.CodeActionParams(
+            text_document=types.TextDocumentIdentifier(uri=uri),
+            range=found[0].range,
+            context=types.CodeActionContext(diagnostics=list(found)),
+        )
+    )
+    return [a for a in result or [] if isinstance(a, types.CodeAction)]
+
+
+def apply(client: LanguageClient, uri: str, action: types.CodeAction, version: int) -> None:
+    assert action.edit is not None and action.edit.changes is not None
+    edits = action.edit.changes[uri]
+    changes = [types.TextDocumentContentChangePartial(range=e.range, text=e.new_text)
+               for e in edits]
+    edit(client, uri, version, changes)
+
+
+async def test_code_action_inserts_the_missing_end(client: LanguageClient) -> None:
+    await start(client, None)
+    uri = "untitled:noend.nc"
+    open_text(client, uri, "O1000\n#1=0\nWHILE[#1LT3]DO1\n#1=#1+1\nM30\n")
+    found = await diagnostics(client, uri, lambda d: "MB201" in codes(d))
+    mb201 = [d for d in found if d.code == "MB201"]
+    actions = await code_actions(client, uri, mb201)
+    fix = next(a for a in actions if a.title.startswith("Insert END1"))
+    assert fix.edit is not None and fix.edit.changes is not None
+    [text_edit] = fix.edit.changes[uri]
+    assert text_edit.new_text == "END1\n" and text_edit.range.start.line == 4
+    apply(client, uri, fix, 2)
+    await diagnostics(client, uri, lambda d: "MB201" not in codes(d))
+
+
+async def test_suppression_comment_removes_the_diagnostic(client: LanguageClient) -> None:
+    await start(client)
+    uri = open_seed(client, "o2_arc_thread_roughing.nc")
+    found = await diagnostics(client, uri, lambda d: "MB601" in codes(d))
+    target = [d for d in found if d.code == "MB601" and d.range.start.line == 29]
+    actions = await code_actions(client, uri, target)
+    suppress = next(a for a in actions if a.title == "Suppress MB601 on this line")
+    apply(client, uri, suppress, 2)
+    left = await diagnostics(
+        client, uri, lambda d: not any(x.code == "MB601" and x.range.start.line == 29 for x in d)
+    )
+    assert any(d.code == "MB601" and d.range.start.line == 63 for d in left)
+
+
+# ---- commands --------------------------------------------------------------------------------
+
+
+async def test_trace_command(client: LanguageClient) -> None:
+    await start(client)
+    uri = open_seed(client, "o4009_external_m50x3.nc")
+    result = await asyncio.wait_for(
+        client.workspace_execute_command_async(
+            types.ExecuteCommandParams(command="fanuc-macro.trace", arguments=[uri])
+        ),
+        WAIT,
+    )
+    assert isinstance(result, dict)
+    g92 = [m for m in result["motions"] if m["code"] == "G92"]
+    assert len(g92) == 186
+    assert result["summary"]["by_code"]["G92"] == 186
+    assert g92[0]["line"] == 32 and g92[0]["words"]["X"] == pytest.approx(49.816)
+
+
+async def test_thread_module_command(client: LanguageClient) -> None:
+    await start(client, None)
+
+    async def run(spec: dict[str, Any]) -> dict[str, Any]:
+        result = await asyncio.wait_for(
+            client.workspace_execute_command_async(
+                types.ExecuteCommandParams(command="fanuc-macro.threadModule", arguments=[spec])
+            ),
+            WAIT,
+        )
+        assert isinstance(result, dict)
+        return result
+
+    good = await run({"designation": "M50x3-5g6g", "length": 40.0, "internal": None})
+    if importlib.util.find_spec("fanuc_macro.threads.generator") is None:
+        assert "no thread module generator" in good["error"]
+    else:
+        assert isinstance(good.get("text"), str) and good["text"]
+    bad = await run({"designation": "M50x3-5g6g", "length": -1, "internal": False})
+    assert "length" in bad["error"]
+
+
+# ---- robustness ------------------------------------------------------------------------------
+
+
+async def test_survives_random_bytes_and_a_huge_document(client: LanguageClient) -> None:
+    await start(client, None)
+    rng = random.Random(20240601)
+    noise = bytes(rng.getrandbits(8) for _ in range(100_000)).decode("latin-1")
+    open_text(client, "untitled:noise.nc", noise)
+    await hover(client, "untitled:noise.nc", 3, 2)  # answers, whatever it says
+    # An edit right after a form feed or U+0085: lines as LSP counts them.
+    edit(client, "untitled:noise.nc", 2, [replace(5, 0, 3, "#1=2\n")])
+    lines = [f"N{i % 9000 + 1} G01 X{i % 97}.{i % 7} Z-{i % 53}. (pass {i % 1000})"
+             for i in range(100_000)]
+    open_text(client, "untitled:huge.nc", "O1000\n" + "\n".join(lines) + "\nM30\n")
+    text = await hover(client, "untitled:huge.nc", 5, 9)
+    assert "X" in text
+    uri = open_seed(client, "o4009_external_m50x3.nc")
+    assert "1.906804" in await hover(client, uri, 21, 1)
+
+
+async def test_a_crash_is_logged_and_the_server_goes_on(client: LanguageClient) -> None:
+    await start(client, None)
+    uri = "untitled:crash.nc"
+    open_text(client, uri, f"O1000 ({FAULT})\nM30\n")
+    found = await diagnostics(client, uri, lambda d: "MB000" in codes(d))
+    assert "could not analyse" in found[0].message
+    deadline = time.monotonic() + WAIT
+    while not any("failed" in m.message for m in client.log_messages):
+        assert time.monotonic() < deadline, "no window/logMessage about the failure"
+        await asyncio.sleep(0.05)
+    assert any(m.type == types.MessageType.Error for m in client.log_messages)
+    edit(client, uri, 2, [replace(0, 6, 6 + len(FAULT), "FIXED")])
+    await diagnostics(client, uri, lambda d: "MB000" not in codes(d))
+    other = open_seed(client, "o4009_external_m50x3.nc")
+    assert "1.906804" in await hover(client, other, 21, 1)
+
+
+# ---- the workspace ---------------------------------------------------------------------------
+
+
+async def test_other_files_changing_reanalyses_open_documents(
+    client: LanguageClient, tmp_path: Path
+) -> None:
+    main = tmp_path / "main.nc"
+    main.write_text("O1000\nM98 P1234\nM30\n", "utf-8")
+    await start(client, tmp_path)
+    main_uri = main.as_uri()
+    open_text(client, main_uri, main.read_text("utf-8"))
+    await diagnostics(client, main_uri, lambda d: "MB403" in codes(d))
+    # A new file on disk (the editor's file watcher tells the server) defines O1234.
+    sub = tmp_path / "sub.nc"
+    sub.write_text("O1234\n#100=1.\nM99\n", "utf-8")
+    client.workspace_did_change_watched_files(
+        types.DidChangeWatchedFilesParams(
+            changes=[types.FileEvent(uri=sub.as_uri(), type=types.FileChangeType.Created)]
+        )
+    )
+    await diagnostics(client, main_uri, lambda d: "MB403" not in codes(d))
+    # Opened and edited in the editor: renaming the program breaks the call again.
+    open_text(client, sub.as_uri(), sub.read_text("utf-8"))
+    edit(client, sub.as_uri(), 2, [replace(0, 1, 5, "4321")])
+    await diagnostics(client, main_uri, lambda d: "MB403" in codes(d))
+
+
+def test_columns_in_utf16_utf8_and_utf32() -> None:
+    from fanuc_macro.lsp.convert import Codec
+    from fanuc_macro.lsp.documents import OpenDocument
+
+    line = "(\U0001f600螺纹) #1=2"
+    hash_at = line.index("#")  # 6 characters
+    assert Codec("utf-16").to_client(line, hash_at) == 7  # the emoji is a surrogate pair
+    assert Codec("utf-8").to_client(line, hash_at) == 1 + 4 + 3 + 3 + 1 + 1
+    assert Codec("utf-32").to_client(line, hash_at) == 6
+    for name in ("utf-8", "utf-16", "utf-32"):
+        codec = Codec(name)
+        assert codec.from_client(line, codec.to_client(line, hash_at)) == hash_at
+    assert Codec("utf-16").from_client(line, 2) == 1  # inside the pair: before the emoji
+    doc = OpenDocument("u", "u", "A\x0cB\r\nC\u2028D\rE\n", 1)
+    assert [doc.line(i) for i in range(5)] == ["A\x0cB", "C\u2028D", "E", "", ""]
+    doc.apply(replace(1, 2, 3, "x"), Codec("utf-16"))
+    assert doc.text == "A\x0cB\r\nC\u2028x\rE\n"
