@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import argparse
 import asyncio
+import contextlib
 import os
 import statistics
 import sys
@@ -27,8 +28,15 @@ SEEDS = ROOT / "tests" / "fixtures" / "seeds"
 def program(blocks: int) -> str:
     """A main program of about ``blocks`` blocks in the style of the seeds: thread passes
     computed by macro statements, with comments in Chinese, a loop and a subprogram call."""
-    lines = ["%", "O1000 (性能测试 主程序)", "T0101 (外螺纹车刀)", "G97 S400 M03 M8",
-             "#100=50. (公称直径)", "#101=3. (螺距)", "#102=50. (长度)"]
+    lines = [
+        "%",
+        "O1000 (性能测试 主程序)",
+        "T0101 (外螺纹车刀)",
+        "G97 S400 M03 M8",
+        "#100=50. (公称直径)",
+        "#101=3. (螺距)",
+        "#102=50. (长度)",
+    ]
     i = 0
     while len(lines) < blocks - 12:
         i += 1
@@ -38,8 +46,19 @@ def program(blocks: int) -> str:
             f"G92 X[#100-0.{i % 9 + 1}] W-[#102+#101] F#101 (螺纹加工 {i})",
             f"G01 W[{i % 3}.*0.1] (偏移)",
         ]
-    lines += ["#20=0", "WHILE[#20LT25]DO1", "#20=#20+1 (计数)", "G01 U-0.1 W0.1", "END1",
-              "M98 P0013331 (调用子程序)", "G00 X100. Z100.", "M5", "M9", "M30", "%"]
+    lines += [
+        "#20=0",
+        "WHILE[#20LT25]DO1",
+        "#20=#20+1 (计数)",
+        "G01 U-0.1 W0.1",
+        "END1",
+        "M98 P0013331 (调用子程序)",
+        "G00 X100. Z100.",
+        "M5",
+        "M9",
+        "M30",
+        "%",
+    ]
     return "\n".join(lines) + "\n"
 
 
@@ -70,10 +89,8 @@ class Bench:
             remaining = deadline - time.perf_counter()
             if remaining <= 0:
                 raise TimeoutError(f"no diagnostics for version {version}")
-            try:
+            with contextlib.suppress(asyncio.TimeoutError):
                 await asyncio.wait_for(self.event.wait(), remaining)
-            except asyncio.TimeoutError:
-                pass
 
 
 def rss_kib(pid: int) -> dict[str, int]:
@@ -158,7 +175,7 @@ async def main(blocks: int, debounce_ms: int, keystrokes: int, hovers: int) -> N
     # A burst of typing faster than the debounce: only the last version should be analysed.
     before = len(bench.published)
     burst = 20
-    for k in range(burst):
+    for _ in range(burst):
         version += 1
         client.text_document_did_change(
             types.DidChangeTextDocumentParams(
@@ -203,7 +220,9 @@ async def main(blocks: int, debounce_ms: int, keystrokes: int, hovers: int) -> N
     client.text_document_did_open(
         types.DidOpenTextDocumentParams(
             text_document=types.TextDocumentItem(
-                uri=seed, language_id="fanuc-macro", version=1,
+                uri=seed,
+                language_id="fanuc-macro",
+                version=1,
                 text=(SEEDS / "o4009_external_m50x3.nc").read_text("utf-8"),
             )
         )

@@ -32,9 +32,7 @@ ENV = {
 WAIT = 60.0  # seconds: generous for a loaded 2-core machine
 
 CAPABILITIES = types.ClientCapabilities(
-    general=types.GeneralClientCapabilities(
-        position_encodings=[types.PositionEncodingKind.Utf16]
-    ),
+    general=types.GeneralClientCapabilities(position_encodings=[types.PositionEncodingKind.Utf16]),
     text_document=types.TextDocumentClientCapabilities(
         hover=types.HoverClientCapabilities(
             content_format=[types.MarkupKind.Markdown, types.MarkupKind.PlainText]
@@ -181,8 +179,9 @@ async def test_diagnostics_of_arc_thread(client: LanguageClient) -> None:
     assert diag.source == "fanuc-macro"
     assert diag.severity == types.DiagnosticSeverity.Error
     assert diag.code_description is not None
-    assert diag.code_description.href.endswith("docs/rules.md#mb601-" + diag.code_description
-                                               .href.rsplit("#mb601-", 1)[1])
+    assert diag.code_description.href.endswith(
+        "docs/rules.md#mb601-" + diag.code_description.href.rsplit("#mb601-", 1)[1]
+    )
     assert diag.related_information, "the assignment of #1 is related"
     assert diag.related_information[0].location.uri == uri
     assert diag.related_information[0].location.range.start.line == 8
@@ -287,6 +286,23 @@ async def test_hover_counts_utf16_columns(client: LanguageClient) -> None:
     assert found
 
 
+async def test_utf8_position_encoding(client: LanguageClient) -> None:
+    capabilities = types.ClientCapabilities(
+        general=types.GeneralClientCapabilities(
+            position_encodings=[types.PositionEncodingKind.Utf8, types.PositionEncodingKind.Utf16]
+        )
+    )
+    result = await client.initialize_session(
+        types.InitializeParams(capabilities=capabilities, initialization_options={})
+    )
+    assert result.capabilities.position_encoding == types.PositionEncodingKind.Utf8
+    uri = "untitled:utf8.nc"
+    open_text(client, uri, "O1000\n(螺纹) #1=2.5\nM30\n")
+    # "(螺纹) " is 4 characters but 1 + 3 + 3 + 1 + 1 = 9 bytes: "#1" starts at byte 9.
+    text = await hover(client, uri, 1, 9)
+    assert text.startswith("**#1**")
+
+
 # ---- navigation ------------------------------------------------------------------------------
 
 
@@ -355,7 +371,9 @@ async def test_document_symbols(client: LanguageClient) -> None:
     children = [c.name for c in symbols["O3331"].children or []]
     assert children == ["N10", "N20"]
     loop_uri = "untitled:loops.nc"
-    open_text(client, loop_uri, "O1\n#1=0\nWHILE[#1LT3]DO1\nN5 #1=#1+1\nIF[#1EQ2]GOTO5\nEND1\nM30\n")
+    open_text(
+        client, loop_uri, "O1\n#1=0\nWHILE[#1LT3]DO1\nN5 #1=#1+1\nIF[#1EQ2]GOTO5\nEND1\nM30\n"
+    )
     loops = await client.text_document_document_symbol_async(
         types.DocumentSymbolParams(text_document=types.TextDocumentIdentifier(uri=loop_uri))
     )
@@ -435,8 +453,9 @@ async def code_actions(
 def apply(client: LanguageClient, uri: str, action: types.CodeAction, version: int) -> None:
     assert action.edit is not None and action.edit.changes is not None
     edits = action.edit.changes[uri]
-    changes = [types.TextDocumentContentChangePartial(range=e.range, text=e.new_text)
-               for e in edits]
+    changes = [
+        types.TextDocumentContentChangePartial(range=e.range, text=e.new_text) for e in edits
+    ]
     edit(client, uri, version, changes)
 
 
@@ -508,6 +527,10 @@ async def test_thread_module_command(client: LanguageClient) -> None:
         assert isinstance(good.get("text"), str) and good["text"]
     bad = await run({"designation": "M50x3-5g6g", "length": -1, "internal": False})
     assert "length" in bad["error"]
+    if importlib.util.find_spec("fanuc_macro.threads.generator") is not None:
+        assert good["text"].startswith("%\nO4009")
+        wrong = await run({"designation": "M50x3-9z", "length": 40.0, "internal": None})
+        assert "tolerance position 'z'" in wrong["error"]  # the generator's ValueError
 
 
 # ---- robustness ------------------------------------------------------------------------------
@@ -521,8 +544,10 @@ async def test_survives_random_bytes_and_a_huge_document(client: LanguageClient)
     await hover(client, "untitled:noise.nc", 3, 2)  # answers, whatever it says
     # An edit right after a form feed or U+0085: lines as LSP counts them.
     edit(client, "untitled:noise.nc", 2, [replace(5, 0, 3, "#1=2\n")])
-    lines = [f"N{i % 9000 + 1} G01 X{i % 97}.{i % 7} Z-{i % 53}. (pass {i % 1000})"
-             for i in range(100_000)]
+    lines = [
+        f"N{i % 9000 + 1} G01 X{i % 97}.{i % 7} Z-{i % 53}. (pass {i % 1000})"
+        for i in range(100_000)
+    ]
     open_text(client, "untitled:huge.nc", "O1000\n" + "\n".join(lines) + "\nM30\n")
     text = await hover(client, "untitled:huge.nc", 5, 9)
     assert "X" in text
@@ -591,3 +616,71 @@ def test_columns_in_utf16_utf8_and_utf32() -> None:
     assert [doc.line(i) for i in range(5)] == ["A\x0cB", "C\u2028D", "E", "", ""]
     doc.apply(replace(1, 2, 3, "x"), Codec("utf-16"))
     assert doc.text == "A\x0cB\r\nC\u2028x\rE\n"
+
+
+def test_knowledge_covers_lathe_and_mill_codes() -> None:
+    from fanuc_macro import knowledge
+
+    required = [
+        *(f"G{n:02d}" for n in (0, 1, 2, 3, 4, 20, 21, 28, 32, 40, 41, 42, 50, 65, 66, 67)),
+        *(f"G{n}" for n in range(54, 60)),
+        *(f"G{n}" for n in range(70, 77)),
+        *(f"G{n}" for n in (80, 81, 82, 83, 84, 85, 86, 87, 88, 89, 90, 91, 92, 94)),
+        *(f"G{n}" for n in (96, 97, 98, 99)),
+        "G66.1",
+    ]
+    for code in required:
+        info = knowledge.code_info("G", float(code[1:]))
+        assert info is not None, code
+        assert info.lathe is not None or info.mill is not None, code
+    for n in (*range(0, 10), 30, 98, 99):
+        assert knowledge.code_info("M", float(n)) is not None, n
+    lathe = knowledge.code_markdown("G", 92.0, lathe=True) or ""
+    mill = knowledge.code_markdown("G", 92.0, lathe=False) or ""
+    assert lathe.startswith("**G92** — Threading cycle") and "On a mill" in lathe
+    assert mill.startswith("**G92** — Workpiece coordinate system") and "On a lathe" in mill
+    assert "drilling" in (knowledge.code_markdown("G", 81.0, lathe=False) or "").lower()
+    assert knowledge.code_name("G", 66.1) == "G66.1" and knowledge.code_name("M", 3.0) == "M03"
+    names = [
+        "SIN",
+        "COS",
+        "TAN",
+        "ASIN",
+        "ACOS",
+        "ATAN",
+        "SQRT",
+        "ABS",
+        "ROUND",
+        "FIX",
+        "FUP",
+        "LN",
+        "EXP",
+        "POW",
+        "ADP",
+        "BIN",
+        "BCD",
+    ]
+    assert set(names) <= set(knowledge.FUNCTIONS)
+    assert "degrees" in (knowledge.function_markdown("SIN") or "")
+    assert "-2" in (knowledge.function_markdown("FUP") or "")
+    assert "PS0119" in (knowledge.function_markdown("SQRT") or "")
+    assert "ATAN[a]/[b]" in (knowledge.function_markdown("ATAN") or "")
+    for word in ("IF", "GOTO", "THEN", "WHILE", "DO", "END", "EQ", "AND", "MOD"):
+        assert knowledge.keyword_markdown(word), word
+
+
+async def test_added_workspace_folder_is_scanned(client: LanguageClient, tmp_path: Path) -> None:
+    (tmp_path / "lib").mkdir()
+    (tmp_path / "lib" / "o1234.nc").write_text("O1234 (LIB)\n#100=1.\nM99\n", "utf-8")
+    await start(client, None)
+    uri = "untitled:caller.nc"
+    open_text(client, uri, "O1000\nG65 P1234 A1.\nM30\n")
+    await diagnostics(client, uri, lambda d: "MB403" in codes(d))
+    folder = types.WorkspaceFolder(uri=(tmp_path / "lib").as_uri(), name="lib")
+    client.workspace_did_change_workspace_folders(
+        types.DidChangeWorkspaceFoldersParams(
+            event=types.WorkspaceFoldersChangeEvent(added=[folder], removed=[])
+        )
+    )
+    await diagnostics(client, uri, lambda d: "MB403" not in codes(d))
+    assert "A1." in await hover(client, uri, 1, 11) or "#1" in await hover(client, uri, 1, 11)

@@ -314,6 +314,8 @@ _G: list[tuple[str, Meaning | None, Meaning | None]] = [
              "`G92 X.. Y.. Z..` declares the current position to have these coordinates (a "
              "G54-G59 offset is safer).",
              "one-shot, group 00")),
+    ("G93", None, Meaning("Inverse time feed", "F is the reciprocal of the block's time in "
+                          "minutes (for rotary axes).", "modal, group 05")),
     ("G94",
      Meaning("End face turning cycle",
              "`G94 X(U).. Z(W).. [R..] F..`: one facing pass along X.", "modal, group 01"),

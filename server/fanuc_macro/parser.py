@@ -70,8 +70,8 @@ def _span(node: Any) -> Span:
 
 
 def _cover(first: Any, last: Any) -> Span:
-    start = first.start_pos if type(first) is Token else first.span.start
-    end = last.end_pos if type(last) is Token else last.span.end
+    start: int = (first.start_pos or 0) if type(first) is Token else first.span.start
+    end: int = (last.end_pos or 0) if type(last) is Token else last.span.end
     return Span(start, end)
 
 

@@ -9,7 +9,7 @@ from pathlib import Path
 from .analysis import Analysis, analyse
 from .blocks import decode_bytes
 from .config import Config
-from .index import ProgramIndex, build_index
+from .index import Call, ProgramIndex, build_index
 from .parser import BlockParser, default_parser, parse_text
 from .syntax import Document
 
@@ -47,7 +47,9 @@ class Workspace:
         self._entries: dict[str, _Entry] = {}
 
     def add_text(self, uri: str, text: str) -> Document:
-        doc = parse_text(text, uri, self.parser)
+        old = self._entries.get(uri)
+        # The previous version's blocks are reused for the lines an edit did not touch.
+        doc = parse_text(text, uri, self.parser, old.doc if old is not None else None)
         self._entries[uri] = _Entry(text, doc, build_index(doc), "utf-8", None)
         return doc
 
@@ -74,8 +76,11 @@ class Workspace:
         return self._entries[uri].index
 
     def others(self, uri: str) -> list[tuple[str, Document, ProgramIndex]]:
-        """The other documents, for the calls a document makes into them."""
-        return [(u, e.doc, e.index) for u, e in self._entries.items() if u != uri]
+        """The other documents an analysis of ``uri`` needs: see :func:`related_documents`."""
+        indexes = {u: (e.doc, e.index) for u, e in self._entries.items()}
+        needed = related_documents(uri, indexes)
+        keys = [u for u in indexes if u != uri] if needed is None else needed
+        return [(u, *indexes[u]) for u in keys]
 
     def program_numbers(self) -> frozenset[int]:
         return frozenset(
@@ -106,3 +111,62 @@ class Workspace:
             index=entry.index,
             other_documents=self.others(uri),
         )
+
+
+def _called_numbers(doc: Document, call: Call) -> list[int] | None:
+    """The program numbers a call may reach (None: computed at run time). ``M98 P0013331``
+    may be O3331 (4-digit controls) or O13331 (30i): both are kept."""
+    if call.program is None:
+        return None
+    numbers = [call.program]
+    if call.kind == "M98" and call.program_span is not None:
+        digits = doc.blocks[call.line].source(call.program_span)[1:].split(".")[0].strip()
+        if digits.lstrip("+").isdigit() and int(digits) != call.program:
+            numbers.append(int(digits))
+    return numbers
+
+
+def related_documents(
+    key: str, indexes: dict[str, tuple[Document, ProgramIndex]]
+) -> list[str] | None:
+    """The documents the evaluator needs to analyse ``key``, in workspace order; None when all
+    of them may be (a call whose program is computed, ``M98 P#1``).
+
+    Those are the documents defining the programs ``key`` calls, transitively, and those calling
+    a program of ``key`` (they decide which of its programs are entry points). The others are
+    never run: handing them over only makes the evaluator compile them, which with a scanned
+    workspace of a few thousand files costs seconds per keystroke.
+    """
+    if key not in indexes:
+        return None
+    order = [key, *(k for k in indexes if k != key)]
+    owner: dict[int, str] = {}  # the first definition wins, as in the evaluator
+    callers: dict[int, set[str]] = {}
+    for k in order:
+        doc, index = indexes[k]
+        for program in index.programs:
+            if program.number is not None:
+                owner.setdefault(program.number, k)
+            for call in program.calls:
+                for number in _called_numbers(doc, call) or ():
+                    callers.setdefault(number, set()).add(k)
+    needed = {key}
+    todo = [key]
+    while todo:
+        doc, index = indexes[todo.pop()]
+        for program in index.programs:
+            for call in program.calls:
+                if call.kind == "M97":
+                    continue  # Haas local call: a sequence number, not a program
+                numbers = _called_numbers(doc, call)
+                if numbers is None:
+                    return None
+                for number in numbers:
+                    target = owner.get(number)
+                    if target is not None and target not in needed:
+                        needed.add(target)
+                        todo.append(target)
+    for program in indexes[key][1].programs:
+        if program.number is not None:
+            needed |= callers.get(program.number, set())
+    return [k for k in order[1:] if k in needed]

@@ -23,6 +23,7 @@ from ..syntax import (
     IfThen,
     Mixed,
     NcStatement,
+    ParsedLine,
     ProgramStart,
     Statement,
     Var,
@@ -57,7 +58,6 @@ class CompiledWord:
 @dataclass(slots=True)
 class CompiledLine:
     kind: int
-    line: int
     reads: tuple[int, ...] = ()  # direct variables the block reads (for the facts)
     target: Evaluator | None = None  # assignment target index (indirect) or GOTO target
     target_number: int | None = None  # direct assignment target
@@ -91,9 +91,9 @@ def _direct_reads(statement: Statement) -> tuple[int, ...]:
     return tuple(numbers)
 
 
-def _compile_assign(kind: int, line: int, assign: Assign) -> CompiledLine:
+def _compile_assign(kind: int, assign: Assign) -> CompiledLine:
     target = assign.target
-    compiled = CompiledLine(kind, line, value=compile_expr(assign.value), node=assign)
+    compiled = CompiledLine(kind, value=compile_expr(assign.value), node=assign)
     if target.number is not None:
         compiled.target_number = int(target.number) if target.number == int(target.number) else -1
     else:
@@ -102,54 +102,54 @@ def _compile_assign(kind: int, line: int, assign: Assign) -> CompiledLine:
     return compiled
 
 
-def compile_statement(line: int, statement: Statement | None) -> CompiledLine:
+def compile_statement(statement: Statement | None) -> CompiledLine:
+    """The closures of one statement; they do not depend on where the line stands."""
     if statement is None:
-        return CompiledLine(K_EMPTY, line)
+        return CompiledLine(K_EMPTY)
     reads = _direct_reads(statement)
     if isinstance(statement, Mixed):
-        first = compile_statement(line, statement.nc)
-        first.second = compile_statement(line, statement.macro)
+        first = compile_statement(statement.nc)
+        first.second = compile_statement(statement.macro)
         first.reads = reads
         return first
     if isinstance(statement, Assign):
-        c = _compile_assign(K_ASSIGN, line, statement)
+        c = _compile_assign(K_ASSIGN, statement)
     elif isinstance(statement, IfThen):
-        c = _compile_assign(K_IFTHEN, line, statement.then)
+        c = _compile_assign(K_IFTHEN, statement.then)
         c.cond = compile_cond(statement.cond)
         c.node = statement
     elif isinstance(statement, Goto):
-        c = CompiledLine(K_GOTO, line, target=compile_expr(statement.target), node=statement)
+        c = CompiledLine(K_GOTO, target=compile_expr(statement.target), node=statement)
     elif isinstance(statement, IfGoto):
         c = CompiledLine(
             K_IFGOTO,
-            line,
             target=compile_expr(statement.goto.target),
             cond=compile_cond(statement.cond),
             node=statement,
         )
     elif isinstance(statement, While):
         cond = compile_cond(statement.cond) if statement.cond is not None else None
-        c = CompiledLine(K_WHILE, line, cond=cond, node=statement)
+        c = CompiledLine(K_WHILE, cond=cond, node=statement)
     elif isinstance(statement, End):
-        c = CompiledLine(K_END, line, node=statement)
+        c = CompiledLine(K_END, node=statement)
     elif isinstance(statement, NcStatement):
-        c = _compile_nc(line, statement)
+        c = _compile_nc(statement)
     elif isinstance(statement, IfNc):
-        c = _compile_nc(line, statement.words)
+        c = _compile_nc(statement.words)
         c.cond = compile_cond(statement.cond)
     elif isinstance(statement, ProgramStart):
-        c = CompiledLine(K_HEADER, line, node=statement)
+        c = CompiledLine(K_HEADER, node=statement)
     else:
-        c = CompiledLine(K_OTHER, line, node=statement)
+        c = CompiledLine(K_OTHER, node=statement)
     c.reads = reads
     return c
 
 
-def _compile_nc(line: int, nc: NcStatement) -> CompiledLine:
+def _compile_nc(nc: NcStatement) -> CompiledLine:
     words = tuple(
         CompiledWord(w.address, compile_expr(w.value), w.span.start, w.span.end) for w in nc.words
     )
-    return CompiledLine(K_NC, line, words=words, nc=nc, node=nc)
+    return CompiledLine(K_NC, words=words, nc=nc, node=nc)
 
 
 @dataclass
@@ -320,6 +320,7 @@ class Machine:
                 continue
             cl = ctx.lines[pc]
             kind = cl.kind
+            self._line = pc  # the block being executed, for the facts and findings
             steps += 1
             self._steps = steps
             if steps >= next_check:
@@ -415,15 +416,15 @@ class Machine:
     def _run_second(self, act: Activation, cl: CompiledLine, facts: DocumentFacts) -> None:
         if cl.kind == K_ASSIGN:
             self._assign(act, cl, facts)
-            act.pc = cl.line + 1
+            act.pc = self._line + 1
         elif cl.kind == K_GOTO:
             act.pc = self._goto(act, cl)
         else:
-            act.pc = cl.line + 1
+            act.pc = self._line + 1
 
     def _record_reads(self, act: Activation, cl: CompiledLine, facts: DocumentFacts) -> None:
         reads = facts.reads
-        line = cl.line
+        line = self._line
         locals_ = act.locals
         store = self.store
         for n in cl.reads:
@@ -494,9 +495,9 @@ class Machine:
                 )
             if not _volatile(n):
                 self.store[n] = value
-        write = facts.writes.get(cl.line)
+        write = facts.writes.get(self._line)
         if write is None:
-            write = facts.writes[cl.line] = (n, ValueSummary())
+            write = facts.writes[self._line] = (n, ValueSummary())
         write[1].add(value)
 
     def _goto(self, act: Activation, cl: CompiledLine) -> int:
@@ -513,7 +514,7 @@ class Machine:
                 "SEQUENCE NUMBER)",
                 target if target is not None else 0.0,
             )
-        line = self._label(ctx, int(target), cl.line)
+        line = self._label(ctx, int(target), self._line)
         if line is None:
             raise MacroAlarm(
                 "PS0128",
@@ -529,7 +530,7 @@ class Machine:
         return ctx.program.label_line(seq, from_line)
 
     def _while(self, act: Activation, cl: CompiledLine, facts: DocumentFacts) -> int:
-        pc = cl.line
+        pc = self._line
         end = act.ctx.loop_end.get(pc)
         result: object = True if cl.cond is None else cl.cond(act)
         jc = facts.jumps.get(pc)
@@ -555,7 +556,7 @@ class Machine:
         if cl.cond is not None:  # Haas IF [c] <words>
             result = cl.cond(act)
             if result is not True:
-                act.pc = cl.line + 1
+                act.pc = self._line + 1
                 return act
         values: dict[str, Value] = {}
         g_codes: list[float] = []
@@ -607,20 +608,20 @@ class Machine:
             return self._macro_call(act, cl, order, modal_call=False)
         if call_kind == "G66":
             self._macro_call(act, cl, order, modal_call=True)
-            act.pc = cl.line + 1
+            act.pc = self._line + 1
             return act
         moved = self._motion(act, cl, values, g_codes)
         for m in m_codes:
             if m == 98.0:
                 return self._sub_call(act, cl, values)
             if m == 99.0:
-                return self._return(act, values.get("P"), cl.line)
+                return self._return(act, values.get("P"), self._line)
             if m in (2.0, 30.0):
                 raise _Stop("end of program")
-        act.pc = cl.line + 1
+        act.pc = self._line + 1
         if moved and modal.modal_call is not None:
             callee, args, _ = modal.modal_call
-            return self._enter(act, callee, list(args), True, cl.line + 1, 1)
+            return self._enter(act, callee, list(args), True, self._line + 1, 1)
         return act
 
     def _motion(
@@ -656,7 +657,7 @@ class Machine:
             motions.append(
                 Motion(
                     act.ctx.name,
-                    cl.line,
+                    self._line,
                     _g_name(code),
                     words,
                     act.ctx.uri,
@@ -691,7 +692,7 @@ class Machine:
                 self._finding(
                     act.ctx,
                     "address-non-integer",
-                    cl.line,
+                    self._line,
                     w.start,
                     w.end,
                     f"{address} gets {fmt(v)}: {address} takes a whole number",
@@ -700,7 +701,7 @@ class Machine:
                 self._finding(
                     act.ctx,
                     "address-non-integer",
-                    cl.line,
+                    self._line,
                     w.start,
                     w.end,
                     f"G gets {fmt(v)}: not a G code",
@@ -709,7 +710,7 @@ class Machine:
                 self._finding(
                     act.ctx,
                     "address-range",
-                    cl.line,
+                    self._line,
                     w.start,
                     w.end,
                     f"{address} gets {fmt(v)}: {address} cannot be negative",
@@ -718,7 +719,7 @@ class Machine:
                 self._finding(
                     act.ctx,
                     "address-range",
-                    cl.line,
+                    self._line,
                     w.start,
                     w.end,
                     f"S gets {fmt(v)} rpm, above the machine's maximum "
@@ -736,9 +737,9 @@ class Machine:
             self._finding(
                 act.ctx,
                 "program-not-found",
-                cl.line,
+                self._line,
                 0,
-                len(act.ctx.doc.blocks[cl.line].text),
+                len(act.ctx.doc.blocks[self._line].text),
                 f"{what} calls O{int(number):04d}, which the analysis does not "
                 "have; the call is skipped",
             )
@@ -760,10 +761,10 @@ class Machine:
             repeat = int(l_value)
         callee = self._find(act, cl, p, "M98")
         if callee is None or repeat <= 0:
-            act.pc = cl.line + 1
+            act.pc = self._line + 1
             return act
         # M98 opens no new local level: the callee shares the caller's locals.
-        return self._enter(act, callee, act.locals, False, cl.line + 1, repeat)
+        return self._enter(act, callee, act.locals, False, self._line + 1, repeat)
 
     def _macro_call(
         self,
@@ -803,12 +804,12 @@ class Machine:
                 args[ARGUMENT_VARIABLES[address]] = v
         callee = self._find(act, cl, p, "G66" if modal_call else "G65")
         if callee is None:
-            act.pc = cl.line + 1
+            act.pc = self._line + 1
             return act
         if modal_call:
             self.modal.modal_call = (callee, args, repeat)
             return act
-        return self._enter(act, callee, args, True, cl.line + 1, repeat)
+        return self._enter(act, callee, args, True, self._line + 1, repeat)
 
     def _enter(
         self,
@@ -871,7 +872,7 @@ class Machine:
     # ---- ends ------------------------------------------------------------------------------
     def _alarm(self, act: Activation, cl: CompiledLine, alarm: MacroAlarm) -> None:
         ctx = act.ctx
-        block = ctx.doc.blocks[cl.line]
+        block = ctx.doc.blocks[self._line]
         node = alarm.node
         span = getattr(node, "span", None) or getattr(cl.node, "span", None)
         start, end = (span.start, span.end) if span is not None else (0, len(block.text))
@@ -892,7 +893,7 @@ class Machine:
                 if shown:
                     detail += " with " + ", ".join(shown)
         message = f"{alarm.message}{detail} (alarm {alarm.alarm}) in {ctx.name}"
-        self._finding(ctx, f"alarm:{alarm.kind}", cl.line, start, end, message)
+        self._finding(ctx, f"alarm:{alarm.kind}", self._line, start, end, message)
 
     def _budget_spent(self, act: Activation, by_time: bool) -> None:
         ctx = act.ctx
@@ -950,6 +951,23 @@ class Machine:
         )
 
 
+_COMPILED: dict[int, tuple[ParsedLine, CompiledLine]] = {}
+_COMPILED_LIMIT = 400_000
+
+
+def compiled(parsed: ParsedLine) -> CompiledLine:
+    """The compiled statement of a parsed line, cached: parsed lines are shared by text."""
+    entry = _COMPILED.get(id(parsed))
+    if entry is not None and entry[0] is parsed:
+        return entry[1]
+    if len(_COMPILED) >= _COMPILED_LIMIT:
+        _COMPILED.clear()
+    result = compile_statement(parsed.statement)
+    # The entry keeps the parsed line alive, so its id cannot be reused while cached.
+    _COMPILED[id(parsed)] = (parsed, result)
+    return result
+
+
 def _volatile(number: int) -> bool:
     """System variables the control changes by itself: clocks, signals, positions."""
     return (
@@ -989,7 +1007,7 @@ def _ends_program(statement: Statement | None) -> bool:
 
 def contexts_of(uri: str, doc: Document, index: ProgramIndex, facts: Facts) -> list[ProgramContext]:
     doc_facts = facts.document(uri)
-    lines = [compile_statement(b.line, b.statement) for b in doc.blocks]
+    lines = [compiled(b.parsed) for b in doc.blocks]
     out: list[ProgramContext] = []
     for program in index.programs:
         loop_end = {lp.do_line: lp.end_line for lp in program.loops if lp.end_line is not None}

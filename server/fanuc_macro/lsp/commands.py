@@ -37,12 +37,11 @@ async def run_trace(engine: Engine, args: tuple[Any, ...]) -> dict[str, Any]:
     def job() -> dict[str, Any]:
         if not engine.load(key):
             return {"error": f"{uri} is neither open nor a readable program file"}
-        documents = engine.workspace_documents()
-        own = next(((k, d, i) for k, d, i in documents if k == key), None)
-        if own is None:
+        documents = engine.trace_documents(key)
+        if documents is None:
             return {"error": f"{uri} is not in the workspace"}
-        others = [(k, d, i) for k, d, i in documents if k != key]
-        return trace(key, own[1], own[2], others, config)
+        (_, doc, index), *others = documents
+        return trace(key, doc, index, others, config)
 
     try:
         return await engine.in_worker(job)

@@ -34,8 +34,9 @@ def lsp_lines(text: str) -> list[str]:
 class Codec:
     """Column conversion for one position encoding."""
 
-    def __init__(self, encoding: str | None = UTF16) -> None:
-        self.encoding = encoding if encoding in (UTF8, UTF16, UTF32) else UTF16
+    def __init__(self, encoding: object = UTF16) -> None:
+        name = str(getattr(encoding, "value", encoding))  # an lsprotocol enum or its value
+        self.encoding = name if name in (UTF8, UTF16, UTF32) else UTF16
 
     def units(self, text: str) -> int:
         if self.encoding == UTF32 or text.isascii():

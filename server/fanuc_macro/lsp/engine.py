@@ -25,11 +25,11 @@ from typing import Any, TypeVar
 from lsprotocol import types
 from pygls.uris import from_fs_path, to_fs_path
 
-from ..analysis import Analysis
+from ..analysis import Analysis, analyse
 from ..config import Config
-from ..index import ProgramIndex, build_index
+from ..index import ProgramIndex
 from ..syntax import Document
-from ..workspace import Workspace, is_program_file
+from ..workspace import Workspace, is_program_file, related_documents
 from .convert import Codec, Lines, lsp_lines, to_lsp_diagnostic
 from .documents import OpenDocument
 
@@ -105,6 +105,8 @@ class Engine:
         self.folders: list[Path] = []
         self.scan_done = asyncio.Event()
         self.scanned_files = 0
+        self._scans = 0  # folder scans under way
+        self._scan_listed = 0  # files listed by all scans (the bound is for all of them)
         self._executor = ThreadPoolExecutor(max_workers=1, thread_name_prefix="fanuc-macro")
         self._loop: asyncio.AbstractEventLoop | None = None
         self._lock = threading.Lock()  # guards _texts and _queued, shared with the worker
@@ -274,11 +276,19 @@ class Engine:
         future.add_done_callback(done)
 
     def _report(self, message: str, error: BaseException | None = None) -> None:
+        """Log an error and show it in the client's log; callable from any thread."""
         if error is not None:
             detail = "".join(traceback.format_exception(error))
             log.error("%s\n%s", message, detail)
             message = f"{message}\n{detail}"
-        self.log_message(message, types.MessageType.Error)
+        loop = self._loop
+        if loop is None or loop.is_closed():
+            return
+        # Messages go out from the event loop only: the protocol writer is not thread-safe.
+        try:
+            loop.call_soon_threadsafe(self.log_message, message, types.MessageType.Error)
+        except RuntimeError:  # the loop closed meanwhile
+            log.debug("cannot report to the client", exc_info=True)
 
     async def fresh(self, uri: str, timeout: float = 60.0) -> Result | None:
         """The analysis of the document's current version (waits for it, at most ``timeout``);
@@ -309,57 +319,60 @@ class Engine:
             text = self._texts.get(key)
         if text is None:
             return None  # closed meanwhile
-        changed = self._ensure_text(key, text)
-        if self._analysed.get(key) == (text.seq, self.generation):
-            return None  # already fresh: a duplicate request
         started = time.perf_counter()
         lines = Lines(lsp_lines(text.text), self.codec)
-        generation = self.generation
+        changed = False
         try:
+            changed = self._ensure_text(key, text)
+            generation = self.generation
+            if self._analysed.get(key) == (text.seq, generation):
+                return None  # already fresh: a duplicate request
             if self._fault is not None and self._fault in text.text:
                 raise RuntimeError("fault injected for testing")
-            analysis = self._ws.analyse(key)
-            self._set_index(key, analysis.doc, analysis.index)
+            analysis = self._analyse(key)
             diagnostics = [
                 to_lsp_diagnostic(d, key, text.uri, lines, self._resolve)
                 for d in analysis.diagnostics
             ]
         except Exception as err:  # logged and shown; the server goes on with other work
             self._report(f"fanuc-macro: the analysis of {text.uri} failed: {err!r}", err)
-            message = (
-                f"fanuc-macro could not analyse this document ({err!r}); the language "
-                "server's log has the details"
-            )
             failure = types.Diagnostic(
                 range=lines.range(0, 0, 0, len(lines.text(0))),
-                message=message,
+                message=f"fanuc-macro could not analyse this document ({err!r}); the "
+                "language server's log has the details",
                 severity=types.DiagnosticSeverity.Error,
                 code="MB000",
                 source="fanuc-macro",
             )
-            self._analysed[key] = (text.seq, generation)
-            return Result(
-                key,
-                text.version,
-                generation,
-                lines,
-                None,
-                [failure],
-                time.perf_counter() - started,
-                changed,
-                repr(err),
-            )
+            self._analysed[key] = (text.seq, self.generation)
+            seconds = time.perf_counter() - started
+            return Result(key, text.version, self.generation, lines, None, [failure], seconds,
+                          changed, repr(err))  # fmt: skip
         self._analysed[key] = (text.seq, generation)
-        return Result(
+        seconds = time.perf_counter() - started
+        return Result(key, text.version, generation, lines, analysis, diagnostics, seconds,
+                      changed)  # fmt: skip
+
+    def _analyse(self, key: str) -> Analysis:
+        """The package's analysis of ``key``, given only the documents it can reach."""
+        doc, index = self.indexes[key]
+        return analyse(
+            "",
             key,
-            text.version,
-            generation,
-            lines,
-            analysis,
-            diagnostics,
-            time.perf_counter() - started,
-            changed,
+            self._ws.config,
+            self._ws.program_numbers(),
+            self._ws.parser,
+            doc=doc,
+            index=index,
+            other_documents=self.documents_for(key),
         )
+
+    def documents_for(self, key: str) -> list[tuple[str, Document, ProgramIndex]]:
+        """Worker thread: the other documents an analysis or trace of ``key`` needs."""
+        indexes = self.indexes
+        needed = related_documents(key, indexes)
+        keys = [k for k in indexes if k != key] if needed is None else needed
+        return [(k, *indexes[k]) for k in keys]
 
     def _ensure_text(self, key: str, text: _Text) -> bool:
         """Put the newest text of an open document into the workspace; True if it was not."""
@@ -370,7 +383,7 @@ class Engine:
         self.generation += 1
         doc = self._ws.document(key)
         if doc is not None:
-            self._set_index(key, doc, build_index(doc))
+            self._set_index(key, doc, self._ws.index(key))
         return True
 
     def _set_index(self, key: str, doc: Document, index: ProgramIndex) -> None:
@@ -382,7 +395,7 @@ class Engine:
         doc = self._ws.add_bytes(key, data)
         self._ws_seq[key] = None
         self.generation += 1
-        self._set_index(key, doc, build_index(doc))
+        self._set_index(key, doc, self._ws.index(key))
 
     def _remove(self, key: str) -> None:
         self._ws.remove(key)
@@ -435,22 +448,53 @@ class Engine:
                 continue
         return False
 
-    def start_scan(self, folders: Iterable[str]) -> None:
-        """Add the program files of the workspace folders (once, bounded), in chunks."""
+    def add_folders(self, folders: Iterable[str]) -> None:
+        """Add the program files of workspace folders (bounded in all: SCAN_MAX_FILES files of
+        at most SCAN_MAX_BYTES each), in chunks, so that calls across files resolve."""
         paths: list[Path] = []
         for folder in folders:
             path = _path_of(folder)
-            if path is not None and path.is_dir():
+            if path is not None and path.is_dir() and path not in self.folders:
                 paths.append(path)
-        self.folders = paths
+        self.folders.extend(paths)
         if not paths:
-            self.scan_done.set()
+            if self._scans == 0:
+                self.scan_done.set()
             return
+        self._scans += 1
+        self.scan_done.clear()
+        budget = max(0, SCAN_MAX_FILES - self._scan_listed)
 
         def walk() -> list[Path]:
-            return list(_program_files(paths, SCAN_MAX_FILES))
+            try:
+                return list(_program_files(paths, budget))
+            except Exception as err:  # an unreadable folder: scan nothing there
+                self._report(f"fanuc-macro: cannot list {paths}: {err!r}", err)
+                return []
 
-        self._submit(walk, then=self._scan_chunk)
+        def listed(files: list[Path]) -> None:
+            self._scan_listed += len(files)
+            self._scan_chunk(files)
+
+        self._submit(walk, then=listed)
+
+    def remove_folders(self, folders: Iterable[str]) -> None:
+        """Forget the files of folders that left the workspace (open documents stay)."""
+        gone = [p for p in (_path_of(f) for f in folders) if p is not None]
+        self.folders = [f for f in self.folders if f not in gone]
+
+        def under(path: Path) -> bool:
+            return any(path.is_relative_to(folder) for folder in gone)
+
+        def forget() -> None:
+            for key in list(self.indexes):
+                path = _path_of(key)
+                with self._lock:
+                    is_open = key in self._texts
+                if path is not None and not is_open and under(path):
+                    self._remove(key)
+
+        self._submit(forget, then=lambda _: self.schedule_all(self.debounce))
 
     def _scan_chunk(self, files: list[Path]) -> None:
         chunk, rest = files[:SCAN_CHUNK], files[SCAN_CHUNK:]
@@ -474,9 +518,11 @@ class Engine:
         def next_chunk(_: None) -> None:
             if rest:
                 self._scan_chunk(rest)
-            else:
+                return
+            self._scans -= 1
+            if self._scans == 0:
                 self.scan_done.set()
-                self.schedule_all(0.0)
+            self.schedule_all(0.0)
 
         self._submit(add, then=next_chunk)
 
@@ -506,13 +552,17 @@ class Engine:
         self._submit(apply, then=lambda _: self.schedule_all(self.debounce))
 
     # ---- for commands ----------------------------------------------------------------------
-    def workspace_documents(self) -> list[tuple[str, Document, ProgramIndex]]:
-        """Every document of the workspace (worker thread: the newest texts included)."""
+    def trace_documents(self, key: str) -> list[tuple[str, Document, ProgramIndex]] | None:
+        """Worker thread: ``key`` first, then the documents its trace needs, with the newest
+        texts of the open ones; None when ``key`` is not in the workspace."""
         with self._lock:
             texts = dict(self._texts)
-        for key, text in texts.items():
-            self._ensure_text(key, text)
-        return [(key, doc, index) for key, (doc, index) in self.indexes.items()]
+        for k, text in texts.items():
+            self._ensure_text(k, text)
+        own = self.indexes.get(key)
+        if own is None:
+            return None
+        return [(key, *own), *self.documents_for(key)]
 
     def load(self, key: str) -> bool:
         """Worker thread: make sure ``key`` is in the workspace, reading it from disk if need be."""

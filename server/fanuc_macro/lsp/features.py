@@ -14,7 +14,6 @@ from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, field
 from functools import lru_cache
 from importlib import resources
-from typing import Any
 
 from lsprotocol import types
 
@@ -25,6 +24,7 @@ from ..config import Config
 from ..evaluator.compiler import compile_expr
 from ..evaluator.facts import DocumentFacts, ValueSummary
 from ..evaluator.values import MacroAlarm, Unknown, Value, fmt
+from ..index import Call as IndexCall
 from ..index import Program, ProgramIndex, constant_value
 from ..parser import statements_of
 from ..syntax import (
@@ -41,13 +41,13 @@ from ..syntax import (
     Unary,
     Var,
     While,
+    Word,
 )
 from ..variables import ARGUMENT_VARIABLES, classify
 from ..walk import subexpressions
 from .convert import Codec, Lines
 from .locate import (
     Hit,
-    VarUse,
     assignments_in,
     find,
     goto_target,
@@ -419,10 +419,31 @@ def hover_program(view: View, number: int, line: int | None = None) -> str:
     return "\n\n".join(parts)
 
 
-def _call_at(program: Program | None, line: int) -> Any:
+def _call_at(program: Program | None, line: int) -> IndexCall | None:
     if program is None:
         return None
     return next((c for c in program.calls if c.line == line), None)
+
+
+def _argument_variable(arguments: Sequence[Word], word: Word) -> int | None:
+    """The local an argument fills: specification I, or II for a repeated I/J/K (sets of
+    three from #4)."""
+    ijk_set = -1
+    seen: set[str] = set()
+    for arg in arguments:
+        number: int | None
+        if arg.address in ("I", "J", "K"):
+            order = "IJK".index(arg.address)
+            if ijk_set < 0 or arg.address in seen or order < max("IJK".index(a) for a in seen):
+                ijk_set += 1
+                seen = set()
+            seen.add(arg.address)
+            number = 4 + 3 * ijk_set + order
+        else:
+            number = ARGUMENT_VARIABLES.get(arg.address)
+        if arg is word:
+            return number if number is not None and number <= 33 else None
+    return None
 
 
 def hover_word(view: View, block: Block, hit: Hit) -> str | None:
@@ -446,9 +467,10 @@ def hover_word(view: View, block: Block, hit: Hit) -> str | None:
     parts: list[str] = []
     if call is not None and any(arg is word for arg in call.arguments):
         target = f"O{call.program:04d}" if call.program is not None else "the macro"
-        number = ARGUMENT_VARIABLES.get(word.address)
-        if number is not None:
-            parts.append(f"{call.kind} argument **{word.address}** → **#{number}** in {target}")
+        number = _argument_variable(call.arguments, word)
+        if number is None:
+            return f"**{word.address}** cannot be a {call.kind} argument"
+        return f"{call.kind} argument **{word.address}** → **#{number}** in {target}"
     address = knowledge.address_markdown(word.address, lathe)
     if address is not None:
         parts.append(address)
@@ -819,7 +841,8 @@ def _nest(nodes: list[_Node]) -> list[types.DocumentSymbol]:
 
 # ---- completion ------------------------------------------------------------------------------
 
-_PREFIX = re.compile(r"[#A-Za-z0-9.]*$")
+# What is being typed: a variable (#51), or letters with the digits after them (SQ, G9, GOTO1).
+_PREFIX = re.compile(r"#\d*$|[A-Za-z]+\d*\.?\d*$")
 _CODE_PREFIX = re.compile(r"([GgMm])(\d*\.?\d*)$")
 
 
@@ -881,9 +904,6 @@ def completion(
     prefix = _PREFIX.search(before)
     start = prefix.start() if prefix is not None else column
     word = before[start:]
-    if "#" in word:
-        start += word.rindex("#")
-        word = before[start:]
     edit_range = types.Range(
         start=types.Position(line=line, character=codec.to_client(line_text, start)),
         end=types.Position(line=line, character=codec.to_client(line_text, column)),
@@ -1098,7 +1118,6 @@ def code_actions(
 
 __all__ = [
     "CompletionSupport",
-    "VarUse",
     "View",
     "code_actions",
     "completion",

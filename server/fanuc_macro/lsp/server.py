@@ -103,6 +103,12 @@ class FanucMacroLanguageServer(LanguageServer):
             return None
 
 
+def _has_extension_snippets(info: types.ClientInfo | None) -> bool:
+    """VS Code and its builds load the extension, which brings the same snippets."""
+    name = info.name.lower() if info is not None else ""
+    return any(n in name for n in ("visual studio code", "vscodium", "code - oss"))
+
+
 def _ignore_failure(future: Any) -> None:
     """A refresh the client did not take is no error of ours."""
     if not future.cancelled() and future.exception() is not None:
@@ -134,7 +140,7 @@ def create_server() -> FanucMacroLanguageServer:
     @server.feature(types.INITIALIZE)
     def initialize(ls: FanucMacroLanguageServer, params: types.InitializeParams) -> None:
         engine.bind_loop(asyncio.get_running_loop())
-        engine.codec = Codec(str(ls.workspace.position_encoding or "utf-16"))
+        engine.codec = Codec(ls.workspace.position_encoding)
         caps = params.capabilities
         ls.completion_support = CompletionSupport(
             snippets=bool(
@@ -145,8 +151,7 @@ def create_server() -> FanucMacroLanguageServer:
                 _capability(caps, "text_document.completion.completion_item.documentation_format")
                 or []
             ),
-            builtin_snippets="visual studio code"
-            in (params.client_info.name.lower() if params.client_info else ""),
+            builtin_snippets=_has_extension_snippets(params.client_info),
         )
         hover_formats = _capability(caps, "text_document.hover.content_format")
         ls.markdown_hover = hover_formats is None or types.MarkupKind.Markdown in hover_formats
@@ -165,7 +170,7 @@ def create_server() -> FanucMacroLanguageServer:
         folders = [f.uri for f in ls.workspace.folders.values()]
         if not folders and ls.workspace.root_uri:
             folders = [ls.workspace.root_uri]
-        engine.start_scan(folders)
+        engine.add_folders(folders)
         if ls.watch_files:
             registration = types.Registration(
                 id="fanuc-macro-watch",
@@ -227,6 +232,13 @@ def create_server() -> FanucMacroLanguageServer:
                 await pull_configuration(ls)
             return
         engine.configure(settings)
+
+    @server.feature(types.WORKSPACE_DID_CHANGE_WORKSPACE_FOLDERS)
+    def did_change_workspace_folders(
+        ls: FanucMacroLanguageServer, params: types.DidChangeWorkspaceFoldersParams
+    ) -> None:
+        engine.remove_folders(f.uri for f in params.event.removed)
+        engine.add_folders(f.uri for f in params.event.added)
 
     @server.feature(types.WORKSPACE_DID_CHANGE_WATCHED_FILES)
     def did_change_watched_files(

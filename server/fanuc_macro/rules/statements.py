@@ -75,13 +75,13 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
                 )
             if call.repeat is not None and not 1 <= call.repeat <= 9999:
                 l_word = next((w for w in words if w.address == "L"), None)
-                where = l_word.span if l_word is not None else span
+                at = l_word.span if l_word is not None else span
                 yield make(
                     "MB405",
                     f"{call.kind} repeat count {call.repeat} is outside 1-9999",
                     line,
-                    where.start,
-                    where.end,
+                    at.start,
+                    at.end,
                 )
             for word in call.arguments:
                 if word.address in FORBIDDEN_ARGUMENTS and not (
