@@ -14,9 +14,9 @@ from .diagnostics import Diagnostic, Related, RuleInfo, Severity, make, register
 from .evaluator import Facts, evaluate
 from .index import ProgramIndex, build_index
 from .parser import BlockParser, default_parser, parse_text
-from .rules import ALL_CHECKS
+from .rules import ALL_CHECKS, LINE_CHECKS, LineFinding
 from .rules.context import RuleContext
-from .syntax import Document
+from .syntax import Document, ParsedLine
 
 log = logging.getLogger(__name__)
 
@@ -41,6 +41,8 @@ def _apply_settings(diags: Iterable[Diagnostic], doc: Document, config: Config) 
     suppressions: dict[int, set[str]] = {}
     for block in doc.blocks:
         for comment in block.parsed.comments:
+            if "ignore" not in comment.text.lower():
+                continue
             codes = suppressed_codes(comment.text)
             if codes is not None:
                 suppressions.setdefault(block.line, set()).update(codes or {"*"})
@@ -57,8 +59,39 @@ def _apply_settings(diags: Iterable[Diagnostic], doc: Document, config: Config) 
     return out
 
 
+_LINE_CACHE: dict[int, tuple[ParsedLine, tuple[LineFinding, ...]]] = {}
+_LINE_CACHE_LIMIT = 400_000
+
+
+def line_findings(parsed: ParsedLine) -> tuple[LineFinding, ...]:
+    """The line rules' findings for one line's text, computed once per distinct line."""
+    entry = _LINE_CACHE.get(id(parsed))
+    if entry is not None and entry[0] is parsed:
+        return entry[1]
+    found: list[LineFinding] = []
+    for check in LINE_CHECKS:
+        try:
+            found.extend(check(parsed))
+        except Exception as err:  # a bug in one rule must not hide the others
+            log.exception("line rule %s failed", check.__module__)
+            found.append(
+                LineFinding("MB000", f"internal error in {check.__module__}: {err!r}", 0, 0)
+            )
+    if len(_LINE_CACHE) >= _LINE_CACHE_LIMIT:
+        _LINE_CACHE.clear()
+    result = tuple(found)
+    _LINE_CACHE[id(parsed)] = (parsed, result)  # holds the line, so its id stays its own
+    return result
+
+
 def run_checks(ctx: RuleContext, checks: Iterable[ExtraChecks]) -> list[Diagnostic]:
     found: list[Diagnostic] = []
+    for block in ctx.doc.blocks:
+        parsed = block.parsed
+        if parsed.statement is None and parsed.problem is None and not parsed.notes:
+            continue
+        for f in line_findings(parsed):
+            found.append(make(f.code, f.message, block.line, f.start, f.end))
     for check in checks:
         try:
             found.extend(check(ctx))

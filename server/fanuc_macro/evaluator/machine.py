@@ -67,6 +67,21 @@ class CompiledLine:
     nc: NcStatement | None = None
     node: Statement | None = None
     second: CompiledLine | None = None  # the macro part of a mixed block
+    constant: ConstantWords | None = None  # an NC block whose words are all constants
+    ends_program: bool = False  # M02/M30: the program is a main program
+
+
+@dataclass(slots=True)
+class ConstantWords:
+    """What an NC block of constant words evaluates to, worked out once at compile time.
+    Most blocks of a long program are such; nothing here is mutated by a run."""
+
+    values: dict[str, Value]
+    g_codes: list[float]
+    m_codes: list[float]
+    order: list[tuple[str, Value, CompiledWord]]
+    words: dict[str, float]  # the motion record's words
+    has_axis: bool
 
 
 def _direct_reads(statement: Statement) -> tuple[int, ...]:
@@ -142,6 +157,7 @@ def compile_statement(statement: Statement | None) -> CompiledLine:
     else:
         c = CompiledLine(K_OTHER, node=statement)
     c.reads = reads
+    c.ends_program = _ends_program(statement)
     return c
 
 
@@ -149,7 +165,32 @@ def _compile_nc(nc: NcStatement) -> CompiledLine:
     words = tuple(
         CompiledWord(w.address, compile_expr(w.value), w.span.start, w.span.end) for w in nc.words
     )
-    return CompiledLine(K_NC, words=words, nc=nc, node=nc)
+    compiled = CompiledLine(K_NC, words=words, nc=nc, node=nc)
+    constants = [constant_value(w.value) for w in nc.words]
+    if all(c is not None for c in constants):
+        values: dict[str, Value] = {}
+        order: list[tuple[str, Value, CompiledWord]] = []
+        for cw, c in zip(words, constants, strict=True):
+            order.append((cw.address, c, cw))
+            values.setdefault(cw.address, c)
+        compiled.constant = ConstantWords(
+            values,
+            [round(v, 1) for a, v, _ in order if a == "G" and isinstance(v, float)],
+            [v for a, v, _ in order if a == "M" and isinstance(v, float)],
+            order,
+            _motion_words(values),
+            any(a in AXES for a in values),
+        )
+    return compiled
+
+
+def _motion_words(values: dict[str, Value]) -> dict[str, float]:
+    words: dict[str, float] = {}
+    for address, v in values.items():
+        if address in ("G", "M", "N") or not isinstance(v, float):
+            continue
+        words[address] = round(v, 3)  # the least input increment (IS-B)
+    return words
 
 
 @dataclass
@@ -558,21 +599,30 @@ class Machine:
             if result is not True:
                 act.pc = self._line + 1
                 return act
-        values: dict[str, Value] = {}
-        g_codes: list[float] = []
-        m_codes: list[float] = []
-        order: list[tuple[str, Value, CompiledWord]] = []
-        for w in cl.words:
-            v = w.evaluate(act)
-            if v is None:
-                continue  # a vacant variable omits the word
-            order.append((w.address, v, w))
-            if w.address == "G" and not isinstance(v, Unknown):
-                g_codes.append(round(v, 1))
-            elif w.address == "M" and not isinstance(v, Unknown):
-                m_codes.append(v)
-            if w.address not in values:
-                values[w.address] = v
+        const = cl.constant
+        if const is not None:
+            values, g_codes, m_codes, order = (
+                const.values,
+                const.g_codes,
+                const.m_codes,
+                const.order,
+            )
+        else:
+            values = {}
+            g_codes = []
+            m_codes = []
+            order = []
+            for w in cl.words:
+                v = w.evaluate(act)
+                if v is None:
+                    continue  # a vacant variable omits the word
+                order.append((w.address, v, w))
+                if w.address == "G" and not isinstance(v, Unknown):
+                    g_codes.append(round(v, 1))
+                elif w.address == "M" and not isinstance(v, Unknown):
+                    m_codes.append(v)
+                if w.address not in values:
+                    values[w.address] = v
         modal = self.modal
         call_kind: str | None = None
         for g in g_codes:
@@ -627,8 +677,9 @@ class Machine:
     def _motion(
         self, act: Activation, cl: CompiledLine, values: dict[str, Value], g_codes: list[float]
     ) -> bool:
-        one_shot = next((g for g in g_codes if g in ONE_SHOT_CYCLES), None)
-        has_axis = any(a in AXES for a in values)
+        one_shot = next((g for g in g_codes if g in ONE_SHOT_CYCLES), None) if g_codes else None
+        const = cl.constant
+        has_axis = const.has_axis if const is not None else any(a in AXES for a in values)
         modal = self.modal
         if one_shot is not None:
             code = one_shot
@@ -636,13 +687,9 @@ class Machine:
             code = modal.motion
         else:
             return False
-        words: dict[str, float] = {}
-        for address, v in values.items():
-            if address in ("G", "M", "N") or isinstance(v, Unknown) or v is None:
-                continue
-            words[address] = round(v, 3)  # the least input increment (IS-B)
-        if "F" not in words and isinstance(modal.feed, float) and code not in (0.0,):
-            words["F"] = modal.feed
+        words = const.words if const is not None else _motion_words(values)
+        if "F" not in words and isinstance(modal.feed, float) and code != 0.0:
+            words = {**words, "F": modal.feed}
         position = modal.position
         x = values.get("X")
         if not isinstance(x, float):
@@ -1012,9 +1059,6 @@ def contexts_of(uri: str, doc: Document, index: ProgramIndex, facts: Facts) -> l
     for program in index.programs:
         loop_end = {lp.do_line: lp.end_line for lp in program.loops if lp.end_line is not None}
         loop_do = {e: d for d, e in loop_end.items()}
-        is_main = any(
-            _ends_program(doc.blocks[ln].statement)
-            for ln in range(program.first_line, program.end_line)
-        )
+        is_main = any(cl.ends_program for cl in lines[program.first_line : program.end_line])
         out.append(ProgramContext(uri, doc, program, lines, loop_end, loop_do, doc_facts, is_main))
     return out

@@ -15,14 +15,20 @@ from . import (
     threading,
     variable_use,
 )
-from .context import Check, RuleContext
+from .context import Check, LineCheck, LineFinding, RuleContext
+
+# Rules on one line's text: run once per distinct line, cached while the line is unchanged.
+LINE_CHECKS: tuple[LineCheck, ...] = (
+    reading.check_line,
+    dialect.check_line,
+    expressions.check_line,
+    statements.check_line,
+)
 
 ALL_CHECKS: tuple[Check, ...] = (
     reading.check,
-    dialect.check,
     jumps.check,
     loops.check,
-    expressions.check,
     statements.check,
     math_domain.check,
     addresses.check,
@@ -31,4 +37,4 @@ ALL_CHECKS: tuple[Check, ...] = (
     threading.check,
 )
 
-__all__ = ["ALL_CHECKS", "Check", "RuleContext"]
+__all__ = ["ALL_CHECKS", "LINE_CHECKS", "Check", "LineCheck", "LineFinding", "RuleContext"]

@@ -2,14 +2,15 @@
 
 from __future__ import annotations
 
-from collections.abc import Callable, Iterable, Iterator
+from collections.abc import Callable, Iterable, Iterator, Sequence
 from dataclasses import dataclass, field
+from typing import NamedTuple
 
 from ..config import Config
 from ..diagnostics import Diagnostic
 from ..evaluator.facts import DocumentFacts, Facts, Finding
 from ..index import ProgramIndex
-from ..syntax import Block, Document, Statement
+from ..syntax import Block, Document, ParsedLine, Statement
 
 
 @dataclass(frozen=True)
@@ -43,3 +44,22 @@ class RuleContext:
 
 
 Check = Callable[[RuleContext], Iterable[Diagnostic]]
+
+
+class LineFinding(NamedTuple):
+    """A diagnostic that depends on one line's text alone, without its line number: the
+    analysis computes it once per distinct line and keeps it while the line is unchanged."""
+
+    code: str
+    message: str
+    start: int
+    end: int
+
+
+LineCheck = Callable[[ParsedLine], Iterable[LineFinding]]
+
+
+def line_statements(parsed: ParsedLine) -> Sequence[Statement]:
+    from ..parser import statements_of
+
+    return statements_of(parsed.statement)

@@ -4,11 +4,11 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
-from ..diagnostics import Diagnostic, RuleInfo, Severity, make, register
+from ..diagnostics import RuleInfo, Severity, register
 from ..index import constant_value
-from ..syntax import BareCond, BlockIf, IfGoto, IfNc, NcStatement, Var, While
+from ..syntax import BareCond, BlockIf, IfGoto, IfNc, NcStatement, ParsedLine, Var, While
 from ..walk import variables
-from .context import RuleContext
+from .context import LineFinding, line_statements
 
 FAMILY = "dialect"
 register(
@@ -17,36 +17,28 @@ register(
 )  # fmt: skip
 
 
-def check(ctx: RuleContext) -> Iterator[Diagnostic]:
-    for block in ctx.doc.blocks:
-        problem = block.parsed.problem
-        if problem is not None and problem.dialect is not None:
-            yield make(
-                "MB002",
-                f"{problem.dialect}: {problem.message}",
-                block.line,
-                problem.span.start,
-                problem.span.end,
-            )
-    for block, statement in ctx.statements():
-        line = block.line
+def check_line(parsed: ParsedLine) -> Iterator[LineFinding]:
+    problem = parsed.problem
+    if problem is not None and problem.dialect is not None:
+        yield LineFinding(
+            "MB002", f"{problem.dialect}: {problem.message}", problem.span.start, problem.span.end
+        )
+    for statement in line_statements(parsed):
         span = statement.span
         if isinstance(statement, IfNc):
             form = "IF [...] THEN <NC words>" if statement.has_then else "IF [...] <NC words>"
-            yield make(
+            yield LineFinding(
                 "MB002",
                 f"Haas: '{form}' is not FANUC; FANUC's IF takes GOTO n, or THEN "
                 "with one macro statement (alarm PS0125)",
-                line,
                 span.start,
                 span.end,
             )
         elif isinstance(statement, BlockIf):
-            yield make(
+            yield LineFinding(
                 "MB002",
                 f"Haas NGC: block {statement.keyword} (IF ... THEN / ELSE / ENDIF "
                 "on their own lines) is not FANUC 0i/16i/30i; use IF [...] GOTO n",
-                line,
                 span.start,
                 span.end,
             )
@@ -55,40 +47,37 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
             for word in statement.words:
                 value = constant_value(word.value)
                 if word.address == "M" and value == 98.0 and statement.find("H") and not has_p:
-                    yield make(
+                    yield LineFinding(
                         "MB002",
                         "Mitsubishi/Citizen: M98 H<n> (a call to a sequence "
                         "number) is not FANUC; FANUC's M98 takes P<program>",
-                        line,
                         word.span.start,
                         word.span.end,
                     )
                 # A bare M97 is an ordinary M code on FANUC; with P it is Haas's local call.
                 if word.address == "M" and value == 97.0 and has_p:
-                    yield make(
+                    yield LineFinding(
                         "MB002",
                         "Haas: M97 (local subroutine at an N number) is not FANUC;"
                         " use M98 P<program>",
-                        line,
                         word.span.start,
                         word.span.end,
                     )
         if isinstance(statement, (IfGoto, While)) and isinstance(statement.cond, BareCond):
             c = statement.cond
-            yield make(
+            yield LineFinding(
                 "MB002",
                 "Haas NGC: a bare value as a condition is not FANUC; compare it, e.g. [#1 NE 0]",
-                line,
                 c.span.start,
                 c.span.end,
             )
         for var in variables(statement):
             if isinstance(var, Var) and var.number is not None and var.number != int(var.number):
-                yield make(
+                written = parsed.text[var.span.start + 1 : var.span.end].strip()
+                yield LineFinding(
                     "MB002",
-                    f"Haas NGC: #{block.source(var.span)[1:].strip()} (a variable "
-                    "number with a decimal part) is not FANUC (alarm PS0115)",
-                    line,
+                    f"Haas NGC: #{written} (a variable number with a decimal part) is not FANUC "
+                    "(alarm PS0115)",
                     var.span.start,
                     var.span.end,
                 )

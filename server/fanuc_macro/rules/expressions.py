@@ -4,11 +4,11 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
-from ..diagnostics import Diagnostic, RuleInfo, Severity, make, register
-from ..syntax import Assign, IfThen
+from ..diagnostics import RuleInfo, Severity, register
+from ..syntax import Assign, IfThen, ParsedLine
 from ..variables import classify
 from ..walk import bracket_depth, top_expressions, variables
-from .context import RuleContext
+from .context import LineFinding, line_statements
 
 FAMILY = "expressions"
 MAX_BRACKET_NESTING = 5
@@ -24,17 +24,15 @@ register(
 )  # fmt: skip
 
 
-def check(ctx: RuleContext) -> Iterator[Diagnostic]:
-    for block, statement in ctx.statements():
-        line = block.line
+def check_line(parsed: ParsedLine) -> Iterator[LineFinding]:
+    for statement in line_statements(parsed):
         for expr in top_expressions(statement):
             depth = bracket_depth(expr)
             if depth > MAX_BRACKET_NESTING:
-                yield make(
+                yield LineFinding(
                     "MB301",
                     f"brackets nested {depth} deep; FANUC allows "
                     f"{MAX_BRACKET_NESTING} (alarm PS0118)",
-                    line,
                     expr.span.start,
                     expr.span.end,
                 )
@@ -44,19 +42,17 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
             number = int(var.number)
             kind = classify(number)
             if kind.kind == "none":
-                yield make(
+                yield LineFinding(
                     "MB302",
                     f"#{number} does not exist on a FANUC control (alarm "
                     "PS0115): locals are #1-#33, commons #100-#199 and #500-#999",
-                    line,
                     var.span.start,
                     var.span.end,
                 )
             elif kind.kind == "extended-common":
-                yield make(
+                yield LineFinding(
                     "MB303",
                     f"#{number} exists only with the extended common variable option (0i-F / 30i)",
-                    line,
                     var.span.start,
                     var.span.end,
                 )
@@ -70,10 +66,9 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
             kind = classify(int(target.number))
             if kind.read_only:
                 what = "#0 is always vacant" if target.number == 0 else kind.meaning
-                yield make(
+                yield LineFinding(
                     "MB304",
                     f"#{int(target.number)} is read-only ({what}); writing it raises alarm PS0116",
-                    line,
                     target.span.start,
                     target.span.end,
                 )

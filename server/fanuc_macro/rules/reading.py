@@ -5,7 +5,8 @@ from __future__ import annotations
 from collections.abc import Iterator
 
 from ..diagnostics import Diagnostic, RuleInfo, Severity, make, register
-from .context import RuleContext
+from ..syntax import ParsedLine
+from .context import LineFinding, RuleContext
 
 FAMILY = "reading"
 register(
@@ -31,34 +32,29 @@ _NOTE_CODES = {"nested-comment": "MB003", "unclosed-comment": "MB004", "text-aft
 def check(ctx: RuleContext) -> Iterator[Diagnostic]:
     if ctx.doc.decode_note:
         yield make("MB007", ctx.doc.decode_note, 0, 0, 0)
-    for block in ctx.doc.blocks:
-        parsed = block.parsed
-        problem = parsed.problem
-        if problem is not None and problem.dialect is None:
-            code = "MB008" if problem.unknown_function else "MB001"
-            yield make(code, problem.message, block.line, problem.span.start, problem.span.end)
-        for note in parsed.notes:
-            yield make(
-                _NOTE_CODES[note.kind], note.message, block.line, note.span.start, note.span.end
+
+
+def check_line(parsed: ParsedLine) -> Iterator[LineFinding]:
+    problem = parsed.problem
+    if problem is not None and problem.dialect is None:
+        code = "MB008" if problem.unknown_function else "MB001"
+        yield LineFinding(code, problem.message, problem.span.start, problem.span.end)
+    for note in parsed.notes:
+        yield LineFinding(_NOTE_CODES[note.kind], note.message, note.span.start, note.span.end)
+    if parsed.has_lowercase and problem is None:
+        col = next(
+            (i for i, ch in enumerate(parsed.text) if ch.islower() and _outside(parsed, i)),
+            None,
+        )
+        if col is not None:
+            yield LineFinding(
+                "MB006",
+                f"lowercase {parsed.text[col]!r} at column {col + 1}: FANUC program text is "
+                "uppercase; the control may reject it",
+                col,
+                col + 1,
             )
-        if parsed.has_lowercase and problem is None:
-            col = next(
-                (i for i, ch in enumerate(parsed.text) if ch.islower() and _outside(parsed, i)),
-                None,
-            )
-            if col is not None:
-                yield make(
-                    "MB006",
-                    f"lowercase {parsed.text[col]!r} at column {col + 1}: FANUC program text is "
-                    "uppercase; the control may reject it",
-                    block.line,
-                    col,
-                    col + 1,
-                )
 
 
-def _outside(parsed: object, col: int) -> bool:
-    from ..syntax import ParsedLine
-
-    assert isinstance(parsed, ParsedLine)
+def _outside(parsed: ParsedLine, col: int) -> bool:
     return all(not (c.span.start <= col < c.span.end) for c in parsed.comments)

@@ -6,9 +6,9 @@ from collections.abc import Iterator
 
 from ..diagnostics import Diagnostic, RuleInfo, Severity, make, register
 from ..parser import statements_of
-from ..syntax import IfNc, Mixed, NcStatement, Num, Word
+from ..syntax import IfNc, Mixed, NcStatement, Num, ParsedLine, Word
 from ..variables import FORBIDDEN_ARGUMENTS
-from .context import RuleContext
+from .context import LineFinding, RuleContext
 
 FAMILY = "statements"
 register(
@@ -27,20 +27,22 @@ register(
 )  # fmt: skip
 
 
+def check_line(parsed: ParsedLine) -> Iterator[LineFinding]:
+    statement = parsed.statement
+    if isinstance(statement, Mixed):
+        m = statement.macro.span
+        n = statement.nc.span
+        yield LineFinding(
+            "MB401",
+            f"macro statement {parsed.text[m.start : m.end]!r} in the same block as NC "
+            f"words {parsed.text[n.start : n.end]!r}: FANUC raises PS0127; put "
+            "them in separate blocks",
+            m.start,
+            m.end,
+        )
+
+
 def check(ctx: RuleContext) -> Iterator[Diagnostic]:
-    for block in ctx.doc.blocks:
-        statement = block.statement
-        if isinstance(statement, Mixed):
-            m = statement.macro.span
-            yield make(
-                "MB401",
-                f"macro statement {block.source(m)!r} in the same block as NC "
-                f"words {block.source(statement.nc.span)!r}: FANUC raises PS0127; put "
-                "them in separate blocks",
-                block.line,
-                m.start,
-                m.end,
-            )
     local_programs = {p.number for p in ctx.index.programs if p.number is not None}
     known = local_programs | set(ctx.workspace_programs or ())
     for program in ctx.index.programs:

@@ -30,7 +30,18 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
         yield make("MB902", f.message, f.line, f.column, f.end_column)
     for f in ctx.findings("alarm:no-such-variable"):
         yield make("MB903", f.message, f.line, f.column, f.end_column)
+    # Locals that were vacant every time a block read them: few or none in most programs.
+    vacant_reads = sorted(
+        (line, n)
+        for (line, n), summary in facts.reads.items()
+        if 1 <= n <= 33 and summary.vacant and summary.vacant == summary.count
+    )
+    if not vacant_reads:
+        return
     for program in ctx.index.programs:
+        candidates = [(line, n) for line, n in vacant_reads if program.contains(line)]
+        if not candidates:
+            continue
         assigned: set[int] = set()
         checked: set[int] = set()
         for line in range(program.first_line, program.end_line):
@@ -42,26 +53,20 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
                 assigned.add(int(target.target.number))
             _vacancy_checks(statement, checked)
         reported: set[int] = set()
-        for (line, n), summary in sorted(facts.reads.items()):
-            if not program.contains(line) or not 1 <= n <= 33 or n in reported:
+        for line, n in candidates:
+            if n in reported or n in assigned or n in checked:
                 continue
-            if (
-                summary.vacant
-                and summary.vacant == summary.count
-                and n not in assigned
-                and (n not in checked)
-            ):
-                reported.add(n)
-                span = _var_span(ctx, line, n)
-                yield make(
-                    "MB901",
-                    f"#{n} is read while vacant: {program.display_name} never "
-                    f"sets it and no caller passes it (a vacant local counts as 0 in "
-                    "arithmetic, and omits the word in an address)",
-                    line,
-                    span[0],
-                    span[1],
-                )
+            reported.add(n)
+            span = _var_span(ctx, line, n)
+            yield make(
+                "MB901",
+                f"#{n} is read while vacant: {program.display_name} never "
+                f"sets it and no caller passes it (a vacant local counts as 0 in "
+                "arithmetic, and omits the word in an address)",
+                line,
+                span[0],
+                span[1],
+            )
 
 
 def _vacancy_checks(statement: object, checked: set[int]) -> None:
