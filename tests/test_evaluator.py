@@ -190,3 +190,38 @@ def test_statements_per_second_budget_is_sane() -> None:
     assert facts.stopped is None
     assert facts.document("t.nc").writes[3][1].last == 1000.0
     assert math.isclose(facts.document("t.nc").writes[3][1].count, 1000)
+
+
+def _seed_codes(name: str, old: str, new: str) -> dict[str, list[str]]:
+    text = (SEEDS / name).read_text("utf-8")
+    assert old in text
+    result = analyse(text.replace(old, new), name)
+    found: dict[str, list[str]] = {}
+    for d in result.diagnostics:
+        found.setdefault(d.code, []).append(d.message)
+    return found
+
+
+def test_threading_rules_on_the_seed_module() -> None:
+    # The paper's module as it is: no threading diagnostic.
+    clean = analyse((SEEDS / "o4009_external_m50x3.nc").read_text("utf-8"), "o4009.nc")
+    assert not [d for d in clean.diagnostics if d.code.startswith("MB8")]
+    # The finishing pass 0.4 mm (diameter) deeper than the module's own root.
+    found = _seed_codes(
+        "o4009_external_m50x3.nc", "X[#100-2.*#4] (直进法精车)", "X[#100-2.*#4-0.4] (直进法精车)"
+    )
+    assert "past the root X46.186" in found["MB801"][0]
+    # A nose radius far above P/(8 sin 60) for P = 3.
+    found = _seed_codes(
+        "o4009_external_m50x3.nc", "#3=#101/[8*SIN[60]] (刀尖半径)", "#3=0.6 (刀尖半径)"
+    )
+    assert "nose radius 0.6" in found["MB805"][0]
+    # S x P over the machine's threading feed limit.
+    found = _seed_codes("o4009_external_m50x3.nc", "G97 S400", "G97 S4000")
+    assert "12000." in found["MB807"][0]
+
+
+def test_fitting_method_tool_radius_from_chinese_comments() -> None:
+    found = _seed_codes("o2_arc_thread_roughing.nc", "N07 #18 = 1.2", "N07 #18 = 10.5")
+    assert "tool radius 10.5" in found["MB806"][0]
+    assert "MB501" in found  # and ASIN[#18/[#4-#18]] leaves its domain

@@ -434,6 +434,27 @@ async def test_completion(client: LanguageClient) -> None:
     assert "#3000" in variables and "#5221" in variables
 
 
+async def test_completion_offers_the_thread_module_of_the_document(client: LanguageClient) -> None:
+    await start(client, None)
+    uri = "untitled:main-only.nc"
+    main = (
+        "O4009 (M50X3-5G6G)\nT0101\nG00 X55. Z0.\nG97 S400 M03\n#100=50.\n#101=3.\n"
+        "#102=50.\n#103=0.048\n#104=0.170\nM98 P0013331\nM30\n\n"
+    )
+    open_text(client, uri, main)
+    await diagnostics(client, uri)
+    result = await client.text_document_completion_async(
+        types.CompletionParams(
+            text_document=types.TextDocumentIdentifier(uri=uri),
+            position=types.Position(line=11, character=0),
+        )
+    )
+    assert isinstance(result, types.CompletionList)
+    module = next(i for i in result.items if i.label.startswith("thread module"))
+    text = module.insert_text or ""
+    assert "O3331" in text and "H=1.907" in text and "88 ROUGH PASSES" in text
+
+
 # ---- code actions ----------------------------------------------------------------------------
 
 

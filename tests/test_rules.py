@@ -310,3 +310,32 @@ def test_config_from_editor_settings() -> None:
     assert "MB403" not in diags
     assert diags["MB101"].severity is Severity.WARNING
     assert diags["MB302"].severity is Severity.ERROR
+
+
+def test_docs_name_every_word_the_threading_rules_know() -> None:
+    from fanuc_macro.meanings import KNOWN_MODULES, ROLE_WORDS
+
+    text = (ROOT / "docs" / "rules.md").read_text("utf-8")
+    for words in ROLE_WORDS.values():
+        for word in words:
+            assert f"`{word}`" in text, word
+    for number in KNOWN_MODULES:
+        assert f"| O{number:04d} |" in text
+
+
+@pytest.mark.parametrize(
+    ("comment", "role"),
+    [
+        ("#18 为刀尖圆弧半径", "nose_radius"),
+        ("#4 为粗车第一层圆弧槽的半径", "groove_radius"),
+        ("刀尖半径", "nose_radius"),
+        ("计算外螺纹牙高", "thread_height"),
+        ("THREAD HEIGHT H=1.907", "thread_height"),
+        ("螺纹公称直径", "nominal_diameter"),
+        ("FEED", None),
+    ],
+)
+def test_role_of_comment(comment: str, role: str | None) -> None:
+    from fanuc_macro.meanings import role_of_comment
+
+    assert role_of_comment(comment) == role

@@ -16,10 +16,11 @@ from dataclasses import dataclass
 from .index import ProgramIndex
 from .syntax import Assign, Document
 
-# Role -> words that name it in a comment. Longer, more specific words come first.
+# Role -> words that name it in a comment. The first role with a matching word wins, so the
+# more specific come first: "刀尖圆弧半径" (nose radius) holds "圆弧半径" (arc radius).
 ROLE_WORDS: dict[str, tuple[str, ...]] = {
-    "groove_radius": ("GROOVE RADIUS", "圆弧槽的半径", "圆弧半径", "槽半径"),
     "nose_radius": ("NOSE RADIUS", "TOOL RADIUS", "刀尖圆弧半径", "刀尖半径", "刀具半径"),
+    "groove_radius": ("GROOVE RADIUS", "圆弧槽的半径", "圆弧半径", "槽半径"),
     "thread_height": ("THREAD HEIGHT", "THREAD DEPTH", "牙高", "牙深"),
     "ap_max": ("MAX DEPTH", "FIRST DEPTH", "最大切削深度"),
     "ap_min": ("MIN DEPTH", "FINISH ALLOWANCE", "最小切削深度"),

@@ -43,6 +43,7 @@ from ..syntax import (
     While,
     Word,
 )
+from ..threads.snippet import module_from_analysis
 from ..variables import ARGUMENT_VARIABLES, classify
 from ..walk import subexpressions
 from .convert import Codec, Lines
@@ -997,7 +998,33 @@ def completion(
     if not word or word[:1].upper() in ("G", "M"):
         for name, title in codes:
             add(name, types.CompletionItemKind.Value, title, name, sort="4")
+    module = _thread_module(view) if not word.startswith("#") else None
+    if module is not None:
+        item = types.CompletionItem(
+            label="thread module for this program's thread",
+            kind=types.CompletionItemKind.Snippet,
+            detail="symmetric thread module (G92, left-right) computed from #100-#104",
+            documentation=types.MarkupContent(
+                kind=types.MarkupKind.Markdown, value=f"```\n{module}\n```"
+            ),
+            insert_text=module,
+            insert_text_format=types.InsertTextFormat.PlainText,
+            filter_text="thread",
+            sort_text="0",
+        )
+        items.append(item)
     return types.CompletionList(is_incomplete=False, items=items)
+
+
+def _thread_module(view: View | None) -> str | None:
+    """The symmetric thread module for the thread the document enters in #100-#104 (or names
+    in a comment such as ``(M50X3-5G6G)``), from the analysis the server already has."""
+    if view is None or view.facts is None:
+        return None
+    try:
+        return module_from_analysis(view.doc, view.index, view.facts)
+    except ValueError:
+        return None
 
 
 def _unique(items: list[types.CompletionItem]) -> list[types.CompletionItem]:

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import re
 
-from ..evaluator import evaluate
+from ..evaluator import DocumentFacts, evaluate
 from ..index import ProgramIndex, build_index
 from ..parser import default_parser, parse_text
 from ..syntax import Assign, Document, IfThen
@@ -120,12 +120,20 @@ def module_from_document(text: str) -> str | None:
     or when they do not make a thread.
     """
     doc = parse_text(text, _URI, default_parser())
-    assigned = _assigned_lines(doc)
-    if not assigned:
+    if not _assigned_lines(doc):
         return None
     index = build_index(doc)
     facts = evaluate([(_URI, doc, index)], only_uri=_URI)
-    writes = facts.document(_URI).writes
+    return module_from_analysis(doc, index, facts.document(_URI))
+
+
+def module_from_analysis(doc: Document, index: ProgramIndex, facts: DocumentFacts) -> str | None:
+    """:func:`module_from_document` for a document already parsed, indexed and evaluated
+    (the language server has all three): no second run of the evaluator."""
+    assigned = _assigned_lines(doc)
+    if not assigned:
+        return None
+    writes = facts.writes
     values: dict[int, float] = {}
     for number, lines in assigned.items():
         for line in lines:  # the last assignment in the text that produced a number wins
