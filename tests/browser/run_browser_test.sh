@@ -120,7 +120,7 @@ log "npm run package"
 (cd "$REPO" && timeout 600 npm run --silent package -- --out "$VSIX" >"$OUT/package.log" 2>&1) \
   || { tail -40 "$OUT/package.log"; log "npm run package failed"; exit 1; }
 
-mkdir -p "$RUN/user/User" "$RUN/extensions"
+mkdir -p "$RUN/user/User" "$RUN/user/Machine" "$RUN/extensions"
 CS_ARGS=(--config "$RUN/config.yaml" --user-data-dir "$RUN/user" --extensions-dir "$RUN/extensions")
 log "code-server --install-extension"
 timeout 120 "${CODE_SERVER[@]}" "${CS_ARGS[@]}" --install-extension "$VSIX" \
@@ -129,13 +129,19 @@ timeout 120 "${CODE_SERVER[@]}" "${CS_ARGS[@]}" --install-extension "$VSIX" \
 compgen -G "$RUN/extensions/fanuc-macro.fanuc-macro-*" >/dev/null \
   || { cat "$OUT/install-extension.log"; log "extension not installed"; exit 1; }
 
-"$PY" - "$RUN/user/User/settings.json" "$PY" <<'EOF'
+# fanuc-macro.server.path has the scope machine-overridable: in a remote window, which a
+# code-server window is, VS Code reads such settings from the remote ("Machine") settings only,
+# and drops them from the User settings once the extension's schema is registered (so a value
+# there is used or not depending on timing). It goes in <user-data-dir>/Machine/settings.json,
+# the "Remote" tab of the Settings editor; the rest goes in the User settings.
+"$PY" - "$RUN/user" "$PY" <<'EOF'
 import json
 import sys
+from pathlib import Path
 
-path, python = sys.argv[1], sys.argv[2]
-settings = {
-    "fanuc-macro.server.path": python,
+user_data, python = Path(sys.argv[1]), sys.argv[2]
+machine = {"fanuc-macro.server.path": python}
+user = {
     "security.workspace.trust.enabled": False,
     "workbench.startupEditor": "none",
     "workbench.tips.enabled": False,
@@ -148,8 +154,8 @@ settings = {
     "git.openRepositoryInParentFolders": "never",
     "chat.disableAIFeatures": True,
 }
-with open(path, "w", encoding="utf-8") as f:
-    json.dump(settings, f, indent=2)
+(user_data / "Machine" / "settings.json").write_text(json.dumps(machine, indent=2), "utf-8")
+(user_data / "User" / "settings.json").write_text(json.dumps(user, indent=2), "utf-8")
 EOF
 
 # ---- start code-server ------------------------------------------------------------------------

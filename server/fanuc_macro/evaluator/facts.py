@@ -109,6 +109,12 @@ class DocumentFacts:
     analysed_programs: set[int] = field(default_factory=set)  # first lines of programs run
     incomplete_programs: set[int] = field(default_factory=set)  # runs that stopped early
 
+    def jump_count(self, line: int) -> JumpCount:
+        count = self.jumps.get(line)
+        if count is None:
+            count = self.jumps[line] = JumpCount()
+        return count
+
     def read_summary(self, line: int, number: int) -> ValueSummary | None:
         return self.reads.get((line, number))
 

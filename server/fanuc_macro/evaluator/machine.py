@@ -32,7 +32,7 @@ from ..syntax import (
 from ..variables import ARGUMENT_VARIABLES, classify
 from ..walk import subexpressions, top_expressions
 from .compiler import CondEvaluator, Evaluator, compile_cond, compile_expr
-from .facts import DocumentFacts, Facts, Finding, JumpCount, Motion, ValueSummary
+from .facts import DocumentFacts, Facts, Finding, Motion, ValueSummary
 from .values import MacroAlarm, Unknown, Value, fmt
 
 # Block kinds of the compiled program.
@@ -386,9 +386,7 @@ class Machine:
                 elif kind == K_IFGOTO:
                     assert cl.cond is not None
                     result = cl.cond(act)
-                    jc = facts.jumps.get(pc)
-                    if jc is None:
-                        jc = facts.jumps[pc] = JumpCount()
+                    jc = facts.jump_count(pc)
                     if result is True:
                         jc.taken += 1
                         act.pc = self._goto(act, cl)
@@ -412,9 +410,7 @@ class Machine:
                 elif kind == K_IFTHEN:
                     assert cl.cond is not None
                     result = cl.cond(act)
-                    jc = facts.jumps.get(pc)
-                    if jc is None:
-                        jc = facts.jumps[pc] = JumpCount()
+                    jc = facts.jump_count(pc)
                     if result is True:
                         jc.taken += 1
                         self._assign(act, cl, facts)
@@ -574,9 +570,7 @@ class Machine:
         pc = self._line
         end = act.ctx.loop_end.get(pc)
         result: object = True if cl.cond is None else cl.cond(act)
-        jc = facts.jumps.get(pc)
-        if jc is None:
-            jc = facts.jumps[pc] = JumpCount()
+        jc = facts.jump_count(pc)
         if result is True:
             jc.taken += 1
             return pc + 1

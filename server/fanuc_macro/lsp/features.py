@@ -52,7 +52,6 @@ from .locate import (
     assignments_in,
     find,
     goto_target,
-    label_target,
     number_of,
     uses,
 )
@@ -499,7 +498,7 @@ def hover_label(view: View, block: Block) -> str:
     jumps = [j for j in program.jumps if j.target == seq]
     for jump in jumps[:8]:
         text = f"{_code(view.doc.blocks[jump.line].source(jump.span))} at line {jump.line + 1}"
-        reaches = label_target(program, seq, jump.line) == block.line
+        reaches = program.label_line(seq, jump.line) == block.line
         if facts is not None:
             if jump.conditional:
                 jc = facts.jumps.get(jump.line)
@@ -536,7 +535,7 @@ def hover_goto(view: View, block: Block, hit: Hit) -> str | None:
     if target is None or program is None:
         return knowledge.keyword_markdown("GOTO")
     parts = [f"**GOTO {target}**"]
-    line = label_target(program, target, block.line)
+    line = program.label_line(target, block.line)
     if line is None:
         parts.append(
             f"No N{target} in {program.display_name}: the jump stops with alarm "
@@ -661,7 +660,7 @@ def definition(view: View, position: types.Position) -> list[types.Location] | N
     program = view.index.program_at(block.line)
     if hit.kind == "goto" and hit.goto is not None and program is not None:
         target = goto_target(hit.goto)
-        line = label_target(program, target, block.line) if target is not None else None
+        line = program.label_line(target, block.line) if target is not None else None
         if line is None:
             return None
         seq_span = view.doc.blocks[line].parsed.seq_span

@@ -7,7 +7,7 @@ from collections.abc import Iterator
 from dataclasses import dataclass
 
 from ..blocks import cut_comments
-from ..index import Program, constant_value
+from ..index import constant_value
 from ..parser import statements_of
 from ..syntax import (
     Assign,
@@ -175,17 +175,6 @@ def number_of(var: Var) -> int | None:
     if var.number is None or var.number != int(var.number):
         return None
     return int(var.number)
-
-
-def label_target(program: Program, seq: int, from_line: int) -> int | None:
-    """The block ``GOTO seq`` reaches: the control searches forward, then from the head."""
-    lines = program.labels.get(seq)
-    if not lines:
-        return None
-    for line in lines:
-        if line > from_line:
-            return line
-    return lines[0]
 
 
 def goto_target(goto: Goto) -> int | None:
