@@ -501,3 +501,18 @@ def test_cli_thread_subprocess() -> None:
     assert done.returncode == 2
     assert done.stdout == ""
     assert len(done.stderr.strip().splitlines()) == 1
+
+
+def test_drum_profile_fits_the_papers_crown_radius() -> None:
+    from fanuc_macro.threads.generator import DRUM_PROFILE
+    from fanuc_macro.threads.profile import fit_crown
+
+    crown = fit_crown(DRUM_PROFILE)
+    assert crown.radius == pytest.approx(3792.0, abs=0.5)  # the paper's R3792
+    assert crown.max_deviation < 0.01
+    bent = list(DRUM_PROFILE)
+    bent[4] = (bent[4][0] + 0.5, bent[4][1])  # one point mistyped by 0.5 mm in diameter
+    assert fit_crown(bent).max_deviation > 0.1
+    with pytest.raises(ValueError, match="straight line"):
+        fit_crown([(300.0, 0.0), (300.0, 10.0), (300.0, 20.0)])
+    assert "CROWN R3792.2" in generate_drum_groove(None, 12.0)

@@ -27,6 +27,7 @@ from ..analysis import Analysis, analyse
 from ..evaluator import Facts, Motion
 from .designation import ThreadDesignation, parse_designation
 from .iso965 import tolerances
+from .profile import CrownFit, fit_crown
 
 __all__ = [
     "DRUM_PROFILE",
@@ -986,6 +987,10 @@ def build_drum_groove(
     retract_x = max(x for x, _ in pts) + 2.0 * clearance
     start_z = pts[0][1] + sense * run_in
     shift = direction * axial_step
+    try:
+        crown: CrownFit | None = fit_crown(pts)
+    except ValueError:
+        crown = None  # two points, or points on a line: a taper, not a crown
 
     def render(notes: Mapping[str, str]) -> _Lines:
         out = _Lines()
@@ -995,6 +1000,12 @@ def build_drum_groove(
         xs = f"#{_X_BASE + 1}-#{_X_BASE + last}"
         zs = f"#{_Z_BASE + 1}-#{_Z_BASE + last}"
         out.add("", f"PROFILE: X IN {xs}, Z IN {zs}")
+        if crown is not None:
+            out.add(
+                "",
+                f"CROWN R{crown.radius:.1f} (BEST-FIT CIRCLE, POINTS WITHIN "
+                f"{crown.max_deviation:.3f} MM OF IT)",
+            )
         for i, (x, z) in enumerate(pts, 1):
             out.add(f"#{_X_BASE + i}={_num(x)}", f"POINT {i} X")
             out.add(f"#{_Z_BASE + i}={_num(z)}", f"POINT {i} Z")
