@@ -112,7 +112,8 @@ async def main(blocks: int, debounce_ms: int, keystrokes: int, hovers: int) -> N
     bench = Bench()
     client = bench.client
     env = {**os.environ, "PYTHONPATH": str(ROOT / "server")}
-    await client.start_io(sys.executable, "-m", "fanuc_macro.lsp.server", env=env)
+    server = os.environ.get("FANUC_MACRO_BENCH_SERVER", "-m fanuc_macro.lsp.server").split()
+    await client.start_io(sys.executable, *server, env=env)
     server = client._server
     assert server is not None
     started = time.perf_counter()

@@ -705,3 +705,39 @@ async def test_added_workspace_folder_is_scanned(client: LanguageClient, tmp_pat
     )
     await diagnostics(client, uri, lambda d: "MB403" not in codes(d))
     assert "A1." in await hover(client, uri, 1, 11) or "#1" in await hover(client, uri, 1, 11)
+
+
+def test_incremental_edits_keep_line_starts_right() -> None:
+    """Random edits (CR, LF and CRLF among them) give the same lines as a fresh split."""
+    import random
+
+    from fanuc_macro.lsp.convert import Codec
+    from fanuc_macro.lsp.documents import OpenDocument
+
+    rnd = random.Random(7)
+    codec = Codec("utf-16")
+    pieces = ["G01 X1.", "#1=2", "\n", "\r\n", "\r", "(注释)", "", "N10", "\n\n"]
+    doc = OpenDocument("u", "u", "O1\nG00 X0\r\nM30\n", 1)
+    for _ in range(400):
+        lines = doc.text.replace("\r\n", "\n").replace("\r", "\n").split("\n")
+        a_line = rnd.randrange(len(lines))
+        b_line = rnd.randrange(a_line, len(lines))
+        a_char = rnd.randint(0, len(lines[a_line]))
+        b_char = (
+            rnd.randint(0, len(lines[b_line]))
+            if b_line > a_line
+            else rnd.randint(a_char, len(lines[b_line]))
+        )
+        change = types.TextDocumentContentChangePartial(
+            range=types.Range(
+                start=types.Position(line=a_line, character=codec.to_client(lines[a_line], a_char)),
+                end=types.Position(line=b_line, character=codec.to_client(lines[b_line], b_char)),
+            ),
+            text=rnd.choice(pieces),
+        )
+        doc.apply(change, codec)
+        fresh = OpenDocument("u", "u", doc.text, 1)
+        assert doc._line_starts() == fresh._line_starts()
+        assert [doc.line(i) for i in range(len(lines) + 3)] == [
+            fresh.line(i) for i in range(len(lines) + 3)
+        ]

@@ -13,7 +13,7 @@ from .config import Config
 from .diagnostics import Diagnostic, Related, RuleInfo, Severity, make, register, suppressed_codes
 from .evaluator import Facts, evaluate
 from .index import ProgramIndex, build_index
-from .parser import BlockParser, default_parser, parse_text
+from .parser import BlockParser, default_parser, parse_text, quiet_gc
 from .rules import ALL_CHECKS, LINE_CHECKS, LineFinding
 from .rules.context import RuleContext
 from .syntax import Document, ParsedLine
@@ -117,30 +117,31 @@ def analyse(
 
     ``other_documents`` are the workspace's other files: the programs this one calls.
     """
-    config = config or Config()
-    if doc is None:
-        doc = parse_text(text, uri, parser or default_parser())
-    if index is None:
-        index = build_index(doc)
-    facts: Facts | None = None
-    failed: list[Diagnostic] = []
-    if run_evaluator:
-        try:
-            facts = evaluate([(uri, doc, index), *other_documents], config, only_uri=uri)
-        except Exception as err:  # the structural rules still report
-            log.exception("evaluation of %s failed", uri)
-            failed.append(
-                make(
-                    "MB000",
-                    f"internal error in the evaluator: {err!r}; the evaluator's rules did not run",
-                    0,
-                    0,
-                    0,
+    with quiet_gc():  # the run makes many small objects and no cycles
+        config = config or Config()
+        if doc is None:
+            doc = parse_text(text, uri, parser or default_parser())
+        if index is None:
+            index = build_index(doc)
+        facts: Facts | None = None
+        failed: list[Diagnostic] = []
+        if run_evaluator:
+            try:
+                facts = evaluate([(uri, doc, index), *other_documents], config, only_uri=uri)
+            except Exception as err:  # the structural rules still report
+                log.exception("evaluation of %s failed", uri)
+                failed.append(
+                    make(
+                        "MB000",
+                        f"internal error in the evaluator: {err!r}; its rules did not run",
+                        0,
+                        0,
+                        0,
+                    )
                 )
-            )
-    ctx = RuleContext(doc, index, config, workspace_programs, facts)
-    found = failed + run_checks(ctx, [*ALL_CHECKS, *extra_checks])
-    return Analysis(doc, index, _apply_settings(found, doc, config), facts)
+        ctx = RuleContext(doc, index, config, workspace_programs, facts)
+        found = failed + run_checks(ctx, [*ALL_CHECKS, *extra_checks])
+        return Analysis(doc, index, _apply_settings(found, doc, config), facts)
 
 
 def with_uri(diag: Diagnostic, uri: str) -> Diagnostic:

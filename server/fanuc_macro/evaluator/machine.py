@@ -203,10 +203,10 @@ class ProgramContext:
     loop_do: dict[int, int]  # END line -> DO line
     facts: DocumentFacts
     is_main: bool  # ends with M30/M02: locals start vacant
+    name: str = ""  # O3331, for the motion records
 
-    @property
-    def name(self) -> str:
-        return self.program.display_name
+    def __post_init__(self) -> None:
+        self.name = self.program.display_name
 
 
 class Activation:
@@ -641,7 +641,7 @@ class Machine:
             elif g == 99.0:
                 modal.feed_per_rev = True
         if call_kind is None:
-            self._check_addresses(act, cl, order)
+            self._check_addresses(act, cl, order, 98.0 in m_codes or 99.0 in m_codes)
         else:  # after G65/G66 the words are arguments (#1-#26): only P names a program
             self._check_addresses(act, cl, [w for w in order if w[0] == "P"], calls=True)
         if "F" in values and call_kind is None:
@@ -673,7 +673,7 @@ class Machine:
     ) -> bool:
         one_shot = next((g for g in g_codes if g in ONE_SHOT_CYCLES), None) if g_codes else None
         const = cl.constant
-        has_axis = const.has_axis if const is not None else any(a in AXES for a in values)
+        has_axis = const.has_axis if const is not None else not AXES.isdisjoint(values)
         modal = self.modal
         if one_shot is not None:
             code = one_shot
@@ -722,10 +722,8 @@ class Machine:
         order: list[tuple[str, Value, CompiledWord]],
         calls: bool = False,
     ) -> None:
-        # P is a program or sequence number with M98/M99/G65 (a whole number); with G04 a dwell.
-        calls = calls or any(
-            a == "M" and isinstance(v, float) and v in (98.0, 99.0) for a, v, _ in order
-        )
+        # ``calls``: P is a program or sequence number (M98, M99, G65: a whole number); with
+        # G04 it is a dwell.
         for address, v, w in order:
             if isinstance(v, Unknown) or v is None:
                 continue
@@ -1019,10 +1017,15 @@ def _volatile(number: int) -> bool:
     )
 
 
+_G_NAMES: dict[float, str] = {}
+
+
 def _g_name(code: float) -> str:
-    if code == int(code):
-        return f"G{int(code):02d}"
-    return f"G{code:g}"
+    name = _G_NAMES.get(code)
+    if name is None:
+        name = f"G{int(code):02d}" if code == int(code) else f"G{code:g}"
+        _G_NAMES[code] = name
+    return name
 
 
 def build_contexts(

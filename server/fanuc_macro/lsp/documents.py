@@ -46,10 +46,26 @@ class OpenDocument:
         return starts[position.line] + codec.from_client(line, position.character)
 
     def apply(self, change: types.TextDocumentContentChangeEvent, codec: Codec) -> None:
-        if isinstance(change, types.TextDocumentContentChangePartial):
-            start = self.offset(change.range.start, codec)
-            end = max(start, self.offset(change.range.end, codec))
-            self.text = self.text[:start] + change.text + self.text[end:]
-        else:
+        if not isinstance(change, types.TextDocumentContentChangePartial):
             self.text = change.text
-        self._starts = None
+            self._starts = None
+            return
+        starts = self._line_starts()
+        start = self.offset(change.range.start, codec)
+        end = max(start, self.offset(change.range.end, codec))
+        old = self.text
+        self.text = old[:start] + change.text + old[end:]
+        first, last = change.range.start.line, change.range.end.line
+        if not 0 <= first <= last < len(starts) or _touches_break(old, start, end):
+            self._starts = None  # an edit next to a CR or LF may join or split a CRLF
+            return
+        # Keystrokes: move the line starts after the edit instead of rescanning the text.
+        delta = len(change.text) - (end - start)
+        inner = [start + m.end() for m in LINE_BREAK.finditer(change.text)]
+        self._starts = starts[: first + 1] + inner + [s + delta for s in starts[last + 1 :]]
+
+
+def _touches_break(text: str, start: int, end: int) -> bool:
+    before = text[start - 1 : start]
+    after = text[end : end + 1]
+    return before == "\r" or after == "\n" or (before == "\n" and after == "\r")
