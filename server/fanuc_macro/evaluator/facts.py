@@ -64,7 +64,7 @@ class ValueSummary:
         return text
 
 
-@dataclass
+@dataclass(slots=True)
 class Motion:
     program: str
     line: int
@@ -90,7 +90,7 @@ class Finding:
     related_message: str = ""
 
 
-@dataclass
+@dataclass(slots=True)
 class JumpCount:
     taken: int = 0
     not_taken: int = 0
