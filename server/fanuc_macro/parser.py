@@ -85,7 +85,7 @@ def _number(token: Token) -> float:
 def _to_float(text: str) -> float:
     if " " in text or "\t" in text:
         text = text.replace(" ", "").replace("\t", "")
-    if sum(ch.isdigit() for ch in text) > MAX_DIGITS:
+    if len(text) > MAX_DIGITS and sum(ch.isdigit() for ch in text) > MAX_DIGITS:
         raise ValueError(f"the number {text[:16]}... has more than {MAX_DIGITS} digits")
     return float(text)
 
