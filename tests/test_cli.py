@@ -277,3 +277,53 @@ def test_seed_programs_check_without_error(tmp_path: Path, fmt: str) -> None:
     assert checked <= {p.name for p in SEEDS.glob("*.nc")}
     for name, line, _ in errors:
         assert "M#1 " in (SEEDS / name).read_text("utf-8").splitlines()[line - 1]
+
+
+# ---- fanuc-macro trace -----------------------------------------------------------------------
+
+
+def test_trace_json_gives_every_executed_cut(tmp_path: Path) -> None:
+    done = run(tmp_path, "trace", str(SEEDS / "o4009_external_m50x3.nc"), "--format", "json")
+    assert done.returncode == 0, done.stderr
+    result = json.loads(done.stdout)
+    motions = result["motions"]
+    assert set(motions[0]) == {"program", "line", "code", "words"}
+    cuts = [m for m in motions if m["code"] == "G92"]
+    assert len(cuts) == 186  # 2 x 88 rough passes + 2 finishing + 8 spring passes
+    assert cuts[0] == {
+        "program": "O3331",
+        "line": 32,
+        "code": "G92",
+        "words": {"X": 49.816, "W": -60.0, "R": 0.0, "F": 3.0},
+    }
+    # The modal repeat "X[#100-2.*#4]" is a G92 record of its own, with the modal F.
+    assert any(m["line"] == 43 and set(m["words"]) == {"X", "F"} for m in cuts)
+    assert result["summary"]["by_code"]["G92"] == 186
+    assert result["summary"]["stopped"] is None
+
+
+def test_trace_text_and_entry(tmp_path: Path) -> None:
+    seed = SEEDS / "o5_arc_thread_finishing.nc"
+    done = run(tmp_path, "trace", str(seed))
+    assert done.returncode == 0, done.stderr
+    lines = done.stdout.splitlines()
+    assert sum(1 for ln in lines if ln.startswith("O") and " G32 " in ln) == 19
+    assert lines[-1].startswith("78 motions (G00 59, G32 19)")
+    sub = run(tmp_path, "trace", str(SEEDS / "o4009_external_m50x3.nc"), "--entry", "O3331")
+    assert sub.returncode == 0, sub.stderr
+    assert "O4009" not in sub.stdout  # only the sub-program, with unknown #100-#104
+    missing = run(tmp_path, "trace", "no-such-file.nc")
+    assert missing.returncode == 2 and "no-such-file.nc" in missing.stderr
+    bad_entry = run(tmp_path, "trace", str(seed), "--entry", "O9999")
+    assert bad_entry.returncode == 2 and "O9999" in bad_entry.stderr
+
+
+def test_check_reports_evaluator_findings_with_values(tmp_path: Path) -> None:
+    program = write(
+        tmp_path / "asin.nc",
+        "%\nO3 (ARC)\n#1=93.82\n#4=10\n#5=125\n#10=ASIN[[[#5-#1]/2]/#4]\nM30\n%\n",
+    )
+    done = run(tmp_path, "check", str(program), "--format", "json")
+    assert done.returncode == 1
+    found = [d for d in json.loads(done.stdout) if d["code"] == "MB501"]
+    assert found and found[0]["line"] == 6 and "1.559" in found[0]["message"]
