@@ -11,7 +11,9 @@ import {
 } from 'vscode-languageclient/node';
 import { DEFAULT_PROBE_TIMEOUT_MS, probeCandidate } from './probe';
 import {
+  BUNDLED_MIN_PYTHON,
   buildCandidates,
+  candidateEnv,
   describeAttempts,
   type ProbeResult,
   type ServerCandidate,
@@ -35,6 +37,8 @@ export const SERVER_COMMAND_TRACE = 'fanuc-macro.trace';
 export const SERVER_COMMAND_THREAD_MODULE = 'fanuc-macro.threadModule';
 
 let client: LanguageClient | undefined;
+/** Folder the extension is installed in (holds the bundled server, if any). */
+let extensionPath: string | undefined;
 let output: vscode.OutputChannel | undefined;
 /** Serialises start/stop/restart so that commands and setting changes do not race. */
 let lifecycle: Promise<unknown> = Promise.resolve();
@@ -140,11 +144,17 @@ async function findServer(): Promise<
     platform: process.platform,
     homeDir: os.homedir(),
     workspaceFolder: vscode.workspace.workspaceFolders?.[0]?.uri.fsPath,
+    extensionPath,
+    env: process.env,
   });
   const attempts: Array<{ candidate: ServerCandidate; result: ProbeResult }> = [];
   for (const candidate of candidates) {
     log(`Trying ${candidate.description}`);
-    const result = await probeCandidate(candidate, DEFAULT_PROBE_TIMEOUT_MS);
+    const result = await probeCandidate(
+      candidate,
+      DEFAULT_PROBE_TIMEOUT_MS,
+      candidateEnv(candidate, process.env),
+    );
     attempts.push({ candidate, result });
     log(`  ${describeAttempts([{ candidate, result }])[0] ?? ''}`);
     if (result.ok) {
@@ -163,6 +173,8 @@ async function showServerNotFound(failures: readonly string[]): Promise<void> {
     'FANUC Macro: the language server fanuc-macro-ls was not found, so only highlighting and snippets work. ' +
     'Install it with "pip install fanuc-macro" (in the Python environment VS Code uses), ' +
     `or set "${SERVER_PATH_SETTING}" to the fanuc-macro-ls executable or to a Python interpreter that has the package. ` +
+    `The server bundled with the extension needs no installation, only Python ${BUNDLED_MIN_PYTHON} or later ` +
+    '(python3 on PATH, or the interpreter selected in the Python extension). ' +
     `Tried: ${failures.join('; ')}.`;
   log(`Language server not found. Tried:\n${tried}`);
   const openSetting = 'Open Setting';
@@ -195,7 +207,7 @@ async function startClient(): Promise<void> {
     command: candidate.command,
     args: [...candidate.args],
     transport: TransportKind.stdio,
-    options: { env: { ...process.env, PYTHONUNBUFFERED: '1' } },
+    options: { env: { ...candidateEnv(candidate, process.env), PYTHONUNBUFFERED: '1' } },
   };
   const serverOptions: ServerOptions = { run: executable, debug: executable };
   const clientOptions: LanguageClientOptions = {
@@ -393,6 +405,8 @@ async function insertThreadModule(): Promise<void> {
 }
 
 export function activate(context: vscode.ExtensionContext): void {
+  // Undefined in tests that pass a bare context: then there is no bundled server.
+  extensionPath = typeof context.extensionPath === 'string' ? context.extensionPath : undefined;
   context.subscriptions.push(outputChannel());
 
   context.subscriptions.push(

@@ -2,6 +2,7 @@
 // node's child_process, so it is unit-tested without VS Code.
 import { spawn } from 'node:child_process';
 import {
+  candidateEnv,
   parseVersionOutput,
   versionArgs,
   type ProbeResult,
@@ -22,6 +23,10 @@ function lastLine(text: string): string {
  * Spawns `candidate` with `--version` and resolves with its version, or with
  * the reason it cannot be used (not found, non-zero exit, timeout, output
  * that is not from fanuc-macro-ls). Never rejects.
+ *
+ * `env` is the environment the candidate runs in; the candidate's own
+ * variables (`candidate.env`, such as the bundled server's PYTHONPATH) are
+ * applied on top of it, so the probe sees what the server will see.
  */
 export function probeCandidate(
   candidate: ServerCandidate,
@@ -43,7 +48,7 @@ export function probeCandidate(
     let child: ReturnType<typeof spawn>;
     try {
       child = spawn(candidate.command, versionArgs(candidate), {
-        env,
+        env: candidateEnv(candidate, env),
         shell: false,
         windowsHide: true,
         stdio: ['ignore', 'pipe', 'pipe'],

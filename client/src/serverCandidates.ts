@@ -1,5 +1,7 @@
 // Pure logic that decides which commands may start the fanuc-macro language
 // server. Nothing here imports `vscode`, so it is unit-tested with node:test.
+import { statSync } from 'node:fs';
+import { posix, win32 } from 'node:path';
 
 /** Python module that runs the language server (`python -m ...`). */
 export const SERVER_MODULE = 'fanuc_macro.lsp.server';
@@ -7,8 +9,18 @@ export const SERVER_MODULE = 'fanuc_macro.lsp.server';
 /** Console script installed by `pip install fanuc-macro`. */
 export const SERVER_EXECUTABLE = 'fanuc-macro-ls';
 
+/**
+ * Folder of the extension that holds the bundled server: the `fanuc_macro`
+ * package and its pure-Python dependencies, put on PYTHONPATH
+ * (created by client/scripts/bundle-server.mjs).
+ */
+export const BUNDLED_PYTHON_DIR = ['bundled', 'python'] as const;
+
+/** Oldest Python the bundled server runs on. */
+export const BUNDLED_MIN_PYTHON = '3.10';
+
 /** Where a candidate came from, in the order they are tried. */
-export type CandidateSource = 'setting' | 'python-extension' | 'path' | 'python';
+export type CandidateSource = 'setting' | 'python-extension' | 'path' | 'python' | 'bundled';
 
 export interface ServerCandidate {
   /** Program to spawn (an absolute path or a name looked up on PATH). */
@@ -18,6 +30,13 @@ export interface ServerCandidate {
   readonly source: CandidateSource;
   /** Human-readable description used in logs and error messages. */
   readonly description: string;
+  /**
+   * Environment variables set for this candidate on top of the extension
+   * host's environment (see `candidateEnv`), both for the `--version` probe
+   * and for the server itself. Values are final: PYTHONPATH already holds
+   * the previous PYTHONPATH after the bundled folder.
+   */
+  readonly env?: Readonly<Record<string, string>> | undefined;
 }
 
 export interface CandidateInputs {
@@ -31,6 +50,12 @@ export interface CandidateInputs {
   readonly homeDir?: string | undefined;
   /** First workspace folder, used to expand `${workspaceFolder}`. */
   readonly workspaceFolder?: string | undefined;
+  /** Folder the extension is installed in; the bundled server is looked for in it. */
+  readonly extensionPath?: string | undefined;
+  /** Environment the server would inherit (for the PYTHONPATH the bundled server extends). */
+  readonly env?: NodeJS.ProcessEnv | undefined;
+  /** Tells whether a folder exists; defaults to a check of the file system. */
+  readonly isDirectory?: ((path: string) => boolean) | undefined;
 }
 
 /** Last path component, for both `/` and `\` separators. */
@@ -91,8 +116,80 @@ export function versionArgs(candidate: ServerCandidate): string[] {
   return [...candidate.args, '--version'];
 }
 
+function envKey(env: Readonly<Record<string, string>> | undefined): string {
+  return Object.entries(env ?? {})
+    .map(([name, value]) => `${name}=${value}`)
+    .sort()
+    .join('\u0000');
+}
+
 function sameCandidate(a: ServerCandidate, b: ServerCandidate): boolean {
-  return a.command === b.command && a.args.join('\u0000') === b.args.join('\u0000');
+  return (
+    a.command === b.command &&
+    a.args.join('\u0000') === b.args.join('\u0000') &&
+    envKey(a.env) === envKey(b.env)
+  );
+}
+
+/** True when `path` is an existing folder. */
+export function directoryExists(path: string): boolean {
+  try {
+    return statSync(path).isDirectory();
+  } catch {
+    return false;
+  }
+}
+
+/** Value of an environment variable; on Windows names are case-insensitive. */
+function getEnv(
+  env: NodeJS.ProcessEnv | undefined,
+  name: string,
+  platform: NodeJS.Platform,
+): string | undefined {
+  if (env === undefined) return undefined;
+  if (platform !== 'win32') return env[name];
+  const key = Object.keys(env).find((k) => k.toUpperCase() === name.toUpperCase());
+  return key === undefined ? undefined : env[key];
+}
+
+/** Folder of the bundled server inside the extension at `extensionPath`. */
+export function bundledServerPath(extensionPath: string, platform: NodeJS.Platform): string {
+  const path = platform === 'win32' ? win32 : posix;
+  return path.join(extensionPath, ...BUNDLED_PYTHON_DIR);
+}
+
+/** `dir` followed by the current PYTHONPATH, if any. */
+export function prependPythonPath(
+  dir: string,
+  env: NodeJS.ProcessEnv | undefined,
+  platform: NodeJS.Platform,
+): string {
+  const existing = getEnv(env, 'PYTHONPATH', platform) ?? '';
+  const delimiter = platform === 'win32' ? ';' : ':';
+  return existing === '' ? dir : `${dir}${delimiter}${existing}`;
+}
+
+/**
+ * The environment to start `candidate` in: `base` with the candidate's own
+ * variables on top. On Windows a variable of `base` that differs only in
+ * case from one of the candidate's is dropped, so that the child does not
+ * get both `PythonPath` and `PYTHONPATH`.
+ */
+export function candidateEnv(
+  candidate: ServerCandidate,
+  base: NodeJS.ProcessEnv,
+  platform: NodeJS.Platform = process.platform,
+): NodeJS.ProcessEnv {
+  const extra = candidate.env ?? {};
+  const names = Object.keys(extra);
+  if (names.length === 0) return { ...base };
+  const result: NodeJS.ProcessEnv = {};
+  const upper = new Set(names.map((n) => n.toUpperCase()));
+  for (const [name, value] of Object.entries(base)) {
+    if (platform === 'win32' ? upper.has(name.toUpperCase()) : name in extra) continue;
+    result[name] = value;
+  }
+  return { ...result, ...extra };
 }
 
 /**
@@ -100,7 +197,13 @@ function sameCandidate(a: ServerCandidate, b: ServerCandidate): boolean {
  * 1. the `fanuc-macro.server.path` setting;
  * 2. the interpreter selected in the Python extension, with `-m fanuc_macro.lsp.server`;
  * 3. `fanuc-macro-ls` on PATH;
- * 4. `python3 -m fanuc_macro.lsp.server` (and `python` / `py -3` on Windows).
+ * 4. `python3 -m fanuc_macro.lsp.server` (and `python` / `py -3` on Windows);
+ * 5. the server bundled in the extension (`<extensionPath>/bundled/python`, only
+ *    when that folder exists), run by the first of these Pythons that works:
+ *    the Python extension's interpreter, `python3` (`python`, `py -3` on
+ *    Windows), with that folder prepended to PYTHONPATH.
+ * 2, 4 and 5 run `-m fanuc_macro.lsp.server`; 2 and 4 need the package
+ * installed in that Python, 5 only needs Python 3.10 or later.
  * Duplicates are dropped, keeping the first.
  */
 export function buildCandidates(inputs: CandidateInputs): ServerCandidate[] {
@@ -133,22 +236,42 @@ export function buildCandidates(inputs: CandidateInputs): ServerCandidate[] {
     description: `${SERVER_EXECUTABLE} on PATH`,
   });
 
-  const pythons = inputs.platform === 'win32' ? ['python3', 'python'] : ['python3'];
-  for (const python of pythons) {
+  // Pythons looked up on PATH: [command, args before -m].
+  const pathPythons: Array<[string, string[]]> =
+    inputs.platform === 'win32'
+      ? [
+          ['python3', []],
+          ['python', []],
+          ['py', ['-3']],
+        ]
+      : [['python3', []]];
+  for (const [python, pre] of pathPythons) {
     add({
       command: python,
-      args: ['-m', SERVER_MODULE],
+      args: [...pre, '-m', SERVER_MODULE],
       source: 'python',
-      description: `${python} -m ${SERVER_MODULE}`,
+      description: [python, ...pre, '-m', SERVER_MODULE].join(' '),
     });
   }
-  if (inputs.platform === 'win32') {
-    add({
-      command: 'py',
-      args: ['-3', '-m', SERVER_MODULE],
-      source: 'python',
-      description: `py -3 -m ${SERVER_MODULE}`,
-    });
+
+  const extensionPath = inputs.extensionPath?.trim() ?? '';
+  if (extensionPath !== '') {
+    const bundled = bundledServerPath(extensionPath, inputs.platform);
+    const isDirectory = inputs.isDirectory ?? directoryExists;
+    if (isDirectory(bundled)) {
+      const env = { PYTHONPATH: prependPythonPath(bundled, inputs.env, inputs.platform) };
+      const bundledPythons: Array<[string, string[]]> =
+        interpreter !== '' ? [[interpreter, []], ...pathPythons] : pathPythons;
+      for (const [python, pre] of bundledPythons) {
+        add({
+          command: python,
+          args: [...pre, '-m', SERVER_MODULE],
+          source: 'bundled',
+          description: `${[python, ...pre, '-m', SERVER_MODULE].join(' ')} with the bundled server (${bundled})`,
+          env,
+        });
+      }
+    }
   }
   return result;
 }

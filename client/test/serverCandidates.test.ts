@@ -1,5 +1,5 @@
 import assert from 'node:assert/strict';
-import { chmodSync, mkdtempSync, rmSync, writeFileSync } from 'node:fs';
+import { chmodSync, mkdirSync, mkdtempSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { after, describe, it } from 'node:test';
@@ -7,8 +7,11 @@ import { probeCandidate } from '../src/probe';
 import {
   SERVER_MODULE,
   buildCandidates,
+  bundledServerPath,
+  candidateEnv,
   candidateFromPath,
   describeAttempts,
+  directoryExists,
   expandPath,
   isPythonInterpreter,
   parseVersionOutput,
@@ -126,6 +129,172 @@ describe('buildCandidates', () => {
   });
 });
 
+describe('the bundled server candidate', () => {
+  const summary = (cs: ServerCandidate[]): string[] => cs.map((c) => [c.source, c.command, ...c.args].join(' '));
+  const bundledDir = '/ext/bundled/python';
+  const present = (path: string): boolean => path === bundledDir;
+  const absent = (): boolean => false;
+
+  it('is tried last, with python3, when the folder is in the extension', () => {
+    const cs = buildCandidates({ platform: 'linux', extensionPath: '/ext', isDirectory: present });
+    assert.deepEqual(summary(cs), [
+      'path fanuc-macro-ls',
+      `python python3 -m ${SERVER_MODULE}`,
+      `bundled python3 -m ${SERVER_MODULE}`,
+    ]);
+    const bundled = cs[cs.length - 1];
+    assert.deepEqual(bundled?.env, { PYTHONPATH: bundledDir });
+    assert.match(bundled?.description ?? '', /bundled server \(\/ext\/bundled\/python\)/);
+    // the installed-package candidate of the same python3 has no extra environment
+    assert.equal(cs[1]?.env, undefined);
+  });
+
+  it('is left out when the folder does not exist', () => {
+    const seen: string[] = [];
+    const cs = buildCandidates({
+      platform: 'linux',
+      extensionPath: '/ext',
+      isDirectory: (path) => {
+        seen.push(path);
+        return absent();
+      },
+    });
+    assert.deepEqual(seen, [bundledDir]);
+    assert.ok(cs.every((c) => c.source !== 'bundled' && c.env === undefined));
+  });
+
+  it('is left out without an extension path', () => {
+    const cs = buildCandidates({ platform: 'linux', isDirectory: () => true });
+    assert.ok(cs.every((c) => c.source !== 'bundled'));
+  });
+
+  it("prefers the Python extension's interpreter, after every installed-package candidate", () => {
+    const cs = buildCandidates({
+      platform: 'linux',
+      settingPath: '/opt/fanuc-macro-ls',
+      pythonExtensionInterpreter: '/w/.venv/bin/python',
+      extensionPath: '/ext',
+      isDirectory: present,
+    });
+    assert.deepEqual(summary(cs), [
+      'setting /opt/fanuc-macro-ls',
+      `python-extension /w/.venv/bin/python -m ${SERVER_MODULE}`,
+      'path fanuc-macro-ls',
+      `python python3 -m ${SERVER_MODULE}`,
+      `bundled /w/.venv/bin/python -m ${SERVER_MODULE}`,
+      `bundled python3 -m ${SERVER_MODULE}`,
+    ]);
+  });
+
+  it('tries python3, python and py -3 on Windows', () => {
+    const dirs: string[] = [];
+    const cs = buildCandidates({
+      platform: 'win32',
+      extensionPath: 'C:\\Users\\u\\.vscode\\extensions\\fanuc-macro',
+      isDirectory: (path) => {
+        dirs.push(path);
+        return true;
+      },
+    });
+    const dir = 'C:\\Users\\u\\.vscode\\extensions\\fanuc-macro\\bundled\\python';
+    assert.deepEqual(dirs, [dir]);
+    assert.deepEqual(
+      summary(cs.filter((c) => c.source === 'bundled')),
+      [
+        `bundled python3 -m ${SERVER_MODULE}`,
+        `bundled python -m ${SERVER_MODULE}`,
+        `bundled py -3 -m ${SERVER_MODULE}`,
+      ],
+    );
+    assert.ok(cs.filter((c) => c.source === 'bundled').every((c) => c.env?.['PYTHONPATH'] === dir));
+  });
+
+  it('prepends the bundled folder to an existing PYTHONPATH', () => {
+    const cs = buildCandidates({
+      platform: 'linux',
+      extensionPath: '/ext',
+      isDirectory: present,
+      env: { PYTHONPATH: '/a:/b', HOME: '/home/u' },
+    });
+    assert.deepEqual(cs[cs.length - 1]?.env, { PYTHONPATH: `${bundledDir}:/a:/b` });
+  });
+
+  it('uses ; and a case-insensitive PYTHONPATH on Windows', () => {
+    const cs = buildCandidates({
+      platform: 'win32',
+      extensionPath: 'C:\\ext',
+      isDirectory: () => true,
+      env: { PythonPath: 'C:\\lib' },
+    });
+    assert.deepEqual(cs[cs.length - 1]?.env, { PYTHONPATH: 'C:\\ext\\bundled\\python;C:\\lib' });
+  });
+
+  it('ignores an empty PYTHONPATH', () => {
+    const cs = buildCandidates({
+      platform: 'linux',
+      extensionPath: '/ext',
+      isDirectory: present,
+      env: { PYTHONPATH: '' },
+    });
+    assert.deepEqual(cs[cs.length - 1]?.env, { PYTHONPATH: bundledDir });
+  });
+
+  it('looks for the folder on disk by default', () => {
+    const ext = mkdtempSync(join(tmpdir(), 'fanuc-macro-ext-'));
+    try {
+      const without = buildCandidates({ platform: process.platform, extensionPath: ext });
+      assert.ok(without.every((c) => c.source !== 'bundled'));
+      const dir = bundledServerPath(ext, process.platform);
+      mkdirSync(dir, { recursive: true });
+      assert.equal(directoryExists(dir), true);
+      const withFolder = buildCandidates({ platform: process.platform, extensionPath: ext });
+      assert.equal(withFolder[withFolder.length - 1]?.source, 'bundled');
+      assert.equal(withFolder[withFolder.length - 1]?.env?.['PYTHONPATH'], dir);
+      // a file of that name is not the bundled server
+      rmSync(dir, { recursive: true });
+      writeFileSync(dir, '');
+      assert.equal(directoryExists(dir), false);
+    } finally {
+      rmSync(ext, { recursive: true, force: true });
+    }
+  });
+});
+
+describe('candidateEnv', () => {
+  const bundled: ServerCandidate = {
+    command: 'python3',
+    args: ['-m', SERVER_MODULE],
+    source: 'bundled',
+    description: 'bundled',
+    env: { PYTHONPATH: '/ext/bundled/python:/a' },
+  };
+
+  it("puts the candidate's variables over the base environment", () => {
+    assert.deepEqual(candidateEnv(bundled, { PATH: '/usr/bin', PYTHONPATH: '/a' }, 'linux'), {
+      PATH: '/usr/bin',
+      PYTHONPATH: '/ext/bundled/python:/a',
+    });
+  });
+
+  it('copies the base environment for a candidate without variables', () => {
+    const base = { PATH: '/usr/bin' };
+    const env = candidateEnv(candidateFromPath('fanuc-macro-ls', 'path'), base, 'linux');
+    assert.deepEqual(env, base);
+    assert.notEqual(env, base);
+  });
+
+  it('replaces a differently cased variable on Windows only', () => {
+    assert.deepEqual(candidateEnv(bundled, { Path: 'C:\\bin', PythonPath: 'C:\\old' }, 'win32'), {
+      Path: 'C:\\bin',
+      PYTHONPATH: '/ext/bundled/python:/a',
+    });
+    assert.deepEqual(candidateEnv(bundled, { PythonPath: '/old' }, 'linux'), {
+      PythonPath: '/old',
+      PYTHONPATH: '/ext/bundled/python:/a',
+    });
+  });
+});
+
 describe('parseVersionOutput', () => {
   it('reads the version', () => {
     assert.equal(parseVersionOutput('fanuc-macro-ls 0.1.0\n'), '0.1.0');
@@ -173,6 +342,27 @@ describe('probeCandidate', { skip: process.platform === 'win32' }, () => {
     const path = script('python3', 'if [ "$1 $2 $3" = "-m fanuc_macro.lsp.server --version" ]; then echo "fanuc-macro-ls 0.1.0"; else exit 3; fi');
     const result = await probeCandidate(candidateFromPath(path, 'setting'), 5000);
     assert.deepEqual(result, { ok: true, version: '0.1.0' });
+  });
+
+  it("runs the probe in the candidate's environment", async () => {
+    const path = script(
+      'python3-env',
+      'if [ "$PYTHONPATH" = "/ext/bundled/python:/a" ] && [ "$FANUC_TEST_BASE" = "kept" ]; then echo "fanuc-macro-ls 0.1.0"; else echo "PYTHONPATH=$PYTHONPATH" >&2; exit 4; fi',
+    );
+    const candidate: ServerCandidate = {
+      command: path,
+      args: ['-m', SERVER_MODULE],
+      source: 'bundled',
+      description: 'bundled',
+      env: { PYTHONPATH: '/ext/bundled/python:/a' },
+    };
+    const base = { ...process.env, PYTHONPATH: '/a', FANUC_TEST_BASE: 'kept' };
+    assert.deepEqual(await probeCandidate(candidate, 5000, base), { ok: true, version: '0.1.0' });
+    // without the candidate's variables the same script fails
+    const plain = { ...candidate, env: undefined };
+    const result = await probeCandidate(plain, 5000, base);
+    assert.equal(result.ok, false);
+    assert.match(!result.ok ? result.reason : '', /exited with code 4: PYTHONPATH=\/a$/);
   });
 
   it('reports a missing program', async () => {

@@ -72,8 +72,20 @@ def _order_key(term: TerminalDef) -> tuple[int, int, int, str]:
 # only the terminals that can start with it, in Lark's order: the first branch that matches is
 # the same. The analysis may say "any" (None) when unsure; that only costs speed.
 
-_sre: Any = importlib.import_module("re._parser")
-_sc: Any = importlib.import_module("re._constants")
+
+def _re_module(new: str, old: str) -> Any:
+    """``re._parser`` / ``re._constants`` since Python 3.11, ``sre_parse`` before."""
+    try:
+        return importlib.import_module(new)
+    except ImportError:
+        return importlib.import_module(old)
+
+
+_sre: Any = _re_module("re._parser", "sre_parse")
+_sc: Any = _re_module("re._constants", "sre_constants")
+# Python 3.11 added these two opcodes; on 3.10 no pattern can contain them.
+_POSSESSIVE_REPEAT: Any = getattr(_sc, "POSSESSIVE_REPEAT", object())
+_ATOMIC_GROUP: Any = getattr(_sc, "ATOMIC_GROUP", object())
 
 
 def _class_first(items: Iterable[tuple[Any, Any]], ignorecase: bool) -> frozenset[str] | None:
@@ -128,11 +140,11 @@ def _seq_first(items: Iterable[tuple[Any, Any]], flags: int) -> tuple[frozenset[
         elif op is _sc.SUBPATTERN:
             _group, add_flags, del_flags, sub = av
             part, nullable = _seq_first(sub, (flags | add_flags) & ~del_flags)
-        elif op in (_sc.MAX_REPEAT, _sc.MIN_REPEAT, _sc.POSSESSIVE_REPEAT):
+        elif op in (_sc.MAX_REPEAT, _sc.MIN_REPEAT, _POSSESSIVE_REPEAT):
             low, _high, sub = av
             part, nullable = _seq_first(sub, flags)
             nullable = nullable or low == 0
-        elif op is _sc.ATOMIC_GROUP:
+        elif op is _ATOMIC_GROUP:
             part, nullable = _seq_first(av, flags)
         elif op in (_sc.AT, _sc.ASSERT, _sc.ASSERT_NOT):
             part, nullable = frozenset(), True  # zero width: the next item decides

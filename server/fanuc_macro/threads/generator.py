@@ -991,6 +991,8 @@ def build_drum_groove(
         crown: CrownFit | None = fit_crown(pts)
     except ValueError:
         crown = None  # two points, or points on a line: a taper, not a crown
+    except ImportError:
+        crown = None  # no numpy (the bundled server): the program is the same without it
 
     def render(notes: Mapping[str, str]) -> _Lines:
         out = _Lines()

@@ -10,8 +10,6 @@ from __future__ import annotations
 from collections.abc import Sequence
 from dataclasses import dataclass
 
-import numpy as np
-
 
 @dataclass(frozen=True, slots=True)
 class CrownFit:
@@ -27,6 +25,10 @@ def fit_crown(points: Sequence[tuple[float, float]]) -> CrownFit:
     The algebraic fit solves r² + z² = 2·a·r + 2·b·z + c for the centre (a, b); it is exact for
     points on a circle and needs no starting guess.
     """
+    # numpy only here: the language server must start without it (the VS Code extension can
+    # ship the pure-Python server for a bare interpreter).
+    import numpy as np
+
     if len(points) < 3:
         raise ValueError(f"{len(points)} profile points: a crown needs at least 3")
     r = np.array([x / 2.0 for x, _ in points], dtype=float)
