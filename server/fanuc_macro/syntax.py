@@ -40,10 +40,6 @@ class Var:
     index: Expr | None
     span: Span
 
-    @property
-    def is_direct(self) -> bool:
-        return self.number is not None
-
 
 @dataclass(frozen=True, slots=True)
 class Unary:
@@ -133,9 +129,6 @@ class NcStatement:
             if word.address == address:
                 return word
         return None
-
-    def find_all(self, address: str) -> list[Word]:
-        return [w for w in self.words if w.address == address]
 
 
 @dataclass(frozen=True, slots=True)

@@ -40,7 +40,7 @@ K_EMPTY, K_ASSIGN, K_GOTO, K_IFGOTO, K_IFTHEN, K_WHILE, K_END, K_NC, K_HEADER, K
 
 MOTION_GROUP = {0.0, 1.0, 2.0, 3.0, 32.0, 33.0, 34.0}
 LATHE_CYCLES = {90.0, 92.0, 94.0}  # G-code system A: modal canned cycles of group 01
-ONE_SHOT_CYCLES = {70.0, 71.0, 72.0, 73.0, 74.0, 75.0, 76.0}
+ONE_SHOT_CYCLES = {70.0, 71.0, 72.0, 73.0, 74.0, 75.0, 76.0}  # group 00: they do not repeat
 AXES = frozenset("XYZUVWABC")
 INTEGER_ADDRESSES = frozenset("MSTLHD")  # P too, when it names a program (M98, G65, M99)
 MAX_MACRO_LEVEL = 5  # G65/G66 levels (0i-D/30i); 16i has 4
