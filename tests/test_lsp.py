@@ -252,6 +252,9 @@ async def test_hover_on_a_read_shows_the_values_over_the_passes(client: Language
     assert "0.092058049 →" in text
     assert "88 times" in text
     assert "计算总切削深度" in text  # the comment of its assignment
+    assert "Σap(n), total depth after pass n" in text  # the module's parameter table
+    main = await hover(client, uri, 6, 2)  # #101=3. in O4009, which calls O3331
+    assert "P, pitch" in main and "table 2" in main
 
 
 async def test_hover_on_codes_labels_and_calls(client: LanguageClient) -> None:

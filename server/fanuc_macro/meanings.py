@@ -38,6 +38,76 @@ KNOWN_MODULES: dict[int, dict[int, str]] = {
     3: {1: "nominal_diameter", 3: "pitch", 4: "groove_radius", 18: "nose_radius"},
     4: {1: "nominal_diameter", 3: "pitch", 4: "groove_radius", 18: "nose_radius"},
 }
+# The seed papers' parameter tables (paper 000, tables 2 and 3; paper 002, section 2.2).
+_SYMMETRIC_SUB = {
+    1: "δ2, run-out (slow-down) length = P",
+    2: "δ1, run-in (speed-up) length = 2P + P + FIX[L/P]·P − L",
+    3: "r, tool nose radius (theoretical: P/(8·sin60°) external, P/(16·sin60°) internal)",
+    4: "h, thread height, radius: 7H/8 − r + es/2 + Td2/4 (internal 6H/8 − r + EI/2 + TD2/4)",
+    5: "ap(max), first depth of cut, radius: coefficient·√h",
+    6: "ap(min), minimum depth of cut and finish allowance, radius: coefficient·√ap(max)",
+    7: "n, rough pass counter",
+    8: "ap(n), depth of pass n, radius: ap(max)·(√n − √(n−1))",
+    9: "Σap(n), total depth after pass n, radius",
+    10: "u, side offset of the pass: (h + r − ap(min) − Σap(n))·tan30° − r·tan30°",
+    11: "D1, minor diameter of the internal thread: D − 2·(5/8)·sin60°·P",
+    12: "n', spring (idle) passes at full depth",
+}
+_SYMMETRIC_MAIN = {
+    100: "d / D, nominal diameter of the thread",
+    101: "P, pitch (at most 2/3 of the insert width)",
+    102: "L, thread length, cut from right to left",
+    103: "es / EI, fundamental deviation, entered as a magnitude (GB/T 197 = ISO 965-1)",
+    104: "Td2 / TD2, pitch-diameter tolerance (GB/T 197 = ISO 965-1)",
+}
+_ARC_THREAD = {
+    1: "thread outer diameter",
+    2: "thread length including the run-out δ2",
+    3: "pitch (lead)",
+    4: "R, radius of the arc groove of this layer",
+    5: "diameter of the groove's centre for this layer",
+    6: "δ1, run-in length (Z of the groove centre)",
+    7: "number of cuts per layer",
+    10: "right edge angle of the sector: ASIN[((#5 − #1)/2)/#4]",
+    11: "tangency correction: ASIN[#18/(#4 − #18)]",
+    12: "Δα, angle between two cuts",
+    13: "M code of the spindle direction (3 for this left-hand thread)",
+    14: "angle of the tool centre tangent to the right edge",
+    15: "angle of the last cut (left edge of the sector)",
+    16: "α, angle of the tool centre of this cut",
+    18: "r, tool nose radius",
+    19: "spindle speed of this layer",
+    20: "tool number",
+    21: "tool offset number",
+    22: "X of the start and retract point of each cut",
+    24: "X of the overall start and return point",
+    26: "Z of the overall start and return point",
+}
+PARAMETER_TABLES: dict[int, tuple[str, dict[int, str]]] = {
+    3331: ("symmetric thread module, external (seed paper 000, table 3)", _SYMMETRIC_SUB),
+    3330: ("symmetric thread module, internal (seed paper 000, table 3)", _SYMMETRIC_SUB),
+    3: ("arc thread by the fitting method, roughing layer (seed paper 002)", _ARC_THREAD),
+    4: ("arc thread by the fitting method, roughing layer (seed paper 002)", _ARC_THREAD),
+}
+MAIN_TABLE = ("main program of the symmetric thread module (seed paper 000, table 2)",
+              _SYMMETRIC_MAIN)  # fmt: skip
+
+
+def table_meaning(index: ProgramIndex, program_number: int | None, number: int) -> str | None:
+    """What a known module's parameter table says of ``#number`` in that program; for #100-#104,
+    in a program that calls the symmetric module (M98 P0013331 / P0013330)."""
+    if program_number is not None and program_number in PARAMETER_TABLES:
+        title, table = PARAMETER_TABLES[program_number]
+        if number in table:
+            return f"{table[number]} — {title}"
+    if number in _SYMMETRIC_MAIN:
+        program = index.by_number(program_number) if program_number is not None else None
+        calls = program.calls if program is not None else ()
+        if any(c.program in (3330, 3331) for c in calls):
+            return f"{_SYMMETRIC_MAIN[number]} — {MAIN_TABLE[0]}"
+    return None
+
+
 INTERNAL_WORDS = ("INTERNAL", "内螺纹", "内孔")
 EXTERNAL_WORDS = ("EXTERNAL", "外螺纹")
 

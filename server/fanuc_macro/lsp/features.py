@@ -26,6 +26,7 @@ from ..evaluator.facts import DocumentFacts, ValueSummary
 from ..evaluator.values import MacroAlarm, Unknown, Value, fmt
 from ..index import Call as IndexCall
 from ..index import Program, ProgramIndex, constant_value
+from ..meanings import table_meaning
 from ..parser import statements_of
 from ..syntax import (
     Assign,
@@ -294,6 +295,9 @@ def hover_variable(view: View, block: Block, hit: Hit) -> str:
     meaning = kind.meaning + ("" if kind.verified else " (unverified)")
     parts.append(f"*{meaning}*")
     program = view.index.program_at(line)
+    table = table_meaning(view.index, program.number if program else None, n)
+    if table is not None:
+        parts.append(table)
     facts = view.facts
     own = hit.assign
     found = (line, own) if own is not None else find_assignment(view, program, n, line)
