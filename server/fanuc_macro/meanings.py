@@ -12,6 +12,7 @@ Two sources, in this order:
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import lru_cache
 
 from .index import ProgramIndex
 from .syntax import Assign, Document
@@ -124,6 +125,7 @@ ROLE_TITLES = {
 }
 
 
+@lru_cache(maxsize=65536)  # every analysis asks again for the same comments
 def role_of_comment(comment: str) -> str | None:
     upper = comment.upper()
     for role, words in ROLE_WORDS.items():

@@ -7,9 +7,10 @@ is what makes a few hundred thousand macro statements a second possible in Pytho
 from __future__ import annotations
 
 from collections.abc import Callable
-from typing import Protocol
+from typing import Any, Protocol
 
 from ..syntax import BareCond, Binary, Bracket, Call, Compare, Cond, Expr, Logic, Num, Unary, Var
+from ..walk import subexpressions
 from .values import (
     ONE_ARG,
     TWO_ARG,
@@ -35,6 +36,7 @@ class Frame(Protocol):
 
 
 Evaluator = Callable[[Frame], Value]
+_NO_FRAME: Any = None  # what a constant expression is evaluated with: it reads no variable
 CondEvaluator = Callable[[Frame], "bool | Unknown | None"]
 
 _float = float
@@ -47,14 +49,39 @@ def _zero(v: Value) -> float | Unknown:
     return v
 
 
-def compile_expr(expr: Expr) -> Evaluator:
+def _constant(value: Value) -> Evaluator:
+    def constant(_: Frame) -> Value:
+        return value
+
+    return constant
+
+
+def constant_of(expr: Expr) -> float | None:
+    """The value of an expression without variables (``[1.*0.1]``, ``[7./8.]*SIN[60]``), worked
+    out once; None when it reads a variable or raises an alarm (the run reports that)."""
     if isinstance(expr, Num):
-        value = expr.value
+        return expr.value
+    if any(isinstance(node, Var) for node in subexpressions(expr)):
+        return None
+    try:
+        value = _compile(expr)(_NO_FRAME)
+    except MacroAlarm:
+        return None
+    return value if isinstance(value, float) else None
 
-        def constant(_: Frame) -> Value:
-            return value
 
-        return constant
+def compile_expr(expr: Expr) -> Evaluator:
+    # Constant parts are folded: the run only computes what depends on variables.
+    if not isinstance(expr, Num | Var):
+        value = constant_of(expr)
+        if value is not None:
+            return _constant(value)
+    return _compile(expr)
+
+
+def _compile(expr: Expr) -> Evaluator:
+    if isinstance(expr, Num):
+        return _constant(expr.value)
     if isinstance(expr, Var):
         return _compile_var(expr)
     if isinstance(expr, Bracket):

@@ -31,7 +31,7 @@ from ..syntax import (
 )
 from ..variables import ARGUMENT_VARIABLES, classify
 from ..walk import subexpressions, top_expressions
-from .compiler import CondEvaluator, Evaluator, compile_cond, compile_expr
+from .compiler import CondEvaluator, Evaluator, compile_cond, compile_expr, constant_of
 from .facts import DocumentFacts, Facts, Finding, Motion, ValueSummary
 from .values import MacroAlarm, Unknown, Value, fmt
 
@@ -166,7 +166,7 @@ def _compile_nc(nc: NcStatement) -> CompiledLine:
         CompiledWord(w.address, compile_expr(w.value), w.span.start, w.span.end) for w in nc.words
     )
     compiled = CompiledLine(K_NC, words=words, nc=nc, node=nc)
-    constants = [constant_value(w.value) for w in nc.words]
+    constants = [constant_of(w.value) for w in nc.words]
     if all(c is not None for c in constants):
         values: dict[str, Value] = {}
         order: list[tuple[str, Value, CompiledWord]] = []

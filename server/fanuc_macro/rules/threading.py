@@ -12,6 +12,7 @@ import math
 import re
 from collections.abc import Iterator
 from dataclasses import dataclass
+from functools import lru_cache
 
 from ..diagnostics import Diagnostic, Related, RuleInfo, Severity, make, register
 from ..evaluator.facts import DocumentFacts, Motion
@@ -96,9 +97,15 @@ def _designations(ctx: RuleContext) -> list[tuple[int, str]]:
     found: list[tuple[int, str]] = []
     for block in ctx.doc.blocks:
         for comment in block.parsed.comments:
-            for m in _DESIGNATION.finditer(comment.text):
-                found.append((block.line, m.group(0)))
+            found.extend((block.line, text) for text in _designations_in(comment.text))
     return found
+
+
+@lru_cache(maxsize=65536)  # every analysis reads the same comments again
+def _designations_in(text: str) -> tuple[str, ...]:
+    if "M" not in text and "m" not in text:
+        return ()
+    return tuple(m.group(0) for m in _DESIGNATION.finditer(text))
 
 
 def _thread_of(
