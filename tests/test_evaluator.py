@@ -225,3 +225,21 @@ def test_fitting_method_tool_radius_from_chinese_comments() -> None:
     found = _seed_codes("o2_arc_thread_roughing.nc", "N07 #18 = 1.2", "N07 #18 = 10.5")
     assert "tool radius 10.5" in found["MB806"][0]
     assert "MB501" in found  # and ASIN[#18/[#4-#18]] leaves its domain
+
+
+def test_g65_repeat_starts_each_call_from_its_arguments() -> None:
+    # G65 L3: three calls with A1.; the macro adds to #1 and accumulates in a common.
+    text = "O1\n#100=0\nG65 P2000 L3 A1.\n#101=#100\nM30\nO2000\n#1=#1+10.\n#100=#100+#1\nM99\n"
+    facts, _ = run(text)
+    w = facts.document("t.nc").writes
+    assert w[3][1].first == 33.0  # 11 + 11 + 11, not 11 + 21 + 31
+
+
+def test_g66_calls_after_each_move_until_g67() -> None:
+    text = (
+        "O1\n#100=0\nG66 P2000 A5.\nG01 X1. F0.1\nG01 X2.\n#101=1\nG67\nG01 X3.\nM30\n"
+        "O2000\n#100=#100+#1\nM99\n"
+    )
+    facts, _ = run(text)
+    w = facts.document("t.nc").writes
+    assert w[10][1].count == 2 and w[10][1].last == 10.0  # after X1. and X2., not after X3.

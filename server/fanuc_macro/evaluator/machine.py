@@ -213,6 +213,7 @@ class Activation:
     """One running program: its place, its locals and how it returns."""
 
     __slots__ = (
+        "arguments",
         "caller",
         "ctx",
         "locals",
@@ -245,6 +246,7 @@ class Activation:
         self.repeats_left = repeats_left
         self.pc = ctx.program.first_line
         self.undecided_loops: set[int] = set()
+        self.arguments: tuple[Value, ...] | None = None
 
     def read_global(self, number: int) -> Value:
         return self.machine.unknown_of(number)
@@ -883,6 +885,8 @@ class Machine:
         callee.facts.analysed_programs.add(callee.program.first_line)
         locals_list = list(locals_) if new_level else locals_
         new = Activation(self, callee, locals_list, level, act, return_pc, repeat - 1)
+        if new_level and repeat > 1:
+            new.arguments = tuple(locals_)  # G65 L: each repetition starts from the arguments
         new.undecided_loops = set()
         return new
 
@@ -890,6 +894,8 @@ class Machine:
         if act.repeats_left > 0:
             act.repeats_left -= 1
             act.pc = act.ctx.program.first_line
+            if act.arguments is not None:
+                act.locals[:] = act.arguments
             return act
         caller = act.caller
         if caller is None:
