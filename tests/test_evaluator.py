@@ -243,3 +243,16 @@ def test_g66_calls_after_each_move_until_g67() -> None:
     facts, _ = run(text)
     w = facts.document("t.nc").writes
     assert w[10][1].count == 2 and w[10][1].last == 10.0  # after X1. and X2., not after X3.
+
+
+def test_long_loop_is_not_called_endless_and_overflow_is_an_alarm() -> None:
+    nested = (
+        "O1\n#1=0\nWHILE[#1LT1000]DO1\n#2=0\nWHILE[#2LT1000]DO2\n#2=#2+1\nEND2\n"
+        "#1=#1+1\nEND1\nM30\n"
+    )
+    codes = {d.code for d in analyse(nested, "nested.nc").diagnostics}
+    assert "MB708" in codes and "MB703" not in codes and "MB701" not in codes
+    away = analyse("O1\n#1=5\nWHILE[#1GT0]DO1\n#1=#1+1\nEND1\nM30\n", "away.nc").diagnostics
+    assert any(d.code == "MB703" and "moving away" in d.message for d in away)
+    overflow = analyse("O1\n#1=10\n" + "#1=#1*10\n" * 400 + "M30\n", "big.nc").diagnostics
+    assert any(d.code == "MB501" and "OVERFLOW" in d.message for d in overflow)

@@ -15,8 +15,10 @@ from ..config import Config
 from ..index import Program, ProgramIndex, constant_value
 from ..syntax import (
     Assign,
+    Compare,
     Document,
     End,
+    Expr,
     Goto,
     IfGoto,
     IfNc,
@@ -486,6 +488,13 @@ class Machine:
     ) -> None:
         assert cl.value is not None
         value = cl.value(act)
+        if isinstance(value, float) and value - value != 0.0:
+            # inf - inf is NaN: the value left the floating-point range.
+            raise MacroAlarm(
+                "PS0111",
+                "overflow",
+                "the result is beyond the control's number range (CALCULATED DATA OVERFLOW)",
+            )
         if unknown is not None:
             # IF [unknown] THEN #n=...: afterwards #n may or may not have changed.
             deps = set(unknown.deps)
@@ -975,14 +984,28 @@ class Machine:
             return
         cl = ctx.lines[head]
         still = [n for n in cl.reads if (s := facts.reads.get((head, n))) and s.constant]
+        approaching = _approaching(cl.node, facts, head)
+        if not still and approaching:
+            # The test's variables move towards its bound: a long loop, not an endless one.
+            self._finding(
+                ctx,
+                "long-loop",
+                head,
+                0,
+                width,
+                f"loop still running after {runs} turns when {budget} ran out: it "
+                "gets nearer its end every turn, so it is long rather than endless; "
+                "values after it are not analysed",
+            )
+            return
         moving = [n for n in cl.reads if n not in still]
         if still:
             why = ", ".join(f"#{n} stays {fmt(facts.reads[(head, n)].first)}" for n in still)
         elif moving:
             why = (
-                "the condition stays true although "
+                "the condition stays true and "
                 + ", ".join(f"#{n}" for n in moving)
-                + (" change")
+                + (" move away from its bound")
             )
         else:
             why = "nothing in the condition changes"
@@ -994,6 +1017,35 @@ class Machine:
             width,
             f"loop never ends: the block ran {runs} times before {budget} ran out; {why}",
         )
+
+
+def _approaching(node: Statement | None, facts: DocumentFacts, line: int) -> bool:
+    """Whether a loop test ``#v OP bound`` is nearer its bound at the last turn than the first."""
+    cond = getattr(node, "cond", None)
+    if not isinstance(cond, Compare) or cond.op in ("EQ", "NE"):
+        return False
+    distances = []
+    for side, other in ((cond.left, cond.right), (cond.right, cond.left)):
+        if isinstance(side, Var) and side.number is not None:
+            summary = facts.reads.get((line, int(side.number)))
+            bound = _fixed(other, facts, line)
+            if summary is None or bound is None:
+                continue
+            first, last = summary.first, summary.last
+            if isinstance(first, float) and isinstance(last, float):
+                distances.append((abs(first - bound), abs(last - bound)))
+    return bool(distances) and all(last < first for first, last in distances)
+
+
+def _fixed(expr: Expr, facts: DocumentFacts, line: int) -> float | None:
+    value = constant_of(expr)
+    if value is not None:
+        return value
+    if isinstance(expr, Var) and expr.number is not None:
+        summary = facts.reads.get((line, int(expr.number)))
+        if summary is not None and summary.constant:
+            return float(summary.minimum)
+    return None
 
 
 _COMPILED: dict[int, tuple[ParsedLine, CompiledLine]] = {}

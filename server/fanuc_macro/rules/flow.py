@@ -30,6 +30,9 @@ register(
     RuleInfo("MB707", "waits-for-outside", Severity.INFORMATION,
              "A loop that waits for a common or system variable that only something outside "
              "the program (PMC, FOCAS, another path) changes.", FAMILY),
+    RuleInfo("MB708", "long-loop", Severity.INFORMATION,
+             "A loop still running when the analysis budget ran out, though nearer its end "
+             "every turn: what comes after it is not analysed.", FAMILY),
 )  # fmt: skip
 
 
@@ -41,6 +44,8 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
         yield make("MB703", f.message, f.line, f.column, f.end_column)
     for f in ctx.findings("polling-loop"):
         yield make("MB707", f.message, f.line, f.column, f.end_column)
+    for f in ctx.findings("long-loop"):
+        yield make("MB708", f.message, f.line, f.column, f.end_column)
     for f in ctx.findings("alarm:goto-", "alarm:return-missing"):
         statement = ctx.doc.blocks[f.line].statement
         constant = isinstance(statement, IfGoto | Goto) and _is_constant(statement)
@@ -55,6 +60,8 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
         if program.first_line not in facts.analysed_programs:
             continue
         undecided = any(jc.undecided for ln, jc in facts.jumps.items() if program.contains(ln))
+        if program.first_line in facts.incomplete_programs:
+            continue  # a run cut short (budget, alarm) proves nothing about its branches
         for line, jc in sorted(facts.jumps.items()):
             if not program.contains(line) or jc.undecided:
                 continue
@@ -75,7 +82,7 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
                 c.start,
                 c.end,
             )
-        if program.first_line in facts.incomplete_programs or undecided:
+        if undecided:
             continue
         yield from _dead_blocks(ctx, program.first_line, program.end_line, facts.runs)
 
