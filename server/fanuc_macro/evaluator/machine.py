@@ -1002,11 +1002,8 @@ class Machine:
         if still:
             why = ", ".join(f"#{n} stays {fmt(facts.reads[(head, n)].first)}" for n in still)
         elif moving:
-            why = (
-                "the condition stays true and "
-                + ", ".join(f"#{n}" for n in moving)
-                + (" move away from its bound")
-            )
+            names = ", ".join(f"#{n}" for n in moving)
+            why = f"the condition stays true, {names} moving away from its bound"
         else:
             why = "nothing in the condition changes"
         self._finding(
