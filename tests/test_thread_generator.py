@@ -59,7 +59,7 @@ def line_of(text: str, pattern: str) -> int:
 
 
 def assert_clean(text: str) -> None:
-    """What the brief asks of generated text, beyond the checker."""
+    """What generated text must be, beyond passing the checker."""
     for line in text.splitlines():
         assert line.isascii(), line
         code = re.sub(r"\([^()]*\)", "", line)

@@ -184,7 +184,8 @@ def call_of(line: int, nc: NcStatement) -> Call | None:
     elif kind == "M98" and program is not None and p_text is not None:
         digits = p_text.split(".")[0].lstrip("+")
         if len(digits) > 4:
-            # M98 P0013331: the leading digits are the repeat count, the last four the program.
+            # M98 P0013331: the leading digits are the repeat count, the last four the program
+            # (unverified: the reference gives it medium confidence, for 4-digit O numbers).
             repeat = int(digits[:-4]) or 1
             program = int(digits[-4:])
     if repeat is None and kind != "G66" and kind != "G66.1":

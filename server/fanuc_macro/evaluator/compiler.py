@@ -43,7 +43,8 @@ _float = float
 
 
 def _zero(v: Value) -> float | Unknown:
-    """A value in arithmetic: vacant counts as 0."""
+    """A value in arithmetic: vacant counts as 0 (in a function argument and after a unary
+    minus too: unverified on FANUC's own table, which shows only + and *)."""
     if v is None:
         return 0.0
     return v

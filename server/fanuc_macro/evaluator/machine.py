@@ -256,6 +256,7 @@ class Activation:
     def read_indirect(self, index: Value, node: Var) -> Value:
         if isinstance(index, Unknown):
             return index
+        # A vacant index refers to #0, and a fractional one is rounded (both unverified).
         n = 0 if index is None else round(index)
         if n == 0:
             return None
@@ -908,7 +909,9 @@ class Machine:
             return act
         caller = act.caller
         if caller is None:
-            raise _Stop("end of program")  # M99 in a program nobody called: it would restart
+            # M99 in a program nobody called: the control restarts it (unverified); the run
+            # stops here rather than loop.
+            raise _Stop("end of program")
         if isinstance(p, float):
             target = self._label(caller.ctx, int(p), caller.pc)
             if target is None:

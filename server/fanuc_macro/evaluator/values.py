@@ -120,7 +120,8 @@ def f_acos(x: float) -> float:
 
 
 def f_atan(x: float) -> float:
-    # One-argument form (30i): the result of FANUC's ATAN is 0 to 360 degrees by default.
+    # One-argument form (30i): the result of FANUC's ATAN is 0 to 360 degrees by default
+    # (unverified; parameter 6004#0 NAT gives -180 to 180).
     return math.degrees(math.atan(x)) % 360.0
 
 
@@ -200,7 +201,7 @@ def f_bcd(x: float) -> float:
 
 def f_adp(x: float) -> float:
     # ADP adds the decimal point an argument was passed without; this analysis takes values
-    # as written in mm, so it leaves them as they are.
+    # as written in mm, so it leaves them as they are (ADP's exact semantics are unverified).
     return x
 
 
