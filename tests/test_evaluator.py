@@ -256,3 +256,18 @@ def test_long_loop_is_not_called_endless_and_overflow_is_an_alarm() -> None:
     assert any(d.code == "MB703" and "moving away" in d.message for d in away)
     overflow = analyse("O1\n#1=10\n" + "#1=#1*10\n" * 400 + "M30\n", "big.nc").diagnostics
     assert any(d.code == "MB501" and "OVERFLOW" in d.message for d in overflow)
+
+
+def test_workspace_keeps_the_facts_while_only_comments_change() -> None:
+    from fanuc_macro.workspace import Workspace
+
+    text = (SEEDS / "o4009_external_m50x3.nc").read_text("utf-8")
+    ws = Workspace()
+    ws.add_text("a.nc", text)
+    first = ws.analyse("a.nc").facts
+    ws.add_text("a.nc", text.replace("(螺纹螺距)", "(PITCH 螺距)"))
+    assert ws.analyse("a.nc").facts is first  # a comment: the program runs the same
+    ws.add_text("a.nc", text.replace("#101=3.", "#101=2."))
+    again = ws.analyse("a.nc")
+    assert again.facts is not first
+    assert sum(1 for m in again.facts.motions if m.code == "G92") != 186

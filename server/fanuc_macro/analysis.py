@@ -14,6 +14,7 @@ from .diagnostics import Diagnostic, Related, RuleInfo, Severity, make, register
 from .evaluator import Facts, evaluate
 from .index import ProgramIndex, build_index
 from .parser import BlockParser, default_parser, parse_text, quiet_gc
+from .per_line import PerLine
 from .rules import ALL_CHECKS, LINE_CHECKS, LineFinding
 from .rules.context import RuleContext
 from .syntax import Document, ParsedLine
@@ -59,15 +60,8 @@ def _apply_settings(diags: Iterable[Diagnostic], doc: Document, config: Config) 
     return out
 
 
-_LINE_CACHE: dict[int, tuple[ParsedLine, tuple[LineFinding, ...]]] = {}
-_LINE_CACHE_LIMIT = 400_000
-
-
-def line_findings(parsed: ParsedLine) -> tuple[LineFinding, ...]:
-    """The line rules' findings for one line's text, computed once per distinct line."""
-    entry = _LINE_CACHE.get(id(parsed))
-    if entry is not None and entry[0] is parsed:
-        return entry[1]
+def _line_findings(parsed: ParsedLine) -> tuple[LineFinding, ...]:
+    """The line rules' findings for one line's text."""
     found: list[LineFinding] = []
     for check in LINE_CHECKS:
         try:
@@ -77,11 +71,10 @@ def line_findings(parsed: ParsedLine) -> tuple[LineFinding, ...]:
             found.append(
                 LineFinding("MB000", f"internal error in {check.__module__}: {err!r}", 0, 0)
             )
-    if len(_LINE_CACHE) >= _LINE_CACHE_LIMIT:
-        _LINE_CACHE.clear()
-    result = tuple(found)
-    _LINE_CACHE[id(parsed)] = (parsed, result)  # holds the line, so its id stays its own
-    return result
+    return tuple(found)
+
+
+line_findings: PerLine[tuple[LineFinding, ...]] = PerLine(_line_findings)
 
 
 def run_checks(ctx: RuleContext, checks: Iterable[ExtraChecks]) -> list[Diagnostic]:
@@ -112,10 +105,13 @@ def analyse(
     index: ProgramIndex | None = None,
     other_documents: Sequence[tuple[str, Document, ProgramIndex]] = (),
     run_evaluator: bool = True,
+    facts: Facts | None = None,
 ) -> Analysis:
     """Parse (unless ``doc`` is given), index, evaluate and check one document.
 
     ``other_documents`` are the workspace's other files: the programs this one calls.
+    ``facts`` from an earlier run of the same programs spare the evaluator (see
+    :meth:`fanuc_macro.workspace.Workspace.analyse`).
     """
     with quiet_gc():  # the run makes many small objects and no cycles
         config = config or Config()
@@ -123,9 +119,8 @@ def analyse(
             doc = parse_text(text, uri, parser or default_parser())
         if index is None:
             index = build_index(doc)
-        facts: Facts | None = None
         failed: list[Diagnostic] = []
-        if run_evaluator:
+        if run_evaluator and facts is None:
             try:
                 facts = evaluate([(uri, doc, index), *other_documents], config, only_uri=uri)
             except Exception as err:  # the structural rules still report

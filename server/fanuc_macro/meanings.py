@@ -15,7 +15,8 @@ from dataclasses import dataclass
 from functools import lru_cache
 
 from .index import ProgramIndex
-from .syntax import Assign, Document
+from .per_line import PerLine
+from .syntax import Assign, Document, ParsedLine
 
 # Role -> words that name it in a comment. The first role with a matching word wins, so the
 # more specific come first: "刀尖圆弧半径" (nose radius) holds "圆弧半径" (arc radius).
@@ -150,18 +151,26 @@ def variable_roles(doc: Document, index: ProgramIndex) -> dict[tuple[int, int], 
         for var, role in table.items():
             roles[(program.first_line, var)] = Meaning(role, -1, f"module {program.display_name}")
         for line in range(program.first_line, program.end_line):
-            block = doc.blocks[line]
-            statement = block.statement
-            if not isinstance(statement, Assign) or statement.target.number is None:
-                continue
-            var = int(statement.target.number)
-            comment = " ".join(c.text for c in block.parsed.comments)
-            said = role_of_comment(comment) if comment else None
+            said = assigned_role(doc.blocks[line].parsed)
             if said is not None:
+                var, role = said
                 key = (program.first_line, var)
                 if key not in roles or roles[key].line == -1:
-                    roles[key] = Meaning(said, line, "comment")
+                    roles[key] = Meaning(role, line, "comment")
     return roles
+
+
+def _assigned_role(parsed: ParsedLine) -> tuple[int, str] | None:
+    statement = parsed.statement
+    if not isinstance(statement, Assign) or statement.target.number is None:
+        return None
+    comment = " ".join(c.text for c in parsed.comments)
+    role = role_of_comment(comment) if comment else None
+    return None if role is None else (int(statement.target.number), role)
+
+
+# (variable, role) that an assignment's comment gives, per distinct line.
+assigned_role: PerLine[tuple[int, str] | None] = PerLine(_assigned_role)
 
 
 def program_is_internal(doc: Document, first_line: int, end_line: int) -> bool | None:

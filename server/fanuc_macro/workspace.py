@@ -9,6 +9,7 @@ from pathlib import Path
 from .analysis import Analysis, analyse
 from .blocks import decode_bytes
 from .config import Config
+from .evaluator import Facts
 from .index import Call, ProgramIndex, build_index
 from .parser import BlockParser, default_parser, parse_text
 from .syntax import Document
@@ -38,6 +39,31 @@ class _Entry:
     index: ProgramIndex
     encoding: str
     decode_note: str | None
+    # Changes when an edit may change what the program does; not for comments and spaces.
+    execution: int = 0
+
+
+def same_execution(old: Document, new: Document) -> bool:
+    """Whether two versions of a document run the same: an edit in comments or spaces only.
+
+    Lines an edit did not touch keep their block (the ``is`` test); a touched line counts as
+    the same when its statement, label, block delete and tape mark are equal.
+    """
+    if len(old.blocks) != len(new.blocks):
+        return False
+    for a, b in zip(old.blocks, new.blocks, strict=True):
+        if a is b:
+            continue
+        p, q = a.parsed, b.parsed
+        if (
+            p.statement != q.statement
+            or p.seq != q.seq
+            or p.skip != q.skip
+            or p.tape_mark != q.tape_mark
+            or (p.problem is None) != (q.problem is None)
+        ):
+            return False
+    return True
 
 
 class Workspace:
@@ -45,12 +71,23 @@ class Workspace:
         self.config = config or Config()
         self.parser = parser or default_parser()
         self._entries: dict[str, _Entry] = {}
+        self._executions = 0
+        # uri -> (the config, the executions of the documents run, the evaluator's facts)
+        self._facts: dict[str, tuple[Config, tuple[tuple[str, int], ...], Facts]] = {}
+
+    def _next_execution(self) -> int:
+        self._executions += 1
+        return self._executions
 
     def add_text(self, uri: str, text: str) -> Document:
         old = self._entries.get(uri)
         # The previous version's blocks are reused for the lines an edit did not touch.
         doc = parse_text(text, uri, self.parser, old.doc if old is not None else None)
-        self._entries[uri] = _Entry(text, doc, build_index(doc), "utf-8", None)
+        if old is not None and same_execution(old.doc, doc):
+            execution = old.execution
+        else:
+            execution = self._next_execution()
+        self._entries[uri] = _Entry(text, doc, build_index(doc), "utf-8", None, execution)
         return doc
 
     def add_bytes(self, uri: str, data: bytes) -> Document:
@@ -58,12 +95,18 @@ class Workspace:
         doc = parse_text(decoded.text, uri, self.parser)
         doc = Document(uri, doc.blocks, decoded.encoding, decoded.note, doc.line_count)
         self._entries[uri] = _Entry(
-            decoded.text, doc, build_index(doc), decoded.encoding, decoded.note
+            decoded.text,
+            doc,
+            build_index(doc),
+            decoded.encoding,
+            decoded.note,
+            self._next_execution(),
         )
         return doc
 
     def remove(self, uri: str) -> None:
         self._entries.pop(uri, None)
+        self._facts.pop(uri, None)
 
     def uris(self) -> list[str]:
         return list(self._entries)
@@ -99,9 +142,19 @@ class Workspace:
         return None
 
     def analyse(self, uri: str, workspace_programs: frozenset[int] | None = None) -> Analysis:
+        """Analyse ``uri`` with the programs of the workspace it calls.
+
+        The evaluator's facts are kept while no document it ran changed what it does: typing in
+        a comment re-runs the rules (comments name parameters and suppress diagnostics), not
+        the program.
+        """
         entry = self._entries[uri]
         programs = self.program_numbers() if workspace_programs is None else workspace_programs
-        return analyse(
+        others = self.others(uri)
+        runs = ((uri, entry.execution), *((u, self._entries[u].execution) for u, _, _ in others))
+        cached = self._facts.get(uri)
+        facts = cached[2] if cached and cached[0] is self.config and cached[1] == runs else None
+        analysis = analyse(
             entry.text,
             uri,
             self.config,
@@ -109,8 +162,12 @@ class Workspace:
             self.parser,
             doc=entry.doc,
             index=entry.index,
-            other_documents=self.others(uri),
+            other_documents=others,
+            facts=facts,
         )
+        if analysis.facts is not None:
+            self._facts[uri] = (self.config, runs, analysis.facts)
+        return analysis
 
 
 def _called_numbers(doc: Document, call: Call) -> list[int] | None:

@@ -13,6 +13,7 @@ from dataclasses import dataclass, field
 
 from ..config import Config
 from ..index import Program, ProgramIndex, constant_value
+from ..per_line import PerLine
 from ..syntax import (
     Assign,
     Compare,
@@ -25,7 +26,6 @@ from ..syntax import (
     IfThen,
     Mixed,
     NcStatement,
-    ParsedLine,
     ProgramStart,
     Statement,
     Var,
@@ -1048,21 +1048,8 @@ def _fixed(expr: Expr, facts: DocumentFacts, line: int) -> float | None:
     return None
 
 
-_COMPILED: dict[int, tuple[ParsedLine, CompiledLine]] = {}
-_COMPILED_LIMIT = 400_000
-
-
-def compiled(parsed: ParsedLine) -> CompiledLine:
-    """The compiled statement of a parsed line, cached: parsed lines are shared by text."""
-    entry = _COMPILED.get(id(parsed))
-    if entry is not None and entry[0] is parsed:
-        return entry[1]
-    if len(_COMPILED) >= _COMPILED_LIMIT:
-        _COMPILED.clear()
-    result = compile_statement(parsed.statement)
-    # The entry keeps the parsed line alive, so its id cannot be reused while cached.
-    _COMPILED[id(parsed)] = (parsed, result)
-    return result
+# The compiled statement of a parsed line: closures that do not depend on where it stands.
+compiled: PerLine[CompiledLine] = PerLine(lambda parsed: compile_statement(parsed.statement))
 
 
 def _volatile(number: int) -> bool:

@@ -25,7 +25,7 @@ from typing import Any, TypeVar
 from lsprotocol import types
 from pygls.uris import from_fs_path, to_fs_path
 
-from ..analysis import Analysis, analyse
+from ..analysis import Analysis
 from ..config import Config
 from ..index import ProgramIndex
 from ..syntax import Document
@@ -355,17 +355,7 @@ class Engine:
 
     def _analyse(self, key: str) -> Analysis:
         """The package's analysis of ``key``, given only the documents it can reach."""
-        doc, index = self.indexes[key]
-        return analyse(
-            "",
-            key,
-            self._ws.config,
-            self._ws.program_numbers(),
-            self._ws.parser,
-            doc=doc,
-            index=index,
-            other_documents=self.documents_for(key),
-        )
+        return self._ws.analyse(key)
 
     def documents_for(self, key: str) -> list[tuple[str, Document, ProgramIndex]]:
         """Worker thread: the other documents an analysis or trace of ``key`` needs."""

@@ -12,12 +12,13 @@ import math
 import re
 from collections.abc import Iterator
 from dataclasses import dataclass
-from functools import lru_cache
 
 from ..diagnostics import Diagnostic, Related, RuleInfo, Severity, make, register
 from ..evaluator.facts import DocumentFacts, Motion
 from ..evaluator.values import fmt
 from ..meanings import Meaning, program_is_internal, variable_roles
+from ..per_line import PerLine
+from ..syntax import ParsedLine
 from ..threads.designation import parse_designation
 from .context import RuleContext
 
@@ -94,18 +95,17 @@ def _find_role(
 
 
 def _designations(ctx: RuleContext) -> list[tuple[int, str]]:
-    found: list[tuple[int, str]] = []
-    for block in ctx.doc.blocks:
-        for comment in block.parsed.comments:
-            found.extend((block.line, text) for text in _designations_in(comment.text))
-    return found
+    return [(b.line, text) for b in ctx.doc.blocks for text in _designations_of(b.parsed)]
 
 
-@lru_cache(maxsize=65536)  # every analysis reads the same comments again
-def _designations_in(text: str) -> tuple[str, ...]:
-    if "M" not in text and "m" not in text:
-        return ()
-    return tuple(m.group(0) for m in _DESIGNATION.finditer(text))
+def _line_designations(parsed: ParsedLine) -> tuple[str, ...]:
+    return tuple(
+        m.group(0) for comment in parsed.comments for m in _DESIGNATION.finditer(comment.text)
+    )
+
+
+# Thread designations such as (M50X3-5G6G) in a line's comments, per distinct line.
+_designations_of: PerLine[tuple[str, ...]] = PerLine(_line_designations)
 
 
 def _thread_of(
