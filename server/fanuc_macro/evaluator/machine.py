@@ -282,10 +282,8 @@ class _Stop(Exception):
 @dataclass
 class Modal:
     motion: float | None = None  # group 01
-    absolute: bool = True  # G90/G91 (mill)
     feed: Value = None
     speed: Value = None
-    feed_per_rev: bool = True  # G99 (lathe default)
     constant_surface_speed: bool = False  # G96: S is m/min, not rpm
     modal_call: tuple[ProgramContext, list[Value], int] | None = None  # G66
     position: dict[str, Value] = field(default_factory=dict)
@@ -640,18 +638,10 @@ class Machine:
                 call_kind = "G66"
             elif g == 67.0:
                 modal.modal_call = None
-            elif g == 90.0 and not self.config.is_lathe:
-                modal.absolute = True
-            elif g == 91.0 and not self.config.is_lathe:
-                modal.absolute = False
             elif g == 96.0:
                 modal.constant_surface_speed = True
             elif g == 97.0:
                 modal.constant_surface_speed = False
-            elif g == 98.0:
-                modal.feed_per_rev = False
-            elif g == 99.0:
-                modal.feed_per_rev = True
         if call_kind is None:
             self._check_addresses(act, cl, order, 98.0 in m_codes or 99.0 in m_codes)
         else:  # after G65/G66 the words are arguments (#1-#26): only P names a program
