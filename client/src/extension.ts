@@ -39,6 +39,8 @@ export const SERVER_COMMAND_THREAD_MODULE = 'fanuc-macro.threadModule';
 let client: LanguageClient | undefined;
 /** Folder the extension is installed in (holds the bundled server, if any). */
 let extensionPath: string | undefined;
+/** The server.path setting as it read when the running server was started. */
+let startedWithPath = '';
 let output: vscode.OutputChannel | undefined;
 /** Serialises start/stop/restart so that commands and setting changes do not race. */
 let lifecycle: Promise<unknown> = Promise.resolve();
@@ -188,6 +190,7 @@ async function showServerNotFound(failures: readonly string[]): Promise<void> {
 }
 
 async function startClient(): Promise<void> {
+  startedWithPath = vscode.workspace.getConfiguration(CONFIG_SECTION).get<string>('server.path', '');
   const { found, failures } = await findServer();
   if (found === undefined) {
     void showServerNotFound(failures);
@@ -416,6 +419,17 @@ export function activate(context: vscode.ExtensionContext): void {
     vscode.workspace.onDidChangeConfiguration((event) => {
       if (event.affectsConfiguration(SERVER_PATH_SETTING)) {
         log(`${SERVER_PATH_SETTING} changed: restarting the language server`);
+        void restart();
+      }
+    }),
+    // The setting is restricted in untrusted workspaces: until trust is granted it reads as
+    // empty, and granting it fires no configuration change. Look again then.
+    vscode.workspace.onDidGrantWorkspaceTrust(() => {
+      const configured = vscode.workspace
+        .getConfiguration(CONFIG_SECTION)
+        .get<string>('server.path', '');
+      if (configured.trim() !== '' && configured !== startedWithPath) {
+        log(`workspace trusted: ${SERVER_PATH_SETTING} is now readable, restarting the server`);
         void restart();
       }
     }),

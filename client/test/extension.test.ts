@@ -189,6 +189,23 @@ describe('extension', { skip: process.platform === 'win32' }, () => {
     assert.equal((lastClient().serverOptions as { run: { command: string } }).run.command, server);
   });
 
+  it('looks at fanuc-macro.server.path again when the workspace is trusted', async () => {
+    // Started while the restricted setting read as empty; trust makes it readable.
+    fake.setSettings({ ...baseSettings, 'server.path': '' });
+    await run('fanuc-macro.restartServer');
+    const count = clients.length;
+    fake.setSettings({ ...baseSettings });
+    fake.fireTrustGranted();
+    await run('fanuc-macro.restartServer');
+    assert.equal(clients.length, count + 2);
+    assert.equal((lastClient().serverOptions as { run: { command: string } }).run.command, server);
+    // Trust again with the same setting: no restart.
+    const after = clients.length;
+    fake.fireTrustGranted();
+    await new Promise((resolve) => setTimeout(resolve, 50));
+    assert.equal(clients.length, after);
+  });
+
   it('says what was tried and offers the setting when no server works', async () => {
     fake.resetRecorded();
     const count = clients.length;

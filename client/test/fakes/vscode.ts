@@ -89,6 +89,13 @@ class Configuration {
 }
 
 const configurationListeners: Handler[] = [];
+const trustListeners: Array<() => void> = [];
+
+export function fireTrustGranted(): void {
+  for (const listener of trustListeners) {
+    listener();
+  }
+}
 
 export function fireConfigurationChange(changedKey: string): void {
   for (const listener of configurationListeners) {
@@ -181,6 +188,10 @@ export const workspace = {
   },
   onDidChangeConfiguration(listener: Handler) {
     configurationListeners.push(listener);
+    return { dispose: () => undefined };
+  },
+  onDidGrantWorkspaceTrust(listener: () => void) {
+    trustListeners.push(listener);
     return { dispose: () => undefined };
   },
   openTextDocument(options: { content: string; language: string }): Promise<{ content: string }> {
