@@ -11,6 +11,7 @@ that no two blocks repeat (the parse cache does not help the cold figures).
 from __future__ import annotations
 
 import argparse
+import gc
 import platform
 import random
 import resource
@@ -76,6 +77,7 @@ def generate(blocks: int, seed: int = 1) -> str:
 def best_of(fn: Callable[[], object], repeat: int = 3) -> float:
     times = []
     for _ in range(repeat):
+        gc.collect()  # the garbage of the run before is not this run's cost
         t = time.perf_counter()
         fn()
         times.append(time.perf_counter() - t)

@@ -11,7 +11,6 @@ overtaken by an edit while it runs is not published.
 from __future__ import annotations
 
 import asyncio
-import gc
 import logging
 import os
 import threading
@@ -252,7 +251,6 @@ class Engine:
                 return  # the queued job will read the newest text when it starts
             self._queued.add(key)
         self._submit(lambda: self._analyse_job(key), then=lambda r: self._deliver(key, r))
-        self._submit(_settle_memory)
 
     def _submit(self, fn: Callable[[], T], then: Callable[[T], None] | None = None) -> None:
         if self._closed:
@@ -611,15 +609,3 @@ def _program_files(folders: Sequence[Path], limit: int) -> Iterable[Path]:
                 count += 1
                 if count >= limit:
                     return
-
-
-def _settle_memory() -> None:
-    """After an analysis, on the worker: collect the young garbage, then freeze what is left.
-
-    What survives an analysis (parse cache, ASTs, facts) is long-lived; frozen, it is no longer
-    rescanned by every full collection, which otherwise stalls a keystroke now and then for
-    half a second on a 20,000-block program. Collecting the young generations first keeps
-    fresh garbage cycles (asyncio's, typically) from being frozen with it.
-    """
-    gc.collect(1)
-    gc.freeze()
