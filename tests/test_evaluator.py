@@ -206,11 +206,12 @@ def test_threading_rules_on_the_seed_module() -> None:
     # The paper's module as it is: no threading diagnostic.
     clean = analyse((SEEDS / "o4009_external_m50x3.nc").read_text("utf-8"), "o4009.nc")
     assert not [d for d in clean.diagnostics if d.code.startswith("MB8")]
-    # The finishing pass 0.4 mm (diameter) deeper than the module's own root.
+    # The finishing pass 0.4 mm (diameter) deeper than the module's own root: past the root
+    # of 5g6g that ISO 965-1 allows with the module's nose radius (d2 min 47.833 − H + 2r).
     found = _seed_codes(
         "o4009_external_m50x3.nc", "X[#100-2.*#4] (直进法精车)", "X[#100-2.*#4-0.4] (直进法精车)"
     )
-    assert "past the root X46.186" in found["MB801"][0]
+    assert "at X45.786 is 0.157 mm (radius) past the root X46.101" in found["MB801"][0]
     # A nose radius far above P/(8 sin 60) for P = 3.
     found = _seed_codes(
         "o4009_external_m50x3.nc", "#3=#101/[8*SIN[60]] (刀尖半径)", "#3=0.6 (刀尖半径)"
@@ -223,7 +224,10 @@ def test_threading_rules_on_the_seed_module() -> None:
 
 def test_fitting_method_tool_radius_from_chinese_comments() -> None:
     found = _seed_codes("o2_arc_thread_roughing.nc", "N07 #18 = 1.2", "N07 #18 = 10.5")
-    assert "tool radius 10.5" in found["MB806"][0]
+    assert (
+        "tool radius #18 = 10.5 is not smaller than the groove radius #4 = 10"
+        in (found["MB806"][0])
+    )
     assert "MB501" in found  # and ASIN[#18/[#4-#18]] leaves its domain
 
 
@@ -271,3 +275,76 @@ def test_workspace_keeps_the_facts_while_only_comments_change() -> None:
     again = ws.analyse("a.nc")
     assert again.facts is not first
     assert sum(1 for m in again.facts.motions if m.code == "G92") != 186
+
+
+def test_g76_two_block_form_cuts_the_controls_passes() -> None:
+    # First block: 2 finishing passes, chamfer 1.0L, 60°, Δdmin 0.1, allowance 0.05.
+    # Second: root X27.4, height k 1.3, first depth Δd 0.4, lead 2 (FANUC 0i-TF manual).
+    text = (
+        "O1\nG97 S600 M03\nG00 X32. Z5.\nG76 P021060 Q100 R0.05\n"
+        "G76 X27.4 Z-30. P1300 Q400 F2.\nG00 X100. Z100.\nM30\n"
+    )
+    facts, _ = run(text)
+    passes = [m for m in facts.motions if m.code == "G76"]
+    assert all(m.line == 4 for m in passes)  # the parameter block is never a cut
+    depths = [round((27.4 + 2 * 1.3 - m.x) / 2, 4) for m in passes if m.x is not None]
+    # Δd√n while each cut takes at least Δdmin, roughing to k - d, then k twice.
+    assert depths == [0.4, 0.5657, 0.6928, 0.8, 0.9, 1.0, 1.1, 1.2, 1.25, 1.3, 1.3]
+    assert [m.finishing for m in passes][-3:] == [False, True, True]
+    assert [m.cycle_pass for m in passes] == list(range(1, 12))
+    assert {m.start_x for m in passes} == {32.0} and {m.z for m in passes} == {-30.0}
+
+
+def test_g76_internal_goes_outwards_from_its_start_point() -> None:
+    text = "O1\nG00 X36. Z5.\nG76 P010060 Q100 R0\nG76 X40. Z-25. P1000 Q500 F2.\nM30\n"
+    facts, _ = run(text)
+    xs = [m.x for m in facts.motions if m.code == "G76"]
+    assert xs[0] == pytest.approx(38.0 + 1.0) and xs[-1] == 40.0 and xs == sorted(xs)
+
+
+def test_round_in_an_address_rounds_to_the_least_input_increment() -> None:
+    # FANUC's manual: ROUND in an NC address rounds at the address's least input increment.
+    text = (
+        "O1\n#1=1.2345\n#2=ROUND[#1]\nG00 X[ROUND[#1]] Z[ROUND[#1]*2.]\nG20\n"
+        "G00 X[ROUND[#1]]\nM30\n"
+    )
+    facts, _ = run(text)
+    moves = [m for m in facts.motions if m.code == "G00"]
+    assert moves[0].words["X"] == 1.235 and moves[0].words["Z"] == 2.47
+    assert facts.document("t.nc").writes[2][1].first == 1.0  # a macro statement: whole number
+    assert moves[1].x == pytest.approx(1.2345)  # inch: 0.0001
+
+
+def test_atan_range_is_the_controls_parameter() -> None:
+    from fanuc_macro.config import Config
+
+    text = "O1\n#1=ATAN[-1.]/[-1.]\n#2=ATAN[-1.,1.]\nM30\n"
+    default = analyse(text, "a.nc").facts
+    signed = analyse(text, "a.nc", config=Config(atan_signed=True)).facts
+    assert default is not None and signed is not None
+    assert default.document("a.nc").writes[1][1].first == pytest.approx(225.0)
+    assert signed.document("a.nc").writes[1][1].first == pytest.approx(-135.0)
+    assert signed.document("a.nc").writes[2][1].first == pytest.approx(-45.0)
+    assert Config.from_settings({"machine": {"atanRange": "-180-180"}}).atan_signed
+
+
+def test_value_range_depends_on_the_controller() -> None:
+    from fanuc_macro.config import Config
+
+    # No exponent on FANUC: 10^11, then 10^55.
+    text = "O1\n#1=100000000000.\n#2=#1*#1*#1*#1*#1\nM30\n"
+    small = analyse(text, "r.nc").diagnostics
+    assert any(
+        d.code == "MB501" and "OVERFLOW" in d.message and "±1e+47" in d.message for d in small
+    )
+    big = analyse(text, "r.nc", config=Config(controller="30i")).diagnostics
+    assert not any(d.code == "MB501" for d in big)
+    tiny = analyse("O1\n#1=0.0000000001\n#2=#1*#1*#1\nM30\n", "u.nc").facts
+    assert tiny is not None and tiny.document("u.nc").writes[2][1].first == 0.0
+
+
+def test_fix_of_a_value_a_hair_under_a_whole_number_is_noted() -> None:
+    text = "O1\n#1=0\n#2=0\nWHILE[#2LT8]DO1\n#1=#1+0.1\n#2=#2+1\nEND1\n#3=FIX[#1*10.]\nM30\n"
+    facts, _ = run(text)
+    seen = facts.document("t.nc").roundings[7]
+    assert (seen.function, seen.result) == ("FIX", 7.0) and seen.argument < 8.0

@@ -7,7 +7,8 @@ from typing import Any
 
 from .diagnostics import Severity
 
-CONTROLLERS = ("0i-TF", "0i-MF", "30i")
+CONTROLLERS = ("0i-TF", "0i-MF", "16i-T", "16i-M", "18i-T", "18i-M", "30i")
+ATAN_RANGES = ("0-360", "-180-180")
 
 
 @dataclass(frozen=True)
@@ -20,10 +21,22 @@ class Config:
     severities: dict[str, Severity] = field(default_factory=dict)
     step_budget: int = 500_000  # blocks the evaluator may execute from one entry
     time_budget: float = 0.8  # seconds of evaluation per document
+    # ATAN's result: 0 to 360 degrees, or -180 to 180 with parameter 6004#0 (NAT) set.
+    atan_signed: bool = False
 
     @property
     def is_lathe(self) -> bool:
         return self.controller.endswith("T") or self.controller.endswith("TF")
+
+    @property
+    def value_range(self) -> tuple[float, float]:
+        """The smallest and largest magnitude a macro variable holds; past the largest the
+        control raises PS0111 CALCULATED DATA OVERFLOW. 0i/16i/18i: 10^-29 to 10^47 (FANUC
+        0i-F Custom Macro manual, "Range of variable values"). 30i/31i/32i compute in double
+        precision: the IEEE 754 range (unverified against the 30i manual)."""
+        if self.controller.startswith("30i"):
+            return 2.2250738585072014e-308, 1.7976931348623157e308
+        return 1e-29, 1e47
 
     @property
     def four_digit_programs(self) -> bool:
@@ -58,6 +71,7 @@ class Config:
             severities=severities,
             step_budget=int(_number(analysis.get("stepBudget"), default.step_budget)),
             time_budget=_number(analysis.get("timeBudget"), default.time_budget),
+            atan_signed=str(machine.get("atanRange") or "0-360") == "-180-180",
         )
 
 

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from .facts import DocumentFacts, Facts, Finding, Motion, ValueSummary
+from .facts import DocumentFacts, Facts, Finding, Motion, Rounding, RunValues, ValueSummary
 from .run import evaluate
 from .values import Unknown, Value, fmt
 
@@ -11,6 +11,8 @@ __all__ = [
     "Facts",
     "Finding",
     "Motion",
+    "Rounding",
+    "RunValues",
     "Unknown",
     "Value",
     "ValueSummary",

@@ -22,6 +22,7 @@ from .values import (
     bit_xor,
     compare,
     divide,
+    f_round,
     merge_unknown,
     modulo,
 )
@@ -33,6 +34,14 @@ class Frame(Protocol):
 
     def read_global(self, number: int) -> Value: ...
     def read_indirect(self, number: Value, node: Var) -> Value: ...
+
+    # The control's settings and modal state that a few functions depend on.
+    @property
+    def signed_atan(self) -> bool: ...  # ATAN gives -180..180 (parameter 6004#0 NAT), not 0..360
+    @property
+    def length_increment(self) -> float: ...  # least input increment: 0.001 mm, 0.0001 inch
+
+    def note_rounding(self, name: str, argument: float, result: float) -> None: ...
 
 
 Evaluator = Callable[[Frame], Value]
@@ -57,38 +66,57 @@ def _constant(value: Value) -> Evaluator:
     return constant
 
 
-def constant_of(expr: Expr) -> float | None:
+# Functions whose result depends on the control's state, not on the arguments alone: ATAN
+# (its range is a parameter); ROUND in an NC address (the address's least input increment).
+_STATEFUL = frozenset({"ATAN"})
+
+
+def _foldable(expr: Expr, in_address: bool) -> bool:
+    for node in subexpressions(expr):
+        if isinstance(node, Var):
+            return False
+        if isinstance(node, Call) and (
+            node.name in _STATEFUL or (in_address and node.name == "ROUND")
+        ):
+            return False
+    return True
+
+
+def constant_of(expr: Expr, in_address: bool = False) -> float | None:
     """The value of an expression without variables (``[1.*0.1]``, ``[7./8.]*SIN[60]``), worked
-    out once; None when it reads a variable or raises an alarm (the run reports that)."""
+    out once; None when it reads a variable, depends on the control's state or raises an
+    alarm (the run reports that). ``in_address``: the expression is an NC address's value."""
     if isinstance(expr, Num):
         return expr.value
-    if any(isinstance(node, Var) for node in subexpressions(expr)):
+    if not _foldable(expr, in_address):
         return None
     try:
-        value = _compile(expr)(_NO_FRAME)
+        value = _compile(expr, in_address)(_NO_FRAME)
     except MacroAlarm:
         return None
     return value if isinstance(value, float) else None
 
 
-def compile_expr(expr: Expr) -> Evaluator:
+def compile_expr(expr: Expr, in_address: bool = False) -> Evaluator:
+    """``in_address``: the value of an NC address, where ROUND rounds to the address's least
+    input increment instead of to a whole number (FANUC Custom Macro B manual, "ROUND")."""
     # Constant parts are folded: the run only computes what depends on variables.
     if not isinstance(expr, Num | Var):
-        value = constant_of(expr)
+        value = constant_of(expr, in_address)
         if value is not None:
             return _constant(value)
-    return _compile(expr)
+    return _compile(expr, in_address)
 
 
-def _compile(expr: Expr) -> Evaluator:
+def _compile(expr: Expr, in_address: bool = False) -> Evaluator:
     if isinstance(expr, Num):
         return _constant(expr.value)
     if isinstance(expr, Var):
         return _compile_var(expr)
     if isinstance(expr, Bracket):
-        return compile_expr(expr.inner)
+        return compile_expr(expr.inner, in_address)
     if isinstance(expr, Unary):
-        inner = compile_expr(expr.operand)
+        inner = compile_expr(expr.operand, in_address)
         if expr.op == "+":
             return inner
 
@@ -102,8 +130,8 @@ def _compile(expr: Expr) -> Evaluator:
 
         return negate
     if isinstance(expr, Binary):
-        return _compile_binary(expr)
-    return _compile_call(expr)
+        return _compile_binary(expr, in_address)
+    return _compile_call(expr, in_address)
 
 
 def _compile_var(var: Var) -> Evaluator:
@@ -159,9 +187,9 @@ def _arith(op: str) -> Callable[[float, float], float]:
     return bit_xor
 
 
-def _compile_binary(expr: Binary) -> Evaluator:
-    left = compile_expr(expr.left)
-    right = compile_expr(expr.right)
+def _compile_binary(expr: Binary, in_address: bool) -> Evaluator:
+    left = compile_expr(expr.left, in_address)
+    right = compile_expr(expr.right, in_address)
     op = expr.op
     fn = _arith(op)
 
@@ -222,26 +250,62 @@ def _compile_binary(expr: Binary) -> Evaluator:
     return other
 
 
-def _compile_call(expr: Call) -> Evaluator:
+def _near_integer(x: float) -> bool:
+    """A value a hair off a whole number: the residue of binary floating point (0.1 added up
+    ten times is 0.9999999999999999), which FIX and FUP then push to the wrong integer."""
+    nearest = round(x)
+    return x != nearest and abs(x - nearest) <= 1e-9 * max(1.0, abs(x))
+
+
+def _signed_angle(angle: float) -> float:
+    return angle - 360.0 if angle > 180.0 else angle
+
+
+def _compile_call(expr: Call, in_address: bool) -> Evaluator:
     name = expr.name
     if len(expr.args) == 2:
         fn2 = TWO_ARG[name]
-        a_eval = compile_expr(expr.args[0])
-        b_eval = compile_expr(expr.args[1])
+        a_eval = compile_expr(expr.args[0], in_address)
+        b_eval = compile_expr(expr.args[1], in_address)
+        signed = name == "ATAN"
 
         def call2(f: Frame) -> Value:
             a, b = _zero(a_eval(f)), _zero(b_eval(f))
             if isinstance(a, Unknown) or isinstance(b, Unknown):
                 return merge_unknown(a, b)
             try:
-                return fn2(a, b)
+                result = fn2(a, b)
             except MacroAlarm as alarm:
                 alarm.node = expr
                 raise
+            return _signed_angle(result) if signed and f.signed_atan else result
 
         return call2
     fn1 = ONE_ARG[name]
-    arg = compile_expr(expr.args[0])
+    arg = compile_expr(expr.args[0], in_address)
+    if name == "ROUND" and in_address:
+
+        def round_address(f: Frame) -> Value:
+            a = _zero(arg(f))
+            if isinstance(a, Unknown):
+                return a
+            step = f.length_increment
+            return round(f_round(a / step) * step, 6)
+
+        return round_address
+    if name in ("FIX", "FUP"):
+
+        def truncate(f: Frame) -> Value:
+            a = _zero(arg(f))
+            if isinstance(a, Unknown):
+                return a
+            result = fn1(a)
+            if f is not None and _near_integer(a) and result != round(a):
+                f.note_rounding(name, a, result)  # 7.9999999999 truncated to 7, not 8
+            return result
+
+        return truncate
+    signed = name == "ATAN"
 
     def call1(f: Frame) -> Value:
         a = arg(f)
@@ -250,10 +314,11 @@ def _compile_call(expr: Call) -> Evaluator:
             if isinstance(a, Unknown):
                 return a
         try:
-            return fn1(a)
+            result = fn1(a)
         except MacroAlarm as alarm:
             alarm.node = expr
             raise
+        return _signed_angle(result) if signed and f.signed_atan else result
 
     return call1
 

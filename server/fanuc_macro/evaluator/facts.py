@@ -74,6 +74,25 @@ class Motion:
     x: float | None = None  # the diameter the move or cut reaches (G32 Z-only: where it is)
     rpm: float | None = None  # spindle speed in G97 (None in G96 or unknown)
     program_line: int = 0  # first line of the program the motion belongs to
+    z: float | None = None  # the Z the move or cut ends at
+    # Where the tool stood before the block: a cycle's start point, to which it returns.
+    start_x: float | None = None
+    start_z: float | None = None
+    start_line: int | None = None  # the block that put the tool at start_x
+    start_uri: str = ""
+    run: int = 0  # which execution of its program: every call is a new one
+    cycle_pass: int = 0  # G76: the pass number within its cycle (0: not a G76 pass)
+    finishing: bool = False  # G76: a finishing pass at the full thread height
+
+
+@dataclass(slots=True)
+class Rounding:
+    """FIX or FUP of a value a hair off a whole number: 7.9999999999 truncated to 7."""
+
+    function: str
+    argument: float
+    result: float
+    count: int = 1
 
 
 @dataclass
@@ -108,6 +127,7 @@ class DocumentFacts:
     findings: list[Finding] = field(default_factory=list)
     analysed_programs: set[int] = field(default_factory=set)  # first lines of programs run
     incomplete_programs: set[int] = field(default_factory=set)  # runs that stopped early
+    roundings: dict[int, Rounding] = field(default_factory=dict)  # line -> the first such
 
     def jump_count(self, line: int) -> JumpCount:
         count = self.jumps.get(line)
@@ -122,12 +142,26 @@ class DocumentFacts:
         return self.writes.get(line)
 
 
+@dataclass(frozen=True, slots=True)
+class RunValues:
+    """The variables of one execution of a program when it began to cut a thread: what the
+    threading rules read a module's inputs from when it is called more than once."""
+
+    locals: tuple[Value, ...]  # #0-#33
+    globals: dict[int, Value]
+
+    def value(self, number: int) -> float | None:
+        v = self.locals[number] if number <= 33 else self.globals.get(number)
+        return v if isinstance(v, float) else None
+
+
 @dataclass
 class Facts:
     by_uri: dict[str, DocumentFacts] = field(default_factory=dict)
     motions: list[Motion] = field(default_factory=list)
     steps: int = 0
     stopped: str | None = None  # why a run stopped early ("budget", "alarm", ...)
+    run_values: dict[int, RunValues] = field(default_factory=dict)  # run -> at its first cut
 
     def document(self, uri: str) -> DocumentFacts:
         facts = self.by_uri.get(uri)

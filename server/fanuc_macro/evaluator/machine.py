@@ -9,13 +9,14 @@ an unknown condition runs its body once), so a program analysed alone still gets
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 from ..config import Config
 from ..index import Program, ProgramIndex, constant_value
 from ..per_line import PerLine
 from ..syntax import (
     Assign,
+    Bracket,
     Compare,
     Document,
     End,
@@ -26,15 +27,18 @@ from ..syntax import (
     IfThen,
     Mixed,
     NcStatement,
+    Num,
     ProgramStart,
     Statement,
+    Unary,
     Var,
     While,
 )
 from ..variables import ARGUMENT_VARIABLES, classify
 from ..walk import subexpressions, top_expressions
 from .compiler import CondEvaluator, Evaluator, compile_cond, compile_expr, constant_of
-from .facts import DocumentFacts, Facts, Finding, Motion, ValueSummary
+from .cycles import g76_depths
+from .facts import DocumentFacts, Facts, Finding, Motion, Rounding, RunValues, ValueSummary
 from .values import MacroAlarm, Unknown, Value, fmt
 
 # Block kinds of the compiled program.
@@ -44,9 +48,15 @@ MOTION_GROUP = {0.0, 1.0, 2.0, 3.0, 32.0, 33.0, 34.0}
 LATHE_CYCLES = {90.0, 92.0, 94.0}  # G-code system A: modal canned cycles of group 01
 ONE_SHOT_CYCLES = {70.0, 71.0, 72.0, 73.0, 74.0, 75.0, 76.0}  # group 00: they do not repeat
 AXES = frozenset("XYZUVWABC")
+# Addresses whose values are lengths or angles in the least input increment (ROUND in them
+# rounds to that increment); the others take whole numbers.
+LENGTH_ADDRESSES = frozenset("XYZUVWABCIJKRQF")
 INTEGER_ADDRESSES = frozenset("MSTLHD")  # P too, when it names a program (M98, G65, M99)
 MAX_MACRO_LEVEL = 5  # G65/G66 levels (0i-D/30i); 16i has 4
 MAX_NESTING = 10
+MAX_MOTIONS = 200_000  # motion records kept per analysis
+THREADING_CODES = frozenset({32.0, 33.0, 34.0, 76.0, 92.0})
+MAX_REMEMBERED_RUNS = 1000  # executions whose variables are kept when they start a thread
 
 
 @dataclass(slots=True)
@@ -55,6 +65,7 @@ class CompiledWord:
     evaluate: Evaluator
     start: int
     end: int
+    decimal_point: bool = False  # written as a number with a decimal point (``Q0.4``)
 
 
 @dataclass(slots=True)
@@ -165,10 +176,17 @@ def compile_statement(statement: Statement | None) -> CompiledLine:
 
 def _compile_nc(nc: NcStatement) -> CompiledLine:
     words = tuple(
-        CompiledWord(w.address, compile_expr(w.value), w.span.start, w.span.end) for w in nc.words
+        CompiledWord(
+            w.address,
+            compile_expr(w.value, w.address in LENGTH_ADDRESSES),
+            w.span.start,
+            w.span.end,
+            _written_with_decimal_point(w.value),
+        )
+        for w in nc.words
     )
     compiled = CompiledLine(K_NC, words=words, nc=nc, node=nc)
-    constants = [constant_of(w.value) for w in nc.words]
+    constants = [constant_of(w.value, w.address in LENGTH_ADDRESSES) for w in nc.words]
     if all(c is not None for c in constants):
         values: dict[str, Value] = {}
         order: list[tuple[str, Value, CompiledWord]] = []
@@ -184,6 +202,12 @@ def _compile_nc(nc: NcStatement) -> CompiledLine:
             any(a in AXES for a in values),
         )
     return compiled
+
+
+def _written_with_decimal_point(expr: Expr) -> bool:
+    while isinstance(expr, Unary | Bracket):
+        expr = expr.operand if isinstance(expr, Unary) else expr.inner
+    return isinstance(expr, Num) and expr.has_decimal_point
 
 
 def _motion_words(values: dict[str, Value]) -> dict[str, float]:
@@ -224,6 +248,7 @@ class Activation:
         "pc",
         "repeats_left",
         "return_pc",
+        "serial",
         "store",
         "undecided_loops",
     )
@@ -249,9 +274,30 @@ class Activation:
         self.pc = ctx.program.first_line
         self.undecided_loops: set[int] = set()
         self.arguments: tuple[Value, ...] | None = None
+        machine.runs += 1
+        self.serial = machine.runs  # tells one call of a program from the next
 
     def read_global(self, number: int) -> Value:
         return self.machine.unknown_of(number)
+
+    @property
+    def signed_atan(self) -> bool:
+        return self.machine.config.atan_signed
+
+    @property
+    def length_increment(self) -> float:
+        # IS-B: 0.001 mm, 0.0001 inch (G20).
+        return 0.0001 if self.machine.modal.inch else 0.001
+
+    def note_rounding(self, name: str, argument: float, result: float) -> None:
+        machine = self.machine
+        found = self.ctx.facts.roundings
+        line = machine._line
+        seen = found.get(line)
+        if seen is None:
+            found[line] = Rounding(name, argument, result)
+        else:
+            seen.count += 1
 
     def read_indirect(self, index: Value, node: Var) -> Value:
         if isinstance(index, Unknown):
@@ -287,6 +333,25 @@ class Modal:
     constant_surface_speed: bool = False  # G96: S is m/min, not rpm
     modal_call: tuple[ProgramContext, list[Value], int] | None = None  # G66
     position: dict[str, Value] = field(default_factory=dict)
+    # Where each axis was last set: (uri, line), for the verdicts on a cycle's start point.
+    position_line: dict[str, tuple[str, int]] = field(default_factory=dict)
+    inch: bool = False  # G20
+    g76: G76Parameters = field(default_factory=lambda: G76Parameters())
+
+
+@dataclass(frozen=True)
+class G76Parameters:
+    """The first block of FANUC's two-block G76, ``G76 P(m)(r)(a) Q(dmin) R(d)``: modal values
+    the cutting block uses (FANUC 0i-TF Operator's Manual, "Multiple threading cycle (G76)").
+    Without that block the control takes parameters 5142 (m), 5130 (r), 5143 (a), 5140
+    (dmin) and 5141 (d); the defaults below stand for them (unverified: machine-dependent)."""
+
+    finishing_passes: int = 1  # m
+    chamfer: float = 0.0  # r, in tenths of the lead
+    tool_angle: float = 60.0  # a
+    min_depth: float = 0.0  # dmin, radius, mm
+    finishing_allowance: float = 0.0  # d, radius, mm
+    line: int | None = None  # the block that set them
 
 
 class Machine:
@@ -302,6 +367,9 @@ class Machine:
         self.speculative = False
         self.deadline = 0.0
         self.budget = config.step_budget
+        self.runs = 0  # activations so far: each gets its number
+        self.modal = Modal()
+        self.value_range = config.value_range
 
     def unknown_of(self, number: int) -> Unknown:
         u = self._unknowns.get(number)
@@ -487,13 +555,17 @@ class Machine:
     ) -> None:
         assert cl.value is not None
         value = cl.value(act)
-        if isinstance(value, float) and value - value != 0.0:
-            # inf - inf is NaN: the value left the floating-point range.
-            raise MacroAlarm(
-                "PS0111",
-                "overflow",
-                "the result is beyond the control's number range (CALCULATED DATA OVERFLOW)",
-            )
+        if value.__class__ is float:
+            smallest, largest = self.value_range
+            if not -largest <= value <= largest:  # NaN fails both comparisons
+                raise MacroAlarm(
+                    "PS0111",
+                    "overflow",
+                    f"the result {fmt(value)} is beyond the control's range "
+                    f"±{largest:.3g} (CALCULATED DATA OVERFLOW)",
+                )
+            if -smallest < value < smallest:
+                value = 0.0  # below the smallest magnitude the control holds (unverified)
         if unknown is not None:
             # IF [unknown] THEN #n=...: afterwards #n may or may not have changed.
             deps = set(unknown.deps)
@@ -642,6 +714,10 @@ class Machine:
                 modal.constant_surface_speed = True
             elif g == 97.0:
                 modal.constant_surface_speed = False
+            elif g == 20.0:
+                modal.inch = True
+            elif g == 21.0:
+                modal.inch = False
         if call_kind is None:
             self._check_addresses(act, cl, order, 98.0 in m_codes or 99.0 in m_codes)
         else:  # after G65/G66 the words are arguments (#1-#26): only P names a program
@@ -656,7 +732,7 @@ class Machine:
             self._macro_call(act, cl, order, modal_call=True)
             act.pc = self._line + 1
             return act
-        moved = self._motion(act, cl, values, g_codes)
+        moved = self._motion(act, cl, values, g_codes, order)
         for m in m_codes:
             if m == 98.0:
                 return self._sub_call(act, cl, values)
@@ -670,8 +746,27 @@ class Machine:
             return self._enter(act, callee, list(args), True, self._line + 1, 1)
         return act
 
+    def _axis(self, values: dict[str, Value], absolute: str, incremental: str) -> float | None:
+        """Where a block sends an axis: its absolute word, else where it is plus the
+        incremental word (U, W on a lathe in G-code system A), else where it is."""
+        v = values.get(absolute)
+        if isinstance(v, float):
+            return v
+        here = self.modal.position.get(absolute)
+        if not isinstance(here, float):
+            return None
+        step = values.get(incremental)
+        if step is None:
+            return here
+        return here + step if isinstance(step, float) else None
+
     def _motion(
-        self, act: Activation, cl: CompiledLine, values: dict[str, Value], g_codes: list[float]
+        self,
+        act: Activation,
+        cl: CompiledLine,
+        values: dict[str, Value],
+        g_codes: list[float],
+        order: list[tuple[str, Value, CompiledWord]],
     ) -> bool:
         one_shot = next((g for g in g_codes if g in ONE_SHOT_CYCLES), None) if g_codes else None
         const = cl.constant
@@ -683,39 +778,131 @@ class Machine:
             code = modal.motion
         else:
             return False
+        if code == 76.0 and not any(a in values for a in "XUZW"):
+            self._g76_parameters(values, order)  # the first block of G76 sets, it does not cut
+            return False
         words = const.words if const is not None else _motion_words(values)
         if "F" not in words and isinstance(modal.feed, float) and code != 0.0:
             words = {**words, "F": modal.feed}
         position = modal.position
-        x = values.get("X")
-        if not isinstance(x, float):
-            x = None
-            here = position.get("X")
-            u = values.get("U")
-            if isinstance(here, float):
-                x = here + u if isinstance(u, float) else here if u is None else None
+        lathe = self.config.is_lathe
+        x = self._axis(values, "X", "U")
+        if lathe:
+            z = self._axis(values, "Z", "W")
+        else:
+            given = values.get("Z")
+            z = given if isinstance(given, float) else None
+        start_x = position.get("X")
+        start_z = position.get("Z")
+        motion = Motion(
+            act.ctx.name,
+            self._line,
+            _g_name(code),
+            words,
+            act.ctx.uri,
+            x,
+            None
+            if modal.constant_surface_speed or not isinstance(modal.speed, float)
+            else modal.speed,
+            act.ctx.program.first_line,
+            z,
+            start_x if isinstance(start_x, float) else None,
+            start_z if isinstance(start_z, float) else None,
+            None,
+            "",
+            act.serial,
+        )
+        where = modal.position_line.get("X")
+        if where is not None:
+            motion.start_uri, motion.start_line = where
         motions = self.facts.motions
-        if len(motions) < 200_000:
-            rpm = modal.speed if isinstance(modal.speed, float) else None
-            motions.append(
-                Motion(
-                    act.ctx.name,
-                    self._line,
-                    _g_name(code),
-                    words,
-                    act.ctx.uri,
-                    x,
-                    None if modal.constant_surface_speed else rpm,
-                    act.ctx.program.first_line,
-                )
-            )
+        if code in THREADING_CODES and act.serial not in self.facts.run_values:
+            self._remember_run(act)
+        if code == 76.0:
+            self._g76_passes(motion, values, order)
+        elif len(motions) < MAX_MOTIONS:
+            motions.append(motion)
         if code not in LATHE_CYCLES and code not in ONE_SHOT_CYCLES:  # cycles end where they began
+            here = (act.ctx.uri, self._line)
             if x is not None or "X" in values or "U" in values:
                 position["X"] = x
-            for axis in ("Z", "Y"):
-                if axis in values:
-                    position[axis] = values[axis]
+                modal.position_line["X"] = here
+            if z is not None or "Z" in values or "W" in values:
+                position["Z"] = z
+                modal.position_line["Z"] = here
+            if "Y" in values:
+                position["Y"] = values["Y"]
         return True
+
+    def _remember_run(self, act: Activation) -> None:
+        runs = self.facts.run_values
+        if len(runs) < MAX_REMEMBERED_RUNS:
+            runs[act.serial] = RunValues(tuple(act.locals), dict(self.store))
+
+    def _least_increments(self, value: Value, word: CompiledWord | None) -> float | None:
+        """A G76 word given in least input increments (P, Q: no decimal point, 0.001 mm); one
+        written with a decimal point is taken in mm (unverified: FANUC may reject it)."""
+        if not isinstance(value, float):
+            return None
+        if word is not None and word.decimal_point:
+            return value
+        return value * (0.0001 if self.modal.inch else 0.001)
+
+    @staticmethod
+    def _word(order: list[tuple[str, Value, CompiledWord]], address: str) -> CompiledWord | None:
+        return next((w for a, _v, w in order if a == address), None)
+
+    def _g76_parameters(
+        self, values: dict[str, Value], order: list[tuple[str, Value, CompiledWord]]
+    ) -> None:
+        old = self.modal.g76
+        m, chamfer, angle = old.finishing_passes, old.chamfer, old.tool_angle
+        p = values.get("P")
+        if isinstance(p, float):  # P mmrraa: finishing passes, chamfer, tool angle
+            digits = round(p)
+            m, chamfer, angle = digits // 10000, float(digits // 100 % 100), float(digits % 100)
+        q = self._least_increments(values.get("Q"), self._word(order, "Q"))
+        r = self._least_increments(values.get("R"), self._word(order, "R"))
+        self.modal.g76 = G76Parameters(
+            m,
+            chamfer,
+            angle,
+            old.min_depth if q is None else q,
+            old.finishing_allowance if r is None else r,
+            self._line,
+        )
+
+    def _g76_passes(
+        self, cut: Motion, values: dict[str, Value], order: list[tuple[str, Value, CompiledWord]]
+    ) -> None:
+        """The passes of G76's cutting block ``G76 X Z R(i) P(k) Q(Δd) F(L)``: X is the root,
+        k the thread height and Δd the first depth, both radius values in least increments."""
+        motions = self.facts.motions
+        height = self._least_increments(values.get("P"), self._word(order, "P"))
+        first = self._least_increments(values.get("Q"), self._word(order, "Q"))
+        if cut.x is None or cut.start_x is None or height is None or first is None:
+            if len(motions) < MAX_MOTIONS:
+                motions.append(cut)  # what the control would cut cannot be known: one record
+            return
+        params = self.modal.g76
+        outward = cut.x > cut.start_x  # an internal thread: the cuts go away from the axis
+        sign = -1.0 if outward else 1.0
+        depths = g76_depths(
+            height, first, params.min_depth, params.finishing_allowance, params.finishing_passes
+        )
+        for n, (depth, finishing) in enumerate(depths, 1):
+            if len(motions) >= MAX_MOTIONS:
+                return
+            x = round(cut.x + sign * 2.0 * (height - depth), 4)
+            motions.append(
+                replace(
+                    cut,
+                    words={**cut.words, "X": round(x, 3)},
+                    x=x,
+                    cycle_pass=n,
+                    finishing=finishing,
+                )
+            )
 
     def _check_addresses(
         self,
