@@ -327,3 +327,27 @@ def test_check_reports_evaluator_findings_with_values(tmp_path: Path) -> None:
     assert done.returncode == 1
     found = [d for d in json.loads(done.stdout) if d["code"] == "MB501"]
     assert found and found[0]["line"] == 6 and "1.559" in found[0]["message"]
+
+
+VARIANTS = ROOT / "tests" / "fixtures" / "thread_variants"
+
+
+def test_threading_verdicts_through_the_command_line(tmp_path: Path) -> None:
+    names = ["o3331_height_typo.nc", "g92_fix_step.nc", "o4009_clean.nc"]
+    result = run(tmp_path, "check", "--format", "json", *(str(VARIANTS / n) for n in names))
+    assert result.returncode == 1, result.stderr
+    found = {(Path(d["path"]).name, d["line"], d["code"]) for d in json.loads(result.stdout)}
+    assert found == {
+        ("o3331_height_typo.nc", 22, "MB808"),
+        ("o3331_height_typo.nc", 42, "MB801"),
+        ("g92_fix_step.nc", 9, "MB814"),
+    }
+
+
+def test_trace_lists_every_pass_of_a_g76(tmp_path: Path) -> None:
+    result = run(tmp_path, "trace", "--format", "json", str(VARIANTS / "g76_clean.nc"))
+    assert result.returncode == 0, result.stderr
+    motions = json.loads(result.stdout)["motions"]
+    passes = [m for m in motions if m["code"] == "G76"]
+    assert len(passes) == 11 and all(m["line"] == 7 for m in passes)
+    assert [m["words"]["X"] for m in passes][:3] == [29.2, 28.869, 28.614]

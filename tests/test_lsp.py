@@ -271,6 +271,35 @@ async def test_hover_on_codes_labels_and_calls(client: LanguageClient) -> None:
     assert "Square root" in await hover(client, uri, 22, 15)  # SQRT
 
 
+VARIANTS = ROOT / "tests" / "fixtures" / "thread_variants"
+
+
+async def test_threading_verdicts_and_the_thread_in_the_hover(client: LanguageClient) -> None:
+    await start(client, VARIANTS)
+    path = VARIANTS / "o3331_height_typo.nc"
+    uri = path.as_uri()
+    open_text(client, uri, path.read_text("utf-8"))
+    found = await diagnostics(client, uri, lambda d: {"MB808", "MB801"} <= codes(d))
+    height = next(d for d in found if d.code == "MB808")
+    assert height.range.start.line == 21  # #4=... with the typo, the line to fix
+    assert "#103 is taken ×2 where the formula has es/2" in height.message
+    assert height.related_information  # where the thread is known from
+    text = await hover(client, uri, 31, 1)  # G92 X[#100-2.*#9] ... in O3331
+    assert "Threading cycle" in text
+    assert "**Thread M50x3**, external" in text and "known from the cuts" in text
+    assert "root X46.101" in text and "class 5g" in text
+    renumbered = ROOT / "tests" / "fixtures" / "rules" / "MB808_thread-height.nc"
+    open_text(client, renumbered.as_uri(), renumbered.read_text("utf-8"))
+    await diagnostics(client, renumbered.as_uri(), lambda d: "MB808" in codes(d))
+    radius = await hover(client, renumbered.as_uri(), 12, 1)  # #3 of O3001: no comment
+    assert "r, tool nose radius" in radius and "O3001, recognised by its formulas" in radius
+    plain = VARIANTS / "g92_clean.nc"
+    open_text(client, plain.as_uri(), plain.read_text("utf-8").replace("(M24X3-6G)", ""))
+    await diagnostics(client, plain.as_uri())
+    unknown = await hover(client, plain.as_uri(), 5, 1)
+    assert "not identified" in unknown and "(M50X3-5G6G)" in unknown
+
+
 async def test_hover_counts_utf16_columns(client: LanguageClient) -> None:
     await start(client, None)
     uri = "untitled:astral.nc"

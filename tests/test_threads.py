@@ -354,6 +354,16 @@ def test_parse_engagement_and_default_class() -> None:
     assert small.pitch_class == ToleranceClass(5, "H")
 
 
+def test_parse_multiple_start() -> None:
+    d = parse_designation("M16xPh3P1.5-6H")
+    assert (d.pitch, d.lead, d.starts, d.thread_lead) == (1.5, 3.0, 2, 3.0)
+    assert d.internal and d.canonical() == "M16xPh3P1.5-6H"
+    upper = parse_designation("M50XPH6P3-5G6G", internal=False)
+    assert (upper.pitch, upper.starts, upper.canonical()) == (3.0, 2, "M50xPh6P3-5g6g")
+    single = parse_designation("M50x3-5g6g")
+    assert (single.starts, single.thread_lead) == (1, 3.0)
+
+
 @pytest.mark.parametrize(
     ("text", "message"),
     [
@@ -363,7 +373,7 @@ def test_parse_engagement_and_default_class() -> None:
         ("Rc1/2", "taper pipe"),
         ("1/4-20 UNC", "Unified"),
         ("MJ10x1.25-4h6h", "MJ"),
-        ("M16xPh3P1.5-6H", "multiple-start"),
+        ("M16xPh4P1.5-6H", "whole multiple of the pitch"),
         ("M10x1.5-6H/6g", "fit"),
         ("M10-1.5", "after 'x'"),
         ("M10x1.5-6k", "position 'k' is not defined"),

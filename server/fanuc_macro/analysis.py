@@ -18,6 +18,7 @@ from .per_line import PerLine
 from .rules import ALL_CHECKS, LINE_CHECKS, LineFinding
 from .rules.context import RuleContext
 from .syntax import Document, ParsedLine
+from .threads.identify import Thread
 
 log = logging.getLogger(__name__)
 
@@ -35,6 +36,7 @@ class Analysis:
     index: ProgramIndex
     diagnostics: list[Diagnostic] = field(default_factory=list)
     facts: Facts | None = None  # the evaluator's, when it ran
+    threads: list[Thread] = field(default_factory=list)  # what the threading rules saw
 
 
 def _apply_settings(diags: Iterable[Diagnostic], doc: Document, config: Config) -> list[Diagnostic]:
@@ -136,7 +138,13 @@ def analyse(
                 )
         ctx = RuleContext(doc, index, config, workspace_programs, facts)
         found = failed + run_checks(ctx, [*ALL_CHECKS, *extra_checks])
-        return Analysis(doc, index, _apply_settings(found, doc, config), facts)
+        threads: list[Thread] = []
+        if facts is not None:
+            try:
+                threads = ctx.threads()
+            except Exception:  # reported as MB000 by the rules that asked for them
+                log.exception("thread identification of %s failed", uri)
+        return Analysis(doc, index, _apply_settings(found, doc, config), facts, threads)
 
 
 def with_uri(diag: Diagnostic, uri: str) -> Diagnostic:

@@ -44,6 +44,8 @@ from ..syntax import (
     While,
     Word,
 )
+from ..threads.identify import describe as describe_thread
+from ..threads.identify import module_meanings
 from ..threads.snippet import module_from_analysis
 from ..variables import ARGUMENT_VARIABLES, classify
 from ..walk import subexpressions
@@ -167,9 +169,15 @@ def _literal(expr: Expr) -> bool:
 class _NoFrame:
     """A frame for constant expressions: they read no variable."""
 
+    signed_atan = False
+    length_increment = 0.001
+
     def __init__(self) -> None:
         self.locals: list[Value] = []
         self.store: dict[int, Value] = {}
+
+    def note_rounding(self, name: str, argument: float, result: float) -> None:
+        pass
 
     def read_global(self, number: int) -> Value:
         raise LookupError(number)
@@ -296,6 +304,8 @@ def hover_variable(view: View, block: Block, hit: Hit) -> str:
     parts.append(f"*{meaning}*")
     program = view.index.program_at(line)
     table = table_meaning(view.index, program.number if program else None, n)
+    if table is None and program is not None:
+        table = _module_meaning(view, program, n)
     if table is not None:
         parts.append(table)
     facts = view.facts
@@ -345,6 +355,26 @@ def hover_variable(view: View, block: Block, hit: Hit) -> str:
     elif not facts.runs.get(line):
         parts.append(_not_run(view, line))
     return "\n\n".join(parts)
+
+
+def _module_meaning(view: View, program: Program, number: int) -> str | None:
+    """The meaning of ``#number`` in a thread module recognised by its formulas (in the
+    module itself, or in the program whose values it was called with)."""
+    for thread in view.analysis.threads:
+        if thread.job.uri != view.key or thread.module is None:
+            continue
+        meaning = module_meanings(thread).get(number)
+        if meaning is None:
+            continue
+        inside = thread.job.program_line == program.first_line
+        module = view.index.program_at(thread.job.program_line)
+        number_of_module = module.number if module is not None else None
+        caller = number_of_module is not None and any(
+            c.program == number_of_module for c in program.calls
+        )
+        if inside or (caller and number >= 100):  # a caller sets the module's commons
+            return f"{meaning} — thread module {thread.job.program}, recognised by its formulas"
+    return None
 
 
 def _not_run(view: View, line: int) -> str:
@@ -466,8 +496,10 @@ def hover_word(view: View, block: Block, hit: Hit) -> str | None:
         if word.span == call.span and value is not None:
             head = (knowledge.code_markdown(word.address, value, lathe) or "") + "\n\n---\n\n"
         return head + hover_program(view, call.program, block.line)
+    thread = _thread_hover(view, block.line)
     if word.address in ("G", "M") and value is not None:
-        return knowledge.code_markdown(word.address, value, lathe)
+        code = knowledge.code_markdown(word.address, value, lathe)
+        return "\n\n---\n\n".join(t for t in (code, thread) if t) or None
     parts: list[str] = []
     if call is not None and any(arg is word for arg in call.arguments):
         target = f"O{call.program:04d}" if call.program is not None else "the macro"
@@ -489,7 +521,19 @@ def hover_word(view: View, block: Block, hit: Hit) -> str | None:
                         summary.add(got)
         if summary.count:
             parts.append(f"Value in the motions: **{summary.describe()}**")
+    if thread is not None:
+        parts.append(thread)
     return "\n\n".join(parts) or None
+
+
+def _thread_hover(view: View, line: int) -> str | None:
+    """What is known of the thread a threading pass at ``line`` cuts."""
+    texts = [
+        describe_thread(t)
+        for t in view.analysis.threads
+        if t.job.uri == view.key and any(m.line == line for m in t.job.passes)
+    ]
+    return "\n\n".join(dict.fromkeys(texts)) or None
 
 
 def hover_label(view: View, block: Block) -> str:

@@ -270,11 +270,13 @@ def create_server() -> FanucMacroLanguageServer:
     async def on_definition(
         ls: FanucMacroLanguageServer, params: types.DefinitionParams
     ) -> list[types.Location] | None:
+        # Read before the view is made: a scan that ends after it may hold the target.
+        scanned = engine.scan_done.is_set()
         view = await ls.view(params.text_document.uri)
         if view is None:
             return None
         found = await ls.compute("definition", lambda: definition(view, params.position))
-        if found is None and not engine.scan_done.is_set():
+        if found is None and not scanned:
             # A program in a file the workspace scan has not reached yet.
             try:
                 await asyncio.wait_for(engine.scan_done.wait(), SCAN_WAIT)

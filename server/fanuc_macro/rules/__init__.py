@@ -4,6 +4,8 @@ from __future__ import annotations
 
 from . import (
     addresses,
+    angles,
+    cycles,
     dialect,
     expressions,
     flow,
@@ -12,6 +14,9 @@ from . import (
     math_domain,
     reading,
     statements,
+    thread_lead,
+    thread_passes,
+    thread_tool,
     threading,
     variable_use,
 )
@@ -34,7 +39,12 @@ ALL_CHECKS: tuple[Check, ...] = (
     addresses.check,
     flow.check,
     variable_use.check,
+    angles.check,
     threading.check,
+    thread_passes.check,
+    thread_tool.check,
+    thread_lead.check,
+    cycles.check,
 )
 
 __all__ = ["ALL_CHECKS", "LINE_CHECKS", "Check", "LineCheck", "LineFinding", "RuleContext"]

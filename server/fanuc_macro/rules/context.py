@@ -4,13 +4,16 @@ from __future__ import annotations
 
 from collections.abc import Callable, Iterable, Iterator, Sequence
 from dataclasses import dataclass, field
-from typing import NamedTuple
+from typing import TYPE_CHECKING, NamedTuple, cast
 
 from ..config import Config
 from ..diagnostics import Diagnostic
 from ..evaluator.facts import DocumentFacts, Facts, Finding
 from ..index import ProgramIndex
 from ..syntax import Block, Document, ParsedLine, Statement
+
+if TYPE_CHECKING:
+    from ..threads.identify import Thread
 
 
 @dataclass(frozen=True)
@@ -21,9 +24,27 @@ class RuleContext:
     # Program numbers defined anywhere in the workspace (None: only this file is known).
     workspace_programs: frozenset[int] | None = None
     facts: Facts | None = None  # the evaluator's, when it ran
+    # What several rules derive from the same facts, worked out once per analysis.
+    memo: dict[str, object] = field(default_factory=dict, compare=False, repr=False)
 
     def doc_facts(self) -> DocumentFacts | None:
         return None if self.facts is None else self.facts.by_uri.get(self.doc.uri)
+
+    def threads(self) -> list[Thread]:
+        """The threads this document's programs cut (:mod:`fanuc_macro.threads.identify`)."""
+        found = self.memo.get("threads")
+        if found is None:
+            from ..threads.identify import identify
+
+            facts = self.doc_facts()
+            found = self.memo["threads"] = (
+                []
+                if facts is None or self.facts is None
+                else identify(
+                    self.doc, self.index, facts, self.facts.motions, self.facts.run_values
+                )
+            )
+        return cast("list[Thread]", found)
 
     def findings(self, *kinds: str) -> Iterator[Finding]:
         """The evaluator's findings in this document whose kind starts with one of ``kinds``."""

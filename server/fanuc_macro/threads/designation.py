@@ -8,6 +8,7 @@ Accepted forms (spaces are ignored, the pitch separator may be ``x``, ``X``, ``�
     M20x1.5LH-6H    left hand (also ``M20x1.5-6H-LH``)
     M20x2-7g6g-L    length-of-engagement group S / N / L
     M10x1.5         no class: GB/T 197 medium default (6H/6g, or 5H/6h up to 1.4 mm)
+    M16xPh3P1.5-6H  multiple-start: lead Ph 3, pitch P 1.5, so two starts (ISO 965-1)
 
 The letter case of the tolerance position tells internal (upper case, nut) from external
 (lower case, bolt).  CNC comments are often all upper case (``M50X3-5G6G``); such a string
@@ -124,6 +125,16 @@ class ThreadDesignation:
     internal_basis: InternalBasis = "case"
     class_omitted: bool = False
     engagement: str | None = None
+    lead: float = 0.0  # Ph of a multiple-start thread; 0.0: the pitch (one start)
+
+    @property
+    def starts(self) -> int:
+        return max(1, round(self.lead / self.pitch)) if self.lead else 1
+
+    @property
+    def thread_lead(self) -> float:
+        """What one turn advances: the pitch times the number of starts."""
+        return self.lead or self.pitch
 
     @property
     def internal_ambiguous(self) -> bool:
@@ -133,6 +144,8 @@ class ThreadDesignation:
     def canonical(self) -> str:
         """The designation written the ISO way, e.g. ``M50x3-5g6g``."""
         pitch = "" if self.coarse_pitch_used else f"x{_fmt(self.pitch)}"
+        if self.lead:
+            pitch = f"xPh{_fmt(self.lead)}P{_fmt(self.pitch)}"
         if self.pitch_class == self.crest_class:
             cls = str(self.pitch_class)
         else:
@@ -179,7 +192,8 @@ _NON_METRIC: tuple[tuple[re.Pattern[str], str], ...] = (
 
 _NUMBER = r"\d+(?:[.,]\d+)?"
 _HEAD = re.compile(
-    rf"^M(?P<d>{_NUMBER})(?:[xX×*](?P<p>{_NUMBER}))?(?P<lh>LH|RH)?$",
+    rf"^M(?P<d>{_NUMBER})(?:[xX×*](?:(?P<p>{_NUMBER})|PH(?P<ph>{_NUMBER})P(?P<pp>{_NUMBER})))?"
+    r"(?P<lh>LH|RH)?$",
     re.IGNORECASE,
 )
 _CLASS = re.compile(r"^(?P<g1>\d)(?P<p1>[A-Za-z])(?:(?P<g2>\d)(?P<p2>[A-Za-z]))?$")
@@ -247,8 +261,6 @@ def parse_designation(text: str, *, internal: bool | None = None) -> ThreadDesig
         raise ValueError(
             f"{original!r} is not an ISO metric thread designation (expected e.g. M10x1.5-6g)"
         )
-    if re.search(r"Ph\d", compact, re.IGNORECASE):
-        raise ValueError(f"{original!r}: multiple-start threads (Ph/P) are not supported")
     if "/" in compact:
         raise ValueError(
             f"{original!r} looks like a fit (e.g. 6H/6g); parse the internal and external "
@@ -286,8 +298,18 @@ def parse_designation(text: str, *, internal: bool | None = None) -> ThreadDesig
         else:
             raise ValueError(f"{original!r}: unexpected part {part!r}")
 
-    coarse_used = match["p"] is None
-    pitch = coarse_pitch(diameter) if coarse_used else _number(match["p"])
+    lead = 0.0
+    if match["ph"] is not None:
+        lead, pitch = _number(match["ph"]), _number(match["pp"])
+        coarse_used = False
+        if pitch <= 0 or lead < pitch or abs(lead / pitch - round(lead / pitch)) > 1e-6:
+            raise ValueError(
+                f"{original!r}: the lead Ph {_fmt(lead)} must be a whole multiple of the "
+                f"pitch P {_fmt(pitch)}"
+            )
+    else:
+        coarse_used = match["p"] is None
+        pitch = coarse_pitch(diameter) if coarse_used else _number(match["p"])
     if pitch <= 0:
         raise ValueError(f"{original!r}: pitch must be positive")
     if pitch >= diameter:
@@ -320,6 +342,7 @@ def parse_designation(text: str, *, internal: bool | None = None) -> ThreadDesig
             internal_basis=basis,
             class_omitted=True,
             engagement=engagement,
+            lead=lead if lead != pitch else 0.0,
         )
 
     cmatch = _CLASS.match(class_text)
@@ -348,4 +371,5 @@ def parse_designation(text: str, *, internal: bool | None = None) -> ThreadDesig
         text=original,
         internal_basis=basis,
         engagement=engagement,
+        lead=lead if lead != pitch else 0.0,
     )

@@ -490,6 +490,10 @@ def build_module(
             f"{des.text!r} is left-hand; the symmetric module cuts toward -Z with M03 "
             "(right hand only)"
         )
+    if des.starts > 1:
+        raise ValueError(
+            f"{des.text!r} has {des.starts} starts; the symmetric module cuts one start"
+        )
     grade = des.pitch_class
     which = "EI" if des.internal else "ES"
     tol_name = "TD2" if des.internal else "Td2"

@@ -51,6 +51,7 @@ __all__ = [
     "DIAMETER_RANGES",
     "GRADE_FACTORS",
     "PREFERRED_NUMBERS",
+    "PitchClass",
     "TableCell",
     "TableValue",
     "ThreadTolerances",
@@ -60,8 +61,10 @@ __all__ = [
     "formula_minor_tolerance_6",
     "formula_pitch_tolerance_6",
     "fundamental_deviation",
+    "loosest_pitch_class",
     "major_diameter_tolerance",
     "minor_diameter_tolerance",
+    "pitch_classes",
     "pitch_diameter_tolerance",
     "preferred_number",
     "table_cells",
@@ -654,3 +657,45 @@ def tolerances(designation: ThreadDesignation | str) -> ThreadTolerances:
         minor_min=None,
         derived=derived,
     )
+
+
+@dataclass(frozen=True)
+class PitchClass:
+    """One tolerance class of a size: the pitch-diameter band it allows (mm)."""
+
+    position: str  # e f g h (external), G H (internal)
+    grade: int
+    deviation: float  # es (<= 0) or EI (>= 0)
+    tolerance: float  # Td2 or TD2
+
+    @property
+    def name(self) -> str:
+        return f"{self.grade}{self.position}"
+
+
+def pitch_classes(diameter: float, pitch: float, *, internal: bool) -> list[PitchClass]:
+    """Every pitch-diameter class ISO 965-1 tabulates for ``diameter`` and ``pitch``."""
+    positions = ("G", "H") if internal else ("e", "f", "g", "h")
+    grades = _TD2_INT_GRADES if internal else _TD2_EXT_GRADES
+    found: list[PitchClass] = []
+    for position in positions:
+        try:
+            deviation = fundamental_deviation(position, pitch).mm
+        except ValueError:
+            continue
+        for grade in grades:
+            try:
+                tolerance = pitch_diameter_tolerance(grade, pitch, diameter, internal=internal).mm
+            except ValueError:
+                continue
+            found.append(PitchClass(position, grade, deviation, tolerance))
+    return found
+
+
+def loosest_pitch_class(diameter: float, pitch: float, *, internal: bool) -> PitchClass | None:
+    """The class that lets the pitch diameter go furthest from the basic profile: the one that
+    allows the deepest root, so a pass past it is past the root of every class."""
+    classes = pitch_classes(diameter, pitch, internal=internal)
+    if not classes:
+        return None
+    return max(classes, key=lambda c: abs(c.deviation) + c.tolerance)

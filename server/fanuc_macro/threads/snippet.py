@@ -10,14 +10,13 @@ offers it as a completion item.  Pure: text in, text out, no LSP types.
 
 from __future__ import annotations
 
-import re
-
 from ..evaluator import DocumentFacts, evaluate
 from ..index import ProgramIndex, build_index
 from ..parser import default_parser, parse_text
 from ..syntax import Assign, Document, IfThen
 from .designation import ThreadDesignation, parse_designation
 from .generator import build_module_from_values, default_program_numbers
+from .identify import thread_words
 from .iso965 import tolerances
 
 __all__ = ["module_from_document"]
@@ -25,13 +24,6 @@ __all__ = ["module_from_document"]
 _URI = "snippet:thread-module.nc"
 _VARIABLES = range(100, 105)
 
-# A designation needs a pitch or a class, so the M8 of "M03 M8" in a comment is not one.
-_DESIGNATION = re.compile(
-    r"(?<![A-Za-z0-9])M\d+(?:[.,]\d+)?"
-    r"(?:(?:\s*[xX×*]\s*\d+(?:[.,]\d+)?(?:LH)?(?:-\d[A-Za-z](?:\d[A-Za-z])?)?)"
-    r"|(?:-\d[A-Za-z](?:\d[A-Za-z])?))"
-    r"(?:-LH)?",
-)
 _INTERNAL_WORDS = ("INTERNAL", "内螺纹", "內螺紋", "NUT")
 _EXTERNAL_WORDS = ("EXTERNAL", "外螺纹", "外螺紋", "BOLT")
 
@@ -53,8 +45,13 @@ def _comments(doc: Document) -> list[str]:
     return [c.text for block in doc.blocks for c in block.parsed.comments]
 
 
-def _designation_texts(comments: list[str]) -> list[str]:
-    return [m.group(0) for text in comments for m in _DESIGNATION.finditer(text)]
+def _designation_texts(doc: Document) -> list[str]:
+    return [
+        form
+        for block in doc.blocks
+        if block.parsed.comments
+        for _written, form in thread_words(block.parsed).designations
+    ]
 
 
 def _side_from_words(comments: list[str]) -> bool | None:
@@ -142,7 +139,7 @@ def module_from_analysis(doc: Document, index: ProgramIndex, facts: DocumentFact
                 values[number] = write[1].last
 
     comments = _comments(doc)
-    texts = _designation_texts(comments)
+    texts = _designation_texts(doc)
     des = next((d for d in (_parse(t, None) for t in texts) if d is not None), None)
     internal: bool | None = None
     if des is not None and not des.internal_ambiguous:

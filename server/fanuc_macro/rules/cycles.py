@@ -1,0 +1,146 @@
+"""MB813: a lathe cycle whose start point is on the wrong side of its cut.
+
+``G90`` (turning), ``G92`` (threading) and ``G76`` return to their start point after every
+pass: X first, then Z. An outside cut must start outside the material, an inside one inside
+the bore; else the retract runs into the part (a thread is torn by its own retract) and the
+return in Z drags the tool across it. ``G94`` (facing) returns in Z first: it must start on
+the face's free side. Which side the cut is on is known from the passes (outside cuts go
+towards the axis pass after pass, facing cuts towards -Z), from the identified thread, or
+from its designation.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+from dataclasses import dataclass, field
+
+from ..diagnostics import Diagnostic, Related, RuleInfo, Severity, make, register
+from ..evaluator.facts import Motion
+from ..threads.identify import Thread
+from ..threads.module_shape import D1_FACTOR
+from .context import RuleContext
+from .threading import EPS, mm, thread_related, width
+
+FAMILY = "cycles"
+register(
+    RuleInfo("MB813", "cycle-start-side", Severity.ERROR,
+             "A lathe cycle (G90, G92, G76, G94) starts on the wrong side of its cut.", FAMILY),
+)  # fmt: skip
+
+
+def check(ctx: RuleContext) -> Iterator[Diagnostic]:
+    for thread in ctx.threads():
+        if thread.job.is_cycle:
+            yield from _thread_start(ctx, thread)
+    if ctx.facts is not None:
+        for series in _series(ctx.facts.motions, ctx.doc.uri):
+            yield from _series_start(ctx, series)
+
+
+def _report(ctx: RuleContext, m: Motion, message: str, related: list[Related]) -> Diagnostic:
+    """At the block that put the tool at the start point (the line to fix), else the cycle."""
+    line = m.line
+    if m.start_line is not None and m.start_uri == ctx.doc.uri:
+        related = [Related(m.line, 0, 0, f"the {m.code} that starts there"), *related]
+        line = m.start_line
+    return make("MB813", message, line, 0, width(ctx, line), related=related)
+
+
+def _thread_start(ctx: RuleContext, thread: Thread) -> Iterator[Diagnostic]:
+    internal = thread.internal
+    passes = [m for m in thread.job.passes if m.x is not None and m.start_x is not None]
+    if internal is None or not passes:
+        return
+    xs = [m.x for m in passes if m.x is not None]
+    crest: float | None = None
+    if thread.major is not None and thread.pitch is not None and thread.unsupported is None:
+        # The blank: turned to about d - 0.125P outside, bored to D1 inside (seed paper 000).
+        crest = (
+            thread.major - D1_FACTOR * thread.pitch + 0.15 * thread.pitch
+            if internal
+            else thread.major - 0.15 * thread.pitch
+        )
+    for m in passes:
+        start = m.start_x
+        assert start is not None and m.x is not None
+        if internal:
+            bad = start > min(xs) + EPS or (crest is not None and start > crest + EPS)
+        else:
+            bad = start < max(xs) - EPS or (crest is not None and start < crest - EPS)
+        if not bad:
+            continue
+        side = "inside" if internal else "outside"
+        where = (
+            f"the {'bore' if internal else 'crest'} of {thread.name}, about X{mm(crest)}"
+            if crest is not None
+            else f"its shallowest pass X{mm(max(xs) if not internal else min(xs))}"
+        )
+        yield _report(
+            ctx,
+            m,
+            f"{m.code} starts at X{mm(start)}, but the thread is cut from the {side} "
+            f"({thread.job.side_reason or 'its designation'}): the start point must lie beyond "
+            f"{where}; from X{mm(start)} the cycle retracts into the thread after each pass "
+            f"and the return in Z crosses it",
+            thread_related(thread),
+        )
+        return
+
+
+@dataclass
+class _Series:
+    code: str
+    passes: list[Motion] = field(default_factory=list)
+
+
+def _series(motions: list[Motion], uri: str) -> Iterator[_Series]:
+    """Runs of consecutive G90 / G94 passes of one program execution."""
+    current: _Series | None = None
+    run = -1
+    for m in motions:
+        if m.code in ("G90", "G94") and m.uri == uri:
+            if current is None or current.code != m.code or m.run != run:
+                if current is not None:
+                    yield current
+                current, run = _Series(m.code), m.run
+            current.passes.append(m)
+        elif current is not None and m.run == run:
+            yield current
+            current = None
+    if current is not None:
+        yield current
+
+
+def _series_start(ctx: RuleContext, series: _Series) -> Iterator[Diagnostic]:
+    axis = "Z" if series.code == "G94" else "X"
+    cuts = [m for m in series.passes if _cut(m, axis) is not None and _start(m, axis) is not None]
+    values = [_cut(m, axis) for m in cuts]
+    if len(set(values)) < 2:
+        return  # one pass does not tell the side
+    first, last = values[0], values[-1]
+    assert first is not None and last is not None
+    towards_minus = last < first
+    for m, value in zip(cuts, values, strict=True):
+        start = _start(m, axis)
+        assert start is not None and value is not None
+        wrong = start < first - EPS if towards_minus else start > first + EPS
+        if wrong:
+            what = "facing" if series.code == "G94" else "turning"
+            yield _report(
+                ctx,
+                m,
+                f"{m.code} starts at {axis}{mm(start)}, on the material's side of its first "
+                f"pass {axis}{mm(first)}: the {what} passes go towards {axis}"
+                f"{'-' if towards_minus else '+'}, so the start point must lie beyond the "
+                f"first pass; from there the cycle returns through the part",
+                [],
+            )
+            return
+
+
+def _cut(m: Motion, axis: str) -> float | None:
+    return m.x if axis == "X" else m.z
+
+
+def _start(m: Motion, axis: str) -> float | None:
+    return m.start_x if axis == "X" else m.start_z

@@ -1,0 +1,184 @@
+"""MB807, MB810, MB811, MB812: the lead a thread is cut with, and its feed.
+
+On FANUC's threading commands (``G32``, ``G92``, ``G76``) ``F`` is the lead: what the tool
+advances per spindle turn, the pitch times the number of starts. A multi-start thread is cut
+start by start, each shifted by the pitch in Z (or by the start angle ``Q``, in 0.001°).
+"""
+
+from __future__ import annotations
+
+from collections import Counter
+from collections.abc import Iterator
+
+from ..diagnostics import Diagnostic, RuleInfo, Severity, make, register
+from ..evaluator.facts import Motion
+from ..evaluator.values import fmt
+from ..threads.identify import Thread
+from .context import RuleContext
+from .threading import thread_related, width
+
+FAMILY = "threading"
+register(
+    RuleInfo("MB807", "threading-feed", Severity.ERROR,
+             "Spindle speed times pitch is above the machine's threading feed limit.", FAMILY),
+    RuleInfo("MB810", "thread-lead", Severity.ERROR,
+             "A thread is cut with an F that is not its lead (the pitch times the starts).",
+             FAMILY),
+    RuleInfo("MB811", "multi-start-shift", Severity.ERROR,
+             "A multi-start thread whose passes all start at one place: one start is cut.",
+             FAMILY),
+    RuleInfo("MB812", "thread-feed-mixed", Severity.ERROR,
+             "A pass of a thread is cut with another F than the rest of its passes.", FAMILY),
+)  # fmt: skip
+
+
+def check(ctx: RuleContext) -> Iterator[Diagnostic]:
+    for thread in ctx.threads():
+        yield from _feed_limit(ctx, thread.job.passes)
+        yield from _mixed_feed(ctx, thread)
+        yield from _lead(ctx, thread)
+        yield from _starts(ctx, thread)
+
+
+def _feed_limit(ctx: RuleContext, passes: list[Motion]) -> Iterator[Diagnostic]:
+    limit = ctx.config.max_threading_feed
+    for m in passes:
+        pitch = m.words.get("F")
+        if m.rpm is None or pitch is None:
+            continue
+        feed = m.rpm * pitch
+        if feed > limit:
+            yield make(
+                "MB807",
+                f"S{fmt(m.rpm)} x lead F{fmt(pitch)} = {fmt(feed)} mm/min, above the machine's "
+                f"threading feed limit {fmt(limit)} mm/min",
+                m.line,
+                0,
+                width(ctx, m.line),
+            )
+            return
+
+
+def _mixed_feed(ctx: RuleContext, thread: Thread) -> Iterator[Diagnostic]:
+    passes = thread.job.passes
+    feeds = Counter(m.words.get("F") for m in passes if m.words.get("F") is not None)
+    if len(passes) < 3 or len(feeds) < 2:
+        return
+    usual, count = feeds.most_common(1)[0]
+    if usual is None or count * 2 <= len(passes):
+        return
+    reported: set[int] = set()
+    for m in passes:
+        feed = m.words.get("F")
+        if feed is None or feed == usual or m.line in reported:
+            continue
+        reported.add(m.line)
+        yield make(
+            "MB812",
+            f"this {m.code} cuts with F{feed:g}, the other {count} passes of the same thread "
+            f"with F{usual:g}: it cuts another helix across the thread's flanks",
+            m.line,
+            0,
+            width(ctx, m.line),
+        )
+
+
+def _lead(ctx: RuleContext, thread: Thread) -> Iterator[Diagnostic]:
+    lead = thread.job.lead
+    want = thread.lead
+    if lead is None or want is None or thread.pitch_source not in ("designation", "comment"):
+        return
+    if abs(lead - want) < 1e-6:
+        return
+    m = next(p for p in thread.job.passes if p.words.get("F") == lead)
+    pitch = thread.pitch
+    assert pitch is not None
+    starts = (
+        f"pitch {pitch:g} and {thread.starts} starts"
+        if thread.starts > 1
+        else f"pitch {pitch:g} and one start"
+    )
+    if thread.starts == 1 and abs(lead - 2 * pitch) < 1e-6:
+        hint = ": a lead for two starts, or the lead typed where the pitch belongs"
+    elif thread.starts > 1 and abs(lead - pitch) < 1e-6:
+        hint = ": the pitch typed where the lead belongs (F is the lead)"
+    else:
+        hint = ""
+    yield make(
+        "MB810",
+        f"{m.code} cuts with F{lead:g}, but {thread.name} has {starts}: its lead, the F to "
+        f"cut with, is {want:g}{hint}; thread known from {thread.known_from()}",
+        m.line,
+        0,
+        width(ctx, m.line),
+        related=thread_related(thread),
+    )
+
+
+def _centres(passes: list[Motion], lead: float) -> list[float]:
+    """Where along the lead each pass starts (its Z, or its start angle Q, modulo the lead);
+    the two passes of a depth cut left and right of one centre (the symmetric module) count
+    as their centre."""
+    groups: list[list[Motion]] = []
+    for m in passes:
+        if groups and groups[-1][0].x == m.x:
+            groups[-1].append(m)
+        else:
+            groups.append([m])
+    centres: list[float] = []
+    for group in groups:
+        zs = [m.start_z for m in group]
+        if len(group) == 2 and not any(_angle(m) for m in group) and None not in zs:
+            a, b = group[0].start_z, group[1].start_z
+            assert a is not None and b is not None
+            centres.append(((a + b) / 2) % lead)
+        else:
+            centres.extend(p for p in (_phase(m, lead) for m in group) if p is not None)
+    return centres
+
+
+def _angle(m: Motion) -> float | None:
+    """The threading start angle shift Q (0.001°) of G32 / G92; G76's Q is its first depth."""
+    return m.words.get("Q") if m.code != "G76" else None
+
+
+def _phase(m: Motion, lead: float) -> float | None:
+    q = _angle(m)
+    if q:
+        return (q / 360000.0 * lead) % lead
+    if m.start_z is None:
+        return None
+    return m.start_z % lead
+
+
+def _starts_cut(centres: list[float], lead: float, starts: int) -> int:
+    """How many of the evenly spaced starts have a pass, around the median centre."""
+    ordered = sorted(centres)
+    origin = ordered[len(ordered) // 2]
+    spacing = lead / starts
+    hit = {round(((c - origin) % lead) / spacing) % starts for c in centres}
+    return len(hit)
+
+
+def _starts(ctx: RuleContext, thread: Thread) -> Iterator[Diagnostic]:
+    lead = thread.job.lead
+    if thread.starts < 2 or lead is None or thread.pitch is None:
+        return
+    if abs(lead - thread.pitch * thread.starts) > 1e-6:
+        return  # cut with another lead: MB810 says so
+    centres = _centres(thread.job.passes, lead)
+    if len(centres) < 1 or _starts_cut(centres, lead, thread.starts) >= thread.starts:
+        return
+    first = thread.job.passes[0]
+    yield make(
+        "MB811",
+        f"{thread.name} has {thread.starts} starts, but its {len(thread.job.passes)} passes "
+        f"all start around one place along the lead {lead:g}: only one start is cut; cut the "
+        f"next start shifted by the "
+        f"pitch {thread.pitch:g} in Z (or with Q{round(360000 / thread.starts)}, the start "
+        f"angle); thread known from {thread.known_from()}",
+        first.line,
+        0,
+        width(ctx, first.line),
+        related=thread_related(thread),
+    )

@@ -1,0 +1,237 @@
+"""MB803, MB804, MB814: the sequence of a thread's passes, pass after pass.
+
+Cycles only (``G92``, ``G76``): the single ``G32`` cuts of a fitting-method program move
+around a profile on purpose. Two passes at the same X from different start points (the left
+and right steps of the symmetric module, a flank infeed) are not a repeat; the same pass again
+at the full depth is a spring pass.
+"""
+
+from __future__ import annotations
+
+from collections import Counter
+from collections.abc import Iterator
+from itertools import pairwise
+
+from ..diagnostics import Diagnostic, Related, RuleInfo, Severity, make, register
+from ..evaluator.facts import DocumentFacts, Motion
+from ..index import Program
+from ..linear import expr_text
+from ..syntax import Call, Var
+from ..threads.identify import Thread
+from ..threads.module_shape import assignment, word, writes_of
+from ..walk import subexpressions
+from .context import RuleContext
+from .threading import EPS, mm, pass_name, width
+
+FAMILY = "threading"
+register(
+    RuleInfo("MB803", "thread-depth-not-growing", Severity.WARNING,
+             "A threading pass is shallower than the one before it.", FAMILY),
+    RuleInfo("MB804", "thread-pass-too-deep", Severity.WARNING,
+             "A threading pass takes more depth than the configured maximum per pass.", FAMILY),
+    RuleInfo("MB814", "thread-pass-repeated", Severity.WARNING,
+             "A threading pass repeats the previous pass's X, or one of the program's own "
+             "sequence of depths is never cut.", FAMILY),
+)  # fmt: skip
+
+
+def check(ctx: RuleContext) -> Iterator[Diagnostic]:
+    for thread in ctx.threads():
+        job = thread.job
+        if not job.is_cycle or len(job.passes) < 2:
+            continue
+        internal = thread.internal if thread.internal is not None else job.internal
+        if internal is None:
+            continue
+        yield from _growing(ctx, thread, internal)
+        yield from _repeated(ctx, thread, internal)
+
+
+def _growing(ctx: RuleContext, thread: Thread, internal: bool) -> Iterator[Diagnostic]:
+    sign = -1.0 if internal else 1.0
+    limit = ctx.config.max_depth_per_pass
+    reported: set[str] = set()
+    previous: Motion | None = None
+    top = next((m.x for m in thread.job.passes if m.x is not None), None)
+    for i, m in enumerate(thread.job.passes):
+        if m.x is None or top is None:
+            continue
+        if previous is not None and previous.x is not None:
+            step = sign * (previous.x - m.x) / 2.0
+            # Back to the first depth is the next start of a multi-start thread, or the
+            # whole thread cut again: a new series, not a pass out of order.
+            restart = sign * (top - m.x) <= EPS
+            if step < -EPS and "back" not in reported and not restart:
+                reported.add("back")
+                yield make(
+                    "MB803",
+                    f"{pass_name(thread, i, m)} at X{mm(m.x)} is {-step:.3f} mm shallower than "
+                    f"the pass before (X{mm(previous.x)}): the depth should grow pass after pass",
+                    m.line,
+                    0,
+                    width(ctx, m.line),
+                )
+            elif step > limit + EPS and "deep" not in reported:
+                reported.add("deep")
+                yield make(
+                    "MB804",
+                    f"{pass_name(thread, i, m)} takes {step:.3f} mm (radius) in one pass, above "
+                    f"the maximum {limit:g} mm per pass",
+                    m.line,
+                    0,
+                    width(ctx, m.line),
+                )
+        previous = m
+
+
+def _same_pass(a: Motion, b: Motion) -> bool:
+    if a.x is None or b.x is None or abs(a.x - b.x) > EPS:
+        return False
+    if a.start_z is None or b.start_z is None:
+        return a.start_z is b.start_z
+    return abs(a.start_z - b.start_z) <= EPS
+
+
+def _repeated(ctx: RuleContext, thread: Thread, internal: bool) -> Iterator[Diagnostic]:
+    """A pass cut twice before the full depth, or a depth of a regular sequence never cut."""
+    passes = [m for m in thread.job.passes if m.x is not None and not m.finishing]
+    if len(passes) < 4:
+        return
+    sign = -1.0 if internal else 1.0
+    deepest = max(sign * -(m.x or 0.0) for m in passes)
+    same_x = sum(
+        1
+        for a, b in pairwise(passes)
+        if a.x is not None
+        and b.x is not None
+        and abs(a.x - b.x) <= EPS
+        and sign * -b.x < deepest - EPS
+    )
+    if same_x * 5 > len(passes) - 1:
+        return  # depths cut in pairs (left and right steps, flank infeed): repeats are the plan
+    repeats = [
+        i
+        for i in range(1, len(passes))
+        if _same_pass(passes[i], passes[i - 1])
+        and sign * -(passes[i].x or 0.0) < deepest - EPS  # before the full depth
+    ]
+    # A program that repeats every pass on purpose (an idle pass after each cut) is not wrong.
+    depths = len({round(m.x or 0.0, 3) for m in passes})
+    if not repeats:
+        yield from _skipped(ctx, thread, passes, sign)
+        return
+    if len(repeats) > 2 or depths < 4:
+        return
+    i = repeats[0]
+    m, before = passes[i], passes[i - 1]
+    assert m.x is not None
+    cause, fix_line, related = _rounding_cause(ctx, thread, m)
+    line = m.line if fix_line is None else fix_line
+    yield make(
+        "MB814",
+        f"{pass_name(thread, i, m)} at X{mm(m.x)} (line {m.line + 1}) repeats "
+        f"{pass_name(thread, i - 1, before)} before the full depth: that depth is cut twice"
+        + (f" and one depth of the sequence is never cut; {cause}" if cause else ""),
+        line,
+        0,
+        width(ctx, line),
+        related=related,
+    )
+
+
+def _steps(passes: list[Motion], sign: float) -> list[float]:
+    """Radius depth gained from each pass to the next."""
+    return [round(sign * ((a.x or 0.0) - (b.x or 0.0)) / 2.0, 6) for a, b in pairwise(passes)]
+
+
+def _usual_step(steps: list[float]) -> float | None:
+    """The step most passes take, when the program cuts a regular sequence of depths."""
+    positive = [round(s, 4) for s in steps if s > EPS]
+    if len(positive) < 3:
+        return None
+    step, count = Counter(positive).most_common(1)[0]
+    return step if count * 4 >= len(steps) * 3 else None
+
+
+def _skipped(
+    ctx: RuleContext, thread: Thread, passes: list[Motion], sign: float
+) -> Iterator[Diagnostic]:
+    """A regular sequence of depths with one step of twice the usual: a depth never cut."""
+    steps = _steps(passes, sign)
+    usual = _usual_step(steps)
+    if usual is None:
+        return
+    for i, step in enumerate(steps):
+        if abs(step - 2.0 * usual) <= EPS:
+            m = passes[i + 1]
+            before = passes[i]
+            assert m.x is not None and before.x is not None
+            cause, fix_line, related = _rounding_cause(ctx, thread, m)
+            line = m.line if fix_line is None else fix_line
+            yield make(
+                "MB814",
+                f"{pass_name(thread, i + 1, m)} at X{mm(m.x)} (line {m.line + 1}) takes twice "
+                f"the program's step of {usual:.3f} mm: X{mm(before.x - sign * 2.0 * usual)} "
+                "is never cut" + (f"; {cause}" if cause else ""),
+                line,
+                0,
+                width(ctx, line),
+                related=related,
+            )
+            return
+
+
+def _rounding_cause(
+    ctx: RuleContext, thread: Thread, m: Motion
+) -> tuple[str, int | None, list[Related]]:
+    """FIX, FUP or ROUND of a computed value on the way to the pass's X, when there is one:
+    (what it did, the line to fix when it is the cause, related places)."""
+    facts = ctx.doc_facts()
+    program = ctx.index.program_at(thread.job.program_line)
+    x_expr = word(ctx.doc, m.line, "X")
+    if facts is None or program is None or x_expr is None:
+        return "", None, []
+    here = Related(m.line, 0, 0, f"the {m.code} pass it repeats or skips")
+    for line, call in _roundings_feeding(ctx, facts, program, m.line, x_expr):
+        text = expr_text(call)
+        seen = facts.roundings.get(line)
+        if seen is not None:
+            why = (
+                f"{text} at line {line + 1} gave {seen.result:g} for {seen.argument!r}, a hair "
+                f"{'under' if seen.function == 'FIX' else 'over'} {round(seen.argument):g}: "
+                "the steps it is computed from do not add up exactly in floating point; "
+                f"ROUND[{expr_text(call.args[0])}] gives the whole number meant"
+            )
+            return why, line, [here]
+        if call.name in ("FIX", "FUP", "ROUND"):
+            return (
+                f"the X comes through {text} at line {line + 1}",
+                None,
+                [Related(line, 0, 0, f"{text} rounds the pass's depth")],
+            )
+    return "", None, []
+
+
+def _roundings_feeding(
+    ctx: RuleContext, facts: DocumentFacts, program: Program, line: int, expr: object
+) -> Iterator[tuple[int, Call]]:
+    """Rounding calls in ``expr`` and in the assignments its variables come from (3 deep)."""
+    frontier: list[tuple[int, object]] = [(line, expr)]
+    seen: set[int] = set()
+    for _depth in range(4):
+        following: list[tuple[int, object]] = []
+        for at, node in frontier:
+            for sub in subexpressions(node):  # type: ignore[arg-type]
+                if isinstance(sub, Call) and sub.name in ("FIX", "FUP", "ROUND"):
+                    yield at, sub
+                if isinstance(sub, Var) and sub.number is not None:
+                    n = int(sub.number)
+                    if n in seen:
+                        continue
+                    seen.add(n)
+                    for write in writes_of(facts, program, n):
+                        if write < at:
+                            assign = assignment(ctx.doc, write, n)
+                            if assign is not None:
+                                following.append((write, assign.value))
+        frontier = following

@@ -1,0 +1,112 @@
+"""MB805, MB806: the threading tool's nose radius against the thread it cuts.
+
+The radius is found from its use (the term a thread module subtracts from the height, the
+variable it offsets by r·tan30°, the ``ASIN[#18/[#4-#18]]`` of a fitting-method program), else
+from a comment that names it.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+
+from ..diagnostics import Diagnostic, Related, RuleInfo, Severity, make, register
+from ..meanings import variable_roles
+from ..threads.geometry import SIN60
+from ..threads.module_shape import fitting_radii, written_value
+from .context import RuleContext
+from .threading import thread_related, width
+
+FAMILY = "threading"
+register(
+    RuleInfo("MB805", "nose-radius-range", Severity.WARNING,
+             "A thread tool nose radius outside 0.125P-0.144P (external) or 0-0.072P "
+             "(internal).", FAMILY),
+    RuleInfo("MB806", "fitting-tool-radius", Severity.ERROR,
+             "In the fitting method, the tool radius is not smaller than the groove radius.",
+             FAMILY),
+)  # fmt: skip
+
+
+def nose_radius_bounds(pitch: float, internal: bool) -> tuple[float, float]:
+    """Seed paper 000: 0.125P < r < 0.144P external, 0 < r < 0.072P internal. The upper
+    bounds are P/(8·sin60°) and P/(16·sin60°) rounded (the theoretical radius, = H/6 and
+    H/12), so that exact value is allowed."""
+    if internal:
+        return 0.0, pitch / (16.0 * SIN60)
+    return 0.125 * pitch, pitch / (8.0 * SIN60)
+
+
+def check(ctx: RuleContext) -> Iterator[Diagnostic]:
+    yield from _nose_radius(ctx)
+    yield from _fitting(ctx)
+
+
+def _nose_radius(ctx: RuleContext) -> Iterator[Diagnostic]:
+    reported: set[int] = set()
+    for thread in ctx.threads():
+        r, line, pitch = thread.nose_radius, thread.nose_line, thread.pitch
+        if r is None or line is None or pitch is None or thread.internal is None:
+            continue
+        if thread.unsupported is not None or thread.lead_conflict or line in reported:
+            continue
+        low, high = nose_radius_bounds(pitch, thread.internal)
+        inside = low < r <= high + 1e-9 if thread.internal else low - 1e-9 <= r <= high + 1e-9
+        if inside:
+            continue
+        reported.add(line)
+        kind = "internal" if thread.internal else "external"
+        share = f"{r / pitch:.3f}P"
+        yield make(
+            "MB805",
+            f"nose radius {r:.4g} = {share} ({thread.nose_reason}) is outside "
+            f"{low:.4g}–{high:.4g} allowed for an {kind} thread of pitch {pitch:g} "
+            f"({'0 to 0.072P' if thread.internal else '0.125P to 0.144P'}); thread "
+            f"{thread.name} known from {thread.known_from()}",
+            line,
+            0,
+            width(ctx, line),
+            related=thread_related(thread),
+        )
+
+
+def _fitting(ctx: RuleContext) -> Iterator[Diagnostic]:
+    facts = ctx.doc_facts()
+    if facts is None:
+        return
+    roles = None
+    for program in ctx.index.programs:
+        shape = fitting_radii(ctx.doc, facts, program)
+        if shape is not None:
+            tool, groove = shape.tool, shape.groove
+            tool_line = shape.tool_line
+            names = (f"#{shape.tool_var}", f"#{shape.groove_var}")
+            related = [Related(shape.line, 0, 0, "the tool path's tangency angle, r/(R − r)")]
+        else:
+            if roles is None:
+                roles = variable_roles(ctx.doc, ctx.index)
+            found = {
+                m.role: (var, m.line)
+                for (first, var), m in roles.items()
+                if first == program.first_line and m.line >= 0
+            }
+            if "groove_radius" not in found or "nose_radius" not in found:
+                continue
+            (tool_var, tool_line), (groove_var, groove_line) = (
+                found["nose_radius"],
+                found["groove_radius"],
+            )
+            tool, groove = written_value(facts, tool_line), written_value(facts, groove_line)
+            names = (f"#{tool_var}", f"#{groove_var}")
+            related = [Related(groove_line, 0, 0, "the groove radius")]
+        if tool is None or groove is None or tool_line is None or tool < groove:
+            continue
+        yield make(
+            "MB806",
+            f"tool radius {names[0]} = {tool:g} is not smaller than the groove radius "
+            f"{names[1]} = {groove:g}: the fitting method moves the tool centre on an arc of "
+            f"R − r = {groove - tool:g}, which needs r < R",
+            tool_line,
+            0,
+            width(ctx, tool_line),
+            related=related,
+        )

@@ -1,0 +1,663 @@
+"""What thread each threading job cuts, and where that is known from.
+
+In order of trust (the first source that tells a fact gives it):
+
+1. the executed cuts (:mod:`.jobs`): the lead (``F``), the side, the X range of the passes;
+2. a designation anywhere in the file's comments (``M50X3-5G6G``, ``M50×3``, ``M10-6g``,
+   ``M20X1.5LH``, ``M16xPh3P1.5`` or ``M50X6(P3`` multi-start, ``2 START``) whose size fits
+   the passes;
+3. a thread module recognised by the shape of its formulas (:mod:`.module_shape`): its
+   nominal diameter, lead, nose radius and the es / Td2 it adds to the height;
+4. the words of comments on assignments (:mod:`fanuc_macro.meanings`).
+
+The tolerance class comes from the designation (ISO 965-1: none written is 6g / 6H), else from
+the module's es and Td2 when a class of the ISO 965-1 tables has them, else the program's own
+es and Td2 are taken as they are; with neither, the loosest class of the tables stands in, so
+that a pass past its root is past the root of every class. A thread that cannot be identified
+gets no verdict that needs it; :attr:`Thread.missing` says why.
+
+Only ISO metric 60° threads (ISO 68-1, ISO 965-1) are checked against a profile; a
+designation of another form (trapezoidal, pipe, Unified) and a taper cut are named in
+:attr:`Thread.unsupported`.
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass, field
+
+from ..evaluator.facts import DocumentFacts, Motion, RunValues
+from ..evaluator.values import fmt_address
+from ..index import ProgramIndex
+from ..meanings import Meaning, program_is_internal, variable_roles
+from ..per_line import PerLine
+from ..syntax import Document, ParsedLine
+from .designation import ThreadDesignation, parse_designation
+from .geometry import SIN60
+from .iso965 import PitchClass, loosest_pitch_class, pitch_classes
+from .jobs import ThreadJob, thread_jobs
+from .module_shape import D1_FACTOR, ModuleShape, fitting_radii, module_shape, written_value
+
+_NUM = r"\d+(?:[.,]\d+)?"
+# A metric designation needs a pitch or a class: "M30" or "M8" alone is an M code.
+_DESIGNATION = re.compile(
+    rf"(?<![A-Z0-9#.])M\s*(?P<d>{_NUM})"
+    rf"(?:\s*[X×*]\s*(?:PH\s*(?P<ph>{_NUM})\s*P\s*(?P<pp>{_NUM})"
+    rf"|(?P<p>{_NUM})(?:\s*\(\s*P\s*(?P<old>{_NUM}))?))?"
+    r"(?P<lh1>\s*LH)?(?:\s*-\s*(?P<cls>\d[A-Z](?:\d[A-Z])?)(?![A-Z0-9]))?(?P<lh2>\s*-\s*LH)?",
+    re.I,
+)
+_OTHER_FORMS = (
+    (re.compile(r"(?<![A-Z])TR\s*\d+\s*[X×*]\s*\d", re.I), "a trapezoidal thread (ISO 2904 Tr)"),
+    (re.compile(r"\d+/\d+\s*-?\s*\d+\s*UN[CFEJ]?|\bUN[CF]\b", re.I), "a Unified inch thread"),
+    (re.compile(r"\bNPTF?\b|\bNPS\b|\bBSPT?\b", re.I), "a pipe thread"),
+    (re.compile(r"(?<![A-Z])(?:RC|RP|R|G)\s*\d+(?:/\d+)\b", re.I), "a pipe thread (ISO 7 / 228)"),
+)
+_STARTS = re.compile(r"(?<![\w.])(?P<n>[2-6])\s*-?\s*STARTS?\b|(?P<cn>[双两三四])线", re.I)
+_CHINESE_STARTS = {"双": 2, "两": 2, "三": 3, "四": 4}
+
+
+@dataclass(frozen=True)
+class FoundDesignation:
+    text: str  # as written
+    form: str  # what parse_designation reads
+    line: int
+
+
+@dataclass(frozen=True)
+class LineThreadWords:
+    designations: tuple[tuple[str, str], ...]  # (as written, normalised)
+    other_forms: tuple[str, ...]
+    starts: int | None
+
+
+def _line_words(parsed: ParsedLine) -> LineThreadWords:
+    found: list[tuple[str, str]] = []
+    others: list[str] = []
+    starts: int | None = None
+    for comment in parsed.comments:
+        text = comment.text
+        for m in _DESIGNATION.finditer(text):
+            if m["p"] is None and m["ph"] is None and m["cls"] is None:
+                continue
+            written = m.group(0)
+            # Keep the writer's case: it may tell an internal thread (5H) from an external.
+            lower = "×" in written or any(ch.islower() for ch in written)
+            x, ph = ("x", "Ph") if lower else ("X", "PH")
+            form = f"M{m['d']}"
+            if m["ph"] is not None:
+                form += f"{x}{ph}{m['ph']}P{m['pp']}"
+            elif m["old"] is not None:  # GB/T 197's older "M50×6(P3)": lead 6, pitch 3
+                form += f"{x}{ph}{m['p']}P{m['old']}"
+            elif m["p"] is not None:
+                form += f"{x}{m['p']}"
+            if m["lh1"] or m["lh2"]:
+                form += "LH"
+            if m["cls"]:
+                form += f"-{m['cls']}"
+            found.append((m.group(0).strip(), form.replace(",", ".")))
+        for pattern, what in _OTHER_FORMS:
+            if pattern.search(text):
+                others.append(what)
+        s = _STARTS.search(text)
+        if s is not None:
+            starts = int(s["n"]) if s["n"] else _CHINESE_STARTS[s["cn"]]
+    return LineThreadWords(tuple(found), tuple(others), starts)
+
+
+# Thread designations and other thread words in a line's comments, per distinct line.
+thread_words: PerLine[LineThreadWords] = PerLine(_line_words)
+
+
+@dataclass(frozen=True)
+class Evidence:
+    text: str
+    line: int | None = None  # 0-based, in the document
+
+
+@dataclass
+class Thread:
+    """One job and the thread it cuts, as far as the program tells."""
+
+    job: ThreadJob
+    internal: bool | None = None
+    major: float | None = None
+    pitch: float | None = None
+    # Where the pitch comes from: "designation", "comment" (a variable named PITCH) or "lead"
+    # (the cut's F, taken for the pitch of a one-start thread).
+    pitch_source: str = ""
+    starts: int = 1
+    starts_line: int | None = None
+    designation: ThreadDesignation | None = None
+    designation_line: int | None = None
+    pitch_class: PitchClass | None = None
+    class_reason: str = ""
+    class_exact: bool = False  # False: the loosest class stands in for an unknown one
+    nose_radius: float | None = None
+    nose_line: int | None = None
+    nose_reason: str = ""
+    module: ModuleShape | None = None
+    deviation_var: int | None = None  # the module's input that is es (EI)
+    tolerance_var: int | None = None  # and the one that is Td2 (TD2)
+    evidence: list[Evidence] = field(default_factory=list)
+    unsupported: str | None = None
+    missing: str | None = None
+
+    @property
+    def identified(self) -> bool:
+        """Known well enough to check the passes against its profile."""
+        return (
+            self.major is not None
+            and self.pitch is not None
+            and self.internal is not None
+            and self.unsupported is None
+            and not self.lead_conflict
+        )
+
+    @property
+    def lead_conflict(self) -> bool:
+        """The cut's F is not the lead of the thread its designation or comments name: one of
+        them is wrong, and which cannot be told (MB810 says so)."""
+        lead = self.job.lead
+        return (
+            self.pitch_source in ("designation", "comment")
+            and lead is not None
+            and self.lead is not None
+            and abs(lead - self.lead) > 1e-6
+        )
+
+    @property
+    def lead(self) -> float | None:
+        return None if self.pitch is None else self.pitch * self.starts
+
+    @property
+    def name(self) -> str:
+        if self.designation is not None:
+            return self.designation.canonical()
+        if self.major is None or self.pitch is None:
+            return "the thread"
+        return f"M{self.major:g}x{self.pitch:g}"
+
+    @property
+    def fundamental_height(self) -> float:
+        assert self.pitch is not None
+        return SIN60 * self.pitch
+
+    def pitch_band(self) -> tuple[float, float] | None:
+        """(d2 min, d2 max) or (D2 min, D2 max) of the class, mm."""
+        if self.major is None or self.pitch is None or self.pitch_class is None:
+            return None
+        basic = self.major - 0.75 * self.fundamental_height
+        low = basic + self.pitch_class.deviation
+        if self.internal:
+            return low, low + self.pitch_class.tolerance
+        return low - self.pitch_class.tolerance, low
+
+    def effective_nose_radius(self) -> float:
+        """The tool's nose radius when known; else the one that allows the deepest root: 0.125P
+        external (ISO 965-1's least root radius), 0 internal."""
+        if self.nose_radius is not None and self.nose_radius >= 0.0:
+            return self.nose_radius
+        assert self.pitch is not None
+        return 0.0 if self.internal else 0.125 * self.pitch
+
+    def root_x(self) -> float | None:
+        """The deepest X a pass may reach and keep the pitch diameter inside the class with
+        this tool: d2 min − H + 2r external (d3 min for r = 0.125P), D2 max + H − 2r internal."""
+        band = self.pitch_band()
+        if band is None or self.internal is None:
+            return None
+        r = self.effective_nose_radius()
+        if self.internal:
+            return band[1] + self.fundamental_height - 2.0 * r
+        return band[0] - self.fundamental_height + 2.0 * r
+
+    def full_depth(self) -> float | None:
+        """Radius from the crest (d external, D1 internal) to :meth:`root_x`."""
+        root = self.root_x()
+        if root is None or self.major is None or self.pitch is None:
+            return None
+        if self.internal:
+            return (root - (self.major - D1_FACTOR * self.pitch)) / 2.0
+        return (self.major - root) / 2.0
+
+    def class_text(self) -> str:
+        if self.pitch_class is None:
+            return ""
+        if self.class_exact:
+            return self.pitch_class.name
+        return f"any class (the loosest, {self.pitch_class.name})"
+
+    def known_from(self) -> str:
+        return "; ".join(e.text for e in self.evidence)
+
+    def limit_text(self) -> str:
+        """How the root was worked out, for a message."""
+        band = self.pitch_band()
+        if band is None or self.pitch is None:
+            return ""
+        r = self.effective_nose_radius()
+        which = "D2 max" if self.internal else "d2 min"
+        limit = band[1] if self.internal else band[0]
+        if self.nose_radius is not None:
+            tool = f"the tool's nose radius {r:.4g}"
+        elif self.internal:
+            tool = "a sharp tool"
+        else:
+            tool = f"the least root radius 0.125P = {r:.4g}"
+        return f"{which} {limit:.3f} of {self.class_text()}, with {tool}"
+
+
+def _designations(doc: Document) -> list[FoundDesignation]:
+    found: list[FoundDesignation] = []
+    for block in doc.blocks:
+        if not block.parsed.comments:
+            continue
+        for text, form in thread_words(block.parsed).designations:
+            found.append(FoundDesignation(text, form, block.line))
+    return found
+
+
+def _parse(found: FoundDesignation, internal: bool | None) -> ThreadDesignation | None:
+    try:
+        return parse_designation(found.form, internal=internal)
+    except ValueError:
+        try:
+            return parse_designation(found.form) if internal is not None else None
+        except ValueError:
+            return None
+
+
+def _fits(des: ThreadDesignation, job: ThreadJob, internal: bool) -> bool:
+    """Whether the passes lie where this size's thread is cut."""
+    xs = job.xs
+    d, p = des.nominal_diameter, des.pitch
+    if internal:
+        minor = d - D1_FACTOR * p
+        return min(xs) >= minor - 1.0 - 0.5 * p and max(xs) <= d + 2.0 * p
+    return max(xs) <= d + 0.2 and min(xs) >= d - 4.0 * p
+
+
+def _choose_designation(
+    found: list[FoundDesignation], job: ThreadJob, internal: bool | None
+) -> tuple[ThreadDesignation, FoundDesignation] | None:
+    lead = job.lead
+    fitting: list[tuple[ThreadDesignation, FoundDesignation]] = []
+    for f in found:
+        des = _parse(f, internal)
+        if des is None:
+            continue
+        side = des.internal if internal is None else internal
+        if des.internal_ambiguous and internal is None:
+            continue  # all capitals and the cuts do not tell the side: not enough to go on
+        if _fits(des, job, side):
+            fitting.append((des, f))
+    if not fitting:
+        return None
+    if lead is not None:
+        same = [c for c in fitting if abs(c[0].thread_lead - lead) < 1e-6]
+        if same:
+            fitting = same
+    sizes = {(c[0].nominal_diameter, c[0].pitch, c[0].internal) for c in fitting}
+    if len(sizes) > 1:
+        return None  # several threads fit: which one this is cannot be told
+    return fitting[0]
+
+
+def _starts(doc: Document, program_first: int, program_end: int) -> tuple[int, int] | None:
+    for line in range(program_first, program_end):
+        parsed = doc.blocks[line].parsed
+        if parsed.comments:
+            n = thread_words(parsed).starts
+            if n is not None:
+                return n, line
+    return None
+
+
+def _input_roles(thread: Thread, shape: ModuleShape) -> dict[str, int]:
+    """Which of the module's inputs is es (EI) and which Td2 (TD2): by their values when a
+    class of the tables has both (the class known first), else by the formula's coefficients
+    (es/2, Td2/4 as the paper writes them)."""
+    inputs = shape.inputs
+    if thread.major is not None and thread.pitch is not None and thread.internal is not None:
+        classes = pitch_classes(thread.major, thread.pitch, internal=thread.internal)
+        if thread.pitch_class is not None and thread.class_exact:
+            classes = [thread.pitch_class, *classes]
+        for c in classes:
+            for es_var, es in inputs.items():
+                for tol_var, tol in inputs.items():
+                    if (
+                        tol_var != es_var
+                        and abs(abs(es) - abs(c.deviation)) < 5e-4
+                        and abs(tol - c.tolerance) < 5e-4
+                    ):
+                        return {"deviation": es_var, "tolerance": tol_var}
+    form = shape.height_form
+    roles: dict[str, int] = {}
+    if form is not None:
+        for n in inputs:
+            coefficient = form.coefficient(n)
+            if abs(coefficient - 0.5) < 1e-6:
+                roles["deviation"] = n
+            elif abs(coefficient - 0.25) < 1e-6:
+                roles["tolerance"] = n
+    return roles
+
+
+def _class_from_inputs(thread: Thread, shape: ModuleShape) -> tuple[PitchClass, str] | None:
+    """The module's es and Td2 (the terms it adds to the height): a class of the tables when
+    one has them both, else the program's own values."""
+    if thread.major is None or thread.pitch is None or thread.internal is None:
+        return None
+    es_var, tol_var = thread.deviation_var, thread.tolerance_var
+    if es_var is None or tol_var is None:
+        return None
+    es, tol = shape.inputs[es_var], shape.inputs[tol_var]
+    tol_name = "TD2" if thread.internal else "Td2"
+    for c in pitch_classes(thread.major, thread.pitch, internal=thread.internal):
+        if abs(abs(es) - abs(c.deviation)) < 5e-4 and abs(tol - c.tolerance) < 5e-4:
+            reason = f"its es {es:g} (#{es_var}) and {tol_name} {tol:g} (#{tol_var})"
+            return c, reason
+    # The module enters es as a magnitude (seed paper 000, table 2); EI is positive anyway.
+    signed = abs(es) if thread.internal else -abs(es)
+    reason = (
+        f"its own es {es:g} (#{es_var}) and {tol_name} {tol:g} (#{tol_var}), which no "
+        "ISO 965-1 class has"
+    )
+    return PitchClass("?", 0, signed, tol), reason
+
+
+def _role_value(
+    roles: dict[tuple[int, int], Meaning], facts: DocumentFacts, program_line: int, role: str
+) -> tuple[float, int] | None:
+    for (first, _var), meaning in roles.items():
+        if first == program_line and meaning.role == role and meaning.line >= 0:
+            value = written_value(facts, meaning.line)
+            if value is not None:
+                return value, meaning.line
+    return None
+
+
+def _mm(value: float) -> str:
+    return fmt_address(value)
+
+
+def _describe_cuts(job: ThreadJob) -> str:
+    xs = job.xs
+    lead = job.lead
+    feed = f" at F{lead:g}" if lead is not None else ""
+    count = len(job.passes)
+    passes = f"{count} pass" + ("" if count == 1 else "es")
+    if xs and xs[0] != xs[-1]:
+        where = f" X{_mm(xs[0])} to X{_mm(xs[-1])}"
+    else:
+        where = f" at X{_mm(xs[0])}" if xs else ""
+    return f"the cuts ({job.code}{feed}, {passes}{where})"
+
+
+def identify(
+    doc: Document,
+    index: ProgramIndex,
+    facts: DocumentFacts,
+    motions: list[Motion],
+    runs: dict[int, RunValues] | None = None,
+) -> list[Thread]:
+    """Every threading job of ``doc``'s programs with its thread; ``runs``: the variables of
+    each execution when it began to cut (:attr:`fanuc_macro.evaluator.Facts.run_values`)."""
+    jobs = thread_jobs(motions, doc.uri)
+    if not jobs:
+        return []
+    found = _designations(doc)
+    roles = variable_roles(doc, index)
+    runs = runs or {}
+    return [_identify(doc, index, facts, job, found, roles, runs.get(job.run)) for job in jobs]
+
+
+def _identify(
+    doc: Document,
+    index: ProgramIndex,
+    facts: DocumentFacts,
+    job: ThreadJob,
+    found: list[FoundDesignation],
+    roles: dict[tuple[int, int], Meaning],
+    run: RunValues | None,
+) -> Thread:
+    thread = Thread(job, internal=job.internal)
+    if not job.xs:
+        thread.missing = "the passes' X is not known"
+        return thread
+    thread.evidence.append(Evidence(_describe_cuts(job), job.passes[0].line))
+    program = index.program_at(job.program_line)
+    end = program.end_line if program is not None else job.program_line + 1
+    if thread.internal is None:
+        said = program_is_internal(doc, job.program_line, end)
+        if said is not None:
+            thread.internal = said
+            thread.evidence.append(Evidence("the program's first comments", job.program_line))
+    # The designation that fits the passes.
+    chosen = _choose_designation(found, job, thread.internal)
+    if chosen is not None:
+        des, where = chosen
+        thread.designation, thread.designation_line = des, where.line
+        if thread.internal is None:
+            thread.internal = des.internal
+        thread.major, thread.pitch, thread.starts = des.nominal_diameter, des.pitch, des.starts
+        thread.pitch_source = "designation"
+        thread.evidence.append(
+            Evidence(f"the designation {where.text} at line {where.line + 1}", where.line)
+        )
+        try:
+            c = next(
+                c
+                for c in pitch_classes(des.nominal_diameter, des.pitch, internal=des.internal)
+                if c.position == des.pitch_class.position and c.grade == des.pitch_class.grade
+            )
+            thread.pitch_class, thread.class_exact = c, True
+            thread.class_reason = (
+                "the designation, whose class is not written: 6g / 6H by ISO 965-1"
+                if des.class_omitted
+                else "the designation"
+            )
+        except StopIteration:
+            pass
+    # The module's formulas.
+    pitch_is_lead = False
+    if thread.internal is not None:
+        shape = module_shape(doc, index, facts, job, thread.internal, run)
+        if shape is not None and (shape.major is not None or shape.height is not None):
+            thread.module = shape
+            if thread.major is None and shape.major is not None and shape.pitch is not None:
+                thread.major, thread.pitch, pitch_is_lead = shape.major, shape.pitch, True
+                thread.pitch_source = "lead"
+                thread.evidence.append(Evidence(shape.describe(), shape.height_line))
+            if shape.radius is not None:
+                thread.nose_radius, thread.nose_line = shape.radius, shape.radius_line
+                thread.nose_reason = f"#{shape.radius_var}, the radius {shape.radius_how}"
+    # Comments on assignments, last.
+    first = job.program_line
+    if thread.major is None:
+        major = _role_value(roles, facts, first, "nominal_diameter")
+        pitch = _role_value(roles, facts, first, "pitch")
+        if major is not None:
+            thread.major = major[0]
+            thread.evidence.append(
+                Evidence(f"the nominal diameter at line {major[1] + 1}", major[1])
+            )
+            if pitch is not None:
+                thread.pitch, thread.pitch_source = pitch[0], "comment"
+            elif job.lead is not None:
+                thread.pitch, thread.pitch_source, pitch_is_lead = job.lead, "lead", True
+    if thread.nose_radius is None:
+        nose = _role_value(roles, facts, first, "nose_radius")
+        if nose is not None:
+            thread.nose_radius, thread.nose_line = nose
+            thread.nose_reason = f"named by the comment at line {nose[1] + 1}"
+    if thread.starts == 1:
+        starts = _starts(doc, first, end) or _starts(doc, 0, len(doc.blocks))
+        if starts is not None:
+            thread.starts, thread.starts_line = starts
+            if pitch_is_lead and thread.pitch is not None:
+                thread.pitch /= thread.starts
+            thread.evidence.append(
+                Evidence(
+                    f"{thread.starts} starts, by the comment at line {starts[1] + 1}", starts[1]
+                )
+            )
+    if thread.module is not None:
+        roles_of_inputs = _input_roles(thread, thread.module)
+        thread.deviation_var = roles_of_inputs.get("deviation")
+        thread.tolerance_var = roles_of_inputs.get("tolerance")
+    # The class when no designation gave it.
+    if thread.pitch_class is None and thread.module is not None:
+        from_inputs = _class_from_inputs(thread, thread.module)
+        if from_inputs is not None:
+            thread.pitch_class, thread.class_reason = from_inputs
+            thread.class_exact = True
+            thread.evidence.append(
+                Evidence(f"class {thread.pitch_class.name} from {thread.class_reason}")
+            )
+    if thread.pitch_class is None and thread.major is not None and thread.pitch is not None:
+        try:
+            loosest = loosest_pitch_class(
+                thread.major, thread.pitch, internal=bool(thread.internal)
+            )
+        except ValueError:
+            loosest = None
+        if loosest is not None:
+            thread.pitch_class = loosest
+            thread.class_reason = "no class is known: the loosest of ISO 965-1 stands in"
+    _unsupported(doc, index, facts, roles, job, thread)
+    return thread
+
+
+def _unsupported(
+    doc: Document,
+    index: ProgramIndex,
+    facts: DocumentFacts,
+    roles: dict[tuple[int, int], Meaning],
+    job: ThreadJob,
+    thread: Thread,
+) -> None:
+    first = job.program_line
+    program = index.program_at(first)
+    end = program.end_line if program is not None else first + 1
+    fitting = fitting_radii(doc, facts, program) if program is not None else None
+    if fitting is not None or any(
+        f == first and m.role == "groove_radius" for (f, _v), m in roles.items()
+    ):
+        thread.unsupported = (
+            "an arc (round) thread cut by the fitting method: its profile is an arc, not the "
+            "ISO 60° one; the tool radius is checked against the groove's (MB806)"
+        )
+        return
+    taper = next((m for m in job.passes if m.words.get("R")), None)
+    if taper is not None and job.is_cycle:
+        thread.unsupported = (
+            f"a taper thread ({taper.code} R{taper.words['R']:g} at line {taper.line + 1}): the "
+            "root and radius checks are for parallel ISO metric threads"
+        )
+        return
+    if thread.designation is None:
+        for line in range(first, end):
+            parsed = doc.blocks[line].parsed
+            if parsed.comments:
+                others = thread_words(parsed).other_forms
+                if others:
+                    thread.unsupported = (
+                        f"{others[0]} (line {line + 1}): only ISO metric 60° threads are "
+                        "checked against their profile"
+                    )
+                    return
+    if thread.major is None:
+        thread.missing = (
+            "the thread's size is not known: no designation such as (M50X3-5G6G) in the "
+            "file's comments fits these passes, no thread module's formulas name the nominal "
+            "diameter, and no comment on an assignment does"
+        )
+    elif thread.internal is None:
+        thread.missing = "the passes do not tell an internal thread from an external one"
+    elif thread.pitch is None:
+        thread.missing = "the pitch is not known"
+    elif thread.pitch_class is None:
+        thread.missing = f"ISO 965-1 tabulates no tolerance for M{thread.major:g}x{thread.pitch:g}"
+
+
+def describe(thread: Thread) -> str:
+    """What the analysis knows of a thread, for a hover (Markdown)."""
+    job = thread.job
+    side = {True: "internal", False: "external", None: "side not known"}[thread.internal]
+    if thread.unsupported is not None:
+        return (
+            f"**Thread** cut by {job.code} in {job.program}: {thread.unsupported}. Only the "
+            "passes among themselves are checked (order, depth per pass, feed, start point)."
+        )
+    if thread.lead_conflict:
+        return (
+            f"**Thread {thread.name}** cut by {job.code} in {job.program}: its lead is "
+            f"{thread.lead:g}, but the cuts use F{job.lead:g} (MB810); the root and radius "
+            f"checks wait until the two agree. Known from {thread.known_from()}."
+        )
+    if not thread.identified:
+        return (
+            f"**Thread** cut by {job.code} in {job.program}: not identified, {thread.missing}. "
+            "The root, nose-radius and lead checks need it; the passes are still checked among "
+            "themselves (order, depth per pass, feed, start point). A comment such as "
+            "(M50X3-5G6G) names the thread."
+        )
+    reason = f" ({job.side_reason})" if job.side_reason else ""
+    lines = [f"**Thread {thread.name}**, {side}{reason}"]
+    lines.append(f"- known from {thread.known_from()}")
+    assert thread.pitch is not None
+    starts = f"{thread.starts} starts" if thread.starts > 1 else "one start"
+    lines.append(f"- pitch {thread.pitch:g}, lead {thread.lead:g}, {starts}")
+    band = thread.pitch_band()
+    if thread.pitch_class is not None and band is not None:
+        which = "D2" if thread.internal else "d2"
+        lines.append(
+            f"- class {thread.class_text()} ({thread.class_reason}): {which} "
+            f"{band[0]:.3f}–{band[1]:.3f}"
+        )
+    root = thread.root_x()
+    if root is not None:
+        deep = job.deepest(bool(thread.internal))
+        assert deep.x is not None
+        margin = (root - deep.x) / 2.0 if thread.internal else (deep.x - root) / 2.0
+        where = "above" if margin >= 0 else "past"
+        lines.append(
+            f"- root X{_mm(root)} ({thread.limit_text()}); deepest pass X{_mm(deep.x)}, "
+            f"{abs(margin):.3f} mm (radius) {where} it"
+        )
+    if thread.nose_radius is not None:
+        lines.append(f"- nose radius {thread.nose_radius:.4g} ({thread.nose_reason})")
+    module = thread.module
+    if module is not None and module.height is not None:
+        lines.append(f"- thread height #{module.height_var} = {module.height:.4f} (radius)")
+    return "\n".join(lines)
+
+
+def module_meanings(thread: Thread) -> dict[int, str]:
+    """What each variable of a thread module recognised by its formulas stands for."""
+    shape = thread.module
+    if shape is None:
+        return {}
+    internal = bool(thread.internal)
+    names: dict[int, str] = {
+        shape.height_var: "h, thread height (radius): the depth of the last pass",
+    }
+    if shape.major_var is not None:
+        names[shape.major_var] = "d / D, nominal diameter of the thread"
+    if internal and shape.base_var != shape.major_var:
+        names[shape.base_var] = "D1, minor diameter of the internal thread"
+    if shape.pitch_var is not None:
+        names[shape.pitch_var] = "the lead the thread is cut with (F), the pitch of one start"
+    if shape.radius_var is not None:
+        names[shape.radius_var] = f"r, tool nose radius: the radius {shape.radius_how}"
+    if thread.deviation_var is not None:
+        names[thread.deviation_var] = (
+            "EI, fundamental deviation" if internal else "es, fundamental deviation (magnitude)"
+        )
+    if thread.tolerance_var is not None:
+        names[thread.tolerance_var] = (
+            "TD2, pitch-diameter tolerance" if internal else "Td2, pitch-diameter tolerance"
+        )
+    return names

@@ -1,0 +1,105 @@
+"""What thread a program cuts: designations in comments, module shapes, the cuts' side and
+lead, and the sentence a hover gives when the thread cannot be identified."""
+
+from __future__ import annotations
+
+import pytest
+
+from fanuc_macro.analysis import analyse
+from fanuc_macro.parser import parse_text
+from fanuc_macro.threads.identify import Thread, describe, thread_words
+
+
+def words(comment: str) -> tuple[tuple[str, ...], tuple[str, ...], int | None]:
+    parsed = parse_text(f"G00 X1. ({comment})\n").blocks[0].parsed
+    found = thread_words(parsed)
+    return tuple(form for _t, form in found.designations), found.other_forms, found.starts
+
+
+@pytest.mark.parametrize(
+    ("comment", "forms"),
+    [
+        ("M50X3-5G6G", ("M50X3-5G6G",)),
+        ("外螺纹 M50×3-5g6g", ("M50x3-5g6g",)),
+        ("THREAD M10-6G", ("M10-6G",)),
+        ("M20X1.5LH", ("M20X1.5LH",)),
+        ("M20X1.5-6G-LH", ("M20X1.5LH-6G",)),
+        ("M16xPh3P1.5-6H", ("M16xPh3P1.5-6H",)),
+        ("M50X6(P3", ("M50XPH6P3",)),
+        ("M30 PROGRAM END", ()),
+        ("M8 COOLANT ON", ()),
+        ("#100=M50", ()),
+    ],
+)
+def test_designations_in_comments(comment: str, forms: tuple[str, ...]) -> None:
+    assert words(comment)[0] == forms
+
+
+@pytest.mark.parametrize(
+    ("comment", "starts"),
+    [("M50X3 2 START", 2), ("3-STARTS", 3), ("双线螺纹", 2), ("M24X3 - START POINT", None)],
+)
+def test_number_of_starts(comment: str, starts: int | None) -> None:
+    assert words(comment)[2] == starts
+
+
+def _threads(text: str) -> list[Thread]:
+    return analyse(text, "t.nc").threads
+
+
+HAND = "O1 ({})\nG97 S500 M03\nG00 X{} Z5.\nG92 X{} Z-30. F{}\nX{}\nX{}\nG00 X100.\nM30\n"
+
+
+def test_thread_from_the_designation_and_the_cuts() -> None:
+    (t,) = _threads(HAND.format("M20X2.5", 22, 19.5, 2.5, 19.0, 18.5))
+    assert t.identified and t.internal is False and t.name == "M20x2.5-6g"
+    assert "the passes go deeper towards the axis" in t.job.side_reason
+    assert t.pitch_class is not None and t.pitch_class.name == "6g"
+    assert t.root_x() == pytest.approx(16.624, abs=5e-4)  # d3 min of M20x2.5-6g
+    assert "the designation M20X2.5 at line 1" in t.known_from()
+
+
+def test_all_capital_class_is_read_on_the_side_the_cuts_show() -> None:
+    (t,) = _threads(HAND.format("M36X2-6H", 32, 34.2, 2, 34.6, 35.0))
+    assert t.internal is True and t.name == "M36x2-6H"
+    assert t.root_x() == pytest.approx(36.657, abs=5e-4)  # D2 max + H with a sharp tool
+
+
+def test_no_size_known_is_said_in_the_hover() -> None:
+    (t,) = _threads(HAND.format("OD THREAD", 22, 19.5, 2.5, 19.0, 18.5))
+    assert not t.identified
+    text = describe(t)
+    assert "not identified" in text and "(M50X3-5G6G)" in text
+
+
+@pytest.mark.parametrize(
+    ("comment", "what"),
+    [("TR40X7", "trapezoidal"), ("1/2-13 UNC", "Unified"), ("NPT 1/2", "pipe thread")],
+)
+def test_other_thread_forms_are_named(comment: str, what: str) -> None:
+    (t,) = _threads(HAND.format(comment, 42, 39.5, 7, 39.0, 38.5))
+    assert not t.identified and t.unsupported is not None and what in t.unsupported
+    assert what in describe(t)
+
+
+def test_taper_cut_is_not_checked_against_a_parallel_profile() -> None:
+    text = "O1 (M20X2.5)\nG00 X24. Z5.\nG92 X19.5 Z-30. R-1. F2.5\nX18.\nX16.\nM30\n"
+    (t,) = _threads(text)
+    assert t.unsupported is not None and "taper" in t.unsupported
+    assert not {d.code for d in analyse(text, "t.nc").diagnostics} & {"MB801", "MB802"}
+
+
+def test_a_module_called_twice_is_two_threads_with_their_own_inputs() -> None:
+    module = (
+        "O3001\n#3=#101/[8*SIN[60]]\n#4=[7./8.]*SIN[60]*#101-#3+#103/2.+#104/4.\n#9=0.15\n"
+        "N10 G92 X[#100-2.*#9] Z-30. F#101\n#9=#9+0.15\nIF[#9LT#4]GOTO10\n"
+        "G92 X[#100-2.*#4] Z-30. F#101\nM99\n"
+    )
+    main = "O1\nG00 X32. Z5.\n#100=30.\n#101=2.\n#103=0.038\n#104=0.170\nM98 P3001\n"
+    main += "G00 X26. Z5.\n#100=24.\n#101=3.\n#103=0.048\n#104=0.200\nM98 P3001\nM30\n"
+    first, second = _threads(main + module)
+    assert (first.major, first.pitch, second.major, second.pitch) == (30.0, 2.0, 24.0, 3.0)
+    assert first.pitch_class is not None and first.pitch_class.name == "6g"
+    assert second.pitch_class is not None and second.pitch_class.name == "6g"
+    assert first.module is not None and first.module.height_var == 4
+    assert first.nose_radius == pytest.approx(2 / (8 * 0.8660254), abs=1e-6)
