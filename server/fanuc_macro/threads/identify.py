@@ -429,13 +429,15 @@ def _identify(
     thread.evidence.append(Evidence(_describe_cuts(job), job.passes[0].line))
     program = index.program_at(job.program_line)
     end = program.end_line if program is not None else job.program_line + 1
-    if thread.internal is None:
+    # The designation that fits the passes (its letter case tells the side, if the cuts do
+    # not); then the program's first comments.
+    chosen = _choose_designation(found, job, thread.internal)
+    if thread.internal is None and chosen is None:
         said = program_is_internal(doc, job.program_line, end)
         if said is not None:
             thread.internal = said
             thread.evidence.append(Evidence("the program's first comments", job.program_line))
-    # The designation that fits the passes.
-    chosen = _choose_designation(found, job, thread.internal)
+            chosen = _choose_designation(found, job, said)
     if chosen is not None:
         des, where = chosen
         thread.designation, thread.designation_line = des, where.line

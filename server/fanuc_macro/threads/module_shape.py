@@ -21,7 +21,19 @@ from ..evaluator.facts import DocumentFacts, RunValues
 from ..index import Program, ProgramIndex
 from ..linear import Linear, linear_form
 from ..parser import statements_of
-from ..syntax import Assign, Binary, Bracket, Call, Document, Expr, IfThen, NcStatement, Var
+from ..per_line import PerLine
+from ..syntax import (
+    Assign,
+    Binary,
+    Bracket,
+    Call,
+    Document,
+    Expr,
+    IfThen,
+    NcStatement,
+    ParsedLine,
+    Var,
+)
 from ..walk import subexpressions, top_expressions
 from .geometry import SIN60, TAN30
 from .jobs import ThreadJob
@@ -130,17 +142,27 @@ def _is_tan30(expr: Expr) -> bool:
     return not form.terms and abs(form.constant - TAN30) < 1e-4
 
 
+def _line_tan30(parsed: ParsedLine) -> frozenset[int]:
+    found: set[int] = set()
+    for statement in statements_of(parsed.statement):
+        if not isinstance(statement, Assign | IfThen):
+            continue
+        for top in top_expressions(statement):
+            for node in subexpressions(top):
+                n = _tan30_factor(node)
+                if n is not None:
+                    found.add(n)
+    return frozenset(found)
+
+
+# The variables a line's assignment offsets by ·TAN[30], per distinct line.
+_tan30_of: PerLine[frozenset[int]] = PerLine(_line_tan30)
+
+
 def _tan30_offsets(doc: Document, program: Program) -> set[int]:
     found: set[int] = set()
     for line in range(program.first_line, program.end_line):
-        for statement in statements_of(doc.blocks[line].statement):
-            if not isinstance(statement, Assign | IfThen):
-                continue
-            for top in top_expressions(statement):
-                for node in subexpressions(top):
-                    n = _tan30_factor(node)
-                    if n is not None:
-                        found.add(n)
+        found |= _tan30_of(doc.blocks[line].parsed)
     return found
 
 
@@ -306,32 +328,43 @@ def _fitting_pattern(expr: Expr) -> tuple[int, int] | None:
     return None
 
 
-def fitting_radii(doc: Document, facts: DocumentFacts, program: Program) -> FittingRadii | None:
-    for line in range(program.first_line, program.end_line):
-        for statement in statements_of(doc.blocks[line].statement):
-            if not isinstance(statement, Assign):
-                continue
-            for node in subexpressions(statement.value):
-                if not (isinstance(node, Call) and node.name == "ASIN" and len(node.args) == 1):
-                    continue
+def _line_fitting(parsed: ParsedLine) -> tuple[int, int] | None:
+    for statement in statements_of(parsed.statement):
+        if not isinstance(statement, Assign):
+            continue
+        for node in subexpressions(statement.value):
+            if isinstance(node, Call) and node.name == "ASIN" and len(node.args) == 1:
                 arg = node.args[0]
                 while isinstance(arg, Bracket):
                     arg = arg.inner
                 found = _fitting_pattern(arg)
-                if found is None:
-                    continue
-                tool, groove = found
-                tool_lines = writes_of(facts, program, tool) or writes_in_document(facts, tool)
-                groove_lines = writes_of(facts, program, groove) or writes_in_document(
-                    facts, groove
-                )
-                return FittingRadii(
-                    tool,
-                    groove,
-                    line,
-                    _value_at(facts, line, tool),
-                    _value_at(facts, line, groove),
-                    tool_lines[-1] if tool_lines else None,
-                    groove_lines[-1] if groove_lines else None,
-                )
+                if found is not None:
+                    return found
+    return None
+
+
+# The (tool, groove) radii of a line's ASIN[#r/[#R-#r]], per distinct line.
+_fitting_of: PerLine[tuple[int, int] | None] = PerLine(_line_fitting)
+
+
+def fitting_radii(doc: Document, facts: DocumentFacts, program: Program) -> FittingRadii | None:
+    for line in range(program.first_line, program.end_line):
+        parsed = doc.blocks[line].parsed
+        if parsed.statement is None:
+            continue
+        found = _fitting_of(parsed)
+        if found is None:
+            continue
+        tool, groove = found
+        tool_lines = writes_of(facts, program, tool) or writes_in_document(facts, tool)
+        groove_lines = writes_of(facts, program, groove) or writes_in_document(facts, groove)
+        return FittingRadii(
+            tool,
+            groove,
+            line,
+            _value_at(facts, line, tool),
+            _value_at(facts, line, groove),
+            tool_lines[-1] if tool_lines else None,
+            groove_lines[-1] if groove_lines else None,
+        )
     return None
