@@ -221,6 +221,7 @@ class Activation:
         "locals",
         "machine",
         "macro_level",
+        "modal_depth",
         "pc",
         "repeats_left",
         "return_pc",
@@ -249,6 +250,9 @@ class Activation:
         self.pc = ctx.program.first_line
         self.undecided_loops: set[int] = set()
         self.arguments: tuple[Value, ...] | None = None
+        # Index in Modal.modal_calls of the G66 macro this program runs for (None: none). A move
+        # here calls the macro specified before it, not itself (FANUC: multiple modal calls).
+        self.modal_depth: int | None = None if caller is None else caller.modal_depth
 
     def read_global(self, number: int) -> Value:
         return self.machine.unknown_of(number)
@@ -285,7 +289,8 @@ class Modal:
     feed: Value = None
     speed: Value = None
     constant_surface_speed: bool = False  # G96: S is m/min, not rpm
-    modal_call: tuple[ProgramContext, list[Value], int] | None = None  # G66
+    # G66/G66.1 in force, in the order specified; G67 cancels the last one.
+    modal_calls: list[tuple[ProgramContext, list[Value], int]] = field(default_factory=list)
     position: dict[str, Value] = field(default_factory=dict)
 
 
@@ -636,8 +641,8 @@ class Machine:
                 call_kind = "G65"
             elif g in (66.0, 66.1):
                 call_kind = "G66"
-            elif g == 67.0:
-                modal.modal_call = None
+            elif g == 67.0 and modal.modal_calls:
+                modal.modal_calls.pop()
             elif g == 96.0:
                 modal.constant_surface_speed = True
             elif g == 97.0:
@@ -665,9 +670,17 @@ class Machine:
             if m in (2.0, 30.0):
                 raise _Stop("end of program")
         act.pc = self._line + 1
-        if moved and modal.modal_call is not None:
-            callee, args, _ = modal.modal_call
-            return self._enter(act, callee, list(args), True, self._line + 1, 1)
+        if moved and modal.modal_calls:
+            # FANUC calls the macro after each move; a move in a modal macro calls the one
+            # specified before it, and none in the first. Source: a FANUC operator's manual page,
+            # custom macro "multiple modal call" (photo shipped with NCVC's G66 sample; series
+            # not named on it).
+            target = len(modal.modal_calls) - 1 if act.modal_depth is None else act.modal_depth - 1
+            if target >= 0:
+                callee, args, _ = modal.modal_calls[target]
+                new = self._enter(act, callee, list(args), True, self._line + 1, 1)
+                new.modal_depth = target
+                return new
         return act
 
     def _motion(
@@ -848,7 +861,7 @@ class Machine:
             act.pc = self._line + 1
             return act
         if modal_call:
-            self.modal.modal_call = (callee, args, repeat)
+            self.modal.modal_calls.append((callee, args, repeat))
             return act
         return self._enter(act, callee, args, True, self._line + 1, repeat)
 
