@@ -44,6 +44,7 @@ MOTION_GROUP = {0.0, 1.0, 2.0, 3.0, 32.0, 33.0, 34.0}
 LATHE_CYCLES = {90.0, 92.0, 94.0}  # G-code system A: modal canned cycles of group 01
 ONE_SHOT_CYCLES = {70.0, 71.0, 72.0, 73.0, 74.0, 75.0, 76.0}  # group 00: they do not repeat
 AXES = frozenset("XYZUVWABC")
+FEED_MOTIONS = {1.0, 2.0, 3.0}  # cutting moves at the modal F (G32 and the cycles take F as lead)
 INTEGER_ADDRESSES = frozenset("MSTLHD")  # P too, when it names a program (M98, G65, M99)
 MAX_MACRO_LEVEL = 5  # G65/G66 levels (0i-D/30i); 16i has 4
 MAX_NESTING = 10
@@ -307,6 +308,7 @@ class Machine:
         self.speculative = False
         self.deadline = 0.0
         self.budget = config.step_budget
+        self._entry_name = ""
 
     def unknown_of(self, number: int) -> Unknown:
         u = self._unknowns.get(number)
@@ -321,8 +323,10 @@ class Machine:
         self.speculative = False  # the path went through a condition that was not decided
         self.deadline = deadline
         self.modal = Modal()
+        self._entry_name = entry.name
         locals_: list[Value] = [None] * 34
         if not entry.is_main:
+            self.modal.feed = Unknown(frozenset())  # the caller's F, which a lone run cannot know
             # A macro analysed alone: its arguments are unknown, not vacant.
             for n in range(1, 34):
                 locals_[n] = self.unknown_of(n)
@@ -699,6 +703,15 @@ class Machine:
         words = const.words if const is not None else _motion_words(values)
         if "F" not in words and isinstance(modal.feed, float) and code != 0.0:
             words = {**words, "F": modal.feed}
+        if code in FEED_MOTIONS and modal.feed is None:
+            self._finding(
+                act.ctx,
+                "feed-not-set",
+                self._line,
+                0,
+                0,
+                f"G{code:02g} cuts with no F commanded before it since {self._entry_name} started",
+            )
         position = modal.position
         x = values.get("X")
         if not isinstance(x, float):
