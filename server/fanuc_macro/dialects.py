@@ -86,7 +86,10 @@ _PATTERNS: tuple[tuple[re.Pattern[str], str, str], ...] = (
         "'PROC' / 'DEF' declarations are Siemens Sinumerik (840D) syntax, not FANUC",
     ),
     (
-        re.compile(r"\bGOTO[FBC]\b|\bEND(FOR|WHILE|LOOP)\b|\bSTOPRE\b|\$[AMPST][ACN]?_\w", re.I),
+        re.compile(
+            r"\bGOTO[FBC]\b|\bEND(FOR|WHILE|LOOP)\b|\bSTOPRE\b|\$(AA|AC|A|P|TC|MC|MN|SC|SN)_\w+\s*\[",
+            re.I,
+        ),
         SIEMENS,
         "GOTOF/GOTOB labels, FOR/ENDFOR, STOPRE and $A_... system variables are Siemens "
         "Sinumerik syntax, not FANUC",
