@@ -348,3 +348,18 @@ def test_fix_of_a_value_a_hair_under_a_whole_number_is_noted() -> None:
     facts, _ = run(text)
     seen = facts.document("t.nc").roundings[7]
     assert (seen.function, seen.result) == ("FIX", 7.0) and seen.argument < 8.0
+
+
+def test_multiple_modal_calls_run_in_the_manual_order() -> None:
+    """The example of FANUC's "multiple modal call": a move in a G66 macro calls the macro
+    specified before it, never itself, and G67 cancels the last one first."""
+    text = (
+        "O1\nG91 G00\nG66 P9100\nX10.\nG66 P9200\nX15.\nG67\nG67\nX-25.\nM30\n"
+        "O9100\nZ50.\nM99\n"
+        "O9200\nX60.\nY70.\nM99\n"
+    )
+    facts, _ = run(text)
+    moves = [m.line for m in facts.motions]
+    # (1-1) (2-1) (1-2) (3-1) (2-1) (3-2) (2-1) (1-3), as the manual's figure shows.
+    assert moves == [3, 11, 5, 14, 11, 15, 11, 8]
+    assert not [f for f in facts.document("t.nc").findings if f.kind.startswith("nesting")]

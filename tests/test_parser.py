@@ -811,3 +811,68 @@ def test_fast_parse_leaves_other_blocks_to_the_grammar(text: str) -> None:
 @pytest.mark.parametrize("text", ["G01 X10. Z-5. F0.2", "N10 G00 X-#24", "/1 M05", "x1.y2."])
 def test_fast_parse_takes_plain_blocks(text: str) -> None:
     assert fast_parse(text) is not None
+
+
+@pytest.mark.parametrize(
+    ("text", "message"),
+    [
+        ("G01Z-5,0F100", "FANUC's decimal point is '.'; write -5.0"),
+        ("G01X10.0.0", "a second decimal point at column 9, in '10.0.0'"),
+        ("G01X-50.0 30.0", "the number '30.0' at column 11 has no address letter"),
+        ("00001(ISHII)", "the letter O typed as the digit 0? A program number is written O0001"),
+        ("01X50.Y-50.", "(G01 meant, or the letter O typed as the digit 0?)"),
+        ("\uff2791\uff2728Z0", "full-width '\uff27' (U+FF27) at column 1"),
+        ("G01X10.*#1Y5.", "write X[10.*#1], not X10.*#1"),
+        ("G01X50*COS[#8]Y-50.", "write X[50*COS[#8]], not X50*COS[#8]"),
+        ("G00XCOS[45]", "write X[COS[...]], not XCOS[...]"),
+        ("G01XY0", "address X at column 4 has no value"),
+        ("WHILE[[#1LE10]DO1", "'[' at column 6 is not closed before 'DO'"),
+        ("G00X[COS[180]]]", "']' at column 15 closes no '['"),
+        ("WHILE[[#1=10]AND[#2<>5.0]]DO1", "'=' at column 10 is no comparison on FANUC: write EQ"),
+        ("WHIL[#1LE10]DO1", "'WHIL' at column 1 is no FANUC word: WHILE?"),
+        ("#10", "#10=<value> assigns it"),
+    ],
+)
+def test_typing_mistakes_are_named(text: str, message: str) -> None:
+    problem = BlockParser().parse_line(text).problem
+    assert problem is not None and problem.dialect is None
+    assert message in problem.message
+
+
+@pytest.mark.parametrize(
+    ("text", "dialect"),
+    [
+        ("%@MACRO;", "LNC/Syntec"),
+        ("#24:=#1341+5;", "LNC/Syntec"),
+        ("IF(#17<>#0)THEN", "LNC/Syntec"),
+        ("END_IF;", "LNC/Syntec"),
+        ("WAIT();", "LNC/Syntec"),
+        ("PROC MS140", "Siemens Sinumerik"),
+        ("DEF REAL START_X", "Siemens Sinumerik"),
+        ("IF($AC_MEA[1]==1) GOTOF GRESKA", "Siemens Sinumerik"),
+        ("N001 R20=20", "Siemens Sinumerik"),
+        ("N250 @100 K-220", "Siemens Sinumerik"),
+        ("o<probe> sub", "LinuxCNC"),
+        ("O100 if [#<_task> EQ 0]", "LinuxCNC"),
+        ("IF #1>0 GOTO1", "DDCS"),
+    ],
+)
+def test_dialect_forms_are_named(text: str, dialect: str) -> None:
+    problem = BlockParser().parse_line(text).problem
+    assert problem is not None and problem.dialect == dialect
+
+
+def test_a_file_of_another_dialect_names_it_on_every_rejected_block() -> None:
+    text = "PROC MS140\n;COMMENT\nG0 X10.\nif(A<>0)\nelse\nendif\nM17\n"
+    diags = analyse(text).diagnostics
+    rejected = [(d.line, d.code) for d in diags if d.code in ("MB001", "MB002", "MB005", "MB008")]
+    assert rejected == [(0, "MB002"), (1, "MB002"), (3, "MB002"), (4, "MB002"), (5, "MB002")]
+    assert all("Siemens" in d.message for d in diags if d.code == "MB002")
+    assert not [d for d in diags if "Haas" in d.message]
+
+
+def test_a_fanuc_file_keeps_its_own_findings() -> None:
+    """One C comparison does not make a FANUC program another control's."""
+    text = "O1000\nIF[#1<=#2]GOTO10\n;\nN10 M30\n"
+    codes = [(d.line, d.code) for d in analyse(text).diagnostics if d.code.startswith("MB00")]
+    assert codes == [(1, "MB002")]

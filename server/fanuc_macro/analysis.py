@@ -9,6 +9,7 @@ import logging
 from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, field, replace
 
+from . import dialects
 from .config import Config
 from .diagnostics import Diagnostic, Related, RuleInfo, Severity, make, register, suppressed_codes
 from .evaluator import Facts, evaluate
@@ -79,14 +80,45 @@ def _line_findings(parsed: ParsedLine) -> tuple[LineFinding, ...]:
 line_findings: PerLine[tuple[LineFinding, ...]] = PerLine(_line_findings)
 
 
+def _file_mark(parsed: ParsedLine) -> tuple[str, str] | None:
+    return dialects.file_mark(parsed.text)
+
+
+file_marks: PerLine[tuple[str, str] | None] = PerLine(_file_mark)
+
+# What a block of another control's program gives when FANUC cannot read it: these findings
+# of one block become one MB002 naming the file's dialect.
+_FOLDED = frozenset({"MB001", "MB002", "MB003", "MB004", "MB005", "MB008"})
+
+
 def run_checks(ctx: RuleContext, checks: Iterable[ExtraChecks]) -> list[Diagnostic]:
     found: list[Diagnostic] = []
+    per_block: list[tuple[int, ParsedLine, tuple[LineFinding, ...]]] = []
+    marks: list[dialects.FileDialect] = []
     for block in ctx.doc.blocks:
         parsed = block.parsed
         if parsed.statement is None and parsed.problem is None and not parsed.notes:
             continue
-        for f in line_findings(parsed):
-            found.append(make(f.code, f.message, block.line, f.start, f.end))
+        findings = line_findings(parsed)
+        if findings:
+            per_block.append((block.line, parsed, findings))
+        if parsed.problem is not None:  # a mark of another dialect is a block FANUC rejects
+            mark = file_marks(parsed)
+            if mark is not None:
+                marks.append(dialects.FileDialect(mark[0], mark[1], block.line))
+    foreign = dialects.strongest(marks)
+    for line, parsed, findings in per_block:
+        folded = [f for f in findings if f.code in _FOLDED] if foreign is not None else []
+        for f in findings:
+            if not folded or f.code not in _FOLDED:
+                found.append(make(f.code, f.message, line, f.start, f.end))
+        if folded and foreign is not None:
+            first = folded[0]
+            found.append(
+                make(
+                    "MB002", _foreign_message(foreign, parsed, first), line, first.start, first.end
+                )
+            )
     for check in checks:
         try:
             found.extend(check(ctx))
@@ -94,6 +126,21 @@ def run_checks(ctx: RuleContext, checks: Iterable[ExtraChecks]) -> list[Diagnost
             log.exception("rule %s failed", getattr(check, "__module__", check))
             found.append(make("MB000", f"internal error in {check.__module__}: {err!r}", 0, 0, 0))
     return found
+
+
+def _foreign_message(foreign: dialects.FileDialect, parsed: ParsedLine, first: LineFinding) -> str:
+    """The message of a rejected block in a file of another control's dialect."""
+    problem = parsed.problem
+    if problem is not None and problem.dialect == foreign.name:
+        return f"{foreign.name}: {problem.message}"
+    where = f"{foreign.mark} on line {foreign.line + 1}"
+    if first.code == "MB005":
+        what = "';' ends the block on FANUC, and the comment after it is read as program text"
+    elif problem is not None and problem.dialect is None:
+        what = f"FANUC rejects this block ({problem.message})"
+    else:  # a form of yet another dialect, or a Haas-looking statement: this file's own
+        what = "FANUC rejects this block"
+    return f"{foreign.name} program ({where}): {what}"
 
 
 def analyse(

@@ -1,13 +1,27 @@
 """Forms of other controls' dialects that a FANUC control rejects, recognised by their look.
 
 When a block does not parse, the checker says which dialect it comes from, when it can tell,
-rather than only "unexpected character".
+rather than only "unexpected character". Two levels:
+
+* a block: :func:`recognise` looks at the rejected block alone (``S1=500`` is Citizen's
+  spindle selection wherever it stands);
+* a file: :func:`file_dialect` finds the marks that only another control's programs carry
+  (Syntec's ``%@MACRO`` header, Siemens' ``PROC``/``DEF``, LinuxCNC's ``o<name> sub``, DDCS's
+  ``IF #1==0 GOTO`` without brackets). In such a file every rejected block is that dialect's,
+  whatever it looks like alone: a block ``ELSE`` is Siemens' in a Siemens file, not Haas's.
 """
 
 from __future__ import annotations
 
 import re
 from dataclasses import dataclass
+
+SYNTEC = "LNC/Syntec"
+SIEMENS = "Siemens Sinumerik"
+LINUXCNC = "LinuxCNC"
+DDCS = "DDCS"
+NOT_FANUC = "not FANUC"  # a form of no control in particular (C comparisons)
+PLAIN = ""  # not a dialect's form: a plain syntax error (MB001), said in FANUC's terms
 
 
 @dataclass(frozen=True, slots=True)
@@ -16,16 +30,74 @@ class Dialect:
     message: str
 
 
+# Patterns on the block's code (comments cut out) and, for forms whose parentheses the block
+# reader takes for comments, on the raw line. Most specific first: the first match names it.
+_RAW_PATTERNS: tuple[tuple[re.Pattern[str], str, str], ...] = (
+    (
+        re.compile(r"^\s*%\s*@MACRO\b", re.I),
+        SYNTEC,
+        "'%@MACRO' opens a Syntec/LNC macro file (Pascal-like statements), not a FANUC program",
+    ),
+    (
+        re.compile(r"^\s*(N\d+\s*)?(IF|WHILE)\s*\(.*\)\s*(THEN|DO)\b", re.I),
+        SYNTEC,
+        "'IF (...) THEN ... END_IF' / 'WHILE (...) DO ... END_WHILE' are Syntec/LNC statements;"
+        " FANUC writes IF [...] GOTO n and WHILE [...] DOm ... ENDm",
+    ),
+    (
+        re.compile(r"^\s*(N\d+\s*)?(WAIT|ALARM|SLEEP|MSG)\s*\(", re.I),
+        SYNTEC,
+        "a Syntec/LNC function call such as WAIT() or ALARM(n); FANUC raises an alarm with "
+        "#3000=n (MESSAGE)",
+    ),
+    (
+        re.compile(r"^\s*(N\d+\s*)?(IF|WHILE)\s*#\d+\s*(==|!=|<=|>=|<|>)", re.I),
+        DDCS,
+        "'IF #n==0 GOTO' without brackets, with C comparisons, is DDCS syntax; FANUC writes "
+        "IF [#n EQ 0] GOTO",
+    ),
+)
+
 _PATTERNS: tuple[tuple[re.Pattern[str], str, str], ...] = (
     (
-        re.compile(r"#<\w*>"),
-        "LinuxCNC",
+        re.compile(r"#<[^>\n]*>"),
+        LINUXCNC,
         "named parameter '#<...>' is LinuxCNC syntax; FANUC variables are numbered (#1, #100, ...)",
     ),
     (
-        re.compile(r"^\s*o\d+\s+(sub|endsub|call|if|while|do)\b", re.I),
-        "LinuxCNC",
-        "'o<number> sub/call/if' is LinuxCNC syntax, not FANUC",
+        re.compile(
+            r"^\s*o\s*(<[^>]*>|\d+)\s*(sub|endsub|call|if|elseif|else|endif|while|endwhile|do"
+            r"|repeat|endrepeat|return|break|continue)\b",
+            re.I,
+        ),
+        LINUXCNC,
+        "'o<name> sub/call/if/while' (O-word) is LinuxCNC syntax, not FANUC",
+    ),
+    (
+        re.compile(r"\bEND_(IF|WHILE|FOR|REPEAT|CASE)\b", re.I),
+        SYNTEC,
+        "'END_IF' / 'END_WHILE' close Syntec/LNC statements; FANUC has IF [...] GOTO n and "
+        "WHILE [...] DOm ... ENDm",
+    ),
+    (re.compile(r":="), SYNTEC, "':=' assignment is Syntec/LNC syntax; FANUC assigns with '='"),
+    (
+        re.compile(r"^\s*(N\d+\s*)?(PROC|DEF|EXTERN)\s+[A-Z_]", re.I),
+        SIEMENS,
+        "'PROC' / 'DEF' declarations are Siemens Sinumerik (840D) syntax, not FANUC",
+    ),
+    (
+        re.compile(
+            r"\bGOTO[FBC]\b|\bEND(FOR|WHILE|LOOP)\b|\bSTOPRE\b|\$(AA|AC|A|P|TC|MC|MN|SC|SN)_\w+\s*\[",
+            re.I,
+        ),
+        SIEMENS,
+        "GOTOF/GOTOB labels, FOR/ENDFOR, STOPRE and $A_... system variables are Siemens "
+        "Sinumerik syntax, not FANUC",
+    ),
+    (
+        re.compile(r"^\s*(N\d+\s*)?R\d+\s*=", re.I),
+        SIEMENS,
+        "'R20=...' arithmetic parameters are Siemens Sinumerik syntax; FANUC's variables are #n",
     ),
     (
         re.compile(r"^\s*\$\d"),
@@ -38,32 +110,115 @@ _PATTERNS: tuple[tuple[re.Pattern[str], str, str], ...] = (
         "'!L' path wait is Mitsubishi/Citizen syntax, not FANUC",
     ),
     (
-        re.compile(r"[A-Z]\d+\s*=", re.I),
+        re.compile(r"S\d+\s*=", re.I),
         "Mitsubishi/Citizen",
         "'S1=...' style spindle selection is Mitsubishi/Citizen syntax, not FANUC",
     ),
-    (re.compile(r"@\d+"), "LNC/Syntec", "'@n' variables are LNC/Syntec syntax, not FANUC"),
     (
-        re.compile(r"<=|>=|==|!=|&&|\|\||<|>"),
-        "not FANUC",
+        re.compile(r"^\s*N\d+\s+@\d{3}\s+[RK]", re.I),
+        SIEMENS,
+        "'@100 K...' jumps and '@1xx R... K...' tests are old Sinumerik (810/820) codes, not FANUC",
+    ),
+    (re.compile(r"@\d+"), SYNTEC, "'@n' variables are LNC/Syntec syntax, not FANUC"),
+)
+
+# Forms more than one control writes, or none.
+_WEAK_PATTERNS: tuple[tuple[re.Pattern[str], str, str], ...] = (
+    (
+        re.compile(r"//"),
+        PLAIN,
+        "'//' does not start a comment on FANUC (Syntec/LNC and DDCS write comments so): FANUC "
+        "comments are '( ... )'",
+    ),
+    (
+        re.compile(r"<=|>=|==|!=|&&|\|\||<(?!>)|(?<!<)>"),
+        NOT_FANUC,
         "FANUC compares with EQ NE GT GE LT LE only ('<', '>=', '==' ... give alarm PS0114)",
     ),
     (
         re.compile(r"\b(LTE|GTE|NEQ)\b", re.I),
-        "not FANUC",
+        NOT_FANUC,
         "FANUC compares with EQ NE GT GE LT LE only ('LTE', 'GTE' give alarm PS0114)",
-    ),
-    (
-        re.compile(r"[A-MP-Z]\s*-?#\d+(\.\d*)?\s*[-+*/]\s*[.#\d\[]", re.I),
-        "Mitsubishi/Citizen",
-        "an expression after an address must be in brackets on FANUC: write X[#1+1.], not X#1+1.",
     ),
 )
 
+_UNBRACKETED = re.compile(r"([A-MP-Z])\s*(-?#\d+(?:\.\d*)?\s*[-+*/]\s*[.#\d\[][^A-Z]*)", re.I)
 
-def recognise(code: str, column: int) -> Dialect | None:
-    """The dialect a rejected block seems to be written in, if its text says so."""
+
+def recognise(code: str, text: str | None = None) -> Dialect | None:
+    """The dialect a rejected block is written in, when a form only that dialect has says so."""
+    raw = code if text is None else text
+    for pattern, name, message in _RAW_PATTERNS:
+        if pattern.search(raw):
+            return Dialect(name, message)
     for pattern, name, message in _PATTERNS:
         if pattern.search(code):
             return Dialect(name, message)
     return None
+
+
+def recognise_weak(code: str) -> Dialect | None:
+    """Forms several controls write (or none): C comparisons, '//', X#1+1. without brackets."""
+    for pattern, name, message in _WEAK_PATTERNS:
+        if pattern.search(code):
+            return Dialect(name, message)
+    m = _UNBRACKETED.search(code)
+    if m is not None:
+        letter, expression = m.group(1).upper(), m.group(2).strip()
+        return Dialect(
+            "Mitsubishi/Citizen",
+            f"an expression after an address must be in brackets on FANUC: write "
+            f"{letter}[{expression}], not {letter}{expression}",
+        )
+    return None
+
+
+# ---- the dialect of a whole file -------------------------------------------------------------
+
+# Marks that no FANUC program carries, each naming the control whose programs do. A file with
+# one of them is that control's program: FANUC-looking blocks in it are checked as usual, and
+# every block FANUC rejects is reported as that dialect's.
+_FILE_MARKS: tuple[tuple[re.Pattern[str], str, str], ...] = (
+    (re.compile(r"^\s*%\s*@MACRO\b", re.I), SYNTEC, "'%@MACRO' header"),
+    (re.compile(r"^\s*(N\d+\s*)?PROC\s+\w+", re.I), SIEMENS, "'PROC' declaration"),
+    (
+        re.compile(r"^\s*(N\d+\s*)?DEF\s+(REAL|INT|BOOL|STRING|CHAR|AXIS|FRAME)\b", re.I),
+        SIEMENS,
+        "'DEF' declaration",
+    ),
+    (re.compile(r"^\s*(N\d+\s*)?R\d+\s*=", re.I), SIEMENS, "R-parameter assignment"),
+    (
+        re.compile(r"^\s*o\s*(<[^>]*>|\d+)\s*(sub|call)\b", re.I),
+        LINUXCNC,
+        "O-word subroutine",
+    ),
+    (
+        re.compile(r"^\s*(N\d+\s*)?(IF|WHILE)\s*#\d+\s*(==|!=|<=|>=|<|>)", re.I),
+        DDCS,
+        "IF/WHILE without brackets, with a C comparison",
+    ),
+)
+# Strongest first: a Syntec file may hold R words, a LinuxCNC file comparisons.
+_FILE_MARK_ORDER = {SYNTEC: 0, SIEMENS: 1, LINUXCNC: 2, DDCS: 3}
+
+
+@dataclass(frozen=True, slots=True)
+class FileDialect:
+    name: str
+    mark: str  # what in the file says so: "'%@MACRO' header"
+    line: int  # 0-based line of the first such mark
+
+
+def file_mark(text: str) -> tuple[str, str] | None:
+    """(dialect, what) when this line is a mark of another control's program files."""
+    for pattern, name, what in _FILE_MARKS:
+        if pattern.search(text):
+            return name, what
+    return None
+
+
+def strongest(marks: list[FileDialect]) -> FileDialect | None:
+    """The dialect of a file from the marks found in it (the first of the strongest kind)."""
+    if not marks:
+        return None
+    return min(marks, key=lambda m: (_FILE_MARK_ORDER.get(m.name, 9), m.line))

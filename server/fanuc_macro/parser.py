@@ -7,9 +7,11 @@ text, so an edit re-parses only the lines it changed.
 
 from __future__ import annotations
 
+import difflib
 import gc
 import re
 import threading
+import unicodedata
 from collections.abc import Iterable, Iterator, Sequence
 from contextlib import contextmanager
 from importlib import resources
@@ -406,7 +408,8 @@ class BlockParser:
             # The transformer's start() makes the result a list, not a tree.
             items = cast("list[Any]", self._table.parse(code))
         except UnexpectedInput as err:
-            return _line(text, cut, None, None, None, None, _describe(code, err), has_lower)
+            problem = _describe(code, err, text)
+            return _line(text, cut, None, None, None, None, problem, has_lower)
         except (ValueError, OverflowError) as err:  # a number too long to be one
             problem = SyntaxProblem(f"cannot read a number: {err}", Span(0, len(text.rstrip())))
             return _line(text, cut, None, None, None, None, problem, has_lower)
@@ -444,6 +447,7 @@ _TOKEN_NAMES = {
     "MINUS": "'-'",
     "PLUS": "'+'",
     "COMMA": "','",
+    "COLON": "':'",
     "FUNC": "a function",
     "ADD_OP": "an operator",
     "MUL_OP": "an operator",
@@ -464,7 +468,7 @@ def _expected_words(expected: Iterable[str]) -> tuple[str, ...]:
     return tuple(words)
 
 
-def _describe(code: str, err: UnexpectedInput) -> SyntaxProblem:
+def _describe(code: str, err: UnexpectedInput, text: str | None = None) -> SyntaxProblem:
     """A message a CNC programmer can act on: what was found, where, what would do."""
     if isinstance(err, UnexpectedCharacters):
         col = err.column - 1 if err.column and err.column > 0 else err.pos_in_stream or 0
@@ -486,6 +490,17 @@ def _describe(code: str, err: UnexpectedInput) -> SyntaxProblem:
         span = Span(max(0, end - 1), end) if end > 0 else Span(0, 0)
     else:
         span = Span(col, col + max(1, len(found)))
+    dialect = dialects.recognise(code, text)
+    if dialect is not None:
+        return SyntaxProblem(dialect.message, span, expected, dialect.name)
+    misspelt = _misspelt_keyword(code)
+    if misspelt is not None:
+        name, name_col, keyword = misspelt
+        return SyntaxProblem(
+            f"{name!r} at column {name_col + 1} is no FANUC word: {keyword}?",
+            Span(name_col, name_col + len(name)),
+            expected,
+        )
     unknown = _unknown_function(code, col)
     if unknown is not None:
         name, name_col = unknown
@@ -497,14 +512,200 @@ def _describe(code: str, err: UnexpectedInput) -> SyntaxProblem:
             None,
             name.upper(),
         )
-    dialect = dialects.recognise(code, col)
-    if dialect is not None:
-        return SyntaxProblem(dialect.message, span, expected, dialect.name)
+    typed = _typing_mistake(code, col, found, expected)
+    if typed is not None:
+        message, typed_span = typed
+        return SyntaxProblem(message, typed_span or span, expected)
+    weak = dialects.recognise_weak(code)
+    if weak is not None:  # PLAIN (""): a syntax error, no dialect
+        return SyntaxProblem(weak.message, span, expected, weak.name or None)
     shown = found if found == "end of block" else repr(found)
     message = f"unexpected {shown} at column {col + 1}"
     if expected:
         message += "; expected " + ", ".join(expected[:8])
     return SyntaxProblem(message, span, expected, None)
+
+
+def _depth_before(code: str, col: int) -> tuple[int, int | None]:
+    """Bracket depth at ``col`` and the column of the innermost '[' still open there."""
+    opened: list[int] = []
+    depth = 0
+    for i, ch in enumerate(code[:col]):
+        if ch == "[":
+            opened.append(i)
+            depth += 1
+        elif ch == "]":
+            depth -= 1
+            if opened:
+                opened.pop()
+    return depth, (opened[-1] if opened else None)
+
+
+_NUMBER_TEXT = re.compile(r"[0-9]*\.?[0-9]*")
+_WORD_BEFORE = re.compile(
+    r"([A-MP-Z])[ \t]*([-+]?[ \t]*[0-9]+\.?[0-9]*|[-+]?[ \t]*\.[0-9]+)[ \t]*$", re.I
+)
+_ADDRESS_BEFORE = re.compile(r"([A-MP-Z])[ \t]*[-+]?[ \t]*$", re.I)
+_BLOCK_HEAD = re.compile(r"\s*(/\s*\d?\s*)?(N\s*\d+\s*)?", re.I)
+_CONDITION = re.compile(r"^\s*(N\d+\s*)?(IF|WHILE|WH)\s*\[", re.I)
+
+
+def _typing_mistake(
+    code: str, col: int, found: str, expected: tuple[str, ...]
+) -> tuple[str, Span | None] | None:
+    """What FANUC rejects in blocks typed wrong: a full-width letter, a decimal comma, a number
+    without its address, an expression outside brackets, an unclosed '['."""
+    ch = code[col : col + 1]
+    if ch and ord(ch) > 127:
+        plain = unicodedata.normalize("NFKC", ch)
+        if plain != ch and plain.isascii():
+            return (
+                f"full-width {ch!r} (U+{ord(ch):04X}) at column {col + 1}: FANUC reads ASCII "
+                f"program text only; write {plain!r}",
+                Span(col, col + 1),
+            )
+        return (
+            f"{ch!r} (U+{ord(ch):04X}) at column {col + 1}: FANUC reads ASCII program text only",
+            Span(col, col + 1),
+        )
+    depth, open_col = _depth_before(code, len(code) if found == "end of block" else col)
+    before = code[:col].rstrip()
+    if found == "end of block" or found.upper() in ("DO", "GOTO", "THEN"):
+        if depth > 0 and open_col is not None:
+            return (
+                f"'[' at column {open_col + 1} is not closed before "
+                f"{'the end of the block' if found == 'end of block' else repr(found)}",
+                Span(open_col, open_col + 1),
+            )
+        if found == "end of block" and "'='" in expected and re.fullmatch(r"\s*#\s*\d+\s*", code):
+            written = code.strip()
+            return (
+                f"a variable alone is no block: {written}=<value> assigns it, and an address "
+                f"letter before it (X{written}) makes it a word",
+                None,
+            )
+        return None
+    if found == "]" and depth <= 0:
+        return f"']' at column {col + 1} closes no '['", None
+    if depth > 0:
+        if _CONDITION.match(code):
+            if found == "=":
+                rest = " (and '<>' for NE)" if "<>" in code else ""
+                return f"'=' at column {col + 1} is no comparison on FANUC: write EQ{rest}", None
+            if found == "<" and code[col : col + 2] == "<>":
+                return f"'<>' at column {col + 1} is no comparison on FANUC: write NE", None
+        return None
+    if found == "," and before[-1:].isdigit():
+        word = _WORD_BEFORE.search(code[:col])
+        value = word.group(2).replace(" ", "") if word else before.split()[-1]
+        tail = _NUMBER_TEXT.match(code, col + 1)
+        digits = tail.group(0) if tail else ""
+        return (
+            f"',' at column {col + 1} in {value + ',' + digits!r}: FANUC's decimal point is '.'; "
+            f"write {value + '.' + digits}",
+            None,
+        )
+    if (
+        found.startswith(".")
+        and before
+        and before[-1] in "0123456789."
+        and "." in before.split()[-1]
+    ):
+        word = _WORD_BEFORE.search(code[:col])
+        value = word.group(2).replace(" ", "") if word else before.split()[-1]
+        return f"a second decimal point at column {col + 1}, in {value + found!r}", None
+    if found[:1] in "*/+-" and _WORD_BEFORE.search(code[:col]):
+        word = _WORD_BEFORE.search(code[:col])
+        assert word is not None
+        letter = word.group(1).upper()
+        expression = _expression_from(code, word.start(2))
+        return (
+            f"an expression after an address must be in brackets on FANUC: write "
+            f"{letter}[{expression}], not {letter}{expression}",
+            None,
+        )
+    name = found.upper()
+    if name in _KNOWN_FUNCTIONS:
+        address = _ADDRESS_BEFORE.search(code[:col])
+        if address is not None and address.group(0).strip():
+            letter = address.group(1).upper()
+            return (
+                f"a function after an address must be in brackets on FANUC: write "
+                f"{letter}[{name}[...]], not {letter}{name}[...]",
+                None,
+            )
+        return (
+            f"{name}[...] at column {col + 1} has no address letter: a value needs one "
+            f"(X[{name}[...]]), or an assignment (#1={name}[...])",
+            None,
+        )
+    if _NUMBER_TEXT.fullmatch(found) and found.strip("."):
+        at_head = _BLOCK_HEAD.fullmatch(before) is not None
+        if at_head and found.startswith("0") and len(found) >= 2:
+            if not code[col + len(found) :].strip():
+                return (
+                    f"{found!r} at column {col + 1} has no address letter: the letter O typed "
+                    f"as the digit 0? A program number is written O{found[1:]}",
+                    None,
+                )
+            return (
+                f"{found!r} at column {col + 1} has no address letter (G{found} meant, or the "
+                "letter O typed as the digit 0?)",
+                None,
+            )
+        return f"the number {found!r} at column {col + 1} has no address letter", None
+    if found[:1].isalpha() and _ADDRESS_BEFORE.search(code[:col]):
+        address = _ADDRESS_BEFORE.search(code[:col])
+        assert address is not None
+        return (
+            f"address {address.group(1).upper()} at column {address.start(1) + 1} has no value "
+            f"(found {found!r} at column {col + 1})",
+            None,
+        )
+    return None
+
+
+def _expression_from(code: str, start: int) -> str:
+    """The text of an unbracketed expression from ``start`` to the next address letter."""
+    depth = 0
+    i = start
+    while i < len(code):
+        ch = code[i]
+        if ch == "[":
+            depth += 1
+        elif ch == "]":
+            depth -= 1
+        elif ch.isalpha() and depth == 0:
+            name = re.match(r"[A-Z]+", code[i:], re.I)
+            word = name.group(0).upper() if name else ""
+            known = next(
+                (f for f in (*_KNOWN_FUNCTIONS, *_OPERATOR_WORDS) if word.startswith(f)), None
+            )
+            if known is None:
+                break
+            i += len(known)
+            continue
+        i += 1
+    return code[start:i].strip()
+
+
+_OPERATOR_WORDS = ("MOD", "AND", "OR", "XOR")
+_KEYWORDS = ("WHILE", "GOTO", "THEN", "END", "POPEN", "PCLOS", "DPRNT", "BPRNT")
+_LEADING_NAME = re.compile(r"^\s*(?:N\d+\s*)?([A-Z]{3,})", re.I)
+
+
+def _misspelt_keyword(code: str) -> tuple[str, int, str] | None:
+    """'WHIL[' or 'GOT 10': a keyword one letter off, at the head of the block."""
+    m = _LEADING_NAME.match(code)
+    if m is None:
+        return None
+    name = m.group(1).upper()
+    if name in _KEYWORDS or name in _KNOWN_FUNCTIONS or name.startswith(("IF", "GOTO")):
+        return None
+    close = difflib.get_close_matches(name, _KEYWORDS, n=1, cutoff=0.8)
+    if not close:
+        return None
+    return m.group(1), m.start(1), close[0]
 
 
 _KNOWN_FUNCTIONS = frozenset(

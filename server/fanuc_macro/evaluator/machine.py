@@ -51,6 +51,7 @@ AXES = frozenset("XYZUVWABC")
 # Addresses whose values are lengths or angles in the least input increment (ROUND in them
 # rounds to that increment); the others take whole numbers.
 LENGTH_ADDRESSES = frozenset("XYZUVWABCIJKRQF")
+FEED_MOTIONS = {1.0, 2.0, 3.0}  # cutting moves at the modal F (G32 and the cycles take F as lead)
 INTEGER_ADDRESSES = frozenset("MSTLHD")  # P too, when it names a program (M98, G65, M99)
 MAX_MACRO_LEVEL = 5  # G65/G66 levels (0i-D/30i); 16i has 4
 MAX_NESTING = 10
@@ -245,6 +246,7 @@ class Activation:
         "locals",
         "machine",
         "macro_level",
+        "modal_depth",
         "pc",
         "repeats_left",
         "return_pc",
@@ -276,6 +278,9 @@ class Activation:
         self.arguments: tuple[Value, ...] | None = None
         machine.runs += 1
         self.serial = machine.runs  # tells one call of a program from the next
+        # Index in Modal.modal_calls of the G66 macro this program runs for (None: none). A move
+        # here calls the macro specified before it, not itself (FANUC: multiple modal calls).
+        self.modal_depth: int | None = None if caller is None else caller.modal_depth
 
     def read_global(self, number: int) -> Value:
         return self.machine.unknown_of(number)
@@ -331,7 +336,8 @@ class Modal:
     feed: Value = None
     speed: Value = None
     constant_surface_speed: bool = False  # G96: S is m/min, not rpm
-    modal_call: tuple[ProgramContext, list[Value], int] | None = None  # G66
+    # G66/G66.1 in force, in the order specified; G67 cancels the last one.
+    modal_calls: list[tuple[ProgramContext, list[Value], int]] = field(default_factory=list)
     position: dict[str, Value] = field(default_factory=dict)
     # Where each axis was last set: (uri, line), for the verdicts on a cycle's start point.
     position_line: dict[str, tuple[str, int]] = field(default_factory=dict)
@@ -370,6 +376,7 @@ class Machine:
         self.runs = 0  # activations so far: each gets its number
         self.modal = Modal()
         self.value_range = config.value_range
+        self._entry_name = ""
 
     def unknown_of(self, number: int) -> Unknown:
         u = self._unknowns.get(number)
@@ -384,8 +391,10 @@ class Machine:
         self.speculative = False  # the path went through a condition that was not decided
         self.deadline = deadline
         self.modal = Modal()
+        self._entry_name = entry.name
         locals_: list[Value] = [None] * 34
         if not entry.is_main:
+            self.modal.feed = Unknown(frozenset())  # the caller's F, which a lone run cannot know
             # A macro analysed alone: its arguments are unknown, not vacant.
             for n in range(1, 34):
                 locals_[n] = self.unknown_of(n)
@@ -708,8 +717,8 @@ class Machine:
                 call_kind = "G65"
             elif g in (66.0, 66.1):
                 call_kind = "G66"
-            elif g == 67.0:
-                modal.modal_call = None
+            elif g == 67.0 and modal.modal_calls:
+                modal.modal_calls.pop()
             elif g == 96.0:
                 modal.constant_surface_speed = True
             elif g == 97.0:
@@ -741,9 +750,17 @@ class Machine:
             if m in (2.0, 30.0):
                 raise _Stop("end of program")
         act.pc = self._line + 1
-        if moved and modal.modal_call is not None:
-            callee, args, _ = modal.modal_call
-            return self._enter(act, callee, list(args), True, self._line + 1, 1)
+        if moved and modal.modal_calls:
+            # FANUC calls the macro after each move; a move in a modal macro calls the one
+            # specified before it, and none in the first. Source: a FANUC operator's manual page,
+            # custom macro "multiple modal call" (photo shipped with NCVC's G66 sample; series
+            # not named on it).
+            target = len(modal.modal_calls) - 1 if act.modal_depth is None else act.modal_depth - 1
+            if target >= 0:
+                callee, args, _ = modal.modal_calls[target]
+                new = self._enter(act, callee, list(args), True, self._line + 1, 1)
+                new.modal_depth = target
+                return new
         return act
 
     def _axis(self, values: dict[str, Value], absolute: str, incremental: str) -> float | None:
@@ -784,6 +801,15 @@ class Machine:
         words = const.words if const is not None else _motion_words(values)
         if "F" not in words and isinstance(modal.feed, float) and code != 0.0:
             words = {**words, "F": modal.feed}
+        if code in FEED_MOTIONS and modal.feed is None:
+            self._finding(
+                act.ctx,
+                "feed-not-set",
+                self._line,
+                0,
+                0,
+                f"G{code:02g} cuts with no F commanded before it since {self._entry_name} started",
+            )
         position = modal.position
         lathe = self.config.is_lathe
         x = self._axis(values, "X", "U")
@@ -1035,7 +1061,7 @@ class Machine:
             act.pc = self._line + 1
             return act
         if modal_call:
-            self.modal.modal_call = (callee, args, repeat)
+            self.modal.modal_calls.append((callee, args, repeat))
             return act
         return self._enter(act, callee, args, True, self._line + 1, repeat)
 

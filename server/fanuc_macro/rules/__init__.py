@@ -35,6 +35,7 @@ ALL_CHECKS: tuple[Check, ...] = (
     jumps.check,
     loops.check,
     statements.check,
+    statements.check_programs,
     math_domain.check,
     addresses.check,
     flow.check,

@@ -16,10 +16,13 @@ register(
     RuleInfo("MB602", "address-out-of-range", Severity.WARNING,
              "An address gets an impossible value: negative S/T/M/F, S above the machine's "
              "maximum spindle speed.", FAMILY),
+    RuleInfo("MB603", "feed-not-set", Severity.WARNING,
+             "A G01/G02/G03 cut runs before any F was commanded.", FAMILY),
 )  # fmt: skip
 
 
 def check(ctx: RuleContext) -> Iterator[Diagnostic]:
+    yield from _feed_not_set(ctx)
     for f in ctx.findings("address-"):
         code = "MB601" if f.kind == "address-non-integer" else "MB602"
         message = f.message
@@ -38,6 +41,22 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
                 if hint:
                     message += f"; did you mean {word.address}{hint}?"
         yield make(code, message, f.line, f.column, f.end_column, related=related)
+
+
+def _feed_not_set(ctx: RuleContext) -> Iterator[Diagnostic]:
+    """MB603. F is modal: a cut with none commanded since the program started runs at what an
+    earlier program left, or stops with PS0011 FEED ZERO (COMMAND) after power-on, when F is 0
+    (FANUC 0i-D alarm list; the power-on F of parameter 1411 is unverified here)."""
+    for f in ctx.findings("feed-not-set"):
+        text = ctx.doc.blocks[f.line].text
+        yield make(
+            "MB603",
+            f"{f.message}: the feed is what an earlier program left, or 0 after power-on "
+            "(alarm PS0011 FEED ZERO); give F in this block or before it",
+            f.line,
+            len(text) - len(text.lstrip()),
+            len(text.rstrip()),
+        )
 
 
 def _word_at(ctx: RuleContext, line: int, column: int) -> Word | None:

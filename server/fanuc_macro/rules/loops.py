@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import re
 from collections.abc import Iterator
 
 from ..diagnostics import Diagnostic, Related, RuleInfo, Severity, make, register
@@ -22,10 +23,32 @@ register(
 )  # fmt: skip
 
 
+def _rejected_do_lines(ctx: RuleContext, start: int, end: int) -> dict[float, list[int]]:
+    """Lines from ``start`` to ``end`` that FANUC rejects (MB001/MB002) and that hold 'DOm':
+    the loop they open is not seen, and its END is no second mistake."""
+    found: dict[float, list[int]] = {}
+    for block in ctx.doc.blocks[start:end]:
+        parsed = block.parsed
+        if parsed.problem is None:
+            continue
+        for m in _DO_WORD.finditer(parsed.text):
+            found.setdefault(float(m.group(1)), []).append(block.line)
+    return found
+
+
+_DO_WORD = re.compile(r"\bDO\s*(\d)\b", re.I)
+
+
 def check(ctx: RuleContext) -> Iterator[Diagnostic]:
     for program in ctx.index.programs:
         name = program.display_name
+        rejected_dos: dict[float, list[int]] | None = None
         for p in program.loop_problems:
+            if p.kind == "no-do":
+                if rejected_dos is None:
+                    rejected_dos = _rejected_do_lines(ctx, program.first_line, program.end_line)
+                if any(line < p.line for line in rejected_dos.get(p.loop_id, ())):
+                    continue  # its DO is in a block already reported as rejected
             n = f"{p.loop_id:g}"
             if p.kind == "no-end":
                 yield make(

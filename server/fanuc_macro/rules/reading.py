@@ -4,8 +4,8 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
-from ..diagnostics import Diagnostic, RuleInfo, Severity, make, register
-from ..syntax import ParsedLine
+from ..diagnostics import Diagnostic, Related, RuleInfo, Severity, make, register
+from ..syntax import ParsedLine, ProgramStart
 from .context import LineFinding, RuleContext
 
 FAMILY = "reading"
@@ -24,6 +24,11 @@ register(
              "The file is not UTF-8; it was read in another encoding.", FAMILY),
     RuleInfo("MB008", "unknown-function", Severity.ERROR,
              "A name used as a function that FANUC does not have.", FAMILY),
+    RuleInfo("MB009", "tape-mark-not-alone", Severity.WARNING,
+             "'%' shares its line with program text, which the control does not read as "
+             "written.", FAMILY),
+    RuleInfo("MB010", "no-program-number", Severity.INFORMATION,
+             "The program text starts without an O number.", FAMILY),
 )  # fmt: skip
 
 _NOTE_CODES = {"nested-comment": "MB003", "unclosed-comment": "MB004", "text-after-eob": "MB005"}
@@ -31,10 +36,63 @@ _NOTE_CODES = {"nested-comment": "MB003", "unclosed-comment": "MB004", "text-aft
 
 def check(ctx: RuleContext) -> Iterator[Diagnostic]:
     if ctx.doc.decode_note:
-        yield make("MB007", ctx.doc.decode_note, 0, 0, 0)
+        yield _encoding(ctx, ctx.doc.decode_note)
+    yield from _no_program_number(ctx)
+
+
+def _encoding(ctx: RuleContext, note: str) -> Diagnostic:
+    """MB007 stands on the first line, where a file diagnostic is suppressed; it points at the
+    first text the encoding concerns. On input a control may drop such characters: "When a
+    file containing lowercase letters, kana characters, and several special characters ... is
+    read, those letters and characters are ignored" (FANUC B-63524EN/01, 16i/18i-TB, p.649,
+    memory card files)."""
+    for block in ctx.doc.blocks:
+        text = block.parsed.text
+        if text.isascii():
+            continue
+        col = next(i for i, ch in enumerate(text) if ord(ch) > 127)
+        end = col
+        while end < len(text) and ord(text[end]) > 127:
+            end += 1
+        shown = text[col:end]
+        return make(
+            "MB007",
+            f"{note}; the first non-ASCII text is {shown!r} on line {block.line + 1}",
+            0,
+            0,
+            0,
+            related=[Related(block.line, col, end, f"non-ASCII text {shown!r}")],
+        )
+    return make("MB007", note, 0, 0, 0)
+
+
+def _no_program_number(ctx: RuleContext) -> Iterator[Diagnostic]:
+    """MB010 on the first block of program text when no O number comes before it."""
+    for block in ctx.doc.blocks:
+        parsed = block.parsed
+        if isinstance(parsed.statement, ProgramStart):
+            return
+        has_text = parsed.statement is not None or parsed.seq is not None
+        if parsed.problem is not None or any(n.kind == "text-after-eob" for n in parsed.notes):
+            return  # the first text is rejected: its own diagnostic says what it is
+        if has_text:
+            code = parsed.text.strip()
+            yield make(
+                "MB010",
+                f"the program starts here ({code[:30]!r}) without an O number: a control "
+                "stores programs under their O number, so loading this file into memory "
+                "needs a number keyed in (or fails), and a file of several programs cannot "
+                "be told apart",
+                block.line,
+                0,
+                len(parsed.text.rstrip()),
+            )
+            return
 
 
 def check_line(parsed: ParsedLine) -> Iterator[LineFinding]:
+    if parsed.tape_mark and (parsed.statement is not None or parsed.seq is not None):
+        yield _tape_mark_not_alone(parsed)
     problem = parsed.problem
     if problem is not None and problem.dialect is None:
         code = "MB008" if problem.unknown_function else "MB001"
@@ -54,6 +112,35 @@ def check_line(parsed: ParsedLine) -> Iterator[LineFinding]:
                 col,
                 col + 1,
             )
+
+
+def _tape_mark_not_alone(parsed: ParsedLine) -> LineFinding:
+    """MB009: '%' and program text on one line.
+
+    FANUC B-63524EN/01 (16i/18i-TB operator's manual) p.649, memory card files: "A file
+    starts with % or LF ... In a read operation, data between the first % and the next LF is
+    skipped", and "A file always ends with %". So text after a leading '%' is not read; what
+    the control does with a block written before the closing '%' without its own end of block
+    is not documented there (unverified)."""
+    text = parsed.text
+    mark = text.index("%")
+    code = text.replace("%", " ")
+    for comment in parsed.comments:
+        width = comment.span.end - comment.span.start
+        code = code[: comment.span.start] + " " * width + code[comment.span.end :]
+    words = code.strip().rstrip(";").strip()
+    before = not text[:mark].replace(";", "").strip()
+    if before:
+        why = (
+            f"the control skips what follows '%' up to the end of the line, so {words!r} is "
+            "not read: put '%' on a line of its own"
+        )
+    else:
+        why = (
+            f"'%' ends the data where it stands, and {words!r} before it has no end of block "
+            "of its own: put '%' on a line of its own"
+        )
+    return LineFinding("MB009", f"'%' shares its line with {words!r}: {why}", mark, mark + 1)
 
 
 def _outside(parsed: ParsedLine, col: int) -> bool:

@@ -5,8 +5,9 @@ from __future__ import annotations
 from collections.abc import Iterator
 
 from ..diagnostics import Diagnostic, RuleInfo, Severity, make, register
+from ..index import Program, constant_value
 from ..parser import statements_of
-from ..syntax import IfNc, Mixed, NcStatement, Num, ParsedLine, Word
+from ..syntax import Assign, Goto, IfNc, Mixed, NcStatement, Num, ParsedLine, Statement, Var, Word
 from ..variables import FORBIDDEN_ARGUMENTS
 from .context import LineFinding, RuleContext
 
@@ -24,6 +25,10 @@ register(
              "machine's least input increment.", FAMILY),
     RuleInfo("MB405", "repeat-count", Severity.ERROR,
              "An L repeat count outside 1-9999, or a call with no P.", FAMILY),
+    RuleInfo("MB406", "modal-call-not-cancelled", Severity.WARNING,
+             "A G66/G66.1 modal call with no G67 after it in the same program.", FAMILY),
+    RuleInfo("MB407", "program-not-ended", Severity.WARNING,
+             "An O program with no M30, M02 or M99: it runs off its end.", FAMILY),
 )  # fmt: skip
 
 
@@ -113,6 +118,110 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
                         word.span.start,
                         word.span.end,
                     )
+
+
+def check_programs(ctx: RuleContext) -> Iterator[Diagnostic]:
+    """MB406 and MB407: what each O program must hold from its first block to its last."""
+    programs = ctx.index.programs
+    for i, program in enumerate(programs):
+        if program.number is None:
+            continue  # text before the first O number: a fragment, or MB010's
+        g67_lines: list[int] = []
+        ends = False
+        last_statement: int | None = None
+        last_stops = False
+        for line in range(program.first_line + 1, program.end_line):
+            block = ctx.doc.blocks[line]
+            for statement in statements_of(block.statement):
+                last_statement = line
+                last_stops = _stops_here(statement)
+                if not isinstance(statement, NcStatement):
+                    continue
+                for word in statement.words:
+                    value = constant_value(word.value)
+                    if word.address == "M" and value in (2.0, 30.0, 99.0):
+                        ends = True
+                    elif word.address == "G" and value == 67.0:
+                        g67_lines.append(line)
+        for call in program.calls:
+            if call.kind in ("G66", "G66.1") and not any(g > call.line for g in g67_lines):
+                yield make(
+                    "MB406",
+                    f"{call.kind} at line {call.line + 1} has no G67 after it in "
+                    f"{program.display_name}: every later block that moves an axis calls the "
+                    "macro again, to the end of the program (FANUC: G66 and G67 pair in one "
+                    "program)",
+                    call.line,
+                    call.span.start,
+                    call.span.end,
+                )
+        if ends or last_stops or last_statement is None:
+            continue
+        yield _not_ended(
+            ctx, program, programs[i + 1] if i + 1 < len(programs) else None, last_statement
+        )
+
+
+def _stops_here(statement: Statement) -> bool:
+    """A last block that never falls through: a jump back, or the program's own alarm."""
+    if isinstance(statement, Goto):
+        return True
+    if isinstance(statement, Assign) and isinstance(statement.target, Var):
+        return statement.target.number == 3000.0  # #3000=n stops with alarm 3000+n
+    return False
+
+
+def _not_ended(
+    ctx: RuleContext, program: Program, following: Program | None, last_statement: int
+) -> Diagnostic:
+    name = program.display_name
+    callers = [
+        (p.display_name, c.kind, c.line)
+        for p in ctx.index.programs
+        for c in p.calls
+        if c.program == program.number and p is not program
+    ]
+    closed_by_tape_mark = any(
+        ctx.doc.blocks[line].parsed.tape_mark for line in range(last_statement, program.end_line)
+    )
+    if (
+        following is not None
+        and following.header_line == program.end_line
+        and not closed_by_tape_mark
+    ):
+        line = following.header_line
+        block = ctx.doc.blocks[line]
+        span = block.statement.span if block.statement is not None else None
+        start, end = (span.start, span.end) if span is not None else (0, 0)
+        return make(
+            "MB407",
+            f"{following.display_name} starts here while {name} (line "
+            f"{program.first_line + 1}) has no M30, M02 or M99: in the control's memory "
+            f"{name} ends at line {last_statement + 1} without an end, and the blocks from "
+            f"here on are another program",
+            line,
+            start,
+            end,
+        )
+    text = ctx.doc.blocks[last_statement].parsed.text
+    if callers:
+        caller, kind, call_line = callers[0]
+        why = (
+            f"it is called with {kind} from {caller} (line {call_line + 1}), and without M99 "
+            f"the control never returns there"
+        )
+    else:
+        why = (
+            "as a subprogram or macro it never returns to its caller, and as a main program "
+            "it leaves the end to the '%'; add M99 or M30"
+        )
+    return make(
+        "MB407",
+        f"{name} ends at this block without M30, M02 or M99: {why}",
+        last_statement,
+        0,
+        len(text.rstrip()),
+    )
 
 
 def _words(ctx: RuleContext, line: int) -> tuple[Word, ...]:
