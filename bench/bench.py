@@ -173,6 +173,32 @@ def bench_eval() -> None:
     print(f"evaluator: endless loop stopped and reported in {dt * 1000:.0f} ms ({codes})")
 
 
+def bench_threads() -> None:
+    """The threading rules' share of an analysis: finding the threads and checking them."""
+    from fanuc_macro.rules import cycles, thread_lead, thread_passes, thread_tool, threading
+    from fanuc_macro.rules.context import RuleContext
+
+    checks = (threading, thread_passes, thread_tool, thread_lead, cycles)
+    for name, text in (
+        ("seed O4009/O3331", (ROOT / "tests/fixtures/seeds/o4009_external_m50x3.nc").read_text()),
+        ("20,000 generated blocks", generate(20000)),
+    ):
+        doc = parse_text(text, name)
+        index = build_index(doc)
+        facts = evaluate([(name, doc, index)])
+
+        def rules() -> int:
+            ctx = RuleContext(doc, index, facts=facts)
+            return sum(len(list(module.check(ctx))) for module in checks)
+
+        t = best_of(rules, 5)
+        threads = len(RuleContext(doc, index, facts=facts).threads())
+        print(
+            f"threading rules: {name}: {t * 1000:.1f} ms ({threads} threads, "
+            f"{len(facts.motions)} motions)"
+        )
+
+
 def main() -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("--quick", action="store_true")
@@ -189,6 +215,7 @@ def main() -> None:
     bench_parse(sizes)
     bench_memory(sizes[-1])
     bench_eval()
+    bench_threads()
 
 
 if __name__ == "__main__":

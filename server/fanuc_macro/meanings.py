@@ -151,7 +151,10 @@ def variable_roles(doc: Document, index: ProgramIndex) -> dict[tuple[int, int], 
         for var, role in table.items():
             roles[(program.first_line, var)] = Meaning(role, -1, f"module {program.display_name}")
         for line in range(program.first_line, program.end_line):
-            said = assigned_role(doc.blocks[line].parsed)
+            parsed = doc.blocks[line].parsed
+            if not parsed.comments:
+                continue  # no comment, no role
+            said = assigned_role(parsed)
             if said is not None:
                 var, role = said
                 key = (program.first_line, var)

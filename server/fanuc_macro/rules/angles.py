@@ -67,8 +67,15 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
     facts = ctx.doc_facts()
     if facts is None:
         return
-    for line in sorted({line for line, _n in facts.reads}):  # the blocks that read variables
-        block = ctx.doc.blocks[line]
+    for block in ctx.doc.blocks:
+        source = block.parsed.text
+        if (
+            "SIN" not in source
+            and "COS" not in source
+            and "TAN" not in source
+            and not block.parsed.has_lowercase
+        ):
+            continue  # spare most lines the per-line lookup
         for text, number, span in _trig_of(block.parsed):
             summary = facts.reads.get((block.line, number))
             if summary is None or summary.count < 3 or not summary.numeric or summary.constant:

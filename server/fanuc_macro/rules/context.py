@@ -13,6 +13,7 @@ from ..index import ProgramIndex
 from ..syntax import Block, Document, ParsedLine, Statement
 
 if TYPE_CHECKING:
+    from ..meanings import Meaning
     from ..threads.identify import Thread
 
 
@@ -30,6 +31,16 @@ class RuleContext:
     def doc_facts(self) -> DocumentFacts | None:
         return None if self.facts is None else self.facts.by_uri.get(self.doc.uri)
 
+    def roles(self) -> dict[tuple[int, int], Meaning]:
+        """What comments and known parameter tables say each variable is
+        (:func:`fanuc_macro.meanings.variable_roles`)."""
+        found = self.memo.get("roles")
+        if found is None:
+            from ..meanings import variable_roles
+
+            found = self.memo["roles"] = variable_roles(self.doc, self.index)
+        return cast("dict[tuple[int, int], Meaning]", found)
+
     def threads(self) -> list[Thread]:
         """The threads this document's programs cut (:mod:`fanuc_macro.threads.identify`)."""
         found = self.memo.get("threads")
@@ -41,7 +52,12 @@ class RuleContext:
                 []
                 if facts is None or self.facts is None
                 else identify(
-                    self.doc, self.index, facts, self.facts.motions, self.facts.run_values
+                    self.doc,
+                    self.index,
+                    facts,
+                    self.facts.motions,
+                    self.facts.run_values,
+                    self.roles(),
                 )
             )
         return cast("list[Thread]", found)

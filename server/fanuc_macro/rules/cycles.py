@@ -60,20 +60,21 @@ def _thread_start(ctx: RuleContext, thread: Thread) -> Iterator[Diagnostic]:
             if internal
             else thread.major - 0.15 * thread.pitch
         )
+    shallowest = min(xs) if internal else max(xs)
     for m in passes:
         start = m.start_x
         assert start is not None and m.x is not None
         if internal:
-            bad = start > min(xs) + EPS or (crest is not None and start > crest + EPS)
+            bad = start > shallowest + EPS or (crest is not None and start > crest + EPS)
         else:
-            bad = start < max(xs) - EPS or (crest is not None and start < crest - EPS)
+            bad = start < shallowest - EPS or (crest is not None and start < crest - EPS)
         if not bad:
             continue
         side = "inside" if internal else "outside"
         where = (
             f"the {'bore' if internal else 'crest'} of {thread.name}, about X{mm(crest)}"
             if crest is not None
-            else f"its shallowest pass X{mm(max(xs) if not internal else min(xs))}"
+            else f"its shallowest pass X{mm(shallowest)}"
         )
         yield _report(
             ctx,

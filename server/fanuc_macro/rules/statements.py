@@ -3,10 +3,12 @@
 from __future__ import annotations
 
 from collections.abc import Iterator
+from typing import NamedTuple
 
 from ..diagnostics import Diagnostic, RuleInfo, Severity, make, register
 from ..index import Program, constant_value
 from ..parser import statements_of
+from ..per_line import PerLine
 from ..syntax import Assign, Goto, IfNc, Mixed, NcStatement, Num, ParsedLine, Statement, Var, Word
 from ..variables import FORBIDDEN_ARGUMENTS
 from .context import LineFinding, RuleContext
@@ -120,6 +122,33 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
                     )
 
 
+class _LineEnds(NamedTuple):
+    """What one line holds for MB406 / MB407, worked out once per distinct line."""
+
+    has_statement: bool
+    stops: bool  # its last statement never falls through (a jump, the program's own alarm)
+    ends: bool  # M02, M30 or M99
+    cancels_modal_call: bool  # G67
+
+
+def _line_ends(parsed: ParsedLine) -> _LineEnds:
+    statements = statements_of(parsed.statement)
+    ends = g67 = False
+    for statement in statements:
+        if not isinstance(statement, NcStatement):
+            continue
+        for word in statement.words:
+            value = constant_value(word.value)
+            if word.address == "M" and value in (2.0, 30.0, 99.0):
+                ends = True
+            elif word.address == "G" and value == 67.0:
+                g67 = True
+    return _LineEnds(bool(statements), bool(statements) and _stops_here(statements[-1]), ends, g67)
+
+
+_ends_of: PerLine[_LineEnds] = PerLine(_line_ends)
+
+
 def check_programs(ctx: RuleContext) -> Iterator[Diagnostic]:
     """MB406 and MB407: what each O program must hold from its first block to its last."""
     programs = ctx.index.programs
@@ -131,18 +160,13 @@ def check_programs(ctx: RuleContext) -> Iterator[Diagnostic]:
         last_statement: int | None = None
         last_stops = False
         for line in range(program.first_line + 1, program.end_line):
-            block = ctx.doc.blocks[line]
-            for statement in statements_of(block.statement):
+            found = _ends_of(ctx.doc.blocks[line].parsed)
+            if found.has_statement:
                 last_statement = line
-                last_stops = _stops_here(statement)
-                if not isinstance(statement, NcStatement):
-                    continue
-                for word in statement.words:
-                    value = constant_value(word.value)
-                    if word.address == "M" and value in (2.0, 30.0, 99.0):
-                        ends = True
-                    elif word.address == "G" and value == 67.0:
-                        g67_lines.append(line)
+                last_stops = found.stops
+            ends = ends or found.ends
+            if found.cancels_modal_call:
+                g67_lines.append(line)
         for call in program.calls:
             if call.kind in ("G66", "G66.1") and not any(g > call.line for g in g67_lines):
                 yield make(

@@ -10,7 +10,6 @@ from __future__ import annotations
 from collections.abc import Iterator
 
 from ..diagnostics import Diagnostic, Related, RuleInfo, Severity, make, register
-from ..meanings import variable_roles
 from ..threads.geometry import SIN60
 from ..threads.module_shape import fitting_radii, written_value
 from .context import RuleContext
@@ -83,7 +82,7 @@ def _fitting(ctx: RuleContext) -> Iterator[Diagnostic]:
             related = [Related(shape.line, 0, 0, "the tool path's tangency angle, r/(R − r)")]
         else:
             if roles is None:
-                roles = variable_roles(ctx.doc, ctx.index)
+                roles = ctx.roles()
             found = {
                 m.role: (var, m.line)
                 for (first, var), m in roles.items()

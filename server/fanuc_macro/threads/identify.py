@@ -28,7 +28,7 @@ from dataclasses import dataclass, field
 
 from ..evaluator.facts import DocumentFacts, Motion, RunValues
 from ..evaluator.values import fmt_address
-from ..index import ProgramIndex
+from ..index import Program, ProgramIndex
 from ..meanings import Meaning, program_is_internal, variable_roles
 from ..per_line import PerLine
 from ..syntax import Document, ParsedLine
@@ -224,6 +224,12 @@ class Thread:
     def class_text(self) -> str:
         if self.pitch_class is None:
             return ""
+        if self.pitch_class.position == "?":
+            return (
+                "the program's own es and Td2"
+                if not self.internal
+                else ("the program's own EI and TD2")
+            )
         if self.class_exact:
             return self.pitch_class.name
         return f"any class (the loosest, {self.pitch_class.name})"
@@ -248,14 +254,24 @@ class Thread:
         return f"{which} {limit:.3f} of {self.class_text()}, with {tool}"
 
 
-def _designations(doc: Document) -> list[FoundDesignation]:
-    found: list[FoundDesignation] = []
+def _thread_lines(doc: Document) -> list[tuple[int, LineThreadWords]]:
+    """The lines whose comments say something of a thread, read in one pass."""
+    found: list[tuple[int, LineThreadWords]] = []
     for block in doc.blocks:
-        if not block.parsed.comments:
-            continue
-        for text, form in thread_words(block.parsed).designations:
-            found.append(FoundDesignation(text, form, block.line))
+        parsed = block.parsed
+        if parsed.comments:
+            words = thread_words(parsed)
+            if words.designations or words.other_forms or words.starts is not None:
+                found.append((block.line, words))
     return found
+
+
+def _designations(lines: list[tuple[int, LineThreadWords]]) -> list[FoundDesignation]:
+    return [
+        FoundDesignation(text, form, line)
+        for line, words in lines
+        for text, form in words.designations
+    ]
 
 
 def _parse(found: FoundDesignation, internal: bool | None) -> ThreadDesignation | None:
@@ -304,14 +320,38 @@ def _choose_designation(
     return fitting[0]
 
 
-def _starts(doc: Document, program_first: int, program_end: int) -> tuple[int, int] | None:
-    for line in range(program_first, program_end):
-        parsed = doc.blocks[line].parsed
-        if parsed.comments:
-            n = thread_words(parsed).starts
-            if n is not None:
-                return n, line
-    return None
+@dataclass(frozen=True)
+class _ProgramWords:
+    """What one program's comments and formulas say of its threads, read once per program."""
+
+    starts: tuple[int, int] | None  # (number of starts, line), in the program or else the file
+    other_form: tuple[str, int] | None  # (a thread form not checked, line)
+    fitting: bool  # an arc thread by the fitting method
+
+
+def _program_words(
+    doc: Document,
+    facts: DocumentFacts,
+    program: Program,
+    roles: dict[tuple[int, int], Meaning],
+    lines: list[tuple[int, LineThreadWords]],
+) -> _ProgramWords:
+    starts: tuple[int, int] | None = None
+    file_starts: tuple[int, int] | None = None
+    other: tuple[str, int] | None = None
+    for line, words in lines:
+        if words.starts is not None and file_starts is None:
+            file_starts = (words.starts, line)
+        if not program.contains(line):
+            continue
+        if starts is None and words.starts is not None:
+            starts = (words.starts, line)
+        if other is None and words.other_forms:
+            other = (words.other_forms[0], line)
+    fitting = fitting_radii(doc, facts, program) is not None or any(
+        f == program.first_line and m.role == "groove_radius" for (f, _v), m in roles.items()
+    )
+    return _ProgramWords(starts or file_starts, other, fitting)
 
 
 def _input_roles(thread: Thread, shape: ModuleShape) -> dict[str, int]:
@@ -361,8 +401,8 @@ def _class_from_inputs(thread: Thread, shape: ModuleShape) -> tuple[PitchClass, 
     # The module enters es as a magnitude (seed paper 000, table 2); EI is positive anyway.
     signed = abs(es) if thread.internal else -abs(es)
     reason = (
-        f"its own es {es:g} (#{es_var}) and {tol_name} {tol:g} (#{tol_var}), which no "
-        "ISO 965-1 class has"
+        f"the module's own es {es:g} (#{es_var}) and {tol_name} {tol:g} (#{tol_var}), which "
+        "no ISO 965-1 class has"
     )
     return PitchClass("?", 0, signed, tol), reason
 
@@ -401,16 +441,31 @@ def identify(
     facts: DocumentFacts,
     motions: list[Motion],
     runs: dict[int, RunValues] | None = None,
+    roles: dict[tuple[int, int], Meaning] | None = None,
 ) -> list[Thread]:
     """Every threading job of ``doc``'s programs with its thread; ``runs``: the variables of
     each execution when it began to cut (:attr:`fanuc_macro.evaluator.Facts.run_values`)."""
     jobs = thread_jobs(motions, doc.uri)
     if not jobs:
         return []
-    found = _designations(doc)
-    roles = variable_roles(doc, index)
+    lines = _thread_lines(doc)
+    found = _designations(lines)
+    if roles is None:
+        roles = variable_roles(doc, index)
     runs = runs or {}
-    return [_identify(doc, index, facts, job, found, roles, runs.get(job.run)) for job in jobs]
+    words: dict[int, _ProgramWords] = {}
+    threads: list[Thread] = []
+    for job in jobs:
+        program = index.program_at(job.program_line)
+        if program is None:
+            continue
+        if program.first_line not in words:
+            words[program.first_line] = _program_words(doc, facts, program, roles, lines)
+        run = runs.get(job.run)
+        threads.append(
+            _identify(doc, index, facts, job, found, roles, run, words[program.first_line])
+        )
+    return threads
 
 
 def _identify(
@@ -421,6 +476,7 @@ def _identify(
     found: list[FoundDesignation],
     roles: dict[tuple[int, int], Meaning],
     run: RunValues | None,
+    words: _ProgramWords,
 ) -> Thread:
     thread = Thread(job, internal=job.internal)
     if not job.xs:
@@ -495,7 +551,7 @@ def _identify(
             thread.nose_radius, thread.nose_line = nose
             thread.nose_reason = f"named by the comment at line {nose[1] + 1}"
     if thread.starts == 1:
-        starts = _starts(doc, first, end) or _starts(doc, 0, len(doc.blocks))
+        starts = words.starts
         if starts is not None:
             thread.starts, thread.starts_line = starts
             if pitch_is_lead and thread.pitch is not None:
@@ -516,7 +572,11 @@ def _identify(
             thread.pitch_class, thread.class_reason = from_inputs
             thread.class_exact = True
             thread.evidence.append(
-                Evidence(f"class {thread.pitch_class.name} from {thread.class_reason}")
+                Evidence(
+                    thread.class_reason
+                    if thread.pitch_class.position == "?"
+                    else f"class {thread.class_text()} from {thread.class_reason}"
+                )
             )
     if thread.pitch_class is None and thread.major is not None and thread.pitch is not None:
         try:
@@ -528,25 +588,12 @@ def _identify(
         if loosest is not None:
             thread.pitch_class = loosest
             thread.class_reason = "no class is known: the loosest of ISO 965-1 stands in"
-    _unsupported(doc, index, facts, roles, job, thread)
+    _unsupported(job, thread, words)
     return thread
 
 
-def _unsupported(
-    doc: Document,
-    index: ProgramIndex,
-    facts: DocumentFacts,
-    roles: dict[tuple[int, int], Meaning],
-    job: ThreadJob,
-    thread: Thread,
-) -> None:
-    first = job.program_line
-    program = index.program_at(first)
-    end = program.end_line if program is not None else first + 1
-    fitting = fitting_radii(doc, facts, program) if program is not None else None
-    if fitting is not None or any(
-        f == first and m.role == "groove_radius" for (f, _v), m in roles.items()
-    ):
+def _unsupported(job: ThreadJob, thread: Thread, words: _ProgramWords) -> None:
+    if words.fitting:
         thread.unsupported = (
             "an arc (round) thread cut by the fitting method: its profile is an arc, not the "
             "ISO 60° one; the tool radius is checked against the groove's (MB806)"
@@ -559,17 +606,13 @@ def _unsupported(
             "root and radius checks are for parallel ISO metric threads"
         )
         return
-    if thread.designation is None:
-        for line in range(first, end):
-            parsed = doc.blocks[line].parsed
-            if parsed.comments:
-                others = thread_words(parsed).other_forms
-                if others:
-                    thread.unsupported = (
-                        f"{others[0]} (line {line + 1}): only ISO metric 60° threads are "
-                        "checked against their profile"
-                    )
-                    return
+    if thread.designation is None and words.other_form is not None:
+        what, line = words.other_form
+        thread.unsupported = (
+            f"{what} (line {line + 1}): only ISO metric 60° threads are checked against their "
+            "profile"
+        )
+        return
     if thread.major is None:
         thread.missing = (
             "the thread's size is not known: no designation such as (M50X3-5G6G) in the "

@@ -16,6 +16,7 @@ from __future__ import annotations
 from collections import Counter
 from collections.abc import Sequence
 from dataclasses import dataclass, field
+from functools import cached_property
 
 from ..evaluator.facts import Motion
 
@@ -42,13 +43,13 @@ class ThreadJob:
     def code(self) -> str:
         return Counter(m.code for m in self.passes).most_common(1)[0][0]
 
-    @property
+    @cached_property
     def lead(self) -> float | None:
         """The F of most passes: the lead the thread is cut with."""
         feeds = Counter(m.words.get("F") for m in self.passes if m.words.get("F") is not None)
         return feeds.most_common(1)[0][0] if feeds else None
 
-    @property
+    @cached_property
     def xs(self) -> list[float]:
         return [m.x for m in self.passes if m.x is not None]
 
@@ -137,7 +138,8 @@ def thread_jobs(motions: Sequence[Motion], uri: str) -> list[ThreadJob]:
             old = spans[id(job)]
             spans[id(job)] = span if old is None else (min(old[0], span[0]), max(old[1], span[1]))
         job.passes.append(m)
-        job.after.append(_next_motion(motions, i))
+        # Single cuts tell their side by the retract after them; cycles do not need it.
+        job.after.append(None if key[1] else _next_motion(motions, i))
     for job in jobs:
         job.internal, job.side_reason = _side_of_cuts(job)
     return jobs

@@ -162,7 +162,9 @@ _tan30_of: PerLine[frozenset[int]] = PerLine(_line_tan30)
 def _tan30_offsets(doc: Document, program: Program) -> set[int]:
     found: set[int] = set()
     for line in range(program.first_line, program.end_line):
-        found |= _tan30_of(doc.blocks[line].parsed)
+        parsed = doc.blocks[line].parsed
+        if "TAN" in parsed.text or parsed.has_lowercase:  # spare most lines the lookup
+            found |= _tan30_of(parsed)
     return found
 
 
@@ -350,7 +352,7 @@ _fitting_of: PerLine[tuple[int, int] | None] = PerLine(_line_fitting)
 def fitting_radii(doc: Document, facts: DocumentFacts, program: Program) -> FittingRadii | None:
     for line in range(program.first_line, program.end_line):
         parsed = doc.blocks[line].parsed
-        if parsed.statement is None:
+        if "ASIN" not in parsed.text and not parsed.has_lowercase:  # spare most lines
             continue
         found = _fitting_of(parsed)
         if found is None:
