@@ -26,8 +26,8 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "server"))
 
 from fanuc_macro.analysis import analyse  # noqa: E402
-from fanuc_macro.evaluator import evaluate  # noqa: E402
-from fanuc_macro.index import build_index  # noqa: E402
+from fanuc_macro.evaluator import Facts, evaluate  # noqa: E402
+from fanuc_macro.index import ProgramIndex, build_index  # noqa: E402
 from fanuc_macro.parser import BlockParser, parse_text  # noqa: E402
 from fanuc_macro.syntax import Document  # noqa: E402
 
@@ -187,7 +187,7 @@ def bench_threads() -> None:
         index = build_index(doc)
         facts = evaluate([(name, doc, index)])
 
-        def rules() -> int:
+        def rules(doc: Document = doc, index: ProgramIndex = index, facts: Facts = facts) -> int:
             ctx = RuleContext(doc, index, facts=facts)
             return sum(len(list(module.check(ctx))) for module in checks)
 
