@@ -125,18 +125,25 @@ def _repeated(ctx: RuleContext, thread: Thread, internal: bool) -> Iterator[Diag
     i = repeats[0]
     m, before = passes[i], passes[i - 1]
     assert m.x is not None
+    yield _pass_finding(
+        ctx,
+        thread,
+        m,
+        f"{pass_name(thread, i, m)} at X{mm(m.x)} (line {m.line + 1}) repeats "
+        f"{pass_name(thread, i - 1, before)} before the full depth: that depth is cut twice",
+        " and one depth of the sequence is never cut; ",
+    )
+
+
+def _pass_finding(
+    ctx: RuleContext, thread: Thread, m: Motion, what: str, before_cause: str
+) -> Diagnostic:
+    """MB814 at the rounding that causes it when there is one (the line to fix), else at the
+    pass."""
     cause, fix_line, related = _rounding_cause(ctx, thread, m)
     line = m.line if fix_line is None else fix_line
-    yield make(
-        "MB814",
-        f"{pass_name(thread, i, m)} at X{mm(m.x)} (line {m.line + 1}) repeats "
-        f"{pass_name(thread, i - 1, before)} before the full depth: that depth is cut twice"
-        + (f" and one depth of the sequence is never cut; {cause}" if cause else ""),
-        line,
-        0,
-        width(ctx, line),
-        related=related,
-    )
+    message = what + (f"{before_cause}{cause}" if cause else "")
+    return make("MB814", message, line, 0, width(ctx, line), related=related)
 
 
 def _steps(passes: list[Motion], sign: float) -> list[float]:
@@ -166,17 +173,14 @@ def _skipped(
             m = passes[i + 1]
             before = passes[i]
             assert m.x is not None and before.x is not None
-            cause, fix_line, related = _rounding_cause(ctx, thread, m)
-            line = m.line if fix_line is None else fix_line
-            yield make(
-                "MB814",
+            yield _pass_finding(
+                ctx,
+                thread,
+                m,
                 f"{pass_name(thread, i + 1, m)} at X{mm(m.x)} (line {m.line + 1}) takes twice "
                 f"the program's step of {usual:.3f} mm: X{mm(before.x - sign * 2.0 * usual)} "
-                "is never cut" + (f"; {cause}" if cause else ""),
-                line,
-                0,
-                width(ctx, line),
-                related=related,
+                "is never cut",
+                "; ",
             )
             return
 
