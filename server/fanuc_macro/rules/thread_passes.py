@@ -157,7 +157,7 @@ def _usual_step(steps: list[float]) -> float | None:
     if len(positive) < 3:
         return None
     step, count = Counter(positive).most_common(1)[0]
-    return step if count * 4 >= len(steps) * 3 else None
+    return step if count * 4 >= len(positive) * 3 else None
 
 
 def _skipped(
