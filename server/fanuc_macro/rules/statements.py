@@ -34,6 +34,14 @@ register(
 )  # fmt: skip
 
 
+# "The units used for argument data passed without a decimal point correspond to the least
+# input increment of each address" (FANUC 16i/18i Operator's Manual B-63684EN, Custom macro,
+# "Position of the decimal point"): lengths and angles (0.001 mm or degree on IS-B) are scaled;
+# S, T, M, D, H take whole numbers and F is in mm/min (1 mm/min on IS-B), so those are not.
+# E (the precise lead of some lathes) is taken for a length (unverified).
+SCALED_ARGUMENTS = frozenset("ABCEIJKQRUVWXYZ")
+
+
 def check_line(parsed: ParsedLine) -> Iterator[LineFinding]:
     statement = parsed.statement
     if isinstance(statement, Mixed):
@@ -105,9 +113,10 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
                         word.span.end,
                     )
                 elif (
-                    word.address != "G"  # a G code in a G66.1 block, not an argument
+                    word.address in SCALED_ARGUMENTS
                     and isinstance(word.value, Num)
                     and not word.value.has_decimal_point
+                    and word.value.value != 0.0  # 0 is 0 in any increment
                 ):
                     value = word.value.value
                     yield make(
