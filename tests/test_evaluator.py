@@ -363,3 +363,12 @@ def test_multiple_modal_calls_run_in_the_manual_order() -> None:
     # (1-1) (2-1) (1-2) (3-1) (2-1) (3-2) (2-1) (1-3), as the manual's figure shows.
     assert moves == [3, 11, 5, 14, 11, 15, 11, 8]
     assert not [f for f in facts.document("t.nc").findings if f.kind.startswith("nesting")]
+
+
+def test_g76_on_a_mill_is_fine_boring_not_a_thread() -> None:
+    from fanuc_macro.config import Config
+
+    text = "O1\nG00 X0. Y0. Z5.\nG76 X10. Y10. Z-20. R2. Q0.5 P1000 F100.\nG80\nM30\n"
+    mill = analyse(text, "m.nc", config=Config(controller="0i-MF"))
+    assert mill.facts is not None and not [m for m in mill.facts.motions if m.code == "G76"]
+    assert not mill.threads

@@ -785,7 +785,13 @@ class Machine:
         g_codes: list[float],
         order: list[tuple[str, Value, CompiledWord]],
     ) -> bool:
-        one_shot = next((g for g in g_codes if g in ONE_SHOT_CYCLES), None) if g_codes else None
+        # G70-G76 are the lathe's multiple repetitive cycles; on a mill G73-G76 are canned
+        # drilling and boring cycles (G76 fine boring), which the analysis does not run.
+        one_shot = (
+            next((g for g in g_codes if g in ONE_SHOT_CYCLES), None)
+            if g_codes and self.config.is_lathe
+            else None
+        )
         const = cl.constant
         has_axis = const.has_axis if const is not None else not AXES.isdisjoint(values)
         modal = self.modal
