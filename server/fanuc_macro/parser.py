@@ -246,12 +246,20 @@ class _ToAst(Transformer[Token, Any]):
         return c
 
 
-_FAST_VALUE = r"(?:[-+]?[ \t]*(?:[0-9]+\.?[0-9]*|\.[0-9]+)|-?[ \t]*#[ \t]*[0-9]+)"
-_FAST_WORD = re.compile(r"([A-MP-Z])[ \t]*(" + _FAST_VALUE + r")[ \t]*", re.I)
-_FAST_LINE = re.compile(
-    r"[ \t]*(?:(/)[ \t]*([0-9]+\.?[0-9]*|\.[0-9]+)?[ \t]*)?"
-    r"(?:(N)[ \t]*([0-9]+\.?[0-9]*|\.[0-9]+)[ \t]*)?"
-    r"((?:[A-MP-Z][ \t]*" + _FAST_VALUE + r"[ \t]*)*)",
+# The fast path scans a block word by word with regexes in which every repeat is followed by a
+# character it cannot take: a failed match gives back nothing worth retrying, so a line of any
+# length is scanned in linear time. (One regex for the whole line, with the words as a repeated
+# group, backtracked exponentially on a long line that fails at its end: "X11X11...X11[".)
+_FAST_NUMBER = r"(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)"
+_FAST_HEAD = re.compile(
+    r"[ \t]*(?:(/)[ \t]*(?:(" + _FAST_NUMBER + r")[ \t]*)?)?"
+    r"(?:(N)[ \t]*(" + _FAST_NUMBER + r")[ \t]*)?",
+    re.I,
+)
+_FAST_WORD = re.compile(
+    r"([A-MP-Z])[ \t]*"
+    r"((?:[-+][ \t]*)?" + _FAST_NUMBER + r"|(?:-[ \t]*)?#[ \t]*[0-9]+)"
+    r"[ \t]*",
     re.I,
 )
 
@@ -276,20 +284,31 @@ def fast_parse(code: str) -> tuple[int | None, int | None, Span | None, NcStatem
     Returns None when the block is anything else; then the grammar decides. The result must
     equal the grammar's: tests/test_parser.py compares the two on every line it has.
     """
-    m = _FAST_LINE.fullmatch(code)
-    if m is None:
-        return None
-    slash, level, n_letter, n_value, words_text = m.group(1, 2, 3, 4, 5)
+    head = _FAST_HEAD.match(code)
+    assert head is not None  # every part of it is optional
+    slash, level, n_letter, n_value = head.group(1, 2, 3, 4)
     skip = None if slash is None else int(_to_float(level)) if level else 0
     seq: int | None = None
     seq_span: Span | None = None
     if n_letter is not None:
         seq = int(_to_float(n_value))
-        seq_span = Span(m.start(3), m.end(4))
-    if not words_text:
+        seq_span = Span(head.start(3), head.end(4))
+    pos = head.end()
+    size = len(code)
+    if pos == size:
         return skip, seq, seq_span, None
+    found: list[re.Match[str]] = []
+    match_word = _FAST_WORD.match
+    while pos < size:
+        wm = match_word(code, pos)
+        if wm is None:
+            return None
+        found.append(wm)
+        pos = wm.end()
+    # Values are read once the whole block has matched: a number too long to read in a block
+    # the grammar rejects for another reason is the grammar's to report.
     words: list[Word] = []
-    for wm in _FAST_WORD.finditer(code, m.start(5), m.end(5)):
+    for wm in found:
         value = _fast_value(wm.group(2), wm.start(2))
         letter = wm.group(1)
         words.append(Word(letter.upper(), value, Span(wm.start(1), wm.end(2)), letter.islower()))
@@ -542,11 +561,14 @@ def _depth_before(code: str, col: int) -> tuple[int, int | None]:
 
 
 _NUMBER_TEXT = re.compile(r"[0-9]*\.?[0-9]*")
+# No two repeats here can take the same characters (a space run, a digit run): a failed search
+# on a long line stays linear.
 _WORD_BEFORE = re.compile(
-    r"([A-MP-Z])[ \t]*([-+]?[ \t]*[0-9]+\.?[0-9]*|[-+]?[ \t]*\.[0-9]+)[ \t]*$", re.I
+    r"([A-MP-Z])[ \t]*((?:[-+][ \t]*)?(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+))[ \t]*$", re.I
 )
-_ADDRESS_BEFORE = re.compile(r"([A-MP-Z])[ \t]*[-+]?[ \t]*$", re.I)
-_BLOCK_HEAD = re.compile(r"\s*(/\s*\d?\s*)?(N\s*\d+\s*)?", re.I)
+_ADDRESS_BEFORE = re.compile(r"([A-MP-Z])[ \t]*(?:[-+][ \t]*)?$", re.I)
+_BLOCK_HEAD = re.compile(r"\s*(?:/\s*(?:\d\s*)?)?(?:N\s*\d+\s*)?", re.I)
+_LETTERS = re.compile(r"[A-Z]+", re.I)
 _CONDITION = re.compile(r"^\s*(N\d+\s*)?(IF|WHILE|WH)\s*\[", re.I)
 
 
@@ -676,7 +698,7 @@ def _expression_from(code: str, start: int) -> str:
         elif ch == "]":
             depth -= 1
         elif ch.isalpha() and depth == 0:
-            name = re.match(r"[A-Z]+", code[i:], re.I)
+            name = _LETTERS.match(code, i)
             word = name.group(0).upper() if name else ""
             known = next(
                 (f for f in (*_KNOWN_FUNCTIONS, *_OPERATOR_WORDS) if word.startswith(f)), None
@@ -711,7 +733,9 @@ def _misspelt_keyword(code: str) -> tuple[str, int, str] | None:
 _KNOWN_FUNCTIONS = frozenset(
     "SIN COS TAN ASIN ACOS ATAN SQRT ABS ROUND FIX FUP LN EXP POW ADP BIN BCD".split()  # noqa: SIM905
 )
-_WORD_BEFORE_BRACKET = re.compile(r"([A-Z]{2,})\s*\[", re.I)
+# From the first letter of a run only: tried at every letter, a long run of letters with no
+# '[' after it took quadratic time.
+_WORD_BEFORE_BRACKET = re.compile(r"(?<![A-Z])([A-Z]{2,})\s*\[", re.I)
 
 
 def _unknown_function(code: str, col: int) -> tuple[str, int] | None:

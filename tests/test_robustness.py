@@ -1,0 +1,90 @@
+"""No input freezes or crashes the analysis: hostile lines, deep and long expressions, huge
+files, arithmetic past the control's range.
+
+Time is checked as growth where it can be (twice the input may cost at most about three times
+as much: a backtracking regex grows four times or more per word), with generous wall-clock
+bounds only as a backstop.
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable
+
+import pytest
+
+from fanuc_macro.parser import BlockParser, fast_parse
+
+GRAMMAR = BlockParser(use_fast_path=False)
+
+# Lines that froze the fast path's old regex (it backtracked exponentially on them), and lines
+# built to make a regex or a scanner retry: long runs that fail at their very end.
+HOSTILE_LINES = {
+    "integer words then a bracket": "G65P9010A1000B1000C1000D1000E1000F1000H1000I1000J1000K1000"
+    "X#[#1+1]",
+    "repeated words then '['": "X11" * 22 + "[",
+    "digits then a letter": "X" + "1" * 3000 + "a",
+    "spaces then a bad character": "X" + " " * 3000 + "!",
+    "block delete then spaces": "/" + " " * 3000 + "!",
+    "letters": "A" * 3000,
+    "semicolons": ";" * 3000,
+    "words then a comma": "X1.0" * 700 + ",",
+    "decimal points": "X1." * 1000 + ".",
+    "signs": "X-" * 1000 + "1",
+}
+
+
+def _seconds(fn: Callable[[], object], repeat: int = 5) -> float:
+    """The best of a few runs: the least disturbed by the other processes of the machine."""
+    best = float("inf")
+    for _ in range(repeat):
+        started = time.perf_counter()
+        fn()
+        best = min(best, time.perf_counter() - started)
+    return best
+
+
+def _growth(make: Callable[[int], str], parse: Callable[[str], object], n: int) -> float:
+    """How much longer the input of size 4n takes than the one of size n."""
+    small, large = make(n), make(4 * n)
+    return _seconds(lambda: parse(large)) / max(_seconds(lambda: parse(small)), 1e-6)
+
+
+# ---- the scanner: linear on every line -------------------------------------------------------
+
+FAMILIES: dict[str, Callable[[int], str]] = {
+    "integer words then '['": lambda n: "G65P9010" + "A1000" * n + "X#[#1+1]",
+    "words then '['": lambda n: "X11" * n + "[",
+    "words then a comma": lambda n: "X1.0" * n + ",",
+    "a digit run then a letter": lambda n: "X" + "1" * (4 * n) + "a",
+    "a space run then '!'": lambda n: "X" + " " * (4 * n) + "!",
+    "block delete, spaces": lambda n: "/" + " " * (4 * n) + "!",
+    "signed words then '#'": lambda n: "X-1.5 Y+2." * n + "#",
+}
+
+
+@pytest.mark.parametrize("name", FAMILIES)
+def test_fast_path_time_grows_linearly(name: str) -> None:
+    make = FAMILIES[name]
+    growth = _growth(make, fast_parse, 400)
+    # Linear is 4; the old regex was 4**400 on the first family. 12 leaves room for noise.
+    assert growth < 12, f"{name}: 4x the input took {growth:.1f}x the time"
+
+
+@pytest.mark.parametrize("name", FAMILIES)
+def test_whole_line_parse_time_grows_linearly(name: str) -> None:
+    """Fast path, grammar and the description of the syntax error together."""
+    make = FAMILIES[name]
+    growth = _growth(make, lambda text: BlockParser().parse_line(text), 200)
+    assert growth < 12, f"{name}: 4x the input took {growth:.1f}x the time"
+
+
+@pytest.mark.parametrize("name", HOSTILE_LINES)
+def test_hostile_line_is_read_quickly_and_as_the_grammar_reads_it(name: str) -> None:
+    text = HOSTILE_LINES[name]
+    fast = BlockParser()
+    started = time.perf_counter()
+    parsed = fast.parse_line(text)
+    assert time.perf_counter() - started < 1.0  # a backstop: these take milliseconds
+    assert parsed == GRAMMAR.parse_line(text)
+
