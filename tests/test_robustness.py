@@ -13,6 +13,7 @@ from collections.abc import Callable
 
 import pytest
 
+from fanuc_macro.blocks import cut_comments
 from fanuc_macro.parser import BlockParser, fast_parse
 
 GRAMMAR = BlockParser(use_fast_path=False)
@@ -88,3 +89,7 @@ def test_hostile_line_is_read_quickly_and_as_the_grammar_reads_it(name: str) -> 
     assert time.perf_counter() - started < 1.0  # a backstop: these take milliseconds
     assert parsed == GRAMMAR.parse_line(text)
 
+
+def test_cut_comments_is_linear_in_end_of_block_marks() -> None:
+    growth = _growth(lambda n: ";" * (4 * n), cut_comments, 2000)
+    assert growth < 12
