@@ -10,11 +10,16 @@ from __future__ import annotations
 
 import time
 from collections.abc import Callable
+from typing import Any
 
 import pytest
 
 from fanuc_macro.blocks import cut_comments
+from fanuc_macro.evaluator import compiler
+from fanuc_macro.evaluator.compiler import compile_cond, compile_expr, constant_of
 from fanuc_macro.parser import BlockParser, fast_parse
+from fanuc_macro.syntax import Binary, Call, Compare, Cond, Expr, Logic, Num, Span, Var
+from fanuc_macro.walk import bracket_depth, cond_exprs, subexpressions
 
 GRAMMAR = BlockParser(use_fast_path=False)
 
@@ -93,3 +98,59 @@ def test_hostile_line_is_read_quickly_and_as_the_grammar_reads_it(name: str) -> 
 def test_cut_comments_is_linear_in_end_of_block_marks() -> None:
     growth = _growth(lambda n: ";" * (4 * n), cut_comments, 2000)
     assert growth < 12
+
+
+# ---- expressions of any length and depth: compiled, folded and walked without recursion -------
+
+
+def _sum_of_ones(terms: int) -> Expr:
+    """1+1+...+1 as the grammar builds it: a left-leaning chain ``terms`` levels deep."""
+    expr: Expr = Num(1.0, "1", Span(0, 1))
+    for _ in range(terms - 1):
+        expr = Binary("+", expr, Num(1.0, "1", Span(0, 1)), Span(0, 1))
+    return expr
+
+
+def _nested_sines(levels: int, inner: Expr) -> Expr:
+    expr = inner
+    for _ in range(levels):
+        expr = Call("SIN", (expr,), Span(0, 1), Span(0, 1))
+    return expr
+
+
+def test_a_sum_of_20000_terms_folds_to_its_value() -> None:
+    assert constant_of(_sum_of_ones(20_000)) == 20_000.0
+    assert compile_expr(_sum_of_ones(20_000))(None) == 20_000.0  # type: ignore[arg-type]
+
+
+def test_functions_nested_20000_deep_fold_and_walk() -> None:
+    assert constant_of(_nested_sines(20_000, Num(0.0, "0", Span(0, 1)))) == 0.0
+    variable = _nested_sines(20_000, Var(1.0, None, Span(0, 1)))
+    assert constant_of(variable) is None
+    compile_expr(variable)  # compiling is iterative; running it is bounded by the parser
+    assert bracket_depth(variable) == 20_000
+    assert sum(1 for _ in subexpressions(variable)) == 20_001
+
+
+def test_constant_folding_compiles_each_node_once(monkeypatch: pytest.MonkeyPatch) -> None:
+    """Folding at every level walked the subtree again: quadratic in the length."""
+    calls = 0
+    compile_node = compiler._compile_node
+
+    def counted(*args: Any) -> Any:
+        nonlocal calls
+        calls += 1
+        return compile_node(*args)
+
+    monkeypatch.setattr(compiler, "_compile_node", counted)
+    compile_expr(_sum_of_ones(5000))
+    assert calls == 4999  # one per operator
+
+
+def test_conditions_nested_deep_compile_and_walk() -> None:
+    compare = Compare("EQ", Var(1.0, None, Span(0, 1)), Num(1.0, "1", Span(0, 1)), Span(0, 1))
+    cond: Cond = compare
+    for _ in range(20_000):
+        cond = Logic(cond, (("OR", compare),), Span(0, 1))
+    assert sum(1 for _ in cond_exprs(cond)) == 2 * 20_001
+    compile_cond(cond)

@@ -29,15 +29,18 @@ from .syntax import (
 
 
 def cond_exprs(cond: Cond) -> Iterator[Expr]:
-    if isinstance(cond, Compare):
-        yield cond.left
-        yield cond.right
-    elif isinstance(cond, Logic):
-        yield from cond_exprs(cond.first)
-        for _, rest in cond.rest:
-            yield from cond_exprs(rest)
-    elif isinstance(cond, BareCond):
-        yield cond.value
+    """The expressions of a condition, in source order (nested AND/OR/XOR included)."""
+    stack: list[Cond] = [cond]
+    while stack:
+        node = stack.pop()
+        if isinstance(node, Compare):
+            yield node.left
+            yield node.right
+        elif isinstance(node, Logic):
+            stack.extend(c for _, c in reversed(node.rest))
+            stack.append(node.first)
+        elif isinstance(node, BareCond):
+            yield node.value
 
 
 def top_expressions(statement: Statement) -> Iterator[Expr]:
@@ -95,14 +98,64 @@ def variables(statement: Statement) -> Iterator[Var]:
 
 def bracket_depth(expr: Expr) -> int:
     """Nesting of ``[ ]``, counting function brackets and ``#[ ]`` as FANUC does."""
-    if isinstance(expr, Bracket):
-        return 1 + bracket_depth(expr.inner)
-    if isinstance(expr, Call):
-        return 1 + max(bracket_depth(a) for a in expr.args)
-    if isinstance(expr, Var):
-        return 0 if expr.index is None else 1 + bracket_depth(expr.index)
-    if isinstance(expr, Binary):
-        return max(bracket_depth(expr.left), bracket_depth(expr.right))
-    if isinstance(expr, Unary):
-        return bracket_depth(expr.operand)
-    return 0
+    deepest = 0
+    stack: list[tuple[Expr, int]] = [(expr, 0)]  # a node and the brackets around it
+    while stack:
+        node, depth = stack.pop()
+        if isinstance(node, Bracket):
+            stack.append((node.inner, depth + 1))
+        elif isinstance(node, Call):
+            stack.extend((a, depth + 1) for a in node.args)
+        elif isinstance(node, Var):
+            if node.index is not None:
+                stack.append((node.index, depth + 1))
+        elif isinstance(node, Binary):
+            stack.append((node.left, depth))
+            stack.append((node.right, depth))
+        elif isinstance(node, Unary):
+            stack.append((node.operand, depth))
+        # A bracket closed around a leaf counts: [1] is one level.
+        deepest = max(deepest, depth)
+    return deepest
+
+
+def expression_depth(statement: Statement) -> int:
+    """The deepest nesting of nodes in a statement's expressions and conditions: each operator,
+    sign, bracket, function and AND/OR/XOR is a level. The parser refuses blocks nested deeper
+    than the analysis can follow (see ``fanuc_macro.parser.MAX_EXPRESSION_DEPTH``)."""
+    deepest = 0
+    stack: list[tuple[Expr | Cond, int]] = [(c, 1) for c in _conditions(statement)]
+    stack.extend((e, 1) for e in top_expressions(statement))
+    while stack:
+        node, depth = stack.pop()
+        deepest = max(deepest, depth)
+        if isinstance(node, Logic):
+            stack.append((node.first, depth + 1))
+            stack.extend((c, depth + 1) for _, c in node.rest)
+        elif isinstance(node, Compare):
+            stack.append((node.left, depth + 1))
+            stack.append((node.right, depth + 1))
+        elif isinstance(node, BareCond):
+            stack.append((node.value, depth + 1))
+        elif isinstance(node, Binary):
+            stack.append((node.left, depth + 1))
+            stack.append((node.right, depth + 1))
+        elif isinstance(node, Unary):
+            stack.append((node.operand, depth + 1))
+        elif isinstance(node, Bracket):
+            stack.append((node.inner, depth + 1))
+        elif isinstance(node, Call):
+            stack.extend((a, depth + 1) for a in node.args)
+        elif isinstance(node, Var) and node.index is not None:
+            stack.append((node.index, depth + 1))
+    return deepest
+
+
+def _conditions(statement: Statement) -> Iterator[Cond]:
+    if isinstance(statement, IfGoto | IfThen | IfNc) or (
+        isinstance(statement, While | BlockIf) and statement.cond is not None
+    ):
+        assert statement.cond is not None
+        yield statement.cond
+    elif isinstance(statement, Mixed):
+        yield from _conditions(statement.macro)

@@ -10,7 +10,6 @@ from collections.abc import Callable
 from typing import Any, Protocol
 
 from ..syntax import BareCond, Binary, Bracket, Call, Compare, Cond, Expr, Logic, Num, Unary, Var
-from ..walk import subexpressions
 from .values import (
     ONE_ARG,
     TWO_ARG,
@@ -70,16 +69,9 @@ def _constant(value: Value) -> Evaluator:
 # (its range is a parameter); ROUND in an NC address (the address's least input increment).
 _STATEFUL = frozenset({"ATAN"})
 
-
-def _foldable(expr: Expr, in_address: bool) -> bool:
-    for node in subexpressions(expr):
-        if isinstance(node, Var):
-            return False
-        if isinstance(node, Call) and (
-            node.name in _STATEFUL or (in_address and node.name == "ROUND")
-        ):
-            return False
-    return True
+# A compiled node: its evaluator, its value when it is a constant, and whether it could be one
+# (no variable, no function that depends on the control's state).
+_Compiled = tuple[Evaluator, float | None, bool]
 
 
 def constant_of(expr: Expr, in_address: bool = False) -> float | None:
@@ -88,53 +80,106 @@ def constant_of(expr: Expr, in_address: bool = False) -> float | None:
     alarm (the run reports that). ``in_address``: the expression is an NC address's value."""
     if isinstance(expr, Num):
         return expr.value
-    if not _foldable(expr, in_address):
-        return None
-    try:
-        value = _compile(expr, in_address)(_NO_FRAME)
-    except MacroAlarm:
-        return None
-    return value if isinstance(value, float) else None
+    return _compile_tree(expr, in_address)[1]
 
 
 def compile_expr(expr: Expr, in_address: bool = False) -> Evaluator:
     """``in_address``: the value of an NC address, where ROUND rounds to the address's least
     input increment instead of to a whole number (FANUC Custom Macro B manual, "ROUND")."""
+    return _compile_tree(expr, in_address)[0]
+
+
+def _compile_tree(root: Expr, in_address: bool) -> _Compiled:
+    """Compile an expression bottom-up with an explicit stack, folding constant parts as it
+    goes: each node is compiled once, whatever the depth (recursion failed past a few hundred
+    levels, and folding at every level made it quadratic)."""
+    todo: list[tuple[Expr, bool, bool]] = [(root, in_address, False)]
+    done: list[_Compiled] = []  # the compiled children, left to right, of the nodes under way
+    while todo:
+        node, address, children_done = todo.pop()
+        if children_done:
+            count = len(_children(node))
+            compiled = _compile_node(node, address, done[len(done) - count :])
+            del done[len(done) - count :]
+            done.append(compiled)
+            continue
+        children = _children(node)
+        if not children:
+            done.append(_compile_leaf(node))
+            continue
+        todo.append((node, address, True))
+        # An index #[...] is a variable number, not the address's value: ROUND in it is plain.
+        child_address = address and not isinstance(node, Var)
+        todo.extend((child, child_address, False) for child in reversed(children))
+    assert len(done) == 1
+    return done[0]
+
+
+def _children(node: Expr) -> tuple[Expr, ...]:
+    if isinstance(node, Binary):
+        return (node.left, node.right)
+    if isinstance(node, Unary):
+        return (node.operand,)
+    if isinstance(node, Bracket):
+        return (node.inner,)
+    if isinstance(node, Call):
+        return node.args
+    if isinstance(node, Var) and node.index is not None:
+        return (node.index,)
+    return ()
+
+
+def _compile_leaf(node: Expr) -> _Compiled:
+    if isinstance(node, Num):
+        return _constant(node.value), node.value, True
+    assert isinstance(node, Var)
+    return _compile_var(node, None), None, False
+
+
+def _compile_node(node: Expr, in_address: bool, children: list[_Compiled]) -> _Compiled:
+    if isinstance(node, Bracket):
+        return children[0]
+    if isinstance(node, Unary) and node.op == "+":
+        return children[0]
+    if isinstance(node, Var):
+        return _compile_var(node, children[0][0]), None, False
+    evaluators = [c[0] for c in children]
+    evaluator: Evaluator
+    if isinstance(node, Unary):
+        evaluator = _negate(evaluators[0])
+    elif isinstance(node, Binary):
+        evaluator = _compile_binary(node, evaluators[0], evaluators[1])
+    else:
+        assert isinstance(node, Call)
+        evaluator = _compile_call(node, in_address, evaluators)
+    foldable = all(c[2] for c in children) and not (
+        isinstance(node, Call) and (node.name in _STATEFUL or (in_address and node.name == "ROUND"))
+    )
+    if not foldable or any(c[1] is None for c in children):
+        return evaluator, None, foldable
     # Constant parts are folded: the run only computes what depends on variables.
-    if not isinstance(expr, Num | Var):
-        value = constant_of(expr, in_address)
-        if value is not None:
-            return _constant(value)
-    return _compile(expr, in_address)
+    try:
+        value = evaluator(_NO_FRAME)
+    except MacroAlarm:  # the run raises it, where it can say where it stands
+        return evaluator, None, foldable
+    if not isinstance(value, float):
+        return evaluator, None, foldable
+    return _constant(value), value, True
 
 
-def _compile(expr: Expr, in_address: bool = False) -> Evaluator:
-    if isinstance(expr, Num):
-        return _constant(expr.value)
-    if isinstance(expr, Var):
-        return _compile_var(expr)
-    if isinstance(expr, Bracket):
-        return compile_expr(expr.inner, in_address)
-    if isinstance(expr, Unary):
-        inner = compile_expr(expr.operand, in_address)
-        if expr.op == "+":
-            return inner
+def _negate(inner: Evaluator) -> Evaluator:
+    def negate(f: Frame) -> Value:
+        v = inner(f)
+        if v.__class__ is _float:
+            return -v
+        if v is None:
+            return 0.0
+        return v
 
-        def negate(f: Frame) -> Value:
-            v = inner(f)
-            if v.__class__ is _float:
-                return -v
-            if v is None:
-                return 0.0
-            return v
-
-        return negate
-    if isinstance(expr, Binary):
-        return _compile_binary(expr, in_address)
-    return _compile_call(expr, in_address)
+    return negate
 
 
-def _compile_var(var: Var) -> Evaluator:
+def _compile_var(var: Var, index: Evaluator | None) -> Evaluator:
     if var.number is not None:
         n = int(var.number)
         if var.number != n:
@@ -160,8 +205,7 @@ def _compile_var(var: Var) -> Evaluator:
             return v  # type: ignore[return-value]
 
         return glob
-    assert var.index is not None
-    index = compile_expr(var.index)
+    assert index is not None
 
     def indirect(f: Frame) -> Value:
         return f.read_indirect(index(f), var)
@@ -187,9 +231,7 @@ def _arith(op: str) -> Callable[[float, float], float]:
     return bit_xor
 
 
-def _compile_binary(expr: Binary, in_address: bool) -> Evaluator:
-    left = compile_expr(expr.left, in_address)
-    right = compile_expr(expr.right, in_address)
+def _compile_binary(expr: Binary, left: Evaluator, right: Evaluator) -> Evaluator:
     op = expr.op
     fn = _arith(op)
 
@@ -261,12 +303,11 @@ def _signed_angle(angle: float) -> float:
     return angle - 360.0 if angle > 180.0 else angle
 
 
-def _compile_call(expr: Call, in_address: bool) -> Evaluator:
+def _compile_call(expr: Call, in_address: bool, args: list[Evaluator]) -> Evaluator:
     name = expr.name
     if len(expr.args) == 2:
         fn2 = TWO_ARG[name]
-        a_eval = compile_expr(expr.args[0], in_address)
-        b_eval = compile_expr(expr.args[1], in_address)
+        a_eval, b_eval = args
         signed = name == "ATAN"
 
         def call2(f: Frame) -> Value:
@@ -282,7 +323,7 @@ def _compile_call(expr: Call, in_address: bool) -> Evaluator:
 
         return call2
     fn1 = ONE_ARG[name]
-    arg = compile_expr(expr.args[0], in_address)
+    arg = args[0]
     if name == "ROUND" and in_address:
 
         def round_address(f: Frame) -> Value:
@@ -325,6 +366,28 @@ def _compile_call(expr: Call, in_address: bool) -> Evaluator:
 
 def compile_cond(cond: Cond) -> CondEvaluator:
     """A condition: True, False, or an Unknown when it depends on what cannot be known."""
+    # [[c1] AND [c2]] OR [c3] nests Logic nodes: compiled bottom-up with an explicit stack.
+    todo: list[tuple[Cond, bool]] = [(cond, False)]
+    done: list[CondEvaluator] = []
+    while todo:
+        node, children_done = todo.pop()
+        if not isinstance(node, Logic):
+            done.append(_compile_simple_cond(node))
+        elif children_done:
+            count = 1 + len(node.rest)
+            terms = done[len(done) - count :]
+            del done[len(done) - count :]
+            ops = [op for op, _ in node.rest]
+            done.append(_logic(terms[0], list(zip(ops, terms[1:], strict=True))))
+        else:
+            todo.append((node, True))
+            todo.extend((c, False) for _, c in reversed(node.rest))
+            todo.append((node.first, False))
+    assert len(done) == 1
+    return done[0]
+
+
+def _compile_simple_cond(cond: Compare | BareCond) -> CondEvaluator:
     if isinstance(cond, Compare):
         left = compile_expr(cond.left)
         right = compile_expr(cond.right)
@@ -339,20 +402,18 @@ def compile_cond(cond: Cond) -> CondEvaluator:
             return result
 
         return cmp
-    if isinstance(cond, BareCond):
-        value = compile_expr(cond.value)
+    value = compile_expr(cond.value)
 
-        def bare(f: Frame) -> bool | Unknown | None:
-            v = value(f)
-            if isinstance(v, Unknown):
-                return v
-            return v is not None and v != 0.0
+    def bare(f: Frame) -> bool | Unknown | None:
+        v = value(f)
+        if isinstance(v, Unknown):
+            return v
+        return v is not None and v != 0.0
 
-        return bare
-    assert isinstance(cond, Logic)
-    first = compile_cond(cond.first)
-    rest = [(op, compile_cond(c)) for op, c in cond.rest]
+    return bare
 
+
+def _logic(first: CondEvaluator, rest: list[tuple[str, CondEvaluator]]) -> CondEvaluator:
     def logic(f: Frame) -> bool | Unknown | None:
         acc = first(f)
         for op, c in rest:
