@@ -14,7 +14,9 @@ from typing import Any
 
 import pytest
 
+from fanuc_macro.analysis import analyse
 from fanuc_macro.blocks import cut_comments
+from fanuc_macro.config import Config
 from fanuc_macro.evaluator import compiler
 from fanuc_macro.evaluator.compiler import compile_cond, compile_expr, constant_of
 from fanuc_macro.parser import BlockParser, fast_parse
@@ -154,3 +156,31 @@ def test_conditions_nested_deep_compile_and_walk() -> None:
         cond = Logic(cond, (("OR", compare),), Span(0, 1))
     assert sum(1 for _ in cond_exprs(cond)) == 2 * 20_001
     compile_cond(cond)
+
+
+# ---- arithmetic past the largest value: the control's overflow alarm, with the operands ------
+
+TWELVE_NINES = "999999999999"
+HUGE = "*".join([TWELVE_NINES] * 22)  # about 1e264: no exponent on FANUC, so a product
+
+
+@pytest.mark.parametrize(
+    ("block", "shown"),
+    [
+        (f"#1=BCD[{HUGE}]", "BCD[1e+264] overflows"),
+        (f"#1={HUGE}*{HUGE}", "1e+300 * 999999999999. overflows"),
+        (f"G01 X[{HUGE}*{HUGE}] F1.", "1e+300 * 999999999999. overflows"),
+        ("#1=POW[10,400]", "POW[10.,400.] overflows"),
+        (f"#2={TWELVE_NINES}.*{TWELVE_NINES}.\n#3=#2*#2*#2*#2*#2*#2*#2*#2*#2*#2*#2*#2*#2*#2*#2*#2"
+         f"*#2*#2*#2*#2*#2*#2*#2*#2*#2*#2", "* 1e+24 overflows"),
+    ],
+)  # fmt: skip
+@pytest.mark.parametrize("controller", ["0i-TF", "30i"])
+def test_overflow_is_alarm_ps0111_with_its_operands(
+    block: str, shown: str, controller: str
+) -> None:
+    found = analyse(f"O1\n{block}\nM30\n", "o.nc", config=Config(controller=controller))
+    codes = [d.code for d in found.diagnostics]
+    assert "MB000" not in codes
+    messages = [d.message for d in found.diagnostics if d.code == "MB501"]
+    assert any(shown in m and "PS0111" in m and "OVERFLOW" in m for m in messages), messages

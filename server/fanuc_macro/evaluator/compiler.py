@@ -22,6 +22,7 @@ from .values import (
     compare,
     divide,
     f_round,
+    fmt,
     merge_unknown,
     modulo,
 )
@@ -231,6 +232,22 @@ def _arith(op: str) -> Callable[[float, float], float]:
     return bit_xor
 
 
+_LARGEST = 1.7976931348623157e308  # the largest double: past it a result is inf
+
+
+def _overflow(expr: Binary, a: float, b: float) -> MacroAlarm:
+    """PS0111 for an operation whose result no control holds (a float would be inf)."""
+    alarm = MacroAlarm(
+        "PS0111",
+        "overflow",
+        f"{fmt(a)} {expr.op} {fmt(b)} overflows: the result is beyond any value a control "
+        "holds (CALCULATED DATA OVERFLOW)",
+        a,
+    )
+    alarm.node = expr
+    return alarm
+
+
 def _compile_binary(expr: Binary, left: Evaluator, right: Evaluator) -> Evaluator:
     op = expr.op
     fn = _arith(op)
@@ -240,18 +257,28 @@ def _compile_binary(expr: Binary, left: Evaluator, right: Evaluator) -> Evaluato
         if isinstance(x, Unknown) or isinstance(y, Unknown):
             return merge_unknown(x, y)
         try:
-            return fn(x, y)
+            result = fn(x, y)
         except MacroAlarm as alarm:
             alarm.node = expr
             raise
+        except OverflowError:  # AND/OR/XOR of integers past the largest double
+            raise _overflow(expr, x, y) from None
+        if -_LARGEST <= result <= _LARGEST:
+            return result
+        raise _overflow(expr, x, y)
 
+    # Each operation checks its result: an overflow is the control's alarm where it happens,
+    # with its operands, and no inf or NaN reaches the rest of the analysis.
     if op == "+":
 
         def add(f: Frame) -> Value:
             a = left(f)
             b = right(f)
             if a.__class__ is _float and b.__class__ is _float:
-                return a + b
+                result = a + b
+                if -_LARGEST <= result <= _LARGEST:
+                    return result
+                raise _overflow(expr, a, b)
             return slow(a, b)
 
         return add
@@ -261,7 +288,10 @@ def _compile_binary(expr: Binary, left: Evaluator, right: Evaluator) -> Evaluato
             a = left(f)
             b = right(f)
             if a.__class__ is _float and b.__class__ is _float:
-                return a - b
+                result = a - b
+                if -_LARGEST <= result <= _LARGEST:
+                    return result
+                raise _overflow(expr, a, b)
             return slow(a, b)
 
         return sub
@@ -271,7 +301,10 @@ def _compile_binary(expr: Binary, left: Evaluator, right: Evaluator) -> Evaluato
             a = left(f)
             b = right(f)
             if a.__class__ is _float and b.__class__ is _float:
-                return a * b
+                result = a * b
+                if -_LARGEST <= result <= _LARGEST:
+                    return result
+                raise _overflow(expr, a, b)
             return slow(a, b)
 
         return mul
@@ -281,7 +314,10 @@ def _compile_binary(expr: Binary, left: Evaluator, right: Evaluator) -> Evaluato
             a = left(f)
             b = right(f)
             if a.__class__ is _float and b.__class__ is _float and b:
-                return a / b
+                result = a / b
+                if -_LARGEST <= result <= _LARGEST:
+                    return result
+                raise _overflow(expr, a, b)
             return slow(a, b)
 
         return div
@@ -319,6 +355,8 @@ def _compile_call(expr: Call, in_address: bool, args: list[Evaluator]) -> Evalua
             except MacroAlarm as alarm:
                 alarm.node = expr
                 raise
+            except OverflowError:
+                raise _function_overflow(expr, a, b) from None
             return _signed_angle(result) if signed and f.signed_atan else result
 
         return call2
@@ -331,7 +369,10 @@ def _compile_call(expr: Call, in_address: bool, args: list[Evaluator]) -> Evalua
             if isinstance(a, Unknown):
                 return a
             step = f.length_increment
-            return round(f_round(a / step) * step, 6)
+            try:
+                return round(f_round(a / step) * step, 6)
+            except OverflowError:
+                raise _function_overflow(expr, a) from None
 
         return round_address
     if name in ("FIX", "FUP"):
@@ -340,7 +381,10 @@ def _compile_call(expr: Call, in_address: bool, args: list[Evaluator]) -> Evalua
             a = _zero(arg(f))
             if isinstance(a, Unknown):
                 return a
-            result = fn1(a)
+            try:
+                result = fn1(a)
+            except OverflowError:
+                raise _function_overflow(expr, a) from None
             if f is not None and _near_integer(a) and result != round(a):
                 f.note_rounding(name, a, result)  # 7.9999999999 truncated to 7, not 8
             return result
@@ -359,9 +403,20 @@ def _compile_call(expr: Call, in_address: bool, args: list[Evaluator]) -> Evalua
         except MacroAlarm as alarm:
             alarm.node = expr
             raise
+        except OverflowError:
+            raise _function_overflow(expr, a) from None
         return _signed_angle(result) if signed and f.signed_atan else result
 
     return call1
+
+
+def _function_overflow(expr: Call, *args: float) -> MacroAlarm:
+    shown = ",".join(fmt(a) for a in args)
+    alarm = MacroAlarm(
+        "PS0111", "overflow", f"{expr.name}[{shown}] overflows (CALCULATED DATA OVERFLOW)", args[0]
+    )
+    alarm.node = expr
+    return alarm
 
 
 def compile_cond(cond: Cond) -> CondEvaluator:

@@ -196,7 +196,12 @@ def f_bcd(x: float) -> float:
         result |= (n % 10) << shift
         shift += 4
         n //= 10
-    return float(result)
+    try:
+        return float(result)
+    except OverflowError:  # 4 bits a digit: past 77 digits the BCD form is no double
+        raise MacroAlarm(
+            "PS0111", "overflow", f"BCD[{fmt(x)}] overflows (CALCULATED DATA OVERFLOW)", x
+        ) from None
 
 
 def f_adp(x: float) -> float:
@@ -208,7 +213,14 @@ def f_adp(x: float) -> float:
 def f_pow(a: float, b: float) -> float:
     try:
         result = math.pow(a, b)
-    except (OverflowError, ValueError):
+    except OverflowError:
+        raise MacroAlarm(
+            "PS0111",
+            "overflow",
+            f"POW[{fmt(a)},{fmt(b)}] overflows (CALCULATED DATA OVERFLOW)",
+            a,
+        ) from None
+    except ValueError:
         raise MacroAlarm(
             "PS0119", "pow-range", f"POW[{fmt(a)},{fmt(b)}] has no real value", a
         ) from None
