@@ -81,12 +81,18 @@ def constant_of(expr: Expr, in_address: bool = False) -> float | None:
     alarm (the run reports that). ``in_address``: the expression is an NC address's value."""
     if isinstance(expr, Num):
         return expr.value
+    if isinstance(expr, Var) and expr.index is None:
+        return None
     return _compile_tree(expr, in_address)[1]
 
 
 def compile_expr(expr: Expr, in_address: bool = False) -> Evaluator:
     """``in_address``: the value of an NC address, where ROUND rounds to the address's least
     input increment instead of to a whole number (FANUC Custom Macro B manual, "ROUND")."""
+    if isinstance(expr, Num):  # most NC words: no tree to walk
+        return _constant(expr.value)
+    if isinstance(expr, Var) and expr.index is None:
+        return _compile_var(expr, None)
     return _compile_tree(expr, in_address)[0]
 
 
@@ -94,25 +100,26 @@ def _compile_tree(root: Expr, in_address: bool) -> _Compiled:
     """Compile an expression bottom-up with an explicit stack, folding constant parts as it
     goes: each node is compiled once, whatever the depth (recursion failed past a few hundred
     levels, and folding at every level made it quadratic)."""
-    todo: list[tuple[Expr, bool, bool]] = [(root, in_address, False)]
+    # (node, in an address, children: -1 before they are compiled, else how many there are)
+    todo: list[tuple[Expr, bool, int]] = [(root, in_address, -1)]
     done: list[_Compiled] = []  # the compiled children, left to right, of the nodes under way
     while todo:
-        node, address, children_done = todo.pop()
-        if children_done:
-            count = len(_children(node))
-            compiled = _compile_node(node, address, done[len(done) - count :])
-            del done[len(done) - count :]
+        node, address, count = todo.pop()
+        if count >= 0:
+            start = len(done) - count
+            compiled = _compile_node(node, address, done[start:])
+            del done[start:]
             done.append(compiled)
             continue
         children = _children(node)
         if not children:
             done.append(_compile_leaf(node))
             continue
-        todo.append((node, address, True))
+        todo.append((node, address, len(children)))
         # An index #[...] is a variable number, not the address's value: ROUND in it is plain.
         child_address = address and not isinstance(node, Var)
-        todo.extend((child, child_address, False) for child in reversed(children))
-    assert len(done) == 1
+        for child in reversed(children):
+            todo.append((child, child_address, -1))
     return done[0]
 
 
