@@ -8,20 +8,26 @@ bounds only as a backstop.
 
 from __future__ import annotations
 
+import dataclasses
+import json
 import time
 from collections.abc import Callable
+from pathlib import Path
 from typing import Any
 
 import pytest
 
 from fanuc_macro.analysis import analyse
-from fanuc_macro.blocks import cut_comments
+from fanuc_macro.blocks import ReadLimits, cut_comments
 from fanuc_macro.config import Config
 from fanuc_macro.evaluator import compiler
 from fanuc_macro.evaluator.compiler import compile_cond, compile_expr, constant_of
-from fanuc_macro.parser import BlockParser, fast_parse
+from fanuc_macro.parser import BlockParser, fast_parse, parse_text
 from fanuc_macro.syntax import Binary, Call, Compare, Cond, Expr, Logic, Num, Span, Var
 from fanuc_macro.walk import bracket_depth, cond_exprs, subexpressions
+from fanuc_macro.workspace import Workspace
+
+ROOT = Path(__file__).resolve().parents[1]
 
 GRAMMAR = BlockParser(use_fast_path=False)
 
@@ -184,3 +190,95 @@ def test_overflow_is_alarm_ps0111_with_its_operands(
     assert "MB000" not in codes
     messages = [d.message for d in found.diagnostics if d.code == "MB501"]
     assert any(shown in m and "PS0111" in m and "OVERFLOW" in m for m in messages), messages
+
+
+# ---- what the analysis reads: limits with a verdict, never silence ---------------------------
+
+
+def _codes(text: str, config: Config | None = None) -> list[str]:
+    return [d.code for d in analyse(text, "t.nc", config=config).diagnostics]
+
+
+def test_a_1_mb_line_is_not_analysed_and_says_so() -> None:
+    line = "X1.5Y2.5" * 131_072
+    started = time.perf_counter()
+    found = analyse(f"O1\n{line}\nM30\n", "one-line.nc")
+    assert time.perf_counter() - started < 3.0  # was 7.5 s and 459 MB
+    (verdict,) = [d for d in found.diagnostics if d.code == "MB011"]
+    assert verdict.line == 1 and str(len(line)) in verdict.message and "1024" in verdict.message
+    assert "MB013" not in _codes(f"O1\n{line}\nM30\n")  # the line counts for what is read
+
+
+def test_a_too_long_line_keeps_its_label() -> None:
+    text = f"O1\nGOTO20\nN20 {'X1.' * 400}\nM30\n"
+    assert "MB011" in _codes(text) and "MB101" not in _codes(text)
+
+
+def test_a_lower_line_limit_applies_to_lines_parsed_before() -> None:
+    parser = BlockParser()
+    line = "G01 X10. Z-5. F0.2"
+    assert parser.parse_line(line).statement is not None  # cached under the default limit
+    (parsed,) = parser.parse_lines([line], max_line_length=10)
+    assert parsed.statement is None and parsed.notes[0].kind == "too-long"
+
+
+def test_a_10_mb_program_is_analysed_up_to_the_limit_within_seconds() -> None:
+    block = "G01 X{0}.5 Z-{1}. F0.2"
+    lines = ["%", "O1000"] + [block.format(i % 97, i % 89) for i in range(500_000)] + ["M30", "%"]
+    text = "\n".join(lines) + "\n"
+    assert len(text) > 10_000_000
+    started = time.perf_counter()
+    found = analyse(text, "ten.nc")
+    assert time.perf_counter() - started < 10.0  # about 2 s on a 2-core EPYC VM
+    (verdict,) = [d for d in found.diagnostics if d.code == "MB013"]
+    read = found.doc.unread_from
+    assert read is not None and verdict.line == read == len(found.doc.blocks)
+    assert f"analysed the first {read} blocks of {len(lines)}" in verdict.message
+    assert "setting fanuc-macro.analysis.max" in verdict.message
+
+
+def test_the_block_limit_and_its_setting() -> None:
+    config = Config.from_settings({"analysis": {"maxBlocks": 3}})
+    assert config.max_blocks == 3
+    found = analyse("O1\nG00 X1.\nG00 X2.\nGOTO 9\nM30\n", "t.nc", config=config)
+    (verdict,) = [d for d in found.diagnostics if d.code == "MB013"]
+    assert verdict.line == 3 and "first 3 blocks of 5" in verdict.message
+    assert "maxBlocks" in verdict.message
+    assert "MB101" not in {d.code for d in found.diagnostics}  # GOTO 9 is not read
+
+
+def test_settings_and_their_defaults_in_package_json() -> None:
+    manifest = json.loads((ROOT / "package.json").read_text("utf-8"))
+    properties = manifest["contributes"]["configuration"]["properties"]
+    default = Config()
+    for setting, value in (
+        ("maxLineLength", default.max_line_length),
+        ("maxBlocks", default.max_blocks),
+        ("maxFileSize", default.max_file_size),
+    ):
+        assert properties[f"fanuc-macro.analysis.{setting}"]["default"] == value
+        changed = Config.from_settings({"analysis": {setting: 7}})
+        assert dataclasses.astuple(changed.read_limits).count(7) == 1
+
+
+def test_an_edit_of_a_cut_document_equals_a_fresh_parse() -> None:
+    limits = ReadLimits(max_line_length=40, max_blocks=6)
+    lines = [f"G01 X{i}. Z-{i}." for i in range(12)]
+    parser = BlockParser()
+    before = parse_text("\n".join(lines), "t", parser, limits=limits)
+    lines[2] = "N5 " + "X1." * 30  # now too long
+    lines[9] = "G00 X0."  # past the limit
+    text = "\n".join(lines)
+    edited = parse_text(text, "t", parser, previous=before, limits=limits)
+    assert edited == parse_text(text, "t", BlockParser(), limits=limits)
+    assert edited.blocks[0] is before.blocks[0]
+
+
+def test_workspace_reads_documents_again_when_a_limit_changes() -> None:
+    ws = Workspace()
+    ws.add_text("a.nc", "O1\n" + "G00 X1.\n" * 10 + "M30\n")
+    assert ws.document("a.nc").unread_from is None  # type: ignore[union-attr]
+    assert ws.set_config(Config(max_blocks=4)) == ["a.nc"]
+    assert ws.document("a.nc").unread_from == 4  # type: ignore[union-attr]
+    assert "MB013" in {d.code for d in ws.analyse("a.nc").diagnostics}
+    assert ws.set_config(Config(max_blocks=4, controller="30i")) == []  # same limits

@@ -12,16 +12,27 @@ import gc
 import re
 import threading
 import unicodedata
+from bisect import bisect_right
 from collections.abc import Iterable, Iterator, Sequence
 from contextlib import contextmanager
+from dataclasses import replace
 from importlib import resources
+from itertools import accumulate
 from typing import Any, cast
 
 from lark import Lark, Token, Transformer
 from lark.exceptions import UnexpectedCharacters, UnexpectedEOF, UnexpectedInput, UnexpectedToken
 
 from . import dialects
-from .blocks import LineCode, cut_comments, decode_bytes, split_lines
+from .blocks import (
+    MAX_LINE_LENGTH,
+    READ_WHOLE,
+    LineCode,
+    ReadLimits,
+    cut_comments,
+    decode_bytes,
+    split_lines,
+)
 from .index import INDEXED_STATEMENTS, mentions_call
 from .lalr_driver import TableParser
 from .syntax import (
@@ -41,6 +52,7 @@ from .syntax import (
     IfGoto,
     IfNc,
     IfThen,
+    LineNote,
     Logic,
     MacroStatement,
     Mixed,
@@ -57,6 +69,7 @@ from .syntax import (
     While,
     Word,
 )
+from .walk import bracket_depth, expression_depth, top_expressions
 
 
 def grammar_text() -> str:
@@ -78,6 +91,10 @@ def _cover(first: Any, last: Any) -> Span:
 
 
 MAX_DIGITS = 12  # FANUC takes 8 (0i) to 12 (30i) digits; more is a typo, and would overflow
+# Levels of nesting in one block that the analysis follows (each operator, sign, bracket,
+# function, AND/OR is one). Real blocks stay far below: FANUC allows five brackets. Deeper ASTs
+# would exhaust Python's recursion in the nodes' own ==, hash and repr.
+MAX_EXPRESSION_DEPTH = 100
 
 
 def _number(token: Token) -> float:
@@ -374,6 +391,49 @@ def quiet_gc() -> Iterator[None]:
             gc.enable()
 
 
+def _too_long(text: str, limit: int) -> ParsedLine:
+    """A line longer than the analysis reads: only its block delete and sequence number (at its
+    head, where the control reads them first) are kept, so that a GOTO to it still finds it."""
+    head = _FAST_HEAD.match(text)
+    assert head is not None  # every part of it is optional
+    skip: int | None = None
+    seq: int | None = None
+    seq_span: Span | None = None
+    try:
+        if head.group(1) is not None:
+            skip = int(_to_float(head.group(2))) if head.group(2) else 0
+        if head.group(3) is not None:
+            seq = int(_to_float(head.group(4)))
+            seq_span = Span(head.start(3), head.end(4))
+    except ValueError:  # a number too long to be one
+        skip = seq = seq_span = None
+    note = LineNote(
+        "too-long",
+        f"this block is {len(text)} characters long, more than the {limit} the analysis reads "
+        "(setting fanuc-macro.analysis.maxLineLength): it is not analysed",
+        Span(limit, len(text)),
+    )
+    return ParsedLine(
+        text, False, skip, seq, seq_span, None, (), None, (note,), indexed=seq is not None
+    )
+
+
+def _too_deep(statement: Statement, depth: int) -> LineNote:
+    brackets = max((bracket_depth(e) for e in top_expressions(statement)), default=0)
+    alarm = (
+        f"; its brackets nest {brackets} deep, and the control stops with alarm PS0118 past 5"
+        if brackets > 5
+        else ""
+    )
+    return LineNote(
+        "too-deep",
+        f"the block nests {depth} levels deep (each operator, sign, bracket, function and "
+        f"AND/OR is a level), more than the {MAX_EXPRESSION_DEPTH} the analysis follows: it is "
+        f"not analysed{alarm}",
+        statement.span,
+    )
+
+
 class BlockParser:
     """Parses lines; thread-safe; caches parsed lines by text (LRU)."""
 
@@ -396,15 +456,19 @@ class BlockParser:
         # the oldest quarter goes (lines of open documents come back on their next parse).
         self._cache: dict[str, ParsedLine] = {}
         self._cache_size = cache_size
+        self._longest_cached = 0  # no cached line is longer: a hit needs no length check
         self._lock = threading.Lock()
 
-    def parse_line(self, text: str) -> ParsedLine:
+    def parse_line(self, text: str, max_line_length: int = MAX_LINE_LENGTH) -> ParsedLine:
+        if len(text) > max_line_length:
+            return _too_long(text, max_line_length)
         cached = self._cache.get(text)
         if cached is not None:
             return cached
         parsed = self._parse_uncached(text)
         with self._lock:
             self._cache[text] = parsed
+            self._longest_cached = max(self._longest_cached, len(text))
             if len(self._cache) > self._cache_size:
                 for key in list(self._cache)[: self._cache_size // 4]:
                     del self._cache[key]
@@ -445,13 +509,25 @@ class BlockParser:
                     seq_span = item[2]
             else:
                 statement = item
+        # A block nests at most as deep as it has characters: most need no measuring.
+        if statement is not None and len(code) > MAX_EXPRESSION_DEPTH:
+            depth = expression_depth(statement)
+            if depth > MAX_EXPRESSION_DEPTH:
+                note = _too_deep(statement, depth)
+                deep = LineCode(cut.code, cut.comments, cut.tape_mark, (*cut.notes, note))
+                return _line(text, deep, skip, seq, seq_span, None, None, has_lower)
         return _line(text, cut, skip, seq, seq_span, statement, None, has_lower)
 
-    def parse_lines(self, lines: Iterable[str]) -> list[ParsedLine]:
+    def parse_lines(
+        self, lines: Iterable[str], max_line_length: int = MAX_LINE_LENGTH
+    ) -> list[ParsedLine]:
         get = self._cache.get
         parse = self.parse_line
         with quiet_gc():
-            return [get(line) or parse(line) for line in lines]
+            if self._longest_cached <= max_line_length:
+                return [get(line) or parse(line, max_line_length) for line in lines]
+            # A lower limit than lines already cached: each line is measured first.
+            return [parse(line, max_line_length) for line in lines]
 
 
 _TOKEN_NAMES = {
@@ -765,15 +841,25 @@ def default_parser() -> BlockParser:
 
 
 def parse_text(
-    text: str, uri: str = "", parser: BlockParser | None = None, previous: Document | None = None
+    text: str,
+    uri: str = "",
+    parser: BlockParser | None = None,
+    previous: Document | None = None,
+    limits: ReadLimits = READ_WHOLE,
 ) -> Document:
-    """Parse a document; with ``previous`` (its last version) unchanged lines keep their blocks."""
+    """Parse a document; with ``previous`` (its last version) unchanged lines keep their blocks.
+
+    Past the ``limits`` of a document the lines get no block (``line_count`` still counts
+    them), and ``unread_note`` says what was left out."""
     bp = parser or default_parser()
     lines = split_lines(text)
+    read = _lines_read(text, lines, limits)
     with quiet_gc():
-        parsed = bp.parse_lines(lines)
+        parsed = bp.parse_lines(
+            lines if read == len(lines) else lines[:read], limits.max_line_length
+        )
         if previous is None:
-            blocks = tuple(map(Block, range(len(lines)), parsed))
+            blocks = tuple(map(Block, range(read), parsed))
         else:
             old = previous.blocks
             n_old = len(old)
@@ -781,13 +867,46 @@ def parse_text(
                 old[i] if i < n_old and old[i].parsed is p else Block(i, p)
                 for i, p in enumerate(parsed)
             )
-    return Document(uri, blocks, "utf-8", None, len(lines))
+    if read == len(lines):
+        return Document(uri, blocks, "utf-8", None, len(lines))
+    note = _unread_note(text, lines, read, limits)
+    return Document(uri, blocks, "utf-8", None, len(lines), read, note)
 
 
-def parse_bytes(data: bytes, uri: str = "", parser: BlockParser | None = None) -> Document:
+def _lines_read(text: str, lines: list[str], limits: ReadLimits) -> int:
+    """How many lines, from the first, the limits let the analysis read."""
+    read = len(lines)
+    if limits.max_blocks is not None:
+        read = min(read, limits.max_blocks)
+    if limits.max_characters is not None and len(text) > limits.max_characters:
+        # The lines whose text and line end fit within the limit; of a line longer than the
+        # analysis reads, only that much counts (it is not read further).
+        longest = limits.max_line_length
+        ends = accumulate(min(len(line), longest) + 1 for line in lines[:read])
+        read = min(read, bisect_right(list(ends), limits.max_characters))
+    return read
+
+
+def _unread_note(text: str, lines: list[str], read: int, limits: ReadLimits) -> str:
+    if limits.max_blocks is not None and read == limits.max_blocks:
+        size = f"{len(lines)} blocks, more than the {limits.max_blocks}"
+        setting = "maxBlocks"
+    else:
+        size = f"{len(text)} characters, more than the {limits.max_characters}"
+        setting = "maxFileSize"
+    return (
+        f"analysed the first {read} blocks of {len(lines)}: the document has {size} the "
+        f"analysis reads (setting fanuc-macro.analysis.{setting}); the blocks from line "
+        f"{read + 1} on are not checked"
+    )
+
+
+def parse_bytes(
+    data: bytes, uri: str = "", parser: BlockParser | None = None, limits: ReadLimits = READ_WHOLE
+) -> Document:
     decoded = decode_bytes(data)
-    doc = parse_text(decoded.text, uri, parser)
-    return Document(uri, doc.blocks, decoded.encoding, decoded.note, doc.line_count)
+    doc = parse_text(decoded.text, uri, parser, limits=limits)
+    return replace(doc, encoding=decoded.encoding, decode_note=decoded.note)
 
 
 def statements_of(statement: Statement | None) -> Sequence[Statement]:
@@ -800,6 +919,7 @@ def statements_of(statement: Statement | None) -> Sequence[Statement]:
 
 
 __all__ = [
+    "MAX_EXPRESSION_DEPTH",
     "BlockParser",
     "Expr",
     "MacroStatement",

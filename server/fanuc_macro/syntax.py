@@ -308,3 +308,7 @@ class Document:
     encoding: str = "utf-8"
     decode_note: str | None = None
     line_count: int = field(default=0)
+    # Set when the document is larger than the analysis reads: the first line left unread
+    # (``blocks`` stop before it), and what was read of how much.
+    unread_from: int | None = None
+    unread_note: str | None = None

@@ -3,11 +3,11 @@
 from __future__ import annotations
 
 import re
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 from .analysis import Analysis, analyse
-from .blocks import decode_bytes
+from .blocks import ReadLimits, decode_bytes
 from .config import Config
 from .evaluator import Facts
 from .index import Call, ProgramIndex, build_index
@@ -41,6 +41,7 @@ class _Entry:
     decode_note: str | None
     # Changes when an edit may change what the program does; not for comments and spaces.
     execution: int = 0
+    limits: ReadLimits | None = None  # those the document was read with
 
 
 def same_execution(old: Document, new: Document) -> bool:
@@ -49,7 +50,7 @@ def same_execution(old: Document, new: Document) -> bool:
     Lines an edit did not touch keep their block (the ``is`` test); a touched line counts as
     the same when its statement, label, block delete and tape mark are equal.
     """
-    if len(old.blocks) != len(new.blocks):
+    if len(old.blocks) != len(new.blocks) or old.unread_from != new.unread_from:
         return False
     for a, b in zip(old.blocks, new.blocks, strict=True):
         if a is b:
@@ -81,19 +82,21 @@ class Workspace:
 
     def add_text(self, uri: str, text: str) -> Document:
         old = self._entries.get(uri)
+        limits = self.config.read_limits
         # The previous version's blocks are reused for the lines an edit did not touch.
-        doc = parse_text(text, uri, self.parser, old.doc if old is not None else None)
+        doc = parse_text(text, uri, self.parser, old.doc if old is not None else None, limits)
         if old is not None and same_execution(old.doc, doc):
             execution = old.execution
         else:
             execution = self._next_execution()
-        self._entries[uri] = _Entry(text, doc, build_index(doc), "utf-8", None, execution)
+        self._entries[uri] = _Entry(text, doc, build_index(doc), "utf-8", None, execution, limits)
         return doc
 
     def add_bytes(self, uri: str, data: bytes) -> Document:
         decoded = decode_bytes(data)
-        doc = parse_text(decoded.text, uri, self.parser)
-        doc = Document(uri, doc.blocks, decoded.encoding, decoded.note, doc.line_count)
+        limits = self.config.read_limits
+        doc = parse_text(decoded.text, uri, self.parser, limits=limits)
+        doc = replace(doc, encoding=decoded.encoding, decode_note=decoded.note)
         self._entries[uri] = _Entry(
             decoded.text,
             doc,
@@ -101,8 +104,25 @@ class Workspace:
             decoded.encoding,
             decoded.note,
             self._next_execution(),
+            limits,
         )
         return doc
+
+    def set_config(self, config: Config) -> list[str]:
+        """Analyse with ``config`` from now on; the documents it reads differently (another
+        limit on lines, blocks or size) are read again. Returns their URIs."""
+        self.config = config
+        limits = config.read_limits
+        reread: list[str] = []
+        for uri, entry in self._entries.items():
+            if entry.limits == limits:
+                continue
+            doc = parse_text(entry.text, uri, self.parser, entry.doc, limits)
+            doc = replace(doc, encoding=entry.encoding, decode_note=entry.decode_note)
+            entry.doc, entry.index, entry.limits = doc, build_index(doc), limits
+            entry.execution = self._next_execution()
+            reread.append(uri)
+        return reread
 
     def remove(self, uri: str) -> None:
         self._entries.pop(uri, None)

@@ -168,7 +168,10 @@ class Engine:
         self.config = config
 
         def apply() -> None:
-            self._ws.config = config
+            for key in self._ws.set_config(config):  # read again: the limits changed
+                doc = self._ws.document(key)
+                if doc is not None:
+                    self._set_index(key, doc, self._ws.index(key))
             self.generation += 1
 
         self._submit(apply, then=lambda _: self.schedule_all(0.0))

@@ -29,15 +29,30 @@ register(
              "written.", FAMILY),
     RuleInfo("MB010", "no-program-number", Severity.INFORMATION,
              "The program text starts without an O number.", FAMILY),
+    RuleInfo("MB011", "block-too-long", Severity.WARNING,
+             "A line longer than the analysis reads in one block: it is not analysed.", FAMILY),
+    RuleInfo("MB012", "expression-too-deep", Severity.WARNING,
+             "A block nested deeper than the analysis follows: it is not analysed.", FAMILY),
+    RuleInfo("MB013", "file-too-large", Severity.INFORMATION,
+             "A document larger than the analysis reads: the blocks after the limit are not "
+             "checked.", FAMILY),
 )  # fmt: skip
 
-_NOTE_CODES = {"nested-comment": "MB003", "unclosed-comment": "MB004", "text-after-eob": "MB005"}
+_NOTE_CODES = {
+    "nested-comment": "MB003",
+    "unclosed-comment": "MB004",
+    "text-after-eob": "MB005",
+    "too-long": "MB011",
+    "too-deep": "MB012",
+}
 
 
 def check(ctx: RuleContext) -> Iterator[Diagnostic]:
     if ctx.doc.decode_note:
         yield _encoding(ctx, ctx.doc.decode_note)
     yield from _no_program_number(ctx)
+    if ctx.doc.unread_note is not None and ctx.doc.unread_from is not None:
+        yield make("MB013", ctx.doc.unread_note, ctx.doc.unread_from, 0, 0)  # a line unread
 
 
 def _encoding(ctx: RuleContext, note: str) -> Diagnostic:
