@@ -351,3 +351,67 @@ def test_trace_lists_every_pass_of_a_g76(tmp_path: Path) -> None:
     passes = [m for m in motions if m["code"] == "G76"]
     assert len(passes) == 11 and all(m["line"] == 7 for m in passes)
     assert [m["words"]["X"] for m in passes][:3] == [29.2, 28.869, 28.614]
+
+
+# ---- the analyser's own failures: one line for the user, the traceback on request -------------
+
+
+def _broken_rule(ctx: object) -> list[object]:
+    raise RuntimeError("rule bug")
+
+
+@pytest.fixture
+def broken_rule(monkeypatch: pytest.MonkeyPatch) -> None:
+    import fanuc_macro.analysis
+
+    monkeypatch.setattr(
+        fanuc_macro.analysis, "ALL_CHECKS", (*fanuc_macro.analysis.ALL_CHECKS, _broken_rule)
+    )
+
+
+def test_internal_error_names_the_rule_without_a_traceback(
+    tmp_path: Path, broken_rule: None, capsys: pytest.CaptureFixture[str]
+) -> None:
+    from fanuc_macro.cli import main
+
+    path = write(tmp_path / "p.nc", CLEAN_PROGRAM)
+    assert main(["check", str(path)]) == 1
+    out, err = capsys.readouterr()
+    internal = [d for d in parsed_lines(out) if d["code"] == "MB000"]
+    assert len(internal) == 1
+    message = internal[0]["message"]
+    assert "test_cli._broken_rule" in message and "RuntimeError('rule bug')" in message
+    assert "please report it" in message and "--verbose" in message
+    assert "Traceback" not in err and "Traceback" not in out
+
+
+def test_verbose_and_log_file_give_the_traceback(
+    tmp_path: Path, broken_rule: None, capsys: pytest.CaptureFixture[str]
+) -> None:
+    from fanuc_macro.cli import main
+
+    path = write(tmp_path / "p.nc", CLEAN_PROGRAM)
+    assert main(["check", "--verbose", str(path)]) == 1
+    assert "Traceback" in capsys.readouterr().err
+    log = tmp_path / "analysis.log"
+    assert main(["check", "--log-file", str(log), str(path)]) == 1
+    assert "Traceback" not in capsys.readouterr().err
+    assert "RuntimeError: rule bug" in log.read_text("utf-8")
+    assert main(["check", str(path)]) == 1  # the handlers of the runs before are gone
+    assert "Traceback" not in capsys.readouterr().err
+
+
+def test_trace_failing_inside_answers_json_and_exit_1(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+) -> None:
+    import fanuc_macro.cli
+
+    def broken(*args: object, **kwargs: object) -> dict[str, object]:
+        raise RuntimeError("evaluator bug")
+
+    monkeypatch.setattr(fanuc_macro.cli, "trace", broken)
+    path = write(tmp_path / "p.nc", CLEAN_PROGRAM)
+    assert fanuc_macro.cli.main(["trace", "--format", "json", str(path)]) == 1
+    out, err = capsys.readouterr()
+    assert "evaluator bug" in json.loads(out)["error"]
+    assert "Traceback" not in err and "please report it" in err

@@ -6,12 +6,23 @@ The CLI and the language server both call :func:`analyse`; neither holds analysi
 from __future__ import annotations
 
 import logging
+import sys
 from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, field, replace
 
 from . import dialects
 from .config import Config
-from .diagnostics import Diagnostic, Related, RuleInfo, Severity, make, register, suppressed_codes
+from .diagnostics import (
+    REPORT_INTERNAL_ERROR,
+    RULES,
+    Diagnostic,
+    Related,
+    RuleInfo,
+    Severity,
+    make,
+    register,
+    suppressed_codes,
+)
 from .evaluator import Facts, evaluate
 from .index import ProgramIndex, build_index
 from .parser import BlockParser, default_parser, parse_text, quiet_gc
@@ -27,6 +38,23 @@ register(
     RuleInfo("MB000", "internal-error", Severity.ERROR,
              "The analyser failed on this document; the message says where.", "internal"),
 )  # fmt: skip
+
+
+def rule_name(check: Callable[..., object]) -> str:
+    """``rules.jumps.check (MB101-MB104)``: the function that failed and the codes it gives."""
+    module = getattr(check, "__module__", None) or "?"
+    family = getattr(sys.modules.get(module), "FAMILY", None)
+    codes = sorted(c for c, info in RULES.items() if family is not None and info.family == family)
+    name = f"{module.removeprefix('fanuc_macro.')}.{getattr(check, '__name__', '?')}"
+    if not codes:
+        return name
+    return f"{name} ({codes[0] if len(codes) == 1 else codes[0] + '-' + codes[-1]})"
+
+
+def internal_error(what: str, err: BaseException) -> str:
+    """The message of an MB000."""
+    return f"internal error in {what}: {err!r}; {REPORT_INTERNAL_ERROR}"
+
 
 ExtraChecks = Callable[[RuleContext], Iterable[Diagnostic]]
 
@@ -70,9 +98,9 @@ def _line_findings(parsed: ParsedLine) -> tuple[LineFinding, ...]:
         try:
             found.extend(check(parsed))
         except Exception as err:  # a bug in one rule must not hide the others
-            log.exception("line rule %s failed", check.__module__)
+            log.exception("line rule %s failed on %r", rule_name(check), parsed.text[:200])
             found.append(
-                LineFinding("MB000", f"internal error in {check.__module__}: {err!r}", 0, 0)
+                LineFinding("MB000", internal_error(f"rule {rule_name(check)}", err), 0, 0)
             )
     return tuple(found)
 
@@ -123,8 +151,9 @@ def run_checks(ctx: RuleContext, checks: Iterable[ExtraChecks]) -> list[Diagnost
         try:
             found.extend(check(ctx))
         except Exception as err:  # a bug in one rule must not hide the others
-            log.exception("rule %s failed", getattr(check, "__module__", check))
-            found.append(make("MB000", f"internal error in {check.__module__}: {err!r}", 0, 0, 0))
+            log.exception("rule %s failed on %s", rule_name(check), ctx.doc.uri)
+            message = internal_error(f"rule {rule_name(check)}", err)
+            found.append(make("MB000", message, 0, 0, 0))
     return found
 
 
@@ -165,7 +194,7 @@ def analyse(
     with quiet_gc():  # the run makes many small objects and no cycles
         config = config or Config()
         if doc is None:
-            doc = parse_text(text, uri, parser or default_parser())
+            doc = parse_text(text, uri, parser or default_parser(), limits=config.read_limits)
         if index is None:
             index = build_index(doc)
         failed: list[Diagnostic] = []
@@ -174,15 +203,8 @@ def analyse(
                 facts = evaluate([(uri, doc, index), *other_documents], config, only_uri=uri)
             except Exception as err:  # the structural rules still report
                 log.exception("evaluation of %s failed", uri)
-                failed.append(
-                    make(
-                        "MB000",
-                        f"internal error in the evaluator: {err!r}; its rules did not run",
-                        0,
-                        0,
-                        0,
-                    )
-                )
+                message = internal_error("the evaluator (its rules MB501-MB903 did not run)", err)
+                failed.append(make("MB000", message, 0, 0, 0))
         ctx = RuleContext(doc, index, config, workspace_programs, facts)
         found = failed + run_checks(ctx, [*ALL_CHECKS, *extra_checks])
         threads: list[Thread] = []

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import logging
 import sys
 from collections.abc import Sequence
 from pathlib import Path
@@ -12,7 +13,7 @@ from . import __version__
 from .analysis import analyse
 from .cli_thread import add_thread_command
 from .config import CONTROLLERS, Config
-from .diagnostics import Diagnostic, Severity
+from .diagnostics import REPORT_INTERNAL_ERROR, Diagnostic, Severity
 from .evaluator.values import fmt_address
 from .trace import trace
 from .workspace import Workspace, is_program_file
@@ -20,6 +21,8 @@ from .workspace import Workspace, is_program_file
 EXIT_OK = 0
 EXIT_ERRORS = 1
 EXIT_USAGE = 2
+
+log = logging.getLogger(__name__)
 
 
 class UsageError(Exception):
@@ -135,15 +138,23 @@ def build_parser() -> argparse.ArgumentParser:
     )
     parser.add_argument("--version", action="version", version=f"fanuc-macro {__version__}")
     sub = parser.add_subparsers(dest="command", required=True)
+    # How the analyser's own failures (MB000) are told: by default one line in the output.
+    logs = argparse.ArgumentParser(add_help=False)
+    logs.add_argument(
+        "--verbose", action="store_true", help="print the traceback of an internal error"
+    )
+    logs.add_argument("--log-file", metavar="PATH", help="write the analyser's log to this file")
 
-    check = sub.add_parser("check", help="report problems in programs (files or folders)")
+    check = sub.add_parser(
+        "check", parents=[logs], help="report problems in programs (files or folders)"
+    )
     check.add_argument("paths", nargs="+", metavar="PATH")
     check.add_argument("--format", choices=("text", "json"), default="text")
     check.add_argument("--controller", choices=CONTROLLERS, default="0i-TF")
     check.add_argument("--disable", metavar="CODES", help="comma-separated rule codes to skip")
     check.set_defaults(func=cmd_check)
 
-    tr = sub.add_parser("trace", help="print the motion blocks a program executes")
+    tr = sub.add_parser("trace", parents=[logs], help="print the motion blocks a program executes")
     tr.add_argument("file", metavar="FILE")
     tr.add_argument("--entry", type=_program_number, help="program to start from, e.g. O4009")
     tr.add_argument(
@@ -162,12 +173,34 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
+def _log_to(verbose: bool, log_file: str | None) -> list[logging.Handler]:
+    """Where the package's log goes: tracebacks only to a file or with --verbose, never to the
+    user's terminal by default (Python prints them there when no handler takes them)."""
+    handlers: list[logging.Handler] = []
+    if log_file:
+        handlers.append(logging.FileHandler(log_file, encoding="utf-8"))
+    if verbose:
+        handlers.append(logging.StreamHandler(sys.stderr))
+    if not handlers:
+        handlers.append(logging.NullHandler())
+    package = logging.getLogger("fanuc_macro")
+    for handler in handlers:
+        handler.setFormatter(logging.Formatter("%(asctime)s %(levelname)s %(name)s: %(message)s"))
+        package.addHandler(handler)
+    if verbose or log_file:
+        package.setLevel(logging.INFO)
+    return handlers
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     parser = build_parser()
     try:
         args = parser.parse_args(argv)
     except SystemExit as exc:  # argparse exits 2 on a usage problem, 0 for --help
         return int(exc.code or 0)
+    package = logging.getLogger("fanuc_macro")
+    level = package.level
+    handlers = _log_to(getattr(args, "verbose", False), getattr(args, "log_file", None))
     try:
         result: int = args.func(args)
         return result
@@ -176,6 +209,19 @@ def main(argv: Sequence[str] | None = None) -> int:
         return EXIT_USAGE
     except BrokenPipeError:
         return EXIT_OK
+    except Exception as err:  # the analyser's bug: one line here, the traceback in the log
+        log.exception("fanuc-macro %s failed", args.command)
+        message = f"internal error: {err!r}; {REPORT_INTERNAL_ERROR}"
+        if getattr(args, "format", "text") == "json":
+            json.dump({"error": message}, sys.stdout, ensure_ascii=False, indent=1)
+            sys.stdout.write("\n")
+        sys.stderr.write(f"fanuc-macro: {message}\n")
+        return EXIT_ERRORS
+    finally:  # main() may run again in the same process (tests do)
+        for handler in handlers:
+            package.removeHandler(handler)
+            handler.close()
+        package.setLevel(level)
 
 
 if __name__ == "__main__":

@@ -91,6 +91,14 @@ def make(
     )
 
 
+# What an internal error (MB000) tells the user to do: it is the analyser's bug, not theirs.
+REPORT_INTERNAL_ERROR = (
+    "this is a bug in fanuc-macro, not in the program: please report it with the program text "
+    "(or this block) and the traceback, which `fanuc-macro check --verbose` prints and the "
+    "language server writes to its log (--log-file)"
+)
+
+
 _SUPPRESS = re.compile(r"fanuc-macro\s*:\s*ignore\b\s*((?:MB\d+[\s,]*)*)", re.I)
 
 
