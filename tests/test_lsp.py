@@ -3,12 +3,14 @@
 from __future__ import annotations
 
 import asyncio
+import concurrent.futures
 import importlib.util
 import os
 import random
 import subprocess
 import sys
 import time
+import uuid
 from collections.abc import AsyncIterator, Callable, Sequence
 from pathlib import Path
 from typing import Any
@@ -16,11 +18,13 @@ from typing import Any
 import pytest
 import pytest_lsp
 from lsprotocol import types
+from pygls.exceptions import JsonRpcException, JsonRpcInternalError, JsonRpcInvalidParams
 from pytest_lsp import ClientServerConfig, LanguageClient
 
 ROOT = Path(__file__).resolve().parents[1]
 SEEDS = ROOT / "tests" / "fixtures" / "seeds"
 FAULT = "@@fanuc-macro-test-crash@@"
+FEATURE_FAULT = "@@fanuc-macro-test-feature-crash@@"
 SERVER = [sys.executable, "-m", "fanuc_macro.lsp.server"]
 ENV = {
     **os.environ,
@@ -28,6 +32,7 @@ ENV = {
         p for p in (str(ROOT / "server"), os.environ.get("PYTHONPATH", "")) if p
     ),
     "FANUC_MACRO_LS_FAULT": FAULT,
+    "FANUC_MACRO_LS_FEATURE_FAULT": FEATURE_FAULT,
 }
 WAIT = 60.0  # seconds: generous for a loaded 2-core machine
 
@@ -608,6 +613,25 @@ async def test_survives_random_bytes_and_a_huge_document(client: LanguageClient)
     assert "1.906804" in await hover(client, uri, 21, 1)
 
 
+async def test_a_10_mb_document_and_a_1_mb_line_get_their_verdicts(
+    client: LanguageClient,
+) -> None:
+    await start(client, None)
+    seed = open_seed(client, "o4009_external_m50x3.nc")
+    assert "1.906804" in await hover(client, seed, 21, 1)
+    started = time.monotonic()
+    rows = [f"G01 X{i % 97}.5 Z-{i % 89}. F0.2" for i in range(500_000)]
+    open_text(client, "untitled:ten.nc", "O1000\n" + "\n".join(rows) + "\nM30\n")
+    open_text(client, "untitled:line.nc", "O1000\n" + "X1.5Y2.5" * 131_072 + "\nM30\n")
+    # An analysed document answers while the big ones are read (no regex holds the GIL).
+    assert "1.906804" in await hover(client, seed, 21, 1)
+    found = await diagnostics(client, "untitled:ten.nc", lambda d: "MB013" in codes(d))
+    (verdict,) = [d for d in found if d.code == "MB013"]
+    assert "analysed the first 25000 blocks of 500002" in verdict.message
+    found = await diagnostics(client, "untitled:line.nc", lambda d: "MB011" in codes(d))
+    assert time.monotonic() - started < 30.0  # a few seconds; it was no answer in 200 s
+
+
 async def test_a_crash_is_logged_and_the_server_goes_on(client: LanguageClient) -> None:
     await start(client, None)
     uri = "untitled:crash.nc"
@@ -623,6 +647,59 @@ async def test_a_crash_is_logged_and_the_server_goes_on(client: LanguageClient) 
     await diagnostics(client, uri, lambda d: "MB000" not in codes(d))
     other = open_seed(client, "o4009_external_m50x3.nc")
     assert "1.906804" in await hover(client, other, 21, 1)
+
+
+async def raw_request(client: LanguageClient, method: str, params: dict[str, Any]) -> Any:
+    """A request as a client may send it, whatever the protocol's types allow (the typed
+    helpers validate their parameters before sending)."""
+    protocol = client.protocol
+    msg_id = f"raw-{uuid.uuid4()}"
+    future: concurrent.futures.Future[Any] = concurrent.futures.Future()
+    protocol._request_futures[msg_id] = future
+    protocol._send_data({"jsonrpc": "2.0", "id": msg_id, "method": method, "params": params})
+    return await asyncio.wait_for(asyncio.wrap_future(future), WAIT)
+
+
+async def test_invalid_parameters_get_an_invalid_params_error(client: LanguageClient) -> None:
+    await start(client, None)
+    uri = "untitled:p.nc"
+    open_text(client, uri, "O1000\n#1=1.\nM30\n")
+    for position in ({"line": 0, "character": 2**31 + 2}, {"line": -1, "character": 0}):
+        with pytest.raises(JsonRpcException) as raised:
+            await raw_request(
+                client,
+                types.TEXT_DOCUMENT_HOVER,
+                {"textDocument": {"uri": uri}, "position": position},
+            )
+        assert raised.value.code == JsonRpcInvalidParams.CODE
+        assert "invalid parameters of textDocument/hover" in str(raised.value)
+    # Valid but far past the end of the document: an answer, not an error.
+    far = {"textDocument": {"uri": uri}, "position": {"line": 10**6, "character": 2**31 - 1}}
+    assert await raw_request(client, types.TEXT_DOCUMENT_HOVER, far) is None
+    assert "#1" in await hover(client, uri, 1, 1)  # the server is still there
+
+
+async def test_a_failing_feature_answers_an_error_and_the_server_goes_on(
+    client: LanguageClient,
+) -> None:
+    await start(client, None)
+    uri = "untitled:f.nc"
+    open_text(client, uri, f"O1000 ({FEATURE_FAULT})\n#1=1.\nM30\n")
+    await diagnostics(client, uri)
+    with pytest.raises(JsonRpcException) as raised:
+        await hover(client, uri, 1, 1)
+    assert raised.value.code == JsonRpcInternalError.CODE
+    assert "hover failed" in str(raised.value) and "please report it" in str(raised.value)
+    edit(client, uri, 2, [replace(0, 7, 7 + len(FEATURE_FAULT), "FIXED")])
+    await diagnostics(client, uri, lambda d: True)
+    deadline = time.monotonic() + WAIT
+    while True:  # the edit reaches the server before a hover after it
+        try:
+            assert "#1" in await hover(client, uri, 1, 1)
+            break
+        except JsonRpcException:
+            assert time.monotonic() < deadline
+            await asyncio.sleep(0.05)
 
 
 # ---- the workspace ---------------------------------------------------------------------------

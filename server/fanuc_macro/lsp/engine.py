@@ -27,6 +27,7 @@ from pygls.uris import from_fs_path, to_fs_path
 
 from ..analysis import Analysis
 from ..config import Config
+from ..diagnostics import REPORT_INTERNAL_ERROR
 from ..index import ProgramIndex
 from ..syntax import Document
 from ..workspace import Workspace, is_program_file, related_documents
@@ -43,6 +44,8 @@ SCAN_MAX_BYTES = 2 * 1024 * 1024
 SCAN_CHUNK = 25  # files per worker job, so that edits are analysed between chunks
 SKIP_DIRS = frozenset({"node_modules", "__pycache__", "site-packages", "venv", "env"})
 FAULT_ENV = "FANUC_MACRO_LS_FAULT"  # tests: analysing a text that contains it raises
+# Tests: every feature request fails while an open document contains it.
+FEATURE_FAULT_ENV = "FANUC_MACRO_LS_FEATURE_FAULT"
 
 
 def key_of(uri: str) -> str:
@@ -122,6 +125,7 @@ class Engine:
         self._analysed: dict[str, tuple[int, int]] = {}  # key -> (text seq, generation)
         self.generation = 0  # written by the worker only
         self._fault = os.environ.get(FAULT_ENV) or None
+        self._feature_fault = os.environ.get(FEATURE_FAULT_ENV) or None
 
     # ---- helpers ---------------------------------------------------------------------------
     @property
@@ -144,6 +148,12 @@ class Engine:
 
     def document(self, uri: str) -> OpenDocument | None:
         return self.docs.get(key_of(uri))
+
+    def check_feature_fault(self) -> None:
+        """Tests: fail as a bug in a feature would (see FEATURE_FAULT_ENV)."""
+        fault = self._feature_fault
+        if fault is not None and any(fault in doc.text for doc in self.docs.values()):
+            raise RuntimeError("feature fault injected for testing")
 
     async def in_worker(self, fn: Callable[[], T]) -> T:
         """Run ``fn`` in the worker thread, after the work queued before it."""
@@ -341,8 +351,8 @@ class Engine:
             self._report(f"fanuc-macro: the analysis of {text.uri} failed: {err!r}", err)
             failure = types.Diagnostic(
                 range=lines.range(0, 0, 0, len(lines.text(0))),
-                message=f"fanuc-macro could not analyse this document ({err!r}); the "
-                "language server's log has the details",
+                message=f"fanuc-macro could not analyse this document ({err!r}): "
+                f"{REPORT_INTERNAL_ERROR}",
                 severity=types.DiagnosticSeverity.Error,
                 code="MB000",
                 source="fanuc-macro",

@@ -14,9 +14,12 @@ from collections.abc import Callable, Sequence
 from typing import Any, TypeVar
 
 from lsprotocol import types
+from pygls.exceptions import JsonRpcException, JsonRpcInternalError, JsonRpcInvalidParams
 from pygls.lsp.server import LanguageServer
+from pygls.protocol import LanguageServerProtocol
 
 from .. import __version__
+from ..diagnostics import REPORT_INTERNAL_ERROR
 from .commands import THREAD_MODULE, TRACE, run_thread_module, run_trace
 from .convert import Codec
 from .documents import OpenDocument
@@ -44,10 +47,63 @@ SCAN_WAIT = 15.0  # seconds a definition waits for the workspace scan to find it
 T = TypeVar("T")
 
 
+class _Unreadable:
+    """A request whose parameters did not validate: answered with InvalidParams."""
+
+    def __init__(self, msg_id: int | str, method: str, error: JsonRpcException) -> None:
+        self.id = msg_id
+        self.method = method
+        self.error = error
+
+
+class AnsweringProtocol(LanguageServerProtocol):
+    """pygls logs and drops a request whose parameters do not validate (a position character
+    of 2**31), and the client waits for ever: here it gets the JSON-RPC error InvalidParams."""
+
+    def structure_message(self, data: dict[str, Any]) -> Any:
+        try:
+            return super().structure_message(data)
+        except JsonRpcException as error:
+            msg_id = data.get("id")
+            method = data.get("method")
+            if "jsonrpc" not in data or not isinstance(method, str):
+                raise  # a notification or a response: nobody waits for an answer
+            if isinstance(msg_id, bool) or not isinstance(msg_id, int | str):
+                raise
+            detail = _validation_errors(error.__cause__)
+            message = f"invalid parameters of {method}" + (f": {detail}" if detail else "")
+            return _Unreadable(msg_id, method, JsonRpcInvalidParams(message))
+
+    def handle_message(self, message: Any) -> None:
+        if isinstance(message, _Unreadable):
+            log.warning("%s (request %r)", message.error, message.id)
+            self._send_response(message.id, None, message.error.to_response_error())
+            return
+        super().handle_message(message)
+
+
+def _validation_errors(error: BaseException | None) -> str:
+    """The messages at the leaves of cattrs' nested validation errors (an explicit stack:
+    the nesting follows the client's JSON)."""
+    found: list[str] = []
+    stack = [error] if error is not None else []
+    while stack and len(found) < 5:
+        exc = stack.pop()
+        inner = getattr(exc, "exceptions", None)
+        if isinstance(inner, tuple | list) and inner:
+            stack.extend(reversed(inner))
+        elif str(exc):
+            found.append(str(exc))
+    return "; ".join(found)
+
+
 class FanucMacroLanguageServer(LanguageServer):
     def __init__(self) -> None:
         super().__init__(
-            NAME, __version__, text_document_sync_kind=types.TextDocumentSyncKind.Incremental
+            NAME,
+            __version__,
+            text_document_sync_kind=types.TextDocumentSyncKind.Incremental,
+            protocol_cls=AnsweringProtocol,
         )
         self.engine = Engine(self.publish_result, self.log_to_client)
         self.completion_support = CompletionSupport()
@@ -94,13 +150,16 @@ class FanucMacroLanguageServer(LanguageServer):
         )
 
     async def compute(self, what: str, fn: Callable[[], T]) -> T | None:
-        """Run a feature off the event loop; a bug in it is logged and answers nothing."""
+        """Run a feature off the event loop; a bug in it is logged, and the request gets an
+        error response (the server goes on)."""
         try:
+            self.engine.check_feature_fault()
             return await asyncio.to_thread(fn)
         except Exception as err:
             log.exception("%s failed", what)
-            self.log_to_client(f"fanuc-macro: {what} failed: {err!r}", types.MessageType.Error)
-            return None
+            message = f"fanuc-macro: {what} failed: {err!r}; {REPORT_INTERNAL_ERROR}"
+            self.log_to_client(message, types.MessageType.Error)
+            raise JsonRpcInternalError(message) from err
 
 
 def _has_extension_snippets(info: types.ClientInfo | None) -> bool:
