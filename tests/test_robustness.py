@@ -17,6 +17,7 @@ from typing import Any
 
 import pytest
 
+from fanuc_macro import cli
 from fanuc_macro.analysis import analyse
 from fanuc_macro.blocks import ReadLimits, cut_comments
 from fanuc_macro.config import Config
@@ -282,3 +283,50 @@ def test_workspace_reads_documents_again_when_a_limit_changes() -> None:
     assert ws.document("a.nc").unread_from == 4  # type: ignore[union-attr]
     assert "MB013" in {d.code for d in ws.analyse("a.nc").diagnostics}
     assert ws.set_config(Config(max_blocks=4, controller="30i")) == []  # same limits
+
+
+# ---- the inputs of the fuzz campaign that froze or crashed the analysis ----------------------
+
+FOUND_BY_FUZZING: dict[str, tuple[str, str]] = {
+    # name: (program, the code of its verdict)
+    "G65 with ten integer words then X#[...]": (
+        "O1\nG65P9010A1000B1000C1000D1000E1000F1000H1000I1000J1000K1000X#[#1+1]\nM30\n",
+        "MB403",  # the block reads (fast), and calls a program that is not there
+    ),
+    "X11 22 times then '['": ("O1\n" + "X11" * 22 + "[\nM30\n", "MB001"),
+    "a sum of 248 terms": ("O1\n#1=" + "+".join(["1"] * 248) + "\nM30\n", "MB012"),
+    "120 nested SIN[": ("O1\n#1=" + "SIN[" * 120 + "1" + "]" * 120 + "\nM30\n", "MB012"),
+    "250 nested SIN[": ("O1\n#1=" + "SIN[" * 250 + "1" + "]" * 250 + "\nM30\n", "MB011"),
+    "BCD of a value over 1e256": (f"O1\n#1=BCD[{HUGE}]\nM30\n", "MB501"),
+    "a sum of 10,000 terms": ("O1\n#1=" + "+".join(["1"] * 10_000) + "\nM30\n", "MB011"),
+    "a sum of 100,000 terms": ("O1\n#1=" + "+".join(["1"] * 100_000) + "\nM30\n", "MB011"),
+    "a 1 MB line": ("O1\n" + "X1.5Y2.5" * 131_072 + "\nM30\n", "MB011"),
+    "a 10 MB file": (
+        "O1\n" + "".join(f"G01 X{i % 97}.{i % 7} Z-{i % 89}. F0.2\n" for i in range(420_000)),
+        "MB013",
+    ),
+}
+
+
+@pytest.mark.parametrize("name", FOUND_BY_FUZZING)
+def test_each_input_that_froze_or_crashed_gets_a_clear_verdict(name: str) -> None:
+    text, code = FOUND_BY_FUZZING[name]
+    started = time.perf_counter()
+    found = analyse(text, "f.nc")
+    seconds = time.perf_counter() - started
+    codes = {d.code for d in found.diagnostics}
+    assert "MB000" not in codes
+    assert code in codes, sorted(codes)
+    assert seconds < 6.0, f"{seconds:.1f} s (the aim is 3 s: about 2 s at most on this VM)"
+
+
+@pytest.mark.parametrize("name", FOUND_BY_FUZZING)
+def test_trace_answers_json_on_each_of_them(
+    name: str, tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    path = tmp_path / "f.nc"
+    path.write_text(FOUND_BY_FUZZING[name][0], "utf-8")
+    assert cli.main(["trace", "--format", "json", str(path)]) in (0, 1)
+    out, err = capsys.readouterr()
+    assert "motions" in json.loads(out)
+    assert "Traceback" not in err
