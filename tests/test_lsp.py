@@ -613,6 +613,72 @@ async def test_survives_random_bytes_and_a_huge_document(client: LanguageClient)
     assert "1.906804" in await hover(client, uri, 21, 1)
 
 
+EDIT_TEXTS = ("", "#1=", "[", "]", "\n", "\r\n", "GOTO10\n", "WHILE[#1LT3]DO1\n", "END1",
+              "SIN[" * 30, "X11" * 40, "(", ")", ";", "%", "\u0085", "\u2028", "ア", "\t",
+              "N10")  # fmt: skip
+FEATURES = (
+    types.TEXT_DOCUMENT_HOVER,
+    types.TEXT_DOCUMENT_COMPLETION,
+    types.TEXT_DOCUMENT_DEFINITION,
+    types.TEXT_DOCUMENT_REFERENCES,
+    types.TEXT_DOCUMENT_DOCUMENT_SYMBOL,
+    types.TEXT_DOCUMENT_INLAY_HINT,
+    types.TEXT_DOCUMENT_CODE_ACTION,
+)
+
+
+def feature_params(method: str, uri: str, line: int, character: int) -> dict[str, Any]:
+    doc = {"uri": uri}
+    position = {"line": line, "character": character}
+    whole = {"start": {"line": 0, "character": 0}, "end": {"line": line, "character": character}}
+    if method == types.TEXT_DOCUMENT_DOCUMENT_SYMBOL:
+        return {"textDocument": doc}
+    if method == types.TEXT_DOCUMENT_INLAY_HINT:
+        return {"textDocument": doc, "range": whole}
+    if method == types.TEXT_DOCUMENT_CODE_ACTION:
+        return {"textDocument": doc, "range": whole, "context": {"diagnostics": []}}
+    if method == types.TEXT_DOCUMENT_REFERENCES:
+        return {"textDocument": doc, "position": position, "context": {"includeDeclaration": True}}
+    return {"textDocument": doc, "position": position}
+
+
+async def test_random_edits_and_requests_are_all_answered(client: LanguageClient) -> None:
+    """Edits anywhere (past the end too) and every feature at any position: each request gets
+    its answer, an invalid one the InvalidParams error, and nothing fails inside."""
+    await start(client, None)
+    rng = random.Random(20261201)
+    uri = "untitled:random.nc"
+    open_text(client, uri, (SEEDS / "o4009_external_m50x3.nc").read_text("utf-8"))
+    version = 1
+    answered = invalid = 0
+    for _ in range(300):
+        line, character = rng.randint(0, 80), rng.choice((0, 1, 5, 30, 200, 2**31 - 1))
+        if rng.random() < 0.5:
+            version += 1
+            end = types.Position(line=line + rng.randint(0, 2), character=rng.randint(0, 40))
+            begin = types.Position(line=line, character=min(character, 60))
+            change = types.TextDocumentContentChangePartial(
+                range=types.Range(start=begin, end=end), text=rng.choice(EDIT_TEXTS)
+            )
+            edit(client, uri, version, [change])
+            continue
+        method = rng.choice(FEATURES)
+        if rng.random() < 0.2 and method != types.TEXT_DOCUMENT_DOCUMENT_SYMBOL:
+            # A position that does not validate (document symbols have none).
+            bad = rng.choice(((-1, 0), (0, -5), (2**31 + 2, 0), (0, 2**40)))
+            with pytest.raises(JsonRpcException) as raised:
+                await raw_request(client, method, feature_params(method, uri, *bad))
+            assert raised.value.code == JsonRpcInvalidParams.CODE, method
+            invalid += 1
+        else:
+            await raw_request(client, method, feature_params(method, uri, line, character))
+            answered += 1
+    assert answered > 80 and invalid > 15
+    assert not [m for m in client.log_messages if m.type == types.MessageType.Error]
+    found = await diagnostics(client, uri, lambda d: True)
+    assert "MB000" not in codes(found)
+
+
 async def test_a_10_mb_document_and_a_1_mb_line_get_their_verdicts(
     client: LanguageClient,
 ) -> None:
