@@ -330,3 +330,27 @@ def test_trace_answers_json_on_each_of_them(
     out, err = capsys.readouterr()
     assert "motions" in json.loads(out)
     assert "Traceback" not in err
+
+
+@pytest.mark.parametrize(
+    ("text", "levels"),
+    [
+        ("#1=" + "SIN[" * 20_000 + "1" + "]" * 20_000, 20_001),  # the LALR stack, the AST
+        ("#1=" + "-" * 20_000 + "1", 20_001),
+        ("IF[" + "[" * 20_000 + "#1" + "]" * 20_000 + "EQ1]GOTO1", 20_002),
+        ("#1=" + "SIN[" * 20_000 + "1", None),  # rejected: the error's description
+    ],
+    ids=["functions", "signs", "conditions", "unclosed"],
+)
+def test_the_grammar_path_takes_20000_levels_without_recursion(
+    text: str, levels: int | None
+) -> None:
+    """The LALR driver keeps its own stack and the AST builder makes one node per reduction;
+    past the depth limit the block is measured (with a stack) and refused."""
+    parsed = BlockParser().parse_line(text, max_line_length=10**6)
+    assert parsed.statement is None
+    if levels is None:
+        assert parsed.problem is not None and "not closed" in parsed.problem.message
+    else:
+        (note,) = parsed.notes
+        assert note.kind == "too-deep" and f"nests {levels} levels deep" in note.message
