@@ -104,8 +104,13 @@ def test_hostile_line_is_read_quickly_and_as_the_grammar_reads_it(name: str) -> 
     assert parsed == GRAMMAR.parse_line(text)
 
 
-def test_cut_comments_is_linear_in_end_of_block_marks() -> None:
-    growth = _growth(lambda n: ";" * (4 * n), cut_comments, 2000)
+@pytest.mark.parametrize(
+    "make",
+    [lambda n: ";" * (4 * n), lambda n: "(()" * n, lambda n: "(" * n + ")" * n],
+    ids=["end-of-block marks", "nested comments", "a deep comment"],
+)
+def test_cut_comments_is_linear(make: Callable[[int], str]) -> None:
+    growth = _growth(make, cut_comments, 2000)
     assert growth < 12
 
 

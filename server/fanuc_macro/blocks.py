@@ -119,16 +119,17 @@ class LineCode:
     notes: tuple[LineNote, ...]
 
 
-def _balanced_close(line: str, open_at: int) -> int | None:
-    depth = 0
-    for k in range(open_at, len(line)):
-        if line[k] == "(":
-            depth += 1
-        elif line[k] == ")":
-            depth -= 1
-            if depth == 0:
-                return k
-    return None
+def _balanced_closes(line: str) -> dict[int, int]:
+    """Each '(' of the line that a ')' balances, and that ')': one pass, where a scan from each
+    '(' took quadratic time on "(()(()(()..."."""
+    closes: dict[int, int] = {}
+    opened: list[int] = []
+    for k, ch in enumerate(line):
+        if ch == "(":
+            opened.append(k)
+        elif ch == ")" and opened:
+            closes[opened.pop()] = k
+    return closes
 
 
 def cut_comments(line: str) -> LineCode:
@@ -141,6 +142,7 @@ def cut_comments(line: str) -> LineCode:
     tape_mark = False
     i = 0
     n = len(line)
+    balanced_closes: dict[int, int] | None = None  # worked out when a comment holds a '('
     while i < n:
         ch = line[i]
         if ch == "(":
@@ -159,7 +161,9 @@ def cut_comments(line: str) -> LineCode:
                 break
             end = close
             if line.find("(", i + 1, close) >= 0:
-                balanced = _balanced_close(line, i)
+                if balanced_closes is None:
+                    balanced_closes = _balanced_closes(line)
+                balanced = balanced_closes.get(i)
                 if balanced is not None and balanced > close:
                     # FANUC ends the comment at the first ")" and reads the rest as program
                     # text. Real files do this by mistake, so take the comment to the ")" that
