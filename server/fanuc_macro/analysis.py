@@ -89,6 +89,8 @@ file_marks: PerLine[tuple[str, str] | None] = PerLine(_file_mark)
 # What a block of another control's program gives when FANUC cannot read it: these findings
 # of one block become one MB002 naming the file's dialect.
 _FOLDED = frozenset({"MB001", "MB002", "MB003", "MB004", "MB005", "MB008"})
+# FANUC's conventions of writing that another control's program need not follow (lower case).
+_FANUC_STYLE = frozenset({"MB006"})
 
 
 def run_checks(ctx: RuleContext, checks: Iterable[ExtraChecks]) -> list[Diagnostic]:
@@ -110,6 +112,8 @@ def run_checks(ctx: RuleContext, checks: Iterable[ExtraChecks]) -> list[Diagnost
     for line, parsed, findings in per_block:
         folded = [f for f in findings if f.code in _FOLDED] if foreign is not None else []
         for f in findings:
+            if foreign is not None and f.code in _FANUC_STYLE:
+                continue
             if not folded or f.code not in _FOLDED:
                 found.append(make(f.code, f.message, line, f.start, f.end))
         if folded and foreign is not None:
