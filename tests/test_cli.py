@@ -215,6 +215,37 @@ def test_disable_several_codes_in_any_case(tmp_path: Path) -> None:
     assert after == before - {"MB101", "MB403"}
 
 
+# ---- the machine's limits and options ------------------------------------------------------------
+
+FAST = "%\nO6002 (SURFACE SPEED)\n#19=FIX[1000.*300./[3.1416*20.]]\nS#19 M03\nM30\n%\n"
+
+
+def test_spindle_speed_is_checked_only_against_a_limit_given(tmp_path: Path) -> None:
+    write(tmp_path / "prog.nc", FAST)
+    quiet = parsed_lines(run(tmp_path, "check", "prog.nc").stdout)
+    assert "MB602" not in {r["code"] for r in quiet}
+    result = run(tmp_path, "check", "--max-spindle-speed", "4000", "prog.nc")
+    [row] = [r for r in parsed_lines(result.stdout) if r["code"] == "MB602"]
+    assert "S gets 4774. rpm, above the machine's maximum 4000. rpm" in row["message"]
+    assert int(row["line"]) == 4
+    assert run(tmp_path, "check", "--max-spindle-speed", "5000", "prog.nc").stdout == ""
+
+
+def test_threading_feed_is_checked_only_against_a_limit_given(tmp_path: Path) -> None:
+    thread = "%\nO1007\nG97 S3500 M03\nG00 X66. Z12.\nG92 X63.4 Z-40. F6.\nM30\n%\n"
+    write(tmp_path / "prog.nc", thread)
+    assert "MB807" not in run(tmp_path, "check", "prog.nc").stdout
+    result = run(tmp_path, "check", "--max-threading-feed", "10000", "prog.nc")
+    assert "MB807" in {r["code"] for r in parsed_lines(result.stdout)}
+
+
+def test_a_limit_must_be_a_positive_number(tmp_path: Path) -> None:
+    write(tmp_path / "prog.nc", FAST)
+    for bad in ("0", "-5", "fast", "inf"):
+        result = run(tmp_path, "check", "--max-spindle-speed", bad, "prog.nc")
+        assert result.returncode == 2 and "positive number" in result.stderr, bad
+
+
 # ---- calls between files -------------------------------------------------------------------------
 
 MAIN = "%\nO1000 (MAIN)\nM98 P2000\nG65 P9123 X10. Z-20. D12.\nM30\n%\n"

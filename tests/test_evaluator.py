@@ -8,6 +8,7 @@ from pathlib import Path
 import pytest
 
 from fanuc_macro.analysis import analyse
+from fanuc_macro.config import Config
 from fanuc_macro.evaluator import Facts, Unknown, evaluate
 from fanuc_macro.evaluator.values import f_fix, f_fup, f_round
 from fanuc_macro.index import build_index
@@ -192,10 +193,12 @@ def test_statements_per_second_budget_is_sane() -> None:
     assert math.isclose(facts.document("t.nc").writes[3][1].count, 1000)
 
 
-def _seed_codes(name: str, old: str, new: str) -> dict[str, list[str]]:
+def _seed_codes(
+    name: str, old: str, new: str, config: Config | None = None
+) -> dict[str, list[str]]:
     text = (SEEDS / name).read_text("utf-8")
     assert old in text
-    result = analyse(text.replace(old, new), name)
+    result = analyse(text.replace(old, new), name, config)
     found: dict[str, list[str]] = {}
     for d in result.diagnostics:
         found.setdefault(d.code, []).append(d.message)
@@ -217,9 +220,12 @@ def test_threading_rules_on_the_seed_module() -> None:
         "o4009_external_m50x3.nc", "#3=#101/[8*SIN[60]] (刀尖半径)", "#3=0.6 (刀尖半径)"
     )
     assert "nose radius 0.6" in found["MB805"][0]
-    # S x P over the machine's threading feed limit.
-    found = _seed_codes("o4009_external_m50x3.nc", "G97 S400", "G97 S4000")
+    # S x P over the machine's threading feed limit, when the limit is set; not checked when
+    # nobody set it.
+    limited = Config(max_threading_feed=10000.0)
+    found = _seed_codes("o4009_external_m50x3.nc", "G97 S400", "G97 S4000", limited)
     assert "12000." in found["MB807"][0]
+    assert "MB807" not in _seed_codes("o4009_external_m50x3.nc", "G97 S400", "G97 S4000")
 
 
 def test_fitting_method_tool_radius_from_chinese_comments() -> None:

@@ -4,7 +4,9 @@ Each fixture ``tests/fixtures/rules/MBxxx_<name>[_<variant>].nc`` is a small pro
 every line that must produce a diagnostic carries ``(expect: MBxxx)`` (several codes:
 ``(expect: MB101 MB103)``). The codes a fixture is about are the one in its file name and those
 of its expect comments; for those codes, the diagnostics must stand exactly on the expected
-lines, and nowhere else in the file.
+lines, and nowhere else in the file. A rule that needs a setting (a machine limit) is tested with
+a comment ``(settings: {"machine": {"maxSpindleSpeed": 4000}})``: the editor's settings object
+under ``fanuc-macro``, in JSON.
 
 The lists of codes are read from ``fanuc_macro.diagnostics.RULES`` when the tests are
 collected, so a rule registered later (the evaluator's MB5xx-MB9xx) is covered as soon as it is
@@ -13,6 +15,7 @@ registered: it needs a section in docs/rules.md and a fixture.
 
 from __future__ import annotations
 
+import json
 import re
 from collections.abc import Iterator
 from functools import cache
@@ -23,7 +26,7 @@ import pytest
 import fanuc_macro.analysis  # noqa: F401  (importing it registers every rule)
 from fanuc_macro.analysis import Analysis, analyse
 from fanuc_macro.blocks import decode_bytes
-from fanuc_macro.config import Config
+from fanuc_macro.config import NOT_SET, Config
 from fanuc_macro.diagnostics import RULES, Diagnostic, Severity
 from fanuc_macro.parser import parse_bytes
 from fanuc_macro.rules.context import RuleContext
@@ -33,6 +36,7 @@ FIXTURES = ROOT / "tests" / "fixtures" / "rules"
 DOCS = ROOT / "docs" / "rules.md"
 
 EXPECT = re.compile(r"\(expect:([^)]*)\)")
+SETTINGS = re.compile(r"\(settings:([^)]*)\)")
 CODE = re.compile(r"MB\d{3}")
 HEADING = re.compile(r"^## (MB\d{3}) (\S+)\s*$", re.M)
 FENCE = re.compile(r"^```nc\n(.*?)^```", re.M | re.S)
@@ -55,10 +59,14 @@ def fixture_analysis(path: Path) -> tuple[Analysis, dict[int, set[str]]]:
     text = decode_bytes(data).text
     doc = parse_bytes(data, str(path))
     expected: dict[int, set[str]] = {}
+    settings: dict[str, object] = {}
     for block in doc.blocks:
         for m in EXPECT.finditer(block.text):
             expected.setdefault(block.line, set()).update(CODE.findall(m.group(1)))
-    return analyse(text, str(path), doc=doc), expected
+        for m in SETTINGS.finditer(block.text):
+            settings.update(json.loads(m.group(1)))
+    config = Config.from_settings(settings) if settings else None
+    return analyse(text, str(path), config, doc=doc), expected
 
 
 @cache
@@ -159,6 +167,24 @@ def _example(code: str) -> str:
     return m.group(1)
 
 
+# "The example assumes `"fanuc-macro.machine.maxSpindleSpeed": 4000`": a setting the example
+# needs, as the section states it.
+EXAMPLE_SETTING = re.compile(r'`"fanuc-macro\.([\w.]+)":\s*([^`]+)`')
+
+
+def _example_config(code: str) -> Config | None:
+    settings: dict[str, object] = {}
+    for key, value in EXAMPLE_SETTING.findall(doc_sections()[code][1]):
+        *groups, name = key.split(".")
+        node = settings
+        for group in groups:
+            child = node.setdefault(group, {})
+            assert isinstance(child, dict)
+            node = child
+        node[name] = json.loads(value)
+    return Config.from_settings(settings) if settings else None
+
+
 @pytest.mark.parametrize("code", [c for c in ALL_CODES if c != "MB000"])
 def test_doc_example_triggers_its_rule(code: str) -> None:
     """The example of each section produces the diagnostic it illustrates.
@@ -170,7 +196,7 @@ def test_doc_example_triggers_its_rule(code: str) -> None:
         data = text.encode("gb18030")
         analysis = analyse(text, "example.nc", doc=parse_bytes(data, "example.nc"))
     else:
-        analysis = analyse(text, "example.nc")
+        analysis = analyse(text, "example.nc", _example_config(code))
     assert code in {d.code for d in analysis.diagnostics}, text
 
 
@@ -310,6 +336,18 @@ def test_config_from_editor_settings() -> None:
     assert "MB403" not in diags
     assert diags["MB101"].severity is Severity.WARNING
     assert diags["MB302"].severity is Severity.ERROR
+
+
+def test_machine_limits_are_checked_only_when_set() -> None:
+    """No default machine limit: a spindle speed is too high only against one the user set."""
+    assert Config().max_spindle_speed == NOT_SET == Config().max_threading_feed
+    unset = Config.from_settings({"machine": {"maxSpindleSpeed": None, "maxThreadingFeed": 0}})
+    assert unset.max_spindle_speed == NOT_SET == unset.max_threading_feed
+    limited = Config.from_settings({"machine": {"maxSpindleSpeed": 6000}})
+    assert limited.max_spindle_speed == 6000.0
+    text = "O1000\n#19=6500.\nS#19 M03\n#19=5000.\nS#19 M03\nM30\n"
+    assert "MB602" not in codes_of(text)
+    assert pairs(analyse(text, config=limited).diagnostics, "MB602") == {(2, "MB602")}
 
 
 def test_docs_name_every_word_the_threading_rules_know() -> None:

@@ -11,7 +11,7 @@ from pathlib import Path
 from . import __version__
 from .analysis import analyse
 from .cli_thread import add_thread_command
-from .config import CONTROLLERS, Config
+from .config import CONTROLLERS, NOT_SET, Config
 from .diagnostics import Diagnostic, Severity
 from .evaluator.values import fmt_address
 from .trace import trace
@@ -58,7 +58,48 @@ def _as_json(path: str, d: Diagnostic) -> dict[str, object]:
 
 def _config(args: argparse.Namespace) -> Config:
     disabled = frozenset(c.strip().upper() for c in (args.disable or "").split(",") if c.strip())
-    return Config(controller=args.controller, disabled=disabled)
+    return Config(
+        controller=args.controller,
+        disabled=disabled,
+        max_spindle_speed=args.max_spindle_speed,
+        max_threading_feed=args.max_threading_feed,
+        extended_commons=args.extended_commons,
+    )
+
+
+def _positive(text: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        value = 0.0
+    if not value > 0 or value == NOT_SET:
+        raise argparse.ArgumentTypeError(f"not a positive number: {text!r}")
+    return value
+
+
+def _add_machine_options(parser: argparse.ArgumentParser) -> None:
+    """The machine's limits and options, as the editor's fanuc-macro.machine.* settings: a
+    limit not given is not checked."""
+    parser.add_argument(
+        "--max-spindle-speed",
+        type=_positive,
+        default=NOT_SET,
+        metavar="RPM",
+        help="the machine's maximum spindle speed (MB602); not checked when not given",
+    )
+    parser.add_argument(
+        "--max-threading-feed",
+        type=_positive,
+        default=NOT_SET,
+        metavar="MM_PER_MIN",
+        help="the machine's largest feed while threading, S x lead (MB807); not checked when "
+        "not given",
+    )
+    parser.add_argument(
+        "--extended-commons",
+        action="store_true",
+        help="the machine has the extended common variables #200-#499 (no MB303)",
+    )
 
 
 def cmd_check(args: argparse.Namespace) -> int:
@@ -141,6 +182,7 @@ def build_parser() -> argparse.ArgumentParser:
     check.add_argument("--format", choices=("text", "json"), default="text")
     check.add_argument("--controller", choices=CONTROLLERS, default="0i-TF")
     check.add_argument("--disable", metavar="CODES", help="comma-separated rule codes to skip")
+    _add_machine_options(check)
     check.set_defaults(func=cmd_check)
 
     tr = sub.add_parser("trace", help="print the motion blocks a program executes")
@@ -156,6 +198,7 @@ def build_parser() -> argparse.ArgumentParser:
     tr.add_argument("--format", choices=("text", "json"), default="text")
     tr.add_argument("--controller", choices=CONTROLLERS, default="0i-TF")
     tr.add_argument("--disable", help=argparse.SUPPRESS)
+    _add_machine_options(tr)
     tr.set_defaults(func=cmd_trace)
 
     add_thread_command(sub)

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -10,12 +11,17 @@ from .diagnostics import Severity
 CONTROLLERS = ("0i-TF", "0i-MF", "16i-T", "16i-M", "18i-T", "18i-M", "30i")
 ATAN_RANGES = ("0-360", "-180-180")
 
+# A machine limit nobody set: nothing is above it, so the rules that compare with it stay quiet.
+# A limit is the machine builder's (spindle and chuck rating, servo speed), not FANUC's: no
+# default can be right for every machine, and a wrong one reports good programs.
+NOT_SET = math.inf
+
 
 @dataclass(frozen=True)
 class Config:
     controller: str = "0i-TF"
-    max_spindle_speed: float = 4000.0  # rpm
-    max_threading_feed: float = 10000.0  # mm/min: S x pitch must stay under it
+    max_spindle_speed: float = NOT_SET  # rpm (setting machine.maxSpindleSpeed)
+    max_threading_feed: float = NOT_SET  # mm/min: S x lead must stay under it
     max_depth_per_pass: float = 0.5  # mm, radius, for a threading pass
     disabled: frozenset[str] = frozenset()
     severities: dict[str, Severity] = field(default_factory=dict)
@@ -23,6 +29,8 @@ class Config:
     time_budget: float = 0.8  # seconds of evaluation per document
     # ATAN's result: 0 to 360 degrees, or -180 to 180 with parameter 6004#0 (NAT) set.
     atan_signed: bool = False
+    # The extended common variables #200-#499 (an option on 0i-F / 30i) are on the machine.
+    extended_commons: bool = False
 
     @property
     def is_lathe(self) -> bool:
@@ -72,6 +80,7 @@ class Config:
             step_budget=int(_number(analysis.get("stepBudget"), default.step_budget)),
             time_budget=_number(analysis.get("timeBudget"), default.time_budget),
             atan_signed=str(machine.get("atanRange") or "0-360") == "-180-180",
+            extended_commons=machine.get("extendedCommons") is True,
         )
 
 
