@@ -239,6 +239,14 @@ def test_threading_feed_is_checked_only_against_a_limit_given(tmp_path: Path) ->
     assert "MB807" in {r["code"] for r in parsed_lines(result.stdout)}
 
 
+def test_extended_commons_option(tmp_path: Path) -> None:
+    write(tmp_path / "prog.nc", "%\nO9040\n#200=#5061\n#201=#5062\nM99\n%\n")
+    [row] = [r for r in parsed_lines(run(tmp_path, "check", "prog.nc").stdout)]
+    assert (row["code"], row["line"]) == ("MB303", "3")
+    assert "first of 2 uses" in row["message"]
+    assert run(tmp_path, "check", "--extended-commons", "prog.nc").stdout == ""
+
+
 def test_a_limit_must_be_a_positive_number(tmp_path: Path) -> None:
     write(tmp_path / "prog.nc", FAST)
     for bad in ("0", "-5", "fast", "inf"):

@@ -338,6 +338,30 @@ def test_config_from_editor_settings() -> None:
     assert diags["MB302"].severity is Severity.ERROR
 
 
+def test_extended_commons_once_per_file_with_the_count_and_range() -> None:
+    lines = ["O9040", "#1=1."] + [f"#{200 + i % 300}=#5061" for i in range(167)] + ["M99"]
+    diags = [d for d in analyse("\n".join(lines) + "\n").diagnostics if d.code == "MB303"]
+    [mb303] = diags
+    assert mb303.line == 2 and (mb303.column, mb303.end_column) == (0, 4)
+    first = "#200 is the first of 167 uses of #200-#499 in this file, lines 3-169"
+    assert first in mb303.message
+    assert "#200, #201, #202, #203, #204, #205, ..." in mb303.message
+    assert [r.line for r in mb303.related] == [168]
+    one = analyse("O9040\n#1=#450\nM99\n").diagnostics
+    assert [d.message.split(":")[0] for d in one if d.code == "MB303"] == [
+        "#450 is its only use in this file"
+    ]
+
+
+def test_extended_commons_setting_says_the_option_is_there() -> None:
+    text = "O9040\n#200=#5061\nG00 X#350\nM99\n"
+    assert "MB303" in codes_of(text)
+    config = Config.from_settings({"machine": {"extendedCommons": True}})
+    assert config.extended_commons
+    assert "MB303" not in codes_of(text, config)
+    assert not Config.from_settings({"machine": {"extendedCommons": "yes"}}).extended_commons
+
+
 def test_machine_limits_are_checked_only_when_set() -> None:
     """No default machine limit: a spindle speed is too high only against one the user set."""
     assert Config().max_spindle_speed == NOT_SET == Config().max_threading_feed
