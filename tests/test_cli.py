@@ -287,6 +287,43 @@ def test_calls_resolved_through_files_given_together(tmp_path: Path) -> None:
     assert [int(r["line"]) for r in partial if r["code"] == "MB403"] == [4]
 
 
+def test_files_without_o_line_are_known_by_their_names(tmp_path: Path) -> None:
+    write(tmp_path / "main.nc", "%\nO1000 (MAIN)\nM98 P8501\nG65 P9010 A1.\nM98 P8502\nM30\n%\n")
+    write(tmp_path / "O8501.NC", "%\n(ROUGHING)\nG00 X100.\nM99\n%\n")
+    write(tmp_path / "O09010", "G00 X#1 Z2.\nM99\n")  # a memory card's name, no extension
+    write(tmp_path / "O8502 FINISH.nc", "G00 X50.\nZ2.\n")  # no M99 either
+    rows = parsed_lines(run(tmp_path, "check", ".").stdout)
+    assert not [r for r in rows if r["code"] in ("MB403", "MB901")]
+    hints = {(Path(r["path"]).name, r["line"]): r for r in rows if r["code"] == "MB010"}
+    assert set(hints) == {("O8501.NC", "3"), ("O09010", "1"), ("O8502 FINISH.nc", "1")}
+    assert all(r["severity"] == "hint" for r in hints.values())
+    assert hints[("O8501.NC", "3")]["message"].startswith(
+        "program number 8501 taken from the file name 'O8501.NC'"
+    )
+    # A program named by its file is checked as one: O8502 runs off its end.
+    [unended] = [r for r in rows if r["code"] == "MB407"]
+    assert (Path(unended["path"]).name, unended["line"]) == ("O8502 FINISH.nc", "2")
+    assert "called with M98 from O1000" not in unended["message"]  # another file calls it
+    # Given together on the command line, the files know each other too; alone, they do not.
+    together = run(tmp_path, "check", "main.nc", "O8501.NC", "O09010", "O8502 FINISH.nc")
+    assert "MB403" not in together.stdout
+    alone = parsed_lines(run(tmp_path, "check", "main.nc").stdout)
+    assert {r["message"].split(",")[0] for r in alone if r["code"] == "MB403"} == {
+        "M98 calls O8501",
+        "G65 calls O9010",
+        "M98 calls O8502",
+    }
+
+
+def test_names_that_are_not_program_numbers_number_nothing(tmp_path: Path) -> None:
+    write(tmp_path / "main.nc", "%\nO1000 (MAIN)\nM98 P4\nM30\n%\n")
+    write(tmp_path / "04_variables.nc", "G00 X1.\nM99\n")
+    rows = parsed_lines(run(tmp_path, "check", ".").stdout)
+    assert [r["code"] for r in rows if r["path"].endswith("main.nc")] == ["MB403"]
+    [note] = [r for r in rows if r["path"].endswith("04_variables.nc")]
+    assert (note["code"], note["severity"]) == ("MB010", "information")
+
+
 # ---- the seed programs ----------------------------------------------------------------------
 
 # o2_arc_thread_roughing.nc copies the paper's typo 'M#1' for 'M#13' (spindle direction) in

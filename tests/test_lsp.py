@@ -375,6 +375,38 @@ async def test_definition_across_files(client: LanguageClient, tmp_path: Path) -
     assert target.range.start.line == 1
 
 
+async def test_a_file_without_o_line_is_known_by_its_name(
+    client: LanguageClient, tmp_path: Path
+) -> None:
+    (tmp_path / "main.nc").write_text("O1000\nM98 P8501\nG65 P8502 A1.\nM30\n", "utf-8")
+    (tmp_path / "O8501.NC").write_text("%\n(ROUGHING)\nG00 X100.\nM99\n%\n", "utf-8")
+    await start(client, tmp_path)
+    uri = (tmp_path / "main.nc").as_uri()
+    open_text(client, uri, (tmp_path / "main.nc").read_text("utf-8"))
+    found = await diagnostics(client, uri, lambda d: "MB403" in codes(d))
+    # O8501 is the file O8501.NC; nothing is named O8502.
+    assert [d.message.split(",")[0] for d in found if d.code == "MB403"] == ["G65 calls O8502"]
+    [target] = await definition(client, uri, 1, 5)
+    assert target.uri == (tmp_path / "O8501.NC").as_uri() and target.range.start.line == 2
+    assert "no O line: the number is the file name's" in await hover(client, uri, 1, 5)
+    # Opened, the file says where its number comes from, as a hint.
+    sub = (tmp_path / "O8501.NC").as_uri()
+    open_text(client, sub, (tmp_path / "O8501.NC").read_text("utf-8"))
+    notes = await diagnostics(client, sub, lambda d: "MB010" in codes(d))
+    [hint] = [d for d in notes if d.code == "MB010"]
+    assert hint.severity == types.DiagnosticSeverity.Hint
+    assert hint.message.startswith("program number 8501 taken from the file name 'O8501.NC'")
+    # A file saved under that number, created later, answers the other call.
+    later = tmp_path / "O8502 FINISH.nc"
+    later.write_text("G00 X#1\nM99\n", "utf-8")
+    client.workspace_did_change_watched_files(
+        types.DidChangeWatchedFilesParams(
+            changes=[types.FileEvent(uri=later.as_uri(), type=types.FileChangeType.Created)]
+        )
+    )
+    await diagnostics(client, uri, lambda d: "MB403" not in codes(d))
+
+
 async def test_references_of_a_local(client: LanguageClient) -> None:
     await start(client)
     uri = open_seed(client, "o4009_external_m50x3.nc")

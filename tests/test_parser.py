@@ -12,7 +12,7 @@ import pytest
 
 from fanuc_macro.analysis import analyse
 from fanuc_macro.blocks import cut_comments, decode_bytes, split_lines
-from fanuc_macro.index import build_index
+from fanuc_macro.index import build_index, program_number_of_name
 from fanuc_macro.parser import BlockParser, fast_parse, parse_bytes, parse_text
 from fanuc_macro.syntax import (
     Assign,
@@ -247,6 +247,57 @@ def test_program_numbers_and_names(text: str, number: int | None, name: str | No
     s = stmt(text)
     assert isinstance(s, ProgramStart)
     assert (s.number, s.name) == (number, name)
+
+
+@pytest.mark.parametrize(
+    ("name", "number"),
+    [
+        ("O8501.NC", 8501),
+        ("o8501.nc", 8501),
+        ("8501.nc", 8501),
+        ("O09010", 9010),
+        ("O09010.nc", 9010),
+        ("O8501 DESCRIPTION.nc", 8501),
+        ("O8501_ROUGH.nc", 8501),
+        ("8501 ROUGH.nc", 8501),
+        ("01000.nc", 1000),
+        ("O12345678.nc", 12345678),
+        ("/shop/progs/O8501.NC", 8501),
+        ("C:\\progs\\O8501.NC", 8501),
+        ("file:///shop/O8501%20ROUGH.nc", 8501),
+        # Names that are not program numbers.
+        ("04_variables.nc", None),
+        ("2024-01-05.nc", None),
+        ("PART2.nc", None),
+        ("SAMPLE 3.nc", None),
+        ("O8501X.nc", None),
+        ("O8501.bak.nc", None),
+        ("12345.nc", None),
+        ("0.nc", None),
+        ("O0.nc", None),
+        ("prog.nc", None),
+        ("untitled:Untitled-1", None),
+    ],
+)
+def test_program_number_of_a_file_name(name: str, number: int | None) -> None:
+    assert program_number_of_name(name) == number
+
+
+def test_a_file_without_o_line_is_the_program_its_name_numbers() -> None:
+    index = build_index(parse_text("%\n(ROUGH)\nG00 X100.\nM99\n%\n", "/p/O8501.NC"))
+    [program] = index.programs
+    assert (program.number, program.named_by_file, program.display_name) == (
+        8501,
+        "O8501.NC",
+        "O8501",
+    )
+    assert program.first_line == 2 and program.header_line is None
+    # An O line in the file wins over the name; text before it stays a fragment.
+    index = build_index(parse_text("G00 X0\nO1234\nM99\n", "/p/O8501.NC"))
+    assert [(p.number, p.named_by_file) for p in index.programs] == [(None, None), (1234, None)]
+    # No number in the name: "(main)", as before.
+    [program] = build_index(parse_text("G00 X0\nM30\n", "/p/part.nc")).programs
+    assert (program.number, program.display_name) == (None, "(main)")
 
 
 @pytest.mark.parametrize(

@@ -18,12 +18,18 @@ PROGRAM_SUFFIXES = frozenset({".nc", ".mac", ".tap", ".cnc", ".eia", ".txt"})
 _PROGRAM_HEAD = re.compile(rb"\A(?:\xef\xbb\xbf)?\s*(%|[oO]\d)")
 
 
+_NUMBER_NAME = re.compile(r"O\d{1,8}", re.I)
+
+
 def is_program_file(path: Path) -> bool:
-    """Program files by extension, or with none and a first line that is '%' or 'O<number>'."""
+    """Program files by extension, or with none and a first line that is '%' or 'O<number>',
+    or a name that is a program number ('O09010', as a control's memory card holds them)."""
     if path.suffix.lower() in PROGRAM_SUFFIXES:
         return True
     if path.suffix:
         return False
+    if _NUMBER_NAME.fullmatch(path.name):
+        return True
     try:
         with path.open("rb") as f:
             head = f.read(64)

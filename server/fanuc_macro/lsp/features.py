@@ -429,6 +429,8 @@ def hover_program(view: View, number: int, line: int | None = None) -> str:
     parts = [f"**{program.display_name}**" + (f" — {comment}" if comment else ""), where]
     kind = "subprogram (ends with M99)" if program.returns else "main program"
     parts[-1] += f" · {kind}"
+    if program.named_by_file is not None:
+        parts[-1] += " · no O line: the number is the file name's"
     callers: list[str] = []
     for c_key, (_, c_index) in {**view.workspace, view.key: (view.doc, view.index)}.items():
         for c_program in c_index.programs:

@@ -190,7 +190,9 @@ def check_programs(ctx: RuleContext) -> Iterator[Diagnostic]:
         ends = False
         last_statement: int | None = None
         last_stops = False
-        for line in range(program.first_line + 1, program.end_line):
+        # After the O line; a program named by its file (no O line) from its first block.
+        first = program.first_line + (1 if program.header_line is not None else 0)
+        for line in range(first, program.end_line):
             found = _ends_of(ctx.doc.blocks[line].parsed)
             if found.has_statement:
                 last_statement = line
