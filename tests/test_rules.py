@@ -338,6 +338,15 @@ def test_config_from_editor_settings() -> None:
     assert diags["MB302"].severity is Severity.ERROR
 
 
+def test_duplicate_label_dead_copy_needs_the_evaluator() -> None:
+    text = "O2004\n#1=1.\nN30 G00 X10.\nIF[#1EQ2.]GOTO30\nG00 X20.\nM30\nN30 G00 X30.\nM30\n"
+    assert pairs(analyse(text).diagnostics, "MB102") == {(3, "MB102")}
+    assert not pairs(analyse(text, run_evaluator=False).diagnostics, "MB102")
+    # A common variable the analysis does not know leaves the branch undecided: nothing is dead.
+    undecided = text.replace("#1=1.\n", "").replace("#1EQ", "#100EQ")
+    assert not pairs(analyse(undecided).diagnostics, "MB102")
+
+
 def test_extended_commons_once_per_file_with_the_count_and_range() -> None:
     lines = ["O9040", "#1=1."] + [f"#{200 + i % 300}=#5061" for i in range(167)] + ["M99"]
     diags = [d for d in analyse("\n".join(lines) + "\n").diagnostics if d.code == "MB303"]
