@@ -140,7 +140,7 @@ def _foreign_message(foreign: dialects.FileDialect, parsed: ParsedLine, first: L
     where = f"{foreign.mark} on line {foreign.line + 1}"
     if first.code == "MB005":
         what = "';' ends the block on FANUC, and the comment after it is read as program text"
-    elif problem is not None and problem.dialect is None:
+    elif problem is not None and problem.dialect in (None, dialects.NOT_FANUC):
         what = f"FANUC rejects this block ({problem.message})"
     else:  # a form of yet another dialect, or a Haas-looking statement: this file's own
         what = "FANUC rejects this block"
