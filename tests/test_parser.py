@@ -906,11 +906,57 @@ def test_typing_mistakes_are_named(text: str, message: str) -> None:
         ("o<probe> sub", "LinuxCNC"),
         ("O100 if [#<_task> EQ 0]", "LinuxCNC"),
         ("IF #1>0 GOTO1", "DDCS"),
+        ("VC1=0", "Okuma OSP"),
+        ("VS12=5", "Okuma OSP"),
+        ("G00 X[VC1*10.] Z5.", "Okuma OSP"),
+        ("NLOOP G01 X10.", "Okuma OSP"),
+        ("GOTO NEND", "Okuma OSP"),
+        ("IF [#1 LT 10] NLOOP", "Okuma OSP"),
+        ("CALL OSUB", "Okuma OSP"),
+        ("H1=0.216", "wire EDM"),
+        ("H000=+00000000", "wire EDM"),
+        ("E001=", "wire EDM"),
+        ("G97 S1=500 M3", "Mitsubishi/Citizen"),
+        ("Q1=12", "not FANUC (dialect not recognised)"),
+        ("IF[#1<=#2]GOTO10", "not FANUC (dialect not recognised)"),
     ],
 )
 def test_dialect_forms_are_named(text: str, dialect: str) -> None:
     problem = BlockParser().parse_line(text).problem
     assert problem is not None and problem.dialect == dialect
+
+
+@pytest.mark.parametrize(
+    ("text", "found"),
+    [
+        ("VS1=5", "'VS1'"),  # not Citizen's S1= spindle selection
+        ("POS1=5", "address P at column 1 has no value"),  # a typing mistake, not Citizen's
+        ("H1=0.216", "'H1='"),
+        ("GOTO NEND", "'GOTO NEND'"),
+    ],
+)
+def test_dialect_messages_quote_what_they_name(text: str, found: str) -> None:
+    problem = BlockParser().parse_line(text).problem
+    assert problem is not None and found in problem.message
+    assert "Mitsubishi" not in (problem.dialect or "")
+
+
+def test_haas_only_codes_in_a_fanuc_block() -> None:
+    text = "O1000\nG103 P1\nG154 P10\nM109 P501\n#1=#20001\nM109\nG154\n#2=#10001\nM30\n"
+    found = {d.line: d.message for d in analyse(text).diagnostics if d.code == "MB002"}
+    assert sorted(found) == [1, 2, 3, 4]
+    assert found[1].startswith("Haas: G103 (block look-ahead limit)")
+    assert found[2].startswith("Haas: G154 P<n>") and "G54.1 P<n>" in found[2]
+    assert found[3].startswith("Haas: M109 P<n>")
+    assert found[4].startswith("Haas NGC: #20001 reads Haas setting 1")
+
+
+def test_an_okuma_file_names_okuma_on_every_rejected_block() -> None:
+    text = "O1234\nVC1=0\nG00 X10.\nX#1+1.\nNLOOP VC1=VC1+1\nM02\n"
+    rejected = [d for d in analyse(text).diagnostics if d.code in ("MB001", "MB002")]
+    assert [d.line for d in rejected] == [1, 3, 4]
+    assert rejected[1].message.startswith("Okuma OSP program (VC/VS variable assignment on line 2)")
+    assert all(d.message.startswith("Okuma OSP") for d in rejected)
 
 
 def test_a_file_of_another_dialect_names_it_on_every_rejected_block() -> None:
