@@ -559,6 +559,29 @@ async def test_code_action_inserts_the_missing_end(client: LanguageClient) -> No
     await diagnostics(client, uri, lambda d: "MB201" not in codes(d))
 
 
+async def test_code_action_brackets_a_logic_operand(client: LanguageClient) -> None:
+    await start(client, None)
+    uri = "untitled:probe.nc"
+    # A character outside the BMP before the condition: the edit's columns are UTF-16 units.
+    text = "O9060\n(\U0001f600) IF [#1 AND #2 LT 0] GOTO 90\nM99\nN90 #3000=1(OUT OF TOLERANCE)\n"
+    open_text(client, uri, text)
+    found = await diagnostics(client, uri, lambda d: "MB305" in codes(d))
+    mb305 = [d for d in found if d.code == "MB305"]
+    assert mb305[0].range.start == types.Position(line=1, character=9)  # 8 characters
+    actions = await code_actions(client, uri, mb305)
+    fixes = [a for a in actions if a.title.startswith("Bracket the condition")]
+    assert [a.is_preferred for a in fixes] == [True, None]
+    edits = []
+    for fix in fixes:
+        assert fix.edit is not None and fix.edit.changes is not None
+        [text_edit] = fix.edit.changes[uri]
+        assert text_edit.range == mb305[0].range
+        edits.append(text_edit.new_text)
+    assert edits == ["[#1 LT 0] AND [#2 LT 0]", "[#1 AND #2] LT 0"]
+    apply(client, uri, fixes[0], 2)
+    await diagnostics(client, uri, lambda d: "MB305" not in codes(d))
+
+
 async def test_suppression_comment_removes_the_diagnostic(client: LanguageClient) -> None:
     await start(client)
     uri = open_seed(client, "o2_arc_thread_roughing.nc")

@@ -338,6 +338,39 @@ def test_config_from_editor_settings() -> None:
     assert diags["MB302"].severity is Severity.ERROR
 
 
+@pytest.mark.parametrize(
+    ("text", "fixes"),
+    [
+        ("IF [#1 AND #2 LT 0] GOTO 5", ["[#1 LT 0] AND [#2 LT 0]", "[#1 AND #2] LT 0"]),
+        ("IF [#3 EQ #1 OR #2] GOTO 5", ["[#3 EQ #1] OR [#3 EQ #2]", "#3 EQ [#1 OR #2]"]),
+        (
+            "WHILE [#1 XOR #2 XOR #3 NE 0] DO1",
+            ["[#1 NE 0] XOR [#2 NE 0] XOR [#3 NE 0]", "[#1 XOR #2 XOR #3] NE 0"],
+        ),
+        # Mixed operators or the logic inside arithmetic: only the control's reading.
+        ("IF [#1 OR #2 AND #3 EQ 1] GOTO 5", ["[#1 OR #2 AND #3] EQ 1"]),
+        ("IF [#1+#2 AND #3 LT 0] GOTO 5", ["#1+[#2 AND #3] LT 0"]),
+    ],
+)
+def test_logic_operand_fixes(text: str, fixes: list[str]) -> None:
+    from fanuc_macro.parser import default_parser
+    from fanuc_macro.rules.expressions import logic_fixes, logic_operands
+
+    parsed = default_parser().parse_line(text)
+    assert parsed.statement is not None
+    [found] = logic_operands(parsed.statement)
+    assert [rewritten for _, rewritten in logic_fixes(text, found)] == fixes
+
+
+def test_logic_operand_fix_must_keep_within_five_brackets() -> None:
+    from fanuc_macro.lsp.features import _acceptable_fix
+
+    assert _acceptable_fix("IF [[#1 LT 0] AND [#2 LT 0]] GOTO 5 (OK [[[[[ ]]]]])", 1)
+    assert _acceptable_fix("IF [[ABS[[[#1]]] LT 0] AND [#2 LT 0]] GOTO 5", 1)  # five deep
+    assert not _acceptable_fix("IF [[ABS[[[[#1]]]] LT 0] AND [#2 LT 0]] GOTO 5", 1)  # six
+    assert not _acceptable_fix("IF [[#1 LT 0] AND [#2 LT 0] GOTO 5", 1)  # not closed
+
+
 def test_duplicate_label_dead_copy_needs_the_evaluator() -> None:
     text = "O2004\n#1=1.\nN30 G00 X10.\nIF[#1EQ2.]GOTO30\nG00 X20.\nM30\nN30 G00 X30.\nM30\n"
     assert pairs(analyse(text).diagnostics, "MB102") == {(3, "MB102")}
