@@ -140,11 +140,13 @@ class Workspace:
         )
 
     def find_program(self, number: int) -> tuple[str, int] | None:
-        """The document and header line of O<number>."""
+        """The document and header line of O<number> (its first block when the file's name
+        gives the number)."""
         for uri, entry in self._entries.items():
             program = entry.index.by_number(number)
             if program is not None:
-                return uri, program.header_line if program.header_line is not None else 0
+                line = program.header_line
+                return uri, line if line is not None else program.first_line
         return None
 
     def analyse(self, uri: str, workspace_programs: frozenset[int] | None = None) -> Analysis:
