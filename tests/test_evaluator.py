@@ -13,6 +13,7 @@ from fanuc_macro.evaluator import Facts, Unknown, evaluate
 from fanuc_macro.evaluator.values import f_fix, f_fup, f_round
 from fanuc_macro.index import build_index
 from fanuc_macro.parser import parse_text
+from fanuc_macro.trace import trace
 
 SEEDS = Path(__file__).parent / "fixtures" / "seeds"
 
@@ -378,3 +379,42 @@ def test_g76_on_a_mill_is_fine_boring_not_a_thread() -> None:
     mill = analyse(text, "m.nc", config=Config(controller="0i-MF"))
     assert mill.facts is not None and not [m for m in mill.facts.motions if m.code == "G76"]
     assert not mill.threads
+
+
+# ---- budgets: blocks, never seconds ------------------------------------------------------------
+
+ENDLESS = "O1\n#1=0\nWHILE[#1LT10]DO1\n#2=#2+1\nEND1\nM30\n"
+
+
+def test_step_budget_stops_at_the_same_block_every_time() -> None:
+    config = Config(step_budget=10_000)
+    doc = parse_text(ENDLESS, "t.nc")
+    runs = [evaluate([("t.nc", doc, build_index(doc))], config) for _ in range(2)]
+    assert [f.steps for f in runs] == [10_000, 10_000]  # the budget's blocks, not a multiple
+    assert runs[0].stopped == "budget" and runs[0].stop_message() is None
+    messages = [[f.message for f in r.document("t.nc").findings] for r in runs]
+    assert messages[0] == messages[1]
+    assert "the step budget (10,000 blocks)" in messages[0][0]
+
+
+def test_safety_net_stop_gives_no_verdict_that_needs_a_whole_run() -> None:
+    # O1 never ends; O2, called by nothing, runs whole in a few blocks.
+    text = ENDLESS + "O2\n#1=1\nIF[#1EQ1]GOTO9\nG00 X1.\nN9 M30\n"
+    config = Config(time_limit=1e-9)  # spent before the first look at the clock
+    result = analyse(text, "slow.nc", config)
+    assert result.facts is not None and result.facts.stopped == "time"
+    message = result.facts.stop_message()
+    assert message is not None and message.startswith("analysis stopped after 1e-09 s")
+    found = {(d.line, d.code) for d in result.diagnostics}
+    assert not {code for _, code in found} & {"MB703", "MB707", "MB708"}, found
+    assert {(8, "MB701"), (9, "MB702")} <= found  # O2's run was whole
+    # With the default limit the step budget ends O1's run: the endless loop is named.
+    found = {(d.line, d.code) for d in analyse(text, "slow.nc").diagnostics}
+    assert {(2, "MB703"), (8, "MB701"), (9, "MB702")} <= found
+
+
+def test_trace_says_why_the_run_stopped() -> None:
+    doc = parse_text(ENDLESS, "t.nc")
+    summary = trace("t.nc", doc, build_index(doc), config=Config(time_limit=1e-9))["summary"]
+    assert summary["stopped"] == "time"
+    assert summary["stop_message"].startswith("analysis stopped after")

@@ -114,6 +114,9 @@ def cmd_check(args: argparse.Namespace) -> int:
     out = sys.stdout
     for path in files:
         analysis = workspace.analyse(str(path), workspace_programs=programs)
+        stopped = analysis.facts.stop_message() if analysis.facts is not None else None
+        if stopped is not None:  # the safety net: not a finding of the program's
+            sys.stderr.write(f"{path}: {stopped}\n")
         for d in analysis.diagnostics:
             any_error |= d.severity is Severity.ERROR
             if args.format == "json":
@@ -164,7 +167,7 @@ def cmd_trace(args: argparse.Namespace) -> int:
         f"{summary['motions']} motions ({by_code}); {summary['blocks_executed']} blocks executed\n"
     )
     if summary["stopped"]:
-        out.write(f"stopped early: {summary['stopped']}\n")
+        out.write(f"stopped early: {summary.get('stop_message') or summary['stopped']}\n")
     for f in summary["findings"]:
         out.write(f"line {f['line']}: {f['message']}\n")
     return EXIT_OK

@@ -160,8 +160,21 @@ class Facts:
     by_uri: dict[str, DocumentFacts] = field(default_factory=dict)
     motions: list[Motion] = field(default_factory=list)
     steps: int = 0
-    stopped: str | None = None  # why a run stopped early ("budget", "alarm", ...)
+    # Why a run stopped early: "budget" (the step budget), "time" (the safety net), or None.
+    stopped: str | None = None
+    time_limit: float = 0.0  # the safety net's seconds, when it stopped a run
     run_values: dict[int, RunValues] = field(default_factory=dict)  # run -> at its first cut
+
+    def stop_message(self) -> str | None:
+        """What a user is told when the safety net stopped the analysis (None otherwise)."""
+        if self.stopped != "time":
+            return None
+        return (
+            f"analysis stopped after {self.time_limit:g} s, before its step budget (the "
+            "machine running the analysis is slow or busy): the runs are incomplete, so no "
+            "verdict that needs a whole run is given (endless or long loop, blocks never "
+            "executed, conditions always true or false)"
+        )
 
     def document(self, uri: str) -> DocumentFacts:
         facts = self.by_uri.get(uri)

@@ -58,6 +58,7 @@ MAX_NESTING = 10
 MAX_MOTIONS = 200_000  # motion records kept per analysis
 THREADING_CODES = frozenset({32.0, 33.0, 34.0, 76.0, 92.0})
 MAX_REMEMBERED_RUNS = 1000  # executions whose variables are kept when they start a thread
+CHECK_EVERY = 4096  # blocks between two looks at the budgets
 
 
 @dataclass(slots=True)
@@ -430,9 +431,10 @@ class Machine:
 
     def _loop(self, act: Activation) -> None:
         steps = self._steps = 0
-        check_every = 4096
-        next_check = steps + check_every
         budget = self.budget
+        # Block budget + 1: the budget's last block still runs, and the run stops before the
+        # next, at the same block on any machine.
+        next_check = min(CHECK_EVERY, budget + 1)
         while True:
             ctx = act.ctx
             pc = act.pc
@@ -445,13 +447,17 @@ class Machine:
             steps += 1
             self._steps = steps
             if steps >= next_check:
-                self.steps = steps
-                next_check = steps + check_every
-                by_time = time.monotonic() > self.deadline
-                if steps >= budget or by_time:
-                    self._budget_spent(act, by_time)
+                self._steps = steps - 1  # this block does not run
+                if steps > budget:
+                    self._budget_spent(act)
                     self._mark_incomplete(act)
                     raise _Stop("budget")
+                if time.monotonic() > self.deadline:
+                    # The safety net: how far a run gets in seconds depends on the machine
+                    # and its load, so nothing is concluded from where it stopped.
+                    self._mark_incomplete(act)
+                    raise _Stop("time")
+                next_check = min(steps + CHECK_EVERY, budget + 1)
             facts = ctx.facts
             runs = facts.runs
             runs[pc] = runs.get(pc, 0) + 1
@@ -1161,7 +1167,7 @@ class Machine:
         message = f"{alarm.message}{detail} (alarm {alarm.alarm}) in {ctx.name}"
         self._finding(ctx, f"alarm:{alarm.kind}", self._line, start, end, message)
 
-    def _budget_spent(self, act: Activation, by_time: bool) -> None:
+    def _budget_spent(self, act: Activation) -> None:
         ctx = act.ctx
         facts = ctx.facts
         program = ctx.program
@@ -1169,14 +1175,24 @@ class Machine:
         hot = sorted(ln for ln, n in facts.runs.items() if program.contains(ln) and n * 2 >= top)
         tests = [ln for ln in hot if ctx.lines[ln].kind in (K_IFGOTO, K_WHILE)]
         loops = program.enclosing_loops(act.pc)
-        head = loops[-1].do_line if loops else tests[0] if tests else act.pc
+        if loops:
+            head = loops[-1].do_line
+        elif tests:
+            head = tests[0]
+        else:  # a GOTO back with no test: the loop begins at its label
+            heads = [
+                target
+                for jump in program.jumps
+                if not jump.conditional
+                and jump.target is not None
+                and jump.line in facts.runs
+                and (target := program.label_line(jump.target, jump.line)) is not None
+                and target <= act.pc <= jump.line
+            ]
+            head = min(heads, default=act.pc)
         read = {n for ln in tests for n in ctx.lines[ln].reads}
         written = {ctx.lines[ln].target_number for ln in hot}
-        budget = (
-            f"the time budget ({self.config.time_budget:g} s)"
-            if by_time
-            else f"the step budget ({self.budget} blocks)"
-        )
+        budget = f"the step budget ({self.budget:,} blocks)"
         runs = facts.runs.get(head, 0)
         width = len(ctx.doc.blocks[head].text)
         if read and all(n >= 100 for n in read) and not read & written:

@@ -455,6 +455,9 @@ def hover_program(view: View, number: int, line: int | None = None) -> str:
         runs = facts.by_uri.get(key)
         if runs is not None and header in runs.runs:
             parts.append(f"Entered {_times(runs.runs[header])} in the analysed runs.")
+        stopped = facts.stop_message()
+        if stopped is not None:
+            parts.append(stopped[0].upper() + stopped[1:] + ".")
     return "\n\n".join(parts)
 
 
