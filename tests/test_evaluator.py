@@ -418,3 +418,65 @@ def test_trace_says_why_the_run_stopped() -> None:
     summary = trace("t.nc", doc, build_index(doc), config=Config(time_limit=1e-9))["summary"]
     assert summary["stopped"] == "time"
     assert summary["stop_message"].startswith("analysis stopped after")
+
+
+# ---- calls the analysis cannot follow ----------------------------------------------------------
+
+
+def _written_values(text: str) -> dict[int, object]:
+    """line -> the first value its assignment wrote."""
+    facts, _ = run(text)
+    return {line: s[1].first for line, s in facts.document("t.nc").writes.items()}
+
+
+def test_commons_and_offsets_are_unknown_after_a_call_outside_the_workspace() -> None:
+    text = (
+        "O1\n#100=0\n#2001=0.5\n#5221=-100.\n#1=7.\n"
+        "G65 P9814 Z-5. F3000.\n"  # a probe vendor's macro: not in the analysed files
+        "#2=#100\n#3=#2001\n#4=#5221\n#5=#1\n"
+        "IF[#100EQ0]GOTO10\nN10 M30\n"
+    )
+    facts, _ = run(text)
+    doc = facts.document("t.nc")
+    after = {line: doc.writes[line][1].first for line in (6, 7, 8, 9)}
+    assert isinstance(after[6], Unknown) and after[6].describe() == "depends on #100"
+    assert isinstance(after[7], Unknown) and isinstance(after[8], Unknown)
+    assert after[9] == 7.0  # G65 opens a local level of its own: the caller's #1 stays
+    assert doc.jumps[10].undecided == 1 and not doc.jumps[10].taken
+    codes = {d.code for d in analyse(text, "probe.nc").diagnostics}
+    assert "MB701" not in codes
+
+
+def test_m98_outside_the_workspace_may_change_the_callers_locals() -> None:
+    w = _written_values("O1\n#1=7.\n#100=1.\nM98 P9001\n#2=#1\n#3=#100\nM30\n")
+    assert isinstance(w[4], Unknown) and w[4].describe() == "depends on #1"
+    assert isinstance(w[5], Unknown)
+
+
+def test_a_call_with_an_unknown_program_number_is_a_call_into_the_unknown() -> None:
+    # #500 is set by another program: G65 P#500 could call anything.
+    w = _written_values("O1\n#100=1.\n#1=2.\nG65 P#500\n#2=#100\n#3=#1\nM99\n")
+    assert isinstance(w[4], Unknown)
+    assert w[5] == 2.0
+    # A call the analysis follows changes only what the callee writes.
+    w = _written_values(
+        "O1\n#100=1.\n#101=2.\nG65 P2000\n#2=#100\n#3=#101\nM30\nO2000\n#100=5.\nM99\n"
+    )
+    assert w[4] == 5.0 and w[5] == 2.0
+
+
+def test_g66_of_an_unknown_macro_runs_it_after_each_move() -> None:
+    text = (
+        "O1\n#100=1.\nG66 P9999 A1.\n#2=#100\nG01 X1. F0.1\n#3=#100\nG67\n#100=2.\n"
+        "G01 X2.\n#4=#100\nM30\n"
+    )
+    w = _written_values(text)
+    assert w[3] == 1.0  # G66 itself calls nothing
+    assert isinstance(w[5], Unknown)  # the move called O9999
+    assert w[9] == 2.0  # after G67 a move calls nothing
+
+
+def test_feed_left_by_an_unknown_callee_is_not_a_missing_feed() -> None:
+    text = "O1\nG65 P9810 Z-5. F3000.\nG01 X10.\nM30\n"
+    assert "MB603" not in {d.code for d in analyse(text, "feed.nc").diagnostics}
+    assert "MB603" in {d.code for d in analyse("O1\nG01 X10.\nM30\n", "feed.nc").diagnostics}

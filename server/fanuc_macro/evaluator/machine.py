@@ -39,7 +39,7 @@ from ..walk import subexpressions, top_expressions
 from .compiler import CondEvaluator, Evaluator, compile_cond, compile_expr, constant_of
 from .cycles import g76_depths
 from .facts import DocumentFacts, Facts, Finding, Motion, Rounding, RunValues, ValueSummary
-from .values import MacroAlarm, Unknown, Value, fmt
+from .values import UNKNOWN, MacroAlarm, Unknown, Value, fmt
 
 # Block kinds of the compiled program.
 K_EMPTY, K_ASSIGN, K_GOTO, K_IFGOTO, K_IFTHEN, K_WHILE, K_END, K_NC, K_HEADER, K_OTHER = range(10)
@@ -337,8 +337,9 @@ class Modal:
     feed: Value = None
     speed: Value = None
     constant_surface_speed: bool = False  # G96: S is m/min, not rpm
-    # G66/G66.1 in force, in the order specified; G67 cancels the last one.
-    modal_calls: list[tuple[ProgramContext, list[Value], int]] = field(default_factory=list)
+    # G66/G66.1 in force, in the order specified; G67 cancels the last one. None for a macro
+    # the analysis cannot run (not in the analysed files, or its P unknown).
+    modal_calls: list[tuple[ProgramContext | None, list[Value], int]] = field(default_factory=list)
     position: dict[str, Value] = field(default_factory=dict)
     # Where each axis was last set: (uri, line), for the verdicts on a cycle's start point.
     position_line: dict[str, tuple[str, int]] = field(default_factory=dict)
@@ -764,6 +765,9 @@ class Machine:
             target = len(modal.modal_calls) - 1 if act.modal_depth is None else act.modal_depth - 1
             if target >= 0:
                 callee, args, _ = modal.modal_calls[target]
+                if callee is None:
+                    self._call_unknown(act, shares_locals=False)
+                    return act
                 new = self._enter(act, callee, list(args), True, self._line + 1, 1)
                 new.modal_depth = target
                 return new
@@ -1027,6 +1031,8 @@ class Machine:
             repeat = int(l_value)
         callee = self._find(act, cl, p, "M98")
         if callee is None or repeat <= 0:
+            if repeat > 0:
+                self._call_unknown(act, shares_locals=True)
             act.pc = self._line + 1
             return act
         # M98 opens no new local level: the callee shares the caller's locals.
@@ -1069,13 +1075,38 @@ class Machine:
             elif address in ARGUMENT_VARIABLES:
                 args[ARGUMENT_VARIABLES[address]] = v
         callee = self._find(act, cl, p, "G66" if modal_call else "G65")
-        if callee is None:
-            act.pc = self._line + 1
-            return act
         if modal_call:
             self.modal.modal_calls.append((callee, args, repeat))
             return act
+        if callee is None:
+            self._call_unknown(act, shares_locals=False)
+            act.pc = self._line + 1
+            return act
         return self._enter(act, callee, args, True, self._line + 1, repeat)
+
+    def _call_unknown(self, act: Activation, shares_locals: bool) -> None:
+        """After a call the analysis cannot follow (a program not in the analysed files, such
+        as a probe vendor's O9814, or a P it cannot compute), what the callee may have changed
+        is unknown: the run goes on, but no verdict rests on a value from before the call."""
+        # The callee may write every common variable (#100-#199, #500-#999, the extended
+        # ranges) and every writable system variable (tool offsets #2001+/#10001+, work
+        # offsets #5201+, #7001+, #14001+, #15801+ on some controls), and what it does moves
+        # the read-only ones (positions, modal information). The store holds only what this
+        # run set, and a number missing from it reads as unknown ("depends on #135").
+        # [shared reference macro-b.md §9; the ranges are unverified against a manual]
+        self.store.clear()
+        if shares_locals:
+            # M98 opens no local level: the callee reads and writes the caller's #1-#33
+            # [M FANUC-16i-PB, custom macro: "local variables"].
+            locals_ = act.locals
+            for n in range(1, 34):
+                locals_[n] = self.unknown_of(n)
+        modal = self.modal
+        # F, S and where the tool stands are modal: the callee leaves its own.
+        modal.feed = UNKNOWN
+        modal.speed = UNKNOWN
+        modal.position.clear()
+        modal.position_line.clear()
 
     def _enter(
         self,
