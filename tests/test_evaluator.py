@@ -100,19 +100,21 @@ def test_arc_thread_finishing_19_cuts() -> None:
 
 
 def test_vacancy_rules() -> None:
+    # #1=#0 first: a main program that read #1 before setting it would receive arguments.
     text = (
-        "O1\n#2=#1\n#3=#1*5\n#4=#1+#1\n#5=#0+1\n#6=-#1\nIF[#1EQ#0]THEN#7=1\n"
+        "O1\n#1=#0\n#2=#1\n#3=#1*5\n#4=#1+#1\n#5=#0+1\n#6=-#1\nIF[#1EQ#0]THEN#7=1\n"
         "IF[#1EQ0]THEN#8=1\nM30\n"
     )
     facts, _ = run(text)
     w = facts.document("t.nc").writes
-    assert w[1][1].first is None  # a plain copy keeps vacancy
-    assert w[2][1].first == 0.0
+    assert w[1][1].first is None
+    assert w[2][1].first is None  # a plain copy keeps vacancy
     assert w[3][1].first == 0.0
-    assert w[4][1].first == 1.0
-    assert w[5][1].first == 0.0
-    assert w[6][1].first == 1.0  # vacant EQ #0
-    assert 7 not in w  # vacant is not 0 for EQ
+    assert w[4][1].first == 0.0
+    assert w[5][1].first == 1.0
+    assert w[6][1].first == 0.0
+    assert w[7][1].first == 1.0  # vacant EQ #0
+    assert 8 not in w  # vacant is not 0 for EQ
 
 
 def test_functions_in_degrees_and_rounding() -> None:
@@ -480,3 +482,34 @@ def test_feed_left_by_an_unknown_callee_is_not_a_missing_feed() -> None:
     text = "O1\nG65 P9810 Z-5. F3000.\nG01 X10.\nM30\n"
     assert "MB603" not in {d.code for d in analyse(text, "feed.nc").diagnostics}
     assert "MB603" in {d.code for d in analyse("O1\nG01 X10.\nM30\n", "feed.nc").diagnostics}
+
+
+# ---- programs that receive arguments ------------------------------------------------------------
+
+
+def test_main_looking_program_that_reads_its_locals_first_gets_unknown_arguments() -> None:
+    text = (
+        "O9041 (BORE)\nIF[#26EQ#0]GOTO90\nIF[#7LE0]GOTO90\nG01 Z#26 F#9\nM30\n"
+        "N90 #3000=1(Z AND D ARE NEEDED)\nM30\n"
+    )
+    facts, _ = run(text)
+    doc = facts.document("t.nc")
+    assert doc.jumps[1].undecided == 1 and doc.jumps[2].undecided == 1
+    assert doc.assumed_arguments == {0: ((26, 1), (7, 2), (9, 3))}
+    result = analyse(text, "bore.nc")
+    codes = [d.code for d in result.diagnostics]
+    assert "MB503" not in codes and "MB701" not in codes and "MB603" not in codes
+    hint = next(d for d in result.diagnostics if d.code == "MB904")
+    assert hint.line == 1 and "#26 (Z), #7 (D), #9 (F)" in hint.message
+    # Set before they are read: a main program, its locals vacant at cycle start.
+    facts, _ = run("O1\n#26=#0\nIF[#26EQ#0]GOTO90\nM30\nN90 #3000=1(Z IS NEEDED)\nM30\n")
+    assert facts.document("t.nc").jumps[2].taken == 1
+    assert not facts.document("t.nc").assumed_arguments
+
+
+def test_alarm_inside_a_while_on_an_unknown_is_not_reached() -> None:
+    text = "O1\nWHILE[#500LT3]DO1\n#3000=2(PROBE NOT READY)\nEND1\nM30\n"
+    assert "MB503" not in {d.code for d in analyse(text, "wait.nc").diagnostics}
+    # The same alarm in a loop whose test is decided is reached.
+    text = "O1\n#1=0\nWHILE[#1LT3]DO1\n#3000=2(PROBE NOT READY)\nEND1\nM30\n"
+    assert "MB503" in {d.code for d in analyse(text, "wait.nc").diagnostics}

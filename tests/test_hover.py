@@ -34,3 +34,14 @@ def test_program_hover_says_the_safety_net_stopped_the_analysis() -> None:
     stopped = hover_text(view_of(ENDLESS, Config(time_limit=1e-9)), 0, 2)
     assert "Analysis stopped after 1e-09 s" in stopped
     assert "Analysis stopped" not in hover_text(view_of(ENDLESS), 0, 2)
+
+
+def test_program_hover_says_a_main_looking_program_is_taken_for_a_macro() -> None:
+    text = "O9041 (BORE)\nIF[#26EQ#0]GOTO90\nG01 Z#26 F#9\nM30\nN90 #3000=1(Z IS NEEDED)\nM30\n"
+    shown = hover_text(view_of(text), 0, 2)
+    assert "Analysed as a macro with unknown arguments" in shown
+    assert "reads #26 (Z), #9 (F) before setting them" in shown
+    value = hover_text(view_of(text), 2, 7)  # #26 in G01 Z#26
+    assert "depends on #26" in value
+    plain = "O9042\n#26=-5.\nG01 Z#26 F100.\nM30\n"
+    assert "unknown arguments" not in hover_text(view_of(plain), 0, 2)

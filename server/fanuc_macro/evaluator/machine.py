@@ -230,7 +230,7 @@ class ProgramContext:
     loop_end: dict[int, int]  # DO line -> END line
     loop_do: dict[int, int]  # END line -> DO line
     facts: DocumentFacts
-    is_main: bool  # ends with M30/M02: locals start vacant
+    is_main: bool  # ends with M30/M02: locals start vacant, unless it reads them first
     name: str = ""  # O3331, for the motion records
 
     def __post_init__(self) -> None:
@@ -395,11 +395,16 @@ class Machine:
         self.modal = Modal()
         self._entry_name = entry.name
         locals_: list[Value] = [None] * 34
-        if not entry.is_main:
+        # A program that reads #1-#33 before it sets them receives arguments: a G65 from a
+        # program outside the analysed files calls it, even if it ends with M30.
+        read_first = _locals_read_first(entry) if entry.is_main else ()
+        if not entry.is_main or read_first:
             self.modal.feed = Unknown(frozenset())  # the caller's F, which a lone run cannot know
             # A macro analysed alone: its arguments are unknown, not vacant.
             for n in range(1, 34):
                 locals_[n] = self.unknown_of(n)
+        if read_first:
+            entry.facts.assumed_arguments[entry.program.first_line] = read_first
         act = Activation(self, entry, locals_, 0, None, 0, 0)
         entry.facts.analysed_programs.add(entry.program.first_line)
         try:
@@ -676,6 +681,7 @@ class Machine:
             jc.not_taken += 1
         else:
             jc.undecided += 1
+            self.speculative = True  # the control may never run the body, nor what follows
             if pc not in act.undecided_loops:
                 act.undecided_loops.add(pc)  # run the body once to learn its values
                 return pc + 1
@@ -1341,6 +1347,26 @@ def build_contexts(
             if ctx.program.number is not None and ctx.program.number not in contexts:
                 contexts[ctx.program.number] = ctx
     return contexts, every
+
+
+def _locals_read_first(ctx: ProgramContext) -> tuple[tuple[int, int], ...]:
+    """The locals a program reads before any block of it sets them, in the order of the text,
+    each with the line of its first read: (number, line)."""
+    set_: set[int] = set()
+    found: dict[int, int] = {}
+    lines = ctx.lines
+    for line in range(ctx.program.first_line, ctx.program.end_line):
+        part: CompiledLine | None = lines[line]
+        assert part is not None
+        for n in part.reads:
+            if n <= 33 and n not in set_ and n not in found:
+                found[n] = line
+        while part is not None:  # the assignment, or the macro part of a mixed block
+            target = part.target_number
+            if target is not None and 1 <= target <= 33:
+                set_.add(target)
+            part = part.second
+    return tuple(found.items())
 
 
 def _ends_program(statement: Statement | None) -> bool:

@@ -455,6 +455,16 @@ def hover_program(view: View, number: int, line: int | None = None) -> str:
         runs = facts.by_uri.get(key)
         if runs is not None and header in runs.runs:
             parts.append(f"Entered {_times(runs.runs[header])} in the analysed runs.")
+        assumed = runs.assumed_arguments.get(program.first_line) if runs is not None else None
+        if assumed:
+            names = ", ".join(
+                f"#{n} ({ARGUMENT_LETTER[n]})" if n in ARGUMENT_LETTER else f"#{n}"
+                for n, _ in assumed
+            )
+            parts.append(
+                f"Analysed as a macro with unknown arguments: it ends with M30 or M02 but "
+                f"reads {names} before setting them."
+            )
         stopped = facts.stop_message()
         if stopped is not None:
             parts.append(stopped[0].upper() + stopped[1:] + ".")
