@@ -513,3 +513,11 @@ def test_alarm_inside_a_while_on_an_unknown_is_not_reached() -> None:
     # The same alarm in a loop whose test is decided is reached.
     text = "O1\n#1=0\nWHILE[#1LT3]DO1\n#3000=2(PROBE NOT READY)\nEND1\nM30\n"
     assert "MB503" in {d.code for d in analyse(text, "wait.nc").diagnostics}
+
+
+def test_a_rejected_assignment_sets_its_variable_to_an_unknown_value() -> None:
+    facts, _ = run("O1\n#5=#4*2:\n#6=#5\nM30\n")
+    doc = facts.document("t.nc")
+    assert isinstance(doc.writes[1][1].first, Unknown)
+    assert isinstance(doc.writes[2][1].first, Unknown)  # not vacant: set, to what is not known
+    assert not doc.assumed_arguments  # a block that does not parse reads nothing known

@@ -973,3 +973,32 @@ def test_a_fanuc_file_keeps_its_own_findings() -> None:
     text = "O1000\nIF[#1<=#2]GOTO10\n;\nN10 M30\n"
     codes = [(d.line, d.code) for d in analyse(text).diagnostics if d.code.startswith("MB00")]
     assert codes == [(1, "MB002")]
+
+
+@pytest.mark.parametrize(
+    ("text", "assigns", "seq"),
+    [
+        ("#5=#4*2:", 5, None),  # ':' typed for ';'
+        ("N10 #5 = [#4*2", 5, 10),  # a '[' not closed
+        ("#1=ABC[2]", 1, None),  # an unknown function
+        ("IF[#1GT2]THEN#5=3:", 5, None),
+        ("/N20#100=#4 +", 100, 20),
+        ("N30 G01 X[1", None, 30),
+        ("#1==2", None, None),  # a comparison typed where an assignment stands: not one
+        ("#0=1:", None, None),  # #0 is never set
+        ("G01 X10.*#1", None, None),
+    ],
+)
+def test_a_rejected_block_keeps_what_it_plainly_says(
+    text: str, assigns: int | None, seq: int | None
+) -> None:
+    parsed = BlockParser().parse_line(text)
+    assert parsed.statement is None and parsed.problem is not None
+    assert parsed.failed_assignment == assigns
+    assert parsed.seq == seq
+
+
+def test_no_cascade_after_a_syntax_error() -> None:
+    text = "O1\nG65 P2 A1.\nM30\nO2\nGOTO10\nN10 #5=#1*2:\n#6=#5+1.\nG00 X#5 Z#6\nM99\n"
+    codes = [(d.line + 1, d.code) for d in analyse(text, "typo.nc").diagnostics]
+    assert codes == [(6, "MB001")]  # no MB101 for N10, no MB901 for #5

@@ -28,6 +28,7 @@ from ..syntax import (
     Mixed,
     NcStatement,
     Num,
+    ParsedLine,
     ProgramStart,
     Statement,
     Unary,
@@ -1310,8 +1311,20 @@ def _fixed(expr: Expr, facts: DocumentFacts, line: int) -> float | None:
     return None
 
 
+def _unknown_value(frame: object) -> Value:
+    return UNKNOWN
+
+
+def compile_line(parsed: ParsedLine) -> CompiledLine:
+    """A parsed line's statement; a block that does not parse but plainly assigns ``#n``
+    assigns it an unknown value, so that later reads of #n are not taken for vacant."""
+    if parsed.statement is None and parsed.failed_assignment is not None:
+        return CompiledLine(K_ASSIGN, target_number=parsed.failed_assignment, value=_unknown_value)
+    return compile_statement(parsed.statement)
+
+
 # The compiled statement of a parsed line: closures that do not depend on where it stands.
-compiled: PerLine[CompiledLine] = PerLine(lambda parsed: compile_statement(parsed.statement))
+compiled: PerLine[CompiledLine] = PerLine(compile_line)
 
 
 def _volatile(number: int) -> bool:

@@ -53,8 +53,11 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
         assigned: set[int] = set()
         checked: set[int] = set()
         for line in range(program.first_line, program.end_line):
-            statement = ctx.doc.blocks[line].statement
+            parsed = ctx.doc.blocks[line].parsed
+            statement = parsed.statement
             if statement is None:
+                if parsed.failed_assignment is not None:  # '#5=#4*2:' sets #5 all the same
+                    assigned.add(parsed.failed_assignment)
                 continue
             target = statement.then if isinstance(statement, IfThen) else statement
             if isinstance(target, Assign) and target.target.number is not None:
