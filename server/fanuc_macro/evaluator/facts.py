@@ -128,6 +128,8 @@ class DocumentFacts:
     analysed_programs: set[int] = field(default_factory=set)  # first lines of programs run
     incomplete_programs: set[int] = field(default_factory=set)  # runs that stopped early
     roundings: dict[int, Rounding] = field(default_factory=dict)  # line -> the first such
+    # first line of a program -> its first block with M30 or M02 (block skip or not)
+    program_ends: dict[int, int] = field(default_factory=dict)
     # Programs ending with M30 run on their own with unknown arguments, because they read
     # locals before setting them: first line -> (local, line of its first read), in text order.
     assumed_arguments: dict[int, tuple[tuple[int, int], ...]] = field(default_factory=dict)

@@ -1378,6 +1378,8 @@ def _locals_read_first(ctx: ProgramContext) -> tuple[tuple[int, int], ...]:
             target = part.target_number
             if target is not None and 1 <= target <= 33:
                 set_.add(target)
+                if len(set_) == 33:  # every local set: no later read comes first
+                    return tuple(found.items())
             part = part.second
     return tuple(found.items())
 
@@ -1396,6 +1398,12 @@ def contexts_of(uri: str, doc: Document, index: ProgramIndex, facts: Facts) -> l
     for program in index.programs:
         loop_end = {lp.do_line: lp.end_line for lp in program.loops if lp.end_line is not None}
         loop_do = {e: d for d, e in loop_end.items()}
-        is_main = any(cl.ends_program for cl in lines[program.first_line : program.end_line])
+        first_end = next(
+            (ln for ln in range(program.first_line, program.end_line) if lines[ln].ends_program),
+            None,
+        )
+        is_main = first_end is not None
+        if first_end is not None:
+            doc_facts.program_ends[program.first_line] = first_end
         out.append(ProgramContext(uri, doc, program, lines, loop_end, loop_do, doc_facts, is_main))
     return out

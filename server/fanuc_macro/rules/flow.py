@@ -9,7 +9,8 @@ from collections.abc import Iterator
 from ..diagnostics import Diagnostic, RuleInfo, Severity, make, register
 from ..evaluator.facts import DocumentFacts
 from ..index import Program, constant_value
-from ..syntax import Block, Goto, IfGoto, IfThen, Mixed, NcStatement, While
+from ..per_line import PerLine
+from ..syntax import Block, Goto, IfGoto, IfThen, Mixed, NcStatement, ParsedLine, While
 from .context import RuleContext
 
 FAMILY = "flow"
@@ -53,8 +54,7 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
     facts = ctx.doc_facts()
     if facts is None:
         for program in ctx.index.programs:
-            if not _unreadable_flow(ctx, program):
-                yield from _after_end(ctx, program)
+            yield from _after_end(ctx, program, None)
         return
     for f in ctx.findings("endless-loop"):
         yield make("MB703", f.message, f.line, f.column, f.end_column)
@@ -78,13 +78,12 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
         whole = analysed and program.first_line not in facts.incomplete_programs
         if whole:
             yield from _constant_conditions(ctx, program, facts)
-        if _unreadable_flow(ctx, program):
-            continue
         undecided = any(jc.undecided for ln, jc in facts.jumps.items() if program.contains(ln))
         if whole and not undecided:
-            yield from _dead_blocks(ctx, program, facts.runs)
+            if not _unreadable_flow(ctx, program):
+                yield from _dead_blocks(ctx, program, facts.runs)
         else:  # what the text alone says is dead still is
-            yield from _after_end(ctx, program)
+            yield from _after_end(ctx, program, facts)
 
 
 def _constant_conditions(
@@ -155,11 +154,11 @@ def _dead_stretches(
     return found
 
 
-def _stops(block: Block) -> str | None:
+def _line_stop(parsed: ParsedLine) -> str | None:
     """What ends the fall-through at a block: 'GOTO', 'M30', 'M02' or 'M99' when the next block
     runs only if something jumps to it; None otherwise (a block skip '/' makes it optional)."""
-    statement = block.statement
-    if statement is None or block.parsed.skip is not None:
+    statement = parsed.statement
+    if statement is None or parsed.skip is not None:
         return None
     parts = (statement.nc, statement.macro) if isinstance(statement, Mixed) else (statement,)
     for part in parts:
@@ -170,6 +169,14 @@ def _stops(block: Block) -> str | None:
                 if word.address == "M" and (code := constant_value(word.value)) in _ENDS:
                     return f"M{int(code):02d}"
     return None
+
+
+# Worked out once per distinct line: the rules read every line of a program on each analysis.
+_line_stops: PerLine[str | None] = PerLine(_line_stop)
+
+
+def _stops(block: Block) -> str | None:
+    return _line_stops(block.parsed)
 
 
 _ENDS = (2.0, 30.0, 99.0)
@@ -220,21 +227,27 @@ def _unreadable_flow(ctx: RuleContext, program: Program) -> bool:
     language (its paths, calls and jumps are not FANUC's), or one that holds a jump, a
     condition, a loop or a call. The run went past it as if it were empty, so which blocks are
     reached is not known."""
+    blocks = ctx.doc.blocks
     for line in range(program.first_line, program.end_line):
-        parsed = ctx.doc.blocks[line].parsed
-        problem = parsed.problem
-        if parsed.statement is not None or problem is None:
-            continue
-        if problem.dialect is not None:
-            return True
-        code = parsed.text
-        for comment in reversed(parsed.comments):
-            code = code[: comment.span.start] + code[comment.span.end :]
-        if _FLOW_WORDS.search(code.upper()):
+        parsed = blocks[line].parsed
+        if parsed.problem is not None and parsed.statement is None and _unreadable(parsed):
             return True
     return False
 
 
+def _rejected_flow(parsed: ParsedLine) -> bool:
+    problem = parsed.problem
+    if problem is None or parsed.statement is not None:
+        return False
+    if problem.dialect is not None:
+        return True
+    code = parsed.text
+    for comment in reversed(parsed.comments):
+        code = code[: comment.span.start] + code[comment.span.end :]
+    return _FLOW_WORDS.search(code.upper()) is not None
+
+
+_unreadable: PerLine[bool] = PerLine(_rejected_flow)
 _FLOW_WORDS = re.compile(r"GOTO|IF|WHILE|DO|END|M0*9[6-9](?!\d)|G0*6[56](?!\d)")
 
 
@@ -307,22 +320,25 @@ def _label_line(ctx: RuleContext, first: int) -> int:
     return line
 
 
-def _after_end(ctx: RuleContext, program: Program) -> Iterator[Diagnostic]:
+def _after_end(
+    ctx: RuleContext, program: Program, facts: DocumentFacts | None
+) -> Iterator[Diagnostic]:
     """MB710: blocks after the first M30/M02 of a program that nothing can reach, from the text
     alone (a block without an N number is no jump's target and no search's start)."""
     blocks = ctx.doc.blocks
+    # The evaluator found the first M30/M02 as it compiled the program; a block skip can make
+    # that one optional, so the search goes on from there.
+    start = program.first_line if facts is None else facts.program_ends.get(program.first_line)
+    if start is None:
+        return
     end_line = next(
-        (
-            ln
-            for ln in range(program.first_line, program.end_line)
-            if _stops(blocks[ln]) in ("M30", "M02")
-        ),
+        (ln for ln in range(start, program.end_line) if _stops(blocks[ln]) in ("M30", "M02")),
         None,
     )
     if end_line is None:
         return
     last = _statement_before(ctx, program, program.end_line)
-    if last is None or last <= end_line:
+    if last is None or last <= end_line or _unreadable_flow(ctx, program):
         return
     end_code = _stops(blocks[end_line])
     for kind, first, end, _stop_line in _classify_dead(ctx, program, end_line, last, True):
