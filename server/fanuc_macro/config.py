@@ -27,9 +27,9 @@ class Config:
     severities: dict[str, Severity] = field(default_factory=dict)
     # Blocks the evaluator may execute from one entry program: the bound every verdict on an
     # unfinished run (MB703, MB707, MB708) comes from, so the same input gives the same result
-    # on any machine. Measured: the largest program of the corpus and the seeds needs 1,683
-    # blocks; 300,000 take 0.2 s of macro statements, 0.7 s of motion blocks on the machine of
-    # docs/benchmarks.md.
+    # on any machine. Measured: the longest run of a corpus program takes 995 blocks, of a seed
+    # program or its variants 1,683, of a test fixture 60,026 (a call repeated 10,000 times);
+    # 300,000 take 0.2 s of macro statements, 0.7 s of motion blocks (docs/benchmarks.md).
     step_budget: int = 300_000
     # Seconds per analysis after which the evaluator gives up whatever the step budget says: a
     # safety net for a slow or overloaded machine, never a verdict (the run is incomplete).
