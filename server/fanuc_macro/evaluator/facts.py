@@ -114,6 +114,7 @@ class JumpCount:
     taken: int = 0
     not_taken: int = 0
     undecided: int = 0
+    guessed: int = 0  # decided, but on a path that went through an undecided condition
 
 
 @dataclass

@@ -482,9 +482,11 @@ class Machine:
                     jc = facts.jump_count(pc)
                     if result is True:
                         jc.taken += 1
+                        jc.guessed += self.speculative
                         act.pc = self._goto(act, cl)
                     elif result is False:
                         jc.not_taken += 1
+                        jc.guessed += self.speculative
                         act.pc = pc + 1
                     else:
                         jc.undecided += 1
@@ -506,9 +508,11 @@ class Machine:
                     jc = facts.jump_count(pc)
                     if result is True:
                         jc.taken += 1
+                        jc.guessed += self.speculative
                         self._assign(act, cl, facts)
                     elif result is False:
                         jc.not_taken += 1
+                        jc.guessed += self.speculative
                     else:
                         jc.undecided += 1
                         self.speculative = True
@@ -677,9 +681,11 @@ class Machine:
         jc = facts.jump_count(pc)
         if result is True:
             jc.taken += 1
+            jc.guessed += self.speculative
             return pc + 1
         if result is False:
             jc.not_taken += 1
+            jc.guessed += self.speculative
         else:
             jc.undecided += 1
             self.speculative = True  # the control may never run the body, nor what follows

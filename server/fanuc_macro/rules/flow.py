@@ -8,6 +8,7 @@ from collections.abc import Iterator
 
 from ..diagnostics import Diagnostic, RuleInfo, Severity, make, register
 from ..evaluator.facts import DocumentFacts
+from ..evaluator.machine import compiled
 from ..index import Program, constant_value
 from ..per_line import PerLine
 from ..syntax import Block, Goto, IfGoto, IfThen, Mixed, NcStatement, ParsedLine, While
@@ -89,14 +90,21 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
 def _constant_conditions(
     ctx: RuleContext, program: Program, facts: DocumentFacts
 ) -> Iterator[Diagnostic]:
+    if _unreadable_flow(ctx, program):
+        return  # a rejected block may hold the jump or assignment that changes the outcome
+    first_writes: dict[int, int] | None = None
     for line, jc in sorted(facts.jumps.items()):
-        if not program.contains(line) or jc.undecided:
-            continue
+        if not program.contains(line) or jc.undecided or jc.guessed:
+            continue  # an outcome on a guessed path proves nothing
         statement = ctx.doc.blocks[line].statement
         if not isinstance(statement, IfGoto | IfThen | While) or statement.cond is None:
             continue
         total = jc.taken + jc.not_taken
         if total == 0 or (jc.taken and jc.not_taken):
+            continue
+        if first_writes is None:
+            first_writes = _first_writes(program, facts)
+        if not _decided_by_the_program(ctx, facts, first_writes, line):
             continue
         outcome = "true" if jc.taken else "false"
         effect = _effect(statement, jc.taken > 0)
@@ -109,6 +117,31 @@ def _constant_conditions(
             c.start,
             c.end,
         )
+
+
+def _first_writes(program: Program, facts: DocumentFacts) -> dict[int, int]:
+    """Variable -> the first line of ``program`` that set it when the run came by."""
+    first: dict[int, int] = {}
+    for line, (number, _summary) in facts.writes.items():
+        if program.contains(line) and line < first.get(number, line + 1):
+            first[number] = line
+    return first
+
+
+def _decided_by_the_program(
+    ctx: RuleContext, facts: DocumentFacts, first_writes: dict[int, int], line: int
+) -> bool:
+    """Whether a condition's outcome follows from the program's own values: each variable it
+    reads had one value every time and was set earlier in the program. A value from outside (a
+    macro's argument, the caller's locals or commons, a probe result) is the caller's choice,
+    and a guard whose inputs vary but that never fires (a clamp on the last step) is a guard."""
+    for n in compiled(ctx.doc.blocks[line].parsed).reads:
+        summary = facts.reads.get((line, n))
+        if summary is None or not summary.constant:
+            return False
+        if first_writes.get(n, line) >= line:
+            return False
+    return True
 
 
 def _effect(statement: IfGoto | IfThen | While, taken: bool) -> str:
