@@ -39,8 +39,8 @@ register(
 # input increment of each address" (FANUC 16i/18i Operator's Manual B-63684EN, Custom macro,
 # "Position of the decimal point"): lengths and angles (0.001 mm or degree on IS-B) are scaled;
 # S, T, M, D, H take whole numbers and F is in mm/min (1 mm/min on IS-B), so those are not.
-# E (the precise lead of some lathes) is taken for a length (unverified).
-SCALED_ARGUMENTS = frozenset("ABCEIJKQRUVWXYZ")
+# E has no axis on a mill and its increment is not settled (a lathe's precise lead): left out.
+SCALED_ARGUMENTS = frozenset("ABCIJKQRUVWXYZ")
 
 
 def check_line(parsed: ParsedLine) -> Iterator[LineFinding]:
