@@ -151,6 +151,12 @@ def test_rule_has_doc_section_and_fixture(code: str) -> None:
     assert fixtures, f"no fixture tests/fixtures/rules/{code}_{info.name}.nc"
 
 
+@pytest.mark.parametrize("code", ALL_CODES)
+def test_rule_doc_says_what_it_does_not_report(code: str) -> None:
+    _name, body = doc_sections()[code]
+    assert "**What it does not report.**" in body, f"the section of {code} has no such paragraph"
+
+
 def test_doc_sections_are_registered_rules() -> None:
     stale = {code for code in doc_sections() if code not in RULES}
     assert not stale, f"docs/rules.md documents codes that are not registered: {sorted(stale)}"
