@@ -34,7 +34,10 @@ from fanuc_macro.syntax import Document  # noqa: E402
 
 def generate(blocks: int, seed: int = 1) -> str:
     rnd = random.Random(seed)
+    # The locals set first: a program that read them unset would be analysed as a macro with
+    # unknown arguments, and its loops and threads would not be the workload measured here.
     out = ["%", "O1000 (GENERATED BENCHMARK PROGRAM)"]
+    out += [f"#{v}=0 (LOCAL {v})" for v in range(1, 34)]
     n = 0
     label = 10
     while len(out) < blocks + 2:
@@ -66,11 +69,12 @@ def generate(blocks: int, seed: int = 1) -> str:
         elif k == 17:
             out.append(f"G00 X[#{v}+{x:.2f}] Z{z:.2f}")
         elif k == 18:
-            out.append(f"M98 P{rnd.randint(1000, 9999)} L{rnd.randint(1, 3)}")
+            # A subprogram of the file: a call outside it would leave every common unknown.
+            out.append(f"M98 P9000 L{rnd.randint(1, 3)} (CALL {n})")
         else:
             out.append(f"T{rnd.randint(1, 12):02d}{rnd.randint(1, 12):02d} (TOOL {n})")
     out.append("M30")
-    out.append("%")
+    out += ["O9000 (CALLED SUBPROGRAM)", "M99", "%"]
     return "\n".join(out) + "\n"
 
 
@@ -165,7 +169,7 @@ def bench_eval() -> None:
         f"evaluator: {facts.steps} blocks of a WHILE loop in {t * 1000:.0f} ms = "
         f"{facts.steps / t:,.0f} macro statements/s"
     )
-    endless = "O2\n#1=0\nWHILE[#1LT10]DO1\n#2=#2+1\nEND1\nM30\n"
+    endless = "O2\n#1=0\n#2=0\nWHILE[#1LT10]DO1\n#2=#2+1\nEND1\nM30\n"
     t = time.perf_counter()
     result = analyse(endless, "endless")
     dt = time.perf_counter() - t

@@ -215,6 +215,45 @@ def test_disable_several_codes_in_any_case(tmp_path: Path) -> None:
     assert after == before - {"MB101", "MB403"}
 
 
+# ---- the machine's limits and options ------------------------------------------------------------
+
+FAST = "%\nO6002 (SURFACE SPEED)\n#19=FIX[1000.*300./[3.1416*20.]]\nS#19 M03\nM30\n%\n"
+
+
+def test_spindle_speed_is_checked_only_against_a_limit_given(tmp_path: Path) -> None:
+    write(tmp_path / "prog.nc", FAST)
+    quiet = parsed_lines(run(tmp_path, "check", "prog.nc").stdout)
+    assert "MB602" not in {r["code"] for r in quiet}
+    result = run(tmp_path, "check", "--max-spindle-speed", "4000", "prog.nc")
+    [row] = [r for r in parsed_lines(result.stdout) if r["code"] == "MB602"]
+    assert "S gets 4774. rpm, above the machine's maximum 4000. rpm" in row["message"]
+    assert int(row["line"]) == 4
+    assert run(tmp_path, "check", "--max-spindle-speed", "5000", "prog.nc").stdout == ""
+
+
+def test_threading_feed_is_checked_only_against_a_limit_given(tmp_path: Path) -> None:
+    thread = "%\nO1007\nG97 S3500 M03\nG00 X66. Z12.\nG92 X63.4 Z-40. F6.\nM30\n%\n"
+    write(tmp_path / "prog.nc", thread)
+    assert "MB807" not in run(tmp_path, "check", "prog.nc").stdout
+    result = run(tmp_path, "check", "--max-threading-feed", "10000", "prog.nc")
+    assert "MB807" in {r["code"] for r in parsed_lines(result.stdout)}
+
+
+def test_extended_commons_option(tmp_path: Path) -> None:
+    write(tmp_path / "prog.nc", "%\nO9040\n#200=#5061\n#201=#5062\nM99\n%\n")
+    [row] = [r for r in parsed_lines(run(tmp_path, "check", "prog.nc").stdout)]
+    assert (row["code"], row["line"]) == ("MB303", "3")
+    assert "first of 2 uses" in row["message"]
+    assert run(tmp_path, "check", "--extended-commons", "prog.nc").stdout == ""
+
+
+def test_a_limit_must_be_a_positive_number(tmp_path: Path) -> None:
+    write(tmp_path / "prog.nc", FAST)
+    for bad in ("0", "-5", "fast", "inf"):
+        result = run(tmp_path, "check", "--max-spindle-speed", bad, "prog.nc")
+        assert result.returncode == 2 and "positive number" in result.stderr, bad
+
+
 # ---- calls between files -------------------------------------------------------------------------
 
 MAIN = "%\nO1000 (MAIN)\nM98 P2000\nG65 P9123 X10. Z-20. D12.\nM30\n%\n"
@@ -246,6 +285,43 @@ def test_calls_resolved_through_files_given_together(tmp_path: Path) -> None:
     assert "MB403" not in {r["code"] for r in parsed_lines(result.stdout)}
     partial = parsed_lines(run(tmp_path, "check", "main.nc", "lib/o2000.nc").stdout)
     assert [int(r["line"]) for r in partial if r["code"] == "MB403"] == [4]
+
+
+def test_files_without_o_line_are_known_by_their_names(tmp_path: Path) -> None:
+    write(tmp_path / "main.nc", "%\nO1000 (MAIN)\nM98 P8501\nG65 P9010 A1.\nM98 P8502\nM30\n%\n")
+    write(tmp_path / "O8501.NC", "%\n(ROUGHING)\nG00 X100.\nM99\n%\n")
+    write(tmp_path / "O09010", "G00 X#1 Z2.\nM99\n")  # a memory card's name, no extension
+    write(tmp_path / "O8502 FINISH.nc", "G00 X50.\nZ2.\n")  # no M99 either
+    rows = parsed_lines(run(tmp_path, "check", ".").stdout)
+    assert not [r for r in rows if r["code"] in ("MB403", "MB901")]
+    hints = {(Path(r["path"]).name, r["line"]): r for r in rows if r["code"] == "MB010"}
+    assert set(hints) == {("O8501.NC", "3"), ("O09010", "1"), ("O8502 FINISH.nc", "1")}
+    assert all(r["severity"] == "hint" for r in hints.values())
+    assert hints[("O8501.NC", "3")]["message"].startswith(
+        "program number 8501 taken from the file name 'O8501.NC'"
+    )
+    # A program named by its file is checked as one: O8502 runs off its end.
+    [unended] = [r for r in rows if r["code"] == "MB407"]
+    assert (Path(unended["path"]).name, unended["line"]) == ("O8502 FINISH.nc", "2")
+    assert "called with M98 from O1000" not in unended["message"]  # another file calls it
+    # Given together on the command line, the files know each other too; alone, they do not.
+    together = run(tmp_path, "check", "main.nc", "O8501.NC", "O09010", "O8502 FINISH.nc")
+    assert "MB403" not in together.stdout
+    alone = parsed_lines(run(tmp_path, "check", "main.nc").stdout)
+    assert {r["message"].split(",")[0] for r in alone if r["code"] == "MB403"} == {
+        "M98 calls O8501",
+        "G65 calls O9010",
+        "M98 calls O8502",
+    }
+
+
+def test_names_that_are_not_program_numbers_number_nothing(tmp_path: Path) -> None:
+    write(tmp_path / "main.nc", "%\nO1000 (MAIN)\nM98 P4\nM30\n%\n")
+    write(tmp_path / "04_variables.nc", "G00 X1.\nM99\n")
+    rows = parsed_lines(run(tmp_path, "check", ".").stdout)
+    assert [r["code"] for r in rows if r["path"].endswith("main.nc")] == ["MB403"]
+    [note] = [r for r in rows if r["path"].endswith("04_variables.nc")]
+    assert (note["code"], note["severity"]) == ("MB010", "information")
 
 
 # ---- the seed programs ----------------------------------------------------------------------

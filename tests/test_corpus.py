@@ -29,6 +29,8 @@ REJECTION_CODES = ("MB001", "MB002", "MB008")
 
 # Reasons that repeat, named in the entries below:
 #   HAAS_M97: Haas 'M97 P': a local subroutine at an N number; FANUC calls no subroutine with M97.
+#   HAAS_G103: Haas 'G103 P1' / 'G103': block look-ahead limit; FANUC has no G103 (PS0010).
+#   HAAS_SETTING: Haas NGC '#20040': a Haas setting read as a variable (#20000-#29999).
 #   DECIMAL_VAR: Haas NGC '#30001.116'-style variable (a number with a decimal part): PS0115.
 #   UNBRACKETED: Citizen/Mitsubishi expression after an address without [ ]: format error.
 #   SPINDLE_SELECT: Citizen/Mitsubishi 'S1=500' spindle selection: '=' after an NC word.
@@ -87,6 +89,7 @@ REJECTED: dict[str, list[tuple[int, str]]] = {
         (4, "MB002"),  # 'IF [ #1 EQ #2 ] S#20 F#30': Haas; IF without GOTO/THEN is PS0125
     ],
     "appliedengdesign__vscode-gcode-syntax__samplenc__sample-colors.nc": [
+        (41, "MB002"),  # 'G154 P25': Haas additional work offset; FANUC writes G54.1 P25
         (82, "MB001"),  # 'WHILE[ABS[#5+7.]]LT0.1]D02': unbalanced ']', 'D02' for 'DO2' (PS0125)
         (89, "MB001"),  # 'E.#234': '.' then '#' is no number (format error)
         (102, "MB002"),  # 'IF [...] THEN' alone: Haas NGC block IF, not FANUC 0i/16i/30i
@@ -101,15 +104,26 @@ REJECTED: dict[str, list[tuple[int, str]]] = {
         (4, "MB002"),  # '#<RESULT> = #500': LinuxCNC named parameter
         (5, "MB002"),  # 'IF [#<RESULT> GT 0] THEN ...': LinuxCNC named parameter
     ],
-    "jpaullee__renishaw_macros__09000__O09023_RENISHAW_Storm.nc": [
-        (152, "MB002"),  # 'IF [ #30057.21 ] GOTO22': Haas NGC bare value as a condition (PS0114)
-        (152, "MB002"),  # ... and DECIMAL_VAR
-        (198, "MB002"),  # 'G31 Z [ ... #30003.036 ... ]': DECIMAL_VAR
-        (241, "MB002"),  # same block again: DECIMAL_VAR
-        (309, "MB002"),  # same block again: DECIMAL_VAR
-    ],
+    "jpaullee__renishaw_macros__09000__O09023_RENISHAW_Storm.nc": sorted(
+        [
+            (152, "MB002"),  # 'IF [ #30057.21 ] GOTO22': Haas NGC bare value as a condition
+            (152, "MB002"),  # ... and DECIMAL_VAR
+            (198, "MB002"),  # 'G31 Z [ ... #30003.036 ... ]': DECIMAL_VAR
+            (210, "MB002"),  # 'IF [ #20040 EQ 1 ] GOTO51': HAAS_SETTING
+            (241, "MB002"),  # same block again: DECIMAL_VAR
+            (309, "MB002"),  # same block again: DECIMAL_VAR
+            # 'G103 P1' before each probe move, 'G103' at the end: HAAS_G103
+            *each(
+                "MB002",
+                "18 50 84 92 100 106 114 120 130 139 147 165 169 196 239 245 253 265 268 274 "
+                "282 307 313 357 382 391 398 404 420 428 438 450 456 461 474",
+            ),
+        ]
+    ),
     "jpaullee__renishaw_macros__09000__O09724_RENISHAW_Storm.nc": [
+        (3, "MB002"),  # 'G103 P1': HAAS_G103
         (6, "MB002"),  # 'IF[#598 NE 1.]G65 P9725': Haas IF without GOTO/THEN (PS0125)
+        (9, "MB002"),  # 'IF [ #20040 EQ 1 ] GOTO90': HAAS_SETTING
         (18, "MB002"),  # '#162 = #30001.116': DECIMAL_VAR
         (25, "MB002"),  # '#30001.037 * #30001.035': DECIMAL_VAR, twice in the block
         (25, "MB002"),
@@ -120,6 +134,15 @@ REJECTED: dict[str, list[tuple[int, str]]] = {
         (41, "MB002"),  # same two variables: DECIMAL_VAR
         (41, "MB002"),
     ],
+    "jpaullee__renishaw_macros__09000__O09726_RENISHAW_Storm.nc": [(3, "MB002")],  # HAAS_G103
+    "jpaullee__renishaw_macros__09000__O09730_RENISHAW_Storm.nc": [(4, "MB002")],  # HAAS_G103
+    "jpaullee__renishaw_macros__09000__O09810_RENISHAW_Storm.nc": each("MB002", "3 35"),  # G103
+    "jpaullee__renishaw_macros__09000__O09811_RENISHAW_Storm.nc": each("MB002", "3 151"),  # G103
+    "jpaullee__renishaw_macros__09000__O09814_RENISHAW_Storm.nc": each("MB002", "3 98"),  # G103
+    # Haas NGC's copy of the FOCAS dispatcher: 'G103 P1' / 'G103 P0' around each wait: HAAS_G103
+    "versabuilt__Gcode__VSC Gcode__haas__ngc__9002.nc": each(
+        "MB002", "24 70 79 88 97 106 115 124 133"
+    ),
     # Synthetic negative tests for a Citizen linter; line 17, a bare 'M97', is NOT listed: with
     # no P it is a plain M code that a FANUC control accepts (the default code that disables
     # the interrupt-type custom macro), not Haas's local subroutine call.

@@ -8,10 +8,12 @@ from pathlib import Path
 import pytest
 
 from fanuc_macro.analysis import analyse
+from fanuc_macro.config import Config
 from fanuc_macro.evaluator import Facts, Unknown, evaluate
 from fanuc_macro.evaluator.values import f_fix, f_fup, f_round
 from fanuc_macro.index import build_index
 from fanuc_macro.parser import parse_text
+from fanuc_macro.trace import trace
 
 SEEDS = Path(__file__).parent / "fixtures" / "seeds"
 
@@ -98,19 +100,21 @@ def test_arc_thread_finishing_19_cuts() -> None:
 
 
 def test_vacancy_rules() -> None:
+    # #1=#0 first: a main program that read #1 before setting it would receive arguments.
     text = (
-        "O1\n#2=#1\n#3=#1*5\n#4=#1+#1\n#5=#0+1\n#6=-#1\nIF[#1EQ#0]THEN#7=1\n"
+        "O1\n#1=#0\n#2=#1\n#3=#1*5\n#4=#1+#1\n#5=#0+1\n#6=-#1\nIF[#1EQ#0]THEN#7=1\n"
         "IF[#1EQ0]THEN#8=1\nM30\n"
     )
     facts, _ = run(text)
     w = facts.document("t.nc").writes
-    assert w[1][1].first is None  # a plain copy keeps vacancy
-    assert w[2][1].first == 0.0
+    assert w[1][1].first is None
+    assert w[2][1].first is None  # a plain copy keeps vacancy
     assert w[3][1].first == 0.0
-    assert w[4][1].first == 1.0
-    assert w[5][1].first == 0.0
-    assert w[6][1].first == 1.0  # vacant EQ #0
-    assert 7 not in w  # vacant is not 0 for EQ
+    assert w[4][1].first == 0.0
+    assert w[5][1].first == 1.0
+    assert w[6][1].first == 0.0
+    assert w[7][1].first == 1.0  # vacant EQ #0
+    assert 8 not in w  # vacant is not 0 for EQ
 
 
 def test_functions_in_degrees_and_rounding() -> None:
@@ -192,10 +196,12 @@ def test_statements_per_second_budget_is_sane() -> None:
     assert math.isclose(facts.document("t.nc").writes[3][1].count, 1000)
 
 
-def _seed_codes(name: str, old: str, new: str) -> dict[str, list[str]]:
+def _seed_codes(
+    name: str, old: str, new: str, config: Config | None = None
+) -> dict[str, list[str]]:
     text = (SEEDS / name).read_text("utf-8")
     assert old in text
-    result = analyse(text.replace(old, new), name)
+    result = analyse(text.replace(old, new), name, config)
     found: dict[str, list[str]] = {}
     for d in result.diagnostics:
         found.setdefault(d.code, []).append(d.message)
@@ -217,9 +223,12 @@ def test_threading_rules_on_the_seed_module() -> None:
         "o4009_external_m50x3.nc", "#3=#101/[8*SIN[60]] (刀尖半径)", "#3=0.6 (刀尖半径)"
     )
     assert "nose radius 0.6" in found["MB805"][0]
-    # S x P over the machine's threading feed limit.
-    found = _seed_codes("o4009_external_m50x3.nc", "G97 S400", "G97 S4000")
+    # S x P over the machine's threading feed limit, when the limit is set; not checked when
+    # nobody set it.
+    limited = Config(max_threading_feed=10000.0)
+    found = _seed_codes("o4009_external_m50x3.nc", "G97 S400", "G97 S4000", limited)
     assert "12000." in found["MB807"][0]
+    assert "MB807" not in _seed_codes("o4009_external_m50x3.nc", "G97 S400", "G97 S4000")
 
 
 def test_fitting_method_tool_radius_from_chinese_comments() -> None:
@@ -372,3 +381,143 @@ def test_g76_on_a_mill_is_fine_boring_not_a_thread() -> None:
     mill = analyse(text, "m.nc", config=Config(controller="0i-MF"))
     assert mill.facts is not None and not [m for m in mill.facts.motions if m.code == "G76"]
     assert not mill.threads
+
+
+# ---- budgets: blocks, never seconds ------------------------------------------------------------
+
+ENDLESS = "O1\n#1=0\nWHILE[#1LT10]DO1\n#2=#2+1\nEND1\nM30\n"
+
+
+def test_step_budget_stops_at_the_same_block_every_time() -> None:
+    config = Config(step_budget=10_000)
+    doc = parse_text(ENDLESS, "t.nc")
+    runs = [evaluate([("t.nc", doc, build_index(doc))], config) for _ in range(2)]
+    assert [f.steps for f in runs] == [10_000, 10_000]  # the budget's blocks, not a multiple
+    assert runs[0].stopped == "budget" and runs[0].stop_message() is None
+    messages = [[f.message for f in r.document("t.nc").findings] for r in runs]
+    assert messages[0] == messages[1]
+    assert "the step budget (10,000 blocks)" in messages[0][0]
+
+
+def test_safety_net_stop_gives_no_verdict_that_needs_a_whole_run() -> None:
+    # O1 never ends; O2, called by nothing, runs whole in a few blocks.
+    text = ENDLESS + "O2\n#1=1\nIF[#1EQ1]GOTO9\nG00 X1.\nN9 M30\n"
+    config = Config(time_limit=1e-9)  # spent before the first look at the clock
+    result = analyse(text, "slow.nc", config)
+    assert result.facts is not None and result.facts.stopped == "time"
+    message = result.facts.stop_message()
+    assert message is not None and message.startswith("analysis stopped after 1e-09 s")
+    found = {(d.line, d.code) for d in result.diagnostics}
+    assert not {code for _, code in found} & {"MB703", "MB707", "MB708"}, found
+    assert {(8, "MB701"), (9, "MB702")} <= found  # O2's run was whole
+    # With the default limit the step budget ends O1's run: the endless loop is named.
+    found = {(d.line, d.code) for d in analyse(text, "slow.nc").diagnostics}
+    assert {(2, "MB703"), (8, "MB701"), (9, "MB702")} <= found
+
+
+def test_trace_says_why_the_run_stopped() -> None:
+    doc = parse_text(ENDLESS, "t.nc")
+    summary = trace("t.nc", doc, build_index(doc), config=Config(time_limit=1e-9))["summary"]
+    assert summary["stopped"] == "time"
+    assert summary["stop_message"].startswith("analysis stopped after")
+
+
+# ---- calls the analysis cannot follow ----------------------------------------------------------
+
+
+def _written_values(text: str) -> dict[int, object]:
+    """line -> the first value its assignment wrote."""
+    facts, _ = run(text)
+    return {line: s[1].first for line, s in facts.document("t.nc").writes.items()}
+
+
+def test_commons_and_offsets_are_unknown_after_a_call_outside_the_workspace() -> None:
+    text = (
+        "O1\n#100=0\n#2001=0.5\n#5221=-100.\n#1=7.\n"
+        "G65 P9814 Z-5. F3000.\n"  # a probe vendor's macro: not in the analysed files
+        "#2=#100\n#3=#2001\n#4=#5221\n#5=#1\n"
+        "IF[#100EQ0]GOTO10\nN10 M30\n"
+    )
+    facts, _ = run(text)
+    doc = facts.document("t.nc")
+    after = {line: doc.writes[line][1].first for line in (6, 7, 8, 9)}
+    assert isinstance(after[6], Unknown) and after[6].describe() == "depends on #100"
+    assert isinstance(after[7], Unknown) and isinstance(after[8], Unknown)
+    assert after[9] == 7.0  # G65 opens a local level of its own: the caller's #1 stays
+    assert doc.jumps[10].undecided == 1 and not doc.jumps[10].taken
+    codes = {d.code for d in analyse(text, "probe.nc").diagnostics}
+    assert "MB701" not in codes
+
+
+def test_m98_outside_the_workspace_may_change_the_callers_locals() -> None:
+    w = _written_values("O1\n#1=7.\n#100=1.\nM98 P9001\n#2=#1\n#3=#100\nM30\n")
+    assert isinstance(w[4], Unknown) and w[4].describe() == "depends on #1"
+    assert isinstance(w[5], Unknown)
+
+
+def test_a_call_with_an_unknown_program_number_is_a_call_into_the_unknown() -> None:
+    # #500 is set by another program: G65 P#500 could call anything.
+    w = _written_values("O1\n#100=1.\n#1=2.\nG65 P#500\n#2=#100\n#3=#1\nM99\n")
+    assert isinstance(w[4], Unknown)
+    assert w[5] == 2.0
+    # A call the analysis follows changes only what the callee writes.
+    w = _written_values(
+        "O1\n#100=1.\n#101=2.\nG65 P2000\n#2=#100\n#3=#101\nM30\nO2000\n#100=5.\nM99\n"
+    )
+    assert w[4] == 5.0 and w[5] == 2.0
+
+
+def test_g66_of_an_unknown_macro_runs_it_after_each_move() -> None:
+    text = (
+        "O1\n#100=1.\nG66 P9999 A1.\n#2=#100\nG01 X1. F0.1\n#3=#100\nG67\n#100=2.\n"
+        "G01 X2.\n#4=#100\nM30\n"
+    )
+    w = _written_values(text)
+    assert w[3] == 1.0  # G66 itself calls nothing
+    assert isinstance(w[5], Unknown)  # the move called O9999
+    assert w[9] == 2.0  # after G67 a move calls nothing
+
+
+def test_feed_left_by_an_unknown_callee_is_not_a_missing_feed() -> None:
+    text = "O1\nG65 P9810 Z-5. F3000.\nG01 X10.\nM30\n"
+    assert "MB603" not in {d.code for d in analyse(text, "feed.nc").diagnostics}
+    assert "MB603" in {d.code for d in analyse("O1\nG01 X10.\nM30\n", "feed.nc").diagnostics}
+
+
+# ---- programs that receive arguments ------------------------------------------------------------
+
+
+def test_main_looking_program_that_reads_its_locals_first_gets_unknown_arguments() -> None:
+    text = (
+        "O9041 (BORE)\nIF[#26EQ#0]GOTO90\nIF[#7LE0]GOTO90\nG01 Z#26 F#9\nM30\n"
+        "N90 #3000=1(Z AND D ARE NEEDED)\nM30\n"
+    )
+    facts, _ = run(text)
+    doc = facts.document("t.nc")
+    assert doc.jumps[1].undecided == 1 and doc.jumps[2].undecided == 1
+    assert doc.assumed_arguments == {0: ((26, 1), (7, 2), (9, 3))}
+    result = analyse(text, "bore.nc")
+    codes = [d.code for d in result.diagnostics]
+    assert "MB503" not in codes and "MB701" not in codes and "MB603" not in codes
+    hint = next(d for d in result.diagnostics if d.code == "MB904")
+    assert hint.line == 1 and "#26 (Z), #7 (D), #9 (F)" in hint.message
+    # Set before they are read: a main program, its locals vacant at cycle start.
+    facts, _ = run("O1\n#26=#0\nIF[#26EQ#0]GOTO90\nM30\nN90 #3000=1(Z IS NEEDED)\nM30\n")
+    assert facts.document("t.nc").jumps[2].taken == 1
+    assert not facts.document("t.nc").assumed_arguments
+
+
+def test_alarm_inside_a_while_on_an_unknown_is_not_reached() -> None:
+    text = "O1\nWHILE[#500LT3]DO1\n#3000=2(PROBE NOT READY)\nEND1\nM30\n"
+    assert "MB503" not in {d.code for d in analyse(text, "wait.nc").diagnostics}
+    # The same alarm in a loop whose test is decided is reached.
+    text = "O1\n#1=0\nWHILE[#1LT3]DO1\n#3000=2(PROBE NOT READY)\nEND1\nM30\n"
+    assert "MB503" in {d.code for d in analyse(text, "wait.nc").diagnostics}
+
+
+def test_a_rejected_assignment_sets_its_variable_to_an_unknown_value() -> None:
+    facts, _ = run("O1\n#5=#4*2:\n#6=#5\nM30\n")
+    doc = facts.document("t.nc")
+    assert isinstance(doc.writes[1][1].first, Unknown)
+    assert isinstance(doc.writes[2][1].first, Unknown)  # not vacant: set, to what is not known
+    assert not doc.assumed_arguments  # a block that does not parse reads nothing known

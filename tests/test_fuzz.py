@@ -15,28 +15,9 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from fanuc_macro.analysis import analyse
 from fuzzing import LEVELS, check, describe, make_input, seeds
 
 T = TypeVar("T")
-
-# Internal errors of rules in files this work leaves to their owners, reported to them. The
-# fuzz test lets them pass; the test below keeps each entry only as long as its program still
-# shows the error.
-KNOWN_INTERNAL_ERRORS = {
-    # ValueSummary.numeric is true once one value was a number; the first may be vacant.
-    "rules.angles.check": (
-        "AssertionError()",
-        "O1\n#2=0\nWHILE[#2LT6]DO1\n#3=SIN[#1]\n#1=#1+0.3\n#2=#2+1\nEND1\nM30\n",
-    ),
-}
-
-
-def known(message: str) -> bool:
-    return any(
-        f"rule {rule} " in message and error in message
-        for rule, (error, _) in KNOWN_INTERNAL_ERRORS.items()
-    )
 
 
 class DataDraw:
@@ -72,14 +53,5 @@ def test_the_seeds_are_the_fixtures_and_the_corpus() -> None:
 @given(data=st.data())
 def test_mutated_programs_are_analysed_soundly(level: str, data: Any) -> None:
     case = make_input(DataDraw(data), level)
-    problem = check(case, tolerated=known)
+    problem = check(case)
     assert problem is None, f"{problem}\n{describe(case)}"
-
-
-@pytest.mark.parametrize("rule", KNOWN_INTERNAL_ERRORS)
-def test_known_internal_errors_still_happen(rule: str) -> None:
-    error, program = KNOWN_INTERNAL_ERRORS[rule]
-    messages = [d.message for d in analyse(program, "known.nc").diagnostics if d.code == "MB000"]
-    assert any(f"rule {rule} " in m and error in m for m in messages), (
-        f"{rule} no longer fails on its program: take it out of KNOWN_INTERNAL_ERRORS"
-    )

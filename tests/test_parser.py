@@ -12,7 +12,7 @@ import pytest
 
 from fanuc_macro.analysis import analyse
 from fanuc_macro.blocks import cut_comments, decode_bytes, split_lines
-from fanuc_macro.index import build_index
+from fanuc_macro.index import build_index, program_number_of_name
 from fanuc_macro.parser import BlockParser, fast_parse, parse_bytes, parse_text
 from fanuc_macro.syntax import (
     Assign,
@@ -247,6 +247,57 @@ def test_program_numbers_and_names(text: str, number: int | None, name: str | No
     s = stmt(text)
     assert isinstance(s, ProgramStart)
     assert (s.number, s.name) == (number, name)
+
+
+@pytest.mark.parametrize(
+    ("name", "number"),
+    [
+        ("O8501.NC", 8501),
+        ("o8501.nc", 8501),
+        ("8501.nc", 8501),
+        ("O09010", 9010),
+        ("O09010.nc", 9010),
+        ("O8501 DESCRIPTION.nc", 8501),
+        ("O8501_ROUGH.nc", 8501),
+        ("8501 ROUGH.nc", 8501),
+        ("01000.nc", 1000),
+        ("O12345678.nc", 12345678),
+        ("/shop/progs/O8501.NC", 8501),
+        ("C:\\progs\\O8501.NC", 8501),
+        ("file:///shop/O8501%20ROUGH.nc", 8501),
+        # Names that are not program numbers.
+        ("04_variables.nc", None),
+        ("2024-01-05.nc", None),
+        ("PART2.nc", None),
+        ("SAMPLE 3.nc", None),
+        ("O8501X.nc", None),
+        ("O8501.bak.nc", None),
+        ("12345.nc", None),
+        ("0.nc", None),
+        ("O0.nc", None),
+        ("prog.nc", None),
+        ("untitled:Untitled-1", None),
+    ],
+)
+def test_program_number_of_a_file_name(name: str, number: int | None) -> None:
+    assert program_number_of_name(name) == number
+
+
+def test_a_file_without_o_line_is_the_program_its_name_numbers() -> None:
+    index = build_index(parse_text("%\n(ROUGH)\nG00 X100.\nM99\n%\n", "/p/O8501.NC"))
+    [program] = index.programs
+    assert (program.number, program.named_by_file, program.display_name) == (
+        8501,
+        "O8501.NC",
+        "O8501",
+    )
+    assert program.first_line == 2 and program.header_line is None
+    # An O line in the file wins over the name; text before it stays a fragment.
+    index = build_index(parse_text("G00 X0\nO1234\nM99\n", "/p/O8501.NC"))
+    assert [(p.number, p.named_by_file) for p in index.programs] == [(None, None), (1234, None)]
+    # No number in the name: "(main)", as before.
+    [program] = build_index(parse_text("G00 X0\nM30\n", "/p/part.nc")).programs
+    assert (program.number, program.display_name) == (None, "(main)")
 
 
 @pytest.mark.parametrize(
@@ -855,11 +906,57 @@ def test_typing_mistakes_are_named(text: str, message: str) -> None:
         ("o<probe> sub", "LinuxCNC"),
         ("O100 if [#<_task> EQ 0]", "LinuxCNC"),
         ("IF #1>0 GOTO1", "DDCS"),
+        ("VC1=0", "Okuma OSP"),
+        ("VS12=5", "Okuma OSP"),
+        ("G00 X[VC1*10.] Z5.", "Okuma OSP"),
+        ("NLOOP G01 X10.", "Okuma OSP"),
+        ("GOTO NEND", "Okuma OSP"),
+        ("IF [#1 LT 10] NLOOP", "Okuma OSP"),
+        ("CALL OSUB", "Okuma OSP"),
+        ("H1=0.216", "wire EDM"),
+        ("H000=+00000000", "wire EDM"),
+        ("E001=", "wire EDM"),
+        ("G97 S1=500 M3", "Mitsubishi/Citizen"),
+        ("Q1=12", "not FANUC (dialect not recognised)"),
+        ("IF[#1<=#2]GOTO10", "not FANUC (dialect not recognised)"),
     ],
 )
 def test_dialect_forms_are_named(text: str, dialect: str) -> None:
     problem = BlockParser().parse_line(text).problem
     assert problem is not None and problem.dialect == dialect
+
+
+@pytest.mark.parametrize(
+    ("text", "found"),
+    [
+        ("VS1=5", "'VS1'"),  # not Citizen's S1= spindle selection
+        ("POS1=5", "address P at column 1 has no value"),  # a typing mistake, not Citizen's
+        ("H1=0.216", "'H1='"),
+        ("GOTO NEND", "'GOTO NEND'"),
+    ],
+)
+def test_dialect_messages_quote_what_they_name(text: str, found: str) -> None:
+    problem = BlockParser().parse_line(text).problem
+    assert problem is not None and found in problem.message
+    assert "Mitsubishi" not in (problem.dialect or "")
+
+
+def test_haas_only_codes_in_a_fanuc_block() -> None:
+    text = "O1000\nG103 P1\nG154 P10\nM109 P501\n#1=#20001\nM109\nG154\n#2=#10001\nM30\n"
+    found = {d.line: d.message for d in analyse(text).diagnostics if d.code == "MB002"}
+    assert sorted(found) == [1, 2, 3, 4]
+    assert found[1].startswith("Haas: G103 (block look-ahead limit)")
+    assert found[2].startswith("Haas: G154 P<n>") and "G54.1 P<n>" in found[2]
+    assert found[3].startswith("Haas: M109 P<n>")
+    assert found[4].startswith("Haas NGC: #20001 reads Haas setting 1")
+
+
+def test_an_okuma_file_names_okuma_on_every_rejected_block() -> None:
+    text = "O1234\nVC1=0\nG00 X10.\nX#1+1.\nNLOOP VC1=VC1+1\nM02\n"
+    rejected = [d for d in analyse(text).diagnostics if d.code in ("MB001", "MB002")]
+    assert [d.line for d in rejected] == [1, 3, 4]
+    assert rejected[1].message.startswith("Okuma OSP program (VC/VS variable assignment on line 2)")
+    assert all(d.message.startswith("Okuma OSP") for d in rejected)
 
 
 def test_a_file_of_another_dialect_names_it_on_every_rejected_block() -> None:
@@ -876,3 +973,32 @@ def test_a_fanuc_file_keeps_its_own_findings() -> None:
     text = "O1000\nIF[#1<=#2]GOTO10\n;\nN10 M30\n"
     codes = [(d.line, d.code) for d in analyse(text).diagnostics if d.code.startswith("MB00")]
     assert codes == [(1, "MB002")]
+
+
+@pytest.mark.parametrize(
+    ("text", "assigns", "seq"),
+    [
+        ("#5=#4*2:", 5, None),  # ':' typed for ';'
+        ("N10 #5 = [#4*2", 5, 10),  # a '[' not closed
+        ("#1=ABC[2]", 1, None),  # an unknown function
+        ("IF[#1GT2]THEN#5=3:", 5, None),
+        ("/N20#100=#4 +", 100, 20),
+        ("N30 G01 X[1", None, 30),
+        ("#1==2", None, None),  # a comparison typed where an assignment stands: not one
+        ("#0=1:", None, None),  # #0 is never set
+        ("G01 X10.*#1", None, None),
+    ],
+)
+def test_a_rejected_block_keeps_what_it_plainly_says(
+    text: str, assigns: int | None, seq: int | None
+) -> None:
+    parsed = BlockParser().parse_line(text)
+    assert parsed.statement is None and parsed.problem is not None
+    assert parsed.failed_assignment == assigns
+    assert parsed.seq == seq
+
+
+def test_no_cascade_after_a_syntax_error() -> None:
+    text = "O1\nG65 P2 A1.\nM30\nO2\nGOTO10\nN10 #5=#1*2:\n#6=#5+1.\nG00 X#5 Z#6\nM99\n"
+    codes = [(d.line + 1, d.code) for d in analyse(text, "typo.nc").diagnostics]
+    assert codes == [(6, "MB001")]  # no MB101 for N10, no MB901 for #5

@@ -4,7 +4,9 @@ Each fixture ``tests/fixtures/rules/MBxxx_<name>[_<variant>].nc`` is a small pro
 every line that must produce a diagnostic carries ``(expect: MBxxx)`` (several codes:
 ``(expect: MB101 MB103)``). The codes a fixture is about are the one in its file name and those
 of its expect comments; for those codes, the diagnostics must stand exactly on the expected
-lines, and nowhere else in the file.
+lines, and nowhere else in the file. A rule that needs a setting (a machine limit) is tested with
+a comment ``(settings: {"machine": {"maxSpindleSpeed": 4000}})``: the editor's settings object
+under ``fanuc-macro``, in JSON.
 
 The lists of codes are read from ``fanuc_macro.diagnostics.RULES`` when the tests are
 collected, so a rule registered later (the evaluator's MB5xx-MB9xx) is covered as soon as it is
@@ -13,6 +15,7 @@ registered: it needs a section in docs/rules.md and a fixture.
 
 from __future__ import annotations
 
+import json
 import re
 from collections.abc import Iterator
 from functools import cache
@@ -23,7 +26,7 @@ import pytest
 import fanuc_macro.analysis  # noqa: F401  (importing it registers every rule)
 from fanuc_macro.analysis import Analysis, analyse
 from fanuc_macro.blocks import decode_bytes, split_lines
-from fanuc_macro.config import Config
+from fanuc_macro.config import NOT_SET, Config
 from fanuc_macro.diagnostics import RULES, Diagnostic, Severity
 from fanuc_macro.parser import parse_bytes
 from fanuc_macro.rules.context import RuleContext
@@ -33,26 +36,13 @@ FIXTURES = ROOT / "tests" / "fixtures" / "rules"
 DOCS = ROOT / "docs" / "rules.md"
 
 EXPECT = re.compile(r"\(expect:([^)]*)\)")
+SETTINGS = re.compile(r"\(settings:([^)]*)\)")
 CODE = re.compile(r"MB\d{3}")
 HEADING = re.compile(r"^## (MB\d{3}) (\S+)\s*$", re.M)
 FENCE = re.compile(r"^```nc\n(.*?)^```", re.M | re.S)
 
 ALL_CODES = sorted(RULES)
 FIXTURE_FILES = sorted(FIXTURES.glob("MB*.nc"))
-
-# The limits of what the analysis reads hold thousands of characters by default: the fixtures
-# and the docs/rules.md examples of these rules are analysed with lower ones (the sections say
-# so), so that a few lines show them.
-SETTINGS_OF: dict[str, dict[str, object]] = {
-    "MB011": {"analysis": {"maxLineLength": 60}},
-    "MB013": {"analysis": {"maxBlocks": 8}},
-}
-
-
-def config_of(code: str, disabled: frozenset[str] = frozenset()) -> Config:
-    settings = dict(SETTINGS_OF.get(code, {}))
-    settings["rules"] = {"disabled": sorted(disabled)}
-    return Config.from_settings(settings)
 
 
 # ---- helpers ---------------------------------------------------------------------------------
@@ -67,13 +57,28 @@ def fixture_analysis(path: Path) -> tuple[Analysis, dict[int, set[str]]]:
     """The analysis of a fixture, read from bytes as the CLI does, and its expect comments."""
     data = path.read_bytes()
     text = decode_bytes(data).text
-    config = config_of(fixture_code(path))
-    doc = parse_bytes(data, str(path), limits=config.read_limits)
+    config = fixture_config(path)
+    doc = parse_bytes(data, str(path), limits=(config or Config()).read_limits)
     expected: dict[int, set[str]] = {}
     for line, line_text in enumerate(split_lines(text)):  # those the analysis reads or not
         for m in EXPECT.finditer(line_text):
             expected.setdefault(line, set()).update(CODE.findall(m.group(1)))
-    return analyse(text, str(path), config=config, doc=doc), expected
+    return analyse(text, str(path), config, doc=doc), expected
+
+
+def fixture_settings(path: Path) -> dict[str, object]:
+    """The settings of a fixture's ``(settings: {...})`` comments: read from its lines before
+    it is parsed, since some (the limits of what the analysis reads) change the parse."""
+    settings: dict[str, object] = {}
+    for line_text in split_lines(decode_bytes(path.read_bytes()).text):
+        for m in SETTINGS.finditer(line_text):
+            settings.update(json.loads(m.group(1)))
+    return settings
+
+
+def fixture_config(path: Path) -> Config | None:
+    settings = fixture_settings(path)
+    return Config.from_settings(settings) if settings else None
 
 
 @cache
@@ -158,6 +163,12 @@ def test_rule_has_doc_section_and_fixture(code: str) -> None:
     assert fixtures, f"no fixture tests/fixtures/rules/{code}_{info.name}.nc"
 
 
+@pytest.mark.parametrize("code", ALL_CODES)
+def test_rule_doc_says_what_it_does_not_report(code: str) -> None:
+    _name, body = doc_sections()[code]
+    assert "**What it does not report.**" in body, f"the section of {code} has no such paragraph"
+
+
 def test_doc_sections_are_registered_rules() -> None:
     stale = {code for code in doc_sections() if code not in RULES}
     assert not stale, f"docs/rules.md documents codes that are not registered: {sorted(stale)}"
@@ -174,6 +185,24 @@ def _example(code: str) -> str:
     return m.group(1)
 
 
+# "The example assumes `"fanuc-macro.machine.maxSpindleSpeed": 4000`": a setting the example
+# needs, as the section states it.
+EXAMPLE_SETTING = re.compile(r'`"fanuc-macro\.([\w.]+)":\s*([^`]+)`')
+
+
+def _example_config(code: str) -> Config | None:
+    settings: dict[str, object] = {}
+    for key, value in EXAMPLE_SETTING.findall(doc_sections()[code][1]):
+        *groups, name = key.split(".")
+        node = settings
+        for group in groups:
+            child = node.setdefault(group, {})
+            assert isinstance(child, dict)
+            node = child
+        node[name] = json.loads(value)
+    return Config.from_settings(settings) if settings else None
+
+
 @pytest.mark.parametrize("code", [c for c in ALL_CODES if c != "MB000"])
 def test_doc_example_triggers_its_rule(code: str) -> None:
     """The example of each section produces the diagnostic it illustrates.
@@ -185,7 +214,7 @@ def test_doc_example_triggers_its_rule(code: str) -> None:
         data = text.encode("gb18030")
         analysis = analyse(text, "example.nc", doc=parse_bytes(data, "example.nc"))
     else:
-        analysis = analyse(text, "example.nc", config=config_of(code))
+        analysis = analyse(text, "example.nc", _example_config(code))
     assert code in {d.code for d in analysis.diagnostics}, text
 
 
@@ -287,10 +316,10 @@ def test_config_disabled() -> None:
 @pytest.mark.parametrize("code", ALL_CODES)
 def test_config_disables_each_rule(code: str) -> None:
     """A disabled code never appears, whatever the program (here: its fixtures)."""
-    config = config_of(code, disabled=frozenset({code}))
     for path in FIXTURE_FILES:
         if fixture_code(path) != code:
             continue
+        config = Config.from_settings({**fixture_settings(path), "rules": {"disabled": [code]}})
         analysis, _ = fixture_analysis(path)
         if code == "MB007":
             again = analyse("", str(path), config=config, doc=analysis.doc)
@@ -325,6 +354,84 @@ def test_config_from_editor_settings() -> None:
     assert "MB403" not in diags
     assert diags["MB101"].severity is Severity.WARNING
     assert diags["MB302"].severity is Severity.ERROR
+
+
+@pytest.mark.parametrize(
+    ("text", "fixes"),
+    [
+        ("IF [#1 AND #2 LT 0] GOTO 5", ["[#1 LT 0] AND [#2 LT 0]", "[#1 AND #2] LT 0"]),
+        ("IF [#3 EQ #1 OR #2] GOTO 5", ["[#3 EQ #1] OR [#3 EQ #2]", "#3 EQ [#1 OR #2]"]),
+        (
+            "WHILE [#1 XOR #2 XOR #3 NE 0] DO1",
+            ["[#1 NE 0] XOR [#2 NE 0] XOR [#3 NE 0]", "[#1 XOR #2 XOR #3] NE 0"],
+        ),
+        # Mixed operators or the logic inside arithmetic: only the control's reading.
+        ("IF [#1 OR #2 AND #3 EQ 1] GOTO 5", ["[#1 OR #2 AND #3] EQ 1"]),
+        ("IF [#1+#2 AND #3 LT 0] GOTO 5", ["#1+[#2 AND #3] LT 0"]),
+    ],
+)
+def test_logic_operand_fixes(text: str, fixes: list[str]) -> None:
+    from fanuc_macro.parser import default_parser
+    from fanuc_macro.rules.expressions import logic_fixes, logic_operands
+
+    parsed = default_parser().parse_line(text)
+    assert parsed.statement is not None
+    [found] = logic_operands(parsed.statement)
+    assert [rewritten for _, rewritten in logic_fixes(text, found)] == fixes
+
+
+def test_logic_operand_fix_must_keep_within_five_brackets() -> None:
+    from fanuc_macro.lsp.features import _acceptable_fix
+
+    assert _acceptable_fix("IF [[#1 LT 0] AND [#2 LT 0]] GOTO 5 (OK [[[[[ ]]]]])", 1)
+    assert _acceptable_fix("IF [[ABS[[[#1]]] LT 0] AND [#2 LT 0]] GOTO 5", 1)  # five deep
+    assert not _acceptable_fix("IF [[ABS[[[[#1]]]] LT 0] AND [#2 LT 0]] GOTO 5", 1)  # six
+    assert not _acceptable_fix("IF [[#1 LT 0] AND [#2 LT 0] GOTO 5", 1)  # not closed
+
+
+def test_duplicate_label_dead_copy_needs_the_evaluator() -> None:
+    text = "O2004\n#1=1.\nN30 G00 X10.\nIF[#1EQ2.]GOTO30\nG00 X20.\nM30\nN30 G00 X30.\nM30\n"
+    assert pairs(analyse(text).diagnostics, "MB102") == {(3, "MB102")}
+    assert not pairs(analyse(text, run_evaluator=False).diagnostics, "MB102")
+    # A common variable the analysis does not know leaves the branch undecided: nothing is dead.
+    undecided = text.replace("#1=1.\n", "").replace("#1EQ", "#100EQ")
+    assert not pairs(analyse(undecided).diagnostics, "MB102")
+
+
+def test_extended_commons_once_per_file_with_the_count_and_range() -> None:
+    lines = ["O9040", "#1=1."] + [f"#{200 + i % 300}=#5061" for i in range(167)] + ["M99"]
+    diags = [d for d in analyse("\n".join(lines) + "\n").diagnostics if d.code == "MB303"]
+    [mb303] = diags
+    assert mb303.line == 2 and (mb303.column, mb303.end_column) == (0, 4)
+    first = "#200 is the first of 167 uses of #200-#499 in this file, lines 3-169"
+    assert first in mb303.message
+    assert "#200, #201, #202, #203, #204, #205, ..." in mb303.message
+    assert [r.line for r in mb303.related] == [168]
+    one = analyse("O9040\n#1=#450\nM99\n").diagnostics
+    assert [d.message.split(":")[0] for d in one if d.code == "MB303"] == [
+        "#450 is its only use in this file"
+    ]
+
+
+def test_extended_commons_setting_says_the_option_is_there() -> None:
+    text = "O9040\n#200=#5061\nG00 X#350\nM99\n"
+    assert "MB303" in codes_of(text)
+    config = Config.from_settings({"machine": {"extendedCommons": True}})
+    assert config.extended_commons
+    assert "MB303" not in codes_of(text, config)
+    assert not Config.from_settings({"machine": {"extendedCommons": "yes"}}).extended_commons
+
+
+def test_machine_limits_are_checked_only_when_set() -> None:
+    """No default machine limit: a spindle speed is too high only against one the user set."""
+    assert Config().max_spindle_speed == NOT_SET == Config().max_threading_feed
+    unset = Config.from_settings({"machine": {"maxSpindleSpeed": None, "maxThreadingFeed": 0}})
+    assert unset.max_spindle_speed == NOT_SET == unset.max_threading_feed
+    limited = Config.from_settings({"machine": {"maxSpindleSpeed": 6000}})
+    assert limited.max_spindle_speed == 6000.0
+    text = "O1000\n#19=6500.\nS#19 M03\n#19=5000.\nS#19 M03\nM30\n"
+    assert "MB602" not in codes_of(text)
+    assert pairs(analyse(text, config=limited).diagnostics, "MB602") == {(2, "MB602")}
 
 
 def test_docs_name_every_word_the_threading_rules_know() -> None:

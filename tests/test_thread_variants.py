@@ -122,3 +122,11 @@ def test_messages_carry_the_numbers() -> None:
     assert "FIX[#30*10.] at line 9 gave 7 for 7.999999999999999" in fix
     sign = next(iter(analysis_of("o4009_es_with_sign.nc").diagnostics)).message
     assert "#103 = -0.048" in sign and "enter 0.048" in sign
+
+
+def test_radians_rule_takes_an_angle_that_starts_vacant() -> None:
+    # Found by the fuzz campaign: the first value read is vacant, the later ones numbers.
+    text = "O1\n#1=#0\nWHILE[#1LE2.8]DO1\n#2=SIN[#1]\n#1=#1+0.31416\nEND1\nM30\n"
+    diagnostics = analyse(text, "vacant.nc").diagnostics
+    assert not [d for d in diagnostics if d.code == "MB000"]
+    assert [d.code for d in diagnostics if d.code == "MB504"] == ["MB504"]

@@ -117,6 +117,8 @@ file_marks: PerLine[tuple[str, str] | None] = PerLine(_file_mark)
 # What a block of another control's program gives when FANUC cannot read it: these findings
 # of one block become one MB002 naming the file's dialect.
 _FOLDED = frozenset({"MB001", "MB002", "MB003", "MB004", "MB005", "MB008"})
+# FANUC's conventions of writing that another control's program need not follow (lower case).
+_FANUC_STYLE = frozenset({"MB006"})
 
 
 def run_checks(ctx: RuleContext, checks: Iterable[ExtraChecks]) -> list[Diagnostic]:
@@ -138,6 +140,8 @@ def run_checks(ctx: RuleContext, checks: Iterable[ExtraChecks]) -> list[Diagnost
     for line, parsed, findings in per_block:
         folded = [f for f in findings if f.code in _FOLDED] if foreign is not None else []
         for f in findings:
+            if foreign is not None and f.code in _FANUC_STYLE:
+                continue
             if not folded or f.code not in _FOLDED:
                 found.append(make(f.code, f.message, line, f.start, f.end))
         if folded and foreign is not None:
@@ -165,7 +169,7 @@ def _foreign_message(foreign: dialects.FileDialect, parsed: ParsedLine, first: L
     where = f"{foreign.mark} on line {foreign.line + 1}"
     if first.code == "MB005":
         what = "';' ends the block on FANUC, and the comment after it is read as program text"
-    elif problem is not None and problem.dialect is None:
+    elif problem is not None and problem.dialect in (None, dialects.NOT_FANUC):
         what = f"FANUC rejects this block ({problem.message})"
     else:  # a form of yet another dialect, or a Haas-looking statement: this file's own
         what = "FANUC rejects this block"

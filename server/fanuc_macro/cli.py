@@ -12,7 +12,7 @@ from pathlib import Path
 from . import __version__
 from .analysis import analyse
 from .cli_thread import add_thread_command
-from .config import CONTROLLERS, Config
+from .config import CONTROLLERS, NOT_SET, Config
 from .diagnostics import REPORT_INTERNAL_ERROR, Diagnostic, Severity
 from .evaluator.values import fmt_address
 from .trace import trace
@@ -61,7 +61,48 @@ def _as_json(path: str, d: Diagnostic) -> dict[str, object]:
 
 def _config(args: argparse.Namespace) -> Config:
     disabled = frozenset(c.strip().upper() for c in (args.disable or "").split(",") if c.strip())
-    return Config(controller=args.controller, disabled=disabled)
+    return Config(
+        controller=args.controller,
+        disabled=disabled,
+        max_spindle_speed=args.max_spindle_speed,
+        max_threading_feed=args.max_threading_feed,
+        extended_commons=args.extended_commons,
+    )
+
+
+def _positive(text: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        value = 0.0
+    if not value > 0 or value == NOT_SET:
+        raise argparse.ArgumentTypeError(f"not a positive number: {text!r}")
+    return value
+
+
+def _add_machine_options(parser: argparse.ArgumentParser) -> None:
+    """The machine's limits and options, as the editor's fanuc-macro.machine.* settings: a
+    limit not given is not checked."""
+    parser.add_argument(
+        "--max-spindle-speed",
+        type=_positive,
+        default=NOT_SET,
+        metavar="RPM",
+        help="the machine's maximum spindle speed (MB602); not checked when not given",
+    )
+    parser.add_argument(
+        "--max-threading-feed",
+        type=_positive,
+        default=NOT_SET,
+        metavar="MM_PER_MIN",
+        help="the machine's largest feed while threading, S x lead (MB807); not checked when "
+        "not given",
+    )
+    parser.add_argument(
+        "--extended-commons",
+        action="store_true",
+        help="the machine has the extended common variables #200-#499 (no MB303)",
+    )
 
 
 def cmd_check(args: argparse.Namespace) -> int:
@@ -76,6 +117,9 @@ def cmd_check(args: argparse.Namespace) -> int:
     out = sys.stdout
     for path in files:
         analysis = workspace.analyse(str(path), workspace_programs=programs)
+        stopped = analysis.facts.stop_message() if analysis.facts is not None else None
+        if stopped is not None:  # the safety net: not a finding of the program's
+            sys.stderr.write(f"{path}: {stopped}\n")
         for d in analysis.diagnostics:
             any_error |= d.severity is Severity.ERROR
             if args.format == "json":
@@ -126,7 +170,7 @@ def cmd_trace(args: argparse.Namespace) -> int:
         f"{summary['motions']} motions ({by_code}); {summary['blocks_executed']} blocks executed\n"
     )
     if summary["stopped"]:
-        out.write(f"stopped early: {summary['stopped']}\n")
+        out.write(f"stopped early: {summary.get('stop_message') or summary['stopped']}\n")
     for f in summary["findings"]:
         out.write(f"line {f['line']}: {f['message']}\n")
     return EXIT_OK
@@ -152,6 +196,7 @@ def build_parser() -> argparse.ArgumentParser:
     check.add_argument("--format", choices=("text", "json"), default="text")
     check.add_argument("--controller", choices=CONTROLLERS, default="0i-TF")
     check.add_argument("--disable", metavar="CODES", help="comma-separated rule codes to skip")
+    _add_machine_options(check)
     check.set_defaults(func=cmd_check)
 
     tr = sub.add_parser("trace", parents=[logs], help="print the motion blocks a program executes")
@@ -167,6 +212,7 @@ def build_parser() -> argparse.ArgumentParser:
     tr.add_argument("--format", choices=("text", "json"), default="text")
     tr.add_argument("--controller", choices=CONTROLLERS, default="0i-TF")
     tr.add_argument("--disable", help=argparse.SUPPRESS)
+    _add_machine_options(tr)
     tr.set_defaults(func=cmd_trace)
 
     add_thread_command(sub)

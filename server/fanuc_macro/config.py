@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -11,19 +12,33 @@ from .diagnostics import Severity
 CONTROLLERS = ("0i-TF", "0i-MF", "16i-T", "16i-M", "18i-T", "18i-M", "30i")
 ATAN_RANGES = ("0-360", "-180-180")
 
+# A machine limit nobody set: nothing is above it, so the rules that compare with it stay quiet.
+# A limit is the machine builder's (spindle and chuck rating, servo speed), not FANUC's: no
+# default can be right for every machine, and a wrong one reports good programs.
+NOT_SET = math.inf
+
 
 @dataclass(frozen=True)
 class Config:
     controller: str = "0i-TF"
-    max_spindle_speed: float = 4000.0  # rpm
-    max_threading_feed: float = 10000.0  # mm/min: S x pitch must stay under it
+    max_spindle_speed: float = NOT_SET  # rpm (setting machine.maxSpindleSpeed)
+    max_threading_feed: float = NOT_SET  # mm/min: S x lead must stay under it
     max_depth_per_pass: float = 0.5  # mm, radius, for a threading pass
     disabled: frozenset[str] = frozenset()
     severities: dict[str, Severity] = field(default_factory=dict)
-    step_budget: int = 500_000  # blocks the evaluator may execute from one entry
-    time_budget: float = 0.8  # seconds of evaluation per document
+    # Blocks the evaluator may execute from one entry program: the bound every verdict on an
+    # unfinished run (MB703, MB707, MB708) comes from, so the same input gives the same result
+    # on any machine. Measured: the longest run of a corpus program takes 995 blocks, of a seed
+    # program or its variants 1,683, of a test fixture 60,026 (a call repeated 10,000 times);
+    # 300,000 take 0.2 s of macro statements, 0.7 s of motion blocks (docs/benchmarks.md).
+    step_budget: int = 300_000
+    # Seconds per analysis after which the evaluator gives up whatever the step budget says: a
+    # safety net for a slow or overloaded machine, never a verdict (the run is incomplete).
+    time_limit: float = 10.0
     # ATAN's result: 0 to 360 degrees, or -180 to 180 with parameter 6004#0 (NAT) set.
     atan_signed: bool = False
+    # The extended common variables #200-#499 (an option on 0i-F / 30i) are on the machine.
+    extended_commons: bool = False
     # What the analysis reads of a document: the rest gets a diagnostic (MB011, MB013), not an
     # analysis. About 2 s for a typical program on a 2-core EPYC VM, whatever its size.
     max_line_length: int = MAX_LINE_LENGTH  # characters of one block
@@ -80,8 +95,9 @@ class Config:
             disabled=frozenset(str(c).upper() for c in rules.get("disabled") or ()),
             severities=severities,
             step_budget=int(_number(analysis.get("stepBudget"), default.step_budget)),
-            time_budget=_number(analysis.get("timeBudget"), default.time_budget),
+            time_limit=_number(analysis.get("timeLimit"), default.time_limit),
             atan_signed=str(machine.get("atanRange") or "0-360") == "-180-180",
+            extended_commons=machine.get("extendedCommons") is True,
             max_line_length=int(_number(analysis.get("maxLineLength"), default.max_line_length)),
             max_blocks=int(_number(analysis.get("maxBlocks"), default.max_blocks)),
             max_file_size=int(_number(analysis.get("maxFileSize"), default.max_file_size)),

@@ -4,7 +4,8 @@ When a block does not parse, the checker says which dialect it comes from, when 
 rather than only "unexpected character". Two levels:
 
 * a block: :func:`recognise` looks at the rejected block alone (``S1=500`` is Citizen's
-  spindle selection wherever it stands);
+  spindle selection wherever it stands, ``VC1=0`` Okuma's, ``H1=0.216`` a wire EDM's register);
+  a form FANUC rejects that no known dialect has is "not FANUC (dialect not recognised)";
 * a file: :func:`file_dialect` finds the marks that only another control's programs carry
   (Syntec's ``%@MACRO`` header, Siemens' ``PROC``/``DEF``, LinuxCNC's ``o<name> sub``, DDCS's
   ``IF #1==0 GOTO`` without brackets). In such a file every rejected block is that dialect's,
@@ -20,7 +21,12 @@ SYNTEC = "LNC/Syntec"
 SIEMENS = "Siemens Sinumerik"
 LINUXCNC = "LinuxCNC"
 DDCS = "DDCS"
-NOT_FANUC = "not FANUC"  # a form of no control in particular (C comparisons)
+OKUMA = "Okuma OSP"
+WIRE_EDM = "wire EDM"
+MITSUBISHI = "Mitsubishi/Citizen"
+# A form FANUC rejects that no dialect this checker knows has (C comparisons, 'Q1=12'): said so,
+# rather than pinned on a control it may not come from.
+NOT_FANUC = "not FANUC (dialect not recognised)"
 PLAIN = ""  # not a dialect's form: a plain syntax error (MB001), said in FANUC's terms
 
 
@@ -58,7 +64,50 @@ _RAW_PATTERNS: tuple[tuple[re.Pattern[str], str, str], ...] = (
     ),
 )
 
+# Okuma OSP user task (ICAM's Okuma pre-processor syntax page, help.icam.com, [S]: common
+# variables VC1..., 'GOTO NLBL', 'IF [VC1 LT 5] N10' branching without GOTO, CALL / RTS /
+# MODIN / MODOUT; VS variables as the issue names them, unverified against an Okuma manual).
+_OKUMA_VARIABLE = re.compile(r"(?<![A-Z#])V[CS]\d+", re.I)
+_OKUMA_SEQUENCE_NAME = re.compile(r"^\s*(/\d?\s*)?N[A-Z][A-Z0-9]*(?![A-Z0-9])", re.I)
+
 _PATTERNS: tuple[tuple[re.Pattern[str], str, str], ...] = (
+    (
+        _OKUMA_VARIABLE,
+        OKUMA,
+        "'{found}' is an Okuma OSP (user task) variable; FANUC's variables are numbered #n "
+        "(#100-#199, #500-#999 for commons)",
+    ),
+    (
+        re.compile(r"\bGOTO\s*N[A-Z][A-Z0-9]*", re.I),
+        OKUMA,
+        "'{found}' jumps to an Okuma OSP sequence name; FANUC jumps to a number: GOTO n to Nn",
+    ),
+    (
+        # The sequence name ends the block: no GOTO or THEN after the condition.
+        re.compile(r"^\s*(N\w+\s+)?IF\s*\[(?!.*\b(GOTO|THEN))[^;]*\]\s*N\w+\s*;?\s*$", re.I),
+        OKUMA,
+        "'IF [...] NLOOP' branches to a sequence name the Okuma OSP way; FANUC writes "
+        "IF [...] GOTO n",
+    ),
+    (
+        re.compile(r"^\s*(N\w+\s+)?(CALL\s+O\w+|RTS\b|MODIN\b|MODOUT\b)", re.I),
+        OKUMA,
+        "CALL / RTS / MODIN / MODOUT are Okuma OSP subprogram statements; FANUC calls with "
+        "M98 P<program> or G65 P<program> and returns with M99",
+    ),
+    (
+        _OKUMA_SEQUENCE_NAME,
+        OKUMA,
+        "'{found}' is an Okuma OSP sequence name; a FANUC sequence number is N and digits",
+    ),
+    (
+        # Sodick, Mitsubishi and other wire EDM controls set offset and condition registers in
+        # the program ('H000=+00000000', 'H1=0.216', 'E001='): unverified per maker.
+        re.compile(r"^\s*(N\d+\s*)?[EH]\d+\s*=", re.I),
+        WIRE_EDM,
+        "'{found}' sets a wire EDM's offset or machining-condition register; FANUC sets an "
+        "offset with G10 or a #variable (#2001-, #10001-)",
+    ),
     (
         re.compile(r"#<[^>\n]*>"),
         LINUXCNC,
@@ -101,17 +150,18 @@ _PATTERNS: tuple[tuple[re.Pattern[str], str, str], ...] = (
     ),
     (
         re.compile(r"^\s*\$\d"),
-        "Mitsubishi/Citizen",
+        MITSUBISHI,
         "'$n' path selection is Mitsubishi/Citizen syntax, not FANUC",
     ),
     (
         re.compile(r"^\s*!\s*\d*\s*L\d", re.I),
-        "Mitsubishi/Citizen",
+        MITSUBISHI,
         "'!L' path wait is Mitsubishi/Citizen syntax, not FANUC",
     ),
     (
-        re.compile(r"S\d+\s*=", re.I),
-        "Mitsubishi/Citizen",
+        # An S word of its own ('M3 S1=500'), not the end of a name ('VS1=', 'POS1=').
+        re.compile(r"(?<![A-Z#])S\d+\s*=", re.I),
+        MITSUBISHI,
         "'S1=...' style spindle selection is Mitsubishi/Citizen syntax, not FANUC",
     ),
     (
@@ -140,6 +190,13 @@ _WEAK_PATTERNS: tuple[tuple[re.Pattern[str], str, str], ...] = (
         NOT_FANUC,
         "FANUC compares with EQ NE GT GE LT LE only ('LTE', 'GTE' give alarm PS0114)",
     ),
+    (
+        # 'Q1=12', 'POS=5', 'TEMP=10': a value assigned to a word or a name.
+        re.compile(r"^\s*(N\d+\s*)?[A-Z]\w*\s*=", re.I),
+        NOT_FANUC,
+        "'{found}' assigns a value to an address or a name: FANUC assigns only to variables "
+        "(#n = ...)",
+    ),
 )
 
 _UNBRACKETED = re.compile(r"([A-MP-Z])\s*(-?#\d+(?:\.\d*)?\s*[-+*/]\s*[.#\d\[][^A-Z]*)", re.I)
@@ -152,21 +209,28 @@ def recognise(code: str, text: str | None = None) -> Dialect | None:
         if pattern.search(raw):
             return Dialect(name, message)
     for pattern, name, message in _PATTERNS:
-        if pattern.search(code):
-            return Dialect(name, message)
+        m = pattern.search(code)
+        if m is not None:
+            return Dialect(name, _with_found(message, m))
     return None
+
+
+def _with_found(message: str, m: re.Match[str]) -> str:
+    """The message with the text that matched in place of '{found}'."""
+    return message.replace("{found}", m.group(0).strip().lstrip("/").strip())
 
 
 def recognise_weak(code: str) -> Dialect | None:
     """Forms several controls write (or none): C comparisons, '//', X#1+1. without brackets."""
     for pattern, name, message in _WEAK_PATTERNS:
-        if pattern.search(code):
-            return Dialect(name, message)
+        m = pattern.search(code)
+        if m is not None:
+            return Dialect(name, _with_found(message, m))
     m = _UNBRACKETED.search(code)
     if m is not None:
         letter, expression = m.group(1).upper(), m.group(2).strip()
         return Dialect(
-            "Mitsubishi/Citizen",
+            MITSUBISHI,
             f"an expression after an address must be in brackets on FANUC: write "
             f"{letter}[{expression}], not {letter}{expression}",
         )
@@ -197,9 +261,17 @@ _FILE_MARKS: tuple[tuple[re.Pattern[str], str, str], ...] = (
         DDCS,
         "IF/WHILE without brackets, with a C comparison",
     ),
+    (
+        re.compile(r"^\s*(N\w+\s+)?V[CS]\d+\s*=", re.I),
+        OKUMA,
+        "VC/VS variable assignment",
+    ),
+    (re.compile(r"\bGOTO\s*N[A-Z]", re.I), OKUMA, "GOTO to a sequence name"),
+    (re.compile(r"^\s*(N\w+\s+)?CALL\s+O\w+", re.I), OKUMA, "CALL of a subprogram"),
+    (re.compile(r"^\s*(N\d+\s*)?[EH]\d+\s*=", re.I), WIRE_EDM, "register setting"),
 )
 # Strongest first: a Syntec file may hold R words, a LinuxCNC file comparisons.
-_FILE_MARK_ORDER = {SYNTEC: 0, SIEMENS: 1, LINUXCNC: 2, DDCS: 3}
+_FILE_MARK_ORDER = {SYNTEC: 0, SIEMENS: 1, LINUXCNC: 2, DDCS: 3, OKUMA: 4, WIRE_EDM: 5}
 
 
 @dataclass(frozen=True, slots=True)

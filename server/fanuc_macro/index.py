@@ -7,7 +7,9 @@ alone. Jump targets and call targets written as constants are resolved here; com
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass, field
+from urllib.parse import unquote
 
 from .syntax import (
     Block,
@@ -99,6 +101,8 @@ class Program:
     jumps: list[Jump] = field(default_factory=list)
     calls: list[Call] = field(default_factory=list)
     returns: list[int] = field(default_factory=list)  # lines with M99
+    # The file's name when ``number`` comes from it (``O8501.NC`` with no O line in it).
+    named_by_file: str | None = None
 
     @property
     def display_name(self) -> str:
@@ -147,6 +151,36 @@ class ProgramIndex:
 
 
 MAX_LOOP_DEPTH = 3
+
+# A file named by its program number: O8501.NC, o8501.nc, O09010, O8501 ROUGH.nc, O8501_ROUGH.nc,
+# 8501.nc, 01000.nc, 8501 ROUGH.nc. With the O, up to 8 digits (30i); a bare number, 1-9999 in at
+# most 5 digits (Haas pads to five: 09010). Not a number among words ('PART2.nc', 'SAMPLE 3.nc'),
+# nor a bare number with more after it than a description ('04_variables.nc', '2024-01-05.nc').
+_NAMED_BY_NUMBER = re.compile(r"(?:O(\d{1,8})(?:[ _-].*)?|(\d{1,5})(?: .*)?)", re.I | re.S)
+
+
+def program_number_of_name(uri: str) -> int | None:
+    """The program number a file's name gives (``.../O8501.NC`` -> 8501), or None."""
+    name = uri.replace("\\", "/").rsplit("/", 1)[-1]
+    if "%" in name:
+        name = unquote(name)  # a file URI: 'O8501%20ROUGH.nc'
+    if "." in name:
+        name = name.rsplit(".", 1)[0]
+    m = _NAMED_BY_NUMBER.fullmatch(name.strip())
+    if m is None:
+        return None
+    if m.group(1) is not None:
+        number = int(m.group(1))
+    else:
+        number = int(m.group(2))
+        if number > 9999:
+            return None
+    return number if number >= 1 else None
+
+
+def _file_name(uri: str) -> str:
+    name = uri.replace("\\", "/").rsplit("/", 1)[-1]
+    return unquote(name) if "%" in name else name
 
 
 def _call_words(nc: NcStatement) -> tuple[str, Word] | None:
@@ -282,6 +316,15 @@ def build_index(doc: Document) -> ProgramIndex:
         if statement is not None:
             _index_statement(current, block, open_loops, pending)
     close_program(len(doc.blocks))
+    if len(programs) == 1 and programs[0].header_line is None and doc.uri:
+        # No O line in the file: the shop keeps the program under its number as the file's
+        # name, and a control loads it under the number given at input. Calls of that number
+        # in other files reach it. (How a control numbers a file read without an O line
+        # depends on the input path and the control: unverified.)
+        number = program_number_of_name(doc.uri)
+        if number is not None:
+            programs[0].number = number
+            programs[0].named_by_file = _file_name(doc.uri)
     return ProgramIndex(tuple(programs))
 
 

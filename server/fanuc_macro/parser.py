@@ -347,6 +347,17 @@ def _line(
     problem: SyntaxProblem | None,
     has_lower: bool,
 ) -> ParsedLine:
+    failed_assignment: int | None = None
+    if statement is None and problem is not None:
+        # What a rejected block plainly still says, so that one typing mistake does not make
+        # later blocks wrong too: its N number (a GOTO's target) and the variable it assigns.
+        head = _REJECTED_HEAD.match(cut.code)
+        if head is not None:
+            if seq is None and head.group("seq") is not None:
+                seq = int(head.group("seq"))
+                seq_span = Span(head.start("n"), head.end("seq"))
+            if head.group("var") is not None and int(head.group("var")) > 0:
+                failed_assignment = int(head.group("var"))
     has_call = mentions_call(statement)
     indexed = (
         seq is not None
@@ -367,7 +378,17 @@ def _line(
         has_lower,
         has_call,
         indexed,
+        failed_assignment,
     )
+
+
+# The start of a block: block skip, N number, and an assignment '#n=' (or Syntec's '#n:='),
+# alone or after IF [...] THEN.
+_REJECTED_HEAD = re.compile(
+    r"\s*(?:/\s*\d?\s*)?(?:(?P<n>N)\s*(?P<seq>\d{1,8})(?!\d)\s*)?"
+    r"(?:(?:IF\s*\[.*\]\s*THEN\s*)?#\s*(?P<var>\d{1,6})\s*:?=(?!=))?",
+    re.IGNORECASE,
+)
 
 
 @contextmanager

@@ -271,6 +271,9 @@ class ParsedLine:
     has_call: bool = False
     # The program index needs this line (label, jump, loop, call, program start, tape mark).
     indexed: bool = False
+    # A block that does not parse but plainly assigns a variable ('#5=#4*2:', '#1=ABC[2]'):
+    # its number. The analysis takes it as set, to a value it does not know.
+    failed_assignment: int | None = None
 
     @property
     def is_empty(self) -> bool:

@@ -42,6 +42,7 @@ def trace(
             "by_code": dict(sorted(codes.items())),
             "blocks_executed": facts.steps,
             "stopped": facts.stopped,
+            "stop_message": facts.stop_message(),
             "findings": findings,
         },
     }

@@ -18,12 +18,18 @@ PROGRAM_SUFFIXES = frozenset({".nc", ".mac", ".tap", ".cnc", ".eia", ".txt"})
 _PROGRAM_HEAD = re.compile(rb"\A(?:\xef\xbb\xbf)?\s*(%|[oO]\d)")
 
 
+_NUMBER_NAME = re.compile(r"O\d{1,8}", re.I)
+
+
 def is_program_file(path: Path) -> bool:
-    """Program files by extension, or with none and a first line that is '%' or 'O<number>'."""
+    """Program files by extension, or with none and a first line that is '%' or 'O<number>',
+    or a name that is a program number ('O09010', as a control's memory card holds them)."""
     if path.suffix.lower() in PROGRAM_SUFFIXES:
         return True
     if path.suffix:
         return False
+    if _NUMBER_NAME.fullmatch(path.name):
+        return True
     try:
         with path.open("rb") as f:
             head = f.read(64)
@@ -154,11 +160,13 @@ class Workspace:
         )
 
     def find_program(self, number: int) -> tuple[str, int] | None:
-        """The document and header line of O<number>."""
+        """The document and header line of O<number> (its first block when the file's name
+        gives the number)."""
         for uri, entry in self._entries.items():
             program = entry.index.by_number(number)
             if program is not None:
-                return uri, program.header_line if program.header_line is not None else 0
+                line = program.header_line
+                return uri, line if line is not None else program.first_line
         return None
 
     def analyse(self, uri: str, workspace_programs: frozenset[int] | None = None) -> Analysis:

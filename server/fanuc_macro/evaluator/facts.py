@@ -114,6 +114,7 @@ class JumpCount:
     taken: int = 0
     not_taken: int = 0
     undecided: int = 0
+    guessed: int = 0  # decided, but on a path that went through an undecided condition
 
 
 @dataclass
@@ -128,6 +129,11 @@ class DocumentFacts:
     analysed_programs: set[int] = field(default_factory=set)  # first lines of programs run
     incomplete_programs: set[int] = field(default_factory=set)  # runs that stopped early
     roundings: dict[int, Rounding] = field(default_factory=dict)  # line -> the first such
+    # first line of a program -> its first block with M30 or M02 (block skip or not)
+    program_ends: dict[int, int] = field(default_factory=dict)
+    # Programs ending with M30 run on their own with unknown arguments, because they read
+    # locals before setting them: first line -> (local, line of its first read), in text order.
+    assumed_arguments: dict[int, tuple[tuple[int, int], ...]] = field(default_factory=dict)
 
     def jump_count(self, line: int) -> JumpCount:
         count = self.jumps.get(line)
@@ -160,8 +166,21 @@ class Facts:
     by_uri: dict[str, DocumentFacts] = field(default_factory=dict)
     motions: list[Motion] = field(default_factory=list)
     steps: int = 0
-    stopped: str | None = None  # why a run stopped early ("budget", "alarm", ...)
+    # Why a run stopped early: "budget" (the step budget), "time" (the safety net), or None.
+    stopped: str | None = None
+    time_limit: float = 0.0  # the safety net's seconds, when it stopped a run
     run_values: dict[int, RunValues] = field(default_factory=dict)  # run -> at its first cut
+
+    def stop_message(self) -> str | None:
+        """What a user is told when the safety net stopped the analysis (None otherwise)."""
+        if self.stopped != "time":
+            return None
+        return (
+            f"analysis stopped after {self.time_limit:g} s, before its step budget (the "
+            "machine running the analysis is slow or busy): the runs are incomplete, so no "
+            "verdict that needs a whole run is given (endless or long loop, blocks never "
+            "executed, conditions always true or false)"
+        )
 
     def document(self, uri: str) -> DocumentFacts:
         facts = self.by_uri.get(uri)

@@ -28,6 +28,7 @@ from ..syntax import (
     Mixed,
     NcStatement,
     Num,
+    ParsedLine,
     ProgramStart,
     Statement,
     Unary,
@@ -39,7 +40,7 @@ from ..walk import subexpressions, top_expressions
 from .compiler import CondEvaluator, Evaluator, compile_cond, compile_expr, constant_of
 from .cycles import g76_depths
 from .facts import DocumentFacts, Facts, Finding, Motion, Rounding, RunValues, ValueSummary
-from .values import MacroAlarm, Unknown, Value, fmt
+from .values import UNKNOWN, MacroAlarm, Unknown, Value, fmt
 
 # Block kinds of the compiled program.
 K_EMPTY, K_ASSIGN, K_GOTO, K_IFGOTO, K_IFTHEN, K_WHILE, K_END, K_NC, K_HEADER, K_OTHER = range(10)
@@ -58,6 +59,7 @@ MAX_NESTING = 10
 MAX_MOTIONS = 200_000  # motion records kept per analysis
 THREADING_CODES = frozenset({32.0, 33.0, 34.0, 76.0, 92.0})
 MAX_REMEMBERED_RUNS = 1000  # executions whose variables are kept when they start a thread
+CHECK_EVERY = 4096  # blocks between two looks at the budgets
 
 
 @dataclass(slots=True)
@@ -229,7 +231,7 @@ class ProgramContext:
     loop_end: dict[int, int]  # DO line -> END line
     loop_do: dict[int, int]  # END line -> DO line
     facts: DocumentFacts
-    is_main: bool  # ends with M30/M02: locals start vacant
+    is_main: bool  # ends with M30/M02: locals start vacant, unless it reads them first
     name: str = ""  # O3331, for the motion records
 
     def __post_init__(self) -> None:
@@ -336,8 +338,9 @@ class Modal:
     feed: Value = None
     speed: Value = None
     constant_surface_speed: bool = False  # G96: S is m/min, not rpm
-    # G66/G66.1 in force, in the order specified; G67 cancels the last one.
-    modal_calls: list[tuple[ProgramContext, list[Value], int]] = field(default_factory=list)
+    # G66/G66.1 in force, in the order specified; G67 cancels the last one. None for a macro
+    # the analysis cannot run (not in the analysed files, or its P unknown).
+    modal_calls: list[tuple[ProgramContext | None, list[Value], int]] = field(default_factory=list)
     position: dict[str, Value] = field(default_factory=dict)
     # Where each axis was last set: (uri, line), for the verdicts on a cycle's start point.
     position_line: dict[str, tuple[str, int]] = field(default_factory=dict)
@@ -393,11 +396,16 @@ class Machine:
         self.modal = Modal()
         self._entry_name = entry.name
         locals_: list[Value] = [None] * 34
-        if not entry.is_main:
+        # A program that reads #1-#33 before it sets them receives arguments: a G65 from a
+        # program outside the analysed files calls it, even if it ends with M30.
+        read_first = _locals_read_first(entry) if entry.is_main else ()
+        if not entry.is_main or read_first:
             self.modal.feed = Unknown(frozenset())  # the caller's F, which a lone run cannot know
             # A macro analysed alone: its arguments are unknown, not vacant.
             for n in range(1, 34):
                 locals_[n] = self.unknown_of(n)
+        if read_first:
+            entry.facts.assumed_arguments[entry.program.first_line] = read_first
         act = Activation(self, entry, locals_, 0, None, 0, 0)
         entry.facts.analysed_programs.add(entry.program.first_line)
         try:
@@ -430,9 +438,10 @@ class Machine:
 
     def _loop(self, act: Activation) -> None:
         steps = self._steps = 0
-        check_every = 4096
-        next_check = steps + check_every
         budget = self.budget
+        # Block budget + 1: the budget's last block still runs, and the run stops before the
+        # next, at the same block on any machine.
+        next_check = min(CHECK_EVERY, budget + 1)
         while True:
             ctx = act.ctx
             pc = act.pc
@@ -445,13 +454,17 @@ class Machine:
             steps += 1
             self._steps = steps
             if steps >= next_check:
-                self.steps = steps
-                next_check = steps + check_every
-                by_time = time.monotonic() > self.deadline
-                if steps >= budget or by_time:
-                    self._budget_spent(act, by_time)
+                self._steps = steps - 1  # this block does not run
+                if steps > budget:
+                    self._budget_spent(act)
                     self._mark_incomplete(act)
                     raise _Stop("budget")
+                if time.monotonic() > self.deadline:
+                    # The safety net: how far a run gets in seconds depends on the machine
+                    # and its load, so nothing is concluded from where it stopped.
+                    self._mark_incomplete(act)
+                    raise _Stop("time")
+                next_check = min(steps + CHECK_EVERY, budget + 1)
             facts = ctx.facts
             runs = facts.runs
             runs[pc] = runs.get(pc, 0) + 1
@@ -469,9 +482,11 @@ class Machine:
                     jc = facts.jump_count(pc)
                     if result is True:
                         jc.taken += 1
+                        jc.guessed += self.speculative
                         act.pc = self._goto(act, cl)
                     elif result is False:
                         jc.not_taken += 1
+                        jc.guessed += self.speculative
                         act.pc = pc + 1
                     else:
                         jc.undecided += 1
@@ -493,9 +508,11 @@ class Machine:
                     jc = facts.jump_count(pc)
                     if result is True:
                         jc.taken += 1
+                        jc.guessed += self.speculative
                         self._assign(act, cl, facts)
                     elif result is False:
                         jc.not_taken += 1
+                        jc.guessed += self.speculative
                     else:
                         jc.undecided += 1
                         self.speculative = True
@@ -664,11 +681,14 @@ class Machine:
         jc = facts.jump_count(pc)
         if result is True:
             jc.taken += 1
+            jc.guessed += self.speculative
             return pc + 1
         if result is False:
             jc.not_taken += 1
+            jc.guessed += self.speculative
         else:
             jc.undecided += 1
+            self.speculative = True  # the control may never run the body, nor what follows
             if pc not in act.undecided_loops:
                 act.undecided_loops.add(pc)  # run the body once to learn its values
                 return pc + 1
@@ -758,6 +778,9 @@ class Machine:
             target = len(modal.modal_calls) - 1 if act.modal_depth is None else act.modal_depth - 1
             if target >= 0:
                 callee, args, _ = modal.modal_calls[target]
+                if callee is None:
+                    self._call_unknown(act, shares_locals=False)
+                    return act
                 new = self._enter(act, callee, list(args), True, self._line + 1, 1)
                 new.modal_depth = target
                 return new
@@ -1021,6 +1044,8 @@ class Machine:
             repeat = int(l_value)
         callee = self._find(act, cl, p, "M98")
         if callee is None or repeat <= 0:
+            if repeat > 0:
+                self._call_unknown(act, shares_locals=True)
             act.pc = self._line + 1
             return act
         # M98 opens no new local level: the callee shares the caller's locals.
@@ -1063,13 +1088,38 @@ class Machine:
             elif address in ARGUMENT_VARIABLES:
                 args[ARGUMENT_VARIABLES[address]] = v
         callee = self._find(act, cl, p, "G66" if modal_call else "G65")
-        if callee is None:
-            act.pc = self._line + 1
-            return act
         if modal_call:
             self.modal.modal_calls.append((callee, args, repeat))
             return act
+        if callee is None:
+            self._call_unknown(act, shares_locals=False)
+            act.pc = self._line + 1
+            return act
         return self._enter(act, callee, args, True, self._line + 1, repeat)
+
+    def _call_unknown(self, act: Activation, shares_locals: bool) -> None:
+        """After a call the analysis cannot follow (a program not in the analysed files, such
+        as a probe vendor's O9814, or a P it cannot compute), what the callee may have changed
+        is unknown: the run goes on, but no verdict rests on a value from before the call."""
+        # The callee may write every common variable (#100-#199, #500-#999, the extended
+        # ranges) and every writable system variable (tool offsets #2001+/#10001+, work
+        # offsets #5201+, #7001+, #14001+, #15801+ on some controls), and what it does moves
+        # the read-only ones (positions, modal information). The store holds only what this
+        # run set, and a number missing from it reads as unknown ("depends on #135").
+        # [shared reference macro-b.md §9; the ranges are unverified against a manual]
+        self.store.clear()
+        if shares_locals:
+            # M98 opens no local level: the callee reads and writes the caller's #1-#33
+            # [M FANUC-16i-PB, custom macro: "local variables"].
+            locals_ = act.locals
+            for n in range(1, 34):
+                locals_[n] = self.unknown_of(n)
+        modal = self.modal
+        # F, S and where the tool stands are modal: the callee leaves its own.
+        modal.feed = UNKNOWN
+        modal.speed = UNKNOWN
+        modal.position.clear()
+        modal.position_line.clear()
 
     def _enter(
         self,
@@ -1161,7 +1211,7 @@ class Machine:
         message = f"{alarm.message}{detail} (alarm {alarm.alarm}) in {ctx.name}"
         self._finding(ctx, f"alarm:{alarm.kind}", self._line, start, end, message)
 
-    def _budget_spent(self, act: Activation, by_time: bool) -> None:
+    def _budget_spent(self, act: Activation) -> None:
         ctx = act.ctx
         facts = ctx.facts
         program = ctx.program
@@ -1169,14 +1219,24 @@ class Machine:
         hot = sorted(ln for ln, n in facts.runs.items() if program.contains(ln) and n * 2 >= top)
         tests = [ln for ln in hot if ctx.lines[ln].kind in (K_IFGOTO, K_WHILE)]
         loops = program.enclosing_loops(act.pc)
-        head = loops[-1].do_line if loops else tests[0] if tests else act.pc
+        if loops:
+            head = loops[-1].do_line
+        elif tests:
+            head = tests[0]
+        else:  # a GOTO back with no test: the loop begins at its label
+            heads = [
+                target
+                for jump in program.jumps
+                if not jump.conditional
+                and jump.target is not None
+                and jump.line in facts.runs
+                and (target := program.label_line(jump.target, jump.line)) is not None
+                and target <= act.pc <= jump.line
+            ]
+            head = min(heads, default=act.pc)
         read = {n for ln in tests for n in ctx.lines[ln].reads}
         written = {ctx.lines[ln].target_number for ln in hot}
-        budget = (
-            f"the time budget ({self.config.time_budget:g} s)"
-            if by_time
-            else f"the step budget ({self.budget} blocks)"
-        )
+        budget = f"the step budget ({self.budget:,} blocks)"
         runs = facts.runs.get(head, 0)
         width = len(ctx.doc.blocks[head].text)
         if read and all(n >= 100 for n in read) and not read & written:
@@ -1257,8 +1317,20 @@ def _fixed(expr: Expr, facts: DocumentFacts, line: int) -> float | None:
     return None
 
 
+def _unknown_value(frame: object) -> Value:
+    return UNKNOWN
+
+
+def compile_line(parsed: ParsedLine) -> CompiledLine:
+    """A parsed line's statement; a block that does not parse but plainly assigns ``#n``
+    assigns it an unknown value, so that later reads of #n are not taken for vacant."""
+    if parsed.statement is None and parsed.failed_assignment is not None:
+        return CompiledLine(K_ASSIGN, target_number=parsed.failed_assignment, value=_unknown_value)
+    return compile_statement(parsed.statement)
+
+
 # The compiled statement of a parsed line: closures that do not depend on where it stands.
-compiled: PerLine[CompiledLine] = PerLine(lambda parsed: compile_statement(parsed.statement))
+compiled: PerLine[CompiledLine] = PerLine(compile_line)
 
 
 def _volatile(number: int) -> bool:
@@ -1296,6 +1368,28 @@ def build_contexts(
     return contexts, every
 
 
+def _locals_read_first(ctx: ProgramContext) -> tuple[tuple[int, int], ...]:
+    """The locals a program reads before any block of it sets them, in the order of the text,
+    each with the line of its first read: (number, line)."""
+    set_: set[int] = set()
+    found: dict[int, int] = {}
+    lines = ctx.lines
+    for line in range(ctx.program.first_line, ctx.program.end_line):
+        part: CompiledLine | None = lines[line]
+        assert part is not None
+        for n in part.reads:
+            if n <= 33 and n not in set_ and n not in found:
+                found[n] = line
+        while part is not None:  # the assignment, or the macro part of a mixed block
+            target = part.target_number
+            if target is not None and 1 <= target <= 33:
+                set_.add(target)
+                if len(set_) == 33:  # every local set: no later read comes first
+                    return tuple(found.items())
+            part = part.second
+    return tuple(found.items())
+
+
 def _ends_program(statement: Statement | None) -> bool:
     nc = statement.nc if isinstance(statement, Mixed) else statement
     return isinstance(nc, NcStatement) and any(
@@ -1310,6 +1404,12 @@ def contexts_of(uri: str, doc: Document, index: ProgramIndex, facts: Facts) -> l
     for program in index.programs:
         loop_end = {lp.do_line: lp.end_line for lp in program.loops if lp.end_line is not None}
         loop_do = {e: d for d, e in loop_end.items()}
-        is_main = any(cl.ends_program for cl in lines[program.first_line : program.end_line])
+        first_end = next(
+            (ln for ln in range(program.first_line, program.end_line) if lines[ln].ends_program),
+            None,
+        )
+        is_main = first_end is not None
+        if first_end is not None:
+            doc_facts.program_ends[program.first_line] = first_end
         out.append(ProgramContext(uri, doc, program, lines, loop_end, loop_do, doc_facts, is_main))
     return out

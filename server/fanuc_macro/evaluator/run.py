@@ -49,13 +49,14 @@ def evaluate(
         entries = [chosen] if chosen is not None else []
     else:
         entries = entry_programs(every, only_uri)
-    deadline = time.monotonic() + config.time_budget
+    # One wall-clock limit for the whole analysis, a safety net only: the step budget, per
+    # entry, is what ends a run that goes on (see Config).
+    deadline = time.monotonic() + config.time_limit
     machine = Machine(programs, config, facts)
     reasons: list[str] = []
     for ctx in entries:
         machine.steps = 0
-        per_entry = min(deadline, time.monotonic() + config.time_budget)
-        reasons.append(machine.run(ctx, per_entry))
+        reasons.append(machine.run(ctx, deadline))
         facts.steps += machine.steps
     # Programs nothing ran (a subprogram whose caller is elsewhere): analyse them alone.
     for ctx in every if entry is None else ():
@@ -64,7 +65,11 @@ def evaluate(
         if ctx.program.first_line in ctx.facts.analysed_programs:
             continue
         machine.steps = 0
-        reasons.append(machine.run(ctx, min(deadline + 0.5, time.monotonic() + 0.5)))
+        reasons.append(machine.run(ctx, deadline))
         facts.steps += machine.steps
-    facts.stopped = next((r for r in reasons if r == "budget"), None)
+    if "time" in reasons:
+        facts.stopped = "time"
+        facts.time_limit = config.time_limit
+    elif "budget" in reasons:
+        facts.stopped = "budget"
     return facts

@@ -154,7 +154,8 @@ def to_lsp_diagnostic(
                 message=r.message,
             )
         )
-    tags = [types.DiagnosticTag.Unnecessary] if diag.code == "MB702" else None
+    # Dead code, shown faded; a restart point (MB709) runs on a search, so it is not.
+    tags = [types.DiagnosticTag.Unnecessary] if diag.code in ("MB702", "MB710") else None
     data: dict[str, object] = {"code": diag.code}
     if diag.data:
         data.update(_json_safe(diag.data))

@@ -27,7 +27,9 @@ from ..evaluator.values import MacroAlarm, Unknown, Value, fmt
 from ..index import Call as IndexCall
 from ..index import Program, ProgramIndex, constant_value
 from ..meanings import table_meaning
-from ..parser import statements_of
+from ..parser import default_parser, statements_of
+from ..rules import expressions
+from ..rules.expressions import logic_fixes, logic_operands
 from ..syntax import (
     Assign,
     Binary,
@@ -37,6 +39,7 @@ from ..syntax import (
     Expr,
     NcStatement,
     Num,
+    ParsedLine,
     ProgramStart,
     Span,
     Unary,
@@ -429,6 +432,8 @@ def hover_program(view: View, number: int, line: int | None = None) -> str:
     parts = [f"**{program.display_name}**" + (f" — {comment}" if comment else ""), where]
     kind = "subprogram (ends with M99)" if program.returns else "main program"
     parts[-1] += f" · {kind}"
+    if program.named_by_file is not None:
+        parts[-1] += " · no O line: the number is the file name's"
     callers: list[str] = []
     for c_key, (_, c_index) in {**view.workspace, view.key: (view.doc, view.index)}.items():
         for c_program in c_index.programs:
@@ -450,6 +455,19 @@ def hover_program(view: View, number: int, line: int | None = None) -> str:
         runs = facts.by_uri.get(key)
         if runs is not None and header in runs.runs:
             parts.append(f"Entered {_times(runs.runs[header])} in the analysed runs.")
+        assumed = runs.assumed_arguments.get(program.first_line) if runs is not None else None
+        if assumed:
+            names = ", ".join(
+                f"#{n} ({ARGUMENT_LETTER[n]})" if n in ARGUMENT_LETTER else f"#{n}"
+                for n, _ in assumed
+            )
+            parts.append(
+                f"Analysed as a macro with unknown arguments: it ends with M30 or M02 but "
+                f"reads {names} before setting them."
+            )
+        stopped = facts.stop_message()
+        if stopped is not None:
+            parts.append(stopped[0].upper() + stopped[1:] + ".")
     return "\n\n".join(parts)
 
 
@@ -1149,6 +1167,63 @@ def insert_end(view: View, line: int, eol: str) -> types.CodeAction | None:
     )
 
 
+def bracket_logic(view: View, line: int, column: int) -> list[types.CodeAction]:
+    """MB305: the comparison rewritten with brackets, the likely intent first (each operand
+    compared on its own, preferred), then the control's own reading made explicit. A rewrite
+    is offered only when the line it gives parses, keeps within five brackets and no longer
+    has that comparison's problem."""
+    block = view.block(line)
+    if block is None:
+        return []
+    text = block.text
+    actions: list[types.CodeAction] = []
+    for statement in statements_of(block.statement):
+        for found in logic_operands(statement):
+            compare = found.compare
+            if compare.span.start != column:
+                continue
+            before = _logic_count(block.parsed)
+            for i, (what, rewritten) in enumerate(logic_fixes(text, found)):
+                fixed = text[: compare.span.start] + rewritten + text[compare.span.end :]
+                if not _acceptable_fix(fixed, before):
+                    continue
+                edit_range = view.lines.range(line, compare.span.start, line, compare.span.end)
+                actions.append(
+                    types.CodeAction(
+                        title=f"Bracket the condition: {rewritten} ({what})",
+                        kind=types.CodeActionKind.QuickFix,
+                        edit=_edit(view.uri, edit_range, rewritten),
+                        is_preferred=i == 0 or None,
+                    )
+                )
+            return actions
+    return actions
+
+
+def _logic_count(parsed: ParsedLine) -> int:
+    return sum(len(logic_operands(s)) for s in statements_of(parsed.statement))
+
+
+def _acceptable_fix(fixed: str, before: int) -> bool:
+    """The rewritten line parses, nests no bracket more than five deep (the IF's own and the
+    conditions' brackets counted too, to be safe: PS0118), and has fewer MB305 findings."""
+    parsed = default_parser().parse_line(fixed)
+    if parsed.problem is not None or parsed.statement is None:
+        return False
+    depth = deepest = 0
+    for i, ch in enumerate(fixed):
+        if any(c.span.start <= i < c.span.end for c in parsed.comments):
+            continue
+        if ch == "[":
+            depth += 1
+            deepest = max(deepest, depth)
+        elif ch == "]":
+            depth -= 1
+    if deepest > expressions.MAX_BRACKET_NESTING:
+        return False
+    return _logic_count(parsed) < before
+
+
 def suppress(view: View, line: int, code: str) -> types.CodeAction:
     text = view.lines.text(line)
     existing = _SUPPRESS.search(text)
@@ -1179,6 +1254,11 @@ def code_actions(
         if code == "MB201":
             fix = insert_end(view, line, eol)
             if fix is not None:
+                fix.diagnostics = [diag]
+                actions.append(fix)
+        if code == "MB305":
+            column = view.lines.column(diag.range.start)
+            for fix in bracket_logic(view, line, column):
                 fix.diagnostics = [diag]
                 actions.append(fix)
         if (code, line) in seen or not re.fullmatch(r"MB\d{3}", code):

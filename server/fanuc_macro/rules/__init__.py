@@ -34,6 +34,7 @@ ALL_CHECKS: tuple[Check, ...] = (
     reading.check,
     jumps.check,
     loops.check,
+    expressions.check,
     statements.check,
     statements.check_programs,
     math_domain.check,

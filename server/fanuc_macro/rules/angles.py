@@ -85,8 +85,8 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
                 continue
             if (high - low) / (summary.count - 1) >= 0.8:
                 continue  # steps of a degree and more
-            first = summary.first
-            assert isinstance(first, float)
+            # The first value may be vacant or unknown (a loop whose counter starts unset).
+            first = summary.first if isinstance(summary.first, float) else low
             # A π in the assignments of the angle itself: it is computed in radians.
             with_pi = any(
                 _pi_of(ctx.doc.blocks[w].parsed)

@@ -1,4 +1,6 @@
-"""MB002: forms of other controls' dialects (Haas, Mitsubishi/Citizen, LinuxCNC, LNC/Syntec)."""
+"""MB002: forms of other controls' dialects (Haas, Mitsubishi/Citizen, LinuxCNC, LNC/Syntec,
+Okuma, wire EDM registers): those the block reader names in rejected blocks, and Haas-only codes
+in blocks FANUC's grammar reads."""
 
 from __future__ import annotations
 
@@ -63,6 +65,9 @@ def check_line(parsed: ParsedLine) -> Iterator[LineFinding]:
                         word.span.start,
                         word.span.end,
                     )
+                haas = _haas_code(word.address, value, has_p)
+                if haas is not None:
+                    yield LineFinding("MB002", haas, word.span.start, word.span.end)
         if isinstance(statement, (IfGoto, While)) and isinstance(statement.cond, BareCond):
             c = statement.cond
             yield LineFinding(
@@ -81,3 +86,38 @@ def check_line(parsed: ParsedLine) -> Iterator[LineFinding]:
                     var.span.start,
                     var.span.end,
                 )
+            elif isinstance(var, Var) and var.number is not None and 20000 <= var.number <= 29999:
+                n = int(var.number)
+                yield LineFinding(
+                    "MB002",
+                    f"Haas NGC: #{n} reads Haas setting {n - 20000} (#20000-#29999 are the "
+                    "settings); FANUC has no settings variables (alarm PS0115 on most controls)",
+                    var.span.start,
+                    var.span.end,
+                )
+
+
+def _haas_code(address: str, value: float | None, has_p: bool) -> str | None:
+    """Haas-only G and M codes (Haas mill operator's manual 96-8000 and the reference's 7:
+    G103 look-ahead, G154 P work offsets, M109 user input; [S HAAS], [C jpaullee]). FANUC has
+    none of them as standard: an unknown G code raises PS0010 IMPROPER G-CODE, unless a
+    parameter (6050-6059) makes it a custom macro call; buffering is suppressed by the M codes
+    of parameters 3411-3432 (macro-b.md 7, [M FANUC-16iTB-buf]). #20000-#29999 as Haas NGC
+    settings: macro-b.md 2.1 [C], unverified against Haas's manual."""
+    if address == "G" and value == 103.0:
+        return (
+            "Haas: G103 (block look-ahead limit) is not FANUC: FANUC raises PS0010 IMPROPER "
+            "G-CODE (unless a parameter makes G103 a macro call); FANUC stops look-ahead with "
+            "an M code that suppresses buffering (parameters 3411-3432)"
+        )
+    if address == "G" and value == 154.0 and has_p:
+        return (
+            "Haas: G154 P<n> (additional work offsets) is not FANUC (PS0010 IMPROPER G-CODE); "
+            "FANUC selects them with G54.1 P<n>"
+        )
+    if address == "M" and value == 109.0 and has_p:
+        return (
+            "Haas: M109 P<n> (interactive input of a character into #n) is not FANUC; on FANUC "
+            "M109 is whatever the machine builder made it"
+        )
+    return None

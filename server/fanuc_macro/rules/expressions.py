@@ -3,12 +3,30 @@
 from __future__ import annotations
 
 from collections.abc import Iterator
+from dataclasses import dataclass
 
-from ..diagnostics import RuleInfo, Severity, register
-from ..syntax import Assign, IfThen, ParsedLine
+from ..diagnostics import Diagnostic, Related, RuleInfo, Severity, make, register
+from ..per_line import PerLine
+from ..syntax import (
+    Assign,
+    Binary,
+    BlockIf,
+    Compare,
+    Cond,
+    Expr,
+    IfGoto,
+    IfNc,
+    IfThen,
+    Logic,
+    Num,
+    ParsedLine,
+    Statement,
+    Unary,
+    While,
+)
 from ..variables import classify
 from ..walk import bracket_depth, top_expressions, variables
-from .context import LineFinding, line_statements
+from .context import LineFinding, RuleContext, line_statements
 
 FAMILY = "expressions"
 MAX_BRACKET_NESTING = 5
@@ -21,6 +39,9 @@ register(
              "A common variable of #200-#499, which exists only with an option.", FAMILY),
     RuleInfo("MB304", "write-read-only", Severity.ERROR,
              "An assignment to #0 or to a read-only system variable (PS0116).", FAMILY),
+    RuleInfo("MB305", "logic-operand-unbracketed", Severity.WARNING,
+             "AND, OR or XOR without brackets in a comparison's operand: it binds tighter than "
+             "the comparison and works on the values bit by bit.", FAMILY),
 )  # fmt: skip
 
 
@@ -49,13 +70,8 @@ def check_line(parsed: ParsedLine) -> Iterator[LineFinding]:
                     var.span.start,
                     var.span.end,
                 )
-            elif kind.kind == "extended-common":
-                yield LineFinding(
-                    "MB303",
-                    f"#{number} exists only with the extended common variable option (0i-F / 30i)",
-                    var.span.start,
-                    var.span.end,
-                )
+        for found in logic_operands(statement):
+            yield _logic_finding(parsed.text, found)
         targets = [statement] if isinstance(statement, Assign) else []
         if isinstance(statement, IfThen):
             targets.append(statement.then)
@@ -72,3 +88,183 @@ def check_line(parsed: ParsedLine) -> Iterator[LineFinding]:
                     target.span.start,
                     target.span.end,
                 )
+
+
+def _extended_commons(parsed: ParsedLine) -> tuple[tuple[int, int, int], ...]:
+    """(number, start, end) of each #200-#499 the line names, in source order."""
+    found: list[tuple[int, int, int]] = []
+    for statement in line_statements(parsed):
+        for var in variables(statement):
+            number = var.number
+            if number is not None and number == int(number) and 200 <= number <= 499:
+                found.append((int(number), var.span.start, var.span.end))
+    return tuple(sorted(found, key=lambda f: f[1]))
+
+
+_extended_of: PerLine[tuple[tuple[int, int, int], ...]] = PerLine(_extended_commons)
+
+
+def check(ctx: RuleContext) -> Iterator[Diagnostic]:
+    """MB303, once per file at the first use: whether the option is there is one fact about
+    the machine, not about each block. The range #200-#499 is the reference's (macro-b.md 2.1:
+    "Extended ranges ... are options" [K], unverified against B-64604EN)."""
+    if ctx.config.extended_commons:
+        return
+    uses: list[tuple[int, int, int, int]] = []  # (line, number, start, end)
+    for block in ctx.doc.blocks:
+        if block.parsed.statement is None:
+            continue
+        for number, start, end in _extended_of(block.parsed):
+            uses.append((block.line, number, start, end))
+    if not uses:
+        return
+    line, number, start, end = uses[0]
+    last = uses[-1][0]
+    numbers = sorted({u[1] for u in uses})
+    shown = ", ".join(f"#{n}" for n in numbers[:6]) + (", ..." if len(numbers) > 6 else "")
+    if len(uses) == 1:
+        where = "its only use in this file"
+    else:
+        where = (
+            f"the first of {len(uses)} uses of #200-#499 in this file, lines {line + 1}-"
+            f"{last + 1} ({shown})"
+        )
+    yield make(
+        "MB303",
+        f"#{number} is {where}: these common variables exist only with the extended common "
+        "variable option (0i-F / 30i); without it each use stops with alarm PS0115. If the "
+        "machine has the option, say so (setting fanuc-macro.machine.extendedCommons, "
+        "--extended-commons)",
+        line,
+        start,
+        end,
+        related=[Related(last, uses[-1][2], uses[-1][3], "the last use")] if last != line else [],
+    )
+
+
+# ---- MB305: AND / OR / XOR inside a comparison's operand ---------------------------------------
+
+LOGIC_OPERATORS = ("AND", "OR", "XOR")
+
+
+@dataclass(frozen=True, slots=True)
+class LogicOperand:
+    """A comparison whose operand holds an AND/OR/XOR outside brackets: ``#1 AND #2 LT 0``."""
+
+    compare: Compare
+    side: str  # "left" or "right": the operand that holds it
+    nodes: tuple[Binary, ...]  # the outermost such operations in that operand
+
+
+def _conditions(statement: Statement) -> Cond | None:
+    if isinstance(statement, IfGoto | IfThen | IfNc):
+        return statement.cond
+    if isinstance(statement, While | BlockIf):
+        return statement.cond
+    return None
+
+
+def _compares(cond: Cond) -> list[Compare]:
+    if isinstance(cond, Compare):
+        return [cond]
+    if isinstance(cond, Logic):
+        found = _compares(cond.first)
+        for _, rest in cond.rest:
+            found.extend(_compares(rest))
+        return found
+    return []
+
+
+def _unbracketed_logic(expr: Expr) -> list[Binary]:
+    """The outermost AND/OR/XOR of ``expr`` that no bracket, function or #[ ] encloses."""
+    if isinstance(expr, Binary):
+        if expr.op in LOGIC_OPERATORS:
+            return [expr]
+        return _unbracketed_logic(expr.left) + _unbracketed_logic(expr.right)
+    if isinstance(expr, Unary):
+        return _unbracketed_logic(expr.operand)
+    return []
+
+
+def _is_mask(node: Binary) -> bool:
+    """``#1003 AND 4``: a bit mask, a constant beside the operator; the control's reading,
+    ``[#1003 AND 4] EQ 4``, is the bit test meant."""
+    return isinstance(node.left, Num) or isinstance(node.right, Num)
+
+
+def logic_operands(statement: Statement) -> list[LogicOperand]:
+    cond = _conditions(statement)
+    if cond is None:
+        return []
+    found: list[LogicOperand] = []
+    for compare in _compares(cond):
+        for side, operand in (("left", compare.left), ("right", compare.right)):
+            nodes = _unbracketed_logic(operand)
+            if nodes and not all(_is_mask(n) for n in nodes):
+                found.append(LogicOperand(compare, side, tuple(nodes)))
+    return found
+
+
+def _chain(expr: Expr, op: str) -> list[Expr] | None:
+    """The operands of ``a OP b OP c`` (one operator throughout), or None."""
+    if not isinstance(expr, Binary) or expr.op != op:
+        return None
+    left = _chain(expr.left, op) or [expr.left]
+    right = expr.right
+    if isinstance(right, Binary) and right.op in LOGIC_OPERATORS:
+        return None  # 'a AND [b OR c]' without brackets cannot be: OR binds looser
+    return [*left, right]
+
+
+def _source(text: str, expr: Expr | Compare) -> str:
+    return text[expr.span.start : expr.span.end].strip()
+
+
+def logic_fixes(text: str, found: LogicOperand) -> list[tuple[str, str]]:
+    """(what it means, the comparison rewritten) for the comparison of ``found``, the likely
+    intent first: each operand compared on its own (``[#1 LT 0] AND [#2 LT 0]``, "#1 and #2
+    below 0", as the words read), when the operand is one chain of one operator; then the
+    control's own reading made explicit (``[#1 AND #2] LT 0``), which changes nothing."""
+    compare = found.compare
+    fixes: list[tuple[str, str]] = []
+    operand = compare.left if found.side == "left" else compare.right
+    other = _source(text, compare.right if found.side == "left" else compare.left)
+    ops = {n.op for n in found.nodes}
+    if len(found.nodes) == 1 and len(ops) == 1:
+        op = ops.pop()
+        parts = _chain(operand, op)
+        if parts is not None and found.nodes[0] is operand:
+            pieces = [
+                f"[{_source(text, p)} {compare.op} {other}]"
+                if found.side == "left"
+                else f"[{other} {compare.op} {_source(text, p)}]"
+                for p in parts
+            ]
+            fixes.append(
+                (f"compare each operand on its own, joined by {op}", f" {op} ".join(pieces))
+            )
+    start = compare.span.start
+    explicit = text[start : compare.span.end]
+    for node in sorted(found.nodes, key=lambda n: n.span.start, reverse=True):
+        a, b = node.span.start - start, node.span.end - start
+        explicit = explicit[:a] + "[" + explicit[a:b] + "]" + explicit[b:]
+    fixes.append(("bracket it as the control reads it", explicit.strip()))
+    return fixes
+
+
+def _logic_finding(text: str, found: LogicOperand) -> LineFinding:
+    """MB305. AND/OR/XOR in an expression are bitwise on the integer values and bind like '*'
+    and '+', tighter than EQ...LE: '[#1 AND #2 LT 0]' is '[[#1 AND #2] LT 0]' (macro-b.md 9,
+    [K]: check B-64304EN "Arithmetic and logic operation"; unverified)."""
+    compare = found.compare
+    node = found.nodes[0]
+    written = " ".join(_source(text, compare).split())
+    fixes = logic_fixes(text, found)
+    read_as = fixes[-1][1]
+    message = (
+        f"'{written}' is read [{read_as}]: {node.op} binds tighter than {compare.op} and works "
+        "bit by bit on the integer values"
+    )
+    if len(fixes) > 1:
+        message += f"; to test each operand, write [{fixes[0][1]}]"
+    return LineFinding("MB305", message, compare.span.start, compare.span.end)

@@ -3,11 +3,15 @@ loops, jumps and calls that fail at run time."""
 
 from __future__ import annotations
 
+import re
 from collections.abc import Iterator
 
 from ..diagnostics import Diagnostic, RuleInfo, Severity, make, register
-from ..index import constant_value
-from ..syntax import Goto, IfGoto, IfThen, While
+from ..evaluator.facts import DocumentFacts
+from ..evaluator.machine import compiled
+from ..index import Program, constant_value
+from ..per_line import PerLine
+from ..syntax import Block, Goto, IfGoto, IfThen, Mixed, NcStatement, ParsedLine, While
 from .context import RuleContext
 
 FAMILY = "flow"
@@ -33,12 +37,25 @@ register(
     RuleInfo("MB708", "long-loop", Severity.INFORMATION,
              "A loop still running when the analysis budget ran out, though nearer its end "
              "every turn: what comes after it is not analysed.", FAMILY),
+    RuleInfo("MB709", "restart-point", Severity.HINT,
+             "Blocks after an unconditional jump or a program end that begin with an N "
+             "number: no run reaches them, a sequence number search (restart at a tool) "
+             "does.", FAMILY),
+    RuleInfo("MB710", "dead-after-end", Severity.INFORMATION,
+             "Blocks after the M30 or M02 of a main program that no jump and no sequence "
+             "number search can reach.", FAMILY),
 )  # fmt: skip
+
+# What a dead stretch's blocks are (see _classify_dead), and the state between them.
+DEAD, RESTART, LOCAL_CALL, AFTER_STOP = "dead", "restart", "local call", "after stop"
+LineRange = tuple[int, int]  # first and last line
 
 
 def check(ctx: RuleContext) -> Iterator[Diagnostic]:
     facts = ctx.doc_facts()
     if facts is None:
+        for program in ctx.index.programs:
+            yield from _after_end(ctx, program, None)
         return
     for f in ctx.findings("endless-loop"):
         yield make("MB703", f.message, f.line, f.column, f.end_column)
@@ -57,34 +74,74 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
         if not _constant_call(ctx, f.line):
             yield make("MB706", f.message, f.line, f.column, f.end_column)
     for program in ctx.index.programs:
-        if program.first_line not in facts.analysed_programs:
-            continue
+        analysed = program.first_line in facts.analysed_programs
+        # A run cut short (budget, alarm) proves nothing about its branches.
+        whole = analysed and program.first_line not in facts.incomplete_programs
+        if whole:
+            yield from _constant_conditions(ctx, program, facts)
         undecided = any(jc.undecided for ln, jc in facts.jumps.items() if program.contains(ln))
-        if program.first_line in facts.incomplete_programs:
-            continue  # a run cut short (budget, alarm) proves nothing about its branches
-        for line, jc in sorted(facts.jumps.items()):
-            if not program.contains(line) or jc.undecided:
-                continue
-            statement = ctx.doc.blocks[line].statement
-            if not isinstance(statement, IfGoto | IfThen | While) or statement.cond is None:
-                continue
-            total = jc.taken + jc.not_taken
-            if total == 0 or (jc.taken and jc.not_taken):
-                continue
-            outcome = "true" if jc.taken else "false"
-            effect = _effect(statement, jc.taken > 0)
-            c = statement.cond.span
-            yield make(
-                "MB701",
-                f"condition is always {outcome} for the values that reach it "
-                f"({total} time{'s' if total > 1 else ''}): {effect}",
-                line,
-                c.start,
-                c.end,
-            )
-        if undecided:
+        if whole and not undecided:
+            if not _unreadable_flow(ctx, program):
+                yield from _dead_blocks(ctx, program, facts.runs)
+        else:  # what the text alone says is dead still is
+            yield from _after_end(ctx, program, facts)
+
+
+def _constant_conditions(
+    ctx: RuleContext, program: Program, facts: DocumentFacts
+) -> Iterator[Diagnostic]:
+    if _unreadable_flow(ctx, program):
+        return  # a rejected block may hold the jump or assignment that changes the outcome
+    first_writes: dict[int, int] | None = None
+    for line, jc in sorted(facts.jumps.items()):
+        if not program.contains(line) or jc.undecided or jc.guessed:
+            continue  # an outcome on a guessed path proves nothing
+        statement = ctx.doc.blocks[line].statement
+        if not isinstance(statement, IfGoto | IfThen | While) or statement.cond is None:
             continue
-        yield from _dead_blocks(ctx, program.first_line, program.end_line, facts.runs)
+        total = jc.taken + jc.not_taken
+        if total == 0 or (jc.taken and jc.not_taken):
+            continue
+        if first_writes is None:
+            first_writes = _first_writes(program, facts)
+        if not _decided_by_the_program(ctx, facts, first_writes, line):
+            continue
+        outcome = "true" if jc.taken else "false"
+        effect = _effect(statement, jc.taken > 0)
+        c = statement.cond.span
+        yield make(
+            "MB701",
+            f"condition is always {outcome} for the values that reach it "
+            f"({total} time{'s' if total > 1 else ''}): {effect}",
+            line,
+            c.start,
+            c.end,
+        )
+
+
+def _first_writes(program: Program, facts: DocumentFacts) -> dict[int, int]:
+    """Variable -> the first line of ``program`` that set it when the run came by."""
+    first: dict[int, int] = {}
+    for line, (number, _summary) in facts.writes.items():
+        if program.contains(line) and line < first.get(number, line + 1):
+            first[number] = line
+    return first
+
+
+def _decided_by_the_program(
+    ctx: RuleContext, facts: DocumentFacts, first_writes: dict[int, int], line: int
+) -> bool:
+    """Whether a condition's outcome follows from the program's own values: each variable it
+    reads had one value every time and was set earlier in the program. A value from outside (a
+    macro's argument, the caller's locals or commons, a probe result) is the caller's choice,
+    and a guard whose inputs vary but that never fires (a clamp on the last step) is a guard."""
+    for n in compiled(ctx.doc.blocks[line].parsed).reads:
+        summary = facts.reads.get((line, n))
+        if summary is None or not summary.constant:
+            return False
+        if first_writes.get(n, line) >= line:
+            return False
+    return True
 
 
 def _effect(statement: IfGoto | IfThen | While, taken: bool) -> str:
@@ -107,9 +164,12 @@ def _constant_call(ctx: RuleContext, line: int) -> bool:
     )
 
 
-def _dead_blocks(
+def _dead_stretches(
     ctx: RuleContext, first: int, end: int, runs: dict[int, int]
-) -> Iterator[Diagnostic]:
+) -> list[LineRange]:
+    """(first, last) line of each stretch of blocks no run reached; comments and blank lines
+    inside a stretch belong to it, those around it do not."""
+    found: list[LineRange] = []
     start: int | None = None
     last = first
     for line in range(first, end + 1):
@@ -122,16 +182,209 @@ def _dead_blocks(
                 start = line
             last = line
         elif start is not None:
-            count = sum(1 for ln in range(start, last + 1) if ctx.doc.blocks[ln].statement)
-            text = ctx.doc.blocks[last].text
-            yield make(
-                "MB702",
-                f"{count} block{'s' if count > 1 else ''} never executed "
-                f"(lines {start + 1}-{last + 1}): no path of the analysed runs reaches "
-                "them",
-                start,
-                0,
-                len(text),
-                end_line=last,
-            )
+            found.append((start, last))
             start = None
+    return found
+
+
+def _line_stop(parsed: ParsedLine) -> str | None:
+    """What ends the fall-through at a block: 'GOTO', 'M30', 'M02' or 'M99' when the next block
+    runs only if something jumps to it; None otherwise (a block skip '/' makes it optional)."""
+    statement = parsed.statement
+    if statement is None or parsed.skip is not None:
+        return None
+    parts = (statement.nc, statement.macro) if isinstance(statement, Mixed) else (statement,)
+    for part in parts:
+        if isinstance(part, Goto):
+            return "GOTO"
+        if isinstance(part, NcStatement):
+            for word in part.words:
+                if word.address == "M" and (code := constant_value(word.value)) in _ENDS:
+                    return f"M{int(code):02d}"
+    return None
+
+
+# Worked out once per distinct line: the rules read every line of a program on each analysis.
+_line_stops: PerLine[str | None] = PerLine(_line_stop)
+
+
+def _stops(block: Block) -> str | None:
+    return _line_stops(block.parsed)
+
+
+_ENDS = (2.0, 30.0, 99.0)
+
+
+def _classify_dead(
+    ctx: RuleContext, program: Program, after: int, last: int, stopped: bool
+) -> list[tuple[str, int, int, int]]:
+    """The blocks from the line after ``after`` to ``last``, which no run reached, in segments
+    (kind, first, last): DEAD; RESTART, a block with an N number right after an unconditional
+    jump or an end, and what falls through from it to the next jump or end, which an operator's
+    sequence number search reaches (macro-b.md §9: restart at a tool); LOCAL_CALL, the same
+    from an N number a Haas M97 calls, which the analysis does not run. ``stopped``: the block
+    at ``after`` ends the fall-through. Each segment comes with the line of the jump or end
+    before it."""
+    local_calls = {c.program for c in program.calls if c.kind == "M97" and c.program is not None}
+    blocks = ctx.doc.blocks
+    state = AFTER_STOP if stopped else DEAD
+    segments: list[tuple[str, int, int, int]] = []
+    stop_line = after
+    for line in range(after + 1, last + 1):
+        block = blocks[line]
+        seq = block.parsed.seq
+        if seq is not None and state == AFTER_STOP:
+            state = LOCAL_CALL if seq in local_calls else RESTART
+        if block.statement is None:
+            continue
+        kind = DEAD if state == AFTER_STOP else state
+        if segments and segments[-1][0] == kind:
+            segments[-1] = (kind, segments[-1][1], line, segments[-1][3])
+        else:
+            segments.append((kind, line, line, stop_line))
+        if _stops(block) is not None:
+            state = AFTER_STOP
+            stop_line = line
+    return segments
+
+
+def _statement_before(ctx: RuleContext, program: Program, line: int) -> int | None:
+    for before in range(line - 1, program.first_line - 1, -1):
+        if ctx.doc.blocks[before].statement is not None:
+            return before
+    return None
+
+
+def _unreadable_flow(ctx: RuleContext, program: Program) -> bool:
+    """Whether a block the parser rejected may change which blocks run: one in another control's
+    language (its paths, calls and jumps are not FANUC's), or one that holds a jump, a
+    condition, a loop or a call. The run went past it as if it were empty, so which blocks are
+    reached is not known."""
+    blocks = ctx.doc.blocks
+    for line in range(program.first_line, program.end_line):
+        parsed = blocks[line].parsed
+        if parsed.problem is not None and parsed.statement is None and _unreadable(parsed):
+            return True
+    return False
+
+
+def _rejected_flow(parsed: ParsedLine) -> bool:
+    problem = parsed.problem
+    if problem is None or parsed.statement is not None:
+        return False
+    if problem.dialect is not None:
+        return True
+    code = parsed.text
+    for comment in reversed(parsed.comments):
+        code = code[: comment.span.start] + code[comment.span.end :]
+    return _FLOW_WORDS.search(code.upper()) is not None
+
+
+_unreadable: PerLine[bool] = PerLine(_rejected_flow)
+_FLOW_WORDS = re.compile(r"GOTO|IF|WHILE|DO|END|M0*9[6-9](?!\d)|G0*6[56](?!\d)")
+
+
+def _count(ctx: RuleContext, first: int, last: int) -> int:
+    return sum(1 for ln in range(first, last + 1) if ctx.doc.blocks[ln].statement is not None)
+
+
+def _blocks(n: int) -> str:
+    return f"{n} block{'s' if n > 1 else ''}"
+
+
+def _lines(first: int, last: int) -> str:
+    return f"line {first + 1}" if first == last else f"lines {first + 1}-{last + 1}"
+
+
+def _dead_blocks(ctx: RuleContext, program: Program, runs: dict[int, int]) -> Iterator[Diagnostic]:
+    """MB702 and MB709 for a program whose runs were whole and decided every branch."""
+    blocks = ctx.doc.blocks
+    for start, last in _dead_stretches(ctx, program.first_line, program.end_line, runs):
+        before = _statement_before(ctx, program, start)
+        stop = _stops(blocks[before]) if before is not None else None
+        after = start - 1 if before is None else before
+        for kind, first, end, stop_line in _classify_dead(
+            ctx, program, after, last, stop is not None
+        ):
+            count = _count(ctx, first, end)
+            width = len(blocks[end].text)
+            if kind == DEAD:
+                yield make(
+                    "MB702",
+                    f"{_blocks(count)} never executed ({_lines(first, end)}): no path of the "
+                    "analysed runs reaches them",
+                    first,
+                    0,
+                    width,
+                    end_line=end,
+                )
+            elif kind == RESTART:
+                labels = _labels(ctx, first, end)
+                yield make(
+                    "MB709",
+                    f"{_blocks(count)} reached only by a sequence number search "
+                    f"({_lines(first, end)}, from {labels}): no run of "
+                    f"{program.display_name} comes here past the {_stops(blocks[stop_line])} "
+                    f"of line {stop_line + 1}; an operator restarting at "
+                    f"{labels.split(', ')[0]} runs them",
+                    first,
+                    0,
+                    width,
+                    end_line=end,
+                )
+
+
+def _labels(ctx: RuleContext, first: int, last: int) -> str:
+    """The N numbers a search may start at in a restart segment (and one just before it)."""
+    lines = range(_label_line(ctx, first), last + 1)
+    seqs = [f"N{seq}" for ln in lines if (seq := ctx.doc.blocks[ln].parsed.seq) is not None]
+    return ", ".join(seqs[:4]) + (f" and {len(seqs) - 4} more" if len(seqs) > 4 else "")
+
+
+def _label_line(ctx: RuleContext, first: int) -> int:
+    """The line of the N number that starts a restart segment: its first block, or a line of
+    its own just before it ('N5' alone)."""
+    line = first
+    while line > 0 and ctx.doc.blocks[line].parsed.seq is None:
+        previous = ctx.doc.blocks[line - 1]
+        if previous.statement is not None:
+            break
+        line -= 1
+    return line
+
+
+def _after_end(
+    ctx: RuleContext, program: Program, facts: DocumentFacts | None
+) -> Iterator[Diagnostic]:
+    """MB710: blocks after the first M30/M02 of a program that nothing can reach, from the text
+    alone (a block without an N number is no jump's target and no search's start)."""
+    blocks = ctx.doc.blocks
+    # The evaluator found the first M30/M02 as it compiled the program; a block skip can make
+    # that one optional, so the search goes on from there.
+    start = program.first_line if facts is None else facts.program_ends.get(program.first_line)
+    if start is None:
+        return
+    end_line = next(
+        (ln for ln in range(start, program.end_line) if _stops(blocks[ln]) in ("M30", "M02")),
+        None,
+    )
+    if end_line is None:
+        return
+    last = _statement_before(ctx, program, program.end_line)
+    if last is None or last <= end_line or _unreadable_flow(ctx, program):
+        return
+    end_code = _stops(blocks[end_line])
+    for kind, first, end, _stop_line in _classify_dead(ctx, program, end_line, last, True):
+        if kind != DEAD:
+            continue
+        count = _count(ctx, first, end)
+        yield make(
+            "MB710",
+            f"{_blocks(count)} after the {end_code} of {program.display_name} (line "
+            f"{end_line + 1}) can never run ({_lines(first, end)}): no N number starts "
+            "them, so neither a jump nor a sequence number search reaches them",
+            first,
+            0,
+            len(blocks[end].text),
+            end_line=end,
+        )

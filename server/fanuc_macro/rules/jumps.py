@@ -5,6 +5,11 @@ from __future__ import annotations
 from collections.abc import Iterator
 
 from ..diagnostics import Diagnostic, Related, RuleInfo, Severity, make, register
+from ..index import Jump, Program
+from ..parser import statements_of
+from ..per_line import PerLine
+from ..syntax import Assign, IfGoto, IfThen, ParsedLine, Var, While
+from ..walk import cond_exprs, subexpressions
 from .context import RuleContext
 
 FAMILY = "jumps"
@@ -56,17 +61,9 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
                 )
                 continue
             if len(lines) > 1:
-                related = [Related(ln, 0, 0, f"N{jump.target} also here") for ln in lines]
-                yield make(
-                    "MB102",
-                    f"GOTO {jump.target}: N{jump.target} stands {len(lines)} times"
-                    f" in {name} (lines {', '.join(str(ln + 1) for ln in lines)}); the "
-                    "control searches forward from the GOTO and takes the first it meets",
-                    jump.line,
-                    ts.start,
-                    ts.end,
-                    related=related,
-                )
+                found = _duplicate_lands_wrong(ctx, program, jump, lines)
+                if found is not None:
+                    yield found
             target_line = program.label_line(jump.target, jump.line)
             assert target_line is not None
             target_loops = program.enclosing_loops(target_line)
@@ -84,3 +81,117 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
                         related=[Related(loop.do_line, 0, 0, "the loop starts here")],
                     )
                     break
+
+
+# ---- MB102: where a jump to a duplicated N lands -----------------------------------------------
+
+
+def _line_io(parsed: ParsedLine) -> tuple[frozenset[int], frozenset[int]]:
+    """(variables the line's conditions read, variables the line assigns), direct numbers."""
+    tested: set[int] = set()
+    written: set[int] = set()
+    for statement in statements_of(parsed.statement):
+        cond = statement.cond if isinstance(statement, IfGoto | IfThen | While) else None
+        if cond is not None:
+            for expr in cond_exprs(cond):
+                for node in subexpressions(expr):
+                    if isinstance(node, Var) and node.number is not None:
+                        tested.add(int(node.number))
+        assign = statement.then if isinstance(statement, IfThen) else statement
+        if isinstance(assign, Assign) and assign.target.number is not None:
+            written.add(int(assign.target.number))
+    return frozenset(tested), frozenset(written)
+
+
+_io_of: PerLine[tuple[frozenset[int], frozenset[int]]] = PerLine(_line_io)
+
+
+def _loop_test(ctx: RuleContext, jump: Jump, copy: int) -> int | None:
+    """The variable that makes the jump a loop back to the N at ``copy`` (before it): one the
+    jump's condition tests (for a bare GOTO, the test at that N) and the blocks from that N to
+    the jump assign: a counter stepped in the loop. -1 for a jump from the N's own block (a
+    wait loop, ``N1 IF [#1000 EQ 0] GOTO1``); None when nothing says the jump looks back."""
+    if copy == jump.line:
+        return -1
+    blocks = ctx.doc.blocks
+    tested = _io_of(blocks[jump.line].parsed)[0] if jump.conditional else frozenset()
+    if not tested:
+        tested = _io_of(blocks[copy].parsed)[0]
+    if not tested:
+        return None
+    for line in range(copy, jump.line):
+        changed = tested & _io_of(blocks[line].parsed)[1]
+        if changed:
+            return min(changed)
+    return None
+
+
+def _dead(ctx: RuleContext, program: Program, line: int) -> bool:
+    """``line`` is dead code in the evaluator's facts, in MB702's sense: the program ran to its
+    end on every path with every branch decided, and no run reached the line."""
+    facts = ctx.doc_facts()
+    if facts is None or program.first_line not in facts.analysed_programs:
+        return False
+    if program.first_line in facts.incomplete_programs:
+        return False
+    if any(jc.undecided for ln, jc in facts.jumps.items() if program.contains(ln)):
+        return False
+    return line not in facts.runs
+
+
+def _duplicate_lands_wrong(
+    ctx: RuleContext, program: Program, jump: Jump, lines: list[int]
+) -> Diagnostic | None:
+    """MB102. The control searches for the N from the block after the GOTO to the end of the
+    program, then from its head (macro-b.md 4.1: "The search runs forward from the current
+    block and then wraps to the program head" [K; S FI], unverified against a FANUC manual).
+    A duplicate matters only when it moves the landing away from the copy the text suggests:
+    the first one after a jump that looks forward, the nearest one before a loop back. Or when
+    the copy the control finds is dead code in the evaluator's runs."""
+    seq = jump.target
+    assert seq is not None
+    before = [ln for ln in lines if ln <= jump.line]  # the GOTO's own block: searched last
+    after = [ln for ln in lines if ln > jump.line]
+    lands = after[0] if after else lines[0]
+    loop_var = _loop_test(ctx, jump, before[-1]) if before else None
+    looks_back = bool(before) and (not after or loop_var is not None)
+    meant = before[-1] if looks_back else after[0]
+    name = program.display_name
+    all_lines = ", ".join(str(ln + 1) for ln in lines)
+    ts = jump.target_span
+    if lands != meant:
+        if after:
+            why = (
+                "the control searches forward from the GOTO first and takes the first "
+                f"N{seq} it meets"
+            )
+            if loop_var == -1:
+                back = f"the N{seq} of this block, which the jump loops on"
+            else:
+                back = (
+                    f"the N{seq} of line {meant + 1}, which this loop goes back to (#{loop_var}, "
+                    f"which it tests, changes from line {meant + 1} to the jump)"
+                )
+        else:
+            why = (
+                f"with no N{seq} after the GOTO, the control searches from the head of "
+                f"{name} and takes the first"
+            )
+            back = f"the nearest N{seq} before it, line {meant + 1}"
+        message = (
+            f"GOTO {seq} lands on the N{seq} of line {lands + 1}, not on {back}: {why} "
+            f"(N{seq} stands {len(lines)} times in {name}: lines {all_lines})"
+        )
+    elif _dead(ctx, program, lands) and not _dead(ctx, program, jump.line):
+        others = ", ".join(str(ln + 1) for ln in lines if ln != lands)
+        message = (
+            f"GOTO {seq} lands on the N{seq} of line {lands + 1}, in blocks that no run of the "
+            f"analysis executes, while N{seq} also stands at line {others}: an old copy left "
+            f"in {name} catches the jump, which the control sends to the first N{seq} after it"
+        )
+    else:
+        return None
+    related = [Related(lands, 0, 0, "the control lands here")]
+    if meant != lands:
+        related.append(Related(meant, 0, 0, f"the N{seq} the text suggests"))
+    return make("MB102", message, jump.line, ts.start, ts.end, related=related)

@@ -82,7 +82,25 @@ def _encoding(ctx: RuleContext, note: str) -> Diagnostic:
 
 
 def _no_program_number(ctx: RuleContext) -> Iterator[Diagnostic]:
-    """MB010 on the first block of program text when no O number comes before it."""
+    """MB010 on the first block of program text when no O number comes before it; a hint when
+    the file's name gives the number (``O8501.NC``), which then stands for the program."""
+    programs = ctx.index.programs
+    if programs and programs[0].named_by_file is not None and programs[0].number is not None:
+        program = programs[0]
+        line = program.first_line
+        text = ctx.doc.blocks[line].parsed.text
+        yield make(
+            "MB010",
+            f"program number {program.number} taken from the file name "
+            f"{program.named_by_file!r} (the file has no O line): calls of "
+            f"O{program.number:04d} reach it here, and on the control it must be stored as "
+            f"O{program.number:04d}",
+            line,
+            0,
+            len(text.rstrip()),
+            severity=Severity.HINT,
+        )
+        return
     for block in ctx.doc.blocks:
         parsed = block.parsed
         if isinstance(parsed.statement, ProgramStart):

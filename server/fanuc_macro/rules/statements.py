@@ -5,7 +5,8 @@ from __future__ import annotations
 from collections.abc import Iterator
 from typing import NamedTuple
 
-from ..diagnostics import Diagnostic, RuleInfo, Severity, make, register
+from ..diagnostics import Diagnostic, Related, RuleInfo, Severity, make, register
+from ..index import Call as IndexCall
 from ..index import Program, constant_value
 from ..parser import statements_of
 from ..per_line import PerLine
@@ -38,8 +39,8 @@ register(
 # input increment of each address" (FANUC 16i/18i Operator's Manual B-63684EN, Custom macro,
 # "Position of the decimal point"): lengths and angles (0.001 mm or degree on IS-B) are scaled;
 # S, T, M, D, H take whole numbers and F is in mm/min (1 mm/min on IS-B), so those are not.
-# E (the precise lead of some lathes) is taken for a length (unverified).
-SCALED_ARGUMENTS = frozenset("ABCEIJKQRUVWXYZ")
+# E has no axis on a mill and its increment is not settled (a lathe's precise lead): left out.
+SCALED_ARGUMENTS = frozenset("ABCIJKQRUVWXYZ")
 
 
 def check_line(parsed: ParsedLine) -> Iterator[LineFinding]:
@@ -60,6 +61,8 @@ def check_line(parsed: ParsedLine) -> Iterator[LineFinding]:
 def check(ctx: RuleContext) -> Iterator[Diagnostic]:
     local_programs = {p.number for p in ctx.index.programs if p.number is not None}
     known = local_programs | set(ctx.workspace_programs or ())
+    # Calls of a program that is not there, by program: one diagnostic each, at the first call.
+    missing: dict[int, list[IndexCall]] = {}
     for program in ctx.index.programs:
         for call in program.calls:
             line = call.line
@@ -79,17 +82,7 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
                 )
                 continue
             if call.program is not None and call.program not in known:
-                where = "this file" if ctx.workspace_programs is None else "the workspace"
-                ps = call.program_span
-                yield make(
-                    "MB403",
-                    f"{call.kind} calls O{call.program:04d}, which is not in "
-                    f"{where} (alarm PS0076 if it is not in the control's memory)",
-                    line,
-                    ps.start,
-                    ps.end,
-                    data={"program": call.program},
-                )
+                missing.setdefault(call.program, []).append(call)
             if call.repeat is not None and not 1 <= call.repeat <= 9999:
                 l_word = next((w for w in words if w.address == "L"), None)
                 at = l_word.span if l_word is not None else span
@@ -129,6 +122,7 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
                         word.span.start,
                         word.span.end,
                     )
+    yield from _missing_programs(ctx, missing)
 
 
 class _LineEnds(NamedTuple):
@@ -138,6 +132,34 @@ class _LineEnds(NamedTuple):
     stops: bool  # its last statement never falls through (a jump, the program's own alarm)
     ends: bool  # M02, M30 or M99
     cancels_modal_call: bool  # G67
+
+
+def _missing_programs(
+    ctx: RuleContext, missing: dict[int, list[IndexCall]]
+) -> Iterator[Diagnostic]:
+    """MB403 once per missing program, at its first call, with the others as related places."""
+    where = "this file" if ctx.workspace_programs is None else "the workspace"
+    for number, calls in missing.items():
+        first = calls[0]
+        span = first.program_span
+        assert span is not None
+        more = ""
+        if len(calls) > 1:
+            shown = ", ".join(str(c.line + 1) for c in calls[1:9])
+            etc = ", ..." if len(calls) > 9 else ""
+            more = f"; it is called {len(calls)} times in all (also at lines {shown}{etc})"
+        yield make(
+            "MB403",
+            f"{first.kind} calls O{number:04d}, which is not in {where} (alarm PS0076 if it "
+            f"is not in the control's memory){more}",
+            first.line,
+            span.start,
+            span.end,
+            related=[
+                Related(c.line, 0, 0, f"O{number:04d} called again here") for c in calls[1:20]
+            ],
+            data={"program": number},
+        )
 
 
 def _line_ends(parsed: ParsedLine) -> _LineEnds:
@@ -168,7 +190,9 @@ def check_programs(ctx: RuleContext) -> Iterator[Diagnostic]:
         ends = False
         last_statement: int | None = None
         last_stops = False
-        for line in range(program.first_line + 1, program.end_line):
+        # After the O line; a program named by its file (no O line) from its first block.
+        first = program.first_line + (1 if program.header_line is not None else 0)
+        for line in range(first, program.end_line):
             found = _ends_of(ctx.doc.blocks[line].parsed)
             if found.has_statement:
                 last_statement = line

@@ -5,7 +5,9 @@ from __future__ import annotations
 from collections.abc import Iterator
 
 from ..diagnostics import Diagnostic, RuleInfo, Severity, make, register
+from ..evaluator.facts import DocumentFacts
 from ..syntax import Assign, IfThen, Var
+from ..variables import ARGUMENT_VARIABLES
 from ..walk import subexpressions, top_expressions
 from .context import RuleContext
 
@@ -19,7 +21,12 @@ register(
              FAMILY),
     RuleInfo("MB903", "indirect-no-such-variable", Severity.ERROR,
              "#[...] refers to a variable number that does not exist (PS0115).", FAMILY),
+    RuleInfo("MB904", "arguments-assumed", Severity.HINT,
+             "A program ending with M30 or M02 reads locals before setting them: it is "
+             "analysed as a macro with unknown arguments.", FAMILY),
 )  # fmt: skip
+
+ARGUMENT_LETTER = {n: letter for letter, n in ARGUMENT_VARIABLES.items()}
 
 
 def check(ctx: RuleContext) -> Iterator[Diagnostic]:
@@ -30,6 +37,7 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
         yield make("MB902", f.message, f.line, f.column, f.end_column)
     for f in ctx.findings("alarm:no-such-variable"):
         yield make("MB903", f.message, f.line, f.column, f.end_column)
+    yield from _assumed_arguments(ctx, facts)
     # Locals that were vacant every time a block read them: few or none in most programs.
     vacant_reads = sorted(
         (line, n)
@@ -45,8 +53,11 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
         assigned: set[int] = set()
         checked: set[int] = set()
         for line in range(program.first_line, program.end_line):
-            statement = ctx.doc.blocks[line].statement
+            parsed = ctx.doc.blocks[line].parsed
+            statement = parsed.statement
             if statement is None:
+                if parsed.failed_assignment is not None:  # '#5=#4*2:' sets #5 all the same
+                    assigned.add(parsed.failed_assignment)
                 continue
             target = statement.then if isinstance(statement, IfThen) else statement
             if isinstance(target, Assign) and target.target.number is not None:
@@ -91,3 +102,30 @@ def _var_span(ctx: RuleContext, line: int, number: int) -> tuple[int, int]:
                 if isinstance(node, Var) and node.number == number:
                     return node.span.start, node.span.end
     return 0, len(ctx.doc.blocks[line].text)
+
+
+def _assumed_arguments(ctx: RuleContext, facts: DocumentFacts) -> Iterator[Diagnostic]:
+    """MB904, at the first read of the first local a main-looking program reads unset."""
+    for program in ctx.index.programs:
+        read_first = facts.assumed_arguments.get(program.first_line)
+        if not read_first:
+            continue
+        names = [
+            f"#{n} ({ARGUMENT_LETTER[n]})" if n in ARGUMENT_LETTER else f"#{n}"
+            for n, _line in read_first
+        ]
+        shown = ", ".join(names[:8]) + (f" and {len(names) - 8} more" if len(names) > 8 else "")
+        one = len(names) == 1
+        number, line = read_first[0]
+        start, end = _var_span(ctx, line, number)
+        yield make(
+            "MB904",
+            f"{program.display_name} ends with M30 or M02 but reads {shown} before setting "
+            f"{'it' if one else 'them'}: it is analysed as a macro called with "
+            f"{'an argument' if one else 'arguments'} of unknown value; run from cycle start "
+            f"as a main program, {'it is' if one else 'they are'} vacant (0 in arithmetic, "
+            "the word left out of an address)",
+            line,
+            start,
+            end,
+        )
