@@ -188,12 +188,14 @@ def analyse(
     other_documents: Sequence[tuple[str, Document, ProgramIndex]] = (),
     run_evaluator: bool = True,
     facts: Facts | None = None,
+    previous_facts: Facts | None = None,
 ) -> Analysis:
     """Parse (unless ``doc`` is given), index, evaluate and check one document.
 
     ``other_documents`` are the workspace's other files: the programs this one calls.
     ``facts`` from an earlier run of the same programs spare the evaluator (see
-    :meth:`fanuc_macro.workspace.Workspace.analyse`).
+    :meth:`fanuc_macro.workspace.Workspace.analyse`); ``previous_facts``, from a run of an
+    earlier version of the same documents, let it resume where the edit begins to matter.
     """
     with quiet_gc():  # the run makes many small objects and no cycles
         config = config or Config()
@@ -204,7 +206,12 @@ def analyse(
         failed: list[Diagnostic] = []
         if run_evaluator and facts is None:
             try:
-                facts = evaluate([(uri, doc, index), *other_documents], config, only_uri=uri)
+                facts = evaluate(
+                    [(uri, doc, index), *other_documents],
+                    config,
+                    only_uri=uri,
+                    previous=previous_facts,
+                )
             except Exception as err:  # the structural rules still report
                 log.exception("evaluation of %s failed", uri)
                 message = internal_error("the evaluator (its rules MB501-MB903 did not run)", err)

@@ -182,6 +182,8 @@ class Workspace:
         runs = ((uri, entry.execution), *((u, self._entries[u].execution) for u, _, _ in others))
         cached = self._facts.get(uri)
         facts = cached[2] if cached and cached[0] is self.config and cached[1] == runs else None
+        # Otherwise the evaluator resumes the earlier run where the edit begins to matter.
+        previous = cached[2] if cached is not None and facts is None else None
         analysis = analyse(
             entry.text,
             uri,
@@ -192,6 +194,7 @@ class Workspace:
             index=entry.index,
             other_documents=others,
             facts=facts,
+            previous_facts=previous,
         )
         if analysis.facts is not None:
             self._facts[uri] = (self.config, runs, analysis.facts)

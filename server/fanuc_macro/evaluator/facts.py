@@ -5,9 +5,38 @@ These are the facts the rules, the hover and the inlay hints read. They carry no
 
 from __future__ import annotations
 
+import math
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, TypeVar
 
 from .values import Unknown, Value, fmt
+
+if TYPE_CHECKING:
+    from .checkpoints import RunRecord
+
+K = TypeVar("K")
+V = TypeVar("V")
+
+
+def same_value(a: object, b: object) -> bool:
+    """Equal, and the same kind of value: 0.0 and -0.0 differ (they print differently), a
+    number and a vacant differ. Containers are compared element by element."""
+    if a is b:
+        return True
+    kind = type(a)
+    if kind is not type(b):
+        return False
+    if kind is float:
+        assert isinstance(a, float) and isinstance(b, float)
+        return a == b and (a != 0.0 or math.copysign(1.0, a) == math.copysign(1.0, b))
+    if kind is tuple or kind is list:
+        assert isinstance(a, (tuple, list)) and isinstance(b, (tuple, list))
+        return len(a) == len(b) and all(same_value(x, y) for x, y in zip(a, b, strict=True))
+    if kind is dict:
+        assert isinstance(a, dict) and isinstance(b, dict)
+        return len(a) == len(b) and all(k in b and same_value(v, b[k]) for k, v in a.items())
+    return a == b
 
 
 class ValueSummary:
@@ -38,6 +67,29 @@ class ValueSummary:
                 self.minimum = value
             if value > self.maximum:
                 self.maximum = value
+
+    def then(self, later: ValueSummary) -> ValueSummary:
+        """This summary followed by ``later``'s executions, as one summary (a new object)."""
+        out = ValueSummary()
+        out.count = self.count + later.count
+        out.first = self.first if self.count else later.first
+        out.last = later.last if later.count else self.last
+        out.minimum = min(self.minimum, later.minimum)
+        out.maximum = max(self.maximum, later.maximum)
+        out.vacant = self.vacant + later.vacant
+        out.unknown = later.unknown if later.unknown is not None else self.unknown
+        return out
+
+    def same_as(self, other: ValueSummary) -> bool:
+        return (
+            self.count == other.count
+            and same_value(self.first, other.first)
+            and same_value(self.last, other.last)
+            and self.minimum == other.minimum
+            and self.maximum == other.maximum
+            and self.vacant == other.vacant
+            and self.unknown == other.unknown
+        )
 
     @property
     def numeric(self) -> bool:
@@ -135,6 +187,31 @@ class DocumentFacts:
     # locals before setting them: first line -> (local, line of its first read), in text order.
     assumed_arguments: dict[int, tuple[tuple[int, int], ...]] = field(default_factory=dict)
 
+    def segment(self) -> DocumentFacts:
+        """Facts of the same document for a later stretch of the run: the counts and summaries
+        start empty, the findings and the programs run are shared with this one."""
+        return DocumentFacts(
+            findings=self.findings,
+            analysed_programs=self.analysed_programs,
+            program_ends=self.program_ends,
+            assumed_arguments=self.assumed_arguments,
+        )
+
+    def take_segments(self, segments: Sequence[DocumentFacts]) -> None:
+        """Set the counts and summaries to those of ``segments``, stretches of one run in
+        order. A key in one segment only keeps that segment's object (nothing mutates a
+        segment after its stretch of the run), so a run without loops merges at the speed of
+        ``dict.update``."""
+        self.runs = _merged([s.runs for s in segments], _add)
+        self.reads = _merged([s.reads for s in segments], ValueSummary.then)
+        self.writes = _merged([s.writes for s in segments], _then_write)
+        self.jumps = _merged([s.jumps for s in segments], _add_jumps)
+        self.roundings = _merged([s.roundings for s in segments], _add_roundings)
+        incomplete: set[int] = set()
+        for s in segments:
+            incomplete |= s.incomplete_programs
+        self.incomplete_programs = incomplete
+
     def jump_count(self, line: int) -> JumpCount:
         count = self.jumps.get(line)
         if count is None:
@@ -170,6 +247,8 @@ class Facts:
     stopped: str | None = None
     time_limit: float = 0.0  # the safety net's seconds, when it stopped a run
     run_values: dict[int, RunValues] = field(default_factory=dict)  # run -> at its first cut
+    # The run's checkpoints and facts by stretch, from which the next analysis resumes.
+    record: RunRecord | None = field(default=None, repr=False, compare=False)
 
     def stop_message(self) -> str | None:
         """What a user is told when the safety net stopped the analysis (None otherwise)."""
@@ -187,3 +266,47 @@ class Facts:
         if facts is None:
             facts = self.by_uri[uri] = DocumentFacts()
         return facts
+
+
+def _merged(parts: list[dict[K, V]], combine: Callable[[V, V], V]) -> dict[K, V]:
+    """One dict of ``parts`` in order: a key in several is ``combine``d, earlier first."""
+    nonempty = [p for p in parts if p]
+    if not nonempty:
+        return {}
+    if len(nonempty) == 1:
+        return nonempty[0]
+    out = dict(nonempty[0])
+    for part in nonempty[1:]:
+        common = out.keys() & part.keys()
+        if not common:
+            out.update(part)
+            continue
+        earlier = {k: out[k] for k in common}
+        out.update(part)
+        for k in common:
+            out[k] = combine(earlier[k], part[k])
+    return out
+
+
+def _add(a: int, b: int) -> int:
+    return a + b
+
+
+Write = tuple[int, ValueSummary]
+
+
+def _then_write(a: Write, b: Write) -> Write:
+    return (a[0], a[1].then(b[1]))  # the variable of the first write, as a single run keeps
+
+
+def _add_jumps(a: JumpCount, b: JumpCount) -> JumpCount:
+    return JumpCount(
+        a.taken + b.taken,
+        a.not_taken + b.not_taken,
+        a.undecided + b.undecided,
+        a.guessed + b.guessed,
+    )
+
+
+def _add_roundings(a: Rounding, b: Rounding) -> Rounding:
+    return Rounding(a.function, a.argument, a.result, a.count + b.count)

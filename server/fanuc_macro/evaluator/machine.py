@@ -9,6 +9,7 @@ an unknown condition runs its body once), so a program analysed alone still gets
 from __future__ import annotations
 
 import time
+from collections.abc import Sequence
 from dataclasses import dataclass, field, replace
 
 from ..config import Config
@@ -37,6 +38,7 @@ from ..syntax import (
 )
 from ..variables import ARGUMENT_VARIABLES, classify
 from ..walk import subexpressions, top_expressions
+from .checkpoints import CtxKey, LevelState, MachineState, ModalState, Resumption, RunRecord
 from .compiler import CondEvaluator, Evaluator, compile_cond, compile_expr, constant_of
 from .cycles import g76_depths
 from .facts import DocumentFacts, Facts, Finding, Motion, Rounding, RunValues, ValueSummary
@@ -332,6 +334,14 @@ class _Stop(Exception):
         self.reason = reason
 
 
+class Converged(Exception):
+    """The resumed run's state equals the earlier run's at its checkpoint ``index``."""
+
+    def __init__(self, index: int) -> None:
+        super().__init__(index)
+        self.index = index
+
+
 @dataclass
 class Modal:
     motion: float | None = None  # group 01
@@ -364,8 +374,21 @@ class G76Parameters:
 
 
 class Machine:
-    def __init__(self, programs: dict[int, ProgramContext], config: Config, facts: Facts) -> None:
+    def __init__(
+        self,
+        programs: dict[int, ProgramContext],
+        config: Config,
+        facts: Facts,
+        contexts: Sequence[ProgramContext] = (),
+    ) -> None:
         self.programs = programs
+        # Every program, by document and first line: what a checkpoint names them by.
+        self.contexts: dict[CtxKey, ProgramContext] = {
+            (c.uri, c.program.first_line): c for c in contexts
+        }
+        self.record: RunRecord | None = None  # checkpoints are taken when set
+        self.resumption: Resumption | None = None  # the earlier run a resumed one may meet
+        self.run_index = 0  # which run of the evaluation is under way
         self.config = config
         self.facts = facts
         self.store: dict[int, Value] = {}
@@ -398,7 +421,9 @@ class Machine:
         locals_: list[Value] = [None] * 34
         # A program that reads #1-#33 before it sets them receives arguments: a G65 from a
         # program outside the analysed files calls it, even if it ends with M30.
-        read_first = _locals_read_first(entry) if entry.is_main else ()
+        read_first = locals_read_first(entry) if entry.is_main else ()
+        if self.record is not None and entry.is_main:
+            self.record.read_first[(entry.uri, entry.program.first_line)] = read_first
         if not entry.is_main or read_first:
             self.modal.feed = Unknown(frozenset())  # the caller's F, which a lone run cannot know
             # A macro analysed alone: its arguments are unknown, not vacant.
@@ -408,13 +433,164 @@ class Machine:
             entry.facts.assumed_arguments[entry.program.first_line] = read_first
         act = Activation(self, entry, locals_, 0, None, 0, 0)
         entry.facts.analysed_programs.add(entry.program.first_line)
+        self._steps = 0
+        self._checkpoint(act, 0)
+        return self._run_loop(act, 0)
+
+    def resume(self, state: MachineState, deadline: float) -> str:
+        """Go on with a run from a checkpoint of an earlier evaluation (its facts so far are
+        the caller's to restore); returns why the run ended."""
+        self.deadline = deadline
+        act = self._restore(state)
+        self._begin_segment(state)
+        return self._run_loop(act, state.done)
+
+    def _run_loop(self, act: Activation, done: int) -> str:
         try:
-            self._loop(act)
+            self._loop(act, done)
         except _Stop as stop:
             return stop.reason
         finally:
             self.steps = self._steps
         return "end"
+
+    # ---- checkpoints -----------------------------------------------------------------------
+    def _checkpoint(self, act: Activation, done: int) -> None:
+        """Record the state before the next block and begin a new stretch of facts; in a
+        resumed run, stop when the state is the earlier run's (see :mod:`.checkpoints`)."""
+        if self.record is None:
+            return
+        state = self.capture(act, done)
+        resumption = self.resumption
+        if resumption is not None:
+            index = resumption.convergeable.get((state.run, done))
+            if index is not None and state.same_as(resumption.record.checkpoints[index]):
+                raise Converged(index)
+        self._begin_segment(state)
+
+    def _begin_segment(self, state: MachineState) -> None:
+        record = self.record
+        assert record is not None
+        record.checkpoints.append(state)
+        segment = {uri: base.segment() for uri, base in self.facts.by_uri.items()}
+        record.segments.append(segment)
+        for ctx in self.contexts.values():
+            ctx.facts = segment[ctx.uri]
+
+    def capture(self, act: Activation, done: int) -> MachineState:
+        chain: list[Activation] = []
+        a: Activation | None = act
+        while a is not None:
+            chain.append(a)
+            a = a.caller
+        chain.reverse()
+        levels = tuple(
+            LevelState(
+                (a.ctx.uri, a.ctx.program.first_line),
+                tuple(a.locals),
+                i > 0 and a.locals is chain[i - 1].locals,
+                a.pc,
+                a.macro_level,
+                a.return_pc,
+                a.repeats_left,
+                a.serial,
+                a.arguments,
+                frozenset(a.undecided_loops),
+                a.modal_depth,
+            )
+            for i, a in enumerate(chain)
+        )
+        m = self.modal
+        modal = ModalState(
+            m.motion,
+            m.feed,
+            m.speed,
+            m.constant_surface_speed,
+            tuple(
+                (None if c is None else (c.uri, c.program.first_line), tuple(args), repeat)
+                for c, args, repeat in m.modal_calls
+            ),
+            tuple(m.position.items()),
+            tuple(m.position_line.items()),
+            m.inch,
+            m.g76,
+        )
+        facts = self.facts
+        bases = facts.by_uri
+        return MachineState(
+            self.run_index,
+            done,
+            levels,
+            dict(self.store),
+            modal,
+            self.speculative,
+            self.runs,
+            frozenset(self._seen_findings),
+            len(facts.motions),
+            tuple(facts.run_values),
+            tuple((uri, len(b.findings)) for uri, b in bases.items()),
+            tuple((uri, frozenset(b.analysed_programs)) for uri, b in bases.items()),
+            tuple((uri, tuple(b.assumed_arguments.items())) for uri, b in bases.items()),
+        )
+
+    def _restore(self, state: MachineState) -> Activation:
+        """The machine as it was at ``state``, on the programs of this evaluation."""
+        self.run_index = state.run
+        self.store = store = dict(state.store)
+        self.speculative = state.speculative
+        self.runs = state.activations
+        self._seen_findings = set(state.seen_findings)
+        self._steps = state.done
+        contexts = self.contexts
+        ms = state.modal
+        assert isinstance(ms.g76, G76Parameters)
+        self.modal = Modal(
+            ms.motion,
+            ms.feed,
+            ms.speed,
+            ms.constant_surface_speed,
+            [
+                (None if key is None else contexts[key], list(args), repeat)
+                for key, args, repeat in ms.modal_calls
+            ],
+            dict(ms.position),
+            dict(ms.position_line),
+            ms.inch,
+            ms.g76,
+        )
+        caller: Activation | None = None
+        for level in state.levels:
+            a = Activation.__new__(Activation)
+            a.machine = self
+            a.ctx = contexts[level.ctx]
+            a.locals = (
+                caller.locals
+                if caller is not None and level.shares_locals_with_caller
+                else list(level.locals)
+            )
+            a.store = store
+            a.macro_level = level.macro_level
+            a.caller = caller
+            a.return_pc = level.return_pc
+            a.repeats_left = level.repeats_left
+            a.pc = level.pc
+            a.undecided_loops = set(level.undecided_loops)
+            a.arguments = level.arguments
+            a.serial = level.serial
+            a.modal_depth = level.modal_depth
+            caller = a
+        assert caller is not None
+        self._entry_name = contexts[state.levels[0].ctx].name
+        return caller
+
+    def _document_so_far(self, ctx: ProgramContext) -> DocumentFacts:
+        """The facts of ``ctx``'s document from every stretch of the evaluation so far."""
+        record = self.record
+        if record is None:
+            return ctx.facts
+        merged = ctx.facts.segment()
+        merged.take_segments([s[ctx.uri] for s in record.segments if ctx.uri in s])
+        return merged
 
     def _finding(
         self,
@@ -436,12 +612,13 @@ class Machine:
             Finding(kind, line, start, end, message, ctx.uri, related_line, related_message)
         )
 
-    def _loop(self, act: Activation) -> None:
-        steps = self._steps = 0
+    def _loop(self, act: Activation, done: int = 0) -> None:
+        steps = self._steps = done
         budget = self.budget
         # Block budget + 1: the budget's last block still runs, and the run stops before the
-        # next, at the same block on any machine.
-        next_check = min(CHECK_EVERY, budget + 1)
+        # next, at the same block on any machine. The looks fall on whole multiples of
+        # CHECK_EVERY, so a resumed run takes its checkpoints where the earlier run did.
+        next_check = min((done + 1) // CHECK_EVERY * CHECK_EVERY + CHECK_EVERY, budget + 1)
         while True:
             ctx = act.ctx
             pc = act.pc
@@ -465,6 +642,8 @@ class Machine:
                     self._mark_incomplete(act)
                     raise _Stop("time")
                 next_check = min(steps + CHECK_EVERY, budget + 1)
+                if self.record is not None:
+                    self._checkpoint(act, steps - 1)
             facts = ctx.facts
             runs = facts.runs
             runs[pc] = runs.get(pc, 0) + 1
@@ -1213,7 +1392,7 @@ class Machine:
 
     def _budget_spent(self, act: Activation) -> None:
         ctx = act.ctx
-        facts = ctx.facts
+        facts = self._document_so_far(ctx)
         program = ctx.program
         top = max((n for ln, n in facts.runs.items() if program.contains(ln)), default=0)
         hot = sorted(ln for ln, n in facts.runs.items() if program.contains(ln) and n * 2 >= top)
@@ -1355,20 +1534,31 @@ def _g_name(code: float) -> str:
 
 
 def build_contexts(
-    docs: list[tuple[str, Document, ProgramIndex]], facts: Facts
+    docs: list[tuple[str, Document, ProgramIndex]],
+    facts: Facts,
+    compiled_before: dict[str, list[CompiledLine]] | None = None,
+    changed: dict[str, set[int]] | None = None,
 ) -> tuple[dict[int, ProgramContext], list[ProgramContext]]:
-    """Compile every program of the given documents: by number, and all in order."""
+    """Compile every program of the given documents: by number, and all in order.
+
+    ``compiled_before``: the compiled lines of an earlier version of the documents, in which
+    only the ``changed`` lines differ (same line counts): those alone are compiled again."""
     contexts: dict[int, ProgramContext] = {}
     every: list[ProgramContext] = []
     for uri, doc, index in docs:
-        for ctx in contexts_of(uri, doc, index, facts):
+        lines: list[CompiledLine] | None = None
+        if compiled_before is not None and changed is not None and uri in compiled_before:
+            lines = list(compiled_before[uri])
+            for line in changed.get(uri, ()):
+                lines[line] = compiled(doc.blocks[line].parsed)
+        for ctx in contexts_of(uri, doc, index, facts, lines):
             every.append(ctx)
             if ctx.program.number is not None and ctx.program.number not in contexts:
                 contexts[ctx.program.number] = ctx
     return contexts, every
 
 
-def _locals_read_first(ctx: ProgramContext) -> tuple[tuple[int, int], ...]:
+def locals_read_first(ctx: ProgramContext) -> tuple[tuple[int, int], ...]:
     """The locals a program reads before any block of it sets them, in the order of the text,
     each with the line of its first read: (number, line)."""
     set_: set[int] = set()
@@ -1397,9 +1587,16 @@ def _ends_program(statement: Statement | None) -> bool:
     )
 
 
-def contexts_of(uri: str, doc: Document, index: ProgramIndex, facts: Facts) -> list[ProgramContext]:
+def contexts_of(
+    uri: str,
+    doc: Document,
+    index: ProgramIndex,
+    facts: Facts,
+    lines: list[CompiledLine] | None = None,
+) -> list[ProgramContext]:
     doc_facts = facts.document(uri)
-    lines = [compiled(b.parsed) for b in doc.blocks]
+    if lines is None:
+        lines = [compiled(b.parsed) for b in doc.blocks]
     out: list[ProgramContext] = []
     for program in index.programs:
         loop_end = {lp.do_line: lp.end_line for lp in program.loops if lp.end_line is not None}

@@ -3,13 +3,14 @@
 from __future__ import annotations
 
 import time
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
 
 from ..config import Config
 from ..index import ProgramIndex
 from ..syntax import Document
+from .checkpoints import ProgramShape, Resumption, RunRecord, changed_lines, plan
 from .facts import Facts
-from .machine import Machine, ProgramContext, build_contexts
+from .machine import Converged, Machine, ProgramContext, build_contexts, locals_read_first
 
 
 def entry_programs(every: Sequence[ProgramContext], only_uri: str | None) -> list[ProgramContext]:
@@ -39,11 +40,22 @@ def evaluate(
     config: Config | None = None,
     only_uri: str | None = None,
     entry: int | None = None,
+    previous: Facts | None = None,
 ) -> Facts:
-    """Run every entry program (or O``entry``) of ``docs`` within the configured budgets."""
+    """Run every entry program (or O``entry``) of ``docs`` within the configured budgets.
+
+    ``previous``: the facts of an earlier evaluation of other versions of the same documents
+    with the same settings; the run resumes from its checkpoints where it can (see
+    :mod:`.checkpoints`), with the same result as a full run.
+    """
     config = config or Config()
+    docs = list(docs)
+    documents = tuple((uri, doc) for uri, doc, _ in docs)
     facts = Facts()
-    programs, every = build_contexts(list(docs), facts)
+    earlier = previous.record if previous is not None else None
+    changed = changed_lines(earlier.documents, documents) if earlier is not None else None
+    compiled_before = earlier.lines if earlier is not None and changed is not None else None
+    programs, every = build_contexts(docs, facts, compiled_before, changed)
     if entry is not None:
         chosen = programs.get(entry)
         entries = [chosen] if chosen is not None else []
@@ -52,24 +64,166 @@ def evaluate(
     # One wall-clock limit for the whole analysis, a safety net only: the step budget, per
     # entry, is what ends a run that goes on (see Config).
     deadline = time.monotonic() + config.time_limit
-    machine = Machine(programs, config, facts)
-    reasons: list[str] = []
-    for ctx in entries:
+    machine = Machine(programs, config, facts, every)
+    record = RunRecord((config, only_uri, entry), documents, _shapes(every))
+    for ctx in every:
+        record.lines.setdefault(ctx.uri, ctx.lines)
+    machine.record = record
+    sequence = _Sequence(entries, every, only_uri, alone=entry is None)
+    how = None
+    if previous is not None and changed is not None:
+        by_key = machine.contexts
+        how = plan(previous, record, changed, lambda key: locals_read_first(by_key[key]))
+    if isinstance(how, Facts):
+        return how  # nothing that runs changed
+    try:
+        if how is None:
+            _run_from(machine, sequence, 0, deadline)
+        else:
+            _resume(machine, how, sequence, deadline)
+    except Converged as met:
+        assert how is not None
+        _splice(machine, how, met.index)
+    _finish(facts, record, config)
+    return facts
+
+
+class _Sequence:
+    """The runs of an evaluation, in order: the entry programs, then the programs no run
+    reached (a subprogram whose caller is elsewhere), each analysed alone. A run's place in
+    it is a number: an entry's position, or ``len(entries)`` + its position in ``every``."""
+
+    def __init__(
+        self,
+        entries: list[ProgramContext],
+        every: list[ProgramContext],
+        only_uri: str | None,
+        alone: bool,
+    ) -> None:
+        self.entries = entries
+        self.every = every if alone else []
+        self.only_uri = only_uri
+
+    def from_place(self, place: int) -> Iterator[tuple[int, ProgramContext]]:
+        for i in range(place, len(self.entries)):
+            yield i, self.entries[i]
+        first = len(self.entries)
+        for i in range(max(place, first) - first, len(self.every)):
+            ctx = self.every[i]
+            if self.only_uri is not None and ctx.uri != self.only_uri:
+                continue
+            # Decided when its turn comes: an earlier run may have called it.
+            if ctx.program.first_line in ctx.facts.analysed_programs:
+                continue
+            yield first + i, ctx
+
+
+def _run_from(machine: Machine, sequence: _Sequence, place: int, deadline: float) -> None:
+    record = machine.record
+    assert record is not None
+    for at, ctx in sequence.from_place(place):
+        machine.run_index = len(record.results)
         machine.steps = 0
-        reasons.append(machine.run(ctx, deadline))
-        facts.steps += machine.steps
-    # Programs nothing ran (a subprogram whose caller is elsewhere): analyse them alone.
-    for ctx in every if entry is None else ():
-        if only_uri is not None and ctx.uri != only_uri:
+        try:
+            why = machine.run(ctx, deadline)
+        finally:
+            record.executed += machine.steps
+        record.results.append((at, why, machine.steps))
+
+
+def _resume(machine: Machine, how: Resumption, sequence: _Sequence, deadline: float) -> None:
+    """Restore the facts of the earlier evaluation up to the checkpoint, and go on from it."""
+    record = machine.record
+    assert record is not None
+    old, previous = how.record, how.previous
+    state = old.checkpoints[how.start]
+    record.checkpoints = old.checkpoints[: how.start]
+    record.segments = old.segments[: how.start]
+    record.results = old.results[: state.run]
+    facts = machine.facts
+    findings = dict(state.findings)
+    analysed = dict(state.analysed)
+    assumed = dict(state.assumed)
+    for uri, base in facts.by_uri.items():
+        before = previous.by_uri.get(uri)
+        base.findings[:] = before.findings[: findings.get(uri, 0)] if before is not None else []
+        base.analysed_programs.clear()
+        base.analysed_programs.update(analysed.get(uri, ()))
+        base.assumed_arguments.clear()
+        base.assumed_arguments.update(assumed.get(uri, ()))  # type: ignore[arg-type]
+    facts.motions[:] = previous.motions[: state.motions]
+    facts.run_values.clear()
+    for serial in state.run_values:
+        facts.run_values[serial] = previous.run_values[serial]
+    machine.resumption = how
+    at = old.results[state.run][0]
+    machine.steps = 0
+    record.resumed_at = (state.run, state.done)
+    try:
+        why = machine.resume(state, deadline)
+    finally:
+        record.executed += machine.steps - state.done
+    record.results.append((at, why, machine.steps))
+    _run_from(machine, sequence, at + 1, deadline)
+
+
+def _splice(machine: Machine, how: Resumption, index: int) -> None:
+    """The resumed run met the earlier one at its checkpoint ``index``: the rest of the
+    evaluation is the earlier one's."""
+    record = machine.record
+    assert record is not None
+    old, previous = how.record, how.previous
+    state = old.checkpoints[index]
+    record.converged_at = (state.run, state.done)
+    record.checkpoints.extend(old.checkpoints[index:])
+    record.segments.extend(old.segments[index:])
+    record.results.extend(old.results[len(record.results) :])
+    facts = machine.facts
+    findings = dict(state.findings)
+    for uri, base in facts.by_uri.items():
+        before = previous.by_uri.get(uri)
+        if before is None:
             continue
-        if ctx.program.first_line in ctx.facts.analysed_programs:
-            continue
-        machine.steps = 0
-        reasons.append(machine.run(ctx, deadline))
-        facts.steps += machine.steps
+        base.findings.extend(before.findings[findings.get(uri, 0) :])
+        base.analysed_programs.clear()
+        base.analysed_programs.update(before.analysed_programs)
+        base.assumed_arguments.clear()
+        base.assumed_arguments.update(before.assumed_arguments)
+    facts.motions.extend(previous.motions[state.motions :])
+    serials = list(previous.run_values)
+    for serial in serials[len(state.run_values) :]:
+        facts.run_values[serial] = previous.run_values[serial]
+
+
+def _finish(facts: Facts, record: RunRecord, config: Config) -> None:
+    for uri, base in facts.by_uri.items():
+        base.take_segments([segment[uri] for segment in record.segments if uri in segment])
+    reasons = [why for _, why, _ in record.results]
+    facts.steps = sum(blocks for _, _, blocks in record.results)
     if "time" in reasons:
         facts.stopped = "time"
         facts.time_limit = config.time_limit
     elif "budget" in reasons:
         facts.stopped = "budget"
-    return facts
+    facts.record = record
+
+
+def _shapes(every: Sequence[ProgramContext]) -> tuple[ProgramShape, ...]:
+    shapes: list[ProgramShape] = []
+    for ctx in every:
+        program = ctx.program
+        shapes.append(
+            ProgramShape(
+                (ctx.uri, program.first_line),
+                program.number,
+                ctx.name,
+                program.end_line,
+                tuple((seq, tuple(lines)) for seq, lines in program.labels.items()),
+                tuple(program.loops),
+                tuple((j.line, j.target, j.conditional) for j in program.jumps),
+                tuple((c.line, c.kind, c.program) for c in program.calls),
+                ctx.is_main,
+                ctx.facts.program_ends.get(program.first_line),
+            )
+        )
+    return tuple(shapes)

@@ -1,0 +1,269 @@
+"""Checkpoints of a run, and resuming a run after an edit instead of running it all again.
+
+Every ``CHECK_EVERY`` blocks, and when each program of the evaluation begins, the machine
+records its state (the call stack with each level's locals and place, the variables the run
+set, the modal state, what it has found so far) and begins a new stretch of facts. After an
+edit the evaluation resumes from the checkpoint before the first stretch that ran a changed
+line, with the new program, and stops as soon as its state equals the earlier run's at one of
+the earlier run's checkpoints after which no changed line ran: from there on the earlier
+run's stretches are the new run's. The run is deterministic, so the result equals a full
+run's (the tests compare them after random edits); resuming only saves the blocks before the
+edit and after the point where the change no longer shows.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
+
+from ..config import Config
+from ..syntax import Document
+from .facts import DocumentFacts, Facts, same_value
+
+if TYPE_CHECKING:
+    from .machine import CompiledLine
+from .values import Value
+
+CtxKey = tuple[str, int]  # a program: its document and its first line
+
+
+@dataclass(frozen=True, slots=True)
+class LevelState:
+    """One running program of the call stack (an ``Activation``)."""
+
+    ctx: CtxKey
+    locals: tuple[Value, ...]
+    shares_locals_with_caller: bool  # M98: the same #1-#33 as the level below
+    pc: int
+    macro_level: int
+    return_pc: int
+    repeats_left: int
+    serial: int
+    arguments: tuple[Value, ...] | None
+    undecided_loops: frozenset[int]
+    modal_depth: int | None
+
+
+@dataclass(frozen=True, slots=True)
+class ModalState:
+    motion: float | None
+    feed: Value
+    speed: Value
+    constant_surface_speed: bool
+    modal_calls: tuple[tuple[CtxKey | None, tuple[Value, ...], int], ...]
+    position: tuple[tuple[str, Value], ...]
+    position_line: tuple[tuple[str, tuple[str, int]], ...]
+    inch: bool
+    g76: object  # G76Parameters: frozen
+
+
+@dataclass(frozen=True, slots=True)
+class MachineState:
+    """The machine before a block: everything the rest of the evaluation depends on."""
+
+    run: int  # which run of the evaluation (its place in the sequence of entry programs)
+    done: int  # blocks that run has executed
+    levels: tuple[LevelState, ...]  # the entry program first
+    store: dict[int, Value]
+    modal: ModalState
+    speculative: bool
+    activations: int  # programs entered so far (each call's serial number)
+    seen_findings: frozenset[tuple[str, int, int]]
+    motions: int  # motion records so far
+    run_values: tuple[int, ...]  # the serials whose variables were kept, in order
+    findings: tuple[tuple[str, int], ...]  # per document: findings so far
+    analysed: tuple[tuple[str, frozenset[int]], ...]  # per document: programs run so far
+    assumed: tuple[tuple[str, tuple[object, ...]], ...]  # per document: assumed arguments
+
+    def same_as(self, other: MachineState) -> bool:
+        return (
+            self.run == other.run
+            and self.done == other.done
+            and self.speculative == other.speculative
+            and self.activations == other.activations
+            and self.motions == other.motions
+            and self.run_values == other.run_values
+            and self.findings == other.findings
+            and self.analysed == other.analysed
+            and self.seen_findings == other.seen_findings
+            and self.assumed == other.assumed
+            and len(self.levels) == len(other.levels)
+            and all(_same_level(a, b) for a, b in zip(self.levels, other.levels, strict=True))
+            and _same_modal(self.modal, other.modal)
+            and same_value(self.store, other.store)
+        )
+
+
+def _same_level(a: LevelState, b: LevelState) -> bool:
+    return (
+        a.ctx == b.ctx
+        and a.pc == b.pc
+        and a.shares_locals_with_caller == b.shares_locals_with_caller
+        and a.macro_level == b.macro_level
+        and a.return_pc == b.return_pc
+        and a.repeats_left == b.repeats_left
+        and a.serial == b.serial
+        and a.undecided_loops == b.undecided_loops
+        and a.modal_depth == b.modal_depth
+        and same_value(a.locals, b.locals)
+        and same_value(a.arguments, b.arguments)
+    )
+
+
+def _same_modal(a: ModalState, b: ModalState) -> bool:
+    return (
+        a.motion == b.motion
+        and a.constant_surface_speed == b.constant_surface_speed
+        and a.inch == b.inch
+        and a.g76 == b.g76
+        and a.position_line == b.position_line
+        and same_value(a.feed, b.feed)
+        and same_value(a.speed, b.speed)
+        and same_value(a.position, b.position)
+        and len(a.modal_calls) == len(b.modal_calls)
+        and all(
+            x[0] == y[0] and x[2] == y[2] and same_value(x[1], y[1])
+            for x, y in zip(a.modal_calls, b.modal_calls, strict=True)
+        )
+    )
+
+
+@dataclass(frozen=True, slots=True)
+class ProgramShape:
+    """What the machine reads of a program besides its lines' code: its number and name,
+    where it begins and ends, its labels, loops, jumps and calls, and whether it ends the run
+    (M30). Spans and argument words are left out: the lines' code stands for them."""
+
+    key: CtxKey
+    number: int | None
+    name: str
+    end_line: int
+    labels: tuple[tuple[int, tuple[int, ...]], ...]
+    loops: tuple[object, ...]  # index.Loop: frozen, no spans
+    jumps: tuple[tuple[int, int | None, bool], ...]  # line, target, conditional
+    calls: tuple[tuple[int, str, int | None], ...]  # line, kind, program
+    is_main: bool
+    program_end: int | None
+
+
+@dataclass
+class RunRecord:
+    """What an evaluation leaves for the next one to resume from."""
+
+    settings: tuple[Config, str | None, int | None]  # config, only_uri, entry
+    documents: tuple[tuple[str, Document], ...]
+    shapes: tuple[ProgramShape, ...]
+    # The locals each program run as an entry reads before it sets them (its run begins
+    # with them unknown), by program.
+    read_first: dict[CtxKey, tuple[tuple[int, int], ...]] = field(default_factory=dict)
+    lines: dict[str, list[CompiledLine]] = field(default_factory=dict)  # compiled, by document
+    checkpoints: list[MachineState] = field(default_factory=list)
+    # Stretch i: the facts of the blocks from checkpoint i to checkpoint i + 1, by document.
+    segments: list[dict[str, DocumentFacts]] = field(default_factory=list)
+    # Per run of the evaluation: its place in the sequence, why it ended, blocks executed.
+    results: list[tuple[int, str, int]] = field(default_factory=list)
+    executed: int = 0  # blocks this evaluation ran itself (the rest it took from the earlier)
+    resumed_at: tuple[int, int] | None = None  # (run, blocks done) it resumed from
+    converged_at: tuple[int, int] | None = None  # where it met the earlier run
+
+
+@dataclass(frozen=True)
+class Resumption:
+    """Where a new evaluation picks up an earlier one."""
+
+    previous: Facts
+    record: RunRecord
+    start: int  # the checkpoint to resume from
+    last_changed: int  # the last stretch of the earlier run that ran a changed line
+    # Checkpoints the new run may converge at: (run, blocks done) -> index.
+    convergeable: dict[tuple[int, int], int]
+
+
+def changed_lines(
+    old: Sequence[tuple[str, Document]], new: Sequence[tuple[str, Document]]
+) -> dict[str, set[int]] | None:
+    """The lines whose text differs between two versions of the same documents; None when
+    the documents are not the same ones or a line count changed (a full run follows)."""
+    if len(old) != len(new):
+        return None
+    changed: dict[str, set[int]] = {}
+    for (old_uri, a), (new_uri, b) in zip(old, new, strict=True):
+        if old_uri != new_uri or len(a.blocks) != len(b.blocks) or a.unread_from != b.unread_from:
+            return None
+        if a is b:
+            continue
+        lines = {
+            x.line
+            for x, y in zip(a.blocks, b.blocks, strict=True)
+            if x.parsed is not y.parsed and x.parsed.text != y.parsed.text
+        }
+        if lines:
+            changed[new_uri] = lines
+    return changed
+
+
+def plan(
+    previous: Facts,
+    record: RunRecord,
+    changed: dict[str, set[int]],
+    read_first: Callable[[CtxKey], tuple[tuple[int, int], ...]],
+) -> Resumption | Facts | None:
+    """How the evaluation recorded in ``record`` (not yet run) can reuse ``previous``, whose
+    documents differ in the ``changed`` lines: the earlier facts themselves when nothing that
+    runs changed, a resumption, or None (run it all). ``read_first`` computes what
+    :attr:`RunRecord.read_first` holds, for a program of the new evaluation."""
+    old = previous.record
+    if old is None or previous.stopped == "time" or old.settings != record.settings:
+        return None
+    if old.shapes != record.shapes:
+        return None
+    # A run of an entry program begins with the locals it reads before it sets them unknown:
+    # an edit that changes which those are changes the run from its first block.
+    moved = {
+        uri
+        for uri, lines in changed.items()
+        if any(
+            local_access(old.lines[uri][line]) != local_access(record.lines[uri][line])
+            for line in lines
+        )
+    }
+    for key, first in old.read_first.items():
+        if key[0] in moved and read_first(key) != first:
+            return None
+    record.read_first.update(old.read_first)
+
+    def touches(segment: dict[str, DocumentFacts]) -> bool:
+        for uri, lines in changed.items():
+            facts = segment.get(uri)
+            if facts is not None and not lines.isdisjoint(facts.runs):
+                return True
+        return False
+
+    touched = [i for i, segment in enumerate(old.segments) if touches(segment)]
+    if not touched:
+        return previous  # no changed line ran: the run is the same
+    start, last = touched[0], touched[-1]
+    # A run that runs out of its step budget reports its endless loop from the counts of the
+    # whole document so far, the changed stretch included: converging before it would keep
+    # the earlier verdict. Only checkpoints of runs after the last such run qualify.
+    last_budget = max(
+        (i for i, (_, why, _) in enumerate(old.results) if why == "budget"), default=-1
+    )
+    convergeable = {
+        (c.run, c.done): i
+        for i, c in enumerate(old.checkpoints)
+        if i > last and c.run > last_budget
+    }
+    return Resumption(previous, old, start, last, convergeable)
+
+
+def local_access(cl: CompiledLine) -> tuple[tuple[int, ...], tuple[int | None, ...]]:
+    """The variables a line reads and those it sets: what the locals a program reads before
+    it sets them are found from."""
+    targets: list[int | None] = []
+    part: CompiledLine | None = cl
+    while part is not None:
+        targets.append(part.target_number)
+        part = part.second
+    return cl.reads, tuple(targets)

@@ -1,0 +1,258 @@
+"""An evaluation resumed from the checkpoints of an earlier one equals a full run, always.
+
+Random edits (a number changed, a line replaced by another of the file, a line emptied, two
+lines swapped, a variable renumbered) of the seed programs, the rule fixtures and generated
+long programs; after each, the facts of the resumed evaluation are compared, field by field
+and value by value, with those of a fresh one; edits are chained, each resuming from the one
+before. Other tests check that the resumption really saves work.
+"""
+
+from __future__ import annotations
+
+import random
+import re
+from pathlib import Path
+
+import pytest
+
+from fanuc_macro.analysis import analyse
+from fanuc_macro.config import Config
+from fanuc_macro.evaluator import Facts, Motion, ValueSummary, evaluate
+from fanuc_macro.evaluator.facts import same_value
+from fanuc_macro.index import build_index
+from fanuc_macro.parser import BlockParser, parse_text
+
+FIXTURES = Path(__file__).parent / "fixtures"
+PROGRAMS = sorted(
+    [
+        *(FIXTURES / "seeds").glob("*.nc"),
+        *(FIXTURES / "thread_variants").glob("*.nc"),
+        *(FIXTURES / "rules").glob("*.nc"),
+    ]
+)
+URI = "file:///edit.nc"
+
+
+FIELDS = (
+    "runs",
+    "reads",
+    "writes",
+    "jumps",
+    "findings",
+    "analysed",
+    "incomplete",
+    "roundings",
+    "ends",
+    "assumed",
+)
+
+
+def digest(facts: Facts) -> dict[str, object]:
+    """Everything the rules and the editor read of the facts, as plain values, by name."""
+
+    def summary(s: ValueSummary) -> tuple[object, ...]:
+        return (s.count, s.first, s.last, s.minimum, s.maximum, s.vacant, s.unknown)
+
+    out: dict[str, object] = {}
+    for uri, d in facts.by_uri.items():
+        parts: tuple[object, ...] = (
+            dict(d.runs),
+            {k: summary(v) for k, v in d.reads.items()},
+            {k: (n, summary(v)) for k, (n, v) in d.writes.items()},
+            {k: (j.taken, j.not_taken, j.undecided, j.guessed) for k, j in d.jumps.items()},
+            [vars(f) for f in d.findings],
+            sorted(d.analysed_programs),
+            sorted(d.incomplete_programs),
+            {k: (r.function, r.argument, r.result, r.count) for k, r in d.roundings.items()},
+            dict(d.program_ends),
+            list(d.assumed_arguments.items()),
+        )
+        for name, part in zip(FIELDS, parts, strict=True):
+            out[f"{uri} {name}"] = part
+    out["motions"] = [tuple(getattr(m, n) for n in Motion.__slots__) for m in facts.motions]
+    out["run values"] = [(k, v.locals, v.globals) for k, v in facts.run_values.items()]
+    out["steps"] = facts.steps
+    out["stopped"] = facts.stopped
+    return out
+
+
+def assert_same(resumed: Facts, full: Facts) -> None:
+    a, b = digest(resumed), digest(full)
+    assert a.keys() == b.keys()
+    for name, value in a.items():
+        assert same_value(value, b[name]), f"{name}: {value!r:.600} != {b[name]!r:.600}"
+
+
+def evaluate_text(
+    text: str, parser: BlockParser, config: Config, previous: Facts | None = None
+) -> Facts:
+    doc = parse_text(text, URI, parser)
+    return evaluate([(URI, doc, build_index(doc))], config, only_uri=URI, previous=previous)
+
+
+NUMBER = re.compile(r"(?<![#A-Z])\d+\.?\d*|(?<=#)\d+")
+
+
+def mutate(lines: list[str], rng: random.Random) -> list[str]:
+    """One edit that keeps the line count, as a user makes while typing."""
+    out = list(lines)
+    i = rng.randrange(len(out))
+    kind = rng.randrange(5)
+    if kind == 0 or kind == 4:  # a number (or a variable's number) changed
+        found = list(NUMBER.finditer(out[i]))
+        if found:
+            m = rng.choice(found)
+            digits = str(rng.choice([0, 1, 2, 3, 5, 9, 10, 25, 100, 101, 0.5]))
+            out[i] = out[i][: m.start()] + digits + out[i][m.end() :]
+    elif kind == 1:  # a line replaced by another line of the file
+        out[i] = out[rng.randrange(len(out))]
+    elif kind == 2:  # a line emptied
+        out[i] = ""
+    else:  # two lines swapped
+        j = rng.randrange(len(out))
+        out[i], out[j] = out[j], out[i]
+    return out
+
+
+def long_program(blocks: int, seed: int) -> str:
+    """A long main program with loops, calls of a subprogram and thread passes."""
+    rng = random.Random(seed)
+    lines = ["%", "O1000 (LONG)", "#100=50.", "#101=3.", "#102=40."]
+    i = 0
+    while len(lines) < blocks:
+        i += 1
+        pick = rng.randrange(6)
+        if pick == 0:
+            lines += [
+                f"#{1 + i % 30}=#101*{i % 7 + 1}.+SQRT[{i % 11 + 1}.]",
+                f"G00 X[#100+{i % 5 + 1}.] Z{i % 9 + 2}.",
+            ]
+        elif pick == 1:
+            lines += [f"G92 X[#100-0.{i % 9 + 1}] W-[#102+#101] F#101", f"G01 W[{i % 3}.*0.1]"]
+        elif pick == 2:
+            lines += [
+                "#20=0",
+                f"WHILE[#20LT{rng.randrange(2, 40)}]DO1",
+                "#20=#20+1",
+                f"#{110 + i % 5}=#{110 + i % 5}+#20*0.{i % 9 + 1}",
+                "END1",
+            ]
+        elif pick == 3:
+            lines += ["M98 P2000", f"#{1 + i % 30}=#130+{i % 4}."]
+        elif pick == 4:
+            lines += [f"IF[#{1 + i % 30}GT{i % 13}.]GOTO{9000 + i}", "#31=#31+1", f"N{9000 + i}"]
+        else:
+            lines += [f"G01 X{rng.uniform(10, 90):.3f} Z{-rng.uniform(0, 80):.3f} F0.2"]
+    lines += [
+        "M30",
+        "O2000 (SUB)",
+        "#130=#130+1.",
+        "#21=0",
+        "WHILE[#21LT3]DO1",
+        "#21=#21+1",
+        "END1",
+        "M99",
+        "%",
+    ]
+    return "\n".join(lines) + "\n"
+
+
+@pytest.mark.parametrize("path", PROGRAMS, ids=lambda p: p.name)
+def test_resumed_equals_full_after_random_edits(path: Path) -> None:
+    rng = random.Random(path.name)
+    # A small step budget: an edit that makes a loop endless ends soon, and the runs that
+    # end at the budget (whose verdicts read the whole run) are resumed too.
+    config = Config(step_budget=20_000)
+    parser = BlockParser()
+    lines = path.read_text("utf-8", errors="replace").splitlines()
+    if not lines:
+        return
+    previous = evaluate_text("\n".join(lines), parser, config)
+    for _ in range(12):
+        lines = mutate(lines, rng)
+        text = "\n".join(lines)
+        resumed = evaluate_text(text, parser, config, previous)
+        full = evaluate_text(text, BlockParser(), config)
+        assert_same(resumed, full)
+        previous = resumed
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_long_programs_resume_and_equal_full(seed: int) -> None:
+    rng = random.Random(seed)
+    config = Config()
+    parser = BlockParser()
+    lines = long_program(12_000, seed).splitlines()
+    previous = evaluate_text("\n".join(lines), parser, config)
+    saved = 0
+    for _ in range(6):
+        lines = mutate(lines, rng)
+        text = "\n".join(lines)
+        resumed = evaluate_text(text, parser, config, previous)
+        full = evaluate_text(text, parser, config)
+        assert_same(resumed, full)
+        if resumed is not previous and resumed.record is not None and full.record is not None:
+            saved += full.record.executed - resumed.record.executed
+        previous = resumed
+    assert saved > 0
+
+
+def test_an_edit_late_in_a_long_program_runs_few_blocks() -> None:
+    config = Config()
+    parser = BlockParser()
+    text = long_program(40_000, 11)
+    lines = text.splitlines()
+    first = evaluate_text(text, parser, config)
+    assert first.record is not None and first.stopped is None
+    total = first.record.executed
+    # A number of an assignment three quarters down the program.
+    line = next(
+        i for i in range(len(lines) * 3 // 4, len(lines)) if re.match(r"#\d+=#101\*", lines[i])
+    )
+    lines[line] = lines[line].replace("#101*", "#101*2.*", 1)
+    edited = "\n".join(lines)
+    resumed = evaluate_text(edited, parser, config, first)
+    assert resumed.record is not None
+    assert resumed.record.resumed_at is not None
+    assert resumed.record.converged_at is not None
+    assert resumed.record.executed < total // 4
+    assert_same(resumed, evaluate_text(edited, BlockParser(), config))
+
+
+def test_an_edit_in_a_comment_reuses_the_run() -> None:
+    config = Config()
+    parser = BlockParser()
+    text = long_program(20_000, 3)
+    first = evaluate_text(text, parser, config)
+    edited = text.replace("#101=3.\n", "#101=3. (PITCH)\n", 1)
+    again = evaluate_text(edited, parser, config, first)
+    # The line ran once, at the start: the run resumes there and meets the earlier one at
+    # its next checkpoint.
+    assert again.record is not None and first.record is not None
+    assert again.record.converged_at is not None
+    assert again.record.executed <= 4096 < first.record.executed
+    assert_same(again, evaluate_text(edited, BlockParser(), config))
+
+
+def test_other_settings_run_in_full() -> None:
+    parser = BlockParser()
+    text = long_program(3_000, 5)
+    first = evaluate_text(text, parser, Config())
+    other = Config(step_budget=10_000)
+    again = evaluate_text(text, parser, other, first)
+    assert again.record is not None and again.record.resumed_at is None
+    assert_same(again, evaluate_text(text, BlockParser(), other))
+
+
+def test_analyse_with_previous_facts_gives_the_same_diagnostics() -> None:
+    rng = random.Random(7)
+    parser = BlockParser()
+    lines = (FIXTURES / "seeds" / "o4009_external_m50x3.nc").read_text("utf-8").splitlines()
+    previous = analyse("\n".join(lines), URI, parser=parser).facts
+    for _ in range(20):
+        lines = mutate(lines, rng)
+        text = "\n".join(lines)
+        resumed = analyse(text, URI, parser=parser, previous_facts=previous)
+        full = analyse(text, URI, parser=BlockParser())
+        assert resumed.diagnostics == full.diagnostics
+        previous = resumed.facts
