@@ -11,6 +11,7 @@ from __future__ import annotations
 import time
 from dataclasses import dataclass, field, replace
 
+from ..cancel import RUNNING, CancelToken
 from ..config import Config
 from ..index import Program, ProgramIndex, constant_value
 from ..per_line import PerLine
@@ -60,6 +61,8 @@ MAX_MOTIONS = 200_000  # motion records kept per analysis
 THREADING_CODES = frozenset({32.0, 33.0, 34.0, 76.0, 92.0})
 MAX_REMEMBERED_RUNS = 1000  # executions whose variables are kept when they start a thread
 CHECK_EVERY = 4096  # blocks between two looks at the budgets
+# ... when a newer edit may cancel the run: 512 motion blocks take about 3 ms.
+CANCEL_CHECK_EVERY = 512
 
 
 @dataclass(slots=True)
@@ -364,8 +367,15 @@ class G76Parameters:
 
 
 class Machine:
-    def __init__(self, programs: dict[int, ProgramContext], config: Config, facts: Facts) -> None:
+    def __init__(
+        self,
+        programs: dict[int, ProgramContext],
+        config: Config,
+        facts: Facts,
+        cancel: CancelToken | None = None,
+    ) -> None:
         self.programs = programs
+        self.cancel = cancel
         self.config = config
         self.facts = facts
         self.store: dict[int, Value] = {}
@@ -439,9 +449,11 @@ class Machine:
     def _loop(self, act: Activation) -> None:
         steps = self._steps = 0
         budget = self.budget
+        cancel = self.cancel
+        every = CHECK_EVERY if cancel is None else CANCEL_CHECK_EVERY
         # Block budget + 1: the budget's last block still runs, and the run stops before the
         # next, at the same block on any machine.
-        next_check = min(CHECK_EVERY, budget + 1)
+        next_check = min(every, budget + 1)
         while True:
             ctx = act.ctx
             pc = act.pc
@@ -464,7 +476,9 @@ class Machine:
                     # and its load, so nothing is concluded from where it stopped.
                     self._mark_incomplete(act)
                     raise _Stop("time")
-                next_check = min(steps + CHECK_EVERY, budget + 1)
+                if cancel is not None:
+                    cancel.reached(RUNNING, steps - 1, budget)
+                next_check = min(steps + every, budget + 1)
             facts = ctx.facts
             runs = facts.runs
             runs[pc] = runs.get(pc, 0) + 1
