@@ -397,9 +397,12 @@ class Engine:
             progress.title = f"fanuc-macro: analysing {_display_name(text.uri)}"
         ending = "done"
         try:
-            return self._run_job(job, text)
+            result = self._run_job(job, text)
+            if result is not None and result.error is not None:
+                ending = "failed"
+            return result
         except Cancelled as stop:
-            ending = "cancelled: the document changed"
+            ending = "cancelled: a document it reads changed"
             return Stopped(key, text.version, stop.where(), job.changed)
         except BaseException:
             ending = "failed"
