@@ -2,9 +2,12 @@
 
 Prints: the first analysis of a 20,000-block program, keystroke -> diagnostics latency (total
 and after the debounce), how many analyses a burst of typing publishes, hover latency while the
-analysis is fresh, and the server's resident memory. Not a test: figures depend on the machine.
+analysis is fresh, and the server's resident memory; then, in a server of its own, a keystroke
+during the analysis of a 200,000-block CAM file -> the newer version's diagnostics (the running
+analysis is cancelled). Not a test: figures depend on the machine.
 
     PYTHONPATH=server python bench/bench_lsp.py [--blocks 20000] [--debounce 250]
+    python bench/bench_lsp.py --only-cancel [--server-pythonpath ../main/server]
 """
 
 from __future__ import annotations
@@ -17,6 +20,7 @@ import statistics
 import sys
 import time
 from pathlib import Path
+from typing import Any
 
 from lsprotocol import types
 from pygls.lsp.client import LanguageClient
@@ -60,6 +64,16 @@ def program(blocks: int) -> str:
         "%",
     ]
     return "\n".join(lines) + "\n"
+
+
+def cam_program(blocks: int) -> str:
+    """CAM output: a macro header, then plain G01 X Y Z blocks, no two alike."""
+    rows = [
+        f"G01 X{i / 1000:.3f} Y{(i * 7919) % 100_003 / 1000:.3f} Z-{i % 977 / 100:.2f}"
+        for i in range(blocks)
+    ]
+    head = ["%", "O1234 (CAM)", "#100=2.", "#101=#100*3.", "G90 G54 G00 X0 Y0", "S3000 M03"]
+    return "\n".join([*head, *rows, "M30", "%"]) + "\n"
 
 
 class Bench:
@@ -106,6 +120,73 @@ def rss_kib(pid: int) -> dict[str, int]:
 
 def ms(seconds: float) -> str:
     return f"{seconds * 1000:.0f} ms"
+
+
+def change_digit(uri: str, version: int, line: int, column: int, digit: str) -> Any:
+    return types.DidChangeTextDocumentParams(
+        text_document=types.VersionedTextDocumentIdentifier(uri=uri, version=version),
+        content_changes=[
+            types.TextDocumentContentChangePartial(
+                range=types.Range(
+                    start=types.Position(line=line, character=column),
+                    end=types.Position(line=line, character=column + 1),
+                ),
+                text=digit,
+            )
+        ],
+    )
+
+
+async def cancellation(pythonpath: str, blocks: int, debounce_ms: int, after: float) -> None:
+    """A keystroke ``after`` seconds into the analysis of a big CAM file, cold (just opened) and
+    warm (just edited): the time until the newer version's diagnostics."""
+    bench = Bench()
+    client = bench.client
+    server = os.environ.get("FANUC_MACRO_BENCH_SERVER", "-m fanuc_macro.lsp.server").split()
+    await client.start_io(sys.executable, *server, env={**os.environ, "PYTHONPATH": pythonpath})
+    limits = {"maxBlocks": 10 * blocks, "maxFileSize": 100 * blocks}
+    await client.initialize_async(
+        types.InitializeParams(
+            capabilities=types.ClientCapabilities(),
+            initialization_options={"analysis": {"debounceMs": debounce_ms, **limits}},
+        )
+    )
+    client.initialized(types.InitializedParams())
+    text = cam_program(blocks)
+    lines = text.split("\n")
+    uri = "untitled:cam.nc"
+    line = len(lines) // 2
+    column = lines[line].index("X") + 1
+    t0 = time.perf_counter()
+    client.text_document_did_open(
+        types.DidOpenTextDocumentParams(
+            text_document=types.TextDocumentItem(
+                uri=uri, language_id="fanuc-macro", version=1, text=text
+            )
+        )
+    )
+    await asyncio.sleep(after)
+    sent = time.perf_counter()
+    client.text_document_did_change(change_digit(uri, 2, line, column, "7"))
+    got = await bench.wait_version(uri, 2, 600.0)
+    print(
+        f"cancellation, {len(lines) - 1} lines of CAM output: keystroke {ms(sent - t0)} after "
+        f"open -> diagnostics of the newer version: {ms(got - sent)} (open -> them: {ms(got - t0)})"
+    )
+    client.text_document_did_change(change_digit(uri, 3, line, column, "8"))
+    await asyncio.sleep(after)
+    sent = time.perf_counter()
+    client.text_document_did_change(change_digit(uri, 4, line, column, "9"))
+    got = await bench.wait_version(uri, 4, 600.0)
+    print(
+        f"cancellation: a keystroke {ms(after)} into the analysis of an edit -> diagnostics of "
+        f"the newer version: {ms(got - sent)}"
+    )
+    stale = [p for p in bench.published if p[2] in (1, 3)]
+    print(f"versions 1 and 3 published: {len(stale)}")
+    await client.shutdown_async(None)
+    client.exit(None)
+    await client.stop()
 
 
 async def main(blocks: int, debounce_ms: int, keystrokes: int, hovers: int) -> None:
@@ -261,5 +342,17 @@ if __name__ == "__main__":
     parser.add_argument("--debounce", type=int, default=250, help="analysis.debounceMs")
     parser.add_argument("--keystrokes", type=int, default=10)
     parser.add_argument("--hovers", type=int, default=50)
+    parser.add_argument("--cancel-blocks", type=int, default=200_000)
+    parser.add_argument("--cancel-after", type=float, default=1.0, help="seconds into the analysis")
+    parser.add_argument("--only-cancel", action="store_true", help="only the cancellation case")
+    parser.add_argument(
+        "--server-pythonpath",
+        default=str(ROOT / "server"),
+        help="the package the cancellation case's server runs (another checkout, to compare)",
+    )
     args = parser.parse_args()
-    asyncio.run(main(args.blocks, args.debounce, args.keystrokes, args.hovers))
+    if not args.only_cancel:
+        asyncio.run(main(args.blocks, args.debounce, args.keystrokes, args.hovers))
+    asyncio.run(
+        cancellation(args.server_pythonpath, args.cancel_blocks, args.debounce, args.cancel_after)
+    )

@@ -64,13 +64,16 @@ async def client(lsp_client: LanguageClient) -> AsyncIterator[None]:
 
 
 async def start(
-    client: LanguageClient, folder: Path | None = SEEDS, options: dict[str, Any] | None = None
+    client: LanguageClient,
+    folder: Path | None = SEEDS,
+    options: dict[str, Any] | None = None,
+    capabilities: types.ClientCapabilities = CAPABILITIES,
 ) -> None:
     settings = {"analysis": {"debounceMs": 20}, **(options or {})}
     await asyncio.wait_for(
         client.initialize_session(
             types.InitializeParams(
-                capabilities=CAPABILITIES,
+                capabilities=capabilities,
                 root_uri=folder.as_uri() if folder else None,
                 workspace_folders=(
                     [types.WorkspaceFolder(uri=folder.as_uri(), name=folder.name)]
@@ -751,6 +754,105 @@ async def test_a_10_mb_document_and_a_1_mb_line_get_their_verdicts(
     assert "analysed the first 25000 blocks of 500002" in verdict.message
     found = await diagnostics(client, "untitled:line.nc", lambda d: "MB011" in codes(d))
     assert time.monotonic() - started < 30.0  # a few seconds; it was no answer in 200 s
+
+
+# A client that shows progress (window/workDoneProgress); the server shows it from the first
+# checkpoint of an analysis (every 1,024 blocks read), since the delay is 0 here.
+WITH_PROGRESS = types.ClientCapabilities(
+    general=CAPABILITIES.general,
+    text_document=CAPABILITIES.text_document,
+    workspace=CAPABILITIES.workspace,
+    window=types.WindowClientCapabilities(work_done_progress=True),
+)
+BIG = {
+    "analysis": {
+        "debounceMs": 20,
+        "progressDelayMs": 0,
+        "maxBlocks": 1_000_000,
+        "maxFileSize": 100_000_000,
+    }
+}
+
+
+def cam_program(blocks: int) -> str:
+    """CAM output: a macro header, then plain motion blocks, no two alike."""
+    rows = [
+        f"G01 X{i / 1000:.3f} Y{(i * 7919) % 100_003 / 1000:.3f} Z-{i % 977 / 100:.2f}"
+        for i in range(blocks)
+    ]
+    head = ["%", "O1234 (CAM)", "#100=2.", "#101=#100*3.", "G90 G54 G00 X0 Y0", "S3000 M03"]
+    return "\n".join([*head, *rows, "M30", "%"]) + "\n"
+
+
+def progress_of(client: LanguageClient) -> dict[Any, list[Any]]:
+    return {token: list(values) for token, values in client.progress_reports.items()}
+
+
+async def progress_until(
+    client: LanguageClient, what: Callable[[dict[Any, list[Any]]], bool]
+) -> dict[Any, list[Any]]:
+    deadline = time.monotonic() + WAIT
+    while not what(progress_of(client)):
+        assert time.monotonic() < deadline, f"no such progress: {progress_of(client)}"
+        await asyncio.sleep(0.01)
+    return progress_of(client)
+
+
+def ended(values: list[Any]) -> bool:
+    return bool(values) and isinstance(values[-1], types.WorkDoneProgressEnd)
+
+
+async def test_an_edit_cancels_the_running_analysis_and_the_newest_text_is_analysed(
+    client: LanguageClient,
+) -> None:
+    await start(client, None, BIG, WITH_PROGRESS)
+    uri = "untitled:cam.nc"
+    text = cam_program(100_000)
+    open_text(client, uri, text)
+    # Its progress has begun: the analysis of version 1 is under way (seconds of work).
+    await progress_until(client, lambda p: any(p.values()))
+    end = text.split("\n").index("M30")
+    edit(client, uri, 2, [replace(end, 0, 0, "GOTO 9999\n")])
+    found = await diagnostics(client, uri, lambda d: "MB101" in codes(d))
+    assert "MB000" not in codes(found)
+    cancelled = [m.message for m in client.log_messages if "cancelled" in m.message]
+    assert len(cancelled) == 1, cancelled
+    assert f"the analysis of {uri} (version 1) was cancelled while" in cancelled[0]
+    # It stopped at a block boundary well before its end: "after 2,048 of 100,008 blocks".
+    done, total = (int(n.replace(",", "")) for n in cancelled[0].split("after ")[1].split()[:3:2])
+    assert 0 < done < total
+    # Both analyses' progress ended: the first cancelled, the second done.
+    shown = await progress_until(client, lambda p: len(p) == 2 and all(map(ended, p.values())))
+    first, second = shown.values()
+    assert isinstance(first[0], types.WorkDoneProgressBegin)
+    assert first[0].title == "fanuc-macro: analysing cam.nc"
+    assert first[-1].message.startswith("cancelled")
+    assert second[-1].message == "done"
+    assert not [m for m in client.log_messages if m.type == types.MessageType.Error]
+
+
+async def test_a_long_analysis_shows_its_progress_and_a_short_one_none(
+    client: LanguageClient,
+) -> None:
+    await start(client, None, BIG, WITH_PROGRESS)
+    open_text(client, "untitled:short.nc", "O1000\n#1=1\nG01 X#1 Z1. F0.2\nM30\n")
+    await diagnostics(client, "untitled:short.nc")
+    assert not client.progress_reports  # fewer blocks than one checkpoint: never shown
+    open_text(client, "untitled:cam.nc", cam_program(20_000))
+    await diagnostics(client, "untitled:cam.nc")
+    shown = await progress_until(client, lambda p: len(p) == 1 and ended(next(iter(p.values()))))
+    (values,) = shown.values()
+    begin, *reports, end = values
+    assert isinstance(begin, types.WorkDoneProgressBegin)
+    assert begin.title == "fanuc-macro: analysing cam.nc" and begin.cancellable is False
+    assert begin.message.startswith("reading blocks: ")
+    assert all(isinstance(r, types.WorkDoneProgressReport) for r in reports)
+    percentages = [begin.percentage, *(r.percentage for r in reports)]
+    assert percentages == sorted(percentages) and all(0 <= p <= 100 for p in percentages)
+    assert isinstance(end, types.WorkDoneProgressEnd) and end.message == "done"
+    open_text(client, "untitled:short2.nc", "O1001\nG00 X1.\nM30\n")
+    await diagnostics(client, "untitled:short2.nc")
+    assert len(client.progress_reports) == 1
 
 
 async def test_a_crash_is_logged_and_the_server_goes_on(client: LanguageClient) -> None:

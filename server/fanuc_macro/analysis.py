@@ -11,6 +11,7 @@ from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, field, replace
 
 from . import dialects
+from .cancel import CHECKING, RULE_CHECKS, SLICE, CancelToken, raise_if_cancelled
 from .config import Config
 from .diagnostics import (
     REPORT_INTERNAL_ERROR,
@@ -121,11 +122,16 @@ _FOLDED = frozenset({"MB001", "MB002", "MB003", "MB004", "MB005", "MB008"})
 _FANUC_STYLE = frozenset({"MB006"})
 
 
-def run_checks(ctx: RuleContext, checks: Iterable[ExtraChecks]) -> list[Diagnostic]:
+def run_checks(
+    ctx: RuleContext, checks: Iterable[ExtraChecks], cancel: CancelToken | None = None
+) -> list[Diagnostic]:
     found: list[Diagnostic] = []
     per_block: list[tuple[int, ParsedLine, tuple[LineFinding, ...]]] = []
     marks: list[dialects.FileDialect] = []
-    for block in ctx.doc.blocks:
+    blocks = ctx.doc.blocks
+    for block in blocks:
+        if cancel is not None and block.line and block.line % SLICE == 0:
+            cancel.reached(CHECKING, block.line, len(blocks))
         parsed = block.parsed
         if parsed.statement is None and parsed.problem is None and not parsed.notes:
             continue
@@ -151,12 +157,15 @@ def run_checks(ctx: RuleContext, checks: Iterable[ExtraChecks]) -> list[Diagnost
                     "MB002", _foreign_message(foreign, parsed, first), line, first.start, first.end
                 )
             )
-    for check in checks:
+    rules = list(checks)
+    for done, rule in enumerate(rules):
+        if cancel is not None:
+            cancel.reached(RULE_CHECKS, done, len(rules))
         try:
-            found.extend(check(ctx))
+            found.extend(rule(ctx))
         except Exception as err:  # a bug in one rule must not hide the others
-            log.exception("rule %s failed on %s", rule_name(check), ctx.doc.uri)
-            message = internal_error(f"rule {rule_name(check)}", err)
+            log.exception("rule %s failed on %s", rule_name(rule), ctx.doc.uri)
+            message = internal_error(f"rule {rule_name(rule)}", err)
             found.append(make("MB000", message, 0, 0, 0))
     return found
 
@@ -189,18 +198,25 @@ def analyse(
     run_evaluator: bool = True,
     facts: Facts | None = None,
     previous_facts: Facts | None = None,
+    cancel: CancelToken | None = None,
 ) -> Analysis:
     """Parse (unless ``doc`` is given), index, evaluate and check one document.
 
     ``other_documents`` are the workspace's other files: the programs this one calls.
     ``facts`` from an earlier run of the same programs spare the evaluator (see
     :meth:`fanuc_macro.workspace.Workspace.analyse`); ``previous_facts``, from a run of an
-    earlier version of the same documents, let it resume where the edit begins to matter.
+    earlier version of the same documents, let it resume where the edit begins to matter. A
+    set ``cancel`` token stops the analysis at its next block boundary with
+    :class:`~fanuc_macro.cancel.Cancelled` (none is given by the command line); nothing is
+    returned then, and the caches hold only whole lines' results.
     """
+    raise_if_cancelled(cancel)
     with quiet_gc():  # the run makes many small objects and no cycles
         config = config or Config()
         if doc is None:
-            doc = parse_text(text, uri, parser or default_parser(), limits=config.read_limits)
+            doc = parse_text(
+                text, uri, parser or default_parser(), limits=config.read_limits, cancel=cancel
+            )
         if index is None:
             index = build_index(doc)
         failed: list[Diagnostic] = []
@@ -211,13 +227,14 @@ def analyse(
                     config,
                     only_uri=uri,
                     previous=previous_facts,
+                    cancel=cancel,
                 )
             except Exception as err:  # the structural rules still report
                 log.exception("evaluation of %s failed", uri)
                 message = internal_error("the evaluator (its rules MB501-MB903 did not run)", err)
                 failed.append(make("MB000", message, 0, 0, 0))
         ctx = RuleContext(doc, index, config, workspace_programs, facts)
-        found = failed + run_checks(ctx, [*ALL_CHECKS, *extra_checks])
+        found = failed + run_checks(ctx, [*ALL_CHECKS, *extra_checks], cancel)
         threads: list[Thread] = []
         if facts is not None:
             try:

@@ -33,6 +33,7 @@ from .blocks import (
     decode_bytes,
     split_lines,
 )
+from .cancel import READING, SLICE, CancelToken, raise_if_cancelled
 from .index import INDEXED_STATEMENTS, mentions_call
 from .lalr_driver import TableParser
 from .syntax import (
@@ -867,18 +868,29 @@ def parse_text(
     parser: BlockParser | None = None,
     previous: Document | None = None,
     limits: ReadLimits = READ_WHOLE,
+    cancel: CancelToken | None = None,
 ) -> Document:
     """Parse a document; with ``previous`` (its last version) unchanged lines keep their blocks.
 
     Past the ``limits`` of a document the lines get no block (``line_count`` still counts
-    them), and ``unread_note`` says what was left out."""
+    them), and ``unread_note`` says what was left out. ``cancel`` is looked at every
+    :data:`~fanuc_macro.cancel.SLICE` lines (see :mod:`fanuc_macro.cancel`)."""
+    raise_if_cancelled(cancel)
     bp = parser or default_parser()
     lines = split_lines(text)
     read = _lines_read(text, lines, limits)
     with quiet_gc():
-        parsed = bp.parse_lines(
-            lines if read == len(lines) else lines[:read], limits.max_line_length
-        )
+        if cancel is None:
+            parsed = bp.parse_lines(
+                lines if read == len(lines) else lines[:read], limits.max_line_length
+            )
+        else:
+            parsed = []
+            for start in range(0, read, SLICE):
+                if start:
+                    cancel.reached(READING, start, read)
+                end = min(start + SLICE, read)
+                parsed += bp.parse_lines(lines[start:end], limits.max_line_length)
         if previous is None:
             blocks = tuple(map(Block, range(read), parsed))
         else:

@@ -8,6 +8,7 @@ from pathlib import Path
 
 from .analysis import Analysis, analyse
 from .blocks import ReadLimits, decode_bytes
+from .cancel import CancelToken
 from .config import Config
 from .evaluator import Facts
 from .index import Call, ProgramIndex, build_index
@@ -86,11 +87,14 @@ class Workspace:
         self._executions += 1
         return self._executions
 
-    def add_text(self, uri: str, text: str) -> Document:
+    def add_text(self, uri: str, text: str, cancel: CancelToken | None = None) -> Document:
+        """Read a new text of ``uri``. Cancelled (see :mod:`fanuc_macro.cancel`), the workspace
+        keeps the text it had: nothing is stored before the whole text is read."""
         old = self._entries.get(uri)
         limits = self.config.read_limits
         # The previous version's blocks are reused for the lines an edit did not touch.
-        doc = parse_text(text, uri, self.parser, old.doc if old is not None else None, limits)
+        previous = old.doc if old is not None else None
+        doc = parse_text(text, uri, self.parser, previous, limits, cancel)
         if old is not None and same_execution(old.doc, doc):
             execution = old.execution
         else:
@@ -169,12 +173,17 @@ class Workspace:
                 return uri, line if line is not None else program.first_line
         return None
 
-    def analyse(self, uri: str, workspace_programs: frozenset[int] | None = None) -> Analysis:
+    def analyse(
+        self,
+        uri: str,
+        workspace_programs: frozenset[int] | None = None,
+        cancel: CancelToken | None = None,
+    ) -> Analysis:
         """Analyse ``uri`` with the programs of the workspace it calls.
 
         The evaluator's facts are kept while no document it ran changed what it does: typing in
         a comment re-runs the rules (comments name parameters and suppress diagnostics), not
-        the program.
+        the program. A cancelled analysis (``cancel``) keeps nothing.
         """
         entry = self._entries[uri]
         programs = self.program_numbers() if workspace_programs is None else workspace_programs
@@ -195,6 +204,7 @@ class Workspace:
             other_documents=others,
             facts=facts,
             previous_facts=previous,
+            cancel=cancel,
         )
         if analysis.facts is not None:
             self._facts[uri] = (self.config, runs, analysis.facts)

@@ -12,6 +12,7 @@ import time
 from collections.abc import Sequence
 from dataclasses import dataclass, field, replace
 
+from ..cancel import RUNNING, CancelToken
 from ..config import Config
 from ..index import Program, ProgramIndex, constant_value
 from ..per_line import PerLine
@@ -61,7 +62,7 @@ MAX_NESTING = 10
 MAX_MOTIONS = 200_000  # motion records kept per analysis
 THREADING_CODES = frozenset({32.0, 33.0, 34.0, 76.0, 92.0})
 MAX_REMEMBERED_RUNS = 1000  # executions whose variables are kept when they start a thread
-CHECK_EVERY = 1024  # blocks between two looks at the budgets, and between checkpoints
+CHECK_EVERY = 1024  # blocks between two looks at the budgets, a newer edit and checkpoints
 
 
 @dataclass(slots=True)
@@ -380,8 +381,10 @@ class Machine:
         config: Config,
         facts: Facts,
         contexts: Sequence[ProgramContext] = (),
+        cancel: CancelToken | None = None,
     ) -> None:
         self.programs = programs
+        self.cancel = cancel
         # Every program, by document and first line: what a checkpoint names them by.
         self.contexts: dict[CtxKey, ProgramContext] = {
             (c.uri, c.program.first_line): c for c in contexts
@@ -615,6 +618,7 @@ class Machine:
     def _loop(self, act: Activation, done: int = 0) -> None:
         steps = self._steps = done
         budget = self.budget
+        cancel = self.cancel
         # Block budget + 1: the budget's last block still runs, and the run stops before the
         # next, at the same block on any machine. The looks fall on whole multiples of
         # CHECK_EVERY, so a resumed run takes its checkpoints where the earlier run did.
@@ -641,6 +645,8 @@ class Machine:
                     # and its load, so nothing is concluded from where it stopped.
                     self._mark_incomplete(act)
                     raise _Stop("time")
+                if cancel is not None:
+                    cancel.reached(RUNNING, steps - 1, budget)
                 next_check = min(steps + CHECK_EVERY, budget + 1)
                 if self.record is not None:
                     self._checkpoint(act, steps - 1)

@@ -5,12 +5,20 @@ from __future__ import annotations
 import time
 from collections.abc import Iterator, Sequence
 
+from ..cancel import COMPILING, SLICE, CancelToken
 from ..config import Config
 from ..index import ProgramIndex
 from ..syntax import Document
 from .checkpoints import ProgramShape, Resumption, RunRecord, changed_lines, plan
 from .facts import Facts
-from .machine import Converged, Machine, ProgramContext, build_contexts, locals_read_first
+from .machine import (
+    Converged,
+    Machine,
+    ProgramContext,
+    build_contexts,
+    compiled,
+    locals_read_first,
+)
 
 
 def entry_programs(every: Sequence[ProgramContext], only_uri: str | None) -> list[ProgramContext]:
@@ -41,12 +49,14 @@ def evaluate(
     only_uri: str | None = None,
     entry: int | None = None,
     previous: Facts | None = None,
+    cancel: CancelToken | None = None,
 ) -> Facts:
     """Run every entry program (or O``entry``) of ``docs`` within the configured budgets.
 
     ``previous``: the facts of an earlier evaluation of other versions of the same documents
     with the same settings; the run resumes from its checkpoints where it can (see
-    :mod:`.checkpoints`), with the same result as a full run.
+    :mod:`.checkpoints`), with the same result as a full run. ``cancel`` may stop it (see
+    :mod:`fanuc_macro.cancel`).
     """
     config = config or Config()
     docs = list(docs)
@@ -55,6 +65,8 @@ def evaluate(
     earlier = previous.record if previous is not None else None
     changed = changed_lines(earlier.documents, documents) if earlier is not None else None
     compiled_before = earlier.lines if earlier is not None and changed is not None else None
+    if cancel is not None and compiled_before is None:
+        _compile_lines(docs, cancel)
     programs, every = build_contexts(docs, facts, compiled_before, changed)
     if entry is not None:
         chosen = programs.get(entry)
@@ -64,7 +76,7 @@ def evaluate(
     # One wall-clock limit for the whole analysis, a safety net only: the step budget, per
     # entry, is what ends a run that goes on (see Config).
     deadline = time.monotonic() + config.time_limit
-    machine = Machine(programs, config, facts, every)
+    machine = Machine(programs, config, facts, every, cancel)
     record = RunRecord((config, only_uri, entry), documents, _shapes(every))
     for ctx in every:
         record.lines.setdefault(ctx.uri, ctx.lines)
@@ -227,3 +239,19 @@ def _shapes(every: Sequence[ProgramContext]) -> tuple[ProgramShape, ...]:
             )
         )
     return tuple(shapes)
+
+
+def _compile_lines(docs: Sequence[tuple[str, Document, ProgramIndex]], cancel: CancelToken) -> None:
+    """Compile the documents' lines a slice at a time, looking at ``cancel`` between slices:
+    :func:`build_contexts` then finds them in the per-line cache (a cold 200,000-block file
+    takes seconds to compile, too long to wait for a newer edit)."""
+    total = sum(len(doc.blocks) for _, doc, _ in docs)
+    done = 0
+    for _, doc, _ in docs:
+        blocks = doc.blocks
+        for start in range(0, len(blocks), SLICE):
+            if done >= SLICE:
+                cancel.reached(COMPILING, done, total)
+            for block in blocks[start : start + SLICE]:
+                compiled(block.parsed)
+            done += min(SLICE, len(blocks) - start)

@@ -4,8 +4,11 @@ One worker thread owns the package :class:`~fanuc_macro.workspace.Workspace`: ev
 and every analysis runs there, one at a time, so the workspace needs no lock and the event loop
 never waits for an analysis. The loop side keeps the open documents' texts and asks the worker
 to make a document fresh; the worker always takes the newest text when it starts, so a request
-for an older version that is still queued analyses the newer one instead, and a result that is
-overtaken by an edit while it runs is not published.
+for an older version that is still queued analyses the newer one instead. An edit of a document
+that the running analysis reads cancels it (:mod:`fanuc_macro.cancel`): it stops at its next
+block boundary, publishes nothing, and the newest text is analysed after the debounce. An
+analysis that goes on for more than half a second shows its progress in the client
+(``window/workDoneProgress``), when the client can show it.
 """
 
 from __future__ import annotations
@@ -19,13 +22,15 @@ import traceback
 from collections.abc import Callable, Iterable, Sequence
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
-from pathlib import Path
-from typing import Any, TypeVar
+from pathlib import Path, PurePosixPath
+from typing import Any, Protocol, TypeVar
+from urllib.parse import unquote, urlparse
 
 from lsprotocol import types
 from pygls.uris import from_fs_path, to_fs_path
 
 from ..analysis import Analysis
+from ..cancel import RUNNING, Cancelled, CancelToken, Stage
 from ..config import Config
 from ..diagnostics import REPORT_INTERNAL_ERROR
 from ..index import ProgramIndex
@@ -39,6 +44,10 @@ log = logging.getLogger(__name__)
 T = TypeVar("T")
 
 DEFAULT_DEBOUNCE_MS = 250.0
+# An analysis shows its progress once it has run this long (setting analysis.progressDelayMs);
+# only at a checkpoint that counts blocks, so a document too small for one never shows any.
+DEFAULT_PROGRESS_DELAY_MS = 500.0
+PROGRESS_EVERY = 0.2  # seconds between two progress reports of an analysis
 SCAN_MAX_FILES = 2000
 SCAN_MAX_BYTES = 2 * 1024 * 1024
 SCAN_CHUNK = 25  # files per worker job, so that edits are analysed between chunks
@@ -76,6 +85,26 @@ class Result:
 
 
 @dataclass(frozen=True)
+class Stopped:
+    """An analysis cancelled by a newer text: nothing of it is published."""
+
+    key: str
+    version: int | None
+    where: str  # how far it got, for the log
+    changed_workspace: bool  # it put a new text of the document into the workspace
+
+
+class ProgressDisplay(Protocol):
+    """Shows the progress of long analyses in the client; called on the event loop only."""
+
+    def begin(self, token: str, title: str, message: str, percentage: int) -> None: ...
+
+    def report(self, token: str, message: str, percentage: int) -> None: ...
+
+    def end(self, token: str, message: str) -> None: ...
+
+
+@dataclass(frozen=True)
 class _Text:
     seq: int  # increases with every text the loop side receives
     version: int | None
@@ -87,6 +116,17 @@ class _Text:
 class _Waiter:
     version: int | None
     future: asyncio.Future[Result | None] = field(repr=False)
+
+
+@dataclass
+class _Job:
+    """The analysis the worker runs: what cancels it."""
+
+    key: str
+    seq: int  # the newest text's seq when it started: a text with a greater one is newer
+    token: CancelToken
+    keys: frozenset[str]  # the documents it reads
+    changed: bool = False  # it put a new text of the document into the workspace
 
 
 class Engine:
@@ -119,6 +159,10 @@ class Engine:
         self._timers: dict[str, asyncio.TimerHandle] = {}
         self._waiters: dict[str, list[_Waiter]] = {}
         self._closed = False
+        self._running: _Job | None = None  # guarded by _lock
+        self.progress: ProgressDisplay | None = None  # when the client shows progress
+        self.progress_delay = DEFAULT_PROGRESS_DELAY_MS / 1000.0
+        self._progress_count = 0  # worker only: names the progress tokens
         # Worker-only state.
         self._ws = Workspace(self.config)
         self._ws_seq: dict[str, int | None] = {}  # which text of each document is in _ws
@@ -161,6 +205,7 @@ class Engine:
 
     def shutdown(self) -> None:
         self._closed = True
+        self._cancel_running(lambda job: True)
         for timer in self._timers.values():
             timer.cancel()
         self._timers.clear()
@@ -173,6 +218,9 @@ class Engine:
         debounce = analysis.get("debounceMs") if isinstance(analysis, dict) else None
         if isinstance(debounce, int | float) and not isinstance(debounce, bool) and debounce >= 0:
             self.debounce = float(debounce) / 1000.0
+        delay = analysis.get("progressDelayMs") if isinstance(analysis, dict) else None
+        if isinstance(delay, int | float) and not isinstance(delay, bool) and delay >= 0:
+            self.progress_delay = float(delay) / 1000.0
         if config == self.config:
             return
         self.config = config
@@ -192,6 +240,13 @@ class Engine:
             self._seq += 1
             self._texts[key] = _Text(self._seq, doc.version, doc.text, doc.uri)
 
+    def _cancel_running(self, which: Callable[[_Job], bool]) -> None:
+        """Cancel the running analysis if ``which`` says so; any thread."""
+        with self._lock:
+            job = self._running
+            if job is not None and which(job):
+                job.token.cancel()
+
     def open(self, uri: str, text: str, version: int | None, language_id: str = "") -> None:
         key = key_of(uri)
         doc = OpenDocument(uri, key, text, version, language_id)
@@ -210,6 +265,8 @@ class Engine:
             doc.apply(change, self.codec)
         doc.version = version
         self._set_text(key, doc)
+        # The running analysis reads an older text of this document: its result is of no use.
+        self._cancel_running(lambda job: key in job.keys)
         self.schedule(key, self.debounce)
 
     def close(self, uri: str) -> None:
@@ -221,6 +278,7 @@ class Engine:
             timer.cancel()
         with self._lock:
             self._texts.pop(key, None)
+        self._cancel_running(lambda job: job.key == key)
         for waiter in self._waiters.pop(key, []):
             if not waiter.future.done():
                 waiter.future.set_result(None)
@@ -326,23 +384,50 @@ class Engine:
                 waiters.remove(waiter)
 
     # ---- the worker side -------------------------------------------------------------------
-    def _analyse_job(self, key: str) -> Result | None:
+    def _analyse_job(self, key: str) -> Result | Stopped | None:
+        progress = self._progress_of(key)
+        token = CancelToken(progress)
         with self._lock:
             self._queued.discard(key)
             text = self._texts.get(key)
-        if text is None:
-            return None  # closed meanwhile
+            if text is None:
+                return None  # closed meanwhile
+            job = self._running = _Job(key, self._seq, token, frozenset({key}))
+        if progress is not None:
+            progress.title = f"fanuc-macro: analysing {_display_name(text.uri)}"
+        ending = "done"
+        try:
+            result = self._run_job(job, text)
+            if result is not None and result.error is not None:
+                ending = "failed"
+            return result
+        except Cancelled as stop:
+            ending = "cancelled: a document it reads changed"
+            return Stopped(key, text.version, stop.where(), job.changed)
+        except BaseException:
+            ending = "failed"
+            raise
+        finally:
+            with self._lock:
+                self._running = None
+            if progress is not None:
+                progress.finish(ending)
+
+    def _run_job(self, job: _Job, text: _Text) -> Result | None:
+        key = job.key
         started = time.perf_counter()
         lines = Lines(lsp_lines(text.text), self.codec)
         changed = False
         try:
-            changed = self._ensure_text(key, text)
+            changed = self._ensure_text(key, text, job.token)
+            job.changed = changed
             generation = self.generation
             if self._analysed.get(key) == (text.seq, generation):
                 return None  # already fresh: a duplicate request
+            self._reads(job)
             if self._fault is not None and self._fault in text.text:
                 raise RuntimeError("fault injected for testing")
-            analysis = self._analyse(key)
+            analysis = self._analyse(key, job.token)
             diagnostics = [
                 to_lsp_diagnostic(d, key, text.uri, lines, self._resolve)
                 for d in analysis.diagnostics
@@ -366,9 +451,27 @@ class Engine:
         return Result(key, text.version, generation, lines, analysis, diagnostics, seconds,
                       changed)  # fmt: skip
 
-    def _analyse(self, key: str) -> Analysis:
+    def _reads(self, job: _Job) -> None:
+        """Worker thread: record the documents the analysis of ``job.key`` reads, so that an
+        edit of any of them cancels it (one that came before it knew them too)."""
+        keys = frozenset({job.key, *(k for k, _, _ in self.documents_for(job.key))})
+        with self._lock:
+            job.keys = keys
+            if any(t.seq > job.seq for k, t in self._texts.items() if k in keys):
+                job.token.cancel()
+
+    def _analyse(self, key: str, cancel: CancelToken | None = None) -> Analysis:
         """The package's analysis of ``key``, given only the documents it can reach."""
-        return self._ws.analyse(key)
+        return self._ws.analyse(key, cancel=cancel)
+
+    def _progress_of(self, key: str) -> _AnalysisProgress | None:
+        """Worker thread: what reports the progress of an analysis, if the client shows it."""
+        display, loop = self.progress, self._loop
+        if display is None or loop is None:
+            return None
+        self._progress_count += 1
+        token = f"fanuc-macro/analysis/{self._progress_count}"
+        return _AnalysisProgress(display, loop, token, self.progress_delay)
 
     def documents_for(self, key: str) -> list[tuple[str, Document, ProgramIndex]]:
         """Worker thread: the other documents an analysis or trace of ``key`` needs."""
@@ -377,11 +480,12 @@ class Engine:
         keys = [k for k in indexes if k != key] if needed is None else needed
         return [(k, *indexes[k]) for k in keys]
 
-    def _ensure_text(self, key: str, text: _Text) -> bool:
-        """Put the newest text of an open document into the workspace; True if it was not."""
+    def _ensure_text(self, key: str, text: _Text, cancel: CancelToken | None = None) -> bool:
+        """Put the newest text of an open document into the workspace; True if it was not.
+        Cancelled, the workspace keeps the text it had."""
         if self._ws_seq.get(key) == text.seq:
             return False
-        self._ws.add_text(key, text.text)
+        self._ws.add_text(key, text.text, cancel)
         self._ws_seq[key] = text.seq
         self.generation += 1
         doc = self._ws.document(key)
@@ -416,9 +520,12 @@ class Engine:
         return self.client_uri(key), Lines([b.text for b in doc.blocks], self.codec)
 
     # ---- back on the loop ------------------------------------------------------------------
-    def _deliver(self, key: str, result: Result | None) -> None:
+    def _deliver(self, key: str, result: Result | Stopped | None) -> None:
         doc = self.docs.get(key)
         if doc is None:
+            return
+        if isinstance(result, Stopped):
+            self._stopped(doc, result)
             return
         if result is None:
             # Nothing was run (a duplicate request): whoever waits gets what there is.
@@ -435,6 +542,21 @@ class Engine:
         if result.changed_workspace:
             # Another open document may call a program of this one (or be called by it).
             self.schedule_all(self.debounce, but=key)
+
+    def _stopped(self, doc: OpenDocument, stopped: Stopped) -> None:
+        message = (
+            f"fanuc-macro: the analysis of {doc.uri} (version {stopped.version}) was cancelled "
+            f"{stopped.where}: a document it reads changed"
+        )
+        log.info("%s", message)
+        self.log_message(message, types.MessageType.Log)
+        if stopped.changed_workspace:
+            self.schedule_all(self.debounce, but=doc.key)
+        with self._lock:
+            queued = doc.key in self._queued
+        if not queued and doc.key not in self._timers:
+            # Cancelled by an edit of another document: this one is analysed again too.
+            self.schedule(doc.key, self.debounce)
 
     def _wake(self, key: str, result: Result) -> None:
         for waiter in list(self._waiters.get(key, [])):
@@ -577,6 +699,70 @@ class Engine:
             return False
         self._add_file(key, data)
         return True
+
+
+class _AnalysisProgress:
+    """The progress of one analysis, told by its checkpoints in the worker thread and shown by
+    the display on the event loop: begun at the first checkpoint that counts blocks once the
+    analysis has run ``delay`` seconds, reported at most every PROGRESS_EVERY seconds."""
+
+    def __init__(
+        self,
+        display: ProgressDisplay,
+        loop: asyncio.AbstractEventLoop,
+        token: str,
+        delay: float,
+    ) -> None:
+        self.display = display
+        self.loop = loop
+        self.token = token
+        self.title = "fanuc-macro: analysing"
+        self.delay = delay
+        self.started = time.monotonic()
+        self.shown = False
+        self.last = 0.0
+        self.percentage = 0
+
+    def __call__(self, stage: Stage, done: int, total: int) -> None:
+        now = time.monotonic()
+        if self.shown:
+            if now - self.last < PROGRESS_EVERY:
+                return
+        elif not stage.counts_blocks or now - self.started < self.delay:
+            return
+        self.last = now
+        share = min(done / total, 1.0) if total > 0 else 0.0
+        # Steadily rising, as the protocol asks: a run of another entry starts from 0 again.
+        percentage = int(100 * (stage.start + (stage.end - stage.start) * share))
+        self.percentage = max(self.percentage, min(percentage, 100))
+        if stage is RUNNING:
+            message = f"{stage.name}: {done:,} blocks run (budget {total:,})"
+        else:
+            message = f"{stage.name}: {done:,} of {total:,}"
+        if self.shown:
+            self._post(self.display.report, self.token, message, self.percentage)
+        else:
+            self.shown = True
+            self._post(self.display.begin, self.token, self.title, message, self.percentage)
+
+    def finish(self, message: str) -> None:
+        if self.shown:
+            self._post(self.display.end, self.token, message)
+
+    def _post(self, fn: Callable[..., None], *args: Any) -> None:
+        # The protocol writer is not thread-safe: the display runs on the event loop.
+        if self.loop.is_closed():
+            return
+        try:
+            self.loop.call_soon_threadsafe(fn, *args)
+        except RuntimeError:  # the loop closed meanwhile
+            log.debug("cannot show progress", exc_info=True)
+
+
+def _display_name(uri: str) -> str:
+    """The file name of a URI, for the user: ``O1234.nc``."""
+    name = PurePosixPath(unquote(urlparse(uri).path)).name
+    return name or uri
 
 
 def _newer_or_same(version: int | None, than: int | None) -> bool:

@@ -11,6 +11,7 @@ import contextlib
 import logging
 import sys
 from collections.abc import Callable, Sequence
+from dataclasses import dataclass
 from typing import Any, TypeVar
 
 from lsprotocol import types
@@ -95,6 +96,79 @@ def _validation_errors(error: BaseException | None) -> str:
         elif str(exc):
             found.append(str(exc))
     return "; ".join(found)
+
+
+@dataclass
+class _Shown:
+    title: str
+    message: str
+    percentage: int
+    created: bool = False  # the client answered window/workDoneProgress/create
+    ended: str | None = None  # the end's message, once the analysis ended
+
+
+class ClientProgress:
+    """Progress shown by the client (``window/workDoneProgress``): each token is created by a
+    request, then begun, reported and ended by ``$/progress`` notifications. What comes before
+    the client answers the request is kept and sent after. Event loop only."""
+
+    def __init__(self, server: LanguageServer) -> None:
+        self.server = server
+        self._shown: dict[str, _Shown] = {}
+
+    def begin(self, token: str, title: str, message: str, percentage: int) -> None:
+        self._shown[token] = _Shown(title, message, percentage)
+        try:
+            future = self.server.window_work_done_progress_create(
+                types.WorkDoneProgressCreateParams(token=token)
+            )
+        except Exception:  # the connection is gone
+            log.debug("cannot create a progress", exc_info=True)
+            self._shown.pop(token, None)
+            return
+        future.add_done_callback(lambda f: self._created(token, f))
+
+    def _created(self, token: str, future: Any) -> None:
+        shown = self._shown.get(token)
+        if shown is None:
+            return
+        if future.cancelled() or future.exception() is not None:
+            log.debug("the client refused a progress: %r", future.exception())
+            self._shown.pop(token, None)
+            return
+        shown.created = True
+        self._send(token, types.WorkDoneProgressBegin(
+            title=shown.title, message=shown.message, percentage=shown.percentage,
+            cancellable=False,
+        ))  # fmt: skip
+        if shown.ended is not None:
+            self.end(token, shown.ended)
+
+    def report(self, token: str, message: str, percentage: int) -> None:
+        shown = self._shown.get(token)
+        if shown is None:
+            return
+        shown.message, shown.percentage = message, percentage
+        if shown.created:
+            self._send(token, types.WorkDoneProgressReport(message=message, percentage=percentage))
+
+    def end(self, token: str, message: str) -> None:
+        shown = self._shown.get(token)
+        if shown is None:
+            return
+        if not shown.created:
+            shown.ended = message  # sent once the client has created it
+            return
+        del self._shown[token]
+        self._send(token, types.WorkDoneProgressEnd(message=message))
+
+    def _send(self, token: str, value: Any) -> None:
+        try:
+            self.server.protocol.notify(
+                types.PROGRESS, types.ProgressParams(token=token, value=value)
+            )
+        except Exception:  # the connection is gone
+            log.debug("cannot send progress", exc_info=True)
 
 
 class FanucMacroLanguageServer(LanguageServer):
@@ -215,6 +289,8 @@ def create_server() -> FanucMacroLanguageServer:
         hover_formats = _capability(caps, "text_document.hover.content_format")
         ls.markdown_hover = hover_formats is None or types.MarkupKind.Markdown in hover_formats
         ls.inlay_refresh = bool(_capability(caps, "workspace.inlay_hint.refresh_support"))
+        if _capability(caps, "window.work_done_progress"):
+            engine.progress = ClientProgress(ls)
         ls.watch_files = bool(
             _capability(caps, "workspace.did_change_watched_files.dynamic_registration")
         )
