@@ -10,10 +10,11 @@ from __future__ import annotations
 import difflib
 import gc
 import re
+import sys
 import threading
 import unicodedata
 from bisect import bisect_right
-from collections.abc import Iterable, Iterator, Sequence
+from collections.abc import Callable, Iterable, Iterator, Sequence
 from contextlib import contextmanager
 from dataclasses import replace
 from importlib import resources
@@ -412,6 +413,10 @@ def quiet_gc() -> Iterator[None]:
             gc.enable()
 
 
+# How many references an object has (CPython); elsewhere every cached line counts as unheld.
+_refcount: Callable[[object], int] = getattr(sys, "getrefcount", lambda _obj: 0)
+
+
 def _too_long(text: str, limit: int) -> ParsedLine:
     """A line longer than the analysis reads: only its block delete and sequence number (at its
     head, where the control reads them first) are kept, so that a GOTO to it still finds it."""
@@ -473,10 +478,11 @@ class BlockParser:
         # Lark builds the grammar's tables; our driver runs them faster than Lark's loop.
         self._lark = lark
         self._table = TableParser(lark)
-        # Insertion-ordered dict as a cheap LRU: hits are not refreshed, and when it is full
-        # the oldest quarter goes (lines of open documents come back on their next parse).
+        # Insertion-ordered, so that the oldest lines are looked at first when it is full. A hit
+        # costs one dict look-up: the order is refreshed at eviction, not on every hit.
         self._cache: dict[str, ParsedLine] = {}
         self._cache_size = cache_size
+        self._sweep_at = cache_size  # the size at which the cache next looks for lines to drop
         self._longest_cached = 0  # no cached line is longer: a hit needs no length check
         self._lock = threading.Lock()
 
@@ -490,10 +496,29 @@ class BlockParser:
         with self._lock:
             self._cache[text] = parsed
             self._longest_cached = max(self._longest_cached, len(text))
-            if len(self._cache) > self._cache_size:
-                for key in list(self._cache)[: self._cache_size // 4]:
-                    del self._cache[key]
+            if len(self._cache) > self._sweep_at:
+                self._evict()
         return parsed
+
+    def _evict(self) -> None:
+        """Drops the oldest lines that no document (nor a per-line cache) holds any more, down
+        to three quarters of the bound; the lines still held go to the end of the order. Those
+        cost the cache only their entry, since their owner keeps them alive, and dropping them
+        would make a document of more distinct lines than the bound parse every line again on
+        each edit. So the cache holds at most ``cache_size`` lines of its own."""
+        cache = self._cache
+        batch = max(1, self._cache_size // 4)
+        target = self._cache_size - batch  # room for a batch of new lines before the next sweep
+        for key in list(cache):
+            if len(cache) <= target:
+                break
+            parsed = cache.pop(key)
+            # The references: the line's holders, ``parsed`` and getrefcount's argument.
+            if _refcount(parsed) > 2:
+                cache[key] = parsed
+        # When documents hold most lines, no new sweep before the cache has grown by a batch:
+        # a sweep per new line would make a big document's parse quadratic.
+        self._sweep_at = max(self._cache_size, len(cache) + batch)
 
     def _parse_uncached(self, text: str) -> ParsedLine:
         cut = cut_comments(text)
