@@ -7,7 +7,6 @@ text, so an edit re-parses only the lines it changed.
 
 from __future__ import annotations
 
-import difflib
 import gc
 import re
 import sys
@@ -21,9 +20,6 @@ from importlib import resources
 from itertools import accumulate
 from typing import Any, cast
 
-from lark import Lark, Token, Transformer
-from lark.exceptions import UnexpectedCharacters, UnexpectedEOF, UnexpectedInput, UnexpectedToken
-
 from . import dialects
 from .blocks import (
     MAX_LINE_LENGTH,
@@ -35,7 +31,6 @@ from .blocks import (
     split_lines,
 )
 from .index import INDEXED_STATEMENTS, mentions_call
-from .lalr_driver import TableParser
 from .syntax import (
     Assign,
     BareCond,
@@ -71,6 +66,25 @@ from .syntax import (
     Word,
 )
 from .walk import bracket_depth, expression_depth, top_expressions
+
+# Lark imports the ``regex`` package when it is installed, for its option regex=True, which
+# this grammar does not use: hidden while Lark loads, it is not imported (10 ms of a start).
+_HIDE_REGEX = "regex" not in sys.modules
+if _HIDE_REGEX:
+    sys.modules["regex"] = None  # type: ignore[assignment]  # 'import regex' raises ImportError
+try:
+    from lark import Lark, Token, Transformer
+    from lark.exceptions import (
+        UnexpectedCharacters,
+        UnexpectedEOF,
+        UnexpectedInput,
+        UnexpectedToken,
+    )
+
+    from .lalr_driver import TableParser  # Lark's first importer is this module
+finally:
+    if _HIDE_REGEX:
+        del sys.modules["regex"]
 
 
 def grammar_text() -> str:
@@ -846,6 +860,8 @@ def _misspelt_keyword(code: str) -> tuple[str, int, str] | None:
     name = m.group(1).upper()
     if name in _KEYWORDS or name in _KNOWN_FUNCTIONS or name.startswith(("IF", "GOTO")):
         return None
+    import difflib  # for a misspelt keyword only: not on every start's path
+
     close = difflib.get_close_matches(name, _KEYWORDS, n=1, cutoff=0.8)
     if not close:
         return None
