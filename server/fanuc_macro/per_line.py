@@ -67,7 +67,9 @@ class PerLine(Generic[T]):
         oldest = self._misses - self._limit  # used at or before this miss: not in use
         dropped = 0
         for key in list(islice(cache, self._batch)):
-            entry = cache.pop(key)
+            entry = cache.pop(key, None)  # None: another thread's sweep took it
+            if entry is None:
+                continue
             if entry[2] > oldest:
                 cache[key] = entry  # in use: to the end of the order
             else:
