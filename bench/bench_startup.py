@@ -15,6 +15,7 @@ import argparse
 import json
 import os
 import platform
+import resource
 import statistics
 import subprocess
 import sys
@@ -34,10 +35,21 @@ def environment(tree: Path, cache: str) -> dict[str, str]:
     return env
 
 
+CPU: list[float] = []  # the CPU time (user + system) of each process timed, in order
+
+
+def _children_cpu() -> float:
+    usage = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return usage.ru_utime + usage.ru_stime
+
+
 def timed(command: list[str], env: dict[str, str]) -> float:
+    cpu = _children_cpu()
     started = time.perf_counter()
     subprocess.run(command, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    return time.perf_counter() - started
+    elapsed = time.perf_counter() - started
+    CPU.append(_children_cpu() - cpu)
+    return elapsed
 
 
 def _message(payload: dict[str, object]) -> bytes:
@@ -46,7 +58,9 @@ def _message(payload: dict[str, object]) -> bytes:
 
 
 def initialize_round_trip(env: dict[str, str]) -> float:
-    """From the start of the server process to the end of its answer to ``initialize``."""
+    """From the start of the server process to the end of its answer to ``initialize`` (and
+    the process's CPU time, to its exit)."""
+    cpu = _children_cpu()
     started = time.perf_counter()
     server = subprocess.Popen(
         [sys.executable, "-m", "fanuc_macro.lsp.server"],
@@ -76,14 +90,21 @@ def initialize_round_trip(env: dict[str, str]) -> float:
     except subprocess.TimeoutExpired:
         server.kill()
         server.wait()
+    CPU.append(_children_cpu() - cpu)
     return elapsed
 
 
-def report(what: str, times: list[float]) -> None:
-    print(
+def report(what: str, times: list[float], cpu: list[float] | None = None) -> None:
+    """Wall-clock times; with ``cpu``, the processes' CPU time too, which a loaded machine
+    changes less."""
+    line = (
         f"{what}: min {min(times) * 1000:.0f} ms, median {statistics.median(times) * 1000:.0f} ms"
-        f" ({len(times)} runs)"
     )
+    if cpu:
+        line += (
+            f" (CPU min {min(cpu) * 1000:.0f} ms, median {statistics.median(cpu) * 1000:.0f} ms)"
+        )
+    print(f"{line}, {len(times)} runs")
 
 
 def main() -> None:
@@ -98,11 +119,15 @@ def main() -> None:
         timed(check, env)  # compiles the modules into the cache
         initialize_round_trip(env)
         runs = range(args.runs)
-        report("python -c pass", [timed([sys.executable, "-c", "pass"], env) for _ in runs])
-        report(f"fanuc-macro check {SMALL.name}", [timed(check, env) for _ in runs])
+        CPU.clear()
+        report("python -c pass", [timed([sys.executable, "-c", "pass"], env) for _ in runs], CPU)
+        CPU.clear()
+        report(f"fanuc-macro check {SMALL.name}", [timed(check, env) for _ in runs], CPU)
+        CPU.clear()
         report(
             "language server: start to initialize answered",
             [initialize_round_trip(env) for _ in runs],
+            CPU,
         )
 
 
