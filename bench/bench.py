@@ -203,13 +203,94 @@ def bench_threads() -> None:
         )
 
 
+def generate_macro_dense(blocks: int, seed: int = 2) -> str:
+    """A program of macro statements only: a loop every eight blocks, a GOTO in every loop
+    (out of it, to the label after it) and a label before it: thousands of loops, labels and
+    jumps in one program, the load of the rules that relate jumps to loops and labels."""
+    rnd = random.Random(seed)
+    out = ["%", "O2000 (MACRO-DENSE BENCHMARK PROGRAM)"]
+    out += [f"#{v}=0" for v in range(1, 34)]
+    label = 1
+    while len(out) < blocks + 2:
+        v = rnd.randint(1, 33)
+        out += [
+            f"N{label} #{v}=#{v}+{rnd.random():.4f}",
+            f"WHILE[#{v}LT{rnd.randint(1, 3)}]DO1",
+            f"#{100 + v}=#{v}*{rnd.uniform(0, 5):.3f}",
+            f"IF[#{100 + v}GT{rnd.uniform(5, 9):.2f}]GOTO{label + 1}",
+            f"#{v}=#{v}+1.",
+            "END1",
+            f"IF[#{v}LT0]GOTO{label}",
+            f"N{label + 1} #{rnd.randint(1, 33)}=#{v}",
+        ]
+        label += 2
+    out += ["M30", "%"]
+    return "\n".join(out) + "\n"
+
+
+def bench_big_rules(size: int) -> None:
+    """The jumps rule and all the rules on a program dense in loops, labels and jumps."""
+    from fanuc_macro.analysis import run_checks
+    from fanuc_macro.rules import ALL_CHECKS, jumps
+    from fanuc_macro.rules.context import RuleContext
+
+    text = generate_macro_dense(size)
+    doc = parse_text(text, "dense")
+    index = build_index(doc)
+    facts = evaluate([("dense", doc, index)])
+    program = index.programs[0]
+
+    def jumps_rule() -> int:
+        return len(list(jumps.check(RuleContext(doc, index, facts=facts))))
+
+    def all_rules() -> int:
+        return len(run_checks(RuleContext(doc, index, facts=facts), ALL_CHECKS))
+
+    # The first run of each: what an analysis after an edit pays (a new index, new caches).
+    print(
+        f"macro-dense {size:,} blocks ({len(program.loops):,} loops, {len(program.jumps):,} "
+        f"GOTOs, {len(program.labels):,} labels): jumps rule {best_of(jumps_rule, 3) * 1000:.0f}"
+        f" ms, whole rules {best_of(all_rules, 2) * 1000:.0f} ms"
+    )
+
+
+def bench_big_document(size: int) -> None:
+    """The rules run again on a document of more distinct lines than the per-line caches hold
+    (400,000), as after a keystroke in a comment: the evaluator's facts are kept."""
+    from fanuc_macro.analysis import run_checks
+    from fanuc_macro.rules import ALL_CHECKS
+    from fanuc_macro.rules.context import RuleContext
+
+    doc = parse_text(generate(size), "big", BlockParser(cache_size=2 * size))
+    index = build_index(doc)
+    facts = evaluate([("big", doc, index)])
+    for run in range(3):
+        t = time.perf_counter()
+        run_checks(RuleContext(doc, index, facts=facts), ALL_CHECKS)
+        dt = time.perf_counter() - t
+        rss = ""
+        for line in Path("/proc/self/status").read_text().splitlines():
+            if line.startswith("VmRSS:"):
+                rss = f", RSS {int(line.split()[1]) // 1024} MB"
+        print(f"{size:,} blocks: rules, analysis {run + 1}: {dt:.2f} s{rss}")
+
+
 def main() -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("--quick", action="store_true")
     ap.add_argument("--memory-child", type=int, help=argparse.SUPPRESS)
+    ap.add_argument(
+        "--big-document",
+        type=int,
+        metavar="BLOCKS",
+        help="only the rules on a document this big, three times (500000: minutes)",
+    )
     args = ap.parse_args()
     if args.memory_child:
         memory_child(args.memory_child)
+        return
+    if args.big_document:
+        bench_big_document(args.big_document)
         return
     print(
         f"machine: {platform.processor() or platform.machine()}, {platform.python_version()}, "
@@ -220,6 +301,7 @@ def main() -> None:
     bench_memory(sizes[-1])
     bench_eval()
     bench_threads()
+    bench_big_rules(20000 if args.quick else 100000)
 
 
 if __name__ == "__main__":

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import argparse
-import json
 import logging
 import sys
 from collections.abc import Sequence
@@ -15,7 +14,7 @@ from .cli_thread import add_thread_command
 from .config import CONTROLLERS, NOT_SET, Config
 from .diagnostics import REPORT_INTERNAL_ERROR, Diagnostic, Severity
 from .evaluator.values import fmt_address
-from .trace import trace
+from .trace import trace  # small: what it uses, the check uses too
 from .workspace import Workspace, is_program_file
 
 EXIT_OK = 0
@@ -127,6 +126,8 @@ def cmd_check(args: argparse.Namespace) -> int:
             else:
                 out.write(_format_text(str(path), d) + "\n")
     if args.format == "json":
+        import json
+
         json.dump(records, out, ensure_ascii=False, indent=1)
         out.write("\n")
     return EXIT_ERRORS if any_error else EXIT_OK
@@ -140,6 +141,8 @@ def _program_number(text: str) -> int:
 
 
 def cmd_trace(args: argparse.Namespace) -> int:
+    import json
+
     path = Path(args.file)
     if not path.is_file():
         raise UsageError(f"fanuc-macro: no such file: {args.file}")
@@ -259,6 +262,8 @@ def main(argv: Sequence[str] | None = None) -> int:
         log.exception("fanuc-macro %s failed", args.command)
         message = f"internal error: {err!r}; {REPORT_INTERNAL_ERROR}"
         if getattr(args, "format", "text") == "json":
+            import json
+
             json.dump({"error": message}, sys.stdout, ensure_ascii=False, indent=1)
             sys.stdout.write("\n")
         sys.stderr.write(f"fanuc-macro: {message}\n")

@@ -11,8 +11,6 @@ import argparse
 import re
 import sys
 
-from .threads.generator import MATERIAL_COEFFICIENTS, generate_module
-
 __all__ = ["add_thread_command", "cmd_thread"]
 
 EXIT_OK = 0
@@ -21,6 +19,9 @@ EXIT_USAGE = 2
 
 def _coefficient(text: str) -> float:
     """``0.2``, ``0.2/3`` (a fraction as the paper writes it), ``steel`` or ``molybdenum``."""
+    # The generator is imported by the thread command only: ``check`` starts without it.
+    from .threads.generator import MATERIAL_COEFFICIENTS
+
     named = MATERIAL_COEFFICIENTS.get(text.strip().lower())
     if named is not None:
         return named
@@ -59,6 +60,8 @@ def _count(text: str) -> int:
 
 
 def cmd_thread(args: argparse.Namespace) -> int:
+    from .threads.generator import generate_module
+
     try:
         text = generate_module(
             args.designation,
@@ -109,7 +112,7 @@ def add_thread_command(
     thread.add_argument(
         "--coefficient",
         type=_coefficient,
-        default=MATERIAL_COEFFICIENTS["molybdenum"],
+        default="molybdenum",  # a string default goes through ``type`` when the command runs
         metavar="C",
         help="depth coefficient: 0.2 (steel) or 0.2/3 (molybdenum, the paper's; default)",
     )

@@ -8,6 +8,7 @@ alone. Jump targets and call targets written as constants are resolved here; com
 from __future__ import annotations
 
 import re
+from bisect import bisect_right
 from dataclasses import dataclass, field
 from urllib.parse import unquote
 
@@ -103,6 +104,11 @@ class Program:
     returns: list[int] = field(default_factory=list)  # lines with M99
     # The file's name when ``number`` comes from it (``O8501.NC`` with no O line in it).
     named_by_file: str | None = None
+    # The loops that hold each stretch of lines, worked out on the first question (the index
+    # is complete by then): (first line of each stretch, its loops outermost first).
+    _loop_stretches: tuple[list[int], list[tuple[Loop, ...]]] | None = field(
+        default=None, init=False, repr=False, compare=False
+    )
 
     @property
     def display_name(self) -> str:
@@ -119,28 +125,65 @@ class Program:
         lines = self.labels.get(seq)
         if not lines:
             return None
-        for line in lines:
-            if line > from_line:
-                return line
-        return lines[0]
+        after = bisect_right(lines, from_line)  # the lines of a label are in order
+        return lines[after] if after < len(lines) else lines[0]
 
     def enclosing_loops(self, line: int) -> list[Loop]:
         """Loops whose body holds ``line`` (between DO and END, END included), outermost first."""
-        return [
-            loop
-            for loop in self.loops
-            if loop.end_line is not None and loop.do_line < line <= loop.end_line
-        ]
+        stretches = self._loop_stretches
+        if stretches is None:
+            stretches = self._loop_stretches = _loop_stretches(self.loops)
+        starts, holding = stretches
+        at = bisect_right(starts, line) - 1
+        return list(holding[at]) if at >= 0 else []
+
+
+def _loop_stretches(loops: list[Loop]) -> tuple[list[int], list[tuple[Loop, ...]]]:
+    """The lines cut into stretches held by the same loops: a sweep over the loops' first and
+    past-the-last body lines, so a question is a bisection, not a scan of every loop."""
+    events: list[tuple[int, int, int]] = []  # (line, 0 leave / 1 enter, position in loops)
+    for position, loop in enumerate(loops):
+        if loop.end_line is not None and loop.do_line < loop.end_line:
+            events.append((loop.do_line + 1, 1, position))
+            events.append((loop.end_line + 1, 0, position))
+    events.sort()
+    starts: list[int] = []
+    holding: list[tuple[Loop, ...]] = []
+    active: dict[int, Loop] = {}
+    i = 0
+    while i < len(events):
+        line = events[i][0]
+        while i < len(events) and events[i][0] == line:
+            _, enter, position = events[i]
+            if enter:
+                active[position] = loops[position]
+            else:
+                del active[position]
+            i += 1
+        # Outermost first, the order of ``loops`` (by DO line): the order they entered in, since
+        # a loop enters the line after its DO.
+        starts.append(line)
+        holding.append(tuple(active.values()))
+    return starts, holding
 
 
 @dataclass(frozen=True, slots=True)
 class ProgramIndex:
     programs: tuple[Program, ...]
+    # The programs' first lines, in order, for a bisection (worked out on the first question).
+    _first_lines: list[int] | None = field(default=None, init=False, repr=False, compare=False)
 
     def program_at(self, line: int) -> Program | None:
-        for program in self.programs:
-            if program.contains(line):
-                return program
+        firsts = self._first_lines
+        if firsts is None:
+            firsts = [program.first_line for program in self.programs]
+            if firsts != sorted(set(firsts)):  # not in order: ask each program
+                return next((p for p in self.programs if p.contains(line)), None)
+            object.__setattr__(self, "_first_lines", firsts)  # a cache, not a change
+        at = bisect_right(firsts, line) - 1
+        # Programs do not overlap: only the last one starting at or before the line can hold it.
+        if at >= 0 and self.programs[at].contains(line):
+            return self.programs[at]
         return None
 
     def by_number(self, number: int) -> Program | None:

@@ -7,21 +7,18 @@ text, so an edit re-parses only the lines it changed.
 
 from __future__ import annotations
 
-import difflib
 import gc
 import re
+import sys
 import threading
 import unicodedata
 from bisect import bisect_right
-from collections.abc import Iterable, Iterator, Sequence
+from collections.abc import Callable, Iterable, Iterator, Sequence
 from contextlib import contextmanager
 from dataclasses import replace
 from importlib import resources
 from itertools import accumulate
 from typing import Any, cast
-
-from lark import Lark, Token, Transformer
-from lark.exceptions import UnexpectedCharacters, UnexpectedEOF, UnexpectedInput, UnexpectedToken
 
 from . import dialects
 from .blocks import (
@@ -35,7 +32,6 @@ from .blocks import (
 )
 from .cancel import READING, SLICE, CancelToken, raise_if_cancelled
 from .index import INDEXED_STATEMENTS, mentions_call
-from .lalr_driver import TableParser
 from .syntax import (
     Assign,
     BareCond,
@@ -71,6 +67,25 @@ from .syntax import (
     Word,
 )
 from .walk import bracket_depth, expression_depth, top_expressions
+
+# Lark imports the ``regex`` package when it is installed, for its option regex=True, which
+# this grammar does not use: hidden while Lark loads, it is not imported (10 ms of a start).
+_HIDE_REGEX = "regex" not in sys.modules
+if _HIDE_REGEX:
+    sys.modules["regex"] = None  # type: ignore[assignment]  # 'import regex' raises ImportError
+try:
+    from lark import Lark, Token, Transformer
+    from lark.exceptions import (
+        UnexpectedCharacters,
+        UnexpectedEOF,
+        UnexpectedInput,
+        UnexpectedToken,
+    )
+
+    from .lalr_driver import TableParser  # Lark's first importer is this module
+finally:
+    if _HIDE_REGEX:
+        del sys.modules["regex"]
 
 
 def grammar_text() -> str:
@@ -413,6 +428,10 @@ def quiet_gc() -> Iterator[None]:
             gc.enable()
 
 
+# How many references an object has (CPython); elsewhere every cached line counts as unheld.
+_refcount: Callable[[object], int] = getattr(sys, "getrefcount", lambda _obj: 0)
+
+
 def _too_long(text: str, limit: int) -> ParsedLine:
     """A line longer than the analysis reads: only its block delete and sequence number (at its
     head, where the control reads them first) are kept, so that a GOTO to it still finds it."""
@@ -474,10 +493,11 @@ class BlockParser:
         # Lark builds the grammar's tables; our driver runs them faster than Lark's loop.
         self._lark = lark
         self._table = TableParser(lark)
-        # Insertion-ordered dict as a cheap LRU: hits are not refreshed, and when it is full
-        # the oldest quarter goes (lines of open documents come back on their next parse).
+        # Insertion-ordered, so that the oldest lines are looked at first when it is full. A hit
+        # costs one dict look-up: the order is refreshed at eviction, not on every hit.
         self._cache: dict[str, ParsedLine] = {}
         self._cache_size = cache_size
+        self._sweep_at = cache_size  # the size at which the cache next looks for lines to drop
         self._longest_cached = 0  # no cached line is longer: a hit needs no length check
         self._lock = threading.Lock()
 
@@ -491,10 +511,29 @@ class BlockParser:
         with self._lock:
             self._cache[text] = parsed
             self._longest_cached = max(self._longest_cached, len(text))
-            if len(self._cache) > self._cache_size:
-                for key in list(self._cache)[: self._cache_size // 4]:
-                    del self._cache[key]
+            if len(self._cache) > self._sweep_at:
+                self._evict()
         return parsed
+
+    def _evict(self) -> None:
+        """Drops the oldest lines that no document (nor a per-line cache) holds any more, down
+        to three quarters of the bound; the lines still held go to the end of the order. Those
+        cost the cache only their entry, since their owner keeps them alive, and dropping them
+        would make a document of more distinct lines than the bound parse every line again on
+        each edit. So the cache holds at most ``cache_size`` lines of its own."""
+        cache = self._cache
+        batch = max(1, self._cache_size // 4)
+        target = self._cache_size - batch  # room for a batch of new lines before the next sweep
+        for key in list(cache):
+            if len(cache) <= target:
+                break
+            parsed = cache.pop(key)
+            # The references: the line's holders, ``parsed`` and getrefcount's argument.
+            if _refcount(parsed) > 2:
+                cache[key] = parsed
+        # When documents hold most lines, no new sweep before the cache has grown by a batch:
+        # a sweep per new line would make a big document's parse quadratic.
+        self._sweep_at = max(self._cache_size, len(cache) + batch)
 
     def _parse_uncached(self, text: str) -> ParsedLine:
         cut = cut_comments(text)
@@ -822,6 +861,8 @@ def _misspelt_keyword(code: str) -> tuple[str, int, str] | None:
     name = m.group(1).upper()
     if name in _KEYWORDS or name in _KNOWN_FUNCTIONS or name.startswith(("IF", "GOTO")):
         return None
+    import difflib  # for a misspelt keyword only: not on every start's path
+
     close = difflib.get_close_matches(name, _KEYWORDS, n=1, cutoff=0.8)
     if not close:
         return None

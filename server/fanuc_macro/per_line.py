@@ -8,7 +8,8 @@ its comment gives a variable) is worked out once per distinct line, not on every
 from __future__ import annotations
 
 from collections.abc import Callable
-from typing import Generic, TypeVar
+from itertools import islice
+from typing import Any, Generic, TypeVar
 
 from .syntax import ParsedLine
 
@@ -16,18 +17,62 @@ T = TypeVar("T")
 
 
 class PerLine(Generic[T]):
+    """A cache of ``compute(line)`` holding at most ``limit`` lines, the least recently used
+    evicted first.
+
+    Age is counted in misses: an entry is in use while it was asked for within the last
+    ``limit`` misses. When the cache is full, the oldest entries of its insertion order are
+    looked at in batches: those in use go to the end (the order follows use lazily, so a hit
+    only stamps its entry), the others are dropped. When every entry is in use, a new value is
+    returned without being kept: analysing a document of more distinct lines than ``limit``
+    keeps the same ``limit`` lines from one analysis to the next and computes only the others,
+    where strict LRU order would evict each line just before it is asked for again.
+    """
+
     def __init__(self, compute: Callable[[ParsedLine], T], limit: int = 400_000) -> None:
         self._compute = compute
         self._limit = limit
-        # id(line) -> (line, value): the entry keeps the line alive, so its id stays its own.
-        self._cache: dict[int, tuple[ParsedLine, T]] = {}
+        self._batch = max(1, limit // 8)
+        # id(line) -> [line, value, the miss count when last used]: the entry keeps the line
+        # alive, so its id stays its own.
+        self._cache: dict[int, list[Any]] = {}
+        self._misses = 0
+        self._next_sweep = 0  # no sweep before this miss count: the last one found all in use
+
+    def __len__(self) -> int:
+        return len(self._cache)
+
+    def __contains__(self, parsed: ParsedLine) -> bool:
+        entry = self._cache.get(id(parsed))
+        return entry is not None and entry[0] is parsed
 
     def __call__(self, parsed: ParsedLine) -> T:
         entry = self._cache.get(id(parsed))
         if entry is not None and entry[0] is parsed:
-            return entry[1]
-        if len(self._cache) >= self._limit:
-            self._cache.clear()
+            entry[2] = self._misses
+            value: T = entry[1]
+            return value
         value = self._compute(parsed)
-        self._cache[id(parsed)] = (parsed, value)
+        self._misses += 1
+        if len(self._cache) >= self._limit:
+            self._evict()
+        if len(self._cache) < self._limit:
+            self._cache[id(parsed)] = [parsed, value, self._misses]
         return value
+
+    def _evict(self) -> None:
+        if self._misses < self._next_sweep:
+            return
+        cache = self._cache
+        oldest = self._misses - self._limit  # used at or before this miss: not in use
+        dropped = 0
+        for key in list(islice(cache, self._batch)):
+            entry = cache.pop(key, None)  # None: another thread's sweep took it
+            if entry is None:
+                continue
+            if entry[2] > oldest:
+                cache[key] = entry  # in use: to the end of the order
+            else:
+                dropped += 1
+        if not dropped:
+            self._next_sweep = self._misses + self._batch

@@ -49,7 +49,6 @@ from ..syntax import (
 )
 from ..threads.identify import describe as describe_thread
 from ..threads.identify import module_meanings
-from ..threads.snippet import module_from_analysis
 from ..variables import ARGUMENT_VARIABLES, classify
 from ..walk import subexpressions
 from .convert import Codec, Lines
@@ -1086,6 +1085,9 @@ def _thread_module(view: View | None) -> str | None:
     in a comment such as ``(M50X3-5G6G)``), from the analysis the server already has."""
     if view is None or view.facts is None:
         return None
+    # The generator is imported on the first thread completion, not before initialize.
+    from ..threads.snippet import module_from_analysis
+
     try:
         return module_from_analysis(view.doc, view.index, view.facts)
     except ValueError:

@@ -2,7 +2,9 @@
 
 from __future__ import annotations
 
+from bisect import bisect_left
 from collections.abc import Iterator
+from typing import cast
 
 from ..diagnostics import Diagnostic, Related, RuleInfo, Severity, make, register
 from ..syntax import Assign, Var, Word
@@ -75,11 +77,25 @@ def _word_at(ctx: RuleContext, line: int, column: int) -> Word | None:
 def _last_assignment(ctx: RuleContext, before: int, number: int) -> tuple[int, str] | None:
     program = ctx.index.program_at(before)
     first = program.first_line if program else 0
-    for line in range(before - 1, first - 1, -1):
-        statement = ctx.doc.blocks[line].statement
-        if isinstance(statement, Assign) and statement.target.number == number:
-            return line, ctx.doc.blocks[line].text.strip()
+    lines = _assignments(ctx).get(number, [])
+    at = bisect_left(lines, before) - 1  # the last assignment before the line
+    if at >= 0 and lines[at] >= first:
+        line = lines[at]
+        return line, ctx.doc.blocks[line].text.strip()
     return None
+
+
+def _assignments(ctx: RuleContext) -> dict[float, list[int]]:
+    """The lines that assign each variable, in order: gathered once for every finding."""
+    found = ctx.memo.get("addresses.assignments")
+    if found is None:
+        by_number: dict[float, list[int]] = {}
+        for block in ctx.doc.blocks:
+            statement = block.statement
+            if isinstance(statement, Assign) and statement.target.number is not None:
+                by_number.setdefault(statement.target.number, []).append(block.line)
+        found = ctx.memo["addresses.assignments"] = by_number
+    return cast("dict[float, list[int]]", found)
 
 
 def _likely_meant(ctx: RuleContext, line: int, address: str) -> str | None:
@@ -87,12 +103,28 @@ def _likely_meant(ctx: RuleContext, line: int, address: str) -> str | None:
     program = ctx.index.program_at(line)
     if program is None:
         return None
-    for ln in range(program.first_line, line):
-        block = ctx.doc.blocks[ln]
-        statement = block.statement
-        if not isinstance(statement, Assign) or statement.target.number is None:
-            continue
-        comment = " ".join(c.text for c in block.parsed.comments).upper()
-        if f" {address} " in f" {comment} " or f"{address}代码" in comment.replace(" ", ""):
-            return f"#{int(statement.target.number)}"
+    lines = _named_assignments(ctx, address)
+    at = bisect_left(lines, program.first_line)  # the first one in the program, before the line
+    if at < len(lines) and lines[at] < line:
+        statement = ctx.doc.blocks[lines[at]].statement
+        assert isinstance(statement, Assign) and statement.target.number is not None
+        return f"#{int(statement.target.number)}"
     return None
+
+
+def _named_assignments(ctx: RuleContext, address: str) -> list[int]:
+    """The lines of assignments whose comment names ``address``, in order: one pass over the
+    document per address, not one per finding."""
+    key = f"addresses.named.{address}"
+    found = ctx.memo.get(key)
+    if found is None:
+        lines: list[int] = []
+        for block in ctx.doc.blocks:
+            statement = block.statement
+            if not isinstance(statement, Assign) or statement.target.number is None:
+                continue
+            comment = " ".join(c.text for c in block.parsed.comments).upper()
+            if f" {address} " in f" {comment} " or f"{address}代码" in comment.replace(" ", ""):
+                lines.append(block.line)
+        found = ctx.memo[key] = lines
+    return cast("list[int]", found)

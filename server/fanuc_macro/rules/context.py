@@ -41,6 +41,21 @@ class RuleContext:
             found = self.memo["roles"] = variable_roles(self.doc, self.index)
         return cast("dict[tuple[int, int], Meaning]", found)
 
+    def undecided_programs(self) -> frozenset[int]:
+        """The first lines of the programs with a jump or loop whose outcome the evaluator did
+        not decide: one pass over the jumps for all the programs' questions."""
+        found = self.memo.get("undecided")
+        if found is None:
+            facts = self.doc_facts()
+            undecided: set[int] = set()
+            for line, count in facts.jumps.items() if facts is not None else ():
+                if count.undecided:
+                    program = self.index.program_at(line)
+                    if program is not None:
+                        undecided.add(program.first_line)
+            found = self.memo["undecided"] = frozenset(undecided)
+        return cast("frozenset[int]", found)
+
     def threads(self) -> list[Thread]:
         """The threads this document's programs cut (:mod:`fanuc_macro.threads.identify`)."""
         found = self.memo.get("threads")

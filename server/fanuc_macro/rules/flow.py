@@ -4,7 +4,9 @@ loops, jumps and calls that fail at run time."""
 from __future__ import annotations
 
 import re
+from bisect import bisect_left
 from collections.abc import Iterator
+from typing import cast
 
 from ..diagnostics import Diagnostic, RuleInfo, Severity, make, register
 from ..evaluator.facts import DocumentFacts
@@ -79,7 +81,7 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
         whole = analysed and program.first_line not in facts.incomplete_programs
         if whole:
             yield from _constant_conditions(ctx, program, facts)
-        undecided = any(jc.undecided for ln, jc in facts.jumps.items() if program.contains(ln))
+        undecided = program.first_line in ctx.undecided_programs()
         if whole and not undecided:
             if not _unreadable_flow(ctx, program):
                 yield from _dead_blocks(ctx, program, facts.runs)
@@ -93,8 +95,14 @@ def _constant_conditions(
     if _unreadable_flow(ctx, program):
         return  # a rejected block may hold the jump or assignment that changes the outcome
     first_writes: dict[int, int] | None = None
-    for line, jc in sorted(facts.jumps.items()):
-        if not program.contains(line) or jc.undecided or jc.guessed:
+    jump_lines = _sorted_jump_lines(ctx, facts)
+    first, end = (
+        bisect_left(jump_lines, program.first_line),
+        bisect_left(jump_lines, program.end_line),
+    )
+    for line in jump_lines[first:end]:
+        jc = facts.jumps[line]
+        if jc.undecided or jc.guessed:
             continue  # an outcome on a guessed path proves nothing
         statement = ctx.doc.blocks[line].statement
         if not isinstance(statement, IfGoto | IfThen | While) or statement.cond is None:
@@ -103,7 +111,7 @@ def _constant_conditions(
         if total == 0 or (jc.taken and jc.not_taken):
             continue
         if first_writes is None:
-            first_writes = _first_writes(program, facts)
+            first_writes = _first_writes(ctx, facts).get(program.first_line, {})
         if not _decided_by_the_program(ctx, facts, first_writes, line):
             continue
         outcome = "true" if jc.taken else "false"
@@ -119,13 +127,29 @@ def _constant_conditions(
         )
 
 
-def _first_writes(program: Program, facts: DocumentFacts) -> dict[int, int]:
-    """Variable -> the first line of ``program`` that set it when the run came by."""
-    first: dict[int, int] = {}
-    for line, (number, _summary) in facts.writes.items():
-        if program.contains(line) and line < first.get(number, line + 1):
-            first[number] = line
-    return first
+def _sorted_jump_lines(ctx: RuleContext, facts: DocumentFacts) -> list[int]:
+    """The lines of the evaluated jumps in order, sorted once for every program's question."""
+    found = ctx.memo.get("flow.jump_lines")
+    if found is None:
+        found = ctx.memo["flow.jump_lines"] = sorted(facts.jumps)
+    return cast("list[int]", found)
+
+
+def _first_writes(ctx: RuleContext, facts: DocumentFacts) -> dict[int, dict[int, int]]:
+    """Program's first line -> variable -> the first line of the program that set it when the
+    run came by: one pass over the writes for every program."""
+    found = ctx.memo.get("flow.first_writes")
+    if found is None:
+        by_program: dict[int, dict[int, int]] = {}
+        for line, (number, _summary) in facts.writes.items():
+            program = ctx.index.program_at(line)
+            if program is None:
+                continue
+            first = by_program.setdefault(program.first_line, {})
+            if line < first.get(number, line + 1):
+                first[number] = line
+        found = ctx.memo["flow.first_writes"] = by_program
+    return cast("dict[int, dict[int, int]]", found)
 
 
 def _decided_by_the_program(

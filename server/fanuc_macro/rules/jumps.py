@@ -2,7 +2,9 @@
 
 from __future__ import annotations
 
+from bisect import bisect_left, bisect_right
 from collections.abc import Iterator
+from typing import cast
 
 from ..diagnostics import Diagnostic, Related, RuleInfo, Severity, make, register
 from ..index import Jump, Program
@@ -119,11 +121,30 @@ def _loop_test(ctx: RuleContext, jump: Jump, copy: int) -> int | None:
         tested = _io_of(blocks[copy].parsed)[0]
     if not tested:
         return None
-    for line in range(copy, jump.line):
-        changed = tested & _io_of(blocks[line].parsed)[1]
-        if changed:
-            return min(changed)
-    return None
+    writes = _writes(ctx)
+    # (line, variable) of the first write from the N to the jump: the smallest number of the
+    # first line that changes one of them.
+    first = (jump.line, -1)
+    for number in tested:
+        lines = writes.get(number)
+        if lines:
+            at = bisect_left(lines, copy)
+            if at < len(lines) and (lines[at], number) < first:
+                first = (lines[at], number)
+    return None if first[1] == -1 else first[1]
+
+
+def _writes(ctx: RuleContext) -> dict[int, list[int]]:
+    """The lines that assign each variable (direct numbers), in order: built once per analysis,
+    so a jump's question is a bisection, not a walk from its N."""
+    found = ctx.memo.get("jumps.writes")
+    if found is None:
+        writes: dict[int, list[int]] = {}
+        for block in ctx.doc.blocks:
+            for number in _io_of(block.parsed)[1]:
+                writes.setdefault(number, []).append(block.line)
+        ctx.memo["jumps.writes"] = found = writes
+    return cast("dict[int, list[int]]", found)
 
 
 def _dead(ctx: RuleContext, program: Program, line: int) -> bool:
@@ -134,7 +155,7 @@ def _dead(ctx: RuleContext, program: Program, line: int) -> bool:
         return False
     if program.first_line in facts.incomplete_programs:
         return False
-    if any(jc.undecided for ln, jc in facts.jumps.items() if program.contains(ln)):
+    if program.first_line in ctx.undecided_programs():
         return False
     return line not in facts.runs
 
@@ -150,14 +171,15 @@ def _duplicate_lands_wrong(
     the copy the control finds is dead code in the evaluator's runs."""
     seq = jump.target
     assert seq is not None
-    before = [ln for ln in lines if ln <= jump.line]  # the GOTO's own block: searched last
-    after = [ln for ln in lines if ln > jump.line]
-    lands = after[0] if after else lines[0]
-    loop_var = _loop_test(ctx, jump, before[-1]) if before else None
-    looks_back = bool(before) and (not after or loop_var is not None)
-    meant = before[-1] if looks_back else after[0]
+    # The copies up to the GOTO's own block (searched last) and after it; lines are in order.
+    split = bisect_right(lines, jump.line)
+    before, after = split > 0, split < len(lines)
+    last_before = lines[split - 1] if before else -1
+    lands = lines[split] if after else lines[0]
+    loop_var = _loop_test(ctx, jump, last_before) if before else None
+    looks_back = before and (not after or loop_var is not None)
+    meant = last_before if looks_back else lines[split]
     name = program.display_name
-    all_lines = ", ".join(str(ln + 1) for ln in lines)
     ts = jump.target_span
     if lands != meant:
         if after:
@@ -178,6 +200,7 @@ def _duplicate_lands_wrong(
                 f"{name} and takes the first"
             )
             back = f"the nearest N{seq} before it, line {meant + 1}"
+        all_lines = ", ".join(str(ln + 1) for ln in lines)  # only for a message: it is long
         message = (
             f"GOTO {seq} lands on the N{seq} of line {lands + 1}, not on {back}: {why} "
             f"(N{seq} stands {len(lines)} times in {name}: lines {all_lines})"

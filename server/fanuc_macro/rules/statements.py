@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from collections.abc import Iterator
-from typing import NamedTuple
+from typing import NamedTuple, cast
 
 from ..diagnostics import Diagnostic, Related, RuleInfo, Severity, make, register
 from ..index import Call as IndexCall
@@ -201,7 +201,7 @@ def check_programs(ctx: RuleContext) -> Iterator[Diagnostic]:
             if found.cancels_modal_call:
                 g67_lines.append(line)
         for call in program.calls:
-            if call.kind in ("G66", "G66.1") and not any(g > call.line for g in g67_lines):
+            if call.kind in ("G66", "G66.1") and not (g67_lines and g67_lines[-1] > call.line):
                 yield make(
                     "MB406",
                     f"{call.kind} at line {call.line + 1} has no G67 after it in "
@@ -228,15 +228,27 @@ def _stops_here(statement: Statement) -> bool:
     return False
 
 
+def _calls_by_number(ctx: RuleContext) -> dict[int | None, list[tuple[Program, IndexCall]]]:
+    """The calls of each program number with the program that makes them: gathered once, not
+    for each program that has no end."""
+    found = ctx.memo.get("statements.calls")
+    if found is None:
+        by_number: dict[int | None, list[tuple[Program, IndexCall]]] = {}
+        for p in ctx.index.programs:
+            for c in p.calls:
+                by_number.setdefault(c.program, []).append((p, c))
+        found = ctx.memo["statements.calls"] = by_number
+    return cast("dict[int | None, list[tuple[Program, IndexCall]]]", found)
+
+
 def _not_ended(
     ctx: RuleContext, program: Program, following: Program | None, last_statement: int
 ) -> Diagnostic:
     name = program.display_name
     callers = [
         (p.display_name, c.kind, c.line)
-        for p in ctx.index.programs
-        for c in p.calls
-        if c.program == program.number and p is not program
+        for p, c in _calls_by_number(ctx).get(program.number, ())
+        if p is not program
     ]
     closed_by_tape_mark = any(
         ctx.doc.blocks[line].parsed.tape_mark for line in range(last_statement, program.end_line)

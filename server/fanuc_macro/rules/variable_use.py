@@ -46,8 +46,13 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
     )
     if not vacant_reads:
         return
+    by_program: dict[int, list[tuple[int, int]]] = {}  # one pass, not one per program
+    for line, n in vacant_reads:
+        holder = ctx.index.program_at(line)
+        if holder is not None:
+            by_program.setdefault(holder.first_line, []).append((line, n))
     for program in ctx.index.programs:
-        candidates = [(line, n) for line, n in vacant_reads if program.contains(line)]
+        candidates = by_program.get(program.first_line)
         if not candidates:
             continue
         assigned: set[int] = set()

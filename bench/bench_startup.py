@@ -1,0 +1,135 @@
+"""Start-up benchmark (a script, not a test): ``fanuc-macro check`` of a small file and the
+language server's answer to ``initialize``, each in a new process, as a user meets them.
+
+    python bench/bench_startup.py               # this checkout, 10 runs of each
+    python bench/bench_startup.py --tree DIR    # another checkout (its server/ folder)
+
+The interpreter runs with its bytecode cached, as in an installed package: a temporary
+``PYTHONPYCACHEPREFIX`` keeps the compiled modules out of the source tree, one run warms it.
+``python -c pass`` is measured too: the interpreter's own start is part of every figure.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import platform
+import resource
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+SMALL = ROOT / "tests" / "fixtures" / "seeds" / "o2_arc_thread_roughing.nc"
+
+
+def environment(tree: Path, cache: str) -> dict[str, str]:
+    env = dict(os.environ)
+    env.pop("PYTHONDONTWRITEBYTECODE", None)
+    env["PYTHONPYCACHEPREFIX"] = cache
+    env["PYTHONPATH"] = str(tree / "server")
+    return env
+
+
+CPU: list[float] = []  # the CPU time (user + system) of each process timed, in order
+
+
+def _children_cpu() -> float:
+    usage = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return usage.ru_utime + usage.ru_stime
+
+
+def timed(command: list[str], env: dict[str, str]) -> float:
+    cpu = _children_cpu()
+    started = time.perf_counter()
+    subprocess.run(command, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    elapsed = time.perf_counter() - started
+    CPU.append(_children_cpu() - cpu)
+    return elapsed
+
+
+def _message(payload: dict[str, object]) -> bytes:
+    body = json.dumps(payload).encode()
+    return f"Content-Length: {len(body)}\r\n\r\n".encode() + body
+
+
+def initialize_round_trip(env: dict[str, str]) -> float:
+    """From the start of the server process to the end of its answer to ``initialize`` (and
+    the process's CPU time, to its exit)."""
+    cpu = _children_cpu()
+    started = time.perf_counter()
+    server = subprocess.Popen(
+        [sys.executable, "-m", "fanuc_macro.lsp.server"],
+        env=env,
+        stdin=subprocess.PIPE,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.DEVNULL,
+    )
+    assert server.stdin is not None and server.stdout is not None
+    params = {"processId": os.getpid(), "rootUri": None, "capabilities": {}}
+    server.stdin.write(
+        _message({"jsonrpc": "2.0", "id": 1, "method": "initialize", "params": params})
+    )
+    server.stdin.flush()
+    length = 0
+    while (line := server.stdout.readline().strip()) != b"":
+        if line.lower().startswith(b"content-length:"):
+            length = int(line.split(b":")[1])
+    answer = json.loads(server.stdout.read(length))
+    elapsed = time.perf_counter() - started
+    assert answer.get("id") == 1 and "result" in answer, answer
+    server.stdin.write(_message({"jsonrpc": "2.0", "id": 2, "method": "shutdown"}))
+    server.stdin.write(_message({"jsonrpc": "2.0", "method": "exit"}))
+    server.stdin.close()
+    try:
+        server.wait(10)
+    except subprocess.TimeoutExpired:
+        server.kill()
+        server.wait()
+    CPU.append(_children_cpu() - cpu)
+    return elapsed
+
+
+def report(what: str, times: list[float], cpu: list[float] | None = None) -> None:
+    """Wall-clock times; with ``cpu``, the processes' CPU time too, which a loaded machine
+    changes less."""
+    line = (
+        f"{what}: min {min(times) * 1000:.0f} ms, median {statistics.median(times) * 1000:.0f} ms"
+    )
+    if cpu:
+        line += (
+            f" (CPU min {min(cpu) * 1000:.0f} ms, median {statistics.median(cpu) * 1000:.0f} ms)"
+        )
+    print(f"{line}, {len(times)} runs")
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--tree", type=Path, default=ROOT, help="the checkout to measure")
+    ap.add_argument("--runs", type=int, default=10)
+    args = ap.parse_args()
+    print(f"machine: {platform.processor() or platform.machine()}, {platform.python_version()}")
+    with tempfile.TemporaryDirectory() as cache:
+        env = environment(args.tree.resolve(), cache)
+        check = [sys.executable, "-m", "fanuc_macro.cli", "check", str(SMALL)]
+        timed(check, env)  # compiles the modules into the cache
+        initialize_round_trip(env)
+        runs = range(args.runs)
+        CPU.clear()
+        report("python -c pass", [timed([sys.executable, "-c", "pass"], env) for _ in runs], CPU)
+        CPU.clear()
+        report(f"fanuc-macro check {SMALL.name}", [timed(check, env) for _ in runs], CPU)
+        CPU.clear()
+        report(
+            "language server: start to initialize answered",
+            [initialize_round_trip(env) for _ in runs],
+            CPU,
+        )
+
+
+if __name__ == "__main__":
+    main()

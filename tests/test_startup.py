@@ -1,0 +1,70 @@
+"""What a start imports, not how long it takes: each command loads only the modules it uses
+(the figures are in docs/benchmarks.md, from bench/bench_startup.py)."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+SMALL_PROGRAM = "%\nO1000\n#1=10.\nWHILE[#1GT0]DO1\n#1=#1-1.\nEND1\nG0 X#1\nM30\n%\n"
+
+# Heavy or unrelated to checking a file: the thread generator, the language server's protocol
+# packages, numpy, and the `regex` package Lark would load for an option the grammar does not use.
+NOT_FOR_CHECK = (
+    "numpy",
+    "lsprotocol",
+    "pygls",
+    "cattrs",
+    "regex",
+    "fanuc_macro.lsp",
+    "fanuc_macro.threads.generator",
+    "fanuc_macro.threads.snippet",
+)
+
+
+def loaded_after(code: str, *args: str) -> set[str]:
+    """The modules a new interpreter has loaded after running ``code``."""
+    script = code + "\nimport json, sys\nprint(json.dumps(sorted(sys.modules)))\n"
+    done = subprocess.run(
+        [sys.executable, "-c", script, *args], capture_output=True, text=True, timeout=120
+    )
+    assert done.returncode == 0, done.stderr
+    return set(json.loads(done.stdout.splitlines()[-1]))
+
+
+def test_check_of_a_small_file_loads_no_generator_server_or_numpy(tmp_path: Path) -> None:
+    program = tmp_path / "o1000.nc"
+    program.write_text(SMALL_PROGRAM)
+    loaded = loaded_after(
+        "import contextlib, io, sys\n"
+        "from fanuc_macro.cli import main\n"
+        "with contextlib.redirect_stdout(io.StringIO()):\n"
+        "    status = main(['check', sys.argv[1]])\n"
+        "assert status == 0, status\n",
+        str(program),
+    )
+    assert "fanuc_macro.analysis" in loaded  # the check ran
+    unexpected = {m for m in loaded if m in NOT_FOR_CHECK or m.split(".")[0] in NOT_FOR_CHECK}
+    unexpected |= {m for m in loaded if m.startswith(("fanuc_macro.lsp.", "lsprotocol."))}
+    assert not unexpected
+
+
+def test_the_thread_command_still_loads_its_generator(tmp_path: Path) -> None:
+    loaded = loaded_after(
+        "import contextlib, io\n"
+        "from fanuc_macro.cli import main\n"
+        "with contextlib.redirect_stdout(io.StringIO()):\n"
+        "    status = main(['thread', 'M50x3-5g6g', '--length', '30'])\n"
+        "assert status == 0, status\n"
+    )
+    assert "fanuc_macro.threads.generator" in loaded
+
+
+def test_the_language_server_starts_without_the_thread_generator() -> None:
+    loaded = loaded_after("import fanuc_macro.lsp.server\n")
+    assert "pygls" in loaded and "fanuc_macro.lsp.engine" in loaded
+    assert "fanuc_macro.threads.generator" not in loaded
+    assert "fanuc_macro.threads.snippet" not in loaded
+    assert "regex" not in loaded
