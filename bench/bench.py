@@ -14,7 +14,9 @@ import argparse
 import gc
 import platform
 import random
+import re
 import resource
+import statistics
 import subprocess
 import sys
 import time
@@ -177,6 +179,46 @@ def bench_eval() -> None:
     print(f"evaluator: endless loop stopped and reported in {dt * 1000:.0f} ms ({codes})")
 
 
+def bench_resume(size: int) -> None:
+    """A one-line code edit of a long program: a full evaluation against one resumed from
+    the earlier run's checkpoints (the lines parsed and compiled in both)."""
+    from bench_lsp import program  # the language server benchmark's program, seed style
+
+    text = program(size)
+    lines = text.splitlines()
+    parser = BlockParser()
+    uri = "resume.nc"
+
+    def evaluated(source: str, previous: Facts | None) -> tuple[Facts, float]:
+        doc = parse_text(source, uri, parser)
+        index = build_index(doc)
+        started = time.perf_counter()
+        facts = evaluate([(uri, doc, index)], only_uri=uri, previous=previous)
+        return facts, time.perf_counter() - started
+
+    first, _ = evaluated(text, None)
+    full = min(evaluated(text, None)[1] for _ in range(3))
+    assignments = [i for i, t in enumerate(lines) if t.startswith("#") and "SQRT[" in t]
+    for where in (0.1, 0.5, 0.9):
+        line = next(i for i in assignments if i >= len(lines) * where)
+        times: list[float] = []
+        previous = first
+        executed = 0
+        for k in range(5):
+            edited = list(lines)
+            edited[line] = edited[line].replace("SQRT[", f"SQRT[{k + 2}.*", 1)
+            facts, seconds = evaluated("\n".join(edited) + "\n", previous)
+            times.append(seconds)
+            assert facts.record is not None and facts is not previous
+            executed = facts.record.executed
+            previous = facts
+        print(
+            f"evaluator, {size:,} blocks ({first.steps:,} run), edit at {where:.0%} of the "
+            f"program: full {full * 1000:.0f} ms, resumed median "
+            f"{statistics.median(times) * 1000:.1f} ms (ran {executed:,} blocks)"
+        )
+
+
 def bench_threads() -> None:
     """The threading rules' share of an analysis: finding the threads and checking them."""
     from fanuc_macro.rules import cycles, thread_lead, thread_passes, thread_tool, threading
@@ -300,6 +342,7 @@ def main() -> None:
     bench_parse(sizes)
     bench_memory(sizes[-1])
     bench_eval()
+    bench_resume(20000)
     bench_threads()
     bench_big_rules(20000 if args.quick else 100000)
 
