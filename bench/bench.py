@@ -14,7 +14,6 @@ import argparse
 import gc
 import platform
 import random
-import re
 import resource
 import statistics
 import subprocess

@@ -359,3 +359,21 @@ def test_the_grammar_path_takes_20000_levels_without_recursion(
     else:
         (note,) = parsed.notes
         assert note.kind == "too-deep" and f"nests {levels} levels deep" in note.message
+
+
+def test_a_program_cut_by_the_read_limit_is_not_taken_for_ended_or_fully_run() -> None:
+    """A big CAM file read in part (MB013): the M30, the G67, the label N10 and the called
+    program may be in the unread part, so no MB101 / MB403 / MB406 / MB407, and the run stops
+    there unfinished (no verdict that needs a whole run)."""
+    rows = [f"G01 X{i}. Z-{i % 7}. F0.2" for i in range(60)]
+    text = "\n".join(
+        ["%", "O1234 (CAM)", "#1=1", "G66 P9010 A1.", "IF[#1EQ2]GOTO10", *rows, "N10 G67", "M30"]
+    )
+    config = Config(max_blocks=30)
+    result = analyse(text, "cam.nc", config)
+    codes = {d.code for d in result.diagnostics}
+    assert "MB013" in codes
+    assert codes == {"MB013"}
+    assert result.facts is not None
+    doc_facts = result.facts.document("cam.nc")
+    assert doc_facts.incomplete_programs

@@ -627,6 +627,12 @@ class Machine:
             ctx = act.ctx
             pc = act.pc
             if pc >= ctx.program.end_line:
+                unread = ctx.doc.unread_from
+                if unread is not None and ctx.program.end_line >= unread:
+                    # The program goes on in the part of the file the analysis does not read
+                    # (MB013): its run is not over.
+                    self._mark_incomplete(act)
+                    raise _Stop("unread")
                 act = self._return(act, None, ctx.program.end_line - 1)
                 continue
             cl = ctx.lines[pc]

@@ -53,6 +53,9 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
                 continue
             lines = program.labels.get(jump.target)
             if not lines:
+                unread = ctx.doc.unread_from
+                if unread is not None and program.end_line >= unread:
+                    continue  # the label may be in the part of the file left unread (MB013)
                 yield make(
                     "MB101",
                     f"GOTO {jump.target}: no N{jump.target} in {name} (alarm "

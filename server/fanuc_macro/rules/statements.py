@@ -138,6 +138,8 @@ def _missing_programs(
     ctx: RuleContext, missing: dict[int, list[IndexCall]]
 ) -> Iterator[Diagnostic]:
     """MB403 once per missing program, at its first call, with the others as related places."""
+    if ctx.doc.unread_from is not None:
+        return  # the programs may be in the part of this file the analysis does not read
     where = "this file" if ctx.workspace_programs is None else "the workspace"
     for number, calls in missing.items():
         first = calls[0]
@@ -183,9 +185,12 @@ _ends_of: PerLine[_LineEnds] = PerLine(_line_ends)
 def check_programs(ctx: RuleContext) -> Iterator[Diagnostic]:
     """MB406 and MB407: what each O program must hold from its first block to its last."""
     programs = ctx.index.programs
+    unread = ctx.doc.unread_from
     for i, program in enumerate(programs):
         if program.number is None:
             continue  # text before the first O number: a fragment, or MB010's
+        if unread is not None and program.end_line >= unread:
+            continue  # its end, and a G67, may be in the part the analysis does not read
         g67_lines: list[int] = []
         ends = False
         last_statement: int | None = None
