@@ -491,3 +491,25 @@ def test_trace_failing_inside_answers_json_and_exit_1(
     out, err = capsys.readouterr()
     assert "evaluator bug" in json.loads(out)["error"]
     assert "Traceback" not in err and "please report it" in err
+
+
+def test_the_read_limits_and_the_budget_are_options(tmp_path: Path) -> None:
+    rows = "".join(f"G01 X{i}. Z-{i % 7}. F0.2\n" for i in range(40))
+    write(tmp_path / "cam.nc", f"%\nO1234 (CAM)\n{rows}M30\n%\n")
+    plain = run(tmp_path, "check", "--format", "json", "cam.nc")
+    assert plain.returncode == 0, plain.stderr
+    assert not [r for r in json.loads(plain.stdout) if r["code"] == "MB013"]
+    cut = run(tmp_path, "check", "--format", "json", "--max-blocks", "20", "cam.nc")
+    assert cut.returncode == 0, cut.stderr
+    codes = [r["code"] for r in json.loads(cut.stdout)]
+    assert codes == ["MB013"]  # and nothing the unread part may settle (its M30)
+    (record,) = json.loads(cut.stdout)
+    assert record["line"] == 21 and "--max-blocks" in record["message"]
+    sized = run(tmp_path, "check", "--format", "json", "--max-file-size", "200", "cam.nc")
+    assert [r["code"] for r in json.loads(sized.stdout)] == ["MB013"]
+    endless = write(tmp_path / "loop.nc", "%\nO1\n#1=0\nWHILE[#1LT10]DO1\n#2=#2+1\nEND1\nM30\n%\n")
+    looped = run(tmp_path, "check", "--format", "json", "--step-budget", "500", endless.name)
+    (mb703,) = [r for r in json.loads(looped.stdout) if r["code"] == "MB703"]
+    assert "(500 blocks)" in mb703["message"]
+    refused = run(tmp_path, "check", "--max-blocks", "0", "cam.nc")
+    assert refused.returncode == 2 and "not a positive whole number" in refused.stderr

@@ -362,12 +362,24 @@ def test_the_grammar_path_takes_20000_levels_without_recursion(
 
 
 def test_a_program_cut_by_the_read_limit_is_not_taken_for_ended_or_fully_run() -> None:
-    """A big CAM file read in part (MB013): the M30, the G67, the label N10 and the called
-    program may be in the unread part, so no MB101 / MB403 / MB406 / MB407, and the run stops
-    there unfinished (no verdict that needs a whole run)."""
+    """A big CAM file read in part (MB013): the M30, the G67, the END, the label N10 and the
+    called program may be in the unread part, so no MB101 / MB201 / MB403 / MB406 / MB407, and
+    the run stops there unfinished (no verdict that needs a whole run)."""
     rows = [f"G01 X{i}. Z-{i % 7}. F0.2" for i in range(60)]
     text = "\n".join(
-        ["%", "O1234 (CAM)", "#1=1", "G66 P9010 A1.", "IF[#1EQ2]GOTO10", *rows, "N10 G67", "M30"]
+        [
+            "%",
+            "O1234 (CAM)",
+            "#1=1",
+            "G66 P9010 A1.",
+            "IF[#1EQ2]GOTO10",
+            "WHILE[#1LT3]DO1",
+            *rows,
+            "#1=#1+1",
+            "END1",
+            "N10 G67",
+            "M30",
+        ]
     )
     config = Config(max_blocks=30)
     result = analyse(text, "cam.nc", config)

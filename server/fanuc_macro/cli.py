@@ -66,6 +66,61 @@ def _config(args: argparse.Namespace) -> Config:
         max_spindle_speed=args.max_spindle_speed,
         max_threading_feed=args.max_threading_feed,
         extended_commons=args.extended_commons,
+        max_line_length=args.max_line_length,
+        max_blocks=args.max_blocks,
+        max_file_size=args.max_file_size,
+        step_budget=args.step_budget,
+        time_limit=args.time_limit,
+    )
+
+
+def _whole(text: str) -> int:
+    try:
+        value = int(text.replace("_", ""))
+    except ValueError:
+        value = 0
+    if value <= 0:
+        raise argparse.ArgumentTypeError(f"not a positive whole number: {text!r}")
+    return value
+
+
+def _add_analysis_options(parser: argparse.ArgumentParser) -> None:
+    """How much the analysis reads and runs, as the editor's fanuc-macro.analysis.* settings."""
+    default = Config()
+    parser.add_argument(
+        "--max-line-length",
+        type=_whole,
+        default=default.max_line_length,
+        metavar="CHARS",
+        help=f"a longer block is not analysed (MB011; default {default.max_line_length})",
+    )
+    parser.add_argument(
+        "--max-blocks",
+        type=_whole,
+        default=default.max_blocks,
+        metavar="N",
+        help=f"blocks of a file the analysis reads (MB013; default {default.max_blocks:,})",
+    )
+    parser.add_argument(
+        "--max-file-size",
+        type=_whole,
+        default=default.max_file_size,
+        metavar="CHARS",
+        help=f"characters of a file the analysis reads (MB013; default {default.max_file_size:,})",
+    )
+    parser.add_argument(
+        "--step-budget",
+        type=_whole,
+        default=default.step_budget,
+        metavar="BLOCKS",
+        help=f"blocks one run of a program may execute (default {default.step_budget:,})",
+    )
+    parser.add_argument(
+        "--time-limit",
+        type=_positive,
+        default=default.time_limit,
+        metavar="SECONDS",
+        help=f"the safety net of a slow or busy machine (default {default.time_limit:g} s)",
     )
 
 
@@ -200,6 +255,7 @@ def build_parser() -> argparse.ArgumentParser:
     check.add_argument("--controller", choices=CONTROLLERS, default="0i-TF")
     check.add_argument("--disable", metavar="CODES", help="comma-separated rule codes to skip")
     _add_machine_options(check)
+    _add_analysis_options(check)
     check.set_defaults(func=cmd_check)
 
     tr = sub.add_parser("trace", parents=[logs], help="print the motion blocks a program executes")
@@ -216,6 +272,7 @@ def build_parser() -> argparse.ArgumentParser:
     tr.add_argument("--controller", choices=CONTROLLERS, default="0i-TF")
     tr.add_argument("--disable", help=argparse.SUPPRESS)
     _add_machine_options(tr)
+    _add_analysis_options(tr)
     tr.set_defaults(func=cmd_trace)
 
     add_thread_command(sub)

@@ -451,7 +451,7 @@ def _too_long(text: str, limit: int) -> ParsedLine:
     note = LineNote(
         "too-long",
         f"this block is {len(text)} characters long, more than the {limit} the analysis reads "
-        "(setting fanuc-macro.analysis.maxLineLength): it is not analysed",
+        "(setting fanuc-macro.analysis.maxLineLength, --max-line-length): it is not analysed",
         Span(limit, len(text)),
     )
     return ParsedLine(
@@ -964,10 +964,10 @@ def _lines_read(text: str, lines: list[str], limits: ReadLimits) -> int:
 def _unread_note(text: str, lines: list[str], read: int, limits: ReadLimits) -> str:
     if limits.max_blocks is not None and read == limits.max_blocks:
         size = f"{len(lines)} blocks, more than the {limits.max_blocks}"
-        setting = "maxBlocks"
+        setting = "maxBlocks, --max-blocks"
     else:
         size = f"{len(text)} characters, more than the {limits.max_characters}"
-        setting = "maxFileSize"
+        setting = "maxFileSize, --max-file-size"
     return (
         f"analysed the first {read} blocks of {len(lines)}: the document has {size} the "
         f"analysis reads (setting fanuc-macro.analysis.{setting}); the blocks from line "
