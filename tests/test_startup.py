@@ -68,3 +68,24 @@ def test_the_language_server_starts_without_the_thread_generator() -> None:
     assert "fanuc_macro.threads.generator" not in loaded
     assert "fanuc_macro.threads.snippet" not in loaded
     assert "regex" not in loaded
+
+
+def test_the_language_server_answers_initialize_before_loading_the_analysis() -> None:
+    """The server's module and its `initialize` need the protocol, not the analysis: the
+    parser, the evaluator, the rules and the features are loaded by the worker afterwards."""
+    loaded = loaded_after(
+        "from lsprotocol import types\n"
+        "from fanuc_macro.lsp.server import create_server\n"
+        "server = create_server()\n"
+        "server.engine.configure({'analysis': {'debounceMs': 10}})\n"
+    )
+    later = {
+        "fanuc_macro.analysis",
+        "fanuc_macro.parser",
+        "fanuc_macro.evaluator",
+        "fanuc_macro.rules",
+        "fanuc_macro.workspace",
+        "fanuc_macro.lsp.features",
+        "lark",
+    }
+    assert not later & loaded

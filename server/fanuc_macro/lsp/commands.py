@@ -7,7 +7,6 @@ import importlib
 import logging
 from typing import Any
 
-from ..trace import trace
 from .engine import Engine, key_of
 
 log = logging.getLogger(__name__)
@@ -41,6 +40,8 @@ async def run_trace(engine: Engine, args: tuple[Any, ...]) -> dict[str, Any]:
         if documents is None:
             return {"error": f"{uri} is not in the workspace"}
         (_, doc, index), *others = documents
+        from ..trace import trace  # the evaluator: loaded by the worker after start-up
+
         return trace(key, doc, index, others, config)
 
     try:

@@ -23,21 +23,23 @@ from collections.abc import Callable, Iterable, Sequence
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
 from pathlib import Path, PurePosixPath
-from typing import Any, Protocol, TypeVar
+from typing import TYPE_CHECKING, Any, Protocol, TypeVar
 from urllib.parse import unquote, urlparse
 
 from lsprotocol import types
 from pygls.uris import from_fs_path, to_fs_path
 
-from ..analysis import Analysis
 from ..cancel import RUNNING, Cancelled, CancelToken, Stage
 from ..config import Config
 from ..diagnostics import REPORT_INTERNAL_ERROR
-from ..index import ProgramIndex
-from ..syntax import Document
-from ..workspace import Workspace, is_program_file, related_documents
 from .convert import Codec, Lines, lsp_lines, to_lsp_diagnostic
 from .documents import OpenDocument
+
+if TYPE_CHECKING:  # the analysis is imported by the worker, after the server has started
+    from ..analysis import Analysis
+    from ..index import ProgramIndex
+    from ..syntax import Document
+    from ..workspace import Workspace
 
 log = logging.getLogger(__name__)
 
@@ -164,7 +166,7 @@ class Engine:
         self.progress_delay = DEFAULT_PROGRESS_DELAY_MS / 1000.0
         self._progress_count = 0  # worker only: names the progress tokens
         # Worker-only state.
-        self._ws = Workspace(self.config)
+        self._workspace: Workspace | None = None  # made by the worker's first job
         self._ws_seq: dict[str, int | None] = {}  # which text of each document is in _ws
         self._analysed: dict[str, tuple[int, int]] = {}  # key -> (text seq, generation)
         self.generation = 0  # written by the worker only
@@ -172,6 +174,27 @@ class Engine:
         self._feature_fault = os.environ.get(FEATURE_FAULT_ENV) or None
 
     # ---- helpers ---------------------------------------------------------------------------
+    @property
+    def _ws(self) -> Workspace:
+        """The package's workspace (worker only). The analysis modules it imports take a
+        quarter of a second: the server answers ``initialize`` before, and the worker's first
+        job (:meth:`preload`) loads them."""
+        if self._workspace is None:
+            from ..workspace import Workspace
+
+            self._workspace = Workspace(self.config)
+        return self._workspace
+
+    def preload(self) -> None:
+        """Load the analysis in the worker while the client sends its first documents."""
+
+        def job() -> None:
+            from . import commands, features  # noqa: F401  (imported for their own imports)
+
+            self._ws.uris()
+
+        self._executor.submit(job)
+
     @property
     def loop(self) -> asyncio.AbstractEventLoop:
         if self._loop is None:
@@ -476,6 +499,8 @@ class Engine:
     def documents_for(self, key: str) -> list[tuple[str, Document, ProgramIndex]]:
         """Worker thread: the other documents an analysis or trace of ``key`` needs."""
         indexes = self.indexes
+        from ..workspace import related_documents
+
         needed = related_documents(key, indexes)
         keys = [k for k in indexes if k != key] if needed is None else needed
         return [(k, *indexes[k]) for k in keys]
@@ -660,7 +685,7 @@ class Engine:
                 continue  # the editor's text wins
             path = _path_of(key)
             deleted = event.type == types.FileChangeType.Deleted
-            if path is None or (not deleted and not is_program_file(path)):
+            if path is None or (not deleted and not _is_program_file(path)):
                 continue
             todo.append((key, path, deleted))
         if not todo:
@@ -799,7 +824,7 @@ def _program_files(folders: Sequence[Path], limit: int) -> Iterable[Path]:
                 if name.startswith(".") or path in seen:
                     continue
                 try:
-                    if path.stat().st_size > SCAN_MAX_BYTES or not is_program_file(path):
+                    if path.stat().st_size > SCAN_MAX_BYTES or not _is_program_file(path):
                         continue
                 except OSError:
                     continue
@@ -808,3 +833,9 @@ def _program_files(folders: Sequence[Path], limit: int) -> Iterable[Path]:
                 count += 1
                 if count >= limit:
                     return
+
+
+def _is_program_file(path: Path) -> bool:
+    from ..workspace import is_program_file
+
+    return is_program_file(path)

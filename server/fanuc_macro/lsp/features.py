@@ -51,6 +51,7 @@ from ..threads.identify import describe as describe_thread
 from ..threads.identify import module_meanings
 from ..variables import ARGUMENT_VARIABLES, classify
 from ..walk import subexpressions
+from .client import CompletionSupport
 from .convert import Codec, Lines
 from .locate import (
     Hit,
@@ -938,13 +939,6 @@ def snippets() -> tuple[tuple[str, str, str, str], ...]:
         for prefix in prefixes:
             out.append((str(prefix), str(name), str(entry.get("description", "")), body))
     return tuple(out)
-
-
-@dataclass
-class CompletionSupport:
-    snippets: bool = False
-    markdown: bool = False
-    builtin_snippets: bool = False  # the client has the snippets already (VS Code extension)
 
 
 def _doc(text: str, support: CompletionSupport) -> types.MarkupContent | str:

@@ -12,7 +12,7 @@ import logging
 import sys
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
-from typing import Any, TypeVar
+from typing import TYPE_CHECKING, Any, TypeVar
 
 from lsprotocol import types
 from pygls.exceptions import JsonRpcException, JsonRpcInternalError, JsonRpcInvalidParams
@@ -21,21 +21,14 @@ from pygls.protocol import LanguageServerProtocol
 
 from .. import __version__
 from ..diagnostics import REPORT_INTERNAL_ERROR
+from .client import CompletionSupport
 from .commands import THREAD_MODULE, TRACE, run_thread_module, run_trace
 from .convert import Codec
 from .documents import OpenDocument
 from .engine import Engine, Result
-from .features import (
-    CompletionSupport,
-    View,
-    code_actions,
-    completion,
-    definition,
-    document_symbols,
-    hover,
-    inlay_hints,
-    references,
-)
+
+if TYPE_CHECKING:  # the features import the analysis: loaded after initialize (Engine.preload)
+    from .features import View
 
 log = logging.getLogger(__name__)
 
@@ -212,6 +205,8 @@ class FanucMacroLanguageServer(LanguageServer):
         return self.make_view(result)
 
     def make_view(self, result: Result) -> View:
+        from .features import View
+
         return View(
             key=result.key,
             uri=self.engine.client_uri(result.key),
@@ -302,6 +297,7 @@ def create_server() -> FanucMacroLanguageServer:
 
     @server.feature(types.INITIALIZED)
     async def initialized(ls: FanucMacroLanguageServer, params: types.InitializedParams) -> None:
+        engine.preload()  # the analysis, loaded while the client opens its first documents
         folders = [f.uri for f in ls.workspace.folders.values()]
         if not folders and ls.workspace.root_uri:
             folders = [ls.workspace.root_uri]
@@ -389,6 +385,8 @@ def create_server() -> FanucMacroLanguageServer:
         view = await ls.view(params.text_document.uri)
         if view is None:
             return None
+        from .features import hover
+
         return await ls.compute("hover", lambda: hover(view, params.position))
 
     @server.feature(types.TEXT_DOCUMENT_INLAY_HINT, types.InlayHintOptions(resolve_provider=False))
@@ -398,6 +396,8 @@ def create_server() -> FanucMacroLanguageServer:
         view = await ls.view(params.text_document.uri)
         if view is None:
             return None
+        from .features import inlay_hints
+
         r = params.range
         return await ls.compute("inlay hints", lambda: inlay_hints(view, r.start.line, r.end.line))
 
@@ -410,6 +410,8 @@ def create_server() -> FanucMacroLanguageServer:
         view = await ls.view(params.text_document.uri)
         if view is None:
             return None
+        from .features import definition
+
         found = await ls.compute("definition", lambda: definition(view, params.position))
         if found is None and not scanned:
             # A program in a file the workspace scan has not reached yet.
@@ -434,6 +436,8 @@ def create_server() -> FanucMacroLanguageServer:
             for r in engine.results.values()
             if r.analysis is not None and r.key != view.key
         ]
+        from .features import references
+
         include = params.context.include_declaration
         return await ls.compute(
             "references", lambda: references(view, params.position, include, others)
@@ -446,6 +450,8 @@ def create_server() -> FanucMacroLanguageServer:
         view = await ls.view(params.text_document.uri)
         if view is None:
             return None
+        from .features import document_symbols
+
         return await ls.compute("document symbols", lambda: document_symbols(view))
 
     @server.feature(
@@ -463,6 +469,8 @@ def create_server() -> FanucMacroLanguageServer:
         # Completion must not wait for an analysis: the newest one there is will do.
         result = engine.results.get(doc.key)
         view = ls.make_view(result) if result is not None and result.analysis else None
+        from .features import completion
+
         support = ls.completion_support
         config = engine.config
         return await ls.compute(
@@ -484,6 +492,8 @@ def create_server() -> FanucMacroLanguageServer:
         if view is None or doc is None:
             return None
         eol = "\r\n" if "\r\n" in doc.text[:65536] else "\n"
+        from .features import code_actions
+
         diagnostics = params.context.diagnostics
         return await ls.compute("code actions", lambda: code_actions(view, diagnostics, eol))
 
