@@ -48,16 +48,35 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
 def _feed_not_set(ctx: RuleContext) -> Iterator[Diagnostic]:
     """MB603. F is modal: a cut with none commanded since the program started runs at what an
     earlier program left, or stops with PS0011 FEED ZERO (COMMAND) after power-on, when F is 0
-    (FANUC 0i-D alarm list; the power-on F of parameter 1411 is unverified here)."""
+    (FANUC 0i-D alarm list; the power-on F of parameter 1411 is unverified here).
+
+    Once per program, at the first such cut the run reached: the cuts after it lack the same F
+    (a CAM file without F would otherwise get one warning per block)."""
+    by_program: dict[int, list[int]] = {}
+    first: dict[int, str] = {}
     for f in ctx.findings("feed-not-set"):
-        text = ctx.doc.blocks[f.line].text
+        program = ctx.index.program_at(f.line)
+        key = program.first_line if program is not None else -1
+        lines = by_program.setdefault(key, [])
+        if not lines:
+            first[key] = f.message
+        lines.append(f.line)
+    for key, lines in by_program.items():
+        line = lines[0]
+        text = ctx.doc.blocks[line].text
+        more = ""
+        if len(lines) > 1:
+            shown = ", ".join(str(n + 1) for n in lines[1:9])
+            etc = ", ..." if len(lines) > 9 else ""
+            more = f"; {len(lines) - 1} more cuts run without F after it (lines {shown}{etc})"
         yield make(
             "MB603",
-            f"{f.message}: the feed is what an earlier program left, or 0 after power-on "
-            "(alarm PS0011 FEED ZERO); give F in this block or before it",
-            f.line,
+            f"{first[key]}: the feed is what an earlier program left, or 0 after power-on "
+            f"(alarm PS0011 FEED ZERO); give F in this block or before it{more}",
+            line,
             len(text) - len(text.lstrip()),
             len(text.rstrip()),
+            related=[Related(n, 0, 0, "a cut without F") for n in lines[1:20]],
         )
 
 
