@@ -78,12 +78,24 @@ class RuleContext:
         return cast("list[Thread]", found)
 
     def findings(self, *kinds: str) -> Iterator[Finding]:
-        """The evaluator's findings in this document whose kind starts with one of ``kinds``."""
-        facts = self.doc_facts()
-        if facts is None:
-            return
-        for finding in facts.findings:
-            if finding.kind.startswith(kinds):
+        """The evaluator's findings in this document whose kind starts with one of ``kinds``,
+        in the order the run found them."""
+        by_kind = self.memo.get("findings by kind")
+        if by_kind is None:
+            # Grouped once per analysis: a dozen rules ask, and a CAM file without F has a
+            # finding per block.
+            facts = self.doc_facts()
+            grouped: dict[str, list[tuple[int, Finding]]] = {}
+            for i, finding in enumerate(facts.findings if facts is not None else ()):
+                grouped.setdefault(finding.kind, []).append((i, finding))
+            by_kind = self.memo["findings by kind"] = grouped
+        groups = cast("dict[str, list[tuple[int, Finding]]]", by_kind)
+        chosen = [found for kind, found in groups.items() if kind.startswith(kinds)]
+        if len(chosen) == 1:
+            for _, finding in chosen[0]:
+                yield finding
+        elif chosen:
+            for _, finding in sorted(f for found in chosen for f in found):
                 yield finding
 
     def statements(self) -> Iterator[tuple[Block, Statement]]:
