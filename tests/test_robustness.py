@@ -389,3 +389,16 @@ def test_a_program_cut_by_the_read_limit_is_not_taken_for_ended_or_fully_run() -
     assert result.facts is not None
     doc_facts = result.facts.document("cam.nc")
     assert doc_facts.incomplete_programs
+
+
+def test_the_language_server_settings_defaults_in_package_json() -> None:
+    from fanuc_macro.lsp.engine import DEFAULT_DEBOUNCE_MS, DEFAULT_PROGRESS_DELAY_MS
+
+    manifest = json.loads((ROOT / "package.json").read_text("utf-8"))
+    properties = manifest["contributes"]["configuration"]["properties"]
+    assert properties["fanuc-macro.analysis.debounceMs"]["default"] == DEFAULT_DEBOUNCE_MS
+    delay = properties["fanuc-macro.analysis.progressDelayMs"]["default"]
+    assert delay == DEFAULT_PROGRESS_DELAY_MS
+    default = Config()
+    assert properties["fanuc-macro.analysis.stepBudget"]["default"] == default.step_budget
+    assert properties["fanuc-macro.analysis.timeLimit"]["default"] == default.time_limit
