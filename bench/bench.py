@@ -216,6 +216,20 @@ def bench_resume(size: int) -> None:
             f"program: full {full * 1000:.0f} ms, resumed median "
             f"{statistics.median(times) * 1000:.1f} ms (ran {executed:,} blocks)"
         )
+    line = next(i for i in assignments if i >= len(lines) // 2)
+    for what, edited in (
+        ("a line added (Enter)", [*lines[:line], "", *lines[line:]]),
+        ("a line removed", [*lines[:line], *lines[line + 1 :]]),
+    ):
+        times = []
+        for _ in range(5):
+            facts, seconds = evaluated("\n".join(edited) + "\n", first)
+            times.append(seconds)
+        assert facts.record is not None
+        print(
+            f"evaluator, {size:,} blocks, {what} at 50%: resumed median "
+            f"{statistics.median(times) * 1000:.1f} ms (ran {facts.record.executed:,} blocks)"
+        )
 
 
 def bench_threads() -> None:

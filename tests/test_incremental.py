@@ -93,10 +93,23 @@ def evaluate_text(
 NUMBER = re.compile(r"(?<![#A-Z])\d+\.?\d*|(?<=#)\d+")
 
 
-def mutate(lines: list[str], rng: random.Random) -> list[str]:
-    """One edit that keeps the line count, as a user makes while typing."""
+def mutate(lines: list[str], rng: random.Random, shift: bool = False) -> list[str]:
+    """One edit as a user makes while typing; with ``shift``, one in three adds or removes
+    lines (a new line, a line deleted, a block of lines pasted or cut)."""
     out = list(lines)
     i = rng.randrange(len(out))
+    if shift and rng.randrange(3) == 0:
+        pick = rng.randrange(4)
+        if pick == 0:  # Enter: an empty line
+            out.insert(i, "")
+        elif pick == 1 and len(out) > 2:  # a line deleted
+            del out[i]
+        elif pick == 2:  # lines of the file pasted
+            j = rng.randrange(len(out))
+            out[i:i] = out[j : j + rng.randrange(1, 6)]
+        elif len(out) > 8:  # lines cut
+            del out[i : i + rng.randrange(2, 6)]
+        return out
     kind = rng.randrange(5)
     if kind == 0 or kind == 4:  # a number (or a variable's number) changed
         found = list(NUMBER.finditer(out[i]))
@@ -169,7 +182,7 @@ def test_resumed_equals_full_after_random_edits(path: Path) -> None:
         return
     previous = evaluate_text("\n".join(lines), parser, config)
     for _ in range(12):
-        lines = mutate(lines, rng)
+        lines = mutate(lines, rng, shift=True)
         text = "\n".join(lines)
         resumed = evaluate_text(text, parser, config, previous)
         full = evaluate_text(text, BlockParser(), config)
@@ -186,7 +199,7 @@ def test_long_programs_resume_and_equal_full(seed: int) -> None:
     previous = evaluate_text("\n".join(lines), parser, config)
     saved = 0
     for _ in range(6):
-        lines = mutate(lines, rng)
+        lines = mutate(lines, rng, shift=True)
         text = "\n".join(lines)
         resumed = evaluate_text(text, parser, config, previous)
         full = evaluate_text(text, parser, config)
@@ -256,3 +269,26 @@ def test_analyse_with_previous_facts_gives_the_same_diagnostics() -> None:
         full = analyse(text, URI, parser=BlockParser())
         assert resumed.diagnostics == full.diagnostics
         previous = resumed.facts
+
+
+def test_a_new_line_late_in_a_long_program_runs_few_blocks() -> None:
+    config = Config()
+    parser = BlockParser()
+    text = long_program(40_000, 11)
+    lines = text.splitlines()
+    first = evaluate_text(text, parser, config)
+    assert first.record is not None
+    total = first.record.executed
+    line = next(
+        i for i in range(len(lines) * 3 // 4, len(lines)) if re.match(r"#\d+=#101\*", lines[i])
+    )
+    for edited in (
+        [*lines[:line], "(ADDED)", *lines[line:]],  # a line added
+        [*lines[:line], *lines[line + 1 :]],  # a line removed
+    ):
+        source = "\n".join(edited)
+        resumed = evaluate_text(source, parser, config, first)
+        assert resumed.record is not None and resumed.record.resumed_at is not None
+        assert resumed.record.converged_at is not None
+        assert resumed.record.executed < total // 4
+        assert_same(resumed, evaluate_text(source, BlockParser(), config))

@@ -18,6 +18,7 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
 from ..config import Config
+from ..index import Loop
 from ..syntax import Document
 from .facts import DocumentFacts, Facts, same_value
 
@@ -69,17 +70,33 @@ class MachineState:
     modal: ModalState
     speculative: bool
     activations: int  # programs entered so far (each call's serial number)
-    seen_findings: frozenset[tuple[str, int, int]]
+    seen_findings: frozenset[tuple[str, str, int, int]]  # kind, document, line, column
     motions: int  # motion records so far
     run_values: tuple[int, ...]  # the serials whose variables were kept, in order
     findings: tuple[tuple[str, int], ...]  # per document: findings so far
     analysed: tuple[tuple[str, frozenset[int]], ...]  # per document: programs run so far
-    assumed: tuple[tuple[str, tuple[object, ...]], ...]  # per document: assumed arguments
+    # Per document: the assumed arguments, (program, ((local, line of its first read), ...)).
+    assumed: tuple[tuple[str, tuple[tuple[int, tuple[tuple[int, int], ...]], ...]], ...]
 
-    def same_as(self, other: MachineState) -> bool:
+    def meeting_key(self) -> tuple[object, ...]:
+        """What two states that may be the same have alike, whatever their block counts: a
+        resumed run that ran more or fewer blocks (an edit added or removed some) meets the
+        earlier run at a state equal but for the count."""
+        return (
+            self.run,
+            self.levels[-1].pc if self.levels else -1,
+            len(self.levels),
+            self.activations,
+            self.motions,
+            self.findings,
+            len(self.store),
+        )
+
+    def same_as(self, other: MachineState, counted: bool = True) -> bool:
+        """Equal, value for value (``counted``: the blocks done too)."""
         return (
             self.run == other.run
-            and self.done == other.done
+            and (not counted or self.done == other.done)
             and self.speculative == other.speculative
             and self.activations == other.activations
             and self.motions == other.motions
@@ -140,7 +157,7 @@ class ProgramShape:
     name: str
     end_line: int
     labels: tuple[tuple[int, tuple[int, ...]], ...]
-    loops: tuple[object, ...]  # index.Loop: frozen, no spans
+    loops: tuple[Loop, ...]  # frozen, no spans
     jumps: tuple[tuple[int, int | None, bool], ...]  # line, target, conditional
     calls: tuple[tuple[int, str, int | None], ...]  # line, kind, program
     is_main: bool
@@ -164,6 +181,12 @@ class RunRecord:
     # Per run of the evaluation: its place in the sequence, why it ended, blocks executed.
     results: list[tuple[int, str, int]] = field(default_factory=list)
     executed: int = 0  # blocks this evaluation ran itself (the rest it took from the earlier)
+    # After an edit that added or removed lines, the record renumbered (see .line_shift): its
+    # documents whose lines moved, the stretches that ran a line of the edit, the checkpoints
+    # whose state names one.
+    shifted: frozenset[str] = frozenset()
+    touched: frozenset[int] = frozenset()
+    unusable: frozenset[int] = frozenset()
     resumed_at: tuple[int, int] | None = None  # (run, blocks done) it resumed from
     converged_at: tuple[int, int] | None = None  # where it met the earlier run
 
@@ -176,8 +199,8 @@ class Resumption:
     record: RunRecord
     start: int  # the checkpoint to resume from
     last_changed: int  # the last stretch of the earlier run that ran a changed line
-    # Checkpoints the new run may converge at: (run, blocks done) -> index.
-    convergeable: dict[tuple[int, int], int]
+    # Checkpoints the new run may meet, by their meeting key: the indexes, earliest first.
+    convergeable: dict[tuple[object, ...], list[int]]
 
 
 def changed_lines(
@@ -189,18 +212,27 @@ def changed_lines(
         return None
     changed: dict[str, set[int]] = {}
     for (old_uri, a), (new_uri, b) in zip(old, new, strict=True):
-        if old_uri != new_uri or len(a.blocks) != len(b.blocks) or a.unread_from != b.unread_from:
+        if old_uri != new_uri:
             return None
-        if a is b:
-            continue
-        lines = {
-            x.line
-            for x, y in zip(a.blocks, b.blocks, strict=True)
-            if x.parsed is not y.parsed and x.parsed.text != y.parsed.text
-        }
+        lines = changed_in(a, b)
+        if lines is None:
+            return None
         if lines:
             changed[new_uri] = lines
     return changed
+
+
+def changed_in(a: Document, b: Document) -> set[int] | None:
+    """The lines of one document whose text differs (None: not the same line count)."""
+    if len(a.blocks) != len(b.blocks) or a.unread_from != b.unread_from:
+        return None
+    if a is b:
+        return set()
+    return {
+        x.line
+        for x, y in zip(a.blocks, b.blocks, strict=True)
+        if x.parsed is not y.parsed and x.parsed.text != y.parsed.text
+    }
 
 
 def plan(
@@ -220,7 +252,7 @@ def plan(
         return None
     # A run of an entry program begins with the locals it reads before it sets them unknown:
     # an edit that changes which those are changes the run from its first block.
-    moved = {
+    moved = set(old.shifted) | {
         uri
         for uri, lines in changed.items()
         if any(
@@ -240,21 +272,33 @@ def plan(
                 return True
         return False
 
-    touched = [i for i, segment in enumerate(old.segments) if touches(segment)]
+    touched = [i for i, segment in enumerate(old.segments) if i in old.touched or touches(segment)]
     if not touched:
-        return previous  # no changed line ran: the run is the same
-    start, last = touched[0], touched[-1]
+        if not old.shifted:
+            return previous  # no changed line ran: the run is the same
+        if not old.segments:
+            return None
+        # The same run in new line numbers: its facts are made again from the renumbered
+        # stretches, by resuming at the last of them.
+        touched = [len(old.segments) - 1]
+    last = touched[-1]
+    # The last checkpoint before the first changed stretch whose state is whole (after an
+    # edit of lines, the next block of a checkpoint may be one the edit removed).
+    usable = [i for i in range(touched[0], -1, -1) if i not in old.unusable]
+    if not usable:
+        return None
+    start = usable[0]
     # A run that runs out of its step budget reports its endless loop from the counts of the
     # whole document so far, the changed stretch included: converging before it would keep
     # the earlier verdict. Only checkpoints of runs after the last such run qualify.
     last_budget = max(
         (i for i, (_, why, _) in enumerate(old.results) if why == "budget"), default=-1
     )
-    convergeable = {
-        (c.run, c.done): i
-        for i, c in enumerate(old.checkpoints)
-        if i > last and c.run > last_budget
-    }
+    convergeable: dict[tuple[object, ...], list[int]] = {}
+    for i in range(last + 1, len(old.checkpoints)):
+        c = old.checkpoints[i]
+        if c.run > last_budget and i not in old.unusable:
+            convergeable.setdefault(c.meeting_key(), []).append(i)
     return Resumption(previous, old, start, last, convergeable)
 
 

@@ -9,6 +9,7 @@ an unknown condition runs its body once), so a program analysed alone still gets
 from __future__ import annotations
 
 import time
+import zlib
 from collections.abc import Sequence
 from dataclasses import dataclass, field, replace
 
@@ -88,6 +89,8 @@ class CompiledLine:
     second: CompiledLine | None = None  # the macro part of a mixed block
     constant: ConstantWords | None = None  # an NC block whose words are all constants
     ends_program: bool = False  # M02/M30: the program is a main program
+    # One line in eight, by its text: where the run may take a checkpoint (see Machine._loop).
+    boundary: bool = False
 
 
 @dataclass(slots=True)
@@ -336,11 +339,13 @@ class _Stop(Exception):
 
 
 class Converged(Exception):
-    """The resumed run's state equals the earlier run's at its checkpoint ``index``."""
+    """The resumed run's state, after ``done`` blocks of its run, equals the earlier run's at
+    its checkpoint ``index``."""
 
-    def __init__(self, index: int) -> None:
-        super().__init__(index)
+    def __init__(self, index: int, done: int) -> None:
+        super().__init__(index, done)
         self.index = index
+        self.done = done
 
 
 @dataclass
@@ -392,11 +397,12 @@ class Machine:
         self.record: RunRecord | None = None  # checkpoints are taken when set
         self.resumption: Resumption | None = None  # the earlier run a resumed one may meet
         self.run_index = 0  # which run of the evaluation is under way
+        self._checkpointed = 0  # blocks done in this run at its last checkpoint
         self.config = config
         self.facts = facts
         self.store: dict[int, Value] = {}
         self._unknowns: dict[int, Unknown] = {}
-        self._seen_findings: set[tuple[str, int, int]] = set()
+        self._seen_findings: set[tuple[str, str, int, int]] = set()  # kind, uri, line, column
         self.steps = 0
         self._steps = 0
         self.speculative = False
@@ -466,14 +472,21 @@ class Machine:
         state = self.capture(act, done)
         resumption = self.resumption
         if resumption is not None:
-            index = resumption.convergeable.get((state.run, done))
-            if index is not None and state.same_as(resumption.record.checkpoints[index]):
-                raise Converged(index)
+            for index in resumption.convergeable.get(state.meeting_key(), ()):
+                old = resumption.record.checkpoints[index]
+                if not state.same_as(old, counted=False):
+                    continue
+                # Met, perhaps with more or fewer blocks done: the rest of the run then ends
+                # as many blocks later or sooner, and must stay within the budget.
+                total = resumption.record.results[state.run][2] + done - old.done
+                if total <= self.budget:
+                    raise Converged(index, done)
         self._begin_segment(state)
 
     def _begin_segment(self, state: MachineState) -> None:
         record = self.record
         assert record is not None
+        self._checkpointed = state.done
         record.checkpoints.append(state)
         segment = {uri: base.segment() for uri, base in self.facts.by_uri.items()}
         record.segments.append(segment)
@@ -606,7 +619,7 @@ class Machine:
         related_line: int | None = None,
         related_message: str = "",
     ) -> None:
-        key = (kind, line, start)
+        key = (kind, ctx.uri, line, start)
         seen = self._seen_findings
         if key in seen:
             return
@@ -620,9 +633,14 @@ class Machine:
         budget = self.budget
         cancel = self.cancel
         # Block budget + 1: the budget's last block still runs, and the run stops before the
-        # next, at the same block on any machine. The looks fall on whole multiples of
-        # CHECK_EVERY, so a resumed run takes its checkpoints where the earlier run did.
+        # next, at the same block on any machine.
         next_check = min((done + 1) // CHECK_EVERY * CHECK_EVERY + CHECK_EVERY, budget + 1)
+        recording = self.record is not None
+        # A checkpoint is taken at the first block of a boundary line (see CompiledLine) once
+        # CHECK_EVERY blocks have run since the last one: chosen by the text, not by the
+        # count, so that a run with more or fewer blocks before (an edit added or removed
+        # some) takes its checkpoints at the same blocks as the earlier run after the edit.
+        wanted = False
         while True:
             ctx = act.ctx
             pc = act.pc
@@ -654,8 +672,19 @@ class Machine:
                 if cancel is not None:
                     cancel.reached(RUNNING, steps - 1, budget)
                 next_check = min(steps + CHECK_EVERY, budget + 1)
-                if self.record is not None:
-                    self._checkpoint(act, steps - 1)
+                since = steps - 1 - self._checkpointed
+                if recording and since >= CHECK_EVERY:
+                    # No boundary line in four intervals (a loop without one): take it here.
+                    if cl.boundary or since >= 4 * CHECK_EVERY:
+                        wanted = False
+                        self._checkpoint(act, steps - 1)
+                    else:
+                        wanted = True
+            elif wanted and cl.boundary:
+                wanted = False
+                self._steps = steps - 1
+                self._checkpoint(act, steps - 1)
+                self._steps = steps
             facts = ctx.facts
             runs = facts.runs
             runs[pc] = runs.get(pc, 0) + 1
@@ -1516,8 +1545,11 @@ def compile_line(parsed: ParsedLine) -> CompiledLine:
     """A parsed line's statement; a block that does not parse but plainly assigns ``#n``
     assigns it an unknown value, so that later reads of #n are not taken for vacant."""
     if parsed.statement is None and parsed.failed_assignment is not None:
-        return CompiledLine(K_ASSIGN, target_number=parsed.failed_assignment, value=_unknown_value)
-    return compile_statement(parsed.statement)
+        line = CompiledLine(K_ASSIGN, target_number=parsed.failed_assignment, value=_unknown_value)
+    else:
+        line = compile_statement(parsed.statement)
+    line.boundary = zlib.crc32(parsed.text.encode("utf-8", "surrogatepass")) & 7 == 0
+    return line
 
 
 # The compiled statement of a parsed line: closures that do not depend on where it stands.

@@ -4,13 +4,15 @@ from __future__ import annotations
 
 import time
 from collections.abc import Iterator, Sequence
+from dataclasses import replace
 
 from ..cancel import COMPILING, SLICE, CancelToken
 from ..config import Config
 from ..index import ProgramIndex
 from ..syntax import Document
-from .checkpoints import ProgramShape, Resumption, RunRecord, changed_lines, plan
+from .checkpoints import ProgramShape, Resumption, RunRecord, changed_in, changed_lines, plan
 from .facts import Facts
+from .line_shift import line_shifts, renumbered
 from .machine import (
     Converged,
     Machine,
@@ -62,8 +64,8 @@ def evaluate(
     docs = list(docs)
     documents = tuple((uri, doc) for uri, doc, _ in docs)
     facts = Facts()
+    previous, changed = _aligned(previous, documents)
     earlier = previous.record if previous is not None else None
-    changed = changed_lines(earlier.documents, documents) if earlier is not None else None
     compiled_before = earlier.lines if earlier is not None and changed is not None else None
     if cancel is not None and compiled_before is None:
         _compile_lines(docs, cancel)
@@ -95,7 +97,7 @@ def evaluate(
             _resume(machine, how, sequence, deadline)
     except Converged as met:
         assert how is not None
-        _splice(machine, how, met.index)
+        _splice(machine, how, met.index, met.done)
     _finish(facts, record, config)
     return facts
 
@@ -130,6 +132,46 @@ class _Sequence:
             yield first + i, ctx
 
 
+def _aligned(
+    previous: Facts | None, documents: tuple[tuple[str, Document], ...]
+) -> tuple[Facts | None, dict[str, set[int]] | None]:
+    """The earlier facts in the new documents' line numbers, and the lines that changed
+    (None: nothing to resume from)."""
+    earlier = previous.record if previous is not None else None
+    if previous is None or earlier is None:
+        return previous, None
+    changed = changed_lines(earlier.documents, documents)
+    if changed is not None:
+        return previous, changed
+    shifts = line_shifts(earlier.documents, documents)
+    if not shifts:
+        return previous, None
+    moved = renumbered(previous, shifts)
+    if moved is None or moved.record is None:
+        return previous, None
+    changed = {}
+    for (uri, old_doc), (_, doc) in zip(earlier.documents, documents, strict=True):
+        shift = shifts.get(uri)
+        if shift is None:
+            lines = changed_in(old_doc, doc)
+            if lines is None:
+                return previous, None
+        else:
+            lines = shift.changed()
+            before = earlier.lines.get(uri)
+            if before is None:
+                return previous, None
+            # The lines compiled before, moved; the edit's lines are compiled again.
+            moved.record.lines[uri] = [
+                *before[: shift.start],
+                *(compiled(b.parsed) for b in doc.blocks[shift.start : shift.new_end]),
+                *before[shift.old_end :],
+            ]
+        if lines:
+            changed[uri] = lines
+    return moved, changed
+
+
 def _run_from(machine: Machine, sequence: _Sequence, place: int, deadline: float) -> None:
     record = machine.record
     assert record is not None
@@ -162,7 +204,7 @@ def _resume(machine: Machine, how: Resumption, sequence: _Sequence, deadline: fl
         base.analysed_programs.clear()
         base.analysed_programs.update(analysed.get(uri, ()))
         base.assumed_arguments.clear()
-        base.assumed_arguments.update(assumed.get(uri, ()))  # type: ignore[arg-type]
+        base.assumed_arguments.update(assumed.get(uri, ()))
     facts.motions[:] = previous.motions[: state.motions]
     facts.run_values.clear()
     for serial in state.run_values:
@@ -179,17 +221,24 @@ def _resume(machine: Machine, how: Resumption, sequence: _Sequence, deadline: fl
     _run_from(machine, sequence, at + 1, deadline)
 
 
-def _splice(machine: Machine, how: Resumption, index: int) -> None:
-    """The resumed run met the earlier one at its checkpoint ``index``: the rest of the
-    evaluation is the earlier one's."""
+def _splice(machine: Machine, how: Resumption, index: int, done: int) -> None:
+    """The resumed run met the earlier one at its checkpoint ``index`` after ``done`` blocks
+    of its run: the rest of the evaluation is the earlier one's, that run's block counts
+    moved by the blocks the edit added or removed."""
     record = machine.record
     assert record is not None
     old, previous = how.record, how.previous
     state = old.checkpoints[index]
-    record.converged_at = (state.run, state.done)
-    record.checkpoints.extend(old.checkpoints[index:])
+    offset = done - state.done
+    record.converged_at = (state.run, done)
+    record.checkpoints.extend(
+        replace(c, done=c.done + offset) if offset and c.run == state.run else c
+        for c in old.checkpoints[index:]
+    )
     record.segments.extend(old.segments[index:])
-    record.results.extend(old.results[len(record.results) :])
+    for run, (place, why, blocks) in enumerate(old.results):
+        if run >= len(record.results):
+            record.results.append((place, why, blocks + offset if run == state.run else blocks))
     facts = machine.facts
     findings = dict(state.findings)
     for uri, base in facts.by_uri.items():
