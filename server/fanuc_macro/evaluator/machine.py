@@ -8,6 +8,7 @@ an unknown condition runs its body once), so a program analysed alone still gets
 
 from __future__ import annotations
 
+import sys
 import time
 from collections.abc import Sequence
 from dataclasses import dataclass, field, replace
@@ -125,9 +126,9 @@ def _direct_reads(statement: Statement) -> tuple[int, ...]:
     return tuple(numbers)
 
 
-def _compile_assign(kind: int, assign: Assign) -> CompiledLine:
+def _compile_assign(kind: int, assign: Assign, text: str | None) -> CompiledLine:
     target = assign.target
-    compiled = CompiledLine(kind, value=compile_expr(assign.value), node=assign)
+    compiled = CompiledLine(kind, value=_compile_word(assign.value, False, text), node=assign)
     if target.number is not None:
         compiled.target_number = int(target.number) if target.number == int(target.number) else -1
     else:
@@ -136,20 +137,21 @@ def _compile_assign(kind: int, assign: Assign) -> CompiledLine:
     return compiled
 
 
-def compile_statement(statement: Statement | None) -> CompiledLine:
-    """The closures of one statement; they do not depend on where the line stands."""
+def compile_statement(statement: Statement | None, text: str | None = None) -> CompiledLine:
+    """The closures of one statement; they do not depend on where the line stands. With the
+    line's ``text``, expressions are shared with other lines' (see ``_compile_word``)."""
     if statement is None:
         return CompiledLine(K_EMPTY)
     reads = _direct_reads(statement)
     if isinstance(statement, Mixed):
-        first = compile_statement(statement.nc)
-        first.second = compile_statement(statement.macro)
+        first = compile_statement(statement.nc, text)
+        first.second = compile_statement(statement.macro, text)
         first.reads = reads
         return first
     if isinstance(statement, Assign):
-        c = _compile_assign(K_ASSIGN, statement)
+        c = _compile_assign(K_ASSIGN, statement, text)
     elif isinstance(statement, IfThen):
-        c = _compile_assign(K_IFTHEN, statement.then)
+        c = _compile_assign(K_IFTHEN, statement.then, text)
         c.cond = compile_cond(statement.cond)
         c.node = statement
     elif isinstance(statement, Goto):
@@ -167,9 +169,9 @@ def compile_statement(statement: Statement | None) -> CompiledLine:
     elif isinstance(statement, End):
         c = CompiledLine(K_END, node=statement)
     elif isinstance(statement, NcStatement):
-        c = _compile_nc(statement)
+        c = _compile_nc(statement, text)
     elif isinstance(statement, IfNc):
-        c = _compile_nc(statement.words)
+        c = _compile_nc(statement.words, text)
         c.cond = compile_cond(statement.cond)
     elif isinstance(statement, ProgramStart):
         c = CompiledLine(K_HEADER, node=statement)
@@ -180,11 +182,18 @@ def compile_statement(statement: Statement | None) -> CompiledLine:
     return c
 
 
-def _compile_nc(nc: NcStatement) -> CompiledLine:
+def _folded(_: object) -> Value:
+    raise AssertionError("a block of constant words is run from its ConstantWords")
+
+
+def _compile_nc(nc: NcStatement, text: str | None = None) -> CompiledLine:
+    constants = [constant_of(w.value, w.address in LENGTH_ADDRESSES) for w in nc.words]
+    folded = all(c is not None for c in constants)
+    # A block of constant words is run from its ConstantWords: its words need no closures.
     words = tuple(
         CompiledWord(
             w.address,
-            compile_expr(w.value, w.address in LENGTH_ADDRESSES),
+            _folded if folded else _compile_word(w.value, w.address in LENGTH_ADDRESSES, text),
             w.span.start,
             w.span.end,
             _written_with_decimal_point(w.value),
@@ -192,8 +201,7 @@ def _compile_nc(nc: NcStatement) -> CompiledLine:
         for w in nc.words
     )
     compiled = CompiledLine(K_NC, words=words, nc=nc, node=nc)
-    constants = [constant_of(w.value, w.address in LENGTH_ADDRESSES) for w in nc.words]
-    if all(c is not None for c in constants):
+    if folded:
         values: dict[str, Value] = {}
         order: list[tuple[str, Value, CompiledWord]] = []
         for cw, c in zip(words, constants, strict=True):
@@ -208,6 +216,28 @@ def _compile_nc(nc: NcStatement) -> CompiledLine:
             any(a in AXES for a in values),
         )
     return compiled
+
+
+# Compiled expressions by their place and text in a line: the same text at the same column
+# compiles to the same closures (spans included, which alarms report), so lines that repeat an
+# expression (X[#100+2.] in every pass) share them. Emptied when it reaches its bound.
+_shared_expressions: dict[tuple[int, int, str, bool], Evaluator] = {}
+MAX_SHARED_EXPRESSIONS = 100_000
+
+
+def _compile_word(expr: Expr, in_address: bool, text: str | None) -> Evaluator:
+    """``compile_expr``, shared between lines with the same expression at the same place when
+    the line's ``text`` is given."""
+    if text is None or isinstance(expr, Num):
+        return compile_expr(expr, in_address)
+    span = expr.span
+    key = (span.start, span.end, text[span.start : span.end], in_address)
+    evaluator = _shared_expressions.get(key)
+    if evaluator is None:
+        if len(_shared_expressions) >= MAX_SHARED_EXPRESSIONS:
+            _shared_expressions.clear()
+        evaluator = _shared_expressions[key] = compile_expr(expr, in_address)
+    return evaluator
 
 
 def _written_with_decimal_point(expr: Expr) -> bool:
@@ -397,6 +427,9 @@ class Machine:
         self.store: dict[int, Value] = {}
         self._unknowns: dict[int, Unknown] = {}
         self._seen_findings: set[tuple[str, int, int]] = set()
+        # What the checkpoints hold of them: the chunks so far, and the keys since the last.
+        self._seen_chunks: tuple[frozenset[tuple[str, int, int]], ...] = ()
+        self._seen_since: list[tuple[str, int, int]] = []
         self.steps = 0
         self._steps = 0
         self.speculative = False
@@ -518,6 +551,9 @@ class Machine:
             m.inch,
             m.g76,
         )
+        if self._seen_since:
+            self._seen_chunks = (*self._seen_chunks, frozenset(self._seen_since))
+            self._seen_since = []
         facts = self.facts
         bases = facts.by_uri
         return MachineState(
@@ -528,7 +564,7 @@ class Machine:
             modal,
             self.speculative,
             self.runs,
-            frozenset(self._seen_findings),
+            self._seen_chunks,
             len(facts.motions),
             tuple(facts.run_values),
             tuple((uri, len(b.findings)) for uri, b in bases.items()),
@@ -542,7 +578,9 @@ class Machine:
         self.store = store = dict(state.store)
         self.speculative = state.speculative
         self.runs = state.activations
-        self._seen_findings = set(state.seen_findings)
+        self._seen_chunks = state.seen_findings
+        self._seen_since = []
+        self._seen_findings = set().union(*state.seen_findings)
         self._steps = state.done
         contexts = self.contexts
         ms = state.modal
@@ -611,6 +649,7 @@ class Machine:
         if key in seen:
             return
         seen.add(key)
+        self._seen_since.append(key)
         ctx.facts.findings.append(
             Finding(kind, line, start, end, message, ctx.uri, related_line, related_message)
         )
@@ -1028,7 +1067,11 @@ class Machine:
                 self._line,
                 0,
                 0,
-                f"G{code:02g} cuts with no F commanded before it since {self._entry_name} started",
+                # One string for the many blocks that give it (a CAM file: every block).
+                sys.intern(
+                    f"G{code:02g} cuts with no F commanded before it"
+                    f" since {self._entry_name} started"
+                ),
             )
         position = modal.position
         lathe = self.config.is_lathe
@@ -1517,7 +1560,7 @@ def compile_line(parsed: ParsedLine) -> CompiledLine:
     assigns it an unknown value, so that later reads of #n are not taken for vacant."""
     if parsed.statement is None and parsed.failed_assignment is not None:
         return CompiledLine(K_ASSIGN, target_number=parsed.failed_assignment, value=_unknown_value)
-    return compile_statement(parsed.statement)
+    return compile_statement(parsed.statement, parsed.text)
 
 
 # The compiled statement of a parsed line: closures that do not depend on where it stands.
