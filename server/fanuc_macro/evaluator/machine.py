@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import sys
 import time
-from collections.abc import Sequence
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field, replace
 
 from ..cancel import RUNNING, CancelToken
@@ -97,8 +97,8 @@ class ConstantWords:
     Most blocks of a long program are such; nothing here is mutated by a run."""
 
     values: dict[str, Value]
-    g_codes: list[float]
-    m_codes: list[float]
+    g_codes: tuple[float, ...]
+    m_codes: tuple[float, ...]
     order: list[tuple[str, Value, CompiledWord]]
     words: dict[str, float]  # the motion record's words
     has_axis: bool
@@ -191,9 +191,11 @@ def _compile_nc(nc: NcStatement, text: str | None = None) -> CompiledLine:
     folded = all(c is not None for c in constants)
     # A block of constant words is run from its ConstantWords: its words need no closures.
     words = tuple(
-        CompiledWord(
+        _folded_word(w.address, w.span.start, w.span.end, _written_with_decimal_point(w.value))
+        if folded
+        else CompiledWord(
             w.address,
-            _folded if folded else _compile_word(w.value, w.address in LENGTH_ADDRESSES, text),
+            _compile_word(w.value, w.address in LENGTH_ADDRESSES, text),
             w.span.start,
             w.span.end,
             _written_with_decimal_point(w.value),
@@ -209,13 +211,41 @@ def _compile_nc(nc: NcStatement, text: str | None = None) -> CompiledLine:
             values.setdefault(cw.address, c)
         compiled.constant = ConstantWords(
             values,
-            [round(v, 1) for a, v, _ in order if a == "G" and isinstance(v, float)],
-            [v for a, v, _ in order if a == "M" and isinstance(v, float)],
+            _shared_codes(round(v, 1) for a, v, _ in order if a == "G" and isinstance(v, float)),
+            _shared_codes(v for a, v, _ in order if a == "M" and isinstance(v, float)),
             order,
             _motion_words(values),
             any(a in AXES for a in values),
         )
     return compiled
+
+
+# The words of constant blocks, by address, columns and decimal point: they hold no closure,
+# so every block with a word at the same place shares it.
+_folded_words: dict[tuple[str, int, int, bool], CompiledWord] = {}
+# The G and M codes of constant blocks: a few combinations recur in every program.
+_code_tuples: dict[tuple[float, ...], tuple[float, ...]] = {}
+MAX_SHARED_CODES = 10_000  # entries of each: emptied when full
+
+
+def _folded_word(address: str, start: int, end: int, decimal_point: bool) -> CompiledWord:
+    key = (address, start, end, decimal_point)
+    word = _folded_words.get(key)
+    if word is None:
+        if len(_folded_words) >= MAX_SHARED_CODES:
+            _folded_words.clear()
+        word = _folded_words[key] = CompiledWord(address, _folded, start, end, decimal_point)
+    return word
+
+
+def _shared_codes(codes: Iterable[float]) -> tuple[float, ...]:
+    found = tuple(codes)
+    shared = _code_tuples.get(found)
+    if shared is None:
+        if len(_code_tuples) >= MAX_SHARED_CODES:
+            _code_tuples.clear()
+        shared = _code_tuples[found] = found
+    return shared
 
 
 # Compiled expressions by their place and text in a line: the same text at the same column
@@ -251,7 +281,8 @@ def _motion_words(values: dict[str, Value]) -> dict[str, float]:
     for address, v in values.items():
         if address in ("G", "M", "N") or not isinstance(v, float):
             continue
-        words[address] = round(v, 3)  # the least input increment (IS-B)
+        rounded = round(v, 3)  # the least input increment (IS-B)
+        words[address] = v if rounded == v else rounded  # the same value, no second float
     return words
 
 
@@ -935,6 +966,8 @@ class Machine:
                 act.pc = self._line + 1
                 return act
         const = cl.constant
+        g_codes: Sequence[float]
+        m_codes: Sequence[float]
         if const is not None:
             values, g_codes, m_codes, order = (
                 const.values,
@@ -944,8 +977,8 @@ class Machine:
             )
         else:
             values = {}
-            g_codes = []
-            m_codes = []
+            g_codes = g_list = []
+            m_codes = m_list = []
             order = []
             for w in cl.words:
                 v = w.evaluate(act)
@@ -953,9 +986,9 @@ class Machine:
                     continue  # a vacant variable omits the word
                 order.append((w.address, v, w))
                 if w.address == "G" and not isinstance(v, Unknown):
-                    g_codes.append(round(v, 1))
+                    g_list.append(round(v, 1))
                 elif w.address == "M" and not isinstance(v, Unknown):
-                    m_codes.append(v)
+                    m_list.append(v)
                 if w.address not in values:
                     values[w.address] = v
         modal = self.modal
@@ -1035,7 +1068,7 @@ class Machine:
         act: Activation,
         cl: CompiledLine,
         values: dict[str, Value],
-        g_codes: list[float],
+        g_codes: Sequence[float],
         order: list[tuple[str, Value, CompiledWord]],
     ) -> bool:
         # G70-G76 are the lathe's multiple repetitive cycles; on a mill G73-G76 are canned
