@@ -12,7 +12,7 @@ import codecs
 import re
 from dataclasses import dataclass
 
-from .syntax import Comment, LineNote, Span
+from .syntax import Comment, LineNote, shared_span
 
 _LINE_BREAK = re.compile(r"\r\n|\r|\n")
 _BLANK_TAIL = re.compile(r"[ \t;%]*")
@@ -148,12 +148,12 @@ def cut_comments(line: str) -> LineCode:
         if ch == "(":
             close = line.find(")", i + 1)
             if close < 0:
-                comments.append(Comment(line[i + 1 :], Span(i, n), closed=False))
+                comments.append(Comment(line[i + 1 :], shared_span(i, n), closed=False))
                 notes.append(
                     LineNote(
                         "unclosed-comment",
                         "comment opened with '(' is not closed with ')' on this line",
-                        Span(i, n),
+                        shared_span(i, n),
                     )
                 )
                 for k in range(i, n):
@@ -175,10 +175,10 @@ def cut_comments(line: str) -> LineCode:
                             "parentheses nested in a comment: FANUC ends the comment at the "
                             f"first ')' (column {close + 1}) and reads "
                             f"{line[close + 1 : end + 1]!r} as program text",
-                            Span(i, end + 1),
+                            shared_span(i, end + 1),
                         )
                     )
-            comments.append(Comment(line[i + 1 : end], Span(i, end + 1)))
+            comments.append(Comment(line[i + 1 : end], shared_span(i, end + 1)))
             for k in range(i, end + 1):
                 chars[k] = " "
             i = end + 1
@@ -203,7 +203,7 @@ def cut_comments(line: str) -> LineCode:
                 LineNote(
                     "text-after-eob",
                     f"text after the end of block ';': {line[i + 1 : tail_end].strip()!r}",
-                    Span(i + 1, tail_end),
+                    shared_span(i + 1, tail_end),
                 )
             )
             for k in range(i + 1, tail_end):

@@ -65,6 +65,7 @@ from .syntax import (
     Var,
     While,
     Word,
+    shared_span,
 )
 from .walk import bracket_depth, expression_depth, top_expressions
 
@@ -95,7 +96,9 @@ def grammar_text() -> str:
 # Every node's span comes from these: they run a few hundred thousand times on a cold parse.
 def _span(node: Any) -> Span:
     if type(node) is Token:
-        return Span(node.start_pos, node.end_pos)  # type: ignore[arg-type]
+        if node.start_pos is None or node.end_pos is None:
+            return Span(node.start_pos, node.end_pos)  # type: ignore[arg-type]
+        return shared_span(node.start_pos, node.end_pos)
     span: Span = node.span
     return span
 
@@ -103,7 +106,7 @@ def _span(node: Any) -> Span:
 def _cover(first: Any, last: Any) -> Span:
     start: int = (first.start_pos or 0) if type(first) is Token else first.span.start
     end: int = (last.end_pos or 0) if type(last) is Token else last.span.end
-    return Span(start, end)
+    return shared_span(start, end)
 
 
 MAX_DIGITS = 12  # FANUC takes 8 (0i) to 12 (30i) digits; more is a typo, and would overflow
@@ -303,12 +306,12 @@ def _fast_value(text: str, start: int) -> Expr:
     body = text.lstrip("-+ \t")
     if body.startswith("#"):
         hash_col = start + text.index("#")
-        var = Var(_to_float(body[1:]), None, Span(hash_col, end))
+        var = Var(_to_float(body[1:]), None, shared_span(hash_col, end))
         if text.startswith("-"):
-            return Unary("-", var, Span(start, end))
+            return Unary("-", var, shared_span(start, end))
         return var
     compact = text.replace(" ", "").replace("\t", "")
-    return Num(_to_float(compact), compact, Span(start, end))
+    return Num(_to_float(compact), compact, shared_span(start, end))
 
 
 def fast_parse(code: str) -> tuple[int | None, int | None, Span | None, NcStatement | None] | None:
@@ -325,7 +328,7 @@ def fast_parse(code: str) -> tuple[int | None, int | None, Span | None, NcStatem
     seq_span: Span | None = None
     if n_letter is not None:
         seq = int(_to_float(n_value))
-        seq_span = Span(head.start(3), head.end(4))
+        seq_span = shared_span(head.start(3), head.end(4))
     pos = head.end()
     size = len(code)
     if pos == size:
@@ -344,12 +347,13 @@ def fast_parse(code: str) -> tuple[int | None, int | None, Span | None, NcStatem
     for wm in found:
         value = _fast_value(wm.group(2), wm.start(2))
         letter = wm.group(1)
-        words.append(Word(letter.upper(), value, Span(wm.start(1), wm.end(2)), letter.islower()))
+        span = shared_span(wm.start(1), wm.end(2))
+        words.append(Word(letter.upper(), value, span, letter.islower()))
     return (
         skip,
         seq,
         seq_span,
-        NcStatement(tuple(words), Span(words[0].span.start, words[-1].span.end)),
+        NcStatement(tuple(words), shared_span(words[0].span.start, words[-1].span.end)),
     )
 
 
@@ -371,7 +375,7 @@ def _line(
         if head is not None:
             if seq is None and head.group("seq") is not None:
                 seq = int(head.group("seq"))
-                seq_span = Span(head.start("n"), head.end("seq"))
+                seq_span = shared_span(head.start("n"), head.end("seq"))
             if head.group("var") is not None and int(head.group("var")) > 0:
                 failed_assignment = int(head.group("var"))
     has_call = mentions_call(statement)
@@ -445,7 +449,7 @@ def _too_long(text: str, limit: int) -> ParsedLine:
             skip = int(_to_float(head.group(2))) if head.group(2) else 0
         if head.group(3) is not None:
             seq = int(_to_float(head.group(4)))
-            seq_span = Span(head.start(3), head.end(4))
+            seq_span = shared_span(head.start(3), head.end(4))
     except ValueError:  # a number too long to be one
         skip = seq = seq_span = None
     note = LineNote(

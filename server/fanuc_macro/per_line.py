@@ -16,6 +16,19 @@ from .syntax import ParsedLine
 T = TypeVar("T")
 
 
+class _Entry:
+    """A cached value: the line it is of (which keeps the line alive, so that its id stays its
+    own), the value and the miss count when it was last used. Slots: a cache holds one per
+    distinct line of the documents analysed (a list of three costs half as much again)."""
+
+    __slots__ = ("line", "used", "value")
+
+    def __init__(self, line: ParsedLine, value: Any, used: int) -> None:
+        self.line = line
+        self.value = value
+        self.used = used
+
+
 class PerLine(Generic[T]):
     """A cache of ``compute(line)`` holding at most ``limit`` lines, the least recently used
     evicted first.
@@ -33,9 +46,7 @@ class PerLine(Generic[T]):
         self._compute = compute
         self._limit = limit
         self._batch = max(1, limit // 8)
-        # id(line) -> [line, value, the miss count when last used]: the entry keeps the line
-        # alive, so its id stays its own.
-        self._cache: dict[int, list[Any]] = {}
+        self._cache: dict[int, _Entry] = {}  # by id(line)
         self._misses = 0
         self._next_sweep = 0  # no sweep before this miss count: the last one found all in use
 
@@ -44,20 +55,20 @@ class PerLine(Generic[T]):
 
     def __contains__(self, parsed: ParsedLine) -> bool:
         entry = self._cache.get(id(parsed))
-        return entry is not None and entry[0] is parsed
+        return entry is not None and entry.line is parsed
 
     def __call__(self, parsed: ParsedLine) -> T:
         entry = self._cache.get(id(parsed))
-        if entry is not None and entry[0] is parsed:
-            entry[2] = self._misses
-            value: T = entry[1]
+        if entry is not None and entry.line is parsed:
+            entry.used = self._misses
+            value: T = entry.value
             return value
         value = self._compute(parsed)
         self._misses += 1
         if len(self._cache) >= self._limit:
             self._evict()
         if len(self._cache) < self._limit:
-            self._cache[id(parsed)] = [parsed, value, self._misses]
+            self._cache[id(parsed)] = _Entry(parsed, value, self._misses)
         return value
 
     def _evict(self) -> None:
@@ -70,7 +81,7 @@ class PerLine(Generic[T]):
             entry = cache.pop(key, None)  # None: another thread's sweep took it
             if entry is None:
                 continue
-            if entry[2] > oldest:
+            if entry.used > oldest:
                 cache[key] = entry  # in use: to the end of the order
             else:
                 dropped += 1

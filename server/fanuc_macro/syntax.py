@@ -18,6 +18,23 @@ class Span:
     end: int
 
 
+# Spans of short lines, shared: lines hold the same few columns over and over, and a span is
+# frozen. Keyed by start * _SHARED_COLUMNS + end.
+_SHARED_COLUMNS = 512
+_shared_spans: dict[int, Span] = {}
+
+
+def shared_span(start: int, end: int) -> Span:
+    """``Span(start, end)``, the same object for the same columns (up to column 512)."""
+    if end >= _SHARED_COLUMNS or start < 0:
+        return Span(start, end)
+    key = start * _SHARED_COLUMNS + end
+    found = _shared_spans.get(key)
+    if found is None:
+        found = _shared_spans[key] = Span(start, end)
+    return found
+
+
 # ---- expressions -----------------------------------------------------------------------------
 
 

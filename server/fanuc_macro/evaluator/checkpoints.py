@@ -70,7 +70,10 @@ class MachineState:
     modal: ModalState
     speculative: bool
     activations: int  # programs entered so far (each call's serial number)
-    seen_findings: frozenset[tuple[str, str, int, int]]  # kind, document, line, column
+    # The findings reported so far (kind, document, line, column), in chunks: each checkpoint
+    # adds those found since the one before and shares the earlier chunks with it, so that a
+    # run's checkpoints hold each key once (a whole set per checkpoint grows with their square).
+    seen_findings: tuple[frozenset[tuple[str, str, int, int]], ...]
     motions: int  # motion records so far
     run_values: tuple[int, ...]  # the serials whose variables were kept, in order
     findings: tuple[tuple[str, int], ...]  # per document: findings so far
@@ -103,13 +106,25 @@ class MachineState:
             and self.run_values == other.run_values
             and self.findings == other.findings
             and self.analysed == other.analysed
-            and self.seen_findings == other.seen_findings
+            and _same_keys(self.seen_findings, other.seen_findings)
             and self.assumed == other.assumed
             and len(self.levels) == len(other.levels)
             and all(_same_level(a, b) for a, b in zip(self.levels, other.levels, strict=True))
             and _same_modal(self.modal, other.modal)
             and same_value(self.store, other.store)
         )
+
+
+FindingKeys = tuple[frozenset[tuple[str, str, int, int]], ...]
+
+
+def _same_keys(a: FindingKeys, b: FindingKeys) -> bool:
+    """Whether two chunked sets of finding keys hold the same keys (chunks are disjoint)."""
+    if a == b:
+        return True
+    if sum(map(len, a)) != sum(map(len, b)):
+        return False
+    return set().union(*a) == set().union(*b)
 
 
 def _same_level(a: LevelState, b: LevelState) -> bool:

@@ -126,9 +126,11 @@ def _renumber(previous: Facts, old: RunRecord, shifts: dict[str, LineShift]) -> 
         shifted=old.shifted | frozenset(shifts),
     )
     unusable = set(old.unusable)
+    # The chunks renumbered so far, by the id of the earlier one (which the record keeps).
+    chunks: dict[int, Keys] = {}
     for i, state in enumerate(old.checkpoints):
         try:
-            record.checkpoints.append(_state(state, line))
+            record.checkpoints.append(_state(state, line, chunks))
         except _Unmapped:
             record.checkpoints.append(state)  # kept for its place, never used
             unusable.add(i)
@@ -210,7 +212,20 @@ Renumber = Callable[[str, int], int]  # (document, old line) -> new line, or _Un
 MaybeRenumber = Callable[[str, int | None], int | None]  # None for a line of the edit
 
 
-def _state(state: MachineState, line: Renumber) -> MachineState:
+Keys = frozenset[tuple[str, str, int, int]]
+
+
+def _chunk(chunk: Keys, line: Renumber, done: dict[int, Keys]) -> Keys:
+    """A chunk of finding keys renumbered, once for all the checkpoints that share it."""
+    found = done.get(id(chunk))
+    if found is None:
+        found = done[id(chunk)] = frozenset(
+            (kind, uri, line(uri, n), col) for kind, uri, n, col in chunk
+        )
+    return found
+
+
+def _state(state: MachineState, line: Renumber, chunks: dict[int, Keys]) -> MachineState:
     def key(k: tuple[str, int]) -> tuple[str, int]:
         return (k[0], line(k[0], k[1]))
 
@@ -254,7 +269,7 @@ def _state(state: MachineState, line: Renumber) -> MachineState:
         modal,
         state.speculative,
         state.activations,
-        frozenset((kind, uri, line(uri, n), col) for kind, uri, n, col in state.seen_findings),
+        tuple(_chunk(chunk, line, chunks) for chunk in state.seen_findings),
         state.motions,
         state.run_values,
         state.findings,

@@ -8,9 +8,10 @@ an unknown condition runs its body once), so a program analysed alone still gets
 
 from __future__ import annotations
 
+import sys
 import time
 import zlib
-from collections.abc import Sequence
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field, replace
 
 from ..cancel import RUNNING, CancelToken
@@ -99,8 +100,8 @@ class ConstantWords:
     Most blocks of a long program are such; nothing here is mutated by a run."""
 
     values: dict[str, Value]
-    g_codes: list[float]
-    m_codes: list[float]
+    g_codes: tuple[float, ...]
+    m_codes: tuple[float, ...]
     order: list[tuple[str, Value, CompiledWord]]
     words: dict[str, float]  # the motion record's words
     has_axis: bool
@@ -128,9 +129,9 @@ def _direct_reads(statement: Statement) -> tuple[int, ...]:
     return tuple(numbers)
 
 
-def _compile_assign(kind: int, assign: Assign) -> CompiledLine:
+def _compile_assign(kind: int, assign: Assign, text: str | None) -> CompiledLine:
     target = assign.target
-    compiled = CompiledLine(kind, value=compile_expr(assign.value), node=assign)
+    compiled = CompiledLine(kind, value=_compile_word(assign.value, False, text), node=assign)
     if target.number is not None:
         compiled.target_number = int(target.number) if target.number == int(target.number) else -1
     else:
@@ -139,20 +140,21 @@ def _compile_assign(kind: int, assign: Assign) -> CompiledLine:
     return compiled
 
 
-def compile_statement(statement: Statement | None) -> CompiledLine:
-    """The closures of one statement; they do not depend on where the line stands."""
+def compile_statement(statement: Statement | None, text: str | None = None) -> CompiledLine:
+    """The closures of one statement; they do not depend on where the line stands. With the
+    line's ``text``, expressions are shared with other lines' (see ``_compile_word``)."""
     if statement is None:
         return CompiledLine(K_EMPTY)
     reads = _direct_reads(statement)
     if isinstance(statement, Mixed):
-        first = compile_statement(statement.nc)
-        first.second = compile_statement(statement.macro)
+        first = compile_statement(statement.nc, text)
+        first.second = compile_statement(statement.macro, text)
         first.reads = reads
         return first
     if isinstance(statement, Assign):
-        c = _compile_assign(K_ASSIGN, statement)
+        c = _compile_assign(K_ASSIGN, statement, text)
     elif isinstance(statement, IfThen):
-        c = _compile_assign(K_IFTHEN, statement.then)
+        c = _compile_assign(K_IFTHEN, statement.then, text)
         c.cond = compile_cond(statement.cond)
         c.node = statement
     elif isinstance(statement, Goto):
@@ -170,9 +172,9 @@ def compile_statement(statement: Statement | None) -> CompiledLine:
     elif isinstance(statement, End):
         c = CompiledLine(K_END, node=statement)
     elif isinstance(statement, NcStatement):
-        c = _compile_nc(statement)
+        c = _compile_nc(statement, text)
     elif isinstance(statement, IfNc):
-        c = _compile_nc(statement.words)
+        c = _compile_nc(statement.words, text)
         c.cond = compile_cond(statement.cond)
     elif isinstance(statement, ProgramStart):
         c = CompiledLine(K_HEADER, node=statement)
@@ -183,11 +185,20 @@ def compile_statement(statement: Statement | None) -> CompiledLine:
     return c
 
 
-def _compile_nc(nc: NcStatement) -> CompiledLine:
+def _folded(_: object) -> Value:
+    raise AssertionError("a block of constant words is run from its ConstantWords")
+
+
+def _compile_nc(nc: NcStatement, text: str | None = None) -> CompiledLine:
+    constants = [constant_of(w.value, w.address in LENGTH_ADDRESSES) for w in nc.words]
+    folded = all(c is not None for c in constants)
+    # A block of constant words is run from its ConstantWords: its words need no closures.
     words = tuple(
-        CompiledWord(
+        _folded_word(w.address, w.span.start, w.span.end, _written_with_decimal_point(w.value))
+        if folded
+        else CompiledWord(
             w.address,
-            compile_expr(w.value, w.address in LENGTH_ADDRESSES),
+            _compile_word(w.value, w.address in LENGTH_ADDRESSES, text),
             w.span.start,
             w.span.end,
             _written_with_decimal_point(w.value),
@@ -195,8 +206,7 @@ def _compile_nc(nc: NcStatement) -> CompiledLine:
         for w in nc.words
     )
     compiled = CompiledLine(K_NC, words=words, nc=nc, node=nc)
-    constants = [constant_of(w.value, w.address in LENGTH_ADDRESSES) for w in nc.words]
-    if all(c is not None for c in constants):
+    if folded:
         values: dict[str, Value] = {}
         order: list[tuple[str, Value, CompiledWord]] = []
         for cw, c in zip(words, constants, strict=True):
@@ -204,13 +214,63 @@ def _compile_nc(nc: NcStatement) -> CompiledLine:
             values.setdefault(cw.address, c)
         compiled.constant = ConstantWords(
             values,
-            [round(v, 1) for a, v, _ in order if a == "G" and isinstance(v, float)],
-            [v for a, v, _ in order if a == "M" and isinstance(v, float)],
+            _shared_codes(round(v, 1) for a, v, _ in order if a == "G" and isinstance(v, float)),
+            _shared_codes(v for a, v, _ in order if a == "M" and isinstance(v, float)),
             order,
             _motion_words(values),
             any(a in AXES for a in values),
         )
     return compiled
+
+
+# The words of constant blocks, by address, columns and decimal point: they hold no closure,
+# so every block with a word at the same place shares it.
+_folded_words: dict[tuple[str, int, int, bool], CompiledWord] = {}
+# The G and M codes of constant blocks: a few combinations recur in every program.
+_code_tuples: dict[tuple[float, ...], tuple[float, ...]] = {}
+MAX_SHARED_CODES = 10_000  # entries of each: emptied when full
+
+
+def _folded_word(address: str, start: int, end: int, decimal_point: bool) -> CompiledWord:
+    key = (address, start, end, decimal_point)
+    word = _folded_words.get(key)
+    if word is None:
+        if len(_folded_words) >= MAX_SHARED_CODES:
+            _folded_words.clear()
+        word = _folded_words[key] = CompiledWord(address, _folded, start, end, decimal_point)
+    return word
+
+
+def _shared_codes(codes: Iterable[float]) -> tuple[float, ...]:
+    found = tuple(codes)
+    shared = _code_tuples.get(found)
+    if shared is None:
+        if len(_code_tuples) >= MAX_SHARED_CODES:
+            _code_tuples.clear()
+        shared = _code_tuples[found] = found
+    return shared
+
+
+# Compiled expressions by their place and text in a line: the same text at the same column
+# compiles to the same closures (spans included, which alarms report), so lines that repeat an
+# expression (X[#100+2.] in every pass) share them. Emptied when it reaches its bound.
+_shared_expressions: dict[tuple[int, int, str, bool], Evaluator] = {}
+MAX_SHARED_EXPRESSIONS = 100_000
+
+
+def _compile_word(expr: Expr, in_address: bool, text: str | None) -> Evaluator:
+    """``compile_expr``, shared between lines with the same expression at the same place when
+    the line's ``text`` is given."""
+    if text is None or isinstance(expr, Num):
+        return compile_expr(expr, in_address)
+    span = expr.span
+    key = (span.start, span.end, text[span.start : span.end], in_address)
+    evaluator = _shared_expressions.get(key)
+    if evaluator is None:
+        if len(_shared_expressions) >= MAX_SHARED_EXPRESSIONS:
+            _shared_expressions.clear()
+        evaluator = _shared_expressions[key] = compile_expr(expr, in_address)
+    return evaluator
 
 
 def _written_with_decimal_point(expr: Expr) -> bool:
@@ -224,7 +284,8 @@ def _motion_words(values: dict[str, Value]) -> dict[str, float]:
     for address, v in values.items():
         if address in ("G", "M", "N") or not isinstance(v, float):
             continue
-        words[address] = round(v, 3)  # the least input increment (IS-B)
+        rounded = round(v, 3)  # the least input increment (IS-B)
+        words[address] = v if rounded == v else rounded  # the same value, no second float
     return words
 
 
@@ -403,6 +464,9 @@ class Machine:
         self.store: dict[int, Value] = {}
         self._unknowns: dict[int, Unknown] = {}
         self._seen_findings: set[tuple[str, str, int, int]] = set()  # kind, uri, line, column
+        # What the checkpoints hold of them: the chunks so far, and the keys since the last.
+        self._seen_chunks: tuple[frozenset[tuple[str, str, int, int]], ...] = ()
+        self._seen_since: list[tuple[str, str, int, int]] = []
         self.steps = 0
         self._steps = 0
         self.speculative = False
@@ -531,6 +595,9 @@ class Machine:
             m.inch,
             m.g76,
         )
+        if self._seen_since:
+            self._seen_chunks = (*self._seen_chunks, frozenset(self._seen_since))
+            self._seen_since = []
         facts = self.facts
         bases = facts.by_uri
         return MachineState(
@@ -541,7 +608,7 @@ class Machine:
             modal,
             self.speculative,
             self.runs,
-            frozenset(self._seen_findings),
+            self._seen_chunks,
             len(facts.motions),
             tuple(facts.run_values),
             tuple((uri, len(b.findings)) for uri, b in bases.items()),
@@ -555,7 +622,9 @@ class Machine:
         self.store = store = dict(state.store)
         self.speculative = state.speculative
         self.runs = state.activations
-        self._seen_findings = set(state.seen_findings)
+        self._seen_chunks = state.seen_findings
+        self._seen_since = []
+        self._seen_findings = set().union(*state.seen_findings)
         self._steps = state.done
         contexts = self.contexts
         ms = state.modal
@@ -624,6 +693,7 @@ class Machine:
         if key in seen:
             return
         seen.add(key)
+        self._seen_since.append(key)
         ctx.facts.findings.append(
             Finding(kind, line, start, end, message, ctx.uri, related_line, related_message)
         )
@@ -925,6 +995,8 @@ class Machine:
                 act.pc = self._line + 1
                 return act
         const = cl.constant
+        g_codes: Sequence[float]
+        m_codes: Sequence[float]
         if const is not None:
             values, g_codes, m_codes, order = (
                 const.values,
@@ -934,8 +1006,8 @@ class Machine:
             )
         else:
             values = {}
-            g_codes = []
-            m_codes = []
+            g_codes = g_list = []
+            m_codes = m_list = []
             order = []
             for w in cl.words:
                 v = w.evaluate(act)
@@ -943,9 +1015,9 @@ class Machine:
                     continue  # a vacant variable omits the word
                 order.append((w.address, v, w))
                 if w.address == "G" and not isinstance(v, Unknown):
-                    g_codes.append(round(v, 1))
+                    g_list.append(round(v, 1))
                 elif w.address == "M" and not isinstance(v, Unknown):
-                    m_codes.append(v)
+                    m_list.append(v)
                 if w.address not in values:
                     values[w.address] = v
         modal = self.modal
@@ -1025,7 +1097,7 @@ class Machine:
         act: Activation,
         cl: CompiledLine,
         values: dict[str, Value],
-        g_codes: list[float],
+        g_codes: Sequence[float],
         order: list[tuple[str, Value, CompiledWord]],
     ) -> bool:
         # G70-G76 are the lathe's multiple repetitive cycles; on a mill G73-G76 are canned
@@ -1057,7 +1129,11 @@ class Machine:
                 self._line,
                 0,
                 0,
-                f"G{code:02g} cuts with no F commanded before it since {self._entry_name} started",
+                # One string for the many blocks that give it (a CAM file: every block).
+                sys.intern(
+                    f"G{code:02g} cuts with no F commanded before it"
+                    f" since {self._entry_name} started"
+                ),
             )
         position = modal.position
         lathe = self.config.is_lathe
@@ -1547,7 +1623,7 @@ def compile_line(parsed: ParsedLine) -> CompiledLine:
     if parsed.statement is None and parsed.failed_assignment is not None:
         line = CompiledLine(K_ASSIGN, target_number=parsed.failed_assignment, value=_unknown_value)
     else:
-        line = compile_statement(parsed.statement)
+        line = compile_statement(parsed.statement, parsed.text)
     line.boundary = zlib.crc32(parsed.text.encode("utf-8", "surrogatepass")) & 7 == 0
     return line
 
