@@ -13,6 +13,7 @@ import time
 import uuid
 from collections.abc import AsyncIterator, Callable, Sequence
 from pathlib import Path
+from types import ModuleType
 from typing import Any
 
 import pytest
@@ -774,14 +775,19 @@ BIG = {
 }
 
 
-def cam_program(blocks: int) -> str:
-    """CAM output: a macro header, then plain motion blocks, no two alike."""
-    rows = [
-        f"G01 X{i / 1000:.3f} Y{(i * 7919) % 100_003 / 1000:.3f} Z-{i % 977 / 100:.2f}"
-        for i in range(blocks)
-    ]
-    head = ["%", "O1234 (CAM)", "#100=2.", "#101=#100*3.", "G90 G54 G00 X0 Y0", "S3000 M03"]
-    return "\n".join([*head, *rows, "M30", "%"]) + "\n"
+def _bench_programs() -> ModuleType:
+    """bench/bench_lsp.py, whose generated programs the tests use too."""
+    path = Path(__file__).resolve().parents[1] / "bench" / "bench_lsp.py"
+    spec = importlib.util.spec_from_file_location("bench_lsp_programs", path)
+    assert spec is not None and spec.loader is not None
+    module = importlib.util.module_from_spec(spec)
+    sys.modules[spec.name] = module
+    spec.loader.exec_module(module)
+    return module
+
+
+# CAM output: a macro header, then plain motion blocks, no two alike.
+cam_program: Callable[[int], str] = _bench_programs().cam_program
 
 
 def progress_of(client: LanguageClient) -> dict[Any, list[Any]]:
