@@ -322,8 +322,9 @@ def check(case: FuzzInput, seconds: float = SECONDS) -> str | None:
     No exception escapes the analysis and no rule fails inside it (MB000); it ends within
     ``seconds``; a second analysis, with a parser of its own,
     gives the same diagnostics; the edit path (the previous version's blocks reused, as the
-    language server parses after an edit) gives the document a fresh parse gives; and the
-    trace of the program is JSON.
+    language server parses after an edit) gives the document a fresh parse gives, and the
+    evaluation resumed from the previous version's (see evaluator/checkpoints.py) the
+    diagnostics of a fresh one; and the trace of the program is JSON.
     """
     uri = "fuzz.nc"
     limits = CONFIG.read_limits
@@ -344,6 +345,13 @@ def check(case: FuzzInput, seconds: float = SECONDS) -> str | None:
         edited = parse_text(case.text, uri, parser, previous, limits)
         if edited != parse_text(case.text, uri, BlockParser(), limits=limits):
             return "the edit path's document differs from a fresh parse"
+        # The evaluation resumed from the unmutated program's, as after an edit in the editor.
+        before = analyse(case.before, uri, config=CONFIG, parser=parser, doc=previous)
+        resumed = analyse(
+            case.text, uri, config=CONFIG, parser=parser, doc=edited, previous_facts=before.facts
+        )
+        if _summary(resumed.diagnostics) != _summary(first.diagnostics):
+            return "the evaluation resumed after the edit differs from a fresh one"
         # What `fanuc-macro trace --format json` prints.
         json.dumps(trace(uri, first.doc, first.index, (), CONFIG))
     except Exception:  # the finding: what escaped, from where
