@@ -1,12 +1,16 @@
 """Checkpoints of a run, and resuming a run after an edit instead of running it all again.
 
-Every ``CHECK_EVERY`` blocks, and when each program of the evaluation begins, the machine
-records its state (the call stack with each level's locals and place, the variables the run
-set, the modal state, what it has found so far) and begins a new stretch of facts. After an
-edit the evaluation resumes from the checkpoint before the first stretch that ran a changed
-line, with the new program, and stops as soon as its state equals the earlier run's at one of
-the earlier run's checkpoints after which no changed line ran: from there on the earlier
-run's stretches are the new run's. The run is deterministic, so the result equals a full
+When each program of the evaluation begins, and then at the first block of a boundary line
+once ``CHECK_EVERY`` blocks have run since the last checkpoint (boundary lines are chosen by
+their text, so the checkpoints fall on the same blocks in runs that executed more or fewer
+blocks before them), the machine records its state (the call stack with each level's locals
+and place, the variables the run set, the modal state, what it has found so far) and begins
+a new stretch of facts. After an edit the evaluation resumes from the checkpoint before the
+first stretch that ran a changed line, with the new program, and stops as soon as its state
+equals the earlier run's at one of the earlier run's checkpoints after which no changed line
+ran: from there on the earlier run's stretches are the new run's, their block counts moved by
+the blocks the edit added or removed (:mod:`.line_shift` renumbers the record after an edit
+that added or removed lines). The run is deterministic, so the result equals a full
 run's (the tests compare them after random edits); resuming only saves the blocks before the
 edit and after the point where the change no longer shows.
 """
@@ -213,7 +217,6 @@ class Resumption:
     previous: Facts
     record: RunRecord
     start: int  # the checkpoint to resume from
-    last_changed: int  # the last stretch of the earlier run that ran a changed line
     # Checkpoints the new run may meet, by their meeting key: the indexes, earliest first.
     convergeable: dict[tuple[object, ...], list[int]]
 
@@ -314,7 +317,7 @@ def plan(
         c = old.checkpoints[i]
         if c.run > last_budget and i not in old.unusable:
             convergeable.setdefault(c.meeting_key(), []).append(i)
-    return Resumption(previous, old, start, last, convergeable)
+    return Resumption(previous, old, start, convergeable)
 
 
 def local_access(cl: CompiledLine) -> tuple[tuple[int, ...], tuple[int | None, ...]]:

@@ -64,7 +64,7 @@ MAX_NESTING = 10
 MAX_MOTIONS = 200_000  # motion records kept per analysis
 THREADING_CODES = frozenset({32.0, 33.0, 34.0, 76.0, 92.0})
 MAX_REMEMBERED_RUNS = 1000  # executions whose variables are kept when they start a thread
-CHECK_EVERY = 1024  # blocks between two looks at the budgets, a newer edit and checkpoints
+CHECK_EVERY = 1024  # blocks between two looks at the budgets and a newer edit; checkpoints
 
 
 @dataclass(slots=True)
