@@ -617,16 +617,17 @@ class Engine:
 
         def walk() -> list[Path]:
             try:
-                return list(_program_files(paths, budget))
+                files = list(_program_files(paths, budget))
             except Exception as err:  # an unreadable folder: scan nothing there
                 self._report(f"fanuc-macro: cannot list {paths}: {err!r}", err)
                 return []
-
-        def listed(files: list[Path]) -> None:
             self._scan_listed += len(files)
-            self._scan_chunk(files)
+            # The first chunk in the same job: an analysis the client asks for next (its
+            # first document opened) then sees the programs of a small workspace.
+            self._add_files(files[:SCAN_CHUNK])
+            return files[SCAN_CHUNK:]
 
-        self._submit(walk, then=listed)
+        self._submit(walk, then=self._scan_chunk)
 
     def remove_folders(self, folders: Iterable[str]) -> None:
         """Forget the files of folders that left the workspace (open documents stay)."""
@@ -646,35 +647,33 @@ class Engine:
 
         self._submit(forget, then=lambda _: self.schedule_all(self.debounce))
 
+    def _add_files(self, chunk: list[Path]) -> None:
+        """Read files of a folder scan into the workspace (worker only)."""
+        for path in chunk:
+            key = key_of(from_fs_path(str(path)) or path.as_uri())
+            with self._lock:
+                is_open = key in self._texts
+            if is_open or key in self._ws_seq:
+                continue
+            data = _read_program(path)
+            if data is None:
+                continue
+            try:
+                self._add_file(key, data)
+                self.scanned_files += 1
+            except Exception as err:  # one unreadable file must not end the scan
+                self._report(f"fanuc-macro: cannot read {path}: {err!r}", err)
+
     def _scan_chunk(self, files: list[Path]) -> None:
-        chunk, rest = files[:SCAN_CHUNK], files[SCAN_CHUNK:]
-
-        def add() -> None:
-            for path in chunk:
-                key = key_of(from_fs_path(str(path)) or path.as_uri())
-                with self._lock:
-                    is_open = key in self._texts
-                if is_open or key in self._ws_seq:
-                    continue
-                data = _read_program(path)
-                if data is None:
-                    continue
-                try:
-                    self._add_file(key, data)
-                    self.scanned_files += 1
-                except Exception as err:  # one unreadable file must not end the scan
-                    self._report(f"fanuc-macro: cannot read {path}: {err!r}", err)
-
-        def next_chunk(_: None) -> None:
-            if rest:
-                self._scan_chunk(rest)
-                return
+        """The rest of a folder scan, a chunk per job, so that edits are analysed between."""
+        if not files:
             self._scans -= 1
             if self._scans == 0:
                 self.scan_done.set()
             self.schedule_all(0.0)
-
-        self._submit(add, then=next_chunk)
+            return
+        chunk, rest = files[:SCAN_CHUNK], files[SCAN_CHUNK:]
+        self._submit(lambda: self._add_files(chunk), then=lambda _: self._scan_chunk(rest))
 
     def files_changed(self, events: Sequence[types.FileEvent]) -> None:
         """Files changed on disk (workspace/didChangeWatchedFiles): those not open are reread."""
