@@ -513,3 +513,15 @@ def test_the_read_limits_and_the_budget_are_options(tmp_path: Path) -> None:
     assert "(500 blocks)" in mb703["message"]
     refused = run(tmp_path, "check", "--max-blocks", "0", "cam.nc")
     assert refused.returncode == 2 and "not a positive whole number" in refused.stderr
+
+
+def test_a_cam_file_without_f_gets_one_feed_warning(tmp_path: Path) -> None:
+    rows = "".join(f"G01 X{i}. Y{i % 5}. Z-1.\n" for i in range(50))
+    write(tmp_path / "cam.nc", f"%\nO1234 (CAM)\nG00 X0 Y0\n{rows}M30\n%\n")
+    result = run(tmp_path, "check", "--format", "json", "cam.nc")
+    (warning,) = [r for r in json.loads(result.stdout) if r["code"] == "MB603"]
+    assert warning["line"] == 4
+    assert (
+        "49 more cuts run without F after it (lines 5, 6, 7, 8, 9, 10, 11, 12, ...)"
+        in (warning["message"])
+    )

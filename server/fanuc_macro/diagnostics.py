@@ -7,7 +7,7 @@ matters on the machine, and an example. Positions are 0-based lines and columns 
 from __future__ import annotations
 
 import re
-from collections.abc import Iterable
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field, replace
 from enum import Enum
 
@@ -63,6 +63,12 @@ def register(*infos: RuleInfo) -> None:
         if info.code in RULES and RULES[info.code] != info:
             raise ValueError(f"rule code {info.code} registered twice")
         RULES[info.code] = info
+
+
+def line_list(lines: Sequence[int], shown: int = 8) -> str:
+    """``12, 40, 77, ...``: the first of some 0-based lines, as the user numbers them."""
+    text = ", ".join(str(n + 1) for n in lines[:shown])
+    return text + (", ..." if len(lines) > shown else "")
 
 
 def make(

@@ -6,7 +6,7 @@ from bisect import bisect_left
 from collections.abc import Iterator
 from typing import cast
 
-from ..diagnostics import Diagnostic, Related, RuleInfo, Severity, make, register
+from ..diagnostics import Diagnostic, Related, RuleInfo, Severity, line_list, make, register
 from ..syntax import Assign, Var, Word
 from .context import RuleContext
 
@@ -66,9 +66,8 @@ def _feed_not_set(ctx: RuleContext) -> Iterator[Diagnostic]:
         text = ctx.doc.blocks[line].text
         more = ""
         if len(lines) > 1:
-            shown = ", ".join(str(n + 1) for n in lines[1:9])
-            etc = ", ..." if len(lines) > 9 else ""
-            more = f"; {len(lines) - 1} more cuts run without F after it (lines {shown}{etc})"
+            later = line_list(lines[1:])
+            more = f"; {len(lines) - 1} more cuts run without F after it (lines {later})"
         yield make(
             "MB603",
             f"{first[key]}: the feed is what an earlier program left, or 0 after power-on "

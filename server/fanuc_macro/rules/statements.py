@@ -5,7 +5,7 @@ from __future__ import annotations
 from collections.abc import Iterator
 from typing import NamedTuple, cast
 
-from ..diagnostics import Diagnostic, Related, RuleInfo, Severity, make, register
+from ..diagnostics import Diagnostic, Related, RuleInfo, Severity, line_list, make, register
 from ..index import Call as IndexCall
 from ..index import Program, constant_value
 from ..parser import statements_of
@@ -147,9 +147,8 @@ def _missing_programs(
         assert span is not None
         more = ""
         if len(calls) > 1:
-            shown = ", ".join(str(c.line + 1) for c in calls[1:9])
-            etc = ", ..." if len(calls) > 9 else ""
-            more = f"; it is called {len(calls)} times in all (also at lines {shown}{etc})"
+            also = line_list([c.line for c in calls[1:]])
+            more = f"; it is called {len(calls)} times in all (also at lines {also})"
         yield make(
             "MB403",
             f"{first.kind} calls O{number:04d}, which is not in {where} (alarm PS0076 if it "
