@@ -11,7 +11,7 @@ from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, field, replace
 
 from . import dialects
-from .cancel import CHECKING, RULE_CHECKS, SLICE, CancelToken, raise_if_cancelled
+from .cancel import RULE_CHECKS, CancelToken, raise_if_cancelled
 from .config import Config
 from .diagnostics import (
     REPORT_INTERNAL_ERROR,
@@ -26,6 +26,7 @@ from .diagnostics import (
 )
 from .evaluator import Facts, evaluate
 from .index import ProgramIndex, build_index
+from .line_maps import LineMap
 from .parser import BlockParser, default_parser, parse_text, quiet_gc
 from .per_line import PerLine
 from .rules import ALL_CHECKS, LINE_CHECKS, LineFinding
@@ -109,11 +110,21 @@ def _line_findings(parsed: ParsedLine) -> tuple[LineFinding, ...]:
 line_findings: PerLine[tuple[LineFinding, ...]] = PerLine(_line_findings)
 
 
+def _findings_of_line(parsed: ParsedLine) -> tuple[LineFinding, ...] | None:
+    if parsed.statement is None and parsed.problem is None and not parsed.notes:
+        return None  # a comment or an empty line: no line rule has anything to say
+    return line_findings(parsed) or None
+
+
 def _file_mark(parsed: ParsedLine) -> tuple[str, str] | None:
-    return dialects.file_mark(parsed.text)
+    # A mark of another dialect is a block FANUC rejects.
+    return None if parsed.problem is None else dialects.file_mark(parsed.text)
 
 
-file_marks: PerLine[tuple[str, str] | None] = PerLine(_file_mark)
+# The lines with a line rule's finding, and the marks of another control's dialect: after an
+# edit only the edited lines are looked at again.
+lines_with_findings: LineMap[tuple[LineFinding, ...]] = LineMap(_findings_of_line)
+file_marks: LineMap[tuple[str, str]] = LineMap(PerLine(_file_mark))
 
 # What a block of another control's program gives when FANUC cannot read it: these findings
 # of one block become one MB002 naming the file's dialect.
@@ -126,22 +137,13 @@ def run_checks(
     ctx: RuleContext, checks: Iterable[ExtraChecks], cancel: CancelToken | None = None
 ) -> list[Diagnostic]:
     found: list[Diagnostic] = []
-    per_block: list[tuple[int, ParsedLine, tuple[LineFinding, ...]]] = []
-    marks: list[dialects.FileDialect] = []
     blocks = ctx.doc.blocks
-    for block in blocks:
-        if cancel is not None and block.line and block.line % SLICE == 0:
-            cancel.reached(CHECKING, block.line, len(blocks))
-        parsed = block.parsed
-        if parsed.statement is None and parsed.problem is None and not parsed.notes:
-            continue
-        findings = line_findings(parsed)
-        if findings:
-            per_block.append((block.line, parsed, findings))
-        if parsed.problem is not None:  # a mark of another dialect is a block FANUC rejects
-            mark = file_marks(parsed)
-            if mark is not None:
-                marks.append(dialects.FileDialect(mark[0], mark[1], block.line))
+    lines, found_on = lines_with_findings(ctx.doc, cancel)
+    per_block = [(line, blocks[line].parsed, f) for line, f in zip(lines, found_on, strict=True)]
+    marks = [
+        dialects.FileDialect(name, mark, line)
+        for line, (name, mark) in zip(*file_marks(ctx.doc), strict=True)
+    ]
     foreign = dialects.strongest(marks)
     for line, parsed, findings in per_block:
         folded = [f for f in findings if f.code in _FOLDED] if foreign is not None else []

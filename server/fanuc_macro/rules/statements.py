@@ -2,12 +2,14 @@
 
 from __future__ import annotations
 
+from bisect import bisect_left
 from collections.abc import Iterator
 from typing import NamedTuple, cast
 
 from ..diagnostics import Diagnostic, Related, RuleInfo, Severity, line_list, make, register
 from ..index import Call as IndexCall
 from ..index import Program, constant_value
+from ..line_maps import LineMap
 from ..parser import statements_of
 from ..per_line import PerLine
 from ..syntax import Assign, Goto, IfNc, Mixed, NcStatement, Num, ParsedLine, Statement, Var, Word
@@ -181,29 +183,45 @@ def _line_ends(parsed: ParsedLine) -> _LineEnds:
 _ends_of: PerLine[_LineEnds] = PerLine(_line_ends)
 
 
+def _end_or_g67(parsed: ParsedLine) -> _LineEnds | None:
+    found = _ends_of(parsed)
+    return found if found.ends or found.cancels_modal_call else None
+
+
+# The blocks that end a program or cancel a modal call: few, and kept from edit to edit.
+_ends_and_g67s: LineMap[_LineEnds] = LineMap(_end_or_g67)
+
+
 def check_programs(ctx: RuleContext) -> Iterator[Diagnostic]:
     """MB406 and MB407: what each O program must hold from its first block to its last."""
     programs = ctx.index.programs
     unread = ctx.doc.unread_from
+    blocks = ctx.doc.blocks
+    marked_lines, marked = _ends_and_g67s(ctx.doc)
     for i, program in enumerate(programs):
         if program.number is None:
             continue  # text before the first O number: a fragment, or MB010's
         if unread is not None and program.end_line >= unread:
             continue  # its end, and a G67, may be in the part the analysis does not read
-        g67_lines: list[int] = []
-        ends = False
-        last_statement: int | None = None
-        last_stops = False
         # After the O line; a program named by its file (no O line) from its first block.
         first = program.first_line + (1 if program.header_line is not None else 0)
-        for line in range(first, program.end_line):
-            found = _ends_of(ctx.doc.blocks[line].parsed)
-            if found.has_statement:
-                last_statement = line
-                last_stops = found.stops
-            ends = ends or found.ends
-            if found.cancels_modal_call:
-                g67_lines.append(line)
+        lo = bisect_left(marked_lines, first)
+        hi = bisect_left(marked_lines, program.end_line)
+        ends = any(found.ends for found in marked[lo:hi])
+        g67_lines = [
+            line
+            for line, found in zip(marked_lines[lo:hi], marked[lo:hi], strict=True)
+            if found.cancels_modal_call
+        ]
+        last_statement = next(
+            (
+                line
+                for line in range(program.end_line - 1, first - 1, -1)
+                if blocks[line].parsed.statement is not None
+            ),
+            None,
+        )
+        last_stops = last_statement is not None and _ends_of(blocks[last_statement].parsed).stops
         for call in program.calls:
             if call.kind in ("G66", "G66.1") and not (g67_lines and g67_lines[-1] > call.line):
                 yield make(
