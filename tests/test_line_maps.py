@@ -92,7 +92,7 @@ def test_the_edit_between_two_versions() -> None:
 
 
 def test_analyses_of_edits_equal_fresh_ones() -> None:
-    """The line rules and the programs' ends (MB406, MB407) read line maps: an analysis of an
+    """The line rules, the programs' ends (MB406, MB407) and the suppressions read line maps: an analysis of an
     edited document gives what an analysis of the same text in a new document gives."""
     rnd = random.Random(11)
     lines = [
@@ -121,5 +121,16 @@ def test_analyses_of_edits_equal_fresh_ones() -> None:
         if rnd.random() < 0.3:
             lines.insert(
                 rnd.randrange(len(lines) + 1),
-                rnd.choice(["M30", "G67", "M99", "O4000", "R2=1", "%@MACRO"]),
+                rnd.choice(
+                    [
+                        "M30",
+                        "G67",
+                        "M99",
+                        "O4000",
+                        "R2=1",
+                        "%@MACRO",
+                        "#2=SQRT[-2] (fanuc-macro: ignore MB501)",
+                        "GOTO7 (fanuc-macro: ignore)",
+                    ]
+                ),
             )

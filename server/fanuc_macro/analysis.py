@@ -70,21 +70,32 @@ class Analysis:
     threads: list[Thread] = field(default_factory=list)  # what the threading rules saw
 
 
+def _suppressed_on(parsed: ParsedLine) -> frozenset[str] | None:
+    """The codes a line's comments suppress ("*": all), None when they suppress none."""
+    codes: set[str] = set()
+    found = False
+    for comment in parsed.comments:
+        if "ignore" not in comment.text.lower():
+            continue
+        named = suppressed_codes(comment.text)
+        if named is not None:
+            found = True
+            codes.update(named or {"*"})
+    return frozenset(codes) if found else None
+
+
+# The lines whose comments suppress diagnostics: few, and kept from edit to edit.
+suppressions: LineMap[frozenset[str]] = LineMap(_suppressed_on)
+
+
 def _apply_settings(diags: Iterable[Diagnostic], doc: Document, config: Config) -> list[Diagnostic]:
     """Drop disabled and suppressed diagnostics; apply configured severities."""
-    suppressions: dict[int, set[str]] = {}
-    for block in doc.blocks:
-        for comment in block.parsed.comments:
-            if "ignore" not in comment.text.lower():
-                continue
-            codes = suppressed_codes(comment.text)
-            if codes is not None:
-                suppressions.setdefault(block.line, set()).update(codes or {"*"})
+    suppressed = dict(zip(*suppressions(doc), strict=True))
     out: list[Diagnostic] = []
     for d in diags:
         if d.code in config.disabled:
             continue
-        codes = suppressions.get(d.line)
+        codes = suppressed.get(d.line)
         if codes is not None and ("*" in codes or d.code in codes):
             continue
         severity = config.severities.get(d.code)
@@ -116,15 +127,22 @@ def _findings_of_line(parsed: ParsedLine) -> tuple[LineFinding, ...] | None:
     return line_findings(parsed) or None
 
 
+def _dialect_mark(parsed: ParsedLine) -> tuple[str, str] | None:
+    return dialects.file_mark(parsed.text)
+
+
+_dialect_marks: PerLine[tuple[str, str] | None] = PerLine(_dialect_mark)
+
+
 def _file_mark(parsed: ParsedLine) -> tuple[str, str] | None:
     # A mark of another dialect is a block FANUC rejects.
-    return None if parsed.problem is None else dialects.file_mark(parsed.text)
+    return None if parsed.problem is None else _dialect_marks(parsed)
 
 
 # The lines with a line rule's finding, and the marks of another control's dialect: after an
 # edit only the edited lines are looked at again.
 lines_with_findings: LineMap[tuple[LineFinding, ...]] = LineMap(_findings_of_line)
-file_marks: LineMap[tuple[str, str]] = LineMap(PerLine(_file_mark))
+file_marks: LineMap[tuple[str, str]] = LineMap(_file_mark)
 
 # What a block of another control's program gives when FANUC cannot read it: these findings
 # of one block become one MB002 naming the file's dialect.

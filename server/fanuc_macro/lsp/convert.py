@@ -28,7 +28,8 @@ UTF32 = types.PositionEncodingKind.Utf32.value
 
 def lsp_lines(text: str) -> list[str]:
     """The lines of ``text`` as LSP numbers them (a final line break opens an empty line)."""
-    return LINE_BREAK.split(text)
+    # str.split in C is several times the regex's speed, and most texts have LF alone.
+    return text.split("\n") if "\r" not in text else LINE_BREAK.split(text)
 
 
 class Codec:
