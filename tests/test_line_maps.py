@@ -92,8 +92,8 @@ def test_the_edit_between_two_versions() -> None:
 
 
 def test_analyses_of_edits_equal_fresh_ones() -> None:
-    """The line rules, the programs' ends (MB406, MB407) and the suppressions read line maps: an analysis of an
-    edited document gives what an analysis of the same text in a new document gives."""
+    """The line rules, the programs' ends (MB406, MB407) and the suppressions read line maps:
+    an analysis of an edited document gives what one of the same text in a new document gives."""
     rnd = random.Random(11)
     lines = [
         "O1000",
