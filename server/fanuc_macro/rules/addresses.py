@@ -54,20 +54,25 @@ def _feed_not_set(ctx: RuleContext) -> Iterator[Diagnostic]:
     (a CAM file without F would otherwise get one warning per block)."""
     by_program: dict[int, list[int]] = {}
     first: dict[int, str] = {}
+    lines: list[int] = []
+    start = end = 0  # the lines of the program of the last finding: most follow in it
     for f in ctx.findings("feed-not-set"):
-        program = ctx.index.program_at(f.line)
-        key = program.first_line if program is not None else -1
-        lines = by_program.setdefault(key, [])
-        if not lines:
-            first[key] = f.message
-        lines.append(f.line)
-    for key, lines in by_program.items():
-        line = lines[0]
+        line = f.line
+        if not start <= line < end:
+            program = ctx.index.program_at(line)
+            key = program.first_line if program is not None else -1
+            start, end = (program.first_line, program.end_line) if program else (0, 0)
+            lines = by_program.setdefault(key, [])
+            if not lines:
+                first[key] = f.message
+        lines.append(line)
+    for key, cuts in by_program.items():
+        line = cuts[0]
         text = ctx.doc.blocks[line].text
         more = ""
-        if len(lines) > 1:
-            later = line_list(lines[1:])
-            more = f"; {len(lines) - 1} more cuts run without F after it (lines {later})"
+        if len(cuts) > 1:
+            later = line_list(cuts[1:])
+            more = f"; {len(cuts) - 1} more cuts run without F after it (lines {later})"
         yield make(
             "MB603",
             f"{first[key]}: the feed is what an earlier program left, or 0 after power-on "
@@ -75,7 +80,7 @@ def _feed_not_set(ctx: RuleContext) -> Iterator[Diagnostic]:
             line,
             len(text) - len(text.lstrip()),
             len(text.rstrip()),
-            related=[Related(n, 0, 0, "a cut without F") for n in lines[1:20]],
+            related=[Related(n, 0, 0, "a cut without F") for n in cuts[1:20]],
         )
 
 
