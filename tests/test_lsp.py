@@ -1079,3 +1079,30 @@ def test_incremental_edits_keep_line_starts_right() -> None:
         assert [doc.line(i) for i in range(len(lines) + 3)] == [
             fresh.line(i) for i in range(len(lines) + 3)
         ]
+
+
+def test_converted_diagnostics_are_kept_while_their_lines_are() -> None:
+    import fanuc_macro.rules  # noqa: F401  (registers the codes)
+    from fanuc_macro.diagnostics import Related, make
+    from fanuc_macro.lsp.convert import Codec, ConvertedDiagnostics, Lines, to_lsp_diagnostic
+
+    lines = Lines(["G01 X1.", "#1=SQRT[-1] (根)", "M30"], Codec())
+    diags = [
+        make("MB501", "SQRT of -1", 1, 3, 11),
+        make("MB603", "no F", 0, 0, 7, related=[Related(2, 0, 3, "here")], data={"a": 1}),
+    ]
+    cache = ConvertedDiagnostics()
+    first = cache.convert(diags, "k", "file:///k.nc", lines)
+    assert first == [to_lsp_diagnostic(d, "k", "file:///k.nc", lines) for d in diags]
+    again = cache.convert(diags, "k", "file:///k.nc", lines)
+    assert all(a is b for a, b in zip(first, again, strict=True))
+    # A line of a range or of a related place changed: that diagnostic is converted again.
+    edited = Lines(["G01 X1.", "#1=SQRT[-1] (根)", "M30 (END)"], Codec())
+    third = cache.convert(diags, "k", "file:///k.nc", edited)
+    assert third[0] is first[0] and third[1] is not first[1]
+    # Other data, another client's units: converted again, as the protocol needs them.
+    other = [diags[0], make("MB603", "no F", 0, 0, 7, related=diags[1].related, data={"a": 2})]
+    assert cache.convert(other, "k", "file:///k.nc", edited)[1].data == {"code": "MB603", "a": 2}
+    utf8 = Lines(edited.lines, Codec("utf-8"))
+    converted = cache.convert(diags, "k", "file:///k.nc", utf8)
+    assert converted == [to_lsp_diagnostic(d, "k", "file:///k.nc", utf8) for d in diags]

@@ -171,3 +171,48 @@ def to_lsp_diagnostic(
         tags=tags,
         data=data,
     )
+
+
+class ConvertedDiagnostics:
+    """The protocol's form of one document's diagnostics, kept from one analysis to the next:
+    after an edit most diagnostics are the ones before, on the same lines, and converting each
+    again (ranges in the client's units, related places, the rule's link) is most of the cost
+    of publishing them."""
+
+    def __init__(self) -> None:
+        self._last: dict[object, types.Diagnostic] = {}
+
+    def convert(
+        self,
+        diags: Sequence[Diagnostic],
+        key: str,
+        uri: str,
+        lines: Lines,
+        resolve: Resolver | None = None,
+    ) -> list[types.Diagnostic]:
+        kept: dict[object, types.Diagnostic] = {}
+        out: list[types.Diagnostic] = []
+        for diag in diags:
+            if any(r.uri is not None and r.uri != key for r in diag.related):
+                # A place in another document: its lines are not this one's to compare.
+                out.append(to_lsp_diagnostic(diag, key, uri, lines, resolve))
+                continue
+            # What the converted form depends on: the diagnostic (its data apart, which it
+            # does not compare), the lines its ranges are on, the client's name and units.
+            text = lines.text
+            identity = (
+                diag,
+                repr(diag.data) if diag.data else None,
+                text(diag.line),
+                text(diag.end_line),
+                tuple(text(r.line) for r in diag.related),
+                uri,
+                lines.codec.encoding,
+            )
+            converted = self._last.get(identity)
+            if converted is None:
+                converted = to_lsp_diagnostic(diag, key, uri, lines, resolve)
+            kept[identity] = converted
+            out.append(converted)
+        self._last = kept
+        return out

@@ -32,7 +32,7 @@ from pygls.uris import from_fs_path, to_fs_path
 from ..cancel import RUNNING, Cancelled, CancelToken, Stage
 from ..config import Config
 from ..diagnostics import REPORT_INTERNAL_ERROR
-from .convert import Codec, Lines, lsp_lines, to_lsp_diagnostic
+from .convert import Codec, ConvertedDiagnostics, Lines, lsp_lines
 from .documents import OpenDocument
 
 if TYPE_CHECKING:  # the analysis is imported by the worker, after the server has started
@@ -169,6 +169,8 @@ class Engine:
         self._workspace: Workspace | None = None  # made by the worker's first job
         self._ws_seq: dict[str, int | None] = {}  # which text of each document is in _ws
         self._analysed: dict[str, tuple[int, int]] = {}  # key -> (text seq, generation)
+        # The protocol's form of each open document's last diagnostics (worker thread).
+        self._converted: dict[str, ConvertedDiagnostics] = {}
         self.generation = 0  # written by the worker only
         self._fault = os.environ.get(FAULT_ENV) or None
         self._feature_fault = os.environ.get(FEATURE_FAULT_ENV) or None
@@ -296,6 +298,7 @@ class Engine:
         key = key_of(uri)
         self.docs.pop(key, None)
         self.results.pop(key, None)
+        self._converted.pop(key, None)
         timer = self._timers.pop(key, None)
         if timer is not None:
             timer.cancel()
@@ -451,10 +454,10 @@ class Engine:
             if self._fault is not None and self._fault in text.text:
                 raise RuntimeError("fault injected for testing")
             analysis = self._analyse(key, job.token)
-            diagnostics = [
-                to_lsp_diagnostic(d, key, text.uri, lines, self._resolve)
-                for d in analysis.diagnostics
-            ]
+            converted = self._converted.setdefault(key, ConvertedDiagnostics())
+            diagnostics = converted.convert(
+                analysis.diagnostics, key, text.uri, lines, self._resolve
+            )
         except Exception as err:  # logged and shown; the server goes on with other work
             self._report(f"fanuc-macro: the analysis of {text.uri} failed: {err!r}", err)
             failure = types.Diagnostic(
