@@ -118,7 +118,7 @@ def _series(motions: list[Motion], uri: str) -> Iterator[_Series]:
     current: _Series | None = None
     run = -1
     last = -1
-    for i in motion_positions(motions, uri, _TURNING, "turning"):
+    for i in motion_positions(motions, uri):
         m = motions[i]
         if current is not None and any(o.run == run for o in motions[last + 1 : i]):
             yield current
@@ -131,9 +131,6 @@ def _series(motions: list[Motion], uri: str) -> Iterator[_Series]:
         last = i
     if current is not None:
         yield current
-
-
-_TURNING = frozenset({"G90", "G94"})
 
 
 def _series_start(ctx: RuleContext, series: _Series) -> Iterator[Diagnostic]:

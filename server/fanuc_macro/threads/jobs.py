@@ -156,73 +156,108 @@ def thread_jobs(motions: Sequence[Motion], uri: str) -> list[ThreadJob]:
     retracts after single cuts) are the same records or records of the same values, its jobs
     are those same objects, with what was worked out of their passes (the rules keep what
     they find of a job's passes in :attr:`ThreadJob.memo`)."""
-    kept = _kept.get(uri)
-    if kept is None:
-        positions = _thread_positions(motions, uri, 0, len(motions))
-        jobs = _reused(_group(motions, positions), [])
-    else:
-        old_motions, old_positions, old_jobs = kept
-        diff = Diff(old_motions, motions, identical=True)
-        # A single cut before the change may take its retract from the changed stretch.
-        start = max(0, diff.start - AFTER)
-        a = bisect_left(old_positions, start)
-        b = bisect_left(old_positions, diff.old_end)
-        middle = _thread_positions(motions, uri, start, diff.end)
-        tail = old_positions[b:]
-        if diff.shift:
-            tail = [at + diff.shift for at in tail]
-        positions = [*old_positions[:a], *middle, *tail]
-        if len(middle) == b - a and all(
-            _same_cut(motions, i, old_motions, j)
-            for i, j in zip(middle, old_positions[a:b], strict=True)
-        ):
-            jobs = old_jobs
-        else:
-            jobs = _reused(_group(motions, positions), old_jobs)
-    _kept.put(uri, (list(motions), positions, jobs))
+    seen = _seen(motions, uri)
+    jobs = seen.jobs
+    if jobs is None:
+        jobs = seen.jobs = _jobs(seen)
     return jobs
 
 
+def motion_positions(motions: Sequence[Motion], uri: str) -> list[int]:
+    """Where in ``motions`` the turning and facing cycles (G90, G94) of ``uri`` are."""
+    return _seen(motions, uri).turning
+
+
+TURNING = frozenset({"G90", "G94"})
 # After how many motions a single cut's retract is looked for.
 AFTER = 3
-# The last run's motions, the places of the threading ones and their jobs, by document.
-_kept: Kept[tuple[list[Motion], list[int], list[ThreadJob]]] = Kept()
 grouped = 0  # threading motions grouped into jobs, for the tests of the work done
 
 
-def motion_positions(
-    motions: Sequence[Motion], uri: str, codes: frozenset[str], key: str
-) -> list[int]:
-    """Where in ``motions`` those of ``uri`` with one of ``codes`` are, found again only in
-    the stretch of the run that changed since the last run seen (``key`` names the question)."""
-    kept = _positions_kept.get(f"{key} {uri}")
+class _Seen:
+    """A run's motions as last seen for one document: where its threading and turning motions
+    are, its jobs (once asked for), and the run seen before it (until its jobs are made)."""
+
+    __slots__ = ("base", "copy", "diff", "jobs", "motions", "threads", "turning")
+
+    def __init__(
+        self,
+        motions: Sequence[Motion],
+        threads: list[int],
+        turning: list[int],
+        base: _Seen | None = None,
+        diff: Diff | None = None,
+    ) -> None:
+        self.motions = motions
+        self.copy = list(motions)  # its items then, whatever becomes of the list
+        self.threads = threads
+        self.turning = turning
+        self.jobs: list[ThreadJob] | None = None
+        self.base = base
+        self.diff = diff
+
+
+_kept: Kept[_Seen] = Kept()
+
+
+def _seen(motions: Sequence[Motion], uri: str) -> _Seen:
+    kept = _kept.get(uri)
+    if kept is not None and kept.motions is motions and kept.copy == motions:
+        return kept  # the same run: asked again by another rule
     if kept is None:
-        positions = _positions(motions, uri, codes, 0, len(motions))
+        seen = _Seen(
+            motions,
+            _positions(motions, uri, THREAD_CODES, 0, len(motions)),
+            _positions(motions, uri, TURNING, 0, len(motions)),
+        )
     else:
-        old_motions, old_positions = kept
-        diff = Diff(old_motions, motions, identical=True)
-        a = bisect_left(old_positions, diff.start)
-        b = bisect_left(old_positions, diff.old_end)
-        tail = old_positions[b:]
-        if diff.shift:
-            tail = [at + diff.shift for at in tail]
-        middle = _positions(motions, uri, codes, diff.start, diff.end)
-        positions = [*old_positions[:a], *middle, *tail]
-    _positions_kept.put(f"{key} {uri}", (list(motions), positions))
-    return positions
+        diff = Diff(kept.copy, motions, identical=True)
+        # A single cut before the change may take its retract from the changed stretch.
+        start = max(0, diff.start - AFTER)
+        seen = _Seen(
+            motions,
+            _spliced(
+                kept.threads, diff, start, _positions(motions, uri, THREAD_CODES, start, diff.end)
+            ),
+            _spliced(kept.turning, diff, start, _positions(motions, uri, TURNING, start, diff.end)),
+            None if kept.jobs is None else kept,
+            diff,
+        )
+    _kept.put(uri, seen)
+    return seen
 
 
-_positions_kept: Kept[tuple[list[Motion], list[int]]] = Kept()
+def _spliced(old: list[int], diff: Diff, start: int, middle: list[int]) -> list[int]:
+    """Old positions before ``start`` and after the change (moved), with ``middle``."""
+    tail = old[bisect_left(old, diff.old_end) :]
+    if diff.shift:
+        tail = [at + diff.shift for at in tail]
+    return [*old[: bisect_left(old, start)], *middle, *tail]
+
+
+def _jobs(seen: _Seen) -> list[ThreadJob]:
+    motions, positions, base, diff = seen.copy, seen.threads, seen.base, seen.diff
+    seen.base = None  # not kept past the next run
+    if base is None or base.jobs is None or diff is None:
+        return _group(motions, positions)
+    old_motions, old_positions = base.copy, base.threads
+    start = max(0, diff.start - AFTER)
+    a = bisect_left(old_positions, start)
+    b = bisect_left(old_positions, diff.old_end)
+    c = bisect_left(positions, start)
+    middle = positions[c : c + len(positions) - len(old_positions) + b - a]
+    if len(middle) == b - a and all(
+        _same_cut(motions, i, old_motions, j)
+        for i, j in zip(middle, old_positions[a:b], strict=True)
+    ):
+        return base.jobs
+    return _reused(_group(motions, positions), base.jobs)
 
 
 def _positions(
     motions: Sequence[Motion], uri: str, codes: frozenset[str], start: int, end: int
 ) -> list[int]:
     return [i for i in range(start, end) if (m := motions[i]).code in codes and m.uri == uri]
-
-
-def _thread_positions(motions: Sequence[Motion], uri: str, start: int, end: int) -> list[int]:
-    return _positions(motions, uri, THREAD_CODES, start, end)
 
 
 def _same_cut(new: Sequence[Motion], i: int, old: Sequence[Motion], j: int) -> bool:

@@ -117,18 +117,29 @@ class Kept(Generic[U]):
                 del self._items[next(iter(self._items))]
 
 
-_parsed_of: list[tuple[Document, list[ParsedLine]]] = []  # the last few documents asked about
+_diffs: list[tuple[Document, Document, Diff]] = []  # the last few pairs of versions compared
 
 
-def parsed_lines(doc: Document) -> list[ParsedLine]:
-    """The document's parsed lines by line number (made once per document version)."""
-    for seen, known in _parsed_of:
-        if seen is doc:
-            return known
-    lines: list[ParsedLine] = list(map(itemgetter(1), doc.blocks))  # Block.parsed
-    _parsed_of.insert(0, (doc, lines))
-    del _parsed_of[4:]
-    return lines
+def line_diff(old: Document, new: Document) -> Diff:
+    """Which lines of ``new`` differ from ``old`` (worked out once per pair of versions: the
+    scans of one analysis all compare with the same version before)."""
+    for a, b, diff in _diffs:
+        if a is old and b is new:
+            return diff
+    if len(old.blocks) == len(new.blocks):
+        # Blocks compare by line number and parsed line; the parser shares the parsed line
+        # of an unchanged text, so the comparison is by pointer, at C speed.
+        diff = Diff(old.blocks, new.blocks, identical=False)
+    else:
+        # Lines moved: the blocks after the edit differ by their number, not their line.
+        diff = Diff(_parsed(old), _parsed(new), identical=False)
+    _diffs.insert(0, (old, new, diff))
+    del _diffs[4:]
+    return diff
+
+
+def _parsed(doc: Document) -> list[ParsedLine]:
+    return list(map(itemgetter(1), doc.blocks))  # Block.parsed
 
 
 class LineScan(Generic[T]):
@@ -137,28 +148,28 @@ class LineScan(Generic[T]):
 
     def __init__(self, look: Callable[[ParsedLine], T | None]) -> None:
         self._look = look
-        self._kept: Kept[tuple[list[ParsedLine], list[tuple[int, T]]]] = Kept()
+        self._kept: Kept[tuple[Document, list[tuple[int, T]]]] = Kept()
         self.looked = 0  # lines looked at, for the tests of the work done
 
     def __call__(self, doc: Document) -> list[tuple[int, T]]:
-        lines = parsed_lines(doc)
         kept = self._kept.get(doc.uri)
         if kept is None:
-            found = self._scan(lines, 0, len(lines))
+            found = self._scan(doc, 0, len(doc.blocks))
         else:
-            old_lines, old_found = kept
-            if old_lines is lines:
+            old, old_found = kept
+            if old is doc:
                 return old_found
-            diff = Diff(old_lines, lines, identical=False)
-            found = update_found(old_found, diff, self._scan(lines, diff.start, diff.end))
-        self._kept.put(doc.uri, (lines, found))
+            diff = line_diff(old, doc)
+            found = update_found(old_found, diff, self._scan(doc, diff.start, diff.end))
+        self._kept.put(doc.uri, (doc, found))
         return found
 
-    def _scan(self, lines: list[ParsedLine], start: int, end: int) -> list[tuple[int, T]]:
+    def _scan(self, doc: Document, start: int, end: int) -> list[tuple[int, T]]:
         look = self._look
+        blocks = doc.blocks
         found: list[tuple[int, T]] = []
         for at in range(start, end):
-            value = look(lines[at])
+            value = look(blocks[at].parsed)
             if value is not None:
                 found.append((at, value))
         self.looked += end - start
