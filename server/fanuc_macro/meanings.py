@@ -17,6 +17,7 @@ from functools import lru_cache
 from .index import ProgramIndex
 from .per_line import PerLine
 from .syntax import Assign, Document, ParsedLine
+from .threads.scans import LineScan, within
 
 # Role -> words that name it in a comment. The first role with a matching word wins, so the
 # more specific come first: "刀尖圆弧半径" (nose radius) holds "圆弧半径" (arc radius).
@@ -146,20 +147,15 @@ class Meaning:
 def variable_roles(doc: Document, index: ProgramIndex) -> dict[tuple[int, int], Meaning]:
     """(program first line, variable) -> its role, for every program of the document."""
     roles: dict[tuple[int, int], Meaning] = {}
+    said_at = _role_lines(doc)
     for program in index.programs:
         table = KNOWN_MODULES.get(program.number or -1, {})
         for var, role in table.items():
             roles[(program.first_line, var)] = Meaning(role, -1, f"module {program.display_name}")
-        for line in range(program.first_line, program.end_line):
-            parsed = doc.blocks[line].parsed
-            if not parsed.comments:
-                continue  # no comment, no role
-            said = assigned_role(parsed)
-            if said is not None:
-                var, role = said
-                key = (program.first_line, var)
-                if key not in roles or roles[key].line == -1:
-                    roles[key] = Meaning(role, line, "comment")
+        for line, (var, role) in within(said_at, program.first_line, program.end_line):
+            key = (program.first_line, var)
+            if key not in roles or roles[key].line == -1:
+                roles[key] = Meaning(role, line, "comment")
     return roles
 
 
@@ -174,6 +170,14 @@ def _assigned_role(parsed: ParsedLine) -> tuple[int, str] | None:
 
 # (variable, role) that an assignment's comment gives, per distinct line.
 assigned_role: PerLine[tuple[int, str] | None] = PerLine(_assigned_role)
+
+
+def _role_line(parsed: ParsedLine) -> tuple[int, str] | None:
+    return assigned_role(parsed) if parsed.comments else None  # no comment, no role
+
+
+# The assignments whose comment names a role, looked at again only where the document changed.
+_role_lines: LineScan[tuple[int, str]] = LineScan(_role_line)
 
 
 def program_is_internal(doc: Document, first_line: int, end_line: int) -> bool | None:

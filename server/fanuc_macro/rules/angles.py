@@ -17,6 +17,7 @@ from ..diagnostics import Diagnostic, RuleInfo, Severity, make, register
 from ..linear import expr_text
 from ..per_line import PerLine
 from ..syntax import Call, Num, ParsedLine, Span, Var
+from ..threads.scans import LineScan
 from ..walk import subexpressions, top_expressions
 from .context import RuleContext, line_statements
 
@@ -58,6 +59,22 @@ _trig_of: PerLine[tuple[tuple[str, int, Span], ...]] = PerLine(_line_trig)
 _pi_of: PerLine[bool] = PerLine(_line_pi)
 
 
+def _trig_line(parsed: ParsedLine) -> tuple[tuple[str, int, Span], ...] | None:
+    source = parsed.text
+    if (
+        "SIN" not in source
+        and "COS" not in source
+        and "TAN" not in source
+        and not parsed.has_lowercase
+    ):
+        return None  # spare most lines the per-line lookup
+    return _trig_of(parsed) or None
+
+
+# The lines with such calls, looked at again only where the document changed.
+_trig_lines: LineScan[tuple[tuple[str, int, Span], ...]] = LineScan(_trig_line)
+
+
 def _round_degrees(value: float) -> bool:
     degrees = math.degrees(value)
     return abs(degrees * 2 - round(degrees * 2)) < 0.04  # a multiple of 0.5° within 0.02°
@@ -67,17 +84,9 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
     facts = ctx.doc_facts()
     if facts is None:
         return
-    for block in ctx.doc.blocks:
-        source = block.parsed.text
-        if (
-            "SIN" not in source
-            and "COS" not in source
-            and "TAN" not in source
-            and not block.parsed.has_lowercase
-        ):
-            continue  # spare most lines the per-line lookup
-        for text, number, span in _trig_of(block.parsed):
-            summary = facts.reads.get((block.line, number))
+    for line, calls in _trig_lines(ctx.doc):
+        for text, number, span in calls:
+            summary = facts.reads.get((line, number))
             if summary is None or summary.count < 3 or not summary.numeric or summary.constant:
                 continue
             low, high = summary.minimum, summary.maximum
@@ -105,7 +114,7 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
                 f"as radians), but {name} takes degrees, so the sweep is {high - low:.3g}° "
                 f"and {name} stays between {min(results):.3g} and {max(results):.3g}; write "
                 "the angles in degrees (or multiply by 57.29578)",
-                block.line,
+                line,
                 span.start,
                 span.end,
             )

@@ -17,6 +17,7 @@ from dataclasses import dataclass, field
 from ..diagnostics import Diagnostic, Related, RuleInfo, Severity, make, register
 from ..evaluator.facts import Motion
 from ..threads.identify import Thread
+from ..threads.jobs import motion_positions
 from ..threads.module_shape import D1_FACTOR
 from .context import RuleContext
 from .threading import EPS, mm, thread_related, width
@@ -48,10 +49,8 @@ def _report(ctx: RuleContext, m: Motion, message: str, related: list[Related]) -
 
 def _thread_start(ctx: RuleContext, thread: Thread) -> Iterator[Diagnostic]:
     internal = thread.internal
-    passes = [m for m in thread.job.passes if m.x is not None and m.start_x is not None]
-    if internal is None or not passes:
+    if internal is None:
         return
-    xs = [m.x for m in passes if m.x is not None]
     crest: float | None = None
     if thread.major is not None and thread.pitch is not None and thread.unsupported is None:
         # The blank: turned to about d - 0.125P outside, bored to D1 inside (seed paper 000).
@@ -60,6 +59,40 @@ def _thread_start(ctx: RuleContext, thread: Thread) -> Iterator[Diagnostic]:
             if internal
             else thread.major - 0.15 * thread.pitch
         )
+    job = thread.job
+    found = job.remember(
+        ("start side", internal, crest), lambda: _wrong_start(job.passes, internal, crest)
+    )
+    if found is None:
+        return
+    m, shallowest = found
+    start = m.start_x
+    assert start is not None
+    side = "inside" if internal else "outside"
+    where = (
+        f"the {'bore' if internal else 'crest'} of {thread.name}, about X{mm(crest)}"
+        if crest is not None
+        else f"its shallowest pass X{mm(shallowest)}"
+    )
+    yield _report(
+        ctx,
+        m,
+        f"{m.code} starts at X{mm(start)}, but the thread is cut from the {side} "
+        f"({thread.job.side_reason or 'its designation'}): the start point must lie beyond "
+        f"{where}; from X{mm(start)} the cycle retracts into the thread after each pass "
+        f"and the return in Z crosses it",
+        thread_related(thread),
+    )
+
+
+def _wrong_start(
+    all_passes: list[Motion], internal: bool, crest: float | None
+) -> tuple[Motion, float] | None:
+    """The first pass that starts on the material's side, with the shallowest pass's X."""
+    passes = [m for m in all_passes if m.x is not None and m.start_x is not None]
+    if not passes:
+        return None
+    xs = [m.x for m in passes if m.x is not None]
     shallowest = min(xs) if internal else max(xs)
     for m in passes:
         start = m.start_x
@@ -68,24 +101,9 @@ def _thread_start(ctx: RuleContext, thread: Thread) -> Iterator[Diagnostic]:
             bad = start > shallowest + EPS or (crest is not None and start > crest + EPS)
         else:
             bad = start < shallowest - EPS or (crest is not None and start < crest - EPS)
-        if not bad:
-            continue
-        side = "inside" if internal else "outside"
-        where = (
-            f"the {'bore' if internal else 'crest'} of {thread.name}, about X{mm(crest)}"
-            if crest is not None
-            else f"its shallowest pass X{mm(shallowest)}"
-        )
-        yield _report(
-            ctx,
-            m,
-            f"{m.code} starts at X{mm(start)}, but the thread is cut from the {side} "
-            f"({thread.job.side_reason or 'its designation'}): the start point must lie beyond "
-            f"{where}; from X{mm(start)} the cycle retracts into the thread after each pass "
-            f"and the return in Z crosses it",
-            thread_related(thread),
-        )
-        return
+        if bad:
+            return m, shallowest
+    return None
 
 
 @dataclass
@@ -95,19 +113,22 @@ class _Series:
 
 
 def _series(motions: list[Motion], uri: str) -> Iterator[_Series]:
-    """Runs of consecutive G90 / G94 passes of one program execution."""
+    """Runs of consecutive G90 / G94 passes of one program execution: another motion of the
+    execution ends one."""
     current: _Series | None = None
     run = -1
-    for m in motions:
-        if m.code in ("G90", "G94") and m.uri == uri:
-            if current is None or current.code != m.code or m.run != run:
-                if current is not None:
-                    yield current
-                current, run = _Series(m.code), m.run
-            current.passes.append(m)
-        elif current is not None and m.run == run:
+    last = -1
+    for i in motion_positions(motions, uri):
+        m = motions[i]
+        if current is not None and any(o.run == run for o in motions[last + 1 : i]):
             yield current
             current = None
+        if current is None or current.code != m.code or m.run != run:
+            if current is not None:
+                yield current
+            current, run = _Series(m.code), m.run
+        current.passes.append(m)
+        last = i
     if current is not None:
         yield current
 

@@ -14,6 +14,7 @@ from ..diagnostics import Diagnostic, RuleInfo, Severity, make, register
 from ..evaluator.facts import Motion
 from ..evaluator.values import fmt
 from ..threads.identify import Thread
+from ..threads.jobs import ThreadJob
 from .context import RuleContext
 from .threading import thread_related, width
 
@@ -34,53 +35,74 @@ register(
 
 def check(ctx: RuleContext) -> Iterator[Diagnostic]:
     for thread in ctx.threads():
-        yield from _feed_limit(ctx, thread.job.passes)
+        yield from _feed_limit(ctx, thread.job)
         yield from _mixed_feed(ctx, thread)
         yield from _lead(ctx, thread)
         yield from _starts(ctx, thread)
 
 
-def _feed_limit(ctx: RuleContext, passes: list[Motion]) -> Iterator[Diagnostic]:
+def _feed_limit(ctx: RuleContext, job: ThreadJob) -> Iterator[Diagnostic]:
     limit = ctx.config.max_threading_feed
+    m = job.remember(("feed limit", limit), lambda: _too_fast(job.passes, limit))
+    if m is None:
+        return
+    pitch = m.words["F"]
+    assert m.rpm is not None
+    feed = m.rpm * pitch
+    yield make(
+        "MB807",
+        f"S{fmt(m.rpm)} x lead F{fmt(pitch)} = {fmt(feed)} mm/min, above the machine's "
+        f"threading feed limit {fmt(limit)} mm/min",
+        m.line,
+        0,
+        width(ctx, m.line),
+    )
+
+
+def _too_fast(passes: list[Motion], limit: float) -> Motion | None:
+    """The first pass whose feed (speed times lead) is above ``limit``."""
     for m in passes:
         pitch = m.words.get("F")
-        if m.rpm is None or pitch is None:
-            continue
-        feed = m.rpm * pitch
-        if feed > limit:
-            yield make(
-                "MB807",
-                f"S{fmt(m.rpm)} x lead F{fmt(pitch)} = {fmt(feed)} mm/min, above the machine's "
-                f"threading feed limit {fmt(limit)} mm/min",
-                m.line,
-                0,
-                width(ctx, m.line),
-            )
-            return
+        if m.rpm is not None and pitch is not None and m.rpm * pitch > limit:
+            return m
+    return None
 
 
 def _mixed_feed(ctx: RuleContext, thread: Thread) -> Iterator[Diagnostic]:
-    passes = thread.job.passes
+    job = thread.job
+    found = job.remember("mixed feed", lambda: _other_feeds(job.passes))
+    if found is None:
+        return
+    usual, count, others = found
+    for m in others:
+        yield make(
+            "MB812",
+            f"this {m.code} cuts with F{m.words['F']:g}, the other {count} passes of the same "
+            f"thread with F{usual:g}: it cuts another helix across the thread's flanks",
+            m.line,
+            0,
+            width(ctx, m.line),
+        )
+
+
+def _other_feeds(passes: list[Motion]) -> tuple[float, int, list[Motion]] | None:
+    """(the F of most passes, how many, the first pass of each line with another F) when one
+    F is most passes' and another is used."""
     feeds = Counter(m.words.get("F") for m in passes if m.words.get("F") is not None)
     if len(passes) < 3 or len(feeds) < 2:
-        return
+        return None
     usual, count = feeds.most_common(1)[0]
     if usual is None or count * 2 <= len(passes):
-        return
+        return None
     reported: set[int] = set()
+    others: list[Motion] = []
     for m in passes:
         feed = m.words.get("F")
         if feed is None or feed == usual or m.line in reported:
             continue
         reported.add(m.line)
-        yield make(
-            "MB812",
-            f"this {m.code} cuts with F{feed:g}, the other {count} passes of the same thread "
-            f"with F{usual:g}: it cuts another helix across the thread's flanks",
-            m.line,
-            0,
-            width(ctx, m.line),
-        )
+        others.append(m)
+    return usual, count, others
 
 
 def _lead(ctx: RuleContext, thread: Thread) -> Iterator[Diagnostic]:
@@ -90,7 +112,10 @@ def _lead(ctx: RuleContext, thread: Thread) -> Iterator[Diagnostic]:
         return
     if abs(lead - want) < 1e-6:
         return
-    m = next(p for p in thread.job.passes if p.words.get("F") == lead)
+    job = thread.job
+    m = job.remember(
+        ("first with F", lead), lambda: next(p for p in job.passes if p.words.get("F") == lead)
+    )
     pitch = thread.pitch
     assert pitch is not None
     starts = (
@@ -151,6 +176,12 @@ def _phase(m: Motion, lead: float) -> float | None:
     return m.start_z % lead
 
 
+def _cut_starts(passes: list[Motion], lead: float, starts: int) -> bool:
+    """Whether the passes start at each of the starts (or tell nothing of where they do)."""
+    centres = _centres(passes, lead)
+    return len(centres) < 1 or _starts_cut(centres, lead, starts) >= starts
+
+
 def _starts_cut(centres: list[float], lead: float, starts: int) -> int:
     """How many of the evenly spaced starts have a pass, around the median centre."""
     ordered = sorted(centres)
@@ -166,8 +197,8 @@ def _starts(ctx: RuleContext, thread: Thread) -> Iterator[Diagnostic]:
         return
     if abs(lead - thread.pitch * thread.starts) > 1e-6:
         return  # cut with another lead: MB810 says so
-    centres = _centres(thread.job.passes, lead)
-    if len(centres) < 1 or _starts_cut(centres, lead, thread.starts) >= thread.starts:
+    job, starts = thread.job, thread.starts
+    if job.remember(("starts cut", lead, starts), lambda: _cut_starts(job.passes, lead, starts)):
         return
     first = thread.job.passes[0]
     yield make(

@@ -48,40 +48,55 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
 
 
 def _growing(ctx: RuleContext, thread: Thread, internal: bool) -> Iterator[Diagnostic]:
-    sign = -1.0 if internal else 1.0
     limit = ctx.config.max_depth_per_pass
+    passes = thread.job.passes
+    events = thread.job.remember(
+        ("growing", internal, limit), lambda: _growing_events(passes, internal, limit)
+    )
+    for code, i, before in events:
+        m, previous = passes[i], passes[before]
+        assert m.x is not None and previous.x is not None
+        step = (-1.0 if internal else 1.0) * (previous.x - m.x) / 2.0
+        if code == "MB803":
+            message = (
+                f"{pass_name(thread, i, m)} at X{mm(m.x)} is {-step:.3f} mm shallower than "
+                f"the pass before (X{mm(previous.x)}): the depth should grow pass after pass"
+            )
+        else:
+            message = (
+                f"{pass_name(thread, i, m)} takes {step:.3f} mm (radius) in one pass, above "
+                f"the maximum {limit:g} mm per pass"
+            )
+        yield make(code, message, m.line, 0, width(ctx, m.line))
+
+
+def _growing_events(
+    passes: list[Motion], internal: bool, limit: float
+) -> list[tuple[str, int, int]]:
+    """The first pass shallower than the one before (MB803) and the first deeper than the
+    limit per pass (MB804): (code, the pass, the pass before), in pass order."""
+    sign = -1.0 if internal else 1.0
+    events: list[tuple[str, int, int]] = []
     reported: set[str] = set()
-    previous: Motion | None = None
-    top = next((m.x for m in thread.job.passes if m.x is not None), None)
-    for i, m in enumerate(thread.job.passes):
+    previous: int | None = None
+    top = next((m.x for m in passes if m.x is not None), None)
+    for i, m in enumerate(passes):
         if m.x is None or top is None:
             continue
-        if previous is not None and previous.x is not None:
-            step = sign * (previous.x - m.x) / 2.0
+        before = passes[previous].x if previous is not None else None
+        if previous is not None and before is not None:
+            step = sign * (before - m.x) / 2.0
             # Back to the first depth is the next start of a multi-start thread, or the
             # whole thread cut again: a new series, not a pass out of order.
             restart = sign * (top - m.x) <= EPS
             if step < -EPS and "back" not in reported and not restart:
                 reported.add("back")
-                yield make(
-                    "MB803",
-                    f"{pass_name(thread, i, m)} at X{mm(m.x)} is {-step:.3f} mm shallower than "
-                    f"the pass before (X{mm(previous.x)}): the depth should grow pass after pass",
-                    m.line,
-                    0,
-                    width(ctx, m.line),
-                )
+                events.append(("MB803", i, previous))
             elif step > limit + EPS and "deep" not in reported:
                 reported.add("deep")
-                yield make(
-                    "MB804",
-                    f"{pass_name(thread, i, m)} takes {step:.3f} mm (radius) in one pass, above "
-                    f"the maximum {limit:g} mm per pass",
-                    m.line,
-                    0,
-                    width(ctx, m.line),
-                )
-        previous = m
+                events.append(("MB804", i, previous))
+        previous = i
+    return events
 
 
 def _same_pass(a: Motion, b: Motion) -> bool:
@@ -94,9 +109,43 @@ def _same_pass(a: Motion, b: Motion) -> bool:
 
 def _repeated(ctx: RuleContext, thread: Thread, internal: bool) -> Iterator[Diagnostic]:
     """A pass cut twice before the full depth, or a depth of a regular sequence never cut."""
-    passes = [m for m in thread.job.passes if m.x is not None and not m.finishing]
-    if len(passes) < 4:
+    found = thread.job.remember(
+        ("repeated", internal), lambda: _repeated_pass(thread.job.passes, internal)
+    )
+    if found is None:
         return
+    passes, kind, i, usual = found
+    m, before = passes[i], passes[i - 1]
+    assert m.x is not None and before.x is not None
+    if kind == "repeat":
+        yield _pass_finding(
+            ctx,
+            thread,
+            m,
+            f"{pass_name(thread, i, m)} at X{mm(m.x)} (line {m.line + 1}) repeats "
+            f"{pass_name(thread, i - 1, before)} before the full depth: that depth is cut twice",
+            " and one depth of the sequence is never cut; ",
+        )
+        return
+    sign = -1.0 if internal else 1.0
+    yield _pass_finding(
+        ctx,
+        thread,
+        m,
+        f"{pass_name(thread, i, m)} at X{mm(m.x)} (line {m.line + 1}) takes twice "
+        f"the program's step of {usual:.3f} mm: X{mm(before.x - sign * 2.0 * usual)} "
+        "is never cut",
+        "; ",
+    )
+
+
+def _repeated_pass(
+    all_passes: list[Motion], internal: bool
+) -> tuple[list[Motion], str, int, float] | None:
+    """(the passes before the finishing ones, "repeat" or "skip", the pass, the usual step)."""
+    passes = [m for m in all_passes if m.x is not None and not m.finishing]
+    if len(passes) < 4:
+        return None
     sign = -1.0 if internal else 1.0
     deepest = max(sign * -(m.x or 0.0) for m in passes)
     same_x = sum(
@@ -108,31 +157,21 @@ def _repeated(ctx: RuleContext, thread: Thread, internal: bool) -> Iterator[Diag
         and sign * -b.x < deepest - EPS
     )
     if same_x * 5 > len(passes) - 1:
-        return  # depths cut in pairs (left and right steps, flank infeed): repeats are the plan
+        return None  # depths cut in pairs (left and right steps, flank infeed): the plan
     repeats = [
         i
         for i in range(1, len(passes))
         if _same_pass(passes[i], passes[i - 1])
         and sign * -(passes[i].x or 0.0) < deepest - EPS  # before the full depth
     ]
+    if not repeats:
+        skipped = _skipped(passes, sign)
+        return None if skipped is None else (passes, "skip", skipped[0], skipped[1])
     # A program that repeats every pass on purpose (an idle pass after each cut) is not wrong.
     depths = len({round(m.x or 0.0, 3) for m in passes})
-    if not repeats:
-        yield from _skipped(ctx, thread, passes, sign)
-        return
     if len(repeats) > 2 or depths < 4:
-        return
-    i = repeats[0]
-    m, before = passes[i], passes[i - 1]
-    assert m.x is not None
-    yield _pass_finding(
-        ctx,
-        thread,
-        m,
-        f"{pass_name(thread, i, m)} at X{mm(m.x)} (line {m.line + 1}) repeats "
-        f"{pass_name(thread, i - 1, before)} before the full depth: that depth is cut twice",
-        " and one depth of the sequence is never cut; ",
-    )
+        return None
+    return passes, "repeat", repeats[0], 0.0
 
 
 def _pass_finding(
@@ -160,29 +199,17 @@ def _usual_step(steps: list[float]) -> float | None:
     return step if count * 4 >= len(positive) * 3 else None
 
 
-def _skipped(
-    ctx: RuleContext, thread: Thread, passes: list[Motion], sign: float
-) -> Iterator[Diagnostic]:
-    """A regular sequence of depths with one step of twice the usual: a depth never cut."""
+def _skipped(passes: list[Motion], sign: float) -> tuple[int, float] | None:
+    """A regular sequence of depths with one step of twice the usual, a depth never cut: (the
+    pass after it, the usual step)."""
     steps = _steps(passes, sign)
     usual = _usual_step(steps)
     if usual is None:
-        return
+        return None
     for i, step in enumerate(steps):
         if abs(step - 2.0 * usual) <= EPS:
-            m = passes[i + 1]
-            before = passes[i]
-            assert m.x is not None and before.x is not None
-            yield _pass_finding(
-                ctx,
-                thread,
-                m,
-                f"{pass_name(thread, i + 1, m)} at X{mm(m.x)} (line {m.line + 1}) takes twice "
-                f"the program's step of {usual:.3f} mm: X{mm(before.x - sign * 2.0 * usual)} "
-                "is never cut",
-                "; ",
-            )
-            return
+            return i + 1, usual
+    return None
 
 
 def _rounding_cause(

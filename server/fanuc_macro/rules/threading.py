@@ -89,22 +89,21 @@ def _root_checks(ctx: RuleContext, thread: Thread) -> Iterator[Diagnostic]:
             )
         )
     passes = thread.job.passes
-    for i, m in enumerate(passes):
-        if m.x is None:
-            continue
+    i = thread.job.remember(("past root", sign, root), lambda: _past_root(passes, sign, root))
+    if i is not None:
+        m = passes[i]
+        assert m.x is not None
         past = sign * (root - m.x) / 2.0
-        if past > EPS:
-            yield make(
-                "MB801",
-                f"{pass_name(thread, i, m)} at X{mm(m.x)} is {past:.3f} mm (radius) past the "
-                f"root X{mm(root)} of {thread.name} ({thread.limit_text()}); thread known "
-                f"from {thread.known_from()}",
-                m.line,
-                0,
-                width(ctx, m.line),
-                related=related,
-            )
-            break
+        yield make(
+            "MB801",
+            f"{pass_name(thread, i, m)} at X{mm(m.x)} is {past:.3f} mm (radius) past the "
+            f"root X{mm(root)} of {thread.name} ({thread.limit_text()}); thread known "
+            f"from {thread.known_from()}",
+            m.line,
+            0,
+            width(ctx, m.line),
+            related=related,
+        )
     first = passes[0]
     if first.x is None or thread.major is None or thread.pitch is None:
         return
@@ -121,6 +120,14 @@ def _root_checks(ctx: RuleContext, thread: Thread) -> Iterator[Diagnostic]:
             width(ctx, first.line),
             related=related,
         )
+
+
+def _past_root(passes: list[Motion], sign: float, root: float) -> int | None:
+    """The first pass past the root."""
+    for i, m in enumerate(passes):
+        if m.x is not None and sign * (root - m.x) / 2.0 > EPS:
+            return i
+    return None
 
 
 def expected_height(thread: Thread) -> float | None:

@@ -37,6 +37,7 @@ from .geometry import SIN60
 from .iso965 import PitchClass, loosest_pitch_class, pitch_classes
 from .jobs import ThreadJob, thread_jobs
 from .module_shape import D1_FACTOR, ModuleShape, fitting_radii, module_shape, written_value
+from .scans import LineScan
 
 _NUM = r"\d+(?:[.,]\d+)?"
 # A metric designation needs a pitch or a class: "M30" or "M8" alone is an M code.
@@ -254,16 +255,17 @@ class Thread:
         return f"{which} {limit:.3f} of {self.class_text()}, with {tool}"
 
 
-def _thread_lines(doc: Document) -> list[tuple[int, LineThreadWords]]:
-    """The lines whose comments say something of a thread, read in one pass."""
-    found: list[tuple[int, LineThreadWords]] = []
-    for block in doc.blocks:
-        parsed = block.parsed
-        if parsed.comments:
-            words = thread_words(parsed)
-            if words.designations or words.other_forms or words.starts is not None:
-                found.append((block.line, words))
-    return found
+def _thread_line(parsed: ParsedLine) -> LineThreadWords | None:
+    if not parsed.comments:
+        return None
+    words = thread_words(parsed)
+    if words.designations or words.other_forms or words.starts is not None:
+        return words
+    return None
+
+
+# The lines whose comments say something of a thread, looked at again only where they changed.
+_thread_lines: LineScan[LineThreadWords] = LineScan(_thread_line)
 
 
 def _designations(lines: list[tuple[int, LineThreadWords]]) -> list[FoundDesignation]:
@@ -286,12 +288,12 @@ def _parse(found: FoundDesignation, internal: bool | None) -> ThreadDesignation 
 
 def _fits(des: ThreadDesignation, job: ThreadJob, internal: bool) -> bool:
     """Whether the passes lie where this size's thread is cut."""
-    xs = job.xs
+    low, high = job.x_range
     d, p = des.nominal_diameter, des.pitch
     if internal:
         minor = d - D1_FACTOR * p
-        return min(xs) >= minor - 1.0 - 0.5 * p and max(xs) <= d + 2.0 * p
-    return max(xs) <= d + 0.2 and min(xs) >= d - 4.0 * p
+        return low >= minor - 1.0 - 0.5 * p and high <= d + 2.0 * p
+    return high <= d + 0.2 and low >= d - 4.0 * p
 
 
 def _choose_designation(
@@ -599,7 +601,7 @@ def _unsupported(job: ThreadJob, thread: Thread, words: _ProgramWords) -> None:
             "ISO 60° one; the tool radius is checked against the groove's (MB806)"
         )
         return
-    taper = next((m for m in job.passes if m.words.get("R")), None)
+    taper = job.taper
     if taper is not None and job.is_cycle:
         thread.unsupported = (
             f"a taper thread ({taper.code} R{taper.words['R']:g} at line {taper.line + 1}): the "

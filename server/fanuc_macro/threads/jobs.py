@@ -13,12 +13,17 @@ range of the passes and where each cycle starts.
 
 from __future__ import annotations
 
+from bisect import bisect_left
 from collections import Counter
-from collections.abc import Sequence
-from dataclasses import dataclass, field
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field, fields
 from functools import cached_property
+from typing import TypeVar
 
-from ..evaluator.facts import Motion
+from ..evaluator.facts import Motion, same_value
+from .scans import Diff, Kept
+
+R = TypeVar("R")
 
 THREAD_CODES = frozenset({"G32", "G33", "G34", "G76", "G92"})
 CYCLES = frozenset({"G76", "G92"})
@@ -26,6 +31,9 @@ CYCLES = frozenset({"G76", "G92"})
 
 @dataclass
 class ThreadJob:
+    """A job's passes are not changed once it is made: a later analysis whose run cuts the
+    same passes takes the same job, with what its rules found of them (:meth:`remember`)."""
+
     uri: str
     program_line: int  # first line of the program that cuts it
     program: str  # O3331
@@ -34,12 +42,21 @@ class ThreadJob:
     after: list[Motion | None] = field(default_factory=list)  # the motion after each pass
     internal: bool | None = None  # from the cuts alone
     side_reason: str = ""
+    # What was worked out of the passes alone (and of the settings named in the key).
+    memo: dict[object, object] = field(default_factory=dict, compare=False, repr=False)
+
+    def remember(self, key: object, compute: Callable[[], R]) -> R:
+        """``compute()``, a function of the passes and of what ``key`` names, once per job."""
+        if key in self.memo:
+            return self.memo[key]  # type: ignore[return-value]
+        found = self.memo[key] = compute()
+        return found
 
     @property
     def is_cycle(self) -> bool:
         return self.passes[0].code in CYCLES
 
-    @property
+    @cached_property
     def code(self) -> str:
         return Counter(m.code for m in self.passes).most_common(1)[0][0]
 
@@ -53,13 +70,27 @@ class ThreadJob:
     def xs(self) -> list[float]:
         return [m.x for m in self.passes if m.x is not None]
 
+    @cached_property
+    def x_range(self) -> tuple[float, float]:
+        """The least and the greatest X of the passes (there is one)."""
+        return min(self.xs), max(self.xs)
+
+    @cached_property
+    def taper(self) -> Motion | None:
+        """The first pass with a taper (R)."""
+        return next((m for m in self.passes if m.words.get("R")), None)
+
     def deepest(self, internal: bool) -> Motion:
-        cut = [m for m in self.passes if m.x is not None]
-        return (max if internal else min)(cut, key=lambda m: m.x or 0.0)
+        return self.remember(("deepest", internal), lambda: self._extreme(max if internal else min))
 
     def shallowest(self, internal: bool) -> Motion:
+        return self.remember(
+            ("shallowest", internal), lambda: self._extreme(min if internal else max)
+        )
+
+    def _extreme(self, which: Callable[..., Motion]) -> Motion:
         cut = [m for m in self.passes if m.x is not None]
-        return (min if internal else max)(cut, key=lambda m: m.x or 0.0)
+        return which(cut, key=lambda m: m.x or 0.0)
 
     def lines(self) -> list[int]:
         return sorted({m.line for m in self.passes})
@@ -119,13 +150,178 @@ def _side(start: float, x: float) -> str:
 
 
 def thread_jobs(motions: Sequence[Motion], uri: str) -> list[ThreadJob]:
-    """The threading jobs of ``uri``'s programs, in the order the run cut them."""
+    """The threading jobs of ``uri``'s programs, in the order the run cut them.
+
+    The jobs of the last run seen are kept: when a later run's threading motions (and the
+    retracts after single cuts) are the same records or records of the same values, its jobs
+    are those same objects, with what was worked out of their passes (the rules keep what
+    they find of a job's passes in :attr:`ThreadJob.memo`)."""
+    seen = _seen(motions, uri)
+    jobs = seen.jobs
+    if jobs is None:
+        jobs = seen.jobs = _jobs(seen)
+    return jobs
+
+
+def motion_positions(motions: Sequence[Motion], uri: str) -> list[int]:
+    """Where in ``motions`` the turning and facing cycles (G90, G94) of ``uri`` are."""
+    return _seen(motions, uri).turning
+
+
+TURNING = frozenset({"G90", "G94"})
+# After how many motions a single cut's retract is looked for.
+AFTER = 3
+grouped = 0  # threading motions grouped into jobs, for the tests of the work done
+
+
+class _Seen:
+    """A run's motions as last seen for one document: where its threading and turning motions
+    are, its jobs (once asked for), and the run seen before it (until its jobs are made)."""
+
+    __slots__ = ("base", "copy", "diff", "jobs", "motions", "threads", "turning")
+
+    def __init__(
+        self,
+        motions: Sequence[Motion],
+        threads: list[int],
+        turning: list[int],
+        base: _Seen | None = None,
+        diff: Diff | None = None,
+    ) -> None:
+        self.motions = motions
+        self.copy = list(motions)  # its items then, whatever becomes of the list
+        self.threads = threads
+        self.turning = turning
+        self.jobs: list[ThreadJob] | None = None
+        self.base = base
+        self.diff = diff
+
+
+_kept: Kept[_Seen] = Kept()
+
+
+def _seen(motions: Sequence[Motion], uri: str) -> _Seen:
+    kept = _kept.get(uri)
+    if kept is not None and kept.motions is motions and kept.copy == motions:
+        return kept  # the same run: asked again by another rule
+    if kept is None:
+        seen = _Seen(
+            motions,
+            _positions(motions, uri, THREAD_CODES, 0, len(motions)),
+            _positions(motions, uri, TURNING, 0, len(motions)),
+        )
+    else:
+        diff = Diff(kept.copy, motions, identical=True)
+        # A single cut before the change may take its retract from the changed stretch.
+        start = max(0, diff.start - AFTER)
+        seen = _Seen(
+            motions,
+            _spliced(
+                kept.threads, diff, start, _positions(motions, uri, THREAD_CODES, start, diff.end)
+            ),
+            _spliced(kept.turning, diff, start, _positions(motions, uri, TURNING, start, diff.end)),
+            None if kept.jobs is None else kept,
+            diff,
+        )
+    _kept.put(uri, seen)
+    return seen
+
+
+def _spliced(old: list[int], diff: Diff, start: int, middle: list[int]) -> list[int]:
+    """Old positions before ``start`` and after the change (moved), with ``middle``."""
+    tail = old[bisect_left(old, diff.old_end) :]
+    if diff.shift:
+        tail = [at + diff.shift for at in tail]
+    return [*old[: bisect_left(old, start)], *middle, *tail]
+
+
+def _jobs(seen: _Seen) -> list[ThreadJob]:
+    motions, positions, base, diff = seen.copy, seen.threads, seen.base, seen.diff
+    seen.base = None  # not kept past the next run
+    if base is None or base.jobs is None or diff is None:
+        return _group(motions, positions)
+    old_motions, old_positions = base.copy, base.threads
+    start = max(0, diff.start - AFTER)
+    a = bisect_left(old_positions, start)
+    b = bisect_left(old_positions, diff.old_end)
+    c = bisect_left(positions, start)
+    middle = positions[c : c + len(positions) - len(old_positions) + b - a]
+    if len(middle) == b - a and all(
+        _same_cut(motions, i, old_motions, j)
+        for i, j in zip(middle, old_positions[a:b], strict=True)
+    ):
+        return base.jobs
+    return _reused(_group(motions, positions), base.jobs)
+
+
+def _positions(
+    motions: Sequence[Motion], uri: str, codes: frozenset[str], start: int, end: int
+) -> list[int]:
+    return [i for i in range(start, end) if (m := motions[i]).code in codes and m.uri == uri]
+
+
+def _same_cut(new: Sequence[Motion], i: int, old: Sequence[Motion], j: int) -> bool:
+    """Whether two threading motions are the same cut and, a single cut, have the same
+    retract after them."""
+    a, b = new[i], old[j]
+    if not same_motion(a, b):
+        return False
+    if a.code in CYCLES:
+        return True
+    after_a, after_b = _next_motion(new, i), _next_motion(old, j)
+    if after_a is None or after_b is None:
+        return after_a is after_b
+    return same_motion(after_a, after_b)
+
+
+_MOTION_FIELDS = tuple(f.name for f in fields(Motion))
+
+
+def same_motion(a: Motion, b: Motion) -> bool:
+    """The same record, or one of the same values (0.0 and -0.0 differ: they print apart)."""
+    if a is b:
+        return True
+    if a != b:
+        return False
+    if 0.0 not in (a.x, a.z, a.start_x, a.start_z, a.rpm) and 0.0 not in a.words.values():
+        return True  # equal, and no zero whose sign could differ
+    return all(same_value(getattr(a, f), getattr(b, f)) for f in _MOTION_FIELDS)
+
+
+def _reused(jobs: list[ThreadJob], old_jobs: list[ThreadJob]) -> list[ThreadJob]:
+    """``jobs``, each one of ``old_jobs`` cut by the same passes taken in its stead."""
+    by_start: dict[tuple[int, int, int], list[ThreadJob]] = {}
+    for old in old_jobs:
+        by_start.setdefault((old.program_line, old.run, len(old.passes)), []).append(old)
+    out: list[ThreadJob] = []
+    for job in jobs:
+        same = next(
+            (
+                old
+                for old in by_start.get((job.program_line, job.run, len(job.passes)), ())
+                if old.uri == job.uri
+                and old.program == job.program
+                and all(map(same_motion, job.passes, old.passes))
+                and all(
+                    a is b or (a is not None and b is not None and same_motion(a, b))
+                    for a, b in zip(job.after, old.after, strict=True)
+                )
+            ),
+            None,
+        )
+        out.append(job if same is None else same)
+    return out
+
+
+def _group(motions: Sequence[Motion], positions: list[int]) -> list[ThreadJob]:
+    """The threading motions at ``positions`` grouped into jobs."""
+    global grouped
+    grouped += len(positions)
     jobs: list[ThreadJob] = []
     current: dict[tuple[int, bool], ThreadJob] = {}
     spans: dict[int, tuple[float, float] | None] = {}
-    for i, m in enumerate(motions):
-        if m.code not in THREAD_CODES or m.uri != uri:
-            continue
+    for i in positions:
+        m = motions[i]
         key = (m.run, m.code in CYCLES)
         job = current.get(key)
         span = _span(m)
@@ -147,7 +343,7 @@ def thread_jobs(motions: Sequence[Motion], uri: str) -> list[ThreadJob]:
 
 def _next_motion(motions: Sequence[Motion], i: int) -> Motion | None:
     run = motions[i].run
-    for m in motions[i + 1 : i + 4]:
+    for m in motions[i + 1 : i + 1 + AFTER]:
         if m.run == run:
             return m
     return None

@@ -37,6 +37,7 @@ from ..syntax import (
 from ..walk import subexpressions, top_expressions
 from .geometry import SIN60, TAN30
 from .jobs import ThreadJob
+from .scans import LineScan, within
 
 D1_FACTOR = 2.0 * 5.0 / 8.0 * SIN60  # D1 = D - 1.0825 P
 
@@ -159,12 +160,19 @@ def _line_tan30(parsed: ParsedLine) -> frozenset[int]:
 _tan30_of: PerLine[frozenset[int]] = PerLine(_line_tan30)
 
 
+def _tan30_line(parsed: ParsedLine) -> frozenset[int] | None:
+    if "TAN" not in parsed.text and not parsed.has_lowercase:  # spare most lines the lookup
+        return None
+    return _tan30_of(parsed) or None
+
+
+_tan30_lines: LineScan[frozenset[int]] = LineScan(_tan30_line)
+
+
 def _tan30_offsets(doc: Document, program: Program) -> set[int]:
     found: set[int] = set()
-    for line in range(program.first_line, program.end_line):
-        parsed = doc.blocks[line].parsed
-        if "TAN" in parsed.text or parsed.has_lowercase:  # spare most lines the lookup
-            found |= _tan30_of(parsed)
+    for _line, offsets in within(_tan30_lines(doc), program.first_line, program.end_line):
+        found |= offsets
     return found
 
 
@@ -349,15 +357,17 @@ def _line_fitting(parsed: ParsedLine) -> tuple[int, int] | None:
 _fitting_of: PerLine[tuple[int, int] | None] = PerLine(_line_fitting)
 
 
+def _fitting_line(parsed: ParsedLine) -> tuple[int, int] | None:
+    if "ASIN" not in parsed.text and not parsed.has_lowercase:  # spare most lines the lookup
+        return None
+    return _fitting_of(parsed)
+
+
+_fitting_lines: LineScan[tuple[int, int]] = LineScan(_fitting_line)
+
+
 def fitting_radii(doc: Document, facts: DocumentFacts, program: Program) -> FittingRadii | None:
-    for line in range(program.first_line, program.end_line):
-        parsed = doc.blocks[line].parsed
-        if "ASIN" not in parsed.text and not parsed.has_lowercase:  # spare most lines
-            continue
-        found = _fitting_of(parsed)
-        if found is None:
-            continue
-        tool, groove = found
+    for line, (tool, groove) in within(_fitting_lines(doc), program.first_line, program.end_line):
         tool_lines = writes_of(facts, program, tool) or writes_in_document(facts, tool)
         groove_lines = writes_of(facts, program, groove) or writes_in_document(facts, groove)
         return FittingRadii(

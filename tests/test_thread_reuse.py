@@ -1,0 +1,138 @@
+"""The threading rules after an edit: the work done again is that of what changed (counted,
+not timed), and the findings are those of an analysis from scratch."""
+
+from __future__ import annotations
+
+import importlib.util
+import random
+import sys
+from collections.abc import Callable
+from dataclasses import replace
+from pathlib import Path
+from types import ModuleType
+
+import pytest
+
+from fanuc_macro import meanings
+from fanuc_macro.analysis import analyse
+from fanuc_macro.config import Config
+from fanuc_macro.evaluator import Motion
+from fanuc_macro.parser import BlockParser
+from fanuc_macro.threads import identify, jobs
+
+FIXTURES = Path(__file__).parent / "fixtures"
+URI = "file:///reuse.nc"
+
+
+def _bench_programs() -> ModuleType:
+    path = Path(__file__).resolve().parents[1] / "bench" / "bench_lsp.py"
+    spec = importlib.util.spec_from_file_location("bench_lsp_reuse", path)
+    assert spec is not None and spec.loader is not None
+    module = importlib.util.module_from_spec(spec)
+    sys.modules[spec.name] = module
+    spec.loader.exec_module(module)
+    return module
+
+
+# A main program in the style of the seeds: one G92 thread of a pass every four blocks.
+program: Callable[[int], str] = _bench_programs().program
+CONFIG = replace(Config(), max_blocks=10**7, max_file_size=10**9)
+
+
+def _edit_number(lines: list[str], at: int) -> list[str]:
+    """A digit typed into the assignment at or after line ``at``: no thread pass changes."""
+    out = list(lines)
+    while not out[at].startswith("#"):
+        at += 1
+    out[at] = out[at].replace("*", "*1", 1)
+    return out
+
+
+def _same_as_fresh(text: str, previous: object) -> object:
+    resumed = analyse(text, URI, CONFIG, parser=PARSER, previous_facts=previous)  # type: ignore[arg-type]
+    fresh = analyse(text, URI, CONFIG, parser=BlockParser())
+    assert resumed.diagnostics == fresh.diagnostics
+    assert [identify.describe(t) for t in resumed.threads] == [
+        identify.describe(t) for t in fresh.threads
+    ]
+    assert [t.job.passes for t in resumed.threads] == [t.job.passes for t in fresh.threads]
+    return resumed.facts
+
+
+PARSER = BlockParser()
+
+
+def test_an_edit_that_cuts_the_same_passes_keeps_the_jobs_and_looks_at_one_line() -> None:
+    lines = program(4000).split("\n")
+    first = analyse("\n".join(lines), URI, CONFIG, parser=PARSER)
+    assert first.threads and len(first.threads[0].job.passes) > 900
+    before = first.threads[0].job
+    lines = _edit_number(lines, len(lines) // 2)
+    grouped, looked, roles = (
+        jobs.grouped,
+        identify._thread_lines.looked,
+        meanings._role_lines.looked,
+    )
+    again = analyse("\n".join(lines), URI, CONFIG, parser=PARSER, previous_facts=first.facts)
+    # The run resumed and made new records of the passes after the edit, of the same values:
+    # the job is the earlier one, not grouped again, and only the edited line is read again.
+    assert again.facts is not None and again.facts.motions is not first.facts.motions
+    assert again.threads[0].job is before
+    assert jobs.grouped == grouped
+    assert identify._thread_lines.looked - looked <= 1
+    assert meanings._role_lines.looked - roles <= 1
+    fresh = analyse("\n".join(lines), URI, CONFIG, parser=BlockParser())
+    assert again.diagnostics == fresh.diagnostics
+
+
+def test_an_edit_of_a_pass_groups_again_and_equals_a_fresh_analysis() -> None:
+    lines = program(2000).split("\n")
+    previous = analyse("\n".join(lines), URI, CONFIG, parser=PARSER).facts
+    at = next(i for i in range(len(lines) // 2, len(lines)) if lines[i].startswith("G92"))
+    lines[at] = lines[at].replace("#100-0.", "#100+0.", 1)  # a pass shallower than the one before
+    grouped = jobs.grouped
+    previous = _same_as_fresh("\n".join(lines), previous)
+    assert jobs.grouped > grouped
+
+
+@pytest.mark.parametrize("seed", range(3))
+def test_random_edits_of_a_seed_equal_a_fresh_analysis(seed: int) -> None:
+    rng = random.Random(seed)
+    names = sorted(p.name for p in (FIXTURES / "seeds").glob("*.nc"))
+    lines = (FIXTURES / "seeds" / rng.choice(names)).read_text("utf-8").splitlines()
+    previous = analyse("\n".join(lines), URI, CONFIG, parser=PARSER).facts
+    for _ in range(12):
+        lines = list(lines)
+        at = rng.randrange(len(lines))
+        what = rng.random()
+        if what < 0.4:  # a digit changed
+            digits = [i for i, ch in enumerate(lines[at]) if ch.isdigit()]
+            if digits:
+                i = rng.choice(digits)
+                lines[at] = lines[at][:i] + str(rng.randrange(10)) + lines[at][i + 1 :]
+        elif what < 0.6:
+            lines.insert(at, "G04 X0.1 (PAUSE)")
+        elif what < 0.8 and len(lines) > 5:
+            del lines[at]
+        else:
+            lines[at] = lines[at] + " (M20X1.5-6G)"
+        previous = _same_as_fresh("\n".join(lines), previous)
+
+
+def test_added_and_removed_lines_move_what_was_found() -> None:
+    lines = program(1200).split("\n")
+    previous = analyse("\n".join(lines), URI, CONFIG, parser=PARSER).facts
+    lines.insert(300, "(M50X3-6G EXTERNAL)")
+    previous = _same_as_fresh("\n".join(lines), previous)
+    del lines[10]
+    previous = _same_as_fresh("\n".join(lines), previous)
+    lines.insert(len(lines) - 20, "#3=0.4 (NOSE RADIUS)")
+    _same_as_fresh("\n".join(lines), previous)
+
+
+def test_a_zero_of_the_other_sign_is_not_the_same_motion() -> None:
+    a = Motion("O1", 3, "G92", {"X": 0.0}, URI, x=0.0)
+    b = replace(a, words={"X": -0.0}, x=-0.0)
+    assert a == b  # as Python compares them
+    assert not jobs.same_motion(a, b)
+    assert jobs.same_motion(a, replace(a, words={"X": 0.0}))
