@@ -8,9 +8,10 @@ from collections.abc import Iterator
 
 from ..diagnostics import RuleInfo, Severity, register
 from ..index import constant_value
-from ..syntax import BareCond, BlockIf, IfGoto, IfNc, NcStatement, ParsedLine, Var, While
-from ..walk import variables
-from .context import LineFinding, line_statements
+from ..parser import statements_of
+from ..syntax import BareCond, BlockIf, IfGoto, IfNc, NcStatement, Num, ParsedLine, Var, While, Word
+from ..walk import plain_variables, variables
+from .context import LineFinding
 
 FAMILY = "dialect"
 register(
@@ -25,7 +26,17 @@ def check_line(parsed: ParsedLine) -> Iterator[LineFinding]:
         yield LineFinding(
             "MB002", f"{problem.dialect}: {problem.message}", problem.span.start, problem.span.end
         )
-    for statement in line_statements(parsed):
+    whole = parsed.statement
+    if type(whole) is NcStatement:  # most blocks: their words, without the walks
+        plain = plain_variables(whole)
+        if plain is not None:
+            yield from _nc_codes(whole)
+            for var in plain:
+                finding = _variable_finding(parsed, var)
+                if finding is not None:
+                    yield finding
+            return
+    for statement in statements_of(whole):
         span = statement.span
         if isinstance(statement, IfNc):
             form = "IF [...] THEN <NC words>" if statement.has_then else "IF [...] <NC words>"
@@ -45,29 +56,7 @@ def check_line(parsed: ParsedLine) -> Iterator[LineFinding]:
                 span.end,
             )
         elif isinstance(statement, NcStatement):
-            has_p = statement.find("P") is not None
-            for word in statement.words:
-                value = constant_value(word.value)
-                if word.address == "M" and value == 98.0 and statement.find("H") and not has_p:
-                    yield LineFinding(
-                        "MB002",
-                        "Mitsubishi/Citizen: M98 H<n> (a call to a sequence "
-                        "number) is not FANUC; FANUC's M98 takes P<program>",
-                        word.span.start,
-                        word.span.end,
-                    )
-                # A bare M97 is an ordinary M code on FANUC; with P it is Haas's local call.
-                if word.address == "M" and value == 97.0 and has_p:
-                    yield LineFinding(
-                        "MB002",
-                        "Haas: M97 (local subroutine at an N number) is not FANUC;"
-                        " use M98 P<program>",
-                        word.span.start,
-                        word.span.end,
-                    )
-                haas = _haas_code(word.address, value, has_p)
-                if haas is not None:
-                    yield LineFinding("MB002", haas, word.span.start, word.span.end)
+            yield from _nc_codes(statement)
         if isinstance(statement, (IfGoto, While)) and isinstance(statement.cond, BareCond):
             c = statement.cond
             yield LineFinding(
@@ -77,24 +66,77 @@ def check_line(parsed: ParsedLine) -> Iterator[LineFinding]:
                 c.span.end,
             )
         for var in variables(statement):
-            if isinstance(var, Var) and var.number is not None and var.number != int(var.number):
-                written = parsed.text[var.span.start + 1 : var.span.end].strip()
-                yield LineFinding(
-                    "MB002",
-                    f"Haas NGC: #{written} (a variable number with a decimal part) is not FANUC "
-                    "(alarm PS0115)",
-                    var.span.start,
-                    var.span.end,
-                )
-            elif isinstance(var, Var) and var.number is not None and 20000 <= var.number <= 29999:
-                n = int(var.number)
-                yield LineFinding(
-                    "MB002",
-                    f"Haas NGC: #{n} reads Haas setting {n - 20000} (#20000-#29999 are the "
-                    "settings); FANUC has no settings variables (alarm PS0115 on most controls)",
-                    var.span.start,
-                    var.span.end,
-                )
+            finding = _variable_finding(parsed, var)
+            if finding is not None:
+                yield finding
+
+
+def _variable_finding(parsed: ParsedLine, var: Var) -> LineFinding | None:
+    """Haas NGC variable numbers: a decimal part, the settings #20000-#29999."""
+    number = var.number
+    if number is None:
+        return None
+    if number != int(number):
+        written = parsed.text[var.span.start + 1 : var.span.end].strip()
+        return LineFinding(
+            "MB002",
+            f"Haas NGC: #{written} (a variable number with a decimal part) is not FANUC "
+            "(alarm PS0115)",
+            var.span.start,
+            var.span.end,
+        )
+    if 20000 <= number <= 29999:
+        n = int(number)
+        return LineFinding(
+            "MB002",
+            f"Haas NGC: #{n} reads Haas setting {n - 20000} (#20000-#29999 are the "
+            "settings); FANUC has no settings variables (alarm PS0115 on most controls)",
+            var.span.start,
+            var.span.end,
+        )
+    return None
+
+
+# The values of the G and M codes _nc_codes looks closer at (M97, M98, G103, G154, M109).
+_FOREIGN_CODES = frozenset({97.0, 98.0, 103.0, 109.0, 154.0})
+
+
+def _nc_codes(statement: NcStatement) -> Iterator[LineFinding]:
+    """M98 H, M97 P and Haas-only G and M codes among a block's NC words."""
+    has_p = has_h = False
+    codes: list[tuple[Word, float]] = []
+    for word in statement.words:
+        address = word.address
+        if address == "P":
+            has_p = True
+        elif address == "H":
+            has_h = True
+        elif address == "G" or address == "M":
+            value = word.value
+            number = value.value if type(value) is Num else constant_value(value)
+            if number in _FOREIGN_CODES:
+                assert number is not None
+                codes.append((word, number))
+    for word, code in codes:
+        if word.address == "M" and code == 98.0 and has_h and not has_p:
+            yield LineFinding(
+                "MB002",
+                "Mitsubishi/Citizen: M98 H<n> (a call to a sequence "
+                "number) is not FANUC; FANUC's M98 takes P<program>",
+                word.span.start,
+                word.span.end,
+            )
+        # A bare M97 is an ordinary M code on FANUC; with P it is Haas's local call.
+        if word.address == "M" and code == 97.0 and has_p:
+            yield LineFinding(
+                "MB002",
+                "Haas: M97 (local subroutine at an N number) is not FANUC; use M98 P<program>",
+                word.span.start,
+                word.span.end,
+            )
+        haas = _haas_code(word.address, code, has_p)
+        if haas is not None:
+            yield LineFinding("MB002", haas, word.span.start, word.span.end)
 
 
 def _haas_code(address: str, value: float | None, has_p: bool) -> str | None:

@@ -6,6 +6,7 @@ from collections.abc import Iterator
 from dataclasses import dataclass
 
 from ..diagnostics import Diagnostic, Related, RuleInfo, Severity, make, register
+from ..parser import statements_of
 from ..per_line import PerLine
 from ..syntax import (
     Assign,
@@ -18,15 +19,17 @@ from ..syntax import (
     IfNc,
     IfThen,
     Logic,
+    NcStatement,
     Num,
     ParsedLine,
     Statement,
     Unary,
+    Var,
     While,
 )
 from ..variables import classify
-from ..walk import bracket_depth, top_expressions, variables
-from .context import LineFinding, RuleContext, line_statements
+from ..walk import bracket_depth, plain_variables, top_expressions, variables
+from .context import LineFinding, RuleContext
 
 FAMILY = "expressions"
 MAX_BRACKET_NESTING = 5
@@ -46,7 +49,16 @@ register(
 
 
 def check_line(parsed: ParsedLine) -> Iterator[LineFinding]:
-    for statement in line_statements(parsed):
+    whole = parsed.statement
+    if type(whole) is NcStatement:
+        plain = plain_variables(whole)
+        if plain is not None:  # no brackets, no condition, no target: only the numbers
+            for var in plain:
+                finding = _no_such_variable(var)
+                if finding is not None:
+                    yield finding
+            return
+    for statement in statements_of(whole):
         for expr in top_expressions(statement):
             depth = bracket_depth(expr)
             if depth > MAX_BRACKET_NESTING:
@@ -58,18 +70,9 @@ def check_line(parsed: ParsedLine) -> Iterator[LineFinding]:
                     expr.span.end,
                 )
         for var in variables(statement):
-            if var.number is None or var.number != int(var.number):
-                continue
-            number = int(var.number)
-            kind = classify(number)
-            if kind.kind == "none":
-                yield LineFinding(
-                    "MB302",
-                    f"#{number} does not exist on a FANUC control (alarm "
-                    "PS0115): locals are #1-#33, commons #100-#199 and #500-#999",
-                    var.span.start,
-                    var.span.end,
-                )
+            finding = _no_such_variable(var)
+            if finding is not None:
+                yield finding
         for found in logic_operands(statement):
             yield _logic_finding(parsed.text, found)
         targets = [statement] if isinstance(statement, Assign) else []
@@ -90,10 +93,26 @@ def check_line(parsed: ParsedLine) -> Iterator[LineFinding]:
                 )
 
 
+def _no_such_variable(var: Var) -> LineFinding | None:
+    """MB302 for a variable written with its number."""
+    if var.number is None or var.number != int(var.number):
+        return None
+    number = int(var.number)
+    if classify(number).kind != "none":
+        return None
+    return LineFinding(
+        "MB302",
+        f"#{number} does not exist on a FANUC control (alarm "
+        "PS0115): locals are #1-#33, commons #100-#199 and #500-#999",
+        var.span.start,
+        var.span.end,
+    )
+
+
 def _extended_commons(parsed: ParsedLine) -> tuple[tuple[int, int, int], ...]:
     """(number, start, end) of each #200-#499 the line names, in source order."""
     found: list[tuple[int, int, int]] = []
-    for statement in line_statements(parsed):
+    for statement in statements_of(parsed.statement):
         for var in variables(statement):
             number = var.number
             if number is not None and number == int(number) and 200 <= number <= 499:
