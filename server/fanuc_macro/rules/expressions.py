@@ -7,7 +7,6 @@ from dataclasses import dataclass
 
 from ..diagnostics import Diagnostic, Related, RuleInfo, Severity, make, register
 from ..parser import statements_of
-from ..per_line import PerLine
 from ..syntax import (
     Assign,
     Binary,
@@ -30,6 +29,7 @@ from ..syntax import (
 from ..variables import classify
 from ..walk import bracket_depth, plain_variables, top_expressions, variables
 from .context import LineFinding, RuleContext
+from .line_scan import LineScan
 
 FAMILY = "expressions"
 MAX_BRACKET_NESTING = 5
@@ -111,6 +111,8 @@ def _no_such_variable(var: Var) -> LineFinding | None:
 
 def _extended_commons(parsed: ParsedLine) -> tuple[tuple[int, int, int], ...]:
     """(number, start, end) of each #200-#499 the line names, in source order."""
+    if parsed.statement is None or "#" not in parsed.text:  # no variable
+        return ()
     found: list[tuple[int, int, int]] = []
     for statement in statements_of(parsed.statement):
         for var in variables(statement):
@@ -120,7 +122,8 @@ def _extended_commons(parsed: ParsedLine) -> tuple[tuple[int, int, int], ...]:
     return tuple(sorted(found, key=lambda f: f[1]))
 
 
-_extended_of: PerLine[tuple[tuple[int, int, int], ...]] = PerLine(_extended_commons)
+# The lines that name one, kept from one analysis of a document to the next.
+_extended_lines: LineScan[tuple[tuple[int, int, int], ...]] = LineScan(_extended_commons)
 
 
 def check(ctx: RuleContext) -> Iterator[Diagnostic]:
@@ -129,12 +132,12 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
     "Extended ranges ... are options" [K], unverified against B-64604EN)."""
     if ctx.config.extended_commons:
         return
-    uses: list[tuple[int, int, int, int]] = []  # (line, number, start, end)
-    for block in ctx.doc.blocks:
-        if block.parsed.statement is None:
-            continue
-        for number, start, end in _extended_of(block.parsed):
-            uses.append((block.line, number, start, end))
+    scanned = _extended_lines(ctx.doc)
+    uses = [  # (line, number, start, end)
+        (line, number, start, end)
+        for line, found in zip(scanned.lines, scanned.pieces, strict=True)
+        for number, start, end in found
+    ]
     if not uses:
         return
     line, number, start, end = uses[0]
