@@ -4,13 +4,25 @@ in blocks FANUC's grammar reads."""
 
 from __future__ import annotations
 
-from collections.abc import Iterator
+from collections.abc import Iterable, Iterator
 
 from ..diagnostics import RuleInfo, Severity, register
 from ..index import constant_value
 from ..parser import statements_of
-from ..syntax import BareCond, BlockIf, IfGoto, IfNc, NcStatement, Num, ParsedLine, Var, While, Word
-from ..walk import plain_variables, variables
+from ..syntax import (
+    BareCond,
+    BlockIf,
+    IfGoto,
+    IfNc,
+    NcStatement,
+    Num,
+    ParsedLine,
+    Unary,
+    Var,
+    While,
+    Word,
+)
+from ..walk import variables
 from .context import LineFinding
 
 FAMILY = "dialect"
@@ -20,22 +32,51 @@ register(
 )  # fmt: skip
 
 
-def check_line(parsed: ParsedLine) -> Iterator[LineFinding]:
+def check_line(parsed: ParsedLine) -> Iterable[LineFinding]:
+    whole = parsed.statement
+    if type(whole) is NcStatement and parsed.problem is None:
+        found = _plain_nc(parsed, whole)  # most blocks: their words, without the walks
+        if found is not None:
+            return found
+    return list(_check_line(parsed))
+
+
+def _plain_nc(parsed: ParsedLine, statement: NcStatement) -> list[LineFinding] | None:
+    """The findings of a block of NC words whose values are numbers, #n or -#n, from one look
+    at each word; None for any other block."""
+    has_p = has_h = False
+    codes: list[tuple[Word, float]] = []
+    found: list[LineFinding] = []
+    for word in statement.words:
+        address = word.address
+        if address == "P":
+            has_p = True
+        elif address == "H":
+            has_h = True
+        value = word.value
+        if type(value) is Num:
+            if (address == "G" or address == "M") and value.value in _FOREIGN_CODES:
+                codes.append((word, value.value))
+            continue
+        if type(value) is Unary:
+            value = value.operand
+        if type(value) is not Var or value.index is not None:
+            return None
+        finding = _variable_finding(parsed, value)
+        if finding is not None:
+            found.append(finding)
+    if codes:  # the codes' findings come before the variables'
+        return [*_code_findings(codes, has_p, has_h), *found]
+    return found
+
+
+def _check_line(parsed: ParsedLine) -> Iterator[LineFinding]:
     problem = parsed.problem
     if problem is not None and problem.dialect is not None:
         yield LineFinding(
             "MB002", f"{problem.dialect}: {problem.message}", problem.span.start, problem.span.end
         )
     whole = parsed.statement
-    if type(whole) is NcStatement:  # most blocks: their words, without the walks
-        plain = plain_variables(whole)
-        if plain is not None:
-            yield from _nc_codes(whole)
-            for var in plain:
-                finding = _variable_finding(parsed, var)
-                if finding is not None:
-                    yield finding
-            return
     for statement in statements_of(whole):
         span = statement.span
         if isinstance(statement, IfNc):
@@ -117,6 +158,14 @@ def _nc_codes(statement: NcStatement) -> Iterator[LineFinding]:
             if number in _FOREIGN_CODES:
                 assert number is not None
                 codes.append((word, number))
+    return _code_findings(codes, has_p, has_h)
+
+
+def _code_findings(
+    codes: list[tuple[Word, float]], has_p: bool, has_h: bool
+) -> Iterator[LineFinding]:
+    """The findings of the G and M words ``codes`` of a block (with their values) that has a P
+    word or an H word."""
     for word, code in codes:
         if word.address == "M" and code == 98.0 and has_h and not has_p:
             yield LineFinding(

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from collections.abc import Iterator
+from collections.abc import Iterable, Iterator
 from dataclasses import dataclass
 
 from ..diagnostics import Diagnostic, Related, RuleInfo, Severity, make, register
@@ -48,16 +48,16 @@ register(
 )  # fmt: skip
 
 
-def check_line(parsed: ParsedLine) -> Iterator[LineFinding]:
+def check_line(parsed: ParsedLine) -> Iterable[LineFinding]:
     whole = parsed.statement
     if type(whole) is NcStatement:
         plain = plain_variables(whole)
         if plain is not None:  # no brackets, no condition, no target: only the numbers
-            for var in plain:
-                finding = _no_such_variable(var)
-                if finding is not None:
-                    yield finding
-            return
+            return [f for var in plain if (f := _no_such_variable(var)) is not None]
+    return list(_check_line(whole, parsed.text))
+
+
+def _check_line(whole: Statement | None, text: str) -> Iterator[LineFinding]:
     for statement in statements_of(whole):
         for expr in top_expressions(statement):
             depth = bracket_depth(expr)
@@ -74,7 +74,7 @@ def check_line(parsed: ParsedLine) -> Iterator[LineFinding]:
             if finding is not None:
                 yield finding
         for found in logic_operands(statement):
-            yield _logic_finding(parsed.text, found)
+            yield _logic_finding(text, found)
         targets = [statement] if isinstance(statement, Assign) else []
         if isinstance(statement, IfThen):
             targets.append(statement.then)
