@@ -50,7 +50,7 @@ class LineScan(Generic[T]):
     differs, so a scan is never stale.
     """
 
-    def __init__(self, piece: Callable[[ParsedLine], T], keep: int = 8) -> None:
+    def __init__(self, piece: Callable[[ParsedLine], T], keep: int = 4) -> None:
         self._piece = piece
         self._keep = keep
         self._last: dict[str, Scanned[T]] = {}
@@ -86,20 +86,7 @@ class LineScan(Generic[T]):
         return Scanned(blocks, lines, pieces)
 
     def _rescan(self, before: Scanned[T], blocks: tuple[Block, ...]) -> Scanned[T]:
-        old = before.blocks
-        head = _common_head(old, blocks)
-        # What follows the edit is compared by the lines' parse, which is the same object for
-        # a line kept, wherever it stands now.
-        room = min(len(old), len(blocks)) - head
-        if len(old) == len(blocks):
-            tail = _common_tail(old, blocks, room)
-        else:
-            tail = _common_tail(
-                list(map(_parsed_of, old[len(old) - room :])),
-                list(map(_parsed_of, blocks[len(blocks) - room :])),
-                room,
-            )
-        old_end, new_end = len(old) - tail, len(blocks) - tail
+        head, old_end, new_end = edited(before.blocks, blocks)
         lines, pieces = before.lines, before.pieces
         lo, hi = bisect_left(lines, head), bisect_left(lines, old_end)
         mid_lines, mid_pieces = self._pieces(blocks[head:new_end], head)
@@ -110,6 +97,34 @@ class LineScan(Generic[T]):
             [*lines[:lo], *mid_lines, *after],
             [*pieces[:lo], *mid_pieces, *pieces[hi:]],
         )
+
+
+# The last comparison: the scans of several rules compare the same two versions in a row.
+_last_edit: tuple[tuple[Block, ...], tuple[Block, ...], tuple[int, int, int]] | None = None
+
+
+def edited(old: tuple[Block, ...], new: tuple[Block, ...]) -> tuple[int, int, int]:
+    """Where ``new`` differs from ``old``: (first line, end in ``old``, end in ``new``); the
+    lines before and after are alike in both."""
+    global _last_edit
+    last = _last_edit
+    if last is not None and last[0] is old and last[1] is new:
+        return last[2]
+    head = _common_head(old, new)
+    # What follows the edit is compared by the lines' parse, which is the same object for a
+    # line kept, wherever it stands now.
+    room = min(len(old), len(new)) - head
+    if len(old) == len(new):
+        tail = _common_tail(old, new, room)
+    else:
+        tail = _common_tail(
+            list(map(_parsed_of, old[len(old) - room :])),
+            list(map(_parsed_of, new[len(new) - room :])),
+            room,
+        )
+    found = (head, len(old) - tail, len(new) - tail)
+    _last_edit = (old, new, found)
+    return found
 
 
 def _common_head(a: Sequence[object], b: Sequence[object]) -> int:
