@@ -9,6 +9,8 @@ import random
 from collections.abc import Callable
 from typing import Any
 
+import pytest
+
 from fanuc_macro.analysis import analyse
 from fanuc_macro.config import Config
 from fanuc_macro.index import build_index
@@ -209,3 +211,40 @@ def test_a_one_number_edit_of_a_long_program_scans_one_line_per_rule() -> None:
     fresh = analyse(edited, uri, cfg)
     assert second.diagnostics == fresh.diagnostics
     assert any(d.code == "MB303" for d in fresh.diagnostics)
+
+
+def test_the_line_rules_check_blocks_of_plain_words_without_walking_them(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """A CAM file's blocks (G01 X Y Z with numbers, #n or -#n) need no expression walk: the
+    line rules give their findings from the words themselves."""
+    from fanuc_macro import walk
+    from fanuc_macro.rules import LINE_CHECKS, dialect
+
+    cam = [  # as bench/bench_lsp.py's cam_program writes them
+        f"G01 X{i / 1000:.3f} Y{(i * 7919) % 100_003 / 1000:.3f} Z-{i % 977 / 100:.2f}"
+        for i in range(500)
+    ]
+    text = "\n".join(["O1234", *cam, "G01 X#1 Y-#2 Z#34", "M98 H5", "G103 P1", "X#20001", "M30"])
+    parsed = [b.parsed for b in parse_text(text, "file:///cam.nc", default_parser()).blocks]
+    plain = [
+        p
+        for p in parsed
+        if isinstance(p.statement, NcStatement) and plain_variables(p.statement) is not None
+    ]
+    assert len(plain) > 500
+    expected = [[list(check(p)) for check in LINE_CHECKS] for p in plain]
+    assert sum(len(f) for found in expected for f in found) == 4  # MB302, three MB002
+    for p in plain:  # the same as the way through every statement
+        assert list(dialect.check_line(p)) == list(dialect._check_line(p))
+        assert list(expressions.check_line(p)) == list(expressions._check_line(p.statement, p.text))
+    walked = [0]
+
+    def counted(expr: object) -> object:
+        walked[0] += 1
+        raise AssertionError("walked")
+
+    monkeypatch.setattr(walk, "subexpressions", counted)
+    monkeypatch.setattr(walk, "top_expressions", counted)
+    assert [[list(check(p)) for check in LINE_CHECKS] for p in plain] == expected
+    assert walked[0] == 0
