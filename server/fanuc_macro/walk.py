@@ -21,6 +21,7 @@ from .syntax import (
     Logic,
     Mixed,
     NcStatement,
+    Num,
     Statement,
     Unary,
     Var,
@@ -72,6 +73,9 @@ def top_expressions(statement: Statement) -> Iterator[Expr]:
 
 def subexpressions(expr: Expr) -> Iterator[Expr]:
     """``expr`` and everything inside it, parents before children."""
+    if type(expr) is Num:  # most words' values
+        yield expr
+        return
     stack: list[Expr] = [expr]
     while stack:
         node = stack.pop()
@@ -89,7 +93,35 @@ def subexpressions(expr: Expr) -> Iterator[Expr]:
             stack.append(node.index)
 
 
+def plain_variables(statement: NcStatement) -> list[Var] | None:
+    """The variables of an NC statement whose words' values are numbers, ``#n`` or ``-#n``
+    (what most blocks of a program hold), in source order; None when a value holds more
+    (brackets, operators, functions, ``#[...]``). The line rules take these without walking."""
+    found: list[Var] = []
+    for word in statement.words:
+        value = word.value
+        if type(value) is Num:
+            continue
+        if type(value) is Unary:
+            value = value.operand
+        if type(value) is Var and value.index is None:
+            found.append(value)
+            continue
+        return None
+    return found
+
+
 def variables(statement: Statement) -> Iterator[Var]:
+    """The variables of a statement's expressions, in source order (parents before the
+    variables of their indexes)."""
+    if type(statement) is NcStatement:
+        plain = plain_variables(statement)
+        if plain is not None:
+            return iter(plain)
+    return _variables(statement)
+
+
+def _variables(statement: Statement) -> Iterator[Var]:
     for top in top_expressions(statement):
         for node in subexpressions(top):
             if isinstance(node, Var):
@@ -98,6 +130,8 @@ def variables(statement: Statement) -> Iterator[Var]:
 
 def bracket_depth(expr: Expr) -> int:
     """Nesting of ``[ ]``, counting function brackets and ``#[ ]`` as FANUC does."""
+    if type(expr) is Num or (type(expr) is Var and expr.index is None):
+        return 0
     deepest = 0
     stack: list[tuple[Expr, int]] = [(expr, 0)]  # a node and the brackets around it
     while stack:

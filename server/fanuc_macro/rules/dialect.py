@@ -4,13 +4,26 @@ in blocks FANUC's grammar reads."""
 
 from __future__ import annotations
 
-from collections.abc import Iterator
+from collections.abc import Iterable, Iterator
 
 from ..diagnostics import RuleInfo, Severity, register
 from ..index import constant_value
-from ..syntax import BareCond, BlockIf, IfGoto, IfNc, NcStatement, ParsedLine, Var, While
+from ..parser import statements_of
+from ..syntax import (
+    BareCond,
+    BlockIf,
+    IfGoto,
+    IfNc,
+    NcStatement,
+    Num,
+    ParsedLine,
+    Unary,
+    Var,
+    While,
+    Word,
+)
 from ..walk import variables
-from .context import LineFinding, line_statements
+from .context import LineFinding
 
 FAMILY = "dialect"
 register(
@@ -19,13 +32,52 @@ register(
 )  # fmt: skip
 
 
-def check_line(parsed: ParsedLine) -> Iterator[LineFinding]:
+def check_line(parsed: ParsedLine) -> Iterable[LineFinding]:
+    whole = parsed.statement
+    if type(whole) is NcStatement and parsed.problem is None:
+        found = _plain_nc(parsed, whole)  # most blocks: their words, without the walks
+        if found is not None:
+            return found
+    return list(_check_line(parsed))
+
+
+def _plain_nc(parsed: ParsedLine, statement: NcStatement) -> list[LineFinding] | None:
+    """The findings of a block of NC words whose values are numbers, #n or -#n, from one look
+    at each word; None for any other block."""
+    has_p = has_h = False
+    codes: list[tuple[Word, float]] = []
+    found: list[LineFinding] = []
+    for word in statement.words:
+        address = word.address
+        if address == "P":
+            has_p = True
+        elif address == "H":
+            has_h = True
+        value = word.value
+        if type(value) is Num:
+            if (address == "G" or address == "M") and value.value in _FOREIGN_CODES:
+                codes.append((word, value.value))
+            continue
+        if type(value) is Unary:
+            value = value.operand
+        if type(value) is not Var or value.index is not None:
+            return None
+        finding = _variable_finding(parsed, value)
+        if finding is not None:
+            found.append(finding)
+    if codes:  # the codes' findings come before the variables'
+        return [*_code_findings(codes, has_p, has_h), *found]
+    return found
+
+
+def _check_line(parsed: ParsedLine) -> Iterator[LineFinding]:
     problem = parsed.problem
     if problem is not None and problem.dialect is not None:
         yield LineFinding(
             "MB002", f"{problem.dialect}: {problem.message}", problem.span.start, problem.span.end
         )
-    for statement in line_statements(parsed):
+    whole = parsed.statement
+    for statement in statements_of(whole):
         span = statement.span
         if isinstance(statement, IfNc):
             form = "IF [...] THEN <NC words>" if statement.has_then else "IF [...] <NC words>"
@@ -45,29 +97,7 @@ def check_line(parsed: ParsedLine) -> Iterator[LineFinding]:
                 span.end,
             )
         elif isinstance(statement, NcStatement):
-            has_p = statement.find("P") is not None
-            for word in statement.words:
-                value = constant_value(word.value)
-                if word.address == "M" and value == 98.0 and statement.find("H") and not has_p:
-                    yield LineFinding(
-                        "MB002",
-                        "Mitsubishi/Citizen: M98 H<n> (a call to a sequence "
-                        "number) is not FANUC; FANUC's M98 takes P<program>",
-                        word.span.start,
-                        word.span.end,
-                    )
-                # A bare M97 is an ordinary M code on FANUC; with P it is Haas's local call.
-                if word.address == "M" and value == 97.0 and has_p:
-                    yield LineFinding(
-                        "MB002",
-                        "Haas: M97 (local subroutine at an N number) is not FANUC;"
-                        " use M98 P<program>",
-                        word.span.start,
-                        word.span.end,
-                    )
-                haas = _haas_code(word.address, value, has_p)
-                if haas is not None:
-                    yield LineFinding("MB002", haas, word.span.start, word.span.end)
+            yield from _nc_codes(statement)
         if isinstance(statement, (IfGoto, While)) and isinstance(statement.cond, BareCond):
             c = statement.cond
             yield LineFinding(
@@ -77,24 +107,85 @@ def check_line(parsed: ParsedLine) -> Iterator[LineFinding]:
                 c.span.end,
             )
         for var in variables(statement):
-            if isinstance(var, Var) and var.number is not None and var.number != int(var.number):
-                written = parsed.text[var.span.start + 1 : var.span.end].strip()
-                yield LineFinding(
-                    "MB002",
-                    f"Haas NGC: #{written} (a variable number with a decimal part) is not FANUC "
-                    "(alarm PS0115)",
-                    var.span.start,
-                    var.span.end,
-                )
-            elif isinstance(var, Var) and var.number is not None and 20000 <= var.number <= 29999:
-                n = int(var.number)
-                yield LineFinding(
-                    "MB002",
-                    f"Haas NGC: #{n} reads Haas setting {n - 20000} (#20000-#29999 are the "
-                    "settings); FANUC has no settings variables (alarm PS0115 on most controls)",
-                    var.span.start,
-                    var.span.end,
-                )
+            finding = _variable_finding(parsed, var)
+            if finding is not None:
+                yield finding
+
+
+def _variable_finding(parsed: ParsedLine, var: Var) -> LineFinding | None:
+    """Haas NGC variable numbers: a decimal part, the settings #20000-#29999."""
+    number = var.number
+    if number is None:
+        return None
+    if number != int(number):
+        written = parsed.text[var.span.start + 1 : var.span.end].strip()
+        return LineFinding(
+            "MB002",
+            f"Haas NGC: #{written} (a variable number with a decimal part) is not FANUC "
+            "(alarm PS0115)",
+            var.span.start,
+            var.span.end,
+        )
+    if 20000 <= number <= 29999:
+        n = int(number)
+        return LineFinding(
+            "MB002",
+            f"Haas NGC: #{n} reads Haas setting {n - 20000} (#20000-#29999 are the "
+            "settings); FANUC has no settings variables (alarm PS0115 on most controls)",
+            var.span.start,
+            var.span.end,
+        )
+    return None
+
+
+# The values of the G and M codes _nc_codes looks closer at (M97, M98, G103, G154, M109).
+_FOREIGN_CODES = frozenset({97.0, 98.0, 103.0, 109.0, 154.0})
+
+
+def _nc_codes(statement: NcStatement) -> Iterator[LineFinding]:
+    """M98 H, M97 P and Haas-only G and M codes among a block's NC words."""
+    has_p = has_h = False
+    codes: list[tuple[Word, float]] = []
+    for word in statement.words:
+        address = word.address
+        if address == "P":
+            has_p = True
+        elif address == "H":
+            has_h = True
+        elif address == "G" or address == "M":
+            value = word.value
+            number = value.value if type(value) is Num else constant_value(value)
+            if number in _FOREIGN_CODES:
+                assert number is not None
+                codes.append((word, number))
+    return _code_findings(codes, has_p, has_h)
+
+
+def _code_findings(
+    codes: list[tuple[Word, float]], has_p: bool, has_h: bool
+) -> Iterator[LineFinding]:
+    """The findings of the G and M words ``codes`` of a block (with their values) that has a P
+    word or an H word."""
+    for word, code in codes:
+        if word.address == "M" and code == 98.0 and has_h and not has_p:
+            yield LineFinding(
+                "MB002",
+                "Mitsubishi/Citizen: M98 H<n> (a call to a sequence "
+                "number) is not FANUC; FANUC's M98 takes P<program>",
+                word.span.start,
+                word.span.end,
+            )
+        # A bare M97 is an ordinary M code on FANUC; with P it is Haas's local call.
+        if word.address == "M" and code == 97.0 and has_p:
+            yield LineFinding(
+                "MB002",
+                "Haas: M97 (local subroutine at an N number) is not FANUC; use M98 P<program>",
+                word.span.start,
+                word.span.end,
+            )
+        haas = _haas_code(word.address, code, has_p)
+        if haas is not None:
+            yield LineFinding("MB002", haas, word.span.start, word.span.end)
 
 
 def _haas_code(address: str, value: float | None, has_p: bool) -> str | None:

@@ -2,11 +2,11 @@
 
 from __future__ import annotations
 
-from collections.abc import Iterator
+from collections.abc import Iterable, Iterator
 from dataclasses import dataclass
 
 from ..diagnostics import Diagnostic, Related, RuleInfo, Severity, make, register
-from ..per_line import PerLine
+from ..parser import statements_of
 from ..syntax import (
     Assign,
     Binary,
@@ -18,15 +18,18 @@ from ..syntax import (
     IfNc,
     IfThen,
     Logic,
+    NcStatement,
     Num,
     ParsedLine,
     Statement,
     Unary,
+    Var,
     While,
 )
 from ..variables import classify
-from ..walk import bracket_depth, top_expressions, variables
-from .context import LineFinding, RuleContext, line_statements
+from ..walk import bracket_depth, plain_variables, top_expressions, variables
+from .context import LineFinding, RuleContext
+from .line_scan import LineScan
 
 FAMILY = "expressions"
 MAX_BRACKET_NESTING = 5
@@ -45,8 +48,17 @@ register(
 )  # fmt: skip
 
 
-def check_line(parsed: ParsedLine) -> Iterator[LineFinding]:
-    for statement in line_statements(parsed):
+def check_line(parsed: ParsedLine) -> Iterable[LineFinding]:
+    whole = parsed.statement
+    if type(whole) is NcStatement:
+        plain = plain_variables(whole)
+        if plain is not None:  # no brackets, no condition, no target: only the numbers
+            return [f for var in plain if (f := _no_such_variable(var)) is not None]
+    return list(_check_line(whole, parsed.text))
+
+
+def _check_line(whole: Statement | None, text: str) -> Iterator[LineFinding]:
+    for statement in statements_of(whole):
         for expr in top_expressions(statement):
             depth = bracket_depth(expr)
             if depth > MAX_BRACKET_NESTING:
@@ -58,20 +70,11 @@ def check_line(parsed: ParsedLine) -> Iterator[LineFinding]:
                     expr.span.end,
                 )
         for var in variables(statement):
-            if var.number is None or var.number != int(var.number):
-                continue
-            number = int(var.number)
-            kind = classify(number)
-            if kind.kind == "none":
-                yield LineFinding(
-                    "MB302",
-                    f"#{number} does not exist on a FANUC control (alarm "
-                    "PS0115): locals are #1-#33, commons #100-#199 and #500-#999",
-                    var.span.start,
-                    var.span.end,
-                )
+            finding = _no_such_variable(var)
+            if finding is not None:
+                yield finding
         for found in logic_operands(statement):
-            yield _logic_finding(parsed.text, found)
+            yield _logic_finding(text, found)
         targets = [statement] if isinstance(statement, Assign) else []
         if isinstance(statement, IfThen):
             targets.append(statement.then)
@@ -90,10 +93,28 @@ def check_line(parsed: ParsedLine) -> Iterator[LineFinding]:
                 )
 
 
+def _no_such_variable(var: Var) -> LineFinding | None:
+    """MB302 for a variable written with its number."""
+    if var.number is None or var.number != int(var.number):
+        return None
+    number = int(var.number)
+    if classify(number).kind != "none":
+        return None
+    return LineFinding(
+        "MB302",
+        f"#{number} does not exist on a FANUC control (alarm "
+        "PS0115): locals are #1-#33, commons #100-#199 and #500-#999",
+        var.span.start,
+        var.span.end,
+    )
+
+
 def _extended_commons(parsed: ParsedLine) -> tuple[tuple[int, int, int], ...]:
     """(number, start, end) of each #200-#499 the line names, in source order."""
+    if parsed.statement is None or "#" not in parsed.text:  # no variable
+        return ()
     found: list[tuple[int, int, int]] = []
-    for statement in line_statements(parsed):
+    for statement in statements_of(parsed.statement):
         for var in variables(statement):
             number = var.number
             if number is not None and number == int(number) and 200 <= number <= 499:
@@ -101,7 +122,8 @@ def _extended_commons(parsed: ParsedLine) -> tuple[tuple[int, int, int], ...]:
     return tuple(sorted(found, key=lambda f: f[1]))
 
 
-_extended_of: PerLine[tuple[tuple[int, int, int], ...]] = PerLine(_extended_commons)
+# The lines that name one, kept from one analysis of a document to the next.
+_extended_lines: LineScan[tuple[tuple[int, int, int], ...]] = LineScan(_extended_commons)
 
 
 def check(ctx: RuleContext) -> Iterator[Diagnostic]:
@@ -110,12 +132,12 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
     "Extended ranges ... are options" [K], unverified against B-64604EN)."""
     if ctx.config.extended_commons:
         return
-    uses: list[tuple[int, int, int, int]] = []  # (line, number, start, end)
-    for block in ctx.doc.blocks:
-        if block.parsed.statement is None:
-            continue
-        for number, start, end in _extended_of(block.parsed):
-            uses.append((block.line, number, start, end))
+    scanned = _extended_lines(ctx.doc)
+    uses = [  # (line, number, start, end)
+        (line, number, start, end)
+        for line, found in zip(scanned.lines, scanned.pieces, strict=True)
+        for number, start, end in found
+    ]
     if not uses:
         return
     line, number, start, end = uses[0]

@@ -15,6 +15,7 @@ from ..index import Program, constant_value
 from ..per_line import PerLine
 from ..syntax import Block, Goto, IfGoto, IfThen, Mixed, NcStatement, ParsedLine, While
 from .context import RuleContext
+from .line_scan import LineScan
 
 FAMILY = "flow"
 register(
@@ -193,21 +194,61 @@ def _dead_stretches(
 ) -> list[LineRange]:
     """(first, last) line of each stretch of blocks no run reached; comments and blank lines
     inside a stretch belong to it, those around it do not."""
+    blocks = ctx.doc.blocks
     found: list[LineRange] = []
     start: int | None = None
     last = first
-    for line in range(first, end + 1):
-        block = ctx.doc.blocks[line] if line < end else None
-        live = block is None or block.statement is None or line in runs
-        if block is not None and block.statement is None and start is not None:
-            continue  # comments and blank lines inside a dead stretch
-        if not live:
-            if start is None:
-                start = line
-            last = line
-        elif start is not None:
+    done = first  # the lines before it are looked at
+    for a, b in _not_run(_run_lines(ctx, runs), first, end):
+        # Between two stretches of lines not run: lines that ran. A block among them ends a
+        # dead stretch (comments and blank lines do not, whether counted as run or not).
+        if start is not None and any(blocks[ln].statement is not None for ln in range(done, a)):
             found.append((start, last))
             start = None
+        for line in range(a, b):
+            if blocks[line].statement is not None:
+                if start is None:
+                    start = line
+                last = line
+        done = b
+    if start is not None:
+        found.append((start, last))
+    return found
+
+
+def _run_lines(ctx: RuleContext, runs: dict[int, int]) -> list[int]:
+    """The lines that ran, in order: sorted once for every program's question (the run goes
+    through most blocks in the order of the text, which the sort takes in one pass)."""
+    found = ctx.memo.get("flow.run_lines")
+    if found is None:
+        found = ctx.memo["flow.run_lines"] = sorted(runs)
+    return cast("list[int]", found)
+
+
+def _not_run(ran: list[int], first: int, end: int) -> list[LineRange]:
+    """The stretches [a, b) of the lines from ``first`` to before ``end`` that are not in
+    ``ran`` (distinct lines in order): a slice of it without a gap spans as many lines as it
+    holds, so only the slices with one are cut in two, and a program that ran through costs a
+    comparison."""
+    lo, hi = bisect_left(ran, first), bisect_left(ran, end)
+    if lo == hi:
+        return [(first, end)] if first < end else []
+    found: list[LineRange] = []
+    if ran[lo] > first:
+        found.append((first, ran[lo]))
+    stack = [(lo, hi - 1)]  # index ranges of ``ran`` that may hold a gap, the earliest last
+    while stack:
+        i, j = stack.pop()
+        if ran[j] - ran[i] == j - i:
+            continue  # no gap
+        if j == i + 1:
+            found.append((ran[i] + 1, ran[j]))
+            continue
+        middle = (i + j) // 2
+        stack.append((middle, j))
+        stack.append((i, middle))
+    if ran[hi - 1] + 1 < end:
+        found.append((ran[hi - 1] + 1, end))
     return found
 
 
@@ -284,12 +325,7 @@ def _unreadable_flow(ctx: RuleContext, program: Program) -> bool:
     language (its paths, calls and jumps are not FANUC's), or one that holds a jump, a
     condition, a loop or a call. The run went past it as if it were empty, so which blocks are
     reached is not known."""
-    blocks = ctx.doc.blocks
-    for line in range(program.first_line, program.end_line):
-        parsed = blocks[line].parsed
-        if parsed.problem is not None and parsed.statement is None and _unreadable(parsed):
-            return True
-    return False
+    return bool(_unreadable_lines(ctx.doc).between(program.first_line, program.end_line))
 
 
 def _rejected_flow(parsed: ParsedLine) -> bool:
@@ -304,7 +340,8 @@ def _rejected_flow(parsed: ParsedLine) -> bool:
     return _FLOW_WORDS.search(code.upper()) is not None
 
 
-_unreadable: PerLine[bool] = PerLine(_rejected_flow)
+# The rejected blocks that may change the flow, kept from one analysis of a document to the next.
+_unreadable_lines: LineScan[bool] = LineScan(_rejected_flow)
 _FLOW_WORDS = re.compile(r"GOTO|IF|WHILE|DO|END|M0*9[6-9](?!\d)|G0*6[56](?!\d)")
 
 

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from collections.abc import Iterator
+from collections.abc import Iterable, Iterator
 
 from ..diagnostics import Diagnostic, Related, RuleInfo, Severity, make, register
 from ..syntax import ParsedLine, ProgramStart
@@ -123,7 +123,18 @@ def _no_program_number(ctx: RuleContext) -> Iterator[Diagnostic]:
             return
 
 
-def check_line(parsed: ParsedLine) -> Iterator[LineFinding]:
+def check_line(parsed: ParsedLine) -> Iterable[LineFinding]:
+    if (
+        parsed.problem is None
+        and not parsed.notes
+        and not parsed.has_lowercase
+        and not parsed.tape_mark
+    ):
+        return ()  # most blocks
+    return list(_check_line(parsed))
+
+
+def _check_line(parsed: ParsedLine) -> Iterator[LineFinding]:
     if parsed.tape_mark and (parsed.statement is not None or parsed.seq is not None):
         yield _tape_mark_not_alone(parsed)
     problem = parsed.problem

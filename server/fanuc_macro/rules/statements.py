@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from bisect import bisect_left
-from collections.abc import Iterator
+from collections.abc import Iterable, Iterator
 from typing import NamedTuple, cast
 
 from ..diagnostics import Diagnostic, Related, RuleInfo, Severity, line_list, make, register
@@ -45,19 +45,22 @@ register(
 SCALED_ARGUMENTS = frozenset("ABCIJKQRUVWXYZ")
 
 
-def check_line(parsed: ParsedLine) -> Iterator[LineFinding]:
+def check_line(parsed: ParsedLine) -> Iterable[LineFinding]:
     statement = parsed.statement
-    if isinstance(statement, Mixed):
-        m = statement.macro.span
-        n = statement.nc.span
-        yield LineFinding(
+    if not isinstance(statement, Mixed):
+        return ()
+    m = statement.macro.span
+    n = statement.nc.span
+    return (
+        LineFinding(
             "MB401",
             f"macro statement {parsed.text[m.start : m.end]!r} in the same block as NC "
             f"words {parsed.text[n.start : n.end]!r}: FANUC raises PS0127; put "
             "them in separate blocks",
             m.start,
             m.end,
-        )
+        ),
+    )
 
 
 def check(ctx: RuleContext) -> Iterator[Diagnostic]:

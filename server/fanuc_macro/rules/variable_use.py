@@ -6,10 +6,12 @@ from collections.abc import Iterator
 
 from ..diagnostics import Diagnostic, RuleInfo, Severity, make, register
 from ..evaluator.facts import DocumentFacts
-from ..syntax import Assign, IfThen, Var
+from ..evaluator.machine import compiled
+from ..syntax import Assign, IfThen, ParsedLine, Var
 from ..variables import ARGUMENT_VARIABLES
 from ..walk import subexpressions, top_expressions
 from .context import RuleContext
+from .line_scan import LineScan
 
 FAMILY = "variable-use"
 register(
@@ -38,11 +40,18 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
     for f in ctx.findings("alarm:no-such-variable"):
         yield make("MB903", f.message, f.line, f.column, f.end_column)
     yield from _assumed_arguments(ctx, facts)
-    # Locals that were vacant every time a block read them: few or none in most programs.
+    # Locals that were vacant every time a block read them: few or none in most programs. The
+    # run records the reads of the variables a block names (CompiledLine.reads), so only the
+    # lines that name a local are asked, not every read of the run.
+    scanned = _local_reads(ctx.doc)
+    reads = facts.reads
     vacant_reads = sorted(
         (line, n)
-        for (line, n), summary in facts.reads.items()
-        if 1 <= n <= 33 and summary.vacant and summary.vacant == summary.count
+        for line, numbers in zip(scanned.lines, scanned.pieces, strict=True)
+        for n in numbers
+        if (summary := reads.get((line, n))) is not None
+        and summary.vacant
+        and summary.vacant == summary.count
     )
     if not vacant_reads:
         return
@@ -83,6 +92,17 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
                 span[0],
                 span[1],
             )
+
+
+def _read_locals(parsed: ParsedLine) -> tuple[int, ...]:
+    """The locals #1-#33 a line's block reads by number, as the run records them."""
+    if parsed.statement is None or "#" not in parsed.text:  # no variable
+        return ()
+    return tuple(n for n in compiled(parsed).reads if 1 <= n <= 33)
+
+
+# The lines that read a local, kept from one analysis of a document to the next.
+_local_reads: LineScan[tuple[int, ...]] = LineScan(_read_locals)
 
 
 def _vacancy_checks(statement: object, checked: set[int]) -> None:
