@@ -1,13 +1,15 @@
-"""Line maps give after an edit what a look at every line gives, looking only at the edit."""
+"""Line maps: the diff of two versions of a document, and the analysis's maps (line rules,
+dialect marks, programs' ends, suppressions) after edits. The maps' work after random edits is
+counted in tests/test_rule_scans.py."""
 
 from __future__ import annotations
 
 import random
 
 from fanuc_macro.analysis import analyse
-from fanuc_macro.line_maps import LineMap, edit_between
+from fanuc_macro.line_maps import Diff, LineMap, line_diff
 from fanuc_macro.parser import default_parser, parse_text
-from fanuc_macro.syntax import Document, ParsedLine
+from fanuc_macro.syntax import Document
 
 LINES = [
     "G01 X1. Z-2. F0.2",
@@ -23,17 +25,8 @@ LINES = [
 ]
 
 
-def _marked(parsed: ParsedLine) -> str | None:
-    return parsed.text if "M" in parsed.text or parsed.problem is not None else None
-
-
 def _doc(lines: list[str], uri: str = "file:///m.nc") -> Document:
     return parse_text("\n".join(lines) + "\n", uri, default_parser())
-
-
-def _full(doc: Document) -> tuple[list[int], list[str]]:
-    found = [(b.line, v) for b in doc.blocks if (v := _marked(b.parsed)) is not None]
-    return [line for line, _ in found], [v for _, v in found]
 
 
 def _edited(rnd: random.Random, lines: list[str]) -> list[str]:
@@ -54,41 +47,26 @@ def _edited(rnd: random.Random, lines: list[str]) -> list[str]:
     return out
 
 
-def test_a_map_after_random_edits_equals_a_look_at_every_line() -> None:
-    rnd = random.Random(7)
-    marks: LineMap[str] = LineMap(_marked)
-    for trial in range(40):
-        lines = [rnd.choice(LINES) for _ in range(rnd.randint(0, 60))]
-        uri = f"file:///t{trial % 3}.nc"
-        for _ in range(15):
-            doc = _doc(lines, uri)
-            got_lines, got = marks(doc)
-            assert (list(got_lines), list(got)) == _full(doc), lines
-            lines = _edited(rnd, lines)
+def test_the_diff_between_two_versions() -> None:
+    old = _doc(["A", "B", "C", "D"])
+    new = _doc(["A", "X", "Y", "C", "D"])
+    diff = line_diff(old, new)
+    assert (diff.start, diff.old_end, diff.end, diff.shift) == (1, 2, 3, 1)
+    assert line_diff(old, new) is diff  # once per pair of versions
+    same = line_diff(old, _doc(["A", "B", "C", "D"]))
+    assert (same.start, same.end, same.old_end) == (4, 4, 4)
+    motions = [object() for _ in range(5)]
+    moved = Diff(motions, [*motions[:2], object(), *motions[3:]], identical=True)
+    assert (moved.start, moved.end, moved.old_end, moved.shift) == (2, 3, 3, 0)
 
 
-def test_an_edit_is_looked_at_alone() -> None:
-    lines = [f"G01 X{i}. M{i % 7}" for i in range(2000)]
-    marks: LineMap[str] = LineMap(_marked)
-    marks(_doc(lines))
-    assert marks.lines_computed == 2000
-    lines[1000] = "G01 X0.5"
-    marks(_doc(lines))
-    assert marks.lines_computed == 2001
-    lines[500:500] = ["M08", "M09"]  # lines added: those after them move
-    got_lines, _ = marks(_doc(lines))
-    assert marks.lines_computed == 2003
-    assert got_lines[-1] == 2001
-
-
-def test_the_edit_between_two_versions() -> None:
-    old = [*_doc(["A", "B", "C", "D"]).blocks]
-    new = [*_doc(["A", "X", "Y", "C", "D"]).blocks]
-    edit = edit_between([b.parsed for b in old], [b.parsed for b in new])
-    assert (edit.head, edit.old_end, edit.new_end, edit.shift) == (1, 2, 3, 1)
-    same = [b.parsed for b in old]
-    assert edit_between(same, same).head == 4
-    assert edit_between([], same) == edit_between([], same)
+def test_what_a_map_finds_between_lines() -> None:
+    marks: LineMap[str] = LineMap(lambda p: p.text if "M" in p.text else None)
+    found = marks(_doc(["M3", "G0", "M5", "M30", "G1"]))
+    assert list(found) == [(0, "M3"), (2, "M5"), (3, "M30")]
+    assert found.between(1, 4) == range(1, 3)
+    assert found.within(1, 4) == [(2, "M5"), (3, "M30")]
+    assert len(found) == 3
 
 
 def test_analyses_of_edits_equal_fresh_ones() -> None:

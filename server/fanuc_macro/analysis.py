@@ -90,7 +90,7 @@ suppressions: LineMap[frozenset[str]] = LineMap(_suppressed_on)
 
 def _apply_settings(diags: Iterable[Diagnostic], doc: Document, config: Config) -> list[Diagnostic]:
     """Drop disabled and suppressed diagnostics; apply configured severities."""
-    suppressed = dict(zip(*suppressions(doc), strict=True))
+    suppressed = dict(suppressions(doc))
     out: list[Diagnostic] = []
     for d in diags:
         if d.code in config.disabled:
@@ -156,12 +156,8 @@ def run_checks(
 ) -> list[Diagnostic]:
     found: list[Diagnostic] = []
     blocks = ctx.doc.blocks
-    lines, found_on = lines_with_findings(ctx.doc, cancel)
-    per_block = [(line, blocks[line].parsed, f) for line, f in zip(lines, found_on, strict=True)]
-    marks = [
-        dialects.FileDialect(name, mark, line)
-        for line, (name, mark) in zip(*file_marks(ctx.doc), strict=True)
-    ]
+    per_block = [(line, blocks[line].parsed, f) for line, f in lines_with_findings(ctx.doc, cancel)]
+    marks = [dialects.FileDialect(name, mark, line) for line, (name, mark) in file_marks(ctx.doc)]
     foreign = dialects.strongest(marks)
     for line, parsed, findings in per_block:
         folded = [f for f in findings if f.code in _FOLDED] if foreign is not None else []

@@ -1,183 +1,224 @@
 """The few lines of a document that hold something, kept from one version to the next.
 
-Several rules look at every line of a document for the few that matter: the lines with a line
-rule's finding, the ends of programs, the marks of another control's dialect. On a document of
-20,000 lines that look costs milliseconds on every keystroke, though an edit changes a line or
-two. A :class:`LineMap` keeps, per document, the lines where its per-line function gave
-something and what it gave; for the next version of the document it looks again only at the
-stretch of lines the edit changed (:func:`edit_between`) and moves the lines after it.
+Many rules look at every line of a document for the few that matter: the lines with a line
+rule's finding, the ends of programs, the marks of another control's dialect, the #200-#499
+named, the comments that name a thread or a variable's role. On a document of 20,000 lines
+that look costs milliseconds on every keystroke, though an edit changes a line or two. A
+:class:`LineMap` keeps, per document, the lines where its per-line function found something
+and what it found; in the next version of the document it looks again only at the stretch of
+lines the edit changed (:func:`line_diff`: the parser shares the parsed line of an unchanged
+text, so the comparison is by pointer, at C speed) and moves the lines after it by the lines
+added or removed.
 
 What a map gives is always what a look at every line would give: the per-line function depends
-on the line's text alone, and lines outside the edited stretch are the same lines
-(``tests/test_line_maps.py`` compares the two after random edits).
+on the line's text alone, and the comparison finds every line that differs from whatever
+version the map saw last (``tests/test_line_maps.py`` compares the two after random edits).
+:class:`Diff` serves other sequences too, such as a run's motions compared by identity.
 """
 
 from __future__ import annotations
 
 import threading
 from bisect import bisect_left
-from collections.abc import Callable, Sequence
-from dataclasses import dataclass
-from operator import itemgetter
+from collections.abc import Callable, Iterator, Sequence
+from operator import is_, itemgetter
 from typing import Generic, TypeVar
 
 from .cancel import CHECKING, SLICE, CancelToken
 from .syntax import Document, ParsedLine
 
 T = TypeVar("T")
+U = TypeVar("U")
 
-_PARSED = itemgetter(1)  # Block.parsed, read in C
-_CHUNK = 256  # lines compared at once, as slices, before the first differing one is looked for
-
-
-@dataclass(frozen=True, slots=True)
-class Edit:
-    """Two versions of a document differ only in one stretch: the lines before ``head`` are
-    the same, and the old version's lines from ``old_end`` on are the new one's from
-    ``new_end`` on."""
-
-    head: int
-    old_end: int
-    new_end: int
-
-    @property
-    def shift(self) -> int:
-        """How far the lines after the edit moved."""
-        return self.new_end - self.old_end
+# Documents (or runs) whose last version a map keeps: the open ones and a few more.
+KEPT = 16
 
 
-def _same_head(x: Sequence[ParsedLine], y: Sequence[ParsedLine]) -> int:
-    """How many lines from the first are the same (the same objects, or equal)."""
-    n = min(len(x), len(y))
-    i = 0
-    # Slices compare in C, each pair by identity first: a few ns a line.
-    while i + _CHUNK <= n and x[i : i + _CHUNK] == y[i : i + _CHUNK]:
-        i += _CHUNK
-    while i < n and x[i] == y[i]:
-        i += 1
-    return i
+def common_prefix(a: Sequence[object], b: Sequence[object], identical: bool = False) -> int:
+    """How many first items of ``a`` and ``b`` are equal (``identical``: the same objects).
+
+    A bisection over slices: each comparison runs at C speed, and the slices compared add up to
+    about the length of the common part."""
+    lo, hi = 0, min(len(a), len(b))
+    same = _identical if identical else _equal
+    while lo < hi:
+        mid = (lo + hi + 1) // 2
+        if same(a[lo:mid], b[lo:mid]):
+            lo = mid
+        else:
+            hi = mid - 1
+    return lo
 
 
-def edit_between(old: Sequence[ParsedLine], new: Sequence[ParsedLine]) -> Edit:
-    """The stretch in which two versions' lines differ (any two documents have one)."""
-    with _lock:
-        for a, b, edit in _edits:
+def common_suffix(
+    a: Sequence[object], b: Sequence[object], limit: int, identical: bool = False
+) -> int:
+    """How many last items of ``a`` and ``b`` are equal, at most ``limit``."""
+    lo, hi = 0, min(len(a), len(b), limit)
+    na, nb = len(a), len(b)
+    same = _identical if identical else _equal
+    while lo < hi:
+        mid = (lo + hi + 1) // 2
+        if same(a[na - mid : na - lo], b[nb - mid : nb - lo]):
+            lo = mid
+        else:
+            hi = mid - 1
+    return lo
+
+
+def _equal(a: Sequence[object], b: Sequence[object]) -> bool:
+    return a == b
+
+
+def _identical(a: Sequence[object], b: Sequence[object]) -> bool:
+    return all(map(is_, a, b))
+
+
+class Diff:
+    """Where a new version of a sequence differs from the one before: its items before
+    ``start`` and from ``end`` on are the old version's, the old ones from ``old_end`` on moved
+    by ``shift`` (the items the change added, less those it removed)."""
+
+    __slots__ = ("end", "old_end", "shift", "start")
+
+    def __init__(self, old: Sequence[object], new: Sequence[object], identical: bool) -> None:
+        start = common_prefix(old, new, identical)
+        tail = common_suffix(old, new, min(len(old), len(new)) - start, identical)
+        self.start = start
+        self.end = len(new) - tail
+        self.old_end = len(old) - tail
+        self.shift = len(new) - len(old)
+
+
+_diffs: list[tuple[Document, Document, Diff]] = []  # the last few pairs of versions compared
+_diffs_lock = threading.Lock()
+
+
+def line_diff(old: Document, new: Document) -> Diff:
+    """Which lines of ``new`` differ from ``old`` (worked out once per pair of versions: the
+    maps of one analysis all compare with the same version before)."""
+    with _diffs_lock:
+        for a, b, diff in _diffs:
             if a is old and b is new:
-                return edit
-    edit = _edit_between(old, new)
-    with _lock:
-        _edits.insert(0, (old, new, edit))
-        del _edits[_REMEMBERED:]
-    return edit
+                return diff
+    if len(old.blocks) == len(new.blocks):
+        # Blocks compare by line number and parsed line, the same object for unchanged text.
+        diff = Diff(old.blocks, new.blocks, identical=False)
+    else:
+        # Lines moved: the blocks after the edit differ by their number, not their line.
+        diff = Diff(_parsed(old), _parsed(new), identical=False)
+    with _diffs_lock:
+        _diffs.insert(0, (old, new, diff))
+        del _diffs[4:]
+    return diff
 
 
-def _edit_between(old: Sequence[ParsedLine], new: Sequence[ParsedLine]) -> Edit:
-    head = _same_head(old, new)
-    longest_tail = min(len(old), len(new)) - head
-    tail = _same_head(old[::-1][:longest_tail], new[::-1][:longest_tail])
-    return Edit(head, len(old) - tail, len(new) - tail)
+def _parsed(doc: Document) -> list[ParsedLine]:
+    return list(map(itemgetter(1), doc.blocks))  # Block.parsed, read in C
 
 
-# The maps of a document share its lines and the edit from its last version: each is worked
-# out once per analysis, not once per map.
-_REMEMBERED = 4
-_lock = threading.Lock()
-_lines: list[tuple[Document, list[ParsedLine]]] = []
-_edits: list[tuple[Sequence[ParsedLine], Sequence[ParsedLine], Edit]] = []
+class Kept(Generic[U]):
+    """A few keys' last values, the least recently stored dropped first."""
+
+    def __init__(self) -> None:
+        self._items: dict[str, U] = {}
+        self._lock = threading.Lock()
+
+    def get(self, key: str) -> U | None:
+        return self._items.get(key)
+
+    def put(self, key: str, value: U) -> None:
+        with self._lock:
+            self._items.pop(key, None)
+            self._items[key] = value
+            while len(self._items) > KEPT:
+                del self._items[next(iter(self._items))]
 
 
-def lines_of(doc: Document) -> list[ParsedLine]:
-    """The parsed lines of a document's blocks, in order (the same list for the same document
-    while it is among the last few asked about: do not change it)."""
-    with _lock:
-        for known, parsed in _lines:
-            if known is doc:
-                return parsed
-    parsed = list(map(_PARSED, doc.blocks))
-    with _lock:
-        _lines.insert(0, (doc, parsed))
-        del _lines[_REMEMBERED:]
-    return parsed
+class Found(Generic[T]):
+    """The lines of one version of a document where a map found something, ascending, with
+    what it found."""
 
+    __slots__ = ("doc", "lines", "values")
 
-@dataclass(frozen=True, slots=True)
-class _Version(Generic[T]):
-    doc: Document
-    parsed: list[ParsedLine]
-    lines: list[int]
-    values: list[T]
+    def __init__(self, doc: Document, lines: list[int], values: list[T]) -> None:
+        self.doc = doc
+        self.lines = lines
+        self.values = values
+
+    def __iter__(self) -> Iterator[tuple[int, T]]:
+        return zip(self.lines, self.values, strict=True)
+
+    def __len__(self) -> int:
+        return len(self.lines)
+
+    def between(self, first: int, end: int) -> range:
+        """The positions in ``lines`` and ``values`` of the lines ``first`` to ``end``
+        (exclusive)."""
+        return range(bisect_left(self.lines, first), bisect_left(self.lines, end))
+
+    def within(self, first: int, end: int) -> list[tuple[int, T]]:
+        """The lines ``first`` to ``end`` (exclusive) with what was found on them."""
+        at = self.between(first, end)
+        return list(
+            zip(self.lines[at.start : at.stop], self.values[at.start : at.stop], strict=True)
+        )
 
 
 class LineMap(Generic[T]):
-    """The lines of a document where ``compute(parsed)`` is not None, with the values, for the
-    last few documents asked about (by URI): the next version of a document is looked at only
-    where it differs from the last.
+    """The lines of a document where ``look(parsed)`` finds something (a true value), for the
+    last :data:`KEPT` documents asked about (by URI): the next version of a document is looked
+    at only where it differs from the last.
 
-    ``compute`` must depend on the line's text alone (such as a :class:`~fanuc_macro.per_line.
-    PerLine` function); ``keep`` documents are remembered, the least recently asked dropped.
-    """
+    ``look`` must depend on the parsed line alone (such as a :class:`~fanuc_macro.per_line.
+    PerLine` function)."""
 
-    def __init__(self, compute: Callable[[ParsedLine], T | None], keep: int = 16) -> None:
-        self._compute = compute
-        self._keep = keep
-        self._versions: dict[str, _Version[T]] = {}
-        self._lock = threading.Lock()
-        self.lines_computed = 0  # for the tests: the lines looked at, over the map's life
+    def __init__(self, look: Callable[[ParsedLine], T | None]) -> None:
+        self._look = look
+        self._kept: Kept[Found[T]] = Kept()
+        self.looked = 0  # lines looked at over the map's life, for the tests of the work done
 
-    def __call__(
-        self, doc: Document, cancel: CancelToken | None = None
-    ) -> tuple[Sequence[int], Sequence[T]]:
-        """The lines (ascending) where the function gave something, and what it gave.
-
-        A set ``cancel`` token is looked at every :data:`~fanuc_macro.cancel.SLICE` lines
-        looked at; a cancelled look keeps the last version as it was."""
-        parsed = lines_of(doc)
-        with self._lock:
-            last = self._versions.pop(doc.uri, None)
+    def __call__(self, doc: Document, cancel: CancelToken | None = None) -> Found[T]:
+        """What the map found in ``doc``. A set ``cancel`` token is looked at every
+        :data:`~fanuc_macro.cancel.SLICE` lines looked at; a cancelled look keeps the last
+        version as it was."""
+        last = self._kept.get(doc.uri)
         if last is not None and last.doc is doc:
-            version = last
-        elif last is None:
-            lines, values = self._look(parsed, 0, len(parsed), cancel)
-            version = _Version(doc, parsed, lines, values)
+            return last
+        if last is None:
+            lines, values = self._look_at(doc, 0, len(doc.blocks), cancel)
+            found = Found(doc, lines, values)
         else:
-            version = self._patched(last, doc, parsed, cancel)
-        with self._lock:
-            self._versions[doc.uri] = version
-            while len(self._versions) > self._keep:
-                del self._versions[next(iter(self._versions))]
-        return version.lines, version.values
+            diff = line_diff(last.doc, doc)
+            lines, values = self._look_at(doc, diff.start, diff.end, cancel)
+            at = last.between(diff.start, diff.old_end)
+            moved = last.lines[at.stop :]
+            if diff.shift:
+                moved = [line + diff.shift for line in moved]
+            found = Found(
+                doc,
+                [*last.lines[: at.start], *lines, *moved],
+                [*last.values[: at.start], *values, *last.values[at.stop :]],
+            )
+        self._kept.put(doc.uri, found)
+        return found
 
-    def _patched(
-        self, last: _Version[T], doc: Document, parsed: list[ParsedLine], cancel: CancelToken | None
-    ) -> _Version[T]:
-        edit = edit_between(last.parsed, parsed)
-        before = bisect_left(last.lines, edit.head)
-        after = bisect_left(last.lines, edit.old_end)
-        lines, values = self._look(parsed, edit.head, edit.new_end, cancel)
-        shift = edit.shift
-        moved = last.lines[after:] if not shift else [line + shift for line in last.lines[after:]]
-        return _Version(
-            doc,
-            parsed,
-            [*last.lines[:before], *lines, *moved],
-            [*last.values[:before], *values, *last.values[after:]],
-        )
-
-    def _look(
-        self, parsed: Sequence[ParsedLine], start: int, end: int, cancel: CancelToken | None
+    def _look_at(
+        self, doc: Document, start: int, end: int, cancel: CancelToken | None
     ) -> tuple[list[int], list[T]]:
-        compute = self._compute
+        look = self._look
+        blocks = doc.blocks
         lines: list[int] = []
         values: list[T] = []
         for line in range(start, end):
             if cancel is not None and line > start and line % SLICE == 0:
-                cancel.reached(CHECKING, line, len(parsed))
-            value = compute(parsed[line])
-            if value is not None:
+                cancel.reached(CHECKING, line, len(blocks))
+            value = look(blocks[line].parsed)
+            if value:
                 lines.append(line)
                 values.append(value)
-        self.lines_computed += end - start
+        self.looked += end - start
         return lines, values
 
 
-__all__ = ["Edit", "LineMap", "edit_between", "lines_of"]
+__all__ = ["KEPT", "Diff", "Found", "Kept", "LineMap", "common_prefix", "line_diff"]

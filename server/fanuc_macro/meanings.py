@@ -15,9 +15,9 @@ from dataclasses import dataclass
 from functools import lru_cache
 
 from .index import ProgramIndex
+from .line_maps import LineMap
 from .per_line import PerLine
 from .syntax import Assign, Document, ParsedLine
-from .threads.scans import LineScan, within
 
 # Role -> words that name it in a comment. The first role with a matching word wins, so the
 # more specific come first: "刀尖圆弧半径" (nose radius) holds "圆弧半径" (arc radius).
@@ -152,7 +152,7 @@ def variable_roles(doc: Document, index: ProgramIndex) -> dict[tuple[int, int], 
         table = KNOWN_MODULES.get(program.number or -1, {})
         for var, role in table.items():
             roles[(program.first_line, var)] = Meaning(role, -1, f"module {program.display_name}")
-        for line, (var, role) in within(said_at, program.first_line, program.end_line):
+        for line, (var, role) in said_at.within(program.first_line, program.end_line):
             key = (program.first_line, var)
             if key not in roles or roles[key].line == -1:
                 roles[key] = Meaning(role, line, "comment")
@@ -177,7 +177,7 @@ def _role_line(parsed: ParsedLine) -> tuple[int, str] | None:
 
 
 # The assignments whose comment names a role, looked at again only where the document changed.
-_role_lines: LineScan[tuple[int, str]] = LineScan(_role_line)
+_role_lines: LineMap[tuple[int, str]] = LineMap(_role_line)
 
 
 def program_is_internal(doc: Document, first_line: int, end_line: int) -> bool | None:

@@ -14,10 +14,10 @@ import math
 from collections.abc import Iterator
 
 from ..diagnostics import Diagnostic, RuleInfo, Severity, make, register
+from ..line_maps import LineMap
 from ..linear import expr_text
 from ..per_line import PerLine
 from ..syntax import Call, Num, ParsedLine, Span, Var
-from ..threads.scans import LineScan
 from ..walk import subexpressions, top_expressions
 from .context import RuleContext, line_statements
 
@@ -72,7 +72,7 @@ def _trig_line(parsed: ParsedLine) -> tuple[tuple[str, int, Span], ...] | None:
 
 
 # The lines with such calls, looked at again only where the document changed.
-_trig_lines: LineScan[tuple[tuple[str, int, Span], ...]] = LineScan(_trig_line)
+_trig_lines: LineMap[tuple[tuple[str, int, Span], ...]] = LineMap(_trig_line)
 
 
 def _round_degrees(value: float) -> bool:

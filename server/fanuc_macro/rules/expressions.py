@@ -6,6 +6,7 @@ from collections.abc import Iterable, Iterator
 from dataclasses import dataclass
 
 from ..diagnostics import Diagnostic, Related, RuleInfo, Severity, make, register
+from ..line_maps import LineMap
 from ..parser import statements_of
 from ..syntax import (
     Assign,
@@ -29,7 +30,6 @@ from ..syntax import (
 from ..variables import classify
 from ..walk import bracket_depth, plain_variables, top_expressions, variables
 from .context import LineFinding, RuleContext
-from .line_scan import LineScan
 
 FAMILY = "expressions"
 MAX_BRACKET_NESTING = 5
@@ -123,7 +123,7 @@ def _extended_commons(parsed: ParsedLine) -> tuple[tuple[int, int, int], ...]:
 
 
 # The lines that name one, kept from one analysis of a document to the next.
-_extended_lines: LineScan[tuple[tuple[int, int, int], ...]] = LineScan(_extended_commons)
+_extended_lines: LineMap[tuple[tuple[int, int, int], ...]] = LineMap(_extended_commons)
 
 
 def check(ctx: RuleContext) -> Iterator[Diagnostic]:
@@ -135,7 +135,7 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
     scanned = _extended_lines(ctx.doc)
     uses = [  # (line, number, start, end)
         (line, number, start, end)
-        for line, found in zip(scanned.lines, scanned.pieces, strict=True)
+        for line, found in zip(scanned.lines, scanned.values, strict=True)
         for number, start, end in found
     ]
     if not uses:

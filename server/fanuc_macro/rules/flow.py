@@ -12,10 +12,10 @@ from ..diagnostics import Diagnostic, RuleInfo, Severity, make, register
 from ..evaluator.facts import DocumentFacts
 from ..evaluator.machine import compiled
 from ..index import Program, constant_value
+from ..line_maps import LineMap
 from ..per_line import PerLine
 from ..syntax import Block, Goto, IfGoto, IfThen, Mixed, NcStatement, ParsedLine, While
 from .context import RuleContext
-from .line_scan import LineScan
 
 FAMILY = "flow"
 register(
@@ -341,7 +341,7 @@ def _rejected_flow(parsed: ParsedLine) -> bool:
 
 
 # The rejected blocks that may change the flow, kept from one analysis of a document to the next.
-_unreadable_lines: LineScan[bool] = LineScan(_rejected_flow)
+_unreadable_lines: LineMap[bool] = LineMap(_rejected_flow)
 _FLOW_WORDS = re.compile(r"GOTO|IF|WHILE|DO|END|M0*9[6-9](?!\d)|G0*6[56](?!\d)")
 
 

@@ -200,7 +200,8 @@ def check_programs(ctx: RuleContext) -> Iterator[Diagnostic]:
     programs = ctx.index.programs
     unread = ctx.doc.unread_from
     blocks = ctx.doc.blocks
-    marked_lines, marked = _ends_and_g67s(ctx.doc)
+    found_ends = _ends_and_g67s(ctx.doc)
+    marked_lines, marked = found_ends.lines, found_ends.values
     for i, program in enumerate(programs):
         if program.number is None:
             continue  # text before the first O number: a fragment, or MB010's

@@ -7,11 +7,11 @@ from collections.abc import Iterator
 from ..diagnostics import Diagnostic, RuleInfo, Severity, make, register
 from ..evaluator.facts import DocumentFacts
 from ..evaluator.machine import compiled
+from ..line_maps import LineMap
 from ..syntax import Assign, IfThen, ParsedLine, Var
 from ..variables import ARGUMENT_VARIABLES
 from ..walk import subexpressions, top_expressions
 from .context import RuleContext
-from .line_scan import LineScan
 
 FAMILY = "variable-use"
 register(
@@ -47,7 +47,7 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
     reads = facts.reads
     vacant_reads = sorted(
         (line, n)
-        for line, numbers in zip(scanned.lines, scanned.pieces, strict=True)
+        for line, numbers in zip(scanned.lines, scanned.values, strict=True)
         for n in numbers
         if (summary := reads.get((line, n))) is not None
         and summary.vacant
@@ -102,7 +102,7 @@ def _read_locals(parsed: ParsedLine) -> tuple[int, ...]:
 
 
 # The lines that read a local, kept from one analysis of a document to the next.
-_local_reads: LineScan[tuple[int, ...]] = LineScan(_read_locals)
+_local_reads: LineMap[tuple[int, ...]] = LineMap(_read_locals)
 
 
 def _vacancy_checks(statement: object, checked: set[int]) -> None:

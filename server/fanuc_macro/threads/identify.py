@@ -29,6 +29,7 @@ from dataclasses import dataclass, field
 from ..evaluator.facts import DocumentFacts, Motion, RunValues
 from ..evaluator.values import fmt_address
 from ..index import Program, ProgramIndex
+from ..line_maps import Found, LineMap
 from ..meanings import Meaning, program_is_internal, variable_roles
 from ..per_line import PerLine
 from ..syntax import Document, ParsedLine
@@ -37,7 +38,6 @@ from .geometry import SIN60
 from .iso965 import PitchClass, loosest_pitch_class, pitch_classes
 from .jobs import ThreadJob, thread_jobs
 from .module_shape import D1_FACTOR, ModuleShape, fitting_radii, module_shape, written_value
-from .scans import LineScan
 
 _NUM = r"\d+(?:[.,]\d+)?"
 # A metric designation needs a pitch or a class: "M30" or "M8" alone is an M code.
@@ -265,10 +265,10 @@ def _thread_line(parsed: ParsedLine) -> LineThreadWords | None:
 
 
 # The lines whose comments say something of a thread, looked at again only where they changed.
-_thread_lines: LineScan[LineThreadWords] = LineScan(_thread_line)
+_thread_lines: LineMap[LineThreadWords] = LineMap(_thread_line)
 
 
-def _designations(lines: list[tuple[int, LineThreadWords]]) -> list[FoundDesignation]:
+def _designations(lines: Found[LineThreadWords]) -> list[FoundDesignation]:
     return [
         FoundDesignation(text, form, line)
         for line, words in lines
@@ -336,7 +336,7 @@ def _program_words(
     facts: DocumentFacts,
     program: Program,
     roles: dict[tuple[int, int], Meaning],
-    lines: list[tuple[int, LineThreadWords]],
+    lines: Found[LineThreadWords],
 ) -> _ProgramWords:
     starts: tuple[int, int] | None = None
     file_starts: tuple[int, int] | None = None

@@ -21,7 +21,7 @@ from functools import cached_property
 from typing import TypeVar
 
 from ..evaluator.facts import Motion, same_value
-from .scans import Diff, Kept
+from ..line_maps import Diff, Kept
 
 R = TypeVar("R")
 

@@ -19,6 +19,7 @@ from dataclasses import dataclass, field
 
 from ..evaluator.facts import DocumentFacts, RunValues
 from ..index import Program, ProgramIndex
+from ..line_maps import LineMap
 from ..linear import Linear, linear_form
 from ..parser import statements_of
 from ..per_line import PerLine
@@ -37,7 +38,6 @@ from ..syntax import (
 from ..walk import subexpressions, top_expressions
 from .geometry import SIN60, TAN30
 from .jobs import ThreadJob
-from .scans import LineScan, within
 
 D1_FACTOR = 2.0 * 5.0 / 8.0 * SIN60  # D1 = D - 1.0825 P
 
@@ -166,12 +166,12 @@ def _tan30_line(parsed: ParsedLine) -> frozenset[int] | None:
     return _tan30_of(parsed) or None
 
 
-_tan30_lines: LineScan[frozenset[int]] = LineScan(_tan30_line)
+_tan30_lines: LineMap[frozenset[int]] = LineMap(_tan30_line)
 
 
 def _tan30_offsets(doc: Document, program: Program) -> set[int]:
     found: set[int] = set()
-    for _line, offsets in within(_tan30_lines(doc), program.first_line, program.end_line):
+    for _line, offsets in _tan30_lines(doc).within(program.first_line, program.end_line):
         found |= offsets
     return found
 
@@ -363,11 +363,11 @@ def _fitting_line(parsed: ParsedLine) -> tuple[int, int] | None:
     return _fitting_of(parsed)
 
 
-_fitting_lines: LineScan[tuple[int, int]] = LineScan(_fitting_line)
+_fitting_lines: LineMap[tuple[int, int]] = LineMap(_fitting_line)
 
 
 def fitting_radii(doc: Document, facts: DocumentFacts, program: Program) -> FittingRadii | None:
-    for line, (tool, groove) in within(_fitting_lines(doc), program.first_line, program.end_line):
+    for line, (tool, groove) in _fitting_lines(doc).within(program.first_line, program.end_line):
         tool_lines = writes_of(facts, program, tool) or writes_in_document(facts, tool)
         groove_lines = writes_of(facts, program, groove) or writes_in_document(facts, groove)
         return FittingRadii(

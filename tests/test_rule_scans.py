@@ -14,10 +14,10 @@ import pytest
 from fanuc_macro.analysis import analyse
 from fanuc_macro.config import Config
 from fanuc_macro.index import build_index
+from fanuc_macro.line_maps import LineMap
 from fanuc_macro.parser import default_parser, parse_text, statements_of
 from fanuc_macro.rules import expressions, flow, variable_use
 from fanuc_macro.rules.context import RuleContext
-from fanuc_macro.rules.line_scan import LineScan
 from fanuc_macro.syntax import Bracket, Call, Document, NcStatement, ParsedLine, Var
 from fanuc_macro.walk import (
     _variables,
@@ -78,7 +78,7 @@ def test_a_scan_after_edits_equals_a_fresh_one_and_reads_only_the_edited_lines()
     rng = random.Random(7)
     parser = default_parser()
     counted = Counter()
-    scan = LineScan(counted)
+    scan = LineMap(counted)
     lines = _text(rng, 3000)
     doc = parse_text("\n".join(lines), "file:///a.nc", parser)
     scan(doc)
@@ -100,7 +100,7 @@ def test_a_scan_after_edits_equals_a_fresh_one_and_reads_only_the_edited_lines()
         new = parse_text("\n".join(lines), "file:///a.nc", parser, previous=doc)
         before = counted.calls
         scanned = scan(new)
-        assert (scanned.lines, scanned.pieces) == _fresh(new)
+        assert (scanned.lines, scanned.values) == _fresh(new)
         if kind in ("change", "paste"):
             assert counted.calls - before <= edited
         else:  # a line kept is the same parse wherever it stands now
@@ -110,13 +110,13 @@ def test_a_scan_after_edits_equals_a_fresh_one_and_reads_only_the_edited_lines()
 
 def test_a_scan_of_another_document_under_the_same_name_is_not_stale() -> None:
     parser = default_parser()
-    scan = LineScan(_piece)
+    scan = LineMap(_piece)
     a = parse_text("#201=1\nG01 X1.\n#5=#300", "file:///a.nc", parser)
     b = parse_text("G01 X2.\n#202=1\nG01 X3.\n#7=1", "file:///a.nc", parser)
     assert scan(a).lines == [0, 2]
     scanned = scan(b)
-    assert (scanned.lines, scanned.pieces) == ([1, 3], [("#202",), ("#7",)])
-    assert scan(a).pieces == [("#201",), ("#5", "#300")]
+    assert (scanned.lines, scanned.values) == ([1, 3], [("#202",), ("#7",)])
+    assert scan(a).values == [("#201",), ("#5", "#300")]
 
 
 def _dead_stretches_by_every_line(
@@ -193,20 +193,20 @@ def test_a_one_number_edit_of_a_long_program_scans_one_line_per_rule() -> None:
     first = analyse(text, uri, cfg)
     edited = text.replace("#101*3.", "#101*13.", 1)
     doc = parse_text(edited, uri, default_parser(), previous=first.doc)
-    scans: list[LineScan[Any]] = [
+    scans: list[LineMap[Any]] = [
         expressions._extended_lines,
         variable_use._local_reads,
         flow._unreadable_lines,
     ]
-    originals = [scan._piece for scan in scans]
+    originals = [scan._look for scan in scans]
     counters = [Counter(piece) for piece in originals]
     for scan, counter in zip(scans, counters, strict=True):
-        scan._piece = counter
+        scan._look = counter
     try:
         second = analyse(edited, uri, cfg, doc=doc, previous_facts=first.facts)
     finally:
         for scan, piece in zip(scans, originals, strict=True):
-            scan._piece = piece
+            scan._look = piece
     assert [c.calls for c in counters] == [1, 1, 1]
     fresh = analyse(edited, uri, cfg)
     assert second.diagnostics == fresh.diagnostics
