@@ -19,19 +19,19 @@ class Span:
 
 
 # Spans of short lines, shared: lines hold the same few columns over and over, and a span is
-# frozen. Keyed by start * _SHARED_COLUMNS + end.
-_SHARED_COLUMNS = 512
-_shared_spans: dict[int, Span] = {}
+# frozen. Keyed by start * SHARED_COLUMNS + end.
+SHARED_COLUMNS = 512
+SHARED_SPANS: dict[int, Span] = {}
 
 
 def shared_span(start: int, end: int) -> Span:
     """``Span(start, end)``, the same object for the same columns (up to column 512)."""
-    if end >= _SHARED_COLUMNS or start < 0:
+    if end >= SHARED_COLUMNS or start < 0:
         return Span(start, end)
-    key = start * _SHARED_COLUMNS + end
-    found = _shared_spans.get(key)
+    key = start * SHARED_COLUMNS + end
+    found = SHARED_SPANS.get(key)
     if found is None:
-        found = _shared_spans[key] = Span(start, end)
+        found = SHARED_SPANS[key] = Span(start, end)
     return found
 
 

@@ -105,6 +105,9 @@ class ConstantWords:
     order: list[tuple[str, Value, CompiledWord]]
     words: dict[str, float]  # the motion record's words
     has_axis: bool
+    # No word can get an address finding (MB5xx: whole numbers, G codes, signs, the spindle's
+    # maximum), whatever the settings: the run need not look at them.
+    quiet: bool = False
 
 
 def _direct_reads(statement: Statement) -> tuple[int, ...]:
@@ -145,6 +148,10 @@ def compile_statement(statement: Statement | None, text: str | None = None) -> C
     line's ``text``, expressions are shared with other lines' (see ``_compile_word``)."""
     if statement is None:
         return CompiledLine(K_EMPTY)
+    if type(statement) is NcStatement:
+        plain = _compile_plain_nc(statement)
+        if plain is not None:
+            return plain
     reads = _direct_reads(statement)
     if isinstance(statement, Mixed):
         first = compile_statement(statement.nc, text)
@@ -221,6 +228,69 @@ def _compile_nc(nc: NcStatement, text: str | None = None) -> CompiledLine:
             any(a in AXES for a in values),
         )
     return compiled
+
+
+def _compile_plain_nc(nc: NcStatement) -> CompiledLine | None:
+    """``_compile_nc`` of a block whose words are all numbers (the fast parse's blocks, most of
+    a program), in one pass over its words; None for any other block. The result is the one
+    ``compile_statement`` gives: no variable read, a ConstantWords, M02/M30 an end."""
+    words: list[CompiledWord] = []
+    values: dict[str, Value] = {}
+    order: list[tuple[str, Value, CompiledWord]] = []
+    g_codes: list[float] = []
+    m_codes: list[float] = []
+    motion_words: dict[str, float] = {}
+    quiet = True
+    for w in nc.words:
+        num = w.value
+        if type(num) is not Num or type(num.value) is not float:
+            return None
+        v = num.value
+        address = w.address
+        span = w.span
+        text = num.text
+        point = text.find(".")
+        # Digits after the point: a number read from at most n decimals is its own round(v, n)
+        # (float() and round() both give the double nearest the decimal), so most words need
+        # no rounding (which costs more than the rest of the word).
+        decimals = 0 if point < 0 else len(text) - point - 1
+        cw = _folded_word(address, span.start, span.end, point >= 0)
+        words.append(cw)
+        order.append((address, v, cw))
+        if address not in values:
+            values[address] = v
+            if address not in ("G", "M", "N"):
+                if decimals <= 3:
+                    motion_words[address] = v
+                else:
+                    rounded = round(v, 3)  # the least input increment (IS-B)
+                    motion_words[address] = v if rounded == v else rounded
+        if address == "G":
+            code = v if decimals <= 1 else round(v, 1)
+            g_codes.append(code)
+            quiet = quiet and code == v
+        elif address == "M":
+            m_codes.append(v)
+        if quiet and address in _CHECKED_ADDRESSES:
+            # What _check_addresses looks at: S against a setting, the others' signs and
+            # whole numbers.
+            quiet = address != "S" and v >= 0 and (address not in _WHOLE_ADDRESSES or v == int(v))
+    compiled = CompiledLine(K_NC, words=tuple(words), nc=nc, node=nc)
+    compiled.constant = ConstantWords(
+        values,
+        _shared_codes(g_codes),
+        _shared_codes(m_codes),
+        order,
+        motion_words,
+        any(a in AXES for a in values),
+        quiet,
+    )
+    compiled.ends_program = 2.0 in m_codes or 30.0 in m_codes
+    return compiled
+
+
+_WHOLE_ADDRESSES = INTEGER_ADDRESSES | {"P"}  # P when it names a program
+_CHECKED_ADDRESSES = _WHOLE_ADDRESSES | {"F"}
 
 
 # The words of constant blocks, by address, columns and decimal point: they hold no closure,
@@ -476,6 +546,9 @@ class Machine:
         self.modal = Modal()
         self.value_range = config.value_range
         self._entry_name = ""
+        self.lathe = config.is_lathe  # asked at every block
+        # The message of a move without F, by motion code: the same for every block of a run.
+        self._no_feed: dict[float, str] = {}
 
     def unknown_of(self, number: int) -> Unknown:
         u = self._unknowns.get(number)
@@ -491,6 +564,7 @@ class Machine:
         self.deadline = deadline
         self.modal = Modal()
         self._entry_name = entry.name
+        self._no_feed = {}
         locals_: list[Value] = [None] * 34
         # A program that reads #1-#33 before it sets them receives arguments: a G65 from a
         # program outside the analysed files calls it, even if it ends with M30.
@@ -666,6 +740,7 @@ class Machine:
             caller = a
         assert caller is not None
         self._entry_name = contexts[state.levels[0].ctx].name
+        self._no_feed = {}
         return caller
 
     def _document_so_far(self, ctx: ProgramContext) -> DocumentFacts:
@@ -1023,7 +1098,7 @@ class Machine:
         modal = self.modal
         call_kind: str | None = None
         for g in g_codes:
-            if g in MOTION_GROUP or (self.config.is_lathe and g in LATHE_CYCLES):
+            if g in MOTION_GROUP or (self.lathe and g in LATHE_CYCLES):
                 modal.motion = g
             elif g == 65.0:
                 call_kind = "G65"
@@ -1039,7 +1114,9 @@ class Machine:
                 modal.inch = True
             elif g == 21.0:
                 modal.inch = False
-        if call_kind is None:
+        if const is not None and const.quiet:
+            pass  # no word of it can get a finding
+        elif call_kind is None:
             self._check_addresses(act, cl, order, 98.0 in m_codes or 99.0 in m_codes)
         else:  # after G65/G66 the words are arguments (#1-#26): only P names a program
             self._check_addresses(act, cl, [w for w in order if w[0] == "P"], calls=True)
@@ -1102,10 +1179,9 @@ class Machine:
     ) -> bool:
         # G70-G76 are the lathe's multiple repetitive cycles; on a mill G73-G76 are canned
         # drilling and boring cycles (G76 fine boring), which the analysis does not run.
+        lathe = self.lathe
         one_shot = (
-            next((g for g in g_codes if g in ONE_SHOT_CYCLES), None)
-            if g_codes and self.config.is_lathe
-            else None
+            next((g for g in g_codes if g in ONE_SHOT_CYCLES), None) if g_codes and lathe else None
         )
         const = cl.constant
         has_axis = const.has_axis if const is not None else not AXES.isdisjoint(values)
@@ -1123,20 +1199,15 @@ class Machine:
         if "F" not in words and isinstance(modal.feed, float) and code != 0.0:
             words = {**words, "F": modal.feed}
         if code in FEED_MOTIONS and modal.feed is None:
-            self._finding(
-                act.ctx,
-                "feed-not-set",
-                self._line,
-                0,
-                0,
+            message = self._no_feed.get(code)
+            if message is None:
                 # One string for the many blocks that give it (a CAM file: every block).
-                sys.intern(
+                message = self._no_feed[code] = sys.intern(
                     f"G{code:02g} cuts with no F commanded before it"
                     f" since {self._entry_name} started"
-                ),
-            )
+                )
+            self._finding(act.ctx, "feed-not-set", self._line, 0, 0, message)
         position = modal.position
-        lathe = self.config.is_lathe
         x = self._axis(values, "X", "U")
         if lathe:
             z = self._axis(values, "Z", "W")
