@@ -67,6 +67,10 @@ from .syntax import (
     Var,
     While,
     Word,
+    quick_line,
+    quick_nc,
+    quick_num,
+    quick_word,
     shared_span,
 )
 from .walk import bracket_depth, expression_depth, top_expressions
@@ -309,6 +313,10 @@ _FAST_WORD = re.compile(
 _CALL_CODES = {("G", 65.0), ("G", 66.0), ("G", 66.1), ("M", 98.0), ("M", 97.0), ("M", 99.0)}
 
 
+# Matches of _FAST_WORD one after the other from a column (typeshed does not list it).
+_scan_words: Callable[[str, int], Any] = _FAST_WORD.scanner  # type: ignore[attr-defined]
+
+
 def _fast_value(text: str, start: int) -> Expr:
     """Value of a plain word: a number, #n or -#n (spans as the grammar gives them)."""
     end = start + len(text)
@@ -351,18 +359,15 @@ def _fast_parse(
     if pos == size:
         return skip, seq, seq_span, None, False
     words: list[Word] = []
-    match_word = _FAST_WORD.match
     spans = SHARED_SPANS
     has_call = False
     # A number too long to read is reported only once the whole block has matched: in a block
     # the grammar rejects for another reason, the grammar's message is the one to give.
     unreadable: ValueError | None = None
-    while pos < size:
-        wm = match_word(code, pos)
-        if wm is None:
-            return None
+    # The scanner's matches follow one another, each where the last ended, until a word fails.
+    for wm in iter(_scan_words(code, pos).match, None):
         letter, number, other = wm.groups()
-        start = wm.start()
+        pos = wm.end()
         if number is not None:
             value_start, value_end = wm.span(2)
             if len(number) > MAX_DIGITS:
@@ -370,39 +375,35 @@ def _fast_parse(
                     _to_float(number)
                 except ValueError as err:
                     unreadable = unreadable or err
-                    pos = wm.end()
                     continue
-            key = value_start * SHARED_COLUMNS + value_end
-            span = spans.get(key) if value_end < SHARED_COLUMNS else None
-            if span is None:
+            span = spans.get(value_start * SHARED_COLUMNS + value_end)
+            if span is None or value_end >= SHARED_COLUMNS:
                 span = shared_span(value_start, value_end)
-            value: Expr = Num(float(number), number, span)
-            if letter in "GMgm":
-                has_call = has_call or (letter.upper(), float(number)) in _CALL_CODES
+            value: Expr = quick_num(float(number), number, span)
         else:
             value_start, value_end = wm.span(3)
             try:
                 value = _fast_value(other, value_start)
             except ValueError as err:
                 unreadable = unreadable or err
-                pos = wm.end()
                 continue
-            if letter in "GMgm" and type(value) is Num:
-                has_call = has_call or (letter.upper(), value.value) in _CALL_CODES
-        key = start * SHARED_COLUMNS + value_end
-        span = spans.get(key) if value_end < SHARED_COLUMNS else None
-        if span is None:
+        start = wm.start()
+        span = spans.get(start * SHARED_COLUMNS + value_end)
+        if span is None or value_end >= SHARED_COLUMNS:
             span = shared_span(start, value_end)
         upper = letter.upper()
-        words.append(Word(upper, value, span, letter != upper))
-        pos = wm.end()
+        if upper in "GM" and type(value) is Num:
+            has_call = has_call or (upper, value.value) in _CALL_CODES
+        words.append(quick_word(upper, value, span, letter != upper))
+    if pos < size:
+        return None
     if unreadable is not None:
         raise unreadable
     return (
         skip,
         seq,
         seq_span,
-        NcStatement(tuple(words), shared_span(words[0].span.start, words[-1].span.end)),
+        quick_nc(tuple(words), shared_span(words[0].span.start, words[-1].span.end)),
         has_call,
     )
 
@@ -603,20 +604,21 @@ class BlockParser:
         if fast is not None:
             # What _line works out, known here: a plain NC block is indexed for its N number,
             # a tape mark or a call only.
-            has_call = fast[4]
-            return ParsedLine(
+            fast_skip, fast_seq, fast_seq_span, nc, has_call = fast
+            return quick_line(
                 text,
                 cut.tape_mark,
-                fast[0],
-                fast[1],
-                fast[2],
-                fast[3],
+                fast_skip,
+                fast_seq,
+                fast_seq_span,
+                nc,
                 cut.comments,
                 None,
                 cut.notes,
                 has_lower,
                 has_call,
-                fast[1] is not None or cut.tape_mark or has_call,
+                fast_seq is not None or cut.tape_mark or has_call,
+                None,
             )
         try:
             # The transformer's start() makes the result a list, not a tree.
