@@ -102,12 +102,36 @@ class ConstantWords:
     values: dict[str, Value]
     g_codes: tuple[float, ...]
     m_codes: tuple[float, ...]
-    order: list[tuple[str, Value, CompiledWord]]
+    nc: NcStatement
+    # The words' values, in the order of the block; None when each is its Num's value.
+    constants: tuple[float, ...] | None
     words: dict[str, float]  # the motion record's words
     has_axis: bool
     # No word can get an address finding (MB5xx: whole numbers, G codes, signs, the spindle's
     # maximum), whatever the settings: the run need not look at them.
     quiet: bool = False
+    _order: list[tuple[str, Value, CompiledWord]] | None = field(default=None, compare=False)
+
+    @property
+    def order(self) -> list[tuple[str, Value, CompiledWord]]:
+        """Each word: its address, value and compiled word. Made when a run first asks (a
+        block with a call, a G76, a word to check): most blocks never need it."""
+        order = self._order
+        if order is None:
+            words = self.nc.words
+            constants = self.constants
+            values = [w.value.value for w in words] if constants is None else constants  # type: ignore[union-attr]
+            order = self._order = [
+                (
+                    w.address,
+                    v,
+                    _folded_word(
+                        w.address, w.span.start, w.span.end, _written_with_decimal_point(w.value)
+                    ),
+                )
+                for w, v in zip(words, values, strict=True)
+            ]
+        return order
 
 
 def _direct_reads(statement: Statement) -> tuple[int, ...]:
@@ -199,34 +223,33 @@ def _folded(_: object) -> Value:
 def _compile_nc(nc: NcStatement, text: str | None = None) -> CompiledLine:
     constants = [constant_of(w.value, w.address in LENGTH_ADDRESSES) for w in nc.words]
     folded = all(c is not None for c in constants)
+    if not folded:
+        words = tuple(
+            CompiledWord(
+                w.address,
+                _compile_word(w.value, w.address in LENGTH_ADDRESSES, text),
+                w.span.start,
+                w.span.end,
+                _written_with_decimal_point(w.value),
+            )
+            for w in nc.words
+        )
+        return CompiledLine(K_NC, words=words, nc=nc, node=nc)
     # A block of constant words is run from its ConstantWords: its words need no closures.
-    words = tuple(
-        _folded_word(w.address, w.span.start, w.span.end, _written_with_decimal_point(w.value))
-        if folded
-        else CompiledWord(
-            w.address,
-            _compile_word(w.value, w.address in LENGTH_ADDRESSES, text),
-            w.span.start,
-            w.span.end,
-            _written_with_decimal_point(w.value),
-        )
-        for w in nc.words
+    compiled = CompiledLine(K_NC, nc=nc, node=nc)
+    values: dict[str, Value] = {}
+    pairs = [(w.address, c) for w, c in zip(nc.words, constants, strict=True)]
+    for a, c in pairs:
+        values.setdefault(a, c)
+    compiled.constant = ConstantWords(
+        values,
+        _shared_codes(round(v, 1) for a, v in pairs if a == "G" and isinstance(v, float)),
+        _shared_codes(v for a, v in pairs if a == "M" and isinstance(v, float)),
+        nc,
+        tuple(c for c in constants if c is not None),
+        _motion_words(values),
+        any(a in AXES for a in values),
     )
-    compiled = CompiledLine(K_NC, words=words, nc=nc, node=nc)
-    if folded:
-        values: dict[str, Value] = {}
-        order: list[tuple[str, Value, CompiledWord]] = []
-        for cw, c in zip(words, constants, strict=True):
-            order.append((cw.address, c, cw))
-            values.setdefault(cw.address, c)
-        compiled.constant = ConstantWords(
-            values,
-            _shared_codes(round(v, 1) for a, v, _ in order if a == "G" and isinstance(v, float)),
-            _shared_codes(v for a, v, _ in order if a == "M" and isinstance(v, float)),
-            order,
-            _motion_words(values),
-            any(a in AXES for a in values),
-        )
     return compiled
 
 
@@ -234,9 +257,7 @@ def _compile_plain_nc(nc: NcStatement) -> CompiledLine | None:
     """``_compile_nc`` of a block whose words are all numbers (the fast parse's blocks, most of
     a program), in one pass over its words; None for any other block. The result is the one
     ``compile_statement`` gives: no variable read, a ConstantWords, M02/M30 an end."""
-    words: list[CompiledWord] = []
     values: dict[str, Value] = {}
-    order: list[tuple[str, Value, CompiledWord]] = []
     g_codes: list[float] = []
     m_codes: list[float] = []
     motion_words: dict[str, float] = {}
@@ -247,16 +268,12 @@ def _compile_plain_nc(nc: NcStatement) -> CompiledLine | None:
             return None
         v = num.value
         address = w.address
-        span = w.span
         text = num.text
         point = text.find(".")
         # Digits after the point: a number read from at most n decimals is its own round(v, n)
         # (float() and round() both give the double nearest the decimal), so most words need
         # no rounding (which costs more than the rest of the word).
         decimals = 0 if point < 0 else len(text) - point - 1
-        cw = _folded_word(address, span.start, span.end, point >= 0)
-        words.append(cw)
-        order.append((address, v, cw))
         if address not in values:
             values[address] = v
             if address not in ("G", "M", "N"):
@@ -275,12 +292,13 @@ def _compile_plain_nc(nc: NcStatement) -> CompiledLine | None:
             # What _check_addresses looks at: S against a setting, the others' signs and
             # whole numbers.
             quiet = address != "S" and v >= 0 and (address not in _WHOLE_ADDRESSES or v == int(v))
-    compiled = CompiledLine(K_NC, words=tuple(words), nc=nc, node=nc)
+    compiled = CompiledLine(K_NC, nc=nc, node=nc)
     compiled.constant = ConstantWords(
         values,
         _shared_codes(g_codes),
         _shared_codes(m_codes),
-        order,
+        nc,
+        None,
         motion_words,
         any(a in AXES for a in values),
         quiet,
