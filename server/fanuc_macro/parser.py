@@ -247,7 +247,8 @@ class _ToAst(Transformer[Token, Any]):
 
     def word(self, c: list[Any]) -> Word:
         letter = str(c[0])
-        return Word(letter.upper(), c[1], _cover(c[0], c[1]), letter.islower())
+        address = _ADDRESSES.get(letter) or letter.upper()
+        return Word(address, c[1], _cover(c[0], c[1]), letter.islower())
 
     def nc_words(self, c: list[Any]) -> NcStatement:
         return NcStatement(tuple(c), _cover(c[0], c[-1]))
@@ -312,6 +313,12 @@ _FAST_WORD = re.compile(
 # The words that make a block a call (``mentions_call``, of the program index).
 _CALL_CODES = {("G", 65.0), ("G", 66.0), ("G", 66.1), ("M", 98.0), ("M", 97.0), ("M", 99.0)}
 
+
+# Address letters in upper case, one string each: str.upper() makes a new one every time, and
+# every word holds its address.
+_ADDRESSES = {
+    ch: sys.intern(ch.upper()) for ch in "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz"
+}
 
 # Matches of _FAST_WORD one after the other from a column (typeshed does not list it).
 _scan_words: Callable[[str, int], Any] = _FAST_WORD.scanner  # type: ignore[attr-defined]
@@ -391,7 +398,7 @@ def _fast_parse(
         span = spans.get(start * SHARED_COLUMNS + value_end)
         if span is None or value_end >= SHARED_COLUMNS:
             span = shared_span(start, value_end)
-        upper = letter.upper()
+        upper = _ADDRESSES.get(letter) or letter.upper()
         if upper in "GM" and type(value) is Num:
             has_call = has_call or (upper, value.value) in _CALL_CODES
         words.append(quick_word(upper, value, span, letter != upper))

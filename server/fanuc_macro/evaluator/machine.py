@@ -1090,13 +1090,10 @@ class Machine:
         const = cl.constant
         g_codes: Sequence[float]
         m_codes: Sequence[float]
+        # A constant block's words in order: made only when something below needs them.
+        order: list[tuple[str, Value, CompiledWord]] | None = None
         if const is not None:
-            values, g_codes, m_codes, order = (
-                const.values,
-                const.g_codes,
-                const.m_codes,
-                const.order,
-            )
+            values, g_codes, m_codes = const.values, const.g_codes, const.m_codes
         else:
             values = {}
             g_codes = g_list = []
@@ -1134,17 +1131,26 @@ class Machine:
                 modal.inch = False
         if const is not None and const.quiet:
             pass  # no word of it can get a finding
-        elif call_kind is None:
-            self._check_addresses(act, cl, order, 98.0 in m_codes or 99.0 in m_codes)
-        else:  # after G65/G66 the words are arguments (#1-#26): only P names a program
-            self._check_addresses(act, cl, [w for w in order if w[0] == "P"], calls=True)
+        else:
+            if order is None:
+                assert const is not None
+                order = const.order
+            if call_kind is None:
+                self._check_addresses(act, cl, order, 98.0 in m_codes or 99.0 in m_codes)
+            else:  # after G65/G66 the words are arguments (#1-#26): only P names a program
+                self._check_addresses(act, cl, [w for w in order if w[0] == "P"], calls=True)
         if "F" in values and call_kind is None:
             modal.feed = values["F"]
         if "S" in values and call_kind is None:
             modal.speed = values["S"]
+        if call_kind is not None and order is None:
+            assert const is not None
+            order = const.order
         if call_kind == "G65":
+            assert order is not None
             return self._macro_call(act, cl, order, modal_call=False)
         if call_kind == "G66":
+            assert order is not None
             self._macro_call(act, cl, order, modal_call=True)
             act.pc = self._line + 1
             return act
@@ -1193,7 +1199,7 @@ class Machine:
         cl: CompiledLine,
         values: dict[str, Value],
         g_codes: Sequence[float],
-        order: list[tuple[str, Value, CompiledWord]],
+        order: list[tuple[str, Value, CompiledWord]] | None,  # None: the constant block's
     ) -> bool:
         # G70-G76 are the lathe's multiple repetitive cycles; on a mill G73-G76 are canned
         # drilling and boring cycles (G76 fine boring), which the analysis does not run.
@@ -1210,7 +1216,14 @@ class Machine:
             code = modal.motion
         else:
             return False
+        if code == 76.0:
+            if order is None:
+                assert const is not None
+                order = const.order
+        else:
+            order = None  # not needed below
         if code == 76.0 and not any(a in values for a in "XUZW"):
+            assert order is not None
             self._g76_parameters(values, order)  # the first block of G76 sets, it does not cut
             return False
         words = const.words if const is not None else _motion_words(values)
@@ -1259,6 +1272,7 @@ class Machine:
         if code in THREADING_CODES and act.serial not in self.facts.run_values:
             self._remember_run(act)
         if code == 76.0:
+            assert order is not None
             self._g76_passes(motion, values, order)
         elif len(motions) < MAX_MOTIONS:
             motions.append(motion)
