@@ -295,12 +295,12 @@ def _compile_plain_nc(nc: NcStatement) -> CompiledLine | None:
     compiled = CompiledLine(K_NC, nc=nc, node=nc)
     compiled.constant = ConstantWords(
         values,
-        _shared_codes(g_codes),
-        _shared_codes(m_codes),
+        _shared_codes(g_codes) if g_codes else (),
+        _shared_codes(m_codes) if m_codes else (),
         nc,
         None,
         motion_words,
-        any(a in AXES for a in values),
+        not AXES.isdisjoint(values),
         quiet,
     )
     compiled.ends_program = 2.0 in m_codes or 30.0 in m_codes
