@@ -262,6 +262,7 @@ def _compile_plain_nc(nc: NcStatement) -> CompiledLine | None:
     m_codes: list[float] = []
     motion_words: dict[str, float] = {}
     quiet = True
+    rounded_any = False
     for w in nc.words:
         num = w.value
         if type(num) is not Num or type(num.value) is not float:
@@ -282,6 +283,7 @@ def _compile_plain_nc(nc: NcStatement) -> CompiledLine | None:
                 else:
                     rounded = round(v, 3)  # the least input increment (IS-B)
                     motion_words[address] = v if rounded == v else rounded
+                    rounded_any = rounded_any or rounded != v
         if address == "G":
             code = v if decimals <= 1 else round(v, 1)
             g_codes.append(code)
@@ -292,6 +294,10 @@ def _compile_plain_nc(nc: NcStatement) -> CompiledLine | None:
             # What _check_addresses looks at: S against a setting, the others' signs and
             # whole numbers.
             quiet = address != "S" and v >= 0 and (address not in _WHOLE_ADDRESSES or v == int(v))
+    if len(motion_words) == len(values) and not rounded_any:
+        # No G, M or N, nothing rounded ("X1.5 Y2.", a modal CAM block): the same words, in
+        # the same order. Neither dict is changed after this.
+        motion_words = values  # type: ignore[assignment]
     compiled = CompiledLine(K_NC, nc=nc, node=nc)
     compiled.constant = ConstantWords(
         values,
