@@ -853,6 +853,31 @@ def test_fast_parse_result_equals_the_grammar_fields() -> None:
 
 @pytest.mark.parametrize(
     "text",
+    [
+        "M98 P1000",
+        "N20 m98 p2000 L3",
+        "G65 P9010 A1. B2.",
+        "G66 P9011",
+        "G66.1 P9011",
+        "M99",
+        "M - 99",
+        "M97 P100",
+        "G 65 P#1",
+        "M#98",
+        "G01 M98. P10",
+        "G00 X1. M30",
+        "M98P1000 (SUB)",
+        "M99;",
+        "% M99",
+    ],
+)
+def test_fast_path_finds_the_calls_the_index_looks_for(text: str) -> None:
+    grammar, fast = BlockParser(use_fast_path=False), BlockParser()
+    assert fast.parse_line(text) == grammar.parse_line(text)
+
+
+@pytest.mark.parametrize(
+    "text",
     ["#1=2", "IF[#1GT0]GOTO5", "GOTO5", "X[#1+1.]", "O1000", "WHILE[#1LT2]DO1", "X+#1", "G1 X1.E"],
 )
 def test_fast_parse_leaves_other_blocks_to_the_grammar(text: str) -> None:

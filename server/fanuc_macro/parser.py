@@ -33,6 +33,8 @@ from .blocks import (
 from .cancel import READING, SLICE, CancelToken, raise_if_cancelled
 from .index import INDEXED_STATEMENTS, mentions_call
 from .syntax import (
+    SHARED_COLUMNS,
+    SHARED_SPANS,
     Assign,
     BareCond,
     Binary,
@@ -65,6 +67,10 @@ from .syntax import (
     Var,
     While,
     Word,
+    quick_line,
+    quick_nc,
+    quick_num,
+    quick_word,
     shared_span,
 )
 from .walk import bracket_depth, expression_depth, top_expressions
@@ -241,7 +247,8 @@ class _ToAst(Transformer[Token, Any]):
 
     def word(self, c: list[Any]) -> Word:
         letter = str(c[0])
-        return Word(letter.upper(), c[1], _cover(c[0], c[1]), letter.islower())
+        address = _ADDRESSES.get(letter) or letter.upper()
+        return Word(address, c[1], _cover(c[0], c[1]), letter.islower())
 
     def nc_words(self, c: list[Any]) -> NcStatement:
         return NcStatement(tuple(c), _cover(c[0], c[-1]))
@@ -294,10 +301,27 @@ _FAST_HEAD = re.compile(
 )
 _FAST_WORD = re.compile(
     r"([A-MP-Z])[ \t]*"
-    r"((?:[-+][ \t]*)?" + _FAST_NUMBER + r"|(?:-[ \t]*)?#[ \t]*[0-9]+)"
+    # A number written without spaces (nearly every word) in a group of its own: its text is
+    # the Num's as it stands. The second group takes the rest: spaces after the sign, #n, -#n.
+    r"(?:([-+]?" + _FAST_NUMBER + r")"
+    r"|((?:[-+][ \t]*)?" + _FAST_NUMBER + r"|(?:-[ \t]*)?#[ \t]*[0-9]+))"
     r"[ \t]*",
     re.I,
 )
+
+
+# The words that make a block a call (``mentions_call``, of the program index).
+_CALL_CODES = {("G", 65.0), ("G", 66.0), ("G", 66.1), ("M", 98.0), ("M", 97.0), ("M", 99.0)}
+
+
+# Address letters in upper case, one string each: str.upper() makes a new one every time, and
+# every word holds its address.
+_ADDRESSES = {
+    ch: sys.intern(ch.upper()) for ch in "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz"
+}
+
+# Matches of _FAST_WORD one after the other from a column (typeshed does not list it).
+_scan_words: Callable[[str, int], Any] = _FAST_WORD.scanner  # type: ignore[attr-defined]
 
 
 def _fast_value(text: str, start: int) -> Expr:
@@ -320,6 +344,14 @@ def fast_parse(code: str) -> tuple[int | None, int | None, Span | None, NcStatem
     Returns None when the block is anything else; then the grammar decides. The result must
     equal the grammar's: tests/test_parser.py compares the two on every line it has.
     """
+    found = _fast_parse(code)
+    return None if found is None else found[:4]
+
+
+def _fast_parse(
+    code: str,
+) -> tuple[int | None, int | None, Span | None, NcStatement | None, bool] | None:
+    """``fast_parse`` and whether the block has a word that calls or returns (``has_call``)."""
     head = _FAST_HEAD.match(code)
     assert head is not None  # every part of it is optional
     slash, level, n_letter, n_value = head.group(1, 2, 3, 4)
@@ -332,28 +364,54 @@ def fast_parse(code: str) -> tuple[int | None, int | None, Span | None, NcStatem
     pos = head.end()
     size = len(code)
     if pos == size:
-        return skip, seq, seq_span, None
-    found: list[re.Match[str]] = []
-    match_word = _FAST_WORD.match
-    while pos < size:
-        wm = match_word(code, pos)
-        if wm is None:
-            return None
-        found.append(wm)
-        pos = wm.end()
-    # Values are read once the whole block has matched: a number too long to read in a block
-    # the grammar rejects for another reason is the grammar's to report.
+        return skip, seq, seq_span, None, False
     words: list[Word] = []
-    for wm in found:
-        value = _fast_value(wm.group(2), wm.start(2))
-        letter = wm.group(1)
-        span = shared_span(wm.start(1), wm.end(2))
-        words.append(Word(letter.upper(), value, span, letter.islower()))
+    spans = SHARED_SPANS
+    has_call = False
+    # A number too long to read is reported only once the whole block has matched: in a block
+    # the grammar rejects for another reason, the grammar's message is the one to give.
+    unreadable: ValueError | None = None
+    # The scanner's matches follow one another, each where the last ended, until a word fails.
+    for wm in iter(_scan_words(code, pos).match, None):
+        letter, number, other = wm.groups()
+        pos = wm.end()
+        if number is not None:
+            value_start, value_end = wm.span(2)
+            if len(number) > MAX_DIGITS:
+                try:
+                    _to_float(number)
+                except ValueError as err:
+                    unreadable = unreadable or err
+                    continue
+            span = spans.get(value_start * SHARED_COLUMNS + value_end)
+            if span is None or value_end >= SHARED_COLUMNS:
+                span = shared_span(value_start, value_end)
+            value: Expr = quick_num(float(number), number, span)
+        else:
+            value_start, value_end = wm.span(3)
+            try:
+                value = _fast_value(other, value_start)
+            except ValueError as err:
+                unreadable = unreadable or err
+                continue
+        start = wm.start()
+        span = spans.get(start * SHARED_COLUMNS + value_end)
+        if span is None or value_end >= SHARED_COLUMNS:
+            span = shared_span(start, value_end)
+        upper = _ADDRESSES.get(letter) or letter.upper()
+        if upper in "GM" and type(value) is Num:
+            has_call = has_call or (upper, value.value) in _CALL_CODES
+        words.append(quick_word(upper, value, span, letter != upper))
+    if pos < size:
+        return None
+    if unreadable is not None:
+        raise unreadable
     return (
         skip,
         seq,
         seq_span,
-        NcStatement(tuple(words), shared_span(words[0].span.start, words[-1].span.end)),
+        quick_nc(tuple(words), shared_span(words[0].span.start, words[-1].span.end)),
+        has_call,
     )
 
 
@@ -546,12 +604,29 @@ class BlockParser:
             return _line(text, cut, None, None, None, None, None, False)
         has_lower = code != code.upper()
         try:
-            fast = fast_parse(code) if self.use_fast_path else None
+            fast = _fast_parse(code) if self.use_fast_path else None
         except ValueError as err:  # a number too long to be one
             problem = SyntaxProblem(f"cannot read a number: {err}", Span(0, len(text.rstrip())))
             return _line(text, cut, None, None, None, None, problem, has_lower)
         if fast is not None:
-            return _line(text, cut, *fast, None, has_lower)
+            # What _line works out, known here: a plain NC block is indexed for its N number,
+            # a tape mark or a call only.
+            fast_skip, fast_seq, fast_seq_span, nc, has_call = fast
+            return quick_line(
+                text,
+                cut.tape_mark,
+                fast_skip,
+                fast_seq,
+                fast_seq_span,
+                nc,
+                cut.comments,
+                None,
+                cut.notes,
+                has_lower,
+                has_call,
+                fast_seq is not None or cut.tape_mark or has_call,
+                None,
+            )
         try:
             # The transformer's start() makes the result a list, not a tree.
             items = cast("list[Any]", self._table.parse(code))

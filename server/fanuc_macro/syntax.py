@@ -8,7 +8,8 @@ original text is ``block.text[node.span.start:node.span.end]`` (:meth:`Block.sou
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from collections.abc import Callable
+from dataclasses import dataclass, field, fields
 from typing import NamedTuple
 
 
@@ -19,19 +20,19 @@ class Span:
 
 
 # Spans of short lines, shared: lines hold the same few columns over and over, and a span is
-# frozen. Keyed by start * _SHARED_COLUMNS + end.
-_SHARED_COLUMNS = 512
-_shared_spans: dict[int, Span] = {}
+# frozen. Keyed by start * SHARED_COLUMNS + end.
+SHARED_COLUMNS = 512
+SHARED_SPANS: dict[int, Span] = {}
 
 
 def shared_span(start: int, end: int) -> Span:
     """``Span(start, end)``, the same object for the same columns (up to column 512)."""
-    if end >= _SHARED_COLUMNS or start < 0:
+    if end >= SHARED_COLUMNS or start < 0:
         return Span(start, end)
-    key = start * _SHARED_COLUMNS + end
-    found = _shared_spans.get(key)
+    key = start * SHARED_COLUMNS + end
+    found = SHARED_SPANS.get(key)
     if found is None:
-        found = _shared_spans[key] = Span(start, end)
+        found = SHARED_SPANS[key] = Span(start, end)
     return found
 
 
@@ -332,3 +333,91 @@ class Document:
     # (``blocks`` stop before it), and what was read of how much.
     unread_from: int | None = None
     unread_note: str | None = None
+
+
+# ---- quick constructors ----------------------------------------------------------------------
+# The same objects as Num(...), Word(...), NcStatement(...) and ParsedLine(...), made without the
+# frozen dataclass's __init__ (which sets each field through object.__setattr__, at about twice
+# the cost): the fast parse makes ten of them for a line of four words.
+
+
+def _setters(cls: type, *names: str) -> tuple[Callable[[object, object], None], ...]:
+    return tuple(vars(cls)[name].__set__ for name in names)
+
+
+_NUM_VALUE, _NUM_TEXT, _NUM_SPAN = _setters(Num, "value", "text", "span")
+_WORD_ADDRESS, _WORD_VALUE, _WORD_SPAN, _WORD_LOWERCASE = _setters(
+    Word, "address", "value", "span", "address_lowercase"
+)
+_NC_WORDS, _NC_SPAN = _setters(NcStatement, "words", "span")
+(
+    _L_TEXT,
+    _L_TAPE_MARK,
+    _L_SKIP,
+    _L_SEQ,
+    _L_SEQ_SPAN,
+    _L_STATEMENT,
+    _L_COMMENTS,
+    _L_PROBLEM,
+    _L_NOTES,
+    _L_HAS_LOWERCASE,
+    _L_HAS_CALL,
+    _L_INDEXED,
+    _L_FAILED_ASSIGNMENT,
+) = _setters(ParsedLine, *(f.name for f in fields(ParsedLine)))
+
+
+def quick_num(value: float, text: str, span: Span) -> Num:
+    node = Num.__new__(Num)
+    _NUM_VALUE(node, value)
+    _NUM_TEXT(node, text)
+    _NUM_SPAN(node, span)
+    return node
+
+
+def quick_word(address: str, value: Expr, span: Span, address_lowercase: bool) -> Word:
+    node = Word.__new__(Word)
+    _WORD_ADDRESS(node, address)
+    _WORD_VALUE(node, value)
+    _WORD_SPAN(node, span)
+    _WORD_LOWERCASE(node, address_lowercase)
+    return node
+
+
+def quick_nc(words: tuple[Word, ...], span: Span) -> NcStatement:
+    node = NcStatement.__new__(NcStatement)
+    _NC_WORDS(node, words)
+    _NC_SPAN(node, span)
+    return node
+
+
+def quick_line(
+    text: str,
+    tape_mark: bool,
+    skip: int | None,
+    seq: int | None,
+    seq_span: Span | None,
+    statement: Statement | None,
+    comments: tuple[Comment, ...],
+    problem: SyntaxProblem | None,
+    notes: tuple[LineNote, ...],
+    has_lowercase: bool,
+    has_call: bool,
+    indexed: bool,
+    failed_assignment: int | None,
+) -> ParsedLine:
+    line = ParsedLine.__new__(ParsedLine)
+    _L_TEXT(line, text)
+    _L_TAPE_MARK(line, tape_mark)
+    _L_SKIP(line, skip)
+    _L_SEQ(line, seq)
+    _L_SEQ_SPAN(line, seq_span)
+    _L_STATEMENT(line, statement)
+    _L_COMMENTS(line, comments)
+    _L_PROBLEM(line, problem)
+    _L_NOTES(line, notes)
+    _L_HAS_LOWERCASE(line, has_lowercase)
+    _L_HAS_CALL(line, has_call)
+    _L_INDEXED(line, indexed)
+    _L_FAILED_ASSIGNMENT(line, failed_assignment)
+    return line

@@ -102,9 +102,36 @@ class ConstantWords:
     values: dict[str, Value]
     g_codes: tuple[float, ...]
     m_codes: tuple[float, ...]
-    order: list[tuple[str, Value, CompiledWord]]
+    nc: NcStatement
+    # The words' values, in the order of the block; None when each is its Num's value.
+    constants: tuple[float, ...] | None
     words: dict[str, float]  # the motion record's words
     has_axis: bool
+    # No word can get an address finding (MB5xx: whole numbers, G codes, signs, the spindle's
+    # maximum), whatever the settings: the run need not look at them.
+    quiet: bool = False
+    _order: list[tuple[str, Value, CompiledWord]] | None = field(default=None, compare=False)
+
+    @property
+    def order(self) -> list[tuple[str, Value, CompiledWord]]:
+        """Each word: its address, value and compiled word. Made when a run first asks (a
+        block with a call, a G76, a word to check): most blocks never need it."""
+        order = self._order
+        if order is None:
+            words = self.nc.words
+            constants = self.constants
+            values = [w.value.value for w in words] if constants is None else constants  # type: ignore[union-attr]
+            order = self._order = [
+                (
+                    w.address,
+                    v,
+                    _folded_word(
+                        w.address, w.span.start, w.span.end, _written_with_decimal_point(w.value)
+                    ),
+                )
+                for w, v in zip(words, values, strict=True)
+            ]
+        return order
 
 
 def _direct_reads(statement: Statement) -> tuple[int, ...]:
@@ -145,6 +172,10 @@ def compile_statement(statement: Statement | None, text: str | None = None) -> C
     line's ``text``, expressions are shared with other lines' (see ``_compile_word``)."""
     if statement is None:
         return CompiledLine(K_EMPTY)
+    if type(statement) is NcStatement:
+        plain = _compile_plain_nc(statement)
+        if plain is not None:
+            return plain
     reads = _direct_reads(statement)
     if isinstance(statement, Mixed):
         first = compile_statement(statement.nc, text)
@@ -192,35 +223,98 @@ def _folded(_: object) -> Value:
 def _compile_nc(nc: NcStatement, text: str | None = None) -> CompiledLine:
     constants = [constant_of(w.value, w.address in LENGTH_ADDRESSES) for w in nc.words]
     folded = all(c is not None for c in constants)
+    if not folded:
+        words = tuple(
+            CompiledWord(
+                w.address,
+                _compile_word(w.value, w.address in LENGTH_ADDRESSES, text),
+                w.span.start,
+                w.span.end,
+                _written_with_decimal_point(w.value),
+            )
+            for w in nc.words
+        )
+        return CompiledLine(K_NC, words=words, nc=nc, node=nc)
     # A block of constant words is run from its ConstantWords: its words need no closures.
-    words = tuple(
-        _folded_word(w.address, w.span.start, w.span.end, _written_with_decimal_point(w.value))
-        if folded
-        else CompiledWord(
-            w.address,
-            _compile_word(w.value, w.address in LENGTH_ADDRESSES, text),
-            w.span.start,
-            w.span.end,
-            _written_with_decimal_point(w.value),
-        )
-        for w in nc.words
+    compiled = CompiledLine(K_NC, nc=nc, node=nc)
+    values: dict[str, Value] = {}
+    pairs = [(w.address, c) for w, c in zip(nc.words, constants, strict=True)]
+    for a, c in pairs:
+        values.setdefault(a, c)
+    compiled.constant = ConstantWords(
+        values,
+        _shared_codes(round(v, 1) for a, v in pairs if a == "G" and isinstance(v, float)),
+        _shared_codes(v for a, v in pairs if a == "M" and isinstance(v, float)),
+        nc,
+        tuple(c for c in constants if c is not None),
+        _motion_words(values),
+        any(a in AXES for a in values),
     )
-    compiled = CompiledLine(K_NC, words=words, nc=nc, node=nc)
-    if folded:
-        values: dict[str, Value] = {}
-        order: list[tuple[str, Value, CompiledWord]] = []
-        for cw, c in zip(words, constants, strict=True):
-            order.append((cw.address, c, cw))
-            values.setdefault(cw.address, c)
-        compiled.constant = ConstantWords(
-            values,
-            _shared_codes(round(v, 1) for a, v, _ in order if a == "G" and isinstance(v, float)),
-            _shared_codes(v for a, v, _ in order if a == "M" and isinstance(v, float)),
-            order,
-            _motion_words(values),
-            any(a in AXES for a in values),
-        )
     return compiled
+
+
+def _compile_plain_nc(nc: NcStatement) -> CompiledLine | None:
+    """``_compile_nc`` of a block whose words are all numbers (the fast parse's blocks, most of
+    a program), in one pass over its words; None for any other block. The result is the one
+    ``compile_statement`` gives: no variable read, a ConstantWords, M02/M30 an end."""
+    values: dict[str, Value] = {}
+    g_codes: list[float] = []
+    m_codes: list[float] = []
+    motion_words: dict[str, float] = {}
+    quiet = True
+    rounded_any = False
+    for w in nc.words:
+        num = w.value
+        if type(num) is not Num or type(num.value) is not float:
+            return None
+        v = num.value
+        address = w.address
+        text = num.text
+        point = text.find(".")
+        # Digits after the point: a number read from at most n decimals is its own round(v, n)
+        # (float() and round() both give the double nearest the decimal), so most words need
+        # no rounding (which costs more than the rest of the word).
+        decimals = 0 if point < 0 else len(text) - point - 1
+        if address not in values:
+            values[address] = v
+            if address not in ("G", "M", "N"):
+                if decimals <= 3:
+                    motion_words[address] = v
+                else:
+                    rounded = round(v, 3)  # the least input increment (IS-B)
+                    motion_words[address] = v if rounded == v else rounded
+                    rounded_any = rounded_any or rounded != v
+        if address == "G":
+            code = v if decimals <= 1 else round(v, 1)
+            g_codes.append(code)
+            quiet = quiet and code == v
+        elif address == "M":
+            m_codes.append(v)
+        if quiet and address in _CHECKED_ADDRESSES:
+            # What _check_addresses looks at: S against a setting, the others' signs and
+            # whole numbers.
+            quiet = address != "S" and v >= 0 and (address not in _WHOLE_ADDRESSES or v == int(v))
+    if len(motion_words) == len(values) and not rounded_any:
+        # No G, M or N, nothing rounded ("X1.5 Y2.", a modal CAM block): the same words, in
+        # the same order. Neither dict is changed after this.
+        motion_words = values  # type: ignore[assignment]
+    compiled = CompiledLine(K_NC, nc=nc, node=nc)
+    compiled.constant = ConstantWords(
+        values,
+        _shared_codes(g_codes) if g_codes else (),
+        _shared_codes(m_codes) if m_codes else (),
+        nc,
+        None,
+        motion_words,
+        not AXES.isdisjoint(values),
+        quiet,
+    )
+    compiled.ends_program = 2.0 in m_codes or 30.0 in m_codes
+    return compiled
+
+
+_WHOLE_ADDRESSES = INTEGER_ADDRESSES | {"P"}  # P when it names a program
+_CHECKED_ADDRESSES = _WHOLE_ADDRESSES | {"F"}
 
 
 # The words of constant blocks, by address, columns and decimal point: they hold no closure,
@@ -476,6 +570,9 @@ class Machine:
         self.modal = Modal()
         self.value_range = config.value_range
         self._entry_name = ""
+        self.lathe = config.is_lathe  # asked at every block
+        # The message of a move without F, by motion code: the same for every block of a run.
+        self._no_feed: dict[float, str] = {}
 
     def unknown_of(self, number: int) -> Unknown:
         u = self._unknowns.get(number)
@@ -491,6 +588,7 @@ class Machine:
         self.deadline = deadline
         self.modal = Modal()
         self._entry_name = entry.name
+        self._no_feed = {}
         locals_: list[Value] = [None] * 34
         # A program that reads #1-#33 before it sets them receives arguments: a G65 from a
         # program outside the analysed files calls it, even if it ends with M30.
@@ -666,6 +764,7 @@ class Machine:
             caller = a
         assert caller is not None
         self._entry_name = contexts[state.levels[0].ctx].name
+        self._no_feed = {}
         return caller
 
     def _document_so_far(self, ctx: ProgramContext) -> DocumentFacts:
@@ -997,13 +1096,10 @@ class Machine:
         const = cl.constant
         g_codes: Sequence[float]
         m_codes: Sequence[float]
+        # A constant block's words in order: made only when something below needs them.
+        order: list[tuple[str, Value, CompiledWord]] | None = None
         if const is not None:
-            values, g_codes, m_codes, order = (
-                const.values,
-                const.g_codes,
-                const.m_codes,
-                const.order,
-            )
+            values, g_codes, m_codes = const.values, const.g_codes, const.m_codes
         else:
             values = {}
             g_codes = g_list = []
@@ -1023,7 +1119,7 @@ class Machine:
         modal = self.modal
         call_kind: str | None = None
         for g in g_codes:
-            if g in MOTION_GROUP or (self.config.is_lathe and g in LATHE_CYCLES):
+            if g in MOTION_GROUP or (self.lathe and g in LATHE_CYCLES):
                 modal.motion = g
             elif g == 65.0:
                 call_kind = "G65"
@@ -1039,17 +1135,28 @@ class Machine:
                 modal.inch = True
             elif g == 21.0:
                 modal.inch = False
-        if call_kind is None:
-            self._check_addresses(act, cl, order, 98.0 in m_codes or 99.0 in m_codes)
-        else:  # after G65/G66 the words are arguments (#1-#26): only P names a program
-            self._check_addresses(act, cl, [w for w in order if w[0] == "P"], calls=True)
+        if const is not None and const.quiet:
+            pass  # no word of it can get a finding
+        else:
+            if order is None:
+                assert const is not None
+                order = const.order
+            if call_kind is None:
+                self._check_addresses(act, cl, order, 98.0 in m_codes or 99.0 in m_codes)
+            else:  # after G65/G66 the words are arguments (#1-#26): only P names a program
+                self._check_addresses(act, cl, [w for w in order if w[0] == "P"], calls=True)
         if "F" in values and call_kind is None:
             modal.feed = values["F"]
         if "S" in values and call_kind is None:
             modal.speed = values["S"]
+        if call_kind is not None and order is None:
+            assert const is not None
+            order = const.order
         if call_kind == "G65":
+            assert order is not None
             return self._macro_call(act, cl, order, modal_call=False)
         if call_kind == "G66":
+            assert order is not None
             self._macro_call(act, cl, order, modal_call=True)
             act.pc = self._line + 1
             return act
@@ -1098,14 +1205,13 @@ class Machine:
         cl: CompiledLine,
         values: dict[str, Value],
         g_codes: Sequence[float],
-        order: list[tuple[str, Value, CompiledWord]],
+        order: list[tuple[str, Value, CompiledWord]] | None,  # None: the constant block's
     ) -> bool:
         # G70-G76 are the lathe's multiple repetitive cycles; on a mill G73-G76 are canned
         # drilling and boring cycles (G76 fine boring), which the analysis does not run.
+        lathe = self.lathe
         one_shot = (
-            next((g for g in g_codes if g in ONE_SHOT_CYCLES), None)
-            if g_codes and self.config.is_lathe
-            else None
+            next((g for g in g_codes if g in ONE_SHOT_CYCLES), None) if g_codes and lathe else None
         )
         const = cl.constant
         has_axis = const.has_axis if const is not None else not AXES.isdisjoint(values)
@@ -1116,27 +1222,29 @@ class Machine:
             code = modal.motion
         else:
             return False
+        if code == 76.0:
+            if order is None:
+                assert const is not None
+                order = const.order
+        else:
+            order = None  # not needed below
         if code == 76.0 and not any(a in values for a in "XUZW"):
+            assert order is not None
             self._g76_parameters(values, order)  # the first block of G76 sets, it does not cut
             return False
         words = const.words if const is not None else _motion_words(values)
         if "F" not in words and isinstance(modal.feed, float) and code != 0.0:
             words = {**words, "F": modal.feed}
         if code in FEED_MOTIONS and modal.feed is None:
-            self._finding(
-                act.ctx,
-                "feed-not-set",
-                self._line,
-                0,
-                0,
+            message = self._no_feed.get(code)
+            if message is None:
                 # One string for the many blocks that give it (a CAM file: every block).
-                sys.intern(
+                message = self._no_feed[code] = sys.intern(
                     f"G{code:02g} cuts with no F commanded before it"
                     f" since {self._entry_name} started"
-                ),
-            )
+                )
+            self._finding(act.ctx, "feed-not-set", self._line, 0, 0, message)
         position = modal.position
-        lathe = self.config.is_lathe
         x = self._axis(values, "X", "U")
         if lathe:
             z = self._axis(values, "Z", "W")
@@ -1170,6 +1278,7 @@ class Machine:
         if code in THREADING_CODES and act.serial not in self.facts.run_values:
             self._remember_run(act)
         if code == 76.0:
+            assert order is not None
             self._g76_passes(motion, values, order)
         elif len(motions) < MAX_MOTIONS:
             motions.append(motion)

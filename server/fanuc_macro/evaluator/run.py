@@ -9,6 +9,7 @@ from dataclasses import replace
 from ..cancel import COMPILING, SLICE, CancelToken
 from ..config import Config
 from ..index import ProgramIndex
+from ..parser import quiet_gc
 from ..syntax import Document
 from .checkpoints import ProgramShape, Resumption, RunRecord, changed_in, changed_lines, plan
 from .facts import Facts
@@ -60,7 +61,19 @@ def evaluate(
     :mod:`.checkpoints`), with the same result as a full run. ``cancel`` may stop it (see
     :mod:`fanuc_macro.cancel`).
     """
-    config = config or Config()
+    # The run makes many small objects and no cycles: collections would only rescan them.
+    with quiet_gc():
+        return _evaluate(docs, config or Config(), only_uri, entry, previous, cancel)
+
+
+def _evaluate(
+    docs: Sequence[tuple[str, Document, ProgramIndex]],
+    config: Config,
+    only_uri: str | None,
+    entry: int | None,
+    previous: Facts | None,
+    cancel: CancelToken | None,
+) -> Facts:
     docs = list(docs)
     documents = tuple((uri, doc) for uri, doc, _ in docs)
     facts = Facts()
