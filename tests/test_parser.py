@@ -1027,3 +1027,22 @@ def test_no_cascade_after_a_syntax_error() -> None:
     text = "O1\nG65 P2 A1.\nM30\nO2\nGOTO10\nN10 #5=#1*2:\n#6=#5+1.\nG00 X#5 Z#6\nM99\n"
     codes = [(d.line + 1, d.code) for d in analyse(text, "typo.nc").diagnostics]
     assert codes == [(6, "MB001")]  # no MB101 for N10, no MB901 for #5
+
+
+def test_a_new_version_keeps_the_blocks_of_the_lines_an_edit_did_not_touch() -> None:
+    parser = BlockParser()
+    lines = [f"G01 X{i}. Z-{i}." for i in range(50)]
+    old = parse_text("\n".join(lines), "file:///v.nc", parser)
+    edited = list(lines)
+    edited[20] = "G01 X0.5"
+    new = parse_text("\n".join(edited), "file:///v.nc", parser, previous=old)
+    kept = zip(old.blocks, new.blocks, strict=True)
+    assert all(a is b for i, (a, b) in enumerate(kept) if i != 20)
+    assert new.blocks[20].text == "G01 X0.5" and new.blocks[20].line == 20
+    edited[10:10] = ["M08", "M09"]  # lines added: those after them are new blocks, renumbered
+    moved = parse_text("\n".join(edited), "file:///v.nc", parser, previous=new)
+    assert all(a is b for a, b in zip(new.blocks[:10], moved.blocks[:10], strict=True))
+    assert [b.line for b in moved.blocks] == list(range(52))
+    assert [b.text for b in moved.blocks] == edited
+    assert moved.blocks[30].parsed is new.blocks[28].parsed
+    assert parse_text("\n".join(edited), "file:///v.nc", parser).blocks == moved.blocks

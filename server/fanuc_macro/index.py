@@ -289,7 +289,10 @@ def call_of(line: int, nc: NcStatement) -> Call | None:
     )
 
 
-_CALL_CODES = {("G", 65.0), ("G", 66.0), ("G", 66.1), ("M", 98.0), ("M", 97.0), ("M", 99.0)}
+# The words that make a block a call (or a return): the index looks at such blocks closer.
+CALL_CODES = frozenset(
+    {("G", 65.0), ("G", 66.0), ("G", 66.1), ("M", 98.0), ("M", 97.0), ("M", 99.0)}
+)
 
 
 def mentions_call(statement: object) -> bool:
@@ -301,7 +304,7 @@ def mentions_call(statement: object) -> bool:
     if not isinstance(statement, NcStatement):
         return False
     for word in statement.words:
-        if word.address in ("G", "M") and (word.address, constant_value(word.value)) in _CALL_CODES:
+        if word.address in ("G", "M") and (word.address, constant_value(word.value)) in CALL_CODES:
             return True
     return False
 

@@ -18,6 +18,7 @@ from contextlib import contextmanager
 from dataclasses import replace
 from importlib import resources
 from itertools import accumulate
+from operator import itemgetter
 from typing import Any, cast
 
 from . import dialects
@@ -31,7 +32,8 @@ from .blocks import (
     split_lines,
 )
 from .cancel import READING, SLICE, CancelToken, raise_if_cancelled
-from .index import INDEXED_STATEMENTS, mentions_call
+from .index import CALL_CODES, INDEXED_STATEMENTS, mentions_call
+from .line_maps import Diff
 from .syntax import (
     SHARED_COLUMNS,
     SHARED_SPANS,
@@ -310,10 +312,6 @@ _FAST_WORD = re.compile(
 )
 
 
-# The words that make a block a call (``mentions_call``, of the program index).
-_CALL_CODES = {("G", 65.0), ("G", 66.0), ("G", 66.1), ("M", 98.0), ("M", 97.0), ("M", 99.0)}
-
-
 # Address letters in upper case, one string each: str.upper() makes a new one every time, and
 # every word holds its address.
 _ADDRESSES = {
@@ -400,7 +398,7 @@ def _fast_parse(
             span = shared_span(start, value_end)
         upper = _ADDRESSES.get(letter) or letter.upper()
         if upper in "GM" and type(value) is Num:
-            has_call = has_call or (upper, value.value) in _CALL_CODES
+            has_call = has_call or (upper, value.value) in CALL_CODES
         words.append(quick_word(upper, value, span, letter != upper))
     if pos < size:
         return None
@@ -1014,16 +1012,29 @@ def parse_text(
         if previous is None:
             blocks = tuple(map(Block, range(read), parsed))
         else:
-            old = previous.blocks
-            n_old = len(old)
-            blocks = tuple(
-                old[i] if i < n_old and old[i].parsed is p else Block(i, p)
-                for i, p in enumerate(parsed)
-            )
+            blocks = _blocks_after_edit(previous.blocks, parsed)
     if read == len(lines):
         return Document(uri, blocks, "utf-8", None, len(lines))
     note = _unread_note(text, lines, read, limits)
     return Document(uri, blocks, "utf-8", None, len(lines), read, note)
+
+
+_PARSED = itemgetter(1)  # Block.parsed, read in C
+
+
+def _blocks_after_edit(old: tuple[Block, ...], parsed: list[ParsedLine]) -> tuple[Block, ...]:
+    """The blocks of the new version of a document: the earlier version's where its lines
+    are the same lines at the same place (the parser shares an unchanged line's parse), new
+    ones for the lines between its first and last change and, when lines were added or
+    removed, for the lines after it (their number changed)."""
+    diff = Diff(list(map(_PARSED, old)), parsed, identical=True)
+    start, end = diff.start, diff.end
+    edited = tuple(map(Block, range(start, end), parsed[start:end]))
+    if diff.shift:
+        after = tuple(map(Block, range(end, len(parsed)), parsed[end:]))
+    else:
+        after = old[diff.old_end :]
+    return old[:start] + edited + after
 
 
 def _lines_read(text: str, lines: list[str], limits: ReadLimits) -> int:
