@@ -23,6 +23,7 @@ from typing import TYPE_CHECKING
 
 from ..config import Config
 from ..index import Loop
+from ..line_maps import line_diff
 from ..syntax import Document
 from .facts import DocumentFacts, Facts, same_value
 
@@ -246,10 +247,14 @@ def changed_in(a: Document, b: Document) -> set[int] | None:
         return None
     if a is b:
         return set()
+    # The stretch between the first and the last change, found by comparing slices in C; the
+    # lines in it compared one by one (two edits far apart leave the same lines between).
+    diff = line_diff(a, b)
+    x, y = a.blocks, b.blocks
     return {
-        x.line
-        for x, y in zip(a.blocks, b.blocks, strict=True)
-        if x.parsed is not y.parsed and x.parsed.text != y.parsed.text
+        line
+        for line in range(diff.start, diff.end)
+        if x[line].parsed is not y[line].parsed and x[line].parsed.text != y[line].parsed.text
     }
 
 
