@@ -28,9 +28,9 @@ sys.path.insert(0, str(ROOT / "server"))
 
 from fanuc_macro.analysis import analyse  # noqa: E402
 from fanuc_macro.evaluator import Facts, evaluate  # noqa: E402
-from fanuc_macro.index import ProgramIndex, build_index  # noqa: E402
-from fanuc_macro.parser import BlockParser, parse_text  # noqa: E402
-from fanuc_macro.syntax import Document  # noqa: E402
+from fanuc_macro.program.index import ProgramIndex, build_index  # noqa: E402
+from fanuc_macro.syntax.parser import BlockParser, parse_text  # noqa: E402
+from fanuc_macro.syntax.tree import Document  # noqa: E402
 
 
 def generate(blocks: int, seed: int = 1) -> str:

@@ -30,10 +30,10 @@ from pathlib import Path
 from typing import Any, Protocol, TypeVar
 
 from fanuc_macro.analysis import analyse
-from fanuc_macro.blocks import decode_bytes, split_lines
 from fanuc_macro.config import Config
-from fanuc_macro.parser import BlockParser, parse_text
-from fanuc_macro.trace import trace
+from fanuc_macro.ide.trace import trace
+from fanuc_macro.syntax.lines import decode_bytes, split_lines
+from fanuc_macro.syntax.parser import BlockParser, parse_text
 
 ROOT = Path(__file__).resolve().parents[1]
 FIXTURES = ROOT / "tests" / "fixtures"

@@ -19,8 +19,8 @@ from fanuc_macro.cancel import (
 )
 from fanuc_macro.config import Config
 from fanuc_macro.evaluator import evaluate
-from fanuc_macro.index import build_index
-from fanuc_macro.parser import BlockParser, parse_text
+from fanuc_macro.program.index import build_index
+from fanuc_macro.syntax.parser import BlockParser, parse_text
 from fanuc_macro.workspace import Workspace
 
 URI = "file:///cancel/o1000.nc"

@@ -11,9 +11,9 @@ from fanuc_macro.analysis import analyse
 from fanuc_macro.config import Config
 from fanuc_macro.evaluator import Facts, Unknown, evaluate
 from fanuc_macro.evaluator.values import f_fix, f_fup, f_round
-from fanuc_macro.index import build_index
-from fanuc_macro.parser import parse_text
-from fanuc_macro.trace import trace
+from fanuc_macro.ide.trace import trace
+from fanuc_macro.program.index import build_index
+from fanuc_macro.syntax.parser import parse_text
 
 SEEDS = Path(__file__).parent / "fixtures" / "seeds"
 

@@ -14,9 +14,9 @@ from fanuc_macro.evaluator.machine import (
     _direct_reads,
     _ends_program,
 )
-from fanuc_macro.index import build_index
-from fanuc_macro.parser import BlockParser, parse_text
-from fanuc_macro.syntax import NcStatement
+from fanuc_macro.program.index import build_index
+from fanuc_macro.syntax.parser import BlockParser, parse_text
+from fanuc_macro.syntax.tree import NcStatement
 from test_parser import program_lines, random_nc_lines
 
 

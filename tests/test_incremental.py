@@ -19,8 +19,8 @@ from fanuc_macro.analysis import analyse
 from fanuc_macro.config import Config
 from fanuc_macro.evaluator import Facts, Motion, ValueSummary, evaluate
 from fanuc_macro.evaluator.facts import same_value
-from fanuc_macro.index import build_index
-from fanuc_macro.parser import BlockParser, parse_text
+from fanuc_macro.program.index import build_index
+from fanuc_macro.syntax.parser import BlockParser, parse_text
 
 FIXTURES = Path(__file__).parent / "fixtures"
 PROGRAMS = sorted(

@@ -11,9 +11,9 @@ import pytest
 from lark import Lark, Token, Transformer, Tree
 from lark.exceptions import UnexpectedCharacters, UnexpectedInput, UnexpectedToken
 
-from fanuc_macro.blocks import cut_comments, decode_bytes, split_lines
-from fanuc_macro.lalr_driver import TableParser
-from fanuc_macro.parser import BlockParser, _describe
+from fanuc_macro.syntax.lalr_driver import TableParser
+from fanuc_macro.syntax.lines import cut_comments, decode_bytes, split_lines
+from fanuc_macro.syntax.parser import BlockParser, _describe
 
 CORPUS = Path("/work/shared/corpus")
 

@@ -8,8 +8,8 @@ import random
 
 from fanuc_macro.analysis import analyse
 from fanuc_macro.line_maps import Diff, LineMap, line_diff
-from fanuc_macro.parser import default_parser, parse_text
-from fanuc_macro.syntax import Document
+from fanuc_macro.syntax.parser import default_parser, parse_text
+from fanuc_macro.syntax.tree import Document
 
 LINES = [
     "G01 X1. Z-2. F0.2",

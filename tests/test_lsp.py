@@ -978,7 +978,7 @@ def test_columns_in_utf16_utf8_and_utf32() -> None:
 
 
 def test_knowledge_covers_lathe_and_mill_codes() -> None:
-    from fanuc_macro import knowledge
+    from fanuc_macro.program import knowledge
 
     required = [
         *(f"G{n:02d}" for n in (0, 1, 2, 3, 4, 20, 21, 28, 32, 40, 41, 42, 50, 65, 66, 67)),

@@ -29,7 +29,7 @@ sys.path.insert(0, sys.argv[1])
 import bench_lsp
 from fanuc_macro.analysis import analyse
 from fanuc_macro.config import Config
-from fanuc_macro.parser import BlockParser
+from fanuc_macro.syntax.parser import BlockParser
 text = getattr(bench_lsp, sys.argv[2])(int(sys.argv[3]))
 config = Config(max_blocks=10 * int(sys.argv[3]), max_file_size=100 * len(text))
 tracemalloc.start()

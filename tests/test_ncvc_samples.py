@@ -16,9 +16,9 @@ from pathlib import Path
 import pytest
 
 from fanuc_macro.analysis import Analysis, analyse
-from fanuc_macro.blocks import decode_bytes
 from fanuc_macro.diagnostics import Severity
-from fanuc_macro.parser import parse_bytes
+from fanuc_macro.syntax.lines import decode_bytes
+from fanuc_macro.syntax.parser import parse_bytes
 
 CORPUS = Path(__file__).resolve().parents[2] / "shared" / "corpus"
 if not CORPUS.is_dir():

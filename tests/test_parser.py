@@ -11,10 +11,10 @@ from pathlib import Path
 import pytest
 
 from fanuc_macro.analysis import analyse
-from fanuc_macro.blocks import cut_comments, decode_bytes, split_lines
-from fanuc_macro.index import build_index, program_number_of_name
-from fanuc_macro.parser import BlockParser, fast_parse, parse_bytes, parse_text
-from fanuc_macro.syntax import (
+from fanuc_macro.program.index import build_index, program_number_of_name
+from fanuc_macro.syntax.lines import cut_comments, decode_bytes, split_lines
+from fanuc_macro.syntax.parser import BlockParser, fast_parse, parse_bytes, parse_text
+from fanuc_macro.syntax.tree import (
     Assign,
     Binary,
     Block,

@@ -9,13 +9,13 @@ from typing import Any
 
 import pytest
 
-from fanuc_macro import index as index_module
-from fanuc_macro.index import Loop, Program, build_index
-from fanuc_macro.parser import BlockParser, parse_text
 from fanuc_macro.per_line import PerLine
+from fanuc_macro.program import index as index_module
+from fanuc_macro.program.index import Loop, Program, build_index
 from fanuc_macro.rules import jumps
 from fanuc_macro.rules.context import RuleContext
-from fanuc_macro.syntax import ParsedLine
+from fanuc_macro.syntax.parser import BlockParser, parse_text
+from fanuc_macro.syntax.tree import ParsedLine
 
 
 class CountedList(list[Any]):

@@ -19,13 +19,13 @@ import pytest
 
 from fanuc_macro import cli
 from fanuc_macro.analysis import analyse
-from fanuc_macro.blocks import ReadLimits, cut_comments
 from fanuc_macro.config import Config
 from fanuc_macro.evaluator import compiler
 from fanuc_macro.evaluator.compiler import compile_cond, compile_expr, constant_of
-from fanuc_macro.parser import BlockParser, fast_parse, parse_text
-from fanuc_macro.syntax import Binary, Call, Compare, Cond, Expr, Logic, Num, Span, Var
-from fanuc_macro.walk import bracket_depth, cond_exprs, subexpressions
+from fanuc_macro.syntax.lines import ReadLimits, cut_comments
+from fanuc_macro.syntax.parser import BlockParser, fast_parse, parse_text
+from fanuc_macro.syntax.tree import Binary, Call, Compare, Cond, Expr, Logic, Num, Span, Var
+from fanuc_macro.syntax.walk import bracket_depth, cond_exprs, subexpressions
 from fanuc_macro.workspace import Workspace
 
 ROOT = Path(__file__).resolve().parents[1]

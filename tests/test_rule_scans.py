@@ -13,13 +13,13 @@ import pytest
 
 from fanuc_macro.analysis import analyse
 from fanuc_macro.config import Config
-from fanuc_macro.index import build_index
 from fanuc_macro.line_maps import LineMap
-from fanuc_macro.parser import default_parser, parse_text, statements_of
+from fanuc_macro.program.index import build_index
 from fanuc_macro.rules import expressions, flow, variable_use
 from fanuc_macro.rules.context import RuleContext
-from fanuc_macro.syntax import Bracket, Call, Document, NcStatement, ParsedLine, Var
-from fanuc_macro.walk import (
+from fanuc_macro.syntax.parser import default_parser, parse_text, statements_of
+from fanuc_macro.syntax.tree import Bracket, Call, Document, NcStatement, ParsedLine, Var
+from fanuc_macro.syntax.walk import (
     _variables,
     bracket_depth,
     plain_variables,
@@ -218,8 +218,8 @@ def test_the_line_rules_check_blocks_of_plain_words_without_walking_them(
 ) -> None:
     """A CAM file's blocks (G01 X Y Z with numbers, #n or -#n) need no expression walk: the
     line rules give their findings from the words themselves."""
-    from fanuc_macro import walk
     from fanuc_macro.rules import LINE_CHECKS, dialect
+    from fanuc_macro.syntax import walk
 
     cam = [  # as bench/bench_lsp.py's cam_program writes them
         f"G01 X{i / 1000:.3f} Y{(i * 7919) % 100_003 / 1000:.3f} Z-{i % 977 / 100:.2f}"

@@ -25,11 +25,11 @@ import pytest
 
 import fanuc_macro.analysis  # noqa: F401  (importing it registers every rule)
 from fanuc_macro.analysis import Analysis, analyse
-from fanuc_macro.blocks import decode_bytes, split_lines
 from fanuc_macro.config import NOT_SET, Config
 from fanuc_macro.diagnostics import RULES, Diagnostic, Severity
-from fanuc_macro.parser import parse_bytes
 from fanuc_macro.rules.context import RuleContext
+from fanuc_macro.syntax.lines import decode_bytes, split_lines
+from fanuc_macro.syntax.parser import parse_bytes
 
 ROOT = Path(__file__).resolve().parents[1]
 FIXTURES = ROOT / "tests" / "fixtures" / "rules"
@@ -371,8 +371,8 @@ def test_config_from_editor_settings() -> None:
     ],
 )
 def test_logic_operand_fixes(text: str, fixes: list[str]) -> None:
-    from fanuc_macro.parser import default_parser
     from fanuc_macro.rules.expressions import logic_fixes, logic_operands
+    from fanuc_macro.syntax.parser import default_parser
 
     parsed = default_parser().parse_line(text)
     assert parsed.statement is not None
@@ -435,7 +435,7 @@ def test_machine_limits_are_checked_only_when_set() -> None:
 
 
 def test_docs_name_every_word_the_threading_rules_know() -> None:
-    from fanuc_macro.meanings import KNOWN_MODULES, ROLE_WORDS
+    from fanuc_macro.program.meanings import KNOWN_MODULES, ROLE_WORDS
 
     text = (ROOT / "docs" / "rules.md").read_text("utf-8")
     for words in ROLE_WORDS.values():
@@ -458,6 +458,6 @@ def test_docs_name_every_word_the_threading_rules_know() -> None:
     ],
 )
 def test_role_of_comment(comment: str, role: str | None) -> None:
-    from fanuc_macro.meanings import role_of_comment
+    from fanuc_macro.program.meanings import role_of_comment
 
     assert role_of_comment(comment) == role

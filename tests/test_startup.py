@@ -81,7 +81,7 @@ def test_the_language_server_answers_initialize_before_loading_the_analysis() ->
     )
     later = {
         "fanuc_macro.analysis",
-        "fanuc_macro.parser",
+        "fanuc_macro.syntax.parser",
         "fanuc_macro.evaluator",
         "fanuc_macro.rules",
         "fanuc_macro.workspace",

@@ -19,7 +19,7 @@ import pytest
 
 from fanuc_macro import cli
 from fanuc_macro.analysis import Analysis, analyse
-from fanuc_macro.cli_thread import add_thread_command
+from fanuc_macro.cli.thread import add_thread_command
 from fanuc_macro.evaluator import Motion
 from fanuc_macro.threads import parse_designation, plan_from_tolerances, tolerances
 from fanuc_macro.threads.generator import (

@@ -6,7 +6,7 @@ from __future__ import annotations
 import pytest
 
 from fanuc_macro.analysis import analyse
-from fanuc_macro.parser import parse_text
+from fanuc_macro.syntax.parser import parse_text
 from fanuc_macro.threads.identify import Thread, describe, thread_words
 
 

@@ -13,11 +13,11 @@ from types import ModuleType
 
 import pytest
 
-from fanuc_macro import meanings
 from fanuc_macro.analysis import analyse
 from fanuc_macro.config import Config
 from fanuc_macro.evaluator import Motion
-from fanuc_macro.parser import BlockParser
+from fanuc_macro.program import meanings
+from fanuc_macro.syntax.parser import BlockParser
 from fanuc_macro.threads import identify, jobs
 
 FIXTURES = Path(__file__).parent / "fixtures"

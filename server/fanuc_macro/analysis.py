@@ -10,7 +10,6 @@ import sys
 from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, field, replace
 
-from . import dialects
 from .cancel import RULE_CHECKS, CancelToken, raise_if_cancelled
 from .config import Config
 from .diagnostics import (
@@ -25,13 +24,14 @@ from .diagnostics import (
     suppressed_codes,
 )
 from .evaluator import Facts, evaluate
-from .index import ProgramIndex, build_index
 from .line_maps import LineMap
-from .parser import BlockParser, default_parser, parse_text, quiet_gc
 from .per_line import PerLine
+from .program.index import ProgramIndex, build_index
 from .rules import ALL_CHECKS, LINE_CHECKS, LineFinding
 from .rules.context import RuleContext
-from .syntax import Document, ParsedLine
+from .syntax import dialects
+from .syntax.parser import BlockParser, default_parser, parse_text, quiet_gc
+from .syntax.tree import Document, ParsedLine
 from .threads.identify import Thread
 
 log = logging.getLogger(__name__)

@@ -25,7 +25,7 @@ from operator import is_, itemgetter
 from typing import Generic, TypeVar
 
 from .cancel import CHECKING, SLICE, CancelToken
-from .syntax import Document, ParsedLine
+from .syntax.tree import Document, ParsedLine
 
 T = TypeVar("T")
 U = TypeVar("U")

@@ -11,7 +11,7 @@ from collections.abc import Callable
 from itertools import islice
 from typing import Any, Generic, TypeVar
 
-from .syntax import ParsedLine
+from .syntax.tree import ParsedLine
 
 T = TypeVar("T")
 

@@ -7,13 +7,13 @@ from dataclasses import dataclass, replace
 from pathlib import Path
 
 from .analysis import Analysis, analyse
-from .blocks import ReadLimits, decode_bytes
 from .cancel import CancelToken
 from .config import Config
 from .evaluator import Facts
-from .index import Call, ProgramIndex, build_index
-from .parser import BlockParser, default_parser, parse_text
-from .syntax import Document
+from .program.index import Call, ProgramIndex, build_index
+from .syntax.lines import ReadLimits, decode_bytes
+from .syntax.parser import BlockParser, default_parser, parse_text
+from .syntax.tree import Document
 
 PROGRAM_SUFFIXES = frozenset({".nc", ".mac", ".tap", ".cnc", ".eia", ".txt"})
 _PROGRAM_HEAD = re.compile(rb"\A(?:\xef\xbb\xbf)?\s*(%|[oO]\d)")

@@ -22,9 +22,9 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
 from ..config import Config
-from ..index import Loop
 from ..line_maps import line_diff
-from ..syntax import Document
+from ..program.index import Loop
+from ..syntax.tree import Document
 from .facts import DocumentFacts, Facts, same_value
 
 if TYPE_CHECKING:

@@ -9,7 +9,19 @@ from __future__ import annotations
 from collections.abc import Callable
 from typing import Any, Protocol
 
-from ..syntax import BareCond, Binary, Bracket, Call, Compare, Cond, Expr, Logic, Num, Unary, Var
+from ..syntax.tree import (
+    BareCond,
+    Binary,
+    Bracket,
+    Call,
+    Compare,
+    Cond,
+    Expr,
+    Logic,
+    Num,
+    Unary,
+    Var,
+)
 from .values import (
     ONE_ARG,
     TWO_ARG,

@@ -13,7 +13,7 @@ from __future__ import annotations
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, replace
 
-from ..syntax import Document
+from ..syntax.tree import Document
 from .checkpoints import LevelState, MachineState, ModalState, ProgramShape, RunRecord
 from .facts import DocumentFacts, Facts, Finding, Motion
 

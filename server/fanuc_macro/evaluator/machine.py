@@ -16,9 +16,10 @@ from dataclasses import dataclass, field, replace
 
 from ..cancel import RUNNING, CancelToken
 from ..config import Config
-from ..index import Program, ProgramIndex, constant_value
 from ..per_line import PerLine
-from ..syntax import (
+from ..program.index import Program, ProgramIndex, constant_value
+from ..program.variables import ARGUMENT_VARIABLES, classify
+from ..syntax.tree import (
     Assign,
     Bracket,
     Compare,
@@ -39,8 +40,7 @@ from ..syntax import (
     Var,
     While,
 )
-from ..variables import ARGUMENT_VARIABLES, classify
-from ..walk import subexpressions, top_expressions
+from ..syntax.walk import subexpressions, top_expressions
 from .checkpoints import CtxKey, LevelState, MachineState, ModalState, Resumption, RunRecord
 from .compiler import CondEvaluator, Evaluator, compile_cond, compile_expr, constant_of
 from .cycles import g76_depths

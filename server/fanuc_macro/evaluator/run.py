@@ -8,9 +8,9 @@ from dataclasses import replace
 
 from ..cancel import COMPILING, SLICE, CancelToken
 from ..config import Config
-from ..index import ProgramIndex
-from ..parser import quiet_gc
-from ..syntax import Document
+from ..program.index import ProgramIndex
+from ..syntax.parser import quiet_gc
+from ..syntax.tree import Document
 from .checkpoints import ProgramShape, Resumption, RunRecord, changed_in, changed_lines, plan
 from .facts import Facts
 from .line_shift import line_shifts, renumbered

@@ -40,7 +40,7 @@ async def run_trace(engine: Engine, args: tuple[Any, ...]) -> dict[str, Any]:
         if documents is None:
             return {"error": f"{uri} is not in the workspace"}
         (_, doc, index), *others = documents
-        from ..trace import trace  # the evaluator: loaded by the worker after start-up
+        from ..ide.trace import trace  # the evaluator: loaded by the worker after start-up
 
         return trace(key, doc, index, others, config)
 

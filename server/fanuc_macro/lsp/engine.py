@@ -37,8 +37,8 @@ from .documents import OpenDocument
 
 if TYPE_CHECKING:  # the analysis is imported by the worker, after the server has started
     from ..analysis import Analysis
-    from ..index import ProgramIndex
-    from ..syntax import Document
+    from ..program.index import ProgramIndex
+    from ..syntax.tree import Document
     from ..workspace import Workspace
 
 log = logging.getLogger(__name__)

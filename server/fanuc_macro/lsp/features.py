@@ -17,20 +17,21 @@ from importlib import resources
 
 from lsprotocol import types
 
-from .. import knowledge
 from ..analysis import Analysis
-from ..blocks import cut_comments
 from ..config import Config
 from ..evaluator.compiler import compile_expr
 from ..evaluator.facts import DocumentFacts, ValueSummary
 from ..evaluator.values import MacroAlarm, Unknown, Value, fmt
-from ..index import Call as IndexCall
-from ..index import Program, ProgramIndex, constant_value
-from ..meanings import table_meaning
-from ..parser import default_parser, statements_of
+from ..program import knowledge
+from ..program.index import Call as IndexCall
+from ..program.index import Program, ProgramIndex, constant_value
+from ..program.meanings import table_meaning
+from ..program.variables import ARGUMENT_VARIABLES, classify
 from ..rules import expressions
 from ..rules.expressions import logic_fixes, logic_operands
-from ..syntax import (
+from ..syntax.lines import cut_comments
+from ..syntax.parser import default_parser, statements_of
+from ..syntax.tree import (
     Assign,
     Binary,
     Block,
@@ -47,10 +48,9 @@ from ..syntax import (
     While,
     Word,
 )
+from ..syntax.walk import subexpressions
 from ..threads.identify import describe as describe_thread
 from ..threads.identify import module_meanings
-from ..variables import ARGUMENT_VARIABLES, classify
-from ..walk import subexpressions
 from .client import CompletionSupport
 from .convert import Codec, Lines
 from .locate import (

@@ -6,10 +6,10 @@ import re
 from collections.abc import Iterator
 from dataclasses import dataclass
 
-from ..blocks import cut_comments
-from ..index import constant_value
-from ..parser import statements_of
-from ..syntax import (
+from ..program.index import constant_value
+from ..syntax.lines import cut_comments
+from ..syntax.parser import statements_of
+from ..syntax.tree import (
     Assign,
     Block,
     Call,
@@ -27,7 +27,7 @@ from ..syntax import (
     While,
     Word,
 )
-from ..walk import cond_exprs, subexpressions, variables
+from ..syntax.walk import cond_exprs, subexpressions, variables
 
 
 @dataclass(frozen=True)

@@ -7,7 +7,7 @@ from collections.abc import Iterator
 from typing import cast
 
 from ..diagnostics import Diagnostic, Related, RuleInfo, Severity, line_list, make, register
-from ..syntax import Assign, Var, Word
+from ..syntax.tree import Assign, Var, Word
 from .context import RuleContext
 
 FAMILY = "addresses"
@@ -85,8 +85,8 @@ def _feed_not_set(ctx: RuleContext) -> Iterator[Diagnostic]:
 
 
 def _word_at(ctx: RuleContext, line: int, column: int) -> Word | None:
-    from ..parser import statements_of
-    from ..syntax import IfNc, NcStatement
+    from ..syntax.parser import statements_of
+    from ..syntax.tree import IfNc, NcStatement
 
     for statement in statements_of(ctx.doc.blocks[line].statement):
         nc = statement.words if isinstance(statement, IfNc) else statement

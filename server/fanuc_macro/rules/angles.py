@@ -15,10 +15,10 @@ from collections.abc import Iterator
 
 from ..diagnostics import Diagnostic, RuleInfo, Severity, make, register
 from ..line_maps import LineMap
-from ..linear import expr_text
 from ..per_line import PerLine
-from ..syntax import Call, Num, ParsedLine, Span, Var
-from ..walk import subexpressions, top_expressions
+from ..syntax.linear import expr_text
+from ..syntax.tree import Call, Num, ParsedLine, Span, Var
+from ..syntax.walk import subexpressions, top_expressions
 from .context import RuleContext, line_statements
 
 FAMILY = "math-domain"

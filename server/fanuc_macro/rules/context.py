@@ -9,11 +9,11 @@ from typing import TYPE_CHECKING, NamedTuple, cast
 from ..config import Config
 from ..diagnostics import Diagnostic
 from ..evaluator.facts import DocumentFacts, Facts, Finding
-from ..index import ProgramIndex
-from ..syntax import Block, Document, ParsedLine, Statement
+from ..program.index import ProgramIndex
+from ..syntax.tree import Block, Document, ParsedLine, Statement
 
 if TYPE_CHECKING:
-    from ..meanings import Meaning
+    from ..program.meanings import Meaning
     from ..threads.identify import Thread
 
 
@@ -33,10 +33,10 @@ class RuleContext:
 
     def roles(self) -> dict[tuple[int, int], Meaning]:
         """What comments and known parameter tables say each variable is
-        (:func:`fanuc_macro.meanings.variable_roles`)."""
+        (:func:`fanuc_macro.program.meanings.variable_roles`)."""
         found = self.memo.get("roles")
         if found is None:
-            from ..meanings import variable_roles
+            from ..program.meanings import variable_roles
 
             found = self.memo["roles"] = variable_roles(self.doc, self.index)
         return cast("dict[tuple[int, int], Meaning]", found)
@@ -100,7 +100,7 @@ class RuleContext:
 
     def statements(self) -> Iterator[tuple[Block, Statement]]:
         """Every statement with its block; a mixed block gives its NC and macro parts."""
-        from ..parser import statements_of
+        from ..syntax.parser import statements_of
 
         for block in self.doc.blocks:
             for statement in statements_of(block.statement):
@@ -124,6 +124,6 @@ LineCheck = Callable[[ParsedLine], Iterable[LineFinding]]
 
 
 def line_statements(parsed: ParsedLine) -> Sequence[Statement]:
-    from ..parser import statements_of
+    from ..syntax.parser import statements_of
 
     return statements_of(parsed.statement)

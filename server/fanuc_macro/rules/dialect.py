@@ -7,9 +7,9 @@ from __future__ import annotations
 from collections.abc import Iterable, Iterator
 
 from ..diagnostics import RuleInfo, Severity, register
-from ..index import constant_value
-from ..parser import statements_of
-from ..syntax import (
+from ..program.index import constant_value
+from ..syntax.parser import statements_of
+from ..syntax.tree import (
     BareCond,
     BlockIf,
     IfGoto,
@@ -22,7 +22,7 @@ from ..syntax import (
     While,
     Word,
 )
-from ..walk import variables
+from ..syntax.walk import variables
 from .context import LineFinding
 
 FAMILY = "dialect"

@@ -7,8 +7,9 @@ from dataclasses import dataclass
 
 from ..diagnostics import Diagnostic, Related, RuleInfo, Severity, make, register
 from ..line_maps import LineMap
-from ..parser import statements_of
-from ..syntax import (
+from ..program.variables import classify
+from ..syntax.parser import statements_of
+from ..syntax.tree import (
     Assign,
     Binary,
     BlockIf,
@@ -27,8 +28,7 @@ from ..syntax import (
     Var,
     While,
 )
-from ..variables import classify
-from ..walk import bracket_depth, plain_variables, top_expressions, variables
+from ..syntax.walk import bracket_depth, plain_variables, top_expressions, variables
 from .context import LineFinding, RuleContext
 
 FAMILY = "expressions"

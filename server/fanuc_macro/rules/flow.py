@@ -11,10 +11,10 @@ from typing import cast
 from ..diagnostics import Diagnostic, RuleInfo, Severity, make, register
 from ..evaluator.facts import DocumentFacts
 from ..evaluator.machine import compiled
-from ..index import Program, constant_value
 from ..line_maps import LineMap
 from ..per_line import PerLine
-from ..syntax import Block, Goto, IfGoto, IfThen, Mixed, NcStatement, ParsedLine, While
+from ..program.index import Program, constant_value
+from ..syntax.tree import Block, Goto, IfGoto, IfThen, Mixed, NcStatement, ParsedLine, While
 from .context import RuleContext
 
 FAMILY = "flow"

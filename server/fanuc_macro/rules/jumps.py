@@ -7,11 +7,11 @@ from collections.abc import Iterator
 from typing import cast
 
 from ..diagnostics import Diagnostic, Related, RuleInfo, Severity, make, register
-from ..index import Jump, Program
-from ..parser import statements_of
 from ..per_line import PerLine
-from ..syntax import Assign, IfGoto, IfThen, ParsedLine, Var, While
-from ..walk import cond_exprs, subexpressions
+from ..program.index import Jump, Program
+from ..syntax.parser import statements_of
+from ..syntax.tree import Assign, IfGoto, IfThen, ParsedLine, Var, While
+from ..syntax.walk import cond_exprs, subexpressions
 from .context import RuleContext
 
 FAMILY = "jumps"

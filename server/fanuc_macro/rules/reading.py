@@ -5,7 +5,7 @@ from __future__ import annotations
 from collections.abc import Iterable, Iterator
 
 from ..diagnostics import Diagnostic, Related, RuleInfo, Severity, make, register
-from ..syntax import ParsedLine, ProgramStart
+from ..syntax.tree import ParsedLine, ProgramStart
 from .context import LineFinding, RuleContext
 
 FAMILY = "reading"

@@ -7,13 +7,24 @@ from collections.abc import Iterable, Iterator
 from typing import NamedTuple, cast
 
 from ..diagnostics import Diagnostic, Related, RuleInfo, Severity, line_list, make, register
-from ..index import Call as IndexCall
-from ..index import Program, constant_value
 from ..line_maps import LineMap
-from ..parser import statements_of
 from ..per_line import PerLine
-from ..syntax import Assign, Goto, IfNc, Mixed, NcStatement, Num, ParsedLine, Statement, Var, Word
-from ..variables import FORBIDDEN_ARGUMENTS
+from ..program.index import Call as IndexCall
+from ..program.index import Program, constant_value
+from ..program.variables import FORBIDDEN_ARGUMENTS
+from ..syntax.parser import statements_of
+from ..syntax.tree import (
+    Assign,
+    Goto,
+    IfNc,
+    Mixed,
+    NcStatement,
+    Num,
+    ParsedLine,
+    Statement,
+    Var,
+    Word,
+)
 from .context import LineFinding, RuleContext
 
 FAMILY = "statements"

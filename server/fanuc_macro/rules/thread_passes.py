@@ -14,12 +14,12 @@ from itertools import pairwise
 
 from ..diagnostics import Diagnostic, Related, RuleInfo, Severity, make, register
 from ..evaluator.facts import DocumentFacts, Motion
-from ..index import Program
-from ..linear import expr_text
-from ..syntax import Call, Var
+from ..program.index import Program
+from ..syntax.linear import expr_text
+from ..syntax.tree import Call, Var
+from ..syntax.walk import subexpressions
 from ..threads.identify import Thread
 from ..threads.module_shape import assignment, word, writes_of
-from ..walk import subexpressions
 from .context import RuleContext
 from .threading import EPS, mm, pass_name, width
 

@@ -8,9 +8,9 @@ from ..diagnostics import Diagnostic, RuleInfo, Severity, make, register
 from ..evaluator.facts import DocumentFacts
 from ..evaluator.machine import compiled
 from ..line_maps import LineMap
-from ..syntax import Assign, IfThen, ParsedLine, Var
-from ..variables import ARGUMENT_VARIABLES
-from ..walk import subexpressions, top_expressions
+from ..program.variables import ARGUMENT_VARIABLES
+from ..syntax.tree import Assign, IfThen, ParsedLine, Var
+from ..syntax.walk import subexpressions, top_expressions
 from .context import RuleContext
 
 FAMILY = "variable-use"
@@ -107,8 +107,8 @@ _local_reads: LineMap[tuple[int, ...]] = LineMap(_read_locals)
 
 def _vacancy_checks(statement: object, checked: set[int]) -> None:
     """Locals compared with #0 (argument checks): vacancy there is expected."""
-    from ..syntax import IfGoto, While
-    from ..walk import cond_exprs
+    from ..syntax.tree import IfGoto, While
+    from ..syntax.walk import cond_exprs
 
     cond = getattr(statement, "cond", None)
     if not isinstance(statement, IfGoto | IfThen | While) or cond is None:

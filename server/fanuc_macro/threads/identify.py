@@ -8,7 +8,7 @@ In order of trust (the first source that tells a fact gives it):
    the passes;
 3. a thread module recognised by the shape of its formulas (:mod:`.module_shape`): its
    nominal diameter, lead, nose radius and the es / Td2 it adds to the height;
-4. the words of comments on assignments (:mod:`fanuc_macro.meanings`).
+4. the words of comments on assignments (:mod:`fanuc_macro.program.meanings`).
 
 The tolerance class comes from the designation (ISO 965-1: none written is 6g / 6H), else from
 the module's es and Td2 when a class of the ISO 965-1 tables has them, else the program's own
@@ -28,11 +28,11 @@ from dataclasses import dataclass, field
 
 from ..evaluator.facts import DocumentFacts, Motion, RunValues
 from ..evaluator.values import fmt_address
-from ..index import Program, ProgramIndex
 from ..line_maps import Found, LineMap
-from ..meanings import Meaning, program_is_internal, variable_roles
 from ..per_line import PerLine
-from ..syntax import Document, ParsedLine
+from ..program.index import Program, ProgramIndex
+from ..program.meanings import Meaning, program_is_internal, variable_roles
+from ..syntax.tree import Document, ParsedLine
 from .designation import ThreadDesignation, parse_designation
 from .geometry import SIN60
 from .iso965 import PitchClass, loosest_pitch_class, pitch_classes

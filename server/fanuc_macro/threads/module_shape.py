@@ -18,12 +18,12 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 
 from ..evaluator.facts import DocumentFacts, RunValues
-from ..index import Program, ProgramIndex
 from ..line_maps import LineMap
-from ..linear import Linear, linear_form
-from ..parser import statements_of
 from ..per_line import PerLine
-from ..syntax import (
+from ..program.index import Program, ProgramIndex
+from ..syntax.linear import Linear, linear_form
+from ..syntax.parser import statements_of
+from ..syntax.tree import (
     Assign,
     Binary,
     Bracket,
@@ -35,7 +35,7 @@ from ..syntax import (
     ParsedLine,
     Var,
 )
-from ..walk import subexpressions, top_expressions
+from ..syntax.walk import subexpressions, top_expressions
 from .geometry import SIN60, TAN30
 from .jobs import ThreadJob
 

@@ -11,9 +11,9 @@ offers it as a completion item.  Pure: text in, text out, no LSP types.
 from __future__ import annotations
 
 from ..evaluator import DocumentFacts, evaluate
-from ..index import ProgramIndex, build_index
-from ..parser import default_parser, parse_text
-from ..syntax import Assign, Document, IfThen
+from ..program.index import ProgramIndex, build_index
+from ..syntax.parser import default_parser, parse_text
+from ..syntax.tree import Assign, Document, IfThen
 from .designation import ThreadDesignation, parse_designation
 from .generator import build_module_from_values, default_program_numbers
 from .identify import thread_words

@@ -12,7 +12,7 @@ import codecs
 import re
 from dataclasses import dataclass
 
-from .syntax import Comment, LineNote, shared_span
+from .tree import Comment, LineNote, shared_span
 
 _LINE_BREAK = re.compile(r"\r\n|\r|\n")
 _BLANK_TAIL = re.compile(r"[ \t;%]*")

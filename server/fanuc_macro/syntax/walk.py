@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
-from .syntax import (
+from .tree import (
     Assign,
     BareCond,
     Binary,
@@ -156,7 +156,7 @@ def bracket_depth(expr: Expr) -> int:
 def expression_depth(statement: Statement) -> int:
     """The deepest nesting of nodes in a statement's expressions and conditions: each operator,
     sign, bracket, function and AND/OR/XOR is a level. The parser refuses blocks nested deeper
-    than the analysis can follow (see ``fanuc_macro.parser.MAX_EXPRESSION_DEPTH``)."""
+    than the analysis can follow (see ``fanuc_macro.syntax.parser.MAX_EXPRESSION_DEPTH``)."""
     deepest = 0
     stack: list[tuple[Expr | Cond, int]] = [(c, 1) for c in _conditions(statement)]
     stack.extend((e, 1) for e in top_expressions(statement))

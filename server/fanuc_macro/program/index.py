@@ -12,7 +12,7 @@ from bisect import bisect_right
 from dataclasses import dataclass, field
 from urllib.parse import unquote
 
-from .syntax import (
+from ..syntax.tree import (
     Block,
     Bracket,
     Document,

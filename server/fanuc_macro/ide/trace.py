@@ -6,10 +6,10 @@ from collections import Counter
 from collections.abc import Sequence
 from typing import Any
 
-from .config import Config
-from .evaluator import evaluate
-from .index import ProgramIndex
-from .syntax import Document
+from ..config import Config
+from ..evaluator import evaluate
+from ..program.index import ProgramIndex
+from ..syntax.tree import Document
 
 
 def trace(

@@ -14,10 +14,10 @@ from __future__ import annotations
 from dataclasses import dataclass
 from functools import lru_cache
 
+from ..line_maps import LineMap
+from ..per_line import PerLine
+from ..syntax.tree import Assign, Document, ParsedLine
 from .index import ProgramIndex
-from .line_maps import LineMap
-from .per_line import PerLine
-from .syntax import Assign, Document, ParsedLine
 
 # Role -> words that name it in a comment. The first role with a matching word wins, so the
 # more specific come first: "刀尖圆弧半径" (nose radius) holds "圆弧半径" (arc radius).

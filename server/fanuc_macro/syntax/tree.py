@@ -2,8 +2,8 @@
 
 Every node is a frozen dataclass with a ``span``: the columns it covers in its line (0-based, end
 exclusive, in characters). Nodes never hold a line number, so a parsed line can be shared by every
-block whose text is the same (see :mod:`fanuc_macro.parser`); the block adds the line. The node's
-original text is ``block.text[node.span.start:node.span.end]`` (:meth:`Block.source`).
+block whose text is the same (see :mod:`fanuc_macro.syntax.parser`); the block adds the line.
+The node's original text is ``block.text[node.span.start:node.span.end]`` (:meth:`Block.source`).
 """
 
 from __future__ import annotations

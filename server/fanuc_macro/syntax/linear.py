@@ -12,8 +12,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from .evaluator.compiler import constant_of
-from .syntax import Binary, Bracket, Call, Expr, Num, Unary, Var
+from ..evaluator.compiler import constant_of
+from .tree import Binary, Bracket, Call, Expr, Num, Unary, Var
 
 Term = int | str  # a variable number, or the text of a part that is not linear
 

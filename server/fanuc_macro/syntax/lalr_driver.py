@@ -7,8 +7,8 @@ them with compiled master regexes and one flat shift/reduce loop. It returns wha
 ``lark.parse(code)`` returns and raises the same exception classes with the same data
 (``UnexpectedToken.state`` and ``.interactive_parser`` are left ``None``).
 
-Only what :mod:`fanuc_macro.parser` uses is supported: ``parser="lalr"``, ``lexer="basic"``, a
-``str`` input, no ``postlex``, no ``lexer_callbacks``, no ``use_bytes``.
+Only what :mod:`fanuc_macro.syntax.parser` uses is supported: ``parser="lalr"``,
+``lexer="basic"``, a ``str`` input, no ``postlex``, no ``lexer_callbacks``, no ``use_bytes``.
 """
 
 from __future__ import annotations

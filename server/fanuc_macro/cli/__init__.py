@@ -8,14 +8,14 @@ import sys
 from collections.abc import Sequence
 from pathlib import Path
 
-from . import __version__
-from .analysis import analyse
-from .cli_thread import add_thread_command
-from .config import CONTROLLERS, NOT_SET, Config
-from .diagnostics import REPORT_INTERNAL_ERROR, Diagnostic, Severity
-from .evaluator.values import fmt_address
-from .trace import trace  # small: what it uses, the check uses too
-from .workspace import Workspace, is_program_file
+from .. import __version__
+from ..analysis import analyse
+from ..config import CONTROLLERS, NOT_SET, Config
+from ..diagnostics import REPORT_INTERNAL_ERROR, Diagnostic, Severity
+from ..evaluator.values import fmt_address
+from ..ide.trace import trace  # small: what it uses, the check uses too
+from ..workspace import Workspace, is_program_file
+from .thread import add_thread_command
 
 EXIT_OK = 0
 EXIT_ERRORS = 1

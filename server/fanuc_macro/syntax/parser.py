@@ -21,8 +21,11 @@ from itertools import accumulate
 from operator import itemgetter
 from typing import Any, cast
 
+from ..cancel import READING, SLICE, CancelToken, raise_if_cancelled
+from ..line_maps import Diff
+from ..program.index import CALL_CODES, INDEXED_STATEMENTS, mentions_call
 from . import dialects
-from .blocks import (
+from .lines import (
     MAX_LINE_LENGTH,
     READ_WHOLE,
     LineCode,
@@ -31,10 +34,7 @@ from .blocks import (
     decode_bytes,
     split_lines,
 )
-from .cancel import READING, SLICE, CancelToken, raise_if_cancelled
-from .index import CALL_CODES, INDEXED_STATEMENTS, mentions_call
-from .line_maps import Diff
-from .syntax import (
+from .tree import (
     SHARED_COLUMNS,
     SHARED_SPANS,
     Assign,
@@ -137,7 +137,7 @@ def _to_float(text: str) -> float:
 
 
 class _ToAst(Transformer[Token, Any]):
-    """Builds :mod:`fanuc_macro.syntax` nodes while the LALR parser reduces (no parse tree)."""
+    """Builds :mod:`fanuc_macro.syntax.tree` nodes while the LALR parser reduces (no parse tree)."""
 
     # ---- expressions
     def num(self, c: list[Any]) -> Num:

@@ -1,0 +1,7 @@
+"""``python -m fanuc_macro.cli``."""
+
+import sys
+
+from . import main
+
+sys.exit(main())
