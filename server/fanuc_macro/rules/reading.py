@@ -291,7 +291,10 @@ M30%
 Put `%` on a line of its own, before the first block and after the last one.
 """,
         not_reported="""
-A `%` alone, or followed only by a comment or `;`.
+A `%` alone, or followed only by a comment or `;`. A `%` inside a comment, which is comment
+text, or in text after an end-of-block `;` (that text is MB005's and is not analysed). A `%` on
+a line whose program text FANUC rejects, unless the line keeps a sequence number (`%N10 ...`):
+the block's own diagnostic (MB001, MB002) is given instead.
 """,
     ),
     RuleDoc(
@@ -368,7 +371,9 @@ Put one block on each line. If the file really has blocks that long, raise the
 setting.
 """,
         not_reported="""
-Long lines within the limit, whatever their comments.
+Long lines within the limit, whatever their comments (a comment counts in the length: a line
+over the limit because of its comment is reported). Lines past the part of a big file the
+analysis reads (MB013): they are not read at all.
 """,
     ),
     RuleDoc(
