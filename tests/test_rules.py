@@ -10,7 +10,9 @@ under ``fanuc-macro``, in JSON.
 
 The lists of codes are read from ``fanuc_macro.diagnostics.RULES`` when the tests are
 collected, so a rule registered later (the evaluator's MB5xx-MB9xx) is covered as soon as it is
-registered: it needs a section in docs/rules.md and a fixture.
+registered: it needs a section in docs/rules.md and a fixture. The sections are generated from
+the RuleDoc beside each registration (scripts/rules_doc.py; tests/test_rules_doc.py checks the
+file is not stale), and these tests read the generated file as a user would.
 """
 
 from __future__ import annotations

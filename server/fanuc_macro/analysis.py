@@ -17,8 +17,10 @@ from .diagnostics import (
     RULES,
     Diagnostic,
     Related,
+    RuleDoc,
     RuleInfo,
     Severity,
+    document,
     make,
     register,
     suppressed_codes,
@@ -40,6 +42,44 @@ register(
     RuleInfo("MB000", "internal-error", Severity.ERROR,
              "The analyser failed on this document; the message says where.", "internal"),
 )  # fmt: skip
+
+# What each rule above reports, why, an example, the fix and what it leaves out:
+# docs/rules.md is generated from it (python3 scripts/rules_doc.py).
+document(
+    RuleDoc(
+        "MB000",
+        reports="""
+One of the rules (or the evaluator) failed with an exception on this
+document. The message names the rule function and the codes it gives, the exception, and how
+to report it. The other rules still ran, so the other diagnostics are valid. The traceback is
+not printed by default: `fanuc-macro check --verbose` prints it, `--log-file PATH` writes it to
+a file, and the language server writes it to its log.
+""",
+        why="""
+It does not come from the program: nothing will happen on
+the control because of it. But the failed rule checked nothing, so a problem that rule looks
+for may be in the program unreported.
+""",
+        example="""
+No correct program should produce it; a report looks like this:
+
+```text
+prog.nc:1:1: MB000 error internal error in rule rules.expressions.check_line (MB301-MB304):
+OverflowError(...); this is a bug in fanuc-macro, not in the program: please report it with
+the program text (or this block) and the traceback, which `fanuc-macro check --verbose` prints
+and the language server writes to its log (--log-file)
+```
+""",
+        fix="""
+Report it with the block that causes it (the smallest program that reproduces
+it) and the traceback. Until it is fixed, check by hand what the failed rule family covers.
+""",
+        not_reported="""
+Anything about the program: it says only that a rule failed. A rule
+that fails on one document does not stop the others, nor the analysis of other documents.
+""",
+    ),
+)
 
 
 def rule_name(check: Callable[..., object]) -> str:

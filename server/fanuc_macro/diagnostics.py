@@ -1,7 +1,9 @@
 """Diagnostics and the registry of rules that produce them.
 
-Every diagnostic has a code (``MB101``), documented in docs/rules.md with what it means, why it
-matters on the machine, and an example. Positions are 0-based lines and columns in characters.
+Every diagnostic has a code (``MB101``). Each rule's documentation (what it reports, why it
+matters on the machine, an example, the fix, what it does not report) is a ``RuleDoc`` next to
+its registration; docs/rules.md is generated from them (``python3 scripts/rules_doc.py``).
+Positions are 0-based lines and columns in characters.
 """
 
 from __future__ import annotations
@@ -63,6 +65,33 @@ def register(*infos: RuleInfo) -> None:
         if info.code in RULES and RULES[info.code] != info:
             raise ValueError(f"rule code {info.code} registered twice")
         RULES[info.code] = info
+
+
+@dataclass(frozen=True, slots=True)
+class RuleDoc:
+    """The documentation of one rule, in markdown: its section of docs/rules.md.
+
+    Each part is a paragraph or more; the generator (fanuc_macro.rules_doc) strips the blank
+    lines around it and writes it after its bold label.
+    """
+
+    code: str
+    reports: str  # What it reports.
+    why: str  # Why it matters on the machine.
+    example: str  # Example: a program that triggers the rule, in a ```nc block.
+    fix: str  # How to fix.
+    not_reported: str  # What it does not report: what the rule's code leaves out.
+    severity_note: str = ""  # after the default severity: when the rule gives another
+
+
+RULE_DOCS: dict[str, RuleDoc] = {}
+
+
+def document(*docs: RuleDoc) -> None:
+    for doc in docs:
+        if doc.code in RULE_DOCS and RULE_DOCS[doc.code] != doc:
+            raise ValueError(f"rule code {doc.code} documented twice")
+        RULE_DOCS[doc.code] = doc
 
 
 def line_list(lines: Sequence[int], shown: int = 8) -> str:

@@ -6,7 +6,17 @@ from bisect import bisect_left
 from collections.abc import Iterator
 from typing import cast
 
-from ..diagnostics import Diagnostic, Related, RuleInfo, Severity, line_list, make, register
+from ..diagnostics import (
+    Diagnostic,
+    Related,
+    RuleDoc,
+    RuleInfo,
+    Severity,
+    document,
+    line_list,
+    make,
+    register,
+)
 from ..syntax.tree import Assign, Var, Word
 from .context import RuleContext
 
@@ -21,6 +31,110 @@ register(
     RuleInfo("MB603", "feed-not-set", Severity.WARNING,
              "A G01/G02/G03 cut runs before any F was commanded.", FAMILY),
 )  # fmt: skip
+
+# What each rule above reports, why, an example, the fix and what it leaves out:
+# docs/rules.md is generated from it (python3 scripts/rules_doc.py).
+document(
+    RuleDoc(
+        "MB601",
+        reports="""
+An `M`, `S`, `T`, `L`, `H` or `D` address, or the `P` of a call, that gets a
+value with a fractional part when the program runs (`M#13` with `#13=3.5`), or a `G` with more
+than one decimal. The message says where the variable was set.
+""",
+        why="""
+These addresses take whole numbers. A control rejects the
+block with an alarm, or rounds the value: `M#13` with 3.5 rounded is `M4`, the spindle in
+reverse, and `T#20` with 1.5 selects a tool other than the one meant.
+""",
+        example="""
+```nc
+O6001 (SPINDLE FROM A VARIABLE)
+#13=3.5
+M#13
+M30
+```
+""",
+        fix="""
+Correct the value (often a variable set for another purpose, `M#1` meant
+`M#13`), or round it explicitly with `ROUND`/`FIX`.
+""",
+        not_reported="""
+Addresses that take a decimal point (`X`, `Y`, `Z`, `F`, `R`...), a
+`G` code with one decimal (`G66.1`, `G54.1`), a vacant variable (the word is omitted) and values
+the analysis cannot compute.
+""",
+    ),
+    RuleDoc(
+        "MB602",
+        reports="""
+An address that gets an impossible value when the program runs: a negative
+`S`, `T`, `M`, `H`, `D` or `F`, or an `S` above the machine's maximum spindle speed when that
+limit is set (setting `fanuc-macro.machine.maxSpindleSpeed`, command line
+`--max-spindle-speed`). The limit has no default: it is the machine builder's, and a guessed one
+reports good programs.
+""",
+        why="""
+A negative feed or speed raises an alarm. A speed above the
+maximum is clamped by the control (or stopped with an alarm), so the surface speed the program
+computed is not the one cutting: poor finish, broken inserts, and on a lathe a chuck turning
+faster than its rating.
+""",
+        example="""
+```nc
+O6002 (SURFACE SPEED TO RPM)
+#19=FIX[1000.*300./[3.1416*20.]]
+S#19 M03
+M30
+```
+
+The example assumes `"fanuc-macro.machine.maxSpindleSpeed": 4000`.
+""",
+        fix="""
+Clamp the computed speed (`G50 S` on a lathe, or `IF [#19 GT ...]`), or correct
+the formula or the setting of the machine's maximum speed.
+""",
+        not_reported="""
+A spindle speed of any size while the machine's maximum is not
+set; values the analysis cannot compute (an argument of a macro nobody calls); the speed a
+`G96` constant surface speed turns into at a diameter (the control clamps it with `G50 S`).
+""",
+    ),
+    RuleDoc(
+        "MB603",
+        reports="""
+A cutting move (`G01`, `G02`, `G03`) that the evaluator runs before any `F`
+has been commanded since the main program started: once per program, at the first such cut,
+with the number of cuts after it that run without F too (and their lines). A macro analysed
+on its own gets its caller's feed, so it is not reported there.
+""",
+        why="""
+F is modal. With none given, the move runs at the feed an
+earlier program left, which no one chose for this cut, or, after power-on, with F zero, which
+stops the program with PS0011 FEED ZERO (COMMAND) at that block. (The power-on feed of
+parameter 1411 on some controls is not checked here.)
+""",
+        example="""
+```nc
+O0001 (FACE)
+G54 G90 G00 X0 Y0
+S1000 M03
+G01 Z-2.
+X100.
+M30
+```
+""",
+        fix="""
+Give F in the first cutting block (`G01 Z-2. F100.`), or before it.
+""",
+        not_reported="""
+Rapid moves (`G00`), threading and canned cycles, whose F is the
+lead or is given in the cycle block, cutting moves after a call of a program outside the
+analysed files, which may have commanded F, and each later cut without F as a warning of its
+own.
+""",
+    ),
+)
 
 
 def check(ctx: RuleContext) -> Iterator[Diagnostic]:

@@ -13,7 +13,7 @@ from __future__ import annotations
 import math
 from collections.abc import Iterator
 
-from ..diagnostics import Diagnostic, RuleInfo, Severity, make, register
+from ..diagnostics import Diagnostic, RuleDoc, RuleInfo, Severity, document, make, register
 from ..line_maps import LineMap
 from ..per_line import PerLine
 from ..syntax.linear import expr_text
@@ -26,6 +26,50 @@ register(
     RuleInfo("MB504", "trig-radians", Severity.WARNING,
              "SIN, COS or TAN gets angles that look like radians; FANUC takes degrees.", FAMILY),
 )  # fmt: skip
+
+# What each rule above reports, why, an example, the fix and what it leaves out:
+# docs/rules.md is generated from it (python3 scripts/rules_doc.py).
+document(
+    RuleDoc(
+        "MB504",
+        reports="""
+`SIN`, `COS` or `TAN` of one variable whose values over the run look like
+radians: all within ±2π, a sweep of 0.5 or more in steps under 0.8, and either round numbers of
+degrees when read as radians (0.31416 is 18°) or a π in the assignments of the angle
+(`#16=#16+8.*3.14159/180.`). The message gives the range of the argument, the angles
+it would stand for, and how little the function's value moves in degrees.
+""",
+        why="""
+FANUC's trigonometric functions take degrees: an arc written
+in radians (18° to 162° as 0.314 to 2.827) is swept over under 3°, so every cut of a
+fitting-method program lands within a fraction of a millimetre instead of following the
+profile, and the part is cut wrong without any alarm.
+""",
+        example="""
+```nc
+O5001 (ARC FINISHING)
+#16=0.31416
+G00 X150. Z100.
+N5 G00 Z[50.+8.8*COS[#16]]
+X[100.-17.6*SIN[#16]]
+G32 Z-113. F25.
+G00 X140.
+#16=#16+0.13963
+IF[#16LE2.8275]GOTO5
+M30
+```
+""",
+        fix="""
+Write the angles in degrees (`#16=18.`, `#16=#16+8.`), or convert once
+(`#16=#16*57.29578`).
+""",
+        not_reported="""
+Small angles in degrees (a taper of 0.5° to 3° in steps of 0.5°:
+not round numbers of degrees as radians, no π in their assignments), arguments that are
+expressions rather than one variable, and functions run fewer than three times.
+""",
+    ),
+)
 
 TRIG = frozenset({"SIN", "COS", "TAN"})
 _PI_LIKE = (math.pi, 2 * math.pi, math.pi / 2, math.pi / 180, 180 / math.pi)

@@ -6,7 +6,7 @@ from bisect import bisect_left, bisect_right
 from collections.abc import Iterator
 from typing import cast
 
-from ..diagnostics import Diagnostic, Related, RuleInfo, Severity, make, register
+from ..diagnostics import Diagnostic, Related, RuleDoc, RuleInfo, Severity, document, make, register
 from ..per_line import PerLine
 from ..program.index import Jump, Program
 from ..syntax.parser import statements_of
@@ -25,6 +25,145 @@ register(
     RuleInfo("MB104", "goto-bad-target", Severity.ERROR,
              "GOTO target that is not a whole number from 1 to 99999.", FAMILY),
 )  # fmt: skip
+
+# What each rule above reports, why, an example, the fix and what it leaves out:
+# docs/rules.md is generated from it (python3 scripts/rules_doc.py).
+document(
+    RuleDoc(
+        "MB101",
+        reports="""
+`GOTO n` or `IF [...] GOTO n` with a constant `n` whose sequence number
+`Nn` is not in the same O program. Labels of other programs in the same file do not count:
+a `GOTO` only searches its own program.
+""",
+        why="""
+When the jump is taken, the control raises PS0128 ILLEGAL
+MACRO SEQUENCE NUMBER and stops. A conditional jump may be taken only on the last pass of a
+loop or for one size of part, so the program can run correctly many times and then stop in the
+middle of a part.
+""",
+        example="""
+```nc
+O3003 (HELICAL HOLE)
+#1=#1+#3
+IF[#1LT#2]GOTO1
+M99
+```
+""",
+        fix="""
+Add the missing `Nn` where the jump should land, or correct the number in the
+`GOTO`.
+""",
+        not_reported="""
+A computed target (`GOTO#1`), which the evaluator checks when it
+runs (MB704), an `M99 P` return (MB704), a target that is not a whole number from 1 to 99999
+(MB104), and a missing label in a program that goes on past the part of a big file the
+analysis reads (MB013): the label may be in the unread part.
+""",
+    ),
+    RuleDoc(
+        "MB102",
+        reports="""
+A `GOTO` to a sequence number that stands more than once in the program,
+when the copy the control jumps to is not the one the text suggests. The control searches
+forward from the block after the `GOTO` to the end of the program, then from its head, and
+takes the first `Nn` it meets. The text suggests the first copy after a jump that looks
+forward, and the nearest copy before a loop back. A jump looks back when a copy stands before
+it and either no copy stands after it, or the jump is on the copy's own block (a wait loop,
+`N1 IF [#1000 EQ 0] GOTO1`), or a variable the jump tests (for a bare `GOTO`, the test on the
+copy's block) is assigned between that copy and the jump: a counter stepped in the loop. It is
+reported too when the copy the control finds is dead code: the evaluator ran the program to
+its end with every branch decided, and no run reached that copy (an old block left after
+`M30`). The message says where the jump lands, which copy was likely meant, and why.
+""",
+        why="""
+The jump goes to another block than the programmer meant. A
+block copied with its N number can turn a retract into another cutting pass, or a loop into a
+jump past the retract: wrong part, or a tool driven into the work.
+""",
+        example="""
+```nc
+O2001 (ROUGH TURN)
+N10 G00 X#1 Z2.
+#1=#1-4.
+IF[#1GT40.]GOTO10
+N10 G00 X100. Z100.
+M30
+```
+""",
+        fix="""
+Give every jump target a sequence number that stands once in the program.
+""",
+        not_reported="""
+A duplicated N that lands as the text suggests: a forward jump to
+the next copy after it (sections that each end at their own `N20`, a `GOTO77` just before its
+`N77`), whatever other copies stand elsewhere. Sequence numbers that no `GOTO` uses (a `G70 P Q`
+range, an operator's restart point), which may repeat freely. Computed targets (`GOTO#1`),
+whose copy is known only at run time. Without the evaluator's facts, or when a branch was
+undecided, nothing is called dead code.
+""",
+    ),
+    RuleDoc(
+        "MB103",
+        reports="""
+A `GOTO` from outside a `WHILE ... DOm` / `ENDm` range to a block inside
+it. Jumping out of a loop, or within one loop, is allowed and not reported.
+""",
+        why="""
+FANUC forbids branching into a loop: the control did not run
+the `WHILE` block, so it meets an `ENDm` whose `DOm` it never entered. Depending on the
+control this raises a loop alarm or gives a loop that does not behave as written: passes are
+skipped or repeated, and the tool position after the loop is not the one the programmer
+expected.
+""",
+        example="""
+```nc
+O3002 (GROOVE PASSES)
+IF[#19GT0]GOTO20
+WHILE[#1LT#18]DO1
+N20 G01 X[50.-#1*2.] F0.1
+#1=#1+1.
+END1
+M30
+```
+""",
+        fix="""
+Jump to a block before the `WHILE`, or restructure with a second loop or a flag
+tested in the loop condition.
+""",
+        not_reported="""
+Jumps out of a loop, within one loop, and from an inner loop to its
+outer loop; a jump into a `DO` whose `END` is missing (MB201 says so); computed targets. The
+block checked is the one the control's search finds (MB102 says when a duplicated N moves it).
+""",
+    ),
+    RuleDoc(
+        "MB104",
+        reports="""
+A constant `GOTO` target that is not a whole number from 1 to 99999:
+`GOTO0`, `GOTO100000`, `GOTO1.5`, `GOTO-5`.
+""",
+        why="""
+The control raises PS0128 ILLEGAL MACRO SEQUENCE NUMBER when
+the jump is taken, and the program stops there.
+""",
+        example="""
+```nc
+O9002 (DISPATCH)
+IF[#3EQ2]GOTO1.5
+GOTO0
+M99
+```
+""",
+        fix="""
+Use a whole sequence number from 1 to 99999 that stands in the program.
+""",
+        not_reported="""
+A whole target written with a decimal point (`GOTO10.`): the value
+is 10. Computed targets: the evaluator checks their values when it runs (MB704).
+""",
+    ),
+)
 
 
 def check(ctx: RuleContext) -> Iterator[Diagnostic]:

@@ -6,7 +6,17 @@ from bisect import bisect_left
 from collections.abc import Iterable, Iterator
 from typing import NamedTuple, cast
 
-from ..diagnostics import Diagnostic, Related, RuleInfo, Severity, line_list, make, register
+from ..diagnostics import (
+    Diagnostic,
+    Related,
+    RuleDoc,
+    RuleInfo,
+    Severity,
+    document,
+    line_list,
+    make,
+    register,
+)
 from ..line_maps import LineMap
 from ..per_line import PerLine
 from ..program.index import Call as IndexCall
@@ -46,6 +56,232 @@ register(
     RuleInfo("MB407", "program-not-ended", Severity.WARNING,
              "An O program with no M30, M02 or M99: it runs off its end.", FAMILY),
 )  # fmt: skip
+
+# What each rule above reports, why, an example, the fix and what it leaves out:
+# docs/rules.md is generated from it (python3 scripts/rules_doc.py).
+document(
+    RuleDoc(
+        "MB401",
+        reports="""
+An NC statement and a macro statement in the same block:
+`G01 X#1 #1=#1-2.`, `G00 Z2. GOTO20`, `#2=0 G00 X100.`.
+""",
+        why="""
+FANUC raises PS0127 DUPLICATE NC,MACRO STATEMENT and stops at
+the block. Controls that accept it (Haas, LinuxCNC) do not agree on the order in which the two
+parts run, so even there the value used by the move is uncertain.
+""",
+        example="""
+```nc
+O2008 (FACING PASSES)
+N10 G01 X#1 #1=#1-2.
+M30
+```
+""",
+        fix="""
+Put the macro statement in its own block, before or after the NC block as
+intended.
+""",
+        not_reported="""
+A sequence number, a block skip `/` or a comment beside a macro
+statement (`N10 #1=5`, `/#2=0 (SKIP)`), `IF [...] THEN` with one assignment, and NC blocks whose
+words are variables or expressions (`G01 X#1 Z[#2-1.]`): those are NC statements.
+""",
+    ),
+    RuleDoc(
+        "MB402",
+        reports="""
+`G`, `L`, `N`, `O` or `P` used as an argument of `G65`/`G66`:
+`G65 P9010 A10. G01.`. `P` (the program) and `L` (the repeat count) are not arguments; `G` is
+allowed only with `G66.1`.
+""",
+        why="""
+These letters cannot pass a value to the macro: `G` raises
+PS0129 USE 'G' AS ARGUMENT, and the others are read as the call's own program number, repeat
+count or sequence number. The macro never receives the value, and the call stops or runs with
+another value than the one written.
+""",
+        example="""
+```nc
+O1002 (POCKET CALL)
+G65 P9010 A10. B20. G01.
+M30
+```
+""",
+        fix="""
+Pass the value through another letter (`A`–`Z` except `G L N O P`) and read the
+matching local in the macro (`D` → `#7`, `E` → `#8`, ...).
+""",
+        not_reported="""
+`G` in a `G66.1` block (it is a word of the block, passed as an
+argument), the call's own `P` and `L`, and `M98`, which takes no arguments.
+""",
+    ),
+    RuleDoc(
+        "MB403",
+        reports="""
+`M98 P`, `G65 P`, `G66 P` or `G66.1 P` with a constant program number that
+is in neither the file nor the other files checked with it (a folder or the files given together
+on the command line, the open workspace in the editor). `M98 P0013331` is read as one call of
+O3331. A file without an O line whose name is a program number (`O8501.NC`, see MB010) holds
+that program. Each missing program is reported once, at its first call; the message counts the
+calls and lists the other lines.
+""",
+        why="""
+If the program is not in the control's memory either, the
+call raises PS0076 PROGRAM NOT FOUND and the program stops there. It is a warning because the
+called program often is on the control (a probing or tool-change macro) but not beside the
+file.
+""",
+        example="""
+```nc
+O1000 (MAIN)
+M98 P2000
+M30
+```
+""",
+        fix="""
+Check the called program in the same run (`fanuc-macro check main.nc subs/`),
+correct the number, or disable the rule for programs that live only on the control.
+""",
+        not_reported="""
+Calls whose program number is computed (`M98 P#1`: the evaluator
+reports where it leads, MB706), Haas `M97` (MB002), and each further call of a program already
+reported. Programs the control calls through parameters (custom G and M codes calling
+O9010–O9029, a T code calling O9000), which are not calls in the text. A program in another
+file of the workspace, or of the files given together, or a file without an O line named by
+the number. Nothing, in a file read only in part (MB013): the program may be in the unread part.
+""",
+    ),
+    RuleDoc(
+        "MB404",
+        reports="""
+A `G65`/`G66` argument of a length or angle address written as a number
+without a decimal point: `A10`, `Z-10`, `R5` (the letters A B C I J K Q R U V W X Y Z).
+""",
+        why="""
+Without a decimal point the value passed to the macro is
+counted in least input increments: with metric IS-B, `A10` arrives as `0.01`, not `10.`,
+unless calculator-type decimal point input (parameter 3401#0) is set. A depth of `Z10` becomes
+0.01 mm on one machine and 10 mm on the next: an air cut, or a tool driven 10 mm into the part.
+""",
+        example="""
+```nc
+O0001 (DRILL CALL)
+G65 P9001 A10 B2.5 Z-10.
+M30
+```
+""",
+        fix="""
+Write every argument with a decimal point: `A10.`, `Z-10.`, `R5.`.
+""",
+        not_reported="""
+A zero (`X0` is 0 in any increment); `S`, `T`, `M`, `D` and
+`H`, which take whole numbers, and `F`, counted in mm/min whatever the increment (FANUC: the
+units of an argument without a decimal point are the least input increment of its address);
+`E`, whose increment is not settled (`G65 P3001 E41` passes the G code 41 to a `G#8`);
+arguments given by variables or expressions (`A#1`, `B[10]`), which carry their value as it
+is; the words of `M98` and a `G66.1` block's own G codes, which are not arguments.
+""",
+    ),
+    RuleDoc(
+        "MB405",
+        reports="""
+An `L` repeat count outside 1–9999 on `M98`/`G65` (`L0`, `L10000`, also the
+leading digits of `M98 P<rrrr><pppp>`), or a call without `P`.
+""",
+        why="""
+The control rejects the block with an alarm, and without `P`
+there is no program to call. A repeat count of 0 intended to skip the call does not do so on
+every control.
+""",
+        example="""
+```nc
+O0010 (BOLT CIRCLE)
+M98 P0011 L0
+M98 L2
+M30
+```
+""",
+        fix="""
+Give `P` and a repeat count from 1 to 9999; skip the call with `IF [...] GOTO`
+instead of `L0`.
+""",
+        not_reported="""
+A repeat count computed at run time (`L#2`) or not written (one
+run; a `G66` without `L` calls the macro after each move).
+""",
+    ),
+    RuleDoc(
+        "MB406",
+        reports="""
+A `G66` or `G66.1` modal call with no `G67` after it in the same O
+program.
+""",
+        why="""
+After `G66 P...`, the control calls the macro after every
+block that moves an axis, until `G67`. FANUC requires the `G66` and its `G67` in one program.
+Without the `G67`, the retract and the moves to the tool change at the end of the program each
+call the macro too: a hole is drilled at the retract position, or the pattern is repeated
+where no part is.
+""",
+        example="""
+```nc
+O0001 (DRILL PATTERN)
+G66 P1001 Z-5. R2. F100.
+X50. Y0
+X100. Y0
+G00 Z100.
+M30
+O1001
+G81 Z#26 R#18 F#9
+M99
+```
+""",
+        fix="""
+Put `G67` after the last block that should call the macro (here before
+`G00 Z100.`).
+""",
+        not_reported="""
+A `G66` whose `G67` stands later in the same program, on any
+path; a `G67` without `G66`; a program that goes on past the part of a big file the analysis
+reads (MB013), whose `G67` may stand in the unread part.
+""",
+    ),
+    RuleDoc(
+        "MB407",
+        reports="""
+An O program with no `M30`, `M02` or `M99` anywhere in it, whose last block
+is not a jump or a `#3000` alarm. When the next O number cuts it off, it is reported on that O
+line (a second O number in the middle of a program); otherwise on the program's last block.
+""",
+        why="""
+A subprogram without `M99` never returns to its caller: the
+blocks after the `M98` or `G65` (the retract, the spindle stop) are not run. An O number typed
+in the middle of a program splits it into two when the file is loaded: the first part stops
+without an end, the second runs without the setup of the first.
+""",
+        example="""
+```nc
+O0201 (POCKET)
+G54 G90 G00 X0 Y0
+S1000 M03
+O0202
+G01 Z-5. F100.
+M30
+```
+""",
+        fix="""
+End every program with `M30` (main program) or `M99` (subprogram or macro);
+delete an O number that does not start a program of its own.
+""",
+        not_reported="""
+Text before the first O number (MB010 speaks of it), programs
+that end with `GOTO` or `#3000=n`, and a program that goes on past the part of a big file the
+analysis reads (MB013): its end is in the unread part.
+""",
+    ),
+)
 
 
 # "The units used for argument data passed without a decimal point correspond to the least

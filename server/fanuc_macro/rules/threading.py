@@ -12,7 +12,7 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
-from ..diagnostics import Diagnostic, Related, RuleInfo, Severity, make, register
+from ..diagnostics import Diagnostic, Related, RuleDoc, RuleInfo, Severity, document, make, register
 from ..evaluator.facts import Motion
 from ..evaluator.values import fmt_address
 from ..threads.geometry import SIN60
@@ -32,6 +32,180 @@ register(
     RuleInfo("MB809", "deviation-sign", Severity.WARNING,
              "es or EI entered with its sign where the module adds it as a magnitude.", FAMILY),
 )  # fmt: skip
+
+# What each rule above reports, why, an example, the fix and what it leaves out:
+# docs/rules.md is generated from it (python3 scripts/rules_doc.py).
+document(
+    RuleDoc(
+        "MB801",
+        reports="""
+A threading pass (`G32`, `G92`, a pass of `G76`) whose X goes past the root
+of the thread being cut: deeper than the X that keeps the pitch diameter inside the thread's
+class with the tool's nose radius (d2 min − H + 2r outside, D2 max + H − 2r inside; see "How
+the threading rules know the thread"). The message names the pass, its X, the root X and by
+how much, and where the thread was known from. It is reported once per thread, at the first
+pass too deep.
+""",
+        why="""
+The thread comes out too deep: the pitch diameter of an
+external thread is undersize (an internal one oversize), the thread fails its gauge, and the
+part is scrap. The last passes also load the full flank of the insert.
+""",
+        example="""
+```nc
+O1001 (EXTERNAL THREAD M20X2.5)
+G97 S500 M03
+G00 X22. Z5.
+G92 X19.5 Z-30. F2.5
+X19.1
+X18.7
+X18.3
+X17.9
+X17.5
+X17.1
+X16.8
+X16.5
+G00 X100. Z100.
+M30
+```
+""",
+        fix="""
+Stop at the root of the class (here X16.624 for M20x2.5-6g with a 0.3125
+nose radius: d2 min 18.164 − H + 2r), or correct the thread height the passes are computed
+from (MB808 says which term when a module computes it).
+""",
+        not_reported="""
+Passes of a thread whose size is not known (no designation, no
+module, no comment names it), of a taper cut, of an arc thread by the fitting method, or of a
+trapezoidal, pipe or inch thread: there is no ISO metric profile to compare with. A class not
+written is ISO 965-1's medium class (6g / 6H); a class not known at all is the loosest of the
+tables, so a pass between a tight class's root and the loosest one's is not reported.
+""",
+    ),
+    RuleDoc(
+        "MB802",
+        reports="""
+The first threading pass of a thread is deeper (radius, from the crest:
+the nominal diameter outside, D1 inside) than the whole height of the thread down to its root.
+""",
+        why="""
+The whole profile, or more, is cut in one pass: the insert
+takes the full load on both flanks and usually breaks; the thread is torn. It is almost always a
+final diameter typed where the first pass belongs.
+""",
+        example="""
+```nc
+O1002 (EXTERNAL THREAD M20X2.5)
+G97 S500 M03
+G00 X22. Z5.
+G92 X16.0 Z-30. F2.5
+G00 X100. Z100.
+M30
+```
+""",
+        fix="""
+Start with a light pass and reach the full depth in steps (G76 computes them),
+or correct the first X.
+""",
+        not_reported="""
+A first pass that is deep but within the height (MB804 reports a
+pass deeper than the configured maximum), and threads that are not identified (see MB801).
+""",
+    ),
+    RuleDoc(
+        "MB808",
+        reports="""
+A thread module's own thread height (the variable its last pass is cut
+to: `#4` of `X[#100-2.*#4]`) that differs from the height the standard and seed paper 000's
+formula give for the identified thread, 7H/8 − r + es/2 + Td2/4 outside or 6H/8 − r + EI/2 +
+TD2/4 inside (es and Td2 of the class, r the program's nose radius), by more than a quarter of
+Td2: enough to put the pitch diameter outside the class. The message gives the expected
+height, the difference, the pitch diameter that results, and the term of the formula that
+differs (`#103 is taken ×2 where the formula has es/2`), or the input that is not the class's
+(`#104 = 0.7 where M50x3-5g6g's Td2 is 0.17`); it stands at the formula, or at that input.
+""",
+        why="""
+Every pass is computed from the height: a typo in the formula
+moves the whole thread, and the gauge shows it only after the part is cut.
+""",
+        example="""
+```nc
+O4001 (M30X2)
+G97 S600 M03
+G00 X32. Z5.
+#100=30.
+#101=2.
+#103=0.038
+#104=0.170
+M98 P3001
+M30
+O3001
+#3=#101/[8*SIN[60]]
+#4=[7./8.]*SIN[60]*#101-#3+#103*2.+#104/4.
+#9=0.15
+N10 G92 X[#100-2.*#9] Z-30. F#101
+#9=#9+0.15
+IF[#9LT#4]GOTO10
+G92 X[#100-2.*#4] Z-30. F#101
+M99
+```
+""",
+        fix="""
+Correct the term the message names (here `#103/2.`), or the input.
+""",
+        not_reported="""
+A height within a quarter of Td2 of the standard's: that is the
+tuning seed paper 000 leaves to `#103` (coarse) and `#104` (fine). Heights of hand-written
+pass lists (only MB801 checks their depth), and threads whose class is not known.
+""",
+    ),
+    RuleDoc(
+        "MB809",
+        reports="""
+A thread module whose height adds the fundamental deviation (es, or EI)
+with a coefficient of +1/2, fed with a signed value that makes the thread shallower: es
+entered as ISO 965-1 writes it (`#103=-0.048`) where the module expects its magnitude (seed
+paper 000, table 2: `0.048` for es = −0.048), or a negative EI, which no internal class has. It
+stands at the assignment of the value.
+""",
+        why="""
+The height loses |es| instead of gaining it: the thread is
+cut |es| (radius) shallower than its class, its pitch diameter stays above d2 max and the ring
+gauge does not go on.
+""",
+        example="""
+```nc
+O4003 (M30X2-6G)
+G97 S600 M03
+G00 X32. Z5.
+#100=30.
+#101=2.
+#103=-0.038
+#104=0.170
+M98 P3003
+M30
+O3003
+#3=#101/[8*SIN[60]]
+#4=[7./8.]*SIN[60]*#101-#3+#103/2.+#104/4.
+#9=0.15
+N10 G92 X[#100-2.*#9] Z-30. F#101
+#9=#9+0.15
+IF[#9LT#4]GOTO10
+G92 X[#100-2.*#4] Z-30. F#101
+M99
+```
+""",
+        fix="""
+Enter the magnitude (`#103=0.038`), or change the module to subtract es
+(`-#103/2.`) if signed values are the shop's habit.
+""",
+        not_reported="""
+A module that takes es with its sign (`-#103/2.` fed
+`-0.048`): the height is right. When this rule fires, MB808 is not reported for the same
+thread.
+""",
+    ),
+)
 
 EPS = 0.0005  # half the least input increment (IS-B, mm)
 

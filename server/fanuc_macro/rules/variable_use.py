@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
-from ..diagnostics import Diagnostic, RuleInfo, Severity, make, register
+from ..diagnostics import Diagnostic, RuleDoc, RuleInfo, Severity, document, make, register
 from ..evaluator.facts import DocumentFacts
 from ..evaluator.machine import compiled
 from ..line_maps import LineMap
@@ -27,6 +27,135 @@ register(
              "A program ending with M30 or M02 reads locals before setting them: it is "
              "analysed as a macro with unknown arguments.", FAMILY),
 )  # fmt: skip
+
+# What each rule above reports, why, an example, the fix and what it leaves out:
+# docs/rules.md is generated from it (python3 scripts/rules_doc.py).
+document(
+    RuleDoc(
+        "MB901",
+        reports="""
+A local variable (`#1`–`#33`) read while vacant when another program calls
+this one: the program never assigns it, its `G65` caller does not pass it as an argument (or,
+with `M98`, the caller never sets it), and the program does not test it against `#0` first. It
+is reported once per variable and program, at the first read.
+""",
+        why="""
+A vacant variable counts as 0 in arithmetic and removes the
+word from an NC block: `G00 X#1 Z#2` with `#2` vacant moves X only, and `Z[#2-5.]` goes to
+Z-5. The tool goes somewhere the programmer did not compute.
+""",
+        example="""
+```nc
+O9011 (MAIN)
+G65 P9012 X10.
+M30
+O9012 (MOVE)
+G00 X#24 Z#26
+M99
+```
+""",
+        fix="""
+Assign the variable, pass it as an argument (here `Z`), or check it with
+`IF [#26 EQ #0] GOTO ...` and raise a `#3000` alarm.
+""",
+        not_reported="""
+A local the program assigns anywhere (even in a block that does
+not parse), one a caller passes as an argument (any caller in the analysed files), one tested
+against `#0` before it is read, and the locals of a program that nothing in the analysed files
+calls: it runs with unknown arguments, not vacant ones. That includes a program ending with
+`M30` that reads locals before setting them (MB904 says it is taken for a macro). A vacant
+local passed on as a `G65` argument is no read: the argument is simply not given.
+""",
+    ),
+    RuleDoc(
+        "MB902",
+        reports="""
+An indirect assignment `#[...] = ...` whose index, when the program runs,
+is `#0` or a read-only system variable. Direct assignments are MB304's.
+""",
+        why="""
+The control raises PS0116 WRITE PROTECTED VARIABLE and stops
+at the block, often part-way through a table being filled.
+""",
+        example="""
+```nc
+O9021 (CLEAR A TABLE)
+#1=5021.
+#[#1]=0
+M30
+```
+""",
+        fix="""
+Check the index range of the table (the first and last values of the index).
+""",
+        not_reported="""
+Direct assignments (`#5021=0`, MB304), and indexes the analysis
+cannot compute (a common variable set elsewhere): only values it knows are judged.
+""",
+    ),
+    RuleDoc(
+        "MB903",
+        reports="""
+An indirect variable `#[...]` (read or written) whose index, when the
+program runs, is a variable number that does not exist (for example `#34`–`#99`).
+""",
+        why="""
+The control raises PS0115 VARIABLE NO. OUT OF RANGE and stops
+at the block.
+""",
+        example="""
+```nc
+O9031 (PROBE TABLE)
+#1=50.
+#2=#[#1]
+M30
+```
+""",
+        fix="""
+Correct the base of the index (`#[#1+100]`) or the range of the loop that
+computes it.
+""",
+        not_reported="""
+Direct variable numbers (`#50`, MB302) and indexes the analysis
+cannot compute.
+""",
+    ),
+    RuleDoc(
+        "MB904",
+        reports="""
+A program that ends as a main program does (`M30`, `M02`) but reads local
+variables before any block of it sets them, when nothing in the analysed files calls it. It is
+analysed as a macro called by `G65` from a program elsewhere: its locals are unknown arguments,
+not vacant, and the caller's feed is unknown. Reported once per program, at the first such
+read; the message lists the locals with their argument letters.
+""",
+        why="""
+Probe and cycle macros are often saved with `M30` and called
+with `G65`; then their `IF [#26 EQ #0]` argument checks pass or fail with the caller's values,
+and the analysis must not pretend they fail. But if the program is run from cycle start as a
+main program, those locals are vacant: `G00 X#24` moves no X, `Z[#26-5.]` goes to Z-5.
+""",
+        example="""
+```nc
+O9041 (BORE)
+IF[#26EQ#0]GOTO90
+G01 Z#26 F#9
+M30
+N90 #3000=1(Z IS NEEDED)
+M30
+```
+""",
+        fix="""
+Nothing, if the program is a macro. If it is a main program, set the locals
+before reading them (`#26=-5.`); if it is a macro, end it with `M99`.
+""",
+        not_reported="""
+Programs ending with `M99` (they are analysed as macros anyway),
+programs another analysed program calls (their caller's arguments are used), and locals the
+program sets before it reads them.
+""",
+    ),
+)
 
 ARGUMENT_LETTER = {n: letter for letter, n in ARGUMENT_VARIABLES.items()}
 

@@ -1,0 +1,62 @@
+"""docs/rules.md, written from docs/rules-intro.md and the ``RuleDoc`` beside each rule.
+
+The intro holds the general sections (the families, suppressing and disabling a rule, how the
+evaluator runs a program, how the threading rules know the thread); then comes one section per
+registered code, in code order, headed ``## MBxxx name``: the language server links each
+diagnostic to that heading's anchor (lsp/convert.py), so the heading form must not change.
+``scripts/rules_doc.py`` writes the file or, with ``--check``, says whether it is stale.
+"""
+
+from __future__ import annotations
+
+from . import analysis  # noqa: F401  (importing it registers every rule and its documentation)
+from .diagnostics import RULE_DOCS, RULES, RuleDoc, RuleInfo
+
+GENERATED = """\
+<!-- Generated: do not edit. Each rule's section comes from the RuleDoc beside its registration
+(server/fanuc_macro/rules/*.py, MB000 in analysis.py), the sections before them from
+docs/rules-intro.md. Edit those, then run `python3 scripts/rules_doc.py`. -->
+
+"""
+
+# The parts of a section, in their order, with their bold labels.
+PARTS: tuple[tuple[str, str], ...] = (
+    ("reports", "What it reports."),
+    ("why", "Why it matters on the machine."),
+    ("example", "Example."),
+    ("fix", "How to fix."),
+    ("not_reported", "What it does not report."),
+)
+
+
+def part_texts(doc: RuleDoc) -> dict[str, str]:
+    """Each part of a rule's documentation, without the blank lines around it."""
+    return {name: str(getattr(doc, name)).strip("\n") for name, _label in PARTS}
+
+
+def missing_docs() -> list[str]:
+    """The registered codes without documentation, and the documented codes not registered."""
+    return sorted(set(RULES) ^ set(RULE_DOCS))
+
+
+def section(info: RuleInfo, doc: RuleDoc) -> str:
+    severity = info.severity.value + (f"; {doc.severity_note}" if doc.severity_note else "")
+    lines = [f"## {info.code} {info.name}", "", f"**Severity:** {severity}", ""]
+    texts = part_texts(doc)
+    for name, label in PARTS:
+        text = texts[name]
+        # A part that opens with a code block starts on its own line after the label.
+        lines.append(f"**{label}**" + ("\n\n" if text.startswith("```") else " ") + text)
+        lines.append("")
+    return "\n".join(lines)
+
+
+def render(intro: str) -> str:
+    """The text of docs/rules.md: the intro, then each registered rule's section."""
+    missing = missing_docs()
+    if missing:
+        raise ValueError(
+            f"codes registered without a RuleDoc, or documented unregistered: {missing}"
+        )
+    sections = [section(RULES[code], RULE_DOCS[code]) for code in sorted(RULES)]
+    return GENERATED + intro.rstrip("\n") + "\n\n" + "\n".join(sections)
