@@ -16,9 +16,9 @@ from collections.abc import Iterator
 from ..diagnostics import Diagnostic, RuleDoc, RuleInfo, Severity, document, make, register
 from ..line_maps import LineMap
 from ..per_line import PerLine
-from ..syntax.linear import expr_text
 from ..syntax.tree import Call, Num, ParsedLine, Span, Var
 from ..syntax.walk import subexpressions, top_expressions
+from ..threads.linear import expr_text
 from .context import RuleContext, line_statements
 
 FAMILY = "math-domain"

@@ -15,10 +15,10 @@ from itertools import pairwise
 from ..diagnostics import Diagnostic, Related, RuleDoc, RuleInfo, Severity, document, make, register
 from ..evaluator.facts import DocumentFacts, Motion
 from ..program.index import Program
-from ..syntax.linear import expr_text
 from ..syntax.tree import Call, Var
 from ..syntax.walk import subexpressions
 from ..threads.identify import Thread
+from ..threads.linear import expr_text
 from ..threads.module_shape import assignment, word, writes_of
 from .context import RuleContext
 from .threading import EPS, mm, pass_name, width

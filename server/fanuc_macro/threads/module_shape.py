@@ -21,7 +21,6 @@ from ..evaluator.facts import DocumentFacts, RunValues
 from ..line_maps import LineMap
 from ..per_line import PerLine
 from ..program.index import Program, ProgramIndex
-from ..syntax.linear import Linear, linear_form
 from ..syntax.parser import statements_of
 from ..syntax.tree import (
     Assign,
@@ -38,6 +37,7 @@ from ..syntax.tree import (
 from ..syntax.walk import subexpressions, top_expressions
 from .geometry import SIN60, TAN30
 from .jobs import ThreadJob
+from .linear import Linear, linear_form
 
 D1_FACTOR = 2.0 * 5.0 / 8.0 * SIN60  # D1 = D - 1.0825 P
 

@@ -13,7 +13,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from ..evaluator.compiler import constant_of
-from .tree import Binary, Bracket, Call, Expr, Num, Unary, Var
+from ..syntax.tree import Binary, Bracket, Call, Expr, Num, Unary, Var
 
 Term = int | str  # a variable number, or the text of a part that is not linear
 
