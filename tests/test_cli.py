@@ -525,3 +525,67 @@ def test_a_cam_file_without_f_gets_one_feed_warning(tmp_path: Path) -> None:
         "49 more cuts run without F after it (lines 5, 6, 7, 8, 9, 10, 11, 12, ...)"
         in (warning["message"])
     )
+
+
+# ---- hover and definition: the editor's answers on the command line ---------------------------
+
+CALLER = (
+    "%\nO1000 (MAIN)\n#1=2.5 (直径)\nG01 (进给) X#1 F0.2\nM98 P2000\nIF[#1GT0]GOTO20\nN20 M30\n%\n"
+)
+CALLED = "%\nO2000 (SUB)\nG00 X0\nM99\n%\n"
+
+
+def test_hover_prints_the_editors_hover_text(tmp_path: Path) -> None:
+    from fanuc_macro.analysis import analyse
+    from fanuc_macro.config import Config
+    from fanuc_macro.ide.hover import hover
+    from fanuc_macro.ide.view import View
+
+    write(tmp_path / "main.nc", CALLER)
+    column = CALLER.splitlines()[3].index("#1") + 1  # in characters, after the Chinese comment
+    result = run(tmp_path, "hover", "main.nc", "4", str(column))
+    assert result.returncode == 0, result.stderr
+    config = Config()
+    expected = hover(View("main.nc", analyse(CALLER, "main.nc", config), config), 3, column - 1)
+    assert expected is not None
+    assert result.stdout == expected.markdown + "\n"
+    assert "**#1**" in result.stdout and "Value here: **2.5**" in result.stdout
+    shown = run(tmp_path, "hover", "main.nc", "4", str(column), "--format", "json")
+    assert shown.returncode == 0, shown.stderr
+    record = json.loads(shown.stdout)
+    assert record["markdown"] == expected.markdown
+    assert (record["path"], record["line"], record["column"]) == ("main.nc", 4, column)
+    assert record["end_column"] == column + 2
+
+
+def test_hover_of_nothing_exits_1(tmp_path: Path) -> None:
+    write(tmp_path / "main.nc", CALLER)
+    empty = run(tmp_path, "hover", "main.nc", "1", "1")  # the "%"
+    assert empty.returncode == 1 and empty.stdout == ""
+    assert "nothing there: main.nc:1:1" in empty.stderr
+    as_json = run(tmp_path, "hover", "main.nc", "1", "1", "--format", "json")
+    assert as_json.returncode == 1 and json.loads(as_json.stdout) is None
+    missing = run(tmp_path, "hover", "nope.nc", "1", "1")
+    assert missing.returncode == 2 and "no such file" in missing.stderr
+    zero = run(tmp_path, "hover", "main.nc", "0", "1")
+    assert zero.returncode == 2 and "not a positive whole number" in zero.stderr
+
+
+def test_definition_prints_path_line_column(tmp_path: Path) -> None:
+    write(tmp_path / "main.nc", CALLER)
+    write(tmp_path / "lib" / "sub.nc", CALLED)
+    call = CALLER.splitlines()[4].index("P2000") + 2
+    found = run(tmp_path, "definition", "main.nc", "5", str(call), "--with", "lib")
+    assert found.returncode == 0, found.stderr
+    assert found.stdout == f"{Path('lib') / 'sub.nc'}:2:1\n"
+    alone = run(tmp_path, "definition", "main.nc", "5", str(call))  # O2000 is in no file given
+    assert alone.returncode == 1 and alone.stdout == ""
+    jump = CALLER.splitlines()[5].index("GOTO") + 1
+    label = run(tmp_path, "definition", "main.nc", "6", str(jump), "--format", "json")
+    assert label.returncode == 0, label.stderr
+    assert json.loads(label.stdout) == [
+        {"path": "main.nc", "line": 7, "column": 1, "end_line": 7, "end_column": 4}
+    ]
+    variable = CALLER.splitlines()[3].index("#1") + 1
+    assigned = run(tmp_path, "definition", "main.nc", "4", str(variable))
+    assert assigned.stdout == "main.nc:3:1\n"

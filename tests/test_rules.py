@@ -383,12 +383,12 @@ def test_logic_operand_fixes(text: str, fixes: list[str]) -> None:
 
 
 def test_logic_operand_fix_must_keep_within_five_brackets() -> None:
-    from fanuc_macro.lsp.features import _acceptable_fix
+    from fanuc_macro.ide.actions import acceptable_fix
 
-    assert _acceptable_fix("IF [[#1 LT 0] AND [#2 LT 0]] GOTO 5 (OK [[[[[ ]]]]])", 1)
-    assert _acceptable_fix("IF [[ABS[[[#1]]] LT 0] AND [#2 LT 0]] GOTO 5", 1)  # five deep
-    assert not _acceptable_fix("IF [[ABS[[[[#1]]]] LT 0] AND [#2 LT 0]] GOTO 5", 1)  # six
-    assert not _acceptable_fix("IF [[#1 LT 0] AND [#2 LT 0] GOTO 5", 1)  # not closed
+    assert acceptable_fix("IF [[#1 LT 0] AND [#2 LT 0]] GOTO 5 (OK [[[[[ ]]]]])", 1)
+    assert acceptable_fix("IF [[ABS[[[#1]]] LT 0] AND [#2 LT 0]] GOTO 5", 1)  # five deep
+    assert not acceptable_fix("IF [[ABS[[[[#1]]]] LT 0] AND [#2 LT 0]] GOTO 5", 1)  # six
+    assert not acceptable_fix("IF [[#1 LT 0] AND [#2 LT 0] GOTO 5", 1)  # not closed
 
 
 def test_duplicate_label_dead_copy_needs_the_evaluator() -> None:

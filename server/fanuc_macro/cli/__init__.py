@@ -1,4 +1,4 @@
-"""The command line: ``fanuc-macro check``, ``trace`` and ``thread``."""
+"""The command line: ``fanuc-macro check``, ``trace``, ``thread``, ``hover`` and ``definition``."""
 
 from __future__ import annotations
 
@@ -234,6 +234,49 @@ def cmd_trace(args: argparse.Namespace) -> int:
     return EXIT_OK
 
 
+def cmd_hover(args: argparse.Namespace) -> int:
+    from .ide_commands import cmd_hover as hover
+
+    return hover(args, _config(args))
+
+
+def cmd_definition(args: argparse.Namespace) -> int:
+    from .ide_commands import cmd_definition as definition
+
+    return definition(args, _config(args))
+
+
+def _add_place_command(
+    sub: argparse._SubParsersAction[argparse.ArgumentParser],
+    logs: argparse.ArgumentParser,
+    name: str,
+    what: str,
+) -> argparse.ArgumentParser:
+    """A command about the place LINE COLUMN of FILE, as the editor's request of that name."""
+    command = sub.add_parser(
+        name,
+        parents=[logs],
+        help=f"print {what} at LINE COLUMN of FILE (1-based, as editors show them; "
+        "exit status 1 when there is none)",
+    )
+    command.add_argument("file", metavar="FILE")
+    command.add_argument("line", type=_whole, metavar="LINE")
+    command.add_argument("column", type=_whole, metavar="COLUMN")
+    command.add_argument(
+        "--with",
+        dest="with_files",
+        nargs="*",
+        metavar="PATH",
+        help="more files or folders with the programs it calls",
+    )
+    command.add_argument("--format", choices=("text", "json"), default="text")
+    command.add_argument("--controller", choices=CONTROLLERS, default="0i-TF")
+    command.add_argument("--disable", help=argparse.SUPPRESS)
+    _add_machine_options(command)
+    _add_analysis_options(command)
+    return command
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="fanuc-macro", description="Check FANUC Custom Macro B programs."
@@ -274,6 +317,11 @@ def build_parser() -> argparse.ArgumentParser:
     _add_machine_options(tr)
     _add_analysis_options(tr)
     tr.set_defaults(func=cmd_trace)
+
+    _add_place_command(sub, logs, "hover", "the hover text (markdown)").set_defaults(func=cmd_hover)
+    _add_place_command(
+        sub, logs, "definition", "where what is there is defined (PATH:LINE:COLUMN)"
+    ).set_defaults(func=cmd_definition)
 
     add_thread_command(sub)
     return parser

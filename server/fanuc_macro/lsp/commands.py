@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import asyncio
-import importlib
 import logging
 from typing import Any
 
@@ -13,7 +12,6 @@ log = logging.getLogger(__name__)
 
 TRACE = "fanuc-macro.trace"
 THREAD_MODULE = "fanuc-macro.threadModule"
-GENERATOR_MODULE = "fanuc_macro.threads.generator"
 
 
 def _uri_argument(args: tuple[Any, ...]) -> str | None:
@@ -73,19 +71,18 @@ async def run_thread_module(args: tuple[Any, ...]) -> dict[str, Any]:
     if isinstance(parsed, str):
         return {"error": parsed}
     designation, length, internal = parsed
+    from ..ide.thread_module import NoGenerator, load_generator
+
     try:
-        module = importlib.import_module(GENERATOR_MODULE)
+        generate = load_generator()
+    except NoGenerator as err:
+        return {"error": str(err)}
     except ModuleNotFoundError as err:
-        if err.name != GENERATOR_MODULE and not GENERATOR_MODULE.startswith(f"{err.name}."):
-            log.exception("the thread module generator cannot be imported")
-            return {"error": f"the thread module generator cannot be loaded: {err}"}
-        return {"error": "this version of fanuc-macro has no thread module generator yet"}
+        log.exception("the thread module generator cannot be imported")
+        return {"error": f"the thread module generator cannot be loaded: {err}"}
     except Exception as err:
         log.exception("the thread module generator cannot be imported")
         return {"error": f"the thread module generator cannot be loaded: {err!r}"}
-    generate = getattr(module, "generate_module", None)
-    if not callable(generate):
-        return {"error": f"{GENERATOR_MODULE} has no generate_module function"}
     try:
         text = await asyncio.to_thread(generate, designation, length, internal)
     except ValueError as err:  # a designation the generator does not accept: its message

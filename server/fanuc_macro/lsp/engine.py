@@ -37,8 +37,7 @@ from .documents import OpenDocument
 
 if TYPE_CHECKING:  # the analysis is imported by the worker, after the server has started
     from ..analysis import Analysis
-    from ..program.index import ProgramIndex
-    from ..syntax.tree import Document
+    from ..ide.view import Document, ProgramIndex
     from ..workspace import Workspace
 
 log = logging.getLogger(__name__)

@@ -1,0 +1,408 @@
+"""Hover: what a variable, word, label, jump, loop, program or keyword is, and what the
+analysed runs did with it."""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+from ..evaluator.facts import ValueSummary
+from ..evaluator.values import fmt
+from ..program import knowledge
+from ..program.index import Program, constant_value
+from ..program.meanings import table_meaning
+from ..program.variables import ARGUMENT_VARIABLES, classify
+from ..syntax.lines import cut_comments
+from ..syntax.parser import statements_of
+from ..syntax.tree import Assign, Block, Num, ProgramStart, Word
+from ..threads.identify import describe as describe_thread
+from ..threads.identify import module_meanings
+from .data import Hover, Range
+from .locate import Hit, assignments_in, goto_target, number_of
+from .values import code, short_summary, substituted, times, variable_kind
+from .view import View, call_at, comment_of, first_comment
+
+ARGUMENT_LETTER = {n: letter for letter, n in ARGUMENT_VARIABLES.items()}
+
+
+def find_assignment(
+    view: View, program: Program | None, number: int, line: int
+) -> tuple[int, Assign] | None:
+    """The assignment of ``#number`` that explains it at ``line``: the last one before it in
+    the same program, else the first one after it."""
+    first, end = (program.first_line, program.end_line) if program else (0, len(view.doc.blocks))
+    before: tuple[int, Assign] | None = None
+    after: tuple[int, Assign] | None = None
+    for ln in range(first, min(end, len(view.doc.blocks))):
+        for statement in statements_of(view.doc.blocks[ln].statement):
+            for assign in assignments_in(statement):
+                if number_of(assign.target) != number:
+                    continue
+                if ln <= line:
+                    before = (ln, assign)
+                elif after is None:
+                    after = (ln, assign)
+    return before or after
+
+
+def hover_variable(view: View, block: Block, hit: Hit) -> str:
+    var = hit.var
+    assert var is not None
+    n = number_of(var)
+    line = block.line
+    if n is None:
+        return (
+            f"**{block.source(var.span).strip()}** — indirect variable: its number is "
+            "computed when the block runs."
+        )
+    kind = classify(n)
+    head = f"**#{n}** — {variable_kind(n)}"
+    letter = ARGUMENT_LETTER.get(n)
+    if letter is not None:
+        head += f" · G65 argument **{letter}**"
+    parts = [head]
+    meaning = kind.meaning + ("" if kind.verified else " (unverified)")
+    parts.append(f"*{meaning}*")
+    program = view.index.program_at(line)
+    table = table_meaning(view.index, program.number if program else None, n)
+    if table is None and program is not None:
+        table = _module_meaning(view, program, n)
+    if table is not None:
+        parts.append(table)
+    facts = view.facts
+    own = hit.assign
+    found = (line, own) if own is not None else find_assignment(view, program, n, line)
+    if found is not None:
+        a_line, a_assign = found
+        a_block = view.doc.blocks[a_line]
+        comment = comment_of(a_block)
+        where = "set here" if a_line == line else f"set at line {a_line + 1}"
+        text = f"{where}: {code(a_block.source(a_assign.span))}"
+        if comment:
+            text = f"**{comment}** — {text}"
+        parts.append(text)
+    if facts is None:
+        parts.append("No values: the evaluator did not run on this document.")
+        return "\n\n".join(parts)
+    if own is not None:
+        write = facts.writes.get(line)
+        if write is not None and write[0] == n:
+            written = write[1]
+            value = written.describe()
+            approx = short_summary(written)
+            shown = f"Value assigned: **{value}**"
+            if approx is not None and approx != value and written.count == 1:
+                shown += f" (≈ {approx})"
+            parts.append(shown)
+            formula = substituted(block, own, facts)
+            if formula is not None:
+                if written.count == 1 or written.constant:
+                    parts.append(f"```\n= {formula}\n= {fmt(written.first)}\n```")
+                else:
+                    parts.append(f"```\n= {formula}\n```")
+        elif not facts.runs.get(line):
+            parts.append(_not_run(view, line))
+        else:
+            parts.append("The assignment did not run (its condition was false).")
+        return "\n\n".join(parts)
+    summary = facts.reads.get((line, n))
+    if summary is not None:
+        value = summary.describe()
+        approx = short_summary(summary)
+        shown = f"Value here: **{value}**"
+        if approx is not None and approx != value and summary.count == 1:
+            shown += f" (≈ {approx})"
+        parts.append(shown)
+    elif not facts.runs.get(line):
+        parts.append(_not_run(view, line))
+    return "\n\n".join(parts)
+
+
+def _module_meaning(view: View, program: Program, number: int) -> str | None:
+    """The meaning of ``#number`` in a thread module recognised by its formulas (in the
+    module itself, or in the program whose values it was called with)."""
+    for thread in view.analysis.threads:
+        if thread.job.uri != view.key or thread.module is None:
+            continue
+        meaning = module_meanings(thread).get(number)
+        if meaning is None:
+            continue
+        inside = thread.job.program_line == program.first_line
+        module = view.index.program_at(thread.job.program_line)
+        number_of_module = module.number if module is not None else None
+        caller = number_of_module is not None and any(
+            c.program == number_of_module for c in program.calls
+        )
+        if inside or (caller and number >= 100):  # a caller sets the module's commons
+            return f"{meaning} — thread module {thread.job.program}, recognised by its formulas"
+    return None
+
+
+def _not_run(view: View, line: int) -> str:
+    program = view.index.program_at(line)
+    facts = view.facts
+    if (
+        program is not None
+        and facts is not None
+        and program.first_line in (facts.analysed_programs)
+    ):
+        return "This block never ran in the analysed runs."
+    return "The analysis did not run this program."
+
+
+def _file_name(key: str) -> str:
+    return key.rstrip("/").rsplit("/", 1)[-1]
+
+
+def hover_program(view: View, number: int, line: int | None = None) -> str:
+    entry = view.program_entry(number)
+    if entry is None:
+        return (
+            f"**O{number:04d}** — not in the workspace: a call to it stops with alarm "
+            "PS0076 (PROGRAM NOT FOUND)."
+        )
+    key, doc, program = entry
+    comment = first_comment(doc, program)
+    header = program.header_line if program.header_line is not None else program.first_line
+    where = f"line {header + 1}" if key == view.key else f"{_file_name(key)}, line {header + 1}"
+    parts = [f"**{program.display_name}**" + (f" — {comment}" if comment else ""), where]
+    kind = "subprogram (ends with M99)" if program.returns else "main program"
+    parts[-1] += f" · {kind}"
+    if program.named_by_file is not None:
+        parts[-1] += " · no O line: the number is the file name's"
+    callers: list[str] = []
+    for c_key, (_, c_index) in {**view.workspace, view.key: (view.doc, view.index)}.items():
+        for c_program in c_index.programs:
+            for call in c_program.calls:
+                if call.program == number and (c_key != view.key or call.line != line):
+                    place = (
+                        f"line {call.line + 1}"
+                        if c_key == view.key
+                        else (f"{_file_name(c_key)}:{call.line + 1}")
+                    )
+                    callers.append(f"{call.kind} in {c_program.display_name} ({place})")
+    if callers:
+        shown = ", ".join(callers[:5]) + (
+            f" and {len(callers) - 5} more" if len(callers) > 5 else ""
+        )
+        parts.append(f"Called by {shown}.")
+    facts = view.analysis.facts
+    if facts is not None:
+        runs = facts.by_uri.get(key)
+        if runs is not None and header in runs.runs:
+            parts.append(f"Entered {times(runs.runs[header])} in the analysed runs.")
+        assumed = runs.assumed_arguments.get(program.first_line) if runs is not None else None
+        if assumed:
+            names = ", ".join(
+                f"#{n} ({ARGUMENT_LETTER[n]})" if n in ARGUMENT_LETTER else f"#{n}"
+                for n, _ in assumed
+            )
+            parts.append(
+                f"Analysed as a macro with unknown arguments: it ends with M30 or M02 but "
+                f"reads {names} before setting them."
+            )
+        stopped = facts.stop_message()
+        if stopped is not None:
+            parts.append(stopped[0].upper() + stopped[1:] + ".")
+    return "\n\n".join(parts)
+
+
+def _argument_variable(arguments: Sequence[Word], word: Word) -> int | None:
+    """The local an argument fills: specification I, or II for a repeated I/J/K (sets of
+    three from #4)."""
+    ijk_set = -1
+    seen: set[str] = set()
+    for arg in arguments:
+        number: int | None
+        if arg.address in ("I", "J", "K"):
+            order = "IJK".index(arg.address)
+            if ijk_set < 0 or arg.address in seen or order < max("IJK".index(a) for a in seen):
+                ijk_set += 1
+                seen = set()
+            seen.add(arg.address)
+            number = 4 + 3 * ijk_set + order
+        else:
+            number = ARGUMENT_VARIABLES.get(arg.address)
+        if arg is word:
+            return number if number is not None and number <= 33 else None
+    return None
+
+
+def hover_word(view: View, block: Block, hit: Hit) -> str | None:
+    word = hit.word
+    assert word is not None
+    program = view.index.program_at(block.line)
+    call = call_at(program, block.line)
+    value = constant_value(word.value)
+    lathe = view.config.is_lathe
+    if (
+        call is not None
+        and call.program is not None
+        and (word.address == "P" or word.span == call.span)
+    ):
+        head = ""
+        if word.span == call.span and value is not None:
+            head = (knowledge.code_markdown(word.address, value, lathe) or "") + "\n\n---\n\n"
+        return head + hover_program(view, call.program, block.line)
+    thread = _thread_hover(view, block.line)
+    if word.address in ("G", "M") and value is not None:
+        code_text = knowledge.code_markdown(word.address, value, lathe)
+        return "\n\n---\n\n".join(t for t in (code_text, thread) if t) or None
+    parts: list[str] = []
+    if call is not None and any(arg is word for arg in call.arguments):
+        target = f"O{call.program:04d}" if call.program is not None else "the macro"
+        number = _argument_variable(call.arguments, word)
+        if number is None:
+            return f"**{word.address}** cannot be a {call.kind} argument"
+        return f"{call.kind} argument **{word.address}** → **#{number}** in {target}"
+    address = knowledge.address_markdown(word.address, lathe)
+    if address is not None:
+        parts.append(address)
+    if not isinstance(word.value, Num):
+        summary = ValueSummary()
+        facts = view.analysis.facts
+        if facts is not None:
+            for motion in facts.motions:
+                if motion.line == block.line and motion.uri == view.key:
+                    got = motion.words.get(word.address)
+                    if got is not None:
+                        summary.add(got)
+        if summary.count:
+            parts.append(f"Value in the motions: **{summary.describe()}**")
+    if thread is not None:
+        parts.append(thread)
+    return "\n\n".join(parts) or None
+
+
+def _thread_hover(view: View, line: int) -> str | None:
+    """What is known of the thread a threading pass at ``line`` cuts."""
+    texts = [
+        describe_thread(t)
+        for t in view.analysis.threads
+        if t.job.uri == view.key and any(m.line == line for m in t.job.passes)
+    ]
+    return "\n\n".join(dict.fromkeys(texts)) or None
+
+
+def hover_label(view: View, block: Block) -> str:
+    seq = block.parsed.seq
+    program = view.index.program_at(block.line)
+    if seq is None or program is None:
+        return ""
+    parts = [f"**N{seq}** — sequence number in {program.display_name}"]
+    facts = view.facts
+    jumps = [j for j in program.jumps if j.target == seq]
+    for jump in jumps[:8]:
+        text = f"{code(view.doc.blocks[jump.line].source(jump.span))} at line {jump.line + 1}"
+        reaches = program.label_line(seq, jump.line) == block.line
+        if facts is not None:
+            if jump.conditional:
+                jc = facts.jumps.get(jump.line)
+                if jc is not None:
+                    total = jc.taken + jc.not_taken + jc.undecided
+                    text += f": taken {jc.taken} of {total}"
+                else:
+                    text += ": never reached"
+            else:
+                text += f": taken {facts.runs.get(jump.line, 0)}"
+        if not reaches:
+            text += f" (reaches the other N{seq})"
+        parts.append("- " + text)
+    if not jumps:
+        parts.append("No GOTO jumps here.")
+    elif len(jumps) > 8:
+        parts.append(f"- and {len(jumps) - 8} more")
+    duplicates = program.labels.get(seq, [])
+    if len(duplicates) > 1:
+        where = ", ".join(str(ln + 1) for ln in duplicates)
+        parts.append(
+            f"N{seq} appears on lines {where}: GOTO searches forward from the jump, "
+            "then from the program head."
+        )
+    if facts is not None and block.line in facts.runs:
+        parts.append(f"The block ran {times(facts.runs[block.line])}.")
+    return "\n\n".join(parts)
+
+
+def hover_goto(view: View, block: Block, hit: Hit) -> str | None:
+    assert hit.goto is not None
+    target = goto_target(hit.goto)
+    program = view.index.program_at(block.line)
+    if target is None or program is None:
+        return knowledge.keyword_markdown("GOTO")
+    parts = [f"**GOTO {target}**"]
+    line = program.label_line(target, block.line)
+    if line is None:
+        parts.append(
+            f"No N{target} in {program.display_name}: the jump stops with alarm "
+            "PS0128 (ILLEGAL MACRO SEQUENCE NUMBER)."
+        )
+    else:
+        target_block = view.doc.blocks[line]
+        parts.append(
+            f"→ line {line + 1}: {code(cut_comments(target_block.text).code)}"
+            + (f" ({comment_of(target_block)})" if comment_of(target_block) else "")
+        )
+    facts = view.facts
+    if facts is not None:
+        jc = facts.jumps.get(block.line)
+        if jc is not None:
+            text = f"Taken {times(jc.taken)}, not taken {times(jc.not_taken)}"
+            if jc.undecided:
+                text += f", undecided {times(jc.undecided)}"
+            parts.append(text + ".")
+        elif block.line in facts.runs:
+            parts.append(f"Taken {times(facts.runs[block.line])}.")
+    return "\n\n".join(parts)
+
+
+def hover_loop(view: View, block: Block, hit: Hit) -> str | None:
+    program = view.index.program_at(block.line)
+    if program is None:
+        return None
+    loop = next(
+        (lp for lp in program.loops if lp.do_line == block.line or lp.end_line == block.line), None
+    )
+    n = f"{hit.loop_id:g}" if hit.loop_id is not None else "?"
+    if loop is None:
+        return f"**DO{n} / END{n}** — unpaired (see the diagnostics)"
+    end = "no END" if loop.end_line is None else f"END{n} at line {loop.end_line + 1}"
+    parts = [f"**WHILE … DO{n}** at line {loop.do_line + 1}, {end} — nesting level {loop.depth}"]
+    facts = view.facts
+    if facts is not None:
+        jc = facts.jumps.get(loop.do_line)
+        if jc is not None:
+            parts.append(
+                f"The body ran {times(jc.taken)}; the condition ended the loop "
+                f"{times(jc.not_taken)}."
+            )
+    return "\n\n".join(parts)
+
+
+def hover(view: View, line: int, column: int) -> Hover | None:
+    """The markdown about what is at ``line``, ``column`` (code points)."""
+    found = view.hit_at(line, column)
+    if found is None:
+        return None
+    block, hit = found
+    text: str | None = None
+    if hit.kind == "var":
+        text = hover_variable(view, block, hit)
+    elif hit.kind == "function" and hit.call is not None:
+        text = knowledge.function_markdown(hit.call.name)
+    elif hit.kind == "word":
+        text = hover_word(view, block, hit)
+    elif hit.kind == "label":
+        text = hover_label(view, block)
+    elif hit.kind == "program":
+        statement = block.statement
+        if isinstance(statement, ProgramStart) and statement.number is not None:
+            text = hover_program(view, statement.number, block.line)
+    elif hit.kind == "goto":
+        text = hover_goto(view, block, hit)
+    elif hit.kind == "loop":
+        text = hover_loop(view, block, hit)
+    elif hit.kind == "keyword":
+        text = knowledge.keyword_markdown(hit.keyword) or knowledge.function_markdown(hit.keyword)
+    if not text:
+        return None
+    return Hover(text, Range.of(block.line, hit.span.start, block.line, hit.span.end))
