@@ -11,6 +11,7 @@ from __future__ import annotations
 import sys
 import time
 import zlib
+from array import array
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field, replace
 
@@ -44,7 +45,16 @@ from ..syntax.walk import subexpressions, top_expressions
 from .checkpoints import CtxKey, LevelState, MachineState, ModalState, Resumption, RunRecord
 from .compiler import CondEvaluator, Evaluator, compile_cond, compile_expr, constant_of
 from .cycles import g76_depths
-from .facts import DocumentFacts, Facts, Finding, Motion, Rounding, RunValues, ValueSummary
+from .facts import (
+    CutsWithoutFeed,
+    DocumentFacts,
+    Facts,
+    Finding,
+    Motion,
+    Rounding,
+    RunValues,
+    ValueSummary,
+)
 from .values import UNKNOWN, MacroAlarm, Unknown, Value, fmt
 
 # Block kinds of the compiled program.
@@ -561,6 +571,9 @@ class Machine:
         # What the checkpoints hold of them: the chunks so far, and the keys since the last.
         self._seen_chunks: tuple[frozenset[tuple[str, str, int, int]], ...] = ()
         self._seen_since: list[tuple[str, str, int, int]] = []
+        # The lines of cuts without F recorded in this stretch of the run, by document: each
+        # stretch lists a line once, and depends on nothing before it but the state.
+        self._cuts_seen: dict[str, set[int]] = {}
         self.steps = 0
         self._steps = 0
         self.speculative = False
@@ -649,6 +662,7 @@ class Machine:
         record = self.record
         assert record is not None
         self._checkpointed = state.done
+        self._cuts_seen = {}
         record.checkpoints.append(state)
         segment = {uri: base.segment() for uri, base in self.facts.by_uri.items()}
         record.segments.append(segment)
@@ -709,7 +723,7 @@ class Machine:
             self._seen_chunks,
             len(facts.motions),
             tuple(facts.run_values),
-            tuple((uri, len(b.findings)) for uri, b in bases.items()),
+            tuple((uri, len(b.reported)) for uri, b in bases.items()),
             tuple((uri, frozenset(b.analysed_programs)) for uri, b in bases.items()),
             tuple((uri, tuple(b.assumed_arguments.items())) for uri, b in bases.items()),
         )
@@ -793,9 +807,34 @@ class Machine:
             return
         seen.add(key)
         self._seen_since.append(key)
-        ctx.facts.findings.append(
+        ctx.facts.reported.append(
             Finding(kind, line, start, end, message, ctx.uri, related_line, related_message)
         )
+
+    def _cut_without_feed(self, ctx: ProgramContext, message: str) -> None:
+        """MB603's finding at the block being run, recorded by line (see CutsWithoutFeed)."""
+        line = self._line
+        uri = ctx.uri
+        seen = self._cuts_seen.get(uri)
+        if seen is None:
+            seen = self._cuts_seen[uri] = set()
+        elif line in seen:
+            return
+        seen.add(line)
+        facts = ctx.facts
+        records = facts.cuts
+        after = len(facts.reported)
+        program = ctx.program.first_line
+        last = records[-1] if records else None
+        if (
+            last is None
+            or last.after != after
+            or last.program != program
+            or last.message != message
+        ):
+            records.append(CutsWithoutFeed(uri, program, message, after, array("i", (line,))))
+        else:
+            last.lines.append(line)
 
     def _loop(self, act: Activation, done: int = 0) -> None:
         steps = self._steps = done
@@ -1243,7 +1282,7 @@ class Machine:
                     f"G{code:02g} cuts with no F commanded before it"
                     f" since {self._entry_name} started"
                 )
-            self._finding(act.ctx, "feed-not-set", self._line, 0, 0, message)
+            self._cut_without_feed(act.ctx, message)
         position = modal.position
         x = self._axis(values, "X", "U")
         if lathe:
