@@ -18,7 +18,7 @@ from contextlib import contextmanager
 from dataclasses import replace
 from importlib import resources
 from itertools import accumulate
-from operator import itemgetter
+from operator import attrgetter, itemgetter
 from typing import Any, cast
 
 from ..cancel import READING, SLICE, CancelToken, raise_if_cancelled
@@ -987,36 +987,74 @@ def parse_text(
     previous: Document | None = None,
     limits: ReadLimits = READ_WHOLE,
     cancel: CancelToken | None = None,
+    previous_limits: ReadLimits | None = None,
 ) -> Document:
     """Parse a document; with ``previous`` (its last version) unchanged lines keep their blocks.
 
     Past the ``limits`` of a document the lines get no block (``line_count`` still counts
     them), and ``unread_note`` says what was left out. ``cancel`` is looked at every
-    :data:`~fanuc_macro.cancel.SLICE` lines (see :mod:`fanuc_macro.cancel`)."""
+    :data:`~fanuc_macro.cancel.SLICE` lines (see :mod:`fanuc_macro.cancel`). When
+    ``previous`` was read by the same parser with ``previous_limits`` equal to ``limits``, its
+    lines are compared by text and only those between the first and the last change parsed."""
     raise_if_cancelled(cancel)
     bp = parser or default_parser()
     lines = split_lines(text)
     read = _lines_read(text, lines, limits)
     with quiet_gc():
-        if cancel is None:
-            parsed = bp.parse_lines(
-                lines if read == len(lines) else lines[:read], limits.max_line_length
+        if previous is not None and previous_limits == limits:
+            blocks = _blocks_by_text(
+                previous.blocks, lines if read == len(lines) else lines[:read], bp, limits, cancel
             )
         else:
-            parsed = []
-            for start in range(0, read, SLICE):
-                if start:
-                    cancel.reached(READING, start, read)
-                end = min(start + SLICE, read)
-                parsed += bp.parse_lines(lines[start:end], limits.max_line_length)
-        if previous is None:
-            blocks = tuple(map(Block, range(read), parsed))
-        else:
-            blocks = _blocks_after_edit(previous.blocks, parsed)
+            parsed = _parse_lines(bp, lines if read == len(lines) else lines[:read], limits, cancel)
+            if previous is None:
+                blocks = tuple(map(Block, range(read), parsed))
+            else:
+                blocks = _blocks_after_edit(previous.blocks, parsed)
     if read == len(lines):
         return Document(uri, blocks, "utf-8", None, len(lines))
     note = _unread_note(text, lines, read, limits)
     return Document(uri, blocks, "utf-8", None, len(lines), read, note)
+
+
+def _parse_lines(
+    bp: BlockParser, lines: list[str], limits: ReadLimits, cancel: CancelToken | None
+) -> list[ParsedLine]:
+    if cancel is None:
+        return bp.parse_lines(lines, limits.max_line_length)
+    parsed: list[ParsedLine] = []
+    for start in range(0, len(lines), SLICE):
+        if start:
+            cancel.reached(READING, start, len(lines))
+        parsed += bp.parse_lines(lines[start : start + SLICE], limits.max_line_length)
+    return parsed
+
+
+_TEXT = attrgetter("text")  # ParsedLine.text, read in C
+
+
+def _blocks_by_text(
+    old: tuple[Block, ...],
+    lines: list[str],
+    bp: BlockParser,
+    limits: ReadLimits,
+    cancel: CancelToken | None,
+) -> tuple[Block, ...]:
+    """The blocks of a new version of a document read like ``old``: the lines before the first
+    and after the last line whose text changed keep their parse (the parser would give them the
+    same: a line's parse depends on its text and the limits alone), without a cache look-up
+    per line; the lines between are parsed."""
+    old_parsed = list(map(_PARSED, old))
+    diff = Diff(list(map(_TEXT, old_parsed)), lines, identical=False)
+    start, end = diff.start, diff.end
+    edited = tuple(
+        map(Block, range(start, end), _parse_lines(bp, lines[start:end], limits, cancel))
+    )
+    if diff.shift:
+        after = tuple(map(Block, range(end, len(lines)), old_parsed[diff.old_end :]))
+    else:
+        after = old[diff.old_end :]
+    return old[:start] + edited + after
 
 
 _PARSED = itemgetter(1)  # Block.parsed, read in C
