@@ -318,6 +318,13 @@ _ADDRESSES = {
     ch: sys.intern(ch.upper()) for ch in "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz"
 }
 
+# Words of a number written as it stands, by column and text ('G01' at column 0, 'Z-2.5' at
+# 20): the nodes are immutable, so blocks share them (a CAM file repeats its G code and a few
+# hundred Z depths at a few columns) instead of holding a word, a number, its text and its
+# float each. The first words seen are kept, up to the limit.
+_SHARED_WORDS: dict[tuple[int, str], Word] = {}
+_SHARED_WORDS_LIMIT = 1 << 15
+
 # Matches of _FAST_WORD one after the other from a column (typeshed does not list it).
 _scan_words: Callable[[str, int], Any] = _FAST_WORD.scanner  # type: ignore[attr-defined]
 
@@ -370,11 +377,21 @@ def _fast_parse(
     # the grammar rejects for another reason, the grammar's message is the one to give.
     unreadable: ValueError | None = None
     # The scanner's matches follow one another, each where the last ended, until a word fails.
+    shared = _SHARED_WORDS
     for wm in iter(_scan_words(code, pos).match, None):
         letter, number, other = wm.groups()
         pos = wm.end()
+        key: tuple[int, str] | None = None
         if number is not None:
             value_start, value_end = wm.span(2)
+            if value_end < SHARED_COLUMNS:
+                key = (wm.start(), code[wm.start() : value_end])
+                word = shared.get(key)
+                if word is not None:
+                    if word.address in "GM":
+                        has_call = has_call or (word.address, word.value.value) in CALL_CODES  # type: ignore[union-attr]
+                    words.append(word)
+                    continue
             if len(number) > MAX_DIGITS:
                 try:
                     _to_float(number)
@@ -399,7 +416,10 @@ def _fast_parse(
         upper = _ADDRESSES.get(letter) or letter.upper()
         if upper in "GM" and type(value) is Num:
             has_call = has_call or (upper, value.value) in CALL_CODES
-        words.append(quick_word(upper, value, span, letter != upper))
+        word = quick_word(upper, value, span, letter != upper)
+        if key is not None and len(shared) < _SHARED_WORDS_LIMIT:
+            shared[key] = word
+        words.append(word)
     if pos < size:
         return None
     if unreadable is not None:
