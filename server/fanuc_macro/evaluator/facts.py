@@ -174,6 +174,7 @@ class CutsWithoutFeed:
     message: str
     after: int  # how many of the document's other findings came before them
     lines: array[int]
+    ascending: bool = True  # each line after the one before (a run without jumps back)
 
 
 @dataclass(slots=True)
@@ -334,19 +335,26 @@ class Facts:
 
 def _feedless(records: Sequence[CutsWithoutFeed]) -> dict[int, FeedlessProgram]:
     out: dict[int, FeedlessProgram] = {}
-    seen: set[int] = set()
-    for cuts in records:
+    # Records that only go on down the text hold no line seen before: the set of lines seen
+    # is made only once a record goes back (a loop, a call).
+    high = -1
+    seen: set[int] | None = None
+    for i, cuts in enumerate(records):
         lines = cuts.lines
-        if seen.isdisjoint(lines):  # the usual case, done in C: lines not seen before
-            seen.update(lines)
-            new: Sequence[int] = lines
+        new: Sequence[int]
+        if seen is None and cuts.ascending and lines[0] > high:
+            new = lines
+            high = lines[-1]
         else:
-            fresh: list[int] = []
-            for line in lines:
-                if line not in seen:
-                    seen.add(line)
-                    fresh.append(line)
-            new = fresh
+            if seen is None:
+                seen = set()
+                for earlier in records[:i]:
+                    seen.update(earlier.lines)
+            if seen.isdisjoint(lines):  # done in C
+                seen.update(lines)
+                new = lines
+            else:
+                new = _unseen(lines, seen)
         if not new:
             continue
         program = out.get(cuts.program)
@@ -357,6 +365,15 @@ def _feedless(records: Sequence[CutsWithoutFeed]) -> dict[int, FeedlessProgram]:
         if wanted > 0:
             program.lines.extend(new[:wanted])
     return out
+
+
+def _unseen(lines: Sequence[int], seen: set[int]) -> list[int]:
+    fresh: list[int] = []
+    for line in lines:
+        if line not in seen:
+            seen.add(line)
+            fresh.append(line)
+    return fresh
 
 
 def _merged(parts: list[dict[K, V]], combine: Callable[[V, V], V]) -> dict[K, V]:

@@ -319,7 +319,8 @@ def _cuts(cuts: CutsWithoutFeed, shift: LineShift) -> CutsWithoutFeed | None:
         lines = array("i", [m for n in cuts.lines if (m := shift.line(n)) is not None])
     if not lines:
         return None
-    return CutsWithoutFeed(cuts.uri, program, cuts.message, cuts.after, lines)
+    # The numbering keeps the order of the lines it keeps: an ascending record stays one.
+    return CutsWithoutFeed(cuts.uri, program, cuts.message, cuts.after, lines, cuts.ascending)
 
 
 def _finding(f: Finding, maybe: MaybeRenumber) -> Finding:

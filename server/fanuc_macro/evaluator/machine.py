@@ -12,11 +12,13 @@ import sys
 import time
 import zlib
 from array import array
+from bisect import bisect_left
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field, replace
 
 from ..cancel import RUNNING, CancelToken
 from ..config import Config
+from ..line_maps import LineMap
 from ..per_line import PerLine
 from ..program.index import Program, ProgramIndex, constant_value
 from ..program.variables import ARGUMENT_VARIABLES, classify
@@ -834,6 +836,8 @@ class Machine:
         ):
             records.append(CutsWithoutFeed(uri, program, message, after, array("i", (line,))))
         else:
+            if line <= last.lines[-1]:
+                last.ascending = False
             last.lines.append(line)
 
     def _loop(self, act: Activation, done: int = 0) -> None:
@@ -1780,6 +1784,15 @@ def compile_line(parsed: ParsedLine) -> CompiledLine:
 compiled: PerLine[CompiledLine] = PerLine(compile_line)
 
 
+def _ends_program_line(parsed: ParsedLine) -> bool | None:
+    return compiled(parsed).ends_program or None
+
+
+# The blocks with M02 or M30, by document: kept across edits, where a look at every block for
+# a program's first end took milliseconds per analysis of a long program (it ends at its last).
+_program_end_lines: LineMap[bool] = LineMap(_ends_program_line)
+
+
 def _volatile(number: int) -> bool:
     """System variables the control changes by itself: clocks, signals, positions."""
     return (
@@ -1866,13 +1879,12 @@ def contexts_of(
     if lines is None:
         lines = [compiled(b.parsed) for b in doc.blocks]
     out: list[ProgramContext] = []
+    ends = _program_end_lines(doc).lines
     for program in index.programs:
         loop_end = {lp.do_line: lp.end_line for lp in program.loops if lp.end_line is not None}
         loop_do = {e: d for d, e in loop_end.items()}
-        first_end = next(
-            (ln for ln in range(program.first_line, program.end_line) if lines[ln].ends_program),
-            None,
-        )
+        at = bisect_left(ends, program.first_line)
+        first_end = ends[at] if at < len(ends) and ends[at] < program.end_line else None
         is_main = first_end is not None
         if first_end is not None:
             doc_facts.program_ends[program.first_line] = first_end

@@ -324,6 +324,7 @@ _ADDRESSES = {
 # float each. The first words seen are kept, up to the limit.
 _SHARED_WORDS: dict[tuple[int, str], Word] = {}
 _SHARED_WORDS_LIMIT = 1 << 15
+_SHARED_WORD_COLUMNS = 128  # a block's words are near its start; a long line's are its own
 
 # Matches of _FAST_WORD one after the other from a column (typeshed does not list it).
 _scan_words: Callable[[str, int], Any] = _FAST_WORD.scanner  # type: ignore[attr-defined]
@@ -384,7 +385,7 @@ def _fast_parse(
         key: tuple[int, str] | None = None
         if number is not None:
             value_start, value_end = wm.span(2)
-            if value_end < SHARED_COLUMNS:
+            if value_end < _SHARED_WORD_COLUMNS:
                 key = (wm.start(), code[wm.start() : value_end])
                 word = shared.get(key)
                 if word is not None:
