@@ -1065,14 +1065,13 @@ def _blocks_by_text(
     and after the last line whose text changed keep their parse (the parser would give them the
     same: a line's parse depends on its text and the limits alone), without a cache look-up
     per line; the lines between are parsed."""
-    old_parsed = list(map(_PARSED, old))
-    diff = Diff(list(map(_TEXT, old_parsed)), lines, identical=False)
+    diff = Diff(list(map(_TEXT, map(_PARSED, old))), lines, identical=False)
     start, end = diff.start, diff.end
     edited = tuple(
         map(Block, range(start, end), _parse_lines(bp, lines[start:end], limits, cancel))
     )
     if diff.shift:
-        after = tuple(map(Block, range(end, len(lines)), old_parsed[diff.old_end :]))
+        after = tuple(map(Block, range(end, len(lines)), map(_PARSED, old[diff.old_end :])))
     else:
         after = old[diff.old_end :]
     return old[:start] + edited + after
