@@ -44,6 +44,7 @@ FIELDS = (
     "roundings",
     "ends",
     "assumed",
+    "feedless",
 )
 
 
@@ -66,6 +67,7 @@ def digest(facts: Facts) -> dict[str, object]:
             {k: (r.function, r.argument, r.result, r.count) for k, r in d.roundings.items()},
             dict(d.program_ends),
             list(d.assumed_arguments.items()),
+            {k: (p.message, p.count, p.lines) for k, p in d.feedless().items()},
         )
         for name, part in zip(FIELDS, parts, strict=True):
             out[f"{uri} {name}"] = part
@@ -292,3 +294,45 @@ def test_a_new_line_late_in_a_long_program_runs_few_blocks() -> None:
         assert resumed.record.converged_at is not None
         assert resumed.record.executed < total // 4
         assert_same(resumed, evaluate_text(source, BlockParser(), config))
+
+
+def cam_with_calls(blocks: int, seed: int) -> str:
+    """CAM output without F, cut by a main program, a loop and a subprogram called more than
+    once: the cuts without F repeat across stretches of the run, between other findings."""
+    rng = random.Random(seed)
+    lines = ["%", "O1000 (CAM)", "#1=0", "#9=2.5"]
+    i = 0
+    while len(lines) < blocks:
+        i += 1
+        pick = rng.randrange(12)
+        if pick == 0:
+            lines.append("M98 P2000")
+        elif pick == 1:
+            lines += ["#1=0", "WHILE[#1LT3]DO1", f"G01 X{i}. Z-{i % 7}.", "#1=#1+1", "END1"]
+        elif pick == 2:
+            lines.append("M#9")  # M2.5: another finding between the cuts
+        elif pick == 3:
+            lines.append(f"G0{rng.randrange(4)} X{i}.")
+        else:
+            lines.append(f"G01 X{i / 10:.1f} Z-{i % 13}.")
+    lines += ["M30", "O2000 (SUB)"]
+    lines += [f"G01 X{n}. Z-{n}." for n in range(40)]
+    lines += ["M99", "%"]
+    return "\n".join(lines) + "\n"
+
+
+@pytest.mark.parametrize("seed", range(3))
+def test_cam_programs_resume_and_equal_full(seed: int) -> None:
+    rng = random.Random(seed)
+    config = Config()
+    parser = BlockParser()
+    lines = cam_with_calls(6_000, seed).splitlines()
+    previous = evaluate_text("\n".join(lines), parser, config)
+    assert previous.document(URI).feedless()
+    for _ in range(8):
+        lines = mutate(lines, rng, shift=True)
+        text = "\n".join(lines)
+        resumed = evaluate_text(text, parser, config, previous)
+        full = evaluate_text(text, BlockParser(), config)
+        assert_same(resumed, full)
+        previous = resumed

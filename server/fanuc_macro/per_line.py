@@ -17,9 +17,9 @@ T = TypeVar("T")
 
 
 class _Entry:
-    """A cached value: the line it is of (which keeps the line alive, so that its id stays its
-    own), the value and the miss count when it was last used. Slots: a cache holds one per
-    distinct line of the documents analysed (a list of three costs half as much again)."""
+    """A cached value: the line it is of (another parse of the same text, with other limits,
+    may differ), the value and when it was last used. Slots: a cache holds one per distinct
+    line of the documents analysed (a list of three costs half as much again)."""
 
     __slots__ = ("line", "used", "value")
 
@@ -40,42 +40,50 @@ class PerLine(Generic[T]):
     returned without being kept: analysing a document of more distinct lines than ``limit``
     keeps the same ``limit`` lines from one analysis to the next and computes only the others,
     where strict LRU order would evict each line just before it is asked for again.
+
+    Entries are found by the line's text, whose hash the string keeps (an id would be a new
+    int per entry), and stamped with the miss count at the last multiple of the batch, one
+    int shared by the entries of a batch (the sweep allows for the batch it may be behind).
     """
 
     def __init__(self, compute: Callable[[ParsedLine], T], limit: int = 400_000) -> None:
         self._compute = compute
         self._limit = limit
         self._batch = max(1, limit // 8)
-        self._cache: dict[int, _Entry] = {}  # by id(line)
+        self._cache: dict[str, _Entry] = {}  # by the line's text
         self._misses = 0
+        self._stamp = 0  # the miss count at the last multiple of the batch
         self._next_sweep = 0  # no sweep before this miss count: the last one found all in use
 
     def __len__(self) -> int:
         return len(self._cache)
 
     def __contains__(self, parsed: ParsedLine) -> bool:
-        entry = self._cache.get(id(parsed))
+        entry = self._cache.get(parsed.text)
         return entry is not None and entry.line is parsed
 
     def __call__(self, parsed: ParsedLine) -> T:
-        entry = self._cache.get(id(parsed))
+        entry = self._cache.get(parsed.text)
         if entry is not None and entry.line is parsed:
-            entry.used = self._misses
+            entry.used = self._stamp
             value: T = entry.value
             return value
         value = self._compute(parsed)
         self._misses += 1
+        if self._misses - self._stamp >= self._batch:
+            self._stamp = self._misses
         if len(self._cache) >= self._limit:
             self._evict()
         if len(self._cache) < self._limit:
-            self._cache[id(parsed)] = _Entry(parsed, value, self._misses)
+            self._cache[parsed.text] = _Entry(parsed, value, self._stamp)
         return value
 
     def _evict(self) -> None:
         if self._misses < self._next_sweep:
             return
         cache = self._cache
-        oldest = self._misses - self._limit  # used at or before this miss: not in use
+        # Used at or before this miss (a stamp is up to a batch behind): not in use.
+        oldest = self._misses - self._limit - self._batch
         dropped = 0
         for key in list(islice(cache, self._batch)):
             entry = cache.pop(key, None)  # None: another thread's sweep took it

@@ -10,7 +10,8 @@ from .analysis import Analysis, analyse
 from .cancel import CancelToken
 from .config import Config
 from .evaluator import Facts
-from .program.index import Call, ProgramIndex, build_index
+from .line_maps import line_diff
+from .program.index import Call, ProgramIndex, build_index, index_after_edit
 from .syntax.lines import ReadLimits, decode_bytes
 from .syntax.parser import BlockParser, default_parser, parse_text
 from .syntax.tree import Document
@@ -59,7 +60,10 @@ def same_execution(old: Document, new: Document) -> bool:
     """
     if len(old.blocks) != len(new.blocks) or old.unread_from != new.unread_from:
         return False
-    for a, b in zip(old.blocks, new.blocks, strict=True):
+    diff = line_diff(old, new)  # the lines outside it are the same
+    x, y = old.blocks, new.blocks
+    for line in range(diff.start, diff.end):
+        a, b = x[line], y[line]
         if a is b:
             continue
         p, q = a.parsed, b.parsed
@@ -94,12 +98,15 @@ class Workspace:
         limits = self.config.read_limits
         # The previous version's blocks are reused for the lines an edit did not touch.
         previous = old.doc if old is not None else None
-        doc = parse_text(text, uri, self.parser, previous, limits, cancel)
+        doc = parse_text(
+            text, uri, self.parser, previous, limits, cancel, old.limits if old else None
+        )
         if old is not None and same_execution(old.doc, doc):
             execution = old.execution
         else:
             execution = self._next_execution()
-        self._entries[uri] = _Entry(text, doc, build_index(doc), "utf-8", None, execution, limits)
+        index = index_after_edit(old.index, old.doc, doc) if old is not None else build_index(doc)
+        self._entries[uri] = _Entry(text, doc, index, "utf-8", None, execution, limits)
         return doc
 
     def add_bytes(self, uri: str, data: bytes) -> Document:

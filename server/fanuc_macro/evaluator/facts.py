@@ -6,6 +6,7 @@ These are the facts the rules, the hover and the inlay hints read. They carry no
 from __future__ import annotations
 
 import math
+from array import array
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, TypeVar
@@ -162,6 +163,34 @@ class Finding:
 
 
 @dataclass(slots=True)
+class CutsWithoutFeed:
+    """Cuts with no F commanded before them (MB603), found one after another in one program
+    with no other finding of the document between them: kept as their lines, not as a
+    :class:`Finding` each (a CAM file without F has one per block). A stretch of the run
+    lists each line once; the document's facts keep the first record of a line."""
+
+    uri: str
+    program: int  # the first line of the program that ran them
+    message: str
+    after: int  # how many of the document's other findings came before them
+    lines: array[int]
+    ascending: bool = True  # each line after the one before (a run without jumps back)
+
+
+@dataclass(slots=True)
+class FeedlessProgram:
+    """MB603 of one program: the first cut without F, its message, the count of such cuts
+    (each line once), and the first ``SHOWN_CUTS`` of them in the order the run reached them."""
+
+    message: str
+    count: int
+    lines: list[int]
+
+
+SHOWN_CUTS = 20
+
+
+@dataclass(slots=True)
 class JumpCount:
     taken: int = 0
     not_taken: int = 0
@@ -177,7 +206,9 @@ class DocumentFacts:
     reads: dict[tuple[int, int], ValueSummary] = field(default_factory=dict)
     writes: dict[int, tuple[int, ValueSummary]] = field(default_factory=dict)
     jumps: dict[int, JumpCount] = field(default_factory=dict)
-    findings: list[Finding] = field(default_factory=list)
+    # The findings but the cuts without F, in the order the run found them: see ``findings``.
+    reported: list[Finding] = field(default_factory=list)
+    cuts: list[CutsWithoutFeed] = field(default_factory=list)  # this stretch's, or all
     analysed_programs: set[int] = field(default_factory=set)  # first lines of programs run
     incomplete_programs: set[int] = field(default_factory=set)  # runs that stopped early
     roundings: dict[int, Rounding] = field(default_factory=dict)  # line -> the first such
@@ -186,12 +217,44 @@ class DocumentFacts:
     # Programs ending with M30 run on their own with unknown arguments, because they read
     # locals before setting them: first line -> (local, line of its first read), in text order.
     assumed_arguments: dict[int, tuple[tuple[int, int], ...]] = field(default_factory=dict)
+    _feedless: dict[int, FeedlessProgram] | None = field(
+        default=None, init=False, repr=False, compare=False
+    )
+
+    @property
+    def findings(self) -> list[Finding]:
+        """Every finding in the order the run found them, one per cut without F too (a new
+        list: the rules read :attr:`reported` and :meth:`feedless`)."""
+        if not self.cuts:
+            return list(self.reported)
+        reported = self.reported
+        out: list[Finding] = []
+        seen: set[int] = set()
+        taken = 0
+        for cuts in self.cuts:
+            if cuts.after > taken:
+                out.extend(reported[taken : cuts.after])
+                taken = cuts.after
+            for line in cuts.lines:
+                if line not in seen:
+                    seen.add(line)
+                    out.append(Finding("feed-not-set", line, 0, 0, cuts.message, cuts.uri))
+        out.extend(reported[taken:])
+        return out
+
+    def feedless(self) -> dict[int, FeedlessProgram]:
+        """The cuts without F by program (its first line), programs in the order the run
+        reached their first such cut: computed once, from the records of every stretch."""
+        found = self._feedless
+        if found is None:
+            found = self._feedless = _feedless(self.cuts)
+        return found
 
     def segment(self) -> DocumentFacts:
         """Facts of the same document for a later stretch of the run: the counts and summaries
         start empty, the findings and the programs run are shared with this one."""
         return DocumentFacts(
-            findings=self.findings,
+            reported=self.reported,
             analysed_programs=self.analysed_programs,
             program_ends=self.program_ends,
             assumed_arguments=self.assumed_arguments,
@@ -207,6 +270,8 @@ class DocumentFacts:
         self.writes = _merged([s.writes for s in segments], _then_write)
         self.jumps = _merged([s.jumps for s in segments], _add_jumps)
         self.roundings = _merged([s.roundings for s in segments], _add_roundings)
+        self.cuts = [cuts for s in segments for cuts in s.cuts]
+        self._feedless = None
         incomplete: set[int] = set()
         for s in segments:
             incomplete |= s.incomplete_programs
@@ -266,6 +331,49 @@ class Facts:
         if facts is None:
             facts = self.by_uri[uri] = DocumentFacts()
         return facts
+
+
+def _feedless(records: Sequence[CutsWithoutFeed]) -> dict[int, FeedlessProgram]:
+    out: dict[int, FeedlessProgram] = {}
+    # Records that only go on down the text hold no line seen before: the set of lines seen
+    # is made only once a record goes back (a loop, a call).
+    high = -1
+    seen: set[int] | None = None
+    for i, cuts in enumerate(records):
+        lines = cuts.lines
+        new: Sequence[int]
+        if seen is None and cuts.ascending and lines[0] > high:
+            new = lines
+            high = lines[-1]
+        else:
+            if seen is None:
+                seen = set()
+                for earlier in records[:i]:
+                    seen.update(earlier.lines)
+            if seen.isdisjoint(lines):  # done in C
+                seen.update(lines)
+                new = lines
+            else:
+                new = _unseen(lines, seen)
+        if not new:
+            continue
+        program = out.get(cuts.program)
+        if program is None:
+            program = out[cuts.program] = FeedlessProgram(cuts.message, 0, [])
+        program.count += len(new)
+        wanted = SHOWN_CUTS - len(program.lines)
+        if wanted > 0:
+            program.lines.extend(new[:wanted])
+    return out
+
+
+def _unseen(lines: Sequence[int], seen: set[int]) -> list[int]:
+    fresh: list[int] = []
+    for line in lines:
+        if line not in seen:
+            seen.add(line)
+            fresh.append(line)
+    return fresh
 
 
 def _merged(parts: list[dict[K, V]], combine: Callable[[V, V], V]) -> dict[K, V]:

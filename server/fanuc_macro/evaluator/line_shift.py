@@ -10,12 +10,13 @@ nor met; a stretch that ran one counts as a changed stretch.
 
 from __future__ import annotations
 
+from array import array
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, replace
 
 from ..syntax.tree import Document
 from .checkpoints import LevelState, MachineState, ModalState, ProgramShape, RunRecord
-from .facts import DocumentFacts, Facts, Finding, Motion
+from .facts import CutsWithoutFeed, DocumentFacts, Facts, Finding, Motion
 
 
 class _Unmapped(Exception):
@@ -158,7 +159,8 @@ def _renumber(previous: Facts, old: RunRecord, shifts: dict[str, LineShift]) -> 
             out.by_uri[uri] = facts
             continue
         doc = DocumentFacts()
-        doc.findings = [_finding(f, maybe) for f in facts.findings]
+        # The cuts without F are not kept: the evaluation takes them from the stretches.
+        doc.reported = [_finding(f, maybe) for f in facts.reported]
         doc.analysed_programs = {line(uri, n) for n in facts.analysed_programs}
         doc.assumed_arguments = {
             line(uri, first): tuple((n, line(uri, at)) for n, at in pairs)
@@ -303,7 +305,22 @@ def _segment(facts: DocumentFacts, shift: LineShift) -> tuple[DocumentFacts, boo
     out.incomplete_programs = {
         m for n in facts.incomplete_programs if (m := shift.line(n)) is not None
     }
+    out.cuts = [moved for cuts in facts.cuts if (moved := _cuts(cuts, shift)) is not None]
     return out, ran_edit
+
+
+def _cuts(cuts: CutsWithoutFeed, shift: LineShift) -> CutsWithoutFeed | None:
+    program = shift.line(cuts.program)
+    if program is None:
+        return None
+    if min(cuts.lines) >= shift.old_end:
+        lines = array("i", [n + shift.delta for n in cuts.lines])
+    else:
+        lines = array("i", [m for n in cuts.lines if (m := shift.line(n)) is not None])
+    if not lines:
+        return None
+    # The numbering keeps the order of the lines it keeps: an ascending record stays one.
+    return CutsWithoutFeed(cuts.uri, program, cuts.message, cuts.after, lines, cuts.ascending)
 
 
 def _finding(f: Finding, maybe: MaybeRenumber) -> Finding:

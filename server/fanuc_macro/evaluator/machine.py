@@ -11,11 +11,14 @@ from __future__ import annotations
 import sys
 import time
 import zlib
+from array import array
+from bisect import bisect_left
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field, replace
 
 from ..cancel import RUNNING, CancelToken
 from ..config import Config
+from ..line_maps import LineMap
 from ..per_line import PerLine
 from ..program.index import Program, ProgramIndex, constant_value
 from ..program.variables import ARGUMENT_VARIABLES, classify
@@ -44,7 +47,16 @@ from ..syntax.walk import subexpressions, top_expressions
 from .checkpoints import CtxKey, LevelState, MachineState, ModalState, Resumption, RunRecord
 from .compiler import CondEvaluator, Evaluator, compile_cond, compile_expr, constant_of
 from .cycles import g76_depths
-from .facts import DocumentFacts, Facts, Finding, Motion, Rounding, RunValues, ValueSummary
+from .facts import (
+    CutsWithoutFeed,
+    DocumentFacts,
+    Facts,
+    Finding,
+    Motion,
+    Rounding,
+    RunValues,
+    ValueSummary,
+)
 from .values import UNKNOWN, MacroAlarm, Unknown, Value, fmt
 
 # Block kinds of the compiled program.
@@ -561,6 +573,9 @@ class Machine:
         # What the checkpoints hold of them: the chunks so far, and the keys since the last.
         self._seen_chunks: tuple[frozenset[tuple[str, str, int, int]], ...] = ()
         self._seen_since: list[tuple[str, str, int, int]] = []
+        # The lines of cuts without F recorded in this stretch of the run, by document: each
+        # stretch lists a line once, and depends on nothing before it but the state.
+        self._cuts_seen: dict[str, set[int]] = {}
         self.steps = 0
         self._steps = 0
         self.speculative = False
@@ -649,6 +664,7 @@ class Machine:
         record = self.record
         assert record is not None
         self._checkpointed = state.done
+        self._cuts_seen = {}
         record.checkpoints.append(state)
         segment = {uri: base.segment() for uri, base in self.facts.by_uri.items()}
         record.segments.append(segment)
@@ -709,7 +725,7 @@ class Machine:
             self._seen_chunks,
             len(facts.motions),
             tuple(facts.run_values),
-            tuple((uri, len(b.findings)) for uri, b in bases.items()),
+            tuple((uri, len(b.reported)) for uri, b in bases.items()),
             tuple((uri, frozenset(b.analysed_programs)) for uri, b in bases.items()),
             tuple((uri, tuple(b.assumed_arguments.items())) for uri, b in bases.items()),
         )
@@ -793,9 +809,36 @@ class Machine:
             return
         seen.add(key)
         self._seen_since.append(key)
-        ctx.facts.findings.append(
+        ctx.facts.reported.append(
             Finding(kind, line, start, end, message, ctx.uri, related_line, related_message)
         )
+
+    def _cut_without_feed(self, ctx: ProgramContext, message: str) -> None:
+        """MB603's finding at the block being run, recorded by line (see CutsWithoutFeed)."""
+        line = self._line
+        uri = ctx.uri
+        seen = self._cuts_seen.get(uri)
+        if seen is None:
+            seen = self._cuts_seen[uri] = set()
+        elif line in seen:
+            return
+        seen.add(line)
+        facts = ctx.facts
+        records = facts.cuts
+        after = len(facts.reported)
+        program = ctx.program.first_line
+        last = records[-1] if records else None
+        if (
+            last is None
+            or last.after != after
+            or last.program != program
+            or last.message != message
+        ):
+            records.append(CutsWithoutFeed(uri, program, message, after, array("i", (line,))))
+        else:
+            if line <= last.lines[-1]:
+                last.ascending = False
+            last.lines.append(line)
 
     def _loop(self, act: Activation, done: int = 0) -> None:
         steps = self._steps = done
@@ -1243,7 +1286,7 @@ class Machine:
                     f"G{code:02g} cuts with no F commanded before it"
                     f" since {self._entry_name} started"
                 )
-            self._finding(act.ctx, "feed-not-set", self._line, 0, 0, message)
+            self._cut_without_feed(act.ctx, message)
         position = modal.position
         x = self._axis(values, "X", "U")
         if lathe:
@@ -1741,6 +1784,15 @@ def compile_line(parsed: ParsedLine) -> CompiledLine:
 compiled: PerLine[CompiledLine] = PerLine(compile_line)
 
 
+def _ends_program_line(parsed: ParsedLine) -> bool | None:
+    return compiled(parsed).ends_program or None
+
+
+# The blocks with M02 or M30, by document: kept across edits, where a look at every block for
+# a program's first end took milliseconds per analysis of a long program (it ends at its last).
+_program_end_lines: LineMap[bool] = LineMap(_ends_program_line)
+
+
 def _volatile(number: int) -> bool:
     """System variables the control changes by itself: clocks, signals, positions."""
     return (
@@ -1827,13 +1879,12 @@ def contexts_of(
     if lines is None:
         lines = [compiled(b.parsed) for b in doc.blocks]
     out: list[ProgramContext] = []
+    ends = _program_end_lines(doc).lines
     for program in index.programs:
         loop_end = {lp.do_line: lp.end_line for lp in program.loops if lp.end_line is not None}
         loop_do = {e: d for d, e in loop_end.items()}
-        first_end = next(
-            (ln for ln in range(program.first_line, program.end_line) if lines[ln].ends_program),
-            None,
-        )
+        at = bisect_left(ends, program.first_line)
+        first_end = ends[at] if at < len(ends) and ends[at] < program.end_line else None
         is_main = first_end is not None
         if first_end is not None:
             doc_facts.program_ends[program.first_line] = first_end

@@ -213,7 +213,7 @@ def _resume(machine: Machine, how: Resumption, sequence: _Sequence, deadline: fl
     assumed = dict(state.assumed)
     for uri, base in facts.by_uri.items():
         before = previous.by_uri.get(uri)
-        base.findings[:] = before.findings[: findings.get(uri, 0)] if before is not None else []
+        base.reported[:] = before.reported[: findings.get(uri, 0)] if before is not None else []
         base.analysed_programs.clear()
         base.analysed_programs.update(analysed.get(uri, ()))
         base.assumed_arguments.clear()
@@ -258,7 +258,7 @@ def _splice(machine: Machine, how: Resumption, index: int, done: int) -> None:
         before = previous.by_uri.get(uri)
         if before is None:
             continue
-        base.findings.extend(before.findings[findings.get(uri, 0) :])
+        base.reported.extend(before.reported[findings.get(uri, 0) :])
         base.analysed_programs.clear()
         base.analysed_programs.update(before.analysed_programs)
         base.assumed_arguments.clear()

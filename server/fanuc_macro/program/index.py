@@ -12,6 +12,7 @@ from bisect import bisect_right
 from dataclasses import dataclass, field
 from urllib.parse import unquote
 
+from ..line_maps import line_diff
 from ..syntax.tree import (
     Block,
     Bracket,
@@ -317,6 +318,22 @@ def has_m99(nc: NcStatement) -> bool:
 INDEXED_STATEMENTS: frozenset[type] = frozenset(
     {Goto, IfGoto, IfNc, While, End, Mixed, ProgramStart}
 )
+
+
+def index_after_edit(index: ProgramIndex, old: Document, new: Document) -> ProgramIndex:
+    """The index of ``new``, a version of ``old`` (whose index is ``index``): ``index`` itself
+    when the edit kept the line count and changed only lines the index skips, inside a program
+    (a line the index does not need adds nothing to it once a program has begun)."""
+    if old.uri != new.uri or len(old.blocks) != len(new.blocks) or not index.programs:
+        return build_index(new)
+    diff = line_diff(old, new)
+    if diff.start <= index.programs[0].first_line:
+        return build_index(new)
+    x, y = old.blocks, new.blocks
+    for line in range(diff.start, diff.end):
+        if x[line].parsed.indexed or y[line].parsed.indexed:
+            return build_index(new)
+    return index
 
 
 def build_index(doc: Document) -> ProgramIndex:

@@ -166,30 +166,20 @@ def _feed_not_set(ctx: RuleContext) -> Iterator[Diagnostic]:
 
     Once per program, at the first such cut the run reached: the cuts after it lack the same F
     (a CAM file without F would otherwise get one warning per block)."""
-    by_program: dict[int, list[int]] = {}
-    first: dict[int, str] = {}
-    lines: list[int] = []
-    start = end = 0  # the lines of the program of the last finding: most follow in it
-    for f in ctx.findings("feed-not-set"):
-        line = f.line
-        if not start <= line < end:
-            program = ctx.index.program_at(line)
-            key = program.first_line if program is not None else -1
-            start, end = (program.first_line, program.end_line) if program else (0, 0)
-            lines = by_program.setdefault(key, [])
-            if not lines:
-                first[key] = f.message
-        lines.append(line)
-    for key, cuts in by_program.items():
+    facts = ctx.doc_facts()
+    if facts is None:
+        return
+    for program in facts.feedless().values():
+        cuts = program.lines
         line = cuts[0]
         text = ctx.doc.blocks[line].text
         more = ""
-        if len(cuts) > 1:
-            later = line_list(cuts[1:])
-            more = f"; {len(cuts) - 1} more cuts run without F after it (lines {later})"
+        if program.count > 1:
+            later = line_list(cuts[1:])  # the first few: SHOWN_CUTS is more than it shows
+            more = f"; {program.count - 1} more cuts run without F after it (lines {later})"
         yield make(
             "MB603",
-            f"{first[key]}: the feed is what an earlier program left, or 0 after power-on "
+            f"{program.message}: the feed is what an earlier program left, or 0 after power-on "
             f"(alarm PS0011 FEED ZERO); give F in this block or before it{more}",
             line,
             len(text) - len(text.lstrip()),

@@ -79,14 +79,14 @@ class RuleContext:
 
     def findings(self, *kinds: str) -> Iterator[Finding]:
         """The evaluator's findings in this document whose kind starts with one of ``kinds``,
-        in the order the run found them."""
+        in the order the run found them; not the cuts without F (``feed-not-set``), which
+        :meth:`DocumentFacts.feedless` gives by program."""
         by_kind = self.memo.get("findings by kind")
         if by_kind is None:
-            # Grouped once per analysis: a dozen rules ask, and a CAM file without F has a
-            # finding per block.
+            # Grouped once per analysis: a dozen rules ask.
             facts = self.doc_facts()
             grouped: dict[str, list[tuple[int, Finding]]] = {}
-            for i, finding in enumerate(facts.findings if facts is not None else ()):
+            for i, finding in enumerate(facts.reported if facts is not None else ()):
                 grouped.setdefault(finding.kind, []).append((i, finding))
             by_kind = self.memo["findings by kind"] = grouped
         groups = cast("dict[str, list[tuple[int, Finding]]]", by_kind)

@@ -18,7 +18,7 @@ from contextlib import contextmanager
 from dataclasses import replace
 from importlib import resources
 from itertools import accumulate
-from operator import itemgetter
+from operator import attrgetter, itemgetter
 from typing import Any, cast
 
 from ..cancel import READING, SLICE, CancelToken, raise_if_cancelled
@@ -318,6 +318,14 @@ _ADDRESSES = {
     ch: sys.intern(ch.upper()) for ch in "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz"
 }
 
+# Words of a number written as it stands, by column and text ('G01' at column 0, 'Z-2.5' at
+# 20): the nodes are immutable, so blocks share them (a CAM file repeats its G code and a few
+# hundred Z depths at a few columns) instead of holding a word, a number, its text and its
+# float each. The first words seen are kept, up to the limit.
+_SHARED_WORDS: dict[tuple[int, str], Word] = {}
+_SHARED_WORDS_LIMIT = 1 << 15
+_SHARED_WORD_COLUMNS = 128  # a block's words are near its start; a long line's are its own
+
 # Matches of _FAST_WORD one after the other from a column (typeshed does not list it).
 _scan_words: Callable[[str, int], Any] = _FAST_WORD.scanner  # type: ignore[attr-defined]
 
@@ -370,11 +378,21 @@ def _fast_parse(
     # the grammar rejects for another reason, the grammar's message is the one to give.
     unreadable: ValueError | None = None
     # The scanner's matches follow one another, each where the last ended, until a word fails.
+    shared = _SHARED_WORDS
     for wm in iter(_scan_words(code, pos).match, None):
         letter, number, other = wm.groups()
         pos = wm.end()
+        key: tuple[int, str] | None = None
         if number is not None:
             value_start, value_end = wm.span(2)
+            if value_end < _SHARED_WORD_COLUMNS:
+                key = (wm.start(), code[wm.start() : value_end])
+                word = shared.get(key)
+                if word is not None:
+                    if word.address in "GM":
+                        has_call = has_call or (word.address, word.value.value) in CALL_CODES  # type: ignore[union-attr]
+                    words.append(word)
+                    continue
             if len(number) > MAX_DIGITS:
                 try:
                     _to_float(number)
@@ -399,7 +417,10 @@ def _fast_parse(
         upper = _ADDRESSES.get(letter) or letter.upper()
         if upper in "GM" and type(value) is Num:
             has_call = has_call or (upper, value.value) in CALL_CODES
-        words.append(quick_word(upper, value, span, letter != upper))
+        word = quick_word(upper, value, span, letter != upper)
+        if key is not None and len(shared) < _SHARED_WORDS_LIMIT:
+            shared[key] = word
+        words.append(word)
     if pos < size:
         return None
     if unreadable is not None:
@@ -987,36 +1008,73 @@ def parse_text(
     previous: Document | None = None,
     limits: ReadLimits = READ_WHOLE,
     cancel: CancelToken | None = None,
+    previous_limits: ReadLimits | None = None,
 ) -> Document:
     """Parse a document; with ``previous`` (its last version) unchanged lines keep their blocks.
 
     Past the ``limits`` of a document the lines get no block (``line_count`` still counts
     them), and ``unread_note`` says what was left out. ``cancel`` is looked at every
-    :data:`~fanuc_macro.cancel.SLICE` lines (see :mod:`fanuc_macro.cancel`)."""
+    :data:`~fanuc_macro.cancel.SLICE` lines (see :mod:`fanuc_macro.cancel`). When
+    ``previous`` was read by the same parser with ``previous_limits`` equal to ``limits``, its
+    lines are compared by text and only those between the first and the last change parsed."""
     raise_if_cancelled(cancel)
     bp = parser or default_parser()
     lines = split_lines(text)
     read = _lines_read(text, lines, limits)
     with quiet_gc():
-        if cancel is None:
-            parsed = bp.parse_lines(
-                lines if read == len(lines) else lines[:read], limits.max_line_length
+        if previous is not None and previous_limits == limits:
+            blocks = _blocks_by_text(
+                previous.blocks, lines if read == len(lines) else lines[:read], bp, limits, cancel
             )
         else:
-            parsed = []
-            for start in range(0, read, SLICE):
-                if start:
-                    cancel.reached(READING, start, read)
-                end = min(start + SLICE, read)
-                parsed += bp.parse_lines(lines[start:end], limits.max_line_length)
-        if previous is None:
-            blocks = tuple(map(Block, range(read), parsed))
-        else:
-            blocks = _blocks_after_edit(previous.blocks, parsed)
+            parsed = _parse_lines(bp, lines if read == len(lines) else lines[:read], limits, cancel)
+            if previous is None:
+                blocks = tuple(map(Block, range(read), parsed))
+            else:
+                blocks = _blocks_after_edit(previous.blocks, parsed)
     if read == len(lines):
         return Document(uri, blocks, "utf-8", None, len(lines))
     note = _unread_note(text, lines, read, limits)
     return Document(uri, blocks, "utf-8", None, len(lines), read, note)
+
+
+def _parse_lines(
+    bp: BlockParser, lines: list[str], limits: ReadLimits, cancel: CancelToken | None
+) -> list[ParsedLine]:
+    if cancel is None:
+        return bp.parse_lines(lines, limits.max_line_length)
+    parsed: list[ParsedLine] = []
+    for start in range(0, len(lines), SLICE):
+        if start:
+            cancel.reached(READING, start, len(lines))
+        parsed += bp.parse_lines(lines[start : start + SLICE], limits.max_line_length)
+    return parsed
+
+
+_TEXT = attrgetter("text")  # ParsedLine.text, read in C
+
+
+def _blocks_by_text(
+    old: tuple[Block, ...],
+    lines: list[str],
+    bp: BlockParser,
+    limits: ReadLimits,
+    cancel: CancelToken | None,
+) -> tuple[Block, ...]:
+    """The blocks of a new version of a document read like ``old``: the lines before the first
+    and after the last line whose text changed keep their parse (the parser would give them the
+    same: a line's parse depends on its text and the limits alone), without a cache look-up
+    per line; the lines between are parsed."""
+    diff = Diff(list(map(_TEXT, map(_PARSED, old))), lines, identical=False)
+    start, end = diff.start, diff.end
+    edited = tuple(
+        map(Block, range(start, end), _parse_lines(bp, lines[start:end], limits, cancel))
+    )
+    if diff.shift:
+        after = tuple(map(Block, range(end, len(lines)), map(_PARSED, old[diff.old_end :])))
+    else:
+        after = old[diff.old_end :]
+    return old[:start] + edited + after
 
 
 _PARSED = itemgetter(1)  # Block.parsed, read in C
