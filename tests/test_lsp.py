@@ -638,13 +638,13 @@ async def test_thread_module_command(client: LanguageClient) -> None:
         return result
 
     good = await run({"designation": "M50x3-5g6g", "length": 40.0, "internal": None})
-    if importlib.util.find_spec("fanuc_macro.threads.generator") is None:
+    if importlib.util.find_spec("fanuc_macro.ide.thread_generator") is None:
         assert "no thread module generator" in good["error"]
     else:
         assert isinstance(good.get("text"), str) and good["text"]
     bad = await run({"designation": "M50x3-5g6g", "length": -1, "internal": False})
     assert "length" in bad["error"]
-    if importlib.util.find_spec("fanuc_macro.threads.generator") is not None:
+    if importlib.util.find_spec("fanuc_macro.ide.thread_generator") is not None:
         assert good["text"].startswith("%\nO4009")
         wrong = await run({"designation": "M50x3-9z", "length": 40.0, "internal": None})
         assert "tolerance position 'z'" in wrong["error"]  # the generator's ValueError

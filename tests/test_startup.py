@@ -19,8 +19,8 @@ NOT_FOR_CHECK = (
     "cattrs",
     "regex",
     "fanuc_macro.lsp",
-    "fanuc_macro.threads.generator",
-    "fanuc_macro.threads.snippet",
+    "fanuc_macro.ide.thread_generator",
+    "fanuc_macro.ide.thread_snippet",
 )
 
 
@@ -59,14 +59,14 @@ def test_the_thread_command_still_loads_its_generator(tmp_path: Path) -> None:
         "    status = main(['thread', 'M50x3-5g6g', '--length', '30'])\n"
         "assert status == 0, status\n"
     )
-    assert "fanuc_macro.threads.generator" in loaded
+    assert "fanuc_macro.ide.thread_generator" in loaded
 
 
 def test_the_language_server_starts_without_the_thread_generator() -> None:
     loaded = loaded_after("import fanuc_macro.lsp.server\n")
     assert "pygls" in loaded and "fanuc_macro.lsp.engine" in loaded
-    assert "fanuc_macro.threads.generator" not in loaded
-    assert "fanuc_macro.threads.snippet" not in loaded
+    assert "fanuc_macro.ide.thread_generator" not in loaded
+    assert "fanuc_macro.ide.thread_snippet" not in loaded
     assert "regex" not in loaded
 
 

@@ -21,8 +21,7 @@ from fanuc_macro import cli
 from fanuc_macro.analysis import Analysis, analyse
 from fanuc_macro.cli.thread import add_thread_command
 from fanuc_macro.evaluator import Motion
-from fanuc_macro.threads import parse_designation, plan_from_tolerances, tolerances
-from fanuc_macro.threads.generator import (
+from fanuc_macro.ide.thread_generator import (
     DRUM_PROFILE,
     build_arc_thread,
     build_drum_groove,
@@ -31,7 +30,8 @@ from fanuc_macro.threads.generator import (
     generate_drum_groove,
     generate_module,
 )
-from fanuc_macro.threads.snippet import module_from_document
+from fanuc_macro.ide.thread_snippet import module_from_document
+from fanuc_macro.threads import parse_designation, plan_from_tolerances, tolerances
 
 ROOT = Path(__file__).resolve().parent.parent
 SEEDS = ROOT / "tests" / "fixtures" / "seeds"
@@ -510,7 +510,7 @@ def test_cli_thread_subprocess() -> None:
 
 
 def test_drum_profile_fits_the_papers_crown_radius() -> None:
-    from fanuc_macro.threads.generator import DRUM_PROFILE
+    from fanuc_macro.ide.thread_generator import DRUM_PROFILE
     from fanuc_macro.threads.profile import fit_crown
 
     crown = fit_crown(DRUM_PROFILE)

@@ -12,8 +12,7 @@ from .. import __version__
 from ..analysis import analyse
 from ..config import CONTROLLERS, NOT_SET, Config
 from ..diagnostics import REPORT_INTERNAL_ERROR, Diagnostic, Severity
-from ..evaluator.values import fmt_address
-from ..ide.trace import trace  # small: what it uses, the check uses too
+from ..ide.trace import motion_text, trace  # small: what it uses, the check uses too
 from ..workspace import Workspace, is_program_file
 from .thread import add_thread_command
 
@@ -220,8 +219,7 @@ def cmd_trace(args: argparse.Namespace) -> int:
         out.write("\n")
         return EXIT_OK
     for m in result["motions"]:
-        words = " ".join(f"{k}{fmt_address(v)}" for k, v in m["words"].items())
-        out.write(f"{m['program']:<6} line {m['line']:<5} {m['code']:<4} {words}\n")
+        out.write(motion_text(m) + "\n")
     summary = result["summary"]
     by_code = ", ".join(f"{k} {v}" for k, v in summary["by_code"].items())
     out.write(

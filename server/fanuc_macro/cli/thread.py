@@ -20,7 +20,7 @@ EXIT_USAGE = 2
 def _coefficient(text: str) -> float:
     """``0.2``, ``0.2/3`` (a fraction as the paper writes it), ``steel`` or ``molybdenum``."""
     # The generator is imported by the thread command only: ``check`` starts without it.
-    from ..threads.generator import MATERIAL_COEFFICIENTS
+    from ..ide.thread_generator import MATERIAL_COEFFICIENTS
 
     named = MATERIAL_COEFFICIENTS.get(text.strip().lower())
     if named is not None:
@@ -60,7 +60,7 @@ def _count(text: str) -> int:
 
 
 def cmd_thread(args: argparse.Namespace) -> int:
-    from ..threads.generator import generate_module
+    from ..ide.thread_generator import generate_module
 
     try:
         text = generate_module(

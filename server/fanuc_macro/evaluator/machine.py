@@ -20,8 +20,9 @@ from ..cancel import RUNNING, CancelToken
 from ..config import Config
 from ..line_maps import LineMap
 from ..per_line import PerLine
-from ..program.index import Program, ProgramIndex, constant_value
+from ..program.index import Program, ProgramIndex
 from ..program.variables import ARGUMENT_VARIABLES, classify
+from ..syntax.marks import constant_value
 from ..syntax.tree import (
     Assign,
     Bracket,

@@ -5,9 +5,9 @@ from __future__ import annotations
 import re
 from collections.abc import Iterable
 
-from ..program.index import constant_value
 from ..rules import expressions
 from ..rules.expressions import logic_fixes, logic_operands
+from ..syntax.marks import constant_value
 from ..syntax.parser import default_parser, statements_of
 from ..syntax.tree import Block, NcStatement, ParsedLine
 from .data import ActionKind, CodeAction, DocumentEdit, Position, Problem, Range, TextEdit

@@ -185,7 +185,7 @@ def _thread_module(view: View | None) -> str | None:
     if view is None or view.facts is None:
         return None
     # The generator is imported on the first thread completion, not before initialize.
-    from ..threads.snippet import module_from_analysis
+    from .thread_snippet import module_from_analysis
 
     try:
         return module_from_analysis(view.doc, view.index, view.facts)

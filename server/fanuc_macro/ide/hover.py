@@ -8,10 +8,11 @@ from collections.abc import Sequence
 from ..evaluator.facts import ValueSummary
 from ..evaluator.values import fmt
 from ..program import knowledge
-from ..program.index import Program, constant_value
+from ..program.index import Program
 from ..program.meanings import table_meaning
 from ..program.variables import ARGUMENT_VARIABLES, classify
 from ..syntax.lines import cut_comments
+from ..syntax.marks import constant_value
 from ..syntax.parser import statements_of
 from ..syntax.tree import Assign, Block, Num, ProgramStart, Word
 from ..threads.identify import describe as describe_thread

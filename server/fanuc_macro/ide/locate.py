@@ -6,8 +6,8 @@ import re
 from collections.abc import Iterator
 from dataclasses import dataclass
 
-from ..program.index import constant_value
 from ..syntax.lines import cut_comments
+from ..syntax.marks import constant_value
 from ..syntax.parser import statements_of
 from ..syntax.tree import (
     Assign,

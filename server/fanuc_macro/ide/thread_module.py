@@ -6,7 +6,7 @@ from __future__ import annotations
 import importlib
 from collections.abc import Callable
 
-GENERATOR_MODULE = "fanuc_macro.threads.generator"
+GENERATOR_MODULE = "fanuc_macro.ide.thread_generator"
 
 # generate_module(designation, length in mm, internal or None) -> the module's text
 Generator = Callable[[str, float, "bool | None"], object]

@@ -8,6 +8,7 @@ from typing import Any
 
 from ..config import Config
 from ..evaluator import evaluate
+from ..evaluator.values import fmt_address
 from ..program.index import ProgramIndex
 from ..syntax.tree import Document
 
@@ -46,3 +47,10 @@ def trace(
             "findings": findings,
         },
     }
+
+
+def motion_text(motion: dict[str, Any]) -> str:
+    """One motion of a trace as the command line prints it: program, line, code, its words at
+    the control's precision."""
+    words = " ".join(f"{k}{fmt_address(v)}" for k, v in motion["words"].items())
+    return f"{motion['program']:<6} line {motion['line']:<5} {motion['code']:<4} {words}"

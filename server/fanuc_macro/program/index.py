@@ -13,12 +13,11 @@ from dataclasses import dataclass, field
 from urllib.parse import unquote
 
 from ..line_maps import line_diff
+from ..syntax.marks import constant_value
 from ..syntax.tree import (
     Block,
-    Bracket,
     Document,
     End,
-    Expr,
     Goto,
     IfGoto,
     IfNc,
@@ -28,24 +27,9 @@ from ..syntax.tree import (
     Num,
     ProgramStart,
     Span,
-    Unary,
     While,
     Word,
 )
-
-
-def constant_value(expr: Expr) -> float | None:
-    """The value of an expression written as a constant (``10``, ``-5.``, ``[10]``)."""
-    if isinstance(expr, Num):
-        return expr.value
-    if isinstance(expr, Bracket):
-        return constant_value(expr.inner)
-    if isinstance(expr, Unary):
-        inner = constant_value(expr.operand)
-        if inner is None:
-            return None
-        return -inner if expr.op == "-" else inner
-    return None
 
 
 @dataclass(frozen=True, slots=True)
@@ -290,34 +274,8 @@ def call_of(line: int, nc: NcStatement) -> Call | None:
     )
 
 
-# The words that make a block a call (or a return): the index looks at such blocks closer.
-CALL_CODES = frozenset(
-    {("G", 65.0), ("G", 66.0), ("G", 66.1), ("M", 98.0), ("M", 97.0), ("M", 99.0)}
-)
-
-
-def mentions_call(statement: object) -> bool:
-    """Whether a statement has a word that calls or returns (decided once per parsed line)."""
-    if isinstance(statement, Mixed):
-        statement = statement.nc
-    elif isinstance(statement, IfNc):
-        statement = statement.words
-    if not isinstance(statement, NcStatement):
-        return False
-    for word in statement.words:
-        if word.address in ("G", "M") and (word.address, constant_value(word.value)) in CALL_CODES:
-            return True
-    return False
-
-
 def has_m99(nc: NcStatement) -> bool:
     return any(w.address == "M" and constant_value(w.value) == 99.0 for w in nc.words)
-
-
-# Statements the index records; assignments and plain NC blocks (most lines) it skips.
-INDEXED_STATEMENTS: frozenset[type] = frozenset(
-    {Goto, IfGoto, IfNc, While, End, Mixed, ProgramStart}
-)
 
 
 def index_after_edit(index: ProgramIndex, old: Document, new: Document) -> ProgramIndex:

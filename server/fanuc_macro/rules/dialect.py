@@ -7,7 +7,7 @@ from __future__ import annotations
 from collections.abc import Iterable, Iterator
 
 from ..diagnostics import RuleDoc, RuleInfo, Severity, document, register
-from ..program.index import constant_value
+from ..syntax.marks import constant_value
 from ..syntax.parser import statements_of
 from ..syntax.tree import (
     BareCond,

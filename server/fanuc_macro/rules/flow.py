@@ -13,7 +13,8 @@ from ..evaluator.facts import DocumentFacts
 from ..evaluator.machine import compiled
 from ..line_maps import LineMap
 from ..per_line import PerLine
-from ..program.index import Program, constant_value
+from ..program.index import Program
+from ..syntax.marks import constant_value
 from ..syntax.tree import Block, Goto, IfGoto, IfThen, Mixed, NcStatement, ParsedLine, While
 from .context import RuleContext
 

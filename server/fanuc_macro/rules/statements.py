@@ -20,8 +20,9 @@ from ..diagnostics import (
 from ..line_maps import LineMap
 from ..per_line import PerLine
 from ..program.index import Call as IndexCall
-from ..program.index import Program, constant_value
+from ..program.index import Program
 from ..program.variables import FORBIDDEN_ARGUMENTS
+from ..syntax.marks import constant_value
 from ..syntax.parser import statements_of
 from ..syntax.tree import (
     Assign,

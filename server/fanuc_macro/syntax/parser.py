@@ -23,7 +23,6 @@ from typing import Any, cast
 
 from ..cancel import READING, SLICE, CancelToken, raise_if_cancelled
 from ..line_maps import Diff
-from ..program.index import CALL_CODES, INDEXED_STATEMENTS, mentions_call
 from . import dialects
 from .lines import (
     MAX_LINE_LENGTH,
@@ -34,6 +33,7 @@ from .lines import (
     decode_bytes,
     split_lines,
 )
+from .marks import CALL_CODES, INDEXED_STATEMENTS, mentions_call
 from .tree import (
     SHARED_COLUMNS,
     SHARED_SPANS,

@@ -14,10 +14,10 @@ from ..evaluator import DocumentFacts, evaluate
 from ..program.index import ProgramIndex, build_index
 from ..syntax.parser import default_parser, parse_text
 from ..syntax.tree import Assign, Document, IfThen
-from .designation import ThreadDesignation, parse_designation
-from .generator import build_module_from_values, default_program_numbers
-from .identify import thread_words
-from .iso965 import tolerances
+from ..threads.designation import ThreadDesignation, parse_designation
+from ..threads.identify import thread_words
+from ..threads.iso965 import tolerances
+from .thread_generator import build_module_from_values, default_program_numbers
 
 __all__ = ["module_from_document"]
 

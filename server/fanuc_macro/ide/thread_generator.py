@@ -25,9 +25,9 @@ from typing import Any
 
 from ..analysis import Analysis, analyse
 from ..evaluator import Facts, Motion
-from .designation import ThreadDesignation, parse_designation
-from .iso965 import tolerances
-from .profile import CrownFit, fit_crown
+from ..threads.designation import ThreadDesignation, parse_designation
+from ..threads.iso965 import tolerances
+from ..threads.profile import CrownFit, fit_crown
 
 __all__ = [
     "DRUM_PROFILE",
