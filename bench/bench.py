@@ -330,6 +330,56 @@ def bench_big_document(size: int) -> None:
         print(f"{size:,} blocks: rules, analysis {run + 1}: {dt:.2f} s{rss}")
 
 
+def bench_keystrokes(name: str, text: str, edits: int = 6) -> None:
+    """A document opened in a workspace (read whole) and analysed, then a digit typed and
+    removed again, ``edits`` times, each analysed as the language server does: the figures
+    without the protocol (``bench_lsp.py`` has those)."""
+    import dataclasses
+
+    from fanuc_macro.config import Config
+    from fanuc_macro.workspace import Workspace
+
+    config = dataclasses.replace(Config(), max_blocks=10**7, max_file_size=10**10)
+    workspace = Workspace(config)
+    uri = f"file:///{name}.nc"
+    t = time.perf_counter()
+    workspace.add_text(uri, text)
+    workspace.analyse(uri)
+    cold = time.perf_counter() - t
+    lines = text.split("\n")
+    at = len(lines) // 2
+    # A factor of an assignment (a macro program) or a coordinate (CAM output): the edit keeps
+    # the block valid, as most keystrokes in a long program do.
+    mark = "*" if any("*" in line for line in lines[at:]) else "X"
+    while mark not in lines[at]:
+        at += 1
+    original = lines[at]
+    times: list[float] = []
+    for i in range(edits):
+        lines[at] = original.replace(mark, mark + "1", 1) if i % 2 == 0 else original
+        edited = "\n".join(lines)
+        t = time.perf_counter()
+        workspace.add_text(uri, edited)
+        workspace.analyse(uri)
+        times.append(time.perf_counter() - t)
+    print(
+        f"{name}: open -> diagnostics {cold:.2f} s; keystroke -> diagnostics min "
+        f"{min(times) * 1000:.0f} ms, median {statistics.median(times) * 1000:.0f} ms "
+        f"({edits} edits)"
+    )
+
+
+def bench_big_keystrokes(quick: bool) -> None:
+    from bench_lsp import cam_program, program
+
+    sizes = (20_000,) if quick else (20_000, 100_000)
+    for size in sizes:
+        bench_keystrokes(f"macro program {size:,} blocks", program(size))
+    bench_keystrokes(f"macro-dense {sizes[-1]:,} blocks", generate_macro_dense(sizes[-1]))
+    cam = 20_000 if quick else 200_000
+    bench_keystrokes(f"CAM output {cam:,} blocks", cam_program(cam))
+
+
 def main() -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("--quick", action="store_true")
@@ -358,6 +408,7 @@ def main() -> None:
     bench_resume(20000)
     bench_threads()
     bench_big_rules(20000 if args.quick else 100000)
+    bench_big_keystrokes(args.quick)
 
 
 if __name__ == "__main__":
