@@ -136,3 +136,13 @@ def test_the_ide_layer_loads_without_the_protocol() -> None:
     env = {"PYTHONPATH": str(ROOT / "server"), "PATH": ""}
     done = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True)
     assert done.returncode == 0, done.stderr
+
+
+def test_hover_names_the_nearest_assignment_before_else_the_first_after() -> None:
+    text = "O1000\nG01 X#5\n#5=1.\n#5=2.\nG01 X#5\n#5=3.\nM30\nO2000\n#5=9.\nM99\n"
+    view = view_of(text)
+    for line, where in ((1, "set at line 3: `#5=1.`"), (4, "set at line 4: `#5=2.`")):
+        found = hover(view, line, text.splitlines()[line].index("#5"))
+        assert found is not None and where in found.markdown, (line, found)
+    own = hover(view, 5, 0)
+    assert own is not None and "set here: `#5=3.`" in own.markdown

@@ -30,19 +30,28 @@ def find_assignment(
 ) -> tuple[int, Assign] | None:
     """The assignment of ``#number`` that explains it at ``line``: the last one before it in
     the same program, else the first one after it."""
-    first, end = (program.first_line, program.end_line) if program else (0, len(view.doc.blocks))
-    before: tuple[int, Assign] | None = None
-    after: tuple[int, Assign] | None = None
-    for ln in range(first, min(end, len(view.doc.blocks))):
-        for statement in statements_of(view.doc.blocks[ln].statement):
-            for assign in assignments_in(statement):
-                if number_of(assign.target) != number:
-                    continue
-                if ln <= line:
-                    before = (ln, assign)
-                elif after is None:
-                    after = (ln, assign)
-    return before or after
+    blocks = view.doc.blocks
+    first, end = (program.first_line, program.end_line) if program else (0, len(blocks))
+    stop = min(end, len(blocks))
+    # From the hovered line outwards: a long program is read only up to the nearest one.
+    for ln in range(min(line, stop - 1), first - 1, -1):
+        found = _assignments_of(blocks[ln], number)
+        if found:
+            return ln, found[-1]
+    for ln in range(max(line + 1, first), stop):
+        found = _assignments_of(blocks[ln], number)
+        if found:
+            return ln, found[0]
+    return None
+
+
+def _assignments_of(block: Block, number: int) -> list[Assign]:
+    return [
+        assign
+        for statement in statements_of(block.statement)
+        for assign in assignments_in(statement)
+        if number_of(assign.target) == number
+    ]
 
 
 def hover_variable(view: View, block: Block, hit: Hit) -> str:
