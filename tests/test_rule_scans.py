@@ -248,3 +248,31 @@ def test_the_line_rules_check_blocks_of_plain_words_without_walking_them(
     monkeypatch.setattr(walk, "top_expressions", counted)
     assert [[list(check(p)) for check in LINE_CHECKS] for p in plain] == expected
     assert walked[0] == 0
+
+
+def test_the_plain_words_way_gives_the_general_way_s_findings_on_every_corpus_line() -> None:
+    """The line rules' way for blocks of plain words (dialect and expressions) against the way
+    through every statement, on each line of the seeds and of the corpus of real programs."""
+    from pathlib import Path
+
+    from fanuc_macro.rules import dialect
+    from fanuc_macro.syntax.lines import decode_bytes, split_lines
+
+    root = Path(__file__).resolve().parents[1]
+    corpus = root.parent / "shared" / "corpus"
+    if not corpus.is_dir():
+        pytest.skip("the corpus of real programs (../shared/corpus) is not beside the checkout")
+    files = sorted((root / "tests" / "fixtures" / "seeds").glob("*.nc"))
+    files += sorted(p for p in corpus.iterdir() if p.suffix not in (".md", ".tsv"))
+    parser = default_parser()
+    plain = 0
+    for path in files:
+        for line in split_lines(decode_bytes(path.read_bytes()).text):
+            p = parser.parse_line(line)
+            if isinstance(p.statement, NcStatement) and plain_variables(p.statement) is not None:
+                plain += 1
+            assert list(dialect.check_line(p)) == list(dialect._check_line(p)), line
+            assert list(expressions.check_line(p)) == list(
+                expressions._check_line(p.statement, p.text)
+            ), line
+    assert plain > 1000  # the corpus is mostly blocks of plain words
