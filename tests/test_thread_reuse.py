@@ -13,9 +13,10 @@ from types import ModuleType
 
 import pytest
 
-from fanuc_macro.analysis import analyse
+from fanuc_macro.analysis import Analysis, analyse
 from fanuc_macro.config import Config
 from fanuc_macro.evaluator import Motion
+from fanuc_macro.line_maps import Kept
 from fanuc_macro.program import meanings
 from fanuc_macro.syntax.parser import BlockParser
 from fanuc_macro.threads import identify, jobs
@@ -48,9 +49,19 @@ def _edit_number(lines: list[str], at: int) -> list[str]:
     return out
 
 
+def _fresh(text: str) -> Analysis:
+    """An analysis from scratch, without the jobs kept of the document (restored after)."""
+    kept = jobs._kept
+    jobs._kept = Kept()
+    try:
+        return analyse(text, URI, CONFIG, parser=BlockParser())
+    finally:
+        jobs._kept = kept
+
+
 def _same_as_fresh(text: str, previous: object) -> object:
     resumed = analyse(text, URI, CONFIG, parser=PARSER, previous_facts=previous)  # type: ignore[arg-type]
-    fresh = analyse(text, URI, CONFIG, parser=BlockParser())
+    fresh = _fresh(text)
     assert resumed.diagnostics == fresh.diagnostics
     assert [identify.describe(t) for t in resumed.threads] == [
         identify.describe(t) for t in fresh.threads
@@ -81,7 +92,7 @@ def test_an_edit_that_cuts_the_same_passes_keeps_the_jobs_and_looks_at_one_line(
     assert jobs.grouped == grouped
     assert identify._thread_lines.looked - looked <= 1
     assert meanings._role_lines.looked - roles <= 1
-    fresh = analyse("\n".join(lines), URI, CONFIG, parser=BlockParser())
+    fresh = _fresh("\n".join(lines))
     assert again.diagnostics == fresh.diagnostics
 
 
@@ -93,6 +104,34 @@ def test_an_edit_of_a_pass_groups_again_and_equals_a_fresh_analysis() -> None:
     grouped = jobs.grouped
     previous = _same_as_fresh("\n".join(lines), previous)
     assert jobs.grouped > grouped
+
+
+def test_an_edit_of_a_pass_over_the_same_z_replaces_that_pass_only() -> None:
+    # The pass's X changes, its stretch of Z does not: it joins the same job and the passes
+    # after it group as before, so only it is taken again, not all the 500 passes.
+    lines = program(2000).split("\n")
+    first = analyse("\n".join(lines), URI, CONFIG, parser=PARSER)
+    at = next(i for i in range(len(lines) // 2, len(lines)) if lines[i].startswith("G00 X["))
+    lines[at] = lines[at].replace("X[#100+", "X[#100+1", 1)  # where the next G92 starts
+    grouped = jobs.grouped
+    again = analyse("\n".join(lines), URI, CONFIG, parser=PARSER, previous_facts=first.facts)
+    assert 1 <= jobs.grouped - grouped <= 2
+    assert len(first.threads[0].job.passes) > 400
+    assert again.threads[0].job is not first.threads[0].job
+    fresh = _fresh("\n".join(lines))
+    assert again.diagnostics == fresh.diagnostics
+    assert again.threads[0].job.passes == fresh.threads[0].job.passes
+
+
+def test_an_edit_of_a_pass_over_another_z_groups_all_again() -> None:
+    lines = program(2000).split("\n")
+    previous = analyse("\n".join(lines), URI, CONFIG, parser=PARSER).facts
+    at = next(i for i in range(len(lines) // 2, len(lines)) if lines[i].startswith("G92"))
+    lines[at] = lines[at].replace("W-[", "W-2*[", 1)  # a pass twice as long
+    grouped = jobs.grouped
+    analyse("\n".join(lines), URI, CONFIG, parser=PARSER, previous_facts=previous)
+    assert jobs.grouped - grouped > 400
+    _same_as_fresh("\n".join(lines), previous)
 
 
 @pytest.mark.parametrize("seed", range(3))

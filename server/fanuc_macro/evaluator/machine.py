@@ -77,7 +77,11 @@ MAX_NESTING = 10
 MAX_MOTIONS = 200_000  # motion records kept per analysis
 THREADING_CODES = frozenset({32.0, 33.0, 34.0, 76.0, 92.0})
 MAX_REMEMBERED_RUNS = 1000  # executions whose variables are kept when they start a thread
-CHECK_EVERY = 1024  # blocks between two looks at the budgets and a newer edit; checkpoints
+CHECK_EVERY = 1024  # blocks between two looks at the budgets and a newer edit
+# Blocks between two checkpoints (at the next boundary line): a resumed run re-runs about
+# this many blocks before an edit and after it, and each checkpoint costs a capture of the
+# state and a stretch of facts.
+CHECKPOINT_EVERY = 256
 
 
 @dataclass(slots=True)
@@ -850,10 +854,12 @@ class Machine:
         next_check = min((done + 1) // CHECK_EVERY * CHECK_EVERY + CHECK_EVERY, budget + 1)
         recording = self.record is not None
         # A checkpoint is taken at the first block of a boundary line (see CompiledLine) once
-        # CHECK_EVERY blocks have run since the last one: chosen by the text, not by the
+        # CHECKPOINT_EVERY blocks have run since the last one: chosen by the text, not by the
         # count, so that a run with more or fewer blocks before (an edit added or removed
         # some) takes its checkpoints at the same blocks as the earlier run after the edit.
         wanted = False
+        next_due = self._checkpointed + CHECKPOINT_EVERY + 1 if recording else budget + 1
+        next_event = min(next_check, next_due)
         while True:
             ctx = act.ctx
             pc = act.pc
@@ -871,33 +877,42 @@ class Machine:
             self._line = pc  # the block being executed, for the facts and findings
             steps += 1
             self._steps = steps
-            if steps >= next_check:
-                self._steps = steps - 1  # this block does not run
-                if steps > budget:
-                    self._budget_spent(act)
-                    self._mark_incomplete(act)
-                    raise _Stop("budget")
-                if time.monotonic() > self.deadline:
-                    # The safety net: how far a run gets in seconds depends on the machine
-                    # and its load, so nothing is concluded from where it stopped.
-                    self._mark_incomplete(act)
-                    raise _Stop("time")
-                if cancel is not None:
-                    cancel.reached(RUNNING, steps - 1, budget)
-                next_check = min(steps + CHECK_EVERY, budget + 1)
-                since = steps - 1 - self._checkpointed
-                if recording and since >= CHECK_EVERY:
+            if steps >= next_event:
+                self._steps = steps - 1  # this block has not run yet
+                if steps >= next_check:
+                    if steps > budget:  # nor does it run
+                        self._budget_spent(act)
+                        self._mark_incomplete(act)
+                        raise _Stop("budget")
+                    if time.monotonic() > self.deadline:
+                        # The safety net: how far a run gets in seconds depends on the machine
+                        # and its load, so nothing is concluded from where it stopped.
+                        self._mark_incomplete(act)
+                        raise _Stop("time")
+                    if cancel is not None:
+                        cancel.reached(RUNNING, steps - 1, budget)
+                    next_check = min(steps + CHECK_EVERY, budget + 1)
+                if recording:
+                    since = steps - 1 - self._checkpointed
                     # No boundary line in four intervals (a loop without one): take it here.
-                    if cl.boundary or since >= 4 * CHECK_EVERY:
+                    if since >= 4 * CHECKPOINT_EVERY or (since >= CHECKPOINT_EVERY and cl.boundary):
                         wanted = False
                         self._checkpoint(act, steps - 1)
-                    else:
+                        next_due = steps + CHECKPOINT_EVERY
+                    elif since >= CHECKPOINT_EVERY:
                         wanted = True
+                        next_due = self._checkpointed + 4 * CHECKPOINT_EVERY + 1
+                    else:  # a checkpoint taken since (a program began)
+                        next_due = self._checkpointed + CHECKPOINT_EVERY + 1
+                self._steps = steps
+                next_event = min(next_check, next_due)
             elif wanted and cl.boundary:
                 wanted = False
                 self._steps = steps - 1
                 self._checkpoint(act, steps - 1)
                 self._steps = steps
+                next_due = steps + CHECKPOINT_EVERY
+                next_event = min(next_check, next_due)
             facts = ctx.facts
             runs = facts.runs
             runs[pc] = runs.get(pc, 0) + 1

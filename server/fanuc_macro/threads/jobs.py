@@ -159,7 +159,8 @@ def thread_jobs(motions: Sequence[Motion], uri: str) -> list[ThreadJob]:
     seen = _seen(motions, uri)
     jobs = seen.jobs
     if jobs is None:
-        jobs = seen.jobs = _jobs(seen)
+        jobs, seen.owners = _jobs(seen)
+        seen.jobs = jobs
     return jobs
 
 
@@ -178,7 +179,7 @@ class _Seen:
     """A run's motions as last seen for one document: where its threading and turning motions
     are, its jobs (once asked for), and the run seen before it (until its jobs are made)."""
 
-    __slots__ = ("base", "copy", "diff", "jobs", "motions", "threads", "turning")
+    __slots__ = ("base", "copy", "diff", "jobs", "motions", "owners", "threads", "turning")
 
     def __init__(
         self,
@@ -193,6 +194,8 @@ class _Seen:
         self.threads = threads
         self.turning = turning
         self.jobs: list[ThreadJob] | None = None
+        # For each threading motion (by its place in ``threads``): its job and its pass.
+        self.owners: list[tuple[int, int]] = []
         self.base = base
         self.diff = diff
 
@@ -235,7 +238,10 @@ def _spliced(old: list[int], diff: Diff, start: int, middle: list[int]) -> list[
     return [*old[: bisect_left(old, start)], *middle, *tail]
 
 
-def _jobs(seen: _Seen) -> list[ThreadJob]:
+Owners = list[tuple[int, int]]
+
+
+def _jobs(seen: _Seen) -> tuple[list[ThreadJob], Owners]:
     motions, positions, base, diff = seen.copy, seen.threads, seen.base, seen.diff
     seen.base = None  # not kept past the next run
     if base is None or base.jobs is None or diff is None:
@@ -246,12 +252,68 @@ def _jobs(seen: _Seen) -> list[ThreadJob]:
     b = bisect_left(old_positions, diff.old_end)
     c = bisect_left(positions, start)
     middle = positions[c : c + len(positions) - len(old_positions) + b - a]
-    if len(middle) == b - a and all(
-        _same_cut(motions, i, old_motions, j)
-        for i, j in zip(middle, old_positions[a:b], strict=True)
-    ):
-        return base.jobs
-    return _reused(_group(motions, positions), base.jobs)
+    if len(middle) == b - a:
+        # The threading motions in the changed stretch, by their place among all of them
+        # (the same in both runs: as many before the stretch and in it).
+        changed = [
+            t
+            for t, (i, j) in enumerate(zip(middle, old_positions[a:b], strict=True), start=a)
+            if not _same_cut(motions, i, old_motions, j)
+        ]
+        if not changed:
+            return base.jobs, base.owners
+        if all(
+            _groups_alike(motions[positions[t]], old_motions[old_positions[t]]) for t in changed
+        ):
+            return _patched(base.jobs, base.owners, changed, motions, positions), base.owners
+    jobs, owners = _group(motions, positions)
+    return _reused(jobs, base.jobs), owners
+
+
+def _groups_alike(new: Motion, old: Motion) -> bool:
+    """Whether a pass that changed joins the job the one it replaces joined, and leaves the
+    grouping of the passes after it as it was: the same run, program and kind of cut over the
+    same stretch of Z (what :func:`_group` decides by)."""
+    return (
+        new.run == old.run
+        and new.uri == old.uri
+        and new.program == old.program
+        and new.program_line == old.program_line
+        and (new.code in CYCLES) == (old.code in CYCLES)
+        and _span(new) == _span(old)
+    )
+
+
+def _patched(
+    jobs: list[ThreadJob],
+    owners: Owners,
+    changed: list[int],
+    motions: Sequence[Motion],
+    positions: list[int],
+) -> list[ThreadJob]:
+    """``jobs`` with the threading motions ``changed`` (their places among all) replaced, when
+    each groups as the one it replaces (:func:`_groups_alike`): the jobs without a changed
+    pass are the same objects, the others copies with the new passes (and retracts after
+    them)."""
+    global grouped
+    grouped += len(changed)
+    copies: dict[int, ThreadJob] = {}
+    for t in changed:
+        i = positions[t]
+        k, n = owners[t]
+        job = copies.get(k)
+        if job is None:
+            old = jobs[k]
+            job = copies[k] = ThreadJob(
+                old.uri, old.program_line, old.program, old.run, list(old.passes), list(old.after)
+            )
+        m = job.passes[n] = motions[i]
+        job.after[n] = None if m.code in CYCLES else _next_motion(motions, i)
+    out = list(jobs)
+    for k, job in copies.items():
+        job.internal, job.side_reason = _side_of_cuts(job)
+        out[k] = job
+    return out
 
 
 def _positions(
@@ -313,32 +375,38 @@ def _reused(jobs: list[ThreadJob], old_jobs: list[ThreadJob]) -> list[ThreadJob]
     return out
 
 
-def _group(motions: Sequence[Motion], positions: list[int]) -> list[ThreadJob]:
-    """The threading motions at ``positions`` grouped into jobs."""
+def _group(motions: Sequence[Motion], positions: list[int]) -> tuple[list[ThreadJob], Owners]:
+    """The threading motions at ``positions`` grouped into jobs, and the job and pass of each."""
     global grouped
     grouped += len(positions)
     jobs: list[ThreadJob] = []
-    current: dict[tuple[int, bool], ThreadJob] = {}
+    owners: Owners = []
+    current: dict[tuple[int, bool], tuple[ThreadJob, int]] = {}
     spans: dict[int, tuple[float, float] | None] = {}
     for i in positions:
         m = motions[i]
         key = (m.run, m.code in CYCLES)
-        job = current.get(key)
+        found = current.get(key)
         span = _span(m)
-        if job is None or not _overlaps(spans[id(job)], span):
+        if found is None or not _overlaps(spans[id(found[0])], span):
             job = ThreadJob(m.uri, m.program_line, m.program, m.run)
+            found = current[key] = (job, len(jobs))
             jobs.append(job)
-            current[key] = job
             spans[id(job)] = span
-        elif span is not None:
-            old = spans[id(job)]
-            spans[id(job)] = span if old is None else (min(old[0], span[0]), max(old[1], span[1]))
+        else:
+            job = found[0]
+            if span is not None:
+                old = spans[id(job)]
+                spans[id(job)] = (
+                    span if old is None else (min(old[0], span[0]), max(old[1], span[1]))
+                )
+        owners.append((found[1], len(job.passes)))
         job.passes.append(m)
         # Single cuts tell their side by the retract after them; cycles do not need it.
         job.after.append(None if key[1] else _next_motion(motions, i))
     for job in jobs:
         job.internal, job.side_reason = _side_of_cuts(job)
-    return jobs
+    return jobs, owners
 
 
 def _next_motion(motions: Sequence[Motion], i: int) -> Motion | None:
