@@ -99,7 +99,14 @@ class Workspace:
         # The previous version's blocks are reused for the lines an edit did not touch.
         previous = old.doc if old is not None else None
         doc = parse_text(
-            text, uri, self.parser, previous, limits, cancel, old.limits if old else None
+            text,
+            uri,
+            self.parser,
+            previous,
+            limits,
+            cancel,
+            old.limits if old else None,
+            old.text if old is not None else None,
         )
         if old is not None and same_execution(old.doc, doc):
             execution = old.execution

@@ -291,7 +291,15 @@ def plan(
     def touches(segment: dict[str, DocumentFacts]) -> bool:
         for uri, lines in changed.items():
             facts = segment.get(uri)
-            if facts is not None and not lines.isdisjoint(facts.runs):
+            if facts is None:
+                continue
+            runs = facts.runs
+            # set.isdisjoint(dict) iterates over the dict: look up the few edited lines.
+            if (
+                any(line in runs for line in lines)
+                if len(lines) < len(runs)
+                else not lines.isdisjoint(runs)
+            ):
                 return True
         return False
 

@@ -10,7 +10,7 @@ import asyncio
 import contextlib
 import logging
 import sys
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, TypeVar
 
@@ -18,6 +18,7 @@ from lsprotocol import types
 from pygls.exceptions import JsonRpcException, JsonRpcInternalError, JsonRpcInvalidParams
 from pygls.lsp.server import LanguageServer
 from pygls.protocol import LanguageServerProtocol
+from pygls.protocol.language_server import lsp_method
 
 from .. import __version__
 from ..diagnostics import REPORT_INTERNAL_ERROR
@@ -50,6 +51,10 @@ class _Unreadable:
         self.error = error
 
 
+# What pygls' built-in notification handlers yield: the server's handler to run next.
+Handled = Iterator[tuple[Callable[..., Any], tuple[object, ...], None]]
+
+
 class AnsweringProtocol(LanguageServerProtocol):
     """pygls logs and drops a request whose parameters do not validate (a position character
     of 2**31), and the client waits for ever: here it gets the JSON-RPC error InvalidParams."""
@@ -74,6 +79,27 @@ class AnsweringProtocol(LanguageServerProtocol):
             self._send_response(message.id, None, message.error.to_response_error())
             return
         super().handle_message(message)
+
+    # The engine keeps the open documents' texts (lsp/documents.py). pygls' workspace would
+    # keep a second copy and apply every change to it again, splitting the whole text into
+    # lines per keystroke: the documents are not put there, and these only pass the
+    # notifications on to the server's handlers.
+    @lsp_method(types.TEXT_DOCUMENT_DID_OPEN)
+    def lsp_text_document__did_open(self, params: types.DidOpenTextDocumentParams) -> Handled:
+        yield from self._handled(types.TEXT_DOCUMENT_DID_OPEN, params)
+
+    @lsp_method(types.TEXT_DOCUMENT_DID_CHANGE)
+    def lsp_text_document__did_change(self, params: types.DidChangeTextDocumentParams) -> Handled:
+        yield from self._handled(types.TEXT_DOCUMENT_DID_CHANGE, params)
+
+    @lsp_method(types.TEXT_DOCUMENT_DID_CLOSE)
+    def lsp_text_document__did_close(self, params: types.DidCloseTextDocumentParams) -> Handled:
+        yield from self._handled(types.TEXT_DOCUMENT_DID_CLOSE, params)
+
+    def _handled(self, method: str, params: object) -> Handled:
+        handler = self.fm.features.get(method)
+        if handler is not None:
+            yield handler, (params,), None
 
 
 def _validation_errors(error: BaseException | None) -> str:

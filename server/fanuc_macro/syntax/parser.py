@@ -1009,6 +1009,7 @@ def parse_text(
     limits: ReadLimits = READ_WHOLE,
     cancel: CancelToken | None = None,
     previous_limits: ReadLimits | None = None,
+    previous_text: str | None = None,
 ) -> Document:
     """Parse a document; with ``previous`` (its last version) unchanged lines keep their blocks.
 
@@ -1016,9 +1017,15 @@ def parse_text(
     them), and ``unread_note`` says what was left out. ``cancel`` is looked at every
     :data:`~fanuc_macro.cancel.SLICE` lines (see :mod:`fanuc_macro.cancel`). When
     ``previous`` was read by the same parser with ``previous_limits`` equal to ``limits``, its
-    lines are compared by text and only those between the first and the last change parsed."""
+    lines are compared by text and only those between the first and the last change parsed;
+    with ``previous_text`` too (the text ``previous`` was read from), the texts are compared
+    instead and only the lines of the edit are split out of ``text``."""
     raise_if_cancelled(cancel)
     bp = parser or default_parser()
+    if previous is not None and previous_text is not None and previous_limits == limits:
+        edited = _edited_document(previous, previous_text, text, bp, limits, cancel)
+        if edited is not None:
+            return edited
     lines = split_lines(text)
     read = _lines_read(text, lines, limits)
     with quiet_gc():
@@ -1036,6 +1043,97 @@ def parse_text(
         return Document(uri, blocks, "utf-8", None, len(lines))
     note = _unread_note(text, lines, read, limits)
     return Document(uri, blocks, "utf-8", None, len(lines), read, note)
+
+
+def _edited_document(
+    previous: Document,
+    old: str,
+    new: str,
+    bp: BlockParser,
+    limits: ReadLimits,
+    cancel: CancelToken | None,
+) -> Document | None:
+    """The new version of a document read whole from its text and the previous version's, for
+    texts with LF line ends only: the characters both share at the start and at the end are
+    found by comparing slices in C, and only the lines between are split and parsed (splitting
+    a whole text per keystroke cost more than the rest of reading it). None: read it the
+    usual way (CR in either text, or a limit that leaves lines unread)."""
+    if previous.unread_from is not None or "\r" in new or "\r" in old:
+        return None
+    if limits.max_characters is not None and len(new) > limits.max_characters:
+        return None
+    parts = new.count("\n") + 1  # what str.split("\n") gives; a final "" is no line
+    count = parts - 1 if parts > 1 and new.endswith("\n") else parts
+    if limits.max_blocks is not None and count > limits.max_blocks:
+        return None
+    old_parts = old.count("\n") + 1
+    old_count = old_parts - 1 if old_parts > 1 and old.endswith("\n") else old_parts
+    blocks = previous.blocks
+    if len(blocks) != old_count:
+        return None
+    head = _common_head(old, new)
+    tail = _common_tail(old, new, min(len(old), len(new)) - head)
+    if head == len(old) == len(new):
+        return Document(previous.uri, blocks, "utf-8", None, count)
+    # The parts (lines, and a final "" after a last line end) the edit touched: from the one
+    # that holds the first changed character to the one that holds the last (or where the
+    # text was cut, when it was only cut); the parts around are the same in both texts.
+    first = old.count("\n", 0, head)
+    start = old.rfind("\n", 0, head) + 1
+    old_end, new_end = len(old) - tail, len(new) - tail
+    old_last = first + old.count("\n", start, old_end)
+    stop = new.find("\n", new_end)
+    middle = new[start : len(new) if stop < 0 else stop].split("\n")
+    new_last = first + len(middle) - 1
+    # Parts past the last line are the final "" of a text ending with a line end.
+    edited_lines = middle[: max(0, min(new_last + 1, count) - first)]
+    kept_from = min(old_last + 1, old_count)
+    parsed = _parse_lines(bp, edited_lines, limits, cancel)
+    with quiet_gc():
+        edited = tuple(map(Block, range(first, first + len(parsed)), parsed))
+        after_at = first + len(parsed)
+        if after_at != kept_from:
+            after = tuple(map(Block, range(after_at, count), map(_PARSED, blocks[kept_from:])))
+        else:
+            after = blocks[kept_from:]
+        out = blocks[:first] + edited + after
+    if len(out) != count:  # not expected: read it the usual way rather than wrongly
+        return None
+    return Document(previous.uri, out, "utf-8", None, count)
+
+
+_CHUNK = 2048  # characters compared at once
+
+
+def _common_head(a: str, b: str) -> int:
+    """How many characters ``a`` and ``b`` share at their start."""
+    n = min(len(a), len(b))
+    i = 0
+    while i < n and a[i : i + _CHUNK] == b[i : i + _CHUNK]:
+        i += _CHUNK
+    if i >= n:
+        return n
+    end = min(i + _CHUNK, n)
+    while i < end and a[i] == b[i]:
+        i += 1
+    return i
+
+
+def _common_tail(a: str, b: str, most: int) -> int:
+    """How many characters, at most ``most``, ``a`` and ``b`` share at their end."""
+    la, lb = len(a), len(b)
+    k = 0
+    while (
+        k < most
+        and a[la - min(k + _CHUNK, most) : la - k] == b[lb - min(k + _CHUNK, most) : lb - k]
+    ):
+        k = min(k + _CHUNK, most)
+    if k >= most:
+        return most
+    end = min(k + _CHUNK, most)
+    while k < end and a[la - k - 1] == b[lb - k - 1]:
+        k += 1
+    return k
 
 
 def _parse_lines(
