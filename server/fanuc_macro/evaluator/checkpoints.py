@@ -1,7 +1,7 @@
 """Checkpoints of a run, and resuming a run after an edit instead of running it all again.
 
 When each program of the evaluation begins, and then at the first block of a boundary line
-once ``CHECK_EVERY`` blocks have run since the last checkpoint (boundary lines are chosen by
+once ``CHECKPOINT_EVERY`` blocks have run since the last checkpoint (boundary lines are chosen by
 their text, so the checkpoints fall on the same blocks in runs that executed more or fewer
 blocks before them), the machine records its state (the call stack with each level's locals
 and place, the variables the run set, the modal state, what it has found so far) and begins
