@@ -220,8 +220,6 @@ class DocumentFacts:
     _feedless: dict[int, FeedlessProgram] | None = field(
         default=None, init=False, repr=False, compare=False
     )
-    # The first segment of a chunk of a run's stretches: their merged counts (take_segments).
-    _chunk: _MergedChunk | None = field(default=None, init=False, repr=False, compare=False)
 
     @property
     def findings(self) -> list[Finding]:
@@ -266,15 +264,12 @@ class DocumentFacts:
         """Set the counts and summaries to those of ``segments``, stretches of one run in
         order. A key in one segment only keeps that segment's object (nothing mutates a
         segment after its stretch of the run), so a run without loops merges at the speed of
-        ``dict.update``.
-
-        The stretches are merged in chunks, each kept on its first stretch: a run resumed after
-        an edit shares most stretches with the run before, and merges again only the chunks of
-        the stretches it ran (the combinations are associative, and a key keeps its first place)."""
-        parts: Sequence[DocumentFacts | _MergedChunk] = segments
-        if len(segments) > CHUNK:
-            parts = [_chunk(segments[i : i + CHUNK]) for i in range(0, len(segments), CHUNK)]
-        self.runs, self.reads, self.writes, self.jumps, self.roundings = _merged_counts(parts)
+        ``dict.update``."""
+        self.runs = _merged([s.runs for s in segments], _add)
+        self.reads = _merged([s.reads for s in segments], ValueSummary.then)
+        self.writes = _merged([s.writes for s in segments], _then_write)
+        self.jumps = _merged([s.jumps for s in segments], _add_jumps)
+        self.roundings = _merged([s.roundings for s in segments], _add_roundings)
         self.cuts = [cuts for s in segments for cuts in s.cuts]
         self._feedless = None
         incomplete: set[int] = set()
@@ -381,51 +376,6 @@ def _unseen(lines: Sequence[int], seen: set[int]) -> list[int]:
     return fresh
 
 
-CHUNK = 16  # stretches merged together and kept (see DocumentFacts.take_segments)
-
-
-@dataclass(slots=True)
-class _MergedChunk:
-    segments: tuple[DocumentFacts, ...]
-    runs: dict[int, int]
-    reads: dict[tuple[int, int], ValueSummary]
-    writes: dict[int, tuple[int, ValueSummary]]
-    jumps: dict[int, JumpCount]
-    roundings: dict[int, Rounding]
-
-
-def _chunk(segments: Sequence[DocumentFacts]) -> _MergedChunk:
-    """The merged counts of consecutive stretches, kept on the first while it heads the same."""
-    kept = segments[0]._chunk
-    if (
-        kept is not None
-        and len(kept.segments) == len(segments)
-        and all(a is b for a, b in zip(kept.segments, segments, strict=True))
-    ):
-        return kept
-    chunk = _MergedChunk(tuple(segments), *_merged_counts(segments))
-    segments[0]._chunk = chunk
-    return chunk
-
-
-def _merged_counts(
-    parts: Sequence[DocumentFacts | _MergedChunk],
-) -> tuple[
-    dict[int, int],
-    dict[tuple[int, int], ValueSummary],
-    dict[int, tuple[int, ValueSummary]],
-    dict[int, JumpCount],
-    dict[int, Rounding],
-]:
-    return (
-        _merged([p.runs for p in parts], _add),
-        _merged([p.reads for p in parts], ValueSummary.then),
-        _merged([p.writes for p in parts], _then_write),
-        _merged([p.jumps for p in parts], _add_jumps),
-        _merged([p.roundings for p in parts], _add_roundings),
-    )
-
-
 def _merged(parts: list[dict[K, V]], combine: Callable[[V, V], V]) -> dict[K, V]:
     """One dict of ``parts`` in order: a key in several is ``combine``d, earlier first."""
     nonempty = [p for p in parts if p]
@@ -435,10 +385,10 @@ def _merged(parts: list[dict[K, V]], combine: Callable[[V, V], V]) -> dict[K, V]
         return nonempty[0]
     out = dict(nonempty[0])
     for part in nonempty[1:]:
-        common = out.keys() & part.keys()
-        if not common:
+        if out.keys().isdisjoint(part.keys()):  # most stretches: no allocation, in C
             out.update(part)
             continue
+        common = out.keys() & part.keys()
         earlier = {k: out[k] for k in common}
         out.update(part)
         for k in common:
