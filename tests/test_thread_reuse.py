@@ -175,3 +175,47 @@ def test_a_zero_of_the_other_sign_is_not_the_same_motion() -> None:
     assert a == b  # as Python compares them
     assert not jobs.same_motion(a, b)
     assert jobs.same_motion(a, replace(a, words={"X": 0.0}))
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_random_edits_of_passes_equal_a_fresh_analysis(seed: int) -> None:
+    # Edits of the passes' words (X, start point, F, spindle speed, start angle), chained:
+    # most keep the grouping, so each job is a copy of the last with a pass replaced, and
+    # what the rules worked out of the last is taken where the pass agrees on what it read.
+    rng = random.Random(seed)
+    lines = program(600).split("\n")
+    previous = analyse("\n".join(lines), URI, CONFIG, parser=PARSER).facts
+    passes = [i for i, line in enumerate(lines) if line.startswith(("G00 X[", "G92"))]
+    for _ in range(10):
+        at = rng.choice(passes)
+        line = lines[at]
+        pick = rng.randrange(5)
+        if pick == 0:
+            line = line.replace("X[#100", f"X[{rng.choice(['#100+', '#100-', ''])}#100", 1)
+        elif pick == 1 and "F" in line:
+            line = line.replace("F#101", f"F{rng.choice(['2.', '3.', '3.5'])}", 1)
+        elif pick == 2:
+            line = line + f" Q{rng.choice([0, 90000, 180000])}" if "G92" in line else line
+        elif pick == 3:
+            line = f"G97 S{rng.choice([400, 1500, 4000])} M03"
+        else:
+            line = line.replace("0.", "0.0", 1)
+        lines[at] = line
+        previous = _same_as_fresh("\n".join(lines), previous)
+
+
+def test_a_copy_of_a_job_takes_what_was_found_where_its_new_pass_agrees() -> None:
+    old_pass = Motion("O1", 3, "G92", {"X": 20.0, "F": 2.0}, URI, x=20.0, start_x=24.0)
+    other = Motion("O1", 4, "G92", {"X": 19.0, "F": 2.0}, URI, x=19.0, start_x=24.0)
+    job = jobs.ThreadJob(URI, 0, "O1", 0, [old_pass, other])
+    assert job.remember("first", lambda: job.passes[0], ("x",)) is old_pass
+    new_pass = replace(old_pass, start_x=30.0)  # another start point, the same X
+    copy = jobs.ThreadJob(URI, 0, "O1", 0, [new_pass, other], basis=(job, (0,)))
+    # Decided by X alone: the earlier result, with the new pass in place of the old one.
+    assert copy.remember("first", lambda: pytest.fail("worked out again"), ("x",)) is new_pass
+    # Decided by the start point, which differs: worked out again.
+    job.remember("start", lambda: old_pass.start_x, ("start_x",))
+    assert copy.remember("start", lambda: new_pass.start_x, ("start_x",)) == 30.0
+    # What names no fields is worked out again.
+    job.remember("unnamed", lambda: 1)
+    assert copy.remember("unnamed", lambda: 2) == 2

@@ -104,7 +104,9 @@ def _thread_start(ctx: RuleContext, thread: Thread) -> Iterator[Diagnostic]:
         )
     job = thread.job
     found = job.remember(
-        ("start side", internal, crest), lambda: _wrong_start(job.passes, internal, crest)
+        ("start side", internal, crest),
+        lambda: _wrong_start(job.passes, internal, crest),
+        ("x", "start_x"),
     )
     if found is None:
         return

@@ -181,7 +181,7 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
 
 def _feed_limit(ctx: RuleContext, job: ThreadJob) -> Iterator[Diagnostic]:
     limit = ctx.config.max_threading_feed
-    m = job.remember(("feed limit", limit), lambda: _too_fast(job.passes, limit))
+    m = job.remember(("feed limit", limit), lambda: _too_fast(job.passes, limit), ("rpm", "F"))
     if m is None:
         return
     pitch = m.words["F"]
@@ -208,7 +208,7 @@ def _too_fast(passes: list[Motion], limit: float) -> Motion | None:
 
 def _mixed_feed(ctx: RuleContext, thread: Thread) -> Iterator[Diagnostic]:
     job = thread.job
-    found = job.remember("mixed feed", lambda: _other_feeds(job.passes))
+    found = job.remember("mixed feed", lambda: _other_feeds(job.passes), ("F", "line"))
     if found is None:
         return
     usual, count, others = found
@@ -252,7 +252,9 @@ def _lead(ctx: RuleContext, thread: Thread) -> Iterator[Diagnostic]:
         return
     job = thread.job
     m = job.remember(
-        ("first with F", lead), lambda: next(p for p in job.passes if p.words.get("F") == lead)
+        ("first with F", lead),
+        lambda: next(p for p in job.passes if p.words.get("F") == lead),
+        ("F",),
     )
     pitch = thread.pitch
     assert pitch is not None
@@ -336,7 +338,12 @@ def _starts(ctx: RuleContext, thread: Thread) -> Iterator[Diagnostic]:
     if abs(lead - thread.pitch * thread.starts) > 1e-6:
         return  # cut with another lead: MB810 says so
     job, starts = thread.job, thread.starts
-    if job.remember(("starts cut", lead, starts), lambda: _cut_starts(job.passes, lead, starts)):
+    cut = job.remember(
+        ("starts cut", lead, starts),
+        lambda: _cut_starts(job.passes, lead, starts),
+        ("x", "start_z", "Q", "code"),
+    )
+    if cut:
         return
     first = thread.job.passes[0]
     yield make(

@@ -163,7 +163,7 @@ def _growing(ctx: RuleContext, thread: Thread, internal: bool) -> Iterator[Diagn
     limit = ctx.config.max_depth_per_pass
     passes = thread.job.passes
     events = thread.job.remember(
-        ("growing", internal, limit), lambda: _growing_events(passes, internal, limit)
+        ("growing", internal, limit), lambda: _growing_events(passes, internal, limit), ("x",)
     )
     for code, i, before in events:
         m, previous = passes[i], passes[before]
@@ -222,7 +222,9 @@ def _same_pass(a: Motion, b: Motion) -> bool:
 def _repeated(ctx: RuleContext, thread: Thread, internal: bool) -> Iterator[Diagnostic]:
     """A pass cut twice before the full depth, or a depth of a regular sequence never cut."""
     found = thread.job.remember(
-        ("repeated", internal), lambda: _repeated_pass(thread.job.passes, internal)
+        ("repeated", internal),
+        lambda: _repeated_pass(thread.job.passes, internal),
+        ("x", "finishing", "start_z"),
     )
     if found is None:
         return

@@ -263,7 +263,9 @@ def _root_checks(ctx: RuleContext, thread: Thread) -> Iterator[Diagnostic]:
             )
         )
     passes = thread.job.passes
-    i = thread.job.remember(("past root", sign, root), lambda: _past_root(passes, sign, root))
+    i = thread.job.remember(
+        ("past root", sign, root), lambda: _past_root(passes, sign, root), ("x",)
+    )
     if i is not None:
         m = passes[i]
         assert m.x is not None

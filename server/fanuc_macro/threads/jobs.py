@@ -17,7 +17,6 @@ from bisect import bisect_left
 from collections import Counter
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field, fields
-from functools import cached_property
 from typing import TypeVar
 
 from ..evaluator.facts import Motion, same_value
@@ -44,48 +43,80 @@ class ThreadJob:
     side_reason: str = ""
     # What was worked out of the passes alone (and of the settings named in the key).
     memo: dict[object, object] = field(default_factory=dict, compare=False, repr=False)
+    # The job this one is a copy of with a few passes replaced (their indexes): what was
+    # worked out of the earlier job holds for this one when the replaced passes agree on
+    # what it was worked out of (see remember). Kept until the next copy is made of this one.
+    basis: tuple[ThreadJob, tuple[int, ...]] | None = field(default=None, compare=False, repr=False)
 
-    def remember(self, key: object, compute: Callable[[], R]) -> R:
-        """``compute()``, a function of the passes and of what ``key`` names, once per job."""
-        if key in self.memo:
-            return self.memo[key]  # type: ignore[return-value]
-        found = self.memo[key] = compute()
+    def remember(self, key: object, compute: Callable[[], R], reads: Reads = None) -> R:
+        """``compute()``, a function of the passes and of what ``key`` names, once per job.
+
+        ``reads`` names every field of a pass that ``compute`` decides by (a motion's
+        attribute, or ``"F"`` for one of its words): a copy of a job with other passes in a
+        few places then takes the earlier job's result when those passes agree with the ones
+        they replace on these fields, the replaced passes in it swapped for the new ones (what
+        ``compute`` gives the copy, since it returns passes but decides by those fields)."""
+        memo = self.memo
+        if key in memo:
+            return memo[key]  # type: ignore[return-value]
+        basis = self.basis
+        if reads is not None and basis is not None:
+            old, changed = basis
+            if key in old.memo and all(
+                _agree(old.passes[n], self.passes[n], reads) for n in changed
+            ):
+                swapped = _swapped(
+                    old.memo[key], {id(old.passes[n]): self.passes[n] for n in changed}
+                )
+                if swapped is not _UNSWAPPABLE:
+                    memo[key] = swapped
+                    return swapped  # type: ignore[return-value]
+        found = memo[key] = compute()
         return found
 
     @property
     def is_cycle(self) -> bool:
         return self.passes[0].code in CYCLES
 
-    @cached_property
+    @property
     def code(self) -> str:
-        return Counter(m.code for m in self.passes).most_common(1)[0][0]
+        return self.remember(
+            "code", lambda: Counter(m.code for m in self.passes).most_common(1)[0][0], ("code",)
+        )
 
-    @cached_property
+    @property
     def lead(self) -> float | None:
         """The F of most passes: the lead the thread is cut with."""
-        feeds = Counter(m.words.get("F") for m in self.passes if m.words.get("F") is not None)
+        return self.remember("lead", self._lead, ("F",))
+
+    def _lead(self) -> float | None:
+        feeds = Counter(f for m in self.passes if (f := m.words.get("F")) is not None)
         return feeds.most_common(1)[0][0] if feeds else None
 
-    @cached_property
+    @property
     def xs(self) -> list[float]:
-        return [m.x for m in self.passes if m.x is not None]
+        return self.remember("xs", lambda: [m.x for m in self.passes if m.x is not None], ("x",))
 
-    @cached_property
+    @property
     def x_range(self) -> tuple[float, float]:
         """The least and the greatest X of the passes (there is one)."""
-        return min(self.xs), max(self.xs)
+        return self.remember("x range", lambda: (min(self.xs), max(self.xs)), ("x",))
 
-    @cached_property
+    @property
     def taper(self) -> Motion | None:
         """The first pass with a taper (R)."""
-        return next((m for m in self.passes if m.words.get("R")), None)
+        return self.remember(
+            "taper", lambda: next((m for m in self.passes if m.words.get("R")), None), ("R",)
+        )
 
     def deepest(self, internal: bool) -> Motion:
-        return self.remember(("deepest", internal), lambda: self._extreme(max if internal else min))
+        return self.remember(
+            ("deepest", internal), lambda: self._extreme(max if internal else min), ("x",)
+        )
 
     def shallowest(self, internal: bool) -> Motion:
         return self.remember(
-            ("shallowest", internal), lambda: self._extreme(min if internal else max)
+            ("shallowest", internal), lambda: self._extreme(min if internal else max), ("x",)
         )
 
     def _extreme(self, which: Callable[..., Motion]) -> Motion:
@@ -94,6 +125,38 @@ class ThreadJob:
 
     def lines(self) -> list[int]:
         return sorted({m.line for m in self.passes})
+
+
+Reads = tuple[str, ...] | None
+WORDS = frozenset("ABCDEFGHIJKLMNOPQRSTUVWXYZ")  # a field of one letter: the motion's word
+_UNSWAPPABLE = object()
+
+
+def _agree(a: Motion, b: Motion, reads: tuple[str, ...]) -> bool:
+    if a is b:
+        return True
+    for name in reads:
+        if name in WORDS:
+            if not same_value(a.words.get(name), b.words.get(name)):
+                return False
+        elif not same_value(getattr(a, name), getattr(b, name)):
+            return False
+    return True
+
+
+def _swapped(value: object, passes: dict[int, Motion]) -> object:
+    """``value`` with the motions in ``passes`` (by id) replaced; _UNSWAPPABLE when it holds
+    something this does not look into."""
+    if isinstance(value, Motion):
+        return passes.get(id(value), value)
+    if value is None or isinstance(value, bool | int | float | str):
+        return value
+    if isinstance(value, tuple | list):
+        out = [_swapped(item, passes) for item in value]
+        if any(item is _UNSWAPPABLE for item in out):
+            return _UNSWAPPABLE
+        return tuple(out) if isinstance(value, tuple) else out
+    return _UNSWAPPABLE
 
 
 def _span(m: Motion) -> tuple[float, float] | None:
@@ -307,8 +370,12 @@ def _patched(
             job = copies[k] = ThreadJob(
                 old.uri, old.program_line, old.program, old.run, list(old.passes), list(old.after)
             )
+            old.basis = None  # no chain of copies: one earlier job at most
+            job.basis = (old, ())
         m = job.passes[n] = motions[i]
         job.after[n] = None if m.code in CYCLES else _next_motion(motions, i)
+        assert job.basis is not None
+        job.basis = (job.basis[0], (*job.basis[1], n))
     out = list(jobs)
     for k, job in copies.items():
         job.internal, job.side_reason = _side_of_cuts(job)
