@@ -17,7 +17,7 @@ import pytest
 
 from fanuc_macro.analysis import analyse
 from fanuc_macro.config import Config
-from fanuc_macro.evaluator import Facts, Motion, ValueSummary, evaluate
+from fanuc_macro.evaluator import Facts, Motion, ValueSummary, evaluate, machine
 from fanuc_macro.evaluator.facts import same_value
 from fanuc_macro.program.index import build_index
 from fanuc_macro.syntax.parser import BlockParser, parse_text
@@ -112,8 +112,11 @@ def mutate(lines: list[str], rng: random.Random, shift: bool = False) -> list[st
         elif len(out) > 8:  # lines cut
             del out[i : i + rng.randrange(2, 6)]
         return out
-    kind = rng.randrange(5)
-    if kind == 0 or kind == 4:  # a number (or a variable's number) changed
+    kind = rng.randrange(6)
+    if kind == 5:  # a bracket typed or removed: the block no longer reads (nor moves)
+        j = out[i].find("]")
+        out[i] = out[i][:j] + out[i][j + 1 :] if j >= 0 else out[i] + " X1["
+    elif kind == 0 or kind == 4:  # a number (or a variable's number) changed
         found = list(NUMBER.finditer(out[i]))
         if found:
             m = rng.choice(found)
@@ -234,6 +237,25 @@ def test_an_edit_late_in_a_long_program_runs_few_blocks() -> None:
     assert_same(resumed, evaluate_text(edited, BlockParser(), config))
 
 
+def test_a_bracket_being_typed_runs_few_blocks() -> None:
+    # While "X[#100+2.]" is typed, the block does not read and does not move: the resumed run
+    # meets the earlier one with one motion fewer, a few checkpoints later.
+    config = Config()
+    parser = BlockParser()
+    text = long_program(20_000, 3)
+    lines = text.splitlines()
+    previous = evaluate_text(text, parser, config)
+    line = next(i for i in range(len(lines) // 2, len(lines)) if lines[i].startswith("G00 X["))
+    for typed in (lines[line].replace("]", "", 1), lines[line]):
+        lines[line] = typed
+        edited = "\n".join(lines)
+        resumed = evaluate_text(edited, parser, config, previous)
+        assert resumed.record is not None and resumed.record.converged_at is not None
+        assert resumed.record.executed <= 4 * machine.CHECKPOINT_EVERY
+        assert_same(resumed, evaluate_text(edited, BlockParser(), config))
+        previous = resumed
+
+
 def test_an_edit_in_a_comment_reuses_the_run() -> None:
     config = Config()
     parser = BlockParser()
@@ -331,6 +353,34 @@ def test_cam_programs_resume_and_equal_full(seed: int) -> None:
     assert previous.document(URI).feedless()
     for _ in range(8):
         lines = mutate(lines, rng, shift=True)
+        text = "\n".join(lines)
+        resumed = evaluate_text(text, parser, config, previous)
+        full = evaluate_text(text, BlockParser(), config)
+        assert_same(resumed, full)
+        previous = resumed
+
+
+@pytest.mark.parametrize("below", [40, 1, 0, -1])
+def test_edits_that_add_or_remove_motions_near_the_records_kept(
+    below: int, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    # A resumed run that meets the earlier one with more or fewer motions splices the earlier
+    # records after its own; a full run keeps the first MAX_MOTIONS. Near that bound the two
+    # must still agree: the resumed run does not meet the earlier one when either reaches it.
+    rng = random.Random(below)
+    config = Config()
+    parser = BlockParser()
+    lines = long_program(3_000, 7).splitlines()
+    total = len(evaluate_text("\n".join(lines), BlockParser(), config).motions)
+    monkeypatch.setattr(machine, "MAX_MOTIONS", total - below)
+    previous = evaluate_text("\n".join(lines), parser, config)
+    movers = [i for i, line in enumerate(lines) if line.startswith(("G00 X[", "G01"))]
+    for _ in range(8):
+        at = rng.choice(movers)
+        j = lines[at].find("]")
+        lines[at] = (
+            lines[at][:j] + lines[at][j + 1 :] if j >= 0 else rng.choice(["", "G00 X[#100+1.]"])
+        )
         text = "\n".join(lines)
         resumed = evaluate_text(text, parser, config, previous)
         full = evaluate_text(text, BlockParser(), config)

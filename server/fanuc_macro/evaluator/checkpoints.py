@@ -87,27 +87,26 @@ class MachineState:
     assumed: tuple[tuple[str, tuple[tuple[int, tuple[tuple[int, int], ...]], ...]], ...]
 
     def meeting_key(self) -> tuple[object, ...]:
-        """What two states that may be the same have alike, whatever their block counts: a
-        resumed run that ran more or fewer blocks (an edit added or removed some) meets the
-        earlier run at a state equal but for the count."""
+        """What two states that may be the same have alike, whatever their counts of blocks
+        and motions: a resumed run that ran more or fewer blocks (an edit added or removed
+        some), or recorded more or fewer motions (a block that moved no longer does, as while
+        a bracket is being typed), meets the earlier run at a state equal but for the counts."""
         return (
             self.run,
             self.levels[-1].pc if self.levels else -1,
             len(self.levels),
             self.activations,
-            self.motions,
             self.findings,
             len(self.store),
         )
 
     def same_as(self, other: MachineState, counted: bool = True) -> bool:
-        """Equal, value for value (``counted``: the blocks done too)."""
+        """Equal, value for value (``counted``: the blocks done and the motions too)."""
         return (
             self.run == other.run
-            and (not counted or self.done == other.done)
+            and (not counted or (self.done == other.done and self.motions == other.motions))
             and self.speculative == other.speculative
             and self.activations == other.activations
-            and self.motions == other.motions
             and self.run_values == other.run_values
             and self.findings == other.findings
             and self.analysed == other.analysed
@@ -333,12 +332,14 @@ def plan(
     return Resumption(previous, old, start, convergeable)
 
 
-def local_access(cl: CompiledLine) -> tuple[tuple[int, ...], tuple[int | None, ...]]:
-    """The variables a line reads and those it sets: what the locals a program reads before
-    it sets them are found from."""
-    targets: list[int | None] = []
+def local_access(cl: CompiledLine) -> tuple[tuple[int, ...], tuple[int, ...]]:
+    """The locals (#1-#33, and #0 read) a line reads and those it sets: what the locals a
+    program reads before it sets them are found from (``machine.locals_read_first``)."""
+    targets: list[int] = []
     part: CompiledLine | None = cl
     while part is not None:
-        targets.append(part.target_number)
+        target = part.target_number
+        if target is not None and 1 <= target <= 33:
+            targets.append(target)
         part = part.second
-    return cl.reads, tuple(targets)
+    return tuple(n for n in cl.reads if n <= 33), tuple(targets)

@@ -659,9 +659,15 @@ class Machine:
                 if not state.same_as(old, counted=False):
                     continue
                 # Met, perhaps with more or fewer blocks done: the rest of the run then ends
-                # as many blocks later or sooner, and must stay within the budget.
+                # as many blocks later or sooner, and must stay within the budget; with more
+                # or fewer motions, neither run may reach the records kept (a full run keeps
+                # the first MAX_MOTIONS).
                 total = resumption.record.results[state.run][2] + done - old.done
-                if total <= self.budget:
+                recorded = len(resumption.previous.motions)
+                moved = state.motions - old.motions
+                if total <= self.budget and (
+                    not moved or max(recorded, recorded + moved) < MAX_MOTIONS
+                ):
                     raise Converged(index, done)
         self._begin_segment(state)
 

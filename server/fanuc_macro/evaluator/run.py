@@ -237,15 +237,23 @@ def _resume(machine: Machine, how: Resumption, sequence: _Sequence, deadline: fl
 def _splice(machine: Machine, how: Resumption, index: int, done: int) -> None:
     """The resumed run met the earlier one at its checkpoint ``index`` after ``done`` blocks
     of its run: the rest of the evaluation is the earlier one's, that run's block counts
-    moved by the blocks the edit added or removed."""
+    moved by the blocks the edit added or removed, and every later count of motions by the
+    motions it added or removed (a block that no longer moves, or that moves now)."""
     record = machine.record
     assert record is not None
     old, previous = how.record, how.previous
     state = old.checkpoints[index]
     offset = done - state.done
+    moved = len(machine.facts.motions) - state.motions
     record.converged_at = (state.run, done)
     record.checkpoints.extend(
-        replace(c, done=c.done + offset) if offset and c.run == state.run else c
+        replace(
+            c,
+            done=c.done + offset if c.run == state.run else c.done,
+            motions=c.motions + moved,
+        )
+        if (offset and c.run == state.run) or moved
+        else c
         for c in old.checkpoints[index:]
     )
     record.segments.extend(old.segments[index:])

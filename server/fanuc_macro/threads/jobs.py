@@ -326,25 +326,55 @@ def _jobs(seen: _Seen) -> tuple[list[ThreadJob], Owners]:
         if not changed:
             return base.jobs, base.owners
         if all(
-            _groups_alike(motions[positions[t]], old_motions[old_positions[t]]) for t in changed
+            _joins_alike(motions[positions[t]], old_motions[old_positions[t]], base, t)
+            for t in changed
         ):
             return _patched(base.jobs, base.owners, changed, motions, positions), base.owners
     jobs, owners = _group(motions, positions)
     return _reused(jobs, base.jobs), owners
 
 
-def _groups_alike(new: Motion, old: Motion) -> bool:
-    """Whether a pass that changed joins the job the one it replaces joined, and leaves the
-    grouping of the passes after it as it was: the same run, program and kind of cut over the
-    same stretch of Z (what :func:`_group` decides by)."""
+def _joins_alike(new: Motion, old: Motion, base: _Seen, t: int) -> bool:
+    """Whether a pass that changed (the ``t``-th threading motion) joins the job the one it
+    replaces joined and leaves the grouping of the passes after it as it was: it groups alike
+    (:func:`_groups_alike`), or it is not the first pass of its job, and its stretch of Z and
+    the old pass's lie within the stretch of the job's passes before it (both join it, and
+    neither widens it)."""
+    if _groups_alike(new, old):
+        return True
+    if not _alike_but_z(new, old):
+        return False
+    assert base.jobs is not None
+    k, n = base.owners[t]
+    if n == 0:
+        return False
+    before: tuple[float, float] | None = None
+    for m in base.jobs[k].passes[:n]:
+        span = _span(m)
+        if span is not None:
+            before = span if before is None else (min(before[0], span[0]), max(before[1], span[1]))
+    return _within(_span(new), before) and _within(_span(old), before)
+
+
+def _within(span: tuple[float, float] | None, outer: tuple[float, float] | None) -> bool:
+    return span is None or (outer is not None and outer[0] <= span[0] and span[1] <= outer[1])
+
+
+def _alike_but_z(new: Motion, old: Motion) -> bool:
     return (
         new.run == old.run
         and new.uri == old.uri
         and new.program == old.program
         and new.program_line == old.program_line
         and (new.code in CYCLES) == (old.code in CYCLES)
-        and _span(new) == _span(old)
     )
+
+
+def _groups_alike(new: Motion, old: Motion) -> bool:
+    """Whether a pass that changed joins the job the one it replaces joined, and leaves the
+    grouping of the passes after it as it was: the same run, program and kind of cut over the
+    same stretch of Z (what :func:`_group` decides by)."""
+    return _alike_but_z(new, old) and _span(new) == _span(old)
 
 
 def _patched(
