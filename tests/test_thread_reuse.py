@@ -219,3 +219,19 @@ def test_a_copy_of_a_job_takes_what_was_found_where_its_new_pass_agrees() -> Non
     # What names no fields is worked out again.
     job.remember("unnamed", lambda: 1)
     assert copy.remember("unnamed", lambda: 2) == 2
+
+
+def test_a_pass_from_another_start_within_its_job_replaces_that_pass_only() -> None:
+    # The G00 before a G92 made unreadable (a bracket being typed): the pass starts from
+    # where the tool was, another stretch of Z, but within the stretch of the job's passes
+    # before it; it joins the same job, and the passes after it group as before.
+    lines = program(2000).split("\n")
+    first = analyse("\n".join(lines), URI, CONFIG, parser=PARSER)
+    at = next(i for i in range(len(lines) // 2, len(lines)) if lines[i].startswith("G00 X["))
+    lines[at] = lines[at].replace("]", "", 1)
+    grouped = jobs.grouped
+    again = analyse("\n".join(lines), URI, CONFIG, parser=PARSER, previous_facts=first.facts)
+    assert 1 <= jobs.grouped - grouped <= 2
+    fresh = _fresh("\n".join(lines))
+    assert again.diagnostics == fresh.diagnostics
+    assert again.threads[0].job.passes == fresh.threads[0].job.passes
