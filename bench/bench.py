@@ -330,10 +330,13 @@ def bench_big_document(size: int) -> None:
         print(f"{size:,} blocks: rules, analysis {run + 1}: {dt:.2f} s{rss}")
 
 
-def bench_keystrokes(name: str, text: str, edits: int = 6) -> None:
+def bench_keystrokes(name: str, text: str, edits: int = 6, kinds: tuple[str, ...] = ("",)) -> None:
     """A document opened in a workspace (read whole) and analysed, then a digit typed and
     removed again, ``edits`` times, each analysed as the language server does: the figures
-    without the protocol (``bench_lsp.py`` has those)."""
+    without the protocol (``bench_lsp.py`` has those). ``kinds`` of edit besides the first (a
+    factor of an assignment, or a coordinate of CAM output): ``motion``, a digit of a computed
+    X that a thread pass starts from; ``bracket``, that X's closing bracket removed and typed
+    again (the block does not read in between)."""
     import dataclasses
 
     from fanuc_macro.config import Config
@@ -347,26 +350,40 @@ def bench_keystrokes(name: str, text: str, edits: int = 6) -> None:
     workspace.analyse(uri)
     cold = time.perf_counter() - t
     lines = text.split("\n")
-    at = len(lines) // 2
-    # A factor of an assignment (a macro program) or a coordinate (CAM output): the edit keeps
-    # the block valid, as most keystrokes in a long program do.
-    mark = "*" if any("*" in line for line in lines[at:]) else "X"
-    while mark not in lines[at]:
-        at += 1
-    original = lines[at]
-    times: list[float] = []
-    for i in range(edits):
-        lines[at] = original.replace(mark, mark + "1", 1) if i % 2 == 0 else original
-        edited = "\n".join(lines)
-        t = time.perf_counter()
-        workspace.add_text(uri, edited)
-        workspace.analyse(uri)
-        times.append(time.perf_counter() - t)
-    print(
-        f"{name}: open -> diagnostics {cold:.2f} s; keystroke -> diagnostics min "
-        f"{min(times) * 1000:.0f} ms, median {statistics.median(times) * 1000:.0f} ms "
-        f"({edits} edits)"
-    )
+    for kind in kinds:
+        at = len(lines) // 2
+        # A factor of an assignment (a macro program) or a coordinate (CAM output): the edit
+        # keeps the block valid, as most keystrokes in a long program do.
+        mark = "*" if any("*" in line for line in lines[at:]) else "X"
+        if kind:
+            mark = "X[#100+"
+        while mark not in lines[at]:
+            at += 1
+        original = lines[at]
+        if kind == "bracket":
+            changed = original.replace("]", "", 1)
+        elif kind == "motion":
+            digit = original.index(mark) + len(mark)
+            changed = (
+                original[:digit] + str((int(original[digit]) + 1) % 10) + original[digit + 1 :]
+            )
+        else:
+            changed = original.replace(mark, mark + "1", 1)
+        times: list[float] = []
+        for i in range(edits):
+            lines[at] = changed if i % 2 == 0 else original
+            edited = "\n".join(lines)
+            t = time.perf_counter()
+            workspace.add_text(uri, edited)
+            workspace.analyse(uri)
+            times.append(time.perf_counter() - t)
+        lines[at] = original
+        what = {"": "", "motion": ", a thread's start X", "bracket": ", a bracket typed"}[kind]
+        print(
+            f"{name}{what}: open -> diagnostics {cold:.2f} s; keystroke -> diagnostics min "
+            f"{min(times) * 1000:.0f} ms, median {statistics.median(times) * 1000:.0f} ms "
+            f"({edits} edits)"
+        )
 
 
 def bench_big_keystrokes(quick: bool) -> None:
@@ -374,7 +391,8 @@ def bench_big_keystrokes(quick: bool) -> None:
 
     sizes = (20_000,) if quick else (20_000, 100_000)
     for size in sizes:
-        bench_keystrokes(f"macro program {size:,} blocks", program(size))
+        kinds = ("", "motion", "bracket") if size == 20_000 else ("",)
+        bench_keystrokes(f"macro program {size:,} blocks", program(size), kinds=kinds)
     bench_keystrokes(f"macro-dense {sizes[-1]:,} blocks", generate_macro_dense(sizes[-1]))
     cam = 20_000 if quick else 200_000
     bench_keystrokes(f"CAM output {cam:,} blocks", cam_program(cam))
