@@ -144,14 +144,24 @@ def _agree(a: Motion, b: Motion, reads: tuple[str, ...]) -> bool:
     return True
 
 
+_LEAVES = frozenset({Motion, float, int, str, bool, type(None)})
+
+
 def _swapped(value: object, passes: dict[int, Motion]) -> object:
     """``value`` with the motions in ``passes`` (by id) replaced; _UNSWAPPABLE when it holds
-    something this does not look into."""
+    something this does not look into. A list or tuple of leaves without such a motion is
+    ``value`` itself (what was worked out is not changed afterwards)."""
     if isinstance(value, Motion):
         return passes.get(id(value), value)
     if value is None or isinstance(value, bool | int | float | str):
         return value
     if isinstance(value, tuple | list):
+        kinds = set(map(type, value))  # in C: most results are long lists of one kind
+        if kinds <= _LEAVES:
+            if Motion not in kinds or passes.keys().isdisjoint(map(id, value)):
+                return value
+            swapped = [passes.get(id(item), item) for item in value]
+            return tuple(swapped) if isinstance(value, tuple) else swapped
         out = [_swapped(item, passes) for item in value]
         if any(item is _UNSWAPPABLE for item in out):
             return _UNSWAPPABLE
