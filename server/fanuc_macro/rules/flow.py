@@ -10,18 +10,15 @@ from itertools import chain
 from operator import itemgetter
 from typing import NamedTuple, TypeVar, cast
 
-from ..config import Config
 from ..diagnostics import Diagnostic, RuleDoc, RuleInfo, Severity, document, make, register
-from ..evaluator.checkpoints import lines_with_other_facts, stretches_of
 from ..evaluator.facts import DocumentFacts
 from ..evaluator.machine import compiled
-from ..line_maps import Diff, Kept, LineMap, line_diff
+from ..line_maps import Kept, LineMap
 from ..per_line import PerLine
 from ..program.index import Program
 from ..syntax.marks import constant_value
 from ..syntax.tree import (
     Block,
-    Document,
     Goto,
     IfGoto,
     IfThen,
@@ -30,7 +27,7 @@ from ..syntax.tree import (
     ParsedLine,
     While,
 )
-from .context import RuleContext
+from .context import Changes, RuleContext, Seen
 
 FAMILY = "flow"
 register(
@@ -491,22 +488,12 @@ class _Flow:
 
 
 class _State:
-    """What the flow rules found in one version of a document, from which facts."""
+    """What the flow rules found in one version of a document, and from what."""
 
-    __slots__ = ("config", "doc", "facts", "programs", "stretches")
+    __slots__ = ("programs", "seen")
 
-    def __init__(
-        self,
-        doc: Document,
-        config: Config,
-        facts: DocumentFacts,
-        stretches: list[DocumentFacts] | None,
-        programs: dict[int, _Flow],
-    ) -> None:
-        self.doc = doc
-        self.config = config
-        self.facts = facts
-        self.stretches = stretches
+    def __init__(self, seen: Seen, programs: dict[int, _Flow]) -> None:
+        self.seen = seen
         self.programs = programs  # by first line
 
 
@@ -527,62 +514,11 @@ class Work:
 work = Work()
 
 
-class _Change:
-    """Where a version of a document may give other verdicts than the version before: the
-    lines whose text or facts differ (new numbers, ascending), and how the old lines moved."""
-
-    __slots__ = ("diff", "dirty", "dirty_set", "text_end", "text_start")
-
-    def __init__(self, diff: Diff, fact_lines: set[int], lines: int) -> None:
-        self.diff = diff
-        # The changed lines and one on either side: a block removed joins its neighbours.
-        if diff.start < diff.end or diff.start < diff.old_end:
-            self.text_start, self.text_end = max(0, diff.start - 1), min(lines, diff.end + 1)
-        else:
-            self.text_start = self.text_end = 0
-        self.dirty_set = fact_lines.union(range(self.text_start, self.text_end))
-        self.dirty = sorted(self.dirty_set)
-
-    def moved_end(self, end: int) -> int | None:
-        """An old exclusive end line's new number."""
-        diff = self.diff
-        return end if end <= diff.start else diff.moved(end)
-
-    def within(self, first: int, end: int) -> list[int]:
-        dirty = self.dirty
-        return dirty[bisect_left(dirty, first) : bisect_left(dirty, end)]
-
-
-def _change(
-    last: _State | None,
-    ctx: RuleContext,
-    facts: DocumentFacts,
-    stretches: list[DocumentFacts] | None,
-) -> _Change | None:
-    """What changed since the last analysis of the document (None: not known, all again)."""
-    if last is None or (last.config is not ctx.config and last.config != ctx.config):
-        return None
-    diff = line_diff(last.doc, ctx.doc)
-    if facts is last.facts:
-        if diff.shift:
-            return None  # facts of other lines: never kept so
-        fact_lines: set[int] = set()
-    elif stretches is None or last.stretches is None:
-        return None
-    else:
-        fact_lines = lines_with_other_facts(last.stretches, stretches, diff.moved)
-    change = _Change(diff, fact_lines, len(ctx.doc.blocks))
-    if len(change.dirty) > len(ctx.doc.blocks) // 2:
-        return None  # most of it: a fresh look costs less
-    return change
-
-
 def _programs(ctx: RuleContext, facts: DocumentFacts) -> list[Diagnostic]:
     """MB701, MB702, MB709 and MB710 of every program."""
     uri = ctx.doc.uri
     last = _kept.get(uri)
-    stretches = None if ctx.facts is None else stretches_of(ctx.facts, uri)
-    change = _change(last, ctx, facts, stretches)
+    change = None if last is None else last.seen.changes(ctx)
     kept: dict[int, _Flow] = {}
     found: list[Diagnostic] = []
     previous_end = 0
@@ -609,7 +545,7 @@ def _programs(ctx: RuleContext, facts: DocumentFacts) -> list[Diagnostic]:
         elif not whole or undecided:
             found.extend(_after_end(ctx, program, facts))
         previous_end = program.end_line
-    _kept.put(uri, _State(ctx.doc, ctx.config, facts, stretches, kept))
+    _kept.put(uri, _State(Seen(ctx), kept))
     return found
 
 
@@ -619,7 +555,7 @@ def _program_flow(
     facts: DocumentFacts,
     undecided: bool,
     before: _Flow | None,
-    change: _Change | None,
+    change: Changes | None,
 ) -> _Flow:
     """One program's verdicts: those of ``before`` (the last analysis's) where nothing they
     were drawn from changed, the others looked at again."""
@@ -704,7 +640,7 @@ def _first_writes_now(
     program: Program,
     facts: DocumentFacts,
     before: dict[int, int],
-    change: _Change,
+    change: Changes,
     dirty: list[int],
 ) -> tuple[dict[int, int], list[int]]:
     """The program's first write of each variable, and the lines (ascending) whose condition
@@ -725,7 +661,7 @@ def _first_writes_now(
                 )
             ]
         moved[number] = at
-    if change.dirty_set.isdisjoint(moved.values()):
+    if change.lines.isdisjoint(moved.values()):
         found = dict(moved)
         writes = facts.writes
         for line in dirty:
@@ -869,7 +805,7 @@ T = TypeVar("T")
 def _spliced(
     lines: list[int],
     items: list[T],
-    change: _Change,
+    change: Changes,
     drops: list[LineRange],
     fresh: list[tuple[int, T]],
     move: Callable[[T, int], T],
