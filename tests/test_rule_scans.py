@@ -152,9 +152,9 @@ def test_dead_stretches_from_the_gaps_of_the_lines_run_equal_a_walk_over_every_l
         ctx = RuleContext(doc, build_index(doc))
         first = rng.randrange(n)
         end = rng.randrange(first, n + 1) if trial % 3 else n
-        assert flow._dead_stretches(ctx, first, end, runs) == _dead_stretches_by_every_line(
-            ctx, first, end, runs
-        )
+        walked = _dead_stretches_by_every_line(ctx, first, end, runs)
+        assert flow._dead_stretches(ctx, first, end, runs) == walked
+        assert flow._stretches_between(ctx, runs, first, end) == walked  # an edit's window
 
 
 def test_plain_words_give_the_variables_and_depths_of_the_walks() -> None:

@@ -19,10 +19,11 @@ from __future__ import annotations
 
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
+from operator import itemgetter
 from typing import TYPE_CHECKING
 
 from ..config import Config
-from ..line_maps import common_prefix, common_suffix, line_diff
+from ..line_maps import Diff, common_prefix, common_suffix, line_diff
 from ..program.index import Loop
 from ..syntax.tree import Document
 from .facts import DocumentFacts, Facts, same_value
@@ -346,13 +347,11 @@ def stretches_of(facts: Facts, uri: str) -> list[DocumentFacts] | None:
 
 
 def lines_with_other_facts(
-    old: Sequence[DocumentFacts],
-    new: Sequence[DocumentFacts],
-    moved: Callable[[int], int | None],
+    old: Sequence[DocumentFacts], new: Sequence[DocumentFacts], diff: Diff
 ) -> set[int]:
     """The lines (new numbers) whose runs, reads, writes or jumps may differ between two
-    evaluations of versions of a document, given by stretch (:func:`stretches_of`); ``moved``
-    gives a line's new number, None for a line the edit changed.
+    evaluations of versions of a document, given by stretch (:func:`stretches_of`); ``diff``
+    is how the document's lines moved (the lines it changed may be among those given).
 
     A resumed evaluation takes the earlier one's stretches before the one it resumed in and
     after the one where it met the earlier run (renumbered, after an edit of lines, under the
@@ -369,7 +368,10 @@ def lines_with_other_facts(
     earlier: set[int] = set()
     for facts in old[head : len(old) - tail]:
         _add_lines(earlier, facts)
-    lines.update(m for line in earlier if (m := moved(line)) is not None)
+    if diff.shift:
+        lines.update(m for line in earlier if (m := diff.moved(line)) is not None)
+    else:
+        lines |= earlier  # the same numbers, the changed lines' too
     return lines
 
 
@@ -377,4 +379,4 @@ def _add_lines(lines: set[int], facts: DocumentFacts) -> None:
     lines.update(facts.runs)
     lines.update(facts.jumps)
     lines.update(facts.writes)
-    lines.update(line for line, _ in facts.reads)
+    lines.update(map(itemgetter(0), facts.reads))  # (line, variable) keys, read in C

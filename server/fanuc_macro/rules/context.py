@@ -128,7 +128,15 @@ class Seen:
 
     def changes(self, ctx: RuleContext) -> Changes | None:
         """The lines of ``ctx``'s document whose text or facts may differ from this version's
-        (None: not known, or most of them)."""
+        (None: not known, or most of them); worked out once per analysis for the rules that
+        saw the same version."""
+        memo = cast("dict[tuple[int, int, int], Changes | None]", ctx.memo.setdefault("seen", {}))
+        key = (id(self.doc), id(self.facts), id(self.config))  # alive while self is
+        if key not in memo:
+            memo[key] = self._changes(ctx)
+        return memo[key]
+
+    def _changes(self, ctx: RuleContext) -> Changes | None:
         if self.config is not ctx.config and self.config != ctx.config:
             return None
         diff = line_diff(self.doc, ctx.doc)
@@ -143,7 +151,7 @@ class Seen:
             stretches = None if ctx.facts is None else stretches_of(ctx.facts, ctx.doc.uri)
             if stretches is None or self.stretches is None:
                 return None
-            fact_lines = lines_with_other_facts(self.stretches, stretches, diff.moved)
+            fact_lines = lines_with_other_facts(self.stretches, stretches, diff)
         changes = Changes(diff, fact_lines, len(ctx.doc.blocks))
         if len(changes.sorted) > len(ctx.doc.blocks) // 2:
             return None  # most of the document: a fresh look costs less

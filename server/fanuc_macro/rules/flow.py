@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import re
 from bisect import bisect_left, bisect_right
-from collections.abc import Callable, Iterator
+from collections.abc import Callable, Iterator, Sequence
 from itertools import chain
 from operator import itemgetter
 from typing import NamedTuple, TypeVar, cast
@@ -572,17 +572,18 @@ def _program_flow(
     if not dirty and (change.diff.shift == 0 or program.end_line <= change.diff.start):
         return before  # nothing moved, nothing changed
     first_writes, redo = _first_writes_now(ctx, program, facts, before.first_writes, change, dirty)
+    spans = _intervals(dirty)
     conditions = _spliced(
         before.condition_lines,
         before.conditions,
         change,
-        _intervals(redo),
+        spans if redo is dirty else _intervals(redo),
         _conditions_at(ctx, facts, first_writes, redo),
         _moved_diagnostic,
     )
     if undecided:
         return _Flow(program.end_line, gates, first_writes, conditions, ([], []))
-    windows = _windows(ctx, program, facts.runs, dirty)
+    windows = _windows(ctx, program, facts.runs, spans)
     fresh = [
         (start, _stretch(ctx, program, start, last, local_calls))
         for a, b in windows
@@ -741,35 +742,22 @@ def _intervals(lines: list[int]) -> list[LineRange]:
 
 
 def _windows(
-    ctx: RuleContext, program: Program, runs: dict[int, int], dirty: list[int]
+    ctx: RuleContext, program: Program, runs: dict[int, int], changed: list[LineRange]
 ) -> list[LineRange]:
     """The stretches of lines whose dead blocks may have changed, (a, b): from the block that
-    ran before a changed line to the one that ran after it (the program's edges when none did).
-    A dead stretch ends at a block that ran, and what it gives depends on its lines and the
-    block before it alone, so the stretches outside are the ones found before."""
+    ran before a run of ``changed`` lines to the one that ran after it (the program's edges
+    when none did). A dead stretch ends at a block that ran, and what it gives depends on its lines
+    and the block before it alone, so the stretches outside are the ones found before."""
     blocks = ctx.doc.blocks
     first, end = program.first_line, program.end_line
-
-    def ran(line: int) -> bool:
-        return line in runs and blocks[line].statement is not None
-
-    def next_ran(line: int) -> int:
-        line += 1
-        while line < end and not ran(line):
-            line += 1
-        return line
-
     windows: list[LineRange] = []
-    for line in dirty:
-        if windows and line < windows[-1][1]:
-            continue
-        if windows and line == windows[-1][1]:  # the block that closed it changed
-            windows[-1] = (windows[-1][0], next_ran(line))
-            continue
-        a = line - 1
-        while a >= first and not ran(a):
+    for lo, hi in changed:
+        a = lo - 1
+        while a >= first and not (a in runs and blocks[a].statement is not None):
             a -= 1
-        b = next_ran(line)
+        b = hi + 1
+        while b < end and not (b in runs and blocks[b].statement is not None):
+            b += 1
         if windows and a <= windows[-1][1]:
             windows[-1] = (windows[-1][0], b)
         else:
@@ -778,25 +766,22 @@ def _windows(
 
 
 def _stretches_between(ctx: RuleContext, runs: dict[int, int], a: int, b: int) -> list[LineRange]:
-    """The dead stretches (first, last) of the lines ``a`` to before ``b``, a walk over them."""
+    """The dead stretches (first, last) of the lines ``a`` to before ``b``: the blocks no run
+    reached, those with no block that ran between them in one stretch."""
     blocks = ctx.doc.blocks
+    dead = [ln for ln in range(a, b) if ln not in runs and blocks[ln].statement is not None]
     found: list[LineRange] = []
-    start: int | None = None
-    last = a
-    for line in range(a, b):
-        if blocks[line].statement is None:
-            continue  # comments and blank lines neither begin nor end a stretch
-        if line in runs:
-            if start is not None:
-                found.append((start, last))
-                start = None
+    for line in dead:
+        if found and not _ran_between(blocks, runs, found[-1][1], line):
+            found[-1] = (found[-1][0], line)
         else:
-            if start is None:
-                start = line
-            last = line
-    if start is not None:
-        found.append((start, last))
+            found.append((line, line))
     return found
+
+
+def _ran_between(blocks: Sequence[Block], runs: dict[int, int], a: int, b: int) -> bool:
+    """Whether a block between lines ``a`` and ``b`` (exclusive) ran."""
+    return any(ln in runs and blocks[ln].statement is not None for ln in range(a + 1, b))
 
 
 T = TypeVar("T")
