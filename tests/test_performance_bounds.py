@@ -145,6 +145,38 @@ def test_a_label_written_thousands_of_times_is_found_by_bisection() -> None:
     assert counted.reads <= budget
 
 
+def test_an_edit_the_index_skips_keeps_the_jumps_rule_s_diagnostics(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """A keystroke in an assignment keeps the program index, and with it what the jumps rule
+    found: its 4,000 jumps are not looked at again. An edit of a label is."""
+    from fanuc_macro.workspace import Workspace
+
+    looked: list[int] = []
+    real = jumps._check
+
+    def spy(ctx: RuleContext, found: list[Any]) -> bool:
+        looked.append(sum(len(p.jumps) for p in ctx.index.programs))
+        return real(ctx, found)
+
+    monkeypatch.setattr(jumps, "_check", spy)
+    lines = [*dense_program(2000).splitlines()[:-1], "N5000 GOTO4001", "M30"]
+    workspace = Workspace()
+    uri = "file:///dense.nc"
+    workspace.add_text(uri, "\n".join(lines))
+    first = [d for d in workspace.analyse(uri).diagnostics if d.code.startswith("MB10")]
+    assert [d.code for d in first] == ["MB101"]
+    assert looked == [4001]
+    lines[5] = lines[5].replace("#2=#2+1", "#2=#2+2")
+    workspace.add_text(uri, "\n".join(lines))
+    kept = [d for d in workspace.analyse(uri).diagnostics if d.code.startswith("MB10")]
+    assert kept == first and looked == [4001]
+    lines.insert(len(lines) - 1, "N4001")  # the label the last jump wanted
+    workspace.add_text(uri, "\n".join(lines))
+    assert not [d for d in workspace.analyse(uri).diagnostics if d.code.startswith("MB10")]
+    assert looked == [4001, 4001]
+
+
 # ---- caches ----------------------------------------------------------------------------------
 
 

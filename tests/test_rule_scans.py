@@ -152,9 +152,9 @@ def test_dead_stretches_from_the_gaps_of_the_lines_run_equal_a_walk_over_every_l
         ctx = RuleContext(doc, build_index(doc))
         first = rng.randrange(n)
         end = rng.randrange(first, n + 1) if trial % 3 else n
-        assert flow._dead_stretches(ctx, first, end, runs) == _dead_stretches_by_every_line(
-            ctx, first, end, runs
-        )
+        walked = _dead_stretches_by_every_line(ctx, first, end, runs)
+        assert flow._dead_stretches(ctx, first, end, runs) == walked
+        assert flow._stretches_between(ctx, runs, first, end) == walked  # an edit's window
 
 
 def test_plain_words_give_the_variables_and_depths_of_the_walks() -> None:
@@ -276,3 +276,43 @@ def test_the_plain_words_way_gives_the_general_way_s_findings_on_every_corpus_li
                 expressions._check_line(p.statement, p.text)
             ), line
     assert plain > 1000  # the corpus is mostly blocks of plain words
+
+
+def test_vacant_reads_kept_from_the_last_analysis_equal_a_fresh_look() -> None:
+    """MB901's reads of a vacant local, kept where neither the line nor its facts changed:
+    after edits of a call's arguments, of the macro it calls and of lines that move it, the
+    diagnostics are those of a fresh analysis."""
+    from fanuc_macro.workspace import Workspace
+
+    cfg = dataclasses.replace(Config(), max_blocks=10**7, max_file_size=10**9)
+    lines = ["%", "O1000 (MAIN)", *(f"#{v}=0" for v in range(1, 9))]
+    for i in range(3000):
+        call = f"G65 P9000 A{i % 5}." if i % 3 else f"G65 P9000 A1. C{i % 4}."
+        lines += [f"#{1 + i % 8}=#{1 + i % 8}+1", call]
+    lines += ["G65 P9100 A1.", "M30", "O9000 (MACRO)", "#10=#1+#2", "#11=#3*2", "M99"]
+    lines += ["O9100 (CALLED LAST)", "#10=#1*#2", "M99", "%"]  # its run is kept
+    middle = lines.index("G65 P9000 A1. C0.", len(lines) // 2)
+    macro = lines.index("O9000 (MACRO)")
+    uri = "file:///vacant.nc"
+    workspace = Workspace(cfg)
+    workspace.add_text(uri, "\n".join(lines))
+    workspace.analyse(uri)
+    edits = [
+        (middle, "G65 P9000 A1. B2."),  # #2 passed once: not vacant every time
+        (middle, "G65 P9000 A1. C0."),
+        (macro + 3, "#12=#4+1"),  # a new read of a local nobody passes
+        (middle - 1, "#4=#4+7"),
+        (middle, None),  # a line put in: the macro's lines move
+    ]
+    found: list[int] = []
+    for at, text in edits:
+        if text is None:
+            lines.insert(at, "(NOTE)")
+        else:
+            lines[at] = text
+        edited = "\n".join(lines)
+        workspace.add_text(uri, edited)
+        diagnostics = workspace.analyse(uri).diagnostics
+        assert diagnostics == analyse(edited, "file:///fresh.nc", cfg).diagnostics
+        found.append(sum(d.code == "MB901" for d in diagnostics))
+    assert found == [1, 2, 3, 3, 3]

@@ -89,6 +89,24 @@ class Diff:
         self.old_end = len(old) - tail
         self.shift = len(new) - len(old)
 
+    def moved(self, old: int) -> int | None:
+        """Where the old version's item ``old`` stands in the new one (None: the change
+        replaced it)."""
+        if old < self.start:
+            return old
+        if old >= self.old_end:
+            return old + self.shift
+        return None
+
+    def before(self, new: int) -> int | None:
+        """Where the new version's item ``new`` stood in the old one (None: the change put
+        it in)."""
+        if new < self.start:
+            return new
+        if new >= self.end:
+            return new - self.shift
+        return None
+
 
 _diffs: list[tuple[Document, Document, Diff]] = []  # the last few pairs of versions compared
 _diffs_lock = threading.Lock()

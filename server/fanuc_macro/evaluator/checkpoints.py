@@ -19,10 +19,11 @@ from __future__ import annotations
 
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
+from operator import itemgetter
 from typing import TYPE_CHECKING
 
 from ..config import Config
-from ..line_maps import line_diff
+from ..line_maps import Diff, common_prefix, common_suffix, line_diff
 from ..program.index import Loop
 from ..syntax.tree import Document
 from .facts import DocumentFacts, Facts, same_value
@@ -343,3 +344,48 @@ def local_access(cl: CompiledLine) -> tuple[tuple[int, ...], tuple[int, ...]]:
             targets.append(target)
         part = part.second
     return tuple(n for n in cl.reads if n <= 33), tuple(targets)
+
+
+def stretches_of(facts: Facts, uri: str) -> list[DocumentFacts] | None:
+    """A document's facts by stretch of the run, in order: what its whole facts are merged
+    from (None: the evaluation kept no record)."""
+    record = facts.record
+    if record is None:
+        return None
+    return [segment[uri] for segment in record.segments if uri in segment]
+
+
+def lines_with_other_facts(
+    old: Sequence[DocumentFacts], new: Sequence[DocumentFacts], diff: Diff
+) -> set[int]:
+    """The lines (new numbers) whose runs, reads, writes or jumps may differ between two
+    evaluations of versions of a document, given by stretch (:func:`stretches_of`); ``diff``
+    is how the document's lines moved (the lines it changed may be among those given).
+
+    A resumed evaluation takes the earlier one's stretches before the one it resumed in and
+    after the one where it met the earlier run (renumbered, after an edit of lines, under the
+    same stretch number): a line that only those stretches ran has the facts it had, merged
+    from the same stretches in the same order. The others are the lines the stretches in
+    between ran, in either evaluation."""
+    a = [s.stretch for s in old]
+    b = [s.stretch for s in new]
+    head = common_prefix(a, b)
+    tail = common_suffix(a, b, min(len(a), len(b)) - head)
+    lines: set[int] = set()
+    for facts in new[head : len(new) - tail]:
+        _add_lines(lines, facts)
+    earlier: set[int] = set()
+    for facts in old[head : len(old) - tail]:
+        _add_lines(earlier, facts)
+    if diff.shift:
+        lines.update(m for line in earlier if (m := diff.moved(line)) is not None)
+    else:
+        lines |= earlier  # the same numbers, the changed lines' too
+    return lines
+
+
+def _add_lines(lines: set[int], facts: DocumentFacts) -> None:
+    lines.update(facts.runs)
+    lines.update(facts.jumps)
+    lines.update(facts.writes)
+    lines.update(map(itemgetter(0), facts.reads))  # (line, variable) keys, read in C

@@ -5,6 +5,7 @@ These are the facts the rules, the hover and the inlay hints read. They carry no
 
 from __future__ import annotations
 
+import itertools
 import math
 from array import array
 from collections.abc import Callable, Sequence
@@ -220,6 +221,10 @@ class DocumentFacts:
     _feedless: dict[int, FeedlessProgram] | None = field(
         default=None, init=False, repr=False, compare=False
     )
+    # Which stretch of a run these facts are (0: a document's whole facts): a stretch
+    # renumbered after an edit of lines keeps it, so that the rules can tell the stretches an
+    # evaluation took from the earlier one (:func:`.checkpoints.lines_with_other_facts`).
+    stretch: int = field(default=0, repr=False, compare=False)
 
     @property
     def findings(self) -> list[Finding]:
@@ -258,6 +263,7 @@ class DocumentFacts:
             analysed_programs=self.analysed_programs,
             program_ends=self.program_ends,
             assumed_arguments=self.assumed_arguments,
+            stretch=next(_stretches),
         )
 
     def take_segments(self, segments: Sequence[DocumentFacts]) -> None:
@@ -331,6 +337,9 @@ class Facts:
         if facts is None:
             facts = self.by_uri[uri] = DocumentFacts()
         return facts
+
+
+_stretches = itertools.count(1)  # the stretches' numbers, new in every run
 
 
 def _feedless(records: Sequence[CutsWithoutFeed]) -> dict[int, FeedlessProgram]:

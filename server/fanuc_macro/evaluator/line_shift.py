@@ -296,7 +296,7 @@ def _segment(facts: DocumentFacts, shift: LineShift) -> tuple[DocumentFacts, boo
             ran_edit = True
         return mapped
 
-    out = DocumentFacts()
+    out = DocumentFacts(stretch=facts.stretch)  # the same stretch in new numbers
     out.runs = {m: v for n, v in facts.runs.items() if (m := ok(n)) is not None}
     out.reads = {(m, v): s for (n, v), s in facts.reads.items() if (m := ok(n)) is not None}
     out.writes = {m: w for n, w in facts.writes.items() if (m := ok(n)) is not None}

@@ -2,13 +2,16 @@
 
 from __future__ import annotations
 
+from bisect import bisect_left
 from collections.abc import Callable, Iterable, Iterator, Sequence
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, NamedTuple, cast
 
 from ..config import Config
 from ..diagnostics import Diagnostic
+from ..evaluator.checkpoints import lines_with_other_facts, stretches_of
 from ..evaluator.facts import DocumentFacts, Facts, Finding
+from ..line_maps import Diff, line_diff
 from ..program.index import ProgramIndex
 from ..syntax.tree import Block, Document, ParsedLine, Statement
 
@@ -108,6 +111,78 @@ class RuleContext:
 
 
 Check = Callable[[RuleContext], Iterable[Diagnostic]]
+
+
+class Seen:
+    """The version of a document and the evaluator's facts an analysis read: what a rule that
+    keeps its findings from one analysis to the next keeps, to learn at the next one which
+    lines may give other findings (:meth:`changes`)."""
+
+    __slots__ = ("config", "doc", "facts", "stretches")
+
+    def __init__(self, ctx: RuleContext) -> None:
+        self.doc = ctx.doc
+        self.config = ctx.config
+        self.facts = ctx.doc_facts()
+        self.stretches = None if ctx.facts is None else stretches_of(ctx.facts, ctx.doc.uri)
+
+    def changes(self, ctx: RuleContext) -> Changes | None:
+        """The lines of ``ctx``'s document whose text or facts may differ from this version's
+        (None: not known, or most of them); worked out once per analysis for the rules that
+        saw the same version."""
+        memo = cast("dict[tuple[int, int, int], Changes | None]", ctx.memo.setdefault("seen", {}))
+        key = (id(self.doc), id(self.facts), id(self.config))  # alive while self is
+        if key not in memo:
+            memo[key] = self._changes(ctx)
+        return memo[key]
+
+    def _changes(self, ctx: RuleContext) -> Changes | None:
+        if self.config is not ctx.config and self.config != ctx.config:
+            return None
+        diff = line_diff(self.doc, ctx.doc)
+        facts = ctx.doc_facts()
+        if facts is None or self.facts is None:
+            return None
+        if facts is self.facts:
+            if diff.shift:
+                return None  # the facts of other line numbers: a workspace never keeps them
+            fact_lines: set[int] = set()
+        else:
+            stretches = None if ctx.facts is None else stretches_of(ctx.facts, ctx.doc.uri)
+            if stretches is None or self.stretches is None:
+                return None
+            fact_lines = lines_with_other_facts(self.stretches, stretches, diff)
+        changes = Changes(diff, fact_lines, len(ctx.doc.blocks))
+        if len(changes.sorted) > len(ctx.doc.blocks) // 2:
+            return None  # most of the document: a fresh look costs less
+        return changes
+
+
+class Changes:
+    """Where a version of a document may give other findings than an earlier one: the lines
+    (new numbers) whose text changed, with one line on either side (a block removed joins its
+    neighbours), and those whose facts may differ; ``diff`` says how the old lines moved."""
+
+    __slots__ = ("diff", "lines", "sorted", "text_end", "text_start")
+
+    def __init__(self, diff: Diff, fact_lines: set[int], lines: int) -> None:
+        self.diff = diff
+        if diff.start < diff.end or diff.start < diff.old_end:
+            self.text_start, self.text_end = max(0, diff.start - 1), min(lines, diff.end + 1)
+        else:
+            self.text_start = self.text_end = 0
+        self.lines = fact_lines.union(range(self.text_start, self.text_end))
+        self.sorted = sorted(self.lines)
+
+    def moved_end(self, end: int) -> int | None:
+        """An old exclusive end line's new number."""
+        diff = self.diff
+        return end if end <= diff.start else diff.moved(end)
+
+    def within(self, first: int, end: int) -> list[int]:
+        """The changed lines from ``first`` to before ``end``, ascending."""
+        found = self.sorted
+        return found[bisect_left(found, first) : bisect_left(found, end)]
 
 
 class LineFinding(NamedTuple):

@@ -4,19 +4,30 @@ loops, jumps and calls that fail at run time."""
 from __future__ import annotations
 
 import re
-from bisect import bisect_left
-from collections.abc import Iterator
-from typing import cast
+from bisect import bisect_left, bisect_right
+from collections.abc import Callable, Iterator, Sequence
+from itertools import chain
+from operator import itemgetter
+from typing import NamedTuple, TypeVar, cast
 
 from ..diagnostics import Diagnostic, RuleDoc, RuleInfo, Severity, document, make, register
 from ..evaluator.facts import DocumentFacts
 from ..evaluator.machine import compiled
-from ..line_maps import LineMap
+from ..line_maps import Kept, LineMap
 from ..per_line import PerLine
 from ..program.index import Program
 from ..syntax.marks import constant_value
-from ..syntax.tree import Block, Goto, IfGoto, IfThen, Mixed, NcStatement, ParsedLine, While
-from .context import RuleContext
+from ..syntax.tree import (
+    Block,
+    Goto,
+    IfGoto,
+    IfThen,
+    Mixed,
+    NcStatement,
+    ParsedLine,
+    While,
+)
+from .context import Changes, RuleContext, Seen
 
 FAMILY = "flow"
 register(
@@ -388,55 +399,310 @@ DEAD, RESTART, LOCAL_CALL, AFTER_STOP = "dead", "restart", "local call", "after 
 LineRange = tuple[int, int]  # first and last line
 
 
-def check(ctx: RuleContext) -> Iterator[Diagnostic]:
+def check(ctx: RuleContext) -> list[Diagnostic]:
     facts = ctx.doc_facts()
     if facts is None:
-        for program in ctx.index.programs:
-            yield from _after_end(ctx, program, None)
-        return
+        return [d for program in ctx.index.programs for d in _after_end(ctx, program, None)]
+    found: list[Diagnostic] = []
     for f in ctx.findings("endless-loop"):
-        yield make("MB703", f.message, f.line, f.column, f.end_column)
+        found.append(make("MB703", f.message, f.line, f.column, f.end_column))
     for f in ctx.findings("polling-loop"):
-        yield make("MB707", f.message, f.line, f.column, f.end_column)
+        found.append(make("MB707", f.message, f.line, f.column, f.end_column))
     for f in ctx.findings("long-loop"):
-        yield make("MB708", f.message, f.line, f.column, f.end_column)
+        found.append(make("MB708", f.message, f.line, f.column, f.end_column))
     for f in ctx.findings("alarm:goto-", "alarm:return-missing"):
         statement = ctx.doc.blocks[f.line].statement
         constant = isinstance(statement, IfGoto | Goto) and _is_constant(statement)
         if not constant:  # constant targets are MB101's
-            yield make("MB704", f.message, f.line, f.column, f.end_column)
+            found.append(make("MB704", f.message, f.line, f.column, f.end_column))
     for f in ctx.findings("alarm:nesting"):
-        yield make("MB705", f.message, f.line, f.column, f.end_column)
+        found.append(make("MB705", f.message, f.line, f.column, f.end_column))
     for f in ctx.findings("program-not-found"):
         if not _constant_call(ctx, f.line):
-            yield make("MB706", f.message, f.line, f.column, f.end_column)
-    for program in ctx.index.programs:
-        analysed = program.first_line in facts.analysed_programs
-        # A run cut short (budget, alarm) proves nothing about its branches.
-        whole = analysed and program.first_line not in facts.incomplete_programs
-        if whole:
-            yield from _constant_conditions(ctx, program, facts)
-        undecided = program.first_line in ctx.undecided_programs()
-        if whole and not undecided:
-            if not _unreadable_flow(ctx, program):
-                yield from _dead_blocks(ctx, program, facts.runs)
-        else:  # what the text alone says is dead still is
-            yield from _after_end(ctx, program, facts)
+            found.append(make("MB706", f.message, f.line, f.column, f.end_column))
+    found.extend(_programs(ctx, facts))
+    return found
 
 
-def _constant_conditions(
-    ctx: RuleContext, program: Program, facts: DocumentFacts
-) -> Iterator[Diagnostic]:
-    if _unreadable_flow(ctx, program):
-        return  # a rejected block may hold the jump or assignment that changes the outcome
-    first_writes: dict[int, int] | None = None
-    jump_lines = _sorted_jump_lines(ctx, facts)
-    first, end = (
-        bisect_left(jump_lines, program.first_line),
-        bisect_left(jump_lines, program.end_line),
+# ---- What the programs' runs say, kept from one analysis to the next -------------------------
+#
+# A document of thousands of loops has thousands of constant conditions (MB701) and of
+# stretches no run reached (MB702): built again on every keystroke, they would cost far more
+# than the edit. Each program whose runs were whole keeps its verdicts and their diagnostics
+# with the lines they were drawn from. After an edit the facts of a line differ only where
+# the text changed or where the evaluation ran again (the stretches of the run it did not take
+# from the earlier one, :func:`~fanuc_macro.evaluator.checkpoints.lines_with_other_facts`), so
+# only the conditions on those lines (and those that read a variable whose first write moved)
+# and the stretches between the blocks that ran around them are looked at again; the rest is
+# kept, or moved by the lines the edit added or removed. ``tests/test_flow_reuse.py`` compares
+# the result with fresh analyses after random edits.
+
+
+class _Segment(NamedTuple):
+    """A part of a dead stretch that gets a diagnostic: DEAD (MB702) or RESTART (MB709)."""
+
+    kind: str
+    first: int
+    end: int  # its last block
+    size: int  # the blocks in it
+    width: int  # the length of its last line
+    stop_line: int  # the jump or end before it
+    labels: str  # RESTART: the N numbers a search may start at
+    stop: str  # RESTART: what ``stop_line`` is ("GOTO", "M30"...)
+
+
+class _Stretch(NamedTuple):
+    """A stretch of blocks no run reached (first and last line), what it gives."""
+
+    start: int
+    last: int
+    segments: tuple[_Segment, ...]
+    diagnostics: tuple[Diagnostic, ...]
+
+
+class _Flow:
+    """The conditions and dead stretches of one program whose runs were whole and whose
+    blocks all parse, each with its diagnostics, in the order of the lines."""
+
+    __slots__ = (
+        "condition_lines",
+        "conditions",
+        "dead",
+        "dead_starts",
+        "end_line",
+        "first_writes",
+        "gates",
     )
-    for line in jump_lines[first:end]:
-        jc = facts.jumps[line]
+
+    def __init__(
+        self,
+        end_line: int,
+        gates: tuple[object, ...],
+        first_writes: dict[int, int],
+        conditions: tuple[list[int], list[Diagnostic]],
+        dead: tuple[list[int], list[_Stretch]],
+    ) -> None:
+        self.end_line = end_line
+        self.gates = gates  # what the whole program's verdicts depend on
+        self.first_writes = first_writes  # variable -> its first write in the program
+        self.condition_lines, self.conditions = conditions  # MB701
+        self.dead_starts, self.dead = dead  # MB702, MB709, by the first line of the stretch
+
+
+class _State:
+    """What the flow rules found in one version of a document, and from what."""
+
+    __slots__ = ("programs", "seen")
+
+    def __init__(self, seen: Seen, programs: dict[int, _Flow]) -> None:
+        self.seen = seen
+        self.programs = programs  # by first line
+
+
+_kept: Kept[_State] = Kept()
+
+
+class Work:
+    """What the flow rules looked at over their life (conditions, dead stretches), for the
+    tests of the work an edit costs."""
+
+    __slots__ = ("conditions", "stretches")
+
+    def __init__(self) -> None:
+        self.conditions = 0
+        self.stretches = 0
+
+
+work = Work()
+
+
+def _programs(ctx: RuleContext, facts: DocumentFacts) -> list[Diagnostic]:
+    """MB701, MB702, MB709 and MB710 of every program."""
+    uri = ctx.doc.uri
+    last = _kept.get(uri)
+    change = None if last is None else last.seen.changes(ctx)
+    kept: dict[int, _Flow] = {}
+    found: list[Diagnostic] = []
+    previous_end = 0
+    for program in ctx.index.programs:
+        first = program.first_line
+        analysed = first in facts.analysed_programs
+        # A run cut short (budget, alarm) proves nothing about its branches.
+        whole = analysed and first not in facts.incomplete_programs
+        undecided = first in ctx.undecided_programs()
+        if whole and not _unreadable_flow(ctx, program):
+            before = None
+            if last is not None and change is not None:
+                at = change.diff.before(first)
+                before = None if at is None else last.programs.get(at)
+                if change.text_start < first and change.text_end > previous_end:
+                    before = None  # a label search may look at the lines before the program
+            flow = _program_flow(ctx, program, facts, undecided, before, change)
+            kept[first] = flow
+            found.extend(flow.conditions)
+            if not undecided:
+                found.extend(chain.from_iterable(map(_diagnostics_of, flow.dead)))
+            else:  # what the text alone says is dead still is
+                found.extend(_after_end(ctx, program, facts))
+        elif not whole or undecided:
+            found.extend(_after_end(ctx, program, facts))
+        previous_end = program.end_line
+    _kept.put(uri, _State(Seen(ctx), kept))
+    return found
+
+
+def _program_flow(
+    ctx: RuleContext,
+    program: Program,
+    facts: DocumentFacts,
+    undecided: bool,
+    before: _Flow | None,
+    change: Changes | None,
+) -> _Flow:
+    """One program's verdicts: those of ``before`` (the last analysis's) where nothing they
+    were drawn from changed, the others looked at again."""
+    local_calls = _local_calls(program)
+    gates = (undecided, program.display_name, local_calls)
+    if (
+        before is None
+        or change is None
+        or before.gates != gates
+        or change.moved_end(before.end_line) != program.end_line
+    ):
+        return _fresh_flow(ctx, program, facts, gates, local_calls)
+    dirty = change.within(program.first_line, program.end_line)
+    if not dirty and (change.diff.shift == 0 or program.end_line <= change.diff.start):
+        return before  # nothing moved, nothing changed
+    first_writes, redo = _first_writes_now(ctx, program, facts, before.first_writes, change, dirty)
+    spans = _intervals(dirty)
+    conditions = _spliced(
+        before.condition_lines,
+        before.conditions,
+        change,
+        spans if redo is dirty else _intervals(redo),
+        _conditions_at(ctx, facts, first_writes, redo),
+        _moved_diagnostic,
+    )
+    if undecided:
+        return _Flow(program.end_line, gates, first_writes, conditions, ([], []))
+    windows = _windows(ctx, program, facts.runs, spans)
+    fresh = [
+        (start, _stretch(ctx, program, start, last, local_calls))
+        for a, b in windows
+        for start, last in _stretches_between(ctx, facts.runs, a + 1, b)
+    ]
+    name = program.display_name
+    dead = _spliced(
+        before.dead_starts,
+        before.dead,
+        change,
+        windows,
+        fresh,
+        lambda stretch, shift: _moved_stretch(stretch, shift, name),
+    )
+    if not _apart(*dead, windows):
+        return _fresh_flow(ctx, program, facts, gates, local_calls)
+    return _Flow(program.end_line, gates, first_writes, conditions, dead)
+
+
+def _fresh_flow(
+    ctx: RuleContext,
+    program: Program,
+    facts: DocumentFacts,
+    gates: tuple[object, ...],
+    local_calls: frozenset[int],
+) -> _Flow:
+    """One program's verdicts, each looked at."""
+    first_writes = dict(_first_writes(ctx, facts).get(program.first_line, {}))
+    jump_lines = _sorted_jump_lines(ctx, facts)
+    lines = jump_lines[
+        bisect_left(jump_lines, program.first_line) : bisect_left(jump_lines, program.end_line)
+    ]
+    conditions = _conditions_at(ctx, facts, first_writes, lines)
+    condition_lines = [line for line, _ in conditions]
+    dead: list[_Stretch] = []
+    if not gates[0]:  # decided: which blocks no run reached is known
+        for start, last in _dead_stretches(ctx, program.first_line, program.end_line, facts.runs):
+            dead.append(_stretch(ctx, program, start, last, local_calls))
+    return _Flow(
+        program.end_line,
+        gates,
+        first_writes,
+        (condition_lines, [d for _, d in conditions]),
+        ([stretch.start for stretch in dead], dead),
+    )
+
+
+def _local_calls(program: Program) -> frozenset[int]:
+    """The N numbers a Haas M97 of the program calls."""
+    return frozenset(c.program for c in program.calls if c.kind == "M97" and c.program is not None)
+
+
+def _first_writes_now(
+    ctx: RuleContext,
+    program: Program,
+    facts: DocumentFacts,
+    before: dict[int, int],
+    change: Changes,
+    dirty: list[int],
+) -> tuple[dict[int, int], list[int]]:
+    """The program's first write of each variable, and the lines (ascending) whose condition
+    is to be looked at again: the changed lines, and those that read a variable whose first
+    write moved (a condition is the program's own when its variables were set before it).
+
+    The first writes come from the last analysis's and the changed lines' writes, unless a
+    first write is on a changed line (the next one may be anywhere)."""
+    moved: dict[int, int] = {}
+    for number, line in before.items():
+        at = change.diff.moved(line)
+        if at is None:  # the edit removed it: which conditions it decided is not known
+            found = dict(_first_writes(ctx, facts).get(program.first_line, {}))
+            jump_lines = _sorted_jump_lines(ctx, facts)
+            return found, jump_lines[
+                bisect_left(jump_lines, program.first_line) : bisect_left(
+                    jump_lines, program.end_line
+                )
+            ]
+        moved[number] = at
+    if change.lines.isdisjoint(moved.values()):
+        found = dict(moved)
+        writes = facts.writes
+        for line in dirty:
+            write = writes.get(line)
+            if write is not None and line < found.get(write[0], line + 1):
+                found[write[0]] = line
+    else:
+        found = dict(_first_writes(ctx, facts).get(program.first_line, {}))
+    if found == moved:
+        return found, dirty
+    redo = set(dirty)
+    jumps, blocks = facts.jumps, ctx.doc.blocks
+    for number in moved.keys() | found.keys():
+        a, b = moved.get(number), found.get(number)
+        if a == b:
+            continue
+        # Conditions after the earlier of the two and up to the later one read it otherwise.
+        lo = min(x for x in (a, b) if x is not None) + 1
+        hi = program.end_line if a is None or b is None else max(a, b) + 1
+        redo.update(
+            line
+            for line in range(lo, hi)
+            if line in jumps and number in compiled(blocks[line].parsed).reads
+        )
+    return found, sorted(redo)
+
+
+def _conditions_at(
+    ctx: RuleContext, facts: DocumentFacts, first_writes: dict[int, int], lines: list[int]
+) -> list[tuple[int, Diagnostic]]:
+    """MB701 on those of ``lines`` (ascending) that hold an evaluated condition."""
+    found: list[tuple[int, Diagnostic]] = []
+    jumps = facts.jumps
+    for line in lines:
+        jc = jumps.get(line)
+        if jc is None:
+            continue
+        work.conditions += 1
         if jc.undecided or jc.guessed:
             continue  # an outcome on a guessed path proves nothing
         statement = ctx.doc.blocks[line].statement
@@ -445,21 +711,223 @@ def _constant_conditions(
         total = jc.taken + jc.not_taken
         if total == 0 or (jc.taken and jc.not_taken):
             continue
-        if first_writes is None:
-            first_writes = _first_writes(ctx, facts).get(program.first_line, {})
         if not _decided_by_the_program(ctx, facts, first_writes, line):
             continue
         outcome = "true" if jc.taken else "false"
         effect = _effect(statement, jc.taken > 0)
         c = statement.cond.span
-        yield make(
-            "MB701",
-            f"condition is always {outcome} for the values that reach it "
-            f"({total} time{'s' if total > 1 else ''}): {effect}",
-            line,
-            c.start,
-            c.end,
+        found.append(
+            (
+                line,
+                make(
+                    "MB701",
+                    f"condition is always {outcome} for the values that reach it "
+                    f"({total} time{'s' if total > 1 else ''}): {effect}",
+                    line,
+                    c.start,
+                    c.end,
+                ),
+            )
         )
+    return found
+
+
+def _intervals(lines: list[int]) -> list[LineRange]:
+    """Ascending lines as runs of consecutive lines (first, last)."""
+    found: list[LineRange] = []
+    for line in lines:
+        if found and found[-1][1] == line - 1:
+            found[-1] = (found[-1][0], line)
+        else:
+            found.append((line, line))
+    return found
+
+
+def _windows(
+    ctx: RuleContext, program: Program, runs: dict[int, int], changed: list[LineRange]
+) -> list[LineRange]:
+    """The stretches of lines whose dead blocks may have changed, (a, b): from the block that
+    ran before a run of ``changed`` lines to the one that ran after it (the program's edges
+    when none did). A dead stretch ends at a block that ran, and what it gives depends on its lines
+    and the block before it alone, so the stretches outside are the ones found before."""
+    blocks = ctx.doc.blocks
+    first, end = program.first_line, program.end_line
+    windows: list[LineRange] = []
+    for lo, hi in changed:
+        a = lo - 1
+        while a >= first and not (a in runs and blocks[a].statement is not None):
+            a -= 1
+        b = hi + 1
+        while b < end and not (b in runs and blocks[b].statement is not None):
+            b += 1
+        if windows and a <= windows[-1][1]:
+            windows[-1] = (windows[-1][0], b)
+        else:
+            windows.append((a, b))
+    return windows
+
+
+def _stretches_between(ctx: RuleContext, runs: dict[int, int], a: int, b: int) -> list[LineRange]:
+    """The dead stretches (first, last) of the lines ``a`` to before ``b``: the blocks no run
+    reached, those with no block that ran between them in one stretch."""
+    blocks = ctx.doc.blocks
+    dead = [ln for ln in range(a, b) if ln not in runs and blocks[ln].statement is not None]
+    found: list[LineRange] = []
+    for line in dead:
+        if found and not _ran_between(blocks, runs, found[-1][1], line):
+            found[-1] = (found[-1][0], line)
+        else:
+            found.append((line, line))
+    return found
+
+
+def _ran_between(blocks: Sequence[Block], runs: dict[int, int], a: int, b: int) -> bool:
+    """Whether a block between lines ``a`` and ``b`` (exclusive) ran."""
+    return any(ln in runs and blocks[ln].statement is not None for ln in range(a + 1, b))
+
+
+T = TypeVar("T")
+
+
+def _spliced(
+    lines: list[int],
+    items: list[T],
+    change: Changes,
+    drops: list[LineRange],
+    fresh: list[tuple[int, T]],
+    move: Callable[[T, int], T],
+) -> tuple[list[int], list[T]]:
+    """The last analysis's ``items`` at ``lines`` (ascending) in new line numbers, less those
+    at the lines of ``drops`` (new numbers, ascending, apart) and with ``fresh`` (found
+    within them) in their place."""
+    diff = change.diff
+    i, j = bisect_left(lines, diff.start), bisect_left(lines, diff.old_end)
+    if diff.shift and j < len(lines):
+        shift = diff.shift
+        lines = [*lines[:i], *[line + shift for line in lines[j:]]]
+        items = [*items[:i], *[move(item, shift) for item in items[j:]]]
+    elif i < j:
+        lines, items = [*lines[:i], *lines[j:]], [*items[:i], *items[j:]]
+    out_lines: list[int] = []
+    out_items: list[T] = []
+    at = 0
+    k = 0
+    for a, b in drops:
+        lo = bisect_left(lines, a, at)
+        out_lines += lines[at:lo]
+        out_items += items[at:lo]
+        at = bisect_right(lines, b, lo)
+        while k < len(fresh) and fresh[k][0] <= b:
+            out_lines.append(fresh[k][0])
+            out_items.append(fresh[k][1])
+            k += 1
+    out_lines += lines[at:]
+    out_items += items[at:]
+    return out_lines, out_items
+
+
+def _apart(starts: list[int], dead: list[_Stretch], windows: list[LineRange]) -> bool:
+    """Whether no stretch kept reaches into a window (which the way windows are drawn rules
+    out: the check guards the reuse)."""
+    for a, _b in windows:
+        at = bisect_left(starts, a)
+        if at > 0 and dead[at - 1].last >= a:
+            return False
+    return True
+
+
+def _moved_diagnostic(d: Diagnostic, shift: int) -> Diagnostic:
+    return Diagnostic(
+        d.code,
+        d.severity,
+        d.message,
+        d.line + shift,
+        d.column,
+        d.end_line + shift,
+        d.end_column,
+        d.related,
+        d.data,
+    )
+
+
+def _moved_stretch(stretch: _Stretch, shift: int, program_name: str) -> _Stretch:
+    """A stretch in new line numbers, its diagnostics made again (their messages name them)."""
+    segments = tuple(
+        s._replace(first=s.first + shift, end=s.end + shift, stop_line=s.stop_line + shift)
+        for s in stretch.segments
+    )
+    return _Stretch(
+        stretch.start + shift,
+        stretch.last + shift,
+        segments,
+        tuple(_segment_diagnostic(s, program_name) for s in segments),
+    )
+
+
+def _stretch(
+    ctx: RuleContext, program: Program, start: int, last: int, local_calls: frozenset[int]
+) -> _Stretch:
+    """What a stretch of blocks no run reached gives: MB702 and MB709 segments."""
+    work.stretches += 1
+    blocks = ctx.doc.blocks
+    before = _statement_before(ctx, program, start)
+    stop = _stops(blocks[before]) if before is not None else None
+    after = start - 1 if before is None else before
+    segments: list[_Segment] = []
+    for kind, first, end, stop_line in _classify_dead(
+        ctx, program, after, last, stop is not None, local_calls
+    ):
+        if kind == DEAD:
+            count = _count(ctx, first, end)
+            segments.append(
+                _Segment(DEAD, first, end, count, len(blocks[end].text), stop_line, "", "")
+            )
+        elif kind == RESTART:
+            count = _count(ctx, first, end)
+            segments.append(
+                _Segment(
+                    RESTART,
+                    first,
+                    end,
+                    count,
+                    len(blocks[end].text),
+                    stop_line,
+                    _labels(ctx, first, end),
+                    str(_stops(blocks[stop_line])),
+                )
+            )
+    name = program.display_name
+    return _Stretch(
+        start, last, tuple(segments), tuple(_segment_diagnostic(s, name) for s in segments)
+    )
+
+
+_diagnostics_of = itemgetter(3)  # a _Stretch's diagnostics, read in C
+
+
+def _segment_diagnostic(s: _Segment, program_name: str) -> Diagnostic:
+    if s.kind == DEAD:
+        return make(
+            "MB702",
+            f"{_blocks(s.size)} never executed ({_lines(s.first, s.end)}): no path of the "
+            "analysed runs reaches them",
+            s.first,
+            0,
+            s.width,
+            end_line=s.end,
+        )
+    return make(
+        "MB709",
+        f"{_blocks(s.size)} reached only by a sequence number search "
+        f"({_lines(s.first, s.end)}, from {s.labels}): no run of "
+        f"{program_name} comes here past the {s.stop} "
+        f"of line {s.stop_line + 1}; an operator restarting at "
+        f"{s.labels.split(', ')[0]} runs them",
+        s.first,
+        0,
+        s.width,
+        end_line=s.end,
+    )
 
 
 def _sorted_jump_lines(ctx: RuleContext, facts: DocumentFacts) -> list[int]:
@@ -615,7 +1083,12 @@ _ENDS = (2.0, 30.0, 99.0)
 
 
 def _classify_dead(
-    ctx: RuleContext, program: Program, after: int, last: int, stopped: bool
+    ctx: RuleContext,
+    program: Program,
+    after: int,
+    last: int,
+    stopped: bool,
+    local_calls: frozenset[int] | None = None,
 ) -> list[tuple[str, int, int, int]]:
     """The blocks from the line after ``after`` to ``last``, which no run reached, in segments
     (kind, first, last): DEAD; RESTART, a block with an N number right after an unconditional
@@ -624,7 +1097,8 @@ def _classify_dead(
     from an N number a Haas M97 calls, which the analysis does not run. ``stopped``: the block
     at ``after`` ends the fall-through. Each segment comes with the line of the jump or end
     before it."""
-    local_calls = {c.program for c in program.calls if c.kind == "M97" and c.program is not None}
+    if local_calls is None:
+        local_calls = _local_calls(program)
     blocks = ctx.doc.blocks
     state = AFTER_STOP if stopped else DEAD
     segments: list[tuple[str, int, int, int]] = []
@@ -689,44 +1163,6 @@ def _blocks(n: int) -> str:
 
 def _lines(first: int, last: int) -> str:
     return f"line {first + 1}" if first == last else f"lines {first + 1}-{last + 1}"
-
-
-def _dead_blocks(ctx: RuleContext, program: Program, runs: dict[int, int]) -> Iterator[Diagnostic]:
-    """MB702 and MB709 for a program whose runs were whole and decided every branch."""
-    blocks = ctx.doc.blocks
-    for start, last in _dead_stretches(ctx, program.first_line, program.end_line, runs):
-        before = _statement_before(ctx, program, start)
-        stop = _stops(blocks[before]) if before is not None else None
-        after = start - 1 if before is None else before
-        for kind, first, end, stop_line in _classify_dead(
-            ctx, program, after, last, stop is not None
-        ):
-            count = _count(ctx, first, end)
-            width = len(blocks[end].text)
-            if kind == DEAD:
-                yield make(
-                    "MB702",
-                    f"{_blocks(count)} never executed ({_lines(first, end)}): no path of the "
-                    "analysed runs reaches them",
-                    first,
-                    0,
-                    width,
-                    end_line=end,
-                )
-            elif kind == RESTART:
-                labels = _labels(ctx, first, end)
-                yield make(
-                    "MB709",
-                    f"{_blocks(count)} reached only by a sequence number search "
-                    f"({_lines(first, end)}, from {labels}): no run of "
-                    f"{program.display_name} comes here past the {_stops(blocks[stop_line])} "
-                    f"of line {stop_line + 1}; an operator restarting at "
-                    f"{labels.split(', ')[0]} runs them",
-                    first,
-                    0,
-                    width,
-                    end_line=end,
-                )
 
 
 def _labels(ctx: RuleContext, first: int, last: int) -> str:

@@ -3,12 +3,12 @@
 from __future__ import annotations
 
 from bisect import bisect_left, bisect_right
-from collections.abc import Iterator
 from typing import cast
 
 from ..diagnostics import Diagnostic, Related, RuleDoc, RuleInfo, Severity, document, make, register
+from ..line_maps import Kept
 from ..per_line import PerLine
-from ..program.index import Jump, Program
+from ..program.index import Jump, Program, ProgramIndex
 from ..syntax.parser import statements_of
 from ..syntax.tree import Assign, IfGoto, IfThen, ParsedLine, Var, While
 from ..syntax.walk import cond_exprs, subexpressions
@@ -166,28 +166,51 @@ is 10. Computed targets: the evaluator checks their values when it runs (MB704).
 )
 
 
-def check(ctx: RuleContext) -> Iterator[Diagnostic]:
+# The last diagnostics of each document, with the program index they were drawn from: an edit
+# of lines the index skips (an assignment, a motion) keeps the index, and so the diagnostics.
+_kept: Kept[tuple[ProgramIndex, int | None, list[Diagnostic]]] = Kept()
+
+
+def check(ctx: RuleContext) -> list[Diagnostic]:
+    last = _kept.get(ctx.doc.uri)
+    if last is not None and last[0] is ctx.index and last[1] == ctx.doc.unread_from:
+        return list(last[2])
+    found: list[Diagnostic] = []
+    if _check(ctx, found):
+        _kept.put(ctx.doc.uri, (ctx.index, ctx.doc.unread_from, found))
+    return list(found)
+
+
+def _check(ctx: RuleContext, found: list[Diagnostic]) -> bool:
+    """The diagnostics into ``found``; whether they follow from the index alone (a jump to a
+    duplicated N asks the facts and the lines where it lands)."""
+    textual = True
+    add = found.append
     for program in ctx.index.programs:
         name = program.display_name
         for jump in program.jumps:
             ts = jump.target_span
             if jump.target is None:
                 if jump.constant is not None:
-                    yield make(
+                    add(
+                        make(
+                            "MB104",
+                            f"GOTO target {jump.constant:g} is not a whole number (alarm PS0128)",
+                            jump.line,
+                            ts.start,
+                            ts.end,
+                        )
+                    )
+                continue
+            if not 1 <= jump.target <= 99999:
+                add(
+                    make(
                         "MB104",
-                        f"GOTO target {jump.constant:g} is not a whole number (alarm PS0128)",
+                        f"GOTO target {jump.target} is outside 1-99999 (alarm PS0128)",
                         jump.line,
                         ts.start,
                         ts.end,
                     )
-                continue
-            if not 1 <= jump.target <= 99999:
-                yield make(
-                    "MB104",
-                    f"GOTO target {jump.target} is outside 1-99999 (alarm PS0128)",
-                    jump.line,
-                    ts.start,
-                    ts.end,
                 )
                 continue
             lines = program.labels.get(jump.target)
@@ -195,36 +218,42 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
                 unread = ctx.doc.unread_from
                 if unread is not None and program.end_line >= unread:
                     continue  # the label may be in the part of the file left unread (MB013)
-                yield make(
-                    "MB101",
-                    f"GOTO {jump.target}: no N{jump.target} in {name} (alarm "
-                    "PS0128 when the jump is taken)",
-                    jump.line,
-                    ts.start,
-                    ts.end,
+                add(
+                    make(
+                        "MB101",
+                        f"GOTO {jump.target}: no N{jump.target} in {name} (alarm "
+                        "PS0128 when the jump is taken)",
+                        jump.line,
+                        ts.start,
+                        ts.end,
+                    )
                 )
                 continue
             if len(lines) > 1:
-                found = _duplicate_lands_wrong(ctx, program, jump, lines)
-                if found is not None:
-                    yield found
+                textual = False
+                wrong = _duplicate_lands_wrong(ctx, program, jump, lines)
+                if wrong is not None:
+                    add(wrong)
             target_line = program.label_line(jump.target, jump.line)
             assert target_line is not None
             target_loops = program.enclosing_loops(target_line)
             source_loops = program.enclosing_loops(jump.line)
             for loop in target_loops:
                 if loop not in source_loops:
-                    yield make(
-                        "MB103",
-                        f"GOTO {jump.target} jumps into the DO{loop.loop_id:g} "
-                        f"loop of line {loop.do_line + 1} from outside it; FANUC forbids "
-                        "branching into a loop",
-                        jump.line,
-                        ts.start,
-                        ts.end,
-                        related=[Related(loop.do_line, 0, 0, "the loop starts here")],
+                    add(
+                        make(
+                            "MB103",
+                            f"GOTO {jump.target} jumps into the DO{loop.loop_id:g} "
+                            f"loop of line {loop.do_line + 1} from outside it; FANUC forbids "
+                            "branching into a loop",
+                            jump.line,
+                            ts.start,
+                            ts.end,
+                            related=[Related(loop.do_line, 0, 0, "the loop starts here")],
+                        )
                     )
                     break
+    return textual
 
 
 # ---- MB102: where a jump to a duplicated N lands -----------------------------------------------

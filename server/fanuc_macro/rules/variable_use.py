@@ -2,16 +2,17 @@
 
 from __future__ import annotations
 
-from collections.abc import Iterator
+from bisect import bisect_left
+from collections.abc import Iterable, Iterator
 
 from ..diagnostics import Diagnostic, RuleDoc, RuleInfo, Severity, document, make, register
 from ..evaluator.facts import DocumentFacts
 from ..evaluator.machine import compiled
-from ..line_maps import LineMap
+from ..line_maps import Kept, LineMap
 from ..program.variables import ARGUMENT_VARIABLES
 from ..syntax.tree import Assign, IfThen, ParsedLine, Var
 from ..syntax.walk import subexpressions, top_expressions
-from .context import RuleContext
+from .context import RuleContext, Seen
 
 FAMILY = "variable-use"
 register(
@@ -172,16 +173,7 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
     # Locals that were vacant every time a block read them: few or none in most programs. The
     # run records the reads of the variables a block names (CompiledLine.reads), so only the
     # lines that name a local are asked, not every read of the run.
-    scanned = _local_reads(ctx.doc)
-    reads = facts.reads
-    vacant_reads = sorted(
-        (line, n)
-        for line, numbers in zip(scanned.lines, scanned.values, strict=True)
-        for n in numbers
-        if (summary := reads.get((line, n))) is not None
-        and summary.vacant
-        and summary.vacant == summary.count
-    )
+    vacant_reads = _vacant_reads(ctx, facts)
     if not vacant_reads:
         return
     by_program: dict[int, list[tuple[int, int]]] = {}  # one pass, not one per program
@@ -221,6 +213,51 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
                 span[0],
                 span[1],
             )
+
+
+def _vacant_reads(ctx: RuleContext, facts: DocumentFacts) -> list[tuple[int, int]]:
+    """(line, local) of the reads of a local that found it vacant every time, ascending: those
+    of the last analysis of the document where neither the line nor its facts changed, the
+    others looked up."""
+    scanned = _local_reads(ctx.doc)
+    last = _kept.get(ctx.doc.uri)
+    changes = None if last is None else last[0].changes(ctx)
+    if last is None or changes is None:
+        found = _vacant_at(facts, zip(scanned.lines, scanned.values, strict=True))
+    else:
+        moved = changes.diff.moved
+        found = [
+            (at, n)
+            for line, n in last[1]
+            if (at := moved(line)) is not None and at not in changes.lines
+        ]
+        lines, values = scanned.lines, scanned.values
+        looked = []
+        for line in changes.sorted:
+            i = bisect_left(lines, line)
+            if i < len(lines) and lines[i] == line:
+                looked.append((line, values[i]))
+        found = sorted(found + _vacant_at(facts, looked))
+    _kept.put(ctx.doc.uri, (Seen(ctx), found))
+    return found
+
+
+def _vacant_at(
+    facts: DocumentFacts, lines: Iterable[tuple[int, tuple[int, ...]]]
+) -> list[tuple[int, int]]:
+    reads = facts.reads
+    return sorted(
+        (line, n)
+        for line, numbers in lines
+        for n in numbers
+        if (summary := reads.get((line, n))) is not None
+        and summary.vacant
+        and summary.vacant == summary.count
+    )
+
+
+# The vacant reads of the last analyses of a few documents, and what they were drawn from.
+_kept: Kept[tuple[Seen, list[tuple[int, int]]]] = Kept()
 
 
 def _read_locals(parsed: ParsedLine) -> tuple[int, ...]:
