@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import random
+import re
 import threading
 from pathlib import Path
 from typing import Any
@@ -407,3 +408,25 @@ def test_toy_grammar(transformer: Transformer[Token, Any] | None) -> None:
         assert got == expected, code
         if expected[0] == "ok" and isinstance(expected[1], Tree):
             assert str(got[1]) == str(expected[1])
+
+
+def test_scanners_compile_on_first_use(lark: Lark) -> None:
+    """A start compiles none of the per-character master regexes; a parse compiles the ones its
+    text needs, and puts them in place of the lazy ones for every character they serve."""
+    fresh = TableParser(lark)
+
+    def compiled() -> set[str]:
+        return {ch for ch, match in fresh._scanners.items() if _is_compiled(match)}
+
+    assert fresh._scanners and not compiled() and not _is_compiled(fresh._master_match)
+    lazy_x = fresh._scanners["X"]
+    shared = {ch for ch, match in fresh._scanners.items() if match is lazy_x}
+    assert _outcome(fresh.parse, "X1.5") == _outcome(lark.parse, "X1.5")
+    assert "X" in compiled() and shared <= compiled()
+    assert compiled() < set(fresh._scanners)  # the others wait for a text that needs them
+    assert _outcome(fresh.parse, "Xé") == _outcome(lark.parse, "Xé")  # through the master
+    assert _is_compiled(fresh._master_match)
+
+
+def _is_compiled(match: Any) -> bool:
+    return isinstance(getattr(match, "__self__", None), re.Pattern)

@@ -17,6 +17,7 @@ import importlib
 import re
 import sys
 from collections.abc import Callable, Collection, Iterable, Mapping
+from functools import partial
 from typing import Any
 
 from lark import Lark, Token
@@ -222,7 +223,10 @@ class TableParser:
             match: _Match = re_module.compile(regexp, flags).match
             return match
 
-        self._master_match = compile_match(scanned)
+        def install_master(match: _Match) -> None:
+            self._master_match = match
+
+        self._master_match = _on_first_use(partial(compile_match, scanned), install_master)
         # Per ASCII character: the terminal's name when the first terminal that can start with
         # it is that very character as a literal (it always wins: the alternation takes the
         # first branch that matches), else a master regex of just the terminals that can.
@@ -231,7 +235,7 @@ class TableParser:
         ignore = frozenset(conf.ignore)
         if re_module is re:  # the analysis reads the syntax of the standard re module
             firsts = [_regex_first(t.pattern.to_regexp(), flags) for t in scanned]
-            by_subset: dict[tuple[int, ...], _Match] = {}
+            chars_of: dict[tuple[int, ...], list[str]] = {}
             for ch in sorted(_ASCII):
                 subset = tuple(i for i, f in enumerate(firsts) if f is None or ch in f)
                 if subset:
@@ -239,9 +243,19 @@ class TableParser:
                     if head.name not in ignore and _is_char_literal(head, ch, flags):
                         singles[ch] = sys.intern(head.name)
                         continue
-                if subset not in by_subset:
-                    by_subset[subset] = compile_match([scanned[i] for i in subset])
-                scanners[ch] = by_subset[subset]
+                chars_of.setdefault(subset, []).append(ch)
+
+            # A scanner's regex is compiled when a text first needs it (a short program meets a
+            # few of the 20): the first call puts the compiled one in place for all its chars.
+            def install(chars: list[str], match: _Match) -> None:
+                for ch in chars:
+                    scanners[ch] = match
+
+            for subset, chars in chars_of.items():
+                terms = [scanned[i] for i in subset]
+                lazy = _on_first_use(partial(compile_match, terms), partial(install, chars))
+                for ch in chars:
+                    scanners[ch] = lazy
         self._singles = singles
         self._scanners = scanners
         self._scanned_names = tuple(t.name for t in scanned)  # for tests: Lark's order
@@ -457,6 +471,22 @@ class TableParser:
             token = Token(_END, "", 0, 1, 1)
         expected: Collection[str] = set(self._expected[state])
         return UnexpectedToken(token, expected)  # type: ignore[no-untyped-call]
+
+
+def _on_first_use(compile_match: Callable[[], _Match], install: Callable[[_Match], None]) -> _Match:
+    """A match function that compiles its regex on its first call and has ``install`` put the
+    compiled one where the parser looks it up; until then (or in a parse that already holds
+    this one) it calls the compiled one itself."""
+    compiled: _Match | None = None
+
+    def first_use(code: str, pos: int) -> Any:
+        nonlocal compiled
+        if compiled is None:
+            compiled = compile_match()
+            install(compiled)
+        return compiled(code, pos)
+
+    return first_use
 
 
 def _is_char_literal(term: TerminalDef, ch: str, flags: int) -> bool:
