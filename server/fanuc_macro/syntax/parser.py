@@ -22,6 +22,7 @@ from operator import attrgetter, itemgetter
 from typing import Any, cast
 
 from ..cancel import READING, SLICE, CancelToken, raise_if_cancelled
+from ..lazy_regex import LazyPattern
 from ..line_maps import Diff
 from . import dialects
 from .lines import (
@@ -795,16 +796,16 @@ def _depth_before(code: str, col: int) -> tuple[int, int | None]:
     return depth, (opened[-1] if opened else None)
 
 
-_NUMBER_TEXT = re.compile(r"[0-9]*\.?[0-9]*")
+_NUMBER_TEXT = LazyPattern(r"[0-9]*\.?[0-9]*")
 # No two repeats here can take the same characters (a space run, a digit run): a failed search
 # on a long line stays linear.
-_WORD_BEFORE = re.compile(
+_WORD_BEFORE = LazyPattern(
     r"([A-MP-Z])[ \t]*((?:[-+][ \t]*)?(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+))[ \t]*$", re.I
 )
-_ADDRESS_BEFORE = re.compile(r"([A-MP-Z])[ \t]*(?:[-+][ \t]*)?$", re.I)
-_BLOCK_HEAD = re.compile(r"\s*(?:/\s*(?:\d\s*)?)?(?:N\s*\d+\s*)?", re.I)
-_LETTERS = re.compile(r"[A-Z]+", re.I)
-_CONDITION = re.compile(r"^\s*(N\d+\s*)?(IF|WHILE|WH)\s*\[", re.I)
+_ADDRESS_BEFORE = LazyPattern(r"([A-MP-Z])[ \t]*(?:[-+][ \t]*)?$", re.I)
+_BLOCK_HEAD = LazyPattern(r"\s*(?:/\s*(?:\d\s*)?)?(?:N\s*\d+\s*)?", re.I)
+_LETTERS = LazyPattern(r"[A-Z]+", re.I)
+_CONDITION = LazyPattern(r"^\s*(N\d+\s*)?(IF|WHILE|WH)\s*\[", re.I)
 
 
 def _typing_mistake(
@@ -948,7 +949,7 @@ def _expression_from(code: str, start: int) -> str:
 
 _OPERATOR_WORDS = ("MOD", "AND", "OR", "XOR")
 _KEYWORDS = ("WHILE", "GOTO", "THEN", "END", "POPEN", "PCLOS", "DPRNT", "BPRNT")
-_LEADING_NAME = re.compile(r"^\s*(?:N\d+\s*)?([A-Z]{3,})", re.I)
+_LEADING_NAME = LazyPattern(r"^\s*(?:N\d+\s*)?([A-Z]{3,})", re.I)
 
 
 def _misspelt_keyword(code: str) -> tuple[str, int, str] | None:
@@ -972,7 +973,7 @@ _KNOWN_FUNCTIONS = frozenset(
 )
 # From the first letter of a run only: tried at every letter, a long run of letters with no
 # '[' after it took quadratic time.
-_WORD_BEFORE_BRACKET = re.compile(r"(?<![A-Z])([A-Z]{2,})\s*\[", re.I)
+_WORD_BEFORE_BRACKET = LazyPattern(r"(?<![A-Z])([A-Z]{2,})\s*\[", re.I)
 
 
 def _unknown_function(code: str, col: int) -> tuple[str, int] | None:
