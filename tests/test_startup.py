@@ -75,7 +75,8 @@ def test_the_language_server_starts_without_the_thread_generator() -> None:
 
 def test_the_language_server_answers_initialize_before_loading_the_analysis() -> None:
     """The server's module and its `initialize` need the protocol, not the analysis: the
-    parser, the evaluator, the rules and the features are loaded by the worker afterwards."""
+    syntax tree, the parser, the evaluator, the rules and the features are loaded by the worker
+    afterwards (the settings need only the read limits)."""
     loaded = loaded_after(
         "from lsprotocol import types\n"
         "from fanuc_macro.lsp.server import create_server\n"
@@ -84,6 +85,8 @@ def test_the_language_server_answers_initialize_before_loading_the_analysis() ->
     )
     later = {
         "fanuc_macro.analysis",
+        "fanuc_macro.syntax.tree",
+        "fanuc_macro.syntax.lines",
         "fanuc_macro.syntax.parser",
         "fanuc_macro.evaluator",
         "fanuc_macro.rules",
