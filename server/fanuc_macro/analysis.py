@@ -101,7 +101,7 @@ def internal_error(what: str, err: BaseException) -> str:
 ExtraChecks = Callable[[RuleContext], Iterable[Diagnostic]]
 
 
-@dataclass
+@dataclass(eq=False)
 class Analysis:
     doc: Document
     index: ProgramIndex
