@@ -101,7 +101,7 @@ def internal_error(what: str, err: BaseException) -> str:
 ExtraChecks = Callable[[RuleContext], Iterable[Diagnostic]]
 
 
-@dataclass(eq=False)
+@dataclass(eq=False, repr=False)
 class Analysis:
     doc: Document
     index: ProgramIndex

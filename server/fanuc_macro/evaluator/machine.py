@@ -80,7 +80,7 @@ MAX_REMEMBERED_RUNS = 1000  # executions whose variables are kept when they star
 CHECK_EVERY = 1024  # blocks between two looks at the budgets and a newer edit; checkpoints
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, repr=False)
 class CompiledWord:
     address: str
     evaluate: Evaluator
@@ -396,7 +396,7 @@ def _motion_words(values: dict[str, Value]) -> dict[str, float]:
     return words
 
 
-@dataclass(eq=False)
+@dataclass(eq=False, repr=False)
 class ProgramContext:
     uri: str
     doc: Document
@@ -516,7 +516,7 @@ class Converged(Exception):
         self.done = done
 
 
-@dataclass(eq=False)
+@dataclass(eq=False, repr=False)
 class Modal:
     motion: float | None = None  # group 01
     feed: Value = None

@@ -17,7 +17,7 @@ if TYPE_CHECKING:
     from ..threads.identify import Thread
 
 
-@dataclass(frozen=True, eq=False)
+@dataclass(frozen=True, eq=False, repr=False)
 class RuleContext:
     doc: Document
     index: ProgramIndex
