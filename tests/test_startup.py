@@ -97,9 +97,12 @@ def test_the_language_server_answers_initialize_before_loading_the_analysis() ->
     assert not later & loaded
 
 
-def test_check_of_a_clean_file_compiles_no_regex_of_rejected_blocks(tmp_path: Path) -> None:
+def test_check_of_a_clean_file_compiles_no_regex_of_rejected_blocks_nor_the_grammar(
+    tmp_path: Path,
+) -> None:
     """The dialects' forms, the messages' regexes for rejected blocks and the other thread
-    systems' forms are compiled when a text needs them; so are the lexer's master regexes."""
+    systems' forms are compiled when a text needs them; so are the lexer's master regexes, and
+    the grammar is not loaded into Lark (its tables are shipped)."""
     program = tmp_path / "o1000.nc"
     program.write_text(SMALL_PROGRAM)
     script = (
@@ -117,16 +120,19 @@ def test_check_of_a_clean_file_compiles_no_regex_of_rejected_blocks(tmp_path: Pa
         "lazy += [v for v in vars(parser).values() if isinstance(v, LazyPattern)]\n"
         "scanners = parser.default_parser()._table._scanners.values()\n"
         "compiled = {id(m) for m in scanners if hasattr(m, '__self__')}\n"
+        "lark = '_lark' in vars(parser.default_parser())\n"
         "print(json.dumps([len(lazy), [p.pattern for p in lazy if p._compiled],\n"
-        "                  len(compiled), len({id(m) for m in scanners})]))\n"
+        "                  len(compiled), len({id(m) for m in scanners}), lark]))\n"
     )
     done = subprocess.run(
         [sys.executable, "-c", script, str(program)], capture_output=True, text=True, timeout=120
     )
     assert done.returncode == 0, done.stderr
-    count, compiled, scanners_compiled, scanners = json.loads(done.stdout.splitlines()[-1])
+    found = json.loads(done.stdout.splitlines()[-1])
+    count, compiled, scanners_compiled, scanners, lark_loaded = found
     assert count > 30 and compiled == []
     assert 0 < scanners_compiled < scanners / 2
+    assert not lark_loaded  # the parser runs the shipped tables: no grammar loaded into Lark
 
 
 def test_a_lazy_pattern_answers_as_the_compiled_one() -> None:
