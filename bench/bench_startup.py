@@ -3,6 +3,11 @@ language server's answer to ``initialize``, each in a new process, as a user mee
 
     python bench/bench_startup.py               # this checkout, 10 runs of each
     python bench/bench_startup.py --tree DIR    # another checkout (its server/ folder)
+    python bench/bench_startup.py --instructions   # instructions executed, under valgrind
+
+The instructions a start executes (valgrind's callgrind, one run of each, the hash seed fixed)
+are the same from one run to the next, on a loaded machine too: a comparison of two trees
+that wall-clock times, which vary two- to threefold beside other jobs, cannot give.
 
 The interpreter runs with its bytecode cached, as in an installed package: a temporary
 ``PYTHONPYCACHEPREFIX`` keeps the compiled modules out of the source tree, one run warms it.
@@ -94,6 +99,31 @@ def initialize_round_trip(env: dict[str, str]) -> float:
     return elapsed
 
 
+def instructions(command: list[str], env: dict[str, str], stdin: bytes = b"") -> int:
+    """The instructions the command executes (valgrind's callgrind "Collected" count)."""
+    with tempfile.TemporaryDirectory() as out:
+        done = subprocess.run(
+            ["valgrind", "--tool=callgrind", f"--callgrind-out-file={out}/callgrind.out", *command],
+            env={**env, "PYTHONHASHSEED": "0"},
+            input=stdin,
+            capture_output=True,
+        )
+    for line in done.stderr.decode(errors="replace").splitlines():
+        if "Collected :" in line:
+            return int(line.split(":")[-1])
+    raise RuntimeError(f"no count from valgrind: {done.stderr[-500:]!r}")
+
+
+def initialize_messages() -> bytes:
+    """initialize, shutdown and exit, for a server reading stdin to its end."""
+    params = {"processId": None, "rootUri": None, "capabilities": {}}
+    return (
+        _message({"jsonrpc": "2.0", "id": 1, "method": "initialize", "params": params})
+        + _message({"jsonrpc": "2.0", "id": 2, "method": "shutdown"})
+        + _message({"jsonrpc": "2.0", "method": "exit"})
+    )
+
+
 def report(what: str, times: list[float], cpu: list[float] | None = None) -> None:
     """Wall-clock times; with ``cpu``, the processes' CPU time too, which a loaded machine
     changes less."""
@@ -111,6 +141,9 @@ def main() -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("--tree", type=Path, default=ROOT, help="the checkout to measure")
     ap.add_argument("--runs", type=int, default=10)
+    ap.add_argument(
+        "--instructions", action="store_true", help="count instructions (valgrind) instead"
+    )
     args = ap.parse_args()
     print(f"machine: {platform.processor() or platform.machine()}, {platform.python_version()}")
     with tempfile.TemporaryDirectory() as cache:
@@ -118,6 +151,16 @@ def main() -> None:
         check = [sys.executable, "-m", "fanuc_macro.cli", "check", str(SMALL)]
         timed(check, env)  # compiles the modules into the cache
         initialize_round_trip(env)
+        if args.instructions:
+            server = [sys.executable, "-m", "fanuc_macro.lsp.server"]
+            for what, command, stdin in (
+                ("python -c pass", [sys.executable, "-c", "pass"], b""),
+                (f"fanuc-macro check {SMALL.name}", check, b""),
+                ("language server: initialize, shutdown, exit", server, initialize_messages()),
+            ):
+                count = instructions(command, env, stdin)
+                print(f"{what}: {count / 1e6:,.0f} million instructions")
+            return
         runs = range(args.runs)
         CPU.clear()
         report("python -c pass", [timed([sys.executable, "-c", "pass"], env) for _ in runs], CPU)

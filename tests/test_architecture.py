@@ -13,7 +13,7 @@ import pytest
 ROOT = Path(__file__).resolve().parents[1]
 PACKAGE = ROOT / "server" / "fanuc_macro"
 
-BASE = {"cancel", "diagnostics"}
+BASE = {"cancel", "diagnostics", "lazy_regex"}
 SYNTAX = BASE | {"syntax", "line_maps", "per_line"}
 CONFIG = SYNTAX | {"config"}
 PROGRAM = CONFIG | {"program"}
@@ -29,7 +29,8 @@ FRONT_END = {"ide", "workspace", "analysis", "config", "diagnostics", "cancel", 
 ALLOWED: dict[str, set[str]] = {
     "cancel": set(),
     "diagnostics": set(),
-    "syntax": {"cancel", "diagnostics", "line_maps", "per_line"},
+    "lazy_regex": set(),
+    "syntax": {"cancel", "diagnostics", "lazy_regex", "line_maps", "per_line"},
     "per_line": {"syntax"},
     "line_maps": {"cancel", "syntax"},
     "config": {"diagnostics", "syntax"},

@@ -2,7 +2,11 @@
 
 from __future__ import annotations
 
+import os
 import random
+import re
+import subprocess
+import sys
 import threading
 from pathlib import Path
 from typing import Any
@@ -11,9 +15,10 @@ import pytest
 from lark import Lark, Token, Transformer, Tree
 from lark.exceptions import UnexpectedCharacters, UnexpectedInput, UnexpectedToken
 
-from fanuc_macro.syntax.lalr_driver import TableParser
+from fanuc_macro.syntax import grammar_tables
+from fanuc_macro.syntax.lalr_driver import TableParser, lalr_tables
 from fanuc_macro.syntax.lines import cut_comments, decode_bytes, split_lines
-from fanuc_macro.syntax.parser import BlockParser, _describe
+from fanuc_macro.syntax.parser import BlockParser, _describe, _ToAst, grammar_sha256, grammar_text
 
 CORPUS = Path("/work/shared/corpus")
 
@@ -257,9 +262,13 @@ def lark() -> Lark:
     return BlockParser()._lark
 
 
-@pytest.fixture(scope="module")
-def driver(lark: Lark) -> TableParser:
-    return TableParser(lark)
+@pytest.fixture(scope="module", params=["from Lark", "shipped tables"])
+def driver(lark: Lark, request: pytest.FixtureRequest) -> TableParser:
+    """The driver of Lark's tables, and the one of the tables shipped in grammar_tables.py
+    (what BlockParser runs): each must give what Lark gives."""
+    if request.param == "from Lark":
+        return TableParser(lark)
+    return TableParser.from_tables(grammar_tables.TABLES, _ToAst())
 
 
 def _outcome(parse: Any, code: str) -> tuple[str, Any]:
@@ -407,3 +416,78 @@ def test_toy_grammar(transformer: Transformer[Token, Any] | None) -> None:
         assert got == expected, code
         if expected[0] == "ok" and isinstance(expected[1], Tree):
             assert str(got[1]) == str(expected[1])
+
+
+def test_scanners_compile_on_first_use(lark: Lark) -> None:
+    """A start compiles none of the per-character master regexes; a parse compiles the ones its
+    text needs, and puts them in place of the lazy ones for every character they serve."""
+    fresh = TableParser(lark)
+
+    def compiled() -> set[str]:
+        return {ch for ch, match in fresh._scanners.items() if _is_compiled(match)}
+
+    assert fresh._scanners and not compiled() and not _is_compiled(fresh._master_match)
+    lazy_x = fresh._scanners["X"]
+    shared = {ch for ch, match in fresh._scanners.items() if match is lazy_x}
+    assert _outcome(fresh.parse, "X1.5") == _outcome(lark.parse, "X1.5")
+    assert "X" in compiled() and shared <= compiled()
+    assert compiled() < set(fresh._scanners)  # the others wait for a text that needs them
+    assert _outcome(fresh.parse, "Xé") == _outcome(lark.parse, "Xé")  # through the master
+    assert _is_compiled(fresh._master_match)
+
+
+def _is_compiled(match: Any) -> bool:
+    return isinstance(getattr(match, "__self__", None), re.Pattern)
+
+
+def test_the_shipped_tables_are_what_lark_builds_from_the_grammar() -> None:
+    """grammar_tables.py must be rewritten (scripts/grammar_tables.py) when the grammar or the
+    tables' format changes; Lark builds them afresh here, without its cache."""
+    fresh = Lark(
+        grammar_text(),
+        parser="lalr",
+        lexer="basic",
+        transformer=_ToAst(),
+        keep_all_tokens=True,
+        maybe_placeholders=False,
+    )
+    assert grammar_sha256() == grammar_tables.GRAMMAR_SHA256
+    assert lalr_tables(fresh) == grammar_tables.TABLES
+
+
+def test_the_tables_do_not_depend_on_the_hash_seed() -> None:
+    """Lark numbers its states in an order that changes with the hash seed; the tables'
+    walk from the start state does not."""
+    script = (
+        "from lark import Lark\n"
+        "from fanuc_macro.syntax import grammar_tables\n"
+        "from fanuc_macro.syntax.lalr_driver import lalr_tables\n"
+        "from fanuc_macro.syntax.parser import _ToAst, grammar_text\n"
+        "fresh = Lark(grammar_text(), parser='lalr', lexer='basic', transformer=_ToAst(),\n"
+        "             keep_all_tokens=True, maybe_placeholders=False)\n"
+        "states = fresh.parser.parser.parser.parse_table.states\n"
+        "print(lalr_tables(fresh) == grammar_tables.TABLES, sorted(states[0]))\n"
+    )
+    seen = set()
+    for seed in ("1", "2", "3"):
+        env = {**os.environ, "PYTHONHASHSEED": seed}
+        done = subprocess.run(
+            [sys.executable, "-c", script], capture_output=True, text=True, env=env, timeout=120
+        )
+        assert done.returncode == 0, done.stderr
+        same, lark_state_0 = done.stdout.split(" ", 1)
+        assert same == "True"
+        seen.add(lark_state_0)
+    assert len(seen) > 1  # Lark's own numbering did change
+
+
+def test_the_block_parser_runs_the_shipped_tables_and_lark_when_they_are_stale(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    shipped = BlockParser(use_fast_path=False)
+    assert "_lark" not in vars(shipped)  # no Lark object loaded
+    monkeypatch.setattr(grammar_tables, "GRAMMAR_SHA256", "another grammar")
+    stale = BlockParser(use_fast_path=False)
+    assert "_lark" in vars(stale)
+    lines = T1_LINES + EDGE_LINES
+    assert [stale.parse_line(t) for t in lines] == [shipped.parse_line(t) for t in lines]

@@ -4,9 +4,12 @@
 from __future__ import annotations
 
 import json
+import re
 import subprocess
 import sys
 from pathlib import Path
+
+from fanuc_macro.lazy_regex import LazyPattern
 
 SMALL_PROGRAM = "%\nO1000\n#1=10.\nWHILE[#1GT0]DO1\n#1=#1-1.\nEND1\nG0 X#1\nM30\n%\n"
 
@@ -72,7 +75,8 @@ def test_the_language_server_starts_without_the_thread_generator() -> None:
 
 def test_the_language_server_answers_initialize_before_loading_the_analysis() -> None:
     """The server's module and its `initialize` need the protocol, not the analysis: the
-    parser, the evaluator, the rules and the features are loaded by the worker afterwards."""
+    syntax tree, the parser, the evaluator, the rules and the features are loaded by the worker
+    afterwards (the settings need only the read limits)."""
     loaded = loaded_after(
         "from lsprotocol import types\n"
         "from fanuc_macro.lsp.server import create_server\n"
@@ -81,6 +85,8 @@ def test_the_language_server_answers_initialize_before_loading_the_analysis() ->
     )
     later = {
         "fanuc_macro.analysis",
+        "fanuc_macro.syntax.tree",
+        "fanuc_macro.syntax.lines",
         "fanuc_macro.syntax.parser",
         "fanuc_macro.evaluator",
         "fanuc_macro.rules",
@@ -89,3 +95,53 @@ def test_the_language_server_answers_initialize_before_loading_the_analysis() ->
         "lark",
     }
     assert not later & loaded
+
+
+def test_check_of_a_clean_file_compiles_no_regex_of_rejected_blocks_nor_the_grammar(
+    tmp_path: Path,
+) -> None:
+    """The dialects' forms, the messages' regexes for rejected blocks and the other thread
+    systems' forms are compiled when a text needs them; so are the lexer's master regexes, and
+    the grammar is not loaded into Lark (its tables are shipped)."""
+    program = tmp_path / "o1000.nc"
+    program.write_text(SMALL_PROGRAM)
+    script = (
+        "import contextlib, io, json, sys\n"
+        "from fanuc_macro.cli import main\n"
+        "from fanuc_macro.lazy_regex import LazyPattern\n"
+        "from fanuc_macro.syntax import dialects, parser\n"
+        "from fanuc_macro.threads import designation\n"
+        "with contextlib.redirect_stdout(io.StringIO()):\n"
+        "    status = main(['check', sys.argv[1]])\n"
+        "assert status == 0, status\n"
+        "lazy = [p for table in (dialects._RAW_PATTERNS, dialects._PATTERNS,\n"
+        "                        dialects._WEAK_PATTERNS, designation._NON_METRIC)\n"
+        "        for p, *_ in table]\n"
+        "lazy += [v for v in vars(parser).values() if isinstance(v, LazyPattern)]\n"
+        "scanners = parser.default_parser()._table._scanners.values()\n"
+        "compiled = {id(m) for m in scanners if hasattr(m, '__self__')}\n"
+        "lark = '_lark' in vars(parser.default_parser())\n"
+        "print(json.dumps([len(lazy), [p.pattern for p in lazy if p._compiled],\n"
+        "                  len(compiled), len({id(m) for m in scanners}), lark]))\n"
+    )
+    done = subprocess.run(
+        [sys.executable, "-c", script, str(program)], capture_output=True, text=True, timeout=120
+    )
+    assert done.returncode == 0, done.stderr
+    found = json.loads(done.stdout.splitlines()[-1])
+    count, compiled, scanners_compiled, scanners, lark_loaded = found
+    assert count > 30 and compiled == []
+    assert 0 < scanners_compiled < scanners / 2
+    assert not lark_loaded  # the parser runs the shipped tables: no grammar loaded into Lark
+
+
+def test_a_lazy_pattern_answers_as_the_compiled_one() -> None:
+    lazy = LazyPattern(r"(?<![A-Z])N(\d+)", re.I)
+    compiled = re.compile(r"(?<![A-Z])N(\d+)", re.I)
+    text = "n10 G01 XN20 N30"
+    assert lazy._compiled is None
+    assert lazy.search(text, 1).span() == compiled.search(text, 1).span()
+    assert lazy.match(text) is not None and lazy.match(text, 1) is None
+    assert lazy.fullmatch("N7") is not None and lazy.fullmatch("N7", 0, 1) is None
+    assert [m.span() for m in lazy.finditer(text)] == [m.span() for m in compiled.finditer(text)]
+    assert lazy._compiled is compiled  # re's cache: the same pattern object

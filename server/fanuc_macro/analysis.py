@@ -102,7 +102,7 @@ def internal_error(what: str, err: BaseException) -> str:
 ExtraChecks = Callable[[RuleContext], Iterable[Diagnostic]]
 
 
-@dataclass
+@dataclass(eq=False, repr=False)
 class Analysis:
     doc: Document
     index: ProgramIndex

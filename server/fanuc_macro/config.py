@@ -7,7 +7,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from .diagnostics import Severity
-from .syntax.lines import MAX_LINE_LENGTH, ReadLimits
+from .syntax.limits import MAX_LINE_LENGTH, ReadLimits
 
 CONTROLLERS = ("0i-TF", "0i-MF", "16i-T", "16i-M", "18i-T", "18i-M", "30i")
 ATAN_RANGES = ("0-360", "-180-180")

@@ -48,7 +48,7 @@ class Diagnostic:
         return replace(self, severity=severity)
 
 
-@dataclass(frozen=True, slots=True)
+@dataclass(frozen=True, slots=True, eq=False, repr=False)
 class RuleInfo:
     code: str
     name: str  # kebab-case, e.g. "goto-missing-label"
@@ -67,7 +67,7 @@ def register(*infos: RuleInfo) -> None:
         RULES[info.code] = info
 
 
-@dataclass(frozen=True, slots=True)
+@dataclass(frozen=True, slots=True, eq=False, repr=False)
 class RuleDoc:
     """The documentation of one rule, in markdown: its section of docs/rules.md.
 

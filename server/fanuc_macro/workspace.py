@@ -40,7 +40,7 @@ def is_program_file(path: Path) -> bool:
     return _PROGRAM_HEAD.match(head) is not None
 
 
-@dataclass
+@dataclass(eq=False, repr=False)
 class _Entry:
     text: str
     doc: Document

@@ -35,7 +35,7 @@ from .values import Value
 CtxKey = tuple[str, int]  # a program: its document and its first line
 
 
-@dataclass(frozen=True, slots=True)
+@dataclass(frozen=True, slots=True, eq=False, repr=False)
 class LevelState:
     """One running program of the call stack (an ``Activation``)."""
 
@@ -52,7 +52,7 @@ class LevelState:
     modal_depth: int | None
 
 
-@dataclass(frozen=True, slots=True)
+@dataclass(frozen=True, slots=True, eq=False, repr=False)
 class ModalState:
     motion: float | None
     feed: Value
@@ -65,7 +65,7 @@ class ModalState:
     g76: object  # G76Parameters: frozen
 
 
-@dataclass(frozen=True, slots=True)
+@dataclass(frozen=True, slots=True, eq=False, repr=False)
 class MachineState:
     """The machine before a block: everything the rest of the evaluation depends on."""
 
@@ -184,7 +184,7 @@ class ProgramShape:
     program_end: int | None
 
 
-@dataclass
+@dataclass(eq=False, repr=False)
 class RunRecord:
     """What an evaluation leaves for the next one to resume from."""
 
@@ -211,7 +211,7 @@ class RunRecord:
     converged_at: tuple[int, int] | None = None  # where it met the earlier run
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False, repr=False)
 class Resumption:
     """Where a new evaluation picks up an earlier one."""
 

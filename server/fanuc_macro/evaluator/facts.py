@@ -139,7 +139,7 @@ class Motion:
     finishing: bool = False  # G76: a finishing pass at the full thread height
 
 
-@dataclass(slots=True)
+@dataclass(slots=True, eq=False, repr=False)
 class Rounding:
     """FIX or FUP of a value a hair off a whole number: 7.9999999999 truncated to 7."""
 
@@ -149,7 +149,7 @@ class Rounding:
     count: int = 1
 
 
-@dataclass
+@dataclass(eq=False, repr=False)
 class Finding:
     """Something to report at a block: an alarm, a bad address value, a loop that never ends."""
 
@@ -163,7 +163,7 @@ class Finding:
     related_message: str = ""
 
 
-@dataclass(slots=True)
+@dataclass(slots=True, eq=False, repr=False)
 class CutsWithoutFeed:
     """Cuts with no F commanded before them (MB603), found one after another in one program
     with no other finding of the document between them: kept as their lines, not as a
@@ -178,7 +178,7 @@ class CutsWithoutFeed:
     ascending: bool = True  # each line after the one before (a run without jumps back)
 
 
-@dataclass(slots=True)
+@dataclass(slots=True, eq=False, repr=False)
 class FeedlessProgram:
     """MB603 of one program: the first cut without F, its message, the count of such cuts
     (each line once), and the first ``SHOWN_CUTS`` of them in the order the run reached them."""
@@ -191,7 +191,7 @@ class FeedlessProgram:
 SHOWN_CUTS = 20
 
 
-@dataclass(slots=True)
+@dataclass(slots=True, eq=False, repr=False)
 class JumpCount:
     taken: int = 0
     not_taken: int = 0
@@ -199,7 +199,7 @@ class JumpCount:
     guessed: int = 0  # decided, but on a path that went through an undecided condition
 
 
-@dataclass
+@dataclass(eq=False, repr=False)
 class DocumentFacts:
     """Facts about one document's blocks, across every run that reached them."""
 
@@ -296,7 +296,7 @@ class DocumentFacts:
         return self.writes.get(line)
 
 
-@dataclass(frozen=True, slots=True)
+@dataclass(frozen=True, slots=True, eq=False, repr=False)
 class RunValues:
     """The variables of one execution of a program when it began to cut a thread: what the
     threading rules read a module's inputs from when it is called more than once."""
@@ -309,7 +309,7 @@ class RunValues:
         return v if isinstance(v, float) else None
 
 
-@dataclass
+@dataclass(eq=False, repr=False)
 class Facts:
     by_uri: dict[str, DocumentFacts] = field(default_factory=dict)
     motions: list[Motion] = field(default_factory=list)

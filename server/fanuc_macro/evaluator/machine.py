@@ -84,7 +84,7 @@ CHECK_EVERY = 1024  # blocks between two looks at the budgets and a newer edit
 CHECKPOINT_EVERY = 256
 
 
-@dataclass(slots=True)
+@dataclass(slots=True, eq=False, repr=False)
 class CompiledWord:
     address: str
     evaluate: Evaluator
@@ -400,7 +400,7 @@ def _motion_words(values: dict[str, Value]) -> dict[str, float]:
     return words
 
 
-@dataclass
+@dataclass(eq=False, repr=False)
 class ProgramContext:
     uri: str
     doc: Document
@@ -520,7 +520,7 @@ class Converged(Exception):
         self.done = done
 
 
-@dataclass
+@dataclass(eq=False, repr=False)
 class Modal:
     motion: float | None = None  # group 01
     feed: Value = None

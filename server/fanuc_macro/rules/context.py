@@ -20,7 +20,7 @@ if TYPE_CHECKING:
     from ..threads.identify import Thread
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False, repr=False)
 class RuleContext:
     doc: Document
     index: ProgramIndex

@@ -151,7 +151,7 @@ def _wrong_start(
     return None
 
 
-@dataclass
+@dataclass(eq=False, repr=False)
 class _Series:
     code: str
     passes: list[Motion] = field(default_factory=list)

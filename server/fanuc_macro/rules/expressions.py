@@ -331,7 +331,7 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
 LOGIC_OPERATORS = ("AND", "OR", "XOR")
 
 
-@dataclass(frozen=True, slots=True)
+@dataclass(frozen=True, slots=True, eq=False, repr=False)
 class LogicOperand:
     """A comparison whose operand holds an AND/OR/XOR outside brackets: ``#1 AND #2 LT 0``."""
 

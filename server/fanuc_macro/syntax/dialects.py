@@ -17,6 +17,8 @@ from __future__ import annotations
 import re
 from dataclasses import dataclass
 
+from ..lazy_regex import LazyPattern
+
 SYNTEC = "LNC/Syntec"
 SIEMENS = "Siemens Sinumerik"
 LINUXCNC = "LinuxCNC"
@@ -38,26 +40,26 @@ class Dialect:
 
 # Patterns on the block's code (comments cut out) and, for forms whose parentheses the block
 # reader takes for comments, on the raw line. Most specific first: the first match names it.
-_RAW_PATTERNS: tuple[tuple[re.Pattern[str], str, str], ...] = (
+_RAW_PATTERNS: tuple[tuple[LazyPattern, str, str], ...] = (
     (
-        re.compile(r"^\s*%\s*@MACRO\b", re.I),
+        LazyPattern(r"^\s*%\s*@MACRO\b", re.I),
         SYNTEC,
         "'%@MACRO' opens a Syntec/LNC macro file (Pascal-like statements), not a FANUC program",
     ),
     (
-        re.compile(r"^\s*(N\d+\s*)?(IF|WHILE)\s*\(.*\)\s*(THEN|DO)\b", re.I),
+        LazyPattern(r"^\s*(N\d+\s*)?(IF|WHILE)\s*\(.*\)\s*(THEN|DO)\b", re.I),
         SYNTEC,
         "'IF (...) THEN ... END_IF' / 'WHILE (...) DO ... END_WHILE' are Syntec/LNC statements;"
         " FANUC writes IF [...] GOTO n and WHILE [...] DOm ... ENDm",
     ),
     (
-        re.compile(r"^\s*(N\d+\s*)?(WAIT|ALARM|SLEEP|MSG)\s*\(", re.I),
+        LazyPattern(r"^\s*(N\d+\s*)?(WAIT|ALARM|SLEEP|MSG)\s*\(", re.I),
         SYNTEC,
         "a Syntec/LNC function call such as WAIT() or ALARM(n); FANUC raises an alarm with "
         "#3000=n (MESSAGE)",
     ),
     (
-        re.compile(r"^\s*(N\d+\s*)?(IF|WHILE)\s*#\d+\s*(==|!=|<=|>=|<|>)", re.I),
+        LazyPattern(r"^\s*(N\d+\s*)?(IF|WHILE)\s*#\d+\s*(==|!=|<=|>=|<|>)", re.I),
         DDCS,
         "'IF #n==0 GOTO' without brackets, with C comparisons, is DDCS syntax; FANUC writes "
         "IF [#n EQ 0] GOTO",
@@ -67,10 +69,10 @@ _RAW_PATTERNS: tuple[tuple[re.Pattern[str], str, str], ...] = (
 # Okuma OSP user task (ICAM's Okuma pre-processor syntax page, help.icam.com, [S]: common
 # variables VC1..., 'GOTO NLBL', 'IF [VC1 LT 5] N10' branching without GOTO, CALL / RTS /
 # MODIN / MODOUT; VS variables as the issue names them, unverified against an Okuma manual).
-_OKUMA_VARIABLE = re.compile(r"(?<![A-Z#])V[CS]\d+", re.I)
-_OKUMA_SEQUENCE_NAME = re.compile(r"^\s*(/\d?\s*)?N[A-Z][A-Z0-9]*(?![A-Z0-9])", re.I)
+_OKUMA_VARIABLE = LazyPattern(r"(?<![A-Z#])V[CS]\d+", re.I)
+_OKUMA_SEQUENCE_NAME = LazyPattern(r"^\s*(/\d?\s*)?N[A-Z][A-Z0-9]*(?![A-Z0-9])", re.I)
 
-_PATTERNS: tuple[tuple[re.Pattern[str], str, str], ...] = (
+_PATTERNS: tuple[tuple[LazyPattern, str, str], ...] = (
     (
         _OKUMA_VARIABLE,
         OKUMA,
@@ -78,19 +80,19 @@ _PATTERNS: tuple[tuple[re.Pattern[str], str, str], ...] = (
         "(#100-#199, #500-#999 for commons)",
     ),
     (
-        re.compile(r"\bGOTO\s*N[A-Z][A-Z0-9]*", re.I),
+        LazyPattern(r"\bGOTO\s*N[A-Z][A-Z0-9]*", re.I),
         OKUMA,
         "'{found}' jumps to an Okuma OSP sequence name; FANUC jumps to a number: GOTO n to Nn",
     ),
     (
         # The sequence name ends the block: no GOTO or THEN after the condition.
-        re.compile(r"^\s*(N\w+\s+)?IF\s*\[(?!.*\b(GOTO|THEN))[^;]*\]\s*N\w+\s*;?\s*$", re.I),
+        LazyPattern(r"^\s*(N\w+\s+)?IF\s*\[(?!.*\b(GOTO|THEN))[^;]*\]\s*N\w+\s*;?\s*$", re.I),
         OKUMA,
         "'IF [...] NLOOP' branches to a sequence name the Okuma OSP way; FANUC writes "
         "IF [...] GOTO n",
     ),
     (
-        re.compile(r"^\s*(N\w+\s+)?(CALL\s+O\w+|RTS\b|MODIN\b|MODOUT\b)", re.I),
+        LazyPattern(r"^\s*(N\w+\s+)?(CALL\s+O\w+|RTS\b|MODIN\b|MODOUT\b)", re.I),
         OKUMA,
         "CALL / RTS / MODIN / MODOUT are Okuma OSP subprogram statements; FANUC calls with "
         "M98 P<program> or G65 P<program> and returns with M99",
@@ -103,18 +105,18 @@ _PATTERNS: tuple[tuple[re.Pattern[str], str, str], ...] = (
     (
         # Sodick, Mitsubishi and other wire EDM controls set offset and condition registers in
         # the program ('H000=+00000000', 'H1=0.216', 'E001='): unverified per maker.
-        re.compile(r"^\s*(N\d+\s*)?[EH]\d+\s*=", re.I),
+        LazyPattern(r"^\s*(N\d+\s*)?[EH]\d+\s*=", re.I),
         WIRE_EDM,
         "'{found}' sets a wire EDM's offset or machining-condition register; FANUC sets an "
         "offset with G10 or a #variable (#2001-, #10001-)",
     ),
     (
-        re.compile(r"#<[^>\n]*>"),
+        LazyPattern(r"#<[^>\n]*>"),
         LINUXCNC,
         "named parameter '#<...>' is LinuxCNC syntax; FANUC variables are numbered (#1, #100, ...)",
     ),
     (
-        re.compile(
+        LazyPattern(
             r"^\s*o\s*(<[^>]*>|\d+)\s*(sub|endsub|call|if|elseif|else|endif|while|endwhile|do"
             r"|repeat|endrepeat|return|break|continue)\b",
             re.I,
@@ -123,19 +125,19 @@ _PATTERNS: tuple[tuple[re.Pattern[str], str, str], ...] = (
         "'o<name> sub/call/if/while' (O-word) is LinuxCNC syntax, not FANUC",
     ),
     (
-        re.compile(r"\bEND_(IF|WHILE|FOR|REPEAT|CASE)\b", re.I),
+        LazyPattern(r"\bEND_(IF|WHILE|FOR|REPEAT|CASE)\b", re.I),
         SYNTEC,
         "'END_IF' / 'END_WHILE' close Syntec/LNC statements; FANUC has IF [...] GOTO n and "
         "WHILE [...] DOm ... ENDm",
     ),
-    (re.compile(r":="), SYNTEC, "':=' assignment is Syntec/LNC syntax; FANUC assigns with '='"),
+    (LazyPattern(r":="), SYNTEC, "':=' assignment is Syntec/LNC syntax; FANUC assigns with '='"),
     (
-        re.compile(r"^\s*(N\d+\s*)?(PROC|DEF|EXTERN)\s+[A-Z_]", re.I),
+        LazyPattern(r"^\s*(N\d+\s*)?(PROC|DEF|EXTERN)\s+[A-Z_]", re.I),
         SIEMENS,
         "'PROC' / 'DEF' declarations are Siemens Sinumerik (840D) syntax, not FANUC",
     ),
     (
-        re.compile(
+        LazyPattern(
             r"\bGOTO[FBC]\b|\bEND(FOR|WHILE|LOOP)\b|\bSTOPRE\b|\$(AA|AC|A|P|TC|MC|MN|SC|SN)_\w+\s*\[",
             re.I,
         ),
@@ -144,62 +146,62 @@ _PATTERNS: tuple[tuple[re.Pattern[str], str, str], ...] = (
         "Sinumerik syntax, not FANUC",
     ),
     (
-        re.compile(r"^\s*(N\d+\s*)?R\d+\s*=", re.I),
+        LazyPattern(r"^\s*(N\d+\s*)?R\d+\s*=", re.I),
         SIEMENS,
         "'R20=...' arithmetic parameters are Siemens Sinumerik syntax; FANUC's variables are #n",
     ),
     (
-        re.compile(r"^\s*\$\d"),
+        LazyPattern(r"^\s*\$\d"),
         MITSUBISHI,
         "'$n' path selection is Mitsubishi/Citizen syntax, not FANUC",
     ),
     (
-        re.compile(r"^\s*!\s*\d*\s*L\d", re.I),
+        LazyPattern(r"^\s*!\s*\d*\s*L\d", re.I),
         MITSUBISHI,
         "'!L' path wait is Mitsubishi/Citizen syntax, not FANUC",
     ),
     (
         # An S word of its own ('M3 S1=500'), not the end of a name ('VS1=', 'POS1=').
-        re.compile(r"(?<![A-Z#])S\d+\s*=", re.I),
+        LazyPattern(r"(?<![A-Z#])S\d+\s*=", re.I),
         MITSUBISHI,
         "'S1=...' style spindle selection is Mitsubishi/Citizen syntax, not FANUC",
     ),
     (
-        re.compile(r"^\s*N\d+\s+@\d{3}\s+[RK]", re.I),
+        LazyPattern(r"^\s*N\d+\s+@\d{3}\s+[RK]", re.I),
         SIEMENS,
         "'@100 K...' jumps and '@1xx R... K...' tests are old Sinumerik (810/820) codes, not FANUC",
     ),
-    (re.compile(r"@\d+"), SYNTEC, "'@n' variables are LNC/Syntec syntax, not FANUC"),
+    (LazyPattern(r"@\d+"), SYNTEC, "'@n' variables are LNC/Syntec syntax, not FANUC"),
 )
 
 # Forms more than one control writes, or none.
-_WEAK_PATTERNS: tuple[tuple[re.Pattern[str], str, str], ...] = (
+_WEAK_PATTERNS: tuple[tuple[LazyPattern, str, str], ...] = (
     (
-        re.compile(r"//"),
+        LazyPattern(r"//"),
         PLAIN,
         "'//' does not start a comment on FANUC (Syntec/LNC and DDCS write comments so): FANUC "
         "comments are '( ... )'",
     ),
     (
-        re.compile(r"<=|>=|==|!=|&&|\|\||<(?!>)|(?<!<)>"),
+        LazyPattern(r"<=|>=|==|!=|&&|\|\||<(?!>)|(?<!<)>"),
         NOT_FANUC,
         "FANUC compares with EQ NE GT GE LT LE only ('<', '>=', '==' ... give alarm PS0114)",
     ),
     (
-        re.compile(r"\b(LTE|GTE|NEQ)\b", re.I),
+        LazyPattern(r"\b(LTE|GTE|NEQ)\b", re.I),
         NOT_FANUC,
         "FANUC compares with EQ NE GT GE LT LE only ('LTE', 'GTE' give alarm PS0114)",
     ),
     (
         # 'Q1=12', 'POS=5', 'TEMP=10': a value assigned to a word or a name.
-        re.compile(r"^\s*(N\d+\s*)?[A-Z]\w*\s*=", re.I),
+        LazyPattern(r"^\s*(N\d+\s*)?[A-Z]\w*\s*=", re.I),
         NOT_FANUC,
         "'{found}' assigns a value to an address or a name: FANUC assigns only to variables "
         "(#n = ...)",
     ),
 )
 
-_UNBRACKETED = re.compile(r"([A-MP-Z])\s*(-?#\d+(?:\.\d*)?\s*[-+*/]\s*[.#\d\[][^A-Z]*)", re.I)
+_UNBRACKETED = LazyPattern(r"([A-MP-Z])\s*(-?#\d+(?:\.\d*)?\s*[-+*/]\s*[.#\d\[][^A-Z]*)", re.I)
 
 
 def recognise(code: str, text: str | None = None) -> Dialect | None:

@@ -12,30 +12,14 @@ import codecs
 import re
 from dataclasses import dataclass
 
+# What the analysis reads: defined apart, for the settings (re-exported here).
+from .limits import MAX_LINE_LENGTH as MAX_LINE_LENGTH
+from .limits import READ_WHOLE as READ_WHOLE
+from .limits import ReadLimits as ReadLimits
 from .tree import Comment, LineNote, shared_span
 
 _LINE_BREAK = re.compile(r"\r\n|\r|\n")
 _BLANK_TAIL = re.compile(r"[ \t;%]*")
-
-
-# How much of a program the analysis reads. FANUC's manuals cited here give no limit on the
-# length of a block; a longer line is almost surely not a program (a corrupt or binary file),
-# and reading it would cost time and memory for nothing.
-MAX_LINE_LENGTH = 1024
-
-
-@dataclass(frozen=True, slots=True)
-class ReadLimits:
-    """Lines longer than ``max_line_length`` are not analysed, nor the blocks past
-    ``max_blocks`` or ``max_characters`` of a document (None: no such limit). A diagnostic says
-    what was left out (MB011, MB013)."""
-
-    max_line_length: int = MAX_LINE_LENGTH
-    max_blocks: int | None = None
-    max_characters: int | None = None
-
-
-READ_WHOLE = ReadLimits()  # every block of the document; the limit on one line only
 
 
 @dataclass(frozen=True, slots=True)

@@ -8,6 +8,7 @@ text, so an edit re-parses only the lines it changed.
 from __future__ import annotations
 
 import gc
+import hashlib
 import re
 import sys
 import threading
@@ -16,14 +17,16 @@ from bisect import bisect_right
 from collections.abc import Callable, Iterable, Iterator, Sequence
 from contextlib import contextmanager
 from dataclasses import replace
+from functools import cached_property
 from importlib import resources
 from itertools import accumulate
 from operator import attrgetter, itemgetter
 from typing import Any, cast
 
 from ..cancel import READING, SLICE, CancelToken, raise_if_cancelled
+from ..lazy_regex import LazyPattern
 from ..line_maps import Diff
-from . import dialects
+from . import dialects, grammar_tables
 from .lines import (
     MAX_LINE_LENGTH,
     READ_WHOLE,
@@ -91,7 +94,7 @@ try:
         UnexpectedToken,
     )
 
-    from .lalr_driver import TableParser  # Lark's first importer is this module
+    from .lalr_driver import TABLES_FORMAT, TableParser  # Lark's first importer is this module
 finally:
     if _HIDE_REGEX:
         del sys.modules["regex"]
@@ -99,6 +102,26 @@ finally:
 
 def grammar_text() -> str:
     return resources.files("fanuc_macro").joinpath("data/macro_b.lark").read_text("utf-8")
+
+
+def grammar_sha256() -> str:
+    """What grammar_tables.py was written from, with the format of its data."""
+    text = f"{grammar_text()}\n{TABLES_FORMAT}"
+    return hashlib.sha256(text.encode("utf-8")).hexdigest()
+
+
+def grammar_lark() -> Lark:
+    """Lark's parser of the grammar, as the tables come from."""
+    return Lark(
+        grammar_text(),
+        parser="lalr",
+        lexer="basic",
+        transformer=_ToAst(),
+        keep_all_tokens=True,
+        maybe_placeholders=False,
+        # The grammar's tables, kept in the temp folder: the server starts 40 ms sooner.
+        cache=True,
+    )
 
 
 # Every node's span comes from these: they run a few hundred thousand times on a cold parse.
@@ -561,19 +584,12 @@ class BlockParser:
 
     def __init__(self, cache_size: int = 200_000, use_fast_path: bool = True) -> None:
         self.use_fast_path = use_fast_path
-        lark = Lark(
-            grammar_text(),
-            parser="lalr",
-            lexer="basic",
-            transformer=_ToAst(),
-            keep_all_tokens=True,
-            maybe_placeholders=False,
-            # The grammar's tables, kept in the temp folder: the server starts 40 ms sooner.
-            cache=True,
-        )
-        # Lark builds the grammar's tables; our driver runs them faster than Lark's loop.
-        self._lark = lark
-        self._table = TableParser(lark)
+        # Our driver runs the grammar's LALR tables faster than Lark's loop. They are shipped
+        # as data (grammar_tables.py): a start loads no Lark object, unless the grammar changed.
+        if grammar_sha256() == grammar_tables.GRAMMAR_SHA256:
+            self._table = TableParser.from_tables(grammar_tables.TABLES, _ToAst())
+        else:
+            self._table = TableParser(self._lark)
         # Insertion-ordered, so that the oldest lines are looked at first when it is full. A hit
         # costs one dict look-up: the order is refreshed at eviction, not on every hit.
         self._cache: dict[str, ParsedLine] = {}
@@ -581,6 +597,11 @@ class BlockParser:
         self._sweep_at = cache_size  # the size at which the cache next looks for lines to drop
         self._longest_cached = 0  # no cached line is longer: a hit needs no length check
         self._lock = threading.Lock()
+
+    @cached_property
+    def _lark(self) -> Lark:
+        """Lark's parser of the grammar (the tables' source; for tests)."""
+        return grammar_lark()
 
     def parse_line(self, text: str, max_line_length: int = MAX_LINE_LENGTH) -> ParsedLine:
         if len(text) > max_line_length:
@@ -795,16 +816,16 @@ def _depth_before(code: str, col: int) -> tuple[int, int | None]:
     return depth, (opened[-1] if opened else None)
 
 
-_NUMBER_TEXT = re.compile(r"[0-9]*\.?[0-9]*")
+_NUMBER_TEXT = LazyPattern(r"[0-9]*\.?[0-9]*")
 # No two repeats here can take the same characters (a space run, a digit run): a failed search
 # on a long line stays linear.
-_WORD_BEFORE = re.compile(
+_WORD_BEFORE = LazyPattern(
     r"([A-MP-Z])[ \t]*((?:[-+][ \t]*)?(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+))[ \t]*$", re.I
 )
-_ADDRESS_BEFORE = re.compile(r"([A-MP-Z])[ \t]*(?:[-+][ \t]*)?$", re.I)
-_BLOCK_HEAD = re.compile(r"\s*(?:/\s*(?:\d\s*)?)?(?:N\s*\d+\s*)?", re.I)
-_LETTERS = re.compile(r"[A-Z]+", re.I)
-_CONDITION = re.compile(r"^\s*(N\d+\s*)?(IF|WHILE|WH)\s*\[", re.I)
+_ADDRESS_BEFORE = LazyPattern(r"([A-MP-Z])[ \t]*(?:[-+][ \t]*)?$", re.I)
+_BLOCK_HEAD = LazyPattern(r"\s*(?:/\s*(?:\d\s*)?)?(?:N\s*\d+\s*)?", re.I)
+_LETTERS = LazyPattern(r"[A-Z]+", re.I)
+_CONDITION = LazyPattern(r"^\s*(N\d+\s*)?(IF|WHILE|WH)\s*\[", re.I)
 
 
 def _typing_mistake(
@@ -948,7 +969,7 @@ def _expression_from(code: str, start: int) -> str:
 
 _OPERATOR_WORDS = ("MOD", "AND", "OR", "XOR")
 _KEYWORDS = ("WHILE", "GOTO", "THEN", "END", "POPEN", "PCLOS", "DPRNT", "BPRNT")
-_LEADING_NAME = re.compile(r"^\s*(?:N\d+\s*)?([A-Z]{3,})", re.I)
+_LEADING_NAME = LazyPattern(r"^\s*(?:N\d+\s*)?([A-Z]{3,})", re.I)
 
 
 def _misspelt_keyword(code: str) -> tuple[str, int, str] | None:
@@ -972,7 +993,7 @@ _KNOWN_FUNCTIONS = frozenset(
 )
 # From the first letter of a run only: tried at every letter, a long run of letters with no
 # '[' after it took quadratic time.
-_WORD_BEFORE_BRACKET = re.compile(r"(?<![A-Z])([A-Z]{2,})\s*\[", re.I)
+_WORD_BEFORE_BRACKET = LazyPattern(r"(?<![A-Z])([A-Z]{2,})\s*\[", re.I)
 
 
 def _unknown_function(code: str, col: int) -> tuple[str, int] | None:

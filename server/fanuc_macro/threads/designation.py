@@ -24,6 +24,8 @@ import re
 from dataclasses import dataclass
 from typing import Literal
 
+from ..lazy_regex import LazyPattern
+
 __all__ = [
     "COARSE_PITCH",
     "EXTERNAL_POSITIONS",
@@ -178,16 +180,16 @@ def coarse_pitch(nominal_diameter: float) -> float:
 
 
 # Other thread systems, recognised only to give a useful message.
-_NON_METRIC: tuple[tuple[re.Pattern[str], str], ...] = (
-    (re.compile(r"^TR\d", re.I), "a trapezoidal thread (ISO 2904 'Tr')"),
-    (re.compile(r"^MJ\d", re.I), "an MJ (aerospace, ISO 5855) thread"),
-    (re.compile(r"^NPT|^NPS|^NPTF", re.I), "an American pipe thread"),
-    (re.compile(r"UN[CFEJRS]?\b|UN[CFEJRS]?$|\d+\s*TPI", re.I), "a Unified inch thread"),
-    (re.compile(r"^R[CP]?\s*\d", re.I), "a taper pipe thread (ISO 7 'R/Rc/Rp')"),
-    (re.compile(r"^G\s*\d", re.I), "a parallel pipe thread (ISO 228 'G')"),
-    (re.compile(r"^PG\s*\d", re.I), "a steel conduit thread (DIN 40430 'Pg')"),
-    (re.compile(r"^[BS]\d", re.I), "a buttress (saw-tooth) thread"),
-    (re.compile(r"^\d+(\s+\d+)?/\d+"), "an inch (fractional) designation"),
+_NON_METRIC: tuple[tuple[LazyPattern, str], ...] = (
+    (LazyPattern(r"^TR\d", re.I), "a trapezoidal thread (ISO 2904 'Tr')"),
+    (LazyPattern(r"^MJ\d", re.I), "an MJ (aerospace, ISO 5855) thread"),
+    (LazyPattern(r"^NPT|^NPS|^NPTF", re.I), "an American pipe thread"),
+    (LazyPattern(r"UN[CFEJRS]?\b|UN[CFEJRS]?$|\d+\s*TPI", re.I), "a Unified inch thread"),
+    (LazyPattern(r"^R[CP]?\s*\d", re.I), "a taper pipe thread (ISO 7 'R/Rc/Rp')"),
+    (LazyPattern(r"^G\s*\d", re.I), "a parallel pipe thread (ISO 228 'G')"),
+    (LazyPattern(r"^PG\s*\d", re.I), "a steel conduit thread (DIN 40430 'Pg')"),
+    (LazyPattern(r"^[BS]\d", re.I), "a buttress (saw-tooth) thread"),
+    (LazyPattern(r"^\d+(\s+\d+)?/\d+"), "an inch (fractional) designation"),
 )
 
 _NUMBER = r"\d+(?:[.,]\d+)?"

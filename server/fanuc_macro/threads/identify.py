@@ -58,14 +58,14 @@ _STARTS = re.compile(r"(?<![\w.])(?P<n>[2-6])\s*-?\s*STARTS?\b|(?P<cn>[双两三
 _CHINESE_STARTS = {"双": 2, "两": 2, "三": 3, "四": 4}
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False, repr=False)
 class FoundDesignation:
     text: str  # as written
     form: str  # what parse_designation reads
     line: int
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False, repr=False)
 class LineThreadWords:
     designations: tuple[tuple[str, str], ...]  # (as written, normalised)
     other_forms: tuple[str, ...]
@@ -110,13 +110,13 @@ def _line_words(parsed: ParsedLine) -> LineThreadWords:
 thread_words: PerLine[LineThreadWords] = PerLine(_line_words)
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False, repr=False)
 class Evidence:
     text: str
     line: int | None = None  # 0-based, in the document
 
 
-@dataclass
+@dataclass(eq=False, repr=False)
 class Thread:
     """One job and the thread it cuts, as far as the program tells."""
 
@@ -322,7 +322,7 @@ def _choose_designation(
     return fitting[0]
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False, repr=False)
 class _ProgramWords:
     """What one program's comments and formulas say of its threads, read once per program."""
 

@@ -43,6 +43,7 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping
 from dataclasses import dataclass, field
+from functools import cache
 
 from .designation import ThreadDesignation, parse_designation
 
@@ -489,8 +490,10 @@ def _derived_row(rng: tuple[float, float], internal: bool) -> dict[float, tuple[
     return rows
 
 
-_TD2_EXT_DERIVED = {rng: _derived_row(rng, internal=False) for rng in DERIVED_RANGES}
-_TD2_INT_DERIVED = {rng: _derived_row(rng, internal=True) for rng in DERIVED_RANGES}
+@cache
+def _td2_derived(internal: bool) -> dict[tuple[float, float], dict[float, tuple[int | None, ...]]]:
+    """The derived Td2 or TD2 rows, computed when first asked for (not at every start)."""
+    return {rng: _derived_row(rng, internal=internal) for rng in DERIVED_RANGES}
 
 
 def pitch_diameter_tolerance(
@@ -500,10 +503,7 @@ def pitch_diameter_tolerance(
     rng = diameter_range(diameter)
     name = "TD2" if internal else "Td2"
     derived = rng in DERIVED_RANGES
-    if derived:
-        rows = (_TD2_INT_DERIVED if internal else _TD2_EXT_DERIVED)[rng]
-    else:
-        rows = (_TD2_INT if internal else _TD2_EXT)[rng]
+    rows = _td2_derived(internal)[rng] if derived else (_TD2_INT if internal else _TD2_EXT)[rng]
     grades = _TD2_INT_GRADES if internal else _TD2_EXT_GRADES
     key = _pitch_key(rows, pitch)
     if key is None:
@@ -535,8 +535,8 @@ def table_cells() -> list[TableCell]:
                 if um is not None:
                     cells.append(TableCell(name, None, pitch, grade, TableValue(um)))
     ranged = (
-        ("Td2", _TD2_EXT, _TD2_EXT_DERIVED, _TD2_EXT_GRADES),
-        ("TD2", _TD2_INT, _TD2_INT_DERIVED, _TD2_INT_GRADES),
+        ("Td2", _TD2_EXT, _td2_derived(False), _TD2_EXT_GRADES),
+        ("TD2", _TD2_INT, _td2_derived(True), _TD2_INT_GRADES),
     )
     for name, tabulated, derived, grades in ranged:
         for rng in DIAMETER_RANGES:

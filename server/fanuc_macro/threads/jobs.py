@@ -28,7 +28,7 @@ THREAD_CODES = frozenset({"G32", "G33", "G34", "G76", "G92"})
 CYCLES = frozenset({"G76", "G92"})
 
 
-@dataclass
+@dataclass(eq=False, repr=False)
 class ThreadJob:
     """A job's passes are not changed once it is made: a later analysis whose run cuts the
     same passes takes the same job, with what its rules found of them (:meth:`remember`)."""

@@ -42,7 +42,7 @@ from .linear import Linear, linear_form
 D1_FACTOR = 2.0 * 5.0 / 8.0 * SIN60  # D1 = D - 1.0825 P
 
 
-@dataclass
+@dataclass(eq=False, repr=False)
 class ModuleShape:
     """The variables of a thread module, found from where they are used."""
 
@@ -309,7 +309,7 @@ def _find_height_formula(
             shape.inputs[n] = value
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False, repr=False)
 class FittingRadii:
     """An arc thread cut by the fitting method (seed paper 002): the tool centre moves on an
     arc of radius R − r, written ``ASIN[#18/[#4-#18]]`` for the tangency angle."""
