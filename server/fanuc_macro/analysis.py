@@ -33,7 +33,7 @@ from .rules import ALL_CHECKS, LINE_CHECKS, LineFinding
 from .rules.context import RuleContext
 from .syntax import dialects
 from .syntax.parser import BlockParser, default_parser, parse_text, quiet_gc
-from .syntax.tree import Document, ParsedLine
+from .syntax.tree import Document, ParsedLine, PlainNc
 from .threads.identify import Thread
 
 log = logging.getLogger(__name__)
@@ -164,6 +164,10 @@ line_findings: PerLine[tuple[LineFinding, ...]] = PerLine(_line_findings)
 def _findings_of_line(parsed: ParsedLine) -> tuple[LineFinding, ...] | None:
     if parsed.statement is None and parsed.problem is None and not parsed.notes:
         return None  # a comment or an empty line: no line rule has anything to say
+    if type(parsed.statement) is PlainNc:
+        # The line rules read its G and M codes at once: cheaper than a cache entry per line
+        # (the map keeps what they find, and looks only at edited lines again).
+        return _line_findings(parsed) or None
     return line_findings(parsed) or None
 
 

@@ -17,6 +17,7 @@ from ..syntax.tree import (
     NcStatement,
     Num,
     ParsedLine,
+    PlainNc,
     Unary,
     Var,
     While,
@@ -94,7 +95,14 @@ parameters 6050-6059) is reported all the same: that setting is not in the progr
 
 def check_line(parsed: ParsedLine) -> Iterable[LineFinding]:
     whole = parsed.statement
-    if type(whole) is NcStatement and parsed.problem is None:
+    if type(whole) is PlainNc:
+        # Numbers only: nothing to say unless a G or M code is another control's.
+        for _, value in whole.codes:
+            if value in _FOREIGN_CODES:
+                break
+        else:
+            return []
+    if isinstance(whole, NcStatement) and parsed.problem is None:
         found = _plain_nc(parsed, whole)  # most blocks: their words, without the walks
         if found is not None:
             return found
