@@ -13,6 +13,7 @@ import pytest
 
 from fanuc_macro import analysis
 from fanuc_macro.config import Config
+from fanuc_macro.evaluator import machine
 from fanuc_macro.rules import LINE_CHECKS, statements
 from fanuc_macro.syntax.lines import cut_comments
 from fanuc_macro.syntax.parser import BlockParser, _fast_parse
@@ -162,6 +163,7 @@ def test_the_line_rules_way_for_plain_blocks_gives_the_general_way_s_findings() 
         nodes = dataclasses.replace(parsed, statement=NcStatement(nc.words, nc.span))
         assert analysis._findings_of_line(parsed) == _general_findings(nodes), text
         assert statements._end_or_g67(parsed) == statements._end_or_g67(nodes), text
+        assert machine._ends_program_line(parsed) == machine._ends_program_line(nodes), text
     assert seen > 5000
 
 

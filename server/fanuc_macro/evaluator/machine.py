@@ -1873,7 +1873,13 @@ def compile_line(parsed: ParsedLine) -> CompiledLine:
 compiled: PerLine[CompiledLine] = PerLine(compile_line)
 
 
+_PROGRAM_ENDS = (("M", 2.0), ("M", 30.0))
+
+
 def _ends_program_line(parsed: ParsedLine) -> bool | None:
+    statement = parsed.statement
+    if type(statement) is PlainNc:  # its M codes say it, without the compiled line
+        return any(code in statement.codes for code in _PROGRAM_ENDS) or None
     return compiled(parsed).ends_program or None
 
 

@@ -445,7 +445,9 @@ def _end_or_g67(parsed: ParsedLine) -> _LineEnds | None:
                 break
         else:
             return None
-    found = _ends_of(parsed)
+    # Not through the per-line cache: the map keeps what it finds and looks again only at the
+    # lines that changed (the cache serves the programs' last blocks, below).
+    found = _line_ends(parsed)
     return found if found.ends or found.cancels_modal_call else None
 
 
