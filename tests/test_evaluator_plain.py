@@ -41,6 +41,13 @@ EXTRA = [
     "S20000 M3",
     "M98.5 P1",
     "T-1",
+    # Words written together, E among them: a token of two words is not one number.
+    "X1E2 Y3",
+    "G01X1.5Y2.",
+    "x1e2y3",
+    "G01 X1. E2.",
+    "E5 X1",
+    "G01 X1.23456Y2",
 ]
 
 

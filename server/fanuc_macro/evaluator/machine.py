@@ -296,12 +296,24 @@ def _compile_plain_code(nc: PlainNc) -> CompiledLine:
     """``_compile_words`` of a plain block, read from its code: each address once, no number
     with more than three decimals (a CAM block), with its G and M codes as the parser read
     them; otherwise word by word."""
-    pairs = nc.pairs()
-    values: dict[str, float] = {_ADDRESS_OF[letter]: float(number) for letter, number in pairs}
-    span = nc.span
-    if len(values) < len(pairs) or _FOUR_DECIMALS.search(nc.code, span.start, span.end):
+    words = nc.text()
+    values: dict[str, float] | None = None
+    if "E" not in words and "e" not in words:
+        # Spaces part the words (CAM output): each token is a letter and its number. A token
+        # of two words holds a letter after its first, which float() refuses (E aside).
+        tokens = words.split()
+        try:
+            values = {_ADDRESS_OF[t[0]]: float(t[1:]) for t in tokens}
+        except ValueError:
+            values = None
+        count = len(tokens)
+    if values is None:
+        pairs = nc.pairs()
+        values = {_ADDRESS_OF[letter]: float(number) for letter, number in pairs}
+        count = len(pairs)
+    if len(values) < count or _FOUR_DECIMALS.search(words):
         return _compile_words(
-            nc, [(_ADDRESS_OF[letter], number, float(number)) for letter, number in pairs]
+            nc, [(_ADDRESS_OF[letter], number, float(number)) for letter, number in nc.pairs()]
         )
     codes = _codes_compiled.get(nc.codes)
     if codes is None:
@@ -309,7 +321,9 @@ def _compile_plain_code(nc: PlainNc) -> CompiledLine:
     g_codes, m_codes, quiet, ends_program = codes
     motion_words = values
     if not _NOT_MOTION.isdisjoint(values):
-        motion_words = {a: v for a, v in values.items() if a not in ("G", "M", "N")}
+        motion_words = values.copy()  # in the same order, without G, M and N
+        for address in _NOT_MOTION.intersection(values):
+            del motion_words[address]
     if quiet:
         for address in _CHECKED_ADDRESSES.intersection(values):
             v = values[address]

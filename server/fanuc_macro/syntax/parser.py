@@ -351,12 +351,11 @@ def _fast_value(text: str, start: int) -> Expr:
 # of at most MAX_DIGITS characters (a longer one goes the way that reports a number too long to
 # read). The repeats are possessive: a line that fails at its end is not scanned again.
 _PLAIN_BLOCK = re.compile(
-    r"(?:[A-MP-Z][-+]?(?=[.0-9]{1,12}+(?![.0-9]))"
-    r"(?:[0-9]++(?:\.[0-9]*+)?|\.[0-9]++)[ \t]*+)++",
-    re.I,
+    r"(?:[A-MP-Za-mp-z][-+]?(?=[.0-9]{1,12}+(?![.0-9]))"
+    r"(?:[0-9]++(?:\.[0-9]*+)?|\.[0-9]++)[ \t]*+)++"
 )
 # The G and M words of a plain block (its code is known to be words of numbers).
-_PLAIN_CODE_WORDS = re.compile(r"([GM])([-+]?[.0-9]+)", re.I)
+_PLAIN_CODE_WORDS = re.compile(r"([GMgm])([-+]?[.0-9]+)")
 # The G and M codes of plain blocks by their words' text, shared (a program repeats a few
 # combinations); _CALLS for the words of a call or a return.
 _PLAIN_CODES: dict[tuple[tuple[str, str], ...], tuple[tuple[str, float], ...]] = {}
@@ -380,9 +379,9 @@ def _plain_block(
     """A block of words of numbers written without spaces, and no call or return, as a
     ``PlainNc`` (its nodes built on demand); None for any other block, which ``_fast_parse``
     or the grammar reads."""
-    head = _FAST_HEAD.match(code)
-    assert head is not None  # every part of it is optional
-    pos = head.end()
+    # A block that begins with its first word has no head to read (most blocks).
+    head = None if code[:1] not in _HEAD_STARTS else _FAST_HEAD.match(code)
+    pos = 0 if head is None else head.end()
     if _PLAIN_BLOCK.fullmatch(code, pos) is None:
         return None
     written = tuple(_PLAIN_CODE_WORDS.findall(code, pos))
@@ -394,7 +393,7 @@ def _plain_block(
     skip: int | None = None
     seq: int | None = None
     seq_span: Span | None = None
-    if head.lastindex is not None:
+    if head is not None and head.lastindex is not None:
         slash, level, n_letter, n_value = head.group(1, 2, 3, 4)
         if (level is not None and len(level) > MAX_DIGITS) or (
             n_value is not None and len(n_value) > MAX_DIGITS
@@ -407,7 +406,7 @@ def _plain_block(
     return skip, seq, seq_span, quick_plain(code, shared_span(pos, len(code.rstrip())), codes)
 
 
-_CUT_MARKS = re.compile(r"[();%]")  # what cut_comments cuts out
+_HEAD_STARTS = frozenset("Nn/ \t")  # what a block's head (block skip, N number) begins with
 
 
 def _plain_words(code: str) -> tuple[Word, ...]:
@@ -693,7 +692,13 @@ class BlockParser:
         self._sweep_at = max(self._cache_size, len(cache) + batch)
 
     def _parse_uncached(self, text: str) -> ParsedLine:
-        if self.use_fast_path and not _CUT_MARKS.search(text):
+        if (
+            self.use_fast_path
+            and "(" not in text
+            and ";" not in text
+            and "%" not in text
+            and ")" not in text
+        ):
             # No comment, end of block or tape mark: the code is the text. A block of plain
             # words without a call is indexed for its N number only.
             plain = _plain_block(text)

@@ -153,7 +153,7 @@ class NcStatement:
 # What builds a plain block's words from its code: set by the parser, which owns the reading.
 _PLAIN_WORDS_OF: list[Callable[[str], tuple[Word, ...]]] = []
 # (letter, number) of each word of a plain block's code (letters as written).
-_PLAIN_PAIRS = re.compile(r"([A-Z])([-+]?[.0-9]+)", re.I)
+_PLAIN_PAIRS = re.compile(r"([A-Za-z])([-+]?[.0-9]+)")
 
 
 class PlainNc(NcStatement):
@@ -189,6 +189,11 @@ class PlainNc(NcStatement):
         """Each word's letter (as written) and number text, in order, read from the code."""
         span = self.span
         return _PLAIN_PAIRS.findall(self.code, span.start, span.end)
+
+    def text(self) -> str:
+        """The words as written, from the first letter to the last digit."""
+        span = self.span
+        return self.code[span.start : span.end]
 
     def built(self) -> bool:
         """Whether the words were asked for (the tests count the blocks that built them)."""
