@@ -2,6 +2,7 @@
 
     python bench/bench.py            # all figures
     python bench/bench.py --quick    # smaller sizes
+    python bench/bench.py --keystrokes   # only the keystrokes in big programs
 
 Programs are generated: a lathe/mill mix of motion blocks and macro statements in the
 proportion of the corpus of real programs (about 45% plain NC blocks), with numbers varied so
@@ -412,12 +413,13 @@ def main() -> None:
         help="only the rules on a document this big, three times (500000: minutes)",
     )
     ap.add_argument(
+        "--keystrokes",
         "--keystrokes-only",
         action="store_true",
-        help="only the last section: keystrokes in big programs",
+        help="only the last section: keystrokes in big programs, opened in a workspace",
     )
     args = ap.parse_args()
-    if args.keystrokes_only:
+    if args.keystrokes:
         bench_big_keystrokes(args.quick)
         return
     if args.memory_child:

@@ -16,7 +16,7 @@ from fanuc_macro.evaluator.machine import (
 )
 from fanuc_macro.program.index import build_index
 from fanuc_macro.syntax.parser import BlockParser, parse_text
-from fanuc_macro.syntax.tree import NcStatement
+from fanuc_macro.syntax.tree import NcStatement, PlainNc
 from test_parser import program_lines, random_nc_lines
 
 
@@ -41,6 +41,13 @@ EXTRA = [
     "S20000 M3",
     "M98.5 P1",
     "T-1",
+    # Words written together, E among them: a token of two words is not one number.
+    "X1E2 Y3",
+    "G01X1.5Y2.",
+    "x1e2y3",
+    "G01 X1. E2.",
+    "E5 X1",
+    "G01 X1.23456Y2",
 ]
 
 
@@ -50,10 +57,22 @@ def _compare(lines: list[str]) -> int:
     for text in [*lines, *EXTRA]:
         parsed = parser.parse_line(text)
         nc = parsed.statement
-        if type(nc) is not NcStatement:
-            continue
-        plain = _compile_plain_nc(nc)
-        if plain is None:
+        if type(nc) is PlainNc:
+            # Compiled from its code, without its nodes: as the nodes compile.
+            built = nc.built()  # a line seen before has its nodes from that comparison
+            plain = machine.compile_statement(nc, text)
+            assert nc.built() == built, text
+            nodes = NcStatement(nc.words, nc.span)
+            from_nodes = _compile_plain_nc(nodes)
+            assert from_nodes is not None, text
+            assert from_nodes == plain, text
+            nc = nodes
+        elif type(nc) is NcStatement:
+            found = _compile_plain_nc(nc)
+            if found is None:
+                continue
+            plain = found
+        else:
             continue
         seen += 1
         general = _general(nc, text)

@@ -30,11 +30,11 @@ from .evaluator import Facts, evaluate
 from .line_maps import LineMap
 from .per_line import PerLine
 from .program.index import ProgramIndex, build_index
-from .rules import ALL_CHECKS, LINE_CHECKS, LineFinding
+from .rules import ALL_CHECKS, LINE_CHECKS, LineFinding, plain_line_quiet
 from .rules.context import RuleContext
 from .syntax import dialects
 from .syntax.parser import BlockParser, default_parser, parse_text, quiet_gc
-from .syntax.tree import Document, ParsedLine
+from .syntax.tree import Document, ParsedLine, PlainNc
 from .threads.identify import Thread
 
 log = logging.getLogger(__name__)
@@ -166,13 +166,14 @@ def _line_findings(parsed: ParsedLine) -> tuple[LineFinding, ...]:
     return tuple(found)
 
 
-line_findings: PerLine[tuple[LineFinding, ...]] = PerLine(_line_findings)
-
-
 def _findings_of_line(parsed: ParsedLine) -> tuple[LineFinding, ...] | None:
     if parsed.statement is None and parsed.problem is None and not parsed.notes:
         return None  # a comment or an empty line: no line rule has anything to say
-    return line_findings(parsed) or None
+    if type(parsed.statement) is PlainNc and plain_line_quiet(parsed):
+        return None  # words of numbers: nothing, by its flags and its G and M codes
+    # Not through a per-line cache: the map keeps the findings and looks at a line again only
+    # when it changed, so an entry per line would only hold memory.
+    return _line_findings(parsed) or None
 
 
 def _dialect_mark(parsed: ParsedLine) -> tuple[str, str] | None:

@@ -21,6 +21,7 @@ from __future__ import annotations
 import threading
 from bisect import bisect_left
 from collections.abc import Callable, Iterator, Sequence
+from itertools import compress
 from operator import is_, itemgetter
 from typing import Generic, TypeVar
 
@@ -183,6 +184,9 @@ class Found(Generic[T]):
         )
 
 
+_PARSED = itemgetter(1)  # Block.parsed, read in C
+
+
 class LineMap(Generic[T]):
     """The lines of a document where ``look(parsed)`` finds something (a true value), for the
     last :data:`KEPT` documents asked about (by URI): the next version of a document is looked
@@ -228,13 +232,17 @@ class LineMap(Generic[T]):
         blocks = doc.blocks
         lines: list[int] = []
         values: list[T] = []
-        for line in range(start, end):
-            if cancel is not None and line > start and line % SLICE == 0:
-                cancel.reached(CHECKING, line, len(blocks))
-            value = look(blocks[line].parsed)
-            if value:
-                lines.append(line)
-                values.append(value)
+        # A slice of lines at a time, looked at in C but for ``look`` itself; the token is
+        # looked at every SLICE lines.
+        low = start
+        while low < end:
+            if cancel is not None and low > start:
+                cancel.reached(CHECKING, low, len(blocks))
+            high = min((low // SLICE + 1) * SLICE, end)
+            found = list(map(look, map(_PARSED, blocks[low:high])))
+            lines += compress(range(low, high), found)
+            values += filter(None, found)
+            low = high
         self.looked += end - start
         return lines, values
 

@@ -72,10 +72,28 @@ def _zero(v: Value) -> float | Unknown:
 
 
 def _constant(value: Value) -> Evaluator:
+    # A closure of a number other than zero is shared by every expression with that number
+    # (a program writes the same few constants in thousands of lines); 0.0 and -0.0, equal as
+    # keys, get their own.
+    if type(value) is not _float or not value:
+        return _constant_closure(value)
+    found = _constants.get(value)
+    if found is None:
+        if len(_constants) >= MAX_SHARED_CONSTANTS:
+            _constants.clear()
+        found = _constants[value] = _constant_closure(value)
+    return found
+
+
+def _constant_closure(value: Value) -> Evaluator:
     def constant(_: Frame) -> Value:
         return value
 
     return constant
+
+
+_constants: dict[float, Evaluator] = {}
+MAX_SHARED_CONSTANTS = 10_000
 
 
 # Functions whose result depends on the control's state, not on the arguments alone: ATAN

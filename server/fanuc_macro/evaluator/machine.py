@@ -8,6 +8,7 @@ an unknown condition runs its body once), so a program analysed alone still gets
 
 from __future__ import annotations
 
+import re
 import sys
 import time
 import zlib
@@ -38,6 +39,7 @@ from ..syntax.tree import (
     NcStatement,
     Num,
     ParsedLine,
+    PlainNc,
     ProgramStart,
     Statement,
     Unary,
@@ -189,6 +191,8 @@ def compile_statement(statement: Statement | None, text: str | None = None) -> C
     line's ``text``, expressions are shared with other lines' (see ``_compile_word``)."""
     if statement is None:
         return CompiledLine(K_EMPTY)
+    if type(statement) is PlainNc:
+        return _compile_plain_code(statement)
     if type(statement) is NcStatement:
         plain = _compile_plain_nc(statement)
         if plain is not None:
@@ -274,19 +278,117 @@ def _compile_plain_nc(nc: NcStatement) -> CompiledLine | None:
     """``_compile_nc`` of a block whose words are all numbers (the fast parse's blocks, most of
     a program), in one pass over its words; None for any other block. The result is the one
     ``compile_statement`` gives: no variable read, a ConstantWords, M02/M30 an end."""
+    words: list[tuple[str, str, float]] = []
+    for w in nc.words:
+        num = w.value
+        if type(num) is not Num or type(num.value) is not float:
+            return None
+        words.append((w.address, num.text, num.value))
+    return _compile_words(nc, words)
+
+
+# Address letters as written to the address (upper case, one string each).
+_ADDRESS_OF = {ch: ch.upper() for ch in "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz"}
+
+
+# A number with more than three decimals: its motion word is rounded (see _compile_words).
+_FOUR_DECIMALS = re.compile(r"\.[0-9]{4}")
+_NOT_MOTION = frozenset("GMN")  # the addresses a motion record leaves out
+
+
+def _compile_plain_code(nc: PlainNc) -> CompiledLine:
+    """``_compile_words`` of a plain block, read from its code: each address once, no number
+    with more than three decimals (a CAM block), with its G and M codes as the parser read
+    them; otherwise word by word."""
+    words = nc.text()
+    values: dict[str, float] | None = None
+    if "E" not in words and "e" not in words:
+        # Spaces part the words (CAM output): each token is a letter and its number. A token
+        # of two words holds a letter after its first, which float() refuses (E aside).
+        tokens = words.split()
+        try:
+            values = {_ADDRESS_OF[t[0]]: float(t[1:]) for t in tokens}
+        except ValueError:
+            values = None
+        count = len(tokens)
+    if values is None:
+        pairs = nc.pairs()
+        values = {_ADDRESS_OF[letter]: float(number) for letter, number in pairs}
+        count = len(pairs)
+    if len(values) < count or _FOUR_DECIMALS.search(words):
+        return _compile_words(
+            nc, [(_ADDRESS_OF[letter], number, float(number)) for letter, number in nc.pairs()]
+        )
+    codes = _codes_compiled.get(nc.codes)
+    if codes is None:
+        codes = _compile_codes(nc.codes)
+    g_codes, m_codes, quiet, ends_program = codes
+    motion_words = values
+    if not _NOT_MOTION.isdisjoint(values):
+        motion_words = values.copy()  # in the same order, without G, M and N
+        for address in _NOT_MOTION.intersection(values):
+            del motion_words[address]
+    if quiet:
+        for address in _CHECKED_ADDRESSES.intersection(values):
+            v = values[address]
+            if address == "S" or v < 0 or (address in _WHOLE_ADDRESSES and v != int(v)):
+                quiet = False
+                break
+    compiled = CompiledLine(K_NC, nc=nc, node=nc, ends_program=ends_program)
+    compiled.constant = ConstantWords(
+        values,  # type: ignore[arg-type]  # of floats only
+        g_codes,
+        m_codes,
+        nc,
+        None,
+        motion_words,
+        not AXES.isdisjoint(values),
+        quiet,
+    )
+    return compiled
+
+
+# What a plain block's G and M codes (shared by the parser) compile to: the G codes at their
+# least increment, the M codes, whether the G codes need no rounding, whether M02/M30 ends.
+_codes_compiled: dict[
+    tuple[tuple[str, float], ...], tuple[tuple[float, ...], tuple[float, ...], bool, bool]
+] = {}
+
+
+def _compile_codes(
+    codes: tuple[tuple[str, float], ...],
+) -> tuple[tuple[float, ...], tuple[float, ...], bool, bool]:
+    g_codes: list[float] = []
+    m_codes: list[float] = []
+    quiet = True
+    for address, v in codes:
+        if address == "G":
+            code = round(v, 1)  # v itself when written with at most one decimal
+            g_codes.append(code)
+            quiet = quiet and code == v
+        else:
+            m_codes.append(v)
+    found = (
+        _shared_codes(g_codes) if g_codes else (),
+        _shared_codes(m_codes) if m_codes else (),
+        quiet,
+        2.0 in m_codes or 30.0 in m_codes,
+    )
+    if len(_codes_compiled) >= MAX_SHARED_CODES:
+        _codes_compiled.clear()
+    _codes_compiled[codes] = found
+    return found
+
+
+def _compile_words(nc: NcStatement, words: list[tuple[str, str, float]]) -> CompiledLine:
+    """``_compile_plain_nc`` of the words' addresses, number texts and values, in order."""
     values: dict[str, Value] = {}
     g_codes: list[float] = []
     m_codes: list[float] = []
     motion_words: dict[str, float] = {}
     quiet = True
     rounded_any = False
-    for w in nc.words:
-        num = w.value
-        if type(num) is not Num or type(num.value) is not float:
-            return None
-        v = num.value
-        address = w.address
-        text = num.text
+    for address, text, v in words:
         point = text.find(".")
         # Digits after the point: a number read from at most n decimals is its own round(v, n)
         # (float() and round() both give the double nearest the decimal), so most words need
@@ -1806,7 +1908,13 @@ def compile_line(parsed: ParsedLine) -> CompiledLine:
 compiled: PerLine[CompiledLine] = PerLine(compile_line)
 
 
+_PROGRAM_ENDS = (("M", 2.0), ("M", 30.0))
+
+
 def _ends_program_line(parsed: ParsedLine) -> bool | None:
+    statement = parsed.statement
+    if type(statement) is PlainNc:  # its M codes say it, without the compiled line
+        return any(code in statement.codes for code in _PROGRAM_ENDS) or None
     return compiled(parsed).ends_program or None
 
 

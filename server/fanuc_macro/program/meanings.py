@@ -15,7 +15,6 @@ from dataclasses import dataclass
 from functools import lru_cache
 
 from ..line_maps import LineMap
-from ..per_line import PerLine
 from ..syntax.tree import Assign, Document, ParsedLine
 from .index import ProgramIndex
 
@@ -168,12 +167,8 @@ def _assigned_role(parsed: ParsedLine) -> tuple[int, str] | None:
     return None if role is None else (int(statement.target.number), role)
 
 
-# (variable, role) that an assignment's comment gives, per distinct line.
-assigned_role: PerLine[tuple[int, str] | None] = PerLine(_assigned_role)
-
-
 def _role_line(parsed: ParsedLine) -> tuple[int, str] | None:
-    return assigned_role(parsed) if parsed.comments else None  # no comment, no role
+    return _assigned_role(parsed) if parsed.comments else None  # no comment, no role
 
 
 # The assignments whose comment names a role, looked at again only where the document changed.

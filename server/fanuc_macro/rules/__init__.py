@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from ..syntax.tree import ParsedLine
 from . import (
     addresses,
     angles,
@@ -30,6 +31,15 @@ LINE_CHECKS: tuple[LineCheck, ...] = (
     statements.check_line,
 )
 
+
+def plain_line_quiet(parsed: ParsedLine) -> bool:
+    """Whether no line rule finds anything in a line whose statement is a ``PlainNc`` (words of
+    numbers), from its flags and its G and M codes: nothing the reader notes (lower case, a
+    tape mark, a note), no other control's code; the expressions and statements rules find
+    nothing in numbers. ``tests/test_plain_blocks.py`` checks it against ``LINE_CHECKS``."""
+    return reading.nothing_to_read(parsed) and dialect.no_foreign_code(parsed)
+
+
 ALL_CHECKS: tuple[Check, ...] = (
     reading.check,
     jumps.check,
@@ -49,4 +59,12 @@ ALL_CHECKS: tuple[Check, ...] = (
     cycles.check,
 )
 
-__all__ = ["ALL_CHECKS", "LINE_CHECKS", "Check", "LineCheck", "LineFinding", "RuleContext"]
+__all__ = [
+    "ALL_CHECKS",
+    "LINE_CHECKS",
+    "Check",
+    "LineCheck",
+    "LineFinding",
+    "RuleContext",
+    "plain_line_quiet",
+]

@@ -17,6 +17,7 @@ from ..syntax.tree import (
     NcStatement,
     Num,
     ParsedLine,
+    PlainNc,
     Unary,
     Var,
     While,
@@ -94,11 +95,21 @@ parameters 6050-6059) is reported all the same: that setting is not in the progr
 
 def check_line(parsed: ParsedLine) -> Iterable[LineFinding]:
     whole = parsed.statement
-    if type(whole) is NcStatement and parsed.problem is None:
+    if type(whole) is PlainNc and no_foreign_code(parsed):
+        return []
+    if isinstance(whole, NcStatement) and parsed.problem is None:
         found = _plain_nc(parsed, whole)  # most blocks: their words, without the walks
         if found is not None:
             return found
     return list(_check_line(parsed))
+
+
+def no_foreign_code(parsed: ParsedLine) -> bool:
+    """Of a line of words of numbers (``PlainNc``): whether it has no G or M code of another
+    control's, the only thing this family finds in such a line."""
+    statement = parsed.statement
+    assert type(statement) is PlainNc
+    return all(value not in _FOREIGN_CODES for _, value in statement.codes)
 
 
 def _plain_nc(parsed: ParsedLine, statement: NcStatement) -> list[LineFinding] | None:

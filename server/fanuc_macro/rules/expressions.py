@@ -23,6 +23,7 @@ from ..syntax.tree import (
     NcStatement,
     Num,
     ParsedLine,
+    PlainNc,
     Statement,
     Unary,
     Var,
@@ -212,6 +213,8 @@ assignment (`#3=#1 AND #2`), where no comparison binds to them.
 
 def check_line(parsed: ParsedLine) -> Iterable[LineFinding]:
     whole = parsed.statement
+    if type(whole) is PlainNc:
+        return []  # numbers only: no variable, no bracket
     if type(whole) is NcStatement:
         plain = plain_variables(whole)
         if plain is not None:  # no brackets, no condition, no target: only the numbers

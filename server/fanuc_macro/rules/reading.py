@@ -543,14 +543,19 @@ def _no_program_number(ctx: RuleContext) -> Iterator[Diagnostic]:
             return
 
 
-def check_line(parsed: ParsedLine) -> Iterable[LineFinding]:
-    if (
+def nothing_to_read(parsed: ParsedLine) -> bool:
+    """Whether this family finds nothing in the line: most blocks."""
+    return (
         parsed.problem is None
         and not parsed.notes
         and not parsed.has_lowercase
         and not parsed.tape_mark
-    ):
-        return ()  # most blocks
+    )
+
+
+def check_line(parsed: ParsedLine) -> Iterable[LineFinding]:
+    if nothing_to_read(parsed):
+        return ()
     return list(_check_line(parsed))
 
 

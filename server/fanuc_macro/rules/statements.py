@@ -32,6 +32,7 @@ from ..syntax.tree import (
     NcStatement,
     Num,
     ParsedLine,
+    PlainNc,
     Statement,
     Var,
     Word,
@@ -432,10 +433,21 @@ def _line_ends(parsed: ParsedLine) -> _LineEnds:
 
 
 _ends_of: PerLine[_LineEnds] = PerLine(_line_ends)
+_ENDS_AND_G67 = frozenset({("M", 2.0), ("M", 30.0), ("M", 99.0), ("G", 67.0)})
 
 
 def _end_or_g67(parsed: ParsedLine) -> _LineEnds | None:
-    found = _ends_of(parsed)
+    statement = parsed.statement
+    if type(statement) is PlainNc:
+        # Its G and M codes say it at once, without a cache entry for every line.
+        for code in statement.codes:
+            if code in _ENDS_AND_G67:
+                break
+        else:
+            return None
+    # Not through the per-line cache: the map keeps what it finds and looks again only at the
+    # lines that changed (the cache serves the programs' last blocks, below).
+    found = _line_ends(parsed)
     return found if found.ends or found.cancels_modal_call else None
 
 

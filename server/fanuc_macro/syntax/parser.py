@@ -38,6 +38,7 @@ from .lines import (
 )
 from .marks import CALL_CODES, INDEXED_STATEMENTS, mentions_call
 from .tree import (
+    _PLAIN_WORDS_OF,
     SHARED_COLUMNS,
     SHARED_SPANS,
     Assign,
@@ -63,6 +64,7 @@ from .tree import (
     NcStatement,
     Num,
     ParsedLine,
+    PlainNc,
     Print,
     ProgramStart,
     Span,
@@ -75,6 +77,7 @@ from .tree import (
     quick_line,
     quick_nc,
     quick_num,
+    quick_plain,
     quick_word,
     shared_span,
 )
@@ -367,6 +370,78 @@ def _fast_value(text: str, start: int) -> Expr:
     return Num(_to_float(compact), compact, shared_span(start, end))
 
 
+# A block of plain words as ``PlainNc`` keeps them: numbers written right after their letter,
+# of at most MAX_DIGITS characters (a longer one goes the way that reports a number too long to
+# read). The repeats are possessive: a line that fails at its end is not scanned again.
+_PLAIN_BLOCK = re.compile(
+    r"(?:[A-MP-Za-mp-z][-+]?(?=[.0-9]{1,12}+(?![.0-9]))"
+    r"(?:[0-9]++(?:\.[0-9]*+)?|\.[0-9]++)[ \t]*+)++"
+)
+# The G and M words of a plain block (its code is known to be words of numbers).
+_PLAIN_CODE_WORDS = re.compile(r"([GMgm])([-+]?[.0-9]+)")
+# The G and M codes of plain blocks by their words' text, shared (a program repeats a few
+# combinations); _CALLS for the words of a call or a return.
+_PLAIN_CODES: dict[tuple[tuple[str, str], ...], tuple[tuple[str, float], ...]] = {}
+_PLAIN_CODES_LIMIT = 10_000
+_CALLS: tuple[tuple[str, float], ...] = (("M", 98.0),)
+
+
+def _plain_codes(written: tuple[tuple[str, str], ...]) -> tuple[tuple[str, float], ...]:
+    codes = tuple([(_ADDRESSES[letter], float(number)) for letter, number in written])
+    if not CALL_CODES.isdisjoint(codes):
+        codes = _CALLS
+    if len(_PLAIN_CODES) >= _PLAIN_CODES_LIMIT:
+        _PLAIN_CODES.clear()
+    _PLAIN_CODES[written] = codes
+    return codes
+
+
+def _plain_block(
+    code: str,
+) -> tuple[int | None, int | None, Span | None, PlainNc] | None:
+    """A block of words of numbers written without spaces, and no call or return, as a
+    ``PlainNc`` (its nodes built on demand); None for any other block, which ``_fast_parse``
+    or the grammar reads."""
+    # A block that begins with its first word has no head to read (most blocks).
+    head = None if code[:1] not in _HEAD_STARTS else _FAST_HEAD.match(code)
+    pos = 0 if head is None else head.end()
+    if _PLAIN_BLOCK.fullmatch(code, pos) is None:
+        return None
+    written = tuple(_PLAIN_CODE_WORDS.findall(code, pos))
+    codes = _PLAIN_CODES.get(written)
+    if codes is None:
+        codes = _plain_codes(written)
+    if codes is _CALLS:
+        return None  # the index looks at its words: built in full
+    skip: int | None = None
+    seq: int | None = None
+    seq_span: Span | None = None
+    if head is not None and head.lastindex is not None:
+        slash, level, n_letter, n_value = head.group(1, 2, 3, 4)
+        if (level is not None and len(level) > MAX_DIGITS) or (
+            n_value is not None and len(n_value) > MAX_DIGITS
+        ):
+            return None
+        skip = None if slash is None else int(float(level)) if level else 0
+        if n_letter is not None:
+            seq = int(float(n_value))
+            seq_span = shared_span(head.start(3), head.end(4))
+    return skip, seq, seq_span, quick_plain(code, shared_span(pos, len(code.rstrip())), codes)
+
+
+_HEAD_STARTS = frozenset("Nn/ \t")  # what a block's head (block skip, N number) begins with
+
+
+def _plain_words(code: str) -> tuple[Word, ...]:
+    """The words of a ``PlainNc``'s code, as the fast parse builds them."""
+    found = _fast_parse(code)
+    assert found is not None and found[3] is not None  # a plain block is a fast one
+    return found[3].words
+
+
+_PLAIN_WORDS_OF.append(_plain_words)
+
+
 def fast_parse(code: str) -> tuple[int | None, int | None, Span | None, NcStatement | None] | None:
     """Blocks of NC words with plain values, the bulk of real programs, without Lark.
 
@@ -638,11 +713,46 @@ class BlockParser:
         self._sweep_at = max(self._cache_size, len(cache) + batch)
 
     def _parse_uncached(self, text: str) -> ParsedLine:
+        if (
+            self.use_fast_path
+            and "(" not in text
+            and ";" not in text
+            and "%" not in text
+            and ")" not in text
+        ):
+            # No comment, end of block or tape mark: the code is the text. A block of plain
+            # words without a call is indexed for its N number only.
+            plain = _plain_block(text)
+            if plain is not None:
+                plain_skip, plain_seq, plain_seq_span, plain_nc = plain
+                return quick_line(
+                    text, False, plain_skip, plain_seq, plain_seq_span, plain_nc, (), None, (),
+                    text != text.upper(), False, plain_seq is not None, None,
+                )  # fmt: skip
         cut = cut_comments(text)
         code = cut.code
         if not code.strip():
             return _line(text, cut, None, None, None, None, None, False)
         has_lower = code != code.upper()
+        plain = _plain_block(code) if self.use_fast_path else None
+        if plain is not None:
+            # A block of plain words without a call: indexed for its N number or a tape mark.
+            plain_skip, plain_seq, plain_seq_span, plain_nc = plain
+            return quick_line(
+                text,
+                cut.tape_mark,
+                plain_skip,
+                plain_seq,
+                plain_seq_span,
+                plain_nc,
+                cut.comments,
+                None,
+                cut.notes,
+                has_lower,
+                False,
+                plain_seq is not None or cut.tape_mark,
+                None,
+            )
         try:
             fast = _fast_parse(code) if self.use_fast_path else None
         except ValueError as err:  # a number too long to be one

@@ -8,8 +8,9 @@ The node's original text is ``block.text[node.span.start:node.span.end]`` (:meth
 
 from __future__ import annotations
 
+import re
 from collections.abc import Callable
-from dataclasses import dataclass, field, fields
+from dataclasses import FrozenInstanceError, dataclass, field, fields
 from typing import NamedTuple
 
 
@@ -147,6 +148,79 @@ class NcStatement:
             if word.address == address:
                 return word
         return None
+
+
+# What builds a plain block's words from its code: set by the parser, which owns the reading.
+_PLAIN_WORDS_OF: list[Callable[[str], tuple[Word, ...]]] = []
+# (letter, number) of each word of a plain block's code (letters as written).
+_PLAIN_PAIRS = re.compile(r"([A-Za-z])([-+]?[.0-9]+)")
+
+
+class PlainNc(NcStatement):
+    """A block of NC words whose values are numbers written without spaces (``G01 X1.5 Y-2.``,
+    nearly every block of CAM output), kept as the line's code: its ``Word`` and ``Num``
+    nodes are built from the text when first asked for, and equal the nodes the parse of the
+    words gives. What runs or checks every line (the compiler, the line rules) reads ``pairs``
+    and ``codes`` instead, so that a big program holds no nodes for these blocks.
+
+    ``code`` is the line with its comments cut out (columns kept); the words are
+    ``code[span.start:span.end]``. ``codes`` are the G and M words' addresses (upper case) and
+    values, in the block's order. The parser makes it for blocks without a call (M98, G65...)."""
+
+    __slots__ = ("code", "codes")
+    code: str
+    codes: tuple[tuple[str, float], ...]
+
+    def __init__(self, code: str, span: Span, codes: tuple[tuple[str, float], ...] = ()) -> None:
+        _NC_SPAN(self, span)
+        _PLAIN_CODE(self, code)
+        _PLAIN_CODES(self, codes)
+
+    @property
+    def words(self) -> tuple[Word, ...]:
+        try:
+            found: tuple[Word, ...] = _NC_WORDS_GET(self, PlainNc)
+        except AttributeError:
+            found = _PLAIN_WORDS_OF[0](self.code)
+            _NC_WORDS(self, found)
+        return found
+
+    def pairs(self) -> list[tuple[str, str]]:
+        """Each word's letter (as written) and number text, in order, read from the code."""
+        span = self.span
+        return _PLAIN_PAIRS.findall(self.code, span.start, span.end)
+
+    def text(self) -> str:
+        """The words as written, from the first letter to the last digit."""
+        span = self.span
+        return self.code[span.start : span.end]
+
+    def built(self) -> bool:
+        """Whether the words were asked for (the tests count the blocks that built them)."""
+        try:
+            _NC_WORDS_GET(self, PlainNc)
+        except AttributeError:
+            return False
+        return True
+
+    def __eq__(self, other: object) -> bool:
+        if type(other) is PlainNc:
+            span = self.span
+            return span == other.span and (
+                self.code[span.start : span.end] == other.code[span.start : span.end]
+            )
+        if isinstance(other, NcStatement):
+            return self.span == other.span and self.words == other.words
+        return NotImplemented
+
+    def __hash__(self) -> int:
+        return hash((self.words, self.span))  # NcStatement's, to which it is equal
+
+    def __setattr__(self, name: str, value: object) -> None:
+        raise FrozenInstanceError(f"cannot assign to field {name!r}")
+
+    def __delattr__(self, name: str) -> None:
+        raise FrozenInstanceError(f"cannot delete field {name!r}")
 
 
 @dataclass(frozen=True, slots=True)
@@ -350,6 +424,8 @@ _WORD_ADDRESS, _WORD_VALUE, _WORD_SPAN, _WORD_LOWERCASE = _setters(
     Word, "address", "value", "span", "address_lowercase"
 )
 _NC_WORDS, _NC_SPAN = _setters(NcStatement, "words", "span")
+_NC_WORDS_GET: Callable[[object, type], tuple[Word, ...]] = vars(NcStatement)["words"].__get__
+_PLAIN_CODE, _PLAIN_CODES = _setters(PlainNc, "code", "codes")
 (
     _L_TEXT,
     _L_TAPE_MARK,
@@ -388,6 +464,14 @@ def quick_nc(words: tuple[Word, ...], span: Span) -> NcStatement:
     node = NcStatement.__new__(NcStatement)
     _NC_WORDS(node, words)
     _NC_SPAN(node, span)
+    return node
+
+
+def quick_plain(code: str, span: Span, codes: tuple[tuple[str, float], ...]) -> PlainNc:
+    node = PlainNc.__new__(PlainNc)
+    _NC_SPAN(node, span)
+    _PLAIN_CODE(node, code)
+    _PLAIN_CODES(node, codes)
     return node
 
 

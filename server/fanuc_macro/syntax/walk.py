@@ -22,6 +22,7 @@ from .tree import (
     Mixed,
     NcStatement,
     Num,
+    PlainNc,
     Statement,
     Unary,
     Var,
@@ -114,6 +115,8 @@ def plain_variables(statement: NcStatement) -> list[Var] | None:
 def variables(statement: Statement) -> Iterator[Var]:
     """The variables of a statement's expressions, in source order (parents before the
     variables of their indexes)."""
+    if type(statement) is PlainNc:
+        return iter(())  # numbers only
     if type(statement) is NcStatement:
         plain = plain_variables(statement)
         if plain is not None:

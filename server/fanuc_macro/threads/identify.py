@@ -258,7 +258,9 @@ class Thread:
 def _thread_line(parsed: ParsedLine) -> LineThreadWords | None:
     if not parsed.comments:
         return None
-    words = thread_words(parsed)
+    # Not through the per-line cache: the map keeps what it finds and looks at a line again
+    # only when it changed, so an entry per commented line would only hold memory.
+    words = _line_words(parsed)
     if words.designations or words.other_forms or words.starts is not None:
         return words
     return None
