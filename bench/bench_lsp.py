@@ -189,9 +189,13 @@ async def cancellation(pythonpath: str, blocks: int, debounce_ms: int, after: fl
     await client.stop()
 
 
-async def main(blocks: int, debounce_ms: int, keystrokes: int, hovers: int) -> None:
+async def main(
+    blocks: int, debounce_ms: int, keystrokes: int, hovers: int, read_whole: bool = False
+) -> None:
     bench = Bench()
     client = bench.client
+    # Read whole: the limits raised, so that a document past maxBlocks is analysed entire.
+    limits = {"maxBlocks": 10 * blocks, "maxFileSize": 100 * blocks} if read_whole else {}
     env = {**os.environ, "PYTHONPATH": str(ROOT / "server")}
     server = os.environ.get("FANUC_MACRO_BENCH_SERVER", "-m fanuc_macro.lsp.server").split()
     await client.start_io(sys.executable, *server, env=env)
@@ -203,7 +207,7 @@ async def main(blocks: int, debounce_ms: int, keystrokes: int, hovers: int) -> N
             capabilities=types.ClientCapabilities(),
             root_uri=SEEDS.as_uri(),
             workspace_folders=[types.WorkspaceFolder(uri=SEEDS.as_uri(), name="seeds")],
-            initialization_options={"analysis": {"debounceMs": debounce_ms}},
+            initialization_options={"analysis": {"debounceMs": debounce_ms, **limits}},
         )
     )
     client.initialized(types.InitializedParams())
@@ -339,6 +343,9 @@ async def main(blocks: int, debounce_ms: int, keystrokes: int, hovers: int) -> N
 if __name__ == "__main__":
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--blocks", type=int, default=20_000)
+    parser.add_argument(
+        "--read-whole", action="store_true", help="raise maxBlocks and maxFileSize to the document"
+    )
     parser.add_argument("--debounce", type=int, default=250, help="analysis.debounceMs")
     parser.add_argument("--keystrokes", type=int, default=10)
     parser.add_argument("--hovers", type=int, default=50)
@@ -352,7 +359,7 @@ if __name__ == "__main__":
     )
     args = parser.parse_args()
     if not args.only_cancel:
-        asyncio.run(main(args.blocks, args.debounce, args.keystrokes, args.hovers))
+        asyncio.run(main(args.blocks, args.debounce, args.keystrokes, args.hovers, args.read_whole))
     asyncio.run(
         cancellation(args.server_pythonpath, args.cancel_blocks, args.debounce, args.cancel_after)
     )
