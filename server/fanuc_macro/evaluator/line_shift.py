@@ -13,6 +13,7 @@ from __future__ import annotations
 from array import array
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, replace
+from operator import attrgetter
 
 from ..syntax.tree import Document
 from .checkpoints import LevelState, MachineState, ModalState, ProgramShape, RunRecord
@@ -345,10 +346,14 @@ def _motion(m: Motion, shifts: dict[str, LineShift], maybe: MaybeRenumber) -> Mo
     line = maybe(m.uri, m.line)
     program_line = maybe(m.uri, m.program_line)
     start_line = maybe(m.start_uri, m.start_line)
-    out = object.__new__(Motion)
-    for name in _MOTION_FIELDS:
-        object.__setattr__(out, name, getattr(m, name))
-    out.line = m.line if line is None else line
-    out.program_line = m.program_line if program_line is None else program_line
-    out.start_line = start_line
-    return out
+    fields = list(_motion_fields(m))  # read in C, the record made by its constructor
+    fields[_LINE] = m.line if line is None else line
+    fields[_PROGRAM_LINE] = m.program_line if program_line is None else program_line
+    fields[_START_LINE] = start_line
+    return Motion(*fields)
+
+
+_motion_fields = attrgetter(*_MOTION_FIELDS)
+_LINE = _MOTION_FIELDS.index("line")
+_PROGRAM_LINE = _MOTION_FIELDS.index("program_line")
+_START_LINE = _MOTION_FIELDS.index("start_line")
