@@ -18,7 +18,13 @@ from lark.exceptions import UnexpectedCharacters, UnexpectedInput, UnexpectedTok
 from fanuc_macro.syntax import grammar_tables
 from fanuc_macro.syntax.lalr_driver import TableParser, lalr_tables
 from fanuc_macro.syntax.lines import cut_comments, decode_bytes, split_lines
-from fanuc_macro.syntax.parser import BlockParser, _describe, _ToAst, grammar_sha256, grammar_text
+from fanuc_macro.syntax.parser import (
+    BlockParser,
+    _describe,
+    _ToAst,
+    grammar_lark,
+    grammar_sha256,
+)
 
 CORPUS = Path("/work/shared/corpus")
 
@@ -443,14 +449,7 @@ def _is_compiled(match: Any) -> bool:
 def test_the_shipped_tables_are_what_lark_builds_from_the_grammar() -> None:
     """grammar_tables.py must be rewritten (scripts/grammar_tables.py) when the grammar or the
     tables' format changes; Lark builds them afresh here, without its cache."""
-    fresh = Lark(
-        grammar_text(),
-        parser="lalr",
-        lexer="basic",
-        transformer=_ToAst(),
-        keep_all_tokens=True,
-        maybe_placeholders=False,
-    )
+    fresh = grammar_lark(cache=False)
     assert grammar_sha256() == grammar_tables.GRAMMAR_SHA256
     assert lalr_tables(fresh) == grammar_tables.TABLES
 

@@ -113,8 +113,10 @@ def grammar_sha256() -> str:
     return hashlib.sha256(text.encode("utf-8")).hexdigest()
 
 
-def grammar_lark() -> Lark:
-    """Lark's parser of the grammar, as the tables come from."""
+def grammar_lark(cache: bool = True) -> Lark:
+    """Lark's parser of the grammar, as the tables come from (``cache``: the grammar's tables
+    kept in the temp folder, which a start then need not build: the server starts 40 ms
+    sooner)."""
     return Lark(
         grammar_text(),
         parser="lalr",
@@ -122,8 +124,7 @@ def grammar_lark() -> Lark:
         transformer=_ToAst(),
         keep_all_tokens=True,
         maybe_placeholders=False,
-        # The grammar's tables, kept in the temp folder: the server starts 40 ms sooner.
-        cache=True,
+        cache=cache,
     )
 
 
