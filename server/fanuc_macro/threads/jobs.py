@@ -17,6 +17,7 @@ from bisect import bisect_left
 from collections import Counter
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field, fields
+from operator import attrgetter
 from typing import TypeVar
 
 from ..evaluator.facts import Motion, same_value
@@ -47,6 +48,11 @@ class ThreadJob:
     # worked out of the earlier job holds for this one when the replaced passes agree on
     # what it was worked out of (see remember). Kept until the next copy is made of this one.
     basis: tuple[ThreadJob, tuple[int, ...]] | None = field(default=None, compare=False, repr=False)
+    # Of the basis, once asked: the fields in which the replaced passes differ (a word by its
+    # letter), and the new pass for each old one, by id.
+    _inherited: tuple[frozenset[str], dict[int, Motion]] | None = field(
+        default=None, init=False, compare=False, repr=False
+    )
 
     def remember(self, key: object, compute: Callable[[], R], reads: Reads = None) -> R:
         """``compute()``, a function of the passes and of what ``key`` names, once per job.
@@ -60,18 +66,27 @@ class ThreadJob:
         if key in memo:
             return memo[key]  # type: ignore[return-value]
         basis = self.basis
-        if reads is not None and basis is not None:
-            old, changed = basis
-            if key in old.memo and all(
-                _agree(old.passes[n], self.passes[n], reads) for n in changed
-            ):
-                swapped = _swapped(
-                    old.memo[key], {id(old.passes[n]): self.passes[n] for n in changed}
-                )
+        if reads is not None and basis is not None and key in basis[0].memo:
+            differing, swaps = self._inheritance(basis)
+            if differing.isdisjoint(reads):
+                swapped = _swapped(basis[0].memo[key], swaps)
                 if swapped is not _UNSWAPPABLE:
                     memo[key] = swapped
                     return swapped  # type: ignore[return-value]
         found = memo[key] = compute()
+        return found
+
+    def _inheritance(
+        self, basis: tuple[ThreadJob, tuple[int, ...]]
+    ) -> tuple[frozenset[str], dict[int, Motion]]:
+        found = self._inherited
+        if found is None:
+            old, changed = basis
+            differing: set[str] = set()
+            for n in changed:
+                differing |= _differing(old.passes[n], self.passes[n])
+            swaps = {id(old.passes[n]): self.passes[n] for n in changed}
+            found = self._inherited = (frozenset(differing), swaps)
         return found
 
     @property
@@ -128,20 +143,23 @@ class ThreadJob:
 
 
 Reads = tuple[str, ...] | None
-WORDS = frozenset("ABCDEFGHIJKLMNOPQRSTUVWXYZ")  # a field of one letter: the motion's word
 _UNSWAPPABLE = object()
 
 
-def _agree(a: Motion, b: Motion, reads: tuple[str, ...]) -> bool:
+def _differing(a: Motion, b: Motion) -> set[str]:
+    """The fields in which two motions differ, a word by its letter (0.0 and -0.0 differ)."""
+    out: set[str] = set()
     if a is b:
-        return True
-    for name in reads:
-        if name in WORDS:
-            if not same_value(a.words.get(name), b.words.get(name)):
-                return False
-        elif not same_value(getattr(a, name), getattr(b, name)):
-            return False
-    return True
+        return out
+    for name, x, y in zip(_MOTION_FIELDS, _fields_of(a), _fields_of(b), strict=True):
+        if x is y:
+            continue
+        if name == "words":
+            assert isinstance(x, dict) and isinstance(y, dict)
+            out.update(k for k in x.keys() | y.keys() if not same_value(x.get(k), y.get(k)))
+        elif not same_value(x, y):
+            out.add(name)
+    return out
 
 
 _LEAVES = frozenset({Motion, float, int, str, bool, type(None)})
@@ -444,6 +462,7 @@ def _same_cut(new: Sequence[Motion], i: int, old: Sequence[Motion], j: int) -> b
 
 
 _MOTION_FIELDS = tuple(f.name for f in fields(Motion))
+_fields_of = attrgetter(*_MOTION_FIELDS)
 
 
 def same_motion(a: Motion, b: Motion) -> bool:
