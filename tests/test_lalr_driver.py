@@ -455,8 +455,7 @@ def test_the_shipped_tables_are_what_lark_builds_from_the_grammar() -> None:
 
 
 def test_the_tables_do_not_depend_on_the_hash_seed() -> None:
-    """Lark numbers its states in an order that changes with the hash seed; the tables'
-    walk from the start state does not."""
+    """The tables built under different hash seeds are the shipped ones."""
     script = (
         "from lark import Lark\n"
         "from fanuc_macro.syntax import grammar_tables\n"
@@ -464,20 +463,43 @@ def test_the_tables_do_not_depend_on_the_hash_seed() -> None:
         "from fanuc_macro.syntax.parser import _ToAst, grammar_text\n"
         "fresh = Lark(grammar_text(), parser='lalr', lexer='basic', transformer=_ToAst(),\n"
         "             keep_all_tokens=True, maybe_placeholders=False)\n"
-        "states = fresh.parser.parser.parser.parse_table.states\n"
-        "print(lalr_tables(fresh) == grammar_tables.TABLES, sorted(states[0]))\n"
+        "print(lalr_tables(fresh) == grammar_tables.TABLES)\n"
     )
-    seen = set()
     for seed in ("1", "2", "3"):
         env = {**os.environ, "PYTHONHASHSEED": seed}
         done = subprocess.run(
             [sys.executable, "-c", script], capture_output=True, text=True, env=env, timeout=120
         )
         assert done.returncode == 0, done.stderr
-        same, lark_state_0 = done.stdout.split(" ", 1)
-        assert same == "True"
-        seen.add(lark_state_0)
-    assert len(seen) > 1  # Lark's own numbering did change
+        assert done.stdout.strip() == "True"
+    # Whether Lark's own numbering changes with the seed depends on the machine (its item
+    # sets are hashed partly by address): the renumbering is checked deterministically below.
+
+
+def test_the_tables_do_not_depend_on_larks_state_numbers() -> None:
+    """The same parse table with its states numbered in the opposite order gives the same
+    tables: the numbering is the walk's, not Lark's."""
+    from lark.parsers.lalr_analysis import Shift
+
+    fresh = grammar_lark(cache=False)
+    table: Any = fresh.parser.parser.parser.parse_table
+    last = len(table.states) - 1
+    assert last > 0
+
+    def flipped(state: int) -> int:
+        return last - state
+
+    table.states = {
+        flipped(state): {
+            name: (action, flipped(arg) if action is Shift else arg)
+            for name, (action, arg) in row.items()
+        }
+        for state, row in table.states.items()
+    }
+    table.start_states = {name: flipped(s) for name, s in table.start_states.items()}
+    table.end_states = {name: flipped(s) for name, s in table.end_states.items()}
+    assert flipped(0) in table.states and table.start_states != {}
+    assert lalr_tables(fresh) == grammar_tables.TABLES
 
 
 def test_the_block_parser_runs_the_shipped_tables_and_lark_when_they_are_stale(
