@@ -11,6 +11,9 @@ that wall-clock times, which vary two- to threefold beside other jobs, cannot gi
 
 The interpreter runs with its bytecode cached, as in an installed package: a temporary
 ``PYTHONPYCACHEPREFIX`` keeps the compiled modules out of the source tree, one run warms it.
+The package's cache of generated class code (``code_cache.py``) is kept in a temporary
+directory too, warmed by the same run; the runs without it (``FANUC_MACRO_CODE_CACHE=0``,
+as a first start after an install or an upgrade) alternate with those with it.
 ``python -c pass`` is measured too: the interpreter's own start is part of every figure.
 """
 
@@ -32,11 +35,12 @@ ROOT = Path(__file__).resolve().parents[1]
 SMALL = ROOT / "tests" / "fixtures" / "seeds" / "o2_arc_thread_roughing.nc"
 
 
-def environment(tree: Path, cache: str) -> dict[str, str]:
+def environment(tree: Path, cache: str, code_cache: bool = True) -> dict[str, str]:
     env = dict(os.environ)
     env.pop("PYTHONDONTWRITEBYTECODE", None)
     env["PYTHONPYCACHEPREFIX"] = cache
     env["PYTHONPATH"] = str(tree / "server")
+    env["FANUC_MACRO_CODE_CACHE"] = str(Path(cache) / "fanuc-macro") if code_cache else "0"
     return env
 
 
@@ -148,30 +152,43 @@ def main() -> None:
     print(f"machine: {platform.processor() or platform.machine()}, {platform.python_version()}")
     with tempfile.TemporaryDirectory() as cache:
         env = environment(args.tree.resolve(), cache)
+        uncached = environment(args.tree.resolve(), cache, code_cache=False)
         check = [sys.executable, "-m", "fanuc_macro.cli", "check", str(SMALL)]
         timed(check, env)  # compiles the modules into the cache
         initialize_round_trip(env)
         if args.instructions:
             server = [sys.executable, "-m", "fanuc_macro.lsp.server"]
-            for what, command, stdin in (
-                ("python -c pass", [sys.executable, "-c", "pass"], b""),
-                (f"fanuc-macro check {SMALL.name}", check, b""),
-                ("language server: initialize, shutdown, exit", server, initialize_messages()),
+            for what, command, stdin, envs in (
+                ("python -c pass", [sys.executable, "-c", "pass"], b"", (env,)),
+                (f"fanuc-macro check {SMALL.name}", check, b"", (env, uncached)),
+                (
+                    "language server: initialize, shutdown, exit",
+                    server,
+                    initialize_messages(),
+                    (env, uncached),
+                ),
             ):
-                count = instructions(command, env, stdin)
-                print(f"{what}: {count / 1e6:,.0f} million instructions")
+                for run_env in envs:
+                    count = instructions(command, run_env, stdin)
+                    without = ", without the code cache" if run_env is uncached else ""
+                    print(f"{what}{without}: {count / 1e6:,.0f} million instructions")
             return
         runs = range(args.runs)
         CPU.clear()
         report("python -c pass", [timed([sys.executable, "-c", "pass"], env) for _ in runs], CPU)
-        CPU.clear()
-        report(f"fanuc-macro check {SMALL.name}", [timed(check, env) for _ in runs], CPU)
-        CPU.clear()
-        report(
-            "language server: start to initialize answered",
-            [initialize_round_trip(env) for _ in runs],
-            CPU,
-        )
+        for what, start in (
+            (f"fanuc-macro check {SMALL.name}", lambda env: timed(check, env)),
+            ("language server: start to initialize answered", initialize_round_trip),
+        ):
+            CPU.clear()
+            times: dict[bool, list[float]] = {True: [], False: []}
+            cpu: dict[bool, list[float]] = {True: [], False: []}
+            for _ in runs:  # alternated, so that a change of load meets both alike
+                for cached in (True, False):
+                    times[cached].append(start(env if cached else uncached))
+                    cpu[cached].append(CPU[-1])
+            report(what, times[True], cpu[True])
+            report(f"{what}, without the code cache", times[False], cpu[False])
 
 
 if __name__ == "__main__":

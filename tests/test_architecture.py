@@ -23,11 +23,21 @@ RULES = THREADS | {"rules"}
 ANALYSIS = RULES | {"analysis"}
 WORKSPACE = ANALYSIS | {"workspace", "rules_doc"}
 IDE = WORKSPACE | {"ide"}
-FRONT_END = {"ide", "workspace", "analysis", "config", "diagnostics", "cancel", "__version__"}
+FRONT_END = {
+    "ide",
+    "workspace",
+    "analysis",
+    "config",
+    "diagnostics",
+    "cancel",
+    "code_cache",
+    "__version__",
+}
 
 # What each module or folder may import from the package (ARCHITECTURE.md, "Code map").
 ALLOWED: dict[str, set[str]] = {
     "cancel": set(),
+    "code_cache": set(),
     "diagnostics": set(),
     "lazy_regex": set(),
     "syntax": {"cancel", "diagnostics", "lazy_regex", "line_maps", "per_line"},

@@ -2,6 +2,11 @@
 
 from __future__ import annotations
 
+from ..code_cache import install_code_cache, save_code_cache
+
+# Before the imports below build the package's dataclasses: from cached code (code_cache.py).
+install_code_cache("cli")
+
 import argparse
 import logging
 import sys
@@ -372,6 +377,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         sys.stderr.write(f"fanuc-macro: {message}\n")
         return EXIT_ERRORS
     finally:  # main() may run again in the same process (tests do)
+        save_code_cache()
         for handler in handlers:
             package.removeHandler(handler)
             handler.close()

@@ -30,6 +30,7 @@ from lsprotocol import types
 from pygls.uris import from_fs_path, to_fs_path
 
 from ..cancel import RUNNING, Cancelled, CancelToken, Stage
+from ..code_cache import save_code_cache
 from ..config import Config
 from ..diagnostics import REPORT_INTERNAL_ERROR
 from .convert import Codec, ConvertedDiagnostics, Lines, lsp_lines
@@ -193,6 +194,7 @@ class Engine:
             from . import commands, features  # noqa: F401  (imported for their own imports)
 
             self._ws.uris()
+            save_code_cache()  # the code of the classes built so far, for the next start
 
         self._executor.submit(job)
 

@@ -21,6 +21,7 @@ from pygls.protocol import LanguageServerProtocol
 from pygls.protocol.language_server import lsp_method
 
 from .. import __version__
+from ..code_cache import save_code_cache
 from ..diagnostics import REPORT_INTERNAL_ERROR
 from .client import CompletionSupport
 from .commands import THREAD_MODULE, TRACE, run_thread_module, run_trace
@@ -359,6 +360,7 @@ def create_server() -> FanucMacroLanguageServer:
     @server.feature(types.SHUTDOWN)
     def shutdown(ls: FanucMacroLanguageServer, params: None) -> None:
         engine.shutdown()
+        save_code_cache()  # with the converter hooks the messages since the start needed
 
     # ---- documents -------------------------------------------------------------------------
     @server.feature(types.TEXT_DOCUMENT_DID_OPEN)

@@ -1,0 +1,218 @@
+"""A cache of the code that class builders generate, kept between runs as Python keeps .pyc files.
+
+``dataclasses``, ``attrs`` and ``cattrs`` write the source of each class's ``__init__``,
+``__eq__``, ``__repr__`` and converter hooks at run time and compile it: importing
+``lsprotocol.types`` (about 570 attrs classes) spends about half of its 0.26-0.31 s in
+``compile``, and the package's own dataclasses a further 30-40 ms of a ``check``. Compiling the
+same source gives the same code, so the entry points (the command line and the language server)
+install this cache first: it shadows ``compile`` (``exec`` in ``dataclasses``) in those
+modules' globals with a function that looks the source up first, and keeps the code objects it
+used in a ``marshal`` file per kind of process and per Python version, under the user's cache
+directory.
+
+What the cached code does is what the compiled code does: the key is the exact source, the
+file name, the mode and the ``__future__`` flags the builder's module compiles with, and a
+file written by another Python version is not read (its name carries the interpreter's magic
+number, as .pyc files do). A missing, unreadable or corrupt file only means compiling again.
+``FANUC_MACRO_CODE_CACHE=0`` turns it off; another value names the directory to keep it in.
+"""
+
+from __future__ import annotations
+import __future__
+
+import builtins
+import importlib
+import logging
+import marshal
+import os
+import sys
+from collections.abc import Callable
+from importlib.util import MAGIC_NUMBER
+from pathlib import Path
+from types import CodeType, ModuleType
+from typing import Any
+
+log = logging.getLogger(__name__)
+
+ENVIRONMENT = "FANUC_MACRO_CODE_CACHE"
+
+# The modules that build classes for each kind of process, and the name of the builtin each
+# compiles through. The command line builds only dataclasses; the language server also builds
+# lsprotocol's attrs classes and cattrs' hooks for the messages it receives.
+BUILDERS: dict[str, tuple[tuple[str, str], ...]] = {
+    "cli": (("dataclasses", "exec"),),
+    "server": (
+        ("dataclasses", "exec"),
+        ("attr._make", "compile"),
+        ("cattrs.gen", "compile"),
+        ("cattrs.gen.typeddicts", "compile"),
+    ),
+}
+
+# A file holding more entries than this is not read: it was written by a process gone wrong.
+MAX_ENTRIES = 50_000
+
+# A few classes give a new source at every start (attrs' frozen classes hash a salt that
+# depends on the hash seed into theirs, e.g. cattrs' AttributeOverride): up to this many
+# sources compiled again under names the file holds do not make it be written again.
+CHANGING_SOURCES = 8
+
+Key = tuple[str, str, str, int]
+
+
+class CodeCache:
+    """The code objects of one kind of process: those read from its file, and those it used."""
+
+    def __init__(self, path: Path | None, known: dict[Key, CodeType]) -> None:
+        self.path = path
+        self.known = known
+        self.known_names = {key[1] for key in known}
+        self.used: dict[Key, CodeType] = {}
+        self.compiled = 0  # sources not found in the file
+        self.compiled_unnamed = 0  # of those, the ones under a name the file does not hold
+        self.saved_at = (0, 0)  # the two counts when the file was last written
+
+    def code(self, source: str, filename: str, mode: str, flags: int) -> CodeType:
+        key = (source, filename, mode, flags)
+        code = self.used.get(key)
+        if code is None:
+            code = self.known.get(key)
+            if type(code) is not CodeType:
+                code = builtins.compile(source, filename, mode, flags, dont_inherit=True)
+                self.compiled += 1
+                self.compiled_unnamed += filename not in self.known_names
+            self.used[key] = code
+        return code
+
+    def worth_saving(self) -> bool:
+        compiled, unnamed = self.saved_at
+        return self.compiled_unnamed > unnamed or self.compiled - compiled > CHANGING_SOURCES
+
+    def save(self) -> bool:
+        """Writes the code this process used, if it compiled what the file did not hold; what
+        it did not use is left out, so code of upgraded packages does not pile up."""
+        if self.path is None or not self.worth_saving():
+            return False
+        temporary = self.path.with_name(f"{self.path.name}.{os.getpid()}.tmp")
+        try:
+            self.path.parent.mkdir(parents=True, exist_ok=True)
+            # dict() copies in one C call, while another thread may be building a class
+            temporary.write_bytes(marshal.dumps(dict(self.used)))
+            os.replace(temporary, self.path)  # a reader sees the old file or the new, whole
+        except OSError as err:
+            log.debug("code cache not written to %s: %s", self.path, err)
+            temporary.unlink(missing_ok=True)
+            return False
+        self.saved_at = (self.compiled, self.compiled_unnamed)
+        return True
+
+
+_installed: CodeCache | None = None
+
+
+def cache_directory() -> Path | None:
+    """Where the files are kept: ``FANUC_MACRO_CODE_CACHE`` if it names a directory, else the
+    user's cache directory; None when the cache is turned off."""
+    chosen = os.environ.get(ENVIRONMENT, "")
+    if chosen in ("0", "off", "false", "no"):
+        return None
+    if chosen:
+        return Path(chosen)
+    if sys.platform == "win32":
+        base = os.environ.get("LOCALAPPDATA") or str(Path.home() / "AppData" / "Local")
+    elif sys.platform == "darwin":
+        base = str(Path.home() / "Library" / "Caches")
+    else:
+        base = os.environ.get("XDG_CACHE_HOME") or str(Path.home() / ".cache")
+    return Path(base) / "fanuc-macro"
+
+
+def cache_file(directory: Path, kind: str) -> Path:
+    optimized = f"-O{sys.flags.optimize}" if sys.flags.optimize else ""
+    tag = sys.implementation.cache_tag or sys.implementation.name
+    return directory / f"code-{kind}-{tag}-{MAGIC_NUMBER.hex()}{optimized}.marshal"
+
+
+def _read(path: Path) -> dict[Key, CodeType]:
+    try:
+        # loads() of the bytes: load() of the file reads it in thousands of small calls
+        known = marshal.loads(path.read_bytes())
+    except FileNotFoundError:
+        return {}
+    except (OSError, EOFError, ValueError, TypeError) as err:
+        log.debug("code cache %s not read: %s", path, err)
+        return {}
+    if not isinstance(known, dict) or len(known) > MAX_ENTRIES:
+        return {}
+    return known
+
+
+def _future_flags(module: ModuleType) -> int:
+    """The ``__future__`` flags a ``compile`` called in ``module`` would inherit."""
+    flags = 0
+    for name in __future__.all_feature_names:
+        feature: Any = getattr(__future__, name)
+        flag: int = feature.compiler_flag
+        if module.__dict__.get(name) is feature:
+            flags |= flag
+    return flags
+
+
+def _compile_through(cache: CodeCache, flags: int) -> Callable[..., Any]:
+    def compile(  # shadows the builtin in the builder's module
+        source: Any,
+        filename: Any,
+        mode: str,
+        extra_flags: int = 0,
+        dont_inherit: bool = False,
+        optimize: int = -1,
+    ) -> Any:
+        if type(source) is str and type(filename) is str and not extra_flags and optimize == -1:
+            return cache.code(source, filename, mode, 0 if dont_inherit else flags)
+        inherited = 0 if dont_inherit else flags
+        return builtins.compile(source, filename, mode, extra_flags | inherited, True, optimize)
+
+    return compile
+
+
+def _exec_through(cache: CodeCache, flags: int) -> Callable[..., Any]:
+    def exec(  # shadows the builtin in the builder's module
+        source: Any, globals: Any = None, locals: Any = None, /, **options: Any
+    ) -> None:
+        if type(source) is str:
+            source = cache.code(source, "<string>", "exec", flags)
+        builtins.exec(source, globals, locals, **options)
+
+    return exec
+
+
+def install_code_cache(kind: str) -> CodeCache | None:
+    """Installs the cache for a kind of process (a key of :data:`BUILDERS`) once; later calls
+    return the installed one."""
+    global _installed
+    if _installed is not None:
+        return _installed
+    directory = cache_directory()
+    if directory is None:
+        return None
+    path = cache_file(directory, kind)
+    cache = CodeCache(path, _read(path))
+    makers = {"compile": _compile_through, "exec": _exec_through}
+    for module_name, builtin in BUILDERS[kind]:
+        try:
+            module = importlib.import_module(module_name)
+        except ImportError:
+            continue
+        if module.__dict__.get(builtin, getattr(builtins, builtin)) is not getattr(
+            builtins, builtin
+        ):
+            continue  # the module has a compile of its own: leave it alone
+        setattr(module, builtin, makers[builtin](cache, _future_flags(module)))
+    _installed = cache
+    return cache
+
+
+def save_code_cache() -> None:
+    """Writes the installed cache if this process compiled what its file lacked."""
+    if _installed is not None:
+        _installed.save()
