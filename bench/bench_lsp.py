@@ -233,7 +233,8 @@ async def main(
     )
     first = await bench.wait_version(uri, version)
     print(f"document: {len(lines) - 1} lines; open -> first diagnostics: {ms(first - t0)}")
-    print(f"server RSS after open: {rss_kib(server.pid)}")
+    await asyncio.sleep(1.0)  # idle, as between keystrokes: the server has tidied up
+    print(f"server RSS after open (1 s idle): {rss_kib(server.pid)}")
 
     async def keystrokes_at(line: int, column: int, replace: bool) -> list[float]:
         """Type digits at one place, one at a time, waiting for each analysis."""
@@ -276,7 +277,9 @@ async def main(
     code_line = next(i for i in range(target_line, len(lines)) if "X[#100+" in lines[i])
     digit = lines[code_line].index("X[#100+") + len("X[#100+")
     report("changing a number in the code", await keystrokes_at(code_line, digit, True))
-    print(f"server RSS after {2 * keystrokes} keystrokes: {rss_kib(server.pid)}")
+    print(f"server RSS after {2 * keystrokes} keystrokes, at once: {rss_kib(server.pid)}")
+    await asyncio.sleep(1.0)
+    print(f"server RSS after {2 * keystrokes} keystrokes, 1 s idle: {rss_kib(server.pid)}")
 
     # A burst of typing faster than the debounce: only the last version should be analysed.
     before = len(bench.published)
