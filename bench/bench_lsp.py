@@ -6,7 +6,7 @@ analysis is fresh, and the server's resident memory; then, in a server of its ow
 during the analysis of a 200,000-block CAM file -> the newer version's diagnostics (the running
 analysis is cancelled). Not a test: figures depend on the machine.
 
-    PYTHONPATH=server python bench/bench_lsp.py [--blocks 20000] [--debounce 250]
+    python bench/bench_lsp.py [--blocks 20000] [--debounce 250] [--read-whole] [--no-cancel]
     python bench/bench_lsp.py --only-cancel [--server-pythonpath ../main/server]
 """
 
@@ -190,13 +190,18 @@ async def cancellation(pythonpath: str, blocks: int, debounce_ms: int, after: fl
 
 
 async def main(
-    blocks: int, debounce_ms: int, keystrokes: int, hovers: int, read_whole: bool = False
+    blocks: int,
+    debounce_ms: int,
+    keystrokes: int,
+    hovers: int,
+    read_whole: bool = False,
+    pythonpath: str = str(ROOT / "server"),
 ) -> None:
     bench = Bench()
     client = bench.client
     # Read whole: the limits raised, so that a document past maxBlocks is analysed entire.
     limits = {"maxBlocks": 10 * blocks, "maxFileSize": 100 * blocks} if read_whole else {}
-    env = {**os.environ, "PYTHONPATH": str(ROOT / "server")}
+    env = {**os.environ, "PYTHONPATH": pythonpath}
     server = os.environ.get("FANUC_MACRO_BENCH_SERVER", "-m fanuc_macro.lsp.server").split()
     await client.start_io(sys.executable, *server, env=env)
     server = client._server
@@ -228,6 +233,8 @@ async def main(
     )
     first = await bench.wait_version(uri, version)
     print(f"document: {len(lines) - 1} lines; open -> first diagnostics: {ms(first - t0)}")
+    await asyncio.sleep(1.0)  # idle, as between keystrokes: the server has tidied up
+    print(f"server RSS after open (1 s idle): {rss_kib(server.pid)}")
 
     async def keystrokes_at(line: int, column: int, replace: bool) -> list[float]:
         """Type digits at one place, one at a time, waiting for each analysis."""
@@ -270,6 +277,9 @@ async def main(
     code_line = next(i for i in range(target_line, len(lines)) if "X[#100+" in lines[i])
     digit = lines[code_line].index("X[#100+") + len("X[#100+")
     report("changing a number in the code", await keystrokes_at(code_line, digit, True))
+    print(f"server RSS after {2 * keystrokes} keystrokes, at once: {rss_kib(server.pid)}")
+    await asyncio.sleep(1.0)
+    print(f"server RSS after {2 * keystrokes} keystrokes, 1 s idle: {rss_kib(server.pid)}")
 
     # A burst of typing faster than the debounce: only the last version should be analysed.
     before = len(bench.published)
@@ -352,14 +362,27 @@ if __name__ == "__main__":
     parser.add_argument("--cancel-blocks", type=int, default=200_000)
     parser.add_argument("--cancel-after", type=float, default=1.0, help="seconds into the analysis")
     parser.add_argument("--only-cancel", action="store_true", help="only the cancellation case")
+    parser.add_argument("--no-cancel", action="store_true", help="not the cancellation case")
     parser.add_argument(
         "--server-pythonpath",
         default=str(ROOT / "server"),
-        help="the package the cancellation case's server runs (another checkout, to compare)",
+        help="the package the servers run (another checkout, to compare)",
     )
     args = parser.parse_args()
     if not args.only_cancel:
-        asyncio.run(main(args.blocks, args.debounce, args.keystrokes, args.hovers, args.read_whole))
-    asyncio.run(
-        cancellation(args.server_pythonpath, args.cancel_blocks, args.debounce, args.cancel_after)
-    )
+        asyncio.run(
+            main(
+                args.blocks,
+                args.debounce,
+                args.keystrokes,
+                args.hovers,
+                args.read_whole,
+                args.server_pythonpath,
+            )
+        )
+    if not args.no_cancel:
+        asyncio.run(
+            cancellation(
+                args.server_pythonpath, args.cancel_blocks, args.debounce, args.cancel_after
+            )
+        )

@@ -12,6 +12,10 @@ line, the per-line caches found their entries by text and blocks shared the word
 written alike at the same column, and about 2,130 and 1,650 once blocks of plain words were
 kept as their code (``PlainNc``), the line maps' looks held no per-line cache entries and
 constants shared their closures.
+
+The language server keeps, besides its workspace's analysis, the open document's text and its
+line starts: what it allocates itself is bounded by them, not by a list of the lines (a second
+copy of the text, one string per line) for each analysis.
 """
 
 from __future__ import annotations
@@ -63,3 +67,86 @@ def _peak_per_block(kind: str) -> float:
 def test_an_analysis_holds_at_most_its_bound_per_block(kind: str, bound: int) -> None:
     per_block = _peak_per_block(kind)
     assert per_block <= bound, f"{per_block:.0f} bytes per block, more than {bound}"
+
+
+# The server's side of an open document, edited once: its own allocations (those made by a
+# line of lsp/, the analysis's apart) while its engine holds the document and its result.
+SERVER_SIDE = """
+import asyncio, sys, tracemalloc
+sys.path.insert(0, sys.argv[1])
+import bench_lsp
+from lsprotocol import types
+from fanuc_macro.lsp.engine import Engine
+
+async def main():
+    blocks = int(sys.argv[2])
+    engine = Engine(lambda doc, result: None, lambda message, kind: None)
+    engine.bind_loop(asyncio.get_running_loop())
+    engine.configure({"analysis": {"maxBlocks": 10 * blocks, "maxFileSize": 100 * blocks}})
+    engine.debounce = 0.0
+    text = bench_lsp.program(blocks)
+    lines = text.split("\\n")
+    uri = "untitled:memory.nc"
+    tracemalloc.start()
+    engine.open(uri, text, 1)
+    assert (await engine.fresh(uri, 300)).version == 1
+    line = len(lines) // 2
+    at = types.Position(line=line, character=lines[line].index("(") + 1)
+    engine.change(uri, 2, [types.TextDocumentContentChangePartial(
+        range=types.Range(start=at, end=at), text="x")])
+    result = await engine.fresh(uri, 300)
+    assert result is not None and result.version == 2 and result.analysis is not None
+    own = tracemalloc.take_snapshot().filter_traces(
+        [tracemalloc.Filter(True, "*/fanuc_macro/lsp/*")])
+    held = sum(stat.size for stat in own.statistics("filename"))
+    tracemalloc.stop()
+    engine.shutdown()
+    text_bytes = sys.getsizeof(engine.docs["untitled:memory.nc"].text)
+    print((held - text_bytes) / len(lines))
+
+asyncio.run(main())
+"""
+
+
+def test_the_server_holds_a_document_as_its_text_and_line_starts() -> None:
+    """What the language server allocates for an open document beyond the analysis: its text
+    (the edited version's, made by the edit) and about 36 bytes a line for the line starts
+    (a list of ints) shared by the document and its analysis' result; a list of the lines as
+    strings, which the result held before, costs about 130 bytes a line more."""
+    done = subprocess.run(
+        [sys.executable, "-c", SERVER_SIDE, str(BENCH), str(BLOCKS)],
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
+    assert done.returncode == 0, done.stderr
+    per_line = float(done.stdout.split()[-1])
+    assert per_line <= 60, f"{per_line:.0f} bytes per line besides the text, more than 60"
+
+
+def test_the_server_gives_freed_memory_back_after_each_analysis(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """After an analysis is delivered the worker trims the C allocator's heaps (glibc), so the
+    previous version's freed lists and dicts do not stay in the server's RSS."""
+    import asyncio
+    import platform
+
+    from fanuc_macro.lsp import engine as engine_module
+
+    if platform.system() == "Linux" and platform.libc_ver()[0] == "glibc":
+        assert engine_module.release_memory()
+    trims: list[bool] = []
+    monkeypatch.setattr(engine_module, "release_memory", lambda: trims.append(True) or True)
+
+    async def run() -> None:
+        engine = engine_module.Engine(lambda doc, result: None, lambda message, kind: None)
+        engine.bind_loop(asyncio.get_running_loop())
+        engine.debounce = 0.0
+        engine.open("untitled:trim.nc", "O1\nG01 X1. F1.\nM30\n", 1)
+        assert (await engine.fresh("untitled:trim.nc", 60)) is not None
+        await engine.in_worker(lambda: None)  # the jobs queued after the analysis
+        engine.shutdown()
+
+    asyncio.run(run())
+    assert trims == [True]

@@ -11,7 +11,7 @@ from dataclasses import dataclass, field
 
 from lsprotocol import types
 
-from .convert import LINE_BREAK, Codec
+from .convert import LINE_BREAK, Codec, TextLines, line_starts
 
 
 @dataclass
@@ -24,9 +24,15 @@ class OpenDocument:
     _starts: list[int] | None = field(default=None, repr=False)
 
     def _line_starts(self) -> list[int]:
+        """Where the text's lines begin: a new list after every edit, never changed in place,
+        so that the analysis of a version shares its list (:class:`~.convert.TextLines`)."""
         if self._starts is None:
-            self._starts = [0, *(m.end() for m in LINE_BREAK.finditer(self.text))]
+            self._starts = line_starts(self.text)
         return self._starts
+
+    def lines(self) -> TextLines:
+        """The lines of the current text, as the protocol numbers them."""
+        return TextLines(self.text, self._line_starts())
 
     def line(self, number: int) -> str:
         starts = self._line_starts()

@@ -33,7 +33,7 @@ from ..cancel import RUNNING, Cancelled, CancelToken, Stage
 from ..code_cache import save_code_cache
 from ..config import Config
 from ..diagnostics import REPORT_INTERNAL_ERROR
-from .convert import Codec, ConvertedDiagnostics, Lines, lsp_lines
+from .convert import Codec, ConvertedDiagnostics, Lines, TextLines
 from .documents import OpenDocument
 
 if TYPE_CHECKING:  # the analysis is imported by the worker, after the server has started
@@ -112,6 +112,7 @@ class _Text:
     version: int | None
     text: str
     uri: str
+    lines: TextLines  # of ``text``: its line starts are the open document's
 
 
 @dataclass
@@ -264,7 +265,7 @@ class Engine:
     def _set_text(self, key: str, doc: OpenDocument) -> None:
         with self._lock:
             self._seq += 1
-            self._texts[key] = _Text(self._seq, doc.version, doc.text, doc.uri)
+            self._texts[key] = _Text(self._seq, doc.version, doc.text, doc.uri, doc.lines())
 
     def _cancel_running(self, which: Callable[[_Job], bool]) -> None:
         """Cancel the running analysis if ``which`` says so; any thread."""
@@ -443,7 +444,7 @@ class Engine:
     def _run_job(self, job: _Job, text: _Text) -> Result | None:
         key = job.key
         started = time.perf_counter()
-        lines = Lines(lsp_lines(text.text), self.codec)
+        lines = Lines(text.lines, self.codec)
         changed = False
         try:
             changed = self._ensure_text(key, text, job.token)
@@ -568,6 +569,8 @@ class Engine:
         if result.version == doc.version:
             self.publish(doc, result)
         self._wake(key, result)
+        del previous  # the earlier analysis: freed now, before the memory is given back
+        self._submit(release_memory)
         if result.changed_workspace:
             # Another open document may call a program of this one (or be called by it).
             self.schedule_all(self.debounce, but=key)
@@ -785,6 +788,34 @@ class _AnalysisProgress:
             self.loop.call_soon_threadsafe(fn, *args)
         except RuntimeError:  # the loop closed meanwhile
             log.debug("cannot show progress", exc_info=True)
+
+
+_TRIM: list[Callable[[int], int] | None] = []  # the C library's malloc_trim, once looked up
+
+
+def release_memory() -> bool:
+    """Give the C allocator's free memory back to the system (glibc's ``malloc_trim``); False
+    where there is none to call.
+
+    An analysis of an edit builds the new version's facts, lists and texts while the previous
+    version's are alive, then frees the previous ones. Python's small objects go back to its
+    own arenas, but what it took from ``malloc`` (dicts and lists of a big document, its text)
+    glibc keeps in its heaps when their top is still in use, and mostly in the worker thread's
+    arena, which it trims seldom: the server of a 100,000-block document grew by about 35 MB
+    of such free memory in 8 keystrokes. A trim takes 2-3 ms there; it runs in the worker
+    after the analysis is delivered, off the keystroke's path."""
+    if not _TRIM:
+        import ctypes
+
+        try:
+            _TRIM.append(getattr(ctypes.CDLL(None), "malloc_trim", None))
+        except OSError:  # no C library to load (Windows)
+            _TRIM.append(None)
+    trim = _TRIM[0]
+    if trim is None:
+        return False
+    trim(0)
+    return True
 
 
 def _display_name(uri: str) -> str:

@@ -12,7 +12,6 @@ Two sources, in this order:
 from __future__ import annotations
 
 from dataclasses import dataclass
-from functools import lru_cache
 
 from ..line_maps import LineMap
 from ..syntax.tree import Assign, Document, ParsedLine
@@ -126,7 +125,9 @@ ROLE_TITLES = {
 }
 
 
-@lru_cache(maxsize=65536)  # every analysis asks again for the same comments
+# Not cached: the line map below asks once per commented assignment of a version, again only
+# for the lines an edit changed, and a cache kept every comment's text (about 2.4 MB for a
+# 100,000-block program of distinct comments) for 34 substring tests of about 2 µs.
 def role_of_comment(comment: str) -> str | None:
     upper = comment.upper()
     for role, words in ROLE_WORDS.items():
