@@ -9,7 +9,7 @@ The node's original text is ``block.text[node.span.start:node.span.end]`` (:meth
 from __future__ import annotations
 
 import re
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import FrozenInstanceError, dataclass, field, fields
 from typing import NamedTuple
 
@@ -154,6 +154,13 @@ class NcStatement:
 _PLAIN_WORDS_OF: list[Callable[[str], tuple[Word, ...]]] = []
 # (letter, number) of each word of a plain block's code (letters as written).
 _PLAIN_PAIRS = re.compile(r"([A-Za-z])([-+]?[.0-9]+)")
+
+
+# The G codes of a ``ParsedLine.bare`` block: motions, planes, tool radius compensation off,
+# absolute and incremental. No line map looks for them (M codes, G67, other controls' codes).
+BARE_CODES = frozenset(
+    ("G", code) for code in (0.0, 1.0, 2.0, 3.0, 17.0, 18.0, 19.0, 40.0, 90.0, 91.0)
+)
 
 
 class PlainNc(NcStatement):
@@ -366,6 +373,11 @@ class ParsedLine:
     # A block that does not parse but plainly assigns a variable ('#5=#4*2:', '#1=ABC[2]'):
     # its number. The analysis takes it as set, to a value it does not know.
     failed_assignment: int | None = None
+    # A ``PlainNc`` of upper case words alone (no comment, note or tape mark) whose G codes, if
+    # any, are among ``BARE_CODES``: what nearly every line of CAM output is, and a line in
+    # which no ``line_maps.LineMap`` finds anything (``tests/test_line_maps.py`` checks each
+    # map), so the maps do not look at it.
+    bare: bool = field(default=False, compare=False)
 
     @property
     def is_empty(self) -> bool:
@@ -407,6 +419,9 @@ class Document:
     # (``blocks`` stop before it), and what was read of how much.
     unread_from: int | None = None
     unread_note: str | None = None
+    # The lines that are not ``ParsedLine.bare`` (a ``range`` of all when most are not),
+    # worked out when a line map first looks at the whole document (``line_maps``).
+    unbare: Sequence[int] | None = field(default=None, init=False, compare=False, repr=False)
 
 
 # ---- quick constructors ----------------------------------------------------------------------
@@ -440,6 +455,7 @@ _PLAIN_CODE, _PLAIN_CODES = _setters(PlainNc, "code", "codes")
     _L_HAS_CALL,
     _L_INDEXED,
     _L_FAILED_ASSIGNMENT,
+    _L_BARE,
 ) = _setters(ParsedLine, *(f.name for f in fields(ParsedLine)))
 
 
@@ -489,6 +505,7 @@ def quick_line(
     has_call: bool,
     indexed: bool,
     failed_assignment: int | None,
+    bare: bool = False,
 ) -> ParsedLine:
     line = ParsedLine.__new__(ParsedLine)
     _L_TEXT(line, text)
@@ -504,4 +521,5 @@ def quick_line(
     _L_HAS_CALL(line, has_call)
     _L_INDEXED(line, indexed)
     _L_FAILED_ASSIGNMENT(line, failed_assignment)
+    _L_BARE(line, bare)
     return line
