@@ -14,13 +14,12 @@ import time
 import zlib
 from array import array
 from bisect import bisect_left
-from collections.abc import Iterable, Sequence
+from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, field, replace
 
 from ..cancel import RUNNING, CancelToken
 from ..config import Config
 from ..line_maps import LineMap
-from ..per_line import PerLine
 from ..program.index import Program, ProgramIndex
 from ..program.variables import ARGUMENT_VARIABLES, classify
 from ..syntax.marks import constant_value
@@ -1904,8 +1903,17 @@ def compile_line(parsed: ParsedLine) -> CompiledLine:
     return line
 
 
-# The compiled statement of a parsed line: closures that do not depend on where it stands.
-compiled: PerLine[CompiledLine] = PerLine(compile_line)
+_KEEP_COMPILED: Callable[[ParsedLine, object], None] = vars(ParsedLine)["compiled"].__set__
+
+
+def compiled(parsed: ParsedLine) -> CompiledLine:
+    """The compiled statement of a parsed line: closures that do not depend on where it stands,
+    kept on the line (every block of the same text shares it)."""
+    found = parsed.compiled
+    if found is None:
+        found = compile_line(parsed)
+        _KEEP_COMPILED(parsed, found)
+    return found  # type: ignore[return-value]  # only compile_line sets it
 
 
 _PROGRAM_ENDS = (("M", 2.0), ("M", 30.0))

@@ -377,7 +377,11 @@ class ParsedLine:
     # any, are among ``BARE_CODES``: what nearly every line of CAM output is, and a line in
     # which no ``line_maps.LineMap`` finds anything (``tests/test_line_maps.py`` checks each
     # map), so the maps do not look at it.
-    bare: bool = field(default=False, compare=False)
+    bare: bool = field(default=False, init=False, compare=False)
+    # What the evaluator compiles the line to (``evaluator.machine.compiled``), set the first
+    # time it is asked for: a cache of what the line alone decides, held as long as the line
+    # (an entry in a cache by text cost a hundred bytes more). Neither compared nor copied.
+    compiled: object = field(default=None, init=False, compare=False, repr=False)
 
     @property
     def is_empty(self) -> bool:
@@ -456,6 +460,7 @@ _PLAIN_CODE, _PLAIN_CODES = _setters(PlainNc, "code", "codes")
     _L_INDEXED,
     _L_FAILED_ASSIGNMENT,
     _L_BARE,
+    _L_COMPILED,
 ) = _setters(ParsedLine, *(f.name for f in fields(ParsedLine)))
 
 
@@ -522,4 +527,5 @@ def quick_line(
     _L_INDEXED(line, indexed)
     _L_FAILED_ASSIGNMENT(line, failed_assignment)
     _L_BARE(line, bare)
+    _L_COMPILED(line, None)
     return line
