@@ -1026,7 +1026,12 @@ class Machine:
             if cl.reads:
                 self._record_reads(act, cl, facts)
             try:
-                if kind in (K_EMPTY, K_OTHER):
+                if kind == K_NC:  # most blocks: first
+                    act = self._nc(act, cl)
+                    if cl.second is not None and act.ctx is ctx and act.pc == pc + 1:
+                        act.pc = pc
+                        self._run_second(act, cl.second, facts)
+                elif kind in (K_EMPTY, K_OTHER):
                     act.pc = pc + 1
                 elif kind == K_ASSIGN:
                     self._assign(act, cl, facts)
@@ -1078,11 +1083,6 @@ class Machine:
                 elif kind == K_END:
                     do_line = ctx.loop_do.get(pc)
                     act.pc = pc + 1 if do_line is None else do_line
-                elif kind == K_NC:
-                    act = self._nc(act, cl)
-                    if cl.second is not None and act.ctx is ctx and act.pc == pc + 1:
-                        act.pc = pc
-                        self._run_second(act, cl.second, facts)
                 elif kind == K_HEADER:
                     act.pc = pc + 1
             except MacroAlarm as alarm:
@@ -1377,7 +1377,9 @@ class Machine:
         # drilling and boring cycles (G76 fine boring), which the analysis does not run.
         lathe = self.lathe
         one_shot = (
-            next((g for g in g_codes if g in ONE_SHOT_CYCLES), None) if g_codes and lathe else None
+            next((g for g in g_codes if g in ONE_SHOT_CYCLES), None)
+            if lathe and g_codes and not ONE_SHOT_CYCLES.isdisjoint(g_codes)
+            else None
         )
         const = cl.constant
         has_axis = const.has_axis if const is not None else not AXES.isdisjoint(values)
@@ -1411,35 +1413,35 @@ class Machine:
                 )
             self._cut_without_feed(act.ctx, message)
         position = modal.position
-        x = self._axis(values, "X", "U")
-        if lathe:
-            z = self._axis(values, "Z", "W")
-        else:
-            given = values.get("Z")
-            z = given if isinstance(given, float) else None
+        # An axis's absolute word (most blocks) is where it goes, without _axis.
+        x = values.get("X")
+        if type(x) is not float:
+            x = self._axis(values, "X", "U")
+        z = values.get("Z")
+        if type(z) is not float:
+            z = self._axis(values, "Z", "W") if lathe else None
         start_x = position.get("X")
         start_z = position.get("Z")
+        ctx = act.ctx
+        where = modal.position_line.get("X")
         motion = Motion(
-            act.ctx.name,
+            ctx.name,
             self._line,
             _g_name(code),
             words,
-            act.ctx.uri,
+            ctx.uri,
             x,
             None
             if modal.constant_surface_speed or not isinstance(modal.speed, float)
             else modal.speed,
-            act.ctx.program.first_line,
+            ctx.program.first_line,
             z,
             start_x if isinstance(start_x, float) else None,
             start_z if isinstance(start_z, float) else None,
-            None,
-            "",
+            None if where is None else where[1],
+            "" if where is None else where[0],
             act.serial,
         )
-        where = modal.position_line.get("X")
-        if where is not None:
-            motion.start_uri, motion.start_line = where
         motions = self.facts.motions
         if code in THREADING_CODES and act.serial not in self.facts.run_values:
             self._remember_run(act)
@@ -1449,7 +1451,7 @@ class Machine:
         elif len(motions) < MAX_MOTIONS:
             motions.append(motion)
         if code not in LATHE_CYCLES and code not in ONE_SHOT_CYCLES:  # cycles end where they began
-            here = (act.ctx.uri, self._line)
+            here = (ctx.uri, self._line)
             if x is not None or "X" in values or "U" in values:
                 position["X"] = x
                 modal.position_line["X"] = here
