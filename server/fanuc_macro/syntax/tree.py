@@ -445,23 +445,19 @@ _WORD_ADDRESS, _WORD_VALUE, _WORD_SPAN, _WORD_LOWERCASE = _setters(
 _NC_WORDS, _NC_SPAN = _setters(NcStatement, "words", "span")
 _NC_WORDS_GET: Callable[[object, type], tuple[Word, ...]] = vars(NcStatement)["words"].__get__
 _PLAIN_CODE, _PLAIN_CODES = _setters(PlainNc, "code", "codes")
-(
-    _L_TEXT,
-    _L_TAPE_MARK,
-    _L_SKIP,
-    _L_SEQ,
-    _L_SEQ_SPAN,
-    _L_STATEMENT,
-    _L_COMMENTS,
-    _L_PROBLEM,
-    _L_NOTES,
-    _L_HAS_LOWERCASE,
-    _L_HAS_CALL,
-    _L_INDEXED,
-    _L_FAILED_ASSIGNMENT,
-    _L_BARE,
-    _L_COMPILED,
-) = _setters(ParsedLine, *(f.name for f in fields(ParsedLine)))
+
+
+class _LineBeingMade:
+    """A ``ParsedLine``'s layout (the same slots, in the same order) without the frozen
+    dataclass's ``__setattr__``: ``quick_line`` sets its fields as plain slots and then makes
+    it a ``ParsedLine`` (``__class__`` assignment, allowed between classes of one layout; a
+    field that broke the layout would make every parse fail at once). A parse makes one per
+    new line, where a call of a slot's setter per field cost three times as much."""
+
+    __slots__ = ParsedLine.__slots__
+
+
+assert _LineBeingMade.__slots__ == tuple(f.name for f in fields(ParsedLine))
 
 
 def quick_num(value: float, text: str, span: Span) -> Num:
@@ -512,20 +508,21 @@ def quick_line(
     failed_assignment: int | None,
     bare: bool = False,
 ) -> ParsedLine:
-    line = ParsedLine.__new__(ParsedLine)
-    _L_TEXT(line, text)
-    _L_TAPE_MARK(line, tape_mark)
-    _L_SKIP(line, skip)
-    _L_SEQ(line, seq)
-    _L_SEQ_SPAN(line, seq_span)
-    _L_STATEMENT(line, statement)
-    _L_COMMENTS(line, comments)
-    _L_PROBLEM(line, problem)
-    _L_NOTES(line, notes)
-    _L_HAS_LOWERCASE(line, has_lowercase)
-    _L_HAS_CALL(line, has_call)
-    _L_INDEXED(line, indexed)
-    _L_FAILED_ASSIGNMENT(line, failed_assignment)
-    _L_BARE(line, bare)
-    _L_COMPILED(line, None)
-    return line
+    line = _LineBeingMade.__new__(_LineBeingMade)
+    line.text = text  # type: ignore[attr-defined]  # the slots of ParsedLine, typed there
+    line.tape_mark = tape_mark  # type: ignore[attr-defined]
+    line.skip = skip  # type: ignore[attr-defined]
+    line.seq = seq  # type: ignore[attr-defined]
+    line.seq_span = seq_span  # type: ignore[attr-defined]
+    line.statement = statement  # type: ignore[attr-defined]
+    line.comments = comments  # type: ignore[attr-defined]
+    line.problem = problem  # type: ignore[attr-defined]
+    line.notes = notes  # type: ignore[attr-defined]
+    line.has_lowercase = has_lowercase  # type: ignore[attr-defined]
+    line.has_call = has_call  # type: ignore[attr-defined]
+    line.indexed = indexed  # type: ignore[attr-defined]
+    line.failed_assignment = failed_assignment  # type: ignore[attr-defined]
+    line.bare = bare  # type: ignore[attr-defined]
+    line.compiled = None  # type: ignore[attr-defined]
+    line.__class__ = ParsedLine  # type: ignore[assignment]
+    return line  # type: ignore[return-value]
