@@ -14,10 +14,11 @@ import pytest
 from fanuc_macro import analysis
 from fanuc_macro.config import Config
 from fanuc_macro.evaluator import machine
+from fanuc_macro.line_maps import LineMap
 from fanuc_macro.rules import LINE_CHECKS, statements
 from fanuc_macro.syntax.lines import cut_comments
-from fanuc_macro.syntax.parser import BlockParser, _fast_parse
-from fanuc_macro.syntax.tree import NcStatement, ParsedLine, PlainNc, Span
+from fanuc_macro.syntax.parser import BlockParser, _fast_parse, parse_text
+from fanuc_macro.syntax.tree import BARE_CODES, NcStatement, ParsedLine, PlainNc, Span
 from fanuc_macro.workspace import Workspace
 from test_parser import program_lines, random_nc_lines
 
@@ -165,6 +166,43 @@ def test_the_line_rules_way_for_plain_blocks_gives_the_general_way_s_findings() 
         assert statements._end_or_g67(parsed) == statements._end_or_g67(nodes), text
         assert machine._ends_program_line(parsed) == machine._ends_program_line(nodes), text
     assert seen > 5000
+
+
+def test_no_line_map_finds_anything_in_a_bare_line() -> None:
+    """The line maps do not look at bare lines (``ParsedLine.bare``): every map's look finds
+    nothing in any, and a map of a document is the lines where a look at every line finds
+    something."""
+    maps: list[LineMap[object]] = [
+        value
+        for name, module in sorted(sys.modules.items())
+        if name.startswith("fanuc_macro.")
+        for value in vars(module).values()
+        if isinstance(value, LineMap)
+    ]
+    assert len(maps) >= 13  # those of the rules, the evaluator, the analysis and the threads
+    parser = BlockParser()
+    texts = every_line()
+    parsed = [parser.parse_line(text) for text in texts]
+    bare = [p for p in parsed if p.bare]
+    assert len(bare) > 1000
+    for p in parsed:  # bare: plain upper case words alone, of the few G codes
+        nc = p.statement
+        expected = (
+            type(nc) is PlainNc
+            and not p.comments
+            and not p.notes
+            and not p.tape_mark
+            and not p.has_lowercase
+            and BARE_CODES.issuperset(nc.codes)
+        )
+        assert p.bare == expected or (expected and ";" in p.text), p.text
+    for line_map in maps:
+        for p in bare:
+            assert not line_map._look(p), (line_map._look, p.text)
+    doc = parse_text("\n".join(texts) + "\n", "file:///bare.nc", parser)
+    for line_map in maps:
+        everywhere = [b.line for b in doc.blocks if line_map._look(b.parsed)]
+        assert line_map(doc).lines == everywhere, line_map._look
 
 
 def test_an_analysis_of_cam_output_builds_no_nodes_for_its_blocks() -> None:

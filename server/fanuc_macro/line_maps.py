@@ -22,7 +22,7 @@ import threading
 from bisect import bisect_left
 from collections.abc import Callable, Iterator, Sequence
 from itertools import compress
-from operator import is_, itemgetter
+from operator import attrgetter, is_, itemgetter, not_
 from typing import Generic, TypeVar
 
 from .cancel import CHECKING, SLICE, CancelToken
@@ -232,19 +232,42 @@ class LineMap(Generic[T]):
         blocks = doc.blocks
         lines: list[int] = []
         values: list[T] = []
-        # A slice of lines at a time, looked at in C but for ``look`` itself; the token is
-        # looked at every SLICE lines.
-        low = start
-        while low < end:
+        # The lines that are not bare (in which no map finds anything), a slice at a time,
+        # looked at in C but for ``look`` itself; the token is looked at every SLICE lines.
+        wanted = _unbare(doc, start, end)
+        at = 0
+        while at < len(wanted):
+            low = wanted[at]
             if cancel is not None and low > start:
                 cancel.reached(CHECKING, low, len(blocks))
-            high = min((low // SLICE + 1) * SLICE, end)
-            found = list(map(look, map(_PARSED, blocks[low:high])))
-            lines += compress(range(low, high), found)
+            high = bisect_left(wanted, min((low // SLICE + 1) * SLICE, end), at)
+            these = wanted[at:high]
+            found = list(map(look, map(_PARSED, map(blocks.__getitem__, these))))
+            lines += compress(these, found)
             values += filter(None, found)
-            low = high
+            at = high
         self.looked += end - start
         return lines, values
+
+
+_BARE = attrgetter("bare")  # ParsedLine.bare, read in C
+
+
+def _unbare(doc: Document, start: int, end: int) -> Sequence[int]:
+    """The lines from ``start`` to ``end`` (exclusive) that are not ``ParsedLine.bare``, or a
+    range of them all when most are not: those of the whole document are kept on it, for the
+    maps that look at it after the first (each ``look`` is a Python call, the mask is made in
+    C)."""
+    whole = start == 0 and end == len(doc.blocks)
+    if whole and doc.unbare is not None:
+        return doc.unbare
+    found = tuple(
+        compress(range(start, end), map(not_, map(_BARE, map(_PARSED, doc.blocks[start:end]))))
+    )
+    wanted: Sequence[int] = found if 2 * len(found) < end - start else range(start, end)
+    if whole:
+        object.__setattr__(doc, "unbare", wanted)  # the same for every map: no lock needed
+    return wanted
 
 
 __all__ = ["KEPT", "Diff", "Found", "Kept", "LineMap", "common_prefix", "line_diff"]

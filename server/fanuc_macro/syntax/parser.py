@@ -39,6 +39,7 @@ from .lines import (
 from .marks import CALL_CODES, INDEXED_STATEMENTS, mentions_call
 from .tree import (
     _PLAIN_WORDS_OF,
+    BARE_CODES,
     SHARED_COLUMNS,
     SHARED_SPANS,
     Assign,
@@ -726,9 +727,11 @@ class BlockParser:
             plain = _plain_block(text)
             if plain is not None:
                 plain_skip, plain_seq, plain_seq_span, plain_nc = plain
+                lower = text != text.upper()
                 return quick_line(
                     text, False, plain_skip, plain_seq, plain_seq_span, plain_nc, (), None, (),
-                    text != text.upper(), False, plain_seq is not None, None,
+                    lower, False, plain_seq is not None, None,
+                    not lower and BARE_CODES.issuperset(plain_nc.codes),
                 )  # fmt: skip
         cut = cut_comments(text)
         code = cut.code

@@ -9,7 +9,7 @@ The node's original text is ``block.text[node.span.start:node.span.end]`` (:meth
 from __future__ import annotations
 
 import re
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import FrozenInstanceError, dataclass, field, fields
 from typing import NamedTuple
 
@@ -154,6 +154,13 @@ class NcStatement:
 _PLAIN_WORDS_OF: list[Callable[[str], tuple[Word, ...]]] = []
 # (letter, number) of each word of a plain block's code (letters as written).
 _PLAIN_PAIRS = re.compile(r"([A-Za-z])([-+]?[.0-9]+)")
+
+
+# The G codes of a ``ParsedLine.bare`` block: motions, planes, tool radius compensation off,
+# absolute and incremental. No line map looks for them (M codes, G67, other controls' codes).
+BARE_CODES = frozenset(
+    ("G", code) for code in (0.0, 1.0, 2.0, 3.0, 17.0, 18.0, 19.0, 40.0, 90.0, 91.0)
+)
 
 
 class PlainNc(NcStatement):
@@ -366,6 +373,15 @@ class ParsedLine:
     # A block that does not parse but plainly assigns a variable ('#5=#4*2:', '#1=ABC[2]'):
     # its number. The analysis takes it as set, to a value it does not know.
     failed_assignment: int | None = None
+    # A ``PlainNc`` of upper case words alone (no comment, note or tape mark) whose G codes, if
+    # any, are among ``BARE_CODES``: what nearly every line of CAM output is, and a line in
+    # which no ``line_maps.LineMap`` finds anything (``tests/test_line_maps.py`` checks each
+    # map), so the maps do not look at it.
+    bare: bool = field(default=False, init=False, compare=False)
+    # What the evaluator compiles the line to (``evaluator.machine.compiled``), set the first
+    # time it is asked for: a cache of what the line alone decides, held as long as the line
+    # (an entry in a cache by text cost a hundred bytes more). Neither compared nor copied.
+    compiled: object = field(default=None, init=False, compare=False, repr=False)
 
     @property
     def is_empty(self) -> bool:
@@ -407,6 +423,9 @@ class Document:
     # (``blocks`` stop before it), and what was read of how much.
     unread_from: int | None = None
     unread_note: str | None = None
+    # The lines that are not ``ParsedLine.bare`` (a ``range`` of all when most are not),
+    # worked out when a line map first looks at the whole document (``line_maps``).
+    unbare: Sequence[int] | None = field(default=None, init=False, compare=False, repr=False)
 
 
 # ---- quick constructors ----------------------------------------------------------------------
@@ -426,21 +445,19 @@ _WORD_ADDRESS, _WORD_VALUE, _WORD_SPAN, _WORD_LOWERCASE = _setters(
 _NC_WORDS, _NC_SPAN = _setters(NcStatement, "words", "span")
 _NC_WORDS_GET: Callable[[object, type], tuple[Word, ...]] = vars(NcStatement)["words"].__get__
 _PLAIN_CODE, _PLAIN_CODES = _setters(PlainNc, "code", "codes")
-(
-    _L_TEXT,
-    _L_TAPE_MARK,
-    _L_SKIP,
-    _L_SEQ,
-    _L_SEQ_SPAN,
-    _L_STATEMENT,
-    _L_COMMENTS,
-    _L_PROBLEM,
-    _L_NOTES,
-    _L_HAS_LOWERCASE,
-    _L_HAS_CALL,
-    _L_INDEXED,
-    _L_FAILED_ASSIGNMENT,
-) = _setters(ParsedLine, *(f.name for f in fields(ParsedLine)))
+
+
+class _LineBeingMade:
+    """A ``ParsedLine``'s layout (the same slots, in the same order) without the frozen
+    dataclass's ``__setattr__``: ``quick_line`` sets its fields as plain slots and then makes
+    it a ``ParsedLine`` (``__class__`` assignment, allowed between classes of one layout; a
+    field that broke the layout would make every parse fail at once). A parse makes one per
+    new line, where a call of a slot's setter per field cost three times as much."""
+
+    __slots__ = ParsedLine.__slots__
+
+
+assert _LineBeingMade.__slots__ == tuple(f.name for f in fields(ParsedLine))
 
 
 def quick_num(value: float, text: str, span: Span) -> Num:
@@ -489,19 +506,23 @@ def quick_line(
     has_call: bool,
     indexed: bool,
     failed_assignment: int | None,
+    bare: bool = False,
 ) -> ParsedLine:
-    line = ParsedLine.__new__(ParsedLine)
-    _L_TEXT(line, text)
-    _L_TAPE_MARK(line, tape_mark)
-    _L_SKIP(line, skip)
-    _L_SEQ(line, seq)
-    _L_SEQ_SPAN(line, seq_span)
-    _L_STATEMENT(line, statement)
-    _L_COMMENTS(line, comments)
-    _L_PROBLEM(line, problem)
-    _L_NOTES(line, notes)
-    _L_HAS_LOWERCASE(line, has_lowercase)
-    _L_HAS_CALL(line, has_call)
-    _L_INDEXED(line, indexed)
-    _L_FAILED_ASSIGNMENT(line, failed_assignment)
-    return line
+    line = _LineBeingMade.__new__(_LineBeingMade)
+    line.text = text  # type: ignore[attr-defined]  # the slots of ParsedLine, typed there
+    line.tape_mark = tape_mark  # type: ignore[attr-defined]
+    line.skip = skip  # type: ignore[attr-defined]
+    line.seq = seq  # type: ignore[attr-defined]
+    line.seq_span = seq_span  # type: ignore[attr-defined]
+    line.statement = statement  # type: ignore[attr-defined]
+    line.comments = comments  # type: ignore[attr-defined]
+    line.problem = problem  # type: ignore[attr-defined]
+    line.notes = notes  # type: ignore[attr-defined]
+    line.has_lowercase = has_lowercase  # type: ignore[attr-defined]
+    line.has_call = has_call  # type: ignore[attr-defined]
+    line.indexed = indexed  # type: ignore[attr-defined]
+    line.failed_assignment = failed_assignment  # type: ignore[attr-defined]
+    line.bare = bare  # type: ignore[attr-defined]
+    line.compiled = None  # type: ignore[attr-defined]
+    line.__class__ = ParsedLine  # type: ignore[assignment]
+    return line  # type: ignore[return-value]
