@@ -41,25 +41,24 @@ def same_value(a: object, b: object) -> bool:
     return a == b
 
 
-class ValueSummary:
-    """The values one variable had at one block over every execution."""
+_INF = float("inf")  # shared: a summary of no number keeps no floats of its own
+_NEG_INF = float("-inf")
 
-    __slots__ = ("count", "first", "last", "maximum", "minimum", "unknown", "vacant")
 
-    def __init__(self) -> None:
-        self.count = 0
-        self.first: Value = None
-        self.last: Value = None
-        self.minimum = float("inf")
-        self.maximum = float("-inf")
-        self.vacant = 0
-        self.unknown: Unknown | None = None
+class _Spread:
+    """What a summary of two or more values keeps besides their count, first and last."""
+
+    __slots__ = ("maximum", "minimum", "unknown", "vacant")
+
+    def __init__(
+        self, minimum: float, maximum: float, vacant: int, unknown: Unknown | None
+    ) -> None:
+        self.minimum = minimum
+        self.maximum = maximum
+        self.vacant = vacant
+        self.unknown = unknown
 
     def add(self, value: Value) -> None:
-        if self.count == 0:
-            self.first = value
-        self.count += 1
-        self.last = value
         if value is None:
             self.vacant += 1
         elif isinstance(value, Unknown):
@@ -70,16 +69,87 @@ class ValueSummary:
             if value > self.maximum:
                 self.maximum = value
 
+
+class ValueSummary:
+    """The values one variable had at one block over every execution.
+
+    Most reads and writes run once: a summary of one value is its count and that value (the
+    smallest, largest, vacant and unknown follow from it), and holds the rest (``_more``) only
+    from its second value on, which keeps the per-block facts of a program without loops small.
+    """
+
+    __slots__ = ("_more", "count", "first", "last")
+
+    def __init__(self) -> None:
+        self.count = 0
+        self.first: Value = None
+        self.last: Value = None
+        self._more: _Spread | None = None  # None while count <= 1
+
+    def add(self, value: Value) -> None:
+        count = self.count
+        self.count = count + 1
+        self.last = value
+        if count == 0:
+            self.first = value
+            return
+        more = self._more
+        if more is None:
+            more = self._more = self._spread()
+        more.add(value)
+
+    def _spread(self) -> _Spread:
+        return _Spread(self.minimum, self.maximum, self.vacant, self.unknown)
+
+    @property
+    def minimum(self) -> float:
+        more = self._more
+        if more is not None:
+            return more.minimum
+        first = self.first
+        if self.count and first is not None and not isinstance(first, Unknown):
+            return first if first < _INF else _INF  # as ``add`` compares: NaN stays inf
+        return _INF
+
+    @property
+    def maximum(self) -> float:
+        more = self._more
+        if more is not None:
+            return more.maximum
+        first = self.first
+        if self.count and first is not None and not isinstance(first, Unknown):
+            return first if first > _NEG_INF else _NEG_INF
+        return _NEG_INF
+
+    @property
+    def vacant(self) -> int:
+        more = self._more
+        if more is not None:
+            return more.vacant
+        return 1 if self.count and self.first is None else 0
+
+    @property
+    def unknown(self) -> Unknown | None:
+        more = self._more
+        if more is not None:
+            return more.unknown
+        first = self.first
+        return first if self.count and isinstance(first, Unknown) else None
+
     def then(self, later: ValueSummary) -> ValueSummary:
         """This summary followed by ``later``'s executions, as one summary (a new object)."""
         out = ValueSummary()
         out.count = self.count + later.count
         out.first = self.first if self.count else later.first
         out.last = later.last if later.count else self.last
-        out.minimum = min(self.minimum, later.minimum)
-        out.maximum = max(self.maximum, later.maximum)
-        out.vacant = self.vacant + later.vacant
-        out.unknown = later.unknown if later.unknown is not None else self.unknown
+        if out.count > 1:
+            later_unknown = later.unknown
+            out._more = _Spread(
+                min(self.minimum, later.minimum),
+                max(self.maximum, later.maximum),
+                self.vacant + later.vacant,
+                later_unknown if later_unknown is not None else self.unknown,
+            )
         return out
 
     def same_as(self, other: ValueSummary) -> bool:
