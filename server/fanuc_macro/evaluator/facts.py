@@ -46,19 +46,29 @@ _NEG_INF = float("-inf")
 
 
 class _Spread:
-    """What a summary of two or more values keeps besides their count, first and last."""
+    """What a summary of two or more values keeps besides its first value."""
 
-    __slots__ = ("maximum", "minimum", "unknown", "vacant")
+    __slots__ = ("count", "last", "maximum", "minimum", "unknown", "vacant")
 
     def __init__(
-        self, minimum: float, maximum: float, vacant: int, unknown: Unknown | None
+        self,
+        count: int,
+        last: Value,
+        minimum: float,
+        maximum: float,
+        vacant: int,
+        unknown: Unknown | None,
     ) -> None:
+        self.count = count
+        self.last = last
         self.minimum = minimum
         self.maximum = maximum
         self.vacant = vacant
         self.unknown = unknown
 
     def add(self, value: Value) -> None:
+        self.count += 1
+        self.last = value
         if value is None:
             self.vacant += 1
         elif isinstance(value, Unknown):
@@ -70,81 +80,106 @@ class _Spread:
                 self.maximum = value
 
 
+class _Nothing:
+    """The first value of a summary of no values."""
+
+    __slots__ = ()
+
+
+_NOTHING = _Nothing()
+
+
 class ValueSummary:
     """The values one variable had at one block over every execution.
 
-    Most reads and writes run once: a summary of one value is its count and that value (the
-    smallest, largest, vacant and unknown follow from it), and holds the rest (``_more``) only
-    from its second value on, which keeps the per-block facts of a program without loops small.
+    Most reads and writes run once: a summary of one value is that value (its count, last,
+    smallest, largest, vacant and unknown follow from it), and holds the rest (a ``_Spread``)
+    only from its second value on, which keeps the per-block facts of a program without loops
+    small: two slots.
     """
 
-    __slots__ = ("_more", "count", "first", "last")
+    __slots__ = ("_first", "_more")
 
     def __init__(self) -> None:
-        self.count = 0
-        self.first: Value = None
-        self.last: Value = None
-        self._more: _Spread | None = None  # None while count <= 1
+        self._first: Value | _Nothing = _NOTHING
+        self._more: _Spread | None = None  # None while it holds at most one value
 
     def add(self, value: Value) -> None:
-        count = self.count
-        self.count = count + 1
-        self.last = value
-        if count == 0:
-            self.first = value
-            return
         more = self._more
-        if more is None:
-            more = self._more = self._spread()
+        if more is not None:
+            more.add(value)
+            return
+        first = self._first
+        if isinstance(first, _Nothing):
+            self._first = value
+            return
+        more = self._more = _Spread(1, first, self.minimum, self.maximum, self.vacant, self.unknown)
         more.add(value)
 
-    def _spread(self) -> _Spread:
-        return _Spread(self.minimum, self.maximum, self.vacant, self.unknown)
+    @property
+    def count(self) -> int:
+        more = self._more
+        if more is not None:
+            return more.count
+        return 0 if self._first is _NOTHING else 1
+
+    @property
+    def first(self) -> Value:
+        first = self._first
+        return None if isinstance(first, _Nothing) else first
+
+    @property
+    def last(self) -> Value:
+        more = self._more
+        if more is not None:
+            return more.last
+        return self.first
 
     @property
     def minimum(self) -> float:
         more = self._more
         if more is not None:
             return more.minimum
-        first = self.first
-        if self.count and first is not None and not isinstance(first, Unknown):
-            return first if first < _INF else _INF  # as ``add`` compares: NaN stays inf
-        return _INF
+        first = self._first
+        if first is None or isinstance(first, _Nothing | Unknown):
+            return _INF
+        return first if first < _INF else _INF  # as ``add`` compares: NaN stays inf
 
     @property
     def maximum(self) -> float:
         more = self._more
         if more is not None:
             return more.maximum
-        first = self.first
-        if self.count and first is not None and not isinstance(first, Unknown):
-            return first if first > _NEG_INF else _NEG_INF
-        return _NEG_INF
+        first = self._first
+        if first is None or isinstance(first, _Nothing | Unknown):
+            return _NEG_INF
+        return first if first > _NEG_INF else _NEG_INF
 
     @property
     def vacant(self) -> int:
         more = self._more
         if more is not None:
             return more.vacant
-        return 1 if self.count and self.first is None else 0
+        return 1 if self._first is None else 0
 
     @property
     def unknown(self) -> Unknown | None:
         more = self._more
         if more is not None:
             return more.unknown
-        first = self.first
-        return first if self.count and isinstance(first, Unknown) else None
+        first = self._first
+        return first if isinstance(first, Unknown) else None
 
     def then(self, later: ValueSummary) -> ValueSummary:
         """This summary followed by ``later``'s executions, as one summary (a new object)."""
         out = ValueSummary()
-        out.count = self.count + later.count
-        out.first = self.first if self.count else later.first
-        out.last = later.last if later.count else self.last
-        if out.count > 1:
+        count = self.count + later.count
+        out._first = self._first if self._first is not _NOTHING else later._first
+        if count > 1:
             later_unknown = later.unknown
             out._more = _Spread(
+                count,
+                later.last if later.count else self.last,
                 min(self.minimum, later.minimum),
                 max(self.maximum, later.maximum),
                 self.vacant + later.vacant,
