@@ -521,3 +521,24 @@ def test_a_rejected_assignment_sets_its_variable_to_an_unknown_value() -> None:
     assert isinstance(doc.writes[1][1].first, Unknown)
     assert isinstance(doc.writes[2][1].first, Unknown)  # not vacant: set, to what is not known
     assert not doc.assumed_arguments  # a block that does not parse reads nothing known
+
+
+def test_motions_that_go_alike_share_their_words() -> None:
+    """The words a run makes for a motion (computed by macro, or an F added) are shared by the
+    motions with the same words in the same order: one dict each, not one per motion. A zero
+    and a negative zero are different words (they print differently), and the order counts."""
+    text = (
+        "O1\nG99 G01 F0.2\n#1=1.\n#2=0.\n#3=-0.0001\n"  # X#3: X-0. to 0.001 mm
+        + "G01 X#1 Z-2.\n" * 5
+        + "G01 X#1 Z-2. F0.2\n"  # the F written: its dict is the same as the F added
+        + "G01 X#3 Z-2.\nG01 X#2 Z-2.\nG01 X#3 Z-2.\nG01 Z-2. X#1\nM30\n"
+    )
+    facts, _ = run(text)
+    motions = facts.motions
+    assert len(motions) == 10
+    words = [m.words for m in motions]
+    assert all(w is words[0] for w in words[:6])
+    assert words[0] == {"X": 1.0, "Z": -2.0, "F": 0.2}
+    assert words[6] is words[8] and words[7] is not words[6]
+    assert [math.copysign(1.0, w["X"]) for w in words[6:9]] == [-1.0, 1.0, -1.0]
+    assert words[9] is not words[0] and list(words[9]) == ["Z", "X", "F"]

@@ -8,6 +8,7 @@ an unknown condition runs its body once), so a program analysed alone still gets
 
 from __future__ import annotations
 
+import math
 import re
 import sys
 import time
@@ -76,6 +77,7 @@ INTEGER_ADDRESSES = frozenset("MSTLHD")  # P too, when it names a program (M98, 
 MAX_MACRO_LEVEL = 5  # G65/G66 levels (0i-D/30i); 16i has 4
 MAX_NESTING = 10
 MAX_MOTIONS = 200_000  # motion records kept per analysis
+MAX_SHARED_WORDS = 4096  # distinct motion words a run looks up to share (Machine._words)
 THREADING_CODES = frozenset({32.0, 33.0, 34.0, 76.0, 92.0})
 MAX_REMEMBERED_RUNS = 1000  # executions whose variables are kept when they start a thread
 CHECK_EVERY = 1024  # blocks between two looks at the budgets and a newer edit
@@ -698,6 +700,10 @@ class Machine:
         self.lathe = config.is_lathe  # asked at every block
         # The message of a move without F, by motion code: the same for every block of a run.
         self._no_feed: dict[float, str] = {}
+        # The motions' words made by the run (a block of computed words, an F added), by
+        # content: most blocks of a long program move to one of few places, and the motions
+        # that go alike share one dict (nothing changes a motion's words once recorded).
+        self._words: dict[tuple[object, ...], dict[str, float]] = {}
 
     def unknown_of(self, number: int) -> Unknown:
         u = self._unknowns.get(number)
@@ -1204,6 +1210,19 @@ class Machine:
             write = facts.writes[self._line] = (n, ValueSummary())
         write[1].add(value)
 
+    def _shared_words(self, words: dict[str, float]) -> dict[str, float]:
+        """``words``, or an equal dict an earlier motion of the run holds."""
+        key: tuple[object, ...] = tuple(words.items())
+        if 0.0 in words.values():  # 0.0 and -0.0 are equal but print differently
+            key += tuple(math.copysign(1.0, v) for v in words.values())
+        table = self._words
+        shared = table.get(key)
+        if shared is not None:
+            return shared
+        if len(table) < MAX_SHARED_WORDS:  # a run of all different moves keeps no more
+            table[key] = words
+        return words
+
     def _goto(self, act: Activation, cl: CompiledLine) -> int:
         assert cl.target is not None
         target = cl.target(act)
@@ -1407,6 +1426,8 @@ class Machine:
         words = const.words if const is not None else _motion_words(values)
         if "F" not in words and isinstance(modal.feed, float) and code != 0.0:
             words = {**words, "F": modal.feed}
+        if const is None or words is not const.words:
+            words = self._shared_words(words)
         if code in FEED_MOTIONS and modal.feed is None:
             message = self._no_feed.get(code)
             if message is None:
