@@ -12,6 +12,7 @@ import sys
 from pathlib import Path
 
 import attr._make
+import pytest
 
 from fanuc_macro import code_cache
 from fanuc_macro.code_cache import CodeCache, cache_file
@@ -145,3 +146,14 @@ def test_dataclasses_built_through_the_cache_behave_alike() -> None:
     assert Pass(0.5) == Pass(0.5, 0.0) and Pass(0.5) < Pass(0.6)
     assert repr(Same(1.0, 2.0)).endswith("Same(depth=1.0, x=2.0)")
     assert hash(Pass(0.5)) == hash(Pass(0.5))
+
+
+def test_no_home_directory_means_no_cache(monkeypatch: pytest.MonkeyPatch) -> None:
+    def no_home() -> Path:
+        raise RuntimeError("Could not determine home directory.")
+
+    monkeypatch.delenv("FANUC_MACRO_CODE_CACHE", raising=False)
+    monkeypatch.delenv("XDG_CACHE_HOME", raising=False)
+    monkeypatch.delenv("LOCALAPPDATA", raising=False)
+    monkeypatch.setattr(Path, "home", no_home)
+    assert code_cache.cache_directory() is None

@@ -118,6 +118,13 @@ def cache_directory() -> Path | None:
         return None
     if chosen:
         return Path(chosen)
+    try:
+        return _user_cache_directory()
+    except (RuntimeError, KeyError, OSError):  # no home directory to be found: no cache
+        return None
+
+
+def _user_cache_directory() -> Path:
     if sys.platform == "win32":
         base = os.environ.get("LOCALAPPDATA") or str(Path.home() / "AppData" / "Local")
     elif sys.platform == "darwin":
