@@ -157,3 +157,38 @@ def test_no_home_directory_means_no_cache(monkeypatch: pytest.MonkeyPatch) -> No
     monkeypatch.delenv("LOCALAPPDATA", raising=False)
     monkeypatch.setattr(Path, "home", no_home)
     assert code_cache.cache_directory() is None
+
+
+def _message(payload: dict[str, object]) -> bytes:
+    body = json.dumps(payload).encode()
+    return f"Content-Length: {len(body)}\r\n\r\n".encode() + body
+
+
+def test_a_server_session_over_stdio_writes_the_cache_once(tmp_path: Path) -> None:
+    """initialize, initialized, shutdown and exit, as an editor sends them: the first session
+    writes the server's file, the second finds everything in it and leaves it alone."""
+    session = b"".join(
+        _message(m)
+        for m in (
+            {"jsonrpc": "2.0", "id": 1, "method": "initialize", "params": {"capabilities": {}}},
+            {"jsonrpc": "2.0", "method": "initialized", "params": {}},
+            {"jsonrpc": "2.0", "id": 2, "method": "shutdown"},
+            {"jsonrpc": "2.0", "method": "exit"},
+        )
+    )
+    env = {**os.environ, "FANUC_MACRO_CODE_CACHE": str(tmp_path)}
+    path = cache_file(tmp_path, "server")
+    written = []
+    for _ in range(2):
+        done = subprocess.run(
+            [sys.executable, "-m", "fanuc_macro.lsp.server"],
+            input=session,
+            capture_output=True,
+            env=env,
+            timeout=120,
+        )
+        assert done.returncode == 0, done.stderr
+        assert b'"id": 2' in done.stdout or b'"id":2' in done.stdout  # shutdown answered
+        written.append(path.read_bytes())
+    assert len(written[0]) > 100_000
+    assert written[1] == written[0]
