@@ -1,0 +1,193 @@
+"""The SVG backplot (ide/plot.py) drawn from toolpaths made by hand: what it draws, where, and
+with which links to the source."""
+
+from __future__ import annotations
+
+import re
+import xml.etree.ElementTree as ET
+
+import pytest
+
+from fanuc_macro.evaluator.toolpath import LostTrack, Move, Toolpath
+from fanuc_macro.ide.plot import NothingToPlot, PassMap, PassMark, plot_svg
+
+SVG = "{http://www.w3.org/2000/svg}"
+
+
+def _elements(svg: str, kind: str | None = None) -> list[ET.Element]:
+    root = ET.fromstring(svg)
+    return [
+        e for e in root.iter() if "data-kind" in e.attrib and kind in (None, e.get("data-kind"))
+    ]
+
+
+def _g92_pass() -> Toolpath:
+    """The first G92 of O3331: in to X49.816 from X51 Z5.964, thread to Z-54.036, out, back."""
+    start = {"X": 51.0, "Z": 5.964}
+    cut_x = {"X": 49.816, "Z": 5.964}
+    end = {"X": 49.816, "Z": -54.036}
+    out = {"X": 51.0, "Z": -54.036}
+    return Toolpath(
+        [
+            Move("rapid", start, cut_x, 40, "O3331", motion=0),
+            Move("thread", cut_x, end, 40, "O3331", motion=0),
+            Move("rapid", end, out, 40, "O3331", motion=0),
+            Move("rapid", out, start, 40, "O3331", motion=0),
+        ],
+        lathe=True,
+    )
+
+
+def _line_coords(e: ET.Element) -> tuple[float, float, float, float]:
+    return tuple(float(e.get(k, "nan")) for k in ("x1", "y1", "x2", "y2"))  # type: ignore[return-value]
+
+
+def test_a_lathe_cycle_is_drawn_z_across_and_x_up_with_a_link_per_move() -> None:
+    svg = plot_svg(_g92_pass(), title="O3331")
+    moves = _elements(svg)
+    assert [e.get("data-kind") for e in moves] == ["rapid", "thread", "rapid", "rapid"]
+    assert {e.get("data-line") for e in moves} == {"41"}  # 1-based
+    assert all(e.tag == f"{SVG}line" for e in moves)
+    infeed, cut, retract, back = (_line_coords(e) for e in moves)
+    assert retract[3] < retract[1]  # out to X51: upwards
+    # The infeed goes down (X smaller), the cut goes left along Z at one height.
+    assert infeed[0] == pytest.approx(infeed[2]) and infeed[3] > infeed[1]
+    assert cut[1] == pytest.approx(cut[3]) and cut[2] < cut[0]
+    # One scale for both axes: 59.999 mm of Z against 0.592 mm of radius (1.184 of diameter).
+    ratio = (cut[0] - cut[2]) / (infeed[3] - infeed[1])
+    assert ratio == pytest.approx(60.0 / 0.592, rel=1e-3)
+    assert back[2:] == pytest.approx(infeed[:2])
+    root = ET.fromstring(svg)
+    texts = [t.text or "" for t in root.iter(f"{SVG}text")]
+    assert any("diameter" in t for t in texts)  # the X axis says what its numbers are
+    assert "Z (mm)" in texts
+    # The rapids are dashed, the thread has a colour of its own.
+    style = root.find(f"{SVG}style")
+    assert style is not None and style.text is not None
+    assert re.search(r"\.rapid\{[^}]*stroke-dasharray", style.text)
+    assert re.search(r"\.thread\{stroke:#[0-9a-f]{6}", style.text)
+
+
+def test_the_x_ticks_of_a_lathe_read_as_diameters() -> None:
+    path = Toolpath(
+        [Move("feed", {"X": 0.0, "Z": 0.0}, {"X": 100.0, "Z": -50.0}, 0, "O1")], lathe=True
+    )
+    root = ET.fromstring(plot_svg(path))
+    texts = [t.text or "" for t in root.iter(f"{SVG}text")]
+    assert "100" in texts  # the diameter 100 is the top of the radius 50 drawn
+    assert "-50" in texts  # and Z across
+
+
+def _arc(clockwise: bool, end: dict[str, float]) -> Toolpath:
+    return Toolpath(
+        [
+            Move(
+                "arc",
+                {"X": 10.0, "Y": 0.0},
+                end,
+                3,
+                "O1",
+                centre={"X": 0.0, "Y": 0.0},
+                clockwise=clockwise,
+                plane="XY",
+            )
+        ],
+        lathe=False,
+    )
+
+
+def _arc_flags(svg: str) -> list[tuple[int, int]]:
+    (path,) = _elements(svg, "arc")
+    assert path.tag == f"{SVG}path"
+    return [
+        (int(m.group(1)), int(m.group(2)))
+        for m in re.finditer(r"A[\d.]+ [\d.]+ 0 (\d) (\d)", path.get("d", ""))
+    ]
+
+
+def test_an_arc_in_the_view_turns_the_way_g02_and_g03_say() -> None:
+    # From 3 o'clock to 6 o'clock about the origin: G02 a quarter turn (clockwise on the
+    # screen, SVG's sweep 1), G03 three quarters (large arc, sweep 0).
+    assert _arc_flags(plot_svg(_arc(True, {"X": 0.0, "Y": -10.0}))) == [(0, 1)]
+    assert _arc_flags(plot_svg(_arc(False, {"X": 0.0, "Y": -10.0}))) == [(1, 0)]
+
+
+def test_a_full_circle_is_drawn_as_two_halves() -> None:
+    assert _arc_flags(plot_svg(_arc(False, {"X": 10.0, "Y": 0.0}))) == [(0, 0), (0, 0)]
+
+
+def test_an_arc_seen_edge_on_is_a_polyline_through_its_points() -> None:
+    path = _arc(True, {"X": 0.0, "Y": -10.0})
+    path.moves[0] = Move(
+        "arc",
+        {"X": 10.0, "Y": 0.0, "Z": 0.0},
+        {"X": 0.0, "Y": -10.0, "Z": 0.0},
+        3,
+        "O1",
+        centre={"X": 0.0, "Y": 0.0, "Z": 0.0},
+        clockwise=True,
+        plane="XY",
+    )
+    svg = plot_svg(path, plane="XZ")
+    (line,) = _elements(svg, "arc")
+    assert line.tag == f"{SVG}polyline"
+    assert len(line.get("points", "").split()) >= 5
+
+
+def test_moves_without_a_place_in_the_view_are_left_out_and_counted() -> None:
+    path = Toolpath(
+        [
+            Move("rapid", {"X": 0.0, "Y": 0.0}, {"X": 5.0, "Y": 5.0}, 1, "O1"),
+            Move("feed", {"Z": 2.0}, {"Z": -1.0}, 2, "O1"),
+        ],
+        lathe=False,
+    )
+    svg = plot_svg(path)
+    assert [e.get("data-line") for e in _elements(svg)] == ["2"]
+    assert "1 of 2 moves" in svg
+    with pytest.raises(NothingToPlot, match="nothing to plot in YZ"):
+        plot_svg(path, plane="YZ")
+
+
+def test_where_the_path_lost_track_is_marked_with_its_reason() -> None:
+    path = Toolpath(
+        [Move("feed", {"X": 0.0, "Y": 0.0}, {"X": 5.0, "Y": 5.0}, 7, "O1")],
+        lost=[LostTrack(7, "O1", ("Z",), "no absolute Z before this block")],
+        lathe=False,
+    )
+    (mark,) = _elements(plot_svg(path), "lost")
+    assert mark.get("data-line") == "8"
+    title = mark.find(f"{SVG}title")
+    assert title is not None and "no absolute Z" in (title.text or "")
+
+
+def test_the_same_toolpath_gives_the_same_bytes() -> None:
+    assert plot_svg(_g92_pass()) == plot_svg(_g92_pass())
+
+
+def test_a_pass_map_shows_each_pass_depth_and_cut() -> None:
+    passes = PassMap(
+        "M50x3",
+        "O3331",
+        internal=False,
+        passes=(
+            PassMark(40, 49.0, 5.964),
+            PassMark(41, 48.4, 6.1),
+            PassMark(42, 48.0, 5.8),
+        ),
+        major=50.0,
+        pitch=3.0,
+    )
+    svg = plot_svg(_g92_pass(), passes=[passes])
+    root = ET.fromstring(svg)
+    views = [g.get("data-view") for g in root.iter(f"{SVG}g") if g.get("data-view")]
+    assert views == ["toolpath", "passes"]
+    marks = _elements(svg, "pass")
+    assert [m.get("data-depth") for m in marks] == ["0.5", "0.8", "1."]
+    assert [m.get("data-line") for m in marks] == ["41", "42", "43"]
+    cuts = _elements(svg, "cut")
+    assert [c.get("data-cut") for c in cuts] == ["0.5", "0.3", "0.2"]
+    # The tips move along Z with the pass's start: symmetric infeed shows left and right.
+    tips = [float(m.get("cx", "nan")) for m in marks]
+    assert tips[1] > tips[0] > tips[2]
+    assert _elements(svg, "profile")  # the basic 60-degree groove of an identified thread
