@@ -1,6 +1,8 @@
 // Build script for the VS Code client.
 //
 //   node esbuild.mjs               bundle client/src/extension.ts -> client/out/extension.js
+//                                  and the Toolpath view's page client/webview/toolpath.ts
+//                                  -> client/out/webview/toolpath.js
 //   node esbuild.mjs --production  the same, minified and without source maps
 //   node esbuild.mjs --test        bundle client/test/*.test.ts -> client/out/test/*.test.js
 //                                  and run them with node's built-in test runner
@@ -29,6 +31,18 @@ async function buildExtension() {
     ...common,
     entryPoints: [join(root, 'client/src/extension.ts')],
     outfile: join(root, 'client/out/extension.js'),
+    minify: production,
+    sourcemap: !production,
+    sourcesContent: false,
+  });
+  await esbuild.build({
+    bundle: true,
+    platform: 'browser',
+    format: 'iife',
+    target: 'es2022',
+    logLevel: 'warning',
+    entryPoints: [join(root, 'client/webview/toolpath.ts')],
+    outfile: join(root, 'client/out/webview/toolpath.js'),
     minify: production,
     sourcemap: !production,
     sourcesContent: false,

@@ -26,6 +26,7 @@ import {
   validateThreadLength,
   type ThreadModuleArgs,
 } from './threadDesignation';
+import { ToolpathPanel } from './toolpathView';
 import { formatTrace, traceResultError, type TraceResult } from './traceFormat';
 
 const LANGUAGE_ID = 'fanuc-macro';
@@ -39,6 +40,8 @@ export const SERVER_COMMAND_THREAD_MODULE = 'fanuc-macro.threadModule';
 let client: LanguageClient | undefined;
 /** Folder the extension is installed in (holds the bundled server, if any). */
 let extensionPath: string | undefined;
+/** The same folder as a URI, for the webview's resources. */
+let extensionUri: vscode.Uri | undefined;
 /** The server.path setting as it read when the running server was started. */
 let startedWithPath = '';
 let output: vscode.OutputChannel | undefined;
@@ -339,6 +342,19 @@ async function showTrace(): Promise<void> {
   });
 }
 
+async function showToolpath(): Promise<void> {
+  const editor = vscode.window.activeTextEditor;
+  if (editor === undefined || editor.document.languageId !== LANGUAGE_ID) {
+    void vscode.window.showErrorMessage('FANUC Macro: open a FANUC macro program to see its toolpath.');
+    return;
+  }
+  const languageClient = await runningClient();
+  if (languageClient === undefined || extensionUri === undefined) return;
+  ToolpathPanel.show(extensionUri, editor.document, (command, args) =>
+    executeServerCommand(languageClient, command, args),
+  );
+}
+
 async function insertThreadModule(): Promise<void> {
   const editor = vscode.window.activeTextEditor;
   if (editor === undefined) {
@@ -410,11 +426,13 @@ async function insertThreadModule(): Promise<void> {
 export function activate(context: vscode.ExtensionContext): void {
   // Undefined in tests that pass a bare context: then there is no bundled server.
   extensionPath = typeof context.extensionPath === 'string' ? context.extensionPath : undefined;
+  extensionUri = context.extensionUri;
   context.subscriptions.push(outputChannel());
 
   context.subscriptions.push(
     vscode.commands.registerCommand('fanuc-macro.restartServer', restart),
     vscode.commands.registerCommand('fanuc-macro.showTrace', showTrace),
+    vscode.commands.registerCommand('fanuc-macro.showToolpath', showToolpath),
     vscode.commands.registerCommand('fanuc-macro.insertThreadModule', insertThreadModule),
     vscode.workspace.onDidChangeConfiguration((event) => {
       if (event.affectsConfiguration(SERVER_PATH_SETTING)) {

@@ -1,4 +1,5 @@
-"""The command line: ``fanuc-macro check``, ``trace``, ``thread``, ``hover`` and ``definition``."""
+"""The command line: ``fanuc-macro check``, ``trace``, ``plot``, ``thread``, ``hover`` and
+``definition``."""
 
 from __future__ import annotations
 
@@ -199,9 +200,8 @@ def _program_number(text: str) -> int:
     return int(digits)
 
 
-def cmd_trace(args: argparse.Namespace) -> int:
-    import json
-
+def _traced_workspace(args: argparse.Namespace) -> tuple[Config, Workspace, str]:
+    """The file of ``trace`` or ``plot`` and the ``--with`` files it calls, read; its URI."""
     path = Path(args.file)
     if not path.is_file():
         raise UsageError(f"fanuc-macro: no such file: {args.file}")
@@ -212,12 +212,18 @@ def cmd_trace(args: argparse.Namespace) -> int:
     for extra in collect_files(args.with_files or []):
         if str(extra) != uri:
             workspace.add_bytes(str(extra), extra.read_bytes())
-    doc = workspace.document(uri)
-    assert doc is not None
-    others = workspace.others(uri)
     if args.entry is not None and workspace.find_program(args.entry) is None:
         raise UsageError(f"fanuc-macro: no program O{args.entry:04d} in {args.file}")
-    result = trace(uri, doc, workspace.index(uri), others, config, args.entry)
+    return config, workspace, uri
+
+
+def cmd_trace(args: argparse.Namespace) -> int:
+    import json
+
+    config, workspace, uri = _traced_workspace(args)
+    doc = workspace.document(uri)
+    assert doc is not None
+    result = trace(uri, doc, workspace.index(uri), workspace.others(uri), config, args.entry)
     out = sys.stdout
     if args.format == "json":
         json.dump(result, out, ensure_ascii=False, indent=1)
@@ -234,6 +240,46 @@ def cmd_trace(args: argparse.Namespace) -> int:
         out.write(f"stopped early: {summary.get('stop_message') or summary['stopped']}\n")
     for f in summary["findings"]:
         out.write(f"line {f['line']}: {f['message']}\n")
+    return EXIT_OK
+
+
+def cmd_plot(args: argparse.Namespace) -> int:
+    from collections import Counter
+
+    from ..ide.plot import NothingToPlot, pass_maps, plot_svg, run_toolpath
+
+    config, workspace, uri = _traced_workspace(args)
+    doc = workspace.document(uri)
+    assert doc is not None
+    try:
+        toolpath = run_toolpath(
+            uri, doc, workspace.index(uri), workspace.others(uri), config, args.entry
+        )
+        # The pass maps of the threads the rules see in the file.
+        threads = (
+            workspace.analyse(uri).threads
+            if any(m.kind == "thread" for m in toolpath.moves)
+            else []
+        )
+        title = f"O{args.entry:04d}" if args.entry is not None else Path(args.file).name
+        svg = plot_svg(toolpath, args.plane, pass_maps(threads), title=title, main_uri=uri)
+    except NothingToPlot as err:
+        sys.stderr.write(f"fanuc-macro: {args.file}: {err}\n")
+        return EXIT_USAGE
+    output = args.output or Path(args.file).with_suffix(".svg").name
+    if output == "-":
+        sys.stdout.write(svg)
+    else:
+        Path(output).write_text(svg, encoding="utf-8")
+    for lost in toolpath.lost:
+        where = lost.uri or uri
+        sys.stderr.write(
+            f"{where}:{lost.line + 1}: lost track of {', '.join(lost.axes)}: {lost.reason}\n"
+        )
+    kinds = Counter(m.kind for m in toolpath.moves)
+    counts = ", ".join(f"{kind} {n}" for kind, n in sorted(kinds.items()))
+    shown = "standard output" if output == "-" else output
+    sys.stderr.write(f"{shown}: {len(toolpath.moves)} moves ({counts})\n")
     return EXIT_OK
 
 
@@ -280,6 +326,24 @@ def _add_place_command(
     return command
 
 
+def _add_run_options(parser: argparse.ArgumentParser) -> None:
+    """What ``trace`` and ``plot`` run: a file, where to start, the files it calls, the
+    machine."""
+    parser.add_argument("file", metavar="FILE")
+    parser.add_argument("--entry", type=_program_number, help="program to start from, e.g. O4009")
+    parser.add_argument(
+        "--with",
+        dest="with_files",
+        nargs="*",
+        metavar="PATH",
+        help="more files or folders with the programs it calls",
+    )
+    parser.add_argument("--controller", choices=CONTROLLERS, default="0i-TF")
+    parser.add_argument("--disable", help=argparse.SUPPRESS)
+    _add_machine_options(parser)
+    _add_analysis_options(parser)
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="fanuc-macro", description="Check FANUC Custom Macro B programs."
@@ -305,21 +369,26 @@ def build_parser() -> argparse.ArgumentParser:
     check.set_defaults(func=cmd_check)
 
     tr = sub.add_parser("trace", parents=[logs], help="print the motion blocks a program executes")
-    tr.add_argument("file", metavar="FILE")
-    tr.add_argument("--entry", type=_program_number, help="program to start from, e.g. O4009")
-    tr.add_argument(
-        "--with",
-        dest="with_files",
-        nargs="*",
-        metavar="PATH",
-        help="more files or folders with the programs it calls",
-    )
+    _add_run_options(tr)
     tr.add_argument("--format", choices=("text", "json"), default="text")
-    tr.add_argument("--controller", choices=CONTROLLERS, default="0i-TF")
-    tr.add_argument("--disable", help=argparse.SUPPRESS)
-    _add_machine_options(tr)
-    _add_analysis_options(tr)
     tr.set_defaults(func=cmd_trace)
+
+    pl = sub.add_parser(
+        "plot", parents=[logs], help="draw the toolpath a program cuts, as SVG (a backplot)"
+    )
+    _add_run_options(pl)
+    pl.add_argument(
+        "--plane",
+        choices=("XZ", "XY", "YZ"),
+        help="the view (default: XZ on a lathe, Z across and X up; XY on a mill)",
+    )
+    pl.add_argument(
+        "--output",
+        "-o",
+        metavar="PATH",
+        help="where the SVG goes (default: FILE's name with .svg, here; - for standard output)",
+    )
+    pl.set_defaults(func=cmd_plot)
 
     _add_place_command(sub, logs, "hover", "the hover text (markdown)").set_defaults(func=cmd_hover)
     _add_place_command(

@@ -19,8 +19,12 @@ from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 from xml.sax.saxutils import escape, quoteattr
 
+from ..config import Config
+from ..evaluator import evaluate
 from ..evaluator.toolpath import Move, Plane, Toolpath
 from ..evaluator.values import fmt_address
+from ..program.index import ProgramIndex
+from ..syntax.tree import Document
 from ..threads.identify import Thread
 
 # The drawing's size in SVG user units (pixels): the path is fitted into this box.
@@ -111,22 +115,22 @@ def _num(value: float) -> str:
     return "0" if text in ("-0", "") else text
 
 
-def _geometric(toolpath: Toolpath, point: dict[str, float]) -> dict[str, float]:
+def geometric(toolpath: Toolpath, point: dict[str, float]) -> dict[str, float]:
     """A position in the drawing's geometry: a lathe's X diameter as a radius."""
     if toolpath.lathe and "X" in point:
         return {**point, "X": point["X"] / 2.0}
     return point
 
 
-def _arc_points(toolpath: Toolpath, move: Move) -> tuple[list[dict[str, float]], float] | None:
+def arc_points(toolpath: Toolpath, move: Move) -> tuple[list[dict[str, float]], float] | None:
     """Points along an arc (a helix when the third axis moves), start and end included, and
     the angle it turns through (radians, negative clockwise)."""
     centre = move.centre
     if centre is None:
         return None
-    start = _geometric(toolpath, move.start)
-    end = _geometric(toolpath, move.end)
-    c = _geometric(toolpath, centre)
+    start = geometric(toolpath, move.start)
+    end = geometric(toolpath, move.end)
+    c = geometric(toolpath, centre)
     a, b = _ARC_AXES[move.plane]
     if not all(k in p for p in (start, end, c) for k in (a, b)):
         return None
@@ -205,7 +209,7 @@ def _svg_arc(frame: _Frame, across: str, up: str, item: _Drawn, toolpath: Toolpa
     start, end = move.start, move.end
     if any(start.get(k) != end.get(k) for k in {*start, *end} - {across, up}):
         return None  # a helix: the polyline shows its projection
-    c = _geometric(toolpath, move.centre)
+    c = geometric(toolpath, move.centre)
     sx, sy = frame.x(points[0][across]), frame.y(points[0][up])
     ex, ey = frame.x(points[-1][across]), frame.y(points[-1][up])
     mid = points[len(points) // 2]
@@ -322,11 +326,11 @@ def _drawn(toolpath: Toolpath, across: str, up: str) -> list[_Drawn]:
     """Each move with the points it is drawn through, when its place in the view is known."""
     drawn = []
     for move in toolpath.moves:
-        arc = _arc_points(toolpath, move) if move.kind == "arc" else None
+        arc = arc_points(toolpath, move) if move.kind == "arc" else None
         if arc is not None:
             item = _Drawn(move, arc[0], arc[1])
         else:
-            item = _Drawn(move, [_geometric(toolpath, move.start), _geometric(toolpath, move.end)])
+            item = _Drawn(move, [geometric(toolpath, move.start), geometric(toolpath, move.end)])
         if all(across in p and up in p for p in item.points):
             drawn.append(item)
     return drawn
@@ -414,7 +418,7 @@ def _lost_marks(
         return []
     known: dict[int, dict[str, float]] = {}
     for move in toolpath.moves:
-        point = _geometric(toolpath, move.end)
+        point = geometric(toolpath, move.end)
         if across in point and up in point:
             known.setdefault(move.line, point)
     out = ['<g class="lost-track">']
@@ -538,3 +542,27 @@ def _pass_map_view(pass_map: PassMap, top: float) -> tuple[list[str], float]:
     )
     out.append("</g>")
     return out, _MAP_HEIGHT
+
+
+def run_toolpath(
+    uri: str,
+    doc: Document,
+    index: ProgramIndex,
+    others: Sequence[tuple[str, Document, ProgramIndex]] = (),
+    config: Config | None = None,
+    entry: int | None = None,
+) -> Toolpath:
+    """Run ``uri``'s programs (or ``entry``) with the toolpath recorded.
+
+    Raises :class:`NothingToPlot` when the run makes no move."""
+    facts = evaluate(
+        [(uri, doc, index), *others],
+        config,
+        only_uri=None if entry else uri,
+        entry=entry,
+        toolpath=True,
+    )
+    toolpath = facts.toolpath
+    if toolpath is None or not toolpath.moves:
+        raise NothingToPlot("the program makes no move: nothing to plot")
+    return toolpath

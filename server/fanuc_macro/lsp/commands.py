@@ -1,16 +1,22 @@
-"""The server's commands (workspace/executeCommand): the trace of a program and thread modules."""
+"""The server's commands (workspace/executeCommand): the trace and the toolpath of a program,
+and thread modules."""
 
 from __future__ import annotations
 
 import asyncio
 import logging
-from typing import Any
+from collections.abc import Callable
+from typing import TYPE_CHECKING, Any
 
 from .engine import Engine, key_of
+
+if TYPE_CHECKING:
+    from ..ide.view import Document, ProgramIndex
 
 log = logging.getLogger(__name__)
 
 TRACE = "fanuc-macro.trace"
+TOOLPATH = "fanuc-macro.toolpath"
 THREAD_MODULE = "fanuc-macro.threadModule"
 
 
@@ -23,13 +29,18 @@ def _uri_argument(args: tuple[Any, ...]) -> str | None:
     return first if isinstance(first, str) and first else None
 
 
-async def run_trace(engine: Engine, args: tuple[Any, ...]) -> dict[str, Any]:
-    """``[uri]`` -> the trace of that document, with the workspace's documents for its calls."""
+async def _on_document(
+    engine: Engine,
+    command: str,
+    args: tuple[Any, ...],
+    answer: Callable[[str, Document, ProgramIndex, list[tuple[str, Document, ProgramIndex]]], Any],
+) -> dict[str, Any]:
+    """``[uri]`` -> ``answer`` of that document, with the workspace's documents for its calls,
+    computed in the engine's worker."""
     uri = _uri_argument(args)
     if uri is None:
-        return {"error": "fanuc-macro.trace takes the document's URI as its argument"}
+        return {"error": f"{command} takes the document's URI as its argument"}
     key = key_of(uri)
-    config = engine.config
 
     def job() -> dict[str, Any]:
         if not engine.load(key):
@@ -38,15 +49,48 @@ async def run_trace(engine: Engine, args: tuple[Any, ...]) -> dict[str, Any]:
         if documents is None:
             return {"error": f"{uri} is not in the workspace"}
         (_, doc, index), *others = documents
-        from ..ide.trace import trace  # the evaluator: loaded by the worker after start-up
-
-        return trace(key, doc, index, others, config)
+        result: dict[str, Any] = answer(key, doc, index, others)
+        return result
 
     try:
         return await engine.in_worker(job)
     except Exception as err:  # the client shows the message
-        log.exception("trace of %s failed", uri)
-        return {"error": f"the trace failed: {err!r}"}
+        log.exception("%s of %s failed", command, uri)
+        return {"error": f"{command} failed: {err!r}"}
+
+
+async def run_trace(engine: Engine, args: tuple[Any, ...]) -> dict[str, Any]:
+    """``[uri]`` -> the trace of that document."""
+    config = engine.config
+
+    def answer(
+        key: str,
+        doc: Document,
+        index: ProgramIndex,
+        others: list[tuple[str, Document, ProgramIndex]],
+    ) -> dict[str, Any]:
+        from ..ide.trace import trace  # the evaluator: loaded by the worker after start-up
+
+        return trace(key, doc, index, others, config)
+
+    return await _on_document(engine, TRACE, args, answer)
+
+
+async def run_toolpath(engine: Engine, args: tuple[Any, ...]) -> dict[str, Any]:
+    """``[uri]`` -> the Toolpath view's data of that document (ide/toolpath_view.py)."""
+    config = engine.config
+
+    def answer(
+        key: str,
+        doc: Document,
+        index: ProgramIndex,
+        others: list[tuple[str, Document, ProgramIndex]],
+    ) -> dict[str, Any]:
+        from ..ide.toolpath_view import toolpath_view
+
+        return toolpath_view(key, doc, index, others, config)
+
+    return await _on_document(engine, TOOLPATH, args, answer)
 
 
 def _thread_arguments(args: tuple[Any, ...]) -> tuple[str, float, bool | None] | str:

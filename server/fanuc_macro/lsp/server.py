@@ -24,7 +24,7 @@ from .. import __version__
 from ..code_cache import save_code_cache
 from ..diagnostics import REPORT_INTERNAL_ERROR
 from .client import CompletionSupport
-from .commands import THREAD_MODULE, TRACE, run_thread_module, run_trace
+from .commands import THREAD_MODULE, TOOLPATH, TRACE, run_thread_module, run_toolpath, run_trace
 from .convert import Codec
 from .documents import OpenDocument
 from .engine import Engine, Result
@@ -529,6 +529,10 @@ def create_server() -> FanucMacroLanguageServer:
     @server.command(TRACE)
     async def trace_command(ls: FanucMacroLanguageServer, *args: Any) -> dict[str, Any]:
         return await run_trace(engine, args)
+
+    @server.command(TOOLPATH)
+    async def toolpath_command(ls: FanucMacroLanguageServer, *args: Any) -> dict[str, Any]:
+        return await run_toolpath(engine, args)
 
     @server.command(THREAD_MODULE)
     async def thread_module_command(ls: FanucMacroLanguageServer, *args: Any) -> dict[str, Any]:

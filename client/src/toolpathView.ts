@@ -1,0 +1,203 @@
+// The Toolpath view: a webview beside the editor that draws what the program cuts
+// (client/webview/toolpath.ts), fed by the server's `fanuc-macro.toolpath` command. It follows
+// the document as the user types, highlights the cursor's block, and a click on a segment
+// reveals its block in the editor.
+import * as vscode from 'vscode';
+
+export const SERVER_COMMAND_TOOLPATH = 'fanuc-macro.toolpath';
+/** How long typing pauses before the view asks for the toolpath again. */
+export const FOLLOW_DELAY_MS = 400;
+
+type Execute = (command: string, args: unknown[]) => Promise<unknown>;
+
+interface Reveal {
+  type: 'reveal';
+  line: number;
+  path?: string;
+}
+
+/** The answer's error, or undefined when it is the view's data. */
+export function toolpathError(answer: unknown): string | undefined {
+  if (answer === null || typeof answer !== 'object') return 'the server gave no toolpath';
+  const error = (answer as { error?: unknown }).error;
+  if (typeof error === 'string') return error;
+  const segments = (answer as { segments?: unknown }).segments;
+  if (segments === null || typeof segments !== 'object') return 'the server gave no segments';
+  return undefined;
+}
+
+function nonce(): string {
+  const chars = 'ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789';
+  let text = '';
+  for (let i = 0; i < 32; i++) text += chars.charAt(Math.floor(Math.random() * chars.length));
+  return text;
+}
+
+export function toolpathHtml(scriptUri: string, cspSource: string): string {
+  const n = nonce();
+  return `<!DOCTYPE html>
+<html lang="en">
+<head>
+<meta charset="UTF-8">
+<meta http-equiv="Content-Security-Policy" content="default-src 'none'; style-src 'nonce-${n}'; script-src 'nonce-${n}' ${cspSource};">
+<meta name="viewport" content="width=device-width, initial-scale=1.0">
+<title>Toolpath</title>
+<style nonce="${n}">
+  html, body { height: 100%; margin: 0; padding: 0; overflow: hidden; }
+  body { display: flex; flex-direction: column; color: var(--vscode-foreground); background: var(--vscode-editor-background); font: 12px var(--vscode-font-family); }
+  #bar { display: flex; gap: 8px; align-items: center; padding: 4px 8px; border-bottom: 1px solid var(--vscode-panel-border); }
+  #info { flex: 1; opacity: 0.85; white-space: nowrap; overflow: hidden; text-overflow: ellipsis; }
+  .key { display: inline-flex; align-items: center; gap: 4px; }
+  .swatch { width: 18px; height: 0; border-top: 2px solid; display: inline-block; }
+  .swatch.rapid { border-top-style: dashed; border-color: #9a9a9a; }
+  .swatch.feed { border-color: #3b82f6; }
+  .swatch.arc { border-color: #22a05a; }
+  .swatch.thread { border-color: #e4572e; }
+  canvas { flex: 1; width: 100%; min-height: 0; cursor: crosshair; display: block; }
+</style>
+</head>
+<body>
+<div id="bar">
+  <label>View <select id="view"><option value="XZ">XZ</option><option value="XY">XY</option><option value="YZ">YZ</option><option value="3D">3D orbit</option></select></label>
+  <button id="fit" title="Show the whole toolpath">Fit</button>
+  <span class="key"><span class="swatch rapid"></span>rapid</span>
+  <span class="key"><span class="swatch feed"></span>feed</span>
+  <span class="key"><span class="swatch arc"></span>arc</span>
+  <span class="key"><span class="swatch thread"></span>thread</span>
+  <span id="info">Running the program…</span>
+</div>
+<canvas id="toolpath"></canvas>
+<script nonce="${n}" src="${scriptUri}"></script>
+</body>
+</html>`;
+}
+
+/** One Toolpath view, for the document it was opened on. */
+export class ToolpathPanel {
+  static current: ToolpathPanel | undefined;
+
+  private readonly disposables: vscode.Disposable[] = [];
+  private timer: ReturnType<typeof setTimeout> | undefined;
+  private ready = false;
+  private asked = 0;
+
+  private constructor(
+    private readonly panel: vscode.WebviewPanel,
+    private document: vscode.TextDocument,
+    private readonly execute: Execute,
+  ) {
+    panel.onDidDispose(() => this.dispose(), null, this.disposables);
+    panel.webview.onDidReceiveMessage((message: unknown) => this.received(message), null, this.disposables);
+    vscode.workspace.onDidChangeTextDocument(
+      (event) => {
+        if (event.document === this.document) this.followSoon();
+      },
+      null,
+      this.disposables,
+    );
+    vscode.window.onDidChangeTextEditorSelection(
+      (event) => {
+        if (event.textEditor.document === this.document) this.postCursor(event.textEditor);
+      },
+      null,
+      this.disposables,
+    );
+  }
+
+  static show(extensionUri: vscode.Uri, document: vscode.TextDocument, execute: Execute): ToolpathPanel {
+    const existing = ToolpathPanel.current;
+    if (existing !== undefined) {
+      existing.panel.reveal(vscode.ViewColumn.Beside, true);
+      if (existing.document !== document) {
+        existing.document = document;
+        existing.panel.title = ToolpathPanel.title(document);
+      }
+      void existing.refresh();
+      return existing;
+    }
+    const webviewRoot = vscode.Uri.joinPath(extensionUri, 'client', 'out', 'webview');
+    const panel = vscode.window.createWebviewPanel(
+      'fanuc-macro.toolpath',
+      ToolpathPanel.title(document),
+      { viewColumn: vscode.ViewColumn.Beside, preserveFocus: true },
+      { enableScripts: true, localResourceRoots: [webviewRoot], retainContextWhenHidden: true },
+    );
+    const script = panel.webview.asWebviewUri(vscode.Uri.joinPath(webviewRoot, 'toolpath.js'));
+    panel.webview.html = toolpathHtml(script.toString(), panel.webview.cspSource);
+    ToolpathPanel.current = new ToolpathPanel(panel, document, execute);
+    return ToolpathPanel.current;
+  }
+
+  private static title(document: vscode.TextDocument): string {
+    const name = document.uri.path.split('/').pop() ?? 'program';
+    return `Toolpath: ${name}`;
+  }
+
+  private followSoon(): void {
+    if (this.timer !== undefined) clearTimeout(this.timer);
+    this.timer = setTimeout(() => {
+      this.timer = undefined;
+      void this.refresh();
+    }, FOLLOW_DELAY_MS);
+  }
+
+  /** Ask the server for the toolpath of the document as it is now, and draw it. */
+  async refresh(): Promise<void> {
+    if (!this.ready) return;
+    const asked = ++this.asked;
+    let answer: unknown;
+    try {
+      answer = await this.execute(SERVER_COMMAND_TOOLPATH, [this.document.uri.toString()]);
+    } catch (err) {
+      answer = { error: err instanceof Error ? err.message : String(err) };
+    }
+    if (asked !== this.asked) return; // a newer request is on its way
+    const error = toolpathError(answer);
+    const title = ToolpathPanel.title(this.document).replace(/^Toolpath: /, '');
+    await this.panel.webview.postMessage(
+      error === undefined ? { type: 'data', data: answer, title } : { type: 'error', message: `${title}: ${error}` },
+    );
+    const editor = vscode.window.visibleTextEditors.find((e) => e.document === this.document);
+    if (editor !== undefined) this.postCursor(editor);
+  }
+
+  private postCursor(editor: vscode.TextEditor): void {
+    void this.panel.webview.postMessage({ type: 'cursor', line: editor.selection.active.line });
+  }
+
+  private received(message: unknown): void {
+    if (message === null || typeof message !== 'object') return;
+    const type = (message as { type?: unknown }).type;
+    if (type === 'ready') {
+      this.ready = true;
+      void this.refresh();
+    } else if (type === 'reveal') {
+      void this.reveal(message as Reveal);
+    }
+  }
+
+  private async reveal(message: Reveal): Promise<void> {
+    if (typeof message.line !== 'number') return;
+    let document = this.document;
+    if (typeof message.path === 'string') {
+      // A block of a called program in another file.
+      const uri = /^[a-z][a-z0-9+.-]*:/i.test(message.path) ? vscode.Uri.parse(message.path) : vscode.Uri.file(message.path);
+      document = await vscode.workspace.openTextDocument(uri);
+    }
+    const visible = vscode.window.visibleTextEditors.find((e) => e.document === document);
+    const editor = await vscode.window.showTextDocument(document, {
+      viewColumn: visible?.viewColumn ?? vscode.ViewColumn.One,
+      preserveFocus: false,
+    });
+    const position = new vscode.Position(message.line, 0);
+    editor.selection = new vscode.Selection(position, position);
+    editor.revealRange(new vscode.Range(position, position), vscode.TextEditorRevealType.InCenterIfOutsideViewport);
+  }
+
+  dispose(): void {
+    ToolpathPanel.current = undefined;
+    if (this.timer !== undefined) clearTimeout(this.timer);
+    this.panel.dispose();
+    for (const d of this.disposables.splice(0)) d.dispose();
+  }
+}
