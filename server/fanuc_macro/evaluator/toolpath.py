@@ -447,7 +447,8 @@ def _modal_motion(block: _Block, code: float, values: Mapping[str, Value]) -> No
             _lathe_cycle(block, code, values)
         return
     end, commanded = _targets(block, values)
-    if not commanded:
+    circle = code in (2.0, 3.0) and any(isinstance(values.get(w), float) for w in "IJK")
+    if not commanded and not circle:
         return
     if code in (2.0, 3.0):
         clockwise = code == 2.0
@@ -520,8 +521,9 @@ def _g76(block: _Block, values: Mapping[str, Value], passes: Sequence[float | No
         return
     taper = values.get("R")
     i = taper if isinstance(taper, float) else 0.0
-    for n, x in enumerate(passes):
-        assert x is not None
+    for n, pass_x in enumerate(passes):
+        assert pass_x is not None
+        x = modal.q(pass_x)
         block.go("rapid", {**start, "X": modal.q(x + 2.0 * i)}, record=n, cycle="G76")
         block.go("thread", {**start, "X": x, "Z": z}, record=n, cycle="G76")
         block.go("rapid", {**start, "X": x0, "Z": z}, record=n, cycle="G76")
