@@ -363,7 +363,7 @@ def test_trace_json_gives_every_executed_cut(tmp_path: Path) -> None:
     assert done.returncode == 0, done.stderr
     result = json.loads(done.stdout)
     motions = result["motions"]
-    assert set(motions[0]) == {"program", "line", "code", "words"}
+    assert set(motions[0]) == {"program", "line", "code", "words", "start", "end"}
     cuts = [m for m in motions if m["code"] == "G92"]
     assert len(cuts) == 186  # 2 x 88 rough passes + 2 finishing + 8 spring passes
     assert cuts[0] == {
@@ -371,7 +371,25 @@ def test_trace_json_gives_every_executed_cut(tmp_path: Path) -> None:
         "line": 32,
         "code": "G92",
         "words": {"X": 49.816, "W": -60.0, "R": 0.0, "F": 3.0},
+        "start": {"X": 51.0, "Z": 5.964},
+        "end": {"X": 51.0, "Z": 5.964},
+        "moves": [
+            {"kind": "rapid", "start": {"X": 51.0, "Z": 5.964}, "end": {"X": 49.816, "Z": 5.964}},
+            {
+                "kind": "thread",
+                "start": {"X": 49.816, "Z": 5.964},
+                "end": {"X": 49.816, "Z": -54.036},
+            },
+            {
+                "kind": "rapid",
+                "start": {"X": 49.816, "Z": -54.036},
+                "end": {"X": 51.0, "Z": -54.036},
+            },
+            {"kind": "rapid", "start": {"X": 51.0, "Z": -54.036}, "end": {"X": 51.0, "Z": 5.964}},
+        ],
     }
+    lost = result["toolpath"]["lost"]
+    assert lost[0]["line"] == 4 and lost[0]["axes"] == ["X", "Z"]
     # The modal repeat "X[#100-2.*#4]" is a G92 record of its own, with the modal F.
     assert any(m["line"] == 43 and set(m["words"]) == {"X", "F"} for m in cuts)
     assert result["summary"]["by_code"]["G92"] == 186
@@ -385,6 +403,8 @@ def test_trace_text_and_entry(tmp_path: Path) -> None:
     lines = done.stdout.splitlines()
     assert sum(1 for ln in lines if ln.startswith("O") and " G32 " in ln) == 19
     assert lines[-1].startswith("78 motions (G00 59, G32 19)")
+    first_cut = next(ln for ln in lines if " G32 " in ln)
+    assert "[X94.561 Z58.369 -> X94.561 Z-113.]" in first_cut
     sub = run(tmp_path, "trace", str(SEEDS / "o4009_external_m50x3.nc"), "--entry", "O3331")
     assert sub.returncode == 0, sub.stderr
     assert "O4009" not in sub.stdout  # only the sub-program, with unknown #100-#104

@@ -19,6 +19,7 @@ version the map saw last (``tests/test_line_maps.py`` compares the two after ran
 from __future__ import annotations
 
 import threading
+import weakref
 from bisect import bisect_left
 from collections.abc import Callable, Iterator, Sequence
 from itertools import compress
@@ -109,7 +110,10 @@ class Diff:
         return None
 
 
-_diffs: list[tuple[Document, Document, Diff]] = []  # the last few pairs of versions compared
+# The last few pairs of versions compared, by weak reference: a version the server no longer
+# holds is freed with its blocks (a document of 100,000 lines edited where lines move makes a
+# new block for every line after the edit, about 5 MB a version).
+_diffs: list[tuple[weakref.ref[Document], weakref.ref[Document], Diff]] = []
 _diffs_lock = threading.Lock()
 
 
@@ -118,7 +122,7 @@ def line_diff(old: Document, new: Document) -> Diff:
     maps of one analysis all compare with the same version before)."""
     with _diffs_lock:
         for a, b, diff in _diffs:
-            if a is old and b is new:
+            if a() is old and b() is new:
                 return diff
     if len(old.blocks) == len(new.blocks):
         # Blocks compare by line number and parsed line, the same object for unchanged text.
@@ -127,7 +131,7 @@ def line_diff(old: Document, new: Document) -> Diff:
         # Lines moved: the blocks after the edit differ by their number, not their line.
         diff = Diff(_parsed(old), _parsed(new), identical=False)
     with _diffs_lock:
-        _diffs.insert(0, (old, new, diff))
+        _diffs.insert(0, (weakref.ref(old), weakref.ref(new), diff))
         del _diffs[4:]
     return diff
 

@@ -16,6 +16,7 @@ from .values import Unknown, Value, fmt
 
 if TYPE_CHECKING:
     from .checkpoints import RunRecord
+    from .toolpath import Toolpath
 
 K = TypeVar("K")
 V = TypeVar("V")
@@ -425,6 +426,7 @@ class Facts:
     run_values: dict[int, RunValues] = field(default_factory=dict)  # run -> at its first cut
     # The run's checkpoints and facts by stretch, from which the next analysis resumes.
     record: RunRecord | None = field(default=None, repr=False, compare=False)
+    toolpath: Toolpath | None = None  # the moves, when the evaluation was asked for them
 
     def stop_message(self) -> str | None:
         """What a user is told when the safety net stopped the analysis (None otherwise)."""

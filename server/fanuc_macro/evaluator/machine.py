@@ -60,6 +60,7 @@ from .facts import (
     RunValues,
     ValueSummary,
 )
+from .toolpath import Recorder
 from .values import UNKNOWN, MacroAlarm, Unknown, Value, fmt
 
 # Block kinds of the compiled program.
@@ -704,6 +705,9 @@ class Machine:
         # content: most blocks of a long program move to one of few places, and the motions
         # that go alike share one dict (nothing changes a motion's words once recorded).
         self._words: dict[tuple[object, ...], dict[str, float]] = {}
+        # The toolpath's recorder, when one is asked for (see evaluate): None costs a run one
+        # test per NC block.
+        self.toolpath: Recorder | None = None
 
     def unknown_of(self, number: int) -> Unknown:
         u = self._unknowns.get(number)
@@ -735,6 +739,8 @@ class Machine:
             entry.facts.assumed_arguments[entry.program.first_line] = read_first
         act = Activation(self, entry, locals_, 0, None, 0, 0)
         entry.facts.analysed_programs.add(entry.program.first_line)
+        if self.toolpath is not None:
+            self.toolpath.begin_run(len(self.facts.motions))
         self._steps = 0
         self._checkpoint(act, 0)
         return self._run_loop(act, 0)
@@ -1350,6 +1356,9 @@ class Machine:
             act.pc = self._line + 1
             return act
         moved = self._motion(act, cl, values, g_codes, order)
+        if self.toolpath is not None:
+            ctx = act.ctx
+            self.toolpath.block(ctx.name, ctx.uri, self._line, values, g_codes, self.facts.motions)
         for m in m_codes:
             if m == 98.0:
                 return self._sub_call(act, cl, values)

@@ -22,6 +22,7 @@ from .machine import (
     compiled,
     locals_read_first,
 )
+from .toolpath import Recorder
 
 
 def entry_programs(every: Sequence[ProgramContext], only_uri: str | None) -> list[ProgramContext]:
@@ -53,17 +54,27 @@ def evaluate(
     entry: int | None = None,
     previous: Facts | None = None,
     cancel: CancelToken | None = None,
+    toolpath: bool = False,
 ) -> Facts:
     """Run every entry program (or O``entry``) of ``docs`` within the configured budgets.
 
     ``previous``: the facts of an earlier evaluation of other versions of the same documents
     with the same settings; the run resumes from its checkpoints where it can (see
     :mod:`.checkpoints`), with the same result as a full run. ``cancel`` may stop it (see
-    :mod:`fanuc_macro.cancel`).
+    :mod:`fanuc_macro.cancel`). ``toolpath``: also record the moves (``Facts.toolpath``),
+    in a full run (``previous`` is not used).
     """
     # The run makes many small objects and no cycles: collections would only rescan them.
     with quiet_gc():
-        return _evaluate(docs, config or Config(), only_uri, entry, previous, cancel)
+        return _evaluate(
+            docs,
+            config or Config(),
+            only_uri,
+            entry,
+            None if toolpath else previous,
+            cancel,
+            toolpath,
+        )
 
 
 def _evaluate(
@@ -73,6 +84,7 @@ def _evaluate(
     entry: int | None,
     previous: Facts | None,
     cancel: CancelToken | None,
+    toolpath: bool = False,
 ) -> Facts:
     docs = list(docs)
     documents = tuple((uri, doc) for uri, doc, _ in docs)
@@ -92,6 +104,9 @@ def _evaluate(
     # entry, is what ends a run that goes on (see Config).
     deadline = time.monotonic() + config.time_limit
     machine = Machine(programs, config, facts, every, cancel)
+    if toolpath:
+        recorder = machine.toolpath = Recorder(config.is_lathe)
+        facts.toolpath = recorder.toolpath
     record = RunRecord((config, only_uri, entry), documents, _shapes(every))
     for ctx in every:
         record.lines.setdefault(ctx.uri, ctx.lines)

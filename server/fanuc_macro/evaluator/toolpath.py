@@ -5,17 +5,39 @@ threading pass or an arc. Positions are absolute work coordinates in the program
 a lathe X is a diameter, as the program writes it. An axis the evaluator cannot place (no
 absolute start, an unknown value) is absent from the move's positions, and the ``Toolpath``
 says where it lost track of it.
+
+The kinematics below are pure functions of the path's modal state (``PathModal``) and a
+block's words: ``block_steps`` gives the block's moves and updates the state. The evaluator
+calls them through a ``Recorder`` when it is asked for a toolpath (``evaluate(...,
+toolpath=True)``), after its own handling of the block; a run without it pays one test per NC
+block. The path is the programmed one: tool offsets, tool nose radius compensation (G40-G42)
+and a thread's chamfer are not applied.
+
+Sources: FANUC Series 0i-TF Operator's Manual (B-64604EN), "Interpolation functions"
+(G00-G03, G32), "Reference position" (G28), "Coordinate system" (G50, G53, G54-G59), "Canned
+cycle for lathe" (G90, G92, G94), "Multiple repetitive cycle" (G70-G76); FANUC Series 0i-MF
+Operator's Manual (B-64604EN, M series part), "Absolute and incremental programming",
+"Plane selection", "Canned cycle for drilling" (G73-G89, G98/G99). What they leave to the
+machine builder (parameters) is marked unverified where the path depends on it.
 """
 
 from __future__ import annotations
 
+import math
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Literal
+
+from .facts import Motion
+from .values import Unknown, Value
 
 MoveKind = Literal["rapid", "feed", "thread", "arc"]
 MOVE_KINDS: tuple[MoveKind, ...] = ("rapid", "feed", "thread", "arc")
 
 Plane = Literal["XY", "XZ", "YZ"]
+
+# Moves kept per toolpath: a G76 or a peck cycle is many moves per block.
+MAX_MOVES = 1_000_000
 
 
 @dataclass(frozen=True, slots=True)
@@ -36,11 +58,14 @@ class Move:
     # Which motion record of the trace the move belongs to (its index in Facts.motions):
     # a canned cycle is one record of several moves.
     motion: int = -1
+    # The canned cycle the move is a part of ("G92", "G76", "G81"; "" for a plain move).
+    cycle: str = ""
 
 
 @dataclass(frozen=True, slots=True)
 class LostTrack:
-    """Where the path stops being known for some axes, and why."""
+    """Where the path stops being known for some axes, and why. ``axes`` is empty for a note
+    that keeps the position: moves the path does not draw (a G71's roughing passes)."""
 
     line: int
     program: str
@@ -58,8 +83,595 @@ class Toolpath:
     lathe: bool = True
     inch: bool = False  # G20 in force at the first move: the positions are in inches
     truncated: bool = False  # more moves than kept
+    # Where the tool stood at a motion record that makes no move (its index in Facts.motions:
+    # a G04 X dwell, a G10, a cycle's first block): the trace shows it there.
+    standing: dict[int, dict[str, float]] = field(default_factory=dict)
 
     def axes(self) -> tuple[str, ...]:
         """The axes any move places, in X, Y, Z order."""
         seen = {a for m in self.moves for a in (*m.start, *m.end)}
         return tuple(a for a in "XYZ" if a in seen)
+
+
+# ---- the path's modal state ------------------------------------------------------------------
+
+LATHE_AXES = ("X", "Z", "Y")
+MILL_AXES = ("X", "Y", "Z")
+# A lathe's incremental addresses in G-code system A (0i-TF "Absolute and incremental
+# programming"): U, W, V for X, Z, Y.
+LATHE_INCREMENTAL = {"X": "U", "Z": "W", "Y": "V"}
+LINEAR_KINDS: dict[float, MoveKind] = {
+    0.0: "rapid",
+    1.0: "feed",
+    31.0: "feed",  # skip function: a linear feed, stopped by the signal (drawn whole)
+    32.0: "thread",
+    33.0: "thread",
+    34.0: "thread",  # variable lead: straight, as G32
+}
+LATHE_CYCLE_CODES = (90.0, 92.0, 94.0)
+# The mill's drilling cycles (group 09, 0i-MF "Canned cycle for drilling").
+DRILLING = frozenset({73.0, 74.0, 76.0, 81.0, 82.0, 83.0, 84.0, 85.0, 86.0, 87.0, 88.0, 89.0})
+# Drilling cycles that feed back out to the R point (tapping G74/G84, boring G85/G89); the
+# others leave the bottom at rapid (G86 with the spindle stopped, G76 after its shift).
+FEED_OUT = frozenset({74.0, 84.0, 85.0, 89.0})
+# The lathe's multiple repetitive cycles whose passes are not drawn (G76 is).
+NOT_EXPANDED = frozenset({70.0, 71.0, 72.0, 73.0, 74.0, 75.0})
+WORK_OFFSETS = frozenset({54.0, 55.0, 56.0, 57.0, 58.0, 59.0})
+# G73's retract after each peck (parameter 5114) and G83's clearance above the last depth
+# (parameter 5115): set by the machine builder; 1 mm (0.04 inch) here (unverified).
+PECK_RETRACT_MM = 1.0
+MAX_REPEATS = 1000  # K of a drilling cycle: more holes than this are cut short
+
+
+@dataclass(slots=True, eq=False)
+class PathModal:
+    """What the path knows between blocks: positions of the known axes (a new dict at every
+    change, so moves can share them), and the modal codes that decide what a word means."""
+
+    lathe: bool
+    position: dict[str, float] = field(default_factory=dict)
+    absolute: bool = True  # G90 (mill); a lathe in G-code system A has U/W instead
+    plane: Plane = "XY"
+    inch: bool = False
+    motion: float | None = None  # group 01, the lathe's G90/G92/G94 included
+    # G90/G92/G94: X, Z (absolute) and R stay in force for the blocks that repeat the cycle
+    # (0i-TF "Canned cycle for lathe": the data of X (U), Z (W) and R are modal).
+    cycle_words: dict[str, float] = field(default_factory=dict)
+    drilling: float | None = None  # the mill's group 09 code in force
+    drill_words: dict[str, float] = field(default_factory=dict)  # Z, R, Q of the cycle
+    return_to_initial: bool = True  # G98 (default at power on); G99: the R point
+    initial_z: float | None = None  # the initial level of the drilling cycle
+    work_offset: float | None = None
+
+    def __post_init__(self) -> None:
+        if self.lathe:
+            self.plane = "XZ"
+
+    @property
+    def axes(self) -> tuple[str, ...]:
+        return LATHE_AXES if self.lathe else MILL_AXES
+
+    def q(self, value: float) -> float:
+        """A position at the least input increment (IS-B): 0.001 mm, 0.0001 inch."""
+        return round(value, 4 if self.inch else 3) + 0.0  # no -0.0
+
+
+Point = dict[str, float]
+# One move of a block: kind, start, end, centre, clockwise, which of the block's motion
+# records it belongs to (a G76's pass; 0 otherwise), the cycle's code ("" for none).
+Step = tuple[MoveKind, Point, Point, Point | None, bool | None, int, str]
+Loss = tuple[tuple[str, ...], str]
+
+
+def _word(values: Mapping[str, Value], address: str) -> float | Unknown | None:
+    v = values.get(address)
+    return v if isinstance(v, float | Unknown) else None
+
+
+class _Block:
+    """The moves of one block as they are worked out: each starts where the last ended."""
+
+    __slots__ = ("lost", "modal", "steps")
+
+    def __init__(self, modal: PathModal) -> None:
+        self.modal = modal
+        self.steps: list[Step] = []
+        self.lost: list[Loss] = []
+
+    def go(
+        self,
+        kind: MoveKind,
+        end: Point,
+        centre: Point | None = None,
+        clockwise: bool | None = None,
+        record: int = 0,
+        cycle: str = "",
+    ) -> None:
+        modal = self.modal
+        start = modal.position
+        if end == start and centre is None:
+            return  # no motion (an arc with a centre and the same end is a full circle)
+        self.steps.append((kind, start, end, centre, clockwise, record, cycle))
+        modal.position = end
+
+    def lose(self, axes: Sequence[str], reason: str) -> None:
+        position = self.modal.position
+        gone = tuple(a for a in axes if a in position)
+        if gone:
+            self.modal.position = {a: v for a, v in position.items() if a not in gone}
+            self.lost.append((gone, reason))
+
+    def note(self, reason: str) -> None:
+        self.lost.append(((), reason))
+
+
+def _targets(
+    block: _Block, values: Mapping[str, Value], absolute: bool | None = None
+) -> tuple[Point, bool]:
+    """Where the block's axis words send the tool (the other axes stay), and whether any axis
+    word is there. An axis whose word is unknown, or incremental from an unknown place, is
+    lost (absent from the point)."""
+    modal = block.modal
+    here = modal.position
+    end = dict(here)
+    commanded = False
+    unknown: list[str] = []
+    if absolute is None:
+        absolute = modal.absolute
+    for axis in modal.axes:
+        value: float | Unknown | None
+        incremental: float | Unknown | None
+        if modal.lathe:
+            value = _word(values, axis)
+            incremental = _word(values, LATHE_INCREMENTAL[axis])
+        else:
+            written = _word(values, axis)
+            value, incremental = (written, None) if absolute else (None, written)
+        if value is not None:
+            commanded = True
+            if isinstance(value, Unknown):
+                unknown.append(axis)
+                end.pop(axis, None)
+            else:
+                end[axis] = modal.q(value)
+        elif incremental is not None:
+            commanded = True
+            start = here.get(axis)
+            if isinstance(incremental, Unknown):
+                unknown.append(axis)
+                end.pop(axis, None)
+            elif start is not None:
+                end[axis] = modal.q(start + incremental)
+    gone = tuple(a for a in unknown if a in here)
+    if gone:
+        block.lost.append((gone, "the value of the axis word is not known"))
+    return end, commanded
+
+
+# ---- arcs ------------------------------------------------------------------------------------
+
+# The two axes of each plane, in the order that makes G03 counter-clockwise (the third axis
+# pointing at the viewer: Z for XY, Y for ZX, X for YZ; 0i-MF "Plane selection"); with the
+# word of the centre's offset along each (I J K).
+PLANE_AXES: dict[Plane, tuple[tuple[str, str], tuple[str, str]]] = {
+    "XY": (("X", "I"), ("Y", "J")),
+    "XZ": (("Z", "K"), ("X", "I")),
+    "YZ": (("Y", "J"), ("Z", "K")),
+}
+
+
+def arc_centre(
+    start: Point,
+    end: Point,
+    values: Mapping[str, Value],
+    clockwise: bool,
+    plane: Plane,
+    lathe: bool,
+) -> Point | None:
+    """The centre of a G02/G03 (the start's other axes kept), or None when it cannot be
+    known: an unknown R or I J K, an unknown start or end in the plane, neither R nor I J K.
+
+    R: the radius, negative for an arc of more than 180° (0i-MF "Circular interpolation";
+    for the lathe the same sign rule is taken, unverified); R wins over I J K when both are
+    given. I J K: the centre's offset from the start, incremental; a lathe's I is a radius.
+    On a lathe X is a diameter: the geometry is worked in radius.
+    """
+    (u_axis, u_word), (v_axis, v_word) = PLANE_AXES[plane]
+    if not (u_axis in start and v_axis in start and u_axis in end and v_axis in end):
+        return None
+    # A lathe's X in radius for the geometry (it is the v axis of the lathe's ZX plane).
+    scale = 0.5 if lathe and v_axis == "X" else 1.0
+    su, sv = start[u_axis], start[v_axis] * scale
+    eu, ev = end[u_axis], end[v_axis] * scale
+    radius = values.get("R")
+    if isinstance(radius, Unknown):
+        return None
+    if isinstance(radius, float):
+        du, dv = eu - su, ev - sv
+        chord = math.hypot(du, dv)
+        if chord == 0.0 or radius == 0.0:
+            return None  # an arc of 0°: FANUC makes no move
+        # The centre lies on the chord's perpendicular bisector: left of the chord (seen in
+        # the plane, counter-clockwise positive) for a G03 of at most 180°; a G02, or R < 0,
+        # takes the other side.
+        half = chord / 2.0
+        # A radius shorter than half the chord: the centre at the chord's middle (the
+        # control raises an alarm past a tolerance, parameter 3410; unverified).
+        height = math.sqrt(max(0.0, radius * radius - half * half))
+        side = -1.0 if clockwise else 1.0
+        if radius < 0:
+            side = -side
+        cu = (su + eu) / 2.0 - side * height * dv / chord
+        cv = (sv + ev) / 2.0 + side * height * du / chord
+    else:
+        u_off, v_off = values.get(u_word), values.get(v_word)
+        if isinstance(u_off, Unknown) or isinstance(v_off, Unknown):
+            return None
+        if not isinstance(u_off, float) and not isinstance(v_off, float):
+            return None  # FANUC: alarm PS0022 (neither R nor I, J, K)
+        cu = su + (u_off if isinstance(u_off, float) else 0.0)
+        cv = sv + (v_off if isinstance(v_off, float) else 0.0)
+    out = dict(start)
+    out[u_axis] = cu
+    out[v_axis] = cv / scale
+    return out
+
+
+# ---- one block -------------------------------------------------------------------------------
+
+
+def block_steps(
+    modal: PathModal,
+    values: Mapping[str, Value],
+    g_codes: Sequence[float],
+    passes: Sequence[float | None] = (),
+) -> tuple[list[Step], list[Loss]]:
+    """The moves one block makes from ``modal``'s state, which it updates; and the axes it
+    loses track of, with why. ``passes``: a lathe G76's pass diameters (from the evaluator's
+    ``cycles.g76_depths``), one motion record each."""
+    block = _Block(modal)
+    lathe = modal.lathe
+    one_shot: float | None = None
+    for g in g_codes:
+        if g in (17.0, 18.0, 19.0) and not lathe:
+            modal.plane = "XY" if g == 17.0 else "XZ" if g == 18.0 else "YZ"
+        elif g == 20.0:
+            modal.inch = True
+        elif g == 21.0:
+            modal.inch = False
+        elif g in LINEAR_KINDS or g in (2.0, 3.0) or (lathe and g in LATHE_CYCLE_CODES):
+            if g == 31.0:
+                one_shot = g
+            else:
+                modal.motion = g
+                if g not in LATHE_CYCLE_CODES:
+                    modal.cycle_words = {}
+            if not lathe:
+                modal.drilling = None  # a group 01 code ends a drilling cycle (0i-MF)
+        elif not lathe and g in (90.0, 91.0):
+            modal.absolute = g == 90.0
+        elif not lathe and g in (98.0, 99.0):
+            modal.return_to_initial = g == 98.0
+        elif not lathe and g == 80.0:
+            modal.drilling = None
+        elif not lathe and g in DRILLING:
+            if modal.drilling is None:
+                modal.initial_z = modal.position.get("Z")
+            modal.drilling = g
+        elif g in WORK_OFFSETS:
+            if modal.work_offset is not None and modal.work_offset != g:
+                block.lose(modal.axes, f"G{g:g} selects another work coordinate system")
+            modal.work_offset = g
+        elif (
+            g in (4.0, 10.0, 27.0, 28.0, 30.0, 52.0, 53.0)
+            or (lathe and g in (50.0, 76.0))
+            or (lathe and g in NOT_EXPANDED)
+        ):
+            one_shot = g
+        elif not lathe and g == 92.0:
+            one_shot = 50.0  # the mill's coordinate system setting is the lathe's G50
+    if one_shot is not None:
+        _one_shot(block, one_shot, values, passes)
+    elif not lathe and modal.drilling is not None:
+        _drill(block, values)
+    elif modal.motion is not None:
+        _modal_motion(block, modal.motion, values)
+    return block.steps, block.lost
+
+
+def _one_shot(
+    block: _Block, code: float, values: Mapping[str, Value], passes: Sequence[float | None]
+) -> None:
+    modal = block.modal
+    if code in (28.0, 30.0):
+        # Through the intermediate point to the reference point (0i-TF "Reference position
+        # return"): the axes named go there at rapid; where the reference point is in work
+        # coordinates the analysis does not know.
+        middle, commanded = _targets(block, values)
+        if not commanded:
+            return
+        block.go("rapid", middle)
+        named = [
+            a for a in modal.axes if a in values or (modal.lathe and LATHE_INCREMENTAL[a] in values)
+        ]
+        block.lose(
+            named,
+            f"G{code:g} returns to the {'' if code == 28.0 else 'second '}reference point, "
+            "whose work coordinates are not known",
+        )
+    elif code == 52.0:
+        named = [a for a in modal.axes if a in values]
+        block.lose(named, "G52 sets a local coordinate system (not followed)")
+    elif code == 53.0:
+        named = [a for a in modal.axes if a in values]
+        block.lose(named, "G53 moves in machine coordinates; the work offset is not known")
+    elif code == 50.0:
+        # Coordinate system setting (lathe G50, mill G92): the tool's position becomes the
+        # words' values, without a move (0i-TF "Setting a workpiece coordinate system").
+        position = dict(modal.position)
+        for axis in modal.axes:
+            v = values.get(axis)
+            if isinstance(v, float):
+                position[axis] = modal.q(v)
+            elif isinstance(v, Unknown):
+                position.pop(axis, None)
+        modal.position = position
+    elif code == 31.0:
+        end, _ = _targets(block, values)
+        block.go("feed", end)
+    elif code == 27.0:
+        end, _ = _targets(block, values)
+        block.go("rapid", end)
+    elif code == 76.0:
+        _g76(block, values, passes)
+    elif code in NOT_EXPANDED and (
+        ("P" in values and "Q" in values) or (code in (74.0, 75.0) and _has_axis(modal, values))
+    ):
+        block.note(
+            f"G{code:g}'s passes are not drawn; the tool is back at the cycle's start point "
+            "after it"
+        )
+    # G04 (dwell: its X is seconds) and G10 (data setting) make no move.
+
+
+def _has_axis(modal: PathModal, values: Mapping[str, Value]) -> bool:
+    if any(a in values for a in modal.axes):
+        return True
+    return modal.lathe and any(LATHE_INCREMENTAL[a] in values for a in modal.axes)
+
+
+def _modal_motion(block: _Block, code: float, values: Mapping[str, Value]) -> None:
+    modal = block.modal
+    if code in LATHE_CYCLE_CODES:
+        if _has_axis(modal, values):
+            _lathe_cycle(block, code, values)
+        return
+    end, commanded = _targets(block, values)
+    circle = code in (2.0, 3.0) and any(isinstance(values.get(w), float) for w in "IJK")
+    if not commanded and not circle:
+        return
+    if code in (2.0, 3.0):
+        clockwise = code == 2.0
+        centre = arc_centre(modal.position, end, values, clockwise, modal.plane, modal.lathe)
+        if centre is None:
+            # Drawn straight, and said so when the start was known.
+            if all(a in modal.position for a in end):
+                block.note(f"G{code:02g}'s centre is not known: drawn as a straight move")
+            block.go("feed", end)
+        else:
+            block.go("arc", end, {a: modal.q(v) for a, v in centre.items()}, clockwise)
+        return
+    block.go(LINEAR_KINDS.get(code, "feed"), end)
+
+
+def _lathe_cycle(block: _Block, code: float, values: Mapping[str, Value]) -> None:
+    """G90 (turning), G92 (threading), G94 (facing), 0i-TF "Canned cycle for lathe": four
+    moves from the start point A and back to it. G90/G92: rapid in X to the cut's start
+    (X + 2R, R a radius), cut to (X, Z), out in X to A's diameter, rapid back in Z. G94:
+    rapid in Z to Z + R, face to (X, Z), back in Z to A's Z, rapid out in X. The X, Z and R
+    of the last block stay in force for a block that only changes some of them."""
+    modal = block.modal
+    words = modal.cycle_words
+    start = modal.position
+    name = f"G{code:g}"
+    end, _ = _targets(block, values)
+    for axis in ("X", "Z"):
+        if axis in values or LATHE_INCREMENTAL[axis] in values:
+            if axis in end:
+                words[axis] = end[axis]
+            else:
+                words.pop(axis, None)
+    r = values.get("R")
+    if isinstance(r, float):
+        words["R"] = r
+    elif isinstance(r, Unknown):
+        words["R"] = math.nan
+    x, z, taper = words.get("X"), words.get("Z"), words.get("R", 0.0)
+    x0, z0 = start.get("X"), start.get("Z")
+    if x is None or z is None or x0 is None or z0 is None or math.isnan(taper):
+        block.note(f"{name}'s start point or end point is not known: the cycle is not drawn")
+        return
+    cut: MoveKind = "thread" if code == 92.0 else "feed"
+    out: MoveKind = "rapid" if code == 92.0 else "feed"
+    if code == 94.0:
+        block.go("rapid", {**start, "Z": modal.q(z + taper)}, cycle=name)
+        block.go("feed", {**start, "X": x, "Z": z}, cycle=name)
+        block.go("feed", {**start, "X": x, "Z": z0}, cycle=name)
+    else:
+        block.go("rapid", {**start, "X": modal.q(x + 2.0 * taper)}, cycle=name)
+        block.go(cut, {**start, "X": x, "Z": z}, cycle=name)
+        block.go(out, {**start, "X": x0, "Z": z}, cycle=name)
+    block.go("rapid", start, cycle=name)
+
+
+def _g76(block: _Block, values: Mapping[str, Value], passes: Sequence[float | None]) -> None:
+    """G76's cutting block (0i-TF "Multiple threading cycle (G76)"): each pass from the start
+    point A: rapid in X to the pass's diameter, thread to Z, rapid out in X to A's diameter,
+    rapid back in Z to A. With R(i) (a radius) the thread is a taper: the pass starts
+    2i off its end's diameter. The control moves each pass's start along the flank (one-edge
+    infeed, by the tool angle) and chamfers the end: neither is drawn."""
+    modal = block.modal
+    if not passes:
+        return  # the first block: parameters only
+    start = modal.position
+    end, _ = _targets(block, values)
+    z, x0, z0 = end.get("Z"), start.get("X"), start.get("Z")
+    if z is None or x0 is None or z0 is None or any(p is None for p in passes):
+        block.note("G76's start point or end point is not known: its passes are not drawn")
+        return
+    taper = values.get("R")
+    i = taper if isinstance(taper, float) else 0.0
+    for n, pass_x in enumerate(passes):
+        assert pass_x is not None
+        x = modal.q(pass_x)
+        block.go("rapid", {**start, "X": modal.q(x + 2.0 * i)}, record=n, cycle="G76")
+        block.go("thread", {**start, "X": x, "Z": z}, record=n, cycle="G76")
+        block.go("rapid", {**start, "X": x0, "Z": z}, record=n, cycle="G76")
+        block.go("rapid", start, record=n, cycle="G76")
+
+
+def _drill(block: _Block, values: Mapping[str, Value]) -> None:
+    """The holes of the mill's drilling cycle in force (0i-MF "Canned cycle for drilling"),
+    for a block with X, Y, Z or R: rapid to X Y, rapid down to the R point, in to Z, out to
+    the R point (G99) or the initial level (G98), at rapid or, tapping and boring (G74 G84
+    G85 G89), at feed to the R point. In G91, R is from the initial level and Z from the R
+    point. G73 and G83 peck by Q: G73 backs off by a parameter's distance after each peck,
+    G83 goes back to the R point and down again to that distance above the last depth. K
+    repeats the hole (in G91 at each increment of X Y; K0 drills none). G76 and G87's shift,
+    G87's back boring and G88's manual return are not drawn: they are drawn as a G81."""
+    modal = block.modal
+    code = modal.drilling
+    assert code is not None
+    name = f"G{code:g}"
+    words = modal.drill_words
+    for address in ("Z", "R", "Q"):
+        v = values.get(address)
+        if isinstance(v, float):
+            words[address] = v
+        elif isinstance(v, Unknown):
+            words.pop(address, None)
+    if not any(a in values for a in ("X", "Y", "Z", "R")):
+        return  # no hole: a block of other words
+    repeats = values.get("K")
+    count = 1 if not isinstance(repeats, float) else min(MAX_REPEATS, max(0, round(repeats)))
+    initial = modal.initial_z
+    if initial is None:
+        initial = modal.initial_z = modal.position.get("Z")
+    r, z = words.get("R"), words.get("Z")
+    flat = {a: v for a, v in values.items() if a in ("X", "Y")}
+    if r is None or z is None or initial is None:
+        block.lose(("Z",), f"{name}'s R point, Z or initial level is not known")
+        end, _ = _targets(block, flat)
+        block.go("rapid", end, cycle=name)
+        return
+    r_level, bottom = (r, z) if modal.absolute else (initial + r, initial + r + z)
+    r_level, bottom = modal.q(r_level), modal.q(bottom)
+    retract = PECK_RETRACT_MM / (25.4 if modal.inch else 1.0)
+    peck = abs(words.get("Q", 0.0)) if code in (73.0, 83.0) else 0.0
+    total = abs(r_level - bottom)
+    sign = -1.0 if bottom < r_level else 1.0  # the way in, from R towards Z
+
+    def at(depth: float) -> Point:
+        return {**modal.position, "Z": modal.q(r_level + sign * depth)}
+
+    for _ in range(count):
+        above, _commanded = _targets(block, flat)
+        block.go("rapid", above, cycle=name)
+        block.go("rapid", at(0.0), cycle=name)
+        if peck > 0.0:
+            depth = 0.0
+            for _peck in range(MAX_REPEATS):
+                if depth > 0.0 and code == 83.0:
+                    block.go("rapid", at(max(0.0, depth - retract)), cycle=name)
+                depth = min(depth + peck, total)
+                block.go("feed", at(depth), cycle=name)
+                if depth >= total - 1e-9:
+                    break
+                if code == 73.0:
+                    block.go("rapid", at(max(0.0, depth - retract)), cycle=name)
+                else:
+                    block.go("rapid", at(0.0), cycle=name)
+        else:
+            block.go("feed", at(total), cycle=name)
+        if code in FEED_OUT:
+            block.go("feed", at(0.0), cycle=name)
+        level = modal.q(initial) if modal.return_to_initial else r_level
+        block.go("rapid", {**modal.position, "Z": level}, cycle=name)
+        if modal.absolute:
+            flat = {}  # K drills the same hole again (G90)
+
+
+# ---- the recorder ----------------------------------------------------------------------------
+
+
+class Recorder:
+    """Builds a run's ``Toolpath`` from the blocks the evaluator runs: one ``block`` call per
+    NC block, after the evaluator made its motion records of it."""
+
+    __slots__ = ("_seen", "_unplaced", "modal", "toolpath")
+
+    def __init__(self, lathe: bool) -> None:
+        self.toolpath = Toolpath(lathe=lathe)
+        self.modal = PathModal(lathe)
+        self._seen = 0  # motion records before the block
+        self._unplaced: set[str] = set(self.modal.axes)
+
+    def begin_run(self, motions: int) -> None:
+        """A new run (an entry program): where the machine stands is not known again."""
+        self.modal = PathModal(self.modal.lathe)
+        self._unplaced = set(self.modal.axes)
+        self._seen = motions
+
+    def block(
+        self,
+        program: str,
+        uri: str,
+        line: int,
+        values: Mapping[str, Value],
+        g_codes: Sequence[float],
+        motions: Sequence[Motion],
+    ) -> None:
+        """The moves of the block just run; ``motions``: the run's motion records, those the
+        block made at the end."""
+        first = self._seen
+        made = len(motions) - first
+        self._seen = len(motions)
+        modal = self.modal
+        passes: list[float | None] = []
+        if modal.lathe and 76.0 in g_codes and made:
+            passes = [m.x for m in motions[first:]]
+        steps, lost = block_steps(modal, values, g_codes, passes)
+        path = self.toolpath
+        for axes, reason in lost:
+            path.lost.append(LostTrack(line, program, axes, reason, uri))
+        unplaced = self._unplaced
+        placed = [a for a in modal.axes if a in unplaced and a in modal.position]
+        if placed:
+            unplaced.difference_update(placed)
+            if steps:  # not a coordinate system setting (G50), which says where the tool is
+                path.lost.append(
+                    LostTrack(
+                        line,
+                        program,
+                        tuple(placed),
+                        "where the tool stands when the run begins is not known: the path "
+                        "starts at the first absolute position of each axis",
+                        uri,
+                    )
+                )
+        if not steps:
+            for i in range(first, first + made):
+                path.standing[i] = modal.position
+            return
+        moves = path.moves
+        if not moves:
+            path.inch = modal.inch
+        plane = modal.plane
+        for kind, start, end, centre, clockwise, record, cycle in steps:
+            if len(moves) >= MAX_MOVES:
+                path.truncated = True
+                return
+            motion = first + min(record, made - 1) if made else -1
+            moves.append(
+                Move(kind, start, end, line, program, uri, centre, clockwise, plane, motion, cycle)
+            )

@@ -1,4 +1,5 @@
-"""The executed motion blocks of a program, with computed addresses (``fanuc-macro trace``)."""
+"""The executed motion blocks of a program, with computed addresses and the positions the tool
+goes through (``fanuc-macro trace``)."""
 
 from __future__ import annotations
 
@@ -8,6 +9,7 @@ from typing import Any
 
 from ..config import Config
 from ..evaluator import evaluate
+from ..evaluator.toolpath import Move, Toolpath
 from ..evaluator.values import fmt_address
 from ..program.index import ProgramIndex
 from ..syntax.tree import Document
@@ -21,15 +23,45 @@ def trace(
     config: Config | None = None,
     entry: int | None = None,
 ) -> dict[str, Any]:
-    """``{"motions": [{program, line, code, words}], "summary": {...}}``; lines are 1-based."""
+    """``{"motions": [{program, line, code, words, start, end[, centre][, moves]}],
+    "toolpath": {...}, "summary": {...}}``; lines are 1-based. ``start`` and ``end`` are the
+    positions before and after the block (the axes known; a lathe's X a diameter); a canned
+    cycle's record lists its ``moves``."""
     facts = evaluate(
-        [(uri, doc, index), *others], config, only_uri=None if entry else uri, entry=entry
+        [(uri, doc, index), *others],
+        config,
+        only_uri=None if entry else uri,
+        entry=entry,
+        toolpath=True,
     )
-    motions = [
-        {"program": m.program, "line": m.line + 1, "code": m.code, "words": m.words}
-        | ({"path": m.uri} if m.uri != uri else {})
-        for m in facts.motions
-    ]
+    path = facts.toolpath
+    assert path is not None
+    by_motion = _moves_by_motion(path)
+    motions: list[dict[str, Any]] = []
+    for i, m in enumerate(facts.motions):
+        record: dict[str, Any] = {
+            "program": m.program,
+            "line": m.line + 1,
+            "code": m.code,
+            "words": m.words,
+        }
+        if m.uri != uri:
+            record["path"] = m.uri
+        moves = by_motion.get(i)
+        if moves:
+            record["start"] = _point(moves[0].start)
+            record["end"] = _point(moves[-1].end)
+            if len(moves) == 1 and moves[0].centre is not None and not moves[0].cycle:
+                record["centre"] = _point(moves[0].centre)
+            if moves[0].cycle:
+                record["moves"] = [_move(mv) for mv in moves]
+                if moves[0].cycle != m.code:
+                    record["cycle"] = moves[0].cycle
+        else:
+            here = _point(path.standing.get(i, {}))
+            record["start"] = here
+            record["end"] = here
+        motions.append(record)
     codes = Counter(m.code for m in facts.motions)
     findings = [
         {"line": f.line + 1, "kind": f.kind, "message": f.message}
@@ -38,6 +70,22 @@ def trace(
     ]
     return {
         "motions": motions,
+        "toolpath": {
+            "moves": len(path.moves),
+            "units": "inch" if path.inch else "mm",
+            "lathe": path.lathe,
+            "truncated": path.truncated,
+            "lost": [
+                {
+                    "program": lt.program,
+                    "line": lt.line + 1,
+                    "axes": list(lt.axes),
+                    "reason": lt.reason,
+                }
+                | ({"path": lt.uri} if lt.uri != uri else {})
+                for lt in path.lost
+            ],
+        },
         "summary": {
             "motions": len(motions),
             "by_code": dict(sorted(codes.items())),
@@ -49,8 +97,44 @@ def trace(
     }
 
 
+def _moves_by_motion(path: Toolpath) -> dict[int, list[Move]]:
+    out: dict[int, list[Move]] = {}
+    for move in path.moves:
+        if move.motion >= 0:
+            out.setdefault(move.motion, []).append(move)
+    return out
+
+
+def _point(position: dict[str, float]) -> dict[str, float]:
+    """The axes in X, Y, Z order (the values are at the least increment already)."""
+    return {a: position[a] for a in "XYZ" if a in position}
+
+
+def _move(move: Move) -> dict[str, Any]:
+    out: dict[str, Any] = {"kind": move.kind, "start": _point(move.start), "end": _point(move.end)}
+    if move.centre is not None:
+        out["centre"] = _point(move.centre)
+        out["clockwise"] = move.clockwise
+    return out
+
+
+def position_text(position: dict[str, float]) -> str:
+    """``X51. Z5.964``, or ``?`` when no axis is known."""
+    return " ".join(f"{a}{fmt_address(v)}" for a, v in position.items()) or "?"
+
+
 def motion_text(motion: dict[str, Any]) -> str:
     """One motion of a trace as the command line prints it: program, line, code, its words at
-    the control's precision."""
+    the control's precision, where it goes from and to, and a cycle's moves."""
     words = " ".join(f"{k}{fmt_address(v)}" for k, v in motion["words"].items())
-    return f"{motion['program']:<6} line {motion['line']:<5} {motion['code']:<4} {words}"
+    text = f"{motion['program']:<6} line {motion['line']:<5} {motion['code']:<4} {words}"
+    if "start" in motion:
+        text += f"  [{position_text(motion['start'])} -> {position_text(motion['end'])}]"
+    if "centre" in motion:
+        text += f" centre {position_text(motion['centre'])}"
+    moves = motion.get("moves")
+    if moves:
+        cycle = f"{motion['cycle']} " if "cycle" in motion else ""
+        steps = ", ".join(f"{m['kind']} {position_text(m['end'])}" for m in moves)
+        text += f" {cycle}moves: {steps}"
+    return text

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import json
 import re
+from array import array
 from collections.abc import Callable, Sequence
 from typing import overload
 
@@ -27,10 +28,11 @@ UTF16 = types.PositionEncodingKind.Utf16.value
 UTF32 = types.PositionEncodingKind.Utf32.value
 
 
-def line_starts(text: str) -> list[int]:
+def line_starts(text: str) -> array[int]:
     """Where each line of ``text`` begins, as LSP numbers them: CRLF, CR and LF each end a
-    line, and a final line break opens an empty line."""
-    return [0, *(m.end() for m in LINE_BREAK.finditer(text))]
+    line, and a final line break opens an empty line. An array of machine integers: 8 bytes a
+    line, where a list of ints held about 36 (its slot and an int object for each offset)."""
+    return array("q", [0, *(m.end() for m in LINE_BREAK.finditer(text))])
 
 
 class TextLines(Sequence[str]):

@@ -7,6 +7,7 @@ bytes read as Latin-1 have them) would land on the wrong line.
 
 from __future__ import annotations
 
+from array import array
 from dataclasses import dataclass, field
 
 from lsprotocol import types
@@ -21,10 +22,10 @@ class OpenDocument:
     text: str
     version: int | None
     language_id: str = ""
-    _starts: list[int] | None = field(default=None, repr=False)
+    _starts: array[int] | None = field(default=None, repr=False)
 
-    def _line_starts(self) -> list[int]:
-        """Where the text's lines begin: a new list after every edit, never changed in place,
+    def _line_starts(self) -> array[int]:
+        """Where the text's lines begin: a new array after every edit, never changed in place,
         so that the analysis of a version shares its list (:class:`~.convert.TextLines`)."""
         if self._starts is None:
             self._starts = line_starts(self.text)
@@ -68,7 +69,8 @@ class OpenDocument:
         # Keystrokes: move the line starts after the edit instead of rescanning the text.
         delta = len(change.text) - (end - start)
         inner = [start + m.end() for m in LINE_BREAK.finditer(change.text)]
-        self._starts = starts[: first + 1] + inner + [s + delta for s in starts[last + 1 :]]
+        moved = array("q", [s + delta for s in starts[last + 1 :]]) if delta else starts[last + 1 :]
+        self._starts = starts[: first + 1] + array("q", inner) + moved
 
 
 def _touches_break(text: str, start: int, end: int) -> bool:

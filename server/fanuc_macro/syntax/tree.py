@@ -410,9 +410,10 @@ class Block(NamedTuple):
         return self.parsed.text[span.start : span.end]
 
 
-@dataclass(frozen=True, slots=True)
+@dataclass(frozen=True, slots=True, weakref_slot=True)
 class Document:
-    """A whole file: its blocks, in order, one per line."""
+    """A whole file: its blocks, in order, one per line. (Weakly referable: the cache of line
+    diffs names versions without keeping them alive, ``line_maps.line_diff``.)"""
 
     uri: str
     blocks: tuple[Block, ...]
