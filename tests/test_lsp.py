@@ -624,6 +624,34 @@ async def test_trace_command(client: LanguageClient) -> None:
     assert g92[0]["line"] == 32 and g92[0]["words"]["X"] == pytest.approx(49.816)
 
 
+async def test_toolpath_command_gives_the_views_segments(client: LanguageClient) -> None:
+    await start(client)
+    uri = open_seed(client, "o4009_external_m50x3.nc")
+    result = await asyncio.wait_for(
+        client.workspace_execute_command_async(
+            types.ExecuteCommandParams(command="fanuc-macro.toolpath", arguments=[uri])
+        ),
+        WAIT,
+    )
+    assert isinstance(result, dict) and result["lathe"] is True
+    segments = result["segments"]
+    thread = result["kinds"].index("thread")
+    cuts = [i for i, k in enumerate(segments["kind"]) if k == thread]
+    assert len(cuts) == 186  # one per G92 pass
+    first = cuts[0]
+    assert segments["line"][first] == 31  # 0-based: the G92 of trace line 32
+    # X as a radius (the drawing's geometry), Y unknown on the lathe.
+    assert segments["start"][first * 3 : first * 3 + 3] == pytest.approx([24.908, None, 5.964])
+    assert segments["end"][first * 3 + 2] == pytest.approx(-54.036)
+    none = await asyncio.wait_for(
+        client.workspace_execute_command_async(
+            types.ExecuteCommandParams(command="fanuc-macro.toolpath", arguments=[])
+        ),
+        WAIT,
+    )
+    assert "error" in none
+
+
 async def test_thread_module_command(client: LanguageClient) -> None:
     await start(client, None)
 

@@ -3,8 +3,13 @@ with which links to the source."""
 
 from __future__ import annotations
 
+import os
 import re
+import subprocess
+import sys
 import xml.etree.ElementTree as ET
+from collections import Counter
+from pathlib import Path
 
 import pytest
 
@@ -191,3 +196,59 @@ def test_a_pass_map_shows_each_pass_depth_and_cut() -> None:
     tips = [float(m.get("cx", "nan")) for m in marks]
     assert tips[1] > tips[0] > tips[2]
     assert _elements(svg, "profile")  # the basic 60-degree groove of an identified thread
+
+
+# ---- fanuc-macro plot, as a subprocess -------------------------------------------------------
+
+SEEDS = Path(__file__).parent / "fixtures" / "seeds"
+
+
+def _plot(tmp_path: Path, *args: str) -> subprocess.CompletedProcess[str]:
+    env = dict(os.environ)
+    env["PYTHONPATH"] = str(Path(__file__).parents[1] / "server")
+    return subprocess.run(
+        [sys.executable, "-m", "fanuc_macro.cli", "plot", *args],
+        cwd=tmp_path,
+        env=env,
+        encoding="utf-8",
+        capture_output=True,
+        text=True,
+        timeout=300,
+        check=False,
+    )
+
+
+def test_plot_of_the_seed_module_draws_every_g92_cut_and_its_pass_map(tmp_path: Path) -> None:
+    done = _plot(tmp_path, str(SEEDS / "o4009_external_m50x3.nc"))
+    assert done.returncode == 0, done.stderr
+    svg = (tmp_path / "o4009_external_m50x3.svg").read_text(encoding="utf-8")
+    root = ET.fromstring(svg)
+    moves = _elements(svg)
+    kinds = Counter(e.get("data-kind") for e in moves)
+    assert kinds["thread"] == 186  # every G92 pass of O3331
+    assert kinds["pass"] == 186 and kinds["cut"] == 186
+    views = [g.get("data-view") for g in root.iter(f"{SVG}g") if g.get("data-view")]
+    assert views == ["toolpath", "passes"]
+    # Every drawn move links to a line of the file.
+    lines = len((SEEDS / "o4009_external_m50x3.nc").read_text(encoding="utf-8").splitlines())
+    linked = [e for e in moves if e.get("data-kind") != "profile"]
+    assert all(1 <= int(e.get("data-line", "0")) <= lines for e in linked)
+    assert "1011 moves" in done.stderr and "thread 186" in done.stderr
+    assert "lost track of X, Z" in done.stderr  # no start position before the first move
+
+
+def test_plot_to_standard_output_in_another_plane(tmp_path: Path) -> None:
+    done = _plot(tmp_path, str(SEEDS / "o5_arc_thread_finishing.nc"), "-o", "-", "--plane", "XZ")
+    assert done.returncode == 0, done.stderr
+    assert Counter(e.get("data-kind") for e in _elements(done.stdout))["thread"] == 19
+
+
+def test_plot_of_a_program_without_moves_says_so_and_exits_2(tmp_path: Path) -> None:
+    empty = tmp_path / "empty.nc"
+    empty.write_text("%\nO0001\n#1=2\nM30\n%\n", encoding="utf-8")
+    done = _plot(tmp_path, str(empty))
+    assert done.returncode == 2
+    assert "nothing to plot" in done.stderr
+    assert not (tmp_path / "empty.svg").exists()
+    missing = _plot(tmp_path, "no-such-file.nc")
+    assert missing.returncode == 2 and "no such file" in missing.stderr

@@ -458,7 +458,8 @@ def _pass_map_view(pass_map: PassMap, top: float) -> tuple[list[str], float]:
     basic = 0.625 * 0.8660254037844386 * pass_map.pitch if pass_map.pitch else None
     deepest = max([*depths, basic or 0.0]) or 1.0
     zs = [m.z for m in marks if m.z is not None]
-    z_ref = zs[0] if zs else 0.0
+    # The groove sits in the middle of the passes' Z: a symmetric infeed's left and right.
+    z_ref = (min(zs) + max(zs)) / 2.0 if zs else 0.0
     offsets = [(m.z - z_ref) if m.z is not None else 0.0 for m in marks]
     half_width = max(deepest * math.tan(math.radians(30.0)) * 1.4, *(abs(o) for o in offsets))
     half_width = half_width or 1.0
@@ -514,7 +515,8 @@ def _pass_map_view(pass_map: PassMap, top: float) -> tuple[list[str], float]:
         )
     out.append(
         f'<text x="{_num(cx)}" y="{_num(top + _MAP_HEIGHT - 12)}" text-anchor="middle">'
-        "infeed: the tool's tip at each pass (across: Z from the first pass's start)</text>"
+        "infeed: the tool's tip at each pass (across: Z about the middle of the passes'"
+        " starts)</text>"
     )
     # The depth of cut of each pass, as bars.
     bars_left = left + panel_w + 40.0
