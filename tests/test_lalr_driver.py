@@ -22,8 +22,8 @@ from fanuc_macro.syntax.parser import (
     BlockParser,
     _describe,
     _ToAst,
+    grammar_crc32,
     grammar_lark,
-    grammar_sha256,
 )
 
 CORPUS = Path("/work/shared/corpus")
@@ -462,7 +462,7 @@ def test_the_shipped_tables_are_what_lark_builds_from_the_grammar() -> None:
     """grammar_tables.py must be rewritten (scripts/grammar_tables.py) when the grammar or the
     tables' format changes; Lark builds them afresh here, without its cache."""
     fresh = grammar_lark(cache=False)
-    assert grammar_sha256() == grammar_tables.GRAMMAR_SHA256
+    assert grammar_crc32() == grammar_tables.GRAMMAR_CRC32
     assert lalr_tables(fresh) == grammar_tables.TABLES
 
 
@@ -519,7 +519,7 @@ def test_the_block_parser_runs_the_shipped_tables_and_lark_when_they_are_stale(
 ) -> None:
     shipped = BlockParser(use_fast_path=False)
     assert "_lark" not in vars(shipped)  # no Lark object loaded
-    monkeypatch.setattr(grammar_tables, "GRAMMAR_SHA256", "another grammar")
+    monkeypatch.setattr(grammar_tables, "GRAMMAR_CRC32", -1)
     stale = BlockParser(use_fast_path=False)
     assert "_lark" in vars(stale)
     lines = T1_LINES + EDGE_LINES

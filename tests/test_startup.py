@@ -19,11 +19,15 @@ SMALL_PROGRAM = "%\nO1000\n#1=10.\nWHILE[#1GT0]DO1\n#1=#1-1.\nEND1\nG0 X#1\nM30\
 BAD_PROGRAM = SMALL_PROGRAM.replace("G0 X#1", "G0 X#1 ?\n#2=[#1+1\nIF[#1 GT 0 GOTO5")
 
 # Heavy or unrelated to checking a file: the thread generator, the language server's protocol
-# packages, numpy, Lark (the parser runs the grammar's shipped tables with its own driver) and
-# the `regex` package Lark would load for an option the grammar does not use.
+# packages, numpy, Lark (the parser runs the grammar's shipped tables with its own driver), the
+# `regex` package Lark would load for an option the grammar does not use, logging (imported
+# when something fails or a log is asked for) and hashlib (OpenSSL; the grammar's check is a
+# CRC).
 NOT_FOR_CHECK = (
     "numpy",
     "lark",
+    "logging",
+    "hashlib",
     "lsprotocol",
     "pygls",
     "cattrs",

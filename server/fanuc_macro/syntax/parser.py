@@ -8,11 +8,11 @@ text, so an edit re-parses only the lines it changed.
 from __future__ import annotations
 
 import gc
-import hashlib
 import re
 import sys
 import threading
 import unicodedata
+import zlib
 from bisect import bisect_right
 from collections.abc import Callable, Iterable, Iterator, Sequence
 from contextlib import contextmanager
@@ -100,10 +100,12 @@ def grammar_text() -> str:
     return resources.files("fanuc_macro").joinpath("data/macro_b.lark").read_text("utf-8")
 
 
-def grammar_sha256() -> str:
-    """What grammar_tables.py was written from, with the format of its data."""
+def grammar_crc32() -> int:
+    """What grammar_tables.py was written from, with the format of its data: a check of an
+    edit, not of an attack, so a CRC (zlib, which the evaluator loads too; hashlib would load
+    OpenSSL at each start)."""
     text = f"{grammar_text()}\n{TABLES_FORMAT}"
-    return hashlib.sha256(text.encode("utf-8")).hexdigest()
+    return zlib.crc32(text.encode("utf-8"))
 
 
 def grammar_lark(cache: bool = True) -> Lark:
@@ -671,7 +673,7 @@ class BlockParser:
         self.use_fast_path = use_fast_path
         # Our driver runs the grammar's LALR tables faster than Lark's loop. They are shipped
         # as data (grammar_tables.py): a start loads no Lark object, unless the grammar changed.
-        if grammar_sha256() == grammar_tables.GRAMMAR_SHA256:
+        if grammar_crc32() == grammar_tables.GRAMMAR_CRC32:
             self._table = TableParser.from_tables(grammar_tables.TABLES, _ToAst())
         else:
             self._table = TableParser(self._lark)
