@@ -35,10 +35,10 @@ HEADER = (
 def module_text() -> str:
     sys.path.insert(0, str(ROOT / "server"))
     from fanuc_macro.syntax.lalr_driver import lalr_tables
-    from fanuc_macro.syntax.parser import BlockParser, grammar_sha256
+    from fanuc_macro.syntax.parser import grammar_crc32, grammar_lark
 
-    tables: dict[str, Any] = lalr_tables(BlockParser()._lark)
-    body = f"GRAMMAR_SHA256 = {grammar_sha256()!r}\nTABLES: dict[str, Any] = {tables!r}\n"
+    tables: dict[str, Any] = lalr_tables(grammar_lark())
+    body = f"GRAMMAR_CRC32 = {grammar_crc32()!r}\nTABLES: dict[str, Any] = {tables!r}\n"
     formatted = subprocess.run(
         [sys.executable, "-m", "ruff", "format", "--stdin-filename", str(OUTPUT), "-"],
         input=HEADER + body,

@@ -497,6 +497,31 @@ def test_verbose_and_log_file_give_the_traceback(
     assert "Traceback" not in capsys.readouterr().err
 
 
+def test_a_failing_rule_prints_no_traceback_in_a_process_of_its_own(tmp_path: Path) -> None:
+    """Outside pytest (whose log capture takes every record), a process without --verbose
+    or --log-file imports logging only when a rule fails: its traceback must not reach the
+    terminal through logging's last resort."""
+    path = write(tmp_path / "p.nc", CLEAN_PROGRAM)
+    script = (
+        "import sys\n"
+        "import fanuc_macro.analysis as analysis\n"
+        "from fanuc_macro.cli import main\n"
+        "def broken(ctx):\n"
+        "    raise RuntimeError('rule bug')\n"
+        "analysis.ALL_CHECKS = (*analysis.ALL_CHECKS, broken)\n"
+        "assert 'logging' not in sys.modules\n"
+        "status = main(['check', sys.argv[1]])\n"
+        "assert 'logging' in sys.modules\n"  # the failure was logged
+        "sys.exit(status)\n"
+    )
+    done = subprocess.run(
+        [sys.executable, "-c", script, str(path)], capture_output=True, text=True, timeout=120
+    )
+    assert done.returncode == 1, done.stderr
+    assert "MB000" in done.stdout and "rule bug" in done.stdout
+    assert "Traceback" not in done.stderr and "failed" not in done.stderr, done.stderr
+
+
 def test_trace_failing_inside_answers_json_and_exit_1(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
 ) -> None:

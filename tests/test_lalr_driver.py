@@ -1,4 +1,5 @@
-"""TableParser must give what Lark gives: the same AST, or the same error with the same data."""
+"""TableParser must give what Lark gives: the same AST, or an error with the same data as Lark's
+(the driver raises its own error types, so that a parse needs no Lark)."""
 
 from __future__ import annotations
 
@@ -12,18 +13,17 @@ from pathlib import Path
 from typing import Any
 
 import pytest
-from lark import Lark, Token, Transformer, Tree
-from lark.exceptions import UnexpectedCharacters, UnexpectedInput, UnexpectedToken
+from lark import Lark, Token, Transformer, Tree, exceptions
 
-from fanuc_macro.syntax import grammar_tables
+from fanuc_macro.syntax import grammar_tables, lalr_driver
 from fanuc_macro.syntax.lalr_driver import TableParser, lalr_tables
 from fanuc_macro.syntax.lines import cut_comments, decode_bytes, split_lines
 from fanuc_macro.syntax.parser import (
     BlockParser,
     _describe,
     _ToAst,
+    grammar_crc32,
     grammar_lark,
-    grammar_sha256,
 )
 
 CORPUS = Path("/work/shared/corpus")
@@ -278,13 +278,20 @@ def driver(lark: Lark, request: pytest.FixtureRequest) -> TableParser:
 
 
 def _outcome(parse: Any, code: str) -> tuple[str, Any]:
-    """What a parse gives, in a form to compare: the value or the error's data."""
+    """What a parse gives, in a form to compare: the value or the error's data (of Lark's
+    error types or the driver's), and the message the parser makes of it."""
     try:
         return "ok", parse(code)
-    except UnexpectedCharacters as err:
+    except (exceptions.UnexpectedCharacters, lalr_driver.UnexpectedCharacters) as err:
+        assert err.pos_in_stream is not None and err.line is not None
+        assert err.column is not None
         chars = (err.line, err.column, err.pos_in_stream, frozenset(err.allowed), err.char)
-        return "UnexpectedCharacters", (chars, _describe(code, err))
-    except UnexpectedToken as err:
+        # The parser's message, from the driver's error with these data.
+        same = lalr_driver.UnexpectedCharacters(
+            code, err.pos_in_stream, err.line, err.column, set(err.allowed)
+        )
+        return "UnexpectedCharacters", (chars, _describe(code, same))
+    except (exceptions.UnexpectedToken, lalr_driver.UnexpectedToken) as err:
         tok = err.token
         data = (
             err.line,
@@ -293,9 +300,14 @@ def _outcome(parse: Any, code: str) -> tuple[str, Any]:
             frozenset(err.expected),
             (tok.type, str(tok), tok.start_pos, tok.end_pos, tok.line, tok.column),
         )
-        return "UnexpectedToken", (data, _describe(code, err))
-    except UnexpectedInput as err:  # UnexpectedEOF: Lark's LALR does not raise it
-        return type(err).__name__, _describe(code, err)
+        token = lalr_driver.Token(
+            tok.type, tok.value, tok.start_pos, tok.line, tok.column,
+            tok.end_line, tok.end_column, tok.end_pos,
+        )  # fmt: skip
+        same_token = lalr_driver.UnexpectedToken(token, set(err.expected))
+        return "UnexpectedToken", (data, _describe(code, same_token))
+    except exceptions.UnexpectedInput as err:  # UnexpectedEOF: Lark's LALR does not raise it
+        return type(err).__name__, str(err)
     except (ValueError, OverflowError) as err:  # from the transformer (huge numbers)
         return type(err).__name__, str(err)
 
@@ -450,7 +462,7 @@ def test_the_shipped_tables_are_what_lark_builds_from_the_grammar() -> None:
     """grammar_tables.py must be rewritten (scripts/grammar_tables.py) when the grammar or the
     tables' format changes; Lark builds them afresh here, without its cache."""
     fresh = grammar_lark(cache=False)
-    assert grammar_sha256() == grammar_tables.GRAMMAR_SHA256
+    assert grammar_crc32() == grammar_tables.GRAMMAR_CRC32
     assert lalr_tables(fresh) == grammar_tables.TABLES
 
 
@@ -507,7 +519,7 @@ def test_the_block_parser_runs_the_shipped_tables_and_lark_when_they_are_stale(
 ) -> None:
     shipped = BlockParser(use_fast_path=False)
     assert "_lark" not in vars(shipped)  # no Lark object loaded
-    monkeypatch.setattr(grammar_tables, "GRAMMAR_SHA256", "another grammar")
+    monkeypatch.setattr(grammar_tables, "GRAMMAR_CRC32", -1)
     stale = BlockParser(use_fast_path=False)
     assert "_lark" in vars(stale)
     lines = T1_LINES + EDGE_LINES

@@ -9,14 +9,25 @@ import subprocess
 import sys
 from pathlib import Path
 
+import pytest
+
 from fanuc_macro.lazy_regex import LazyPattern
 
 SMALL_PROGRAM = "%\nO1000\n#1=10.\nWHILE[#1GT0]DO1\n#1=#1-1.\nEND1\nG0 X#1\nM30\n%\n"
+# The same with blocks the grammar rejects (a character no word takes, a missing bracket): the
+# parser's own error types tell them, without Lark.
+BAD_PROGRAM = SMALL_PROGRAM.replace("G0 X#1", "G0 X#1 ?\n#2=[#1+1\nIF[#1 GT 0 GOTO5")
 
 # Heavy or unrelated to checking a file: the thread generator, the language server's protocol
-# packages, numpy, and the `regex` package Lark would load for an option the grammar does not use.
+# packages, numpy, Lark (the parser runs the grammar's shipped tables with its own driver), the
+# `regex` package Lark would load for an option the grammar does not use, logging (imported
+# when something fails or a log is asked for) and hashlib (OpenSSL; the grammar's check is a
+# CRC).
 NOT_FOR_CHECK = (
     "numpy",
+    "lark",
+    "logging",
+    "hashlib",
     "lsprotocol",
     "pygls",
     "cattrs",
@@ -37,15 +48,22 @@ def loaded_after(code: str, *args: str) -> set[str]:
     return set(json.loads(done.stdout.splitlines()[-1]))
 
 
-def test_check_of_a_small_file_loads_no_generator_server_or_numpy(tmp_path: Path) -> None:
+@pytest.mark.parametrize(
+    ("text", "status"), [(SMALL_PROGRAM, 0), (BAD_PROGRAM, 1)], ids=["clean", "rejected blocks"]
+)
+def test_check_of_a_small_file_loads_no_generator_server_lark_or_numpy(
+    tmp_path: Path, text: str, status: int
+) -> None:
     program = tmp_path / "o1000.nc"
-    program.write_text(SMALL_PROGRAM)
+    program.write_text(text)
     loaded = loaded_after(
         "import contextlib, io, sys\n"
         "from fanuc_macro.cli import main\n"
-        "with contextlib.redirect_stdout(io.StringIO()):\n"
+        "out = io.StringIO()\n"
+        "with contextlib.redirect_stdout(out):\n"
         "    status = main(['check', sys.argv[1]])\n"
-        "assert status == 0, status\n",
+        f"assert status == {status}, status\n"
+        f"assert ('MB001' in out.getvalue()) == {status == 1}, out.getvalue()\n",
         str(program),
     )
     assert "fanuc_macro.analysis" in loaded  # the check ran

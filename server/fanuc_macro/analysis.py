@@ -5,7 +5,6 @@ The CLI and the language server both call :func:`analyse`; neither holds analysi
 
 from __future__ import annotations
 
-import logging
 import sys
 from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, field, replace
@@ -37,7 +36,20 @@ from .syntax.parser import BlockParser, default_parser, parse_text, quiet_gc
 from .syntax.tree import Document, ParsedLine, PlainNc
 from .threads.identify import Thread
 
-log = logging.getLogger(__name__)
+
+def log_failure(logger: str, message: str, *args: object) -> None:
+    """Logs the exception being handled, with its traceback, to ``logger``. ``logging`` is
+    imported here, when something failed: a start does not load it (4 ms of a check). The
+    package's logger gets a NullHandler when it has none, as a library's should: a traceback
+    goes where a front end sends the log (``--verbose``, ``--log-file``, the server's log), not
+    to the terminal by default."""
+    import logging
+
+    package = logging.getLogger("fanuc_macro")
+    if not package.handlers:
+        package.addHandler(logging.NullHandler())
+    logging.getLogger(logger).exception(message, *args)
+
 
 register(
     RuleInfo("MB000", "internal-error", Severity.ERROR,
@@ -159,7 +171,7 @@ def _line_findings(parsed: ParsedLine) -> tuple[LineFinding, ...]:
         try:
             found.extend(check(parsed))
         except Exception as err:  # a bug in one rule must not hide the others
-            log.exception("line rule %s failed on %r", rule_name(check), parsed.text[:200])
+            log_failure(__name__, "line rule %s failed on %r", rule_name(check), parsed.text[:200])
             found.append(
                 LineFinding("MB000", internal_error(f"rule {rule_name(check)}", err), 0, 0)
             )
@@ -229,7 +241,7 @@ def run_checks(
         try:
             found.extend(rule(ctx))
         except Exception as err:  # a bug in one rule must not hide the others
-            log.exception("rule %s failed on %s", rule_name(rule), ctx.doc.uri)
+            log_failure(__name__, "rule %s failed on %s", rule_name(rule), ctx.doc.uri)
             message = internal_error(f"rule {rule_name(rule)}", err)
             found.append(make("MB000", message, 0, 0, 0))
     return found
@@ -295,7 +307,7 @@ def analyse(
                     cancel=cancel,
                 )
             except Exception as err:  # the structural rules still report
-                log.exception("evaluation of %s failed", uri)
+                log_failure(__name__, "evaluation of %s failed", uri)
                 message = internal_error("the evaluator (its rules MB501-MB903 did not run)", err)
                 failed.append(make("MB000", message, 0, 0, 0))
         ctx = RuleContext(doc, index, config, workspace_programs, facts)
@@ -305,7 +317,7 @@ def analyse(
             try:
                 threads = ctx.threads()
             except Exception:  # reported as MB000 by the rules that asked for them
-                log.exception("thread identification of %s failed", uri)
+                log_failure(__name__, "thread identification of %s failed", uri)
         return Analysis(doc, index, _apply_settings(found, doc, config), facts, threads)
 
 

@@ -22,7 +22,6 @@ import __future__
 
 import builtins
 import importlib
-import logging
 import marshal
 import os
 import sys
@@ -31,8 +30,6 @@ from importlib.util import MAGIC_NUMBER
 from pathlib import Path
 from types import CodeType, ModuleType
 from typing import Any
-
-log = logging.getLogger(__name__)
 
 ENVIRONMENT = "FANUC_MACRO_CODE_CACHE"
 
@@ -100,7 +97,7 @@ class CodeCache:
             temporary.write_bytes(marshal.dumps(dict(self.used)))
             os.replace(temporary, self.path)  # a reader sees the old file or the new, whole
         except OSError as err:
-            log.debug("code cache not written to %s: %s", self.path, err)
+            _log_debug("code cache not written to %s: %s", self.path, err)
             temporary.unlink(missing_ok=True)
             return False
         self.saved_at = (self.compiled, self.compiled_unnamed)
@@ -108,6 +105,13 @@ class CodeCache:
 
 
 _installed: CodeCache | None = None
+
+
+def _log_debug(message: str, *args: object) -> None:
+    # logging is imported when there is something to say: a start does not load it.
+    import logging
+
+    logging.getLogger(__name__).debug(message, *args)
 
 
 def cache_directory() -> Path | None:
@@ -147,7 +151,7 @@ def _read(path: Path) -> dict[Key, CodeType]:
     except FileNotFoundError:
         return {}
     except (OSError, EOFError, ValueError, TypeError) as err:
-        log.debug("code cache %s not read: %s", path, err)
+        _log_debug("code cache %s not read: %s", path, err)
         return {}
     if not isinstance(known, dict) or len(known) > MAX_ENTRIES:
         return {}

@@ -9,13 +9,12 @@ from ..code_cache import install_code_cache, save_code_cache
 install_code_cache("cli")
 
 import argparse
-import logging
 import sys
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from pathlib import Path
 
 from .. import __version__
-from ..analysis import analyse
+from ..analysis import analyse, log_failure
 from ..config import CONTROLLERS, NOT_SET, Config
 from ..diagnostics import REPORT_INTERNAL_ERROR, Diagnostic, Severity
 from ..ide.trace import motion_text, trace  # small: what it uses, the check uses too
@@ -25,8 +24,6 @@ from .thread import add_thread_command
 EXIT_OK = 0
 EXIT_ERRORS = 1
 EXIT_USAGE = 2
-
-log = logging.getLogger(__name__)
 
 
 class UsageError(Exception):
@@ -399,23 +396,34 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
-def _log_to(verbose: bool, log_file: str | None) -> list[logging.Handler]:
+def _log_to(verbose: bool, log_file: str | None) -> Callable[[], None] | None:
     """Where the package's log goes: tracebacks only to a file or with --verbose, never to the
-    user's terminal by default (Python prints them there when no handler takes them)."""
+    user's terminal by default (``analysis.log_failure`` gives the package's logger a
+    NullHandler when it has none). Returns what undoes it; None when neither is asked for:
+    then ``logging`` is not even imported, unless something fails."""
+    if not (verbose or log_file):
+        return None
+    import logging
+
     handlers: list[logging.Handler] = []
     if log_file:
         handlers.append(logging.FileHandler(log_file, encoding="utf-8"))
     if verbose:
         handlers.append(logging.StreamHandler(sys.stderr))
-    if not handlers:
-        handlers.append(logging.NullHandler())
     package = logging.getLogger("fanuc_macro")
+    level = package.level
     for handler in handlers:
         handler.setFormatter(logging.Formatter("%(asctime)s %(levelname)s %(name)s: %(message)s"))
         package.addHandler(handler)
-    if verbose or log_file:
-        package.setLevel(logging.INFO)
-    return handlers
+    package.setLevel(logging.INFO)
+
+    def undo() -> None:  # main() may run again in the same process (tests do)
+        for handler in handlers:
+            package.removeHandler(handler)
+            handler.close()
+        package.setLevel(level)
+
+    return undo
 
 
 def main(argv: Sequence[str] | None = None) -> int:
@@ -424,9 +432,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         args = parser.parse_args(argv)
     except SystemExit as exc:  # argparse exits 2 on a usage problem, 0 for --help
         return int(exc.code or 0)
-    package = logging.getLogger("fanuc_macro")
-    level = package.level
-    handlers = _log_to(getattr(args, "verbose", False), getattr(args, "log_file", None))
+    stop_logging = _log_to(getattr(args, "verbose", False), getattr(args, "log_file", None))
     try:
         result: int = args.func(args)
         return result
@@ -436,7 +442,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     except BrokenPipeError:
         return EXIT_OK
     except Exception as err:  # the analyser's bug: one line here, the traceback in the log
-        log.exception("fanuc-macro %s failed", args.command)
+        log_failure(__name__, "fanuc-macro %s failed", args.command)
         message = f"internal error: {err!r}; {REPORT_INTERNAL_ERROR}"
         if getattr(args, "format", "text") == "json":
             import json
@@ -445,12 +451,10 @@ def main(argv: Sequence[str] | None = None) -> int:
             sys.stdout.write("\n")
         sys.stderr.write(f"fanuc-macro: {message}\n")
         return EXIT_ERRORS
-    finally:  # main() may run again in the same process (tests do)
+    finally:
         save_code_cache()
-        for handler in handlers:
-            package.removeHandler(handler)
-            handler.close()
-        package.setLevel(level)
+        if stop_logging is not None:
+            stop_logging()
 
 
 if __name__ == "__main__":

@@ -6,7 +6,7 @@ from __future__ import annotations
 
 from typing import Any
 
-GRAMMAR_SHA256 = "bd34d5754a69ad1971fac5efe2975177f50f8902aa220c2642d5e135b1906cec"
+GRAMMAR_CRC32 = 2933147369
 TABLES: dict[str, Any] = {
     "format": 1,
     "re_module": "re",

@@ -2,13 +2,21 @@
 
 Lark's general machinery (lexer thread, line counter, per-token ``ParserState.feed_token``) costs
 most of the time of a one-line parse. :class:`TableParser` keeps everything Lark computed — the
-parse table, the terminal definitions and the callbacks built from the transformer — and runs
-them with compiled master regexes and one flat shift/reduce loop. It returns what
-``lark.parse(code)`` returns and raises the same exception classes with the same data
-(``UnexpectedToken.state`` and ``.interactive_parser`` are left ``None``).
+parse table, the terminal definitions and the rules' options — and runs them with compiled
+master regexes and one flat shift/reduce loop, calling the transformer as Lark's tree builder
+does. It returns what ``lark.parse(code)`` returns; an error is raised with the data Lark puts
+in its exceptions (position, the terminals allowed or expected, the token), as this module's
+:class:`UnexpectedCharacters` and :class:`UnexpectedToken`.
+
+The shipped tables run without Lark: the tokens and the errors are this module's own, and Lark
+is imported only to read a grammar's tables from a Lark object (:func:`lalr_tables`), for a
+transformer of Lark's that needs it (``v_args``, in-place) or to build a tree for a rule that
+the transformer has no method for (a ``check`` of a small file then loads no Lark: 60 million
+instructions fewer).
 
 Only what :mod:`fanuc_macro.syntax.parser` uses is supported: ``parser="lalr"``,
-``lexer="basic"``, a ``str`` input, no ``postlex``, no ``lexer_callbacks``, no ``use_bytes``.
+``lexer="basic"``, a ``str`` input, no ``postlex``, no ``lexer_callbacks``, no ``use_bytes``,
+no ``propagate_positions``.
 """
 
 from __future__ import annotations
@@ -18,17 +26,21 @@ import re
 import sys
 from collections.abc import Callable, Collection, Iterable, Mapping
 from functools import partial
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-from lark import Lark, Token, Tree
-from lark.exceptions import UnexpectedCharacters, UnexpectedToken
-from lark.grammar import NonTerminal, Rule, RuleOptions, Terminal
-from lark.lexer import PatternRE, PatternStr, TerminalDef
-from lark.parse_tree_builder import ExpandSingleChild, ParseTreeBuilder
-from lark.parser_frontends import _get_lexer_callbacks
-from lark.parsers.lalr_analysis import Shift
+if TYPE_CHECKING:
+    from lark import Lark
+    from lark.lexer import TerminalDef
 
-__all__ = ["TABLES_FORMAT", "TableParser", "lalr_tables"]
+__all__ = [
+    "TABLES_FORMAT",
+    "TableParser",
+    "Token",
+    "UnexpectedCharacters",
+    "UnexpectedInput",
+    "UnexpectedToken",
+    "lalr_tables",
+]
 
 _Callback = Callable[[list[Any]], Any]
 _Match = Callable[[str, int], Any]
@@ -42,6 +54,138 @@ _RuleData = tuple[int, str, int, dict[int, int] | None]
 _END = "$END"
 _ASCII = frozenset(chr(i) for i in range(128))
 _new_str = str.__new__
+
+
+class Token(str):
+    """A token: its text, with its terminal's name and where it is (lines and columns from 1,
+    positions from 0), with the attributes and the equality of Lark's ``Token``."""
+
+    __slots__ = (
+        "column",
+        "end_column",
+        "end_line",
+        "end_pos",
+        "line",
+        "start_pos",
+        "type",
+        "value",
+    )
+    __match_args__ = ("type", "value")
+
+    type: str
+    start_pos: int | None
+    value: Any
+    line: int | None
+    column: int | None
+    end_line: int | None
+    end_column: int | None
+    end_pos: int | None
+
+    def __new__(
+        cls,
+        type: str,  # Lark's name, which transformers use
+        value: Any,
+        start_pos: int | None = None,
+        line: int | None = None,
+        column: int | None = None,
+        end_line: int | None = None,
+        end_column: int | None = None,
+        end_pos: int | None = None,
+    ) -> Token:
+        token = _new_str(cls, value)
+        token.type = type
+        token.start_pos = start_pos
+        token.value = value
+        token.line = line
+        token.column = column
+        token.end_line = end_line
+        token.end_column = end_column
+        token.end_pos = end_pos
+        return token
+
+    def update(self, type: str | None = None, value: Any = None) -> Token:
+        """A token at the same place, of another terminal or with another text."""
+        return Token.new_borrow_pos(
+            self.type if type is None else type, self.value if value is None else value, self
+        )
+
+    @classmethod
+    def new_borrow_pos(cls, type_: str, value: Any, borrow_t: Token) -> Token:
+        """A token at the place of ``borrow_t``."""
+        return cls(
+            type_, value, borrow_t.start_pos, borrow_t.line, borrow_t.column,
+            borrow_t.end_line, borrow_t.end_column, borrow_t.end_pos,
+        )  # fmt: skip
+
+    def __reduce__(self) -> tuple[Any, ...]:
+        return (self.__class__, (self.type, self.value, self.start_pos, self.line, self.column))
+
+    def __repr__(self) -> str:
+        return f"Token({self.type!r}, {self.value!r})"
+
+    def __eq__(self, other: object) -> bool:
+        # Two tokens of different terminals differ, whatever their text; a token equals a str.
+        if isinstance(other, Token) and self.type != other.type:
+            return False
+        return str.__eq__(self, other)
+
+    __hash__ = str.__hash__
+
+
+class UnexpectedInput(Exception):
+    """A text the grammar does not take, at ``line`` and ``column`` (from 1), ``pos_in_stream``
+    (from 0)."""
+
+    line: int | None
+    column: int | None
+    pos_in_stream: int | None
+
+
+class UnexpectedCharacters(UnexpectedInput):
+    """No terminal matches the text at ``pos_in_stream``; ``allowed``: the terminals the lexer
+    tried."""
+
+    def __init__(
+        self,
+        text: str,
+        pos: int,
+        line: int,
+        column: int,
+        allowed: set[str],
+        token_history: list[Token] | None = None,
+    ) -> None:
+        super().__init__()
+        self.line = line
+        self.column = column
+        self.pos_in_stream = pos
+        self.char = text[pos]
+        self.allowed = allowed
+        self.token_history = token_history
+
+    def __str__(self) -> str:
+        return (
+            f"No terminal matches {self.char!r} at line {self.line} col {self.column}; "
+            f"expected one of {sorted(self.allowed)}"
+        )
+
+
+class UnexpectedToken(UnexpectedInput):
+    """The parser cannot take ``token`` (``$END``: the end of the text) where it stands;
+    ``expected``: the terminals it could."""
+
+    def __init__(self, token: Token, expected: set[str]) -> None:
+        super().__init__()
+        self.token = token
+        self.expected = expected
+        self.line = token.line
+        self.column = token.column
+        self.pos_in_stream = token.start_pos
+
+    def __str__(self) -> str:
+        return (
+            f"Unexpected token {self.token!r} at line {self.line}, column {self.column}; "
+            f"expected one of {sorted(self.expected)}"
+        )
 
 
 def _only_child(children: list[Any]) -> Any:
@@ -175,25 +319,34 @@ class TableParser:
     """
 
     def __init__(self, lark: Lark, start: str | None = None) -> None:
-        self._load(lalr_tables(lark, start), lark.options.transformer)
+        from lark import Tree
+
+        self._load(
+            lalr_tables(lark, start), lark.options.transformer, lark.options.tree_class or Tree
+        )
 
     @classmethod
-    def from_tables(cls, tables: Mapping[str, Any], transformer: Any) -> TableParser:
-        """The parser of :func:`lalr_tables`' data, its callbacks built for ``transformer``
-        as Lark builds them: no grammar to load, no table to convert."""
+    def from_tables(
+        cls, tables: Mapping[str, Any], transformer: Any, tree_class: Any = None
+    ) -> TableParser:
+        """The parser of :func:`lalr_tables`' data, its callbacks made for ``transformer`` as
+        Lark makes them: no grammar to load, no table to convert. ``tree_class`` builds the
+        nodes of the rules the transformer has no method for (by default Lark's ``Tree``,
+        imported when such a node is first needed)."""
         parser = cls.__new__(cls)
-        parser._load(tables, transformer)
+        parser._load(tables, transformer, tree_class)
         return parser
 
     # ---- set-up: from the tables' data
 
-    def _load(self, tables: Mapping[str, Any], transformer: Any) -> None:
+    def _load(self, tables: Mapping[str, Any], transformer: Any, tree_class: Any) -> None:
         if tables["format"] != TABLES_FORMAT:
             raise ValueError(f"tables of format {tables['format']}, not {TABLES_FORMAT}")
+        propagate_positions, maybe_placeholders = tables["tree_options"]
+        if propagate_positions:
+            raise ValueError("TableParser does not propagate positions")
         re_module: Any = importlib.import_module(tables["re_module"])
         flags: int = tables["flags"]
-        terminals = [_terminal(*t) for t in tables["terminals"]]
-        self._terminals_by_name: dict[str, TerminalDef] = {t.name: t for t in terminals}
         scanned: list[tuple[str, str]] = tables["scanned"]
 
         def compile_match(indices: Iterable[int]) -> _Match:
@@ -240,21 +393,22 @@ class TableParser:
         self._end_state: int = tables["end_state"]
         # What Lark's feed_token reports: the state's terminals (nonterminals are lowercase).
         self._expected = tuple(frozenset(s for s in row if s.isupper()) for row in rows)
-        lark_rules = [_lark_rule(*r) for r in tables["lark_rules"]]
-        propagate_positions, maybe_placeholders = tables["tree_options"]
-        builder = ParseTreeBuilder(  # type: ignore[no-untyped-call]
-            lark_rules, Tree, propagate_positions, False, maybe_placeholders
-        )
-        callbacks = builder.create_callback(transformer)  # type: ignore[no-untyped-call]
+        # The start symbol: what the start state goes to the end state on.
+        start = {s for s, a in rows[self._start_state].items() if a == self._end_state}
+        callbacks = [
+            _rule_callback(rule, transformer, tree_class, maybe_placeholders, start)
+            for rule in tables["lark_rules"]
+        ]
         self._rules: tuple[_Rule, ...] = tuple(
-            (span, sys.intern(origin), _reduce_callback(callbacks[lark_rules[i]], span), chain)
+            (span, sys.intern(origin), callbacks[i], chain)
             for span, origin, i, chain in tables["rules"]
         )
         # Lark also calls a transformer method named after a terminal on each shifted token.
-        self._token_callbacks: dict[str, Callable[[Token], Any]] = {
-            sys.intern(k): v
-            for k, v in _get_lexer_callbacks(transformer, terminals).items()  # type: ignore[no-untyped-call]
-        }
+        self._token_callbacks: dict[str, Callable[[Token], Any]] = {}
+        for name, *_ in tables["terminals"]:
+            callback = getattr(transformer, name, None)
+            if callback is not None:
+                self._token_callbacks[sys.intern(name)] = callback
 
     # ---- parsing
 
@@ -364,15 +518,8 @@ class TableParser:
     def _unexpected_characters(
         self, code: str, pos: int, line: int, column: int, last: Token | None
     ) -> UnexpectedCharacters:
-        return UnexpectedCharacters(  # type: ignore[no-untyped-call]
-            code,
-            pos,
-            line,
-            column,
-            allowed=set(self._allowed),
-            token_history=[last] if last is not None else None,
-            terminals_by_name=self._terminals_by_name,
-        )
+        history = [last] if last is not None else None
+        return UnexpectedCharacters(code, pos, line, column, set(self._allowed), history)
 
     def _unexpected_token(self, state: int, kind: str, last: Token | None) -> UnexpectedToken:
         token: Token
@@ -383,8 +530,157 @@ class TableParser:
             token = Token.new_borrow_pos(_END, "", last)
         else:
             token = Token(_END, "", 0, 1, 1)
-        expected: Collection[str] = set(self._expected[state])
-        return UnexpectedToken(token, expected)  # type: ignore[no-untyped-call]
+        return UnexpectedToken(token, set(self._expected[state]))
+
+
+# ---- the callbacks of the reductions, as Lark's tree builder makes them for a transformer
+#
+# A rule's callback is the transformer's method named after the rule's alias (or its name),
+# else the transformer's ``__default__``, else a tree of the rule. A ``?rule`` without alias
+# gives its only child unchanged; the children Lark filters out (anonymous tokens, unless
+# keep_all_tokens) are dropped, and those of an inlined ``_rule`` take its place.
+
+
+class _Inlined:
+    """The node of a ``_rule`` for which the transformer has no method: its parent's callback
+    takes its children in its place, so it needs nothing else (a ``Tree`` would need Lark)."""
+
+    __slots__ = ("children", "data")
+
+    def __init__(self, data: str, children: list[Any]) -> None:
+        self.data = data
+        self.children = children
+
+
+def _rule_callback(
+    rule: list[Any],
+    transformer: Any,
+    tree_class: Any,
+    maybe_placeholders: bool,
+    start: Collection[str],
+) -> _Callback:
+    origin, symbols, _order, alias, options = rule
+    keep_all_tokens, expand1, _priority, template_source, empty_indices = options
+    expand_single = bool(expand1) and not alias
+    child_filter = _child_filter(
+        symbols, keep_all_tokens, empty_indices if maybe_placeholders else None
+    )
+    if child_filter is None and expand_single and len(symbols) == 1:
+        # Lark tests len(children) == 1 on each call; with LALR that length is the arity.
+        return _only_child
+    name: str = alias or template_source or origin
+    user: _Callback
+    try:
+        method = getattr(transformer, name)
+    except AttributeError:
+        default = getattr(transformer, "__default__", None)
+        if default is not None:
+            user = partial(_call_default, default, name)
+        elif origin.startswith("_") and origin not in start:
+            user = partial(_Inlined, name)
+        else:
+            if tree_class is None:
+                from lark import Tree as tree_class
+            user = partial(tree_class, name)
+    else:
+        user = _lark_method(transformer, method, name)
+    if child_filter is None:
+        return user
+    return partial(child_filter, _expand_single_child(user) if expand_single else user)
+
+
+def _call_default(
+    default: Callable[[str, list[Any], Any], Any], name: str, children: list[Any]
+) -> Any:
+    return default(name, children, None)
+
+
+def _lark_method(transformer: Any, method: Any, name: str) -> _Callback:
+    """A transformer's method, wrapped as Lark wraps those of its ``v_args`` and in-place
+    transformers (a transformer that is not Lark's has neither)."""
+    wrapper = getattr(method, "visit_wrapper", None)
+    visitors = sys.modules.get("lark.visitors")
+    if wrapper is not None or (
+        visitors is not None and isinstance(transformer, visitors.Transformer_InPlace)
+    ):
+        from lark.parse_tree_builder import apply_visit_wrapper, inplace_transformer
+
+        if wrapper is not None:
+            wrapped: _Callback = apply_visit_wrapper(method, name, wrapper)  # type: ignore[no-untyped-call]
+        else:
+            wrapped = inplace_transformer(method)  # type: ignore[no-untyped-call]
+        return wrapped
+    callback: _Callback = method
+    return callback
+
+
+def _expand_single_child(callback: _Callback) -> _Callback:
+    def expand(children: list[Any]) -> Any:
+        return children[0] if len(children) == 1 else callback(children)
+
+    return expand
+
+
+def _child_filter(
+    symbols: list[list[Any]], keep_all_tokens: bool, empty_indices: list[bool] | None
+) -> Callable[[_Callback, list[Any]], Any] | None:
+    """The filter of a rule's children, or None when they all stay as they are: tokens filtered
+    out are dropped, an inlined ``_rule``'s children take its place, and with placeholders a
+    missing ``[optional]`` is a None."""
+    if empty_indices:
+        # How many Nones go before each symbol (and after the last), from the True ones.
+        marks = "".join("1" if empty else "0" for empty in empty_indices)
+        nones_before = [len(run) for run in marks.split("0")]
+    else:
+        nones_before = [0] * (len(symbols) + 1)
+    kept: list[tuple[int, bool, int]] = []  # (index, inline it, Nones before it)
+    nones = 0
+    for i, (symbol, is_term, filter_out) in enumerate(symbols):
+        nones += nones_before[i]
+        if keep_all_tokens or not (is_term and filter_out):
+            kept.append((i, not is_term and symbol.startswith("_"), nones))
+            nones = 0
+    trailing = nones + nones_before[len(symbols)]
+    if not empty_indices and len(kept) == len(symbols) and not any(x for _, x, _ in kept):
+        return None
+    if empty_indices:
+        return partial(_filter_with_placeholders, tuple(kept), trailing)
+    return partial(_filter, tuple((i, inline) for i, inline, _ in kept))
+
+
+def _filter(kept: tuple[tuple[int, bool], ...], callback: _Callback, children: list[Any]) -> Any:
+    filtered: list[Any] = []
+    for i, inline in kept:
+        if inline:
+            if filtered:
+                filtered += children[i].children
+            else:  # a left-recursive rule: extend the first child's list, as Lark does
+                filtered = children[i].children
+        else:
+            filtered.append(children[i])
+    return callback(filtered)
+
+
+def _filter_with_placeholders(
+    kept: tuple[tuple[int, bool, int], ...],
+    trailing: int,
+    callback: _Callback,
+    children: list[Any],
+) -> Any:
+    filtered: list[Any] = []
+    for i, inline, nones in kept:
+        if nones:
+            filtered += [None] * nones
+        if inline:
+            if filtered:
+                filtered += children[i].children
+            else:
+                filtered = children[i].children
+        else:
+            filtered.append(children[i])
+    if trailing:
+        filtered += [None] * trailing
+    return callback(filtered)
 
 
 # ---- the tables as data
@@ -396,6 +692,8 @@ def lalr_tables(lark: Lark, start: str | None = None) -> dict[str, Any]:
     """What :class:`TableParser` needs of a Lark object, as plain data (str, int, lists,
     dicts), the same whatever the hash seed: the states are numbered in the order a walk from
     the start state meets them, symbols taken in sorted order."""
+    from lark import Tree
+
     frontend: Any = lark.parser  # lark.parser_frontends.ParsingFrontend
     conf: Any = lark.lexer_conf
     options: Any = lark.options
@@ -403,7 +701,7 @@ def lalr_tables(lark: Lark, start: str | None = None) -> dict[str, Any]:
         raise ValueError("TableParser needs parser='lalr' and lexer='basic'")
     if conf.postlex is not None or conf.callbacks or conf.use_bytes:
         raise ValueError("TableParser supports neither postlex, lexer_callbacks nor use_bytes")
-    if options.tree_class not in (None, Tree) or not isinstance(options.propagate_positions, bool):
+    if options.tree_class not in (None, Tree) or options.propagate_positions is not False:
         raise ValueError("TableParser supports neither a tree_class nor a propagate_positions")
     starts: list[str] = list(frontend.parser_conf.start)
     if start is None:
@@ -419,6 +717,8 @@ def lalr_tables(lark: Lark, start: str | None = None) -> dict[str, Any]:
 
 
 def _lexer_tables(conf: Any) -> dict[str, Any]:
+    from lark.lexer import PatternRE, PatternStr
+
     re_module: Any = conf.re_module
     flags: int = conf.g_regex_flags
     terminals = sorted(conf.terminals, key=_order_key)
@@ -474,6 +774,9 @@ def _lexer_tables(conf: Any) -> dict[str, Any]:
 
 
 def _parser_tables(table: Any, callbacks: Mapping[Any, Any], start: str) -> dict[str, Any]:
+    from lark.parse_tree_builder import ExpandSingleChild
+    from lark.parsers.lalr_analysis import Shift
+
     lark_states: Mapping[int, Mapping[Any, tuple[Any, Any]]] = table.states
     if sorted(lark_states) != list(range(len(lark_states))):
         raise ValueError("expected Lark's IntParseTable (states numbered 0..n-1)")
@@ -563,16 +866,11 @@ def _fold_unit_chains(
 
 
 def _terminal_data(term: TerminalDef) -> list[Any]:
+    from lark.lexer import PatternStr
+
     pattern = term.pattern
     kind = "str" if isinstance(pattern, PatternStr) else "re"
     return [term.name, kind, pattern.value, sorted(pattern.flags), pattern.raw, term.priority]
-
-
-def _terminal(
-    name: str, kind: str, value: str, flags: list[str], raw: str | None, priority: int
-) -> TerminalDef:
-    pattern = PatternStr(value, flags, raw) if kind == "str" else PatternRE(value, flags, raw)
-    return TerminalDef(name, pattern, priority)
 
 
 def _lark_rule_data(rule: Any) -> list[Any]:
@@ -583,28 +881,6 @@ def _lark_rule_data(rule: Any) -> list[Any]:
         rule.origin.name, symbols, rule.order, rule.alias,
         [o.keep_all_tokens, o.expand1, o.priority, o.template_source, empty],
     ]  # fmt: skip
-
-
-def _lark_rule(
-    origin: str, symbols: list[list[Any]], order: int, alias: str | None, options: list[Any]
-) -> Rule:
-    keep_all_tokens, expand1, priority, template_source, empty = options
-    expansion = [Terminal(n, f) if term else NonTerminal(n) for n, term, f in symbols]
-    rule_options = RuleOptions(keep_all_tokens, expand1, priority, template_source, tuple(empty))
-    return Rule(NonTerminal(origin), expansion, order, alias, rule_options)
-
-
-def _reduce_callback(callback: Any, span: int) -> _Callback:
-    """The callback of a reduction of ``span // 2`` symbols."""
-    if type(callback) is ExpandSingleChild:
-        # ExpandSingleChild (a `?rule` without alias) tests len(children) == 1 on each call;
-        # with LALR that length is the arity, so decide it once here.
-        if span == 2:
-            return _only_child
-        inner: _Callback = callback.node_builder
-        return inner
-    reduce: _Callback = callback
-    return reduce
 
 
 def _on_first_use(compile_match: Callable[[], _Match], install: Callable[[_Match], None]) -> _Match:
@@ -625,6 +901,8 @@ def _on_first_use(compile_match: Callable[[], _Match], install: Callable[[_Match
 
 def _is_char_literal(term: TerminalDef, ch: str, flags: int) -> bool:
     """Does `term` match exactly the one character `ch` (then nothing else can come first)?"""
+    from lark.lexer import PatternStr
+
     pattern = term.pattern
     if not isinstance(pattern, PatternStr) or len(pattern.value) != 1:
         return False

@@ -8,11 +8,11 @@ text, so an edit re-parses only the lines it changed.
 from __future__ import annotations
 
 import gc
-import hashlib
 import re
 import sys
 import threading
 import unicodedata
+import zlib
 from bisect import bisect_right
 from collections.abc import Callable, Iterable, Iterator, Sequence
 from contextlib import contextmanager
@@ -21,12 +21,20 @@ from functools import cached_property
 from importlib import resources
 from itertools import accumulate
 from operator import attrgetter, itemgetter
-from typing import Any, cast
+from typing import TYPE_CHECKING, Any, cast
 
 from ..cancel import READING, SLICE, CancelToken, raise_if_cancelled
 from ..lazy_regex import LazyPattern
 from ..line_maps import Diff
 from . import dialects, grammar_tables
+from .lalr_driver import (
+    TABLES_FORMAT,
+    TableParser,
+    Token,
+    UnexpectedCharacters,
+    UnexpectedInput,
+    UnexpectedToken,
+)
 from .lines import (
     MAX_LINE_LENGTH,
     READ_WHOLE,
@@ -84,40 +92,36 @@ from .tree import (
 )
 from .walk import bracket_depth, expression_depth, top_expressions
 
-# Lark imports the ``regex`` package when it is installed, for its option regex=True, which
-# this grammar does not use: hidden while Lark loads, it is not imported (10 ms of a start).
-_HIDE_REGEX = "regex" not in sys.modules
-if _HIDE_REGEX:
-    sys.modules["regex"] = None  # type: ignore[assignment]  # 'import regex' raises ImportError
-try:
-    from lark import Lark, Token, Transformer
-    from lark.exceptions import (
-        UnexpectedCharacters,
-        UnexpectedEOF,
-        UnexpectedInput,
-        UnexpectedToken,
-    )
-
-    from .lalr_driver import TABLES_FORMAT, TableParser  # Lark's first importer is this module
-finally:
-    if _HIDE_REGEX:
-        del sys.modules["regex"]
+if TYPE_CHECKING:
+    from lark import Lark
 
 
 def grammar_text() -> str:
     return resources.files("fanuc_macro").joinpath("data/macro_b.lark").read_text("utf-8")
 
 
-def grammar_sha256() -> str:
-    """What grammar_tables.py was written from, with the format of its data."""
+def grammar_crc32() -> int:
+    """What grammar_tables.py was written from, with the format of its data: a check of an
+    edit, not of an attack, so a CRC (zlib, which the evaluator loads too; hashlib would load
+    OpenSSL at each start)."""
     text = f"{grammar_text()}\n{TABLES_FORMAT}"
-    return hashlib.sha256(text.encode("utf-8")).hexdigest()
+    return zlib.crc32(text.encode("utf-8"))
 
 
 def grammar_lark(cache: bool = True) -> Lark:
     """Lark's parser of the grammar, as the tables come from (``cache``: the grammar's tables
     kept in the temp folder, which a start then need not build: the server starts 40 ms
-    sooner)."""
+    sooner). Lark is imported here: the parser runs the shipped tables without it."""
+    # Lark imports the ``regex`` package when it is installed, for its option regex=True,
+    # which this grammar does not use: hidden while Lark loads, it is not imported (10 ms).
+    hide_regex = "regex" not in sys.modules and "lark" not in sys.modules
+    if hide_regex:
+        sys.modules["regex"] = None  # type: ignore[assignment]  # 'import regex' raises ImportError
+    try:
+        from lark import Lark
+    finally:
+        if hide_regex:
+            del sys.modules["regex"]
     return Lark(
         grammar_text(),
         parser="lalr",
@@ -130,18 +134,23 @@ def grammar_lark(cache: bool = True) -> Lark:
 
 
 # Every node's span comes from these: they run a few hundred thousand times on a cold parse.
+# A token is a str: the driver's Token, or Lark's when Lark parses (tests compare the two); the
+# nodes are not. (Typed Any, so that the check leaves a node of Any as it is.)
+_TOKEN: Any = str
+
+
 def _span(node: Any) -> Span:
-    if type(node) is Token:
+    if isinstance(node, _TOKEN):
         if node.start_pos is None or node.end_pos is None:
-            return Span(node.start_pos, node.end_pos)  # type: ignore[arg-type]
+            return Span(node.start_pos, node.end_pos)
         return shared_span(node.start_pos, node.end_pos)
     span: Span = node.span
     return span
 
 
 def _cover(first: Any, last: Any) -> Span:
-    start: int = (first.start_pos or 0) if type(first) is Token else first.span.start
-    end: int = (last.end_pos or 0) if type(last) is Token else last.span.end
+    start: int = (first.start_pos or 0) if isinstance(first, _TOKEN) else first.span.start
+    end: int = (last.end_pos or 0) if isinstance(last, _TOKEN) else last.span.end
     return shared_span(start, end)
 
 
@@ -164,8 +173,9 @@ def _to_float(text: str) -> float:
     return float(text)
 
 
-class _ToAst(Transformer[Token, Any]):
-    """Builds :mod:`fanuc_macro.syntax.tree` nodes while the LALR parser reduces (no parse tree)."""
+class _ToAst:
+    """Builds :mod:`fanuc_macro.syntax.tree` nodes while the LALR parser reduces (no parse tree):
+    a transformer for the driver, and for Lark (its methods named after the grammar's rules)."""
 
     # ---- expressions
     def num(self, c: list[Any]) -> Num:
@@ -218,7 +228,7 @@ class _ToAst(Transformer[Token, Any]):
         return c[1]
 
     def logic(self, c: list[Any]) -> Logic:
-        terms = [x for x in c if not (isinstance(x, Token) and x.type in ("LSQB", "RSQB"))]
+        terms = [x for x in c if not (isinstance(x, _TOKEN) and x.type in ("LSQB", "RSQB"))]
         first = terms[0]
         rest: list[tuple[str, Cond]] = []
         for i in range(1, len(terms), 2):
@@ -663,7 +673,7 @@ class BlockParser:
         self.use_fast_path = use_fast_path
         # Our driver runs the grammar's LALR tables faster than Lark's loop. They are shipped
         # as data (grammar_tables.py): a start loads no Lark object, unless the grammar changed.
-        if grammar_sha256() == grammar_tables.GRAMMAR_SHA256:
+        if grammar_crc32() == grammar_tables.GRAMMAR_CRC32:
             self._table = TableParser.from_tables(grammar_tables.TABLES, _ToAst())
         else:
             self._table = TableParser(self._lark)
@@ -868,11 +878,7 @@ def _describe(code: str, err: UnexpectedInput, text: str | None = None) -> Synta
         col = tok.start_pos if tok.start_pos is not None else len(code.rstrip())
         found = "end of block" if tok.type == "$END" else str(tok)
         expected = _expected_words(err.expected or ())
-    elif isinstance(err, UnexpectedEOF):
-        col = len(code.rstrip())
-        found = "end of block"
-        expected = _expected_words(err.expected or ())
-    else:  # pragma: no cover - Lark raises only the three above
+    else:  # pragma: no cover - the driver raises only the two above
         col, found, expected = 0, "", ()
     if found == "end of block" or col >= len(code.rstrip()):
         end = max(col, len(code.rstrip()))
