@@ -21,8 +21,6 @@ import {
 
 interface VsCodeApi {
   postMessage(message: unknown): void;
-  getState(): unknown;
-  setState(state: unknown): void;
 }
 declare function acquireVsCodeApi(): VsCodeApi;
 
@@ -210,7 +208,6 @@ canvas.addEventListener(
 fitButton.addEventListener('click', refit);
 viewSelect.addEventListener('change', () => {
   view = viewSelect.value as ViewName;
-  vscode.setState({ view });
   refit();
 });
 window.addEventListener('resize', () => {

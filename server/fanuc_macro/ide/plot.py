@@ -20,12 +20,12 @@ from dataclasses import dataclass
 from xml.sax.saxutils import escape, quoteattr
 
 from ..config import Config
-from ..evaluator import evaluate
 from ..evaluator.toolpath import Move, Plane, Toolpath
 from ..evaluator.values import fmt_address
 from ..program.index import ProgramIndex
 from ..syntax.tree import Document
 from ..threads.identify import Thread
+from .trace import run_with_toolpath
 
 # The drawing's size in SVG user units (pixels): the path is fitted into this box.
 WIDTH = 960.0
@@ -557,13 +557,7 @@ def run_toolpath(
     """Run ``uri``'s programs (or ``entry``) with the toolpath recorded.
 
     Raises :class:`NothingToPlot` when the run makes no move."""
-    facts = evaluate(
-        [(uri, doc, index), *others],
-        config,
-        only_uri=None if entry else uri,
-        entry=entry,
-        toolpath=True,
-    )
+    facts = run_with_toolpath(uri, doc, index, others, config, entry)
     toolpath = facts.toolpath
     if toolpath is None or not toolpath.moves:
         raise NothingToPlot("the program makes no move: nothing to plot")

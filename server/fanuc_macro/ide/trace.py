@@ -8,11 +8,30 @@ from collections.abc import Sequence
 from typing import Any
 
 from ..config import Config
-from ..evaluator import evaluate
+from ..evaluator import Facts, evaluate
 from ..evaluator.toolpath import Move, Toolpath
 from ..evaluator.values import fmt_address
 from ..program.index import ProgramIndex
 from ..syntax.tree import Document
+
+
+def run_with_toolpath(
+    uri: str,
+    doc: Document,
+    index: ProgramIndex,
+    others: Sequence[tuple[str, Document, ProgramIndex]] = (),
+    config: Config | None = None,
+    entry: int | None = None,
+) -> Facts:
+    """One full run of ``uri``'s programs (or of ``entry``, with ``others`` for its calls), the
+    toolpath recorded: what ``trace``, ``plot`` and the Toolpath view show."""
+    return evaluate(
+        [(uri, doc, index), *others],
+        config,
+        only_uri=None if entry else uri,
+        entry=entry,
+        toolpath=True,
+    )
 
 
 def trace(
@@ -27,13 +46,7 @@ def trace(
     "toolpath": {...}, "summary": {...}}``; lines are 1-based. ``start`` and ``end`` are the
     positions before and after the block (the axes known; a lathe's X a diameter); a canned
     cycle's record lists its ``moves``."""
-    facts = evaluate(
-        [(uri, doc, index), *others],
-        config,
-        only_uri=None if entry else uri,
-        entry=entry,
-        toolpath=True,
-    )
+    facts = run_with_toolpath(uri, doc, index, others, config, entry)
     path = facts.toolpath
     assert path is not None
     by_motion = _moves_by_motion(path)

@@ -6,12 +6,9 @@ from __future__ import annotations
 import asyncio
 import logging
 from collections.abc import Callable
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 from .engine import Engine, key_of
-
-if TYPE_CHECKING:
-    from ..ide.view import Document, ProgramIndex
 
 log = logging.getLogger(__name__)
 
@@ -29,18 +26,32 @@ def _uri_argument(args: tuple[Any, ...]) -> str | None:
     return first if isinstance(first, str) and first else None
 
 
+# An ide function answering for one document: (key, doc, index, others, config) -> JSON.
+Answer = Callable[..., dict[str, Any]]
+
+
+def _trace() -> Answer:
+    from ..ide.trace import trace  # the evaluator: loaded by the worker after start-up
+
+    return trace
+
+
+def _toolpath_view() -> Answer:
+    from ..ide.toolpath_view import toolpath_view
+
+    return toolpath_view
+
+
 async def _on_document(
-    engine: Engine,
-    command: str,
-    args: tuple[Any, ...],
-    answer: Callable[[str, Document, ProgramIndex, list[tuple[str, Document, ProgramIndex]]], Any],
+    engine: Engine, command: str, args: tuple[Any, ...], load: Callable[[], Answer]
 ) -> dict[str, Any]:
-    """``[uri]`` -> ``answer`` of that document, with the workspace's documents for its calls,
-    computed in the engine's worker."""
+    """``[uri]`` -> what the function ``load`` gives answers for that document, with the
+    workspace's documents for its calls, computed in the engine's worker."""
     uri = _uri_argument(args)
     if uri is None:
         return {"error": f"{command} takes the document's URI as its argument"}
     key = key_of(uri)
+    config = engine.config
 
     def job() -> dict[str, Any]:
         if not engine.load(key):
@@ -49,8 +60,7 @@ async def _on_document(
         if documents is None:
             return {"error": f"{uri} is not in the workspace"}
         (_, doc, index), *others = documents
-        result: dict[str, Any] = answer(key, doc, index, others)
-        return result
+        return load()(key, doc, index, others, config)
 
     try:
         return await engine.in_worker(job)
@@ -61,36 +71,12 @@ async def _on_document(
 
 async def run_trace(engine: Engine, args: tuple[Any, ...]) -> dict[str, Any]:
     """``[uri]`` -> the trace of that document."""
-    config = engine.config
-
-    def answer(
-        key: str,
-        doc: Document,
-        index: ProgramIndex,
-        others: list[tuple[str, Document, ProgramIndex]],
-    ) -> dict[str, Any]:
-        from ..ide.trace import trace  # the evaluator: loaded by the worker after start-up
-
-        return trace(key, doc, index, others, config)
-
-    return await _on_document(engine, TRACE, args, answer)
+    return await _on_document(engine, TRACE, args, _trace)
 
 
 async def run_toolpath(engine: Engine, args: tuple[Any, ...]) -> dict[str, Any]:
     """``[uri]`` -> the Toolpath view's data of that document (ide/toolpath_view.py)."""
-    config = engine.config
-
-    def answer(
-        key: str,
-        doc: Document,
-        index: ProgramIndex,
-        others: list[tuple[str, Document, ProgramIndex]],
-    ) -> dict[str, Any]:
-        from ..ide.toolpath_view import toolpath_view
-
-        return toolpath_view(key, doc, index, others, config)
-
-    return await _on_document(engine, TOOLPATH, args, answer)
+    return await _on_document(engine, TOOLPATH, args, _toolpath_view)
 
 
 def _thread_arguments(args: tuple[Any, ...]) -> tuple[str, float, bool | None] | str:
