@@ -29,9 +29,13 @@ ROOT = Path(__file__).resolve().parents[1]
 SEEDS = ROOT / "tests" / "fixtures" / "seeds"
 
 
-def program(blocks: int) -> str:
+def program(blocks: int, distinct: bool = False) -> str:
     """A main program of about ``blocks`` blocks in the style of the seeds: thread passes
-    computed by macro statements, with comments in Chinese, a loop and a subprogram call."""
+    computed by macro statements, with comments in Chinese, a loop and a subprogram call.
+
+    The passes' code repeats every few thousand blocks, as a program's passes do, and only the
+    comments number them; ``distinct`` numbers the code too, so that no two blocks are alike:
+    the case where the parser and the compiler share nothing between lines."""
     lines = [
         "%",
         "O1000 (性能测试 主程序)",
@@ -44,6 +48,14 @@ def program(blocks: int) -> str:
     i = 0
     while len(lines) < blocks - 12:
         i += 1
+        if distinct:
+            lines += [
+                f"#{1 + i % 30}=#101*{i}.+SQRT[{i % 11 + 1}.] (计算 {i})",
+                f"G00 X[#100+{i % 5 + 1}.] Z{i % 9 + 2}.{i}",
+                f"G92 X[#100-0.{i % 9 + 1}] W-[#102+#101+0.{i}] F#101 (螺纹加工 {i})",
+                f"G01 W[{i}.*0.0001] (偏移)",
+            ]
+            continue
         lines += [
             f"#{1 + i % 30}=#101*{i % 7 + 1}.+SQRT[{i % 11 + 1}.] (计算 {i})",
             f"G00 X[#100+{i % 5 + 1}.] Z{i % 9 + 2}.",
@@ -196,6 +208,7 @@ async def main(
     hovers: int,
     read_whole: bool = False,
     pythonpath: str = str(ROOT / "server"),
+    distinct: bool = False,
 ) -> None:
     bench = Bench()
     client = bench.client
@@ -219,7 +232,7 @@ async def main(
     print(f"initialize: {ms(time.perf_counter() - started)}")
     print(f"server RSS after start: {rss_kib(server.pid)}")
 
-    text = program(blocks)
+    text = program(blocks, distinct)
     lines = text.split("\n")
     uri = "untitled:bench.nc"
     version = 1
@@ -356,6 +369,11 @@ if __name__ == "__main__":
     parser.add_argument(
         "--read-whole", action="store_true", help="raise maxBlocks and maxFileSize to the document"
     )
+    parser.add_argument(
+        "--distinct-code",
+        action="store_true",
+        help="no two blocks of the program alike (its passes numbered in the code too)",
+    )
     parser.add_argument("--debounce", type=int, default=250, help="analysis.debounceMs")
     parser.add_argument("--keystrokes", type=int, default=10)
     parser.add_argument("--hovers", type=int, default=50)
@@ -378,6 +396,7 @@ if __name__ == "__main__":
                 args.hovers,
                 args.read_whole,
                 args.server_pythonpath,
+                args.distinct_code,
             )
         )
     if not args.no_cancel:

@@ -17,6 +17,7 @@ from array import array
 from bisect import bisect_left
 from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, field, replace
+from itertools import islice
 
 from ..cancel import RUNNING, CancelToken
 from ..config import Config
@@ -1930,16 +1931,58 @@ def _unknown_value(frame: object) -> Value:
 
 def compile_line(parsed: ParsedLine) -> CompiledLine:
     """A parsed line's statement; a block that does not parse but plainly assigns ``#n``
-    assigns it an unknown value, so that later reads of #n are not taken for vacant."""
+    assigns it an unknown value, so that later reads of #n are not taken for vacant.
+
+    Lines of the same code share their statement (the parser's lines that differ in their
+    comments only) and so their compiled line, boundary included: a line is a boundary by the
+    text of its statement."""
     statement = parsed.statement
+    if statement is None:
+        if parsed.failed_assignment is not None:
+            line = CompiledLine(
+                K_ASSIGN, target_number=parsed.failed_assignment, value=_unknown_value
+            )
+        else:
+            line = CompiledLine(K_EMPTY)
+        line.boundary = _is_boundary(parsed.text)
+        return line
+    shared = _COMPILED_BY_STATEMENT.get(id(statement))
+    if shared is not None and shared[0] is statement:
+        return shared[1]
     if type(statement) is PlainNc:  # most lines: compile_statement's first case
         line = _compile_plain_code(statement)
-    elif statement is None and parsed.failed_assignment is not None:
-        line = CompiledLine(K_ASSIGN, target_number=parsed.failed_assignment, value=_unknown_value)
     else:
-        line = compile_statement(parsed.statement, parsed.text)
-    line.boundary = zlib.crc32(parsed.text.encode("utf-8", "surrogatepass")) & 7 == 0
+        line = compile_statement(statement, parsed.text)
+    line.boundary = _is_boundary(_statement_text(parsed, statement))
+    by_statement = _COMPILED_BY_STATEMENT
+    by_statement[id(statement)] = (statement, line)
+    if len(by_statement) > _COMPILED_BY_STATEMENT_LIMIT:
+        for oldest in list(islice(by_statement, _COMPILED_BY_STATEMENT_LIMIT // 4)):
+            by_statement.pop(oldest, None)  # another thread may have taken it
     return line
+
+
+# Compiled lines by their statement (kept alive here, so that its id names it): the statements
+# the parser shares between lines of the same code compile once. The oldest quarter goes when
+# it is full; a line whose statement is no longer here compiles again, to an equal line.
+_COMPILED_BY_STATEMENT: dict[int, tuple[Statement, CompiledLine]] = {}
+_COMPILED_BY_STATEMENT_LIMIT = 4096
+
+
+def _is_boundary(text: str) -> bool:
+    return zlib.crc32(text.encode("utf-8", "surrogatepass")) & 7 == 0
+
+
+def _statement_text(parsed: ParsedLine, statement: Statement) -> str:
+    """The statement's columns of the line, the comments among them blanked: the same for
+    every line of the same code."""
+    start, end = statement.span.start, statement.span.end
+    text = parsed.text[start:end]
+    for comment in parsed.comments:
+        c_start, c_end = comment.span.start, comment.span.end
+        if start <= c_start and c_end <= end:
+            text = text[: c_start - start] + " " * (c_end - c_start) + text[c_end - start :]
+    return text
 
 
 _KEEP_COMPILED: Callable[[ParsedLine, object], None] = vars(ParsedLine)["compiled"].__set__

@@ -19,7 +19,7 @@ from contextlib import contextmanager
 from dataclasses import replace
 from functools import cached_property
 from importlib import resources
-from itertools import accumulate
+from itertools import accumulate, islice
 from operator import attrgetter, itemgetter
 from typing import TYPE_CHECKING, Any, cast
 
@@ -666,6 +666,27 @@ def _too_deep(statement: Statement, depth: int) -> LineNote:
     )
 
 
+# What a line's code parses to, apart from its comments: (made by the fast paths, block
+# delete, N number and its span, the statement, whether it calls a program). Lines that differ
+# in their comments only (a thread's passes numbered in them) share it, and so their nodes:
+# the nodes are immutable and their spans are columns of the line, which the comments keep.
+_ParsedCode = tuple[bool, int | None, int | None, Span | None, Statement | None, bool]
+_BY_CODE_LIMIT = 4096  # codes kept; the oldest quarter goes when it is full
+
+
+def _line_of_code(text: str, cut: LineCode, has_lower: bool, code: _ParsedCode) -> ParsedLine:
+    quick, skip, seq, seq_span, statement, has_call = code
+    if quick:
+        # What _line works out, known here: a block of plain words is indexed for its N
+        # number, a tape mark or a call only.
+        indexed = seq is not None or cut.tape_mark or has_call
+        return quick_line(
+            text, cut.tape_mark, skip, seq, seq_span, statement, cut.comments, None, cut.notes,
+            has_lower, has_call, indexed, None,
+        )  # fmt: skip
+    return _line(text, cut, skip, seq, seq_span, statement, None, has_lower)
+
+
 class BlockParser:
     """Parses lines; thread-safe; caches parsed lines by text (LRU)."""
 
@@ -683,6 +704,7 @@ class BlockParser:
         self._cache_size = cache_size
         self._sweep_at = cache_size  # the size at which the cache next looks for lines to drop
         self._longest_cached = 0  # no cached line is longer: a hit needs no length check
+        self._by_code: dict[str, _ParsedCode] = {}  # insertion-ordered: the oldest go first
         self._lock = threading.Lock()
 
     @cached_property
@@ -748,49 +770,40 @@ class BlockParser:
         if not code.strip():
             return _line(text, cut, None, None, None, None, None, False)
         has_lower = code != code.upper()
+        # A line with a comment: lines of the same code share what it parses to.
+        key = code.rstrip() if code is not text else None
+        if key is not None:
+            known = self._by_code.get(key)
+            if known is not None:
+                return _line_of_code(text, cut, has_lower, known)
+        parsed_code = self._parse_code(code, text, cut, has_lower)
+        if isinstance(parsed_code, ParsedLine):
+            return parsed_code
+        if key is not None:
+            with self._lock:
+                by_code = self._by_code
+                by_code[key] = parsed_code
+                if len(by_code) > _BY_CODE_LIMIT:
+                    for oldest in list(islice(by_code, _BY_CODE_LIMIT // 4)):
+                        del by_code[oldest]
+        return _line_of_code(text, cut, has_lower, parsed_code)
+
+    def _parse_code(
+        self, code: str, text: str, cut: LineCode, has_lower: bool
+    ) -> ParsedLine | _ParsedCode:
+        """What a line's code parses to, or the whole line where the code has a problem."""
         plain = _plain_block(code) if self.use_fast_path else None
         if plain is not None:
             # A block of plain words without a call: indexed for its N number or a tape mark.
             plain_skip, plain_seq, plain_seq_span, plain_nc = plain
-            return quick_line(
-                text,
-                cut.tape_mark,
-                plain_skip,
-                plain_seq,
-                plain_seq_span,
-                plain_nc,
-                cut.comments,
-                None,
-                cut.notes,
-                has_lower,
-                False,
-                plain_seq is not None or cut.tape_mark,
-                None,
-            )
+            return (True, plain_skip, plain_seq, plain_seq_span, plain_nc, False)
         try:
             fast = _fast_parse(code) if self.use_fast_path else None
         except ValueError as err:  # a number too long to be one
             problem = SyntaxProblem(f"cannot read a number: {err}", Span(0, len(text.rstrip())))
             return _line(text, cut, None, None, None, None, problem, has_lower)
         if fast is not None:
-            # What _line works out, known here: a plain NC block is indexed for its N number,
-            # a tape mark or a call only.
-            fast_skip, fast_seq, fast_seq_span, nc, has_call = fast
-            return quick_line(
-                text,
-                cut.tape_mark,
-                fast_skip,
-                fast_seq,
-                fast_seq_span,
-                nc,
-                cut.comments,
-                None,
-                cut.notes,
-                has_lower,
-                has_call,
-                fast_seq is not None or cut.tape_mark or has_call,
-                None,
-            )
+            return (True, *fast)
         try:
             # The transformer's start() makes the result a list, not a tree.
             items = cast("list[Any]", self._table.parse(code))
@@ -820,7 +833,7 @@ class BlockParser:
                 note = _too_deep(statement, depth)
                 deep = LineCode(cut.code, cut.comments, cut.tape_mark, (*cut.notes, note))
                 return _line(text, deep, skip, seq, seq_span, None, None, has_lower)
-        return _line(text, cut, skip, seq, seq_span, statement, None, has_lower)
+        return (False, skip, seq, seq_span, statement, False)
 
     def parse_lines(
         self, lines: Iterable[str], max_line_length: int = MAX_LINE_LENGTH
