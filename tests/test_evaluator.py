@@ -542,3 +542,55 @@ def test_motions_that_go_alike_share_their_words() -> None:
     assert words[6] is words[8] and words[7] is not words[6]
     assert [math.copysign(1.0, w["X"]) for w in words[6:9]] == [-1.0, 1.0, -1.0]
     assert words[9] is not words[0] and list(words[9]) == ["Z", "X", "F"]
+
+
+class _Frame:
+    """What a compiled expression reads: locals #1-#33, no globals."""
+
+    signed_atan = False
+    length_increment = 0.001
+
+    def __init__(self, values: dict[int, object]) -> None:
+        self.locals: list[object] = [None] * 34
+        for n, v in values.items():
+            self.locals[n] = v
+        self.store: dict[int, object] = {}
+
+    def read_global(self, number: int) -> object:
+        return None
+
+    def note_rounding(self, name: str, argument: float, result: float) -> None:
+        pass
+
+
+def _outcome(expression: str, frame: _Frame) -> object:
+    from fanuc_macro.evaluator.compiler import compile_expr
+    from fanuc_macro.evaluator.values import MacroAlarm
+    from fanuc_macro.syntax.parser import BlockParser
+    from fanuc_macro.syntax.tree import Assign
+
+    statement = BlockParser().parse_line(f"#30={expression}").statement
+    assert isinstance(statement, Assign)
+    try:
+        return compile_expr(statement.value)(frame)  # type: ignore[arg-type]
+    except MacroAlarm as alarm:
+        return ("alarm", alarm.alarm, alarm.message, alarm.node is not None)
+
+
+@pytest.mark.parametrize("op", ["+", "-", "*", "/", "MOD", "AND", "OR"])
+def test_an_operation_with_a_number_on_the_right_gives_what_the_general_one_gives(
+    op: str,
+) -> None:
+    """``#1+2.`` is compiled with the number held in the operation's closure: the same value,
+    vacancy, unknown or alarm as ``#1+#2`` with #2 = 2."""
+    lefts: list[object] = [None, 0.0, 5.5, -3.0, 1.5e308, Unknown(frozenset({7}))]
+    for number in ("2.", "0", "0.5", "8."):
+        right = float(number)
+        for left in lefts:
+            frame = _Frame({1: left, 2: right})
+            general = _outcome(f"#1{op}#2", frame)
+            special = _outcome(f"#1{op}{number}", frame)
+            if isinstance(general, float) and math.isnan(general):
+                assert isinstance(special, float) and math.isnan(special)
+            else:
+                assert special == general, (left, op, number)

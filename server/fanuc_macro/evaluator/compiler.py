@@ -186,7 +186,10 @@ def _compile_node(node: Expr, in_address: bool, children: list[_Compiled]) -> _C
     if isinstance(node, Unary):
         evaluator = _negate(evaluators[0])
     elif isinstance(node, Binary):
-        evaluator = _compile_binary(node, evaluators[0], evaluators[1])
+        right = children[1][1]
+        evaluator = _compile_binary(
+            node, evaluators[0], evaluators[1], right if type(right) is _float else None
+        )
     else:
         assert isinstance(node, Call)
         evaluator = _compile_call(node, in_address, evaluators)
@@ -227,22 +230,12 @@ def _compile_var(var: Var, index: Evaluator | None) -> Evaluator:
                 return unknown
 
             return haas
-        if n == 0:
-            return lambda _f: None
-        if 1 <= n <= 33:
-
-            def local(f: Frame) -> Value:
-                return f.locals[n]
-
-            return local
-
-        def glob(f: Frame) -> Value:
-            v = f.store.get(n, f)
-            if v is f:
-                return f.read_global(n)
-            return v  # type: ignore[return-value]
-
-        return glob
+        found = _readers.get(n)
+        if found is None:
+            if len(_readers) >= MAX_SHARED_READERS:
+                _readers.clear()
+            found = _readers[n] = _reader(n)
+        return found
     assert index is not None
 
     def indirect(f: Frame) -> Value:
@@ -251,22 +244,41 @@ def _compile_var(var: Var, index: Evaluator | None) -> Evaluator:
     return indirect
 
 
-def _arith(op: str) -> Callable[[float, float], float]:
-    if op == "+":
-        return lambda a, b: a + b
-    if op == "-":
-        return lambda a, b: a - b
-    if op == "*":
-        return lambda a, b: a * b
-    if op == "/":
-        return divide
-    if op == "MOD":
-        return modulo
-    if op == "AND":
-        return bit_and
-    if op == "OR":
-        return bit_or
-    return bit_xor
+def _reader(n: int) -> Evaluator:
+    if n == 0:
+        return lambda _f: None
+    if 1 <= n <= 33:
+
+        def local(f: Frame) -> Value:
+            return f.locals[n]
+
+        return local
+
+    def glob(f: Frame) -> Value:
+        v = f.store.get(n, f)
+        if v is f:
+            return f.read_global(n)
+        return v  # type: ignore[return-value]
+
+    return glob
+
+
+# The readers of #n, shared by every expression that reads #n (a reader depends on n only).
+_readers: dict[int, Evaluator] = {}
+MAX_SHARED_READERS = 10_000
+
+
+# The operations, one function each, shared by every expression.
+_ARITH: dict[str, Callable[[float, float], float]] = {
+    "+": lambda a, b: a + b,
+    "-": lambda a, b: a - b,
+    "*": lambda a, b: a * b,
+    "/": divide,
+    "MOD": modulo,
+    "AND": bit_and,
+    "OR": bit_or,
+    "XOR": bit_xor,
+}
 
 
 _LARGEST = 1.7976931348623157e308  # the largest double: past it a result is inf
@@ -285,27 +297,82 @@ def _overflow(expr: Binary, a: float, b: float) -> MacroAlarm:
     return alarm
 
 
-def _compile_binary(expr: Binary, left: Evaluator, right: Evaluator) -> Evaluator:
+def _slow_binary(expr: Binary, a: Value, b: Value) -> Value:
+    """An operation on what is not two numbers (vacant, unknown), or that may raise."""
+    x, y = _zero(a), _zero(b)
+    if isinstance(x, Unknown) or isinstance(y, Unknown):
+        return merge_unknown(x, y)
+    try:
+        result = _ARITH[expr.op](x, y)
+    except MacroAlarm as alarm:
+        alarm.node = expr
+        raise
+    except OverflowError:  # AND/OR/XOR of integers past the largest double
+        raise _overflow(expr, x, y) from None
+    if -_LARGEST <= result <= _LARGEST:
+        return result
+    raise _overflow(expr, x, y)
+
+
+def _compile_binary(
+    expr: Binary, left: Evaluator, right: Evaluator, constant_right: float | None
+) -> Evaluator:
+    """``constant_right``: the right operand's value when it is a number (``#100+3.``): the
+    closure holds it, and needs no closure of the number. A closure holds only what it reads
+    (the operands, the node); the operation on other values is shared."""
     op = expr.op
-    fn = _arith(op)
-
-    def slow(a: Value, b: Value) -> Value:
-        x, y = _zero(a), _zero(b)
-        if isinstance(x, Unknown) or isinstance(y, Unknown):
-            return merge_unknown(x, y)
-        try:
-            result = fn(x, y)
-        except MacroAlarm as alarm:
-            alarm.node = expr
-            raise
-        except OverflowError:  # AND/OR/XOR of integers past the largest double
-            raise _overflow(expr, x, y) from None
-        if -_LARGEST <= result <= _LARGEST:
-            return result
-        raise _overflow(expr, x, y)
-
     # Each operation checks its result: an overflow is the control's alarm where it happens,
     # with its operands, and no inf or NaN reaches the rest of the analysis.
+    if constant_right is not None and op in "+-*/":
+        c = constant_right
+        if op == "+":
+
+            def add_number(f: Frame) -> Value:
+                a = left(f)
+                if a.__class__ is _float:
+                    result = a + c
+                    if -_LARGEST <= result <= _LARGEST:
+                        return result
+                    raise _overflow(expr, a, c)
+                return _slow_binary(expr, a, c)
+
+            return add_number
+        if op == "-":
+
+            def sub_number(f: Frame) -> Value:
+                a = left(f)
+                if a.__class__ is _float:
+                    result = a - c
+                    if -_LARGEST <= result <= _LARGEST:
+                        return result
+                    raise _overflow(expr, a, c)
+                return _slow_binary(expr, a, c)
+
+            return sub_number
+        if op == "*":
+
+            def mul_number(f: Frame) -> Value:
+                a = left(f)
+                if a.__class__ is _float:
+                    result = a * c
+                    if -_LARGEST <= result <= _LARGEST:
+                        return result
+                    raise _overflow(expr, a, c)
+                return _slow_binary(expr, a, c)
+
+            return mul_number
+        if c:
+
+            def div_number(f: Frame) -> Value:
+                a = left(f)
+                if a.__class__ is _float:
+                    result = a / c
+                    if -_LARGEST <= result <= _LARGEST:
+                        return result
+                    raise _overflow(expr, a, c)
+                return _slow_binary(expr, a, c)
+
+            return div_number
     if op == "+":
 
         def add(f: Frame) -> Value:
@@ -316,7 +383,7 @@ def _compile_binary(expr: Binary, left: Evaluator, right: Evaluator) -> Evaluato
                 if -_LARGEST <= result <= _LARGEST:
                     return result
                 raise _overflow(expr, a, b)
-            return slow(a, b)
+            return _slow_binary(expr, a, b)
 
         return add
     if op == "-":
@@ -329,7 +396,7 @@ def _compile_binary(expr: Binary, left: Evaluator, right: Evaluator) -> Evaluato
                 if -_LARGEST <= result <= _LARGEST:
                     return result
                 raise _overflow(expr, a, b)
-            return slow(a, b)
+            return _slow_binary(expr, a, b)
 
         return sub
     if op == "*":
@@ -342,7 +409,7 @@ def _compile_binary(expr: Binary, left: Evaluator, right: Evaluator) -> Evaluato
                 if -_LARGEST <= result <= _LARGEST:
                     return result
                 raise _overflow(expr, a, b)
-            return slow(a, b)
+            return _slow_binary(expr, a, b)
 
         return mul
     if op == "/":
@@ -355,12 +422,12 @@ def _compile_binary(expr: Binary, left: Evaluator, right: Evaluator) -> Evaluato
                 if -_LARGEST <= result <= _LARGEST:
                     return result
                 raise _overflow(expr, a, b)
-            return slow(a, b)
+            return _slow_binary(expr, a, b)
 
         return div
 
     def other(f: Frame) -> Value:
-        return slow(left(f), right(f))
+        return _slow_binary(expr, left(f), right(f))
 
     return other
 
