@@ -15,7 +15,8 @@ and a thread's chamfer are not applied.
 
 Sources: FANUC Series 0i-TF Operator's Manual (B-64604EN), "Interpolation functions"
 (G00-G03, G32), "Reference position" (G28), "Coordinate system" (G50, G53, G54-G59), "Canned
-cycle for lathe" (G90, G92, G94), "Multiple repetitive cycle" (G70-G76); FANUC Series 0i-MF
+cycle for lathe" (G90, G92, G94), "Multiple repetitive cycle" (G70-G76: G70-G73 in
+:mod:`.stock_removal`); FANUC Series 0i-MF
 Operator's Manual (B-64604EN, M series part), "Absolute and incremental programming",
 "Plane selection", "Canned cycle for drilling" (G73-G89, G98/G99). What they leave to the
 machine builder (parameters) is marked unverified where the path depends on it.
@@ -66,7 +67,8 @@ class Move:
 @dataclass(frozen=True, slots=True)
 class LostTrack:
     """Where the path stops being known for some axes, and why. ``axes`` is empty for a note
-    that keeps the position: moves the path does not draw (a G71's roughing passes)."""
+    that keeps the position: moves the path does not draw (a G74's pecks, a G71 of a type II
+    profile)."""
 
     line: int
     program: str
