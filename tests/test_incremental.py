@@ -386,3 +386,45 @@ def test_edits_that_add_or_remove_motions_near_the_records_kept(
         full = evaluate_text(text, BlockParser(), config)
         assert_same(resumed, full)
         previous = resumed
+
+
+def lathe_cycles_program(turns: int) -> str:
+    """A loop of G71 roughing and G70 finishing of one profile."""
+    return "\n".join(
+        [
+            "%",
+            "O1000 (CYCLES)",
+            "#1=0",
+            f"WHILE[#1LT{turns}]DO1",
+            "G00 X[60.+#1] Z2.",
+            "G71 U2. R0.5",
+            "G71 P10 Q20 U0.4 W0.1 F0.25",
+            "N10 G00 X[20.+#1]",
+            "G01 Z-10.",
+            "X40.",
+            "N20 Z-30.",
+            "G70 P10 Q20",
+            "#1=#1+1",
+            "END1",
+            "M30",
+            "%",
+        ]
+    )
+
+
+@pytest.mark.parametrize("turns", [3, 400])
+def test_lathe_cycles_resume_and_equal_full(turns: int) -> None:
+    # 400 turns: the profiles' blocks (8 a turn) pass the step budget before the blocks do.
+    rng = random.Random(turns)
+    config = Config(step_budget=3000)
+    parser = BlockParser()
+    lines = lathe_cycles_program(turns).splitlines()
+    previous = evaluate_text("\n".join(lines), parser, config)
+    assert previous.stopped == ("budget" if turns == 400 else None)
+    for _ in range(12):
+        lines = mutate(lines, rng, shift=True)
+        text = "\n".join(lines)
+        resumed = evaluate_text(text, parser, config, previous)
+        full = evaluate_text(text, BlockParser(), config)
+        assert_same(resumed, full)
+        previous = resumed

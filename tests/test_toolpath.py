@@ -13,7 +13,9 @@ from hypothesis import strategies as st
 
 from fanuc_macro.config import Config
 from fanuc_macro.evaluator import Facts, evaluate
+from fanuc_macro.evaluator.run import tracks_positions
 from fanuc_macro.evaluator.toolpath import Move, Toolpath
+from fanuc_macro.evaluator.values import Unknown
 from fanuc_macro.program.index import build_index
 from fanuc_macro.syntax.parser import parse_text
 
@@ -216,18 +218,209 @@ def test_g92_with_incremental_end_and_taper() -> None:
     ]
 
 
-def test_g71_is_a_note_not_a_loss() -> None:
+# ---- G70-G73: the lathe's cycles that cut to a profile ---------------------------------------
+
+G71_STEPS = (
+    "G00 X50. Z2.",
+    "G71 U2. R0.5",
+    "G71 P10 Q20 U0.4 W0.1 F0.25",
+    "N10 G00 X20.",
+    "G01 Z-10.",
+    "X40.",
+    "N20 Z-30.",
+)
+
+
+def cycle_moves(path: Toolpath, line: int) -> list[tuple[str, float, float]]:
+    return [(m.kind, m.end["X"], m.end["Z"]) for m in path.moves if m.line == line]
+
+
+def test_g71_layers_escape_and_semi_finish_of_a_two_step_profile() -> None:
+    text = program(*G71_STEPS, "M30")
+    path = path_of(text)
+    moves = cycle_moves(path, line_of(text, "G71 P10 Q20 U0.4 W0.1 F0.25"))
+    # The profile moved by the allowance (Δu/2 = 0.2 in radius, +0.4 in X; Δw = +0.1 in Z):
+    # X20.4 from Z2.1 to Z-9.9, the shoulder to X40.4, X40.4 to Z-29.9. Layers Δd = 2 deep
+    # (a radius: 4 in X) from A's X50: X46, 42, 38, 34, 30, 26, 22; X18 would pass the
+    # profile's X20.4, which the semi-finishing pass reaches. X46 and X42 lie above the
+    # profile's largest X40.4: cut to its end, Z-29.9; the others to the shoulder, Z-9.9.
+    # Each layer: in at rapid (N10 is G00), cut, escape e = 0.5 at 45° (X +1, Z +0.5), back
+    # to A's Z2 at rapid.
+    expected: list[tuple[str, float, float]] = []
+    for x, z in ((46, -29.9), (42, -29.9), (38, -9.9), (34, -9.9), (30, -9.9), (26, -9.9)):
+        expected += [("rapid", x, 2.0), ("feed", x, z), ("rapid", x + 1, z + 0.5)]
+        expected += [("rapid", x + 1, 2.0)]
+    expected += [("rapid", 22.0, 2.0), ("feed", 22.0, -9.9), ("rapid", 23.0, -9.4)]
+    expected += [("rapid", 23.0, 2.0)]
+    # Rough cutting as finishing along the moved profile, then back to A.
+    expected += [("rapid", 20.4, 2.1), ("feed", 20.4, -9.9), ("feed", 40.4, -9.9)]
+    expected += [("feed", 40.4, -29.9), ("rapid", 50.0, 2.0)]
+    assert moves == expected
+    assert len([m for m in moves if m[0] == "feed"]) == 7 + 3  # seven layers, three stretches
+    # The profile is read, not run: no motion of its blocks, and the run goes on after N20.
+    facts = evaluated(text)
+    assert [m.code for m in facts.motions] == ["G00", "G71", "G71"]
+    runs = facts.document("t.nc").runs
+    assert all(runs.get(line_of(text, b)) == 1 for b in G71_STEPS[3:])
+
+
+def test_g70_runs_the_profile_and_returns_to_its_start() -> None:
+    text = program(*G71_STEPS, "G70 P10 Q20", "G00 X100.")
+    facts = evaluated(text)
+    path = facts.toolpath
+    assert path is not None
+    g70 = line_of(text, "G70 P10 Q20")
+    finishing = [(m.line, m.kind, m.end) for m in path.moves if m.cycle == "G70"]
+    assert finishing == [
+        (line_of(text, "N10 G00 X20."), "rapid", {"X": 20.0, "Z": 2.0}),
+        (line_of(text, "G01 Z-10."), "feed", {"X": 20.0, "Z": -10.0}),
+        (line_of(text, "X40."), "feed", {"X": 40.0, "Z": -10.0}),
+        (line_of(text, "N20 Z-30."), "feed", {"X": 40.0, "Z": -30.0}),
+        (g70, "rapid", {"X": 50.0, "Z": 2.0}),  # back to the start point
+    ]
+    # The evaluator ran the profile's blocks after the G70 (their motions follow its record),
+    # then the block after the G70, from the start point.
+    codes = [(m.line, m.code) for m in facts.motions]
+    assert codes[3:] == [
+        (g70, "G70"),
+        (line_of(text, "N10 G00 X20."), "G00"),
+        (line_of(text, "G01 Z-10."), "G01"),
+        (line_of(text, "X40."), "G01"),
+        (line_of(text, "N20 Z-30."), "G01"),
+        (line_of(text, "G00 X100."), "G00"),
+    ]
+    last = facts.motions[-1]
+    assert (last.start_x, last.start_z) == (50.0, 2.0)
+    assert ends(path, line_of(text, "G00 X100.")) == [("rapid", {"X": 100.0, "Z": 2.0})]
+    runs = facts.document("t.nc").runs
+    assert runs[line_of(text, "X40.")] == 2  # read by the G71, run by the G70
+    continuous(path)
+
+
+def test_g72_layers_in_z() -> None:
+    text = program(
+        "G00 X52. Z2.",
+        "G72 W2. R0.5",
+        "G72 P10 Q20 U0.4 W0.2 F0.2",
+        "N10 G00 Z-6.",
+        "G01 X30.",
+        "Z0.",
+        "N20 X10.",
+        "M30",
+    )
+    moves = cycle_moves(path_of(text), line_of(text, "G72 P10 Q20 U0.4 W0.2 F0.2"))
+    # The moved profile: Z-5.8 from X52.4 to X30.4, up to Z0.2, to X10.4. Layers 2 deep in
+    # Z from Z2: Z0, -2, -4 (Z-6 would pass Z-5.8); each cut along X to the shoulder X30.4,
+    # escape 0.5 at 45° (Z +0.5, X +1), back to A's X52.
+    expected: list[tuple[str, float, float]] = []
+    for z in (0.0, -2.0, -4.0):
+        expected += [("rapid", 52.0, z), ("feed", 30.4, z), ("rapid", 31.4, z + 0.5)]
+        expected += [("rapid", 52.0, z + 0.5)]
+    expected += [("rapid", 52.4, -5.8), ("feed", 30.4, -5.8), ("feed", 30.4, 0.2)]
+    expected += [("feed", 10.4, 0.2), ("rapid", 52.0, 2.0)]
+    assert moves == expected
+
+
+def test_g73_repeats_the_profile_moved_less_each_time() -> None:
+    text = program(
+        "G00 X60. Z5.",
+        "G73 U3. W1. R3",
+        "G73 P10 Q20 U0.4 W0.1 F0.2",
+        "N10 G00 X20. Z2.",
+        "G01 Z-10.",
+        "N20 X40. Z-20.",
+        "M30",
+    )
+    moves = cycle_moves(path_of(text), line_of(text, "G73 P10 Q20 U0.4 W0.1 F0.2"))
+    # d = 3 passes, moved by Δi·(d-k)/(d-1) + Δu/2 in radius and Δk·(d-k)/(d-1) + Δw in Z:
+    # (3.2, 1.1), (1.7, 0.6), (0.2, 0.1); each from A (X60 Z5) and back to it.
+    expected: list[tuple[str, float, float]] = []
+    for dx, dz in ((6.4, 1.1), (3.4, 0.6), (0.4, 0.1)):
+        expected += [("rapid", 20.0 + dx, round(2.0 + dz, 3))]
+        expected += [("feed", 20.0 + dx, round(-10.0 + dz, 3))]
+        expected += [("feed", 40.0 + dx, round(-20.0 + dz, 3)), ("rapid", 60.0, 5.0)]
+    assert moves == expected
+
+
+def test_g71_with_an_arc_in_its_profile_cuts_to_the_arc() -> None:
+    text = program(
+        "G00 X40. Z2.",
+        "G71 U2. R0.5",
+        "G71 P10 Q20 U0. W0. F0.2",
+        "N10 G00 X20.",
+        "G01 Z-10.",
+        "N20 G02 X40. Z-20. R10.",
+        "M30",
+    )
+    moves = cycle_moves(path_of(text), line_of(text, "G71 P10 Q20 U0. W0. F0.2"))
+    # The arc: centre Z-10 X40 (radius 10 in radius terms, from r10 to r20). The layer at X36
+    # (r18) meets it where (z+10)^2 + (18-20)^2 = 100 on the arc's side z < -10: z = -10 -
+    # sqrt(96).
+    cuts = [(x, z) for kind, x, z in moves if kind == "feed"]
+    assert cuts[0] == (36.0, round(-10.0 - math.sqrt(96.0), 3))
+    assert [x for x, _ in cuts[:4]] == [36.0, 32.0, 28.0, 24.0]
+    arc = [m for m in path_of(text).moves if m.kind == "arc" and m.cycle == "G71"]
+    assert len(arc) == 1 and arc[0].centre == {"X": 40.0, "Z": -10.0}
+
+
+def test_g71_type_ii_profile_is_a_note() -> None:
     text = program(
         "G00 X50. Z2.",
-        "G71 U1.5 R0.5",
+        "G71 U2. R0.5",
         "G71 P10 Q20 U0.4 W0.1 F0.25",
-        "N10 G00 X20.",
+        "N10 G00 X20. Z2.",
         "N20 G01 Z-10.",
+        "M30",
     )
     path = path_of(text)
-    notes = [lt for lt in path.lost if lt.line == line_of(text, "G71 P10 Q20 U0.4 W0.1 F0.25")]
-    assert len(notes) == 1 and notes[0].axes == () and "not drawn" in notes[0].reason
-    assert not [m for m in path.moves if m.line in (3, 4)]  # the G71 blocks move nowhere drawn
+    line = line_of(text, "G71 P10 Q20 U0.4 W0.1 F0.25")
+    notes = [lt.reason for lt in path.lost if lt.line == line]
+    assert len(notes) == 1 and "type II profile not drawn" in notes[0]
+    assert not [m for m in path.moves if m.line == line]
+
+
+def test_g71_whose_profile_label_is_missing_is_a_note() -> None:
+    text = program(
+        "G00 X50. Z2.",
+        "G71 U2. R0.5",
+        "G71 P10 Q30 U0.4 W0.1 F0.25",
+        "N10 G00 X20.",
+        "N20 G01 Z-10.",
+        "G70 P10 Q40",
+        "M30",
+    )
+    facts = evaluated(text)
+    path = facts.toolpath
+    assert path is not None
+    g71 = line_of(text, "G71 P10 Q30 U0.4 W0.1 F0.25")
+    notes = [lt.reason for lt in path.lost if lt.line == g71]
+    assert notes == ["G71: no N30 (its Q) after N10 in O1000: its passes are not drawn"]
+    g70 = [lt.reason for lt in path.lost if lt.line == line_of(text, "G70 P10 Q40")]
+    assert g70 == ["G70: no N40 (its Q) after N10 in O1000: the finishing pass is not drawn"]
+    # The evaluator goes on after the cycle, as it did: the blocks after it run.
+    assert [m.code for m in facts.motions] == ["G00", "G71", "G71", "G00", "G01", "G70"]
+    # The same without the toolpath: no crash, the same motions.
+    doc = parse_text(text, "t.nc")
+    plain = evaluate([("t.nc", doc, build_index(doc))])
+    assert [m.code for m in plain.motions] == [m.code for m in facts.motions]
+
+
+def test_profile_with_a_macro_statement_is_run_as_before() -> None:
+    text = program(
+        "G00 X50. Z2.",
+        "G71 U2. R0.5",
+        "G71 P10 Q20 U0.4 W0.1 F0.25",
+        "N10 G00 X20.",
+        "#1=5.",
+        "N20 G01 Z-#1",
+        "M30",
+    )
+    facts = evaluated(text)
+    assert facts.toolpath is not None
+    g71 = line_of(text, "G71 P10 Q20 U0.4 W0.1 F0.25")
+    notes = [lt.reason for lt in facts.toolpath.lost if lt.line == g71]
+    assert len(notes) == 1 and "does not follow in a profile (line 7)" in notes[0]
+    assert [m.code for m in facts.motions] == ["G00", "G71", "G71", "G00", "G01"]
 
 
 def test_g28_loses_the_axes_it_returns() -> None:
@@ -495,3 +688,151 @@ def test_random_programs_have_continuous_paths(
             assert move.centre is not None
         for point in (move.start, move.end):
             assert all(math.isfinite(v) for v in point.values())
+
+
+# ---- #5001-#5003: the block end position read from the tracked path -------------------------
+
+
+def written(text: str, config: Config = LATHE, toolpath: bool = False) -> dict[int, object]:
+    """What each assignment of the run wrote, by line (its last value)."""
+    doc = parse_text(text, "t.nc")
+    facts = evaluate([("t.nc", doc, build_index(doc))], config, toolpath=toolpath)
+    return {line: summary.last for line, (_n, summary) in facts.document("t.nc").writes.items()}
+
+
+@pytest.mark.parametrize("toolpath", [False, True])
+def test_block_end_position_after_absolute_and_incremental_mill_moves(toolpath: bool) -> None:
+    text = program(
+        "G90 G00 X10. Y20. Z5.",
+        "#100=#5001",
+        "#101=#5002",
+        "#102=#5003",
+        "G91 G01 X5. Y-3. F100.",
+        "#103=#5001",
+        "#104=#5002",
+        "#105=#5003",
+    )
+    got = written(text, MILL, toolpath)
+    reads = zip(range(100, 106), (5001, 5002, 5003) * 2, strict=True)
+    at = [line_of(text, f"#{n}=#{v}") for n, v in reads]
+    assert [got[line] for line in at] == [10.0, 20.0, 5.0, 15.0, 17.0, 5.0]
+
+
+def test_block_end_position_on_a_lathe_is_x_then_z() -> None:
+    text = program("G00 X40. Z2.", "#100=#5001", "#101=#5002", "U-10. W-5.", "#102=#5001+#5002")
+    got = written(text)
+    assert got[line_of(text, "#100=#5001")] == 40.0
+    assert got[line_of(text, "#101=#5002")] == 2.0
+    assert got[line_of(text, "#102=#5001+#5002")] == 30.0 + -3.0
+
+
+def test_block_end_position_after_a_cycle_is_its_start_point() -> None:
+    text = program(*G71_STEPS, "#100=#5001", "#101=#5002", "M30")
+    got = written(text)
+    assert (got[line_of(text, "#100=#5001")], got[line_of(text, "#101=#5002")]) == (50.0, 2.0)
+
+
+def test_block_end_position_unknown_where_the_path_lost_track() -> None:
+    text = program(
+        "#100=#5001",  # before any move
+        "G00 X40. Z2.",
+        "G28 U0. W0.",
+        "#101=#5001",
+        "#102=#5041",  # the current position is not followed
+        "G00 X30.",
+        "#103=#5001",
+        "#104=#5002",
+    )
+    got = written(text)
+    for line in ("#100=#5001", "#101=#5001", "#102=#5041", "#104=#5002"):
+        value = got[line_of(text, line)]
+        assert isinstance(value, Unknown), line
+    assert got[line_of(text, "#103=#5001")] == 30.0
+
+
+def test_block_end_position_unknown_after_a_call_the_analysis_cannot_follow() -> None:
+    text = program("G00 X40. Z2.", "M98 P9999", "#100=#5001")
+    assert isinstance(written(text)[line_of(text, "#100=#5001")], Unknown)
+
+
+def test_the_path_is_followed_only_for_programs_that_read_the_block_end() -> None:
+    reader = parse_text("%\nO9001\n#100=#5001\nM99\n%\n", "r.nc")
+    caller = parse_text(program("G00 X40. Z2.", "M98 P9001"), "c.nc")
+    other = parse_text(program("G00 X40. Z2.", "#100=#5041"), "o.nc")
+    docs = [(d.uri, d, build_index(d)) for d in (reader, caller, other)]
+    assert tracks_positions(docs)
+    assert tracks_positions(docs, "c.nc")  # calls O9001, which reads #5001
+    assert not tracks_positions(docs, "o.nc")
+    assert not tracks_positions(docs[1:])
+
+
+def test_block_end_position_of_a_word_finer_than_the_increment_is_unknown() -> None:
+    # Z2.3182 is Z2.318 on a metric control (0.001 mm) but Z2.3182 in inches: not known
+    # unless the program says G20; X40. is the same in both.
+    text = program("G00 X40. Z2.3182", "#100=#5001", "#101=#5002")
+    got = written(text)
+    assert got[line_of(text, "#100=#5001")] == 40.0
+    assert isinstance(got[line_of(text, "#101=#5002")], Unknown)
+    inch = program("G20", "G00 X4. Z2.3182", "#101=#5002")
+    assert written(inch)[line_of(inch, "#101=#5002")] == 2.3182
+
+
+@settings(max_examples=120, deadline=None, derandomize=True, database=None)
+@given(
+    first=st.integers(4, 30),
+    steps=st.lists(st.tuples(st.integers(0, 12), st.integers(1, 15)), min_size=1, max_size=6),
+    above=st.integers(1, 30),
+    depth=st.sampled_from(["0.5", "1.", "1.5", "2.5"]),
+    escape=st.sampled_from(["0.2", "0.5", "1."]),
+    allowance=st.sampled_from([("0.", "0."), ("0.4", "0.1"), ("0.6", "0.2")]),
+)
+def test_random_g71_profiles_are_cut_without_gouging(
+    first: int,
+    steps: list[tuple[int, int]],
+    above: int,
+    depth: str,
+    escape: str,
+    allowance: tuple[str, str],
+) -> None:
+    """A monotonic profile (X rising as Z falls, external turning): every layer lies between
+    the start point and the profile moved by the allowance, ends where that profile reaches
+    its level (or at its end), and no layer goes past it."""
+    points = [(float(first), 0.0)]
+    for dx, dz in steps:
+        x, z = points[-1]
+        points.append((x + 2.0 * dx, z - dz))
+    top = max(x for x, _ in points) + 2.0 * above
+    blocks = [f"N10 G00 X{points[0][0]:g}."]
+    blocks += [f"G01 X{x:g}. Z{z:g}." for x, z in points[1:-1]]
+    blocks += [f"N20 G01 X{points[-1][0]:g}. Z{points[-1][1]:g}."]
+    du, dw = allowance
+    text = program(
+        f"G00 X{top:g}. Z0.",
+        f"G71 U{depth} R{escape}",
+        f"G71 P10 Q20 U{du} W{dw} F0.2",
+        *blocks,
+        "M30",
+    )
+    path = path_of(text)
+    continuous(path)
+    line = line_of(text, f"G71 P10 Q20 U{du} W{dw} F0.2")
+    moves = [m for m in path.moves if m.line == line]
+    assert moves and moves[-1].end == {"X": top, "Z": 0.0}  # back at the start point
+    shifted = [(x + float(du), z + float(dw)) for x, z in points]
+    # The semi-finishing pass begins with the move to the moved profile's start.
+    finishing = max(
+        i for i, m in enumerate(moves) if m.end == {"X": shifted[0][0], "Z": shifted[0][1]}
+    )
+    layers = [m for m in moves[:finishing] if m.kind == "feed"]
+    assert all(m.start["X"] == m.end["X"] and m.start["Z"] == 0.0 for m in layers)
+    expected = math.ceil((top - shifted[0][0]) / (2.0 * float(depth)) - 1e-9) - 1
+    assert len(layers) <= expected
+    for m in layers:
+        x, z_end = m.end["X"], m.end["Z"]
+        assert shifted[0][0] < x < top
+        # The profile before the layer's end lies below its level: no gouge.
+        assert all(px <= x + 1e-3 for px, pz in shifted if pz > z_end + 1e-3)
+        # It ends where the profile reaches the level, or at the profile's end.
+        assert z_end == pytest.approx(shifted[-1][1], abs=2e-3) or any(
+            abs(pz - z_end) < 2e-3 or (px >= x - 1e-3 and pz <= z_end + 1e-3) for px, pz in shifted
+        )

@@ -86,6 +86,9 @@ class MachineState:
     analysed: tuple[tuple[str, frozenset[int]], ...]  # per document: programs run so far
     # Per document: the assumed arguments, (program, ((local, line of its first read), ...)).
     assumed: tuple[tuple[str, tuple[tuple[int, tuple[tuple[int, int], ...]], ...]], ...]
+    # Blocks of G70-G73 profiles read or run so far in the run (their own budget: see
+    # Machine._profile_budget).
+    profile_blocks: int = 0
 
     def meeting_key(self) -> tuple[object, ...]:
         """What two states that may be the same have alike, whatever their counts of blocks
@@ -113,6 +116,7 @@ class MachineState:
             and self.analysed == other.analysed
             and _same_keys(self.seen_findings, other.seen_findings)
             and self.assumed == other.assumed
+            and self.profile_blocks == other.profile_blocks
             and len(self.levels) == len(other.levels)
             and all(_same_level(a, b) for a, b in zip(self.levels, other.levels, strict=True))
             and _same_modal(self.modal, other.modal)

@@ -281,6 +281,7 @@ def _state(state: MachineState, line: Renumber, chunks: dict[int, Keys]) -> Mach
             (uri, tuple((line(uri, first), pairs(uri, items)) for first, items in assumed))
             for uri, assumed in state.assumed
         ),
+        state.profile_blocks,
     )
 
 

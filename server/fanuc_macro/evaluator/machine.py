@@ -61,7 +61,7 @@ from .facts import (
     RunValues,
     ValueSummary,
 )
-from .toolpath import Recorder
+from .toolpath import ProfileBlock, Recorder
 from .values import UNKNOWN, MacroAlarm, Unknown, Value, fmt
 
 # Block kinds of the compiled program.
@@ -70,6 +70,15 @@ K_EMPTY, K_ASSIGN, K_GOTO, K_IFGOTO, K_IFTHEN, K_WHILE, K_END, K_NC, K_HEADER, K
 MOTION_GROUP = {0.0, 1.0, 2.0, 3.0, 32.0, 33.0, 34.0}
 LATHE_CYCLES = {90.0, 92.0, 94.0}  # G-code system A: modal canned cycles of group 01
 ONE_SHOT_CYCLES = {70.0, 71.0, 72.0, 73.0, 74.0, 75.0, 76.0}  # group 00: they do not repeat
+# The lathe's cycles that name a profile N(ns)..N(nf) by P and Q: G71-G73 read it, G70 runs it.
+PROFILE_CYCLES = frozenset({70.0, 71.0, 72.0, 73.0})
+# What a block of the profile may not hold for the evaluator to follow it: calls, returns, ends,
+# the cycles themselves (FANUC forbids M98/M99 and the one-shot cycles in a profile: 0i-TF
+# "Multiple repetitive cycle", limitations).
+NOT_IN_PROFILE_G = frozenset({65.0, 66.0, 66.1, 70.0, 71.0, 72.0, 73.0, 74.0, 75.0, 76.0})
+NOT_IN_PROFILE_M = frozenset({2.0, 30.0, 98.0, 99.0, 198.0})
+# The block end position #5001-#5008 (workpiece coordinates, axis = number - 5000).
+BLOCK_END_FIRST, BLOCK_END_LAST = 5001, 5008
 AXES = frozenset("XYZUVWABC")
 # Addresses whose values are lengths or angles in the least input increment (ROUND in them
 # rounds to that increment); the others take whole numbers.
@@ -572,7 +581,14 @@ class Activation:
         self.modal_depth: int | None = None if caller is None else caller.modal_depth
 
     def read_global(self, number: int) -> Value:
-        return self.machine.unknown_of(number)
+        machine = self.machine
+        if BLOCK_END_FIRST <= number <= BLOCK_END_LAST and machine.toolpath is not None:
+            # Where the last NC block sent the axis, when the run follows the tool (see
+            # run.tracks_positions); the other position variables stay unknown.
+            found = machine.toolpath.block_end(number - 5000)
+            if found is not None:
+                return found
+        return machine.unknown_of(number)
 
     @property
     def signed_atan(self) -> bool:
@@ -610,7 +626,9 @@ class Activation:
                 float(n),
             )
         v = self.store.get(n, self)
-        return self.read_global(n) if v is self else v  # type: ignore[return-value]
+        # Unknown, not read_global: an indirect read of a position is not one the run is
+        # known to need when it chooses to follow the tool (run.tracks_positions).
+        return self.machine.unknown_of(n) if v is self else v  # type: ignore[return-value]
 
 
 class _Stop(Exception):
@@ -706,9 +724,12 @@ class Machine:
         # content: most blocks of a long program move to one of few places, and the motions
         # that go alike share one dict (nothing changes a motion's words once recorded).
         self._words: dict[tuple[object, ...], dict[str, float]] = {}
-        # The toolpath's recorder, when one is asked for (see evaluate): None costs a run one
-        # test per NC block.
+        # The toolpath's recorder, when one is asked for (see evaluate) or the programs read
+        # the block end position: None costs a run one test per NC block.
         self.toolpath: Recorder | None = None
+        # A G70-G73 with P and Q met by _motion, for _nc to follow its profile.
+        self._profile_code: float | None = None
+        self._profile_blocks = 0  # blocks of profiles read or run in this run
 
     def unknown_of(self, number: int) -> Unknown:
         u = self._unknowns.get(number)
@@ -743,6 +764,7 @@ class Machine:
         if self.toolpath is not None:
             self.toolpath.begin_run(len(self.facts.motions))
         self._steps = 0
+        self._profile_blocks = 0
         self._checkpoint(act, 0)
         return self._run_loop(act, 0)
 
@@ -857,6 +879,7 @@ class Machine:
             tuple((uri, len(b.reported)) for uri, b in bases.items()),
             tuple((uri, frozenset(b.analysed_programs)) for uri, b in bases.items()),
             tuple((uri, tuple(b.assumed_arguments.items())) for uri, b in bases.items()),
+            self._profile_blocks,
         )
 
     def _restore(self, state: MachineState) -> Activation:
@@ -869,6 +892,7 @@ class Machine:
         self._seen_since = []
         self._seen_findings = set().union(*state.seen_findings)
         self._steps = state.done
+        self._profile_blocks = state.profile_blocks
         contexts = self.contexts
         ms = state.modal
         assert isinstance(ms.g76, G76Parameters)
@@ -1142,7 +1166,7 @@ class Machine:
                 summary.add(locals_[n])
             else:
                 v = store.get(n, act)
-                summary.add(self.unknown_of(n) if v is act else v)  # type: ignore[arg-type]
+                summary.add(act.read_global(n) if v is act else v)  # type: ignore[arg-type]
 
     def _assign(
         self,
@@ -1357,9 +1381,19 @@ class Machine:
             act.pc = self._line + 1
             return act
         moved = self._motion(act, cl, values, g_codes, order)
+        next_pc = self._line + 1
+        profile: list[ProfileBlock] | str | None = None
+        finishing: tuple[int, int] | None = None
+        if self._profile_code is not None:
+            profile, next_pc, finishing = self._profile(act, values, self._profile_code)
+            self._profile_code = None
         if self.toolpath is not None:
             ctx = act.ctx
-            self.toolpath.block(ctx.name, ctx.uri, self._line, values, g_codes, self.facts.motions)
+            self.toolpath.block(
+                ctx.name, ctx.uri, self._line, values, g_codes, self.facts.motions, profile
+            )
+        if finishing is not None:
+            self._run_profile(act, *finishing)
         for m in m_codes:
             if m == 98.0:
                 return self._sub_call(act, cl, values)
@@ -1367,7 +1401,7 @@ class Machine:
                 return self._return(act, values.get("P"), self._line)
             if m in (2.0, 30.0):
                 raise _Stop("end of program")
-        act.pc = self._line + 1
+        act.pc = next_pc
         if moved and modal.modal_calls:
             # FANUC calls the macro after each move; a move in a modal macro calls the one
             # specified before it, and none in the first. Source: a FANUC operator's manual page,
@@ -1383,6 +1417,137 @@ class Machine:
                 new.modal_depth = target
                 return new
         return act
+
+    # ---- the profile of G70-G73 -----------------------------------------------------------
+    def _profile(
+        self, act: Activation, values: dict[str, Value], code: float
+    ) -> tuple[list[ProfileBlock] | str, int, tuple[int, int] | None]:
+        """A G70-G73 that names its profile ``P(ns) Q(nf)``: what the toolpath gets of the
+        profile (its blocks' words, or why it cannot be followed), the block to run next, and
+        for G70 the profile's lines to run now.
+
+        FANUC Series 0i-TF / 0i-TD Operator's Manual, "Multiple repetitive cycle (G70-G76)":
+        G71, G72 and G73 read the blocks N(ns) to N(nf) to work out their passes and, done,
+        go on with the block after N(nf); G70 runs them and goes on with the block after the
+        G70, back at its start point. A profile the evaluator cannot follow (its N not in the
+        program, a call, a jump or an assignment in it) is run as before: the block after the
+        cycle comes next."""
+        line = self._line
+        ctx = act.ctx
+        p, q = values.get("P"), values.get("Q")
+        if not isinstance(p, float) or not isinstance(q, float):
+            return "its P or Q is not known", line + 1, None
+        first = self._label(ctx, int(p), line)
+        if first is None:
+            return f"no N{int(p)} (its P) in {ctx.name}", line + 1, None
+        last = self._label(ctx, int(q), first - 1)
+        if last is None or last < first:
+            return f"no N{int(q)} (its Q) after N{int(p)} in {ctx.name}", line + 1, None
+        lines = ctx.lines
+        for n in range(first, last + 1):
+            if not _plain_profile_line(lines[n]):
+                return (
+                    f"the profile N{int(p)}-N{int(q)} holds a block the analysis does not "
+                    f"follow in a profile (line {n + 1})",
+                    line + 1,
+                    None,
+                )
+        if self.modal.modal_calls:
+            return "a G66 modal call is in force", line + 1, None
+        self._profile_budget(act, last + 1 - first)
+        if code == 70.0:
+            return [], line + 1, (first, last)
+        return self._read_profile(act, first, last), last + 1, None
+
+    def _profile_budget(self, act: Activation, blocks: int) -> None:
+        """The profiles' blocks run within the G70-G73 block that names them, which the step
+        budget counts once: they have a budget of their own, as many blocks, so that a loop
+        around a G70 ends as soon."""
+        self._profile_blocks += blocks
+        if self._profile_blocks > self.budget:
+            self._budget_spent(act)
+            self._mark_incomplete(act)
+            raise _Stop("budget")
+
+    def _read_profile(self, act: Activation, first: int, last: int) -> list[ProfileBlock]:
+        """The blocks of a G71-G73's profile as the control reads them: their words evaluated
+        now (with the variables' values now) and checked, each block counted as reached, none
+        run (no motion, no modal change)."""
+        line = self._line
+        ctx = act.ctx
+        facts = ctx.facts
+        runs = facts.runs
+        blocks: list[ProfileBlock] = []
+        for n in range(first, last + 1):
+            pcl = ctx.lines[n]
+            self._line = n
+            runs[n] = runs.get(n, 0) + 1
+            if pcl.reads:
+                self._record_reads(act, pcl, facts)
+            if pcl.kind != K_NC:
+                continue
+            try:
+                values, g_codes, order = self._words_of(act, pcl)
+                if order is not None:
+                    self._check_addresses(act, pcl, order)
+            except MacroAlarm as alarm:
+                self._alarm(act, pcl, alarm)
+                self._mark_incomplete(act)
+                raise _Stop("alarm") from None
+            blocks.append((values, g_codes))
+        self._line = line
+        return blocks
+
+    def _run_profile(self, act: Activation, first: int, last: int) -> None:
+        """G70: the blocks N(ns) to N(nf) run as blocks of the G70 (the step budget counts the
+        G70 once), then the tool is back at the G70's start point."""
+        line = self._line
+        ctx = act.ctx
+        facts = ctx.facts
+        runs = facts.runs
+        modal = self.modal
+        start, start_lines = dict(modal.position), dict(modal.position_line)
+        for n in range(first, last + 1):
+            pcl = ctx.lines[n]
+            self._line = n
+            runs[n] = runs.get(n, 0) + 1
+            if pcl.reads:
+                self._record_reads(act, pcl, facts)
+            if pcl.kind != K_NC:
+                continue
+            try:
+                self._nc(act, pcl)
+            except MacroAlarm as alarm:
+                self._alarm(act, pcl, alarm)
+                self._mark_incomplete(act)
+                raise _Stop("alarm") from None
+        self._line = line
+        modal.position = start
+        modal.position_line = start_lines
+        if self.toolpath is not None:
+            self.toolpath.end_profile()
+
+    def _words_of(
+        self, act: Activation, cl: CompiledLine
+    ) -> tuple[dict[str, Value], Sequence[float], list[tuple[str, Value, CompiledWord]] | None]:
+        """An NC block's words evaluated: by address (the first of each), its G codes, and
+        the words in order when a check may find something in them (None: it cannot)."""
+        const = cl.constant
+        if const is not None:
+            return const.values, const.g_codes, None if const.quiet else const.order
+        values: dict[str, Value] = {}
+        g_codes: list[float] = []
+        order: list[tuple[str, Value, CompiledWord]] = []
+        for w in cl.words:
+            v = w.evaluate(act)
+            if v is None:
+                continue
+            order.append((w.address, v, w))
+            if w.address == "G" and not isinstance(v, Unknown):
+                g_codes.append(round(v, 1))
+            if w.address not in values:
+                values[w.address] = v
+        return values, g_codes, order
 
     def _axis(self, values: dict[str, Value], absolute: str, incremental: str) -> float | None:
         """Where a block sends an axis: its absolute word, else where it is plus the
@@ -1419,6 +1584,8 @@ class Machine:
         modal = self.modal
         if one_shot is not None:
             code = one_shot
+            if code in PROFILE_CYCLES and "P" in values and "Q" in values:
+                self._profile_code = code
         elif has_axis and modal.motion is not None:
             code = modal.motion
         else:
@@ -1728,6 +1895,14 @@ class Machine:
         modal.speed = UNKNOWN
         modal.position.clear()
         modal.position_line.clear()
+        if self.toolpath is not None:
+            ctx = act.ctx
+            self.toolpath.lose_all(
+                self._line,
+                ctx.name,
+                ctx.uri,
+                "a call the analysis cannot follow moves the tool where it does not know",
+            )
 
     def _enter(
         self,
@@ -2011,6 +2186,44 @@ def _ends_program_line(parsed: ParsedLine) -> bool | None:
 # The blocks with M02 or M30, by document: kept across edits, where a look at every block for
 # a program's first end took milliseconds per analysis of a long program (it ends at its last).
 _program_end_lines: LineMap[bool] = LineMap(_ends_program_line)
+
+
+def _plain_profile_line(cl: CompiledLine) -> bool:
+    """Whether a line of a G70-G73 profile is one the evaluator follows: an NC block with no
+    call, return, end or cycle, or a line with no block (empty, a comment)."""
+    kind = cl.kind
+    if kind in (K_EMPTY, K_OTHER):
+        return True
+    if kind != K_NC or cl.cond is not None or cl.second is not None:
+        return False
+    const = cl.constant
+    if const is not None:
+        g_codes: Iterable[float] = const.g_codes
+        m_codes: Iterable[float] = const.m_codes
+    else:
+        assert cl.nc is not None
+        g_list: list[float] = []
+        m_list: list[float] = []
+        for w in cl.nc.words:
+            if w.address in ("G", "M"):
+                v = constant_value(w.value)
+                if v is None:
+                    return False  # a computed G or M code
+                (g_list if w.address == "G" else m_list).append(round(v, 1))
+        g_codes, m_codes = g_list, m_list
+    return NOT_IN_PROFILE_G.isdisjoint(g_codes) and NOT_IN_PROFILE_M.isdisjoint(m_codes)
+
+
+def _reads_block_end(parsed: ParsedLine) -> bool | None:
+    """Whether a line reads #5001-#5008 directly (the block end position)."""
+    if type(parsed.statement) is PlainNc:
+        return None  # numbers only
+    reads = compiled(parsed).reads
+    return any(BLOCK_END_FIRST <= n <= BLOCK_END_LAST for n in reads) or None
+
+
+# The lines that read the block end position, by document (see run.tracks_positions).
+block_end_reads: LineMap[bool] = LineMap(_reads_block_end)
 
 
 def _volatile(number: int) -> bool:

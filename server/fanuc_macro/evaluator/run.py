@@ -3,12 +3,13 @@
 from __future__ import annotations
 
 import time
+from bisect import bisect_left
 from collections.abc import Iterator, Sequence
 from dataclasses import replace
 
 from ..cancel import COMPILING, SLICE, CancelToken
 from ..config import Config
-from ..program.index import ProgramIndex
+from ..program.index import Program, ProgramIndex
 from ..syntax.parser import quiet_gc
 from ..syntax.tree import Document
 from .checkpoints import ProgramShape, Resumption, RunRecord, changed_in, changed_lines, plan
@@ -18,6 +19,7 @@ from .machine import (
     Converged,
     Machine,
     ProgramContext,
+    block_end_reads,
     build_contexts,
     compiled,
     locals_read_first,
@@ -62,7 +64,8 @@ def evaluate(
     with the same settings; the run resumes from its checkpoints where it can (see
     :mod:`.checkpoints`), with the same result as a full run. ``cancel`` may stop it (see
     :mod:`fanuc_macro.cancel`). ``toolpath``: also record the moves (``Facts.toolpath``),
-    in a full run (``previous`` is not used).
+    in a full run (``previous`` is not used). A run of programs that read the block end
+    position follows the tool too, in a full run (see :func:`tracks_positions`).
     """
     # The run makes many small objects and no cycles: collections would only rescan them.
     with quiet_gc():
@@ -77,6 +80,56 @@ def evaluate(
         )
 
 
+def tracks_positions(
+    docs: Sequence[tuple[str, Document, ProgramIndex]], only_uri: str | None = None
+) -> bool:
+    """Whether a run of ``docs`` (of ``only_uri``'s programs) follows where the tool is, for
+    reads of ``#5001``-``#5008`` (the block end position): only when a program the run may
+    reach reads one directly (``machine.block_end_reads``, a look kept across edits; the
+    programs reached through calls by a constant P, any program after a computed one), so
+    that no other run pays for it. Such a run is a full one: the checkpoints do not hold
+    where the tool is."""
+    readers: set[tuple[str, int]] = set()
+    for uri, doc, index in docs:
+        lines = block_end_reads(doc).lines
+        if not lines:
+            continue
+        for program in index.programs:
+            at = bisect_left(lines, program.first_line)
+            if at < len(lines) and lines[at] < program.end_line:
+                readers.add((uri, program.first_line))
+    if not readers:
+        return False
+    if only_uri is None:
+        return True
+    by_number: dict[int, tuple[str, Program]] = {}
+    todo: list[tuple[str, Program]] = []
+    for uri, _doc, index in docs:
+        for program in index.programs:
+            if program.number is not None:
+                by_number.setdefault(program.number, (uri, program))
+            if uri == only_uri:
+                todo.append((uri, program))
+    seen: set[tuple[str, int]] = set()
+    while todo:
+        uri, program = todo.pop()
+        key = (uri, program.first_line)
+        if key in seen:
+            continue
+        seen.add(key)
+        if key in readers:
+            return True
+        for call in program.calls:
+            if call.kind == "M97":
+                continue  # a jump to an N of the same program (Haas)
+            if call.program is None:
+                return True  # computed: it may run any program
+            found = by_number.get(call.program)
+            if found is not None:
+                todo.append(found)
+    return False
+
+
 def _evaluate(
     docs: Sequence[tuple[str, Document, ProgramIndex]],
     config: Config,
@@ -89,6 +142,9 @@ def _evaluate(
     docs = list(docs)
     documents = tuple((uri, doc) for uri, doc, _ in docs)
     facts = Facts()
+    follow = not toolpath and tracks_positions(docs, only_uri)
+    if follow:
+        previous = None
     previous, changed = _aligned(previous, documents)
     earlier = previous.record if previous is not None else None
     compiled_before = earlier.lines if earlier is not None and changed is not None else None
@@ -107,6 +163,8 @@ def _evaluate(
     if toolpath:
         recorder = machine.toolpath = Recorder(config.is_lathe)
         facts.toolpath = recorder.toolpath
+    elif follow:
+        machine.toolpath = Recorder(config.is_lathe, keep=False)
     record = RunRecord((config, only_uri, entry), documents, _shapes(every))
     for ctx in every:
         record.lines.setdefault(ctx.uri, ctx.lines)

@@ -15,7 +15,8 @@ and a thread's chamfer are not applied.
 
 Sources: FANUC Series 0i-TF Operator's Manual (B-64604EN), "Interpolation functions"
 (G00-G03, G32), "Reference position" (G28), "Coordinate system" (G50, G53, G54-G59), "Canned
-cycle for lathe" (G90, G92, G94), "Multiple repetitive cycle" (G70-G76); FANUC Series 0i-MF
+cycle for lathe" (G90, G92, G94), "Multiple repetitive cycle" (G70-G76: G70-G73 in
+:mod:`.stock_removal`); FANUC Series 0i-MF
 Operator's Manual (B-64604EN, M series part), "Absolute and incremental programming",
 "Plane selection", "Canned cycle for drilling" (G73-G89, G98/G99). What they leave to the
 machine builder (parameters) is marked unverified where the path depends on it.
@@ -28,6 +29,7 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Literal
 
+from . import stock_removal
 from .facts import Motion
 from .values import Unknown, Value
 
@@ -65,7 +67,8 @@ class Move:
 @dataclass(frozen=True, slots=True)
 class LostTrack:
     """Where the path stops being known for some axes, and why. ``axes`` is empty for a note
-    that keeps the position: moves the path does not draw (a G71's roughing passes)."""
+    that keeps the position: moves the path does not draw (a G74's pecks, a G71 of a type II
+    profile)."""
 
     line: int
     program: str
@@ -114,8 +117,20 @@ DRILLING = frozenset({73.0, 74.0, 76.0, 81.0, 82.0, 83.0, 84.0, 85.0, 86.0, 87.0
 # Drilling cycles that feed back out to the R point (tapping G74/G84, boring G85/G89); the
 # others leave the bottom at rapid (G86 with the spindle stopped, G76 after its shift).
 FEED_OUT = frozenset({74.0, 84.0, 85.0, 89.0})
-# The lathe's multiple repetitive cycles whose passes are not drawn (G76 is).
+# The lathe's multiple repetitive cycles G70-G75 (G76 is drawn from its passes): G70-G73 are
+# drawn from their profile (see stock_removal), G74 and G75 are not.
 NOT_EXPANDED = frozenset({70.0, 71.0, 72.0, 73.0, 74.0, 75.0})
+PROFILE_CYCLES = frozenset({70.0, 71.0, 72.0, 73.0})
+# What a profile block of G70-G73 may not command (0i-TF "Multiple repetitive cycle",
+# limitations: one-shot G codes but G04, the threading and canned cycles; the control stops
+# with an alarm, unverified which).
+NOT_IN_PROFILE = frozenset(
+    {10.0, 27.0, 28.0, 30.0, 31.0, 32.0, 33.0, 34.0, 50.0, 52.0, 53.0, 90.0, 92.0, 94.0}
+    | {70.0, 71.0, 72.0, 73.0, 74.0, 75.0, 76.0}
+)
+# G71/G72's escape e when no block of the program sets it: parameter 5133, set by the machine
+# builder; 1 mm (0.04 inch) here (unverified).
+ESCAPE_MM = 1.0
 WORK_OFFSETS = frozenset({54.0, 55.0, 56.0, 57.0, 58.0, 59.0})
 # G73's retract after each peck (parameter 5114) and G83's clearance above the last depth
 # (parameter 5115): set by the machine builder; 1 mm (0.04 inch) here (unverified).
@@ -142,6 +157,16 @@ class PathModal:
     return_to_initial: bool = True  # G98 (default at power on); G99: the R point
     initial_z: float | None = None  # the initial level of the drilling cycle
     work_offset: float | None = None
+    # The multiple repetitive cycles' modal data from their first blocks: G71 U(Δd) R(e) and
+    # G72 W(Δd) R(e) set the same two (parameters 5132 and 5133); G73 U(Δi) W(Δk) R(d)
+    # (parameters 5135, 5136, 5137). None: the parameter's, not known.
+    depth_of_cut: float | None = None
+    escape: float | None = None
+    pattern: tuple[float | None, float | None, float | None] = (None, None, None)
+    # The axes whose last word had more decimals than the least input increment (Z.3182 in
+    # mm): the position is rounded (Z0.318), as a metric control rounds it, but the program
+    # may be run in inches, where it is not: such a block end position is not known.
+    inexact: frozenset[str] = frozenset()
 
     def __post_init__(self) -> None:
         if self.lathe:
@@ -233,7 +258,8 @@ def _targets(
                 unknown.append(axis)
                 end.pop(axis, None)
             else:
-                end[axis] = modal.q(value)
+                end[axis] = placed = modal.q(value)
+                _rounded(modal, axis, placed, value)
         elif incremental is not None:
             commanded = True
             start = here.get(axis)
@@ -241,11 +267,22 @@ def _targets(
                 unknown.append(axis)
                 end.pop(axis, None)
             elif start is not None:
-                end[axis] = modal.q(start + incremental)
+                end[axis] = placed = modal.q(start + incremental)
+                _rounded(modal, axis, placed, start + incremental)
     gone = tuple(a for a in unknown if a in here)
     if gone:
         block.lost.append((gone, "the value of the axis word is not known"))
     return end, commanded
+
+
+def _rounded(modal: PathModal, axis: str, placed: float, written: float) -> None:
+    """Keep ``modal.inexact`` up to date: whether the axis's last word had digits below the
+    least input increment, which the position drops."""
+    if abs(placed - written) > 1e-9:
+        if axis not in modal.inexact:
+            modal.inexact = modal.inexact | {axis}
+    elif axis in modal.inexact:
+        modal.inexact = modal.inexact - {axis}
 
 
 # ---- arcs ------------------------------------------------------------------------------------
@@ -320,15 +357,23 @@ def arc_centre(
 # ---- one block -------------------------------------------------------------------------------
 
 
+# The blocks of a G70-G73's profile N(ns)..N(nf) as the evaluator read them: each block's
+# words and G codes; or why the evaluator could not follow the profile.
+ProfileBlock = tuple[Mapping[str, Value], Sequence[float]]
+Profile = Sequence[ProfileBlock] | str
+
+
 def block_steps(
     modal: PathModal,
     values: Mapping[str, Value],
     g_codes: Sequence[float],
     passes: Sequence[float | None] = (),
+    profile: Profile | None = None,
 ) -> tuple[list[Step], list[Loss]]:
     """The moves one block makes from ``modal``'s state, which it updates; and the axes it
     loses track of, with why. ``passes``: a lathe G76's pass diameters (from the evaluator's
-    ``cycles.g76_depths``), one motion record each."""
+    ``cycles.g76_depths``), one motion record each. ``profile``: a G71-G73's profile blocks
+    (G70's profile is run by the evaluator, block by block)."""
     block = _Block(modal)
     lathe = modal.lathe
     one_shot: float | None = None
@@ -371,7 +416,7 @@ def block_steps(
         elif not lathe and g == 92.0:
             one_shot = 50.0  # the mill's coordinate system setting is the lathe's G50
     if one_shot is not None:
-        _one_shot(block, one_shot, values, passes)
+        _one_shot(block, one_shot, values, passes, profile)
     elif not lathe and modal.drilling is not None:
         _drill(block, values)
     elif modal.motion is not None:
@@ -380,7 +425,11 @@ def block_steps(
 
 
 def _one_shot(
-    block: _Block, code: float, values: Mapping[str, Value], passes: Sequence[float | None]
+    block: _Block,
+    code: float,
+    values: Mapping[str, Value],
+    passes: Sequence[float | None],
+    profile: Profile | None = None,
 ) -> None:
     modal = block.modal
     if code in (28.0, 30.0):
@@ -412,7 +461,8 @@ def _one_shot(
         for axis in modal.axes:
             v = values.get(axis)
             if isinstance(v, float):
-                position[axis] = modal.q(v)
+                position[axis] = placed = modal.q(v)
+                _rounded(modal, axis, placed, v)
             elif isinstance(v, Unknown):
                 position.pop(axis, None)
         modal.position = position
@@ -424,14 +474,168 @@ def _one_shot(
         block.go("rapid", end)
     elif code == 76.0:
         _g76(block, values, passes)
-    elif code in NOT_EXPANDED and (
-        ("P" in values and "Q" in values) or (code in (74.0, 75.0) and _has_axis(modal, values))
-    ):
+    elif code in PROFILE_CYCLES:
+        _profile_cycle(block, code, values, profile)
+    elif code in NOT_EXPANDED and _has_axis(modal, values):
         block.note(
             f"G{code:g}'s passes are not drawn; the tool is back at the cycle's start point "
             "after it"
         )
     # G04 (dwell: its X is seconds) and G10 (data setting) make no move.
+
+
+def _cycle_data(modal: PathModal, code: float, values: Mapping[str, Value]) -> None:
+    """The first block of G71 ``U(Δd) R(e)``, G72 ``W(Δd) R(e)``, G73 ``U(Δi) W(Δk) R(d)``:
+    modal data, kept until another value is given (an unknown one: not known)."""
+    if code in (71.0, 72.0):
+        depth = _word(values, "U" if code == 71.0 else "W")
+        if depth is not None:
+            modal.depth_of_cut = abs(depth) if isinstance(depth, float) else None
+        escape = _word(values, "R")
+        if escape is not None:
+            modal.escape = abs(escape) if isinstance(escape, float) else None
+    elif code == 73.0:
+        old = modal.pattern
+        new: list[float | None] = list(old)
+        for n, address in enumerate("UWR"):
+            v = _word(values, address)
+            if v is not None:
+                new[n] = v if isinstance(v, float) else None
+        modal.pattern = (new[0], new[1], new[2])
+
+
+def _profile_cycle(
+    block: _Block, code: float, values: Mapping[str, Value], profile: Profile | None
+) -> None:
+    """G70-G73 (see :mod:`.stock_removal`). G70's moves are its profile's blocks, which the
+    evaluator runs; G71-G73's are worked out here from the profile the evaluator read."""
+    modal = block.modal
+    name = f"G{code:g}"
+    if not ("P" in values and "Q" in values):
+        _cycle_data(modal, code, values)
+        return
+    if isinstance(profile, str):
+        what = "the finishing pass is" if code == 70.0 else "its passes are"
+        block.note(f"{name}: {profile}: {what} not drawn")
+        return
+    if code == 70.0 or profile is None:
+        return  # G70: its profile's blocks come next, as the evaluator runs them
+    legs = _profile_legs(block, code, values, profile)
+    for kind, end, centre, clockwise in legs:
+        assert kind in MOVE_KINDS
+        block.go(kind, end, centre, clockwise, cycle=name)
+
+
+def _profile_legs(
+    block: _Block, code: float, values: Mapping[str, Value], profile: Sequence[ProfileBlock]
+) -> list[stock_removal.Leg]:
+    modal = block.modal
+    name = f"G{code:g}"
+    start = modal.position
+    if "X" not in start or "Z" not in start:
+        block.note(f"{name}'s start point is not known: its passes are not drawn")
+        return []
+    allowance: list[float] = []  # Δu (a diameter), Δw
+    for address in "UW":
+        v = _word(values, address)
+        if isinstance(v, Unknown):
+            block.note(f"{name}'s finishing allowance {address} is not known: not drawn")
+            return []
+        allowance.append(v or 0.0)
+    # The profile, from the start point: the ns block's move to A', then A' to B.
+    scratch = PathModal(modal.lathe, dict(start), True, modal.plane, modal.inch, modal.motion)
+    approach: str | None = None
+    contour: list[stock_removal.Segment] = []
+    for n, (words, codes) in enumerate(profile):
+        refused = next((g for g in codes if g in NOT_IN_PROFILE), None)
+        if refused is not None:
+            block.note(
+                f"{name}'s profile commands G{refused:g}, which a profile may not hold "
+                "(the control stops with an alarm): its passes are not drawn"
+            )
+            return []
+        steps, lost = block_steps(scratch, words, codes)
+        if any(axes for axes, _ in lost) or "X" not in scratch.position:
+            block.note(f"{name}'s profile goes where the analysis cannot follow: not drawn")
+            return []
+        for kind, s, e, centre, clockwise, _record, _cycle in steps:
+            if n == 0:
+                approach = kind
+            else:
+                contour.append((kind, s, e, centre, clockwise))
+        if n == 0 and approach is None:
+            approach = "rapid" if scratch.motion == 0.0 else "feed"
+    if approach not in ("rapid", "feed"):
+        block.note(
+            f"{name}'s profile does not begin with G00 or G01 (the control stops with an "
+            "alarm): its passes are not drawn"
+        )
+        return []
+    if not contour:
+        block.note(f"{name}'s profile makes no move after its first block: not drawn")
+        return []
+    if code == 73.0:
+        escape_x, escape_z, divisions = modal.pattern
+        if escape_x is None or escape_z is None or divisions is None:
+            block.note(
+                "G73's escape or number of divisions is a parameter's (5135-5137), no "
+                "G73 U W R block gives it: its passes are not drawn"
+            )
+            return []
+        count = min(stock_removal.MAX_LAYERS, round(divisions))
+        if count < 1:
+            block.note("G73's number of divisions is less than 1: not drawn")
+            return []
+        return stock_removal.pattern(
+            start, approach, contour, escape_x, escape_z, count, allowance[0], allowance[1], modal.q
+        )
+    facing = code == 72.0
+    first = profile[0][0]
+    if any(a in first for a in (("X", "U") if facing else ("Z", "W"))):
+        block.note(
+            f"{name}'s profile begins with a block that names {'X' if facing else 'Z'} too: "
+            "type II (pockets), type II profile not drawn"
+        )
+        return []
+    if not stock_removal.monotonic(contour):
+        block.note(
+            f"{name}'s profile is not monotonic in X and Z, as type I needs (the control "
+            "stops with an alarm, PS0064 or PS0329, unverified): not drawn"
+        )
+        return []
+    # One-block form (Series 10/11 program format, parameter 0001#1 FCV): D is Δd.
+    depth = _word(values, "D")
+    if isinstance(depth, Unknown):
+        block.note(f"{name}'s depth of cut D is not known: its passes are not drawn")
+        return []
+    depth_of_cut = abs(depth) if isinstance(depth, float) else modal.depth_of_cut
+    if depth_of_cut is None or depth_of_cut == 0.0:
+        block.note(
+            f"{name}'s depth of cut is parameter 5132's, no {name} {'W' if facing else 'U'} R "
+            "block gives it: its passes are not drawn"
+        )
+        return []
+    escape = modal.escape
+    if escape is None:
+        escape = ESCAPE_MM / (25.4 if modal.inch else 1.0)
+        block.note(
+            f"{name}'s escape e is parameter 5133's, not in the program: drawn as "
+            f"{escape:g} (unverified)"
+        )
+    legs, short = stock_removal.layers(
+        start,
+        approach,
+        contour,
+        facing,
+        depth_of_cut,
+        escape,
+        allowance[0],
+        allowance[1],
+        modal.q,
+    )
+    if short:
+        block.note(f"{name} has more than {stock_removal.MAX_LAYERS} layers: cut short")
+    return legs
 
 
 def _has_axis(modal: PathModal, values: Mapping[str, Value]) -> bool:
@@ -606,21 +810,72 @@ def _drill(block: _Block, values: Mapping[str, Value]) -> None:
 
 class Recorder:
     """Builds a run's ``Toolpath`` from the blocks the evaluator runs: one ``block`` call per
-    NC block, after the evaluator made its motion records of it."""
+    NC block, after the evaluator made its motion records of it. With ``keep`` False it only
+    follows where the tool is (for ``#5001``-``#5003``, see :meth:`block_end`): no move is
+    kept."""
 
-    __slots__ = ("_seen", "_unplaced", "modal", "toolpath")
+    __slots__ = ("_finishing", "_seen", "_unplaced", "keep", "modal", "toolpath")
 
-    def __init__(self, lathe: bool) -> None:
+    def __init__(self, lathe: bool, keep: bool = True) -> None:
         self.toolpath = Toolpath(lathe=lathe)
         self.modal = PathModal(lathe)
+        self.keep = keep
         self._seen = 0  # motion records before the block
         self._unplaced: set[str] = set(self.modal.axes)
+        # A G70 under way: its start point, its motion record, line, program and document.
+        self._finishing: tuple[Point, int, int, str, str] | None = None
 
     def begin_run(self, motions: int) -> None:
         """A new run (an entry program): where the machine stands is not known again."""
         self.modal = PathModal(self.modal.lathe)
         self._unplaced = set(self.modal.axes)
         self._seen = motions
+        self._finishing = None
+
+    def block_end(self, axis: int) -> float | None:
+        """Where the last block sent axis number ``axis`` (1 for #5001): the programmed
+        position in work coordinates, as FANUC's block end position #5001-#5020 gives it
+        (Custom Macro, "System variables: position information"); None when not known. The
+        axes are numbered X, Z on a lathe and X, Y, Z on a mill, the usual order of
+        parameter 1020 (unverified: the machine builder's)."""
+        modal = self.modal
+        names = ("X", "Z") if modal.lathe else ("X", "Y", "Z")
+        if not 1 <= axis <= len(names):
+            return None
+        name = names[axis - 1]
+        if name in modal.inexact:
+            return None  # rounded as in mm; in inches it would not be (see PathModal.inexact)
+        return modal.position.get(name)
+
+    def lose_all(self, line: int, program: str, uri: str, reason: str) -> None:
+        """Every axis lost: a call the analysis cannot follow moved the tool."""
+        modal = self.modal
+        gone = tuple(a for a in modal.axes if a in modal.position)
+        if gone:
+            modal.position = {}
+            if self.keep:
+                self.toolpath.lost.append(LostTrack(line, program, gone, reason, uri))
+
+    def end_profile(self) -> None:
+        """The end of a G70's profile: the control returns to the cycle's start point at
+        rapid (0i-TF "Finishing cycle (G70)")."""
+        finishing = self._finishing
+        self._finishing = None
+        if finishing is None:
+            return
+        start, motion, line, program, uri = finishing
+        modal = self.modal
+        here = modal.position
+        modal.position = start
+        moves = self.toolpath.moves
+        if not self.keep or here == start:
+            return
+        if len(moves) >= MAX_MOVES:
+            self.toolpath.truncated = True
+            return
+        moves.append(
+            Move("rapid", here, start, line, program, uri, None, None, modal.plane, motion, "G70")
+        )
 
     def block(
         self,
@@ -630,9 +885,12 @@ class Recorder:
         values: Mapping[str, Value],
         g_codes: Sequence[float],
         motions: Sequence[Motion],
+        profile: Profile | None = None,
     ) -> None:
         """The moves of the block just run; ``motions``: the run's motion records, those the
-        block made at the end."""
+        block made at the end. ``profile``: a G70-G73's profile (see ``block_steps``); for a
+        G70, an empty one says that the evaluator runs its blocks next, and calls
+        :meth:`end_profile` after them."""
         first = self._seen
         made = len(motions) - first
         self._seen = len(motions)
@@ -640,7 +898,11 @@ class Recorder:
         passes: list[float | None] = []
         if modal.lathe and 76.0 in g_codes and made:
             passes = [m.x for m in motions[first:]]
-        steps, lost = block_steps(modal, values, g_codes, passes)
+        steps, lost = block_steps(modal, values, g_codes, passes, profile)
+        if profile is not None and not isinstance(profile, str) and 70.0 in g_codes:
+            self._finishing = (modal.position, first if made else -1, line, program, uri)
+        if not self.keep:
+            return
         path = self.toolpath
         for axes, reason in lost:
             path.lost.append(LostTrack(line, program, axes, reason, uri))
@@ -667,11 +929,24 @@ class Recorder:
         if not moves:
             path.inch = modal.inch
         plane = modal.plane
+        finishing = "G70" if self._finishing is not None else ""
         for kind, start, end, centre, clockwise, record, cycle in steps:
             if len(moves) >= MAX_MOVES:
                 path.truncated = True
                 return
             motion = first + min(record, made - 1) if made else -1
             moves.append(
-                Move(kind, start, end, line, program, uri, centre, clockwise, plane, motion, cycle)
+                Move(
+                    kind,
+                    start,
+                    end,
+                    line,
+                    program,
+                    uri,
+                    centre,
+                    clockwise,
+                    plane,
+                    motion,
+                    cycle or finishing,
+                )
             )
