@@ -1127,6 +1127,20 @@ class Machine:
         else:
             act.pc = self._line + 1
 
+    def _values_read(self, act: Activation, cl: CompiledLine) -> dict[int, Value]:
+        """What the block's direct variables hold as it runs (the toolpath's runs only: no
+        block of a diagnostics run asks). The block's motion assigns none of them."""
+        locals_ = act.locals
+        store = self.store
+        out: dict[int, Value] = {}
+        for n in cl.reads:
+            if n <= 33:
+                out[n] = locals_[n]
+            else:
+                v = store.get(n, act)
+                out[n] = self.unknown_of(n) if v is act else v  # type: ignore[assignment]
+        return out
+
     def _record_reads(self, act: Activation, cl: CompiledLine, facts: DocumentFacts) -> None:
         reads = facts.reads
         line = self._line
@@ -1358,7 +1372,10 @@ class Machine:
         moved = self._motion(act, cl, values, g_codes, order)
         if self.toolpath is not None:
             ctx = act.ctx
-            self.toolpath.block(ctx.name, ctx.uri, self._line, values, g_codes, self.facts.motions)
+            read = self._values_read(act, cl) if cl.reads else None
+            self.toolpath.block(
+                ctx.name, ctx.uri, self._line, values, g_codes, self.facts.motions, read
+            )
         for m in m_codes:
             if m == 98.0:
                 return self._sub_call(act, cl, values)

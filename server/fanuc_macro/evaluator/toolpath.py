@@ -86,6 +86,9 @@ class Toolpath:
     # Where the tool stood at a motion record that makes no move (its index in Facts.motions:
     # a G04 X dwell, a G10, a cycle's first block): the trace shows it there.
     standing: dict[int, dict[str, float]] = field(default_factory=dict)
+    # What the variables a motion record's block reads held when it ran (its index in
+    # Facts.motions: ``{101: 3.5}``; ``None`` vacant): the trace shows them with the block.
+    values: dict[int, dict[int, Value]] = field(default_factory=dict)
 
     def axes(self) -> tuple[str, ...]:
         """The axes any move places, in X, Y, Z order."""
@@ -630,12 +633,16 @@ class Recorder:
         values: Mapping[str, Value],
         g_codes: Sequence[float],
         motions: Sequence[Motion],
+        read: dict[int, Value] | None = None,
     ) -> None:
         """The moves of the block just run; ``motions``: the run's motion records, those the
-        block made at the end."""
+        block made at the end; ``read``: what the variables the block reads held."""
         first = self._seen
         made = len(motions) - first
         self._seen = len(motions)
+        if read:
+            for i in range(first, first + made):
+                self.toolpath.values[i] = read
         modal = self.modal
         passes: list[float | None] = []
         if modal.lathe and 76.0 in g_codes and made:
