@@ -4,6 +4,7 @@ subprocess, in a temporary folder."""
 from __future__ import annotations
 
 import json
+import math
 import os
 import re
 import subprocess
@@ -366,6 +367,7 @@ def test_trace_json_gives_every_executed_cut(tmp_path: Path) -> None:
     assert set(motions[0]) == {"program", "line", "code", "words", "start", "end"}
     cuts = [m for m in motions if m["code"] == "G92"]
     assert len(cuts) == 186  # 2 x 88 rough passes + 2 finishing + 8 spring passes
+    assert set(cuts[0].pop("values")) == {"#100", "#9", "#2", "#102", "#1", "#101"}
     assert cuts[0] == {
         "program": "O3331",
         "line": 32,
@@ -394,6 +396,39 @@ def test_trace_json_gives_every_executed_cut(tmp_path: Path) -> None:
     assert any(m["line"] == 43 and set(m["words"]) == {"X", "F"} for m in cuts)
     assert result["summary"]["by_code"]["G92"] == 186
     assert result["summary"]["stopped"] is None
+
+
+def test_trace_json_gives_the_values_each_block_read(tmp_path: Path) -> None:
+    """Each motion's ``values``: what the variables its block reads held at that execution,
+    worked out here from the seed's own formulas (O3331, lines 19-27, and O3, lines 9-29)."""
+    done = run(tmp_path, "trace", str(SEEDS / "o4009_external_m50x3.nc"), "--format", "json")
+    assert done.returncode == 0, done.stderr
+    motions = json.loads(done.stdout)["motions"]
+    assert "values" not in motions[0]  # G00 X55. Z0. reads no variable
+    pitch, length, es, td2 = 3.0, 50.0, 0.048, 0.170
+    nose = pitch / (8 * math.sin(math.radians(60)))
+    height = 7 / 8 * math.sin(math.radians(60)) * pitch - nose + es / 2 + td2 / 4
+    first_depth = 0.2 / 3 * math.sqrt(height)  # #9 = #5 * SQRT[#7], #7 = 1 on the first pass
+    lead_in = 2 * pitch + pitch + math.floor(length / pitch) * pitch - length
+    cuts = [m for m in motions if m["code"] == "G92"]
+    # G92 X[#100-2.*#9] W[-#2-#102-#1] R0 F#101: the variables in the order the block names them.
+    assert list(cuts[0]["values"]) == ["#100", "#9", "#2", "#102", "#1", "#101"]
+    assert cuts[0]["values"]["#9"] == pytest.approx(first_depth, abs=1e-9)
+    assert cuts[0]["values"]["#2"] == pytest.approx(lead_in)
+    assert cuts[0]["values"]["#100"] == 50.0 and cuts[0]["values"]["#101"] == pitch
+    assert cuts[0]["words"]["X"] == round(50.0 - 2 * first_depth, 3)
+    # The second pass read the #9 of the loop's second round: the values are per execution.
+    assert cuts[2]["values"]["#9"] == pytest.approx(first_depth * math.sqrt(2), abs=1e-9)
+
+    arc = run(tmp_path, "trace", str(SEEDS / "o2_arc_thread_roughing.nc"), "--format", "json")
+    assert arc.returncode == 0, arc.stderr
+    rapids = [m for m in json.loads(arc.stdout)["motions"] if m["line"] == 33]
+    # N25 G00 Z[#6 + [#4 - #18] * COS[#16]], #16 the angle of the pass (N16-N21, N29).
+    asin = [math.degrees(math.asin(x)) for x in ((108 - 93.82) / 2 / 10, 1.2 / (10 - 1.2))]
+    step = (180 - 2 * asin[0] + asin[1]) / 7
+    angles = [r["values"]["#16"] for r in rapids]
+    assert angles[:2] == pytest.approx([asin[0] - asin[1] + step, asin[0] - asin[1] + 2 * step])
+    assert rapids[0]["values"] == {"#6": 50.0, "#4": 10.0, "#18": 1.2, "#16": angles[0]}
 
 
 def test_trace_text_and_entry(tmp_path: Path) -> None:

@@ -27,7 +27,8 @@ import {
   type ThreadModuleArgs,
 } from './threadDesignation';
 import { ToolpathPanel } from './toolpathView';
-import { formatTrace, traceResultError, type TraceResult } from './traceFormat';
+import { formatTraceView, traceResultError, type TraceResult } from './traceFormat';
+import { TraceDocuments } from './traceView';
 
 const LANGUAGE_ID = 'fanuc-macro';
 const CONFIG_SECTION = 'fanuc-macro';
@@ -45,6 +46,8 @@ let extensionUri: vscode.Uri | undefined;
 /** The server.path setting as it read when the running server was started. */
 let startedWithPath = '';
 let output: vscode.OutputChannel | undefined;
+/** The trace views: read-only documents whose rows lead to the blocks (made by activate). */
+let traces: TraceDocuments | undefined;
 /** Serialises start/stop/restart so that commands and setting changes do not race. */
 let lifecycle: Promise<unknown> = Promise.resolve();
 
@@ -333,13 +336,7 @@ async function showTrace(): Promise<void> {
     return;
   }
   const source = document.isUntitled ? document.uri.toString() : document.uri.fsPath;
-  const content = formatTrace(answer as TraceResult, source);
-  const traceDocument = await vscode.workspace.openTextDocument({ content, language: 'plaintext' });
-  await vscode.window.showTextDocument(traceDocument, {
-    viewColumn: vscode.ViewColumn.Beside,
-    preview: false,
-    preserveFocus: false,
-  });
+  await (traces ??= new TraceDocuments()).show(document.uri, formatTraceView(answer as TraceResult, source));
 }
 
 async function showToolpath(): Promise<void> {
@@ -427,7 +424,8 @@ export function activate(context: vscode.ExtensionContext): void {
   // Undefined in tests that pass a bare context: then there is no bundled server.
   extensionPath = typeof context.extensionPath === 'string' ? context.extensionPath : undefined;
   extensionUri = context.extensionUri;
-  context.subscriptions.push(outputChannel());
+  traces = new TraceDocuments();
+  context.subscriptions.push(outputChannel(), ...traces.register());
 
   context.subscriptions.push(
     vscode.commands.registerCommand('fanuc-macro.restartServer', restart),

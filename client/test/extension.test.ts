@@ -82,11 +82,22 @@ describe('extension', { skip: process.platform === 'win32' }, () => {
     assert.ok(clients.slice(0, -1).every((c) => c.stopped), 'the previous client was stopped');
   });
 
-  it('shows the trace of the current program beside the editor', async () => {
+  it('shows the trace of the current program in a read-only view beside the editor', async () => {
     fake.resetRecorded();
     fake.window.activeTextEditor = fake.makeEditor('/p/O3331.nc');
     serverAnswers.set('fanuc-macro.trace', () => ({
-      motions: [{ program: 'O3331', line: 23, code: 'G92', words: { X: 49.816, W: -60, F: 3 } }],
+      motions: [
+        {
+          program: 'O3331',
+          line: 23,
+          code: 'G92',
+          words: { X: 49.816, W: -60, F: 3 },
+          start: { X: 51, Z: 5.964 },
+          end: { X: 51, Z: 5.964 },
+          values: { '#100': 50, '#9': 0.092058049 },
+        },
+        { program: 'O0013', line: 4, code: 'G00', words: { X: 55 }, path: 'file:///p/O13.nc' },
+      ],
       summary: { passes: 1 },
     }));
     await run('fanuc-macro.showTrace');
@@ -95,15 +106,39 @@ describe('extension', { skip: process.platform === 'win32' }, () => {
       method: 'workspace/executeCommand',
       params: { command: 'fanuc-macro.trace', arguments: ['file:///p/O3331.nc'] },
     });
-    assert.equal(fake.recorded.openedDocuments[0]?.language, 'plaintext');
-    assert.match(fake.recorded.openedDocuments[0]?.content ?? '', /^O3331 line 23 {2}G92 {2}X49\.816 W-60\. F3\.$/m);
-    assert.match(fake.recorded.openedDocuments[0]?.content ?? '', /Summary\n {2}passes: 1/);
+    // A document of the trace's own scheme and language (read-only: a content provider's).
+    const opened = fake.recorded.openedDocuments[0];
+    assert.equal(opened?.language, 'fanuc-macro-trace');
+    assert.match(
+      opened?.content ?? '',
+      /^O3331 line 23 +G92 +X49\.816 W-60\. F3\. +X51\. Z5\.964 -> X51\. Z5\.964 +#100=50\. #9=0\.092058049$/m,
+    );
+    assert.match(opened?.content ?? '', /Summary\n {2}passes: 1/);
     assert.deepEqual(fake.recorded.shownDocuments[0]?.options, {
       viewColumn: fake.ViewColumn.Beside,
       preview: false,
       preserveFocus: false,
     });
     assert.deepEqual(fake.recorded.errors, []);
+
+    // Each row's "O3331 line 23" links to its block; F12 on the row goes there too.
+    const traceUri = fake.Uri.from({ scheme: 'fanuc-macro-trace', path: '/Trace of O3331.nc', query: 'file:///p/O3331.nc' });
+    const document = (await fake.workspace.openTextDocument(traceUri)) as fake.FakeDocument;
+    const lines = document.content.split('\n');
+    const row = lines.findIndex((l) => l.startsWith('O3331 line 23'));
+    const other = lines.findIndex((l) => l.startsWith('O0013 line 4'));
+    const links = fake.providers.links.flatMap((l) => l.provider.provideDocumentLinks(document));
+    assert.deepEqual(
+      links.map((l) => [l.range.start.line, l.range.start.character, l.range.end.character, l.target?.toString()]),
+      [
+        [row, 0, 'O3331 line 23'.length, 'file:///p/O3331.nc#L23'],
+        [other, 0, 'O0013 line 4'.length, 'file:///p/O13.nc#L4'],
+      ],
+    );
+    const definition = fake.providers.definitions[0]?.provider.provideDefinition(document, new fake.Position(row, 40));
+    assert.equal(definition?.uri.toString(), 'file:///p/O3331.nc');
+    assert.deepEqual(definition?.range, new fake.Position(22, 0));
+    assert.equal(fake.providers.definitions[0]?.provider.provideDefinition(document, new fake.Position(0, 0)), undefined);
   });
 
   it('shows the error of a failed trace', async () => {

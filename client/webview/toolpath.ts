@@ -162,6 +162,10 @@ window.addEventListener('message', (event: MessageEvent<Incoming>) => {
 // a click without a drag reveals the block of the segment under it.
 let dragFrom: [number, number] | undefined;
 let dragged = false;
+// A press on the canvas does not focus the view: a click reveals a block, and the editor is to
+// have the focus then. The view's focus, when it came after the reveal, kept the keyboard and the
+// status bar's "Ln" from the editor (the browser test saw it on a loaded machine).
+canvas.addEventListener('mousedown', (event) => event.preventDefault());
 canvas.addEventListener('pointerdown', (event) => {
   dragFrom = [event.offsetX, event.offsetY];
   dragged = false;

@@ -1,6 +1,8 @@
 // Drives a real VS Code (code-server) in headless Chromium and checks that the
 // fanuc-macro extension works in it: language mode, TextMate highlighting,
-// diagnostics from the language server, and a hover with a value.
+// diagnostics from the language server, a hover with a value, the Toolpath view
+// (webview) and the trace view (a read-only document whose rows link to the blocks).
+// Every step waits for a condition (a status bar text, a data- attribute), never a fixed delay.
 //
 // Usage: node check.mjs <code-server base url> <workspace folder> <out dir>
 // Exits 0 when every check passed, 1 otherwise. Screenshots go to <out dir>.
@@ -65,10 +67,227 @@ async function gotoPosition(line, column) {
   await input.fill(`:${line}:${column}`);
   await page.keyboard.press('Enter');
   await page.locator('.quick-input-widget').waitFor({ state: 'hidden' });
-  await page.waitForTimeout(300);
+  await waitStatusLine(line);
 }
 
 const editor = page.locator('.editor-instance .monaco-editor').first();
+
+/** The line number the program's editor marks as the cursor's, focused or not. */
+async function editorCursorLine() {
+  const text = await editor.locator('.line-numbers.active-line-number').first().textContent().catch(() => '');
+  return Number(text) || undefined;
+}
+
+/** The editor's cursor line (1-based), from the status bar's "Ln 34, Col 1". */
+async function statusLine() {
+  const text = await page.locator('[id="status.editor.selection"]').innerText().catch(() => '');
+  const m = /Ln (\d+)/.exec(text);
+  return m ? Number(m[1]) : undefined;
+}
+
+async function waitStatusLine(line) {
+  await page.waitForFunction(
+    (want) => new RegExp(`Ln ${want}\\b`).test(document.getElementById('status.editor.selection')?.innerText || ''),
+    line,
+    { timeout: STEP_MS },
+  );
+}
+
+/**
+ * The frame whose document has `selector`: a webview is an iframe in an iframe in code-server.
+ * Polls the page's frames until one has it.
+ */
+async function frameWith(selector) {
+  const deadline = Date.now() + STEP_MS;
+  for (;;) {
+    for (const frame of page.frames()) {
+      if (frame === page.mainFrame()) continue;
+      const found = await frame.locator(selector).count().catch(() => 0);
+      if (found > 0) return frame;
+    }
+    if (Date.now() > deadline) throw new Error(`no frame has ${selector}`);
+    await page.waitForTimeout(200);
+  }
+}
+
+// The Toolpath view of the seed (0-based lines, as the view and the probe count them): a click
+// on the first rapid to the thread's start (line 34, `N26 X[#5 - 2 * ...]`, seven passes)
+// reveals that block; the cursor on line 39 (`N31 G00 X#24 Z#26`, one move) lights one segment.
+const CLICK_LINE = Number(process.env.CHECK_TOOLPATH_CLICK_LINE || 34);
+const OTHER_LINE = Number(process.env.CHECK_TOOLPATH_OTHER_LINE || 39);
+
+async function checkToolpath() {
+  await editor.click({ position: { x: 200, y: 10 } });
+  await gotoPosition(9, 1);
+  let frame;
+  try {
+    await runCommand('FANUC Macro: Show Toolpath');
+    frame = await frameWith('canvas#toolpath');
+    await frame.waitForFunction(
+      (line) => Number(document.getElementById('toolpath')?.dataset.pieces || 0) > 0
+        && window.toolpathProbe?.segmentOfLine(line) != null,
+      CLICK_LINE - 1,
+      { timeout: STEP_MS },
+    );
+    const data = await frame.locator('canvas#toolpath').evaluate((c) => ({ ...c.dataset }));
+    const info = await frame.locator('#info').innerText();
+    record('toolpath view', Number(data.segments) > 0, `segments ${data.segments}, pieces ${data.pieces}; ${info}`);
+  } catch (e) {
+    record('toolpath view', false, e.message.split('\n')[0]);
+    await shot('toolpath.png');
+    return;
+  }
+  await shot('toolpath.png');
+
+  // A click on a segment reveals its block in the editor.
+  try {
+    const canvas = frame.locator('canvas#toolpath');
+    const at = await frame.evaluate((line) => {
+      const p = window.toolpathProbe.segmentOfLine(line);
+      const box = document.getElementById('toolpath').getBoundingClientRect();
+      return { x: p.x - box.left, y: p.y - box.top };
+    }, CLICK_LINE - 1);
+    const before = await editorCursorLine();
+    await canvas.click({ position: at });
+    // The program's editor shows the cursor on the block (its active line number), and has the
+    // focus: the status bar says its line.
+    await editor.locator('.line-numbers.active-line-number', { hasText: new RegExp(`^${CLICK_LINE}$`) }).waitFor();
+    await waitStatusLine(CLICK_LINE);
+    await frame.waitForFunction(() => Number(document.getElementById('toolpath').dataset.highlighted) > 0);
+    const lit = await canvas.getAttribute('data-highlighted');
+    record('toolpath click', true,
+      `click at (${at.x.toFixed(0)}, ${at.y.toFixed(0)}): cursor Ln ${before} -> Ln ${await statusLine()}, ${lit} segments lit`);
+  } catch (e) {
+    record('toolpath click', false,
+      `${e.message.split('\n')[0]}; editor's line ${await editorCursorLine()}, status bar Ln ${await statusLine()}`);
+    await shot('toolpath-click.png');
+    return;
+  }
+
+  // The editor's cursor on another block lights that block's segments.
+  try {
+    const canvas = frame.locator('canvas#toolpath');
+    const before = await canvas.getAttribute('data-highlighted');
+    const want = await frame.evaluate((line) => window.toolpathProbe.segmentOfLine(line) != null, OTHER_LINE - 1);
+    await gotoPosition(OTHER_LINE, 1);
+    await waitStatusLine(OTHER_LINE);
+    await frame.waitForFunction(
+      (old) => document.getElementById('toolpath').dataset.highlighted !== old,
+      before,
+      { timeout: STEP_MS },
+    );
+    const after = await canvas.getAttribute('data-highlighted');
+    record('toolpath cursor', want && Number(after) > 0,
+      `cursor on Ln ${OTHER_LINE}: segments lit ${before} -> ${after}`);
+  } catch (e) {
+    const lit = await frame.locator('canvas#toolpath').getAttribute('data-highlighted').catch(() => '?');
+    record('toolpath cursor', false, `${e.message.split('\n')[0]}; data-highlighted ${lit}`);
+  }
+  await shot('toolpath-cursor.png');
+}
+
+/** Waits until the active group's active tab says `name` and the active editor's language is `mode`. */
+async function waitActiveEditor(name, mode) {
+  await page.locator('.editor-group-container.active .tab.active', { hasText: name }).first().waitFor();
+  await page.waitForFunction(
+    (want) => document.getElementById('status.editor.mode')?.innerText.trim() === want,
+    mode,
+    { timeout: STEP_MS },
+  );
+}
+
+/** The text of the active editor's visible lines, spaces as spaces. */
+async function activeEditorText() {
+  return page.evaluate(() =>
+    (document.querySelector('.editor-group-container.active .monaco-editor .view-lines')?.innerText || '')
+      .replace(/\u00a0/g, ' '));
+}
+
+// The trace view: a read-only document of its own language beside the program, one row per
+// motion block with its positions and the values the block read; Ctrl+click on a row's
+// "O0003 line 34" opens that block, and so does F12 on a row.
+async function checkTrace() {
+  await editor.click({ position: { x: 200, y: 10 } });
+  await gotoPosition(9, 1);
+  const title = `Trace of ${FILE}`;
+  try {
+    await runCommand('FANUC Macro: Show Trace of Current Program');
+    await waitActiveEditor(title, 'FANUC Macro Trace');
+    // N26 X[#5 - 2 * [#4 - #18] * SIN[#16]] of the first pass: #16 = 51.249025 (N16-N21).
+    await page.waitForFunction(
+      () => /O0003 line 34 .*#5=108\. #4=10\. #18=1\.2 #16=51\.249025/.test(
+        (document.querySelector('.editor-group-container.active .monaco-editor .view-lines')?.innerText || '')
+          .replace(/\u00a0/g, ' ')),
+      null,
+      { timeout: STEP_MS },
+    );
+    const row = (await activeEditorText()).split('\n').find((l) => l.startsWith('O0003 line 34'));
+    const readOnly = await page.locator('.editor-group-container.active .monaco-editor textarea')
+      .first().getAttribute('aria-readonly').catch(() => null);
+    record('trace view', true, `${title}: ${row?.replace(/ +/g, ' ')}${readOnly ? `; aria-readonly ${readOnly}` : ''}`);
+  } catch (e) {
+    record('trace view', false, `${e.message.split('\n')[0]}; ${JSON.stringify((await activeEditorText()).slice(0, 300))}`);
+    await shot('trace.png');
+    return;
+  }
+  await shot('trace.png');
+
+  // F12 (Go to Definition) on a row of the trace opens its block: the first G32 (line 35).
+  try {
+    const row = await lineNumberOf('O0003 line 35');
+    if (row < 0) throw new Error('no row of O0003 line 35 on the screen');
+    await gotoPosition(row, 30);
+    await page.keyboard.press('F12');
+    await waitActiveEditor(FILE, 'FANUC Macro B');
+    await waitStatusLine(35);
+    record('trace definition', true, `F12 on Ln ${row} of the trace: ${FILE} at Ln ${await statusLine()}`);
+  } catch (e) {
+    record('trace definition', false, `${e.message.split('\n')[0]}; status bar Ln ${await statusLine()}`);
+    await shot('trace-definition.png');
+    return;
+  }
+
+  // The command again, from the program, shows the trace again; Ctrl+click on the link of the
+  // first "O0003 line 34" opens the program at line 34.
+  try {
+    await runCommand('FANUC Macro: Show Trace of Current Program');
+    await waitActiveEditor(title, 'FANUC Macro Trace');
+    await page.waitForFunction(
+      () => document.querySelector('.editor-group-container.active .monaco-editor .detected-link') !== null,
+      null,
+      { timeout: STEP_MS },
+    );
+    const line = page.locator('.editor-group-container.active .monaco-editor .view-line', { hasText: /^O0003\s+line\s+34\s/ }).first();
+    const box = await line.boundingBox();
+    await page.keyboard.down('Control');
+    await page.mouse.move(box.x + 20, box.y + box.height / 2);
+    await page.mouse.down();
+    await page.mouse.up();
+    await page.keyboard.up('Control');
+    await waitActiveEditor(FILE, 'FANUC Macro B');
+    await waitStatusLine(34);
+    record('trace link', true, `Ctrl+click on "O0003 line 34": ${FILE} at Ln ${await statusLine()}`);
+  } catch (e) {
+    record('trace link', false, `${e.message.split('\n')[0]}; status bar Ln ${await statusLine()}`);
+    await shot('trace-link.png');
+  }
+}
+
+/** The line number of the active editor's visible line that starts with `prefix`, or -1. */
+async function lineNumberOf(prefix) {
+  return page.evaluate((want) => {
+    const view = document.querySelector('.editor-group-container.active .monaco-editor');
+    if (!view) return -1;
+    const line = [...view.querySelectorAll('.view-line')]
+      .find((l) => l.innerText.replace(/\u00a0/g, ' ').startsWith(want));
+    if (!line) return -1;
+    // The gutter's number at the same height (the lines' DOM order need not be theirs).
+    const top = line.getBoundingClientRect().top;
+    const number = [...view.querySelectorAll('.line-numbers')]
+      .find((n) => Math.abs(n.getBoundingClientRect().top - top) < 2);
+    return number ? Number(number.textContent) : -1;
+  }, prefix);
+}
 
 try {
   const url = `${baseUrl.replace(/\/$/, '')}/?folder=${encodeURIComponent(workspace)}`;
@@ -165,6 +384,10 @@ try {
     record('hover', false, `${e.message.split('\n')[0]}; hover text ${JSON.stringify(text.slice(0, 300))}`);
   }
   await shot('hover.png');
+  await page.keyboard.press('Escape');
+
+  await checkToolpath();
+  await checkTrace();
 } catch (e) {
   record('session', false, e.stack || String(e));
   await shot('failure.png').catch(() => {});
@@ -178,4 +401,4 @@ const failed = results.filter((r) => !r.ok).length;
 const passed = results.length - failed;
 // Not in the "N passed, N failed" form, which CI may read as a test runner's closing line.
 console.log(`check.mjs: ${passed} of ${results.length} checks passed`);
-process.exit(failed || results.length < 4 ? 1 : 0);
+process.exit(failed || results.length < 10 ? 1 : 0);

@@ -2,7 +2,9 @@
 # Runs the fanuc-macro extension in a real VS Code (code-server, from the npm registry) and
 # checks it in headless Chromium (Debian's package, driven by playwright-core): the language
 # mode, the TextMate highlighting, an MB601 diagnostic from the Python language server in the
-# Problems panel, and a hover with a value. See tests/browser/check.mjs for the checks.
+# Problems panel, a hover with a value, the Toolpath view (its canvas in the webview's frame, a
+# click on a segment, the cursor's block lit) and the trace view (the values a block read, a
+# row's link and F12 to its block). See tests/browser/check.mjs for the checks.
 #
 # Everything it installs comes from the npm registry, Debian's packages and PyPI:
 #   - tests/browser/node_modules (npm ci of tests/browser/package-lock.json): code-server,

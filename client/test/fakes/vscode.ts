@@ -10,6 +10,8 @@ export class Uri {
   private constructor(
     readonly scheme: string,
     readonly fsPath: string,
+    readonly query = '',
+    readonly fragment = '',
   ) {}
   static file(path: string): Uri {
     return new Uri('file', path);
@@ -17,8 +19,37 @@ export class Uri {
   static untitled(name: string): Uri {
     return new Uri('untitled', name);
   }
+  static from(parts: { scheme: string; path?: string; query?: string; fragment?: string }): Uri {
+    return new Uri(parts.scheme, parts.path ?? '', parts.query ?? '', parts.fragment ?? '');
+  }
+  static parse(text: string): Uri {
+    const match = /^([a-z][a-z0-9+.-]*):(?:\/\/)?([^?#]*)(?:\?([^#]*))?(?:#(.*))?$/i.exec(text);
+    if (match === null) throw new Error(`not a URI: ${text}`);
+    return new Uri(match[1]!, match[2]!, match[3] ?? '', match[4] ?? '');
+  }
+  get path(): string {
+    return this.fsPath;
+  }
+  with(change: { fragment?: string; query?: string }): Uri {
+    return new Uri(this.scheme, this.fsPath, change.query ?? this.query, change.fragment ?? this.fragment);
+  }
   toString(): string {
-    return this.scheme === 'file' ? `file://${this.fsPath}` : `${this.scheme}:${this.fsPath}`;
+    const base = this.scheme === 'file' ? `file://${this.fsPath}` : `${this.scheme}:${this.fsPath}`;
+    return `${base}${this.query ? `?${this.query}` : ''}${this.fragment ? `#${this.fragment}` : ''}`;
+  }
+}
+
+export class EventEmitter<T> {
+  private readonly listeners: Array<(value: T) => void> = [];
+  readonly event = (listener: (value: T) => void) => {
+    this.listeners.push(listener);
+    return { dispose: () => undefined };
+  };
+  fire(value: T): void {
+    for (const listener of this.listeners) listener(value);
+  }
+  dispose(): void {
+    this.listeners.length = 0;
   }
 }
 
@@ -28,6 +59,48 @@ export class Position {
     readonly character: number,
   ) {}
 }
+
+export class Range {
+  readonly start: Position;
+  readonly end: Position;
+  constructor(startLine: number, startCharacter: number, endLine: number, endCharacter: number) {
+    this.start = new Position(startLine, startCharacter);
+    this.end = new Position(endLine, endCharacter);
+  }
+}
+
+export class Location {
+  constructor(
+    readonly uri: Uri,
+    readonly range: Position,
+  ) {}
+}
+
+export class DocumentLink {
+  tooltip?: string;
+  constructor(
+    readonly range: Range,
+    readonly target?: Uri,
+  ) {}
+}
+
+/** A document of the fakes: what openTextDocument gives. */
+export interface FakeDocument {
+  uri: Uri;
+  languageId: string;
+  content: string;
+  getText(): string;
+}
+
+/** Providers the extension registered, by kind. */
+export const providers = {
+  content: new Map<string, { provideTextDocumentContent(uri: Uri): string }>(),
+  links: [] as Array<{ selector: unknown; provider: { provideDocumentLinks(d: FakeDocument): DocumentLink[] } }>,
+  definitions: [] as Array<{
+    selector: unknown;
+    provider: { provideDefinition(d: FakeDocument, p: Position): Location | undefined };
+  }>,
+};
 
 /** Everything the extension did, for the assertions. */
 export const recorded = {
@@ -89,6 +162,7 @@ class Configuration {
 }
 
 const configurationListeners: Handler[] = [];
+const closeListeners: Handler[] = [];
 const trustListeners: Array<() => void> = [];
 
 export function fireTrustGranted(): void {
@@ -194,9 +268,42 @@ export const workspace = {
     trustListeners.push(listener);
     return { dispose: () => undefined };
   },
-  openTextDocument(options: { content: string; language: string }): Promise<{ content: string }> {
-    recorded.openedDocuments.push(options);
-    return Promise.resolve({ content: options.content });
+  openTextDocument(what: { content: string; language: string } | Uri): Promise<FakeDocument | { content: string }> {
+    if (what instanceof Uri) {
+      const provider = providers.content.get(what.scheme);
+      if (provider === undefined) return Promise.reject(new Error(`no provider of ${what.scheme}`));
+      const content = provider.provideTextDocumentContent(what);
+      recorded.openedDocuments.push({ content, language: 'plaintext' });
+      return Promise.resolve({ uri: what, languageId: 'plaintext', content, getText: () => content });
+    }
+    recorded.openedDocuments.push(what);
+    return Promise.resolve({ content: what.content });
+  },
+  registerTextDocumentContentProvider(scheme: string, provider: { provideTextDocumentContent(uri: Uri): string }) {
+    providers.content.set(scheme, provider);
+    return { dispose: () => providers.content.delete(scheme) };
+  },
+  onDidCloseTextDocument(listener: Handler) {
+    closeListeners.push(listener);
+    return { dispose: () => undefined };
+  },
+};
+
+export const languages = {
+  registerDocumentLinkProvider(selector: unknown, provider: (typeof providers.links)[number]['provider']) {
+    providers.links.push({ selector, provider });
+    return { dispose: () => undefined };
+  },
+  registerDefinitionProvider(selector: unknown, provider: (typeof providers.definitions)[number]['provider']) {
+    providers.definitions.push({ selector, provider });
+    return { dispose: () => undefined };
+  },
+  setTextDocumentLanguage(document: FakeDocument, languageId: string): Promise<FakeDocument> {
+    // As VS Code does: the document is closed, then opened again with the new language.
+    for (const listener of closeListeners) listener(document);
+    const last = recorded.openedDocuments[recorded.openedDocuments.length - 1];
+    if (last !== undefined) last.language = languageId;
+    return Promise.resolve({ ...document, languageId });
   },
 };
 

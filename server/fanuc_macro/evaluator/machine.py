@@ -1152,6 +1152,20 @@ class Machine:
         else:
             act.pc = self._line + 1
 
+    def _values_read(self, act: Activation, cl: CompiledLine) -> dict[int, Value]:
+        """What the block's direct variables hold as it runs (the toolpath's runs only: no
+        block of a diagnostics run asks). The block's motion assigns none of them."""
+        locals_ = act.locals
+        store = self.store
+        out: dict[int, Value] = {}
+        for n in cl.reads:
+            if n <= 33:
+                out[n] = locals_[n]
+            else:
+                v = store.get(n, act)
+                out[n] = self.unknown_of(n) if v is act else v  # type: ignore[assignment]
+        return out
+
     def _record_reads(self, act: Activation, cl: CompiledLine, facts: DocumentFacts) -> None:
         reads = facts.reads
         line = self._line
@@ -1389,8 +1403,9 @@ class Machine:
             self._profile_code = None
         if self.toolpath is not None:
             ctx = act.ctx
+            read = self._values_read(act, cl) if cl.reads else None
             self.toolpath.block(
-                ctx.name, ctx.uri, self._line, values, g_codes, self.facts.motions, profile
+                ctx.name, ctx.uri, self._line, values, g_codes, self.facts.motions, profile, read
             )
         if finishing is not None:
             self._run_profile(act, *finishing)

@@ -89,6 +89,9 @@ class Toolpath:
     # Where the tool stood at a motion record that makes no move (its index in Facts.motions:
     # a G04 X dwell, a G10, a cycle's first block): the trace shows it there.
     standing: dict[int, dict[str, float]] = field(default_factory=dict)
+    # What the variables a motion record's block reads held when it ran (its index in
+    # Facts.motions: ``{101: 3.5}``; ``None`` vacant): the trace shows them with the block.
+    values: dict[int, dict[int, Value]] = field(default_factory=dict)
 
     def axes(self) -> tuple[str, ...]:
         """The axes any move places, in X, Y, Z order."""
@@ -886,11 +889,12 @@ class Recorder:
         g_codes: Sequence[float],
         motions: Sequence[Motion],
         profile: Profile | None = None,
+        read: dict[int, Value] | None = None,
     ) -> None:
         """The moves of the block just run; ``motions``: the run's motion records, those the
         block made at the end. ``profile``: a G70-G73's profile (see ``block_steps``); for a
         G70, an empty one says that the evaluator runs its blocks next, and calls
-        :meth:`end_profile` after them."""
+        :meth:`end_profile` after them. ``read``: what the variables the block reads held."""
         first = self._seen
         made = len(motions) - first
         self._seen = len(motions)
@@ -904,6 +908,9 @@ class Recorder:
         if not self.keep:
             return
         path = self.toolpath
+        if read:
+            for i in range(first, first + made):
+                path.values[i] = read
         for axes, reason in lost:
             path.lost.append(LostTrack(line, program, axes, reason, uri))
         unplaced = self._unplaced

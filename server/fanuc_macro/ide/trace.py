@@ -3,6 +3,7 @@ goes through (``fanuc-macro trace``)."""
 
 from __future__ import annotations
 
+import math
 from collections import Counter
 from collections.abc import Sequence
 from typing import Any
@@ -10,7 +11,7 @@ from typing import Any
 from ..config import Config
 from ..evaluator import Facts, evaluate
 from ..evaluator.toolpath import Move, Toolpath
-from ..evaluator.values import fmt_address
+from ..evaluator.values import Value, fmt, fmt_address
 from ..program.index import ProgramIndex
 from ..syntax.tree import Document
 
@@ -42,10 +43,12 @@ def trace(
     config: Config | None = None,
     entry: int | None = None,
 ) -> dict[str, Any]:
-    """``{"motions": [{program, line, code, words, start, end[, centre][, moves]}],
+    """``{"motions": [{program, line, code, words, start, end[, centre][, moves][, values]}],
     "toolpath": {...}, "summary": {...}}``; lines are 1-based. ``start`` and ``end`` are the
     positions before and after the block (the axes known; a lathe's X a diameter); a canned
-    cycle's record lists its ``moves``."""
+    cycle's record lists its ``moves``; ``values`` are what the variables the block reads held
+    when it ran (``{"#101": 3.5}``: a number, ``null`` vacant, or a text such as "depends on
+    #500" for a value the analysis cannot compute), in the order the block names them."""
     facts = run_with_toolpath(uri, doc, index, others, config, entry)
     path = facts.toolpath
     assert path is not None
@@ -60,6 +63,9 @@ def trace(
         }
         if m.uri != uri:
             record["path"] = m.uri
+        read = path.values.get(i)
+        if read:
+            record["values"] = {f"#{n}": _value(v) for n, v in read.items()}
         moves = by_motion.get(i)
         if moves:
             record["start"] = _point(moves[0].start)
@@ -108,6 +114,13 @@ def trace(
             "findings": findings,
         },
     }
+
+
+def _value(value: Value) -> float | str | None:
+    """A variable's value in JSON: a number, ``None`` (vacant), or a text (unknown, overflow)."""
+    if value is None or (isinstance(value, float) and math.isfinite(value)):
+        return value
+    return fmt(value)
 
 
 def _moves_by_motion(path: Toolpath) -> dict[int, list[Move]]:
