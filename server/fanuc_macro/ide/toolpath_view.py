@@ -22,8 +22,22 @@ from .plot import NothingToPlot, arc_points, geometric, run_toolpath
 MAX_VIEW_SEGMENTS = 1_000_000
 
 
+# An arc's points are written to this many decimals (0.1 µm, 0.01 of the least increment):
+# at full precision they were two thirds of a posted file's payload.
+ARC_DECIMALS = 4
+
+
 def _xyz(point: dict[str, float]) -> tuple[float | None, float | None, float | None]:
     return point.get("X"), point.get("Y"), point.get("Z")
+
+
+def _rounded(point: dict[str, float]) -> tuple[float | None, float | None, float | None]:
+    x, y, z = point.get("X"), point.get("Y"), point.get("Z")
+    return (
+        None if x is None else round(x, ARC_DECIMALS),
+        None if y is None else round(y, ARC_DECIMALS),
+        None if z is None else round(z, ARC_DECIMALS),
+    )
 
 
 def view_data(toolpath: Toolpath, main_uri: str) -> dict[str, Any]:
@@ -45,12 +59,14 @@ def view_data(toolpath: Toolpath, main_uri: str) -> dict[str, Any]:
             truncated = True
             break
         where = paths.setdefault(move.uri or main_uri, len(paths))
-        for a, b in itertools.pairwise(points):
-            kind.append(kinds[move.kind])
+        placed = [_rounded(p) for p in points] if arc else [_xyz(p) for p in points]
+        k = kinds[move.kind]
+        for a, b in itertools.pairwise(placed):
+            kind.append(k)
             line.append(move.line)
             path.append(where)
-            start.extend(_xyz(a))
-            end.extend(_xyz(b))
+            start.extend(a)
+            end.extend(b)
     lost = [
         {
             "line": lost.line,
