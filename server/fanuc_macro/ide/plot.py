@@ -130,9 +130,11 @@ def geometric(toolpath: Toolpath, point: dict[str, float]) -> dict[str, float]:
     return point
 
 
-def arc_points(toolpath: Toolpath, move: Move) -> tuple[list[dict[str, float]], float] | None:
+def arc_points(
+    toolpath: Toolpath, move: Move, decimals: int | None = None
+) -> tuple[list[dict[str, float]], float] | None:
     """Points along an arc (a helix when the third axis moves), start and end included, and
-    the angle it turns through (radians, negative clockwise)."""
+    the angle it turns through (radians, negative clockwise); rounded to ``decimals``."""
     centre = move.centre
     if centre is None:
         return None
@@ -155,6 +157,8 @@ def arc_points(toolpath: Toolpath, move: Move) -> tuple[list[dict[str, float]], 
     # The other axes known at both ends go linearly from the start to the end (a helix).
     third = [(k, start[k], end[k] - start[k]) for k in start if k not in (a, b) and k in end]
     ca, cb, cos, sin = c[a], c[b], math.cos, math.sin
+    # Rounded as n / 10**decimals: the float nearest that decimal, as round() gives, faster.
+    scale, floor = (10.0**decimals, math.floor) if decimals is not None else (0.0, None)
     points = []
     for i in range(steps + 1):
         f = i / steps
@@ -162,6 +166,8 @@ def arc_points(toolpath: Toolpath, move: Move) -> tuple[list[dict[str, float]], 
         p = {a: ca + radius * cos(t), b: cb + radius * sin(t)}
         for k, k0, dk in third:
             p[k] = k0 + dk * f
+        if floor is not None:
+            p = {k: floor(v * scale + 0.5) / scale for k, v in p.items()}
         points.append(p)
     points[-1] = {**points[-1], a: end[a], b: end[b]}
     return points, span

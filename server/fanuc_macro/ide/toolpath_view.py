@@ -31,15 +31,6 @@ def _xyz(point: dict[str, float]) -> tuple[float | None, float | None, float | N
     return point.get("X"), point.get("Y"), point.get("Z")
 
 
-def _rounded(point: dict[str, float]) -> tuple[float | None, float | None, float | None]:
-    x, y, z = point.get("X"), point.get("Y"), point.get("Z")
-    return (
-        None if x is None else round(x, ARC_DECIMALS),
-        None if y is None else round(y, ARC_DECIMALS),
-        None if z is None else round(z, ARC_DECIMALS),
-    )
-
-
 def view_data(toolpath: Toolpath, main_uri: str) -> dict[str, Any]:
     """``{"lathe", "units", "kinds", "paths", "segments": {"kind", "line", "path", "start",
     "end"}, "lost", "truncated"}``: ``kind`` indexes ``kinds``, ``path`` indexes ``paths``
@@ -53,13 +44,13 @@ def view_data(toolpath: Toolpath, main_uri: str) -> dict[str, Any]:
     end: list[float | None] = []
     truncated = toolpath.truncated
     for move in toolpath.moves:
-        arc = arc_points(toolpath, move) if move.kind == "arc" else None
+        arc = arc_points(toolpath, move, ARC_DECIMALS) if move.kind == "arc" else None
         points = arc[0] if arc else [geometric(toolpath, move.start), geometric(toolpath, move.end)]
         if len(kind) + len(points) - 1 > MAX_VIEW_SEGMENTS:
             truncated = True
             break
         where = paths.setdefault(move.uri or main_uri, len(paths))
-        placed = [_rounded(p) for p in points] if arc else [_xyz(p) for p in points]
+        placed = [_xyz(p) for p in points]
         k = kinds[move.kind]
         for a, b in itertools.pairwise(placed):
             kind.append(k)
