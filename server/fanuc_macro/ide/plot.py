@@ -28,6 +28,7 @@ from ..config import Config
 from ..evaluator.toolpath import Move, Plane, Toolpath
 from ..evaluator.values import fmt_address
 from ..program.index import ProgramIndex
+from ..syntax.parser import quiet_gc
 from ..syntax.tree import Document
 from ..threads.identify import Thread
 from .trace import run_with_toolpath
@@ -426,6 +427,13 @@ def plot_svg(
     """The SVG document of a toolpath, and of the threads' pass maps after it.
 
     Raises :class:`NothingToPlot` when no move can be placed in the plane."""
+    with quiet_gc():  # 200,000 moves' strings and no cycles: the collector would only rescan
+        return _plot_svg(toolpath, plane, passes, title, main_uri)
+
+
+def _plot_svg(
+    toolpath: Toolpath, plane: Plane | None, passes: Sequence[PassMap], title: str, main_uri: str
+) -> str:
     view: Plane = plane or ("XZ" if toolpath.lathe else "XY")
     across, up = _VIEW_AXES[(toolpath.lathe, view)]
     drawn = _drawn(toolpath, across, up)

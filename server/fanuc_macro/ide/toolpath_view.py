@@ -14,6 +14,7 @@ from typing import Any
 from ..config import Config
 from ..evaluator.toolpath import MOVE_KINDS, Toolpath
 from ..program.index import ProgramIndex
+from ..syntax.parser import quiet_gc
 from ..syntax.tree import Document
 from .plot import NothingToPlot, arc_points, geometric, run_toolpath
 
@@ -91,4 +92,5 @@ def toolpath_view(
         toolpath = run_toolpath(uri, doc, index, others, config, entry)
     except NothingToPlot as err:
         return {"error": str(err)}
-    return view_data(toolpath, uri)
+    with quiet_gc():  # a million numbers in lists and no cycles: the collector only rescans
+        return view_data(toolpath, uri)
