@@ -84,11 +84,12 @@ def posted_program(blocks: int) -> str:
             block("G01", X=x0 + r)
             block("G02", X=x0, Y=y0 + r, R=r)
     block("G00", Z=25.0)
-    step, row = 0.1, 0
+    row = 0
     while len(out) < blocks - 4:
         x = 2.0 + 0.25 * (row % 384)
-        block("G00", Z=2.0) if row % 384 == 0 else None
-        ys = [i * step * 10 for i in range(71)]
+        if row % 384 == 0:
+            block("G00", Z=2.0)
+        ys = [float(i) for i in range(71)]  # 1 mm steps along Y
         if row % 2:
             ys.reverse()
         for i, y in enumerate(ys):
