@@ -3,6 +3,7 @@ with which links to the source."""
 
 from __future__ import annotations
 
+import itertools
 import os
 import re
 import subprocess
@@ -14,7 +15,7 @@ from pathlib import Path
 import pytest
 
 from fanuc_macro.evaluator.toolpath import LostTrack, Move, Toolpath
-from fanuc_macro.ide.plot import NothingToPlot, PassMap, PassMark, plot_svg
+from fanuc_macro.ide.plot import MAX_PASS_MAPS, NothingToPlot, PassMap, PassMark, plot_svg
 
 SVG = "{http://www.w3.org/2000/svg}"
 
@@ -43,17 +44,33 @@ def _g92_pass() -> Toolpath:
     )
 
 
-def _line_coords(e: ET.Element) -> tuple[float, float, float, float]:
-    return tuple(float(e.get(k, "nan")) for k in ("x1", "y1", "x2", "y2"))  # type: ignore[return-value]
+def _points(e: ET.Element) -> list[list[tuple[float, float]]]:
+    """The points of a path of straight lines (M and L commands), one list per subpath."""
+    subpaths: list[list[tuple[float, float]]] = []
+    for command, numbers in re.findall(r"([ML])([^ML]*)", e.get("d", "")):
+        values = [float(v) for v in numbers.split()]
+        pairs = list(zip(values[::2], values[1::2], strict=True))
+        if command == "M":
+            subpaths.append(pairs)
+        else:
+            subpaths[-1].extend(pairs)
+    return subpaths
+
+
+def _segments(e: ET.Element) -> list[tuple[float, float, float, float]]:
+    """Each straight segment of a path as x1, y1, x2, y2."""
+    return [(*a, *b) for points in _points(e) for a, b in itertools.pairwise(points)]
 
 
 def test_a_lathe_cycle_is_drawn_z_across_and_x_up_with_a_link_per_move() -> None:
     svg = plot_svg(_g92_pass(), title="O3331")
     moves = _elements(svg)
-    assert [e.get("data-kind") for e in moves] == ["rapid", "thread", "rapid", "rapid"]
+    # The retract and the return, consecutive rapids of the same block, are one path.
+    assert [e.get("data-kind") for e in moves] == ["rapid", "thread", "rapid"]
     assert {e.get("data-line") for e in moves} == {"41"}  # 1-based
-    assert all(e.tag == f"{SVG}line" for e in moves)
-    infeed, cut, retract, back = (_line_coords(e) for e in moves)
+    assert all(e.tag == f"{SVG}path" for e in moves)
+    assert [len(_segments(e)) for e in moves] == [1, 1, 2]
+    infeed, cut, retract, back = (s for e in moves for s in _segments(e))
     assert retract[3] < retract[1]  # out to X51: upwards
     # The infeed goes down (X smaller), the cut goes left along Z at one height.
     assert infeed[0] == pytest.approx(infeed[2]) and infeed[3] > infeed[1]
@@ -69,8 +86,47 @@ def test_a_lathe_cycle_is_drawn_z_across_and_x_up_with_a_link_per_move() -> None
     # The rapids are dashed, the thread has a colour of its own.
     style = root.find(f"{SVG}style")
     assert style is not None and style.text is not None
-    assert re.search(r"\.rapid\{[^}]*stroke-dasharray", style.text)
-    assert re.search(r"\.thread\{stroke:#[0-9a-f]{6}", style.text)
+    assert re.search(r"\[data-kind=rapid\]\{[^}]*stroke-dasharray", style.text)
+    assert re.search(r"\[data-kind=thread\]\{stroke:#[0-9a-f]{6}", style.text)
+
+
+def test_consecutive_moves_of_one_kind_by_one_block_are_one_path() -> None:
+    # A G76 block's two passes (line 10), two feeds of blocks of their own, a subprogram's.
+    a, b, c, d = (
+        {"X": x, "Z": z} for x, z in ((51.0, 5.0), (49.0, 5.0), (49.0, -50.0), (51.0, -50.0))
+    )
+    e, f = {"X": 48.0, "Z": 5.0}, {"X": 48.0, "Z": -50.0}
+    g, h, k = {"X": 60.0, "Z": 5.0}, {"X": 60.0, "Z": 0.0}, {"X": 62.0, "Z": 0.0}
+    moves = [
+        *(Move(kind, p, q, 9, "O1") for kind, p, q in (("rapid", a, b), ("thread", b, c))),
+        *(Move(kind, p, q, 9, "O1") for kind, p, q in (("rapid", c, d), ("rapid", d, a))),
+        *(Move(kind, p, q, 9, "O1") for kind, p, q in (("rapid", a, e), ("thread", e, f))),
+        *(Move(kind, p, q, 9, "O1") for kind, p, q in (("rapid", f, d), ("rapid", d, a))),
+        Move("feed", a, g, 10, "O1"),
+        Move("feed", g, h, 11, "O1"),
+        Move("feed", h, k, 2, "O2"),
+    ]
+    svg = plot_svg(Toolpath(moves, lathe=True))
+    drawn = _elements(svg)
+    assert [e.get("data-kind") for e in drawn] == [
+        *("rapid", "thread", "rapid", "thread", "rapid"),
+        *("feed", "feed", "feed"),
+    ]
+    assert [e.get("data-line") for e in drawn] == ["10"] * 5 + ["11", "12", "3"]
+    # The pass's retract, the return and the next pass's infeed are one path of 3 segments.
+    assert [len(_segments(e)) for e in drawn] == [1, 1, 3, 1, 2, 1, 1, 1]
+    root = ET.fromstring(svg)
+    groups = [g for g in root.iter(f"{SVG}g") if "data-program" in g.attrib]
+    assert [(g.get("data-program"), len(g)) for g in groups] == [("O1", 7), ("O2", 1)]
+
+
+def test_a_program_of_many_threads_draws_the_first_pass_maps_and_counts_the_rest() -> None:
+    maps = [PassMap(f"T{i}", "O1", False, (PassMark(40, 49.0, 5.0),)) for i in range(25)]
+    root = ET.fromstring(plot_svg(_g92_pass(), passes=maps))
+    views = [g.get("data-view") for g in root.iter(f"{SVG}g") if g.get("data-view")]
+    assert views == ["toolpath", *["passes"] * MAX_PASS_MAPS, "more-passes"]
+    (more,) = (g for g in root.iter(f"{SVG}g") if g.get("data-view") == "more-passes")
+    assert more.get("data-count") == str(25 - MAX_PASS_MAPS)
 
 
 def test_the_x_ticks_of_a_lathe_read_as_diameters() -> None:
@@ -121,7 +177,7 @@ def test_a_full_circle_is_drawn_as_two_halves() -> None:
     assert _arc_flags(plot_svg(_arc(False, {"X": 10.0, "Y": 0.0}))) == [(0, 0), (0, 0)]
 
 
-def test_an_arc_seen_edge_on_is_a_polyline_through_its_points() -> None:
+def test_an_arc_seen_edge_on_is_a_line_through_its_points() -> None:
     path = _arc(True, {"X": 0.0, "Y": -10.0})
     path.moves[0] = Move(
         "arc",
@@ -135,8 +191,9 @@ def test_an_arc_seen_edge_on_is_a_polyline_through_its_points() -> None:
     )
     svg = plot_svg(path, plane="XZ")
     (line,) = _elements(svg, "arc")
-    assert line.tag == f"{SVG}polyline"
-    assert len(line.get("points", "").split()) >= 5
+    assert line.tag == f"{SVG}path" and "A" not in line.get("d", "")
+    (points,) = _points(line)
+    assert len(points) >= 5
 
 
 def test_moves_without_a_place_in_the_view_are_left_out_and_counted() -> None:

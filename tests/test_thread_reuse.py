@@ -235,3 +235,32 @@ def test_a_pass_from_another_start_within_its_job_replaces_that_pass_only() -> N
     fresh = _fresh("\n".join(lines))
     assert again.diagnostics == fresh.diagnostics
     assert again.threads[0].job.passes == fresh.threads[0].job.passes
+
+
+def test_a_chain_of_one_pass_jobs_is_matched_again_job_by_job() -> None:
+    # A chained G32, as the drum groove's taper segments: each segment is a job of one pass,
+    # all of one program and run. An edit that adds a cut groups again; each new job is then
+    # compared with the old jobs of its first pass only, not with all of them.
+    segments = 300
+    lines = [
+        "%",
+        "O0001",
+        "G00 X40. Z2.",
+        "#1=0",
+        f"WHILE[#1LT{segments}]DO1",
+        "G32 X[40.-#1*0.001] Z[-2.-#1*2.] F2.",
+        "#1=#1+1",
+        "END1",
+        "G00 X60.",
+        "M30",
+        "%",
+    ]
+    first = analyse("\n".join(lines), URI, CONFIG, parser=PARSER)
+    assert len(first.threads) == segments
+    old_jobs = {id(t.job) for t in first.threads}
+    lines.insert(lines.index("G00 X60."), "G32 Z-700. F2.")
+    compared = jobs.compared
+    _same_as_fresh("\n".join(lines), first.facts)
+    assert jobs.compared - compared <= segments + 1
+    resumed = analyse("\n".join(lines), URI, CONFIG, parser=PARSER, previous_facts=first.facts)
+    assert sum(id(t.job) in old_jobs for t in resumed.threads) >= segments - 1

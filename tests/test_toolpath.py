@@ -836,3 +836,27 @@ def test_random_g71_profiles_are_cut_without_gouging(
         assert z_end == pytest.approx(shifted[-1][1], abs=2e-3) or any(
             abs(pz - z_end) < 2e-3 or (px >= x - 1e-3 and pz <= z_end + 1e-3) for px, pz in shifted
         )
+
+
+def test_the_views_arc_segments_are_written_to_a_tenth_of_a_micron() -> None:
+    from fanuc_macro.ide.toolpath_view import ARC_DECIMALS, view_data
+
+    arc = Move(
+        "arc",
+        {"X": 10.0, "Y": 0.0, "Z": -1.0},
+        {"X": 0.0, "Y": 10.0, "Z": -1.0},
+        3,
+        "O1",
+        centre={"X": 0.0, "Y": 0.0, "Z": -1.0},
+        clockwise=False,
+        plane="XY",
+    )
+    segments = view_data(Toolpath([arc], lathe=False), "file:///a.nc")["segments"]
+    assert len(segments["kind"]) == 18  # a quarter of 72 segments a turn
+    values = [v for v in (*segments["start"], *segments["end"]) if v is not None]
+    assert all(v == round(v, ARC_DECIMALS) for v in values)
+    assert segments["start"][:3] == [10.0, 0.0, -1.0] and segments["end"][-3:] == [0.0, 10.0, -1.0]
+    # On the circle, to the rounding.
+    for i in range(0, len(segments["start"]), 3):
+        x, y = segments["start"][i], segments["start"][i + 1]
+        assert math.hypot(x, y) == pytest.approx(10.0, abs=1e-4)

@@ -246,35 +246,42 @@ def _targets(
     unknown: list[str] = []
     if absolute is None:
         absolute = modal.absolute
-    for axis in modal.axes:
-        value: float | Unknown | None
-        incremental: float | Unknown | None
-        if modal.lathe:
-            value = _word(values, axis)
-            incremental = _word(values, LATHE_INCREMENTAL[axis])
-        else:
-            written = _word(values, axis)
-            value, incremental = (written, None) if absolute else (None, written)
+    lathe = modal.lathe
+    digits = 4 if modal.inch else 3  # PathModal.q, inline: once per axis word of every block
+    for axis in LATHE_AXES if lathe else MILL_AXES:
+        value = values.get(axis)
+        incremental: Value | None = None
+        if lathe:
+            incremental = values.get(LATHE_INCREMENTAL[axis])
+        elif not absolute:
+            value, incremental = None, value
         if value is not None:
-            commanded = True
-            if isinstance(value, Unknown):
-                unknown.append(axis)
-                end.pop(axis, None)
-            else:
-                end[axis] = placed = modal.q(value)
+            if isinstance(value, float):
+                commanded = True
+                end[axis] = placed = round(value, digits) + 0.0
                 _rounded(modal, axis, placed, value)
-        elif incremental is not None:
-            commanded = True
-            start = here.get(axis)
-            if isinstance(incremental, Unknown):
+                continue
+            if isinstance(value, Unknown):
+                commanded = True
                 unknown.append(axis)
                 end.pop(axis, None)
-            elif start is not None:
-                end[axis] = placed = modal.q(start + incremental)
-                _rounded(modal, axis, placed, start + incremental)
-    gone = tuple(a for a in unknown if a in here)
-    if gone:
-        block.lost.append((gone, "the value of the axis word is not known"))
+                continue
+        if incremental is not None:
+            if isinstance(incremental, float):
+                commanded = True
+                start = here.get(axis)
+                if start is not None:
+                    written = start + incremental
+                    end[axis] = placed = round(written, digits) + 0.0
+                    _rounded(modal, axis, placed, written)
+            elif isinstance(incremental, Unknown):
+                commanded = True
+                unknown.append(axis)
+                end.pop(axis, None)
+    if unknown:
+        gone = tuple(a for a in unknown if a in here)
+        if gone:
+            block.lost.append((gone, "the value of the axis word is not known"))
     return end, commanded
 
 
@@ -914,7 +921,9 @@ class Recorder:
         for axes, reason in lost:
             path.lost.append(LostTrack(line, program, axes, reason, uri))
         unplaced = self._unplaced
-        placed = [a for a in modal.axes if a in unplaced and a in modal.position]
+        placed = (
+            [a for a in modal.axes if a in unplaced and a in modal.position] if unplaced else []
+        )
         if placed:
             unplaced.difference_update(placed)
             if steps:  # not a coordinate system setting (G50), which says where the tool is

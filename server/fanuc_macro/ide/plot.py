@@ -1,12 +1,16 @@
 """The backplot: a program's toolpath drawn as SVG (``fanuc-macro plot``).
 
 Rapids dashed, feeds solid, threading passes and arcs in colours of their own, with axes in the
-program's units and a scale bar. Every drawn element carries ``data-line`` (the 1-based line of
-its block) and ``data-kind``, so that a viewer can link it to the source. A lathe is drawn in
-its XZ plane as machinists draw it (Z across, X up, as a radius: the program's X is a
-diameter, and its tick labels say so); a mill in the plane asked for. For a threading program a
-second view follows: the pass map of each thread (the depth of every pass, and the infeed
-diagram: where the tool's tip is in the groove at each pass).
+program's units and a scale bar. A lathe is drawn in its XZ plane as machinists draw it (Z
+across, X up, as a radius: the program's X is a diameter, and its tick labels say so); a mill
+in the plane asked for. For a threading program a second view follows: the pass map of each
+thread (the depth of every pass, and the infeed diagram: where the tool's tip is in the groove
+at each pass), of the first ``MAX_PASS_MAPS`` threads, the others counted.
+
+Every drawn element carries ``data-line`` (the 1-based line of its block) and ``data-kind``, so
+that a viewer can link it to the source. A move is a ``<path>``, consecutive moves of one kind
+made by one block (a canned cycle's retract and return) one path; the moves of each run of one
+program are in a ``<g data-program>``. A 200,000-block posted file is 200,000 small elements.
 
 The drawing is a pure function of the toolpath and the threads: the same program gives the
 same bytes (coordinates are written at a fixed precision).
@@ -17,12 +21,14 @@ from __future__ import annotations
 import math
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
+from typing import NamedTuple
 from xml.sax.saxutils import escape, quoteattr
 
 from ..config import Config
 from ..evaluator.toolpath import Move, Plane, Toolpath
 from ..evaluator.values import fmt_address
 from ..program.index import ProgramIndex
+from ..syntax.parser import quiet_gc
 from ..syntax.tree import Document
 from ..threads.identify import Thread
 from .trace import run_with_toolpath
@@ -36,6 +42,9 @@ MARGIN_TOP = 40.0
 MARGIN_BOTTOM = 58.0
 # An arc drawn out of its own plane is drawn as a polyline of this many segments per turn.
 ARC_SEGMENTS_PER_TURN = 72
+# The pass maps drawn after the toolpath: a chain of G32 segments (seed 003's drum groove) is
+# thousands of one-pass threads to the rules.
+MAX_PASS_MAPS = 20
 
 STYLE = (
     "text{font:12px sans-serif;fill:#222}"
@@ -43,11 +52,11 @@ STYLE = (
     ".axis{stroke:#444;stroke-width:1}"
     ".grid{stroke:#ddd;stroke-width:0.5}"
     ".zero{stroke:#999;stroke-width:0.8;stroke-dasharray:2 2}"
-    ".move{fill:none;stroke-width:1.2;stroke-linecap:round}"
-    ".rapid{stroke:#888;stroke-dasharray:5 4}"
-    ".feed{stroke:#1f5fbf}"
-    ".arc{stroke:#1f8f4f}"
-    ".thread{stroke:#d2411f;stroke-width:1.6}"
+    ".moves path{fill:none;stroke-width:1.2;stroke-linecap:round}"
+    "[data-kind=rapid]{stroke:#888;stroke-dasharray:5 4}"
+    "[data-kind=feed]{stroke:#1f5fbf}"
+    "[data-kind=arc]{stroke:#1f8f4f}"
+    "[data-kind=thread]{stroke:#d2411f;stroke-width:1.6}"
     ".lost{fill:#fff;stroke:#b00;stroke-width:1.5}"
     ".pass{fill:#d2411f;stroke:none}"
     ".tool{fill:none;stroke:#d2411f;stroke-width:0.8;opacity:0.6}"
@@ -122,9 +131,11 @@ def geometric(toolpath: Toolpath, point: dict[str, float]) -> dict[str, float]:
     return point
 
 
-def arc_points(toolpath: Toolpath, move: Move) -> tuple[list[dict[str, float]], float] | None:
+def arc_points(
+    toolpath: Toolpath, move: Move, decimals: int | None = None
+) -> tuple[list[dict[str, float]], float] | None:
     """Points along an arc (a helix when the third axis moves), start and end included, and
-    the angle it turns through (radians, negative clockwise)."""
+    the angle it turns through (radians, negative clockwise); rounded to ``decimals``."""
     centre = move.centre
     if centre is None:
         return None
@@ -144,15 +155,20 @@ def arc_points(toolpath: Toolpath, move: Move) -> tuple[list[dict[str, float]], 
     else:
         span = (t1 - t0) % math.tau or math.tau
     steps = max(4, math.ceil(abs(span) / math.tau * ARC_SEGMENTS_PER_TURN))
-    third = [k for k in (*start, *end) if k not in (a, b)]
+    # The other axes known at both ends go linearly from the start to the end (a helix).
+    third = [(k, start[k], end[k] - start[k]) for k in start if k not in (a, b) and k in end]
+    ca, cb, cos, sin = c[a], c[b], math.cos, math.sin
+    # Rounded as n / 10**decimals: the float nearest that decimal, as round() gives, faster.
+    scale, floor = (10.0**decimals, math.floor) if decimals is not None else (0.0, None)
     points = []
     for i in range(steps + 1):
         f = i / steps
         t = t0 + span * f
-        p = {a: c[a] + radius * math.cos(t), b: c[b] + radius * math.sin(t)}
-        for k in third:
-            if k in start and k in end:
-                p[k] = start[k] + (end[k] - start[k]) * f
+        p = {a: ca + radius * cos(t), b: cb + radius * sin(t)}
+        for k, k0, dk in third:
+            p[k] = k0 + dk * f
+        if floor is not None:
+            p = {k: floor(v * scale + 0.5) / scale for k, v in p.items()}
         points.append(p)
     points[-1] = {**points[-1], a: end[a], b: end[b]}
     return points, span
@@ -193,16 +209,9 @@ def _nice_step(span: float, ticks: int = 8) -> float:
     return 10.0 * power
 
 
-def _attrs(move: Move, main_uri: str) -> str:
-    path = f" data-path={quoteattr(move.uri)}" if move.uri and move.uri != main_uri else ""
-    return (
-        f' class="move {move.kind}" data-kind="{move.kind}" data-line="{move.line + 1}"'
-        f' data-program="{escape(move.program)}"{path}'
-    )
-
-
-def _svg_arc(frame: _Frame, across: str, up: str, item: _Drawn, toolpath: Toolpath) -> str | None:
-    """An SVG arc command for an arc in the view's plane (no helix), else None."""
+def _svg_arc(frame: _Frame, item: _Drawn, toolpath: Toolpath, across: str, up: str) -> str | None:
+    """The SVG arc command (``A``, from the current point) of an arc in the view's plane, no
+    helix; else None."""
     move, points = item.move, item.points
     if set(_ARC_AXES[move.plane]) != {across, up} or move.centre is None or item.turn is None:
         return None
@@ -210,10 +219,10 @@ def _svg_arc(frame: _Frame, across: str, up: str, item: _Drawn, toolpath: Toolpa
     if any(start.get(k) != end.get(k) for k in {*start, *end} - {across, up}):
         return None  # a helix: the polyline shows its projection
     c = geometric(toolpath, move.centre)
-    sx, sy = frame.x(points[0][across]), frame.y(points[0][up])
-    ex, ey = frame.x(points[-1][across]), frame.y(points[-1][up])
+    sx, sy = frame.x(points[0][0]), frame.y(points[0][1])
+    ex, ey = frame.x(points[-1][0]), frame.y(points[-1][1])
     mid = points[len(points) // 2]
-    mx, my = frame.x(mid[across]), frame.y(mid[up])
+    mx, my = frame.x(mid[0]), frame.y(mid[1])
     cx, cy = frame.x(c[across]), frame.y(c[up])
     r = math.hypot(sx - cx, sy - cy)
     sweep = 1 if (sx - cx) * (my - cy) - (sy - cy) * (mx - cx) > 0 else 0
@@ -221,17 +230,52 @@ def _svg_arc(frame: _Frame, across: str, up: str, item: _Drawn, toolpath: Toolpa
     if turn >= math.tau - 1e-9:  # a full circle: two halves, an SVG arc cannot close itself
         ox, oy = 2 * cx - sx, 2 * cy - sy
         return (
-            f"M{_num(sx)} {_num(sy)}A{_num(r)} {_num(r)} 0 0 {sweep} {_num(ox)} {_num(oy)}"
+            f"A{_num(r)} {_num(r)} 0 0 {sweep} {_num(ox)} {_num(oy)}"
             f"A{_num(r)} {_num(r)} 0 0 {sweep} {_num(sx)} {_num(sy)}"
         )
     large = 1 if turn > math.pi else 0
-    return f"M{_num(sx)} {_num(sy)}A{_num(r)} {_num(r)} 0 {large} {sweep} {_num(ex)} {_num(ey)}"
+    return f"A{_num(r)} {_num(r)} 0 {large} {sweep} {_num(ex)} {_num(ey)}"
 
 
 def _axis_title(axis: str, toolpath: Toolpath, units: str) -> str:
     if toolpath.lathe and axis == "X":
         return f"X ({units}, diameter; drawn as a radius)"
     return f"{axis} ({units})"
+
+
+Box = tuple[float, float, float, float]  # left, top, right, low: the plot's frame in pixels
+
+
+def _rule(cls: str, across: bool, at: float, box: Box) -> str:
+    """A line through the box at ``at``: upright for a place across, level for one up."""
+    left, top, right, low = box
+    x1, y1, x2, y2 = (at, top, at, low) if across else (left, at, right, at)
+    return f'<line class="{cls}" x1="{_num(x1)}" y1="{_num(y1)}" x2="{_num(x2)}" y2="{_num(y2)}"/>'
+
+
+def _ticks(
+    frame: _Frame,
+    across: bool,
+    span: tuple[float, float],
+    step: float,
+    box: Box,
+    factor: float = 1.0,
+) -> list[str]:
+    """The grid line and label of each multiple of ``step`` in ``span``, on the axis across
+    (labels below the box) or up (labels left of it); ``factor`` scales the labels."""
+    left, _, _, low = box
+    out = []
+    value = math.ceil(span[0] / step - 1e-9) * step
+    while value <= span[1] + 1e-9:
+        at = frame.x(value) if across else frame.y(value)
+        out.append(_rule("grid", across, at, box))
+        x, y, anchor = (at, low + 16, "middle") if across else (left - 6, at + 4, "end")
+        out.append(
+            f'<text x="{_num(x)}" y="{_num(y)}" text-anchor="{anchor}">'
+            f"{_tick(value * factor)}</text>"
+        )
+        value += step
+    return out
 
 
 def _axes(
@@ -256,42 +300,14 @@ def _axes(
         f'<rect class="axis" fill="none" x="{_num(left)}" y="{_num(top)}"'
         f' width="{_num(right - left)}" height="{_num(low - top)}"/>'
     )
-    value = math.ceil(h_range[0] / step - 1e-9) * step
-    while value <= h_range[1] + 1e-9:
-        px = frame.x(value)
-        out.append(
-            f'<line class="grid" x1="{_num(px)}" y1="{_num(top)}" x2="{_num(px)}"'
-            f' y2="{_num(low)}"/>'
-        )
-        out.append(
-            f'<text x="{_num(px)}" y="{_num(low + 16)}" text-anchor="middle">{_tick(value)}</text>'
-        )
-        value += step
+    box = (left, top, right, low)
+    out += _ticks(frame, True, h_range, step, box)
     factor = 2.0 if toolpath.lathe and up == "X" else 1.0  # label a lathe's X as a diameter
-    value = math.ceil(v_range[0] / v_step - 1e-9) * v_step
-    while value <= v_range[1] + 1e-9:
-        py = frame.y(value)
-        out.append(
-            f'<line class="grid" x1="{_num(left)}" y1="{_num(py)}" x2="{_num(right)}"'
-            f' y2="{_num(py)}"/>'
-        )
-        out.append(
-            f'<text x="{_num(left - 6)}" y="{_num(py + 4)}" text-anchor="end">'
-            f"{_tick(value * factor)}</text>"
-        )
-        value += v_step
+    out += _ticks(frame, False, v_range, v_step, box, factor)
     if h_range[0] < 0 < h_range[1]:
-        px = frame.x(0.0)
-        out.append(
-            f'<line class="zero" x1="{_num(px)}" y1="{_num(top)}" x2="{_num(px)}"'
-            f' y2="{_num(low)}"/>'
-        )
+        out.append(_rule("zero", True, frame.x(0.0), box))
     if v_range[0] < 0 < v_range[1]:
-        py = frame.y(0.0)
-        out.append(
-            f'<line class="zero" x1="{_num(left)}" y1="{_num(py)}" x2="{_num(right)}"'
-            f' y2="{_num(py)}"/>'
-        )
+        out.append(_rule("zero", False, frame.y(0.0), box))
     out.append(
         f'<text x="{_num((left + right) / 2)}" y="{_num(low + 34)}"'
         f' text-anchor="middle">{escape(_axis_title(across, toolpath, units))}</text>'
@@ -313,27 +329,92 @@ def _axes(
     return out
 
 
-@dataclass(frozen=True, slots=True)
-class _Drawn:
-    """A move and the points it is drawn through."""
+class _Drawn(NamedTuple):
+    """A move and the points it is drawn through (a tuple: there are 200,000 of them)."""
 
     move: Move
-    points: list[dict[str, float]]  # in the drawing's geometry
+    points: list[tuple[float, float]]  # (across, up) in the drawing's geometry
     turn: float | None = None  # an arc's angle, radians
 
 
 def _drawn(toolpath: Toolpath, across: str, up: str) -> list[_Drawn]:
     """Each move with the points it is drawn through, when its place in the view is known."""
     drawn = []
+    # geometric(), for one axis at a time: a lathe's X diameter as a radius.
+    h_scale = 0.5 if toolpath.lathe and across == "X" else 1.0
+    v_scale = 0.5 if toolpath.lathe and up == "X" else 1.0
     for move in toolpath.moves:
-        arc = arc_points(toolpath, move) if move.kind == "arc" else None
-        if arc is not None:
-            item = _Drawn(move, arc[0], arc[1])
-        else:
-            item = _Drawn(move, [geometric(toolpath, move.start), geometric(toolpath, move.end)])
-        if all(across in p and up in p for p in item.points):
-            drawn.append(item)
+        if move.kind == "arc":
+            arc = arc_points(toolpath, move)
+            if arc is not None:
+                if all(across in p and up in p for p in arc[0]):
+                    drawn.append(_Drawn(move, [(p[across], p[up]) for p in arc[0]], arc[1]))
+                continue
+        start, end = move.start, move.end
+        h0, v0, h1, v1 = start.get(across), start.get(up), end.get(across), end.get(up)
+        if h0 is None or v0 is None or h1 is None or v1 is None:
+            continue
+        drawn.append(_Drawn(move, [(h0 * h_scale, v0 * v_scale), (h1 * h_scale, v1 * v_scale)]))
     return drawn
+
+
+def _moves(
+    drawn: list[_Drawn], frame: _Frame, toolpath: Toolpath, across: str, up: str, main_uri: str
+) -> list[str]:
+    """The moves' elements: a path for each run of consecutive moves of one kind by one block,
+    in a group for each run of one program's moves."""
+    out: list[str] = []
+    d: list[str] = []  # the path data of the element being made
+    element: tuple[str, int, str] | None = None  # its kind, line and document
+    group: tuple[str, str] | None = None  # the program and document of the group
+    last: tuple[float, float] | None = None  # where the path data ends (world)
+    last_command = ""
+    cache: tuple[tuple[float, float], str] = ((math.nan, math.nan), "")
+
+    def place(p: tuple[float, float]) -> str:
+        nonlocal cache
+        if p == cache[0]:
+            return cache[1]  # a move's start is the one before's end
+        text = f"{_num(frame.x(p[0]))} {_num(frame.y(p[1]))}"
+        cache = (p, text)
+        return text
+
+    def close() -> None:
+        if element is not None and d:
+            kind, line, uri = element
+            path = f" data-path={quoteattr(uri)}" if uri and uri != main_uri else ""
+            out.append(f'<path data-kind="{kind}" data-line="{line + 1}"{path} d="{"".join(d)}"/>')
+        d.clear()
+
+    for item in drawn:
+        move, points = item.move, item.points
+        if (move.program, move.uri) != group:
+            close()
+            element = None
+            if group is not None:
+                out.append("</g>")
+            group = (move.program, move.uri)
+            out.append(f"<g data-program={quoteattr(move.program)}>")
+        if (move.kind, move.line, move.uri) != element:
+            close()
+            element = (move.kind, move.line, move.uri)
+            last = None
+        if points[0] != last:
+            d.append("M" + place(points[0]))
+            last_command = "M"
+        arc = _svg_arc(frame, item, toolpath, across, up) if item.turn is not None else None
+        if arc is not None:
+            d.append(arc)
+            last_command = "A"
+        else:
+            rest = " ".join(place(p) for p in points[1:])
+            d.append((" " if last_command == "L" else "L") + rest)
+            last_command = "L"
+        last = points[-1]
+    close()
+    if group is not None:
+        out.append("</g>")
+    return out
 
 
 def plot_svg(
@@ -346,6 +427,13 @@ def plot_svg(
     """The SVG document of a toolpath, and of the threads' pass maps after it.
 
     Raises :class:`NothingToPlot` when no move can be placed in the plane."""
+    with quiet_gc():  # 200,000 moves' strings and no cycles: the collector would only rescan
+        return _plot_svg(toolpath, plane, passes, title, main_uri)
+
+
+def _plot_svg(
+    toolpath: Toolpath, plane: Plane | None, passes: Sequence[PassMap], title: str, main_uri: str
+) -> str:
     view: Plane = plane or ("XZ" if toolpath.lathe else "XY")
     across, up = _VIEW_AXES[(toolpath.lathe, view)]
     drawn = _drawn(toolpath, across, up)
@@ -353,10 +441,14 @@ def plot_svg(
         raise NothingToPlot(
             f"no move of the trace has a known {across} and {up}: nothing to plot in {view}"
         )
-    hs = [p[across] for d in drawn for p in d.points]
-    vs = [p[up] for d in drawn for p in d.points]
-    h_range = (min(hs), max(hs))
-    v_range = (min(vs), max(vs))
+    h_range = (
+        min(h for d in drawn for h, _ in d.points),
+        max(h for d in drawn for h, _ in d.points),
+    )
+    v_range = (
+        min(v for d in drawn for _, v in d.points),
+        max(v for d in drawn for _, v in d.points),
+    )
     # A path that is a line (a drill's plunge seen from above) still gets a square to sit in.
     span = max(h_range[1] - h_range[0], v_range[1] - v_range[0]) or 1.0
     pad = span * 0.04
@@ -378,30 +470,25 @@ def plot_svg(
         "</text>",
         *_axes(frame, h_range, v_range, across, up, toolpath, units, height),
         '<g class="moves">',
+        *_moves(drawn, frame, toolpath, across, up, main_uri),
     ]
-    for item in drawn:
-        move, points = item.move, item.points
-        attrs = _attrs(move, main_uri)
-        arc = _svg_arc(frame, across, up, item, toolpath) if item.turn is not None else None
-        if arc is not None:
-            body.append(f'<path{attrs} d="{arc}"/>')
-        elif len(points) == 2:
-            a, b = points
-            body.append(
-                f'<line{attrs} x1="{_num(frame.x(a[across]))}" y1="{_num(frame.y(a[up]))}"'
-                f' x2="{_num(frame.x(b[across]))}" y2="{_num(frame.y(b[up]))}"/>'
-            )
-        else:
-            coords = " ".join(f"{_num(frame.x(p[across]))},{_num(frame.y(p[up]))}" for p in points)
-            body.append(f'<polyline{attrs} points="{coords}"/>')
+    del drawn
     body.append("</g>")
     body.extend(_lost_marks(toolpath, frame, across, up, main_uri))
     body.append("</g>")
     total_height = height
-    for pass_map in passes:
+    for pass_map in passes[:MAX_PASS_MAPS]:
         group, h = _pass_map_view(pass_map, total_height)
         body.extend(group)
         total_height += h
+    if len(passes) > MAX_PASS_MAPS:
+        more = len(passes) - MAX_PASS_MAPS
+        body.append(
+            f'<g class="view" data-view="more-passes" data-count="{more}">'
+            f'<text x="{_num(MARGIN_LEFT)}" y="{_num(total_height + 20)}">{more} more threads:'
+            f" their pass maps are not drawn (the first {MAX_PASS_MAPS} are)</text></g>"
+        )
+        total_height += 32.0
     head = (
         '<svg xmlns="http://www.w3.org/2000/svg"'
         f' width="{_num(WIDTH)}" height="{_num(total_height)}"'
@@ -417,10 +504,13 @@ def _lost_marks(
     if not toolpath.lost:
         return []
     known: dict[int, dict[str, float]] = {}
+    wanted = {lost.line for lost in toolpath.lost}
     for move in toolpath.moves:
-        point = geometric(toolpath, move.end)
-        if across in point and up in point:
-            known.setdefault(move.line, point)
+        line = move.line
+        if line in wanted and line not in known:
+            point = geometric(toolpath, move.end)
+            if across in point and up in point:
+                known[line] = point
     out = ['<g class="lost-track">']
     for lost in toolpath.lost:
         path = f" data-path={quoteattr(lost.uri)}" if lost.uri and lost.uri != main_uri else ""

@@ -14,12 +14,18 @@ from typing import Any
 from ..config import Config
 from ..evaluator.toolpath import MOVE_KINDS, Toolpath
 from ..program.index import ProgramIndex
+from ..syntax.parser import quiet_gc
 from ..syntax.tree import Document
 from .plot import NothingToPlot, arc_points, geometric, run_toolpath
 
 # At most this many segments go to the view (arcs cut into several count each): beyond it
 # the toolpath is cut short and the view says so.
 MAX_VIEW_SEGMENTS = 1_000_000
+
+
+# An arc's points are written to this many decimals (0.1 µm, 0.01 of the least increment):
+# at full precision they were two thirds of a posted file's payload.
+ARC_DECIMALS = 4
 
 
 def _xyz(point: dict[str, float]) -> tuple[float | None, float | None, float | None]:
@@ -39,18 +45,20 @@ def view_data(toolpath: Toolpath, main_uri: str) -> dict[str, Any]:
     end: list[float | None] = []
     truncated = toolpath.truncated
     for move in toolpath.moves:
-        arc = arc_points(toolpath, move) if move.kind == "arc" else None
+        arc = arc_points(toolpath, move, ARC_DECIMALS) if move.kind == "arc" else None
         points = arc[0] if arc else [geometric(toolpath, move.start), geometric(toolpath, move.end)]
         if len(kind) + len(points) - 1 > MAX_VIEW_SEGMENTS:
             truncated = True
             break
         where = paths.setdefault(move.uri or main_uri, len(paths))
-        for a, b in itertools.pairwise(points):
-            kind.append(kinds[move.kind])
+        placed = [_xyz(p) for p in points]
+        k = kinds[move.kind]
+        for a, b in itertools.pairwise(placed):
+            kind.append(k)
             line.append(move.line)
             path.append(where)
-            start.extend(_xyz(a))
-            end.extend(_xyz(b))
+            start.extend(a)
+            end.extend(b)
     lost = [
         {
             "line": lost.line,
@@ -84,4 +92,5 @@ def toolpath_view(
         toolpath = run_toolpath(uri, doc, index, others, config, entry)
     except NothingToPlot as err:
         return {"error": str(err)}
-    return view_data(toolpath, uri)
+    with quiet_gc():  # a million numbers in lists and no cycles: the collector only rescans
+        return view_data(toolpath, uri)

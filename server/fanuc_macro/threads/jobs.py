@@ -476,17 +476,31 @@ def same_motion(a: Motion, b: Motion) -> bool:
     return all(same_value(getattr(a, f), getattr(b, f)) for f in _MOTION_FIELDS)
 
 
+def _start_key(job: ThreadJob) -> tuple[object, ...]:
+    """What two jobs of the same passes have alike, their first pass's place included: a
+    program of many one-pass jobs (a chain of G32 segments) has as many keys as jobs."""
+    first = job.passes[0] if job.passes else None
+    place = () if first is None else (first.line, first.x, first.z, first.start_x, first.start_z)
+    return (job.program_line, job.run, len(job.passes), *place)
+
+
+compared = 0  # old jobs looked at for a new one, for the tests of the work done
+
+
 def _reused(jobs: list[ThreadJob], old_jobs: list[ThreadJob]) -> list[ThreadJob]:
     """``jobs``, each one of ``old_jobs`` cut by the same passes taken in its stead."""
-    by_start: dict[tuple[int, int, int], list[ThreadJob]] = {}
+    global compared
+    by_start: dict[tuple[object, ...], list[ThreadJob]] = {}
     for old in old_jobs:
-        by_start.setdefault((old.program_line, old.run, len(old.passes)), []).append(old)
+        by_start.setdefault(_start_key(old), []).append(old)
     out: list[ThreadJob] = []
     for job in jobs:
+        candidates = by_start.get(_start_key(job), ())
+        compared += len(candidates)
         same = next(
             (
                 old
-                for old in by_start.get((job.program_line, job.run, len(job.passes)), ())
+                for old in candidates
                 if old.uri == job.uri
                 and old.program == job.program
                 and all(map(same_motion, job.passes, old.passes))
