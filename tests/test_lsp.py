@@ -591,6 +591,54 @@ async def test_code_action_brackets_a_logic_operand(client: LanguageClient) -> N
     await diagnostics(client, uri, lambda d: "MB305" not in codes(d))
 
 
+RULE_FIXTURES = ROOT / "tests" / "fixtures" / "rules"
+
+# A rule's quick fix in its fixture: the fixture, the code, the diagnostic's line, the edit
+# (range on that line and its new text), and whether the client is told it is the one to take.
+RULE_FIXES = [
+    ("MB003_nested-comment.nc", "MB003", 3, (0, 25, "(TOOL T0101 BORING BAR)"), True),
+    ("MB004_unclosed-comment.nc", "MB004", 2, (45, 45, ")"), True),
+    ("MB101_goto-missing-label.nc", "MB101", 8, (14, 15, "2"), None),
+    ("MB404_argument-without-decimal-point.nc", "MB404", 2, (13, 13, "."), True),
+    ("MB601_address-not-integer_suggested.nc", "MB601", 6, (1, 3, "#13"), True),
+]
+
+
+@pytest.mark.parametrize(("name", "code", "line", "change", "preferred"), RULE_FIXES)
+async def test_code_action_applies_the_rule_fix(
+    client: LanguageClient,
+    name: str,
+    code: str,
+    line: int,
+    change: tuple[int, int, str],
+    preferred: bool | None,
+) -> None:
+    await start(client, None)
+    uri = f"untitled:{name}"
+    text = (RULE_FIXTURES / name).read_text("utf-8")
+    open_text(client, uri, text)
+    found = await diagnostics(client, uri, lambda d: code in codes(d))
+    target = [d for d in found if d.code == code and d.range.start.line == line]
+    assert len(target) == 1
+    actions = await code_actions(client, uri, target)
+    fix, suppress = actions
+    assert suppress.title == f"Suppress {code} on this line"
+    assert fix.kind == types.CodeActionKind.QuickFix and fix.is_preferred is preferred
+    assert list(fix.diagnostics or ()) == target  # the client's own diagnostic, linked
+    assert fix.edit is not None and fix.edit.changes is not None
+    [text_edit] = fix.edit.changes[uri]
+    start_column, end_column, new_text = change
+    assert text_edit.range == types.Range(
+        start=types.Position(line=line, character=start_column),
+        end=types.Position(line=line, character=end_column),
+    )
+    assert text_edit.new_text == new_text
+    apply(client, uri, fix, 2)
+    await diagnostics(
+        client, uri, lambda d: not any(x.code == code and x.range.start.line == line for x in d)
+    )
+
+
 async def test_suppression_comment_removes_the_diagnostic(client: LanguageClient) -> None:
     await start(client)
     uri = open_seed(client, "o2_arc_thread_roughing.nc")

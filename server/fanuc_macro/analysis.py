@@ -226,7 +226,8 @@ def run_checks(
             if foreign is not None and f.code in _FANUC_STYLE:
                 continue
             if not folded or f.code not in _FOLDED:
-                found.append(make(f.code, f.message, line, f.start, f.end))
+                fixes = [fix.on_line(line) for fix in f.fixes] if f.fixes else ()
+                found.append(make(f.code, f.message, line, f.start, f.end, fixes=fixes))
         if folded and foreign is not None:
             first = folded[0]
             found.append(

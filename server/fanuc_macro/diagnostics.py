@@ -33,6 +33,40 @@ class Related:
 
 
 @dataclass(frozen=True, slots=True)
+class FixEdit:
+    """One replacement of a fix: the text from (line, column) to (end_line, end_column)
+    becomes ``text`` (an insertion when the two places are the same)."""
+
+    line: int
+    column: int
+    end_line: int
+    end_column: int
+    text: str
+
+    @staticmethod
+    def insert(line: int, column: int, text: str) -> FixEdit:
+        return FixEdit(line, column, line, column, text)
+
+
+@dataclass(frozen=True, slots=True)
+class Fix:
+    """A quick fix of a diagnostic, without a protocol: a title saying what it does, and the
+    edits of the diagnostic's document that make it. ``preferred``: the one obvious fix."""
+
+    title: str
+    edits: tuple[FixEdit, ...]
+    preferred: bool = False
+
+    def on_line(self, line: int) -> Fix:
+        """The fix of a line rule's finding (its edits on line 0) for the block on ``line``."""
+        edits = tuple(
+            FixEdit(e.line + line, e.column, e.end_line + line, e.end_column, e.text)
+            for e in self.edits
+        )
+        return Fix(self.title, edits, self.preferred)
+
+
+@dataclass(frozen=True, slots=True)
 class Diagnostic:
     code: str
     severity: Severity
@@ -43,6 +77,9 @@ class Diagnostic:
     end_column: int
     related: tuple[Related, ...] = ()
     data: dict[str, object] | None = field(default=None, compare=False, hash=False)
+    # The quick fixes a rule works out with the diagnostic; the command line's output leaves
+    # them out, the language server offers them as code actions.
+    fixes: tuple[Fix, ...] = ()
 
     def with_severity(self, severity: Severity) -> Diagnostic:
         return replace(self, severity=severity)
@@ -111,6 +148,7 @@ def make(
     related: Iterable[Related] = (),
     severity: Severity | None = None,
     data: dict[str, object] | None = None,
+    fixes: Iterable[Fix] = (),
 ) -> Diagnostic:
     info = RULES[code]
     return Diagnostic(
@@ -123,6 +161,7 @@ def make(
         max(end_column, column),
         tuple(related),
         data,
+        tuple(fixes),
     )
 
 

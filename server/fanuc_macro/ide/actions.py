@@ -119,6 +119,30 @@ def acceptable_fix(fixed: str, before: int) -> bool:
     return _logic_count(parsed) < before
 
 
+def rule_fixes(view: View, problem: Problem) -> list[CodeAction]:
+    """The fixes the rule worked out with the diagnostic asked for (MB003, MB004, MB101,
+    MB404, MB601): the analysis's diagnostic with that code that starts where the problem
+    does."""
+    actions: list[CodeAction] = []
+    for diag in view.analysis.diagnostics:
+        if (diag.line, diag.column, diag.code) != (problem.line, problem.column, problem.code):
+            continue
+        for fix in diag.fixes:
+            edits = tuple(
+                TextEdit(Range.of(e.line, e.column, e.end_line, e.end_column), e.text)
+                for e in fix.edits
+            )
+            actions.append(
+                CodeAction(
+                    title=fix.title,
+                    kind=ActionKind.QUICK_FIX,
+                    edits=(DocumentEdit(view.key, edits),),
+                    preferred=fix.preferred,
+                )
+            )
+    return actions
+
+
 def suppress(view: View, line: int, code: str) -> CodeAction:
     """A ``(fanuc-macro: ignore CODE)`` comment on the line, or the code added to the one
     there."""
@@ -155,6 +179,7 @@ def code_actions(
                 found.append(fix)
         if code == "MB305":
             found.extend(bracket_logic(view, line, problem.column))
+        found.extend(rule_fixes(view, problem))
         if (code, line) not in seen and _RULE_CODE.fullmatch(code):
             seen.add((code, line))
             found.append(suppress(view, line, code))

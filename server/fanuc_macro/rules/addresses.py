@@ -8,6 +8,8 @@ from typing import cast
 
 from ..diagnostics import (
     Diagnostic,
+    Fix,
+    FixEdit,
     Related,
     RuleDoc,
     RuleInfo,
@@ -17,6 +19,7 @@ from ..diagnostics import (
     make,
     register,
 )
+from ..syntax.marks import constant_value
 from ..syntax.tree import Assign, Var, Word
 from .context import RuleContext
 
@@ -57,7 +60,10 @@ M30
 """,
         fix="""
 Correct the value (often a variable set for another purpose, `M#1` meant
-`M#13`), or round it explicitly with `ROUND`/`FIX`.
+`M#13`), or round it explicitly with `ROUND`/`FIX`. When the message suggests a variable
+(one assigned earlier in the program whose comment names the address), the quick fix in the
+editor writes it in the word, offered only when its last assignment before the word is a whole
+number written as a constant, so that the word then gets a whole value.
 """,
         not_reported="""
 Addresses that take a decimal point (`X`, `Y`, `Z`, `F`, `R`...), a
@@ -143,6 +149,7 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
         code = "MB601" if f.kind == "address-non-integer" else "MB602"
         message = f.message
         related: list[Related] = []
+        fixes: tuple[Fix, ...] = ()
         word = _word_at(ctx, f.line, f.column)
         if word is not None and isinstance(word.value, Var) and word.value.number is not None:
             n = int(word.value.number)
@@ -156,7 +163,8 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
                 hint = _likely_meant(ctx, f.line, word.address)
                 if hint:
                     message += f"; did you mean {word.address}{hint}?"
-        yield make(code, message, f.line, f.column, f.end_column, related=related)
+                    fixes = _use_meant(ctx, f.line, word, hint)
+        yield make(code, message, f.line, f.column, f.end_column, related=related, fixes=fixes)
 
 
 def _feed_not_set(ctx: RuleContext) -> Iterator[Diagnostic]:
@@ -223,6 +231,31 @@ def _assignments(ctx: RuleContext) -> dict[float, list[int]]:
                 by_number.setdefault(statement.target.number, []).append(block.line)
         found = ctx.memo["addresses.assignments"] = by_number
     return cast("dict[float, list[int]]", found)
+
+
+def _use_meant(ctx: RuleContext, line: int, word: Word, hint: str) -> tuple[Fix, ...]:
+    """MB601: the word's variable replaced by the one the message suggests (``M#1`` becomes
+    ``M#13``), offered when the last assignment of that variable before the word, in its
+    program, is a whole number written as a constant: then the word gets a whole value."""
+    now = word.value
+    if isinstance(now, Var) and now.number is not None and f"#{int(now.number)}" == hint:
+        return ()  # the word has that variable already
+    origin = _last_assignment(ctx, line, int(hint[1:]))
+    if origin is None:
+        return ()
+    statement = ctx.doc.blocks[origin[0]].statement
+    assert isinstance(statement, Assign)
+    value = constant_value(statement.value)
+    if value is None or value != int(value):
+        return ()
+    span = word.value.span
+    return (
+        Fix(
+            f"Use {word.address}{hint} (#{hint[1:]} is set to {value:g} at line {origin[0] + 1})",
+            (FixEdit(line, span.start, line, span.end, hint),),
+            preferred=True,
+        ),
+    )
 
 
 def _likely_meant(ctx: RuleContext, line: int, address: str) -> str | None:

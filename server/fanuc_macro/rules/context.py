@@ -8,7 +8,7 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, NamedTuple, cast
 
 from ..config import Config
-from ..diagnostics import Diagnostic
+from ..diagnostics import Diagnostic, Fix
 from ..evaluator.checkpoints import lines_with_other_facts, stretches_of
 from ..evaluator.facts import DocumentFacts, Facts, Finding
 from ..line_maps import Diff, line_diff
@@ -193,6 +193,7 @@ class LineFinding(NamedTuple):
     message: str
     start: int
     end: int
+    fixes: tuple[Fix, ...] = ()  # their edits on line 0: the analysis puts them on the block's
 
 
 LineCheck = Callable[[ParsedLine], Iterable[LineFinding]]

@@ -5,7 +5,18 @@ from __future__ import annotations
 from bisect import bisect_left, bisect_right
 from typing import cast
 
-from ..diagnostics import Diagnostic, Related, RuleDoc, RuleInfo, Severity, document, make, register
+from ..diagnostics import (
+    Diagnostic,
+    Fix,
+    FixEdit,
+    Related,
+    RuleDoc,
+    RuleInfo,
+    Severity,
+    document,
+    make,
+    register,
+)
 from ..line_maps import Kept
 from ..per_line import PerLine
 from ..program.index import Jump, Program, ProgramIndex
@@ -52,7 +63,12 @@ M99
 """,
         fix="""
 Add the missing `Nn` where the jump should land, or correct the number in the
-`GOTO`.
+`GOTO`. The quick fix in the editor changes the target to the label of the program nearest in
+number (the lower of two as near), naming it and its line; it leaves out labels that stand more
+than once (MB102) and labels inside a loop the jump is outside of (MB103). It is a guess, so it
+is not offered as the preferred fix. No fix adds the missing `Nn`: where the jump should land is
+what the programmer meant, which the text does not say, and a label put on a guessed block would
+silence the alarm and send the tool where no one chose.
 """,
         not_reported="""
 A computed target (`GOTO#1`), which the evaluator checks when it
@@ -226,6 +242,7 @@ def _check(ctx: RuleContext, found: list[Diagnostic]) -> bool:
                         jump.line,
                         ts.start,
                         ts.end,
+                        fixes=_nearest_label(program, jump),
                     )
                 )
                 continue
@@ -254,6 +271,35 @@ def _check(ctx: RuleContext, found: list[Diagnostic]) -> bool:
                     )
                     break
     return textual
+
+
+def _nearest_label(program: Program, jump: Jump) -> tuple[Fix, ...]:
+    """MB101: the jump retargeted to the program's label nearest in number to the missing one
+    (the lower of two as near), among the labels it can take without another error: one that
+    stands once (two copies would be MB102's question) and is not inside a loop the jump is
+    outside of (MB103). No fix adds the missing ``Nn``: where the jump should land is what the
+    programmer meant, which the text does not say, and a label put on a guessed block would
+    silence the alarm and send the tool somewhere no one chose."""
+    assert jump.target is not None
+    source_loops = program.enclosing_loops(jump.line)
+    candidates = [
+        (abs(number - jump.target), number, lines[0])
+        for number, lines in program.labels.items()
+        if len(lines) == 1
+        and 1 <= number <= 99999
+        and all(loop in source_loops for loop in program.enclosing_loops(lines[0]))
+    ]
+    if not candidates:
+        return ()
+    _, number, line = min(candidates)
+    ts = jump.target_span
+    return (
+        Fix(
+            f"Change GOTO {jump.target} to GOTO {number} (the nearest label, N{number} at "
+            f"line {line + 1})",
+            (FixEdit(jump.line, ts.start, jump.line, ts.end, str(number)),),
+        ),
+    )
 
 
 # ---- MB102: where a jump to a duplicated N lands -----------------------------------------------

@@ -4,7 +4,18 @@ from __future__ import annotations
 
 from collections.abc import Iterable, Iterator
 
-from ..diagnostics import Diagnostic, Related, RuleDoc, RuleInfo, Severity, document, make, register
+from ..diagnostics import (
+    Diagnostic,
+    Fix,
+    FixEdit,
+    Related,
+    RuleDoc,
+    RuleInfo,
+    Severity,
+    document,
+    make,
+    register,
+)
 from ..syntax.tree import ParsedLine, ProgramStart
 from .context import LineFinding, RuleContext
 
@@ -105,7 +116,8 @@ M99
 """,
         fix="""
 Do not put parentheses inside a comment: write `(TOOL T0101 BORING BAR)` or
-`(TOOL - T0101 - BORING BAR)`.
+`(TOOL - T0101 - BORING BAR)`. The quick fix in the editor removes the parentheses inside the
+comment, `(TOOL (T0101) BORING BAR)` becoming `(TOOL T0101 BORING BAR)`.
 """,
         not_reported="""
 A `(` inside a comment that no second `)` balances (`(A (B) C`):
@@ -133,7 +145,8 @@ M30
 ```
 """,
         fix="""
-Close the comment on the same line.
+Close the comment on the same line. The quick fix in the editor adds the `)` at the end
+of the line (before any trailing blanks), where the comment's text ends as the checker reads it.
 """,
         not_reported="""
 A `)` with no `(` before it (a syntax error, MB001), and comments
@@ -567,7 +580,13 @@ def _check_line(parsed: ParsedLine) -> Iterator[LineFinding]:
         code = "MB008" if problem.unknown_function else "MB001"
         yield LineFinding(code, problem.message, problem.span.start, problem.span.end)
     for note in parsed.notes:
-        yield LineFinding(_NOTE_CODES[note.kind], note.message, note.span.start, note.span.end)
+        start, end = note.span.start, note.span.end
+        fixes: tuple[Fix, ...] = ()
+        if note.kind == "unclosed-comment":
+            fixes = (_close_comment(parsed.text),)
+        elif note.kind == "nested-comment":
+            fixes = _unnest_comment(parsed.text, start, end)
+        yield LineFinding(_NOTE_CODES[note.kind], note.message, start, end, fixes)
     if parsed.has_lowercase and problem is None:
         col = next(
             (i for i, ch in enumerate(parsed.text) if ch.islower() and _outside(parsed, i)),
@@ -581,6 +600,33 @@ def _check_line(parsed: ParsedLine) -> Iterator[LineFinding]:
                 col,
                 col + 1,
             )
+
+
+def _close_comment(text: str) -> Fix:
+    """MB004: ``)`` at the end of the line, before its trailing blanks: the comment runs to
+    the line's end, so that is where its text ends."""
+    return Fix(
+        "Close the comment with ')' at the end of the line",
+        (FixEdit.insert(0, len(text.rstrip()), ")"),),
+        preferred=True,
+    )
+
+
+def _unnest_comment(text: str, start: int, end: int) -> tuple[Fix, ...]:
+    """MB003: the comment from ``start`` to ``end`` (its outer parentheses included) with the
+    parentheses inside it left out, as the rule's documentation advises: ``(TOOL (T0101) BAR)``
+    becomes ``(TOOL T0101 BAR)``, one comment as FANUC reads it."""
+    inner = text[start + 1 : end - 1]
+    if not (text[start] == "(" and text[end - 1] == ")"):
+        return ()
+    flat = inner.replace("(", "").replace(")", "")
+    return (
+        Fix(
+            "Remove the parentheses nested in the comment",
+            (FixEdit(0, start, 0, end, f"({flat})"),),
+            preferred=True,
+        ),
+    )
 
 
 def _tape_mark_not_alone(parsed: ParsedLine) -> LineFinding:

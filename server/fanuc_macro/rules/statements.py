@@ -8,6 +8,8 @@ from typing import NamedTuple, cast
 
 from ..diagnostics import (
     Diagnostic,
+    Fix,
+    FixEdit,
     Related,
     RuleDoc,
     RuleInfo,
@@ -175,7 +177,8 @@ M30
 ```
 """,
         fix="""
-Write every argument with a decimal point: `A10.`, `Z-10.`, `R5.`.
+Write every argument with a decimal point: `A10.`, `Z-10.`, `R5.`. The quick fix in
+the editor adds the `.` after the argument's digits.
 """,
         not_reported="""
 A zero (`X0` is 0 in any increment); `S`, `T`, `M`, `D` and
@@ -375,8 +378,19 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
                         line,
                         word.span.start,
                         word.span.end,
+                        fixes=(_decimal_point(line, word.address, word.value),),
                     )
     yield from _missing_programs(ctx, missing)
+
+
+def _decimal_point(line: int, address: str, value: Num) -> Fix:
+    """MB404: ``.`` right after the argument's digits (``A10`` becomes ``A10.``), the value
+    the programmer wrote, in the address's units."""
+    return Fix(
+        f"Add the decimal point: {address}{value.text}.",
+        (FixEdit.insert(line, value.span.end, "."),),
+        preferred=True,
+    )
 
 
 class _LineEnds(NamedTuple):
