@@ -196,6 +196,66 @@ def test_legacy_encoded_file(tmp_path: Path) -> None:
     assert "GB18030" in records[0]["message"]
 
 
+def test_exit_2_when_no_programs_are_found(tmp_path: Path) -> None:
+    (tmp_path / "empty").mkdir()
+    write(tmp_path / "notes" / "readme.md", ERROR_PROGRAM)  # not a program file's extension
+    write(tmp_path / "notes" / "post.mc12", ERROR_PROGRAM)
+    for folder in ("empty", "notes"):
+        for form in ("text", "json"):
+            result = run(tmp_path, "check", "--format", form, folder)
+            assert (result.returncode, result.stdout) == (2, ""), result.stderr
+            assert result.stderr == f"fanuc-macro: no programs found in {folder}\n"
+
+
+def test_a_folder_without_programs_beside_programs_is_told_and_the_rest_checked(
+    tmp_path: Path,
+) -> None:
+    (tmp_path / "empty").mkdir()
+    write(tmp_path / "progs" / "prog.nc", ERROR_PROGRAM)
+    result = run(tmp_path, "check", "empty", "progs")
+    assert result.returncode == 1
+    assert result.stderr == "fanuc-macro: no programs found in empty\n"
+    assert "MB101" in {r["code"] for r in parsed_lines(result.stdout)}
+
+
+# The start of an ELF executable (NUL bytes from the fifth), then text that would be 1,000
+# diagnostics if it were read as a program.
+BINARY = b"\x7fELF\x02\x01\x01\x00" + b"\x00" * 8 + b"IF[#1GT0]GOTO99\n" * 1000
+
+
+def test_a_binary_file_is_reported_once(tmp_path: Path) -> None:
+    (tmp_path / "progs").mkdir()
+    (tmp_path / "progs" / "a.out.nc").write_bytes(BINARY)
+    write(tmp_path / "progs" / "prog.nc", WARNING_PROGRAM)
+    result = run(tmp_path, "check", "progs")
+    assert result.returncode == 0, result.stdout + result.stderr
+    rows = [r for r in parsed_lines(result.stdout) if r["path"].endswith("a.out.nc")]
+    assert [(r["line"], r["column"], r["code"], r["severity"]) for r in rows] == [
+        ("1", "1", "MB007", "information")
+    ]
+    assert rows[0]["message"] == (
+        "not a program text: it holds NUL bytes (the first at byte 8): a binary file, or text "
+        "saved as UTF-16; the file is not analysed"
+    )
+    as_json = json.loads(run(tmp_path, "check", "--format", "json", "progs/a.out.nc").stdout)
+    assert [(r["code"], r["line"], r["message"]) for r in as_json] == [
+        ("MB007", 1, rows[0]["message"])
+    ]
+    # Control codes without a NUL (compressed data, say) are not text either.
+    noisy = bytes(b for b in range(256) if b) * 4
+    (tmp_path / "noise.nc").write_bytes(noisy)
+    [row] = parsed_lines(run(tmp_path, "check", "noise.nc").stdout)
+    assert row["code"] == "MB007" and "are control codes: a binary file" in row["message"]
+
+
+def test_a_utf16_file_is_named_as_such(tmp_path: Path) -> None:
+    (tmp_path / "u16.nc").write_bytes(ERROR_PROGRAM.encode("utf-16"))  # with its byte order mark
+    result = run(tmp_path, "check", "u16.nc")
+    [row] = parsed_lines(result.stdout)
+    assert row["code"] == "MB007"
+    assert "it is UTF-16 text (save it as UTF-8 or ASCII)" in row["message"]
+
+
 # ---- --disable ---------------------------------------------------------------------------------
 
 
@@ -214,6 +274,25 @@ def test_disable_several_codes_in_any_case(tmp_path: Path) -> None:
     after = {r["code"] for r in parsed_lines(result.stdout)}
     assert not after & {"MB101", "MB403"}
     assert after == before - {"MB101", "MB403"}
+
+
+def test_an_unknown_code_to_disable_is_a_usage_error_naming_the_nearest(tmp_path: Path) -> None:
+    write(tmp_path / "prog.nc", ERROR_PROGRAM)
+    cases = {  # a typed O for 0, a misspelt name, a known code beside two unknown ones
+        "MB1O1": "unknown rule code 'MB1O1': the nearest known one is MB101 goto-missing-label",
+        "lowercse": "unknown rule code 'LOWERCSE': the nearest known one is MB006 lowercase",
+        "mb101,MB9O4,NO-SUCH-VAR": "unknown rule codes 'MB9O4' (nearest: MB904 "
+        "arguments-assumed), 'NO-SUCH-VAR' (nearest: MB302 no-such-variable)",
+    }
+    for given, told in cases.items():
+        result = run(tmp_path, "check", "--disable", given, "prog.nc")
+        assert (result.returncode, result.stdout) == (2, ""), result.stdout
+        assert result.stderr.startswith("usage: fanuc-macro check")
+        last = result.stderr.splitlines()[-1]
+        assert last == f"fanuc-macro check: error: argument --disable: {told}"
+    for command in (["trace", "prog.nc"], ["hover", "prog.nc", "1", "1"]):
+        result = run(tmp_path, *command, "--disable", "NOPE")
+        assert result.returncode == 2 and "unknown rule code 'NOPE'" in result.stderr
 
 
 # ---- the machine's limits and options ------------------------------------------------------------
@@ -484,6 +563,26 @@ def test_trace_lists_every_pass_of_a_g76(tmp_path: Path) -> None:
     assert [m["words"]["X"] for m in passes][:3] == [29.2, 28.869, 28.614]
 
 
+def test_trace_plot_hover_and_definition_of_a_folder(tmp_path: Path) -> None:
+    write(tmp_path / "progs" / "prog.nc", CLEAN_PROGRAM)
+    for command in (["trace"], ["plot"], ["hover"], ["definition"]):
+        place = ["1", "1"] if command[0] in ("hover", "definition") else []
+        result = run(tmp_path, *command, "progs", *place)
+        assert (result.returncode, result.stdout) == (2, ""), result.stderr
+        assert result.stderr == (
+            f"fanuc-macro: {command[0]} takes one program file; progs is a folder\n"
+        )
+    assert not list(tmp_path.glob("*.svg"))
+
+
+def test_trace_of_a_binary_file_stops_with_the_reason(tmp_path: Path) -> None:
+    (tmp_path / "a.out").write_bytes(BINARY)
+    for command in (["trace", "a.out"], ["plot", "a.out"], ["hover", "a.out", "1", "1"]):
+        result = run(tmp_path, *command)
+        assert (result.returncode, result.stdout) == (2, ""), result.stderr
+        assert result.stderr.startswith("fanuc-macro: a.out: not a program text: it holds NUL")
+
+
 # ---- the analyser's own failures: one line for the user, the traceback on request -------------
 
 
@@ -669,3 +768,25 @@ def test_definition_prints_path_line_column(tmp_path: Path) -> None:
     variable = CALLER.splitlines()[3].index("#1") + 1
     assigned = run(tmp_path, "definition", "main.nc", "4", str(variable))
     assert assigned.stdout == "main.nc:3:1\n"
+
+
+# ---- help ----------------------------------------------------------------------------------------
+
+
+def test_every_option_and_argument_of_every_command_has_a_help_text(tmp_path: Path) -> None:
+    import argparse
+
+    from fanuc_macro.cli import build_parser
+
+    parser = build_parser()
+    [commands] = [a for a in parser._actions if isinstance(a, argparse._SubParsersAction)]
+    assert set(commands.choices) == {"check", "trace", "plot", "hover", "definition", "thread"}
+    for name, command in commands.choices.items():
+        for action in command._actions:
+            shown = "/".join(action.option_strings) or action.metavar or action.dest
+            assert action.help and action.help != argparse.SUPPRESS, f"{name} {shown}"
+        result = run(tmp_path, name, "--help")
+        assert result.returncode == 0, result.stderr
+        for action in command._actions:
+            for option in action.option_strings:
+                assert option in result.stdout, f"{name} --help does not show {option}"

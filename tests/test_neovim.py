@@ -1,10 +1,14 @@
-"""The language server in a real editor: headless Neovim starts it, shows its diagnostics and
-asks for a hover (tests/nvim/init.lua writes what it got to a JSON file)."""
+"""The language server in a real editor: headless Neovim, set up as the README says with
+editors/nvim (filetype detection, the server's configuration), opens program files by their
+names, starts the server, shows its diagnostics and asks for a hover (tests/nvim/init.lua writes
+what it got to a JSON file). The set-up's files are checked against package.json and
+pyproject.toml without Neovim."""
 
 from __future__ import annotations
 
 import json
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -15,20 +19,68 @@ import pytest
 ROOT = Path(__file__).resolve().parents[1]
 SEEDS = ROOT / "tests" / "fixtures" / "seeds"
 INIT = ROOT / "tests" / "nvim" / "init.lua"
+RUNTIME = ROOT / "editors" / "nvim"
 NVIM = shutil.which("nvim")
+SEED = SEEDS / "o2_arc_thread_roughing.nc"
+MB601_LINES = {29, 63}  # 0-based: "M#1" with #1 = 93.82, in the seed
+
+
+def _lua_strings(text: str, name: str) -> list[str]:
+    """The strings of ``name = { "a", "b" }`` in a Lua file."""
+    m = re.search(rf"\b{name}\s*=\s*\{{([^}}]*)\}}", text)
+    assert m is not None, f"no {name} = {{...}}"
+    return re.findall(r'"([^"]*)"', m.group(1))
+
+
+def test_ftdetect_knows_the_extensions_the_vs_code_extension_declares() -> None:
+    package = json.loads((ROOT / "package.json").read_text("utf-8"))
+    [language] = [x for x in package["contributes"]["languages"] if x["id"] == "fanuc-macro"]
+    text = (RUNTIME / "ftdetect" / "fanuc-macro.lua").read_text("utf-8")
+    declared = [e.removeprefix(".") for e in language["extensions"]]
+    assert _lua_strings(text, "local extensions") == declared
+    assert text.count('"fanuc-macro"') >= 3  # the filetype, by extension, name and first line
+
+
+def test_lsp_config_runs_the_servers_entry_point_for_the_filetype() -> None:
+    text = (RUNTIME / "lsp" / "fanuc_macro.lua").read_text("utf-8")
+    pyproject = (ROOT / "pyproject.toml").read_text("utf-8")
+    scripts = re.search(r"\[project\.scripts\]\n(.*?)\n\n", pyproject, re.S)
+    assert scripts is not None
+    entry = {
+        name: target
+        for name, target in re.findall(r'^([\w-]+) = "([^"]+)"$', scripts.group(1), re.M)
+    }
+    [command] = _lua_strings(text, "cmd")
+    assert entry[command] == "fanuc_macro.lsp.server:main"
+    assert _lua_strings(text, "filetypes") == ["fanuc-macro"]
+    readme = (ROOT / "README.md").read_text("utf-8")
+    assert f'cmd = {{ "{command}" }}' in readme and "editors/nvim" in readme
 
 
 @pytest.mark.skipif(NVIM is None, reason="nvim (Neovim) is not on PATH")
-def test_neovim_shows_diagnostics_and_hover(tmp_path: Path) -> None:
+def test_neovim_detects_programs_shows_diagnostics_and_hover(tmp_path: Path) -> None:
     assert NVIM is not None
     out = tmp_path / "result.json"
+    files = tmp_path / "files"
+    files.mkdir()
+    program = SEED.read_bytes()
+    # By extension (".mac" is also an assembler's, which Neovim guesses first), by a name that
+    # is a program number, by a first line "%"; and two files that are not programs.
+    programs = ["prog.mac", "PROG.NC", "O0002", "tape"]
+    not_programs = {"notes.txt": program, "readme": b"READ ME\n" + program}
+    for name in programs:
+        (files / name).write_bytes(program if name != "O0002" else program.lstrip(b"%\r\n"))
+    for name, data in not_programs.items():
+        (files / name).write_bytes(data)
     env = {
         **os.environ,
         "PYTHONPATH": os.pathsep.join(
             p for p in (str(ROOT / "server"), os.environ.get("PYTHONPATH", "")) if p
         ),
         "FANUC_NVIM_OUT": str(out),
-        "FANUC_NVIM_SEED": str(SEEDS / "o2_arc_thread_roughing.nc"),
+        "FANUC_NVIM_SEED": str(SEED),
+        "FANUC_NVIM_RUNTIME": str(RUNTIME),
+        "FANUC_NVIM_OTHERS": "\n".join(str(files / n) for n in [*programs, *not_programs]),
         "FANUC_NVIM_ROOT": str(SEEDS),
         "FANUC_NVIM_PYTHON": sys.executable,
         "FANUC_NVIM_TIMEOUT": "60000",
@@ -38,6 +90,7 @@ def test_neovim_shows_diagnostics_and_hover(tmp_path: Path) -> None:
         "XDG_STATE_HOME": str(tmp_path / "state"),  # Neovim's LSP log goes there
         "XDG_DATA_HOME": str(tmp_path / "data"),
         "XDG_CACHE_HOME": str(tmp_path / "cache"),
+        "XDG_CONFIG_HOME": str(tmp_path / "config"),  # no user's ftdetect or plugin
     }
     done = subprocess.run(
         [NVIM, "--headless", "-n", "-i", "NONE", "--noplugin", "-u", str(INIT)],
@@ -45,13 +98,30 @@ def test_neovim_shows_diagnostics_and_hover(tmp_path: Path) -> None:
         cwd=tmp_path,
         capture_output=True,
         text=True,
-        timeout=150,
+        timeout=240,
     )
     assert out.exists(), f"nvim wrote no result (rc {done.returncode}): {done.stderr[-2000:]}"
     result = json.loads(out.read_text("utf-8"))
     assert "error" not in result, result
+    assert result["filetype"] == "fanuc-macro", result
     assert result["got_diagnostics"], result
     mb601 = [d for d in result["diagnostics"] if d["code"] == "MB601"]
-    assert {d["lnum"] for d in mb601} == {29, 63}, result["diagnostics"]
+    assert {d["lnum"] for d in mb601} == MB601_LINES, result["diagnostics"]
     assert all(d["source"] == "fanuc-macro" and "93.82" in d["message"] for d in mb601)
     assert "#1" in result["hover"] and "93.82" in result["hover"], result
+    others = {Path(o["path"]).name: o for o in result["others"]}
+    assert list(others) == [*programs, *not_programs]
+    for name in programs:
+        shown = others[name]
+        assert (shown["filetype"], shown["got_diagnostics"], shown["clients"]) == (
+            "fanuc-macro",
+            True,
+            1,
+        ), shown
+        shift = 0 if name != "O0002" else -1  # the "%" line left out
+        codes = {(d["lnum"], d["code"]) for d in shown["diagnostics"]}
+        assert {(n + shift, "MB601") for n in MB601_LINES} <= codes, shown
+    for name in not_programs:
+        shown = others[name]
+        assert shown["filetype"] != "fanuc-macro" and shown["clients"] == 0, shown
+        assert shown["diagnostics"] == [], shown

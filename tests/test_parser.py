@@ -12,7 +12,13 @@ import pytest
 
 from fanuc_macro.analysis import analyse
 from fanuc_macro.program.index import build_index, program_number_of_name
-from fanuc_macro.syntax.lines import cut_comments, decode_bytes, split_lines
+from fanuc_macro.syntax.lines import (
+    BINARY,
+    cut_comments,
+    decode_bytes,
+    not_text_reason,
+    split_lines,
+)
 from fanuc_macro.syntax.parser import BlockParser, fast_parse, parse_bytes, parse_text
 from fanuc_macro.syntax.tree import (
     Assign,
@@ -724,6 +730,62 @@ def test_bytes_no_legacy_encoding_takes() -> None:
     assert decoded.text.startswith("O1 (")
 
 
+# The start of an ELF executable: NUL bytes from the fifth byte on.
+ELF_START = b"\x7fELF\x02\x01\x01\x00\x00\x00\x00\x00\x00\x00\x00\x00\x02\x00>\x00"
+
+
+def test_binary_bytes_are_not_read_as_a_program() -> None:
+    data = ELF_START + b"O1000\nG00 X1.\nM30\n" * 40
+    doc = parse_bytes(data, "a.out.nc")
+    assert doc.encoding == BINARY and [b.text for b in doc.blocks] == [""]
+    assert doc.decode_note is not None
+    assert doc.decode_note.startswith("not a program text: it holds NUL bytes")
+    assert "(the first at byte 8)" in doc.decode_note
+    assert not build_index(doc).programs
+
+
+def test_control_codes_make_bytes_binary_without_a_nul() -> None:
+    noise = bytes(range(1, 32)) * 4  # 124 bytes, 84 of them control codes no text has
+    reason = not_text_reason(noise + b"O1000\nM30\n" * 100)
+    assert reason is not None and "84 of its first 1,124 bytes are control codes" in reason
+    # Below the share (5%), the same controls are read as (bad) text.
+    assert not_text_reason(noise + b"O1000\nM30\n" * 300) is None
+
+
+@pytest.mark.parametrize(
+    ("bom", "name"),
+    [(b"\xff\xfe", "UTF-16"), (b"\xfe\xff", "UTF-16"), (b"\xff\xfe\x00\x00", "UTF-32")],
+)
+def test_utf16_and_utf32_are_not_read(bom: bytes, name: str) -> None:
+    reason = not_text_reason(bom + "O1000\nM30\n".encode("utf-16-le"))
+    assert reason is not None and f"it is {name} text" in reason
+
+
+def test_text_controls_and_a_tape_leader_are_text() -> None:
+    """Tab, line ends, form feed, the tape reader's DC1-DC4 and SUB are text; the NULs of a
+    punched tape's leader and trailer (blank tape) do not make the file binary."""
+    program = b"%\x12\r\nO1000\t(X)\nG00 X1.\x0c\nM30\x14\n%\n\x1a"
+    assert not_text_reason(program) is None
+    assert not_text_reason(b"\x00" * 200 + program + b"\x00" * 200) is None
+    assert not_text_reason(b"\x00" * 200 + program + b"\x00" + program) is not None
+    assert not_text_reason(b"") is None and not_text_reason(b"\x00" * 10) is None
+    assert decode_bytes(b"\x00" * 20 + program).encoding == "utf-8"
+
+
+def test_workspace_says_a_file_is_not_text() -> None:
+    from fanuc_macro.workspace import Workspace
+
+    workspace = Workspace()
+    workspace.add_bytes("bin.nc", ELF_START + b"O1000\nM30\n")
+    workspace.add_bytes("prog.nc", b"O2000\nM30\n")
+    note = workspace.not_text("bin.nc")
+    assert note is not None and "NUL bytes" in note
+    assert workspace.not_text("prog.nc") is None and workspace.not_text("other.nc") is None
+    assert sorted(workspace.program_numbers()) == [2000]
+    [only] = analyse("", "bin.nc", doc=workspace.document("bin.nc")).diagnostics
+    assert (only.code, only.line, only.message) == ("MB007", 0, note)
+
+
 def test_random_bytes_never_raise() -> None:
     rng = random.Random(20240611)
     nc_bytes = b"GXZNO#[]()=;%/-+. 0123456789IFGOTOWHILEDOEND\n\r\t"
@@ -738,7 +800,7 @@ def test_random_bytes_never_raise() -> None:
                 rng.randrange(256) for _ in range(size % 50)
             )
         doc = parse_bytes(data, f"random{i}.nc")
-        assert doc.encoding in ("utf-8", "gb18030", "shift_jis", "latin-1")
+        assert doc.encoding in ("utf-8", "gb18030", "shift_jis", "latin-1", BINARY)
         assert len(doc.blocks) == doc.line_count
         for b in doc.blocks:
             assert (b.parsed.problem is None) or (b.parsed.statement is None)

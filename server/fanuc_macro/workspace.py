@@ -12,7 +12,7 @@ from .config import Config
 from .evaluator import Facts
 from .line_maps import line_diff
 from .program.index import Call, ProgramIndex, build_index, index_after_edit
-from .syntax.lines import ReadLimits, decode_bytes
+from .syntax.lines import BINARY, ReadLimits, decode_bytes
 from .syntax.parser import BlockParser, default_parser, parse_text
 from .syntax.tree import Document
 
@@ -151,6 +151,12 @@ class Workspace:
     def remove(self, uri: str) -> None:
         self._entries.pop(uri, None)
         self._facts.pop(uri, None)
+
+    def not_text(self, uri: str) -> str | None:
+        """Why the file ``uri`` was not read, when its bytes are not a program text (the
+        MB007 note; ``syntax.lines.not_text_reason``); None for a text."""
+        entry = self._entries.get(uri)
+        return entry.decode_note if entry is not None and entry.encoding == BINARY else None
 
     def uris(self) -> list[str]:
         return list(self._entries)

@@ -16,9 +16,9 @@ from pathlib import Path
 from .. import __version__
 from ..analysis import analyse, log_failure
 from ..config import CONTROLLERS, NOT_SET, Config
-from ..diagnostics import REPORT_INTERNAL_ERROR, Diagnostic, Severity
+from ..diagnostics import REPORT_INTERNAL_ERROR, RULES, Diagnostic, Severity
 from ..ide.trace import motion_text, trace  # small: what it uses, the check uses too
-from ..workspace import Workspace, is_program_file
+from ..workspace import PROGRAM_SUFFIXES, Workspace, is_program_file
 from .thread import add_thread_command
 
 EXIT_OK = 0
@@ -30,17 +30,32 @@ class UsageError(Exception):
     pass
 
 
-def collect_files(paths: Sequence[str]) -> list[Path]:
+def collect_files(paths: Sequence[str], empty: list[str] | None = None) -> list[Path]:
+    """The program files of ``paths``: a file as given, a folder's program files
+    (``workspace.is_program_file``) in order. A folder without any is added to ``empty``."""
     files: list[Path] = []
     for raw in paths:
         path = Path(raw)
         if path.is_dir():
-            files.extend(p for p in sorted(path.rglob("*")) if p.is_file() and is_program_file(p))
+            found = [p for p in sorted(path.rglob("*")) if p.is_file() and is_program_file(p)]
+            if not found and empty is not None:
+                empty.append(raw)
+            files.extend(found)
         elif path.is_file():
             files.append(path)
         else:
             raise UsageError(f"fanuc-macro: no such file or directory: {raw}")
     return files
+
+
+def one_program_file(command: str, raw: str) -> Path:
+    """The FILE of ``trace``, ``plot``, ``hover`` and ``definition``: one file, not a folder."""
+    path = Path(raw)
+    if path.is_dir():
+        raise UsageError(f"fanuc-macro: {command} takes one program file; {raw} is a folder")
+    if not path.is_file():
+        raise UsageError(f"fanuc-macro: no such file: {raw}")
+    return path
 
 
 def _format_text(path: str, d: Diagnostic) -> str:
@@ -61,10 +76,9 @@ def _as_json(path: str, d: Diagnostic) -> dict[str, object]:
 
 
 def _config(args: argparse.Namespace) -> Config:
-    disabled = frozenset(c.strip().upper() for c in (args.disable or "").split(",") if c.strip())
     return Config(
         controller=args.controller,
-        disabled=disabled,
+        disabled=args.disable or frozenset(),
         max_spindle_speed=args.max_spindle_speed,
         max_threading_feed=args.max_threading_feed,
         extended_commons=args.extended_commons,
@@ -74,6 +88,45 @@ def _config(args: argparse.Namespace) -> Config:
         step_budget=args.step_budget,
         time_limit=args.time_limit,
     )
+
+
+def _rule_codes(text: str) -> frozenset[str]:
+    """``--disable``: comma-separated rule codes, in any case; an unknown one is a usage error
+    that names the nearest known code."""
+    codes = [c.strip().upper() for c in text.split(",") if c.strip()]
+    unknown = [c for c in codes if c not in RULES]
+    if len(unknown) == 1:
+        raise argparse.ArgumentTypeError(
+            f"unknown rule code {unknown[0]!r}: the nearest known one is "
+            f"{_nearest_rule(unknown[0])}"
+        )
+    if unknown:
+        shown = ", ".join(f"{c!r} (nearest: {_nearest_rule(c)})" for c in unknown)
+        raise argparse.ArgumentTypeError(f"unknown rule codes {shown}")
+    return frozenset(codes)
+
+
+def _edit_distance(a: str, b: str) -> int:
+    row = list(range(len(b) + 1))
+    for i, ca in enumerate(a, 1):
+        previous, row[0] = row[0], i
+        for j, cb in enumerate(b, 1):
+            previous, row[j] = row[j], min(row[j] + 1, row[j - 1] + 1, previous + (ca != cb))
+    return row[-1]
+
+
+def _nearest_rule(text: str) -> str:
+    """The known rule nearest to ``text``, by its code (``MB1O1``) or by its name
+    (``lowercse``): the fewest characters to change, of the code's or the name's length."""
+
+    def distance(code: str) -> float:
+        by_code = _edit_distance(text, code) / max(len(text), len(code))
+        name = RULES[code].name
+        by_name = _edit_distance(text.lower(), name) / max(len(text), len(name))
+        return min(by_code, by_name)
+
+    best = min(sorted(RULES), key=distance)
+    return f"{best} {RULES[best].name}"
 
 
 def _whole(text: str) -> int:
@@ -162,7 +215,12 @@ def _add_machine_options(parser: argparse.ArgumentParser) -> None:
 
 
 def cmd_check(args: argparse.Namespace) -> int:
-    files = collect_files(args.paths)
+    empty: list[str] = []
+    files = collect_files(args.paths, empty)
+    for folder in empty:
+        sys.stderr.write(f"fanuc-macro: no programs found in {folder}\n")
+    if not files:  # every PATH is a folder without programs
+        return EXIT_USAGE
     config = _config(args)
     workspace = Workspace(config)
     for path in files:
@@ -190,6 +248,19 @@ def cmd_check(args: argparse.Namespace) -> int:
     return EXIT_ERRORS if any_error else EXIT_OK
 
 
+def read_one(command: str, workspace: Workspace, raw: str) -> str:
+    """Read the FILE of ``trace``, ``plot``, ``hover`` or ``definition`` into ``workspace``;
+    its key. It is one file, not a folder, and a program text (``check`` reports a file that
+    is not as MB007 and goes on; a command that runs or looks into the file stops)."""
+    path = one_program_file(command, raw)
+    key = str(path)
+    workspace.add_bytes(key, path.read_bytes())
+    reason = workspace.not_text(key)
+    if reason is not None:
+        raise UsageError(f"fanuc-macro: {raw}: {reason}")
+    return key
+
+
 def _program_number(text: str) -> int:
     digits = text.upper().lstrip("O")
     if not digits.isdigit():
@@ -199,13 +270,9 @@ def _program_number(text: str) -> int:
 
 def _traced_workspace(args: argparse.Namespace) -> tuple[Config, Workspace, str]:
     """The file of ``trace`` or ``plot`` and the ``--with`` files it calls, read; its URI."""
-    path = Path(args.file)
-    if not path.is_file():
-        raise UsageError(f"fanuc-macro: no such file: {args.file}")
     config = _config(args)
     workspace = Workspace(config)
-    uri = str(path)
-    workspace.add_bytes(uri, path.read_bytes())
+    uri = read_one(args.command, workspace, args.file)
     for extra in collect_files(args.with_files or []):
         if str(extra) != uri:
             workspace.add_bytes(str(extra), extra.read_bytes())
@@ -305,9 +372,11 @@ def _add_place_command(
         help=f"print {what} at LINE COLUMN of FILE (1-based, as editors show them; "
         "exit status 1 when there is none)",
     )
-    command.add_argument("file", metavar="FILE")
-    command.add_argument("line", type=_whole, metavar="LINE")
-    command.add_argument("column", type=_whole, metavar="COLUMN")
+    command.add_argument("file", metavar="FILE", help="the program file")
+    command.add_argument("line", type=_whole, metavar="LINE", help="the line, from 1")
+    command.add_argument(
+        "column", type=_whole, metavar="COLUMN", help="the column in characters, from 1"
+    )
     command.add_argument(
         "--with",
         dest="with_files",
@@ -315,18 +384,38 @@ def _add_place_command(
         metavar="PATH",
         help="more files or folders with the programs it calls",
     )
-    command.add_argument("--format", choices=("text", "json"), default="text")
-    command.add_argument("--controller", choices=CONTROLLERS, default="0i-TF")
-    command.add_argument("--disable", help=argparse.SUPPRESS)
+    _add_format_option(command, "the answer as text (default) or as JSON")
+    _add_rule_options(command)
     _add_machine_options(command)
     _add_analysis_options(command)
     return command
 
 
+def _add_format_option(parser: argparse.ArgumentParser, what: str) -> None:
+    parser.add_argument("--format", choices=("text", "json"), default="text", help=what)
+
+
+def _add_rule_options(parser: argparse.ArgumentParser) -> None:
+    """The controller and the rules, as the editor's fanuc-macro.controller and
+    fanuc-macro.rules.disabled settings."""
+    parser.add_argument(
+        "--controller",
+        choices=CONTROLLERS,
+        default="0i-TF",
+        help="the control the programs are for (default 0i-TF)",
+    )
+    parser.add_argument(
+        "--disable",
+        type=_rule_codes,
+        metavar="CODES",
+        help="comma-separated rule codes to skip, e.g. MB006,MB403 (docs/rules.md lists them)",
+    )
+
+
 def _add_run_options(parser: argparse.ArgumentParser) -> None:
     """What ``trace`` and ``plot`` run: a file, where to start, the files it calls, the
     machine."""
-    parser.add_argument("file", metavar="FILE")
+    parser.add_argument("file", metavar="FILE", help="the program file to run")
     parser.add_argument("--entry", type=_program_number, help="program to start from, e.g. O4009")
     parser.add_argument(
         "--with",
@@ -335,8 +424,7 @@ def _add_run_options(parser: argparse.ArgumentParser) -> None:
         metavar="PATH",
         help="more files or folders with the programs it calls",
     )
-    parser.add_argument("--controller", choices=CONTROLLERS, default="0i-TF")
-    parser.add_argument("--disable", help=argparse.SUPPRESS)
+    _add_rule_options(parser)
     _add_machine_options(parser)
     _add_analysis_options(parser)
 
@@ -357,17 +445,25 @@ def build_parser() -> argparse.ArgumentParser:
     check = sub.add_parser(
         "check", parents=[logs], help="report problems in programs (files or folders)"
     )
-    check.add_argument("paths", nargs="+", metavar="PATH")
-    check.add_argument("--format", choices=("text", "json"), default="text")
-    check.add_argument("--controller", choices=CONTROLLERS, default="0i-TF")
-    check.add_argument("--disable", metavar="CODES", help="comma-separated rule codes to skip")
+    check.add_argument(
+        "paths",
+        nargs="+",
+        metavar="PATH",
+        help="program files, or folders whose program files are checked together (by "
+        f"extension: {', '.join(sorted(PROGRAM_SUFFIXES))}; without one, a name such as "
+        "O1234 or a first line '%%' or 'O<number>')",
+    )
+    _add_format_option(
+        check, "one line PATH:LINE:COLUMN: CODE severity message each (default), or a JSON list"
+    )
+    _add_rule_options(check)
     _add_machine_options(check)
     _add_analysis_options(check)
     check.set_defaults(func=cmd_check)
 
     tr = sub.add_parser("trace", parents=[logs], help="print the motion blocks a program executes")
     _add_run_options(tr)
-    tr.add_argument("--format", choices=("text", "json"), default="text")
+    _add_format_option(tr, "one line a motion and a summary (default), or JSON")
     tr.set_defaults(func=cmd_trace)
 
     pl = sub.add_parser(

@@ -7,7 +7,6 @@ from __future__ import annotations
 import argparse
 import json
 import sys
-from pathlib import Path
 
 from ..config import Config
 from ..ide.data import Location
@@ -15,16 +14,12 @@ from ..ide.hover import hover
 from ..ide.navigation import definition
 from ..ide.view import View
 from ..workspace import Workspace
-from . import EXIT_ERRORS, EXIT_OK, UsageError, collect_files
+from . import EXIT_ERRORS, EXIT_OK, collect_files, read_one
 
 
 def _view(args: argparse.Namespace, config: Config) -> View:
-    path = Path(args.file)
-    if not path.is_file():
-        raise UsageError(f"fanuc-macro: no such file: {args.file}")
     workspace = Workspace(config)
-    key = str(path)
-    workspace.add_bytes(key, path.read_bytes())
+    key = read_one(args.command, workspace, args.file)
     for extra in collect_files(args.with_files or []):
         if str(extra) != key:
             workspace.add_bytes(str(extra), extra.read_bytes())

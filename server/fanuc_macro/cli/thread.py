@@ -119,8 +119,20 @@ def add_thread_command(
     thread.add_argument(
         "--spring-passes", type=_count, default=8, metavar="N", help="spring passes (default 8)"
     )
-    thread.add_argument("--main", type=_program, default=None, metavar="O4009")
-    thread.add_argument("--sub", type=_program, default=None, metavar="O3331")
+    thread.add_argument(
+        "--main",
+        type=_program,
+        default=None,
+        metavar="O4009",
+        help="number of the main program (default O4009 external, O4010 internal)",
+    )
+    thread.add_argument(
+        "--sub",
+        type=_program,
+        default=None,
+        metavar="O3331",
+        help="number of the sub-program (default O3331 external, O3330 internal)",
+    )
     thread.add_argument(
         "--td2", type=float, default=None, metavar="MM", help="Td2/TD2 instead of the table's"
     )

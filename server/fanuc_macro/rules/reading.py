@@ -32,7 +32,8 @@ register(
     RuleInfo("MB006", "lowercase", Severity.WARNING,
              "Lowercase letters outside comments; FANUC program text is uppercase.", FAMILY),
     RuleInfo("MB007", "encoding", Severity.INFORMATION,
-             "The file is not UTF-8; it was read in another encoding.", FAMILY),
+             "The file is not UTF-8; it was read in another encoding, or, not being text, "
+             "not read.", FAMILY),
     RuleInfo("MB008", "unknown-function", Severity.ERROR,
              "A name used as a function that FANUC does not have.", FAMILY),
     RuleInfo("MB009", "tape-mark-not-alone", Severity.WARNING,
@@ -220,6 +221,12 @@ The file is not UTF-8; it was read as GB18030 (Chinese) or Shift-JIS
 (Japanese), or, when neither fits, as Latin-1. The message names the encoding used and the
 first non-ASCII text, with its line (the diagnostic's related location points at it). It is
 reported on the first line.
+
+A file that is not a program text at all is reported once, here, and not analysed: one that
+holds NUL bytes (a binary file, or text saved as UTF-16 without a byte order mark), one whose
+first 8,000 bytes are more than 5% control codes other than tab, the line ends, form feed,
+DC1-DC4 and SUB, and one that starts with a UTF-16 or UTF-32 byte order mark. NUL bytes
+before and after the text, a punched tape's leader and trailer, do not count.
 """,
         why="""
 Nothing changes for the motion, since only comments hold
@@ -240,12 +247,14 @@ M30
 """,
         fix="""
 Nothing to fix if the encoding is right and the control accepts these
-comments. To avoid the question, save files as UTF-8 or keep comments in ASCII.
+comments. To avoid the question, save files as UTF-8 or keep comments in ASCII. A file that is
+not a program text: leave it out of the folder checked, or save the program as UTF-8 text.
 """,
         not_reported="""
 A file in UTF-8 (with or without a byte order mark), which includes
 plain ASCII, and a document open in the editor: the editor has already decoded it, so only the
-files the workspace reads from disk, and the command line's, are judged.
+files the workspace reads from disk, and the command line's, are judged. The programs and
+problems of a file that is not text: its bytes are not read as a program.
 """,
     ),
     RuleDoc(

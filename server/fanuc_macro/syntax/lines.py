@@ -53,13 +53,51 @@ def _rare_hanzi_count(text: str) -> int:
     return rare
 
 
+# What is looked at to tell a program text from a binary file: the start, as git does.
+_SNIFF = 8000
+# Control bytes that a program text may hold: tab, line ends, form feed, the tape reader's
+# DC1-DC4 (ISO 840 device controls), and SUB, the end-of-file mark of DOS files.
+_TEXT_CONTROLS = frozenset(b"\t\n\v\f\r\x11\x12\x13\x14\x1a")
+_CONTROL_BYTES = bytes(b for b in range(32) if b not in _TEXT_CONTROLS)
+_BINARY_SHARE = 0.05  # of the bytes looked at: control bytes no text holds
+BINARY = "binary"  # ``DecodedText.encoding`` of bytes that are not program text
+
+
+def not_text_reason(data: bytes) -> str | None:
+    """Why ``data`` is not a program text, or None when it may be one: NUL bytes, or many other
+    control bytes, in its first 8,000 bytes (after a punched tape's leader of NULs, the blank
+    tape that carries only feed holes); a UTF-16 or UTF-32 byte order mark."""
+    if data.startswith((codecs.BOM_UTF32_LE, codecs.BOM_UTF32_BE)):
+        return "it is UTF-32 text (save it as UTF-8 or ASCII)"
+    if data.startswith((codecs.BOM_UTF16_LE, codecs.BOM_UTF16_BE)):
+        return "it is UTF-16 text (save it as UTF-8 or ASCII)"
+    leader = len(data) - len(data.lstrip(b"\0"))
+    sample = data[leader : leader + _SNIFF].rstrip(b"\0")
+    nul = sample.find(0)
+    if nul >= 0:
+        return (
+            f"it holds NUL bytes (the first at byte {leader + nul + 1}): a binary file, or "
+            "text saved as UTF-16"
+        )
+    controls = len(sample) - len(sample.translate(None, _CONTROL_BYTES))
+    if controls > len(sample) * _BINARY_SHARE:
+        return f"{controls} of its first {len(sample):,} bytes are control codes: a binary file"
+    return None
+
+
 def decode_bytes(data: bytes) -> DecodedText:
     """Decode a program file. UTF-8 first; then GB18030 or Shift-JIS (common in comments).
 
     Both legacy encodings accept most byte strings, so the choice is made on what the text
     looks like: Japanese comments have kana, Chinese ones do not; GB18030 bytes read as
     Shift-JIS turn into half-width katakana.
+
+    Bytes that are not a program text (:func:`not_text_reason`) are not read: the text is
+    empty, the encoding :data:`BINARY`, and the note says why.
     """
+    reason = not_text_reason(data)
+    if reason is not None:
+        return DecodedText("", BINARY, f"not a program text: {reason}; the file is not analysed")
     if data.startswith(codecs.BOM_UTF8):
         data = data[len(codecs.BOM_UTF8) :]
     try:
