@@ -1489,16 +1489,9 @@ class Machine:
         now (with the variables' values now) and checked, each block counted as reached, none
         run (no motion, no modal change)."""
         line = self._line
-        ctx = act.ctx
-        facts = ctx.facts
-        runs = facts.runs
         blocks: list[ProfileBlock] = []
         for n in range(first, last + 1):
-            pcl = ctx.lines[n]
-            self._line = n
-            runs[n] = runs.get(n, 0) + 1
-            if pcl.reads:
-                self._record_reads(act, pcl, facts)
+            pcl = self._profile_line(act, n)
             if pcl.kind != K_NC:
                 continue
             try:
@@ -1513,21 +1506,25 @@ class Machine:
         self._line = line
         return blocks
 
+    def _profile_line(self, act: Activation, n: int) -> CompiledLine:
+        """Line ``n`` of a profile, counted as reached and its reads recorded: the block the
+        evaluator is at from now on."""
+        pcl = act.ctx.lines[n]
+        self._line = n
+        facts = act.ctx.facts
+        facts.runs[n] = facts.runs.get(n, 0) + 1
+        if pcl.reads:
+            self._record_reads(act, pcl, facts)
+        return pcl
+
     def _run_profile(self, act: Activation, first: int, last: int) -> None:
         """G70: the blocks N(ns) to N(nf) run as blocks of the G70 (the step budget counts the
         G70 once), then the tool is back at the G70's start point."""
         line = self._line
-        ctx = act.ctx
-        facts = ctx.facts
-        runs = facts.runs
         modal = self.modal
         start, start_lines = dict(modal.position), dict(modal.position_line)
         for n in range(first, last + 1):
-            pcl = ctx.lines[n]
-            self._line = n
-            runs[n] = runs.get(n, 0) + 1
-            if pcl.reads:
-                self._record_reads(act, pcl, facts)
+            pcl = self._profile_line(act, n)
             if pcl.kind != K_NC:
                 continue
             try:
