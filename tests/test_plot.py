@@ -309,3 +309,36 @@ def test_plot_of_a_program_without_moves_says_so_and_exits_2(tmp_path: Path) -> 
     assert not (tmp_path / "empty.svg").exists()
     missing = _plot(tmp_path, "no-such-file.nc")
     assert missing.returncode == 2 and "no such file" in missing.stderr
+
+
+def test_plot_of_a_g71_draws_its_layers_and_g70_its_profile(tmp_path: Path) -> None:
+    """The stock removal cycle through the command line: G71's feeds are its seven layers and
+    the semi-finishing pass, linked to the G71 block; G70 runs the profile, each cut linked to
+    its own block, and returns to the start point from the G70 block."""
+    program = tmp_path / "g71.nc"
+    blocks = [
+        "%",
+        "O0001",
+        "G00 X50. Z2.",
+        "G71 U2. R0.5",
+        "G71 P10 Q20 U0.4 W0.1 F0.25",
+        "N10 G00 X20.",
+        "G01 Z-10.",
+        "X40.",
+        "N20 Z-30.",
+        "G70 P10 Q20",
+        "G00 X100.",
+        "M30",
+        "%",
+    ]
+    program.write_text("\n".join(blocks) + "\n", encoding="utf-8")
+    done = _plot(tmp_path, str(program))
+    assert done.returncode == 0, done.stderr
+    moves = _elements((tmp_path / "g71.svg").read_text(encoding="utf-8"))
+    by_line = Counter((int(e.get("data-line", "0")), e.get("data-kind")) for e in moves)
+    g71 = blocks.index("G71 P10 Q20 U0.4 W0.1 F0.25") + 1
+    assert by_line[(g71, "feed")] == 7 + 1  # X46 ... X22, then the semi-finish
+    g70 = blocks.index("G70 P10 Q20") + 1
+    profile = [blocks.index(b) + 1 for b in ("G01 Z-10.", "X40.", "N20 Z-30.")]
+    assert [by_line[(line, "feed")] for line in profile] == [1, 1, 1]
+    assert by_line[(g70, "rapid")] == 1 and by_line[(g70, "feed")] == 0
