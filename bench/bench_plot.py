@@ -30,6 +30,7 @@ import tempfile
 import time
 from collections.abc import Callable
 from pathlib import Path
+from typing import Any
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(Path(__file__).resolve().parent))
@@ -146,6 +147,13 @@ def plot_figures(pythonpath: str, path: Path, controller: str) -> dict[str, floa
     }
 
 
+def segment_count(data: dict[str, Any]) -> int:
+    """The view payload's segments, in its packed form (``count``) or main's lists."""
+    if "count" in data:
+        return int(data["count"])
+    return len(data["segments"]["kind"])
+
+
 def view_child(path: str, controller: str, dump: str = "") -> None:
     """In the child: the run with the toolpath, ``view_data`` and its JSON, timed apart; the
     JSON written to ``dump`` when one is named (for bench_view_lod.mjs)."""
@@ -182,7 +190,7 @@ def view_child(path: str, controller: str, dump: str = "") -> None:
                 "json_s": t3 - t2,
                 "json_mb": len(text) / 1e6,
                 "moves": len(toolpath.moves),
-                "segments": len(data["segments"]["kind"]),
+                "segments": segment_count(data),
             }
         )
     )
@@ -233,7 +241,7 @@ async def server_figures(pythonpath: str, path: Path, controller: str) -> dict[s
     figures = {
         "diagnostics_s": first - t0,
         "command_s": got - sent,
-        "segments": len(result["segments"]["kind"]),
+        "segments": segment_count(result),
         "hwm_mb": rss_kib(server.pid).get("VmHWM", 0) / 1024,
     }
     await client.shutdown_async(None)

@@ -5,6 +5,7 @@ from __future__ import annotations
 import asyncio
 import concurrent.futures
 import importlib.util
+import math
 import os
 import random
 import subprocess
@@ -21,6 +22,8 @@ import pytest_lsp
 from lsprotocol import types
 from pygls.exceptions import JsonRpcException, JsonRpcInternalError, JsonRpcInvalidParams
 from pytest_lsp import ClientServerConfig, LanguageClient
+
+from view_payload import unpacked
 
 ROOT = Path(__file__).resolve().parents[1]
 SEEDS = ROOT / "tests" / "fixtures" / "seeds"
@@ -681,16 +684,19 @@ async def test_toolpath_command_gives_the_views_segments(client: LanguageClient)
         ),
         WAIT,
     )
-    assert isinstance(result, dict) and result["lathe"] is True
-    segments = result["segments"]
+    assert isinstance(result, dict) and result["lathe"] is True and result["format"] == 2
+    segments = unpacked(result)  # base64 of little-endian typed arrays
     thread = result["kinds"].index("thread")
     cuts = [i for i, k in enumerate(segments["kind"]) if k == thread]
     assert len(cuts) == 186  # one per G92 pass
     first = cuts[0]
     assert segments["line"][first] == 31  # 0-based: the G92 of trace line 32
-    # X as a radius (the drawing's geometry), Y unknown on the lathe.
-    assert segments["start"][first * 3 : first * 3 + 3] == pytest.approx([24.908, None, 5.964])
-    assert segments["end"][first * 3 + 2] == pytest.approx(-54.036)
+    # X as a radius (the drawing's geometry), Y unknown (NaN) on the lathe.
+    x, y, z = segments["start"][first]
+    assert (x, z) == pytest.approx((24.908, 5.964)) and math.isnan(y)
+    assert segments["end"][first][2] == pytest.approx(-54.036)
+    # The pass's infeed ends where the thread starts: they share the point.
+    assert segments["point"][first] == segments["point"][first - 1] + 1
     none = await asyncio.wait_for(
         client.workspace_execute_command_async(
             types.ExecuteCommandParams(command="fanuc-macro.toolpath", arguments=[])

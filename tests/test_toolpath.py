@@ -18,6 +18,7 @@ from fanuc_macro.evaluator.toolpath import Move, Toolpath
 from fanuc_macro.evaluator.values import Unknown
 from fanuc_macro.program.index import build_index
 from fanuc_macro.syntax.parser import parse_text
+from view_payload import unpacked
 
 ROOT = Path(__file__).resolve().parents[1]
 SEEDS = ROOT / "tests" / "fixtures" / "seeds"
@@ -851,12 +852,43 @@ def test_the_views_arc_segments_are_written_to_a_tenth_of_a_micron() -> None:
         clockwise=False,
         plane="XY",
     )
-    segments = view_data(Toolpath([arc], lathe=False), "file:///a.nc")["segments"]
+    segments = unpacked(view_data(Toolpath([arc], lathe=False), "file:///a.nc"))
     assert len(segments["kind"]) == 18  # a quarter of 72 segments a turn
-    values = [v for v in (*segments["start"], *segments["end"]) if v is not None]
-    assert all(v == round(v, ARC_DECIMALS) for v in values)
-    assert segments["start"][:3] == [10.0, 0.0, -1.0] and segments["end"][-3:] == [0.0, 10.0, -1.0]
+    # The arc's pieces meet: 19 points, each segment from its point to the next.
+    points = segments["points"]
+    assert len(points) == 19 * 3 and segments["point"] == list(range(18))
+    assert all(v == round(v, ARC_DECIMALS) for v in points)
+    assert points[:3] == [10.0, 0.0, -1.0] and points[-3:] == [0.0, 10.0, -1.0]
     # On the circle, to the rounding.
-    for i in range(0, len(segments["start"]), 3):
-        x, y = segments["start"][i], segments["start"][i + 1]
-        assert math.hypot(x, y) == pytest.approx(10.0, abs=1e-4)
+    for i in range(0, len(points), 3):
+        assert math.hypot(points[i], points[i + 1]) == pytest.approx(10.0, abs=1e-4)
+
+
+def test_the_view_joins_moves_that_meet_and_keeps_a_lathes_unknown_y() -> None:
+    from fanuc_macro.ide.toolpath_view import view_data
+
+    # A lathe's G92 pass (O3331's first, diameters 51 and 49.816): X drawn as a radius.
+    moves = [
+        Move("rapid", {"X": 51.0, "Z": 5.964}, {"X": 49.816, "Z": 5.964}, 40, "O1"),
+        Move("thread", {"X": 49.816, "Z": 5.964}, {"X": 49.816, "Z": -54.036}, 40, "O1"),
+        Move("rapid", {"X": 49.816, "Z": -54.036}, {"X": 51.0, "Z": -54.036}, 40, "O1"),
+        # After a gap (an unknown position, say): its own start point.
+        Move("feed", {"X": 60.0, "Z": 0.0}, {"X": 60.0, "Z": -1.0}, 41, "O2", uri="file:///b.nc"),
+    ]
+    data = view_data(Toolpath(moves, lathe=True), "file:///a.nc")
+    s = unpacked(data)
+    assert data["paths"] == ["file:///a.nc", "file:///b.nc"] and data["count"] == 4
+    kinds = data["kinds"]
+    assert [kinds[k] for k in s["kind"]] == ["rapid", "thread", "rapid", "feed"]
+    assert s["line"] == [40, 40, 40, 41] and s["path"] == [0, 0, 0, 1]
+    assert s["point"] == [0, 1, 2, 4]
+    xyz = [tuple(s["points"][i : i + 3]) for i in range(0, len(s["points"]), 3)]
+    assert len(xyz) == 6 and all(math.isnan(y) for _, y, _ in xyz)
+    assert [(x, z) for x, _, z in xyz] == [
+        (25.5, 5.964),
+        (24.908, 5.964),
+        (24.908, -54.036),
+        (25.5, -54.036),
+        (30.0, 0.0),
+        (30.0, -1.0),
+    ]

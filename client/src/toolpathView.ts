@@ -7,6 +7,8 @@ import * as vscode from 'vscode';
 export const SERVER_COMMAND_TOOLPATH = 'fanuc-macro.toolpath';
 /** How long typing pauses before the view asks for the toolpath again. */
 export const FOLLOW_DELAY_MS = 400;
+/** The layout of the command's answer the view reads (ide/toolpath_view.py VIEW_FORMAT). */
+export const TOOLPATH_FORMAT = 2;
 
 type Execute = (command: string, args: unknown[]) => Promise<unknown>;
 
@@ -23,6 +25,11 @@ export function toolpathError(answer: unknown): string | undefined {
   if (typeof error === 'string') return error;
   const segments = (answer as { segments?: unknown }).segments;
   if (segments === null || typeof segments !== 'object') return 'the server gave no segments';
+  // The segments come packed (base64 of typed arrays); a server of another layout is refused.
+  const format = (answer as { format?: unknown }).format;
+  if (format !== TOOLPATH_FORMAT) {
+    return `the server's toolpath is of format ${String(format ?? 1)}, this view reads ${TOOLPATH_FORMAT}: update the extension and the server together`;
+  }
   return undefined;
 }
 

@@ -8,33 +8,60 @@ import {
   segmentMiddle,
   segmentsByLine,
   toScreen,
+  decodeBase64,
   toSegments,
   toWorld,
   trace,
   zoomAt,
   type PathSink,
   type ToolpathData,
+  VIEW_FORMAT,
 } from '../webview/toolpathGeometry';
-import { toolpathError, toolpathHtml } from '../src/toolpathView';
+import { TOOLPATH_FORMAT, toolpathError, toolpathHtml } from '../src/toolpathView';
+
+/** Base64 of a typed array's bytes, as the server writes it (little-endian, as node's are). */
+function b64(array: Uint8Array | Uint16Array | Int32Array | Float64Array): string {
+  return Buffer.from(array.buffer, array.byteOffset, array.byteLength).toString('base64');
+}
+
+/** The answer of segments given as lists: each segment's start and end x, y, z (null unknown). */
+function packed(
+  base: Omit<ToolpathData, 'count' | 'points' | 'segments'>,
+  kind: number[],
+  line: number[],
+  path: number[],
+  points: (number | null)[],
+  point: number[],
+): ToolpathData {
+  return {
+    ...base,
+    count: kind.length,
+    points: b64(Float64Array.from(points, (v) => v ?? Number.NaN)),
+    segments: {
+      kind: b64(Uint8Array.from(kind)),
+      line: b64(Int32Array.from(line)),
+      path: b64(Uint16Array.from(path)),
+      point: b64(Int32Array.from(point)),
+    },
+  };
+}
+
+const LATHE = {
+  format: VIEW_FORMAT,
+  lathe: true,
+  units: 'mm',
+  kinds: ['rapid', 'feed', 'thread', 'arc'],
+  paths: ['file:///o3331.nc'],
+  lost: [],
+  truncated: false,
+};
 
 /** The first G92 pass of O3331 as the server sends it: X as a radius (51 / 2, 49.816 / 2). */
 function g92(): ToolpathData {
   const p = (x: number, z: number): (number | null)[] => [x, null, z];
-  return {
-    lathe: true,
-    units: 'mm',
-    kinds: ['rapid', 'feed', 'thread', 'arc'],
-    paths: ['file:///o3331.nc'],
-    segments: {
-      kind: [0, 2, 0, 0],
-      line: [40, 40, 40, 41],
-      path: [0, 0, 0, 0],
-      start: [...p(25.5, 5.964), ...p(24.908, 5.964), ...p(24.908, -54.036), ...p(25.5, -54.036)],
-      end: [...p(24.908, 5.964), ...p(24.908, -54.036), ...p(25.5, -54.036), ...p(25.5, 5.964)],
-    },
-    lost: [],
-    truncated: false,
-  };
+  // Infeed, thread, retract, return: four segments joined through five points.
+  const points = [...p(25.5, 5.964), ...p(24.908, 5.964), ...p(24.908, -54.036), ...p(25.5, -54.036), ...p(25.5, 5.964)];
+  return packed(LATHE, [0, 2, 0, 0], [40, 40, 40, 41], [0, 0, 0, 0], points, [0, 1, 2, 3]);
 }
 
 class Recorder implements PathSink {
@@ -46,6 +73,40 @@ class Recorder implements PathSink {
     this.pieces.push(`L${x.toFixed(1)},${y.toFixed(1)}`);
   }
 }
+
+describe('the packed segments', () => {
+  it('decodes base64 into typed arrays over their own buffers', () => {
+    const segments = toSegments(g92());
+    assert.equal(segments.count, 4);
+    assert.deepEqual([...segments.kind], [0, 2, 0, 0]);
+    assert.deepEqual([...segments.line], [40, 40, 40, 41]);
+    assert.deepEqual([...segments.point], [0, 1, 2, 3]);
+    assert.equal(segments.xyz.length, 15);
+    // The thread's start and end, Y unknown (NaN) on the lathe.
+    const o = segments.point[1]! * 3;
+    assert.deepEqual([segments.xyz[o], segments.xyz[o + 2], segments.xyz[o + 3], segments.xyz[o + 5]], [24.908, 5.964, 24.908, -54.036]);
+    assert.ok(Number.isNaN(segments.xyz[o + 1]!));
+    // float64 keeps a tenth of a micron at ten metres.
+    const far = toSegments(packed(LATHE, [1], [0], [0], [9999.9999, 0, -9999.9999, 9999.9998, 0, 0], [0]));
+    assert.deepEqual([...far.xyz.subarray(0, 4)], [9999.9999, 0, -9999.9999, 9999.9998]);
+    // A text of 7 bytes: an odd length, still decoded from offset 0 of its own buffer.
+    const odd = decodeBase64(Buffer.from([1, 2, 3, 4, 5, 6, 7]).toString('base64'));
+    assert.deepEqual([...new Uint8Array(odd)], [1, 2, 3, 4, 5, 6, 7]);
+  });
+  it('refuses arrays that do not fit together and another format', () => {
+    const good = g92();
+    const short = { ...good, segments: { ...good.segments, line: b64(Int32Array.from([40, 40, 40])) } };
+    assert.throws(() => toSegments(short), /do not match its 4 segments/);
+    const torn = { ...good, points: good.points.slice(0, 8) }; // 6 bytes: not a float64
+    assert.throws(() => toSegments(torn), /cut short/);
+    const beyond = { ...good, segments: { ...good.segments, point: b64(Int32Array.from([0, 1, 2, 4])) } };
+    assert.throws(() => toSegments(beyond), /segment 3 has no point 4/);
+    assert.throws(() => toSegments({ ...good, format: 1 }), /format 1/);
+    assert.equal(TOOLPATH_FORMAT, VIEW_FORMAT);
+    const lists = { segments: { kind: [0], line: [1], path: [0], start: [0, 0, 0], end: [1, 0, 0] } };
+    assert.match(toolpathError(lists) ?? '', /format 1, this view reads 2/);
+  });
+});
 
 describe('projection', () => {
   it('draws a lathe Z across and X up, a mill in its planes', () => {
@@ -101,17 +162,16 @@ describe('trace (level of detail)', () => {
   });
   it('leaves out what is smaller than a pixel', () => {
     const n = 10_000;
-    const start: number[] = [];
-    const end: number[] = [];
-    for (let i = 0; i < n; i++) {
-      start.push(i * 0.001, 0, 0);
-      end.push((i + 1) * 0.001, 0, 0);
-    }
-    const data: ToolpathData = {
-      ...g92(),
-      lathe: false,
-      segments: { kind: new Array(n).fill(1), line: new Array(n).fill(1), path: new Array(n).fill(0), start, end },
-    };
+    const points: number[] = [];
+    for (let i = 0; i <= n; i++) points.push(i * 0.001, 0, 0);
+    const data = packed(
+      { ...LATHE, lathe: false },
+      new Array<number>(n).fill(1),
+      new Array<number>(n).fill(1),
+      new Array<number>(n).fill(0),
+      points,
+      Array.from({ length: n }, (_, i) => i),
+    );
     const segments = toSegments(data);
     const t = { scale: 10, centreH: 5, centreV: 0, width: 200, height: 100 }; // 10 mm: 100 px
     const sink = new Recorder();

@@ -106,7 +106,7 @@ function paint(): void {
     const glow = new Path2D();
     const xyz = segments.xyz;
     for (const i of lit) {
-      const o = i * 6;
+      const o = segments.point[i]! * 3;
       const [h0, v0] = project(xyz[o]!, xyz[o + 1]!, xyz[o + 2]!);
       const [h1, v1] = project(xyz[o + 3]!, xyz[o + 4]!, xyz[o + 5]!);
       if (Number.isNaN(h0 + v0 + h1 + v1)) continue;
@@ -138,8 +138,15 @@ window.addEventListener('message', (event: MessageEvent<Incoming>) => {
   if (message.type === 'data') {
     const first = data === undefined;
     const lathe = message.data.lathe;
+    let unpacked: Segments;
+    try {
+      unpacked = toSegments(message.data);
+    } catch (err) {
+      info.textContent = `${message.title}: ${err instanceof Error ? err.message : String(err)}`;
+      return;
+    }
     data = message.data;
-    segments = toSegments(data);
+    segments = unpacked;
     byLine = segmentsByLine(segments);
     canvas.dataset.segments = String(segments.count);
     if (first) {

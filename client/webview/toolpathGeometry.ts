@@ -2,18 +2,28 @@
 // server sends (ide/toolpath_view.py), their projection on a plane or an orbiting camera, the
 // view transform, the level of detail and the hit test.
 
-/** What the server's `fanuc-macro.toolpath` command answers. */
+/** The layout of the server's answer this view reads (ide/toolpath_view.py VIEW_FORMAT). */
+export const VIEW_FORMAT = 2;
+
+/**
+ * What the server's `fanuc-macro.toolpath` command answers. The arrays are base64 of
+ * little-endian typed arrays: `points` float64 x, y, z per point (NaN unknown); per segment
+ * `kind` uint8 (indexes `kinds`), `line` int32 (0-based), `path` uint16 (indexes `paths`) and
+ * `point` int32, the segment's start point (its end is the next point).
+ */
 export interface ToolpathData {
+  format: number;
   lathe: boolean;
   units: string;
   kinds: string[];
   paths: string[];
+  count: number;
+  points: string;
   segments: {
-    kind: number[];
-    line: number[];
-    path: number[];
-    start: (number | null)[];
-    end: (number | null)[];
+    kind: string;
+    line: string;
+    path: string;
+    point: string;
   };
   lost: { line: number; path: number; axes: string[]; reason: string }[];
   truncated: boolean;
@@ -27,27 +37,60 @@ export interface Segments {
   kind: Uint8Array;
   line: Int32Array;
   path: Uint16Array;
-  /** x, y, z of the start then of the end: 6 numbers per segment. */
+  /** Each segment's start point in `xyz` (an index of points); its end is the next point. */
+  point: Int32Array;
+  /** x, y, z per point. */
   xyz: Float64Array;
 }
 
-export function toSegments(data: ToolpathData): Segments {
-  const s = data.segments;
-  const count = s.kind.length;
-  const xyz = new Float64Array(count * 6);
-  for (let i = 0; i < count; i++) {
-    for (let k = 0; k < 3; k++) {
-      xyz[i * 6 + k] = s.start[i * 3 + k] ?? Number.NaN;
-      xyz[i * 6 + 3 + k] = s.end[i * 3 + k] ?? Number.NaN;
-    }
+const LITTLE_ENDIAN = new Uint8Array(new Uint16Array([1]).buffer)[0] === 1;
+
+/** The bytes of a base64 text, in a buffer of their own (so aligned for any typed array). */
+export function decodeBase64(text: string): ArrayBuffer {
+  const binary = atob(text);
+  const bytes = new Uint8Array(binary.length);
+  for (let i = 0; i < binary.length; i++) bytes[i] = binary.charCodeAt(i);
+  return bytes.buffer;
+}
+
+type Typed = Uint8Array | Uint16Array | Int32Array | Float64Array;
+
+function unpack<T extends Typed>(
+  text: string,
+  make: (buffer: ArrayBuffer) => T,
+  read: (view: DataView, offset: number) => number,
+  name: string,
+): T {
+  const buffer = decodeBase64(text);
+  const array = make(buffer);
+  if (array.byteLength !== buffer.byteLength) throw new Error(`the toolpath's ${name} is cut short`);
+  if (!LITTLE_ENDIAN && array.BYTES_PER_ELEMENT > 1) {
+    const view = new DataView(buffer.slice(0));
+    for (let i = 0; i < array.length; i++) array[i] = read(view, i * array.BYTES_PER_ELEMENT);
   }
-  return {
-    count,
-    kind: Uint8Array.from(s.kind),
-    line: Int32Array.from(s.line),
-    path: Uint16Array.from(s.path),
-    xyz,
-  };
+  return array;
+}
+
+/** The answer's arrays as typed arrays; throws when they do not fit together. */
+export function toSegments(data: ToolpathData): Segments {
+  if (data.format !== VIEW_FORMAT) throw new Error(`the server's toolpath is of format ${data.format}, the view reads ${VIEW_FORMAT}`);
+  const s = data.segments;
+  const length = (buffer: ArrayBuffer, size: number): number => Math.floor(buffer.byteLength / size);
+  const kind = unpack(s.kind, (b) => new Uint8Array(b), (v, o) => v.getUint8(o), 'kinds');
+  const line = unpack(s.line, (b) => new Int32Array(b, 0, length(b, 4)), (v, o) => v.getInt32(o, true), 'lines');
+  const path = unpack(s.path, (b) => new Uint16Array(b, 0, length(b, 2)), (v, o) => v.getUint16(o, true), 'paths');
+  const point = unpack(s.point, (b) => new Int32Array(b, 0, length(b, 4)), (v, o) => v.getInt32(o, true), 'points');
+  const xyz = unpack(data.points, (b) => new Float64Array(b, 0, length(b, 8)), (v, o) => v.getFloat64(o, true), 'positions');
+  const count = data.count;
+  if ([kind, line, path, point].some((a) => a.length !== count) || xyz.length % 3 !== 0) {
+    throw new Error(`the toolpath's arrays do not match its ${count} segments`);
+  }
+  const points = xyz.length / 3;
+  for (let i = 0; i < count; i++) {
+    const p = point[i]!;
+    if (p < 0 || p + 1 >= points) throw new Error(`the toolpath's segment ${i} has no point ${p}`);
+  }
+  return { count, kind, line, path, point, xyz };
 }
 
 /** Where a point of the world goes across (h) and up (v) in a view. */
@@ -107,8 +150,8 @@ export function fit(segments: Segments, project: Projection, width: number, heig
   let vMin = Infinity;
   let vMax = -Infinity;
   const xyz = segments.xyz;
-  for (let i = 0; i < segments.count * 2; i++) {
-    const [h, v] = project(xyz[i * 3]!, xyz[i * 3 + 1]!, xyz[i * 3 + 2]!);
+  for (let o = 0; o < xyz.length; o += 3) {
+    const [h, v] = project(xyz[o]!, xyz[o + 1]!, xyz[o + 2]!);
     if (Number.isNaN(h) || Number.isNaN(v)) continue;
     if (h < hMin) hMin = h;
     if (h > hMax) hMax = h;
@@ -168,7 +211,7 @@ export function trace(
     const kind = segments.kind[i]!;
     const sink = sinks[kind];
     if (sink === undefined) continue;
-    const o = i * 6;
+    const o = segments.point[i]! * 3;
     const [h0, v0] = project(xyz[o]!, xyz[o + 1]!, xyz[o + 2]!);
     const [h1, v1] = project(xyz[o + 3]!, xyz[o + 4]!, xyz[o + 5]!);
     if (Number.isNaN(h0 + v0 + h1 + v1)) continue;
@@ -218,7 +261,7 @@ export function hitTest(
   let bestDistance = tolerance;
   const xyz = segments.xyz;
   for (let i = 0; i < segments.count; i++) {
-    const o = i * 6;
+    const o = segments.point[i]! * 3;
     const [h0, v0] = project(xyz[o]!, xyz[o + 1]!, xyz[o + 2]!);
     const [h1, v1] = project(xyz[o + 3]!, xyz[o + 4]!, xyz[o + 5]!);
     if (Number.isNaN(h0 + v0 + h1 + v1)) continue;
@@ -257,7 +300,7 @@ export function segmentMiddle(
   index: number,
 ): [number, number] | null {
   const xyz = segments.xyz;
-  const o = index * 6;
+  const o = segments.point[index]! * 3;
   const [h0, v0] = project(xyz[o]!, xyz[o + 1]!, xyz[o + 2]!);
   const [h1, v1] = project(xyz[o + 3]!, xyz[o + 4]!, xyz[o + 5]!);
   if (Number.isNaN(h0 + v0 + h1 + v1)) return null;
