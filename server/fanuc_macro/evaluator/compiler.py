@@ -6,6 +6,7 @@ is what makes a few hundred thousand macro statements a second possible in Pytho
 
 from __future__ import annotations
 
+import operator
 from collections.abc import Callable
 from typing import Any, Protocol
 
@@ -314,6 +315,31 @@ def _slow_binary(expr: Binary, a: Value, b: Value) -> Value:
     raise _overflow(expr, x, y)
 
 
+# The operations that hold a number on their right in their closure (a division by zero
+# takes the general way, which raises the control's alarm).
+_NUMBER_OPS: dict[str, Callable[[float, float], float]] = {
+    "+": operator.add,
+    "-": operator.sub,
+    "*": operator.mul,
+    "/": operator.truediv,
+}
+
+
+def _with_number(
+    expr: Binary, left: Evaluator, fn: Callable[[float, float], float], c: float
+) -> Evaluator:
+    def with_number(f: Frame) -> Value:
+        a = left(f)
+        if a.__class__ is _float:
+            result = fn(a, c)
+            if -_LARGEST <= result <= _LARGEST:
+                return result
+            raise _overflow(expr, a, c)
+        return _slow_binary(expr, a, c)
+
+    return with_number
+
+
 def _compile_binary(
     expr: Binary, left: Evaluator, right: Evaluator, constant_right: float | None
 ) -> Evaluator:
@@ -323,56 +349,8 @@ def _compile_binary(
     op = expr.op
     # Each operation checks its result: an overflow is the control's alarm where it happens,
     # with its operands, and no inf or NaN reaches the rest of the analysis.
-    if constant_right is not None and op in "+-*/":
-        c = constant_right
-        if op == "+":
-
-            def add_number(f: Frame) -> Value:
-                a = left(f)
-                if a.__class__ is _float:
-                    result = a + c
-                    if -_LARGEST <= result <= _LARGEST:
-                        return result
-                    raise _overflow(expr, a, c)
-                return _slow_binary(expr, a, c)
-
-            return add_number
-        if op == "-":
-
-            def sub_number(f: Frame) -> Value:
-                a = left(f)
-                if a.__class__ is _float:
-                    result = a - c
-                    if -_LARGEST <= result <= _LARGEST:
-                        return result
-                    raise _overflow(expr, a, c)
-                return _slow_binary(expr, a, c)
-
-            return sub_number
-        if op == "*":
-
-            def mul_number(f: Frame) -> Value:
-                a = left(f)
-                if a.__class__ is _float:
-                    result = a * c
-                    if -_LARGEST <= result <= _LARGEST:
-                        return result
-                    raise _overflow(expr, a, c)
-                return _slow_binary(expr, a, c)
-
-            return mul_number
-        if c:
-
-            def div_number(f: Frame) -> Value:
-                a = left(f)
-                if a.__class__ is _float:
-                    result = a / c
-                    if -_LARGEST <= result <= _LARGEST:
-                        return result
-                    raise _overflow(expr, a, c)
-                return _slow_binary(expr, a, c)
-
-            return div_number
+    if constant_right is not None and op in _NUMBER_OPS and (op != "/" or constant_right):
+        return _with_number(expr, left, _NUMBER_OPS[op], constant_right)
     if op == "+":
 
         def add(f: Frame) -> Value:
