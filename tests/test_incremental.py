@@ -132,6 +132,25 @@ def mutate(lines: list[str], rng: random.Random, shift: bool = False) -> list[st
     return out
 
 
+def resume_through_random_edits(
+    lines: list[str],
+    rng: random.Random,
+    parser: BlockParser,
+    config: Config,
+    previous: Facts,
+    edits: int,
+) -> None:
+    """Edit ``lines`` at random ``edits`` times; after each, the run resumed from the one
+    before equals a full run with a parser of its own."""
+    for _ in range(edits):
+        lines = mutate(lines, rng, shift=True)
+        text = "\n".join(lines)
+        resumed = evaluate_text(text, parser, config, previous)
+        full = evaluate_text(text, BlockParser(), config)
+        assert_same(resumed, full)
+        previous = resumed
+
+
 def long_program(blocks: int, seed: int) -> str:
     """A long main program with loops, calls of a subprogram and thread passes."""
     rng = random.Random(seed)
@@ -186,13 +205,7 @@ def test_resumed_equals_full_after_random_edits(path: Path) -> None:
     if not lines:
         return
     previous = evaluate_text("\n".join(lines), parser, config)
-    for _ in range(12):
-        lines = mutate(lines, rng, shift=True)
-        text = "\n".join(lines)
-        resumed = evaluate_text(text, parser, config, previous)
-        full = evaluate_text(text, BlockParser(), config)
-        assert_same(resumed, full)
-        previous = resumed
+    resume_through_random_edits(lines, rng, parser, config, previous, 12)
 
 
 @pytest.mark.parametrize("seed", range(4))
@@ -351,13 +364,7 @@ def test_cam_programs_resume_and_equal_full(seed: int) -> None:
     lines = cam_with_calls(6_000, seed).splitlines()
     previous = evaluate_text("\n".join(lines), parser, config)
     assert previous.document(URI).feedless()
-    for _ in range(8):
-        lines = mutate(lines, rng, shift=True)
-        text = "\n".join(lines)
-        resumed = evaluate_text(text, parser, config, previous)
-        full = evaluate_text(text, BlockParser(), config)
-        assert_same(resumed, full)
-        previous = resumed
+    resume_through_random_edits(lines, rng, parser, config, previous, 8)
 
 
 @pytest.mark.parametrize("below", [40, 1, 0, -1])
@@ -421,10 +428,4 @@ def test_lathe_cycles_resume_and_equal_full(turns: int) -> None:
     lines = lathe_cycles_program(turns).splitlines()
     previous = evaluate_text("\n".join(lines), parser, config)
     assert previous.stopped == ("budget" if turns == 400 else None)
-    for _ in range(12):
-        lines = mutate(lines, rng, shift=True)
-        text = "\n".join(lines)
-        resumed = evaluate_text(text, parser, config, previous)
-        full = evaluate_text(text, BlockParser(), config)
-        assert_same(resumed, full)
-        previous = resumed
+    resume_through_random_edits(lines, rng, parser, config, previous, 12)
