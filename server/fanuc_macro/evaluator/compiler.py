@@ -8,7 +8,8 @@ from __future__ import annotations
 
 import operator
 from collections.abc import Callable
-from typing import Any, Protocol
+from itertools import islice
+from typing import Any, Protocol, TypeVar
 
 from ..syntax.tree import (
     BareCond,
@@ -62,6 +63,8 @@ _NO_FRAME: Any = None  # what a constant expression is evaluated with: it reads 
 CondEvaluator = Callable[[Frame], "bool | Unknown | None"]
 
 _float = float
+K = TypeVar("K")
+V = TypeVar("V")
 
 
 def _zero(v: Value) -> float | Unknown:
@@ -80,10 +83,18 @@ def _constant(value: Value) -> Evaluator:
         return _constant_closure(value)
     found = _constants.get(value)
     if found is None:
-        if len(_constants) >= MAX_SHARED_CONSTANTS:
-            _constants.clear()
-        found = _constants[value] = _constant_closure(value)
+        found = kept(_constants, value, _constant_closure(value), MAX_SHARED_CONSTANTS)
     return found
+
+
+def kept(cache: dict[K, V], key: K, made: V, limit: int) -> V:
+    """Keep ``made`` in ``cache`` under ``key``; past ``limit`` entries the oldest quarter
+    goes (insertion order), not the whole cache."""
+    if len(cache) >= limit:
+        for oldest in list(islice(cache, limit // 4)):
+            cache.pop(oldest, None)  # another thread may have taken it
+    cache[key] = made
+    return made
 
 
 def _constant_closure(value: Value) -> Evaluator:
@@ -233,9 +244,7 @@ def _compile_var(var: Var, index: Evaluator | None) -> Evaluator:
             return haas
         found = _readers.get(n)
         if found is None:
-            if len(_readers) >= MAX_SHARED_READERS:
-                _readers.clear()
-            found = _readers[n] = _reader(n)
+            found = kept(_readers, n, _reader(n), MAX_SHARED_READERS)
         return found
     assert index is not None
 

@@ -17,7 +17,6 @@ from array import array
 from bisect import bisect_left
 from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, field, replace
-from itertools import islice
 
 from ..cancel import RUNNING, CancelToken
 from ..config import Config
@@ -49,7 +48,7 @@ from ..syntax.tree import (
 )
 from ..syntax.walk import subexpressions, top_expressions
 from .checkpoints import CtxKey, LevelState, MachineState, ModalState, Resumption, RunRecord
-from .compiler import CondEvaluator, Evaluator, compile_cond, compile_expr, constant_of
+from .compiler import CondEvaluator, Evaluator, compile_cond, compile_expr, constant_of, kept
 from .cycles import g76_depths
 from .facts import (
     CutsWithoutFeed,
@@ -496,9 +495,8 @@ def _compile_word(expr: Expr, in_address: bool, text: str | None) -> Evaluator:
     key = (span.start, span.end, text[span.start : span.end], in_address)
     evaluator = _shared_expressions.get(key)
     if evaluator is None:
-        if len(_shared_expressions) >= MAX_SHARED_EXPRESSIONS:
-            _shared_expressions.clear()
-        evaluator = _shared_expressions[key] = compile_expr(expr, in_address)
+        made = compile_expr(expr, in_address)
+        evaluator = kept(_shared_expressions, key, made, MAX_SHARED_EXPRESSIONS)
     return evaluator
 
 
@@ -2141,11 +2139,7 @@ def compile_line(parsed: ParsedLine) -> CompiledLine:
     else:
         line = compile_statement(statement, parsed.text)
     line.boundary = _is_boundary(_statement_text(parsed, statement))
-    by_statement = _COMPILED_BY_STATEMENT
-    by_statement[id(statement)] = (statement, line)
-    if len(by_statement) > _COMPILED_BY_STATEMENT_LIMIT:
-        for oldest in list(islice(by_statement, _COMPILED_BY_STATEMENT_LIMIT // 4)):
-            by_statement.pop(oldest, None)  # another thread may have taken it
+    kept(_COMPILED_BY_STATEMENT, id(statement), (statement, line), _COMPILED_BY_STATEMENT_LIMIT)
     return line
 
 
