@@ -45,7 +45,7 @@ def inch_at(blocks: Sequence[Block], line: int) -> bool:
         text = blocks[index].text
         if "20" not in text and "21" not in text:
             continue
-        found = _UNIT_CODE.findall(cut_comments(text).code)
+        found: list[str] = _UNIT_CODE.findall(cut_comments(text).code)
         if found:
             return found[-1] == "20"
     return False
