@@ -531,21 +531,48 @@ async def test_completion_offers_the_thread_module_of_the_document(client: Langu
     await start(client, None)
     uri = "untitled:main-only.nc"
     main = (
-        "O4009 (M50X3-5G6G)\nT0101\nG00 X55. Z0.\nG97 S400 M03\n#100=50.\n#101=3.\n"
-        "#102=50.\n#103=0.048\n#104=0.170\nM98 P0013331\nM30\n\n"
+        "O4009 (M50X3-5G6G)\r\nT0101\r\nG00 X55. Z0.\r\nG97 S400 M03\r\n#100=50.\r\n"
+        "#101=3.\r\n#102=50.\r\n#103=0.048\r\n#104=0.170\r\nthr\r\nM30\r\n%\r\n"
     )
     open_text(client, uri, main)
     await diagnostics(client, uri)
     result = await client.text_document_completion_async(
         types.CompletionParams(
             text_document=types.TextDocumentIdentifier(uri=uri),
-            position=types.Position(line=11, character=0),
+            position=types.Position(line=9, character=3),
         )
     )
     assert isinstance(result, types.CompletionList)
-    module = next(i for i in result.items if i.label.startswith("thread module"))
-    text = module.insert_text or ""
-    assert "O3331" in text and "H=1.907" in text and "88 ROUGH PASSES" in text
+    module = next(i for i in result.items if (i.label or "").startswith("thread module"))
+    assert module.filter_text == "thread"
+    assert isinstance(module.text_edit, types.TextEdit)
+    assert module.text_edit.range.start.character == 0  # replaces "thr"
+    assert module.text_edit.new_text.startswith("M98 P0013331 (CALL O3331: 186 G92 CUTS")
+    (sub,) = module.additional_text_edits or []
+    assert sub.range.start == types.Position(line=11, character=0)  # before the closing %
+    assert sub.new_text.startswith("O3331 (EXTERNAL THREAD SUB")
+    assert "H=1.907" in sub.new_text and "88 ROUGH PASSES" in sub.new_text
+    assert "\r\n" in sub.new_text and "\n" not in sub.new_text.replace("\r\n", "")
+    assert "#100=" not in sub.new_text
+
+
+async def test_snippets_are_left_to_an_extension_that_contributes_them(
+    client: LanguageClient,
+) -> None:
+    await start(client, None, {"contributesSnippets": True})
+    uri = "untitled:snippets.nc"
+    open_text(client, uri, "O1\nwh\nM30\n")
+    await diagnostics(client, uri)
+    result = await client.text_document_completion_async(
+        types.CompletionParams(
+            text_document=types.TextDocumentIdentifier(uri=uri),
+            position=types.Position(line=1, character=2),
+        )
+    )
+    assert isinstance(result, types.CompletionList)
+    kinds = {i.label: i.kind for i in result.items}
+    assert kinds["WHILE"] == types.CompletionItemKind.Keyword
+    assert types.CompletionItemKind.Snippet not in kinds.values()
 
 
 # ---- code actions ----------------------------------------------------------------------------
