@@ -299,6 +299,7 @@ def create_server() -> FanucMacroLanguageServer:
     def initialize(ls: FanucMacroLanguageServer, params: types.InitializeParams) -> None:
         engine.bind_loop(asyncio.get_running_loop())
         engine.codec = Codec(ls.workspace.position_encoding)
+        engine.client_locale = params.locale
         caps = params.capabilities
         ls.completion_support = CompletionSupport(
             snippets=bool(
