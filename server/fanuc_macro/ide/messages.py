@@ -20,9 +20,17 @@ from importlib import resources
 from ..diagnostics import Diagnostic
 
 # The locales with a catalogue, and the names the editors give them (VS Code's display
-# language "zh-cn", Neovim's $LANG "zh_CN.UTF-8", BCP 47 "zh-Hans").
-LOCALES = ("en", "zh-cn")
-_ALIASES = {"zh": "zh-cn", "zh-cn": "zh-cn", "zh-hans": "zh-cn", "zh-sg": "zh-cn"}
+# language "zh-cn", Neovim's $LANG "zh_CN.UTF-8", BCP 47 "zh-Hans"). FANUC's own manuals use
+# the Japanese terms of the ja catalogue (シーケンス番号, コモン変数, ノーズ半径).
+LOCALES = ("en", "zh-cn", "ja")
+_ALIASES = {
+    "zh": "zh-cn",
+    "zh-cn": "zh-cn",
+    "zh-hans": "zh-cn",
+    "zh-sg": "zh-cn",
+    "ja": "ja",
+    "ja-jp": "ja",
+}
 
 
 def locale_of(name: str | None) -> str:
