@@ -250,10 +250,28 @@ async def test_hover_on_an_assignment_shows_value_and_formula(client: LanguageCl
     uri = open_seed(client, "o4009_external_m50x3.nc")
     text = await hover(client, uri, 21, 1)  # #4=[7./8.]*SIN[60]*#101-#3+#103/2.+#104/4.
     assert "#4" in text
-    assert "argument **I**" in text
-    assert "1.906804" in text and "1.907" in text
-    assert "[0.875]*SIN[60]*3.-0.4330127+0.048/2.+0.17/4." in text
+    # O3331 is called by M98 only: its locals hold no G65 arguments.
+    assert "argument" not in text
+    # At the control's increment, 0.001 mm, in the value and the formula.
+    assert "Value assigned: **1.907**" in text and "1.906804" not in text
+    assert "[0.875]*SIN[60]*3.-0.433+0.048/2.+0.17/4.\n= 1.907" in text
     assert "计算外螺纹牙高" in text
+    # The paper by author and title, never the project's file number.
+    assert "Deng Ronggang (邓荣刚), 《宏指令在钼电极加工中的应用》, table 3" in text
+    assert "seed paper" not in text
+    # Every digit the control keeps, on request.
+    client.workspace_did_change_configuration(
+        types.DidChangeConfigurationParams(
+            settings={"fanuc-macro": {"hover": {"fullPrecision": True}}}
+        )
+    )
+    for _ in range(200):
+        text = await hover(client, uri, 21, 1)
+        if "1.906804" in text:
+            break
+        await asyncio.sleep(0.05)
+    assert "Value assigned: **1.906804**" in text
+    assert "[0.875]*SIN[60]*3.-0.4330127+0.048/2.+0.17/4.\n= 1.906804" in text
 
 
 async def test_hover_on_a_read_shows_the_values_over_the_passes(client: LanguageClient) -> None:
@@ -261,8 +279,7 @@ async def test_hover_on_a_read_shows_the_values_over_the_passes(client: Language
     uri = open_seed(client, "o4009_external_m50x3.nc")
     text = await hover(client, uri, 31, 14)  # #9 in G92 X[#100-2.*#9] ...
     assert "#9" in text
-    assert "0.092058049 →" in text
-    assert "88 times" in text
+    assert "0.092 → 1.885 (88 times, min 0.092, max 1.885)" in text
     assert "计算总切削深度" in text  # the comment of its assignment
     assert "Σap(n), total depth after pass n" in text  # the module's parameter table
     main = await hover(client, uri, 6, 2)  # #101=3. in O4009, which calls O3331
@@ -514,21 +531,48 @@ async def test_completion_offers_the_thread_module_of_the_document(client: Langu
     await start(client, None)
     uri = "untitled:main-only.nc"
     main = (
-        "O4009 (M50X3-5G6G)\nT0101\nG00 X55. Z0.\nG97 S400 M03\n#100=50.\n#101=3.\n"
-        "#102=50.\n#103=0.048\n#104=0.170\nM98 P0013331\nM30\n\n"
+        "O4009 (M50X3-5G6G)\r\nT0101\r\nG00 X55. Z0.\r\nG97 S400 M03\r\n#100=50.\r\n"
+        "#101=3.\r\n#102=50.\r\n#103=0.048\r\n#104=0.170\r\nthr\r\nM30\r\n%\r\n"
     )
     open_text(client, uri, main)
     await diagnostics(client, uri)
     result = await client.text_document_completion_async(
         types.CompletionParams(
             text_document=types.TextDocumentIdentifier(uri=uri),
-            position=types.Position(line=11, character=0),
+            position=types.Position(line=9, character=3),
         )
     )
     assert isinstance(result, types.CompletionList)
-    module = next(i for i in result.items if i.label.startswith("thread module"))
-    text = module.insert_text or ""
-    assert "O3331" in text and "H=1.907" in text and "88 ROUGH PASSES" in text
+    module = next(i for i in result.items if (i.label or "").startswith("thread module"))
+    assert module.filter_text == "thread"
+    assert isinstance(module.text_edit, types.TextEdit)
+    assert module.text_edit.range.start.character == 0  # replaces "thr"
+    assert module.text_edit.new_text.startswith("M98 P0013331 (CALL O3331: 186 G92 CUTS")
+    (sub,) = module.additional_text_edits or []
+    assert sub.range.start == types.Position(line=11, character=0)  # before the closing %
+    assert sub.new_text.startswith("O3331 (EXTERNAL THREAD SUB")
+    assert "H=1.907" in sub.new_text and "88 ROUGH PASSES" in sub.new_text
+    assert "\r\n" in sub.new_text and "\n" not in sub.new_text.replace("\r\n", "")
+    assert "#100=" not in sub.new_text
+
+
+async def test_snippets_are_left_to_an_extension_that_contributes_them(
+    client: LanguageClient,
+) -> None:
+    await start(client, None, {"contributesSnippets": True})
+    uri = "untitled:snippets.nc"
+    open_text(client, uri, "O1\nwh\nM30\n")
+    await diagnostics(client, uri)
+    result = await client.text_document_completion_async(
+        types.CompletionParams(
+            text_document=types.TextDocumentIdentifier(uri=uri),
+            position=types.Position(line=1, character=2),
+        )
+    )
+    assert isinstance(result, types.CompletionList)
+    kinds = {i.label: i.kind for i in result.items}
+    assert kinds["WHILE"] == types.CompletionItemKind.Keyword
+    assert types.CompletionItemKind.Snippet not in kinds.values()
 
 
 # ---- code actions ----------------------------------------------------------------------------
@@ -751,7 +795,7 @@ async def test_survives_random_bytes_and_a_huge_document(client: LanguageClient)
     text = await hover(client, "untitled:huge.nc", 5, 9)
     assert "X" in text
     uri = open_seed(client, "o4009_external_m50x3.nc")
-    assert "1.906804" in await hover(client, uri, 21, 1)
+    assert "Value assigned: **1.907**" in await hover(client, uri, 21, 1)
 
 
 EDIT_TEXTS = ("", "#1=", "[", "]", "\n", "\r\n", "GOTO10\n", "WHILE[#1LT3]DO1\n", "END1",
@@ -825,13 +869,13 @@ async def test_a_10_mb_document_and_a_1_mb_line_get_their_verdicts(
 ) -> None:
     await start(client, None)
     seed = open_seed(client, "o4009_external_m50x3.nc")
-    assert "1.906804" in await hover(client, seed, 21, 1)
+    assert "Value assigned: **1.907**" in await hover(client, seed, 21, 1)
     started = time.monotonic()
     rows = [f"G01 X{i % 97}.5 Z-{i % 89}. F0.2" for i in range(500_000)]
     open_text(client, "untitled:ten.nc", "O1000\n" + "\n".join(rows) + "\nM30\n")
     open_text(client, "untitled:line.nc", "O1000\n" + "X1.5Y2.5" * 131_072 + "\nM30\n")
     # An analysed document answers while the big ones are read (no regex holds the GIL).
-    assert "1.906804" in await hover(client, seed, 21, 1)
+    assert "Value assigned: **1.907**" in await hover(client, seed, 21, 1)
     found = await diagnostics(client, "untitled:ten.nc", lambda d: "MB013" in codes(d))
     (verdict,) = [d for d in found if d.code == "MB013"]
     assert "analysed the first 25000 blocks of 500002" in verdict.message
@@ -957,7 +1001,7 @@ async def test_a_crash_is_logged_and_the_server_goes_on(client: LanguageClient) 
     edit(client, uri, 2, [replace(0, 6, 6 + len(FAULT), "FIXED")])
     await diagnostics(client, uri, lambda d: "MB000" not in codes(d))
     other = open_seed(client, "o4009_external_m50x3.nc")
-    assert "1.906804" in await hover(client, other, 21, 1)
+    assert "Value assigned: **1.907**" in await hover(client, other, 21, 1)
 
 
 async def raw_request(client: LanguageClient, method: str, params: dict[str, Any]) -> Any:

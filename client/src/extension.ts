@@ -224,7 +224,9 @@ async function startClient(): Promise<void> {
       { scheme: 'file', language: LANGUAGE_ID },
       { scheme: 'untitled', language: LANGUAGE_ID },
     ],
-    initializationOptions: settingsObject(),
+    // The settings, and that this extension contributes the snippets (the server then does not
+    // offer them a second time).
+    initializationOptions: { [CONFIG_SECTION]: settingsObject(), contributesSnippets: true },
     synchronize: { configurationSection: CONFIG_SECTION },
     outputChannel: outputChannel(),
     traceOutputChannel: outputChannel(),

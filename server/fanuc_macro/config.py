@@ -44,6 +44,9 @@ class Config:
     max_line_length: int = MAX_LINE_LENGTH  # characters of one block
     max_blocks: int = 25_000
     max_file_size: int = 600_000  # characters (bytes, for ASCII program text)
+    # Hovers show values at the least input increment (0.001 mm, 0.0001 inch); with this set,
+    # in full (the 8 digits the control keeps). No verdict depends on it.
+    hover_full_precision: bool = False
 
     @property
     def read_limits(self) -> ReadLimits:
@@ -77,6 +80,7 @@ class Config:
         threading = settings.get("threading") or {}
         rules = settings.get("rules") or {}
         analysis = settings.get("analysis") or {}
+        hover = settings.get("hover") or {}
         severities: dict[str, Severity] = {}
         for code, value in (rules.get("severity") or {}).items():
             try:
@@ -101,6 +105,7 @@ class Config:
             max_line_length=int(_number(analysis.get("maxLineLength"), default.max_line_length)),
             max_blocks=int(_number(analysis.get("maxBlocks"), default.max_blocks)),
             max_file_size=int(_number(analysis.get("maxFileSize"), default.max_file_size)),
+            hover_full_precision=hover.get("fullPrecision") is True,
         )
 
 

@@ -89,8 +89,8 @@ def add_thread_command(
     thread = subparsers.add_parser(
         "thread",
         help="print the symmetric thread module (main + sub-program) for an ISO metric thread",
-        description="Print the symmetric thread module of the seed paper (main program O4009 "
-        "external / O4010 internal, sub-program O3331 / O3330) for an ISO metric thread, "
+        description="Print the symmetric thread module of Deng Ronggang's paper (main program "
+        "O4009 external / O4010 internal, sub-program O3331 / O3330) for an ISO metric thread, "
         "with es/EI and Td2/TD2 from ISO 965-1 and the computed values in comments.",
     )
     thread.add_argument("designation", metavar="DESIGNATION", help="e.g. M50x3-5g6g, M10-6H")

@@ -207,17 +207,18 @@ class ValueSummary:
     def constant(self) -> bool:
         return self.numeric and self.minimum == self.maximum and self.vacant == 0
 
-    def describe(self) -> str:
-        """``1.907`` or ``0.092 → 1.887 (88 values, min 0.092, max 1.887)``."""
+    def describe(self, show: Callable[[Value], str] = fmt) -> str:
+        """``1.907`` or ``0.092 → 1.887 (88 values, min 0.092, max 1.887)``, each value as
+        ``show`` writes it (the control's display by default)."""
         if self.count == 0:
             return "never evaluated"
         if self.count == 1 or (self.constant and self.unknown is None):
-            return fmt(self.first)
+            return show(self.first)
         if not self.numeric:
-            return fmt(self.last)
+            return show(self.last)
         text = (
-            f"{fmt(self.first)} → {fmt(self.last)} ({self.count} times, min "
-            f"{fmt(self.minimum)}, max {fmt(self.maximum)})"
+            f"{show(self.first)} → {show(self.last)} ({self.count} times, min "
+            f"{show(self.minimum)}, max {show(self.maximum)})"
         )
         if self.vacant:
             text += f", vacant {self.vacant} times"

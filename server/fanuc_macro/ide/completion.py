@@ -13,11 +13,13 @@ from ..program.variables import classify
 from ..syntax.lines import cut_comments
 from .data import CompletionItem, CompletionKind, CompletionList, Range
 from .locate import number_of, uses
+from .thread_completion import thread_insertion, trigger_for
 from .values import variable_kind
 from .view import View, comment_of, lines_of
 
-# What is being typed: a variable (#51), or letters with the digits after them (SQ, G9, GOTO1).
-_PREFIX = re.compile(r"#\d*$|[A-Za-z]+\d*\.?\d*$")
+# What is being typed: a variable (#51), letters with the digits after them (SQ, G9, GOTO1), or
+# the Chinese word for thread (螺纹, 螺紋) that finds the thread module.
+_PREFIX = re.compile(r"#\d*$|[A-Za-z]+\d*\.?\d*$|[\u87ba\u7eb9\u7d0b]+$")
 _CODE_PREFIX = re.compile(r"([GgMm])(\d*\.?\d*)$")
 
 NOTHING = CompletionList(())
@@ -61,12 +63,14 @@ def completion(
     *,
     snippets_supported: bool = False,
     has_snippets: bool = False,
+    eol: str = "\n",
 ) -> CompletionList:
     """What may be typed at ``column`` (code points) of ``line_text``, the text of ``line``.
 
     ``snippets_supported``: the front end can insert placeholders (``SQRT[$1]``);
     ``has_snippets``: it has the package's snippets already (the VS Code extension). ``view``,
-    the newest analysis there is, adds the program's variables and the thread module.
+    the newest analysis there is, of the same lines, adds the program's variables and the
+    thread module; ``eol`` is the document's line end, for the lines the module inserts.
     """
     before = line_text[:column]
     for comment in cut_comments(line_text).comments:
@@ -136,6 +140,8 @@ def completion(
                     knowledge.code_markdown(letter, value, lathe) or "",
                     sort="0",
                 )
+        if letter == "M":
+            items.extend(_thread_items(view, line, word, edit_range, eol))
         return CompletionList(tuple(items))
     for info in knowledge.FUNCTIONS.values():
         add(
@@ -163,34 +169,34 @@ def completion(
     if not word or word[:1].upper() in ("G", "M"):
         for name, title in codes:
             add(name, CompletionKind.CODE, title, name, sort="4")
-    module = _thread_module(view)
-    if module is not None:
-        items.append(
-            CompletionItem(
-                label="thread module for this program's thread",
-                kind=CompletionKind.SNIPPET,
-                detail="symmetric thread module (G92, left-right) computed from #100-#104",
-                documentation=f"```\n{module}\n```",
-                insert_text=module,
-                filter_text="thread",
-                sort_text="0",
-            )
-        )
+    items.extend(_thread_items(view, line, word, edit_range, eol))
     return CompletionList(tuple(items))
 
 
-def _thread_module(view: View | None) -> str | None:
-    """The symmetric thread module for the thread the document enters in #100-#104 (or names
-    in a comment such as ``(M50X3-5G6G)``), from the analysis the server already has."""
-    if view is None or view.facts is None:
-        return None
-    # The generator is imported on the first thread completion, not before initialize.
-    from .thread_snippet import module_from_analysis
-
-    try:
-        return module_from_analysis(view.doc, view.index, view.facts)
-    except ValueError:
-        return None
+def _thread_items(
+    view: View | None, line: int, word: str, edit_range: Range, eol: str
+) -> list[CompletionItem]:
+    """The thread module into the program at ``line``, found by "thread", "M98" or "螺纹"."""
+    trigger = trigger_for(word)
+    if view is None or trigger is None:
+        return []
+    found = thread_insertion(view, line, eol)
+    if found is None:
+        return []
+    return [
+        CompletionItem(
+            label=f"thread module {found.title}",
+            kind=CompletionKind.SNIPPET,
+            detail="symmetric thread module (G92, left-right): the call here, the sub-program "
+            "after this program",
+            documentation=found.preview,
+            insert_text=found.at_cursor,
+            filter_text=trigger,
+            sort_text="0",
+            replace=edit_range,
+            additional_edits=(found.sub_program,),
+        )
+    ]
 
 
 def _unique(items: list[CompletionItem]) -> tuple[CompletionItem, ...]:

@@ -92,6 +92,8 @@ class CompletionItem:
     sort_text: str = ""
     filter_text: str = ""
     replace: Range | None = None  # the typed text insert_text replaces; None: at the cursor
+    # Edits elsewhere in the document, made with the item (a sub-program after the program).
+    additional_edits: tuple[TextEdit, ...] = ()
 
 
 @dataclass(frozen=True)

@@ -6,7 +6,6 @@ from __future__ import annotations
 from collections.abc import Sequence
 
 from ..evaluator.facts import ValueSummary
-from ..evaluator.values import fmt
 from ..program import knowledge
 from ..program.index import Program
 from ..program.meanings import table_meaning
@@ -14,12 +13,12 @@ from ..program.variables import ARGUMENT_VARIABLES, classify
 from ..syntax.lines import cut_comments
 from ..syntax.marks import constant_value
 from ..syntax.parser import statements_of
-from ..syntax.tree import Assign, Block, Num, ProgramStart, Word
+from ..syntax.tree import Assign, Block, Num, ProgramStart, Span, Word
 from ..threads.identify import describe as describe_thread
 from ..threads.identify import module_meanings
 from .data import Hover, Range
 from .locate import Hit, assignments_in, goto_target, number_of
-from .values import code, short_summary, substituted, times, variable_kind
+from .values import Precision, code, inch_at, substituted, times, variable_kind
 from .view import View, call_at, comment_of, first_comment
 
 ARGUMENT_LETTER = {n: letter for letter, n in ARGUMENT_VARIABLES.items()}
@@ -54,6 +53,12 @@ def _assignments_of(block: Block, number: int) -> list[Assign]:
     ]
 
 
+def precision_at(view: View, line: int) -> Precision:
+    """How values are shown at ``line``: in the unit G20 / G21 leaves there, at the control's
+    increment unless the settings ask for every digit."""
+    return Precision(inch_at(view.doc.blocks, line), view.config.hover_full_precision)
+
+
 def hover_variable(view: View, block: Block, hit: Hit) -> str:
     var = hit.var
     assert var is not None
@@ -66,19 +71,20 @@ def hover_variable(view: View, block: Block, hit: Hit) -> str:
         )
     kind = classify(n)
     head = f"**#{n}** — {variable_kind(n)}"
+    program = view.index.program_at(line)
     letter = ARGUMENT_LETTER.get(n)
-    if letter is not None:
+    if letter is not None and program is not None and _takes_arguments(view, program):
         head += f" · G65 argument **{letter}**"
     parts = [head]
     meaning = kind.meaning + ("" if kind.verified else " (unverified)")
     parts.append(f"*{meaning}*")
-    program = view.index.program_at(line)
     table = table_meaning(view.index, program.number if program else None, n)
     if table is None and program is not None:
         table = _module_meaning(view, program, n)
     if table is not None:
         parts.append(table)
     facts = view.facts
+    precision = precision_at(view, line)
     own = hit.assign
     found = (line, own) if own is not None else find_assignment(view, program, n, line)
     if found is not None:
@@ -97,16 +103,11 @@ def hover_variable(view: View, block: Block, hit: Hit) -> str:
         write = facts.writes.get(line)
         if write is not None and write[0] == n:
             written = write[1]
-            value = written.describe()
-            approx = short_summary(written)
-            shown = f"Value assigned: **{value}**"
-            if approx is not None and approx != value and written.count == 1:
-                shown += f" (≈ {approx})"
-            parts.append(shown)
-            formula = substituted(block, own, facts)
+            parts.append(f"Value assigned: **{precision.summary(written)}**")
+            formula = substituted(block, own, facts, precision.show)
             if formula is not None:
                 if written.count == 1 or written.constant:
-                    parts.append(f"```\n= {formula}\n= {fmt(written.first)}\n```")
+                    parts.append(f"```\n= {formula}\n= {precision.show(written.first)}\n```")
                 else:
                     parts.append(f"```\n= {formula}\n```")
         elif not facts.runs.get(line):
@@ -116,15 +117,32 @@ def hover_variable(view: View, block: Block, hit: Hit) -> str:
         return "\n\n".join(parts)
     summary = facts.reads.get((line, n))
     if summary is not None:
-        value = summary.describe()
-        approx = short_summary(summary)
-        shown = f"Value here: **{value}**"
-        if approx is not None and approx != value and summary.count == 1:
-            shown += f" (≈ {approx})"
-        parts.append(shown)
+        parts.append(f"Value here: **{precision.summary(summary)}**")
     elif not facts.runs.get(line):
         parts.append(_not_run(view, line))
     return "\n\n".join(parts)
+
+
+def _takes_arguments(view: View, program: Program) -> bool:
+    """Whether the locals of ``program`` may hold G65 / G66 arguments: it is called so in the
+    workspace, or, with no call of it known, it is a sub program (ends with M99) or was
+    analysed as a macro. A program only M98 calls gets no arguments: its locals are the
+    caller's (FANUC: M98 does not open a new local level)."""
+    if program.number is None:
+        return False
+    kinds = {
+        call.kind
+        for _, index in (*view.workspace.values(), (view.doc, view.index))
+        for caller in index.programs
+        for call in caller.calls
+        if call.program == program.number
+    }
+    if kinds:
+        return bool(kinds & {"G65", "G66", "G66.1"})
+    if program.returns:
+        return True
+    facts = view.facts
+    return facts is not None and bool(facts.assumed_arguments.get(program.first_line))
 
 
 def _module_meaning(view: View, program: Program, number: int) -> str | None:
@@ -163,9 +181,13 @@ def _file_name(key: str) -> str:
     return key.rstrip("/").rsplit("/", 1)[-1]
 
 
-def hover_program(view: View, number: int, line: int | None = None) -> str:
+def hover_program(view: View, number: int, line: int | None = None, diagnosed: bool = False) -> str:
+    """What O``number`` is; ``diagnosed``: the hovered call has a diagnostic, which the editor
+    shows with the hover, so a missing program is not explained twice."""
     entry = view.program_entry(number)
     if entry is None:
+        if diagnosed:
+            return f"**O{number:04d}** — not in the workspace."
         return (
             f"**O{number:04d}** — not in the workspace: a call to it stops with alarm "
             "PS0076 (PROGRAM NOT FOUND)."
@@ -252,7 +274,8 @@ def hover_word(view: View, block: Block, hit: Hit) -> str | None:
         head = ""
         if word.span == call.span and value is not None:
             head = (knowledge.code_markdown(word.address, value, lathe) or "") + "\n\n---\n\n"
-        return head + hover_program(view, call.program, block.line)
+        diagnosed = _diagnosed(view, block.line, word.span)
+        return head + hover_program(view, call.program, block.line, diagnosed)
     thread = _thread_hover(view, block.line)
     if word.address in ("G", "M") and value is not None:
         code_text = knowledge.code_markdown(word.address, value, lathe)
@@ -277,7 +300,8 @@ def hover_word(view: View, block: Block, hit: Hit) -> str | None:
                     if got is not None:
                         summary.add(got)
         if summary.count:
-            parts.append(f"Value in the motions: **{summary.describe()}**")
+            shown = summary.describe(precision_at(view, block.line).show)
+            parts.append(f"Value in the motions: **{shown}**")
     if thread is not None:
         parts.append(thread)
     return "\n\n".join(parts) or None
@@ -342,10 +366,13 @@ def hover_goto(view: View, block: Block, hit: Hit) -> str | None:
     parts = [f"**GOTO {target}**"]
     line = program.label_line(target, block.line)
     if line is None:
-        parts.append(
-            f"No N{target} in {program.display_name}: the jump stops with alarm "
-            "PS0128 (ILLEGAL MACRO SEQUENCE NUMBER)."
-        )
+        # The editor shows the diagnostic that says so (MB101) above the hover: say it only
+        # where no diagnostic does (the rule disabled or suppressed).
+        if not _diagnosed(view, block.line, hit.span):
+            parts.append(
+                f"No N{target} in {program.display_name}: the jump stops with alarm "
+                "PS0128 (ILLEGAL MACRO SEQUENCE NUMBER)."
+            )
     else:
         target_block = view.doc.blocks[line]
         parts.append(
@@ -363,6 +390,17 @@ def hover_goto(view: View, block: Block, hit: Hit) -> str | None:
         elif block.line in facts.runs:
             parts.append(f"Taken {times(facts.runs[block.line])}.")
     return "\n\n".join(parts)
+
+
+def _diagnosed(view: View, line: int, span: Span) -> bool:
+    """Whether a diagnostic of the document overlaps ``span`` of ``line`` (the editor shows
+    it with the hover)."""
+    return any(
+        d.line <= line <= d.end_line
+        and (d.line < line or d.column < span.end)
+        and (d.end_line > line or d.end_column > span.start)
+        for d in view.analysis.diagnostics
+    )
 
 
 def hover_loop(view: View, block: Block, hit: Hit) -> str | None:

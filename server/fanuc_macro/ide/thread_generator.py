@@ -194,6 +194,26 @@ class ThreadModule:
     g92_cuts: int  # every G92 cut of the sub-program
     final_x: float  # X of the last G92 cut (diameter)
 
+    @property
+    def lines(self) -> list[str]:
+        return self.text.splitlines()
+
+    def sub_program_lines(self) -> list[str]:
+        """The sub-program, from its O line to its M99 (without the tape's ``%``)."""
+        lines = self.lines
+        head = f"O{self.sub_number:04d}"
+        start = next(i for i, text in enumerate(lines) if text.split(" ")[0] == head)
+        end = next(i for i in range(start, len(lines)) if lines[i].split(" ")[0] == "M99")
+        return lines[start : end + 1]
+
+    def call_line(self) -> str:
+        """The main program's M98 block that calls the sub-program, with its comment."""
+        return next(text for text in self.lines if text.startswith("M98 "))
+
+    def value_line(self, number: int) -> str:
+        """The main program's assignment of ``#number`` (#100-#104), with its comment."""
+        return next(text for text in self.lines if text.startswith(f"#{number}="))
+
 
 def default_program_numbers(internal: bool) -> tuple[int, int]:
     """(main, sub): the paper's O4010/O3330 internal, O4009/O3331 external."""

@@ -10,6 +10,8 @@ offers it as a completion item.  Pure: text in, text out, no LSP types.
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 from ..evaluator import DocumentFacts, evaluate
 from ..program.index import ProgramIndex, build_index
 from ..syntax.parser import default_parser, parse_text
@@ -19,7 +21,7 @@ from ..threads.identify import thread_words
 from ..threads.iso965 import tolerances
 from .thread_generator import build_module_from_values, default_program_numbers
 
-__all__ = ["module_from_document"]
+__all__ = ["ThreadInputs", "module_from_analysis", "module_from_document", "thread_inputs"]
 
 _URI = "snippet:thread-module.nc"
 _VARIABLES = range(100, 105)
@@ -124,9 +126,27 @@ def module_from_document(text: str) -> str | None:
     return module_from_analysis(doc, index, facts.document(_URI))
 
 
-def module_from_analysis(doc: Document, index: ProgramIndex, facts: DocumentFacts) -> str | None:
-    """:func:`module_from_document` for a document already parsed, indexed and evaluated
-    (the language server has all three): no second run of the evaluator."""
+@dataclass(frozen=True)
+class ThreadInputs:
+    """What a document enters for the symmetric module: the five values (from its executed
+    assignments, else from a designation comment), the side, and its programs' numbers."""
+
+    diameter: float
+    pitch: float
+    length: float
+    deviation: float  # |es| or EI, a magnitude (#103)
+    pitch_tolerance: float  # Td2 / TD2 (#104)
+    internal: bool
+    designation: ThreadDesignation | None
+    main: int | None  # the program that enters the values
+    sub: int | None  # the program it calls first (M98), if any
+    assigned: frozenset[int]  # which of #100-#104 the document assigns a number to
+    first_line: int  # the first line that assigns one of them
+
+
+def thread_inputs(doc: Document, index: ProgramIndex, facts: DocumentFacts) -> ThreadInputs | None:
+    """The thread a document enters in #100-#104; None when it assigns none of them, or when
+    D, P, L, es/EI and Td2/TD2 cannot all be found."""
     assigned = _assigned_lines(doc)
     if not assigned:
         return None
@@ -182,8 +202,31 @@ def module_from_analysis(doc: Document, index: ProgramIndex, facts: DocumentFact
     ):
         des = None  # the comment names another thread than the values enter
 
-    main, sub = _numbers(doc, index, min(line for lines in assigned.values() for line in lines))
-    default_main, default_sub = default_program_numbers(internal)
+    first_line = min(line for lines in assigned.values() for line in lines)
+    main, sub = _numbers(doc, index, first_line)
+    return ThreadInputs(
+        diameter,
+        pitch,
+        length,
+        deviation,
+        pitch_tolerance,
+        internal,
+        des,
+        main,
+        sub,
+        frozenset(values),
+        first_line,
+    )
+
+
+def module_from_analysis(doc: Document, index: ProgramIndex, facts: DocumentFacts) -> str | None:
+    """:func:`module_from_document` for a document already parsed, indexed and evaluated
+    (the language server has all three): no second run of the evaluator."""
+    inputs = thread_inputs(doc, index, facts)
+    if inputs is None:
+        return None
+    main, sub = inputs.main, inputs.sub
+    default_main, default_sub = default_program_numbers(inputs.internal)
     if main is not None and sub is not None and main == sub:
         main = sub = None
     if main is not None and sub is None and main == default_sub:
@@ -192,15 +235,15 @@ def module_from_analysis(doc: Document, index: ProgramIndex, facts: DocumentFact
         sub = None
     try:
         return build_module_from_values(
-            diameter,
-            pitch,
-            length,
-            deviation,
-            pitch_tolerance,
-            internal=internal,
+            inputs.diameter,
+            inputs.pitch,
+            inputs.length,
+            inputs.deviation,
+            inputs.pitch_tolerance,
+            internal=inputs.internal,
             main_number=main,
             sub_number=sub,
-            designation=des,
+            designation=inputs.designation,
         ).text
     except ValueError:
         return None

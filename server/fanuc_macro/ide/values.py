@@ -3,10 +3,15 @@ assignment with the values it read, the kind of a variable."""
 
 from __future__ import annotations
 
+import re
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+
 from ..evaluator.compiler import compile_expr
 from ..evaluator.facts import DocumentFacts, ValueSummary
 from ..evaluator.values import MacroAlarm, Unknown, Value, fmt
 from ..program.variables import classify
+from ..syntax.lines import cut_comments
 from ..syntax.tree import Assign, Binary, Block, Bracket, Expr, Num, Span, Unary, Var
 from ..syntax.walk import subexpressions
 from .locate import number_of
@@ -28,6 +33,54 @@ def short(value: Value) -> str:
     return text + "0" if text.endswith(".") else text
 
 
+# G20 / G21 as a word of its own (not G200, not #120, not X20.).
+_UNIT_CODE = re.compile(r"(?<![A-Z#\d.])G0*(20|21)(?![\d.])", re.IGNORECASE)
+
+
+def inch_at(blocks: Sequence[Block], line: int) -> bool:
+    """Whether the last G20 / G21 before ``line`` in the document is G20 (inch input). The
+    control starts in the unit of parameter 0000#2 (INI); millimetres are assumed when the
+    text sets none (FANUC 0i-F operator's manual, "Inch/metric conversion (G20, G21)")."""
+    for index in range(min(line, len(blocks) - 1), -1, -1):
+        text = blocks[index].text
+        if "20" not in text and "21" not in text:
+            continue
+        found: list[str] = _UNIT_CODE.findall(cut_comments(text).code)
+        if found:
+            return found[-1] == "20"
+    return False
+
+
+@dataclass(frozen=True)
+class Precision:
+    """How a hover shows a value: at the control's least input increment in the program's
+    unit (IS-B: 0.001 mm, 0.0001 inch), or in full (8 significant digits, the control's
+    display of a macro variable) when the user asks for it (setting ``hover.fullPrecision``)."""
+
+    inch: bool = False
+    full: bool = False
+
+    @property
+    def unit(self) -> str:
+        return "inch" if self.inch else "mm"
+
+    def show(self, value: Value) -> str:
+        if self.full or not isinstance(value, float) or value != value:
+            return fmt(value)
+        if value in (float("inf"), float("-inf")):
+            return fmt(value)
+        digits = 4 if self.inch else 3
+        rounded = round(value, digits)
+        if rounded == 0.0 and value != 0.0:
+            return f"{value:.2g}"  # below the increment: its size, not a 0
+        if rounded == int(rounded) and abs(rounded) < 1e15:
+            return f"{int(rounded)}."
+        return f"{rounded:.{digits}f}".rstrip("0")
+
+    def summary(self, summary: ValueSummary) -> str:
+        return summary.describe(self.show)
+
+
 def short_summary(summary: ValueSummary) -> str | None:
     if summary.count == 0:
         return None
@@ -40,8 +93,8 @@ def short_summary(summary: ValueSummary) -> str | None:
     return f"{short(summary.first)} → {short(summary.last)} ×{summary.count}"
 
 
-def _value_text(value: Value) -> str:
-    text = fmt(value)
+def _value_text(value: Value, show: Callable[[Value], str] = fmt) -> str:
+    text = show(value)
     return f"[{text}]" if text.startswith("-") else text
 
 
@@ -87,9 +140,12 @@ def _fold(expr: Expr) -> Value:
         return None
 
 
-def substituted(block: Block, assign: Assign, facts: DocumentFacts) -> str | None:
+def substituted(
+    block: Block, assign: Assign, facts: DocumentFacts, show: Callable[[Value], str] = fmt
+) -> str | None:
     """The right-hand side with the constant values read at this block put in for variables
-    (and written constants such as ``[7./8.]`` folded); None when nothing changes."""
+    (and written constants such as ``[7./8.]`` folded), each as ``show`` writes it; None when
+    nothing changes."""
     line = block.line
     base = assign.value.span.start
     replacements: list[tuple[Span, str]] = []
@@ -100,12 +156,12 @@ def substituted(block: Block, assign: Assign, facts: DocumentFacts) -> str | Non
             if n is not None:
                 summary = facts.reads.get((line, n))
                 if summary is not None and summary.constant:
-                    replacements.append((node.span, _value_text(summary.first)))
+                    replacements.append((node.span, _value_text(summary.first, show)))
             return
         if isinstance(node, Bracket) and _literal(node.inner):
             value = _fold(node.inner)
             if isinstance(value, float):
-                replacements.append((node.inner.span, fmt(value)))
+                replacements.append((node.inner.span, show(value)))
                 return
         if isinstance(node, Binary):
             visit(node.left)

@@ -33,6 +33,7 @@ from ..cancel import RUNNING, Cancelled, CancelToken, Stage
 from ..code_cache import save_code_cache
 from ..config import Config
 from ..diagnostics import REPORT_INTERNAL_ERROR
+from ..ide.messages import Catalogue, catalogue
 from .convert import Codec, ConvertedDiagnostics, Lines, TextLines
 from .documents import OpenDocument
 
@@ -173,6 +174,9 @@ class Engine:
         # The protocol's form of each open document's last diagnostics (worker thread).
         self._converted: dict[str, ConvertedDiagnostics] = {}
         self.generation = 0  # written by the worker only
+        # The language of the messages: the setting `language`, else the client's locale.
+        self.client_locale: str | None = None
+        self.language = "auto"
         self._fault = os.environ.get(FAULT_ENV) or None
         self._feature_fault = os.environ.get(FEATURE_FAULT_ENV) or None
 
@@ -239,8 +243,24 @@ class Engine:
         self._executor.shutdown(wait=False, cancel_futures=True)
 
     # ---- settings --------------------------------------------------------------------------
+    @property
+    def catalogue(self) -> Catalogue:
+        chosen = self.language if self.language != "auto" else self.client_locale
+        return catalogue(chosen or "en")
+
+    def _new_generation(self) -> None:
+        """Worker: every document is published again (the messages' language changed)."""
+        self.generation += 1
+
     def configure(self, settings: dict[str, Any] | None) -> None:
         config = Config.from_settings(settings)
+        language = (settings or {}).get("language")
+        language = language if isinstance(language, str) and language else "auto"
+        if language != self.language:
+            before = self.catalogue
+            self.language = language
+            if self.catalogue != before and config == self.config:
+                self._submit(self._new_generation, then=lambda _: self.schedule_all(0.0))
         analysis = (settings or {}).get("analysis") or {}
         debounce = analysis.get("debounceMs") if isinstance(analysis, dict) else None
         if isinstance(debounce, int | float) and not isinstance(debounce, bool) and debounce >= 0:
@@ -458,7 +478,7 @@ class Engine:
             analysis = self._analyse(key, job.token)
             converted = self._converted.setdefault(key, ConvertedDiagnostics())
             diagnostics = converted.convert(
-                analysis.diagnostics, key, text.uri, lines, self._resolve
+                self.catalogue.localised(analysis.diagnostics), key, text.uri, lines, self._resolve
             )
         except Exception as err:  # logged and shown; the server goes on with other work
             self._report(f"fanuc-macro: the analysis of {text.uri} failed: {err!r}", err)

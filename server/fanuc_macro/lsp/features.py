@@ -117,7 +117,11 @@ def _documentation(text: str, support: CompletionSupport) -> types.MarkupContent
 
 
 def _completion_item(
-    item: data.CompletionItem, line_text: str, codec: Codec, support: CompletionSupport
+    item: data.CompletionItem,
+    line_text: str,
+    codec: Codec,
+    support: CompletionSupport,
+    lines: Lines | None,
 ) -> types.CompletionItem:
     edit: types.TextEdit | None = None
     if item.replace is not None:
@@ -143,6 +147,12 @@ def _completion_item(
         insert_text_format=(
             types.InsertTextFormat.Snippet if item.snippet else types.InsertTextFormat.PlainText
         ),
+        additional_text_edits=[
+            types.TextEdit(range=lsp_range(lines, e.range), new_text=e.new_text)
+            for e in item.additional_edits
+        ]
+        if item.additional_edits and lines is not None
+        else None,
     )
 
 
@@ -205,9 +215,14 @@ def completion(
     config: Config,
     support: CompletionSupport,
     view: View | None = None,
+    line_count: int | None = None,
+    eol: str = "\n",
 ) -> types.CompletionList:
-    """Completion at ``column`` (code points) of ``line_text``, the open document's newest text:
-    ``view``, the newest analysis there is, may be of an older one."""
+    """Completion at ``column`` (code points) of ``line_text``, the open document's newest text
+    of ``line_count`` lines: ``view``, the newest analysis there is, may be of an older one;
+    an edit away from the cursor (the thread module's sub-program) is made only from a view
+    of as many lines, whose other lines are those of the text."""
+    same_lines = view is not None and len(view.lines.lines) == line_count
     found = ide_completion.completion(
         line_text,
         line,
@@ -216,10 +231,16 @@ def completion(
         view.ide if view is not None else None,
         snippets_supported=support.snippets,
         has_snippets=support.builtin_snippets,
+        eol=eol,
     )
+    lines = view.lines if view is not None and same_lines else None
     return types.CompletionList(
         is_incomplete=found.incomplete,
-        items=[_completion_item(item, line_text, codec, support) for item in found.items],
+        items=[
+            _completion_item(item, line_text, codec, support, lines)
+            for item in found.items
+            if lines is not None or not item.additional_edits
+        ],
     )
 
 

@@ -258,10 +258,10 @@ class FanucMacroLanguageServer(LanguageServer):
             raise JsonRpcInternalError(message) from err
 
 
-def _has_extension_snippets(info: types.ClientInfo | None) -> bool:
-    """VS Code and its builds load the extension, which brings the same snippets."""
-    name = info.name.lower() if info is not None else ""
-    return any(n in name for n in ("visual studio code", "vscodium", "code - oss"))
+def _contributes_snippets(options: Any) -> bool:
+    """The client's initialization option ``contributesSnippets``: the editor has the package's
+    snippets already (the VS Code extension contributes them), so completion leaves them out."""
+    return isinstance(options, dict) and options.get("contributesSnippets") is True
 
 
 def _ignore_failure(future: Any) -> None:
@@ -277,7 +277,10 @@ def _settings_of(value: Any) -> dict[str, Any] | None:
     inner = value.get(SETTINGS_SECTION)
     if isinstance(inner, dict):
         return inner
-    return value
+    # Initialization options that say only what the client is (contributesSnippets) hold no
+    # settings: those are then pulled from the client.
+    bare = {k: v for k, v in value.items() if k != "contributesSnippets"}
+    return bare or None
 
 
 def _capability(root: Any, path: str) -> Any:
@@ -296,6 +299,7 @@ def create_server() -> FanucMacroLanguageServer:
     def initialize(ls: FanucMacroLanguageServer, params: types.InitializeParams) -> None:
         engine.bind_loop(asyncio.get_running_loop())
         engine.codec = Codec(ls.workspace.position_encoding)
+        engine.client_locale = params.locale
         caps = params.capabilities
         ls.completion_support = CompletionSupport(
             snippets=bool(
@@ -306,7 +310,7 @@ def create_server() -> FanucMacroLanguageServer:
                 _capability(caps, "text_document.completion.completion_item.documentation_format")
                 or []
             ),
-            builtin_snippets=_has_extension_snippets(params.client_info),
+            builtin_snippets=_contributes_snippets(params.initialization_options),
         )
         hover_formats = _capability(caps, "text_document.hover.content_format")
         ls.markdown_hover = hover_formats is None or types.MarkupKind.Markdown in hover_formats
@@ -501,10 +505,20 @@ def create_server() -> FanucMacroLanguageServer:
 
         support = ls.completion_support
         config = engine.config
+        line_count = len(doc.lines())
+        eol = "\r\n" if "\r\n" in doc.text[:65536] else "\n"
         return await ls.compute(
             "completion",
             lambda: completion(
-                line_text, params.position.line, column, engine.codec, config, support, view
+                line_text,
+                params.position.line,
+                column,
+                engine.codec,
+                config,
+                support,
+                view,
+                line_count,
+                eol,
             ),
         )
 

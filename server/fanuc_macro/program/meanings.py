@@ -5,8 +5,9 @@ Two sources, in this order:
 1. the comment on the assignment, by the words below (English, upper case on the control, or
    Chinese as the seed papers write them);
 2. the parameter tables of the known modules: the symmetric thread module O3331 (external) and
-   O3330 (internal) with their main programs' #100-#104 (seed paper 000, tables 2 and 3), and
-   the fitting-method arc thread sub-programs O3/O4 (seed paper 002).
+   O3330 (internal) with their main programs' #100-#104 (Deng Ronggang's paper, tables 2 and
+   3), and the fitting-method arc thread sub-programs O3/O4 (Ren Guozhu et al.): see
+   ``papers.py``.
 """
 
 from __future__ import annotations
@@ -16,6 +17,7 @@ from dataclasses import dataclass
 from ..line_maps import LineMap
 from ..syntax.tree import Assign, Document, ParsedLine
 from .index import ProgramIndex
+from .papers import DENG_MOLYBDENUM, REN_ARC_THREAD
 
 # Role -> words that name it in a comment. The first role with a matching word wins, so the
 # more specific come first: "刀尖圆弧半径" (nose radius) holds "圆弧半径" (arc radius).
@@ -84,13 +86,15 @@ _ARC_THREAD = {
     24: "X of the overall start and return point",
     26: "Z of the overall start and return point",
 }
+_DENG = DENG_MOLYBDENUM.short
+_REN = REN_ARC_THREAD.citation
 PARAMETER_TABLES: dict[int, tuple[str, dict[int, str]]] = {
-    3331: ("symmetric thread module, external (seed paper 000, table 3)", _SYMMETRIC_SUB),
-    3330: ("symmetric thread module, internal (seed paper 000, table 3)", _SYMMETRIC_SUB),
-    3: ("arc thread by the fitting method, roughing layer (seed paper 002)", _ARC_THREAD),
-    4: ("arc thread by the fitting method, roughing layer (seed paper 002)", _ARC_THREAD),
+    3331: (f"symmetric thread module, external ({_DENG}, table 3)", _SYMMETRIC_SUB),
+    3330: (f"symmetric thread module, internal ({_DENG}, table 3)", _SYMMETRIC_SUB),
+    3: (f"arc thread by the fitting method, roughing layer ({_REN})", _ARC_THREAD),
+    4: (f"arc thread by the fitting method, roughing layer ({_REN})", _ARC_THREAD),
 }
-MAIN_TABLE = ("main program of the symmetric thread module (seed paper 000, table 2)",
+MAIN_TABLE = (f"main program of the symmetric thread module ({_DENG}, table 2)",
               _SYMMETRIC_MAIN)  # fmt: skip
 
 

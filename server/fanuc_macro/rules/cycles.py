@@ -96,7 +96,7 @@ def _thread_start(ctx: RuleContext, thread: Thread) -> Iterator[Diagnostic]:
         return
     crest: float | None = None
     if thread.major is not None and thread.pitch is not None and thread.unsupported is None:
-        # The blank: turned to about d - 0.125P outside, bored to D1 inside (seed paper 000).
+        # The blank: turned to about d - 0.125P outside, bored to D1 inside (Deng Ronggang's paper).
         crest = (
             thread.major - D1_FACTOR * thread.pitch + 0.15 * thread.pitch
             if internal

@@ -32,7 +32,7 @@ document(
         "MB805",
         reports="""
 The nose radius of the tool that cuts an ISO metric thread outside
-0.125P–0.144P (external) or 0–0.072P (internal), the bounds of seed paper 000. The radius is
+0.125P–0.144P (external) or 0–0.072P (internal), the bounds of Deng Ronggang's paper. The radius is
 found from its use: the variable a thread module subtracts from the height and offsets by
 r·tan30° in its side step (`#3` of `#4=[7./8.]*SIN[60]*#101-#3+...` and
 `[#4+#3-#6-#9]*TAN[30]-#3*TAN[30]`), else a variable whose comment names it

@@ -5,7 +5,7 @@ The thread of each series of passes is identified by :mod:`fanuc_macro.threads.i
 never the program's own: the deepest X that keeps the pitch diameter inside the class with the
 tool's nose radius (d2 min − H + 2r external, D2 max + H − 2r internal; for an unknown tool
 0.125P, ISO 965-1's least root radius, or a sharp tool inside). A program's own thread height
-is compared with the one the standard and seed paper 000's formula give.
+is compared with the one the standard and Deng Ronggang's formula give.
 """
 
 from __future__ import annotations
@@ -15,6 +15,7 @@ from collections.abc import Iterator
 from ..diagnostics import Diagnostic, Related, RuleDoc, RuleInfo, Severity, document, make, register
 from ..evaluator.facts import Motion
 from ..evaluator.values import fmt_address
+from ..program.papers import DENG_MOLYBDENUM
 from ..threads.geometry import SIN60
 from ..threads.identify import Thread
 from ..threads.module_shape import D1_FACTOR, writes_in_document
@@ -116,7 +117,7 @@ pass deeper than the configured maximum), and threads that are not identified (s
         "MB808",
         reports="""
 A thread module's own thread height (the variable its last pass is cut
-to: `#4` of `X[#100-2.*#4]`) that differs from the height the standard and seed paper 000's
+to: `#4` of `X[#100-2.*#4]`) that differs from the height the standard and Deng Ronggang's
 formula give for the identified thread, 7H/8 − r + es/2 + Td2/4 outside or 6H/8 − r + EI/2 +
 TD2/4 inside (es and Td2 of the class, r the program's nose radius), by more than a quarter of
 Td2: enough to put the pitch diameter outside the class. The message gives the expected
@@ -155,7 +156,7 @@ Correct the term the message names (here `#103/2.`), or the input.
 """,
         not_reported="""
 A height within a quarter of Td2 of the standard's: that is the
-tuning seed paper 000 leaves to `#103` (coarse) and `#104` (fine). Heights of hand-written
+tuning Deng Ronggang's paper leaves to `#103` (coarse) and `#104` (fine). Heights of hand-written
 pass lists (only MB801 checks their depth), and threads whose class is not known.
 """,
     ),
@@ -394,7 +395,7 @@ def _input_cause(thread: Thread) -> tuple[str, int] | None:
 
 
 def _formula_cause(thread: Thread) -> str:
-    """Which term of the height's formula differs from seed paper 000's."""
+    """Which term of the height's formula differs from Deng Ronggang's."""
     module = thread.module
     if module is None or module.height_form is None or thread.pitch is None:
         return ""
@@ -442,7 +443,7 @@ def _deviation_sign(ctx: RuleContext, thread: Thread) -> Iterator[Diagnostic]:
     yield make(
         "MB809",
         f"#{var} = {value:g} enters the height #{module.height_var} as {name} with its sign, "
-        f"but the module adds {name} as a magnitude (seed paper 000, table 2: 0.048 for es = "
+        f"but the module adds {name} as a magnitude ({DENG_MOLYBDENUM.by}, table 2: 0.048 for es = "
         f"−0.048): the thread comes out {shallower:.3f} mm (radius) shallower than "
         f"{thread.name} needs; enter {abs(value):g}",
         line,

@@ -680,7 +680,7 @@ def describe(thread: Thread) -> str:
         lines.append(f"- nose radius {thread.nose_radius:.4g} ({thread.nose_reason})")
     module = thread.module
     if module is not None and module.height is not None:
-        lines.append(f"- thread height #{module.height_var} = {module.height:.4f} (radius)")
+        lines.append(f"- thread height #{module.height_var} = {_mm(module.height)} (radius)")
     return "\n".join(lines)
 
 

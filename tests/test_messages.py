@@ -1,0 +1,77 @@
+"""The messages in the user's language: the catalogues are complete, and the server speaks the
+client's locale (or the `language` setting) over stdio."""
+
+from __future__ import annotations
+
+import asyncio
+import json
+from collections.abc import Sequence
+from importlib import resources
+
+from lsprotocol import types
+from pytest_lsp import LanguageClient
+
+import fanuc_macro.analysis  # noqa: F401  (registers every rule)
+from fanuc_macro.diagnostics import RULES
+from fanuc_macro.ide.messages import LOCALES, catalogue, locale_of
+from test_lsp import CAPABILITIES, SEEDS, WAIT, client, diagnostics, open_seed
+
+__all__ = ["client"]
+
+
+def test_every_rule_has_a_summary_in_every_catalogue() -> None:
+    for locale in LOCALES[1:]:
+        raw = (resources.files("fanuc_macro") / "data" / f"messages.{locale}.json").read_text()
+        rules = json.loads(raw)["rules"]
+        assert set(rules) == set(RULES), f"{locale}: rules without or with an unknown summary"
+        assert all(text.strip() and text != RULES[code].summary for code, text in rules.items())
+        assert catalogue(locale).locale == locale
+
+
+def test_locale_names_from_the_editors() -> None:
+    # Traditional Chinese too: the simplified catalogue is nearer its readers than English.
+    for name in ("zh-cn", "zh-CN", "zh_CN.UTF-8", "zh", "zh-Hans", "zh-TW"):
+        assert locale_of(name) == "zh-cn", name
+    for name in ("ja", "ja-JP", "ja_JP.UTF-8"):
+        assert locale_of(name) == "ja", name
+    for name in (None, "", "en", "en-US", "de", "C.UTF-8"):
+        assert locale_of(name) == "en", name
+
+
+def test_a_message_is_the_summary_then_the_rules_own_words() -> None:
+    chinese = catalogue("zh-cn")
+    text = chinese.message("MB101", "GOTO 99: no N99 in O1000")
+    assert text == "GOTO 的顺序号不在程序中。\nGOTO 99: no N99 in O1000"
+    assert catalogue("en").message("MB101", "GOTO 99") == "GOTO 99"
+    assert chinese.message("MB999", "unknown") == "unknown"
+
+
+def mb601(found: Sequence[types.Diagnostic]) -> str:
+    return next(d.message for d in found if d.code == "MB601")
+
+
+async def test_the_server_speaks_the_clients_locale(client: LanguageClient) -> None:
+    await asyncio.wait_for(
+        client.initialize_session(
+            types.InitializeParams(
+                capabilities=CAPABILITIES,
+                root_uri=SEEDS.as_uri(),
+                locale="zh-cn",
+                initialization_options={"analysis": {"debounceMs": 20}},
+            )
+        ),
+        WAIT,
+    )
+    uri = open_seed(client, "o2_arc_thread_roughing.nc")
+    found = await diagnostics(client, uri, lambda d: any(x.code == "MB601" for x in d))
+    first, english = mb601(found).split("\n", 1)
+    assert first == "M、S、T、P、L、H、D 或 G 地址的值不是整数。"
+    assert "93.82" in english  # the value that caused it, as the rule says it
+    # The setting overrides the client's locale, and the diagnostics are published again.
+    client.workspace_did_change_configuration(
+        types.DidChangeConfigurationParams(
+            settings={"fanuc-macro": {"language": "en", "analysis": {"debounceMs": 20}}}
+        )
+    )
+    found = await diagnostics(client, uri, lambda d: "\n" not in mb601(d))
+    assert mb601(found) == english
