@@ -31,7 +31,7 @@ from pygls.uris import from_fs_path, to_fs_path
 
 from ..cancel import RUNNING, Cancelled, CancelToken, Stage
 from ..code_cache import save_code_cache
-from ..config import Config
+from ..config import Config, FormatSettings
 from ..diagnostics import REPORT_INTERNAL_ERROR
 from .convert import Codec, ConvertedDiagnostics, Lines, TextLines
 from .documents import OpenDocument
@@ -143,6 +143,7 @@ class Engine:
         self.log_message = log_message
         self.codec = codec or Codec()
         self.config = Config()
+        self.format_settings = FormatSettings()  # the formatter's: no analysis reads them
         self.debounce = DEFAULT_DEBOUNCE_MS / 1000.0
         self.docs: dict[str, OpenDocument] = {}  # by key
         self.results: dict[str, Result] = {}  # newest analysis of each open document
@@ -241,6 +242,7 @@ class Engine:
     # ---- settings --------------------------------------------------------------------------
     def configure(self, settings: dict[str, Any] | None) -> None:
         config = Config.from_settings(settings)
+        self.format_settings = FormatSettings.from_settings(settings)
         analysis = (settings or {}).get("analysis") or {}
         debounce = analysis.get("debounceMs") if isinstance(analysis, dict) else None
         if isinstance(debounce, int | float) and not isinstance(debounce, bool) and debounce >= 0:
