@@ -93,6 +93,24 @@ def test_format_line(line: str, options: str, expected: str) -> None:
     assert apply_edits(line, format_lines(line, OPTIONS[options])) == expected
 
 
+def test_format_settings_are_read_and_bad_values_left_at_their_defaults() -> None:
+    read = FormatSettings.from_settings(
+        {
+            "format": {
+                "upperCase": False,
+                "spaceBetweenWords": "always",
+                "spacesAroundAssignment": "never",
+                "renumberStep": 5,
+            }
+        }
+    )
+    assert read == FormatSettings(False, "always", "never", 5)
+    bad = {"upperCase": "no", "spaceBetweenWords": "some", "renumberStep": -1}
+    assert FormatSettings.from_settings({"format": bad}) == FormatSettings()
+    assert FormatSettings.from_settings({"format": 3}) == FormatSettings()
+    assert FormatSettings.from_settings(None) == FormatSettings()
+
+
 def test_keep_case_setting() -> None:
     options = FormatOptions(FormatSettings(upper_case=False))
     assert format_text("g01 x1.  \n", options) == "g01 x1.\n"

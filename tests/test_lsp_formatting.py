@@ -166,3 +166,24 @@ async def test_renumber_action_is_disabled_by_a_computed_goto(client: LanguageCl
     assert action.edit is None
     assert action.disabled is not None and "computed" in action.disabled.reason
     assert "computed" in action.title
+
+
+async def test_formatting_counts_utf16_columns(client: LanguageClient) -> None:
+    await start(client, None)
+    uri = "untitled:utf16.nc"
+    open_text(client, uri, "O1\n(😀) g01x1.\n")  # the emoji is two UTF-16 code units
+    edits = await asyncio.wait_for(
+        client.text_document_formatting_async(
+            types.DocumentFormattingParams(
+                text_document=types.TextDocumentIdentifier(uri=uri), options=OPTIONS
+            )
+        ),
+        WAIT,
+    )
+    assert edits is not None
+    [edit_] = edits
+    # "g01x" is at code points 4-8, UTF-16 code units 5-9.
+    assert edit_.range == types.Range(
+        start=types.Position(line=1, character=5), end=types.Position(line=1, character=9)
+    )
+    assert edit_.new_text == "G01X"

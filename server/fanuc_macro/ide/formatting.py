@@ -12,7 +12,7 @@ part of a block: an edit never touches them, so CRLF stays CRLF.
 from __future__ import annotations
 
 import re
-from collections.abc import Callable, Iterator
+from collections.abc import Callable
 from dataclasses import dataclass, field, fields, is_dataclass
 from itertools import pairwise
 
@@ -105,8 +105,10 @@ def _kept_as_written(parsed: ParsedLine) -> list[Span]:
     return kept
 
 
-def _gaps(parsed: ParsedLine, options: FormatOptions) -> Iterator[tuple[int, int, str]]:
-    """The spaces the settings rewrite: (start, end, new text), in order, none overlapping."""
+def _gaps(parsed: ParsedLine, options: FormatOptions) -> list[tuple[int, int, str]]:
+    """The spaces the settings rewrite: (start, end, new text), none overlapping. They lie
+    between the nodes of the statement, blank but for an assignment's "=": never in a comment
+    or a column ``_kept_as_written``."""
     text = parsed.text
     settings = options.settings
     words = settings.space_between_words
@@ -129,8 +131,7 @@ def _gaps(parsed: ParsedLine, options: FormatOptions) -> Iterator[tuple[int, int
                 start, end = assign.target.span.end, assign.value.span.start
                 if _ASSIGNMENT_GAP.fullmatch(text, start, end):
                     found.append((start, end, " = " if assignment == "always" else "="))
-    found.sort()
-    return iter(found)
+    return found
 
 
 def format_line(parsed: ParsedLine, options: FormatOptions) -> str:
@@ -138,30 +139,24 @@ def format_line(parsed: ParsedLine, options: FormatOptions) -> str:
     text = parsed.text
     if parsed.problem is not None:
         return text
-    kept = _kept_as_written(parsed)
+    kept = bytearray(len(text))  # 1: a column written as it is
+    for span in _kept_as_written(parsed):
+        kept[span.start : span.end] = b"\x01" * (span.end - span.start)
+    gaps = {start: (end, space) for start, end, space in _gaps(parsed, options)}
     upper = options.settings.upper_case
-
-    def touched(i: int) -> bool:
-        return not any(span.start <= i < span.end for span in kept)
-
     out: list[str] = []
     i = 0
-    gaps = [g for g in _gaps(parsed, options) if touched(g[0]) and touched(max(g[0], g[1] - 1))]
-    at = 0
     while i < len(text):
-        if at < len(gaps) and gaps[at][0] == i:
-            start, end, space = gaps[at]
-            at += 1
-            if end > start or space:
-                out.append(space)
+        gap = gaps.get(i)
+        if gap is not None:
+            end, space = gap
+            out.append(space)
+            if end > i:
                 i = end
                 continue
         ch = text[i]
-        out.append(ch.upper() if upper and "a" <= ch <= "z" and touched(i) else ch)
+        out.append(ch.upper() if upper and "a" <= ch <= "z" and not kept[i] else ch)
         i += 1
-    while at < len(gaps):  # a gap at the very end (none: words end before the line does)
-        out.append(gaps[at][2])
-        at += 1
     line = "".join(out)
     if options.trim_trailing_whitespace:
         last = parsed.comments[-1] if parsed.comments else None
