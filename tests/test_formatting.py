@@ -288,6 +288,10 @@ def test_renumber_updates_m99_p_and_the_lathe_profile() -> None:
     )
 
 
+def test_renumber_from_the_tape_mark_is_of_the_first_program() -> None:
+    assert renumbered("%\nO1\nN3 GOTO3\nM30\n%\n") == "%\nO1\nN10 GOTO10\nM30\n%\n"
+
+
 def test_renumber_only_the_program_at_the_line() -> None:
     text = "O1\nN1 GOTO1\nM30\nO2\nN1 GOTO1\nM99\n"
     action = renumber_labels(view_of(text), 4)

@@ -165,9 +165,12 @@ def _renumbered(view: View, program: Program, step: int) -> list[TextEdit]:
 
 
 def renumber_labels(view: View, line: int, step: int = DEFAULT_STEP) -> CodeAction | None:
-    """The "Renumber N labels" action of the program holding ``line``: None when it has no N
-    numbers or they are already so; disabled, with the reason, when it cannot be done."""
+    """The "Renumber N labels" action of the program holding ``line`` (or the next one): None
+    when it has no N numbers or they are already so; disabled, with the reason, when it
+    cannot be done."""
     program = view.index.program_at(line)
+    if program is None:  # before the first program (a "%" line): the program that follows
+        program = next((p for p in view.index.programs if p.first_line > line), None)
     if program is None or not program.labels:
         return None
     title = f"{TITLE} of {program.display_name} (step {step})"
