@@ -113,3 +113,36 @@ def _number(value: Any, default: float) -> float:
     if isinstance(value, bool) or not isinstance(value, int | float) or value <= 0:
         return default
     return float(value)
+
+
+# How the formatter spaces what it may: "keep" what is written, "always" one space, "never" none.
+SPACING = ("keep", "always", "never")
+
+
+@dataclass(frozen=True)
+class FormatSettings:
+    """The formatter's settings (``fanuc-macro.format.*``), apart from the analysis's: a change
+    of them analyses nothing again."""
+
+    upper_case: bool = True  # addresses and keywords outside comments (format.upperCase)
+    space_between_words: str = "keep"  # "G01 X10." / "G01X10." (format.spaceBetweenWords)
+    spaces_around_assignment: str = "keep"  # "#1 = 2" / "#1=2" (format.spacesAroundAssignment)
+    renumber_step: int = 10  # the step of "Renumber N labels" (format.renumberStep)
+
+    @classmethod
+    def from_settings(cls, settings: dict[str, Any] | None) -> FormatSettings:
+        fmt = (settings or {}).get("format")
+        if not isinstance(fmt, dict):
+            return cls()
+        default = cls()
+        upper = fmt.get("upperCase")
+        return cls(
+            upper_case=upper if isinstance(upper, bool) else default.upper_case,
+            space_between_words=_choice(fmt.get("spaceBetweenWords"), SPACING, "keep"),
+            spaces_around_assignment=_choice(fmt.get("spacesAroundAssignment"), SPACING, "keep"),
+            renumber_step=int(_number(fmt.get("renumberStep"), default.renumber_step)),
+        )
+
+
+def _choice(value: Any, choices: tuple[str, ...], default: str) -> str:
+    return value if isinstance(value, str) and value in choices else default

@@ -1,5 +1,5 @@
-"""The command line: ``fanuc-macro check``, ``trace``, ``plot``, ``thread``, ``hover`` and
-``definition``."""
+"""The command line: ``fanuc-macro check``, ``trace``, ``plot``, ``thread``, ``hover``,
+``definition`` and ``format``."""
 
 from __future__ import annotations
 
@@ -19,6 +19,7 @@ from ..config import CONTROLLERS, NOT_SET, Config
 from ..diagnostics import REPORT_INTERNAL_ERROR, RULES, Diagnostic, Severity
 from ..ide.trace import motion_text, trace  # small: what it uses, the check uses too
 from ..workspace import PROGRAM_SUFFIXES, Workspace, is_program_file
+from .format_command import add_format_command
 from .thread import add_thread_command
 
 EXIT_OK = 0
@@ -489,6 +490,7 @@ def build_parser() -> argparse.ArgumentParser:
     ).set_defaults(func=cmd_definition)
 
     add_thread_command(sub)
+    add_format_command(sub)
     return parser
 
 

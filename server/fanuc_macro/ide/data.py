@@ -119,6 +119,7 @@ class DocumentEdit:
 
 class ActionKind(str, Enum):
     QUICK_FIX = "quickfix"
+    SOURCE_RENUMBER = "source.renumber.fanuc-macro"  # a source action of the whole program
 
 
 @dataclass(frozen=True)
@@ -128,6 +129,7 @@ class CodeAction:
     edits: tuple[DocumentEdit, ...]
     fixes: tuple[Problem, ...] = ()  # the problems it answers, as they were asked
     preferred: bool = False
+    disabled: str = ""  # why it cannot be done ("" when it can)
 
 
 __all__ = [

@@ -31,7 +31,7 @@ from pygls.uris import from_fs_path, to_fs_path
 
 from ..cancel import RUNNING, Cancelled, CancelToken, Stage
 from ..code_cache import save_code_cache
-from ..config import Config
+from ..config import Config, FormatSettings
 from ..diagnostics import REPORT_INTERNAL_ERROR
 from ..ide.messages import Catalogue, catalogue
 from .convert import Codec, ConvertedDiagnostics, Lines, TextLines
@@ -144,6 +144,7 @@ class Engine:
         self.log_message = log_message
         self.codec = codec or Codec()
         self.config = Config()
+        self.format_settings = FormatSettings()  # the formatter's: no analysis reads them
         self.debounce = DEFAULT_DEBOUNCE_MS / 1000.0
         self.docs: dict[str, OpenDocument] = {}  # by key
         self.results: dict[str, Result] = {}  # newest analysis of each open document
@@ -254,6 +255,7 @@ class Engine:
 
     def configure(self, settings: dict[str, Any] | None) -> None:
         config = Config.from_settings(settings)
+        self.format_settings = FormatSettings.from_settings(settings)
         language = (settings or {}).get("language")
         language = language if isinstance(language, str) and language else "auto"
         if language != self.language:

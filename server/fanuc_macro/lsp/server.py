@@ -28,6 +28,7 @@ from .commands import THREAD_MODULE, TOOLPATH, TRACE, run_thread_module, run_too
 from .convert import Codec
 from .documents import OpenDocument
 from .engine import Engine, Result
+from .formatting import RENUMBER_KIND, wants
 
 if TYPE_CHECKING:  # the features import the analysis: loaded after initialize (Engine.preload)
     from .features import View
@@ -524,7 +525,7 @@ def create_server() -> FanucMacroLanguageServer:
 
     @server.feature(
         types.TEXT_DOCUMENT_CODE_ACTION,
-        types.CodeActionOptions(code_action_kinds=[types.CodeActionKind.QuickFix]),
+        types.CodeActionOptions(code_action_kinds=[types.CodeActionKind.QuickFix, RENUMBER_KIND]),
     )
     async def on_code_action(
         ls: FanucMacroLanguageServer, params: types.CodeActionParams
@@ -537,7 +538,47 @@ def create_server() -> FanucMacroLanguageServer:
         from .features import code_actions
 
         diagnostics = params.context.diagnostics
-        return await ls.compute("code actions", lambda: code_actions(view, diagnostics, eol))
+        actions = await ls.compute("code actions", lambda: code_actions(view, diagnostics, eol))
+        if actions is not None and wants(params.context.only, RENUMBER_KIND):
+            from .formatting import renumber_action
+
+            line, step = params.range.start.line, engine.format_settings.renumber_step
+            found = await ls.compute("renumbering", lambda: renumber_action(view, line, step))
+            if found is not None:
+                actions.append(found)
+        return actions
+
+    # ---- formatting: the open document's text, no analysis waited for ---------------------
+    @server.feature(types.TEXT_DOCUMENT_FORMATTING)
+    async def on_formatting(
+        ls: FanucMacroLanguageServer, params: types.DocumentFormattingParams
+    ) -> list[types.TextEdit] | None:
+        doc = engine.document(params.text_document.uri)
+        if doc is None:
+            return None
+        from .formatting import document_edits
+
+        text, lines, codec = doc.text, doc.lines(), engine.codec
+        settings, options = engine.format_settings, params.options
+        return await ls.compute(
+            "formatting", lambda: document_edits(text, lines, codec, settings, options)
+        )
+
+    @server.feature(types.TEXT_DOCUMENT_RANGE_FORMATTING)
+    async def on_range_formatting(
+        ls: FanucMacroLanguageServer, params: types.DocumentRangeFormattingParams
+    ) -> list[types.TextEdit] | None:
+        doc = engine.document(params.text_document.uri)
+        if doc is None:
+            return None
+        from .formatting import range_edits
+
+        text, lines, codec = doc.text, doc.lines(), engine.codec
+        settings, options, asked = engine.format_settings, params.options, params.range
+        return await ls.compute(
+            "range formatting",
+            lambda: range_edits(text, lines, codec, settings, options, asked),
+        )
 
     # ---- commands --------------------------------------------------------------------------
     @server.command(TRACE)
