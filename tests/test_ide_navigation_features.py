@@ -157,6 +157,38 @@ def test_rename_of_a_program_across_the_workspace() -> None:
     assert isinstance(refusal, Refusal) and "defined 2 times" in refusal.message
 
 
+def test_rename_refuses_a_label_a_subprogram_returns_to() -> None:
+    texts = {
+        "main.nc": "O1000\nM98 P2000\nN50 G00 X0\nM30\n",
+        "sub.nc": "O2000\nG00 X1\nM99 P50\n",
+    }
+    view, _ = workspace_view(texts, "main.nc")
+    refusal = prepare_rename(view, 2, 1)
+    assert isinstance(refusal, Refusal)
+    assert "O2000, called at line 2, returns to N50" in refusal.message
+    # In the called program, its M99 P names the caller's label, not one of its own.
+    texts["sub.nc"] = "O2000\nN50 G00 X1\nM99 P50\n"
+    sub, _ = workspace_view(texts, "sub.nc")
+    refusal = prepare_rename(sub, 1, 1)
+    assert isinstance(refusal, Refusal) and "called as a subprogram" in refusal.message
+    # A main program's M99 P jumps to its own label: renamed with it.
+    alone = view_of("O1\nN50 G00 X1\nM99 P50\n")
+    [edit] = rename(alone, 1, 1, "60")
+    assert applied("O1\nN50 G00 X1\nM99 P50\n", edit) == "O1\nN60 G00 X1\nM99 P60\n"
+
+
+def test_rename_refuses_a_program_numbered_by_its_file() -> None:
+    texts = {"main.nc": "O1000\nM98 P8501\nM30\n", "O8501.NC": "G00 X1\nM99\n"}
+    view, _ = workspace_view(texts, "main.nc")
+    refusal = prepare_rename(view, 1, 5)
+    assert isinstance(refusal, Refusal) and "file name 'O8501.NC'" in refusal.message
+    computed = view_of("O1\nM98 P#1\nM30\n")
+    refusal = prepare_rename(computed, 1, 1)  # on the M98
+    assert isinstance(refusal, Refusal) and "computed program number" in refusal.message
+    nowhere = prepare_rename(view_of("O1\nM98 P7777\nM30\n"), 1, 5)
+    assert isinstance(nowhere, Refusal) and "no program O7777" in nowhere.message
+
+
 # ---- document highlight ----------------------------------------------------------------------
 
 

@@ -212,13 +212,27 @@ def label_uses(view: View, program: Program, number: int) -> list[NumberUse]:
         if jump.target == number and jump.constant is not None:
             text = blocks[jump.line].text
             out.append(NumberUse(view.key, jump.line, digits_span(text, jump.target_span), "goto"))
-    for line in range(program.first_line, min(program.end_line, len(blocks))):
+    for line in _label_word_lines(view, program):
         block = blocks[line]
         for kind, word in label_words(block, view.config):
             if word_number(word) == number:
                 out.append(NumberUse(view.key, line, _word_digits(block, word), kind))
     out.sort(key=lambda use: (use.line, use.span.start))
     return out
+
+
+def _label_word_lines(view: View, program: Program) -> list[int]:
+    """The lines of ``program`` that may hold a word naming a label: its returns and M97 calls
+    (the index keeps them), and on a lathe the blocks whose text has a G7 (a profile cycle)."""
+    lines = set(program.returns)
+    lines.update(call.line for call in program.calls if call.kind == "M97")
+    if view.config.is_lathe:
+        blocks = view.doc.blocks
+        for line in range(program.first_line, min(program.end_line, len(blocks))):
+            text = blocks[line].text
+            if "7" in text and ("G" in text or "g" in text):
+                lines.add(line)
+    return sorted(lines)
 
 
 def defined_in(documents: Mapping[str, Indexed], number: int) -> list[tuple[str, Program]]:

@@ -58,7 +58,8 @@ def _program_end(blocks: tuple[Block, ...], program: Program) -> int:
     last_code = program.first_line
     for line in range(end - 1, program.first_line - 1, -1):
         parsed = blocks[line].parsed
-        if any(
+        text = blocks[line].text
+        if ("M" in text or "m" in text) and any(
             w.address == "M" and constant_value(w.value) in PROGRAM_ENDS
             for nc in nc_parts(blocks[line])
             for w in nc.words
