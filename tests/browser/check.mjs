@@ -1,7 +1,8 @@
 // Drives a real VS Code (code-server) in headless Chromium and checks that the
 // fanuc-macro extension works in it: language mode, TextMate highlighting,
-// diagnostics from the language server, a hover with a value, the Toolpath view
-// (webview) and the trace view (a read-only document whose rows link to the blocks).
+// diagnostics from the language server, a hover with a value, navigation (rename, document
+// highlight, folding, workspace symbols), the Toolpath view (webview) and the trace view (a
+// read-only document whose rows link to the blocks).
 // Every step waits for a condition (a status bar text, a data- attribute), never a fixed delay.
 //
 // Usage: node check.mjs <code-server base url> <workspace folder> <out dir>
@@ -192,7 +193,7 @@ async function checkToolpath() {
 // kinds; VS Code's own word matching marks `.wordHighlightText` only), folding controls on the
 // O line (only the server folds a program: the language configuration's markers fold the
 // WHILE alone) and the WHILE, and Ctrl+T lists an O program of the workspace.
-const NAV_LINES = ['O7001 (NAV)', '#1=0', 'IF[#1GT5]GOTO20', 'WHILE[#1LT3]DO1', '#1=#1+1', 'END1', 'N20 #2=#1', 'M30'];
+const NAV_LINES = ['O7001', '#1=0', 'IF[#1GT5]GOTO20', 'WHILE[#1LT3]DO1', '#1=#1+1', 'END1', 'N20 #2=#1', 'M30'];
 
 async function checkNavigation() {
   const nav = page.locator('.editor-group-container.active .monaco-editor').first();
@@ -221,6 +222,7 @@ async function checkNavigation() {
   } catch (e) {
     record('navigation program', false, `${e.message.split('\n')[0]}; ${JSON.stringify((await activeEditorText()).slice(0, 300))}`);
     await shot('navigation.png');
+    await closeUntitled();
     return;
   }
 
@@ -323,9 +325,15 @@ async function checkNavigation() {
     await page.keyboard.press('Escape');
   }
 
-  // Close the untitled program unsaved: the seed's editor is the active one again.
+  await closeUntitled();
+}
+
+/** Closes the untitled program unsaved: the seed's editor is the active one again. */
+async function closeUntitled() {
   try {
-    await runCommand('View: Revert and Close Editor');
+    if (await page.locator('.editor-group-container.active .tab.active', { hasText: 'Untitled' }).count()) {
+      await runCommand('View: Revert and Close Editor');
+    }
     await waitActiveEditor(FILE, 'FANUC Macro B');
   } catch (e) {
     record('navigation cleanup', false, e.message.split('\n')[0]);
