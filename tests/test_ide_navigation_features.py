@@ -98,6 +98,10 @@ def test_rename_of_a_program_keeps_the_repeat_count_of_m98() -> None:
     [edit] = rename(view, 10, call, "O5000")
     text = applied(SEED, edit).splitlines()
     assert text[10].startswith("M98 P0015000") and text[17].startswith("O5000 ")
+    # The program after the repeat count stays four digits: P0010012, not P00112.
+    [edit] = rename(view, 10, call, "12")
+    text = applied(SEED, edit).splitlines()
+    assert text[10].startswith("M98 P0010012") and text[17].startswith("O12 ")
 
 
 def test_rename_follows_m99_p_and_the_lathe_profile() -> None:

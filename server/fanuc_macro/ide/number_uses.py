@@ -34,6 +34,7 @@ class NumberUse:
     span: Span
     kind: str  # "label", "goto", "m99", "profile", "m97"; "program", "call"
     call: Call | None = None
+    width: int = 0  # the digits a new number must be written in (M98 P0013331: 4), 0: any
 
 
 @dataclass(frozen=True)
@@ -295,7 +296,13 @@ def program_uses(
             if call.program != number or call.program_span is None:
                 continue
             text = doc.blocks[call.line].text
-            out.append(NumberUse(doc_key, call.line, call_digits(text, call), "call", call))
+            span = call_digits(text, call)
+            # After a repeat count (M98 P0013331) the program is the last four digits.
+            assert call.program_span is not None
+            after_count = span != digits_span(text, call.program_span)
+            out.append(
+                NumberUse(doc_key, call.line, span, "call", call, width=4 if after_count else 0)
+            )
     return out
 
 

@@ -115,21 +115,17 @@ def rename(view: View, line: int, column: int, new_name: str) -> tuple[DocumentE
             return Refusal(f"O{new:04d} is already a program ({key}, {program.display_name})")
     edits: dict[str, list[TextEdit]] = {}
     for use in uses:
-        text = view.text(use.key, use.line) if use.key == view.key else _text(view, use)
-        old = text[use.span.start : use.span.end]
+        old = view.text(use.key, use.line)[use.span.start : use.span.end]
         edits.setdefault(use.key, []).append(
-            TextEdit(Range.of(use.line, use.span.start, use.line, use.span.end), _written(old, new))
+            TextEdit(
+                Range.of(use.line, use.span.start, use.line, use.span.end),
+                _written(old, new, use.width),
+            )
         )
     return tuple(
         DocumentEdit(key, tuple(sorted(edits[key], key=lambda e: e.range.start)))
         for key in sorted(edits)
     )
-
-
-def _text(view: View, use: NumberUse) -> str:
-    doc = view.document(use.key)
-    blocks = doc.blocks if doc is not None else ()
-    return blocks[use.line].text if 0 <= use.line < len(blocks) else ""
 
 
 _NUMBER = re.compile(r"\s*([NOno])?\s*(\d+)\s*")
@@ -148,11 +144,12 @@ def parse_number(kind: str, new_name: str) -> int | Refusal:
     return number
 
 
-def _written(old: str, new: int) -> str:
-    """``new`` as the old number was written: ``0010`` stays four digits wide."""
+def _written(old: str, new: int, width: int = 0) -> str:
+    """``new`` as the old number was written: ``0010`` stays four digits wide; ``width``: the
+    digits it must take (the program after M98's repeat count)."""
     if len(old) > 1 and old.startswith("0"):
-        return f"{new:0{len(old)}d}"
-    return str(new)
+        width = max(width, len(old))
+    return f"{new:0{width}d}" if width else str(new)
 
 
 def _uses(view: View, named: Named) -> list[NumberUse]:
