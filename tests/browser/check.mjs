@@ -1,7 +1,8 @@
 // Drives a real VS Code (code-server) in headless Chromium and checks that the
 // fanuc-macro extension works in it: language mode, TextMate highlighting,
-// diagnostics from the language server, a hover with a value, the Toolpath view
-// (webview) and the trace view (a read-only document whose rows link to the blocks).
+// diagnostics from the language server, a hover with a value, navigation (rename, document
+// highlight, folding, workspace symbols), the Toolpath view (webview) and the trace view (a
+// read-only document whose rows link to the blocks).
 // Every step waits for a condition (a status bar text, a data- attribute), never a fixed delay.
 //
 // Usage: node check.mjs <code-server base url> <workspace folder> <out dir>
@@ -184,6 +185,159 @@ async function checkToolpath() {
     record('toolpath cursor', false, `${e.message.split('\n')[0]}; data-highlighted ${lit}`);
   }
   await shot('toolpath-cursor.png');
+}
+
+// Navigation in an untitled program typed in (no seed has a WHILE loop), closed unsaved after:
+// F2 on a GOTO's label renames the label and the GOTO, the cursor on a variable shows its
+// writes and reads (`.wordHighlightStrong` / `.wordHighlight`: the server's Write and Read
+// kinds; VS Code's own word matching marks `.wordHighlightText` only), folding controls on the
+// O line (only the server folds a program: the language configuration's markers fold the
+// WHILE alone) and the WHILE, and Ctrl+T lists an O program of the workspace.
+const NAV_LINES = ['O7001', '#1=0', 'IF[#1GT5]GOTO20', 'WHILE[#1LT3]DO1', '#1=#1+1', 'END1', 'N20 #2=#1', 'M30'];
+
+async function checkNavigation() {
+  const nav = page.locator('.editor-group-container.active .monaco-editor').first();
+  try {
+    await runCommand('File: New Untitled Text File');
+    await page.locator('.editor-group-container.active .tab.active', { hasText: 'Untitled' }).first().waitFor();
+    await runCommand('Change Language Mode');
+    const input = page.locator('.quick-input-widget input');
+    await input.waitFor({ state: 'visible' });
+    await input.fill('FANUC Macro B');
+    await page.locator('.quick-input-list .monaco-list-row', { hasText: 'FANUC Macro B' }).first().waitFor();
+    await page.keyboard.press('Enter');
+    await waitActiveEditor('Untitled', 'FANUC Macro B');
+    await nav.click({ position: { x: 200, y: 10 } });
+    for (const [i, line] of NAV_LINES.entries()) {
+      await page.keyboard.type(line);
+      await page.keyboard.press('Escape'); // a completion list must not take the Enter
+      if (i < NAV_LINES.length - 1) await page.keyboard.press('Enter');
+    }
+    await page.waitForFunction(
+      () => /N20 #2=#1/.test((document.querySelector('.editor-group-container.active .monaco-editor .view-lines')
+        ?.innerText || '').replace(/\u00a0/g, ' ')),
+      null,
+      { timeout: STEP_MS },
+    );
+  } catch (e) {
+    record('navigation program', false, `${e.message.split('\n')[0]}; ${JSON.stringify((await activeEditorText()).slice(0, 300))}`);
+    await shot('navigation.png');
+    await closeUntitled();
+    return;
+  }
+
+  // F2 on the 20 of GOTO20: N20 and GOTO20 become 30.
+  try {
+    const column = NAV_LINES[2].indexOf('GOTO20') + 6; // on the "0" of 20 (1-based column)
+    await gotoPosition(3, column);
+    await page.keyboard.press('F2');
+    const box = page.locator('.rename-box .rename-input, .rename-box input').first();
+    await box.waitFor({ state: 'visible' });
+    const offered = await box.evaluate((el) => el.value ?? el.textContent);
+    await page.keyboard.press('Control+A');
+    await page.keyboard.type('30');
+    await page.keyboard.press('Enter');
+    await page.waitForFunction(
+      () => {
+        const t = (document.querySelector('.editor-group-container.active .monaco-editor .view-lines')?.innerText || '')
+          .replace(/\u00a0/g, ' ');
+        return /GOTO30/.test(t) && /N30 #2=#1/.test(t) && !/GOTO20|N20/.test(t);
+      },
+      null,
+      { timeout: STEP_MS },
+    );
+    record('rename', true, `F2 on GOTO20 offered ${JSON.stringify(offered)}; renamed to 30: GOTO30 and N30`);
+  } catch (e) {
+    record('rename', false, `${e.message.split('\n')[0]}; ${JSON.stringify((await activeEditorText()).slice(0, 300))}`);
+    await shot('rename.png');
+  }
+
+  // The cursor on #1 of `#1=#1+1`: its writes (lines 2, 5) and reads (lines 3, 4, 5, 7).
+  try {
+    await gotoPosition(5, 2);
+    await page.waitForFunction(
+      () => {
+        const view = document.querySelector('.editor-group-container.active .monaco-editor');
+        return view && view.querySelectorAll('.wordHighlightStrong').length >= 2
+          && view.querySelectorAll('.wordHighlight').length >= 3;
+      },
+      null,
+      { timeout: STEP_MS },
+    );
+    const counts = await nav.evaluate((el) => ({
+      write: el.querySelectorAll('.wordHighlightStrong').length,
+      read: el.querySelectorAll('.wordHighlight').length,
+    }));
+    record('document highlight', true, `#1: ${counts.write} write and ${counts.read} read decorations`);
+  } catch (e) {
+    const classes = await nav.evaluate((el) =>
+      [...new Set([...el.querySelectorAll('[class*="wordHighlight"]')].map((d) => d.className))]).catch(() => []);
+    record('document highlight', false, `${e.message.split('\n')[0]}; decorations ${JSON.stringify(classes)}`);
+    await shot('highlight.png');
+  }
+
+  // Folding controls in the gutter beside the O line (1) and the WHILE (4).
+  try {
+    await page.waitForFunction(
+      () => {
+        const view = document.querySelector('.editor-group-container.active .monaco-editor');
+        if (!view) return false;
+        const tops = (n) => [...view.querySelectorAll('.line-numbers')]
+          .filter((el) => Number(el.textContent) === n).map((el) => el.getBoundingClientRect().top);
+        const folds = [...view.querySelectorAll('.margin-view-overlays [class*="codicon-folding-"]')]
+          .map((el) => el.getBoundingClientRect().top);
+        const at = (n) => tops(n).some((t) => folds.some((f) => Math.abs(f - t) < 3));
+        return at(1) && at(4);
+      },
+      null,
+      { timeout: STEP_MS },
+    );
+    const count = await nav.locator('.margin-view-overlays [class*="codicon-folding-"]').count();
+    record('folding', true, `folding controls on the O line and the WHILE (${count} in the gutter)`);
+  } catch (e) {
+    const count = await nav.locator('.margin-view-overlays [class*="codicon-folding-"]').count().catch(() => -1);
+    record('folding', false, `${e.message.split('\n')[0]}; ${count} folding controls`);
+    await shot('folding.png');
+  }
+
+  // Ctrl+T: the workspace's programs, O4009 among them (the seeds' folder, scanned).
+  try {
+    await nav.click({ position: { x: 200, y: 10 } });
+    await page.keyboard.press('Control+T');
+    const input = page.locator('.quick-input-widget input');
+    let how = 'Ctrl+T';
+    try {
+      await input.waitFor({ state: 'visible', timeout: 10_000 });
+    } catch {
+      how = 'Go to Symbol in Workspace (Ctrl+T did not open it)';
+      await runCommand('Go to Symbol in Workspace');
+      await input.waitFor({ state: 'visible' });
+    }
+    await input.fill('#O40');
+    const row = page.locator('.quick-input-list .monaco-list-row', { hasText: 'O4009' }).first();
+    await row.waitFor();
+    record('workspace symbols', true, `${how} "O40": ${(await row.innerText()).replace(/\s+/g, ' ')}`);
+    await page.keyboard.press('Escape');
+  } catch (e) {
+    const rows = await page.locator('.quick-input-list').innerText().catch(() => '');
+    record('workspace symbols', false, `${e.message.split('\n')[0]}; ${JSON.stringify(rows.slice(0, 300))}`);
+    await shot('workspace-symbols.png');
+    await page.keyboard.press('Escape');
+  }
+
+  await closeUntitled();
+}
+
+/** Closes the untitled program unsaved: the seed's editor is the active one again. */
+async function closeUntitled() {
+  try {
+    if (await page.locator('.editor-group-container.active .tab.active', { hasText: 'Untitled' }).count()) {
+      await runCommand('View: Revert and Close Editor');
+    }
+    await waitActiveEditor(FILE, 'FANUC Macro B');
+  } catch (e) {
+    record('navigation cleanup', false, e.message.split('\n')[0]);
+  }
 }
 
 /** Waits until the active group's active tab says `name` and the active editor's language is `mode`. */
@@ -386,6 +540,7 @@ try {
   await shot('hover.png');
   await page.keyboard.press('Escape');
 
+  await checkNavigation();
   await checkToolpath();
   await checkTrace();
 } catch (e) {

@@ -56,5 +56,15 @@ def test_extension_in_code_server(tmp_path: Path) -> None:
     assert proc.returncode == 0, f"run_browser_test.sh exited {proc.returncode}:\n{tail}"
     assert "PASS diagnostics" in proc.stdout, tail
     assert "PASS hover" in proc.stdout, tail
-    for check in ("toolpath view", "toolpath click", "toolpath cursor", "trace view", "trace link"):
+    for check in (
+        "rename",
+        "document highlight",
+        "folding",
+        "workspace symbols",
+        "toolpath view",
+        "toolpath click",
+        "toolpath cursor",
+        "trace view",
+        "trace link",
+    ):
         assert f"PASS {check}:" in proc.stdout, tail

@@ -580,6 +580,126 @@ def create_server() -> FanucMacroLanguageServer:
             lambda: range_edits(text, lines, codec, settings, options, asked),
         )
 
+    # ---- navigation: rename, highlight, folding, selection, workspace symbols, calls ------
+    def refused(answer: Any) -> Any:
+        """A rename the ide layer refused is an error whose message the client shows."""
+        from .navigation import Refused
+
+        if isinstance(answer, Refused):
+            raise JsonRpcException(answer.message, code=types.LSPErrorCodes.RequestFailed)
+        return answer
+
+    @server.feature(types.TEXT_DOCUMENT_PREPARE_RENAME)
+    async def on_prepare_rename(
+        ls: FanucMacroLanguageServer, params: types.PrepareRenameParams
+    ) -> types.PrepareRenamePlaceholder | None:
+        view = await ls.view(params.text_document.uri)
+        if view is None:
+            return None
+        from .navigation import prepare_rename
+
+        found = await ls.compute("prepare rename", lambda: prepare_rename(view, params.position))
+        return refused(found)  # type: ignore[no-any-return]
+
+    @server.feature(types.TEXT_DOCUMENT_RENAME, types.RenameOptions(prepare_provider=True))
+    async def on_rename(
+        ls: FanucMacroLanguageServer, params: types.RenameParams
+    ) -> types.WorkspaceEdit | None:
+        view = await ls.view(params.text_document.uri)
+        if view is None:
+            return None
+        from .navigation import rename
+
+        found = await ls.compute("rename", lambda: rename(view, params.position, params.new_name))
+        return refused(found)  # type: ignore[no-any-return]
+
+    @server.feature(types.TEXT_DOCUMENT_DOCUMENT_HIGHLIGHT)
+    async def on_document_highlight(
+        ls: FanucMacroLanguageServer, params: types.DocumentHighlightParams
+    ) -> list[types.DocumentHighlight] | None:
+        view = await ls.view(params.text_document.uri)
+        if view is None:
+            return None
+        from .navigation import document_highlights
+
+        return await ls.compute(
+            "document highlight", lambda: document_highlights(view, params.position)
+        )
+
+    @server.feature(types.TEXT_DOCUMENT_FOLDING_RANGE)
+    async def on_folding_range(
+        ls: FanucMacroLanguageServer, params: types.FoldingRangeParams
+    ) -> list[types.FoldingRange] | None:
+        view = await ls.view(params.text_document.uri)
+        if view is None:
+            return None
+        from .navigation import folding_ranges
+
+        return await ls.compute("folding ranges", lambda: folding_ranges(view))
+
+    @server.feature(types.TEXT_DOCUMENT_SELECTION_RANGE)
+    async def on_selection_range(
+        ls: FanucMacroLanguageServer, params: types.SelectionRangeParams
+    ) -> list[types.SelectionRange] | None:
+        view = await ls.view(params.text_document.uri)
+        if view is None:
+            return None
+        from .navigation import selection_ranges
+
+        return await ls.compute(
+            "selection ranges", lambda: selection_ranges(view, params.positions)
+        )
+
+    @server.feature(types.WORKSPACE_SYMBOL)
+    async def on_workspace_symbol(
+        ls: FanucMacroLanguageServer, params: types.WorkspaceSymbolParams
+    ) -> list[types.WorkspaceSymbol] | None:
+        documents = engine.indexes  # replaced, never changed: safe to read from a thread
+        from .navigation import workspace_symbols
+
+        return await ls.compute(
+            "workspace symbols",
+            lambda: workspace_symbols(documents, params.query, engine.codec, engine.client_uri),
+        )
+
+    @server.feature(types.TEXT_DOCUMENT_PREPARE_CALL_HIERARCHY)
+    async def on_prepare_call_hierarchy(
+        ls: FanucMacroLanguageServer, params: types.CallHierarchyPrepareParams
+    ) -> list[types.CallHierarchyItem] | None:
+        view = await ls.view(params.text_document.uri)
+        if view is None:
+            return None
+        from .navigation import prepare_call_hierarchy
+
+        found = await ls.compute(
+            "call hierarchy", lambda: prepare_call_hierarchy(view, params.position)
+        )
+        return found or None
+
+    @server.feature(types.CALL_HIERARCHY_INCOMING_CALLS)
+    async def on_incoming_calls(
+        ls: FanucMacroLanguageServer, params: types.CallHierarchyIncomingCallsParams
+    ) -> list[types.CallHierarchyIncomingCall] | None:
+        documents = engine.indexes
+        from .navigation import incoming_calls
+
+        return await ls.compute(
+            "incoming calls",
+            lambda: incoming_calls(documents, params.item, engine.codec, engine.client_uri),
+        )
+
+    @server.feature(types.CALL_HIERARCHY_OUTGOING_CALLS)
+    async def on_outgoing_calls(
+        ls: FanucMacroLanguageServer, params: types.CallHierarchyOutgoingCallsParams
+    ) -> list[types.CallHierarchyOutgoingCall] | None:
+        documents = engine.indexes
+        from .navigation import outgoing_calls
+
+        return await ls.compute(
+            "outgoing calls",
+            lambda: outgoing_calls(documents, params.item, engine.codec, engine.client_uri),
+        )
+
     # ---- commands --------------------------------------------------------------------------
     @server.command(TRACE)
     async def trace_command(ls: FanucMacroLanguageServer, *args: Any) -> dict[str, Any]:
