@@ -1,0 +1,101 @@
+"""Code lenses over each O line: who calls the program across the workspace, and what the
+analysed runs did there (how often it was entered, the threads it cut: their cuts and
+depths)."""
+
+from __future__ import annotations
+
+from collections import Counter
+from dataclasses import dataclass
+
+from ..program.index import Program
+from .data import Location, Range
+from .values import times
+from .view import View
+
+MAX_CALLERS = 3  # named in the title; the rest are counted
+
+
+@dataclass(frozen=True)
+class CodeLens:
+    range: Range  # the program's O word
+    title: str
+    references: tuple[Location, ...] = ()  # the places the title counts, when it counts any
+
+
+def _callers(view: View, number: int) -> list[tuple[str, str, int]]:
+    """Every call of O``number`` in the workspace: (document key, calling program, line)."""
+    found: list[tuple[str, str, int]] = []
+    documents = {**view.workspace, view.key: (view.doc, view.index)}
+    for key in sorted(documents):
+        _, index = documents[key]
+        for program in index.programs:
+            for call in program.calls:
+                if call.program == number:
+                    found.append((key, program.display_name, call.line))
+    return found
+
+
+def _callers_lens(view: View, program: Program, where: Range) -> CodeLens | None:
+    assert program.number is not None
+    callers = _callers(view, program.number)
+    if not callers:
+        if not program.returns:
+            return None  # a main program: nobody is expected to call it
+        return CodeLens(where, "no caller in the workspace")
+    counts = Counter(name for _, name, _ in callers)
+    named = [f"{name} · {count}×" for name, count in counts.most_common(MAX_CALLERS)]
+    rest = len(counts) - len(named)
+    title = "called from " + ", ".join(named) + (f" and {rest} more" if rest else "")
+    references = tuple(view.location(key, line) for key, _, line in callers)
+    return CodeLens(where, title, references)
+
+
+def _runs_lens(view: View, program: Program, header: int, where: Range) -> CodeLens | None:
+    """How often the analysed runs entered the program, and the threads it cut."""
+    facts = view.facts
+    if facts is None:
+        return None
+    parts: list[str] = []
+    entered = facts.runs.get(header)
+    if entered:
+        parts.append(f"entered {times(entered)}")
+    for thread in view.analysis.threads:
+        job = thread.job
+        if job.uri != view.key or job.program_line != program.first_line or not job.passes:
+            continue
+        # A cut is one threading motion; the cuts at one X are one depth (a spring pass, or
+        # the two flanks of a shifted start, cut the same depth again).
+        cuts = len(job.passes)
+        depths = len(set(job.xs))
+        lead = job.lead
+        feed = f" F{lead:g}" if lead is not None else ""
+        name = thread.name if thread.identified else "thread"
+        parts.append(
+            f"{name}: {cuts} cut{'' if cuts == 1 else 's'} at {depths} "
+            f"depth{'' if depths == 1 else 's'} ({job.code}{feed})"
+        )
+    if not parts:
+        return None
+    return CodeLens(where, " · ".join(parts))
+
+
+def code_lenses(view: View) -> list[CodeLens]:
+    """The lenses of every program with an O line, in document order."""
+    out: list[CodeLens] = []
+    for program in view.index.programs:
+        header = program.header_line
+        if header is None or program.number is None:
+            continue
+        block = view.block(header)
+        if block is None:
+            continue
+        span = block.statement.span if block.statement is not None else None
+        start, end = (span.start, span.end) if span is not None else (0, 0)
+        where = Range.of(header, start, header, end)
+        for lens in (_callers_lens(view, program, where), _runs_lens(view, program, header, where)):
+            if lens is not None:
+                out.append(lens)
+    return out
+
+
+__all__ = ["CodeLens", "code_lenses"]

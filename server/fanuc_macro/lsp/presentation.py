@@ -1,0 +1,104 @@
+"""Semantic tokens, signature help and code lenses in the protocol's terms: the ide layer's
+plain answers (``ide/semantic.py``, ``ide/signature.py``, ``ide/lenses.py``) converted to
+lsprotocol types, in the client's position units. Pure; may run in a thread.
+"""
+
+from __future__ import annotations
+
+from lsprotocol import types
+
+from ..ide import lenses as ide_lenses
+from ..ide import semantic as ide_semantic
+from ..ide import signature as ide_signature
+from ..ide.token_legend import TOKEN_MODIFIERS, TOKEN_TYPES
+from .convert import Codec
+from .features import View, locations, lsp_range
+
+LEGEND = types.SemanticTokensLegend(
+    token_types=list(TOKEN_TYPES), token_modifiers=list(TOKEN_MODIFIERS)
+)
+_TYPE_INDEX = {name: i for i, name in enumerate(TOKEN_TYPES)}
+_MODIFIER_BIT = {name: 1 << i for i, name in enumerate(TOKEN_MODIFIERS)}
+
+
+def encode(view: View, tokens: list[ide_semantic.SemanticToken]) -> list[int]:
+    """The protocol's packed form: five integers a token, each position relative to the one
+    before, in the client's units."""
+    data: list[int] = []
+    codec = view.lines.codec
+    previous_line = previous_start = 0
+    for token in tokens:
+        text = view.lines.text(token.line)
+        start = codec.to_client(text, token.start)
+        length = codec.to_client(text, token.end) - start
+        delta_line = token.line - previous_line
+        delta_start = start - previous_start if delta_line == 0 else start
+        bits = 0
+        for modifier in token.modifiers:
+            bits |= _MODIFIER_BIT[modifier.value]
+        data += [delta_line, delta_start, length, _TYPE_INDEX[token.type.value], bits]
+        previous_line, previous_start = token.line, start
+    return data
+
+
+def semantic_tokens(view: View, within: types.Range | None = None) -> types.SemanticTokens:
+    first, last = (within.start.line, within.end.line) if within is not None else (0, None)
+    found = ide_semantic.semantic_tokens(view.ide, first, last)
+    return types.SemanticTokens(data=encode(view, found))
+
+
+def _markdown(text: str) -> types.MarkupContent | None:
+    return types.MarkupContent(kind=types.MarkupKind.Markdown, value=text) if text else None
+
+
+def signature_help(
+    line_text: str, column: int, codec: Codec, view: View | None
+) -> types.SignatureHelp | None:
+    """Signature help at ``column`` (code points) of ``line_text``, the open document's newest
+    text; ``view``, the newest analysis there is, may be of an older one."""
+    found = ide_signature.signature_help(line_text, column, view.ide if view else None)
+    if found is None:
+        return None
+    label = found.label
+    parameters = [
+        types.ParameterInformation(
+            label=(codec.to_client(label, p.start), codec.to_client(label, p.end)),
+            documentation=_markdown(p.documentation),
+        )
+        for p in found.parameters
+    ]
+    # No parameter at the cursor: an index past the parameters, which highlights none.
+    active = found.active if found.active is not None else len(parameters)
+    return types.SignatureHelp(
+        signatures=[
+            types.SignatureInformation(
+                label=label,
+                documentation=_markdown(found.documentation),
+                parameters=parameters,
+                active_parameter=active,
+            )
+        ],
+        active_signature=0,
+        active_parameter=active,
+    )
+
+
+def code_lenses(view: View) -> list[types.CodeLens]:
+    """Each lens with its title as a command of no id: a title to read, nothing to run (the
+    places a title counts are the references the lens's data holds)."""
+    out: list[types.CodeLens] = []
+    for lens in ide_lenses.code_lenses(view.ide):
+        places = locations(view, lens.references)
+        out.append(
+            types.CodeLens(
+                range=lsp_range(view.lines, lens.range),
+                command=types.Command(title=lens.title, command=""),
+                data={"references": [[p.uri, p.range.start.line] for p in places]}
+                if places
+                else None,
+            )
+        )
+    return out
+
+
+__all__ = ["LEGEND", "code_lenses", "encode", "semantic_tokens", "signature_help"]
