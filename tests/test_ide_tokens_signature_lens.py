@@ -31,6 +31,8 @@ MAIN = (
     "O9010 (BORE A HOLE)\n"
     "#100=#24 (START X)\n"
     "#101=#1+#26+#30\n"
+    "#2=1 (B IS SET, NOT GIVEN)\n"
+    "#102=#2\n"
     "M99\n"
 )
 
@@ -179,7 +181,10 @@ def test_call_signature_names_the_locals_the_callee_reads_and_the_letter_at_the_
     # A letter the callee does not read is shown, and said to be unread.
     b = signature_help("G65 P9010 B", 11, view)
     assert b is not None and b.label == "G65 P9010 A=#1 B=#2 X=#24 Z=#26" and b.active == 1
-    assert b.parameters[1].documentation == "**B** → **#2** — O9010 does not read #2"
+    # O9010 sets #2 before it reads it: B would be lost.
+    assert b.parameters[1].documentation == (
+        "**B** → **#2** — unused: O9010 does not read #2 before it sets it"
+    )
     assert signature_help("G01 X1.", 7, view) is None
     assert signature_help("G65", 1, view) is None  # in the G word itself
 

@@ -2,8 +2,8 @@
 
 It installs code-server, Node.js 24 and playwright-core from the npm registry (cached in
 tests/browser/node_modules), chromium from Debian if missing, builds the .vsix and checks in
-headless Chromium the language mode, the highlighting, an MB601 diagnostic, a hover, the Toolpath
-view (drawn, a click on a segment reveals its block, the cursor's block lit) and the trace view
+headless Chromium the language mode, the highlighting, an MB601 diagnostic, a hover, semantic
+tokens, a code lens, signature help, the Toolpath view (drawn, a click on a segment reveals its block, the cursor's block lit) and the trace view
 (a row's values, its link and F12 to the block). It takes minutes on a first run, so it only
 runs when FANUC_MACRO_BROWSER_TEST=1.
 """
@@ -56,5 +56,14 @@ def test_extension_in_code_server(tmp_path: Path) -> None:
     assert proc.returncode == 0, f"run_browser_test.sh exited {proc.returncode}:\n{tail}"
     assert "PASS diagnostics" in proc.stdout, tail
     assert "PASS hover" in proc.stdout, tail
-    for check in ("toolpath view", "toolpath click", "toolpath cursor", "trace view", "trace link"):
+    for check in (
+        "semantic tokens",
+        "code lens",
+        "signature help",
+        "toolpath view",
+        "toolpath click",
+        "toolpath cursor",
+        "trace view",
+        "trace link",
+    ):
         assert f"PASS {check}:" in proc.stdout, tail

@@ -22,22 +22,30 @@ class CodeLens:
     references: tuple[Location, ...] = ()  # the places the title counts, when it counts any
 
 
-def _callers(view: View, number: int) -> list[tuple[str, str, int]]:
-    """Every call of O``number`` in the workspace: (document key, calling program, line)."""
-    found: list[tuple[str, str, int]] = []
+# Every call of a program in the workspace, by the number it calls: (document key, the
+# calling program's name, the line of the call).
+Callers = dict[int, list[tuple[str, str, int]]]
+
+
+def _callers(view: View) -> Callers:
+    found: Callers = {}
     documents = {**view.workspace, view.key: (view.doc, view.index)}
     for key in sorted(documents):
         _, index = documents[key]
         for program in index.programs:
             for call in program.calls:
-                if call.program == number:
-                    found.append((key, program.display_name, call.line))
+                if call.program is not None:
+                    found.setdefault(call.program, []).append(
+                        (key, program.display_name, call.line)
+                    )
     return found
 
 
-def _callers_lens(view: View, program: Program, where: Range) -> CodeLens | None:
+def _callers_lens(
+    view: View, program: Program, where: Range, all_callers: Callers
+) -> CodeLens | None:
     assert program.number is not None
-    callers = _callers(view, program.number)
+    callers = all_callers.get(program.number, [])
     if not callers:
         if not program.returns:
             return None  # a main program: nobody is expected to call it
@@ -82,6 +90,7 @@ def _runs_lens(view: View, program: Program, header: int, where: Range) -> CodeL
 def code_lenses(view: View) -> list[CodeLens]:
     """The lenses of every program with an O line, in document order."""
     out: list[CodeLens] = []
+    callers = _callers(view)
     for program in view.index.programs:
         header = program.header_line
         if header is None or program.number is None:
@@ -92,7 +101,10 @@ def code_lenses(view: View) -> list[CodeLens]:
         span = block.statement.span if block.statement is not None else None
         start, end = (span.start, span.end) if span is not None else (0, 0)
         where = Range.of(header, start, header, end)
-        for lens in (_callers_lens(view, program, where), _runs_lens(view, program, header, where)):
+        for lens in (
+            _callers_lens(view, program, where, callers),
+            _runs_lens(view, program, header, where),
+        ):
             if lens is not None:
                 out.append(lens)
     return out

@@ -6,15 +6,27 @@ never overlap and are in document order; columns are code points.
 
 from __future__ import annotations
 
+import itertools
 import re
-from collections.abc import Iterator
+from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
 
 from ..program.index import Program
 from ..program.variables import ARGUMENT_VARIABLES, classify
 from ..syntax.lines import cut_comments
 from ..syntax.parser import statements_of
-from ..syntax.tree import Block, Call, IfNc, NcStatement, ProgramStart, Span, Statement, Var
+from ..syntax.tree import (
+    Block,
+    Call,
+    IfNc,
+    NcStatement,
+    PlainNc,
+    Print,
+    ProgramStart,
+    Span,
+    Statement,
+    Var,
+)
 from ..syntax.walk import subexpressions, top_expressions
 from .locate import assignments_in, number_of
 from .token_legend import TokenModifier, TokenType
@@ -118,17 +130,21 @@ def _expression_tokens(
 
 
 def _word_tokens(
-    line: int, code: str, statement: Statement, taken: list[SemanticToken]
+    line: int, code: str, statement: Statement, taken: Sequence[SemanticToken]
 ) -> Iterator[SemanticToken]:
     """The keywords and word operators of a macro statement, read from its code (the nodes keep
-    no columns for them), outside the tokens already found and the NC words of an IF."""
+    no columns for them), outside the tokens already found, the NC words of an IF and the
+    text a DPRNT prints."""
     if isinstance(statement, NcStatement | ProgramStart):
         return
     skip = [(t.start, t.end) for t in taken]
     if isinstance(statement, IfNc):
         skip.append((statement.words.span.start, statement.words.span.end))
     span = statement.span
-    for m in _LETTERS.finditer(code, span.start, span.end):
+    words = _LETTERS.finditer(code, span.start, span.end)
+    if isinstance(statement, Print):
+        words = itertools.islice(words, 1)  # the keyword; the rest is what it prints
+    for m in words:
         if any(start < m.end() and m.start() < end for start, end in skip):
             continue
         word = m.group().upper()
@@ -139,9 +155,10 @@ def _word_tokens(
 
 
 def block_tokens(
-    block: Block, program: Program | None, arguments: frozenset[int]
+    block: Block, arguments: frozenset[int], targets: Sequence[tuple[Span, TokenType]] = ()
 ) -> list[SemanticToken]:
-    """The tokens of one block, in order, none overlapping."""
+    """The tokens of one block, in order, none overlapping. ``targets`` are the constant targets
+    the index found on the line: GOTO labels and the programs calls name."""
     parsed = block.parsed
     line = block.line
     found: list[SemanticToken] = []
@@ -155,22 +172,26 @@ def block_tokens(
             found.append(
                 SemanticToken(line, span.start, span.end, TokenType.NAMESPACE, _DECLARATION)
             )
-            continue
-        found.extend(_expression_tokens(line, statement, arguments))
-    if program is not None:
-        for jump in program.jumps:
-            if jump.line == line and jump.target is not None:
-                span = jump.target_span
-                found.append(SemanticToken(line, span.start, span.end, TokenType.LABEL))
-        for call in program.calls:
-            if call.line == line and call.program is not None and call.program_span is not None:
-                span = call.program_span
-                found.append(SemanticToken(line, span.start, span.end, TokenType.NAMESPACE))
+        elif type(statement) is not PlainNc:  # numbers only: no node is built for it
+            found.extend(_expression_tokens(line, statement, arguments))
+    for span, kind in targets:
+        found.append(SemanticToken(line, span.start, span.end, kind))
     if any(not isinstance(s, NcStatement | ProgramStart) for s in statements):
         code = cut_comments(block.text).code
         for statement in statements:
-            found.extend(list(_word_tokens(line, code, statement, list(found))))
+            found.extend(_word_tokens(line, code, statement, tuple(found)))
     return _without_overlaps(found)
+
+
+def _targets_by_line(program: Program) -> dict[int, list[tuple[Span, TokenType]]]:
+    by_line: dict[int, list[tuple[Span, TokenType]]] = {}
+    for jump in program.jumps:
+        if jump.target is not None:
+            by_line.setdefault(jump.line, []).append((jump.target_span, TokenType.LABEL))
+    for call in program.calls:
+        if call.program is not None and call.program_span is not None:
+            by_line.setdefault(call.line, []).append((call.program_span, TokenType.NAMESPACE))
+    return by_line
 
 
 def _without_overlaps(tokens: list[SemanticToken]) -> list[SemanticToken]:
@@ -192,11 +213,13 @@ def semantic_tokens(view: View, first: int = 0, last: int | None = None) -> list
     out: list[SemanticToken] = []
     program: Program | None = None
     arguments: frozenset[int] = frozenset()
+    targets: dict[int, list[tuple[Span, TokenType]]] = {}
     for line in range(max(0, first), stop):
         if program is None or not program.contains(line):
             program = view.index.program_at(line)
             arguments = _arguments_of(view, program, called)
-        out.extend(block_tokens(blocks[line], program, arguments))
+            targets = _targets_by_line(program) if program is not None else {}
+        out.extend(block_tokens(blocks[line], arguments, targets.get(line, ())))
     return out
 
 

@@ -12,11 +12,10 @@ from dataclasses import dataclass
 
 from ..program import knowledge
 from ..program.index import Program
-from ..program.meanings import ROLE_TITLES, variable_roles
-from ..program.variables import ARGUMENT_VARIABLES
+from ..program.variables import ARGUMENT_VARIABLES, FORBIDDEN_ARGUMENTS
 from ..syntax.lines import cut_comments
 from ..syntax.tree import Document
-from .locate import uses
+from .locate import number_of, uses
 from .view import View, comment_of, first_comment
 
 
@@ -94,36 +93,47 @@ def _top_level_words(code: str, end: int) -> list[tuple[str, int]]:
 
 
 def _callee_reads(doc: Document, program: Program) -> dict[int, int]:
-    """The argument locals the called program reads, each with the first line reading it."""
+    """The locals the called program reads before it sets them (in the order of its lines: what
+    it takes from the call), each with the first line reading it."""
     reads: dict[int, int] = {}
+    written: set[int] = set()
     for use in uses(doc.blocks, program.first_line, program.end_line):
-        number = use.var.number
-        if use.assign is None and number is not None and number == int(number):
-            reads.setdefault(int(number), use.line)
+        number = number_of(use.var)
+        if number is None or number in written:
+            continue
+        if use.assign is not None:
+            written.add(number)
+        else:
+            reads.setdefault(number, use.line)
     return reads
 
 
-def _argument_documentation(
-    view: View, letter: str, number: int | None, callee: tuple[str, Document, Program] | None
-) -> str:
+@dataclass(frozen=True)
+class _Callee:
+    """The called program, what it reads of its arguments and what its comments say of them."""
+
+    name: str
+    reads: dict[int, int]  # argument local -> the first line reading it
+    comments: dict[int, str]  # argument local -> the comment of the line first reading it
+
+    @staticmethod
+    def of(doc: Document, program: Program) -> _Callee:
+        reads = _callee_reads(doc, program)
+        comments = {n: comment_of(doc.blocks[line]) for n, line in reads.items()}
+        return _Callee(program.display_name, reads, comments)
+
+
+def _argument_documentation(letter: str, number: int | None, callee: _Callee | None) -> str:
     if number is None:
-        return f"**{letter}** is not an argument letter: G, L, N, O and P are the call's own."
+        return f"**{letter}** fills no local: past #33"
     head = f"**{letter}** → **#{number}**"
     if callee is None:
         return head
-    key, doc, program = callee
-    reads = _callee_reads(doc, program)
-    if number not in reads:
-        return f"{head} — {program.display_name} does not read #{number}"
-    parts = [f"{head} — read by {program.display_name} at line {reads[number] + 1}"]
-    index = view.index if key == view.key else view.workspace[key][1]
-    role = variable_roles(doc, index).get((program.first_line, number))
-    if role is not None:
-        parts.append(ROLE_TITLES.get(role.role, role.role))
-    comment = comment_of(doc.blocks[reads[number]])
-    if comment:
-        parts.append(f"({comment})")
-    return " ".join(parts[:1]) + ("\n\n" + " ".join(parts[1:]) if len(parts) > 1 else "")
+    if number not in callee.reads:
+        return f"{head} — unused: {callee.name} does not read #{number} before it sets it"
+    head += f" — read by {callee.name} at line {callee.reads[number] + 1}"
+    comment = callee.comments.get(number)
+    return f"{head}\n\n({comment})" if comment else head
 
 
 def call_signature(view: View | None, line_text: str, column: int) -> Signature | None:
@@ -134,23 +144,24 @@ def call_signature(view: View | None, line_text: str, column: int) -> Signature 
     if call is None or call.end() > column:
         return None
     words = _top_level_words(code, column)
-    letters = [w for w, start in words if start >= call.end() and w != "P"]
+    # The call's own words (P the program, L the repeat count) are no arguments.
+    letters = [w for w, start in words if start >= call.end() and w not in FORBIDDEN_ARGUMENTS]
     program = _PROGRAM.search(code, call.end())
     number = int(program.group(1)) if program is not None else None
-    callee = view.program_entry(number) if view is not None and number is not None else None
+    entry = view.program_entry(number) if view is not None and number is not None else None
+    callee = _Callee.of(entry[1], entry[2]) if entry is not None else None
     # The letter being typed: the last word's, when the cursor is still in it.
     current: str | None = None
     if words and words[-1][1] >= call.end():
         letter, start = words[-1]
         typed = code[start:column]
-        if letter != "P" and not typed.endswith(" "):
+        if letter not in FORBIDDEN_ARGUMENTS and not typed.endswith(" "):
             current = letter
     numbers = argument_numbers(letters)
     shown: list[tuple[str, int | None]] = []
     if callee is not None:
-        reads = _callee_reads(callee[1], callee[2])
         for letter in LETTER_ORDER:
-            if ARGUMENT_VARIABLES[letter] in reads:
+            if ARGUMENT_VARIABLES[letter] in callee.reads:
                 shown.append((letter, ARGUMENT_VARIABLES[letter]))
     # The letters written too (in their places by the order of their locals).
     for letter, n in zip(letters, numbers, strict=True):
@@ -168,13 +179,10 @@ def call_signature(view: View | None, line_text: str, column: int) -> Signature 
         label += " " + text
         if current is not None and letter == current and n == current_number:
             active = len(parameters)
-        parameters.append(
-            Parameter(start, start + len(text), _argument_documentation(view, letter, n, callee))
-            if view is not None
-            else Parameter(start, start + len(text), f"**{letter}** → **#{n}**")
-        )
-    if callee is not None:
-        _, doc, called = callee
+        documentation = _argument_documentation(letter, n, callee)
+        parameters.append(Parameter(start, start + len(text), documentation))
+    if entry is not None:
+        _, doc, called = entry
         comment = first_comment(doc, called)
         documentation = f"**{called.display_name}**" + (f" — {comment}" if comment else "")
     elif number is not None:
