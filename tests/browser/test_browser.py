@@ -3,8 +3,9 @@
 It installs code-server, Node.js 24 and playwright-core from the npm registry (cached in
 tests/browser/node_modules), chromium from Debian if missing, builds the .vsix and checks in
 headless Chromium the language mode, the highlighting, an MB601 diagnostic, a hover, semantic
-tokens, a code lens, signature help, the Toolpath view (drawn, a click on a segment reveals its block, the cursor's block lit) and the trace view
-(a row's values, its link and F12 to the block). It takes minutes on a first run, so it only
+tokens, a code lens, signature help, the Toolpath view (drawn, a click on a segment reveals its
+block, the cursor's block lit) and the trace view (a row's values, its link and F12 to the
+block). It takes minutes on a first run, so it only
 runs when FANUC_MACRO_BROWSER_TEST=1.
 """
 
