@@ -9,6 +9,7 @@ from pathlib import Path
 from fanuc_macro.analysis import analyse
 from fanuc_macro.config import Config
 from fanuc_macro.ide.lenses import code_lenses
+from fanuc_macro.ide.locate import locals_read_before_set
 from fanuc_macro.ide.semantic import SemanticToken, semantic_tokens
 from fanuc_macro.ide.signature import argument_numbers, function_signature, signature_help
 from fanuc_macro.ide.token_legend import TOKEN_MODIFIERS, TOKEN_TYPES, TokenModifier, TokenType
@@ -72,7 +73,7 @@ def test_tokens_of_programs_labels_variables_functions_and_keywords() -> None:
         (1, "P9010", TokenType.NAMESPACE, frozenset()),
         (2, "#1", TokenType.VARIABLE, W),  # O1000 is no macro: #1 is a plain local
     ]
-    line = {n: [t[1:] for t in tokens if t[0] == n] for n in range(13)}
+    line = {n: [t[1:] for t in tokens if t[0] == n] for n in range(15)}
     assert line[2][1:] == [
         ("SIN", TokenType.FUNCTION, LIB),
         ("ATAN", TokenType.FUNCTION, LIB),
@@ -102,7 +103,8 @@ def test_tokens_of_programs_labels_variables_functions_and_keywords() -> None:
     assert [t[0] for t in line[6]] == ["IF", "#1", "GT", "THEN", "#101"]
     assert line[7] == [("END", TokenType.KEYWORD, frozenset())]
     assert line[8] == []
-    # O9010 is called by G65: its argument locals are parameters, #30 (no letter) is not.
+    # O9010 is called by G65: the locals it reads before it sets them are its arguments (#30:
+    # K of the ninth set of specification II); #2, set first, is not one.
     assert line[10] == [
         ("#100", TokenType.VARIABLE, COMMON | W),
         ("#24", TokenType.PARAMETER, frozenset()),
@@ -111,7 +113,12 @@ def test_tokens_of_programs_labels_variables_functions_and_keywords() -> None:
         ("#101", TokenType.VARIABLE),
         ("#1", TokenType.PARAMETER),
         ("#26", TokenType.PARAMETER),
-        ("#30", TokenType.VARIABLE),
+        ("#30", TokenType.PARAMETER),
+    ]
+    assert [t[:2] for t in line[12]] == [("#2", TokenType.VARIABLE)]
+    assert [t[:2] for t in line[13]] == [
+        ("#102", TokenType.VARIABLE),
+        ("#2", TokenType.VARIABLE),
     ]
 
 
@@ -132,7 +139,7 @@ def test_a_written_system_variable_that_may_be_written_is_not_readonly() -> None
     assert all(TokenModifier.READONLY not in t.modifiers for t in tokens)
 
 
-def test_a_program_called_from_another_file_takes_arguments() -> None:
+def test_a_program_a_macro_call_of_another_file_calls_takes_arguments() -> None:
     workspace = Workspace(Config())
     workspace.add_text("main.nc", "O1\nG65 P8000 X1.\nM30\n")
     workspace.add_text("sub.nc", "O8000\n#100=#24\nM99\n")
@@ -143,8 +150,15 @@ def test_a_program_called_from_another_file_takes_arguments() -> None:
         documents[key] = (doc, workspace.index(key))
     sub = View("sub.nc", workspace.analyse("sub.nc"), Config(), documents)
     assert [t.type for t in semantic_tokens(sub, 1, 1)] == [TokenType.VARIABLE, TokenType.PARAMETER]
+    # Uncalled, it returns with M99: a macro whose caller is elsewhere.
     alone = view_of("O8000\n#100=#24\nM99\n", "sub.nc")
-    assert [t.type for t in semantic_tokens(alone, 1, 1)] == [TokenType.VARIABLE] * 2
+    assert [t.type for t in semantic_tokens(alone, 1, 1)] == [
+        TokenType.VARIABLE,
+        TokenType.PARAMETER,
+    ]
+    # Called by M98, it reads its caller's locals: no arguments.
+    shared = view_of("O1\n#24=1\nM98 P8000\nM30\nO8000\n#100=#24\nM99\n")
+    assert [t.type for t in semantic_tokens(shared, 5, 5)] == [TokenType.VARIABLE] * 2
 
 
 # ---- signature help --------------------------------------------------------------------------
@@ -261,3 +275,10 @@ def test_the_thread_subprogram_lens_counts_its_cuts_and_depths() -> None:
     cuts, depths = len(job.passes), len(set(job.xs))
     assert cuts > depths > 1  # two cuts per depth (shifted flanks), spring passes
     assert thread.endswith(f": {cuts} cuts at {depths} depths (G92 F3)")
+
+
+def test_locals_read_before_set_follow_the_lines_and_read_a_value_before_its_target() -> None:
+    text = "O9000\n#1=#1+1\n#2=5\n#3=#2+#4+#100\nIF[#5EQ#0]THEN#5=#6\n#7=[#7]\nM99\n"
+    doc = view_of(text).doc
+    assert locals_read_before_set(doc.blocks, 0, len(doc.blocks)) == {1: 1, 4: 3, 5: 4, 6: 4, 7: 5}
+    assert locals_read_before_set(doc.blocks, 3, 4) == {2: 3, 4: 3}

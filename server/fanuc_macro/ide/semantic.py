@@ -12,7 +12,7 @@ from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
 
 from ..program.index import Program
-from ..program.variables import ARGUMENT_VARIABLES, classify
+from ..program.variables import classify
 from ..syntax.lines import cut_comments
 from ..syntax.parser import statements_of
 from ..syntax.tree import (
@@ -28,7 +28,7 @@ from ..syntax.tree import (
     Var,
 )
 from ..syntax.walk import subexpressions, top_expressions
-from .locate import assignments_in, number_of
+from .locate import assignments_in, locals_read_before_set, number_of
 from .token_legend import TokenModifier, TokenType
 from .view import View
 
@@ -63,35 +63,50 @@ _LETTERS = re.compile(r"[A-Za-z]+")
 
 _COMMON_KINDS = frozenset(("common", "retained", "extended-common"))
 _SYSTEM_KINDS = frozenset(("system", "null"))
-_ARGUMENTS = frozenset(ARGUMENT_VARIABLES.values())
 _MACRO_CALLS = ("G65", "G66", "G66.1")
 _LIBRARY = frozenset((TokenModifier.DEFAULT_LIBRARY,))
 _DECLARATION = frozenset((TokenModifier.DECLARATION,))
 
 
-def macro_called_programs(view: View) -> frozenset[int]:
-    """The programs some G65/G66 of the workspace calls: their locals #1-#26 are arguments."""
-    found: set[int] = set()
-    indexes = [index for key, (_, index) in view.workspace.items() if key != view.key]
-    for index in (view.index, *indexes):
-        for program in index.programs:
-            for call in program.calls:
-                if call.kind in _MACRO_CALLS and call.program is not None:
-                    found.add(call.program)
-    return frozenset(found)
+@dataclass(frozen=True)
+class CalledPrograms:
+    """The program numbers the workspace's calls name, by how they are called."""
+
+    by_macro_call: frozenset[int]  # G65, G66, G66.1: a new level of locals, filled by letters
+    by_subprogram_call: frozenset[int]  # M98 (M97): the caller's locals
+
+    @staticmethod
+    def of(view: View) -> CalledPrograms:
+        macro: set[int] = set()
+        sub: set[int] = set()
+        indexes = [index for key, (_, index) in view.workspace.items() if key != view.key]
+        for index in (view.index, *indexes):
+            for program in index.programs:
+                for call in program.calls:
+                    if call.program is not None:
+                        (macro if call.kind in _MACRO_CALLS else sub).add(call.program)
+        return CalledPrograms(frozenset(macro), frozenset(sub))
 
 
-def _arguments_of(view: View, program: Program | None, called: frozenset[int]) -> frozenset[int]:
-    """The locals ``program`` takes as arguments: the argument letters' locals when a macro call
-    reaches it, and those the evaluator assumed given (read before set in a program ending
-    with M30)."""
+def _arguments_of(view: View, program: Program | None, called: CalledPrograms) -> frozenset[int]:
+    """The locals ``program`` takes from a macro call: those it reads before it sets them, when
+    a G65/G66 of the workspace calls it, or when it returns with M99 and no M98 of the
+    workspace calls it (a macro whose caller is elsewhere); and in any program, those the
+    evaluator assumed given (read before set in a program that ends with M30)."""
     if program is None:
         return frozenset()
-    if program.number is not None and program.number in called:
-        return _ARGUMENTS
     facts = view.facts
     assumed = facts.assumed_arguments.get(program.first_line) if facts is not None else None
-    return frozenset(n for n, _ in assumed) if assumed else frozenset()
+    found = {n for n, _ in assumed} if assumed else set()
+    number = program.number
+    macro = number is not None and (
+        number in called.by_macro_call
+        or (bool(program.returns) and number not in called.by_subprogram_call)
+    )
+    if macro:
+        blocks = view.doc.blocks
+        found.update(locals_read_before_set(blocks, program.first_line, program.end_line))
+    return frozenset(found)
 
 
 def _variable_token(
@@ -100,7 +115,7 @@ def _variable_token(
     kind = classify(number)
     modifiers: set[TokenModifier] = {TokenModifier.MODIFICATION} if written else set()
     kind_name = TokenType.VARIABLE
-    if kind.kind == "local" and number in arguments:
+    if number in arguments:
         kind_name = TokenType.PARAMETER
     elif kind.kind in _COMMON_KINDS:
         modifiers.add(TokenModifier.COMMON)
@@ -209,7 +224,7 @@ def semantic_tokens(view: View, first: int = 0, last: int | None = None) -> list
     """The tokens of the lines ``first``..``last`` (inclusive; None: to the end)."""
     blocks = view.doc.blocks
     stop = len(blocks) if last is None else min(len(blocks), last + 1)
-    called = macro_called_programs(view)
+    called = CalledPrograms.of(view)
     out: list[SemanticToken] = []
     program: Program | None = None
     arguments: frozenset[int] = frozenset()
@@ -224,8 +239,8 @@ def semantic_tokens(view: View, first: int = 0, last: int | None = None) -> list
 
 
 __all__ = [
+    "CalledPrograms",
     "SemanticToken",
     "block_tokens",
-    "macro_called_programs",
     "semantic_tokens",
 ]

@@ -15,7 +15,7 @@ from ..program.index import Program
 from ..program.variables import ARGUMENT_VARIABLES, FORBIDDEN_ARGUMENTS
 from ..syntax.lines import cut_comments
 from ..syntax.tree import Document
-from .locate import number_of, uses
+from .locate import locals_read_before_set
 from .view import View, comment_of, first_comment
 
 
@@ -92,22 +92,6 @@ def _top_level_words(code: str, end: int) -> list[tuple[str, int]]:
     return words
 
 
-def _callee_reads(doc: Document, program: Program) -> dict[int, int]:
-    """The locals the called program reads before it sets them (in the order of its lines: what
-    it takes from the call), each with the first line reading it."""
-    reads: dict[int, int] = {}
-    written: set[int] = set()
-    for use in uses(doc.blocks, program.first_line, program.end_line):
-        number = number_of(use.var)
-        if number is None or number in written:
-            continue
-        if use.assign is not None:
-            written.add(number)
-        else:
-            reads.setdefault(number, use.line)
-    return reads
-
-
 @dataclass(frozen=True)
 class _Callee:
     """The called program, what it reads of its arguments and what its comments say of them."""
@@ -118,7 +102,7 @@ class _Callee:
 
     @staticmethod
     def of(doc: Document, program: Program) -> _Callee:
-        reads = _callee_reads(doc, program)
+        reads = locals_read_before_set(doc.blocks, program.first_line, program.end_line)
         comments = {n: comment_of(doc.blocks[line]) for n, line in reads.items()}
         return _Callee(program.display_name, reads, comments)
 
