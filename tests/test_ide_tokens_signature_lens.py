@@ -243,6 +243,8 @@ def test_code_lenses_count_the_callers_and_the_runs() -> None:
     ]
     called = code_lenses(view)[1]
     assert [r.range.start.line for r in called.references] == [1]
+    assert called.tooltip == "O1000, line 2"
+    assert code_lenses(view)[2].tooltip == "What the analysed runs did"
     assert called.range.start.column == 0 and called.range.end.column == len("O9010")
 
 
@@ -275,6 +277,20 @@ def test_the_thread_subprogram_lens_counts_its_cuts_and_depths() -> None:
     cuts, depths = len(job.passes), len(set(job.xs))
     assert cuts > depths > 1  # two cuts per depth (shifted flanks), spring passes
     assert thread.endswith(f": {cuts} cuts at {depths} depths (G92 F3)")
+    assert lenses[2].tooltip.endswith("a cut is one threading motion, a depth an X the cuts reach")
+
+
+def test_callers_in_other_files_are_named_with_their_file() -> None:
+    views = seed_views()
+    workspace = {key: (v.doc, v.index) for key, v in views.items()}
+    other = view_of("O7\nM98 P3331\nM98 P3331\nM30\n", "other.nc")
+    workspace["other.nc"] = (other.doc, other.index)
+    key = "o4009_external_m50x3.nc"
+    view = View(key, views[key].analysis, Config(), workspace)
+    lens = code_lenses(view)[1]
+    assert lens.title == "called from O0007 · 2×, O4009 · 1×"  # the most calls first
+    # The calls by document: this one's without its name.
+    assert lens.tooltip == "O4009, line 11\nO0007, line 2 (other.nc)\nO0007, line 3 (other.nc)"
 
 
 def test_locals_read_before_set_follow_the_lines_and_read_a_value_before_its_target() -> None:

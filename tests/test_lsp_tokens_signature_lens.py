@@ -170,4 +170,6 @@ async def test_code_lenses_over_the_o_lines_of_a_seed(client: LanguageClient) ->
         "(G92 F3)"
     )
     assert lenses[1].data == {"references": [[uri, 10]]}  # the M98 P0013331 line
+    assert lenses[1].command is not None and lenses[1].command.tooltip == "O4009, line 11"
+    assert lenses[1].command.command == ""  # a title to read: VS Code shows it as text
     assert lenses[0].range.end.character == len("O4009")

@@ -13,12 +13,14 @@ from .values import times
 from .view import View
 
 MAX_CALLERS = 3  # named in the title; the rest are counted
+MAX_PLACES = 10  # calls listed in the tooltip
 
 
 @dataclass(frozen=True)
 class CodeLens:
     range: Range  # the program's O word
     title: str
+    tooltip: str = ""  # what the title sums up, in more words
     references: tuple[Location, ...] = ()  # the places the title counts, when it counts any
 
 
@@ -55,7 +57,17 @@ def _callers_lens(
     rest = len(counts) - len(named)
     title = "called from " + ", ".join(named) + (f" and {rest} more" if rest else "")
     references = tuple(view.location(key, line) for key, _, line in callers)
-    return CodeLens(where, title, references)
+    places = [
+        f"{name}, line {line + 1}" + ("" if key == view.key else f" ({_file_name(key)})")
+        for key, name, line in callers
+    ]
+    more = len(places) - MAX_PLACES
+    tooltip = "\n".join(places[:MAX_PLACES]) + (f"\nand {more} more" if more > 0 else "")
+    return CodeLens(where, title, tooltip, references)
+
+
+def _file_name(key: str) -> str:
+    return key.rstrip("/").rsplit("/", 1)[-1]
 
 
 def _runs_lens(view: View, program: Program, header: int, where: Range) -> CodeLens | None:
@@ -64,6 +76,7 @@ def _runs_lens(view: View, program: Program, header: int, where: Range) -> CodeL
     if facts is None:
         return None
     parts: list[str] = []
+    cut_threads = False
     entered = facts.runs.get(header)
     if entered:
         parts.append(f"entered {times(entered)}")
@@ -78,13 +91,17 @@ def _runs_lens(view: View, program: Program, header: int, where: Range) -> CodeL
         lead = job.lead
         feed = f" F{lead:g}" if lead is not None else ""
         name = thread.name if thread.identified else "thread"
+        cut_threads = True
         parts.append(
             f"{name}: {cuts} cut{'' if cuts == 1 else 's'} at {depths} "
             f"depth{'' if depths == 1 else 's'} ({job.code}{feed})"
         )
     if not parts:
         return None
-    return CodeLens(where, " · ".join(parts))
+    tooltip = "What the analysed runs did"
+    if cut_threads:
+        tooltip += ": a cut is one threading motion, a depth an X the cuts reach"
+    return CodeLens(where, " · ".join(parts), tooltip)
 
 
 def code_lenses(view: View) -> list[CodeLens]:

@@ -92,7 +92,7 @@ def code_lenses(view: View) -> list[types.CodeLens]:
         out.append(
             types.CodeLens(
                 range=lsp_range(view.lines, lens.range),
-                command=types.Command(title=lens.title, command=""),
+                command=types.Command(title=lens.title, command="", tooltip=lens.tooltip or None),
                 data={"references": [[p.uri, p.range.start.line] for p in places]}
                 if places
                 else None,
