@@ -42,22 +42,9 @@ class SemanticToken:
     modifiers: frozenset[TokenModifier] = frozenset()
 
 
-CONTROL_WORDS = frozenset(
-    (
-        "IF",
-        "THEN",
-        "GOTO",
-        "WHILE",
-        "DO",
-        "END",
-        "ELSE",
-        "ENDIF",
-        "DPRNT",
-        "BPRNT",
-        "POPEN",
-        "PCLOS",
-    )
-)
+CONTROL_WORDS = frozenset((
+    "IF", "THEN", "GOTO", "WHILE", "DO", "END", "ELSE", "ENDIF", "DPRNT", "BPRNT", "POPEN", "PCLOS",
+))  # fmt: skip
 OPERATOR_WORDS = frozenset(("EQ", "NE", "GT", "GE", "LT", "LE", "AND", "OR", "XOR", "MOD"))
 _LETTERS = re.compile(r"[A-Za-z]+")
 
