@@ -3,11 +3,14 @@
 from __future__ import annotations
 
 import asyncio
+from collections.abc import Sequence
 from typing import Any
 
+import pytest
 from lsprotocol import types
 from pytest_lsp import LanguageClient
 
+from fanuc_macro.lsp.presentation import token_edits
 from test_lsp import CAPABILITIES, SEEDS, WAIT, client, diagnostics, edit, open_seed, open_text
 
 __all__ = ["client"]  # the fixture, shared with test_lsp
@@ -102,6 +105,77 @@ async def test_semantic_tokens_full_and_range_in_utf16(client: LanguageClient) -
     )
     assert ranged is not None
     assert decode(list(ranged.data), legend) == [t for t in tokens if 5 <= t[0] <= 6]
+
+
+def apply(data: list[int], edits: Sequence[types.SemanticTokensEdit]) -> list[int]:
+    for e in sorted(edits, key=lambda e: e.start, reverse=True):
+        data = data[: e.start] + list(e.data or []) + data[e.start + e.delete_count :]
+    return data
+
+
+@pytest.mark.parametrize(
+    ("old", "new"),
+    [
+        ([], [1, 2, 3, 4, 5]),
+        ([1, 2, 3, 4, 5], []),
+        ([0, 1, 2, 3, 0, 1, 0, 2, 2, 0], [0, 1, 2, 3, 0, 2, 0, 2, 2, 0]),
+        ([1, 1, 1, 1, 1], [1, 1, 1, 1, 1, 1, 1, 1, 1, 1]),  # repeats: prefix and suffix overlap
+        ([5, 6, 7], [5, 6, 7]),
+    ],
+)
+def test_token_edits_turn_the_old_data_into_the_new(old: list[int], new: list[int]) -> None:
+    edits = token_edits(old, new)
+    assert apply(old, edits) == new
+    assert len(edits) == (0 if old == new else 1)
+
+
+async def test_semantic_tokens_delta_after_an_edit(client: LanguageClient) -> None:
+    result = await initialize(client)
+    provider = result.capabilities.semantic_tokens_provider
+    assert provider is not None
+    assert provider.full == types.SemanticTokensFullDelta(delta=True)
+    uri = "untitled:delta.nc"
+    open_text(client, uri, TEXT)
+    await diagnostics(client, uri)
+    ident = types.TextDocumentIdentifier(uri=uri)
+    full = await asyncio.wait_for(
+        client.text_document_semantic_tokens_full_async(
+            types.SemanticTokensParams(text_document=ident)
+        ),
+        WAIT,
+    )
+    assert full is not None and full.result_id
+    # #1 of line 1 becomes #500: one token's length and modifiers change.
+    edit(client, uri, 2, [types.TextDocumentContentChangePartial(
+        range=types.Range(
+            start=types.Position(line=1, character=5), end=types.Position(line=1, character=7)
+        ),
+        text="#500",
+    )])  # fmt: skip
+    delta = await asyncio.wait_for(
+        client.text_document_semantic_tokens_full_delta_async(
+            types.SemanticTokensDeltaParams(text_document=ident, previous_result_id=full.result_id)
+        ),
+        WAIT,
+    )
+    assert isinstance(delta, types.SemanticTokensDelta) and delta.result_id
+    assert len(delta.edits) == 1 and len(delta.edits[0].data or []) < len(full.data)
+    again = await asyncio.wait_for(
+        client.text_document_semantic_tokens_full_async(
+            types.SemanticTokensParams(text_document=ident)
+        ),
+        WAIT,
+    )
+    assert again is not None and again.data != full.data
+    assert apply(list(full.data), delta.edits) == list(again.data)
+    # An id the server no longer has: the full tokens.
+    stale = await asyncio.wait_for(
+        client.text_document_semantic_tokens_full_delta_async(
+            types.SemanticTokensDeltaParams(text_document=ident, previous_result_id="no such id")
+        ),
+        WAIT,
+    )
+    assert isinstance(stale, types.SemanticTokens) and list(stale.data) == list(again.data)
 
 
 async def signature(

@@ -5,6 +5,8 @@ lsprotocol types, in the client's position units. Pure; may run in a thread.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+
 from lsprotocol import types
 
 from ..ide import lenses as ide_lenses
@@ -14,9 +16,6 @@ from ..ide.token_legend import TOKEN_MODIFIERS, TOKEN_TYPES
 from .convert import Codec
 from .features import View, locations, lsp_range
 
-LEGEND = types.SemanticTokensLegend(
-    token_types=list(TOKEN_TYPES), token_modifiers=list(TOKEN_MODIFIERS)
-)
 _TYPE_INDEX = {name: i for i, name in enumerate(TOKEN_TYPES)}
 _MODIFIER_BIT = {name: 1 << i for i, name in enumerate(TOKEN_MODIFIERS)}
 
@@ -41,10 +40,32 @@ def encode(view: View, tokens: list[ide_semantic.SemanticToken]) -> list[int]:
     return data
 
 
-def semantic_tokens(view: View, within: types.Range | None = None) -> types.SemanticTokens:
+def semantic_tokens(
+    view: View, within: types.Range | None = None, result_id: str | None = None
+) -> types.SemanticTokens:
     first, last = (within.start.line, within.end.line) if within is not None else (0, None)
     found = ide_semantic.semantic_tokens(view.ide, first, last)
-    return types.SemanticTokens(data=encode(view, found))
+    return types.SemanticTokens(data=encode(view, found), result_id=result_id)
+
+
+def token_edits(old: Sequence[int], new: Sequence[int]) -> list[types.SemanticTokensEdit]:
+    """``old`` made ``new`` by one edit: what the two share at their start and at their end is
+    kept (an edit of a few lines changes the tokens of those lines, and the line deltas of the
+    first token after them). None when they are equal."""
+    if old == new:
+        return []
+    shorter = min(len(old), len(new))
+    start = 0
+    while start < shorter and old[start] == new[start]:
+        start += 1
+    end = 0  # how many at the end are the same, not reaching back into the start's
+    while end < shorter - start and old[-1 - end] == new[-1 - end]:
+        end += 1
+    return [
+        types.SemanticTokensEdit(
+            start=start, delete_count=len(old) - start - end, data=list(new[start : len(new) - end])
+        )
+    ]
 
 
 def _markdown(text: str) -> types.MarkupContent | None:
@@ -101,4 +122,4 @@ def code_lenses(view: View) -> list[types.CodeLens]:
     return out
 
 
-__all__ = ["LEGEND", "code_lenses", "encode", "semantic_tokens", "signature_help"]
+__all__ = ["code_lenses", "encode", "semantic_tokens", "signature_help", "token_edits"]

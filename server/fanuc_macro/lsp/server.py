@@ -41,6 +41,7 @@ PROGRAM_GLOB = "**/*.{nc,NC,mac,MAC,tap,TAP,cnc,CNC,eia,EIA}"
 FEATURE_TIMEOUT = 60.0  # seconds a request waits for the analysis of the current version
 # Signature help opens on a macro call's argument letters (spec I; either case as typed).
 SIGNATURE_LETTERS = [*"ABCDEFHIJKMQRSTUVWXYZ", *"abcdefhijkmqrstuvwxyz"]
+KEPT_TOKEN_RESULTS = 8  # documents whose last semantic tokens are kept for a delta
 SCAN_WAIT = 15.0  # seconds a definition waits for the workspace scan to find its target
 
 T = TypeVar("T")
@@ -533,19 +534,57 @@ def create_server() -> FanucMacroLanguageServer:
         token_types=list(TOKEN_TYPES), token_modifiers=list(TOKEN_MODIFIERS)
     )
 
+    # The last full tokens sent of each document, for a delta: (result id, data). A few
+    # documents, the most recent; an unknown id gets the full tokens again.
+    sent_tokens: dict[str, tuple[str, list[int]]] = {}
+    token_results = iter(range(1, 1 << 62))
+
+    def keep_tokens(uri: str, tokens: types.SemanticTokens) -> types.SemanticTokens:
+        sent_tokens.pop(uri, None)
+        sent_tokens[uri] = (tokens.result_id or "", list(tokens.data))
+        while len(sent_tokens) > KEPT_TOKEN_RESULTS:
+            del sent_tokens[next(iter(sent_tokens))]
+        return tokens
+
     @server.feature(
         types.TEXT_DOCUMENT_SEMANTIC_TOKENS_FULL,
-        types.SemanticTokensRegistrationOptions(legend=legend, full=True, range=True),
+        types.SemanticTokensRegistrationOptions(
+            legend=legend, full=types.SemanticTokensFullDelta(delta=True), range=True
+        ),
     )
     async def on_semantic_tokens(
         ls: FanucMacroLanguageServer, params: types.SemanticTokensParams
     ) -> types.SemanticTokens | None:
-        view = await ls.view(params.text_document.uri)
+        uri = params.text_document.uri
+        view = await ls.view(uri)
         if view is None:
             return None
         from .presentation import semantic_tokens
 
-        return await ls.compute("semantic tokens", lambda: semantic_tokens(view))
+        result_id = str(next(token_results))
+        found = await ls.compute("semantic tokens", lambda: semantic_tokens(view, None, result_id))
+        return None if found is None else keep_tokens(uri, found)
+
+    @server.feature(types.TEXT_DOCUMENT_SEMANTIC_TOKENS_FULL_DELTA)
+    async def on_semantic_tokens_delta(
+        ls: FanucMacroLanguageServer, params: types.SemanticTokensDeltaParams
+    ) -> types.SemanticTokens | types.SemanticTokensDelta | None:
+        uri = params.text_document.uri
+        view = await ls.view(uri)
+        if view is None:
+            return None
+        from .presentation import semantic_tokens, token_edits
+
+        result_id = str(next(token_results))
+        found = await ls.compute("semantic tokens", lambda: semantic_tokens(view, None, result_id))
+        if found is None:
+            return None
+        before = sent_tokens.get(uri)
+        keep_tokens(uri, found)
+        if before is None or before[0] != params.previous_result_id:
+            return found
+        edits = token_edits(before[1], found.data)
+        return types.SemanticTokensDelta(edits=edits, result_id=result_id)
 
     @server.feature(types.TEXT_DOCUMENT_SEMANTIC_TOKENS_RANGE)
     async def on_semantic_tokens_range(
