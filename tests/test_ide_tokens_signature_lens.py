@@ -200,6 +200,8 @@ def test_call_signature_names_the_locals_the_callee_reads_and_the_letter_at_the_
         "**B** → **#2** — unused: O9010 does not read #2 before it sets it"
     )
     assert signature_help("G01 X1.", 7, view) is None
+    assert signature_help("G65 P9010 (A COMMENT", 14, view) is None  # typing a comment
+    assert signature_help("G65 P9010 (A) X", 15, view) is not None  # after one
     assert signature_help("G65", 1, view) is None  # in the G word itself
 
 

@@ -235,7 +235,10 @@ def _function(name: str, active: int) -> Signature:
 
 def signature_help(line_text: str, column: int, view: View | None) -> Signature | None:
     """What to show at ``column`` (code points) of ``line_text``: a function's parameters inside
-    its brackets, else a macro call's arguments."""
+    its brackets, else a macro call's arguments; nothing in a comment."""
+    for comment in cut_comments(line_text).comments:
+        if comment.span.start < column and (column < comment.span.end or not comment.closed):
+            return None
     return function_signature(line_text, column) or call_signature(view, line_text, column)
 
 
