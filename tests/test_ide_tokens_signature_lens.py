@@ -168,6 +168,8 @@ def test_argument_numbers_follow_the_specifications() -> None:
     assert argument_numbers(["A", "X", "Z", "H"]) == [1, 24, 26, 11]
     assert argument_numbers(["I", "J", "K", "I", "K"]) == [4, 5, 6, 7, 9]
     assert argument_numbers(["J", "I"]) == [5, 7]  # out of order: the next set
+    # The reference's example, G65 A1.0 B2.0 I-3.0 I4.0 D5.0: D fills #7 after the second I.
+    assert argument_numbers(["A", "B", "I", "I", "D"]) == [1, 2, 4, 7, 7]
     assert argument_numbers(["G", "L"]) == [None, None]
     assert all(
         argument_numbers([letter]) == [n]

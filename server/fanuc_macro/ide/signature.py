@@ -34,12 +34,12 @@ class Signature:
     active: int | None  # the parameter at the cursor; None: none of them
 
 
-# Argument specification I, the order the manual lists the letters in (FANUC Custom Macro B:
-# "Argument specification I"); ``ARGUMENT_VARIABLES`` gives each letter's local.
+# The letters of argument specification I in the order of the locals they fill (A #1 ... Z #26;
+# ``ARGUMENT_VARIABLES`` has the table: FANUC Custom Macro B, as the shared reference macro-b.md
+# §5.2 gives it, with specification II's sets of I, J, K).
 LETTER_ORDER = "ABCIJKDEFHMQRSTUVWXYZ"
 _CALL = re.compile(r"G0*(65|66(?:\.1)?)(?![.\d])", re.I)
 _PROGRAM = re.compile(r"P\s*(\d+)", re.I)
-_WORD_START = re.compile(r"[A-Z]", re.I)
 
 # What each parameter of a function is, where its name alone does not say.
 _FUNCTION_PARAMETERS: dict[str, tuple[str, ...]] = {
@@ -56,7 +56,8 @@ _FUNCTION_PARAMETERS: dict[str, tuple[str, ...]] = {
 
 def argument_numbers(letters: list[str]) -> list[int | None]:
     """The local each argument letter of a call fills, in order: specification I, and for an
-    I, J or K that repeats or comes out of order, specification II (sets of three from #4)."""
+    I, J or K that repeats or comes out of order, specification II (sets of three from #4; the
+    later of two letters filling one local wins: ``I-3. I4. D5.`` gives #4 -3. and #7 5.)."""
     out: list[int | None] = []
     ijk_set = -1
     seen: set[str] = set()
