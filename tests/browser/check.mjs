@@ -1,8 +1,9 @@
 // Drives a real VS Code (code-server) in headless Chromium and checks that the
 // fanuc-macro extension works in it: language mode, TextMate highlighting,
 // diagnostics from the language server, a hover with a value, navigation (rename, document
-// highlight, folding, workspace symbols), the Toolpath view (webview) and the trace view (a
-// read-only document whose rows link to the blocks).
+// highlight, folding, workspace symbols), semantic tokens, a code lens, signature help, the
+// Toolpath view (webview) and the trace view (a read-only document whose rows link to the
+// blocks).
 // Every step waits for a condition (a status bar text, a data- attribute), never a fixed delay.
 //
 // Usage: node check.mjs <code-server base url> <workspace folder> <out dir>
@@ -443,6 +444,76 @@ async function lineNumberOf(prefix) {
   }, prefix);
 }
 
+/**
+ * The language server's semantic tokens, code lenses and signature help in the editor: the token
+ * inspector names a semantic token type for `#1` (line 9), a lens over `O3` (line 8) counts its
+ * caller, and typing a G65 call on a new line opens the parameter hints, then the typing is
+ * undone.
+ */
+async function checkTokensAndLenses() {
+  await editor.click({ position: { x: 200, y: 10 } });
+  await gotoPosition(9, 6);
+  try {
+    await runCommand('Developer: Inspect Editor Tokens and Scopes');
+    await page.waitForFunction(
+      () => /semantic token type\s*variable/.test(document.querySelector('.token-inspect-widget')?.innerText || ''),
+      null,
+      { timeout: STEP_MS },
+    );
+    const text = await page.locator('.token-inspect-widget').innerText();
+    record('semantic tokens', true, text.split('\n').filter((l) => /semantic|modifiers/.test(l)).join(' | '));
+    await shot('semantic-tokens.png');
+  } catch (e) {
+    const text = await page.locator('.token-inspect-widget').innerText().catch(() => '');
+    record('semantic tokens', false, `${e.message.split('\n')[0]}; inspector ${JSON.stringify(text.slice(0, 400))}`);
+  }
+  await page.keyboard.press('Escape');
+
+  try {
+    await page.waitForFunction(
+      () => [...document.querySelectorAll('.codelens-decoration')].some((d) => /called from O0002/.test(d.innerText)),
+      null,
+      { timeout: STEP_MS },
+    );
+    const lenses = await page.evaluate(() => [...document.querySelectorAll('.codelens-decoration')]
+      .map((d) => d.innerText.trim()).filter(Boolean));
+    record('code lens', true, lenses.slice(0, 4).join(' | '));
+  } catch (e) {
+    const lenses = await page.evaluate(() => [...document.querySelectorAll('.codelens-decoration')]
+      .map((d) => d.innerText.trim())).catch(() => []);
+    record('code lens', false, `${e.message.split('\n')[0]}; lenses ${JSON.stringify(lenses)}`);
+  }
+
+  // A new line after line 3 (`N1 M98 P3 ...`), a G65 call typed on it.
+  await editor.click({ position: { x: 200, y: 10 } });
+  await gotoPosition(3, 1);
+  await page.keyboard.press('End');
+  await page.keyboard.press('Enter');
+  await page.keyboard.type('G65 P3 A1. B', { delay: 30 });
+  try {
+    await page.waitForFunction(
+      () => [...document.querySelectorAll('.parameter-hints-widget')].some((w) =>
+        w.offsetParent !== null && /G65 P3/.test(w.innerText) && /B=#2/.test(w.innerText)),
+      null,
+      { timeout: STEP_MS },
+    );
+    const text = await page.locator('.parameter-hints-widget').first().innerText();
+    record('signature help', true, text.split('\n').filter(Boolean).slice(0, 3).join(' | '));
+    await shot('signature-help.png');
+  } catch (e) {
+    const text = await page.evaluate(() => [...document.querySelectorAll('.parameter-hints-widget')]
+      .map((w) => w.innerText).join('\n')).catch(() => '');
+    record('signature help', false, `${e.message.split('\n')[0]}; widget ${JSON.stringify(text.slice(0, 300))}`);
+  }
+  await page.keyboard.press('Escape');
+  // Undo the typing (the session made no edit before it, so undoing too often changes nothing).
+  for (let i = 0; i < 30 && ((await lineNumberOf('G65 P3')) !== -1 || (await lineNumberOf('N2 M98')) !== 4); i++) {
+    await page.keyboard.press('Control+Z');
+  }
+  const restored = (await lineNumberOf('G65 P3')) === -1 && (await lineNumberOf('N2 M98')) === 4;
+  record('signature help undone', restored, restored ? 'the typed line is gone' : 'the typed line is still there');
+}
+
 try {
   const url = `${baseUrl.replace(/\/$/, '')}/?folder=${encodeURIComponent(workspace)}`;
   await page.goto(url);
@@ -541,6 +612,7 @@ try {
   await page.keyboard.press('Escape');
 
   await checkNavigation();
+  await checkTokensAndLenses();
   await checkToolpath();
   await checkTrace();
 } catch (e) {

@@ -2,9 +2,10 @@
 
 It installs code-server, Node.js 24 and playwright-core from the npm registry (cached in
 tests/browser/node_modules), chromium from Debian if missing, builds the .vsix and checks in
-headless Chromium the language mode, the highlighting, an MB601 diagnostic, a hover, the Toolpath
-view (drawn, a click on a segment reveals its block, the cursor's block lit) and the trace view
-(a row's values, its link and F12 to the block). It takes minutes on a first run, so it only
+headless Chromium the language mode, the highlighting, an MB601 diagnostic, a hover, semantic
+tokens, a code lens, signature help, the Toolpath view (drawn, a click on a segment reveals its
+block, the cursor's block lit) and the trace view (a row's values, its link and F12 to the
+block). It takes minutes on a first run, so it only
 runs when FANUC_MACRO_BROWSER_TEST=1.
 """
 
@@ -61,6 +62,9 @@ def test_extension_in_code_server(tmp_path: Path) -> None:
         "document highlight",
         "folding",
         "workspace symbols",
+        "semantic tokens",
+        "code lens",
+        "signature help",
         "toolpath view",
         "toolpath click",
         "toolpath cursor",

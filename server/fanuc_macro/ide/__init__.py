@@ -7,7 +7,8 @@ the command line) converts (see ARCHITECTURE.md).
 - :mod:`.locate`: what is under the cursor in a block;
 - :mod:`.values`: values and variables in words;
 - :mod:`.hover`, :mod:`.inlay`, :mod:`.navigation` (definition, references, symbols),
-  :mod:`.completion`, :mod:`.actions`: the features;
+  :mod:`.completion`, :mod:`.actions`, :mod:`.semantic` (semantic tokens, their kinds in
+  :mod:`.token_legend`), :mod:`.signature`, :mod:`.lenses`: the features;
 - :mod:`.trace`: the motions a program executes; :mod:`.thread_module`: the generator, loaded
   when first asked for.
 """

@@ -6,6 +6,7 @@ import re
 from collections.abc import Iterator
 from dataclasses import dataclass
 
+from ..program.variables import LOCAL_LAST
 from ..syntax.lines import cut_comments
 from ..syntax.marks import constant_value
 from ..syntax.parser import statements_of
@@ -182,3 +183,25 @@ def goto_target(goto: Goto) -> int | None:
     if value is None or value != int(value):
         return None
     return int(value)
+
+
+def locals_read_before_set(blocks: tuple[Block, ...], first: int, end: int) -> dict[int, int]:
+    """The locals (#1-#33) the lines ``first``..``end``-1 read before they set them, in the
+    order of the lines, each with the first line reading it: what a macro takes from its call.
+    An assignment reads its value before it sets its target (``#1=#1+1`` reads #1)."""
+    reads: dict[int, int] = {}
+    written: set[int] = set()
+    for line in range(max(0, first), min(end, len(blocks))):
+        for statement in statements_of(blocks[line].statement):
+            targets = {id(a.target) for a in assignments_in(statement)}
+            sets: list[int] = []
+            for var in variables(statement):
+                number = number_of(var)
+                if number is None or not 1 <= number <= LOCAL_LAST or number in written:
+                    continue
+                if id(var) in targets:
+                    sets.append(number)
+                else:
+                    reads.setdefault(number, line)
+            written.update(sets)
+    return reads

@@ -23,6 +23,7 @@ from pygls.protocol.language_server import lsp_method
 from .. import __version__
 from ..code_cache import save_code_cache
 from ..diagnostics import REPORT_INTERNAL_ERROR
+from ..ide.token_legend import TOKEN_MODIFIERS, TOKEN_TYPES
 from .client import CompletionSupport
 from .commands import THREAD_MODULE, TOOLPATH, TRACE, run_thread_module, run_toolpath, run_trace
 from .convert import Codec
@@ -39,6 +40,9 @@ NAME = "fanuc-macro-ls"
 SETTINGS_SECTION = "fanuc-macro"
 PROGRAM_GLOB = "**/*.{nc,NC,mac,MAC,tap,TAP,cnc,CNC,eia,EIA}"
 FEATURE_TIMEOUT = 60.0  # seconds a request waits for the analysis of the current version
+# Signature help opens on a macro call's argument letters (spec I; either case as typed).
+SIGNATURE_LETTERS = [*"ABCDEFHIJKMQRSTUVWXYZ", *"abcdefhijkmqrstuvwxyz"]
+KEPT_TOKEN_RESULTS = 8  # documents whose last semantic tokens are kept for a delta
 SCAN_WAIT = 15.0  # seconds a definition waits for the workspace scan to find its target
 
 T = TypeVar("T")
@@ -699,6 +703,112 @@ def create_server() -> FanucMacroLanguageServer:
             "outgoing calls",
             lambda: outgoing_calls(documents, params.item, engine.codec, engine.client_uri),
         )
+
+    # ---- semantic tokens, signature help, code lenses (lsp/presentation.py) ----------------
+    legend = types.SemanticTokensLegend(
+        token_types=list(TOKEN_TYPES), token_modifiers=list(TOKEN_MODIFIERS)
+    )
+
+    # The last full tokens sent of each document, for a delta: (result id, data). A few
+    # documents, the most recent; an unknown id gets the full tokens again.
+    sent_tokens: dict[str, tuple[str, list[int]]] = {}
+    token_results = iter(range(1, 1 << 62))
+
+    def keep_tokens(uri: str, tokens: types.SemanticTokens) -> types.SemanticTokens:
+        sent_tokens.pop(uri, None)
+        sent_tokens[uri] = (tokens.result_id or "", list(tokens.data))
+        while len(sent_tokens) > KEPT_TOKEN_RESULTS:
+            del sent_tokens[next(iter(sent_tokens))]
+        return tokens
+
+    @server.feature(
+        types.TEXT_DOCUMENT_SEMANTIC_TOKENS_FULL,
+        types.SemanticTokensRegistrationOptions(
+            legend=legend, full=types.SemanticTokensFullDelta(delta=True), range=True
+        ),
+    )
+    async def on_semantic_tokens(
+        ls: FanucMacroLanguageServer, params: types.SemanticTokensParams
+    ) -> types.SemanticTokens | None:
+        uri = params.text_document.uri
+        view = await ls.view(uri)
+        if view is None:
+            return None
+        from .presentation import semantic_tokens
+
+        result_id = str(next(token_results))
+        found = await ls.compute("semantic tokens", lambda: semantic_tokens(view, None, result_id))
+        return None if found is None else keep_tokens(uri, found)
+
+    @server.feature(types.TEXT_DOCUMENT_SEMANTIC_TOKENS_FULL_DELTA)
+    async def on_semantic_tokens_delta(
+        ls: FanucMacroLanguageServer, params: types.SemanticTokensDeltaParams
+    ) -> types.SemanticTokens | types.SemanticTokensDelta | None:
+        uri = params.text_document.uri
+        view = await ls.view(uri)
+        if view is None:
+            return None
+        from .presentation import semantic_tokens, token_edits
+
+        result_id = str(next(token_results))
+        found = await ls.compute("semantic tokens", lambda: semantic_tokens(view, None, result_id))
+        if found is None:
+            return None
+        before = sent_tokens.get(uri)
+        keep_tokens(uri, found)
+        if before is None or before[0] != params.previous_result_id:
+            return found
+        edits = token_edits(before[1], found.data)
+        return types.SemanticTokensDelta(edits=edits, result_id=result_id)
+
+    @server.feature(types.TEXT_DOCUMENT_SEMANTIC_TOKENS_RANGE)
+    async def on_semantic_tokens_range(
+        ls: FanucMacroLanguageServer, params: types.SemanticTokensRangeParams
+    ) -> types.SemanticTokens | None:
+        view = await ls.view(params.text_document.uri)
+        if view is None:
+            return None
+        from .presentation import semantic_tokens
+
+        within = params.range
+        return await ls.compute("semantic tokens", lambda: semantic_tokens(view, within))
+
+    @server.feature(
+        types.TEXT_DOCUMENT_SIGNATURE_HELP,
+        types.SignatureHelpOptions(
+            # A bracket or comma of a function; a space or a letter of a G65/G66 line.
+            trigger_characters=["[", ",", " ", *SIGNATURE_LETTERS],
+            retrigger_characters=["/", "]"],
+        ),
+    )
+    async def on_signature_help(
+        ls: FanucMacroLanguageServer, params: types.SignatureHelpParams
+    ) -> types.SignatureHelp | None:
+        doc = engine.document(params.text_document.uri)
+        if doc is None:
+            return None
+        line_text = doc.line(params.position.line)
+        column = engine.codec.from_client(line_text, params.position.character)
+        # Like completion, it reads the newest text and does not wait for its analysis.
+        result = engine.results.get(doc.key)
+        view = ls.make_view(result) if result is not None and result.analysis else None
+        from .presentation import signature_help
+
+        codec = engine.codec
+        return await ls.compute(
+            "signature help", lambda: signature_help(line_text, column, codec, view)
+        )
+
+    @server.feature(types.TEXT_DOCUMENT_CODE_LENS, types.CodeLensOptions(resolve_provider=False))
+    async def on_code_lens(
+        ls: FanucMacroLanguageServer, params: types.CodeLensParams
+    ) -> list[types.CodeLens] | None:
+        view = await ls.view(params.text_document.uri)
+        if view is None:
+            return None
+        from .presentation import code_lenses
+
+        return await ls.compute("code lenses", lambda: code_lenses(view))
 
     # ---- commands --------------------------------------------------------------------------
     @server.command(TRACE)
