@@ -35,6 +35,11 @@ function item(): fake.FakeStatusBarItem {
 
 interface Middleware {
   didOpen(document: { uri: fake.Uri }, next: (d: unknown) => Promise<void>): Promise<void>;
+  didChange(
+    event: { document: { uri: fake.Uri }; contentChanges: unknown[] },
+    next: (e: unknown) => Promise<void>,
+  ): Promise<void>;
+  didClose(document: { uri: fake.Uri }, next: (d: unknown) => Promise<void>): Promise<void>;
   handleDiagnostics(uri: fake.Uri, diagnostics: unknown[], next: (u: fake.Uri, d: unknown[]) => void): void;
 }
 
@@ -91,6 +96,16 @@ describe('extension UI', { skip: process.platform === 'win32' }, () => {
     assert.equal(code.target.toString(), 'command:fanuc-macro.openRuleDocumentation?%5B%22mb601-m-not-integer%22%5D');
     assert.equal((second?.code as { target: fake.Uri }).target, other);
     assert.equal(third?.code, 'MB101');
+
+    // A change of the text is analysed again; a change of nothing (a save) is not; a closed
+    // document is analysed no more.
+    const next = () => Promise.resolve();
+    await middleware.didChange({ document: { uri }, contentChanges: [] }, next);
+    assert.equal(item().text, '$(check) 0i-TF lathe');
+    await middleware.didChange({ document: { uri }, contentChanges: [{ text: 'M30' }] }, next);
+    assert.equal(item().text, '$(sync~spin) 0i-TF lathe · analysing');
+    await middleware.didClose({ uri }, next);
+    assert.equal(item().text, '$(check) 0i-TF lathe');
 
     // The command opens the shipped page at the rule's heading.
     fake.resetRecorded();
