@@ -2,7 +2,9 @@
 
 It installs code-server, Node.js 24 and playwright-core from the npm registry (cached in
 tests/browser/node_modules), chromium from Debian if missing, builds the .vsix and checks in
-headless Chromium the language mode, the highlighting, an MB601 diagnostic, a hover, the Toolpath
+headless Chromium the language mode, the highlighting, an MB601 diagnostic, a hover, the
+extension's workbench parts (no colour swatch on `#101`, the status bar item with the controller,
+a rule code's link opening the shipped rules page, the Settings UI's group title), the Toolpath
 view (drawn, a click on a segment reveals its block, the cursor's block lit) and the trace view
 (a row's values, its link and F12 to the block). It takes minutes on a first run, so it only
 runs when FANUC_MACRO_BROWSER_TEST=1.
@@ -56,5 +58,7 @@ def test_extension_in_code_server(tmp_path: Path) -> None:
     assert proc.returncode == 0, f"run_browser_test.sh exited {proc.returncode}:\n{tail}"
     assert "PASS diagnostics" in proc.stdout, tail
     assert "PASS hover" in proc.stdout, tail
-    for check in ("toolpath view", "toolpath click", "toolpath cursor", "trace view", "trace link"):
+    ui = ("no colour swatch", "status bar controller", "rule documentation link", "settings title")
+    views = ("toolpath view", "toolpath click", "toolpath cursor", "trace view", "trace link")
+    for check in (*ui, *views):
         assert f"PASS {check}:" in proc.stdout, tail
