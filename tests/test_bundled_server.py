@@ -6,6 +6,10 @@ install) on it with `PYTHONPATH=<that folder> python -m fanuc_macro.lsp.server`.
 build the folder into a temporary directory and start the server the way the extension does,
 with a minimal environment and `python -S` (no site-packages: only the bundle and the
 standard library).
+
+The script is run by a Python that has none of the project's dependencies (a fresh venv
+without packages): the bundle must come from pyproject.toml through the script's own
+temporary venv, never from what the Python running it has installed. pip reaches PyPI.
 """
 
 from __future__ import annotations
@@ -18,11 +22,11 @@ import subprocess
 import sys
 import time
 from collections.abc import Iterator
-from importlib import metadata
 from pathlib import Path
 
 import pytest
 from lsprotocol import types
+from packaging.requirements import Requirement
 from pytest_lsp import ClientServerConfig, LanguageClient
 
 import fanuc_macro
@@ -59,17 +63,48 @@ def minimal_env(pythonpath: str) -> dict[str, str]:
     return env
 
 
+def project_dependencies() -> list[Requirement]:
+    text = (ROOT / "pyproject.toml").read_text("utf-8")
+    block = text.split("\ndependencies = [", 1)[1].split("]", 1)[0]
+    lines = [line.strip().strip(",").strip('"') for line in block.splitlines() if '"' in line]
+    return [Requirement(line) for line in lines]
+
+
 @pytest.fixture(scope="module")
-def bundle(tmp_path_factory: pytest.TempPathFactory) -> Path:
-    out = tmp_path_factory.mktemp("bundle") / "python"
-    done = subprocess.run(
-        ["node", str(SCRIPT), str(out)],
+def empty_python(tmp_path_factory: pytest.TempPathFactory) -> str:
+    """A Python with no package at all: a venv without pip, of this interpreter."""
+    venv = tmp_path_factory.mktemp("empty") / "venv"
+    made = [sys.executable, "-m", "venv", "--without-pip", str(venv)]
+    subprocess.run(made, check=True, timeout=120)
+    python = venv / ("Scripts/python.exe" if sys.platform == "win32" else "bin/python")
+    for module in ("lark", "pygls", "lsprotocol", "fanuc_macro"):
+        missing = subprocess.run(
+            [str(python), "-c", f"import {module}"], capture_output=True, cwd=venv, env=clean_env()
+        )
+        assert missing.returncode != 0, f"{module} is importable in the empty venv"
+    return str(python)
+
+
+def clean_env(**extra: str) -> dict[str, str]:
+    """This environment without a PYTHONPATH (the tests' own points at the package)."""
+    return {**{k: v for k, v in os.environ.items() if k != "PYTHONPATH"}, **extra}
+
+
+def run_script(out: Path, python: str, **env: str) -> subprocess.CompletedProcess[str]:
+    return subprocess.run(
+        ["node", str(SCRIPT), str(out), "--strict"],
         cwd=ROOT,
-        env={**os.environ, "PYTHON": sys.executable},
+        env=clean_env(PYTHON=python, **env),
         capture_output=True,
         text=True,
-        timeout=180,
+        timeout=300,
     )
+
+
+@pytest.fixture(scope="module")
+def bundle(tmp_path_factory: pytest.TempPathFactory, empty_python: str) -> Path:
+    out = tmp_path_factory.mktemp("bundle") / "python"
+    done = run_script(out, empty_python)
     assert done.returncode == 0, done.stdout + done.stderr
     return out
 
@@ -95,17 +130,20 @@ def files_under(folder: Path) -> Iterator[Path]:
             yield Path(dirpath) / name
 
 
-def test_bundle_holds_pure_python_at_the_installed_versions(bundle: Path) -> None:
+def test_bundle_holds_pure_python_wheels_of_the_project_dependencies(bundle: Path) -> None:
     manifest = json.loads((bundle / "fanuc-macro-bundle.json").read_text("utf-8"))
     assert manifest["server"]["version"] == fanuc_macro.__version__
     assert manifest["notBundled"] == ["numpy"]
     bundled = {norm(p["name"]): p["version"] for p in manifest["packages"]}
     assert set(bundled) == PURE_DISTRIBUTIONS
-    for name, version in bundled.items():
-        try:
-            assert version == metadata.version(name), name
-        except metadata.PackageNotFoundError:
-            assert name == "exceptiongroup"  # needed by cattrs on Python 3.10 only
+    # The versions pip resolved from pyproject.toml's ranges (numpy excepted), as installed.
+    for requirement in project_dependencies():
+        if norm(requirement.name) == "numpy":
+            continue
+        assert requirement.specifier.contains(bundled[norm(requirement.name)]), requirement
+    stems = (d.name.removesuffix(".dist-info").rsplit("-", 1) for d in bundle.glob("*.dist-info"))
+    installed = {norm(name): version for name, version in stems}
+    assert installed == bundled
     wheels = sorted(bundle.glob("*.dist-info/WHEEL"))
     assert len(wheels) == len(PURE_DISTRIBUTIONS)
     for wheel in wheels:
@@ -117,6 +155,25 @@ def test_bundle_holds_pure_python_at_the_installed_versions(bundle: Path) -> Non
         assert tags and all(t.endswith("-none-any") for t in tags), (wheel, tags)
     assert not (bundle / "numpy").exists()
     assert not (bundle / "bin").exists()
+
+
+def test_a_failed_build_keeps_the_previous_bundle(bundle: Path, empty_python: str) -> None:
+    before = sorted(str(p.relative_to(bundle)) for p in files_under(bundle))
+    manifest = (bundle / "fanuc-macro-bundle.json").read_bytes()
+    # pip cannot reach its index: the build fails after it began its folder.
+    failed = run_script(
+        bundle,
+        empty_python,
+        PIP_INDEX_URL="http://127.0.0.1:9/simple",
+        PIP_NO_CACHE_DIR="1",
+        PIP_RETRIES="0",
+        PIP_TIMEOUT="2",
+    )
+    assert failed.returncode == 1, failed.stdout + failed.stderr
+    assert "is left as it was" in failed.stderr
+    assert sorted(str(p.relative_to(bundle)) for p in files_under(bundle)) == before
+    assert (bundle / "fanuc-macro-bundle.json").read_bytes() == manifest
+    assert sorted(p.name for p in bundle.parent.iterdir()) == ["python"]
 
 
 def test_bundle_copies_the_package_without_symlinks_or_bytecode(bundle: Path) -> None:

@@ -3,32 +3,39 @@
 //
 //   node client/scripts/bundle-server.mjs [OUTPUT_DIR] [--strict]
 //
+// It needs only node and a Python ≥ 3.10 with its venv module: the Python
+// packages are not read from what that Python has installed. The script makes
+// a temporary venv, whose pip installs the [project] dependencies of
+// pyproject.toml (numpy excepted) with `pip install --target` as universal
+// (py3-none-any) wheels for Python 3.10 and later, from PyPI (or the index pip
+// is configured for).
+//
 // OUTPUT_DIR (default: bundled/python at the repository root) receives
-//   - the pure-Python runtime dependencies of the server (lark, pygls,
-//     lsprotocol and what they need), installed with
-//     `pip install --target OUTPUT_DIR --no-compile --no-deps` at the versions
-//     installed in the Python that runs this script, as universal
-//     (py3-none-any) wheels only;
+//   - those pure-Python dependencies (lark, pygls, lsprotocol and what they need);
 //   - a copy of server/fanuc_macro with the symlinks of its data/ folder
 //     replaced by the files they point to, without __pycache__;
 //   - fanuc-macro-bundle.json, which lists what was bundled.
+// The bundle is built in OUTPUT_DIR.building-<pid> beside it and renamed to
+// OUTPUT_DIR only once complete: a failed build leaves the previous bundle.
 // The client runs `python -m fanuc_macro.lsp.server` with OUTPUT_DIR first on
 // PYTHONPATH (client/src/serverCandidates.ts).
 //
 // numpy is not bundled: it is binary and platform-specific.
 //
-// The Python used to read the versions and run pip is $PYTHON, else python3
-// (python on Windows). At the end the script starts the bundled server with
-// `--version` in a minimal environment (`python -S -B`, PYTHONPATH=OUTPUT_DIR);
-// when that fails it warns, or exits with an error under --strict.
+// The Python is $PYTHON, else python3 (python on Windows). Before the bundle
+// replaces the previous one, the script starts it with `--version` in a minimal
+// environment (`python -S -B`, PYTHONPATH=the new bundle); when that fails it
+// warns, or under --strict exits with an error and keeps the previous bundle.
 import { spawnSync } from 'node:child_process';
 import {
   cpSync,
   existsSync,
   lstatSync,
   mkdirSync,
+  mkdtempSync,
   readFileSync,
   readdirSync,
+  renameSync,
   rmSync,
   statSync,
   writeFileSync,
@@ -40,16 +47,14 @@ import { fileURLToPath } from 'node:url';
 const root = resolve(dirname(fileURLToPath(import.meta.url)), '..', '..');
 const MANIFEST = 'fanuc-macro-bundle.json';
 
-/** Distributions the server imports; their requirements are followed from the installed metadata. */
-const ROOTS = ['lark', 'pygls', 'lsprotocol'];
 /** Binary, platform-specific: never bundled (the server must do without it). */
 const EXCLUDED = ['numpy'];
 /**
- * Pins for requirements the bundle needs on some Python ≥ 3.10 although this
- * machine's Python does not have them installed (their marker excludes it):
- * cattrs needs exceptiongroup on Python 3.10 only.
+ * Requirements of the dependencies on the oldest Python only, added by hand: pip evaluates the
+ * markers of requirements for the Python running it, not for --python-version. cattrs needs
+ * exceptiongroup on Python 3.10 (`exceptiongroup>=1.1.1; python_version < "3.11"`).
  */
-const FALLBACK_PINS = { exceptiongroup: '1.3.2' };
+const OLDEST_PYTHON_NEEDS = ['exceptiongroup>=1.1.1'];
 /** Oldest Python the bundle is for: pip picks wheels that work there and on every later 3.x. */
 const MIN_PYTHON = '3.10';
 
@@ -84,98 +89,81 @@ function run(command, args, options = {}) {
   return result;
 }
 
-// ---- 1. the distributions to bundle, at the versions installed here
+// ---- 1. the requirements, from pyproject.toml
 
-const RESOLVE = String.raw`
-import json, re, sys
-from importlib import metadata
-
-roots, excluded, fallback = (json.loads(a) for a in sys.argv[1:4])
-
-def norm(name):
-    return re.sub(r"[-_.]+", "-", name).lower()
-
-excluded = {norm(n) for n in excluded}
-fallback = {norm(n): v for n, v in fallback.items()}
-found, missing, todo = {}, {}, [(norm(r), "the server") for r in roots]
-while todo:
-    name, needed_by = todo.pop(0)
-    if name in excluded or name in found or name in missing:
-        continue
-    try:
-        dist = metadata.distribution(name)
-    except metadata.PackageNotFoundError:
-        missing[name] = needed_by
-        continue
-    found[name] = {"name": dist.metadata["Name"], "version": dist.version}
-    for req in dist.requires or []:
-        spec, _, marker = req.partition(";")
-        if re.search(r"\bextra\s*==", marker):
-            continue  # optional feature
-        match = re.match(r"\s*([A-Za-z0-9][A-Za-z0-9._-]*)", spec)
-        if match:
-            todo.append((norm(match.group(1)), dist.metadata["Name"]))
-unresolved = {n: by for n, by in missing.items() if n not in fallback}
-for n in missing:
-    if n in fallback:
-        found[n] = {"name": n, "version": fallback[n], "fallback": True}
-print(json.dumps({
-    "python": sys.version.split()[0],
-    "packages": sorted(found.values(), key=lambda d: norm(d["name"])),
-    "unresolved": unresolved,
-}))
-`;
-
-const resolved = run(python, [
-  '-c',
-  RESOLVE,
-  JSON.stringify(ROOTS),
-  JSON.stringify(EXCLUDED),
-  JSON.stringify(FALLBACK_PINS),
-]);
-if (resolved.status !== 0) {
-  fail(`${python} could not read the installed versions:\n${resolved.stderr}`);
+/** The `dependencies = [...]` of pyproject.toml's [project] table (Python 3.10 has no tomllib). */
+function projectDependencies(text) {
+  const table = /^\[project\]\s*$([\s\S]*?)(?=^\[|(?![\s\S]))/m.exec(text);
+  const list = table && /^dependencies\s*=\s*\[([\s\S]*?)\]/m.exec(table[1]);
+  if (!list) fail('pyproject.toml has no [project] dependencies list');
+  return [...list[1].matchAll(/"([^"]+)"|'([^']+)'/g)].map((m) => m[1] ?? m[2]);
 }
-const plan = JSON.parse(resolved.stdout);
-const unresolved = Object.entries(plan.unresolved);
-if (unresolved.length > 0) {
+
+function requirementName(requirement) {
+  return (/^\s*([A-Za-z0-9][A-Za-z0-9._-]*)/.exec(requirement)?.[1] ?? requirement)
+    .replace(/[-_.]+/g, '-')
+    .toLowerCase();
+}
+
+const requirements = [
+  ...projectDependencies(readFileSync(join(root, 'pyproject.toml'), 'utf8')).filter(
+    (requirement) => !EXCLUDED.includes(requirementName(requirement)),
+  ),
+  ...OLDEST_PYTHON_NEEDS,
+];
+
+// ---- 2. a temporary venv: its pip resolves them, whatever the Python running this has installed
+
+const work = mkdtempSync(join(tmpdir(), 'fanuc-macro-bundle-'));
+process.on('exit', () => rmSync(work, { recursive: true, force: true }));
+const venv = join(work, 'venv');
+const made = run(python, ['-m', 'venv', venv]);
+if (made.status !== 0) {
   fail(
-    `not installed in ${python} (Python ${plan.python}): ` +
-      unresolved.map(([name, by]) => `${name} (needed by ${by})`).join(', ') +
-      '. Install the server with its dependencies first (pip install -e .), or set PYTHON.',
+    `${python} -m venv failed (exit ${made.status}): ${made.stderr.trim()}\n` +
+      'The bundle needs Python 3.10 or later with its venv module (on Debian/Ubuntu: apt install python3-venv).',
   );
 }
-const pins = plan.packages.map((p) => `${p.name}==${p.version}`);
+const venvPython =
+  process.platform === 'win32' ? join(venv, 'Scripts', 'python.exe') : join(venv, 'bin', 'python');
+const version = run(venvPython, ['-c', 'import sys; print("%d.%d.%d" % sys.version_info[:3])']);
+const pythonVersion = version.stdout.trim();
+const [major, minor] = pythonVersion.split('.').map(Number);
+if (version.status !== 0 || major !== 3 || minor < 10) {
+  fail(`${python} is Python ${pythonVersion || '?'}: the server needs Python ${MIN_PYTHON} or later`);
+}
 
-// ---- 2. a clean output folder
+// ---- 3. the dependencies, as universal wheels, into a folder beside OUTPUT_DIR
 
 if (existsSync(outDir)) {
   if (!statSync(outDir).isDirectory()) fail(`${outDir} exists and is not a folder`);
   const entries = readdirSync(outDir);
   if (entries.length > 0 && !entries.includes(MANIFEST)) {
-    fail(`${outDir} is not empty and holds no ${MANIFEST}: refusing to delete it`);
+    fail(`${outDir} is not empty and holds no ${MANIFEST}: refusing to replace it`);
   }
-  rmSync(outDir, { recursive: true, force: true });
 }
-mkdirSync(outDir, { recursive: true });
+// Built beside OUTPUT_DIR (same file system, so it can be renamed), which stays as it is until
+// the new bundle is complete and starts.
+mkdirSync(dirname(outDir), { recursive: true });
+const building = `${outDir}.building-${process.pid}`;
+rmSync(building, { recursive: true, force: true });
+process.on('exit', () => rmSync(building, { recursive: true, force: true }));
 
-// ---- 3. the dependencies, as universal wheels
-
-console.log(`bundle-server: Python ${plan.python} (${python}); installing ${pins.join(' ')}`);
+console.log(`bundle-server: Python ${pythonVersion} (${python}); installing ${requirements.join(' ')}`);
 const pip = run(
-  python,
+  venvPython,
   [
     '-m',
     'pip',
     'install',
     '--target',
-    outDir,
+    building,
     '--no-compile',
-    '--no-deps',
     '--no-input',
     '--quiet',
     '--disable-pip-version-check',
-    // only pure-Python wheels that work on every CPython/PyPy ≥ MIN_PYTHON
+    // only pure-Python wheels that work on every CPython/PyPy ≥ MIN_PYTHON; markers are
+    // evaluated for MIN_PYTHON, so what an older Python needs is there too
     '--only-binary=:all:',
     '--platform',
     'any',
@@ -185,20 +173,34 @@ const pip = run(
     'none',
     '--python-version',
     MIN_PYTHON,
-    ...pins,
+    ...requirements,
   ],
   { stdio: ['ignore', 'inherit', 'inherit'], env: { ...process.env, PIP_ROOT_USER_ACTION: 'ignore' } },
 );
 if (pip.status !== 0) {
-  fail(`pip install failed (exit ${pip.status})`);
+  fail(`pip install failed (exit ${pip.status}); ${outDir} is left as it was`);
 }
 // console scripts are of no use on PYTHONPATH
-rmSync(join(outDir, 'bin'), { recursive: true, force: true });
+rmSync(join(building, 'bin'), { recursive: true, force: true });
+
+/** What pip installed: the name and version of each *.dist-info folder's METADATA. */
+function installedPackages(dir) {
+  const packages = [];
+  for (const name of readdirSync(dir).filter((n) => n.endsWith('.dist-info')).sort()) {
+    const metadata = readFileSync(join(dir, name, 'METADATA'), 'utf8');
+    const field = (key) => new RegExp(`^${key}:\\s*(.+)$`, 'm').exec(metadata)?.[1]?.trim();
+    packages.push({ name: field('Name') ?? name, version: field('Version') ?? '?' });
+  }
+  return packages.sort((a, b) => requirementName(a.name).localeCompare(requirementName(b.name)));
+}
+const packages = installedPackages(building);
+const binary = packages.filter((p) => EXCLUDED.includes(requirementName(p.name)));
+if (binary.length > 0) fail(`a binary package would be bundled: ${binary.map((p) => p.name).join(', ')}`);
 
 // ---- 4. the server package, symlinks followed
 
 const packageDir = join(root, 'server', 'fanuc_macro');
-cpSync(packageDir, join(outDir, 'fanuc_macro'), {
+cpSync(packageDir, join(building, 'fanuc_macro'), {
   recursive: true,
   dereference: true,
   filter: (source) => {
@@ -223,39 +225,41 @@ function walk(dir) {
     }
   }
 }
-walk(outDir);
+walk(building);
 
 const versionMatch = /__version__\s*=\s*["']([^"']+)["']/.exec(
   readFileSync(join(packageDir, '__init__.py'), 'utf8'),
 );
 writeFileSync(
-  join(outDir, MANIFEST),
+  join(building, MANIFEST),
   `${JSON.stringify(
     {
       server: { name: 'fanuc-macro', version: versionMatch?.[1] ?? 'unknown' },
       requiresPython: `>=${MIN_PYTHON}`,
-      packages: plan.packages.map(({ name, version }) => ({ name, version })),
+      requirements,
+      packages,
       notBundled: EXCLUDED,
-      builtWith: `Python ${plan.python}`,
+      builtWith: `Python ${pythonVersion}`,
     },
     null,
     2,
   )}\n`,
 );
 console.log(
-  `bundle-server: ${outDir}: fanuc_macro ${versionMatch?.[1] ?? '?'} + ${plan.packages.length} packages, ` +
+  `bundle-server: fanuc_macro ${versionMatch?.[1] ?? '?'} + ${packages.length} packages ` +
+    `(${packages.map((p) => `${p.name} ${p.version}`).join(', ')}), ` +
     `${files + 1} files, ${(bytes / 1024 / 1024).toFixed(1)} MiB` +
     `; not bundled: ${EXCLUDED.join(', ')}`,
 );
 
 // ---- 5. does it start without anything installed?
 
-const minimalEnv = { PYTHONPATH: outDir, PYTHONDONTWRITEBYTECODE: '1' };
+const minimalEnv = { PYTHONPATH: building, PYTHONDONTWRITEBYTECODE: '1' };
 for (const name of ['PATH', 'SYSTEMROOT', 'SystemRoot', 'TEMP', 'TMP', 'TMPDIR']) {
   if (process.env[name] !== undefined) minimalEnv[name] = process.env[name];
 }
 const check = run(python, ['-S', '-B', '-m', 'fanuc_macro.lsp.server', '--version'], {
-  cwd: tmpdir(),
+  cwd: work,
   env: minimalEnv,
   timeout: 60000,
 });
@@ -268,6 +272,14 @@ if (check.status === 0 && /^fanuc-macro-ls \S+$/m.test(answer)) {
     `the bundled server does not start with only the bundle on the path ` +
     `(${python} -S -B -m fanuc_macro.lsp.server --version: exit ${check.status ?? check.signal}): ` +
     (lines[lines.length - 1] || answer || 'no output');
-  if (strict) fail(message);
+  if (strict) fail(`${message}; ${outDir} is left as it was`);
   console.warn(`bundle-server: WARNING: ${message}`);
 }
+
+// ---- 6. the new bundle replaces the previous one
+
+const previous = `${outDir}.previous-${process.pid}`;
+if (existsSync(outDir)) renameSync(outDir, previous);
+renameSync(building, outDir);
+rmSync(previous, { recursive: true, force: true });
+console.log(`bundle-server: ${outDir} is the new bundle`);

@@ -7,8 +7,10 @@ import {
   State,
   TransportKind,
   type LanguageClientOptions,
+  type Middleware,
   type ServerOptions,
 } from 'vscode-languageclient/node';
+import { registerCheckTasks } from './checkTaskProvider';
 import { DEFAULT_PROBE_TIMEOUT_MS, probeCandidate } from './probe';
 import {
   BUNDLED_MIN_PYTHON,
@@ -26,6 +28,8 @@ import {
   validateThreadLength,
   type ThreadModuleArgs,
 } from './threadDesignation';
+import { RuleDocs, linkToShippedDocs } from './ruleDocsView';
+import { StatusItem } from './statusItem';
 import { ToolpathPanel } from './toolpathView';
 import { formatTraceView, traceResultError, type TraceResult } from './traceFormat';
 import { TraceDocuments } from './traceView';
@@ -50,6 +54,13 @@ let output: vscode.OutputChannel | undefined;
 let traces: TraceDocuments | undefined;
 /** Serialises start/stop/restart so that commands and setting changes do not race. */
 let lifecycle: Promise<unknown> = Promise.resolve();
+/** The status bar item: controller and server state (made by activate). */
+let statusItem: StatusItem | undefined;
+/** The server candidate the running server was started with, for the check task's command. */
+let startedCandidate: ServerCandidate | undefined;
+
+/** Sample program of the walkthrough, in the extension's folder. */
+const SAMPLE_PATH = ['samples', 'o1000_walkthrough.nc'] as const;
 
 function outputChannel(): vscode.OutputChannel {
   output ??= vscode.window.createOutputChannel('FANUC Macro Language Server');
@@ -185,8 +196,8 @@ async function showServerNotFound(failures: readonly string[]): Promise<void> {
     '(python3 on PATH, or the interpreter selected in the Python extension). ' +
     `Tried: ${failures.join('; ')}.`;
   log(`Language server not found. Tried:\n${tried}`);
-  const openSetting = 'Open Setting';
-  const showLog = 'Show Log';
+  const openSetting = vscode.l10n.t('Open Setting');
+  const showLog = vscode.l10n.t('Show Log');
   const choice = await vscode.window.showErrorMessage(message, openSetting, showLog);
   if (choice === openSetting) {
     await vscode.commands.executeCommand('workbench.action.openSettings', SERVER_PATH_SETTING);
@@ -197,12 +208,15 @@ async function showServerNotFound(failures: readonly string[]): Promise<void> {
 
 async function startClient(): Promise<void> {
   startedWithPath = vscode.workspace.getConfiguration(CONFIG_SECTION).get<string>('server.path', '');
+  statusItem?.status.starting();
   const { found, failures } = await findServer();
   if (found === undefined) {
+    statusItem?.status.failed(vscode.l10n.t('fanuc-macro-ls was not found (tried {0})', failures.length));
     void showServerNotFound(failures);
     return;
   }
   const { candidate, version } = found;
+  startedCandidate = candidate;
   log(`Starting ${candidate.description} (fanuc-macro-ls ${version})`);
   const configured = vscode.workspace.getConfiguration(CONFIG_SECTION).get<string>('server.path', '');
   if (candidate.source !== 'setting' && configured.trim() !== '') {
@@ -230,6 +244,7 @@ async function startClient(): Promise<void> {
     synchronize: { configurationSection: CONFIG_SECTION },
     outputChannel: outputChannel(),
     traceOutputChannel: outputChannel(),
+    middleware: statusMiddleware(),
   };
   const newClient = new LanguageClient(
     LANGUAGE_ID,
@@ -238,12 +253,20 @@ async function startClient(): Promise<void> {
     clientOptions,
   );
   client = newClient;
+  newClient.onDidChangeState((event) => {
+    if (client !== newClient) return;
+    if (event.newState === State.Running) statusItem?.status.ready(version);
+    else if (event.newState === State.Starting) statusItem?.status.starting();
+    else statusItem?.status.stopped();
+  });
   try {
     await newClient.start();
+    statusItem?.status.ready(version);
   } catch (err) {
     client = undefined;
+    statusItem?.status.failed(errorText(err));
     log(`The language server failed to start: ${String(err)}`);
-    const showLog = 'Show Log';
+    const showLog = vscode.l10n.t('Show Log');
     const choice = await vscode.window.showErrorMessage(
       `FANUC Macro: the language server (${candidate.description}) failed to start: ${errorText(err)}`,
       showLog,
@@ -258,6 +281,7 @@ async function stopClient(): Promise<void> {
   if (current === undefined) {
     return;
   }
+  statusItem?.status.stopped();
   try {
     if (current.state !== State.Stopped) {
       await current.stop(5000);
@@ -291,9 +315,9 @@ function errorText(err: unknown): string {
 async function runningClient(): Promise<LanguageClient | undefined> {
   await lifecycle;
   if (client === undefined || client.state !== State.Running) {
-    const restartLabel = 'Restart Server';
+    const restartLabel = vscode.l10n.t('Restart Server');
     const choice = await vscode.window.showErrorMessage(
-      'FANUC Macro: the language server is not running.',
+      vscode.l10n.t('FANUC Macro: the language server is not running.'),
       restartLabel,
     );
     if (choice === restartLabel) {
@@ -315,7 +339,7 @@ async function executeServerCommand(
 async function showTrace(): Promise<void> {
   const editor = vscode.window.activeTextEditor;
   if (editor === undefined || editor.document.languageId !== LANGUAGE_ID) {
-    void vscode.window.showErrorMessage('FANUC Macro: open a FANUC macro program to trace it.');
+    void vscode.window.showErrorMessage(vscode.l10n.t('FANUC Macro: open a FANUC macro program to trace it.'));
     return;
   }
   const languageClient = await runningClient();
@@ -325,7 +349,7 @@ async function showTrace(): Promise<void> {
   let answer: unknown;
   try {
     answer = await vscode.window.withProgress(
-      { location: vscode.ProgressLocation.Window, title: 'FANUC Macro: tracing program' },
+      { location: vscode.ProgressLocation.Window, title: vscode.l10n.t('FANUC Macro: tracing program') },
       () => executeServerCommand(languageClient, SERVER_COMMAND_TRACE, [uri]),
     );
   } catch (err) {
@@ -344,7 +368,7 @@ async function showTrace(): Promise<void> {
 async function showToolpath(): Promise<void> {
   const editor = vscode.window.activeTextEditor;
   if (editor === undefined || editor.document.languageId !== LANGUAGE_ID) {
-    void vscode.window.showErrorMessage('FANUC Macro: open a FANUC macro program to see its toolpath.');
+    void vscode.window.showErrorMessage(vscode.l10n.t('FANUC Macro: open a FANUC macro program to see its toolpath.'));
     return;
   }
   const languageClient = await runningClient();
@@ -357,12 +381,12 @@ async function showToolpath(): Promise<void> {
 async function insertThreadModule(): Promise<void> {
   const editor = vscode.window.activeTextEditor;
   if (editor === undefined) {
-    void vscode.window.showErrorMessage('FANUC Macro: open a program to insert the thread module into.');
+    void vscode.window.showErrorMessage(vscode.l10n.t('FANUC Macro: open a program to insert the thread module into.'));
     return;
   }
   const designationInput = await vscode.window.showInputBox({
-    title: 'Symmetric Thread Module (1/3)',
-    prompt: 'Metric thread designation: lower-case tolerance for external (M50x3-5g6g), upper case for internal (M50x3-6H)',
+    title: vscode.l10n.t('Symmetric Thread Module (1/3)'),
+    prompt: vscode.l10n.t('Metric thread designation: lower-case tolerance for external (M50x3-5g6g), upper case for internal (M50x3-6H)'),
     placeHolder: 'M50x3-5g6g',
     ignoreFocusOut: true,
     validateInput: validateThreadDesignation,
@@ -374,8 +398,8 @@ async function insertThreadModule(): Promise<void> {
     return;
   }
   const lengthInput = await vscode.window.showInputBox({
-    title: 'Symmetric Thread Module (2/3)',
-    prompt: `Thread length of ${designation.text} in mm`,
+    title: vscode.l10n.t('Symmetric Thread Module (2/3)'),
+    prompt: vscode.l10n.t('Thread length of {0} in mm', designation.text),
     placeHolder: '40',
     ignoreFocusOut: true,
     validateInput: validateThreadLength,
@@ -388,10 +412,10 @@ async function insertThreadModule(): Promise<void> {
   }
   let internal = designation.internal;
   if (internal === null) {
-    const external = { label: 'External thread', description: 'bolt, turned on the outside', internal: false };
-    const inner = { label: 'Internal thread', description: 'nut, bored on the inside', internal: true };
+    const external = { label: vscode.l10n.t('External thread'), description: vscode.l10n.t('bolt, turned on the outside'), internal: false };
+    const inner = { label: vscode.l10n.t('Internal thread'), description: vscode.l10n.t('nut, bored on the inside'), internal: true };
     const picked = await vscode.window.showQuickPick([external, inner], {
-      title: 'Symmetric Thread Module (3/3)',
+      title: vscode.l10n.t('Symmetric Thread Module (3/3)'),
       placeHolder: `${designation.text} has no tolerance class: is it an external or an internal thread?`,
       ignoreFocusOut: true,
     });
@@ -418,8 +442,45 @@ async function insertThreadModule(): Promise<void> {
   const position = target.selection.active;
   const applied = await target.edit((builder) => builder.insert(position, result.text));
   if (!applied) {
-    void vscode.window.showErrorMessage('FANUC Macro: the thread module could not be inserted.');
+    void vscode.window.showErrorMessage(vscode.l10n.t('FANUC Macro: the thread module could not be inserted.'));
   }
+}
+
+/**
+ * The analysis of a document opened or changed runs until its diagnostics come back (the server
+ * publishes them after each analysis): the status item says "analysing" meanwhile. The
+ * diagnostics' rule links are pointed at the documentation shipped with the extension.
+ */
+function statusMiddleware(): Middleware {
+  return {
+    didOpen: (document, next) => {
+      statusItem?.status.analysisStarted(document.uri.toString());
+      return next(document);
+    },
+    didChange: (event, next) => {
+      if (event.contentChanges.length > 0) statusItem?.status.analysisStarted(event.document.uri.toString());
+      return next(event);
+    },
+    didClose: (document, next) => {
+      statusItem?.status.analysisDone(document.uri.toString());
+      return next(document);
+    },
+    handleDiagnostics: (uri, diagnostics, next) => {
+      statusItem?.status.analysisDone(uri.toString());
+      next(uri, diagnostics.map(linkToShippedDocs));
+    },
+  };
+}
+
+/** The walkthrough's sample, as an untitled program: edited freely, nothing on disk changes. */
+async function openSample(): Promise<void> {
+  if (extensionUri === undefined) return;
+  const bytes = await vscode.workspace.fs.readFile(vscode.Uri.joinPath(extensionUri, ...SAMPLE_PATH));
+  const document = await vscode.workspace.openTextDocument({
+    language: LANGUAGE_ID,
+    content: new TextDecoder('utf-8').decode(bytes),
+  });
+  await vscode.window.showTextDocument(document, { preview: false });
 }
 
 export function activate(context: vscode.ExtensionContext): void {
@@ -427,13 +488,17 @@ export function activate(context: vscode.ExtensionContext): void {
   extensionPath = typeof context.extensionPath === 'string' ? context.extensionPath : undefined;
   extensionUri = context.extensionUri;
   traces = new TraceDocuments();
-  context.subscriptions.push(outputChannel(), ...traces.register());
+  statusItem = new StatusItem();
+  context.subscriptions.push(outputChannel(), ...traces.register(), statusItem);
+  if (extensionUri !== undefined) context.subscriptions.push(...new RuleDocs(extensionUri).register());
+  context.subscriptions.push(registerCheckTasks(() => startedCandidate));
 
   context.subscriptions.push(
     vscode.commands.registerCommand('fanuc-macro.restartServer', restart),
     vscode.commands.registerCommand('fanuc-macro.showTrace', showTrace),
     vscode.commands.registerCommand('fanuc-macro.showToolpath', showToolpath),
     vscode.commands.registerCommand('fanuc-macro.insertThreadModule', insertThreadModule),
+    vscode.commands.registerCommand('fanuc-macro.openSample', openSample),
     vscode.workspace.onDidChangeConfiguration((event) => {
       if (event.affectsConfiguration(SERVER_PATH_SETTING)) {
         log(`${SERVER_PATH_SETTING} changed: restarting the language server`);

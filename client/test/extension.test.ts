@@ -78,6 +78,8 @@ describe('extension', { skip: process.platform === 'win32' }, () => {
       rules: { disabled: ['MB101'], severity: { MB102: 'hint' } },
       analysis: { debounceMs: 250 },
       trace: { server: 'off' },
+      // The server leaves out its own thread snippets: the extension contributes them.
+      contributesSnippets: true,
     });
     assert.ok(clients.slice(0, -1).every((c) => c.stopped), 'the previous client was stopped');
   });

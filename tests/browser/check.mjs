@@ -1,9 +1,10 @@
 // Drives a real VS Code (code-server) in headless Chromium and checks that the
 // fanuc-macro extension works in it: language mode, TextMate highlighting,
-// diagnostics from the language server, a hover with a value, navigation (rename, document
-// highlight, folding, workspace symbols), semantic tokens, a code lens, signature help, the
-// Toolpath view (webview) and the trace view (a read-only document whose rows link to the
-// blocks).
+// diagnostics from the language server, a hover with a value, the extension's workbench parts
+// (no colour swatch, the status bar item, the rule links, the Settings UI's title), navigation
+// (rename, document highlight, folding, workspace symbols), semantic tokens, a code lens,
+// signature help, the Toolpath view (webview) and the trace view (a read-only document whose
+// rows link to the blocks).
 // Every step waits for a condition (a status bar text, a data- attribute), never a fixed delay.
 //
 // Usage: node check.mjs <code-server base url> <workspace folder> <out dir>
@@ -428,6 +429,104 @@ async function checkTrace() {
   }
 }
 
+/** Opens `name` of the workspace through Quick Open and waits for its editor. */
+async function openFile(name) {
+  await page.keyboard.press('Control+P');
+  await page.locator('.quick-input-widget input').waitFor({ state: 'visible' });
+  await page.keyboard.type(name);
+  await page.locator('.quick-input-list .monaco-list-row', { hasText: name }).first().waitFor();
+  await page.keyboard.press('Enter');
+  await waitActiveEditor(name, 'FANUC Macro B');
+  await editor.locator('.view-lines').waitFor();
+}
+
+// The extension's workbench parts: no colour swatch on `#101` (VS Code would read it as a hex
+// colour), the status bar item with the controller (a click offers the others), the rule code's
+// link in the Problems panel opening the shipped rules page, and the Settings UI's group title.
+async function checkExtensionUi() {
+  const SWATCH_FILE = 'o4009_external_m50x3.nc'; // line 7: `#101=3.`
+  const status = page.locator('.statusbar-item', { hasText: /0i-TF lathe/ }).first();
+  try {
+    await openFile(SWATCH_FILE);
+    await gotoPosition(7, 1);
+    await editor.locator('.view-line', { hasText: '#101=3.' }).first().waitFor();
+    // The server has analysed the file (its state back to ready) before the swatches are counted.
+    await page.waitForFunction(
+      () => [...document.querySelectorAll('.statusbar-item')].some((e) =>
+        /0i-TF lathe/.test(e.innerText) && !/analysing|starting/.test(e.innerText)
+        && e.querySelector('.codicon-check') !== null),
+      null,
+      { timeout: STEP_MS },
+    );
+    const swatches = await editor.locator('.colorpicker-color-decoration').count();
+    record('no colour swatch', swatches === 0, `${SWATCH_FILE} line 7 "#101=3.": ${swatches} colour decorations`);
+  } catch (e) {
+    record('no colour swatch', false, e.message.split('\n')[0]);
+    await shot('swatch.png');
+  }
+
+  try {
+    const text = (await status.innerText()).trim();
+    const tooltip = await status.locator('a, [role="button"]').first().getAttribute('aria-label').catch(() => null);
+    await status.click();
+    const rows = page.locator('.quick-input-list .monaco-list-row');
+    await rows.filter({ hasText: '18i-M' }).first().waitFor();
+    const offered = (await rows.allInnerTexts()).map((t) => t.split('\n')[0].trim()).slice(0, 8);
+    await page.keyboard.press('Escape');
+    await page.locator('.quick-input-widget').waitFor({ state: 'hidden' });
+    record('status bar controller', /0i-TF lathe/.test(text) && offered.length >= 7,
+      `${JSON.stringify(text)} (${tooltip ?? 'no label'}); a click offers ${offered.join(', ')}`);
+  } catch (e) {
+    record('status bar controller', false, e.message.split('\n')[0]);
+    await shot('status.png');
+  }
+
+  // The rule code of a diagnostic in the Problems panel links to the shipped documentation.
+  try {
+    await openFile(FILE);
+    // Ctrl+Shift+M toggles the panel: pressed only when it is not shown (it is, since (b)).
+    if (!(await page.locator('.markers-panel').isVisible())) await page.keyboard.press('Control+Shift+M');
+    const link = page.locator('.markers-panel a', { hasText: 'MB601' }).first();
+    await link.waitFor();
+    const href = await link.getAttribute('href');
+    await link.click();
+    await page.locator('.editor-group-container.active .tab.active', { hasText: 'rules.md' }).first().waitFor();
+    await page.waitForFunction(
+      () => /^## MB601 /m.test((document.querySelector('.editor-group-container.active .monaco-editor .view-lines')?.innerText || '')
+        .replace(/\u00a0/g, ' ')),
+      null,
+      { timeout: STEP_MS },
+    );
+    record('rule documentation link', (href || '').startsWith('command:fanuc-macro.openRuleDocumentation'),
+      `${href}: rules.md open at ${JSON.stringify((await activeEditorText()).split('\n').find((l) => l.startsWith('## MB601')))}`);
+    await runCommand('View: Close Editor');
+  } catch (e) {
+    record('rule documentation link', false, e.message.split('\n')[0]);
+    await shot('rule-link.png');
+  }
+
+  // The Settings UI: the extension's settings under its title.
+  try {
+    await runCommand('Preferences: Open Settings (UI)');
+    await page.locator('.settings-editor .settings-header').waitFor();
+    // The search box has the focus when the editor opens.
+    await page.keyboard.type('fanuc-macro');
+    const item = page.locator('.settings-editor .setting-item-contents', { hasText: 'Controller' }).first();
+    await item.waitFor();
+    const label = (await item.locator('.setting-item-title').innerText()).replace(/\s+/g, ' ').trim();
+    const toc = (await page.locator('.settings-editor .settings-toc-container').innerText().catch(() => '')).replace(/\s+/g, ' ').trim();
+    const groups = (await page.locator('.settings-editor .settings-group-title-label').allInnerTexts()).map((t) => t.trim());
+    await shot('settings.png');
+    record('settings title', groups.includes('FANUC Macro B') || toc.includes('FANUC Macro B'),
+      `group titles ${JSON.stringify(groups)}; contents ${JSON.stringify(toc)}; the setting reads ${JSON.stringify(label)}`);
+    await runCommand('View: Close Editor');
+  } catch (e) {
+    record('settings title', false, e.message.split('\n')[0]);
+    await shot('settings.png');
+  }
+  await openFile(FILE);
+}
+
 /** The line number of the active editor's visible line that starts with `prefix`, or -1. */
 async function lineNumberOf(prefix) {
   return page.evaluate((want) => {
@@ -611,6 +710,7 @@ try {
   await shot('hover.png');
   await page.keyboard.press('Escape');
 
+  await checkExtensionUi();
   await checkNavigation();
   await checkTokensAndLenses();
   await checkToolpath();

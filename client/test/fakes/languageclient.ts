@@ -23,6 +23,9 @@ export interface RecordedRequest {
 
 export const clients: LanguageClient[] = [];
 
+/** The error the next start() fails with, once. */
+export const startFailures: Error[] = [];
+
 /** Answers for workspace/executeCommand, by command id. */
 export const serverAnswers = new Map<string, (args: unknown[]) => unknown>();
 
@@ -40,13 +43,31 @@ export class LanguageClient {
     clients.push(this);
   }
 
+  private readonly stateListeners: Array<(event: { oldState: State; newState: State }) => void> = [];
+
+  onDidChangeState(listener: (event: { oldState: State; newState: State }) => void) {
+    this.stateListeners.push(listener);
+    return { dispose: () => undefined };
+  }
+
+  private setState(state: State): void {
+    const oldState = this.state;
+    this.state = state;
+    for (const listener of this.stateListeners) listener({ oldState, newState: state });
+  }
+
   start(): Promise<void> {
-    this.state = State.Running;
+    const failure = startFailures.shift();
+    if (failure !== undefined) {
+      this.setState(State.Stopped);
+      return Promise.reject(failure);
+    }
+    this.setState(State.Running);
     return Promise.resolve();
   }
 
   stop(_timeout?: number): Promise<void> {
-    this.state = State.Stopped;
+    this.setState(State.Stopped);
     this.stopped = true;
     return Promise.resolve();
   }

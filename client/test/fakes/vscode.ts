@@ -5,6 +5,45 @@ export type Handler = (...args: unknown[]) => unknown;
 
 export const ViewColumn = { Active: -1, Beside: -2, One: 1 } as const;
 export const ProgressLocation = { SourceControl: 1, Window: 10, Notification: 15 } as const;
+export const StatusBarAlignment = { Left: 1, Right: 2 } as const;
+export const ConfigurationTarget = { Global: 1, Workspace: 2, WorkspaceFolder: 3 } as const;
+export const TextEditorRevealType = { Default: 0, InCenter: 1, InCenterIfOutsideViewport: 2, AtTop: 3 } as const;
+export const TaskScope = { Global: 1, Workspace: 2 } as const;
+export const TaskGroup = { Build: { id: 'build' } } as const;
+
+export class ThemeColor {
+  constructor(readonly id: string) {}
+}
+
+/** vscode.l10n with no bundle loaded: the message, its {0} {1}... filled in. */
+export const l10n = {
+  t(message: string, ...args: Array<string | number>): string {
+    return message.replace(/\{(\d+)\}/g, (whole, index: string) => {
+      const value = args[Number(index)];
+      return value === undefined ? whole : String(value);
+    });
+  },
+};
+
+export class ProcessExecution {
+  constructor(
+    readonly process: string,
+    readonly args: string[],
+    readonly options?: { cwd?: string; env?: Record<string, string> },
+  ) {}
+}
+
+export class Task {
+  group?: unknown;
+  constructor(
+    readonly definition: { type: string; [key: string]: unknown },
+    readonly scope: unknown,
+    readonly name: string,
+    readonly source: string,
+    readonly execution: ProcessExecution,
+    readonly problemMatchers: string[],
+  ) {}
+}
 
 export class Uri {
   private constructor(
@@ -12,6 +51,7 @@ export class Uri {
     readonly fsPath: string,
     readonly query = '',
     readonly fragment = '',
+    readonly authority = '',
   ) {}
   static file(path: string): Uri {
     return new Uri('file', path);
@@ -22,19 +62,27 @@ export class Uri {
   static from(parts: { scheme: string; path?: string; query?: string; fragment?: string }): Uri {
     return new Uri(parts.scheme, parts.path ?? '', parts.query ?? '', parts.fragment ?? '');
   }
+  static joinPath(base: Uri, ...parts: string[]): Uri {
+    return new Uri(base.scheme, [base.fsPath, ...parts].join('/'), '', '', base.authority);
+  }
   static parse(text: string): Uri {
-    const match = /^([a-z][a-z0-9+.-]*):(?:\/\/)?([^?#]*)(?:\?([^#]*))?(?:#(.*))?$/i.exec(text);
+    const match = /^([a-z][a-z0-9+.-]*):(?:\/\/([^/?#]*))?([^?#]*)(?:\?([^#]*))?(?:#(.*))?$/i.exec(text);
     if (match === null) throw new Error(`not a URI: ${text}`);
-    return new Uri(match[1]!, match[2]!, match[3] ?? '', match[4] ?? '');
+    return new Uri(match[1]!, match[3]!, match[4] ?? '', match[5] ?? '', match[2] ?? '');
   }
   get path(): string {
     return this.fsPath;
   }
   with(change: { fragment?: string; query?: string }): Uri {
-    return new Uri(this.scheme, this.fsPath, change.query ?? this.query, change.fragment ?? this.fragment);
+    return new Uri(this.scheme, this.fsPath, change.query ?? this.query, change.fragment ?? this.fragment, this.authority);
   }
-  toString(): string {
-    const base = this.scheme === 'file' ? `file://${this.fsPath}` : `${this.scheme}:${this.fsPath}`;
+  toString(_skipEncoding?: boolean): string {
+    const base =
+      this.scheme === 'file'
+        ? `file://${this.fsPath}`
+        : this.authority !== ''
+          ? `${this.scheme}://${this.authority}${this.fsPath}`
+          : `${this.scheme}:${this.fsPath}`;
     return `${base}${this.query ? `?${this.query}` : ''}${this.fragment ? `#${this.fragment}` : ''}`;
   }
 }
@@ -63,9 +111,11 @@ export class Position {
 export class Range {
   readonly start: Position;
   readonly end: Position;
-  constructor(startLine: number, startCharacter: number, endLine: number, endCharacter: number) {
-    this.start = new Position(startLine, startCharacter);
-    this.end = new Position(endLine, endCharacter);
+  constructor(start: Position, end: Position);
+  constructor(startLine: number, startCharacter: number, endLine: number, endCharacter: number);
+  constructor(a: number | Position, b: number | Position, c?: number, d?: number) {
+    this.start = a instanceof Position ? a : new Position(a, b as number);
+    this.end = b instanceof Position ? b : new Position(c ?? 0, d ?? 0);
   }
 }
 
@@ -94,7 +144,7 @@ export interface FakeDocument {
 
 /** Providers the extension registered, by kind. */
 export const providers = {
-  content: new Map<string, { provideTextDocumentContent(uri: Uri): string }>(),
+  content: new Map<string, { provideTextDocumentContent(uri: Uri): string | Promise<string> }>(),
   links: [] as Array<{ selector: unknown; provider: { provideDocumentLinks(d: FakeDocument): DocumentLink[] } }>,
   definitions: [] as Array<{
     selector: unknown;
@@ -104,11 +154,13 @@ export const providers = {
 
 /** Everything the extension did, for the assertions. */
 export const recorded = {
+  settingUpdates: [] as Array<{ key: string; value: unknown; target: number }>,
   errors: [] as Array<{ message: string; items: string[] }>,
   warnings: [] as string[],
   executed: [] as Array<{ command: string; args: unknown[] }>,
   openedDocuments: [] as Array<{ content: string; language: string }>,
   shownDocuments: [] as Array<{ content: string; options: unknown }>,
+  revealed: [] as Array<{ line: number; type: number | undefined }>,
   inserts: [] as Array<{ position: Position; text: string }>,
   log: [] as string[],
 };
@@ -127,8 +179,40 @@ export function resetRecorded(): void {
   recorded.executed.length = 0;
   recorded.openedDocuments.length = 0;
   recorded.shownDocuments.length = 0;
+  recorded.revealed.length = 0;
   recorded.inserts.length = 0;
+  recorded.settingUpdates.length = 0;
 }
+
+// --- status bar --------------------------------------------------------------
+
+/** A status bar item; `texts` keeps each text it showed, in order. */
+export class FakeStatusBarItem {
+  readonly texts: string[] = [];
+  private shown = '';
+  tooltip: string | undefined;
+  command: string | undefined;
+  name: string | undefined;
+  backgroundColor: ThemeColor | undefined;
+  visible = false;
+  constructor(readonly id: string) {}
+  get text(): string {
+    return this.shown;
+  }
+  set text(value: string) {
+    if (value !== this.shown) this.texts.push(value);
+    this.shown = value;
+  }
+  show(): void {
+    this.visible = true;
+  }
+  hide(): void {
+    this.visible = false;
+  }
+  dispose(): void {}
+}
+
+export const statusBarItems: FakeStatusBarItem[] = [];
 
 // --- configuration -----------------------------------------------------------
 
@@ -152,12 +236,29 @@ function nested(flat: Record<string, unknown>): Record<string, unknown> {
   return root;
 }
 
+/** Where each setting is set, for inspect(): absent keys are set in the user settings. */
+export const settingScopes: Record<string, 'workspace' | 'workspaceFolder'> = {};
+
 class Configuration {
   constructor(values: Record<string, unknown>) {
     Object.assign(this, nested(values));
   }
   get<T>(key: string, fallback?: T): T | undefined {
     return (key in settings ? settings[key] : fallback) as T | undefined;
+  }
+  inspect(key: string): Record<string, unknown> | undefined {
+    if (!(key in settings)) return { key };
+    const scope = settingScopes[key];
+    const value = settings[key];
+    if (scope === 'workspaceFolder') return { key, workspaceFolderValue: value };
+    if (scope === 'workspace') return { key, workspaceValue: value };
+    return { key, globalValue: value };
+  }
+  update(key: string, value: unknown, target: number): Promise<void> {
+    recorded.settingUpdates.push({ key, value, target });
+    settings = { ...settings, [key]: value };
+    fireConfigurationChange(`fanuc-macro.${key}`);
+    return Promise.resolve();
   }
 }
 
@@ -218,6 +319,14 @@ export const commands = {
 
 export const window = {
   activeTextEditor: undefined as FakeEditor | undefined,
+  createStatusBarItem(id: string, _alignment?: number, _priority?: number): FakeStatusBarItem {
+    const item = new FakeStatusBarItem(id);
+    statusBarItems.push(item);
+    return item;
+  },
+  onDidChangeActiveTextEditor(_listener: Handler) {
+    return { dispose: () => undefined };
+  },
   createOutputChannel(_name: string) {
     return {
       appendLine: (line: string) => recorded.log.push(line),
@@ -242,7 +351,7 @@ export const window = {
     }
     return Promise.resolve(answer);
   },
-  showQuickPick<T extends { label: string }>(items: readonly T[]): Promise<T | undefined> {
+  showQuickPick<T extends { label: string }>(items: readonly T[], _options?: unknown): Promise<T | undefined> {
     const choose = answers.quickPick.shift();
     return Promise.resolve(choose ? (choose(items) as T | undefined) : undefined);
   },
@@ -251,12 +360,25 @@ export const window = {
   },
   showTextDocument(document: { content: string }, options: unknown): Promise<unknown> {
     recorded.shownDocuments.push({ content: document.content, options });
-    return Promise.resolve(undefined);
+    return Promise.resolve({
+      document,
+      revealRange: (range: Range, type?: number) => recorded.revealed.push({ line: range.start.line, type }),
+    });
   },
 };
 
+/** Files workspace.fs reads, by path. */
+export const files = new Map<string, string>();
+
 export const workspace = {
   workspaceFolders: undefined as Array<{ uri: Uri }> | undefined,
+  fs: {
+    readFile(uri: Uri): Promise<Uint8Array> {
+      const text = files.get(uri.fsPath);
+      if (text === undefined) return Promise.reject(new Error(`no file ${uri.fsPath}`));
+      return Promise.resolve(new TextEncoder().encode(text));
+    },
+  },
   getConfiguration(_section: string) {
     return new Configuration(settings);
   },
@@ -268,18 +390,21 @@ export const workspace = {
     trustListeners.push(listener);
     return { dispose: () => undefined };
   },
-  openTextDocument(what: { content: string; language: string } | Uri): Promise<FakeDocument | { content: string }> {
+  async openTextDocument(what: { content: string; language: string } | Uri): Promise<FakeDocument | { content: string }> {
     if (what instanceof Uri) {
       const provider = providers.content.get(what.scheme);
-      if (provider === undefined) return Promise.reject(new Error(`no provider of ${what.scheme}`));
-      const content = provider.provideTextDocumentContent(what);
+      if (provider === undefined) throw new Error(`no provider of ${what.scheme}`);
+      const content = await provider.provideTextDocumentContent(what);
       recorded.openedDocuments.push({ content, language: 'plaintext' });
-      return Promise.resolve({ uri: what, languageId: 'plaintext', content, getText: () => content });
+      return { uri: what, languageId: 'plaintext', content, getText: () => content };
     }
     recorded.openedDocuments.push(what);
     return Promise.resolve({ content: what.content });
   },
-  registerTextDocumentContentProvider(scheme: string, provider: { provideTextDocumentContent(uri: Uri): string }) {
+  registerTextDocumentContentProvider(
+    scheme: string,
+    provider: { provideTextDocumentContent(uri: Uri): string | Promise<string> },
+  ) {
     providers.content.set(scheme, provider);
     return { dispose: () => providers.content.delete(scheme) };
   },
@@ -312,6 +437,19 @@ export let pythonExtension: unknown;
 export function setPythonExtension(extension: unknown): void {
   pythonExtension = extension;
 }
+
+/** Task providers the extension registered, by type. */
+export const taskProviders = new Map<
+  string,
+  { provideTasks(): Task[]; resolveTask(task: { definition: unknown; scope?: unknown }): Task | undefined }
+>();
+
+export const tasks = {
+  registerTaskProvider(type: string, provider: (typeof taskProviders extends Map<string, infer P> ? P : never)) {
+    taskProviders.set(type, provider);
+    return { dispose: () => taskProviders.delete(type) };
+  },
+};
 
 export const extensions = {
   getExtension(id: string): unknown {

@@ -1,0 +1,198 @@
+// What the status bar item says: the controller the analysis is for (lathe or mill) and the
+// language server's state. Pure logic, no `vscode` import: the UI strings go through the
+// translator given (vscode.l10n.t in the extension), so it is unit-tested with node:test.
+
+/** Formats a UI string: `{0}`, `{1}`... are replaced by the arguments (as vscode.l10n.t does). */
+export type Translate = (message: string, ...args: Array<string | number>) => string;
+
+/** The identity translation, English (tests, and the fallback). */
+export const english: Translate = (message, ...args) =>
+  message.replace(/\{(\d+)\}/g, (whole, index: string) => {
+    const value = args[Number(index)];
+    return value === undefined ? whole : String(value);
+  });
+
+export type MachineKind = 'lathe' | 'mill' | 'lathe and mill';
+
+export interface Controller {
+  /** The value of the `fanuc-macro.controller` setting. */
+  readonly id: string;
+  readonly kind: MachineKind;
+  /** The series name, as FANUC calls it. */
+  readonly series: string;
+}
+
+/** The controllers of the `fanuc-macro.controller` setting, in the order of its enum. */
+export const CONTROLLERS: readonly Controller[] = [
+  { id: '0i-TF', kind: 'lathe', series: 'FANUC Series 0i-TF' },
+  { id: '0i-MF', kind: 'mill', series: 'FANUC Series 0i-MF' },
+  { id: '16i-T', kind: 'lathe', series: 'FANUC Series 16i-T' },
+  { id: '16i-M', kind: 'mill', series: 'FANUC Series 16i-M' },
+  { id: '18i-T', kind: 'lathe', series: 'FANUC Series 18i-T' },
+  { id: '18i-M', kind: 'mill', series: 'FANUC Series 18i-M' },
+  { id: '30i', kind: 'lathe and mill', series: 'FANUC Series 30i/31i/32i' },
+];
+
+export const DEFAULT_CONTROLLER = '0i-TF';
+
+/** The controller of a setting's value; an unknown value is shown as it is, of no kind. */
+export function controllerOf(id: string | undefined): Controller | { id: string; kind: undefined; series: string } {
+  const value = id === undefined || id.trim() === '' ? DEFAULT_CONTROLLER : id;
+  return CONTROLLERS.find((c) => c.id === value) ?? { id: value, kind: undefined, series: value };
+}
+
+function kindText(kind: MachineKind | undefined, t: Translate): string | undefined {
+  switch (kind) {
+    case 'lathe':
+      return t('lathe');
+    case 'mill':
+      return t('mill');
+    case 'lathe and mill':
+      return t('lathe and mill');
+    default:
+      return undefined;
+  }
+}
+
+/** "0i-TF lathe": the controller as the status bar shows it. */
+export function controllerLabel(id: string | undefined, t: Translate = english): string {
+  const controller = controllerOf(id);
+  const kind = kindText(controller.kind, t);
+  return kind === undefined ? controller.id : `${controller.id} ${kind}`;
+}
+
+/** A quick pick's item for each controller, the current one marked. */
+export function controllerChoices(
+  current: string | undefined,
+  t: Translate = english,
+): Array<{ label: string; description: string; detail?: string; id: string; picked: boolean }> {
+  const now = controllerOf(current).id;
+  return CONTROLLERS.map((c) => ({
+    label: c.id === now ? `$(check) ${c.id}` : c.id,
+    description: kindText(c.kind, t) ?? '',
+    detail: c.series,
+    id: c.id,
+    picked: c.id === now,
+  }));
+}
+
+/** Where a changed setting is written: where it is set now, the most specific place first. */
+export type SettingTarget = 'workspaceFolder' | 'workspace' | 'global';
+
+export function settingTarget(inspected: {
+  workspaceFolderValue?: unknown;
+  workspaceValue?: unknown;
+} | undefined): SettingTarget {
+  if (inspected?.workspaceFolderValue !== undefined) return 'workspaceFolder';
+  if (inspected?.workspaceValue !== undefined) return 'workspace';
+  return 'global';
+}
+
+export type ServerState = 'starting' | 'ready' | 'analysing' | 'stopped' | 'error';
+
+/**
+ * The language server's state, from the client's life cycle and the documents it sends:
+ * a document opened or changed is being analysed until its diagnostics come back.
+ */
+export class ServerStatus {
+  private state: Exclude<ServerState, 'analysing'> = 'stopped';
+  private reason: string | undefined;
+  private version: string | undefined;
+  private readonly pending = new Set<string>();
+
+  constructor(private readonly changed: () => void = () => undefined) {}
+
+  get current(): ServerState {
+    return this.state === 'ready' && this.pending.size > 0 ? 'analysing' : this.state;
+  }
+
+  /** The reason of the error state. */
+  get error(): string | undefined {
+    return this.state === 'error' ? this.reason : undefined;
+  }
+
+  /** Documents whose analysis has not answered yet. */
+  get analysing(): number {
+    return this.pending.size;
+  }
+
+  starting(): void {
+    this.set('starting', undefined);
+  }
+
+  ready(version: string | undefined): void {
+    this.version = version;
+    this.set('ready', undefined);
+  }
+
+  /** Stopped on purpose (a restart, the window closing); an error stays shown. */
+  stopped(): void {
+    if (this.state !== 'error') this.set('stopped', undefined);
+  }
+
+  failed(reason: string): void {
+    this.set('error', reason);
+  }
+
+  analysisStarted(uri: string): void {
+    this.pending.add(uri);
+    this.changed();
+  }
+
+  /** Diagnostics came for `uri` (or it was closed): its analysis answered. */
+  analysisDone(uri: string): void {
+    if (this.pending.delete(uri)) this.changed();
+  }
+
+  private set(state: Exclude<ServerState, 'analysing'>, reason: string | undefined): void {
+    this.state = state;
+    this.reason = reason;
+    this.pending.clear();
+    this.changed();
+  }
+
+  /** The status bar item's text, tooltip and whether it shows an error. */
+  view(controller: string | undefined, t: Translate = english): { text: string; tooltip: string; error: boolean } {
+    const label = controllerLabel(controller, t);
+    const series = controllerOf(controller).series;
+    const switchHint = t('Click to choose another controller.');
+    const state = this.current;
+    const server = this.version === undefined ? 'fanuc-macro-ls' : `fanuc-macro-ls ${this.version}`;
+    switch (state) {
+      case 'starting':
+        return {
+          text: `$(loading~spin) ${label} · ${t('starting')}`,
+          tooltip: `${t('Controller: {0}', series)}\n${t('Language server: starting')}\n${switchHint}`,
+          error: false,
+        };
+      case 'ready':
+        return {
+          text: `$(check) ${label}`,
+          tooltip: `${t('Controller: {0}', series)}\n${t('Language server: ready ({0})', server)}\n${switchHint}`,
+          error: false,
+        };
+      case 'analysing':
+        return {
+          text: `$(sync~spin) ${label} · ${t('analysing')}`,
+          tooltip:
+            `${t('Controller: {0}', series)}\n` +
+            `${t('Language server: analysing {0} document(s) ({1})', this.pending.size, server)}\n${switchHint}`,
+          error: false,
+        };
+      case 'stopped':
+        return {
+          text: `$(circle-slash) ${label} · ${t('stopped')}`,
+          tooltip: `${t('Controller: {0}', series)}\n${t('Language server: stopped')}\n${switchHint}`,
+          error: false,
+        };
+      case 'error':
+        return {
+          text: `$(error) ${label} · ${t('error')}`,
+          tooltip:
+            `${t('Controller: {0}', series)}\n` +
+            `${t('Language server: error: {0}', this.reason ?? t('unknown reason'))}\n${switchHint}`,
+          error: true,
+        };
+    }
+  }
+}
