@@ -240,7 +240,7 @@ async function startClient(): Promise<void> {
     ],
     // The settings, and that this extension contributes the snippets (the server then does not
     // offer them a second time).
-    initializationOptions: { [CONFIG_SECTION]: settingsObject(), contributesSnippets: true },
+    initializationOptions: { ...settingsObject(), contributesSnippets: true },
     synchronize: { configurationSection: CONFIG_SECTION },
     outputChannel: outputChannel(),
     traceOutputChannel: outputChannel(),
