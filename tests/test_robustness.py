@@ -253,9 +253,16 @@ def test_the_block_limit_and_its_setting() -> None:
     assert "MB101" not in {d.code for d in found.diagnostics}  # GOTO 9 is not read
 
 
-def test_settings_and_their_defaults_in_package_json() -> None:
+def manifest_settings() -> dict[str, Any]:
+    """Every setting of package.json, whatever category of the Settings UI it is in."""
     manifest = json.loads((ROOT / "package.json").read_text("utf-8"))
-    properties = manifest["contributes"]["configuration"]["properties"]
+    configuration = manifest["contributes"]["configuration"]
+    categories = configuration if isinstance(configuration, list) else [configuration]
+    return {name: spec for c in categories for name, spec in c["properties"].items()}
+
+
+def test_settings_and_their_defaults_in_package_json() -> None:
+    properties = manifest_settings()
     default = Config()
     for setting, value in (
         ("maxLineLength", default.max_line_length),
@@ -394,11 +401,29 @@ def test_a_program_cut_by_the_read_limit_is_not_taken_for_ended_or_fully_run() -
 def test_the_language_server_settings_defaults_in_package_json() -> None:
     from fanuc_macro.lsp.engine import DEFAULT_DEBOUNCE_MS, DEFAULT_PROGRESS_DELAY_MS
 
-    manifest = json.loads((ROOT / "package.json").read_text("utf-8"))
-    properties = manifest["contributes"]["configuration"]["properties"]
+    properties = manifest_settings()
     assert properties["fanuc-macro.analysis.debounceMs"]["default"] == DEFAULT_DEBOUNCE_MS
     delay = properties["fanuc-macro.analysis.progressDelayMs"]["default"]
     assert delay == DEFAULT_PROGRESS_DELAY_MS
     default = Config()
     assert properties["fanuc-macro.analysis.stepBudget"]["default"] == default.step_budget
     assert properties["fanuc-macro.analysis.timeLimit"]["default"] == default.time_limit
+
+
+def test_the_editor_settings_in_package_json_are_the_servers() -> None:
+    from fanuc_macro.config import SPACING, FormatSettings
+    from fanuc_macro.ide.messages import LOCALES
+
+    properties = manifest_settings()
+    assert properties["fanuc-macro.hover.fullPrecision"]["default"] is Config().hover_full_precision
+    language = properties["fanuc-macro.language"]
+    assert language["default"] == "auto" and language["enum"] == ["auto", *LOCALES]
+    fmt = FormatSettings()
+    assert properties["fanuc-macro.format.upperCase"]["default"] is fmt.upper_case
+    assert properties["fanuc-macro.format.renumberStep"]["default"] == fmt.renumber_step
+    for name, default in (
+        ("spaceBetweenWords", fmt.space_between_words),
+        ("spacesAroundAssignment", fmt.spaces_around_assignment),
+    ):
+        spec = properties[f"fanuc-macro.format.{name}"]
+        assert spec["default"] == default and tuple(spec["enum"]) == SPACING
