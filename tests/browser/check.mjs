@@ -195,19 +195,50 @@ async function checkToolpath() {
 // kinds; VS Code's own word matching marks `.wordHighlightText` only), folding controls on the
 // O line (only the server folds a program: the language configuration's markers fold the
 // WHILE alone) and the WHILE, and Ctrl+T lists an O program of the workspace.
-const NAV_LINES = ['O7001', '#1=0', 'IF[#1GT5]GOTO20', 'WHILE[#1LT3]DO1', '#1=#1+1', 'END1', 'N20 #2=#1', 'M30'];
-
 async function checkNavigation() {
-  const nav = page.locator('.editor-group-container.active .monaco-editor').first();
-  try {
-    await runCommand('File: New Untitled Text File');
-    await page.locator('.editor-group-container.active .tab.active', { hasText: 'Untitled' }).first().waitFor();
-    await runCommand('Change Language Mode');
-    const input = page.locator('.quick-input-widget input');
+  const NAV_LINES = ['O7001', '#1=0', 'IF[#1GT5]GOTO20', 'WHILE[#1LT3]DO1', '#1=#1+1', 'END1', 'N20 #2=#1', 'M30'];
+  const nav = page.locator('.editor-group-container.active .editor-instance .monaco-editor').first();
+  const input = page.locator('.quick-input-widget input');
+  // A click on the quick input's row whose label is `label` itself: Enter would take the first
+  // row, which for "File: New Untitled Text File" is "File: Compare New Untitled Text Files".
+  const pickRow = async (label) => {
+    const rows = page.locator('.quick-input-list .monaco-list-row', { hasText: label });
+    await rows.first().waitFor();
+    const texts = await rows.allInnerTexts();
+    const at = texts.findIndex((t) => t.replace(/\u00a0/g, ' ').split('\n')
+      .some((l) => l.trim() === label || l.trim().startsWith(`${label} (`)));
+    await rows.nth(Math.max(at, 0)).click();
+  };
+  const command = async (title) => {
+    await page.keyboard.press('F1');
     await input.waitFor({ state: 'visible' });
+    await input.fill(`>${title}`);
+    await pickRow(title);
+  };
+  // The untitled program closed unsaved: the seed's editor is the active one again.
+  const closeUntitled = async () => {
+    try {
+      if (await page.locator('.editor-group-container.active .tab.active', { hasText: 'Untitled' }).count()) {
+        await command('View: Revert and Close Editor');
+      }
+      await waitActiveEditor(FILE, 'FANUC Macro B');
+    } catch (e) {
+      record('navigation cleanup', false, e.message.split('\n')[0]);
+    }
+  };
+
+  try {
+    await command('File: New Untitled Text File');
+    await page.locator('.editor-group-container.active .tab.active', { hasText: 'Untitled' }).first().waitFor();
+    await command('Change Language Mode');
+    // The language picker, not the command palette still closing.
+    await page.waitForFunction(
+      () => /language/i.test(document.querySelector('.quick-input-widget input')?.getAttribute('placeholder') || ''),
+      null,
+      { timeout: STEP_MS },
+    );
     await input.fill('FANUC Macro B');
-    await page.locator('.quick-input-list .monaco-list-row', { hasText: 'FANUC Macro B' }).first().waitFor();
-    await page.keyboard.press('Enter');
+    await pickRow('FANUC Macro B');
     await waitActiveEditor('Untitled', 'FANUC Macro B');
     await nav.click({ position: { x: 200, y: 10 } });
     for (const [i, line] of NAV_LINES.entries()) {
@@ -312,7 +343,7 @@ async function checkNavigation() {
       await input.waitFor({ state: 'visible', timeout: 10_000 });
     } catch {
       how = 'Go to Symbol in Workspace (Ctrl+T did not open it)';
-      await runCommand('Go to Symbol in Workspace');
+      await command('Go to Symbol in Workspace');
       await input.waitFor({ state: 'visible' });
     }
     await input.fill('#O40');
@@ -328,18 +359,6 @@ async function checkNavigation() {
   }
 
   await closeUntitled();
-}
-
-/** Closes the untitled program unsaved: the seed's editor is the active one again. */
-async function closeUntitled() {
-  try {
-    if (await page.locator('.editor-group-container.active .tab.active', { hasText: 'Untitled' }).count()) {
-      await runCommand('View: Revert and Close Editor');
-    }
-    await waitActiveEditor(FILE, 'FANUC Macro B');
-  } catch (e) {
-    record('navigation cleanup', false, e.message.split('\n')[0]);
-  }
 }
 
 /** Waits until the active group's active tab says `name` and the active editor's language is `mode`. */
