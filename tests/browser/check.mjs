@@ -610,8 +610,9 @@ async function checkTokensAndLenses() {
   await page.keyboard.type('G65 P3 A1. B', { delay: 30 });
   try {
     await page.waitForFunction(
+      // Shown: a box of some size (the widget is fixed-positioned, so offsetParent is null).
       () => [...document.querySelectorAll('.parameter-hints-widget')].some((w) =>
-        w.offsetParent !== null && /G65 P3/.test(w.innerText) && /B=#2/.test(w.innerText)),
+        w.getBoundingClientRect().height > 0 && /G65 P3/.test(w.innerText) && /B=#2/.test(w.innerText)),
       null,
       { timeout: STEP_MS },
     );
