@@ -247,3 +247,36 @@ async def test_code_lenses_over_the_o_lines_of_a_seed(client: LanguageClient) ->
     assert lenses[1].command is not None and lenses[1].command.tooltip == "O4009, line 11"
     assert lenses[1].command.command == ""  # a title to read: VS Code shows it as text
     assert lenses[0].range.end.character == len("O4009")
+
+
+async def test_the_lenses_are_fetched_again_after_each_analysis(client: LanguageClient) -> None:
+    asked: list[object] = []
+
+    @client.feature(types.WORKSPACE_CODE_LENS_REFRESH)
+    def refresh(params: None) -> None:
+        asked.append(params)
+
+    capabilities = types.ClientCapabilities(
+        text_document=CAPABILITIES.text_document,
+        window=CAPABILITIES.window,
+        workspace=types.WorkspaceClientCapabilities(
+            code_lens=types.CodeLensWorkspaceClientCapabilities(refresh_support=True)
+        ),
+    )
+    await asyncio.wait_for(
+        client.initialize_session(
+            types.InitializeParams(
+                capabilities=capabilities,
+                initialization_options={"analysis": {"debounceMs": 20}},
+            )
+        ),
+        WAIT,
+    )
+    uri = "untitled:lens.nc"
+    open_text(client, uri, "O1\nM98 P2\nM30\n")
+    await diagnostics(client, uri)
+    for _ in range(200):
+        if asked:
+            break
+        await asyncio.sleep(0.02)
+    assert asked, "no workspace/codeLens/refresh after the analysis"

@@ -208,6 +208,7 @@ class FanucMacroLanguageServer(LanguageServer):
         self.completion_support = CompletionSupport()
         self.markdown_hover = True
         self.inlay_refresh = False
+        self.code_lens_refresh = False
         self.watch_files = False
         self.pull_configuration = False
 
@@ -227,6 +228,10 @@ class FanucMacroLanguageServer(LanguageServer):
         if self.inlay_refresh:
             # The hints show values of this analysis: ask the client to fetch them again.
             future = self.workspace_inlay_hint_refresh(None)
+            future.add_done_callback(_ignore_failure)
+        if self.code_lens_refresh:
+            # So do the lenses (runs, cuts), and a caller may be in the document analysed.
+            future = self.workspace_code_lens_refresh(None)
             future.add_done_callback(_ignore_failure)
 
     # ---- helpers for the features ----------------------------------------------------------
@@ -320,6 +325,7 @@ def create_server() -> FanucMacroLanguageServer:
         hover_formats = _capability(caps, "text_document.hover.content_format")
         ls.markdown_hover = hover_formats is None or types.MarkupKind.Markdown in hover_formats
         ls.inlay_refresh = bool(_capability(caps, "workspace.inlay_hint.refresh_support"))
+        ls.code_lens_refresh = bool(_capability(caps, "workspace.code_lens.refresh_support"))
         if _capability(caps, "window.work_done_progress"):
             engine.progress = ClientProgress(ls)
         ls.watch_files = bool(
