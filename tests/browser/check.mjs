@@ -259,33 +259,7 @@ async function checkNavigation() {
     return;
   }
 
-  // F2 on the 20 of GOTO20: N20 and GOTO20 become 30.
-  try {
-    const column = NAV_LINES[2].indexOf('GOTO20') + 6; // on the "0" of 20 (1-based column)
-    await gotoPosition(3, column);
-    await page.keyboard.press('F2');
-    const box = page.locator('.rename-box .rename-input, .rename-box input').first();
-    await box.waitFor({ state: 'visible' });
-    const offered = await box.evaluate((el) => el.value ?? el.textContent);
-    await page.keyboard.press('Control+A');
-    await page.keyboard.type('30');
-    await page.keyboard.press('Enter');
-    await page.waitForFunction(
-      () => {
-        const t = (document.querySelector('.editor-group-container.active .monaco-editor .view-lines')?.innerText || '')
-          .replace(/\u00a0/g, ' ');
-        return /GOTO30/.test(t) && /N30 #2=#1/.test(t) && !/GOTO20|N20/.test(t);
-      },
-      null,
-      { timeout: STEP_MS },
-    );
-    record('rename', true, `F2 on GOTO20 offered ${JSON.stringify(offered)}; renamed to 30: GOTO30 and N30`);
-  } catch (e) {
-    record('rename', false, `${e.message.split('\n')[0]}; ${JSON.stringify((await activeEditorText()).slice(0, 300))}`);
-    await shot('rename.png');
-  }
-
-  // The cursor on #1 of `#1=#1+1`: its writes (lines 2, 5) and reads (lines 3, 4, 5, 7).
+  // The cursor on #1 of `#1=#1+1`: its writes (lines 2, 5) and reads (lines 3, 4, 5, 7), before the rename edits the program.
   try {
     await gotoPosition(5, 2);
     await page.waitForFunction(
@@ -331,6 +305,40 @@ async function checkNavigation() {
     const count = await nav.locator('.margin-view-overlays [class*="codicon-folding-"]').count().catch(() => -1);
     record('folding', false, `${e.message.split('\n')[0]}; ${count} folding controls`);
     await shot('folding.png');
+  }
+
+  // F2 on the 20 of GOTO20: N20 and GOTO20 become 30.
+  try {
+    const column = NAV_LINES[2].indexOf('GOTO20') + 6; // on the "0" of 20 (1-based column)
+    await gotoPosition(3, column);
+    await page.keyboard.press('F2');
+    // Type only into the rename box: keys sent before it has the focus would edit the program.
+    await page.waitForFunction(
+      () => Boolean(document.activeElement?.closest('.rename-box')),
+      null,
+      { timeout: STEP_MS },
+    );
+    const offered = await page.evaluate(() => {
+      const el = document.activeElement;
+      return el && 'value' in el ? el.value : el?.textContent;
+    });
+    await page.keyboard.press('Control+A');
+    await page.keyboard.type('30');
+    await page.keyboard.press('Enter');
+    await page.waitForFunction(
+      () => {
+        const t = (document.querySelector('.editor-group-container.active .monaco-editor .view-lines')?.innerText || '')
+          .replace(/\u00a0/g, ' ');
+        return /GOTO30/.test(t) && /N30 #2=#1/.test(t) && !/GOTO20|N20/.test(t);
+      },
+      null,
+      { timeout: STEP_MS },
+    );
+    record('rename', true, `F2 on GOTO20 offered ${JSON.stringify(offered)}; renamed to 30: GOTO30 and N30`);
+  } catch (e) {
+    const focus = await page.evaluate(() => document.activeElement?.className || '').catch(() => '');
+    record('rename', false, `${e.message.split('\n')[0]}; focus on ${JSON.stringify(focus)}; ${JSON.stringify((await activeEditorText()).slice(0, 300))}`);
+    await shot('rename.png');
   }
 
   // Ctrl+T: the workspace's programs, O4009 among them (the seeds' folder, scanned).
