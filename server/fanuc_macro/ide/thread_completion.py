@@ -73,7 +73,7 @@ def thread_insertion(view: View, line: int, eol: str = "\n") -> ThreadInsertion 
     if facts is None or program is None:
         return None
     # The generator is imported on the first thread completion, not before initialize.
-    from .thread_generator import build_module_from_values, default_program_numbers
+    from .thread_generator import default_program_numbers
     from .thread_snippet import thread_inputs
 
     inputs = thread_inputs(view.doc, view.index, facts)
@@ -90,19 +90,8 @@ def thread_insertion(view: View, line: int, eol: str = "\n") -> ThreadInsertion 
     if sub is None or sub == program.number:
         return None
     main = program.number if program.number is not None and program.number != sub else None
-    try:
-        module = build_module_from_values(
-            inputs.diameter,
-            inputs.pitch,
-            inputs.length,
-            inputs.deviation,
-            inputs.pitch_tolerance,
-            internal=inputs.internal,
-            main_number=main,
-            sub_number=sub,
-            designation=inputs.designation,
-        )
-    except ValueError:
+    module = inputs.module(main, sub)
+    if module is None:
         return None
     at_cursor = [module.value_line(n) for n in _VALUES if n not in inputs.assigned]
     if called is None:

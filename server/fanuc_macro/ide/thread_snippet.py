@@ -19,7 +19,7 @@ from ..syntax.tree import Assign, Document, IfThen
 from ..threads.designation import ThreadDesignation, parse_designation
 from ..threads.identify import thread_words
 from ..threads.iso965 import tolerances
-from .thread_generator import build_module_from_values, default_program_numbers
+from .thread_generator import ThreadModule, build_module_from_values, default_program_numbers
 
 __all__ = ["ThreadInputs", "module_from_analysis", "module_from_document", "thread_inputs"]
 
@@ -143,6 +143,24 @@ class ThreadInputs:
     assigned: frozenset[int]  # which of #100-#104 the document assigns a number to
     first_line: int  # the first line that assigns one of them
 
+    def module(self, main: int | None, sub: int | None) -> ThreadModule | None:
+        """The module for this thread under these program numbers (the paper's when None);
+        None when the values make no thread."""
+        try:
+            return build_module_from_values(
+                self.diameter,
+                self.pitch,
+                self.length,
+                self.deviation,
+                self.pitch_tolerance,
+                internal=self.internal,
+                main_number=main,
+                sub_number=sub,
+                designation=self.designation,
+            )
+        except ValueError:
+            return None
+
 
 def thread_inputs(doc: Document, index: ProgramIndex, facts: DocumentFacts) -> ThreadInputs | None:
     """The thread a document enters in #100-#104; None when it assigns none of them, or when
@@ -233,17 +251,5 @@ def module_from_analysis(doc: Document, index: ProgramIndex, facts: DocumentFact
         main = None
     if sub is not None and main is None and sub == default_main:
         sub = None
-    try:
-        return build_module_from_values(
-            inputs.diameter,
-            inputs.pitch,
-            inputs.length,
-            inputs.deviation,
-            inputs.pitch_tolerance,
-            internal=inputs.internal,
-            main_number=main,
-            sub_number=sub,
-            designation=inputs.designation,
-        ).text
-    except ValueError:
-        return None
+    module = inputs.module(main, sub)
+    return None if module is None else module.text

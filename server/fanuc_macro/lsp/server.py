@@ -255,6 +255,13 @@ class FanucMacroLanguageServer(LanguageServer):
             markdown=self.markdown_hover,
         )
 
+    async def answer(self, uri: str, what: str, fn: Callable[[View], T]) -> T | None:
+        """A feature of one document, from its fresh analysis (None when there is none)."""
+        view = await self.view(uri)
+        if view is None:
+            return None
+        return await self.compute(what, lambda: fn(view))
+
     async def compute(self, what: str, fn: Callable[[], T]) -> T | None:
         """Run a feature off the event loop; a bug in it is logged, and the request gets an
         error response (the server goes on)."""
@@ -425,12 +432,11 @@ def create_server() -> FanucMacroLanguageServer:
     async def on_hover(
         ls: FanucMacroLanguageServer, params: types.HoverParams
     ) -> types.Hover | None:
-        view = await ls.view(params.text_document.uri)
-        if view is None:
-            return None
         from .features import hover
 
-        return await ls.compute("hover", lambda: hover(view, params.position))
+        return await ls.answer(
+            params.text_document.uri, "hover", lambda view: hover(view, params.position)
+        )
 
     @server.feature(types.TEXT_DOCUMENT_INLAY_HINT, types.InlayHintOptions(resolve_provider=False))
     async def on_inlay_hint(
@@ -490,12 +496,9 @@ def create_server() -> FanucMacroLanguageServer:
     async def on_document_symbol(
         ls: FanucMacroLanguageServer, params: types.DocumentSymbolParams
     ) -> list[types.DocumentSymbol] | None:
-        view = await ls.view(params.text_document.uri)
-        if view is None:
-            return None
         from .features import document_symbols
 
-        return await ls.compute("document symbols", lambda: document_symbols(view))
+        return await ls.answer(params.text_document.uri, "document symbols", document_symbols)
 
     @server.feature(
         types.TEXT_DOCUMENT_COMPLETION,
@@ -627,37 +630,32 @@ def create_server() -> FanucMacroLanguageServer:
     async def on_document_highlight(
         ls: FanucMacroLanguageServer, params: types.DocumentHighlightParams
     ) -> list[types.DocumentHighlight] | None:
-        view = await ls.view(params.text_document.uri)
-        if view is None:
-            return None
         from .navigation import document_highlights
 
-        return await ls.compute(
-            "document highlight", lambda: document_highlights(view, params.position)
+        return await ls.answer(
+            params.text_document.uri,
+            "document highlight",
+            lambda view: document_highlights(view, params.position),
         )
 
     @server.feature(types.TEXT_DOCUMENT_FOLDING_RANGE)
     async def on_folding_range(
         ls: FanucMacroLanguageServer, params: types.FoldingRangeParams
     ) -> list[types.FoldingRange] | None:
-        view = await ls.view(params.text_document.uri)
-        if view is None:
-            return None
         from .navigation import folding_ranges
 
-        return await ls.compute("folding ranges", lambda: folding_ranges(view))
+        return await ls.answer(params.text_document.uri, "folding ranges", folding_ranges)
 
     @server.feature(types.TEXT_DOCUMENT_SELECTION_RANGE)
     async def on_selection_range(
         ls: FanucMacroLanguageServer, params: types.SelectionRangeParams
     ) -> list[types.SelectionRange] | None:
-        view = await ls.view(params.text_document.uri)
-        if view is None:
-            return None
         from .navigation import selection_ranges
 
-        return await ls.compute(
-            "selection ranges", lambda: selection_ranges(view, params.positions)
+        return await ls.answer(
+            params.text_document.uri,
+            "selection ranges",
+            lambda view: selection_ranges(view, params.positions),
         )
 
     @server.feature(types.WORKSPACE_SYMBOL)
@@ -809,12 +807,9 @@ def create_server() -> FanucMacroLanguageServer:
     async def on_code_lens(
         ls: FanucMacroLanguageServer, params: types.CodeLensParams
     ) -> list[types.CodeLens] | None:
-        view = await ls.view(params.text_document.uri)
-        if view is None:
-            return None
         from .presentation import code_lenses
 
-        return await ls.compute("code lenses", lambda: code_lenses(view))
+        return await ls.answer(params.text_document.uri, "code lenses", code_lenses)
 
     # ---- commands --------------------------------------------------------------------------
     @server.command(TRACE)
