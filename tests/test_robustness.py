@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import dataclasses
 import json
+import re
 import time
 from collections.abc import Callable
 from pathlib import Path
@@ -427,3 +428,15 @@ def test_the_editor_settings_in_package_json_are_the_servers() -> None:
     ):
         spec = properties[f"fanuc-macro.format.{name}"]
         assert spec["default"] == default and tuple(spec["enum"]) == SPACING
+
+
+def test_the_manifests_language_is_the_one_the_extension_starts_on() -> None:
+    manifest = json.loads((ROOT / "package.json").read_text("utf-8"))
+    source = (ROOT / "client" / "src" / "extension.ts").read_text("utf-8")
+    match = re.search(r"const LANGUAGE_ID = '([^']+)'", source)
+    assert match is not None
+    language = match.group(1)
+    languages = [entry["id"] for entry in manifest["contributes"]["languages"]]
+    assert language in languages
+    assert f"onLanguage:{language}" in manifest["activationEvents"]
+    assert {g["language"] for g in manifest["contributes"]["grammars"]} <= set(languages)

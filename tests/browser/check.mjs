@@ -196,7 +196,8 @@ async function checkToolpath() {
 // O line (only the server folds a program: the language configuration's markers fold the
 // WHILE alone) and the WHILE, and Ctrl+T lists an O program of the workspace.
 async function checkNavigation() {
-  const NAV_LINES = ['O7001', '#1=0', 'IF[#1GT5]GOTO20', 'WHILE[#1LT3]DO1', '#1=#1+1', 'END1', 'N20 #2=#1', 'M30'];
+  // The last line is written in lower case for the formatting check.
+  const NAV_LINES = ['O7001', '#1=0', 'IF[#1GT5]GOTO20', 'WHILE[#1LT3]DO1', '#1=#1+1', 'END1', 'N20 #2=#1', 'M30', 'g01 x1. f0.2'];
   const nav = page.locator('.editor-group-container.active .editor-instance .monaco-editor').first();
   const input = page.locator('.quick-input-widget input');
   // A click on the quick input's row whose label is `label` itself: Enter would take the first
@@ -341,6 +342,47 @@ async function checkNavigation() {
     await shot('rename.png');
   }
 
+  // Selection ranges: from the second #1 of `#1=#1+1` (line 5) the selection grows to `#1+1`,
+  // the expression, which neither the word nor the bracket selection of VS Code gives.
+  try {
+    await gotoPosition(5, 5);
+    const sizes = [];
+    for (let i = 0; i < 4 && !sizes.includes(4); i++) {
+      await page.keyboard.press('Shift+Alt+ArrowRight');
+      await page.waitForFunction(
+        (before) => (document.getElementById('status.editor.selection')?.innerText || '') !== before,
+        await page.locator('[id="status.editor.selection"]').innerText(),
+        { timeout: 10_000 },
+      ).catch(() => {});
+      const text = await page.locator('[id="status.editor.selection"]').innerText();
+      const m = /\((\d+) selected\)/.exec(text);
+      sizes.push(m ? Number(m[1]) : 0);
+    }
+    record('selection ranges', sizes.includes(4), `Expand Selection from #1 of #1=#1+1: ${sizes.join(' -> ')} characters`);
+    await page.keyboard.press('Escape');
+  } catch (e) {
+    record('selection ranges', false, e.message.split('\n')[0]);
+    await shot('selection.png');
+  }
+
+  // Format Document: the lower-case last line comes out in upper case, the rest as it was.
+  try {
+    await command('Format Document');
+    await page.waitForFunction(
+      () => {
+        const t = (document.querySelector('.editor-group-container.active .monaco-editor .view-lines')?.innerText || '')
+          .replace(/\u00a0/g, ' ');
+        return /G01 X1\. F0\.2/.test(t) && /IF\[#1GT5\]GOTO30/.test(t);
+      },
+      null,
+      { timeout: STEP_MS },
+    );
+    record('formatting', true, 'Format Document: "g01 x1. f0.2" -> "G01 X1. F0.2", the other lines kept');
+  } catch (e) {
+    record('formatting', false, `${e.message.split('\n')[0]}; ${JSON.stringify((await activeEditorText()).slice(0, 300))}`);
+    await shot('formatting.png');
+  }
+
   // Ctrl+T: the workspace's programs, O4009 among them (the seeds' folder, scanned).
   try {
     await nav.click({ position: { x: 200, y: 10 } });
@@ -367,6 +409,24 @@ async function checkNavigation() {
   }
 
   await closeUntitled();
+
+  // The call hierarchy of O3 in the seed (line 8): O0002 calls it (N1 M98 P3).
+  try {
+    await gotoPosition(8, 2);
+    await command('Calls: Show Call Hierarchy');
+    await page.waitForFunction(
+      () => /O0*2\b/.test(document.querySelector('.part.sidebar')?.innerText || ''),
+      null,
+      { timeout: STEP_MS },
+    );
+    const shown = await page.locator('.part.sidebar').innerText();
+    record('call hierarchy', true, `O3: ${shown.split('\n').filter((l) => /O0*[23]\b/.test(l)).slice(0, 4).join(' | ')}`);
+  } catch (e) {
+    const shown = await page.locator('.part.sidebar').innerText().catch(() => '');
+    record('call hierarchy', false, `${e.message.split('\n')[0]}; sidebar ${JSON.stringify(shown.slice(0, 300))}`);
+    await shot('call-hierarchy.png');
+  }
+  await page.keyboard.press('Escape');
 }
 
 /** Waits until the active group's active tab says `name` and the active editor's language is `mode`. */

@@ -5,7 +5,8 @@ tests/browser/node_modules), chromium from Debian if missing, builds the .vsix a
 headless Chromium the language mode, the highlighting, an MB601 diagnostic, a hover, the
 extension's workbench parts (no colour swatch on `#101`, the status bar item with the controller,
 a rule code's link opening the shipped rules page, the Settings UI's group title), navigation
-(rename, document highlight, folding, workspace symbols), semantic tokens, a code lens,
+(rename, document highlight, folding, selection ranges, formatting, workspace symbols, the call
+hierarchy), semantic tokens, a code lens,
 signature help, the Toolpath view (drawn, a click on a segment reveals its block, the cursor's
 block lit) and the trace view (a row's values, its link and F12 to the block). It takes minutes
 on a first run, so it only runs when FANUC_MACRO_BROWSER_TEST=1.
@@ -60,7 +61,15 @@ def test_extension_in_code_server(tmp_path: Path) -> None:
     assert "PASS diagnostics" in proc.stdout, tail
     assert "PASS hover" in proc.stdout, tail
     ui = ("no colour swatch", "status bar controller", "rule documentation link", "settings title")
-    navigation = ("rename", "document highlight", "folding", "workspace symbols")
+    navigation = (
+        "rename",
+        "document highlight",
+        "folding",
+        "selection ranges",
+        "formatting",
+        "workspace symbols",
+        "call hierarchy",
+    )
     tokens = ("semantic tokens", "code lens", "signature help")
     views = ("toolpath view", "toolpath click", "toolpath cursor", "trace view", "trace link")
     for check in (*ui, *navigation, *tokens, *views):
