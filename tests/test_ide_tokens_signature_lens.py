@@ -302,3 +302,34 @@ def test_locals_read_before_set_follow_the_lines_and_read_a_value_before_its_tar
     doc = view_of(text).doc
     assert locals_read_before_set(doc.blocks, 0, len(doc.blocks)) == {1: 1, 4: 3, 5: 4, 6: 4, 7: 5}
     assert locals_read_before_set(doc.blocks, 3, 4) == {2: 3, 4: 3}
+
+
+def test_the_tokens_kept_from_an_earlier_request_are_those_of_the_line_now() -> None:
+    from fanuc_macro.ide import semantic
+
+    text = "O1000\n#1=SIN[30]\nG65 P9010 A1.\nM30\nO9010\n#3=#1+#24\n#3=#1+#24\nM99\n"
+    config = Config()
+    view = View("t.nc", analyse(text, "t.nc", config), config)
+    semantic._LINE_TOKENS.clear()
+
+    def fresh(v: View) -> list[SemanticToken]:
+        out: list[SemanticToken] = []
+        for block in v.doc.blocks:
+            program = v.index.program_at(block.line)
+            called = semantic.CalledPrograms.of(v)
+            arguments = semantic._arguments_of(v, program, called)
+            targets = semantic._targets_by_line(program) if program is not None else {}
+            out.extend(semantic.block_tokens(block, arguments, targets.get(block.line, ())))
+        return out
+
+    first = semantic_tokens(view)
+    assert first == fresh(view)
+    assert semantic._LINE_TOKENS  # kept for the next request
+    # Two lines moved down by one: their tokens come from the cache, on their new lines; the
+    # sub-program is no longer called with G65, so its locals are no longer arguments.
+    edited = text.replace("G65 P9010 A1.\n", "(NO CALL)\nM98 P9010\n")
+    view = View("t.nc", analyse(edited, "t.nc", config), config)
+    again = semantic_tokens(view)
+    assert again == fresh(view)
+    assert {t.line for t in again if t.type == TokenType.PARAMETER} == set()
+    assert {t.line for t in first if t.type == TokenType.PARAMETER} == {5, 6}

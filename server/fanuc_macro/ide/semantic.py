@@ -11,6 +11,7 @@ import re
 from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
 
+from ..evaluator.compiler import kept
 from ..program.index import Program
 from ..program.variables import classify
 from ..syntax.lines import cut_comments
@@ -207,6 +208,32 @@ def _without_overlaps(tokens: list[SemanticToken]) -> list[SemanticToken]:
     return out
 
 
+# The tokens of a line by what they depend on: its parse (one per distinct text), its program's
+# arguments and the targets the index found on it. Kept from request to request, so that after
+# an edit only the lines that changed are read again; the parse is kept with its tokens, for an
+# id of a parse no longer cached may be another's.
+_LineKey = tuple[int, frozenset[int], tuple[tuple[Span, TokenType], ...]]
+_LINE_TOKENS: dict[_LineKey, tuple[object, tuple[SemanticToken, ...]]] = {}
+MAX_LINE_TOKENS = 65_536  # more than the lines a document is read to (max_blocks 25,000)
+
+
+def line_tokens(
+    block: Block, arguments: frozenset[int], targets: Sequence[tuple[Span, TokenType]] = ()
+) -> list[SemanticToken]:
+    """:func:`block_tokens`, from the tokens of the same line worked out before if any."""
+    parsed = block.parsed
+    key = (id(parsed), arguments, tuple(targets))
+    entry = _LINE_TOKENS.get(key)
+    if entry is None or entry[0] is not parsed:
+        made = tuple(block_tokens(block, arguments, targets))
+        entry = kept(_LINE_TOKENS, key, (parsed, made), MAX_LINE_TOKENS)
+    tokens = entry[1]
+    line = block.line
+    if tokens and tokens[0].line != line:
+        return [SemanticToken(line, t.start, t.end, t.type, t.modifiers) for t in tokens]
+    return list(tokens)
+
+
 def semantic_tokens(view: View, first: int = 0, last: int | None = None) -> list[SemanticToken]:
     """The tokens of the lines ``first``..``last`` (inclusive; None: to the end)."""
     blocks = view.doc.blocks
@@ -221,7 +248,7 @@ def semantic_tokens(view: View, first: int = 0, last: int | None = None) -> list
             program = view.index.program_at(line)
             arguments = _arguments_of(view, program, called)
             targets = _targets_by_line(program) if program is not None else {}
-        out.extend(block_tokens(blocks[line], arguments, targets.get(line, ())))
+        out.extend(line_tokens(blocks[line], arguments, targets.get(line, ())))
     return out
 
 
@@ -229,5 +256,6 @@ __all__ = [
     "CalledPrograms",
     "SemanticToken",
     "block_tokens",
+    "line_tokens",
     "semantic_tokens",
 ]
