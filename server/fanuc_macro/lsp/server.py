@@ -606,24 +606,26 @@ def create_server() -> FanucMacroLanguageServer:
     async def on_prepare_rename(
         ls: FanucMacroLanguageServer, params: types.PrepareRenameParams
     ) -> types.PrepareRenamePlaceholder | None:
-        view = await ls.view(params.text_document.uri)
-        if view is None:
-            return None
         from .navigation import prepare_rename
 
-        found = await ls.compute("prepare rename", lambda: prepare_rename(view, params.position))
+        found = await ls.answer(
+            params.text_document.uri,
+            "prepare rename",
+            lambda view: prepare_rename(view, params.position),
+        )
         return refused(found)  # type: ignore[no-any-return]
 
     @server.feature(types.TEXT_DOCUMENT_RENAME, types.RenameOptions(prepare_provider=True))
     async def on_rename(
         ls: FanucMacroLanguageServer, params: types.RenameParams
     ) -> types.WorkspaceEdit | None:
-        view = await ls.view(params.text_document.uri)
-        if view is None:
-            return None
         from .navigation import rename
 
-        found = await ls.compute("rename", lambda: rename(view, params.position, params.new_name))
+        found = await ls.answer(
+            params.text_document.uri,
+            "rename",
+            lambda view: rename(view, params.position, params.new_name),
+        )
         return refused(found)  # type: ignore[no-any-return]
 
     @server.feature(types.TEXT_DOCUMENT_DOCUMENT_HIGHLIGHT)
@@ -674,13 +676,12 @@ def create_server() -> FanucMacroLanguageServer:
     async def on_prepare_call_hierarchy(
         ls: FanucMacroLanguageServer, params: types.CallHierarchyPrepareParams
     ) -> list[types.CallHierarchyItem] | None:
-        view = await ls.view(params.text_document.uri)
-        if view is None:
-            return None
         from .navigation import prepare_call_hierarchy
 
-        found = await ls.compute(
-            "call hierarchy", lambda: prepare_call_hierarchy(view, params.position)
+        found = await ls.answer(
+            params.text_document.uri,
+            "call hierarchy",
+            lambda view: prepare_call_hierarchy(view, params.position),
         )
         return found or None
 
