@@ -54,6 +54,7 @@ ALLOWED: dict[str, set[str]] = {
     "ide": WORKSPACE,
     "lsp": FRONT_END,
     "cli": FRONT_END,
+    "dap": FRONT_END,
     "__init__": set(),
 }
 

@@ -15,8 +15,9 @@ import time
 import zlib
 from array import array
 from bisect import bisect_left
-from collections.abc import Callable, Iterable, Sequence
+from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass, field, replace
+from typing import Protocol
 
 from ..cancel import RUNNING, CancelToken
 from ..config import Config
@@ -635,6 +636,16 @@ class _Stop(Exception):
         self.reason = reason
 
 
+class Stepper(Protocol):
+    """What a debugger puts between the blocks of a run (``Machine.stepper``): it sees each
+    block before it runs, and each alarm before the run stops. It may wait there (the run is
+    paused) or raise an exception of its own, which ends the run and leaves ``Machine.run``."""
+
+    def before(self, act: Activation, line: int) -> None: ...
+
+    def alarm(self, act: Activation, line: int, message: str) -> None: ...
+
+
 class Converged(Exception):
     """The resumed run's state, after ``done`` blocks of its run, equals the earlier run's at
     its checkpoint ``index``."""
@@ -725,6 +736,8 @@ class Machine:
         # The toolpath's recorder, when one is asked for (see evaluate) or the programs read
         # the block end position: None costs a run one test per NC block.
         self.toolpath: Recorder | None = None
+        # A debugger's hook between blocks (None: no cost but one test per block).
+        self.stepper: Stepper | None = None
         # A G70-G73 with P and Q met by _motion, for _nc to follow its profile.
         self._profile_code: float | None = None
         self._profile_blocks = 0  # blocks of profiles read or run in this run
@@ -736,8 +749,12 @@ class Machine:
         return u
 
     # ---- the run ---------------------------------------------------------------------------
-    def run(self, entry: ProgramContext, deadline: float) -> str:
-        """Run from ``entry``; returns why the run ended."""
+    def run(
+        self, entry: ProgramContext, deadline: float, preset: Mapping[int, Value] | None = None
+    ) -> str:
+        """Run from ``entry``; returns why the run ended. ``preset``: variables set before the
+        first block (a debugger's launch: the entry's arguments #1-#33, with the locals not
+        given vacant, as after a G65 with those words; commons and system variables)."""
         self.store = {}
         self.speculative = False  # the path went through a condition that was not decided
         self.deadline = deadline
@@ -757,6 +774,14 @@ class Machine:
                 locals_[n] = self.unknown_of(n)
         if read_first:
             entry.facts.assumed_arguments[entry.program.first_line] = read_first
+        if preset:
+            if any(1 <= n <= 33 for n in preset):
+                locals_ = [None] * 34
+            for n, value in preset.items():
+                if 1 <= n <= 33:
+                    locals_[n] = value
+                elif n > 33:
+                    self.store[n] = value
         act = Activation(self, entry, locals_, 0, None, 0, 0)
         entry.facts.analysed_programs.add(entry.program.first_line)
         if self.toolpath is not None:
@@ -1006,6 +1031,7 @@ class Machine:
         wanted = False
         next_due = self._checkpointed + CHECKPOINT_EVERY + 1 if recording else budget + 1
         next_event = min(next_check, next_due)
+        stepper = self.stepper
         while True:
             ctx = act.ctx
             pc = act.pc
@@ -1059,6 +1085,8 @@ class Machine:
                 self._steps = steps
                 next_due = steps + CHECKPOINT_EVERY
                 next_event = min(next_check, next_due)
+            if stepper is not None:
+                stepper.before(act, pc)
             facts = ctx.facts
             runs = facts.runs
             runs[pc] = runs.get(pc, 0) + 1
@@ -1126,7 +1154,9 @@ class Machine:
                     act.pc = pc + 1
             except MacroAlarm as alarm:
                 self.steps = steps
-                self._alarm(act, cl, alarm)
+                message = self._alarm(act, cl, alarm)
+                if stepper is not None:
+                    stepper.alarm(act, pc, message)
                 self._mark_incomplete(act)
                 raise _Stop("alarm") from None
             except _Stop as stop:
@@ -1497,12 +1527,18 @@ class Machine:
                 if order is not None:
                     self._check_addresses(act, pcl, order)
             except MacroAlarm as alarm:
-                self._alarm(act, pcl, alarm)
-                self._mark_incomplete(act)
-                raise _Stop("alarm") from None
+                self._profile_alarm(act, pcl, alarm)
             blocks.append((values, g_codes))
         self._line = line
         return blocks
+
+    def _profile_alarm(self, act: Activation, pcl: CompiledLine, alarm: MacroAlarm) -> None:
+        """An alarm in a block of a profile (the run is at that block): the run stops."""
+        message = self._alarm(act, pcl, alarm)
+        if self.stepper is not None:
+            self.stepper.alarm(act, self._line, message)
+        self._mark_incomplete(act)
+        raise _Stop("alarm") from None
 
     def _profile_line(self, act: Activation, n: int) -> CompiledLine:
         """Line ``n`` of a profile, counted as reached and its reads recorded: the block the
@@ -1528,9 +1564,7 @@ class Machine:
             try:
                 self._nc(act, pcl)
             except MacroAlarm as alarm:
-                self._alarm(act, pcl, alarm)
-                self._mark_incomplete(act)
-                raise _Stop("alarm") from None
+                self._profile_alarm(act, pcl, alarm)
         self._line = line
         modal.position = start
         modal.position_line = start_lines
@@ -1979,7 +2013,7 @@ class Machine:
         return caller
 
     # ---- ends ------------------------------------------------------------------------------
-    def _alarm(self, act: Activation, cl: CompiledLine, alarm: MacroAlarm) -> None:
+    def _alarm(self, act: Activation, cl: CompiledLine, alarm: MacroAlarm) -> str:
         ctx = act.ctx
         block = ctx.doc.blocks[self._line]
         node = alarm.node
@@ -2003,6 +2037,7 @@ class Machine:
                     detail += " with " + ", ".join(shown)
         message = f"{alarm.message}{detail} (alarm {alarm.alarm}) in {ctx.name}"
         self._finding(ctx, f"alarm:{alarm.kind}", self._line, start, end, message)
+        return message
 
     def _budget_spent(self, act: Activation) -> None:
         ctx = act.ctx

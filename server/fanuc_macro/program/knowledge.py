@@ -8,6 +8,7 @@ that the shared reference (macro-b.md) marks as unverified are worded with that 
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass
 
 # ---- G and M codes ---------------------------------------------------------------------------
@@ -413,6 +414,25 @@ def code_info(letter: str, value: float) -> CodeInfo | None:
     if table is None:
         return None
     return table.get(code_name(letter, value))
+
+
+_GROUP = re.compile(r"group (\d\d)(?: \((mill|lathe)\) / (\d\d) \((mill|lathe)\))?")
+
+
+def modal_group(value: float, lathe: bool) -> str | None:
+    """The modal group of G``value`` on the machine type ("01", "14"), from the table above;
+    None for a one-shot code (group 00) or a code the table gives no group."""
+    info = code_info("G", value)
+    meaning = info.for_machine(lathe) if info is not None else None
+    if meaning is None or not meaning.modal.startswith("modal"):
+        return None
+    found = _GROUP.search(meaning.modal)
+    if found is None:
+        return None
+    first, first_for, second, _ = found.groups()
+    if second is not None and first_for != ("lathe" if lathe else "mill"):
+        return str(second)
+    return str(first)
 
 
 def code_markdown(letter: str, value: float, lathe: bool) -> str | None:

@@ -1,0 +1,139 @@
+"""A Debug Adapter Protocol client over stdio, for the tests: it starts ``fanuc-macro-dap`` as a
+subprocess (``python -m fanuc_macro.dap``) and speaks to it as an editor does."""
+
+from __future__ import annotations
+
+import contextlib
+import json
+import queue
+import subprocess
+import sys
+import threading
+from collections.abc import Callable
+from typing import IO, Any
+
+WAIT_S = 60.0  # a safety net for a broken adapter, not a time the tests measure
+
+
+class DapClient:
+    def __init__(self, *args: str) -> None:
+        self.proc = subprocess.Popen(
+            [sys.executable, "-m", "fanuc_macro.dap", *args],
+            stdin=subprocess.PIPE,
+            stdout=subprocess.PIPE,
+            stderr=subprocess.PIPE,
+        )
+        self._seq = 0
+        self.messages: queue.Queue[dict[str, Any] | None] = queue.Queue()
+        self.events: list[dict[str, Any]] = []  # every event so far, in order
+        self._pending: list[dict[str, Any]] = []
+        assert self.proc.stdout is not None
+        threading.Thread(target=self._read, args=(self.proc.stdout,), daemon=True).start()
+
+    def _read(self, stream: IO[bytes]) -> None:
+        while True:
+            length = None
+            while True:
+                line = stream.readline()
+                if not line:
+                    self.messages.put(None)
+                    return
+                if line in (b"\r\n", b"\n"):
+                    break
+                name, _, value = line.decode().partition(":")
+                if name.lower() == "content-length":
+                    length = int(value)
+            assert length is not None
+            body = stream.read(length)
+            self.messages.put(json.loads(body))
+
+    def send_raw(self, data: bytes) -> None:
+        assert self.proc.stdin is not None
+        self.proc.stdin.write(data)
+        self.proc.stdin.flush()
+
+    def send(self, command: str, arguments: dict[str, Any] | None = None) -> int:
+        self._seq += 1
+        message: dict[str, Any] = {"seq": self._seq, "type": "request", "command": command}
+        if arguments is not None:
+            message["arguments"] = arguments
+        body = json.dumps(message).encode()
+        self.send_raw(b"Content-Length: %d\r\n\r\n" % len(body) + body)
+        return self._seq
+
+    def _next(self, wanted: Callable[[dict[str, Any]], bool]) -> dict[str, Any]:
+        for i, m in enumerate(self._pending):
+            if wanted(m):
+                return self._pending.pop(i)
+        while True:
+            m = self.messages.get(timeout=WAIT_S)
+            if m is None:
+                raise EOFError("the adapter closed its output")
+            if m.get("type") == "event":
+                self.events.append(m)
+            if wanted(m):
+                return m
+            self._pending.append(m)
+
+    def request(self, command: str, arguments: dict[str, Any] | None = None) -> dict[str, Any]:
+        """The response, success or not."""
+        seq = self.send(command, arguments)
+        return self._next(lambda m: m.get("type") == "response" and m.get("request_seq") == seq)
+
+    def ok(self, command: str, arguments: dict[str, Any] | None = None) -> dict[str, Any]:
+        """The body of a successful response."""
+        response = self.request(command, arguments)
+        assert response["success"], response
+        body: dict[str, Any] = response.get("body") or {}
+        return body
+
+    def event(self, name: str) -> dict[str, Any]:
+        return self._next(lambda m: m.get("type") == "event" and m.get("event") == name)
+
+    def stopped(self) -> dict[str, Any]:
+        body: dict[str, Any] = self.event("stopped")["body"]
+        return body
+
+    def output_text(self) -> str:
+        return "".join(e["body"]["output"] for e in self.events if e.get("event") == "output")
+
+    def start(
+        self,
+        launch: dict[str, Any],
+        breakpoints: dict[str, list[dict[str, Any]]] | None = None,
+        filters: list[str] | None = None,
+    ) -> dict[str, Any]:
+        """initialize, launch, the breakpoints, configurationDone: the initialize body."""
+        caps = self.ok(
+            "initialize",
+            {"adapterID": "fanuc-macro", "linesStartAt1": True, "columnsStartAt1": True},
+        )
+        self.ok("launch", launch)
+        self.event("initialized")
+        for path, bps in (breakpoints or {}).items():
+            self.ok("setBreakpoints", {"source": {"path": path}, "breakpoints": bps})
+        if filters is not None:
+            self.ok("setExceptionBreakpoints", {"filters": filters})
+        self.ok("configurationDone")
+        return caps
+
+    def evaluate(self, expression: str, frame_id: int | None = None) -> str:
+        args: dict[str, Any] = {"expression": expression, "context": "watch"}
+        if frame_id is not None:
+            args["frameId"] = frame_id
+        result: str = self.ok("evaluate", args)["result"]
+        return result
+
+    def close(self) -> int:
+        if self.proc.poll() is None:
+            with contextlib.suppress(EOFError, queue.Empty, BrokenPipeError, OSError):
+                self.request("disconnect", {"terminateDebuggee": True})
+            try:
+                self.proc.wait(timeout=10)
+            except subprocess.TimeoutExpired:
+                self.proc.kill()
+                self.proc.wait()
+        for stream in (self.proc.stdin, self.proc.stdout, self.proc.stderr):
+            if stream is not None:
+                stream.close()
+        return self.proc.returncode

@@ -1,0 +1,323 @@
+"""The debugger through a real DAP client: ``fanuc-macro-dap`` as a subprocess over stdio
+(tests/dap_client.py), on the seed thread module O4009/O3331, the corpus' endless loops and the
+fixtures of tests/fixtures/debug."""
+
+from __future__ import annotations
+
+import json
+from collections.abc import Iterator
+from pathlib import Path
+
+import pytest
+
+from dap_client import DapClient
+
+HERE = Path(__file__).resolve().parent
+SEED = HERE / "fixtures" / "thread_variants" / "o4009_clean.nc"
+DEBUG = HERE / "fixtures" / "debug"
+CORPUS = HERE.parent.parent / "shared" / "corpus"
+SAMPLES = "NCVC-CAM__Scripts__NC.Code.Checker1.4__errors__4_macro_errors__"
+GOTO_LOOP = CORPUS / (SAMPLES + "sampleNC(GOTO-infinite-loop).ncd")
+WHILE_LOOP = CORPUS / (SAMPLES + "sampleNC(WHILE-DO-infinite-loop).ncd")
+
+
+def line_of(path: Path, text: str, nth: int = 1) -> int:
+    """The 1-based line of the ``nth`` line that holds ``text``."""
+    found = [i + 1 for i, line in enumerate(path.read_text().splitlines()) if text in line]
+    return found[nth - 1]
+
+
+@pytest.fixture
+def dap() -> Iterator[DapClient]:
+    client = DapClient()
+    yield client
+    client.close()
+
+
+def top(dap: DapClient) -> dict[str, object]:
+    frame: dict[str, object] = dap.ok("stackTrace", {"threadId": 1})["stackFrames"][0]
+    return frame
+
+
+def test_initialize_says_what_the_adapter_does(dap: DapClient) -> None:
+    caps = dap.ok("initialize", {"adapterID": "fanuc-macro"})
+    for capability in (
+        "supportsConfigurationDoneRequest",
+        "supportsConditionalBreakpoints",
+        "supportsHitConditionalBreakpoints",
+        "supportsLogPoints",
+        "supportsEvaluateForHovers",
+        "supportsSetVariable",
+        "supportsRestartRequest",
+        "supportsExceptionInfoRequest",
+    ):
+        assert caps[capability] is True, capability
+    assert [f["filter"] for f in caps["exceptionBreakpointFilters"]] == ["alarm", "message"]
+
+
+def test_breakpoint_on_the_first_g92_of_o3331(dap: DapClient) -> None:
+    g92 = line_of(SEED, "G92")
+    dap.start({"program": str(SEED)}, {str(SEED): [{"line": g92}]})
+    stop = dap.stopped()
+    assert stop["reason"] == "breakpoint"
+    frames = dap.ok("stackTrace", {"threadId": 1})["stackFrames"]
+    assert [f["name"].split()[0] for f in frames] == ["O3331", "O4009"]
+    assert frames[0]["line"] == g92
+    assert frames[1]["line"] == line_of(SEED, "M98 P0013331")
+    assert frames[0]["source"]["path"] == str(SEED)
+    assert dap.evaluate("#9") == "0.092"
+    assert dap.evaluate("#4") == "1.907"  # h, at the control's 0.001 mm
+    assert float(dap.evaluate("#101")) == 3.0
+    assert dap.evaluate("[#100-2*#9]") == "49.816"
+    assert dap.evaluate("#9 GT 0.05") == "true"
+    # The next turn of the N10 loop: the second pass's depth.
+    dap.ok("continue", {"threadId": 1})
+    assert dap.stopped()["reason"] == "breakpoint"
+    assert float(dap.evaluate("#9")) == 0.13
+    assert dap.evaluate("#7") == "2."
+
+
+def test_scopes_show_locals_commons_and_the_modal_state(dap: DapClient) -> None:
+    g92 = line_of(SEED, "G92")
+    dap.start({"program": str(SEED)}, {str(SEED): [{"line": g92}]})
+    dap.stopped()
+    scopes = dap.ok("scopes", {"frameId": 1})["scopes"]
+    names = [s["name"] for s in scopes]
+    assert names[0].startswith("Locals #1-#33 (O3331")
+    assert "shared with O4009 (M98)" in names[0]
+    by_name = {s["name"].split(" (")[0]: s["variablesReference"] for s in scopes}
+
+    def variables(scope: str) -> dict[str, str]:
+        found = dap.ok("variables", {"variablesReference": by_name[scope]})["variables"]
+        return {v["name"]: v["value"] for v in found}
+
+    locals_ = variables("Locals #1-#33")
+    assert len(locals_) == 33
+    assert locals_["#9"] == "0.092" and locals_["#12"] == "8." and locals_["#33"] == "<vacant>"
+    commons = variables("Common variables")
+    assert commons == {"#100": "50.", "#101": "3.", "#102": "50.", "#103": "0.048", "#104": "0.17"}
+    modal = variables("Modal state")
+    assert modal["G group 01"] == "G01"  # the G01 before N10; the G92 has not run yet
+    assert modal["S"] == "400." and modal["T"] == "101." and modal["unit"] == "mm (G21)"
+    assert modal["F"] == "0.5"
+    assert modal["G group 05"] == "G99"  # feed per revolution
+
+
+def test_step_into_over_and_out_of_the_m98(dap: DapClient) -> None:
+    m98 = line_of(SEED, "M98 P0013331")
+    dap.start({"program": str(SEED)}, {str(SEED): [{"line": m98}]})
+    dap.stopped()
+    dap.ok("stepIn", {"threadId": 1})
+    assert dap.stopped()["reason"] == "step"
+    frames = dap.ok("stackTrace", {"threadId": 1})["stackFrames"]
+    assert frames[0]["name"].startswith("O3331") and frames[0]["line"] == line_of(SEED, "O3331")
+    dap.ok("next", {"threadId": 1})
+    dap.stopped()
+    assert top(dap)["line"] == line_of(SEED, "#1=1.*#101")
+    dap.ok("stepOut", {"threadId": 1})
+    dap.stopped()
+    frames = dap.ok("stackTrace", {"threadId": 1})["stackFrames"]
+    assert len(frames) == 1 and frames[0]["line"] == line_of(SEED, "G00 X100. Z100.")
+    # Step over the call: the whole thread is cut and the run stops after it.
+    dap.ok("restart")
+    dap.stopped()
+    assert top(dap)["line"] == m98
+    dap.ok("next", {"threadId": 1})
+    dap.stopped()
+    assert top(dap)["line"] == line_of(SEED, "G00 X100. Z100.")
+    assert dap.evaluate("#12") == "0."  # O3331's finishing passes all ran
+
+
+def test_stop_on_entry_and_the_end_of_the_run(dap: DapClient) -> None:
+    dap.start({"program": str(SEED), "stopOnEntry": True})
+    assert dap.stopped()["reason"] == "entry"
+    assert top(dap)["line"] == line_of(SEED, "O4009")
+    dap.ok("continue", {"threadId": 1})
+    assert dap.event("exited")["body"]["exitCode"] == 0
+    dap.event("terminated")
+    assert "O4009 ended after" in dap.output_text()
+
+
+def test_conditions_hit_counts_and_logpoints(dap: DapClient) -> None:
+    g92 = line_of(SEED, "G92")
+    dap.start(
+        {"program": str(SEED)},
+        {
+            str(SEED): [
+                {"line": g92, "logMessage": "pass {#7}: X{[#100-2*#9]}"},
+                {"line": g92 + 2, "condition": "#7 GT 2", "hitCondition": "2"},
+            ]
+        },
+    )
+    stop = dap.stopped()
+    assert stop["reason"] == "breakpoint"
+    # The second time #7 > 2 at the second G92: the fourth pass.
+    assert dap.evaluate("#7") == "4."
+    logged = [ln for ln in dap.output_text().splitlines() if ln.startswith("pass ")]
+    assert logged == ["pass 1.: X49.816", "pass 2.: X49.74", "pass 3.: X49.681", "pass 4.: X49.632"]
+
+
+def test_a_bad_condition_is_an_unverified_breakpoint(dap: DapClient) -> None:
+    dap.ok("initialize", {"adapterID": "fanuc-macro"})
+    dap.ok("launch", {"program": str(SEED)})
+    dap.event("initialized")
+    found = dap.ok(
+        "setBreakpoints",
+        {
+            "source": {"path": str(SEED)},
+            "breakpoints": [
+                {"line": line_of(SEED, "G92"), "condition": "#9 >> 1"},
+                {"line": 1},
+                {"line": line_of(SEED, "G92"), "hitCondition": "often"},
+                {"line": line_of(SEED, "%", 2)},
+            ],
+        },
+    )["breakpoints"]
+    assert [b["verified"] for b in found] == [False, True, False, False]
+    assert "not a Macro B condition" in found[0]["message"]
+    assert found[1]["line"] == line_of(SEED, "O4009")  # '%' runs nothing: the next block
+    assert "hit count" in found[2]["message"]
+    assert found[3]["message"] == "no block runs from here to the end of O4009"
+
+
+def test_set_a_variable_and_assign_in_the_console(dap: DapClient) -> None:
+    g92 = line_of(SEED, "G92")
+    dap.start({"program": str(SEED)}, {str(SEED): [{"line": g92}]})
+    dap.stopped()
+    scopes = dap.ok("scopes", {"frameId": 1})["scopes"]
+    locals_ref = scopes[0]["variablesReference"]
+    assert dap.ok(
+        "setVariable", {"variablesReference": locals_ref, "name": "#9", "value": "0.2"}
+    ) == {"value": "0.2"}
+    assert dap.evaluate("[#100-2*#9]") == "49.6"
+    assert dap.ok("evaluate", {"expression": "#100=40", "context": "repl"})["result"] == "40."
+    assert dap.evaluate("#100") == "40."
+    refused = dap.request(
+        "setVariable",
+        {"variablesReference": scopes[2]["variablesReference"], "name": "#5041", "value": "1"},
+    )
+    assert not refused["success"] and "read-only" in refused["message"]
+    wrong = dap.request("evaluate", {"expression": "SQRT[-#101]", "frameId": 1})
+    assert not wrong["success"] and "PS0119" in wrong["message"]
+
+
+def test_an_alarm_stops_with_its_message(dap: DapClient) -> None:
+    program = DEBUG / "o5000_alarm.nc"
+    dap.start({"program": str(program)})
+    stop = dap.stopped()
+    assert stop["reason"] == "exception"
+    assert "SQRT" in stop["text"] and "PS0119" in stop["text"]
+    assert top(dap)["line"] == line_of(program, "SQRT")
+    assert dap.evaluate("#1") == "-2."
+    info = dap.ok("exceptionInfo", {"threadId": 1})
+    assert info["exceptionId"] == "alarm" and "PS0119" in info["description"]
+    dap.ok("continue", {"threadId": 1})
+    assert dap.event("exited")["body"]["exitCode"] == 1
+    assert "stopped on an alarm" in dap.output_text()
+
+
+def test_alarms_can_be_let_through(dap: DapClient) -> None:
+    dap.start({"program": str(DEBUG / "o5000_alarm.nc")}, filters=[])
+    assert dap.event("exited")["body"]["exitCode"] == 1
+    assert "PS0119" in dap.output_text()
+    assert not [e for e in dap.events if e["event"] == "stopped"]
+
+
+def test_dprnt_a_message_and_a_g65_level(dap: DapClient) -> None:
+    program = DEBUG / "o5100_messages.nc"
+    inner = line_of(program, "#100=#1+#2")
+    dap.start({"program": str(program)}, {str(program): [{"line": inner}]})
+    stop = dap.stopped()
+    assert stop["reason"] == "exception" and stop["text"] == "CHECK THE INSERT"
+    assert "X12.500  Y-0.250" in dap.output_text()
+    dap.ok("continue", {"threadId": 1})
+    assert dap.stopped()["reason"] == "breakpoint"
+    frames = dap.ok("stackTrace", {"threadId": 1})["stackFrames"]
+    assert frames[0]["name"] == "O5101 (G65 A1. B2.5 F0.3)"
+    scopes = dap.ok("scopes", {"frameId": 1})["scopes"]
+    found = dap.ok("variables", {"variablesReference": scopes[0]["variablesReference"]})
+    values = {v["name"]: v["value"] for v in found["variables"]}
+    assert (
+        values["#1 (A)"] == "1." and values["#9 (F)"] == "0.3" and values["#24 (X)"] == "<vacant>"
+    )
+    # The caller's locals are its own (G65 opens a level).
+    assert dap.evaluate("#1", frames[1]["id"]) == "<vacant>"
+
+
+def test_launch_arguments_and_commons(dap: DapClient) -> None:
+    program = DEBUG / "o5100_messages.nc"
+    dap.start(
+        {
+            "program": str(program),
+            "entry": "O5101",
+            "arguments": "A1. B2. F0.8",
+            "commons": {"#500": 7},
+        }
+    )
+    stop = dap.stopped()
+    assert stop["reason"] == "exception"
+    assert "3001" in stop["text"] and "FEED TOO HIGH" in stop["text"]
+    assert dap.evaluate("#100") == "3."
+    assert dap.evaluate("#500") == "7."
+
+
+def test_the_endless_loop_can_be_paused(dap: DapClient) -> None:
+    if not GOTO_LOOP.exists():
+        pytest.skip("the corpus is not beside the repository")
+    dap.start({"program": str(GOTO_LOOP), "stepBudget": 10**9})
+    dap.ok("pause", {"threadId": 1})
+    assert dap.stopped()["reason"] == "pause"
+    frame = top(dap)
+    before = dap.evaluate("#1")
+    dap.ok("next", {"threadId": 1})
+    dap.stopped()
+    assert top(dap) != frame or dap.evaluate("#1") != before
+    dap.ok("terminate")
+    dap.event("terminated")
+
+
+def test_a_run_past_the_budget_ends_with_a_message(dap: DapClient) -> None:
+    if not WHILE_LOOP.exists():
+        pytest.skip("the corpus is not beside the repository")
+    dap.start({"program": str(WHILE_LOOP), "stepBudget": 5000})
+    assert dap.event("exited")["body"]["exitCode"] == 1
+    dap.event("terminated")
+    text = dap.output_text()
+    assert "step budget of 5,000 blocks" in text
+
+
+def test_bad_requests_get_clear_answers(dap: DapClient) -> None:
+    dap.ok("initialize", {"adapterID": "fanuc-macro"})
+    missing = dap.request("launch", {"program": str(DEBUG / "nothing.nc")})
+    assert not missing["success"] and "is not a file" in missing["message"]
+    no_entry = dap.request("launch", {"program": str(SEED), "entry": 77})
+    assert not no_entry["success"] and "no O77" in no_entry["message"]
+    bad_args = dap.request("launch", {"program": str(SEED), "arguments": "G1."})
+    assert not bad_args["success"] and "not a G65 letter" in bad_args["message"]
+    # Bytes that are no message, then a body that is no JSON: the adapter goes on.
+    dap.send_raw(b"hello\r\n\r\n")
+    dap.send_raw(b"Content-Length: 5\r\n\r\n{oops")
+    assert not dap.request("stackTrace", {"threadId": 1})["success"]
+    assert not dap.request("frobnicate")["success"]
+    dap.ok("launch", {"program": str(SEED)})
+    dap.event("initialized")
+    assert not dap.request("continue", {"threadId": 1})["success"]  # not started, not stopped
+
+
+def test_the_same_run_gives_the_same_events() -> None:
+    def run() -> list[str]:
+        client = DapClient()
+        try:
+            client.start({"program": str(DEBUG / "o5100_messages.nc")}, filters=["alarm"])
+            client.event("terminated")
+            return [
+                json.dumps(e.get("body"), sort_keys=True)
+                for e in client.events
+                if e["event"] in ("output", "stopped", "exited")
+            ]
+        finally:
+            client.close()
+
+    first = run()
+    assert first == run()
+    assert any("CHECK THE INSERT" in e for e in first) is False  # the message filter is off
