@@ -52,7 +52,8 @@ def test_initialize_says_what_the_adapter_does(dap: DapClient) -> None:
         "supportsExceptionInfoRequest",
     ):
         assert caps[capability] is True, capability
-    assert [f["filter"] for f in caps["exceptionBreakpointFilters"]] == ["alarm", "message"]
+    filters = {f["filter"]: f["default"] for f in caps["exceptionBreakpointFilters"]}
+    assert filters == {"alarm": True, "message": True, "programStop": False}
 
 
 def test_breakpoint_on_the_first_g92_of_o3331(dap: DapClient) -> None:
@@ -321,3 +322,43 @@ def test_the_same_run_gives_the_same_events() -> None:
     first = run()
     assert first == run()
     assert any("CHECK THE INSERT" in e for e in first) is False  # the message filter is off
+
+
+def test_restart_runs_the_program_as_it_is_now(dap: DapClient, tmp_path: Path) -> None:
+    program = tmp_path / "o6000.nc"
+    program.write_text("%\nO6000\n#1=2.\n#2=#1*3.\nM30\n%\n")
+    dap.start({"program": str(program)}, {str(program): [{"line": 4}]})
+    dap.stopped()
+    assert dap.evaluate("#1") == "2."
+    # Edited while stopped: a comment line where the breakpoint was, a new value above it.
+    program.write_text("%\nO6000\n#1=5.\n(TRIPLE IT)\n#2=#1*3.\nM30\n%\n")
+    dap.ok("restart")
+    changed = dap.event("breakpoint")["body"]
+    assert changed["reason"] == "changed" and changed["breakpoint"]["line"] == 5
+    dap.stopped()
+    assert top(dap)["line"] == 5
+    assert dap.evaluate("#1") == "5."
+    assert "Restarting O6000." in dap.output_text()
+
+
+def test_an_undecided_condition_is_said(dap: DapClient, tmp_path: Path) -> None:
+    program = tmp_path / "o6100.nc"
+    program.write_text(
+        "%\nO6100 (PROBE)\nG31 X10. F100\nIF[#5061 GT 9.] GOTO10\n#3000=1(NO CONTACT)\n"
+        "N10 M30\n%\n"
+    )
+    dap.start({"program": str(program), "controller": "0i-MF"}, filters=[])
+    dap.event("terminated")
+    text = dap.output_text()
+    assert "o6100.nc:4: this condition cannot be decided before the machine runs" in text
+    assert "depends on #5061" in text
+
+
+def test_program_stops_stop_when_asked(dap: DapClient, tmp_path: Path) -> None:
+    program = tmp_path / "o6200.nc"
+    program.write_text("%\nO6200\nG00 X10.\nM00 (TURN THE PART)\nG00 X20.\nM30\n%\n")
+    dap.start({"program": str(program)}, filters=["alarm", "programStop"])
+    stop = dap.stopped()
+    assert stop["reason"] == "exception" and stop["text"] == "M00 program stop: TURN THE PART"
+    assert top(dap)["line"] == 5  # after the M00, as the control
+    assert dap.ok("exceptionInfo", {"threadId": 1})["exceptionId"] == "programStop"

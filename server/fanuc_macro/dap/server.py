@@ -20,6 +20,7 @@ from .. import __version__
 from ..config import Config
 from ..ide.debugger import (
     EXCEPTION_FILTERS,
+    Breakpoint,
     DebugError,
     Ended,
     Listener,
@@ -209,18 +210,18 @@ class Adapter(Listener):
                 ]
             }
         made = self.session.set_breakpoints(path, asked)
-        out = []
-        for bp in made:
-            item: dict[str, Any] = {
-                "id": bp.id,
-                "verified": bp.verified,
-                "source": self._source(bp.key),
-            }
-            item["line"] = self._line_out(bp.actual_line if bp.actual_line is not None else bp.line)
-            if bp.message:
-                item["message"] = bp.message
-            out.append(item)
-        return {"breakpoints": out}
+        return {"breakpoints": [self._breakpoint(bp) for bp in made]}
+
+    def _breakpoint(self, bp: Breakpoint) -> dict[str, Any]:
+        item: dict[str, Any] = {
+            "id": bp.id,
+            "verified": bp.verified,
+            "source": self._source(bp.key),
+            "line": self._line_out(bp.actual_line if bp.actual_line is not None else bp.line),
+        }
+        if bp.message:
+            item["message"] = bp.message
+        return item
 
     def set_exception_breakpoints(self, args: dict[str, Any]) -> dict[str, Any]:
         filters = [str(f) for f in args.get("filters") or []]
@@ -359,11 +360,7 @@ class Adapter(Listener):
         stop = self._last_stop
         if stop is None or stop.reason != "exception":
             raise DebugError("the program did not stop on an alarm or a message")
-        return {
-            "exceptionId": "alarm" if stop.description == "Alarm" else "message",
-            "description": stop.text,
-            "breakMode": "always",
-        }
+        return {"exceptionId": stop.exception, "description": stop.text, "breakMode": "always"}
 
     # ---- the session's news (from the run thread) --------------------------------------------
     def stopped(self, stop: Stop) -> None:
@@ -395,6 +392,9 @@ class Adapter(Listener):
         )
         self.event("exited", {"exitCode": 0 if ended.normal else 1})
         self._say_terminated()
+
+    def breakpoint_changed(self, breakpoint: Breakpoint) -> None:
+        self.event("breakpoint", {"reason": "changed", "breakpoint": self._breakpoint(breakpoint)})
 
     def _say_terminated(self) -> None:
         if not self._terminated:

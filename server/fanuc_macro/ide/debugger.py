@@ -23,8 +23,11 @@ from ..evaluator.compiler import CondEvaluator, Evaluator, compile_cond, compile
 from ..evaluator.facts import Facts
 from ..evaluator.machine import (
     K_ASSIGN,
+    K_IFGOTO,
+    K_IFTHEN,
     K_NC,
     K_OTHER,
+    K_WHILE,
     Activation,
     Machine,
     ProgramContext,
@@ -43,9 +46,11 @@ from .values import Precision
 # The exception breakpoints a user can turn on and off (DAP exceptionBreakpointFilters).
 ALARM_FILTER = "alarm"  # #3000 and the PS alarms the evaluator raises
 MESSAGE_FILTER = "message"  # #3006: the control stops with a message
+PROGRAM_STOP_FILTER = "programStop"  # M00, and M01 with the optional stop switch on
 EXCEPTION_FILTERS: tuple[tuple[str, str, bool], ...] = (
     (ALARM_FILTER, "Alarms (#3000, PS0112 zero divide, ...)", True),
     (MESSAGE_FILTER, "Stop with message (#3006)", True),
+    (PROGRAM_STOP_FILTER, "Program stop (M00, M01)", False),
 )
 
 _LETTER_OF = {n: letter for letter, n in ARGUMENT_VARIABLES.items()}
@@ -69,6 +74,7 @@ class Stop:
     description: str = ""
     text: str = ""  # an alarm's or a message's text
     breakpoints: tuple[int, ...] = ()
+    exception: str = ""  # the filter of an "exception" stop: alarm, message, programStop
 
 
 @dataclass(frozen=True)
@@ -99,6 +105,9 @@ class Listener:
 
     def ended(self, ended: Ended) -> None:
         pass
+
+    def breakpoint_changed(self, breakpoint: Breakpoint) -> None:
+        """A restart read the files again, and the breakpoint now stops elsewhere or not."""
 
 
 @dataclass(frozen=True)
@@ -455,7 +464,9 @@ class Session:
         self._groups: dict[str, float] = {}
         self._tool: Value = None
         self._called_with: dict[int, tuple[tuple[int, Value], ...]] = {}
-        self._message: str | None = None  # a #3006 the last block set
+        # A stop the last block asked for (a #3006 message, an M00): filter, description, text.
+        self._pending_stop: tuple[str, str, str] | None = None
+        self._undecided_seen: set[tuple[str, int]] = set()
         self._reported: dict[str, int] = {}
         self._first = True
         self._control_pending: str | None = None  # a restart or an end asked while running
@@ -514,8 +525,6 @@ class Session:
         message) each. A breakpoint on a line that runs nothing moves to the next block of
         its program that does; outside every program it is not verified, and says why."""
         resolved = str(Path(key).resolve()) if not key.startswith("untitled:") else key
-        doc = self.workspace.document(resolved)
-        index = self.workspace.index(resolved) if doc is not None else None
         made: list[Breakpoint] = []
         for line, condition, hit, log in asked:
             self._next_id += 1
@@ -527,42 +536,63 @@ class Session:
                 hit_condition=hit,
                 log_message=log,
             )
+            self._verify(bp)
             made.append(bp)
-            if doc is None or index is None:
-                bp.message = "this file is not the program under the debugger nor in its folder"
-                continue
-            program = next((p for p in index.programs if p.contains(line)), None)
-            if program is None:
-                # Before a program (a '%', a comment): its first block, if nothing runs between.
-                program = next((p for p in index.programs if p.first_line > line), None)
-                if program is not None and any(
-                    _runs(doc.blocks[n].parsed) for n in range(line, program.first_line)
-                ):
-                    program = None
-            if program is None:
-                bp.message = "no program here (outside O...%): the control runs nothing here"
-                continue
-            target = next(
-                (n for n in range(line, program.end_line) if _runs(doc.blocks[n].parsed)), None
-            )
-            if target is None:
-                bp.message = f"no block runs from here to the end of {program.display_name}"
-                continue
-            try:
-                bp._cond = parse_condition(condition) if condition.strip() else None
-                bp._hit = hit_test(hit) if hit.strip() else None
-            except DebugError as err:
-                bp.message = str(err)
-                continue
-            bp.verified = True
-            bp.actual_line = target
         with self._lock:
             self.breakpoints[resolved] = made
         return made
 
+    def _verify(self, bp: Breakpoint) -> None:
+        """Where ``bp`` stops in the text as read now, or why it does not."""
+        bp.verified, bp.actual_line, bp.message = False, None, ""
+        line = bp.line
+        doc = self.workspace.document(bp.key)
+        if doc is None:
+            bp.message = "this file is not the program under the debugger nor in its folder"
+            return
+        index = self.workspace.index(bp.key)
+        program = next((p for p in index.programs if p.contains(line)), None)
+        if program is None:
+            # Before a program (a '%', a comment): its first block, if nothing runs between.
+            program = next((p for p in index.programs if p.first_line > line), None)
+            if program is not None and any(
+                _runs(doc.blocks[n].parsed) for n in range(line, program.first_line)
+            ):
+                program = None
+        if program is None:
+            bp.message = "no program here (outside O...%): the control runs nothing here"
+            return
+        target = next(
+            (n for n in range(line, program.end_line) if _runs(doc.blocks[n].parsed)), None
+        )
+        if target is None:
+            bp.message = f"no block runs from here to the end of {program.display_name}"
+            return
+        try:
+            bp._cond = parse_condition(bp.condition) if bp.condition.strip() else None
+            bp._hit = hit_test(bp.hit_condition) if bp.hit_condition.strip() else None
+        except DebugError as err:
+            bp.message = str(err)
+            return
+        bp.verified = True
+        bp.actual_line = target
+
+    def _reload(self) -> None:
+        """Read the files again (a restart runs the program as it is on disk now) and move the
+        breakpoints with the text."""
+        self.workspace = Workspace(self.launch.config)
+        self._load()
+        for bps in self.breakpoints.values():
+            for bp in bps:
+                before = (bp.verified, bp.actual_line, bp.message)
+                self._verify(bp)
+                if (bp.verified, bp.actual_line, bp.message) != before:
+                    self.listener.breakpoint_changed(bp)
+
     def set_exception_filters(self, names: list[str]) -> None:
         with self._lock:
-            self.filters = {n for n in names if n in (ALARM_FILTER, MESSAGE_FILTER)}
+            known = {name for name, _, _ in EXCEPTION_FILTERS}
+            self.filters = {n for n in names if n in known}
 
     # ---- running ---------------------------------------------------------------------------
     def start(self) -> None:
@@ -584,7 +614,8 @@ class Session:
             self._groups.clear()
             self._tool = None
             self._called_with.clear()
-            self._message = None
+            self._pending_stop = None
+            self._undecided_seen.clear()
             self._reported = {}
             self._first = True
             for bps in self.breakpoints.values():
@@ -596,7 +627,12 @@ class Session:
             try:
                 why = machine.run(entry, math.inf, preset)
             except _Restart:
-                self._say("console", f"Restarting {entry.name}.")
+                try:
+                    self._reload()
+                except DebugError as err:
+                    self._finish(Ended(f"Cannot restart: {err}", False, machine.steps))
+                    return
+                self._say("console", f"Restarting {self.entry_name}.")
                 continue
             except _Terminate:
                 self._finish(Ended("The run was stopped.", True, machine.steps))
@@ -698,9 +734,9 @@ class Session:
         if ctx.facts.reported and len(ctx.facts.reported) != self._reported.get(ctx.uri, 0):
             self._report_findings()
         stop: Stop | None = None
-        message, self._message = self._message, None
-        if message is not None and MESSAGE_FILTER in self.filters:
-            stop = Stop("exception", "Stop with message (#3006)", message)
+        asked, self._pending_stop = self._pending_stop, None
+        if asked is not None and asked[0] in self.filters:
+            stop = Stop("exception", asked[1], asked[2], exception=asked[0])
         hit = self._breakpoints_at(act, ctx.uri, line)
         if self._first:
             self._first = False
@@ -724,12 +760,11 @@ class Session:
         cl = act.ctx.lines[line]
         if cl.kind == K_ASSIGN and cl.target_number == 3000:
             # The control shows the block's comment with the alarm number.
-            parsed = act.ctx.doc.blocks[line].parsed
-            text = " ".join(c.text for c in parsed.comments).strip()
+            text = _comment(act, line)
             if text:
                 message = f"{message}: {text}"
         if ALARM_FILTER in self.filters:
-            self._wait(act, line, Stop("exception", "Alarm", message))
+            self._wait(act, line, Stop("exception", "Alarm", message, exception=ALARM_FILTER))
 
     def _breakpoints_at(self, act: Activation, key: str, line: int) -> list[int]:
         bps = self.breakpoints.get(key)
@@ -787,9 +822,12 @@ class Session:
             if n is not None and n >= 1000:
                 self._system_seen.add(n)
             if n == 3006:
-                parsed = act.ctx.doc.blocks[line].parsed
-                text = " ".join(c.text for c in parsed.comments).strip()
-                self._message = text or "#3006"
+                # The control stops after the block and shows its comment (FANUC custom macro,
+                # "#3006 stop with message").
+                text = _comment(act, line)
+                self._pending_stop = (MESSAGE_FILTER, "Stop with message (#3006)", text or "#3006")
+        elif kind in (K_IFGOTO, K_IFTHEN, K_WHILE) and cl.cond is not None:
+            self._note_condition(act, cl, line)
         elif kind == K_OTHER and isinstance(cl.node, Print) and cl.node.keyword == "DPRNT":
             self._say("stdout", dprnt_line(cl.node.text, act), act.ctx.uri, line)
         elif kind == K_NC:
@@ -797,9 +835,10 @@ class Session:
             const = cl.constant
             if const is not None:
                 g_codes: list[float] = list(const.g_codes)
+                m_codes: list[float] = list(const.m_codes)
                 tool = const.values.get("T")
             else:
-                g_codes, tool = [], None
+                g_codes, m_codes, tool = [], [], None
                 for w in cl.words:
                     try:
                         v = w.evaluate(_Probe(act))
@@ -807,14 +846,49 @@ class Session:
                         continue
                     if w.address == "G" and isinstance(v, float):
                         g_codes.append(round(v, 1))
+                    elif w.address == "M" and isinstance(v, float):
+                        m_codes.append(v)
                     elif w.address == "T" and v is not None:
                         tool = v
+            if 0.0 in m_codes or 1.0 in m_codes:
+                code = "M00" if 0.0 in m_codes else "M01"
+                what = "program stop" if code == "M00" else "optional stop"
+                text = _comment(act, line)
+                self._pending_stop = (
+                    PROGRAM_STOP_FILTER,
+                    f"Program stop ({code})",
+                    f"{code} {what}" + (f": {text}" if text else ""),
+                )
             for g in g_codes:
                 group = modal_group(g, lathe)
                 if group is not None:
                     self._groups[group] = g
             if tool is not None:
                 self._tool = tool
+
+    def _note_condition(self, act: Activation, cl: Any, line: int) -> None:
+        """A condition the analysis cannot decide (it reads a probe's result, a PMC signal):
+        the run goes on as the checker's does, which the control may not; said once a line."""
+        key = (act.ctx.uri, line)
+        if key in self._undecided_seen:
+            return
+        try:
+            result = cl.cond(_Probe(act))
+        except MacroAlarm:
+            return  # the block's own run raises it
+        if isinstance(result, bool):
+            return
+        self._undecided_seen.add(key)
+        depends = result.describe() if isinstance(result, Unknown) else "unknown"
+        self._say(
+            "console",
+            f"{Path(act.ctx.uri).name}:{line + 1}: this condition cannot be decided before the "
+            f"machine runs ({depends}): the run goes on as the checker's does (an IF falls "
+            "through the first time and jumps the next, a WHILE runs its body once), which "
+            "the control may not.",
+            act.ctx.uri,
+            line,
+        )
 
     def _wait(self, act: Activation, line: int, stop: Stop) -> None:
         with self._lock:
@@ -1115,6 +1189,11 @@ class Session:
         else:
             act.store[n] = result
         return self._show(result)
+
+
+def _comment(act: Activation, line: int) -> str:
+    parsed = act.ctx.doc.blocks[line].parsed
+    return " ".join(c.text for c in parsed.comments).strip()
 
 
 def _depth(act: Activation) -> int:
