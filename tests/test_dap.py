@@ -344,8 +344,7 @@ def test_restart_runs_the_program_as_it_is_now(dap: DapClient, tmp_path: Path) -
 def test_an_undecided_condition_is_said(dap: DapClient, tmp_path: Path) -> None:
     program = tmp_path / "o6100.nc"
     program.write_text(
-        "%\nO6100 (PROBE)\nG31 X10. F100\nIF[#5061 GT 9.] GOTO10\n#3000=1(NO CONTACT)\n"
-        "N10 M30\n%\n"
+        "%\nO6100 (PROBE)\nG31 X10. F100\nIF[#5061 GT 9.] GOTO10\n#3000=1(NO CONTACT)\nN10 M30\n%\n"
     )
     dap.start({"program": str(program), "controller": "0i-MF"}, filters=[])
     dap.event("terminated")
