@@ -536,6 +536,10 @@ async function checkDebug() {
     await runCommand('FANUC Macro: Debug This Program');
     await page.locator('.debug-toolbar').first().waitFor({ state: 'visible' });
     await editor.locator('.debug-top-stack-frame-line').first().waitFor();
+    // VS Code leaves the scopes collapsed here (code-server 4.139): open the locals.
+    const locals = page.locator('.part.sidebar .monaco-list-row', { hasText: 'Locals #1-#33' }).first();
+    await locals.waitFor();
+    if ((await locals.getAttribute('aria-expanded')) !== 'true') await locals.click();
     await page.waitForFunction(
       () => /#2\W+113\b/.test((document.querySelector('.part.sidebar')?.innerText || '').replace(/\u00a0/g, ' ')),
       null,
@@ -559,7 +563,8 @@ async function checkDebug() {
     record('debug toolpath', false, e.message.split('\n')[0]);
   }
   try {
-    await runCommand('Debug: Stop');
+    // The toolbar's Stop button: the palette's first row for "Debug: Stop" was another command.
+    await page.locator('.debug-toolbar .codicon-debug-stop').first().click();
     await page.locator('.debug-toolbar').first().waitFor({ state: 'hidden' });
     await gotoPosition(DEBUG_LINE, 1);
     await runCommand('Debug: Toggle Breakpoint');
