@@ -8,6 +8,7 @@ import { join } from 'node:path';
 import { after, describe, it } from 'node:test';
 import type { ExtensionContext } from 'vscode';
 import { activate, deactivate } from '../src/extension';
+import { ToolpathPanel } from '../src/toolpathView';
 import * as fake from './fakes/vscode';
 
 const dir = mkdtempSync(join(tmpdir(), 'fanuc-macro-debug-'));
@@ -108,5 +109,38 @@ describe('debugger', { skip: process.platform === 'win32' }, () => {
     tracker?.onDidSendMessage?.({ type: 'event', event: 'stopped', body: { reason: 'breakpoint', threadId: 1 } });
     await new Promise((resolve) => setImmediate(resolve));
     assert.deepEqual(requests, []); // nothing to light: the stack is not asked for
+  });
+
+  it('has the open Toolpath view light the block the run stopped on', async () => {
+    const lit: number[] = [];
+    // The view's two members the tracker uses (the webview itself is the browser test's).
+    const view = { documentPath: '/w/o4009.nc', showStoppedBlock: (line: number) => lit.push(line) };
+    ToolpathPanel.current = view as unknown as ToolpathPanel;
+    const requests: unknown[] = [];
+    const frames = { '/w/o4009.nc': 32, '/w/o9000.nc': 5 };
+    let path: keyof typeof frames = '/w/o4009.nc';
+    const session = {
+      customRequest: (command: string, args: unknown) => {
+        requests.push([command, args]);
+        return Promise.resolve({ stackFrames: [{ id: 1, name: 'O3331', line: frames[path], source: { path } }] });
+      },
+    };
+    const tracker = registered(fake.debuggers.trackerFactories).createDebugAdapterTracker(session);
+    const settle = () => new Promise((resolve) => setImmediate(resolve));
+    try {
+      tracker?.onDidSendMessage?.({ type: 'event', event: 'output', body: { output: 'DPRNT' } });
+      tracker?.onDidSendMessage?.({ type: 'event', event: 'stopped', body: { reason: 'breakpoint', threadId: 1 } });
+      await settle();
+      path = '/w/o9000.nc'; // a stop in another file's program lights nothing
+      tracker?.onDidSendMessage?.({ type: 'event', event: 'stopped', body: { reason: 'step', threadId: 1 } });
+      await settle();
+    } finally {
+      ToolpathPanel.current = undefined;
+    }
+    assert.deepEqual(requests, [
+      ['stackTrace', { threadId: 1, levels: 1 }],
+      ['stackTrace', { threadId: 1, levels: 1 }],
+    ]);
+    assert.deepEqual(lit, [31]);
   });
 });
