@@ -11,6 +11,7 @@ import {
   type ServerOptions,
 } from 'vscode-languageclient/node';
 import { registerCheckTasks } from './checkTaskProvider';
+import { registerDebugger } from './debugAdapter';
 import { DEFAULT_PROBE_TIMEOUT_MS, probeCandidate } from './probe';
 import {
   BUNDLED_MIN_PYTHON,
@@ -492,6 +493,13 @@ export function activate(context: vscode.ExtensionContext): void {
   context.subscriptions.push(outputChannel(), ...traces.register(), statusItem);
   if (extensionUri !== undefined) context.subscriptions.push(...new RuleDocs(extensionUri).register());
   context.subscriptions.push(registerCheckTasks(() => startedCandidate));
+  // The debug adapter runs on the language server's Python: wait for its start-up first.
+  context.subscriptions.push(
+    ...registerDebugger(async () => {
+      await lifecycle;
+      return startedCandidate;
+    }),
+  );
 
   context.subscriptions.push(
     vscode.commands.registerCommand('fanuc-macro.restartServer', restart),

@@ -1,7 +1,8 @@
 // The Toolpath view: a webview beside the editor that draws what the program cuts
 // (client/webview/toolpath.ts), fed by the server's `fanuc-macro.toolpath` command. It follows
 // the document as the user types, highlights the cursor's block, and a click on a segment
-// reveals its block in the editor.
+// reveals its block in the editor. While a debug session is stopped in the document, it lights
+// the stopped block instead (client/src/debugAdapter.ts), until the cursor moves.
 import * as vscode from 'vscode';
 
 export const SERVER_COMMAND_TOOLPATH = 'fanuc-macro.toolpath';
@@ -87,6 +88,8 @@ export class ToolpathPanel {
   private timer: ReturnType<typeof setTimeout> | undefined;
   private ready = false;
   private asked = 0;
+  /** The 0-based line of the block a debug session stopped on, lit until the cursor moves. */
+  private stoppedLine: number | undefined;
 
   private constructor(
     private readonly panel: vscode.WebviewPanel,
@@ -104,7 +107,9 @@ export class ToolpathPanel {
     );
     vscode.window.onDidChangeTextEditorSelection(
       (event) => {
-        if (event.textEditor.document === this.document) this.postCursor(event.textEditor);
+        if (event.textEditor.document !== this.document) return;
+        this.stoppedLine = undefined;
+        this.postCursor(event.textEditor);
       },
       null,
       this.disposables,
@@ -117,6 +122,7 @@ export class ToolpathPanel {
       existing.panel.reveal(vscode.ViewColumn.Beside, true);
       if (existing.document !== document) {
         existing.document = document;
+        existing.stoppedLine = undefined;
         existing.panel.title = ToolpathPanel.title(document);
       }
       void existing.refresh();
@@ -164,12 +170,27 @@ export class ToolpathPanel {
     await this.panel.webview.postMessage(
       error === undefined ? { type: 'data', data: answer, title } : { type: 'error', message: `${title}: ${error}` },
     );
+    if (this.stoppedLine !== undefined) {
+      await this.panel.webview.postMessage({ type: 'cursor', line: this.stoppedLine });
+      return;
+    }
     const editor = vscode.window.visibleTextEditors.find((e) => e.document === this.document);
     if (editor !== undefined) this.postCursor(editor);
   }
 
   private postCursor(editor: vscode.TextEditor): void {
     void this.panel.webview.postMessage({ type: 'cursor', line: editor.selection.active.line });
+  }
+
+  /** The file system path of the document the view draws (for a debug session's frames). */
+  get documentPath(): string {
+    return this.document.uri.fsPath;
+  }
+
+  /** Lights the block at `line` (0-based) of the view's document: where a debug session stopped. */
+  showStoppedBlock(line: number): void {
+    this.stoppedLine = line;
+    void this.panel.webview.postMessage({ type: 'cursor', line });
   }
 
   private received(message: unknown): void {

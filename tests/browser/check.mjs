@@ -3,8 +3,8 @@
 // diagnostics from the language server, a hover with a value, the extension's workbench parts
 // (no colour swatch, the status bar item, the rule links, the Settings UI's title), navigation
 // (rename, document highlight, folding, workspace symbols), semantic tokens, a code lens,
-// signature help, the Toolpath view (webview) and the trace view (a read-only document whose
-// rows link to the blocks).
+// signature help, the Toolpath view (webview), the trace view (a read-only document whose
+// rows link to the blocks) and the debugger (a breakpoint, Debug This Program, the stop).
 // Every step waits for a condition (a status bar text, a data- attribute), never a fixed delay.
 //
 // Usage: node check.mjs <code-server base url> <workspace folder> <out dir>
@@ -516,6 +516,63 @@ async function checkTrace() {
   }
 }
 
+// The debugger: a breakpoint toggled on O3's G32 (line 35, reached in the first pass of the
+// first layer), "FANUC Macro: Debug This Program" runs fanuc-macro-dap on the language server's
+// Python; the run stops there: the debug toolbar, the editor's stopped-line highlight and the
+// Variables view with #2 = 113. (set on line 10); the Toolpath view, still open, lights the
+// stopped block. Then the session is stopped.
+const DEBUG_LINE = 35;
+
+async function checkDebug() {
+  const text = () => page.evaluate(() => (document.querySelector('.part.sidebar')?.innerText || '').replace(/\u00a0/g, ' '));
+  try {
+    await openFile(FILE);
+    await editor.click({ position: { x: 200, y: 10 } });
+    await gotoPosition(DEBUG_LINE, 1);
+    await runCommand('Debug: Toggle Breakpoint');
+    await editor.locator('.codicon-debug-breakpoint').first().waitFor();
+    // The cursor elsewhere, so that a lit block in the Toolpath view is the stop's, not the cursor's.
+    await gotoPosition(9, 1);
+    await runCommand('FANUC Macro: Debug This Program');
+    await page.locator('.debug-toolbar').first().waitFor({ state: 'visible' });
+    await editor.locator('.debug-top-stack-frame-line').first().waitFor();
+    // VS Code leaves the scopes collapsed here (code-server 4.139): open the locals.
+    const locals = page.locator('.part.sidebar .monaco-list-row', { hasText: 'Locals #1-#33' }).first();
+    await locals.waitFor();
+    if ((await locals.getAttribute('aria-expanded')) !== 'true') await locals.click();
+    await page.waitForFunction(
+      () => /#2\W+113\b/.test((document.querySelector('.part.sidebar')?.innerText || '').replace(/\u00a0/g, ' ')),
+      null,
+      { timeout: STEP_MS },
+    );
+    const stack = (await text()).split('\n').filter((l) => /^O0*[23]\b/.test(l.trim())).slice(0, 2).join(' | ');
+    const row = (await text()).split('\n').find((l) => /#2\W+113\b/.test(l));
+    record('debug', true, `stopped on Ln ${DEBUG_LINE} (editor at Ln ${await statusLine()}): ${stack}; Variables ${row?.trim()}`);
+    await shot('debug.png');
+  } catch (e) {
+    record('debug', false, `${e.message.split('\n')[0]}; sidebar ${JSON.stringify((await text().catch(() => '')).slice(0, 300))}`);
+    await shot('debug.png');
+  }
+  try {
+    const frame = await frameWith('canvas#toolpath');
+    const want = await frame.evaluate((line) => window.toolpathProbe?.segmentOfLine(line) != null, DEBUG_LINE - 1);
+    await frame.waitForFunction(() => Number(document.getElementById('toolpath').dataset.highlighted) > 0, null, { timeout: STEP_MS });
+    const lit = await frame.locator('canvas#toolpath').getAttribute('data-highlighted');
+    record('debug toolpath', want, `stopped on Ln ${DEBUG_LINE}, editor cursor at Ln ${await statusLine()}: ${lit} segments lit`);
+  } catch (e) {
+    record('debug toolpath', false, e.message.split('\n')[0]);
+  }
+  try {
+    // The toolbar's Stop button: the palette's first row for "Debug: Stop" was another command.
+    await page.locator('.debug-toolbar .codicon-debug-stop').first().click();
+    await page.locator('.debug-toolbar').first().waitFor({ state: 'hidden' });
+    await gotoPosition(DEBUG_LINE, 1);
+    await runCommand('Debug: Toggle Breakpoint');
+  } catch (e) {
+    record('debug stop', false, e.message.split('\n')[0]);
+  }
+}
+
 /**
  * Opens `name` of the workspace through Quick Open and waits for its editor. F1, then the name
  * without `>`: Ctrl+P did not reach the workbench once the status bar item had been clicked.
@@ -817,6 +874,7 @@ try {
   await checkTokensAndLenses();
   await checkToolpath();
   await checkTrace();
+  await checkDebug();
 } catch (e) {
   record('session', false, e.stack || String(e));
   await shot('failure.png').catch(() => {});

@@ -8,8 +8,9 @@ a rule code's link opening the shipped rules page, the Settings UI's group title
 (rename, document highlight, folding, selection ranges, formatting, workspace symbols, the call
 hierarchy), semantic tokens, a code lens,
 signature help, the Toolpath view (drawn, a click on a segment reveals its block, the cursor's
-block lit) and the trace view (a row's values, its link and F12 to the block). It takes minutes
-on a first run, so it only runs when FANUC_MACRO_BROWSER_TEST=1.
+block lit), the trace view (a row's values, its link and F12 to the block) and the debugger (a
+breakpoint, Debug This Program, the stop's Variables, the Toolpath view lighting the stopped
+block). It takes minutes on a first run, so it only runs when FANUC_MACRO_BROWSER_TEST=1.
 """
 
 from __future__ import annotations
@@ -72,5 +73,6 @@ def test_extension_in_code_server(tmp_path: Path) -> None:
     )
     tokens = ("semantic tokens", "code lens", "signature help")
     views = ("toolpath view", "toolpath click", "toolpath cursor", "trace view", "trace link")
-    for check in (*ui, *navigation, *tokens, *views):
+    debugger = ("debug", "debug toolpath")
+    for check in (*ui, *navigation, *tokens, *views, *debugger):
         assert f"PASS {check}:" in proc.stdout, tail

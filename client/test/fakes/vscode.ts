@@ -126,6 +126,21 @@ export class Location {
   ) {}
 }
 
+export class EvaluatableExpression {
+  constructor(
+    readonly range: Range,
+    readonly expression?: string,
+  ) {}
+}
+
+export class DebugAdapterExecutable {
+  constructor(
+    readonly command: string,
+    readonly args: string[],
+    readonly options?: { env?: Record<string, string>; cwd?: string },
+  ) {}
+}
+
 export class DocumentLink {
   tooltip?: string;
   constructor(
@@ -149,6 +164,12 @@ export const providers = {
   definitions: [] as Array<{
     selector: unknown;
     provider: { provideDefinition(d: FakeDocument, p: Position): Location | undefined };
+  }>,
+  evaluatable: [] as Array<{
+    selector: unknown;
+    provider: {
+      provideEvaluatableExpression(d: { lineAt(line: number): { text: string } }, p: Position): EvaluatableExpression | undefined;
+    };
   }>,
 };
 
@@ -379,6 +400,10 @@ export const workspace = {
       return Promise.resolve(new TextEncoder().encode(text));
     },
   },
+  textDocuments: [] as Array<{ uri: Uri; isDirty: boolean; save(): Promise<boolean> }>,
+  getWorkspaceFolder(_uri: Uri): { uri: Uri } | undefined {
+    return workspace.workspaceFolders?.[0];
+  },
   getConfiguration(_section: string) {
     return new Configuration(settings);
   },
@@ -423,6 +448,10 @@ export const languages = {
     providers.definitions.push({ selector, provider });
     return { dispose: () => undefined };
   },
+  registerEvaluatableExpressionProvider(selector: unknown, provider: (typeof providers.evaluatable)[number]['provider']) {
+    providers.evaluatable.push({ selector, provider });
+    return { dispose: () => undefined };
+  },
   setTextDocumentLanguage(document: FakeDocument, languageId: string): Promise<FakeDocument> {
     // As VS Code does: the document is closed, then opened again with the new language.
     for (const listener of closeListeners) listener(document);
@@ -454,5 +483,37 @@ export const tasks = {
 export const extensions = {
   getExtension(id: string): unknown {
     return id === 'ms-python.python' ? pythonExtension : undefined;
+  },
+};
+
+// --- debug -------------------------------------------------------------------
+
+/** What the extension registered for a debugger type, and the sessions it started. */
+export const debuggers = {
+  configurationProviders: new Map<string, { resolveDebugConfiguration(folder: unknown, config: Record<string, unknown>): unknown }>(),
+  descriptorFactories: new Map<string, { createDebugAdapterDescriptor(session: unknown, executable: unknown): unknown }>(),
+  trackerFactories: new Map<
+    string,
+    { createDebugAdapterTracker(session: unknown): { onDidSendMessage?(message: unknown): void } | undefined }
+  >(),
+  started: [] as Array<{ folder: unknown; config: Record<string, unknown> }>,
+};
+
+export const debug = {
+  registerDebugConfigurationProvider(type: string, provider: Parameters<typeof debuggers.configurationProviders.set>[1]) {
+    debuggers.configurationProviders.set(type, provider);
+    return { dispose: () => debuggers.configurationProviders.delete(type) };
+  },
+  registerDebugAdapterDescriptorFactory(type: string, factory: Parameters<typeof debuggers.descriptorFactories.set>[1]) {
+    debuggers.descriptorFactories.set(type, factory);
+    return { dispose: () => debuggers.descriptorFactories.delete(type) };
+  },
+  registerDebugAdapterTrackerFactory(type: string, factory: Parameters<typeof debuggers.trackerFactories.set>[1]) {
+    debuggers.trackerFactories.set(type, factory);
+    return { dispose: () => debuggers.trackerFactories.delete(type) };
+  },
+  startDebugging(folder: unknown, config: Record<string, unknown>): Promise<boolean> {
+    debuggers.started.push({ folder, config });
+    return Promise.resolve(true);
   },
 };
