@@ -34,6 +34,8 @@ NOT_FOR_CHECK = (
     "regex",
     "fanuc_macro.lsp",
     "fanuc_macro.ide.thread_generator",
+    "fanuc_macro.ide.arc_thread_generator",
+    "fanuc_macro.ide.drum_groove_generator",
     "fanuc_macro.ide.thread_snippet",
 )
 

@@ -1,0 +1,237 @@
+"""The drum-shaped spiral groove (seed 003): chained taper threads (continuous G32) through the
+profile points, layer by layer, in one G65 macro.  The pass and cut counts in the comments are
+read from executing the generated program."""
+
+from __future__ import annotations
+
+import itertools
+import math
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+from typing import Any
+
+from ..threads.profile import CrownFit, fit_crown
+from .generated_program import (
+    Lines,
+    count_of,
+    execute,
+    num,
+    program_number,
+)
+
+__all__ = ["DRUM_PROFILE", "DrumGrooveProgram", "build_drum_groove", "generate_drum_groove"]
+
+# Seed 003, table 1: the drum profile (X diameter, Z), 5 segments right of Z0, 6 left.
+DRUM_PROFILE: tuple[tuple[float, float], ...] = (
+    (298.91, 205.0),
+    (302.104, 173.0),
+    (304.83, 140.0),
+    (307.092, 105.0),
+    (308.708, 70.0),
+    (309.677, 35.0),
+    (310.0, 0.0),
+    (309.677, -35.0),
+    (308.708, -70.0),
+    (307.092, -105.0),
+    (304.83, -140.0),
+    (303.246, -160.0),
+)
+
+
+# Profile points live in common variables: X of point i in #[110+i], Z in #[130+i].  #100-#149
+# exist on every control without the extended-common option, so at most 19 points fit.
+_X_BASE = 110
+_Z_BASE = 130
+_MAX_POINTS = 19
+
+
+@dataclass(frozen=True)
+class DrumGrooveProgram:
+    """The generated drum-groove programs and what executing them gave."""
+
+    text: str
+    passes: int  # cuts through the whole profile
+    segments_per_pass: int  # taper-thread G32 segments through the profile points
+    g32_cuts: int  # every G32 block executed (run-in blocks included)
+
+
+def build_drum_groove(
+    points: Sequence[tuple[float, float]] | None,
+    pitch: float,
+    layers: int = 9,
+    radial_step: float = 0.8,
+    axial_step: float = 0.5,
+    *,
+    cuts_per_layer: int = 1,
+    direction: int = -1,
+    run_in: float = 10.0,
+    clearance: float = 10.0,
+    spindle_speed: int = 80,
+    tool: int = 1,
+    main_number: int = 10,
+    macro_number: int = 1,
+) -> DrumGrooveProgram:
+    """:func:`generate_drum_groove` with the measured pass and cut counts."""
+    pts = [(float(x), float(z)) for x, z in (DRUM_PROFILE if points is None else points)]
+    if not 2 <= len(pts) <= _MAX_POINTS:
+        raise ValueError(f"{len(pts)} profile points: give 2-{_MAX_POINTS}")
+    for name, value in (("pitch", pitch), ("radial step", radial_step), ("run-in", run_in)):
+        if not value > 0 or not math.isfinite(value):
+            raise ValueError(f"{name} {value!r} must be a positive number")
+    if not axial_step >= 0 or not math.isfinite(axial_step):
+        raise ValueError(f"axial step {axial_step!r} must not be negative")
+    if not 1 <= layers <= 999 or not 1 <= cuts_per_layer <= 999:
+        raise ValueError(f"layers {layers} and cuts per layer {cuts_per_layer} must be 1-999")
+    if direction not in (-1, 1):
+        raise ValueError(f"direction {direction} must be -1 (right to left) or +1")
+    if not clearance > 0:
+        raise ValueError(f"clearance {clearance!r} must be positive")
+    if not 1 <= spindle_speed <= 99999:
+        raise ValueError(f"spindle speed S{spindle_speed} is outside 1-99999")
+    if program_number(main_number, "main") == program_number(macro_number, "macro"):
+        raise ValueError(f"the main program and the macro are both O{main_number:04d}")
+    sense = math.copysign(1.0, pts[0][1] - pts[1][1])  # +1: cutting toward -Z
+    for i, ((x0, z0), (x1, z1)) in enumerate(itertools.pairwise(pts), 1):
+        dz = z0 - z1
+        if dz == 0 or math.copysign(1.0, dz) != sense:
+            raise ValueError(
+                f"profile points {i} (Z{z0:g}) and {i + 1} (Z{z1:g}): Z must change in one "
+                "direction along the whole profile"
+            )
+        if abs(x1 - x0) / 2.0 >= abs(dz):
+            raise ValueError(
+                f"segment {i}-{i + 1} (X{x0:g} Z{z0:g} to X{x1:g} Z{z1:g}) is steeper than "
+                "45 degrees: G32 F would be the lead along X, not Z"
+            )
+    depth = layers * radial_step
+    lowest = min(x for x, _ in pts)
+    if 2.0 * depth >= lowest:
+        raise ValueError(
+            f"{layers} layers x {radial_step:g} = {depth:g} mm deep is more than the radius "
+            f"of the smallest profile diameter {lowest:g}"
+        )
+    retract_x = max(x for x, _ in pts) + 2.0 * clearance
+    start_z = pts[0][1] + sense * run_in
+    shift = direction * axial_step
+    try:
+        crown: CrownFit | None = fit_crown(pts)
+    except ValueError:
+        crown = None  # two points, or points on a line: a taper, not a crown
+    except ImportError:
+        crown = None  # no numpy (the bundled server): the program is the same without it
+
+    def render(notes: Mapping[str, str]) -> Lines:
+        out = Lines()
+        out.add("%")
+        out.add(f"O{main_number:04d}", "DRUM SPIRAL GROOVE - CHAINED TAPER THREADS")
+        last = len(pts)
+        xs = f"#{_X_BASE + 1}-#{_X_BASE + last}"
+        zs = f"#{_Z_BASE + 1}-#{_Z_BASE + last}"
+        out.add("", f"PROFILE: X IN {xs}, Z IN {zs}")
+        if crown is not None:
+            out.add(
+                "",
+                f"CROWN R{crown.radius:.1f} (BEST-FIT CIRCLE, POINTS WITHIN "
+                f"{crown.max_deviation:.3f} MM OF IT)",
+            )
+        for i, (x, z) in enumerate(pts, 1):
+            out.add(f"#{_X_BASE + i}={num(x)}", f"POINT {i} X")
+            out.add(f"#{_Z_BASE + i}={num(z)}", f"POINT {i} Z")
+        out.add(f"T{tool:02d}{tool:02d}", "GROOVING TOOL")
+        out.add(f"G97 S{spindle_speed} M03", "SPINDLE")
+        out.add(f"G00 X{num(retract_x)} Z{num(start_z)}", "START POINT")
+        call = " ".join(
+            [
+                f"G65 P{macro_number:04d}",
+                f"A{last}.",
+                f"B{cuts_per_layer}.",
+                f"C{layers}.",
+                f"D{num(radial_step)}",
+                f"E{num(shift)}",
+                f"F{num(pitch)}",
+                f"K{num(sense * run_in)}",
+                f"V{num(retract_x)}",
+            ]
+        )
+        out.add(call, f"{count_of(layers, 'LAYER')} {notes.get('call', '')}", key="call")
+        out.add(f"G00 X{num(retract_x)} Z{num(start_z)}", "BACK TO THE START POINT")
+        out.add("M05", "SPINDLE STOP")
+        out.add("M30", "END OF PROGRAM")
+
+        out.add(f"O{macro_number:04d}", "DRUM GROOVE - LAYERS OF CHAINED G32 TAPER THREADS")
+        out.add("", f"A=#1 POINTS: X IN #{_X_BASE}+I, Z IN #{_Z_BASE}+I, B=#2 CUTS PER LAYER")
+        out.add("", "C=#3 LAYERS, D=#7 RADIAL STEP, E=#8 AXIAL STEP PER CUT, F=#9 PITCH")
+        out.add("", "K=#6 RUN-IN BEFORE POINT 1, V=#22 RETRACT X")
+        out.add("#30=1.", "LAYER")
+        out.add("WHILE[#30LE#3]DO1", "EACH LAYER")
+        out.add("#31=#30*#7", "RADIAL DEPTH OF THE LAYER")
+        out.add("#32=0.", "CUT OF THE LAYER")
+        out.add("WHILE[#32LT#2]DO2", "EACH CUT OF THE LAYER")
+        out.add("#33=#32*#8", "AXIAL SHIFT OF THE CUT")
+        out.add(f"G00 Z[#{_Z_BASE + 1}+#33+#6]", "RUN-IN START")
+        out.add(f"X[#{_X_BASE + 1}-2.*#31]", "DEPTH OF THE LAYER")
+        out.add(f"G32 Z[#{_Z_BASE + 1}+#33] F#9", "RUN-IN TO POINT 1", key="runin")
+        out.add("#10=2.", "NEXT POINT")
+        out.add("WHILE[#10LE#1]DO3", "THROUGH THE PROFILE")
+        out.add(
+            f"G32 X[#[{_X_BASE}+#10]-2.*#31] Z[#[{_Z_BASE}+#10]+#33]",
+            "TAPER THREAD TO THE POINT",
+            key="segment",
+        )
+        out.add("#10=#10+1.")
+        out.add("END3")
+        out.add("G00 X#22", "RETRACT")
+        out.add("#32=#32+1.")
+        out.add("END2")
+        out.add("#30=#30+1.")
+        out.add("END1")
+        out.add("M99", "BACK TO THE MAIN PROGRAM")
+        out.add("%")
+        return out
+
+    draft = render({})
+    analysis = execute(draft.text())
+    facts = analysis.facts
+    assert facts is not None
+    g32 = [m for m in facts.motions if m.code == "G32"]
+    segment_line = draft.at["segment"]
+    segments = sum(1 for m in g32 if m.line == segment_line)
+    passes = sum(1 for m in g32 if m.line == draft.at["runin"])
+    if passes == 0 or segments % passes:
+        raise RuntimeError("executing the drum groove macro gave no whole passes")
+    notes = {
+        "call": f"X {count_of(cuts_per_layer, 'CUT')} = {count_of(passes, 'PASS')} OF "
+        f"{segments // passes} TAPER SEGMENTS, {len(g32)} G32 BLOCKS"
+    }
+    return DrumGrooveProgram(
+        text=render(notes).text(),
+        passes=passes,
+        segments_per_pass=segments // passes,
+        g32_cuts=len(g32),
+    )
+
+
+def generate_drum_groove(
+    points: Sequence[tuple[float, float]] | None,
+    pitch: float,
+    layers: int = 9,
+    radial_step: float = 0.8,
+    axial_step: float = 0.5,
+    **options: Any,
+) -> str:
+    """A main program and one G65 macro that cut the drum groove layer by layer.
+
+    ``points`` are (X diameter, Z) of the profile (None: the paper's 12 points); each
+    pass is a straight G32 run-in to point 1 and a chain of G32 taper threads through the
+    rest, at the layer's depth (``radial_step`` per layer, radius).  ``cuts_per_layer``
+    cuts per layer step ``axial_step`` along Z (``direction`` -1: right to left, as the
+    paper's T1).  The paper does not give the pitch (its figure 2 is lost): pass it.
+    """
+    return build_drum_groove(
+        points,
+        pitch,
+        layers,
+        radial_step,
+        axial_step,
+        **options,
+    ).text

@@ -1,0 +1,92 @@
+"""What the program generators share: FANUC number and comment text, a program text under
+construction, and executing a generated program with the project's evaluator (the numbers a
+generated comment states are read from that run, not from the formulas)."""
+
+from __future__ import annotations
+
+from ..analysis import Analysis, analyse
+
+__all__ = [
+    "GENERATED_URI",
+    "Lines",
+    "clean_comment",
+    "count_of",
+    "execute",
+    "mm",
+    "num",
+    "program_number",
+]
+
+GENERATED_URI = "generated:thread-program.nc"
+
+
+def num(value: float, places: int = 4) -> str:
+    """A FANUC number with a decimal point: ``50.``, ``0.048``, ``-0.5``."""
+    text = f"{value:.{places}f}".rstrip("0")
+    if text in ("-0.", "0.", "-."):
+        return "0."
+    return text
+
+
+def mm(value: float) -> str:
+    """A measured length for a comment, to the least input increment (0.001 mm)."""
+    text = f"{value:.3f}"
+    return "0.000" if text == "-0.000" else text
+
+
+def count_of(n: int, word: str) -> str:
+    """``1 SPRING PASS``, ``8 SPRING PASSES``."""
+    plural = word + ("ES" if word.endswith("S") else "S")
+    return f"{n} {word if n == 1 else plural}"
+
+
+def clean_comment(text: str) -> str:
+    # Old controls read only upper-case ASCII in comments, and a ')' would end the comment.
+    cleaned = text.upper().replace("(", "").replace(")", "").replace("%", " PCT")
+    if not cleaned.isascii():
+        raise ValueError(f"comment {text!r} must be ASCII for old controls")
+    return " ".join(cleaned.split())
+
+
+class Lines:
+    """A program text under construction; ``key`` remembers where a block landed."""
+
+    def __init__(self) -> None:
+        self.lines: list[str] = []
+        self.at: dict[str, int] = {}
+
+    def add(self, code: str, comment: str = "", key: str | None = None) -> None:
+        if key is not None:
+            self.at[key] = len(self.lines)
+        note = clean_comment(comment)
+        if code and note:
+            self.lines.append(f"{code} ({note})")
+        elif note:
+            self.lines.append(f"({note})")
+        else:
+            self.lines.append(code)
+
+    def text(self) -> str:
+        return "\n".join(self.lines) + "\n"
+
+
+def program_number(value: int, what: str) -> int:
+    if not 1 <= value <= 9999:
+        raise ValueError(f"{what} program number O{value} is outside O0001-O9999")
+    return value
+
+
+def execute(text: str) -> Analysis:
+    """Analyse (parse, evaluate, check) a generated program; fail loudly if it did not run."""
+    analysis = analyse(text, GENERATED_URI)
+    facts = analysis.facts
+    if facts is None:
+        raise RuntimeError("the evaluator failed on the generated program")
+    if facts.stopped is not None:
+        raise RuntimeError(f"the evaluator stopped early on the generated program: {facts.stopped}")
+    alarms = [
+        f.message for f in facts.document(GENERATED_URI).findings if f.kind.startswith("alarm:")
+    ]
+    if alarms:
+        raise RuntimeError(f"the generated program raises an alarm: {alarms[0]}")
+    return analysis
