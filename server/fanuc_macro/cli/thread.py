@@ -1,7 +1,9 @@
 """``fanuc-macro thread DESIGNATION --length L``: print the symmetric thread module.
 
 The main program (O4009 shape, O4010 internal) enters D, P, L, es/EI and Td2/TD2 from the
-ISO 965-1 tables; the sub-program (O3331 / O3330) is the seed paper's.  A designation that
+ISO 965-1 tables; the sub-program (O3331 / O3330) is the seed paper's, extended as its
+"parameter adjustment" paragraph says: flank infeed, taper, multi-start (``M24xPh4P2-6g``)
+and left-hand (``M20x2-6g-LH``) threads.  A designation that
 cannot be read or is not in the tables exits 2 with a one-line message.
 """
 
@@ -49,6 +51,21 @@ def _program(text: str) -> int:
     return int(match.group(1))
 
 
+def _taper(text: str) -> float:
+    """``1:16`` (a diametral taper as pipe threads give it), ``-1:16`` or ``0.0625``."""
+    match = re.fullmatch(r"\s*(-?)\s*1\s*:\s*(\d+(?:\.\d*)?)\s*", text)
+    try:
+        if match is not None:
+            value = 1.0 / float(match.group(2))
+            return -value if match.group(1) else value
+        return float(text)
+    except (ValueError, ZeroDivisionError):
+        pass
+    raise argparse.ArgumentTypeError(
+        f"{text!r} is not a taper (e.g. 1:16, or 0.0625 mm of diameter per mm of length)"
+    )
+
+
 def _count(text: str) -> int:
     try:
         value = int(text)
@@ -73,6 +90,8 @@ def cmd_thread(args: argparse.Namespace) -> int:
             sub_number=args.sub,
             td2_override=args.td2,
             deviation_override=args.deviation,
+            infeed=args.infeed,
+            taper=args.taper,
         )
     except ValueError as err:
         message = " ".join(str(err).split())
@@ -93,7 +112,11 @@ def add_thread_command(
         "O4009 external / O4010 internal, sub-program O3331 / O3330) for an ISO metric thread, "
         "with es/EI and Td2/TD2 from ISO 965-1 and the computed values in comments.",
     )
-    thread.add_argument("designation", metavar="DESIGNATION", help="e.g. M50x3-5g6g, M10-6H")
+    thread.add_argument(
+        "designation",
+        metavar="DESIGNATION",
+        help="e.g. M50x3-5g6g, M10-6H, M24xPh4P2-6g (two starts), M20x2-6g-LH (left hand)",
+    )
     thread.add_argument(
         "--length", type=float, required=True, metavar="L", help="thread length L (mm)"
     )
@@ -142,6 +165,23 @@ def add_thread_command(
         default=None,
         metavar="MM",
         help="es/EI magnitude instead of the table's",
+    )
+    thread.add_argument(
+        "--infeed",
+        choices=("symmetric", "alternate", "left", "right"),
+        default="symmetric",
+        help="how the rough passes go down: symmetric, both flanks each pass (the paper's; "
+        "default); alternate, the left flank one pass and the right the next (the left-right "
+        "method); left or right, one flank only (as G76)",
+    )
+    thread.add_argument(
+        "--taper",
+        type=_taper,
+        default=0.0,
+        metavar="1:16",
+        help="a taper thread: the diameter change per length (1:16, or 0.0625); the nominal "
+        "diameter is the one at Z0, an external thread growing toward -Z, an internal one "
+        "shrinking (a negative taper the other way)",
     )
     thread.set_defaults(func=cmd_thread)
     return thread

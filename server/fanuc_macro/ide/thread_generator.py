@@ -31,6 +31,7 @@ from .generated_program import (
 )
 
 __all__ = [
+    "INFEEDS",
     "MATERIAL_COEFFICIENTS",
     "ThreadModule",
     "build_module",
@@ -130,6 +131,16 @@ def _coefficient_text(coefficient: float) -> str:
     return num(coefficient, 8)
 
 
+# How the rough passes reach the depth (seed 000, "参数调整方法": with fewer statements the
+# module becomes the left-right method; one flank only is G76's infeed).
+INFEEDS: Mapping[str, str] = {
+    "symmetric": "SYMMETRIC LEFT-RIGHT CUTTING",  # both flanks every pass: the paper's
+    "alternate": "ALTERNATE FLANK INFEED",  # left flank one pass, right flank the next
+    "left": "LEFT FLANK INFEED",  # every pass on the -Z flank
+    "right": "RIGHT FLANK INFEED",  # every pass on the +Z flank
+}
+
+
 @dataclass(frozen=True)
 class _ModuleSpec:
     diameter: float
@@ -146,16 +157,33 @@ class _ModuleSpec:
     title: str  # designation (or "M50X3") for the header
     deviation_note: str
     tolerance_note: str
+    infeed: str = "symmetric"
+    taper: float = 0.0  # diameter change per mm of length (#106); 0: a parallel thread
+    starts: int = 1  # lead = starts x pitch (#105)
+    left_hand: bool = False  # cut toward +Z
+
+
+def _taper_text(taper: float) -> str:
+    """``1:16`` for a ratio of whole numbers, else the diameter change per mm."""
+    ratio = 1.0 / abs(taper)
+    if abs(ratio - round(ratio)) < 1e-9:
+        return f"{'-' if taper < 0 else ''}1:{round(ratio)}"
+    return f"{num(taper, 6)} PER MM"
 
 
 def _render_module(spec: _ModuleSpec, notes: Mapping[str, str]) -> Lines:
-    """The module text; ``notes`` adds measured numbers to the keyed blocks' comments."""
+    """The module text; ``notes`` adds measured numbers to the keyed blocks' comments.
+
+    Without the options (symmetric infeed, parallel, one start, right hand) the statements
+    are the paper's, character for character."""
 
     def note(key: str, base: str) -> str:
         return notes.get(key, base)
 
     internal = spec.internal
     d = spec.diameter
+    multi = spec.starts > 1
+    tapered = spec.taper != 0.0
     side = "INTERNAL" if internal else "EXTERNAL"
     out = Lines()
     out.add("%")
@@ -172,11 +200,22 @@ def _render_module(spec: _ModuleSpec, notes: Mapping[str, str]) -> Lines:
     else:
         out.add(f"G00 X{num(d + 5.0)} Z0.", "POSITION")
     out.add(f"G97 S{spec.spindle_speed} M03 M8", "THREADING SPEED, COOLANT ON")
-    out.add(f"#100={num(d)}", "NOMINAL DIAMETER")
+    out.add(f"#100={num(d)}", "NOMINAL DIAMETER" + (" AT Z0" if tapered else ""))
     out.add(f"#101={num(spec.pitch)}", "PITCH")
     out.add(f"#102={num(spec.length)}", "THREAD LENGTH")
     out.add(f"#103={num(spec.deviation)}", spec.deviation_note)
     out.add(f"#104={num(spec.pitch_tolerance)}", spec.tolerance_note)
+    if multi:
+        out.add(
+            f"#105={num(spec.starts * spec.pitch)}",
+            f"LEAD PH = {spec.starts} STARTS X PITCH",
+        )
+    if tapered:
+        grows = "SHRINKS" if internal else "GROWS"
+        out.add(
+            f"#106={num(spec.taper, 8)}",
+            f"TAPER {_taper_text(spec.taper)}: THE DIAMETER {grows} BY #106 PER MM TOWARD -Z",
+        )
     out.add(
         f"M98 P001{spec.sub_number:04d}", note("call", f"CALL O{spec.sub_number:04d}"), key="call"
     )
@@ -190,17 +229,21 @@ def _render_module(spec: _ModuleSpec, notes: Mapping[str, str]) -> Lines:
     out.add("M9", "COOLANT OFF")
     out.add("M30", "END OF PROGRAM")
 
-    # The sub-program: the paper's statements; only the coefficient and n' are options.
+    # The sub-program: the paper's statements; the options change only the words they need.
     coef = spec.coefficient
     ref = "#11" if internal else "#100"
     sign = "+" if internal else "-"
     back = "-" if internal else "+"
-    out.add(
-        f"O{spec.sub_number:04d}",
-        f"{side} THREAD SUB - SYMMETRIC LEFT-RIGHT CUTTING, G92",
-    )
-    out.add("#1=1.*#101", "RUN-OUT DELTA2")
-    out.add("#2=2.*#101+#101+FIX[#102/#101]*#101-#102", "RUN-IN DELTA1")
+    lead = "#105" if multi else "#101"
+    infeed = spec.infeed
+    title = INFEEDS[infeed] + (", LEFT HAND" if spec.left_hand else "")
+    out.add(f"O{spec.sub_number:04d}", f"{side} THREAD SUB - {title}, G92")
+    if multi:
+        out.add(f"#1=1.*{lead}", "RUN-OUT DELTA2 FROM THE LEAD")
+        out.add(f"#2=2.*{lead}+{lead}+FIX[#102/{lead}]*{lead}-#102", "RUN-IN DELTA1 FROM THE LEAD")
+    else:
+        out.add("#1=1.*#101", "RUN-OUT DELTA2")
+        out.add("#2=2.*#101+#101+FIX[#102/#101]*#101-#102", "RUN-IN DELTA1")
     if internal:
         out.add("#3=#101/[16*SIN[60]]", note("r", "TOOL NOSE RADIUS"), key="r")
         out.add("#4=[6./8.]*SIN[60]*#101-#3+#103/2.+#104/4.", note("h", "THREAD HEIGHT"), key="h")
@@ -209,6 +252,12 @@ def _render_module(spec: _ModuleSpec, notes: Mapping[str, str]) -> Lines:
         out.add("#4=[7./8.]*SIN[60]*#101-#3+#103/2.+#104/4.", note("h", "THREAD HEIGHT"), key="h")
     out.add(f"#5=[{coef}]*SQRT[#4]", note("apmax", "FIRST DEPTH AP MAX"), key="apmax")
     out.add(f"#6=[{coef}]*SQRT[#5]", note("apmin", "MIN DEPTH AND ALLOWANCE AP MIN"), key="apmin")
+    if multi:
+        # One call cuts every start: the passes of all the starts are one thread.
+        out.add("#16=0.", "START NUMBER, 0 THE FIRST")
+        out.add("#17=ROUND[#105/#101]", "STARTS = LEAD / PITCH")
+        out.add("WHILE[#16LT#17]DO1", "EACH START, ONE PITCH FURTHER IN Z", key="start")
+        out.add("#15=#16*#101", "Z SHIFT OF THIS START")
     out.add("#7=1.", "PASS NUMBER")
     out.add("#8=#5*[SQRT[#7]-SQRT[#7-1.]]", "DEPTH OF THE PASS")
     out.add("#9=#5*SQRT[#7]", "TOTAL DEPTH")
@@ -217,14 +266,67 @@ def _render_module(spec: _ModuleSpec, notes: Mapping[str, str]) -> Lines:
         out.add("#11=#100-2.*[5./8.]*SIN[60]*#101", note("d1", "MINOR DIAMETER D1"), key="d1")
     if spec.spring_passes >= 2:
         out.add(f"#12={spec.spring_passes}.", "SPRING PASSES")
-    start_x = "[#11-1.]" if internal else "[#100+1.]"
-    cut = "W[-#2-#102-#1] R0 F#101"
-    out.add(f"G01 X{start_x} W[#2] G99 F0.5", "POSITION")
-    out.add("N10 G01 W[-#10]", "LOOP START - STEP LEFT BY U", key="n10")
-    out.add(f"G92 X[{ref}{sign}2.*#9] {cut}", "CUT")
-    out.add("G01 W[2.*#10]", "STEP RIGHT BY 2U")
-    out.add(f"G92 X[{ref}{sign}2.*#9] {cut}", "CUT")
-    out.add("G01 W[-#10]", "BACK TO THE MIDDLE")
+    if infeed == "alternate":
+        out.add("#13=-1.", "FLANK OF THE PASS: -1 LEFT, +1 RIGHT")
+    # The run-in of a start past the first is one pitch longer per start (#15): every start
+    # ends where the first does, and the spindle's one-turn signal puts it a pitch further.
+    shift = "+#15" if multi else ""
+    run = f"#2{shift}+#102+#1"  # the cut's length along Z
+    if spec.left_hand:
+        # Toward +Z: the run-in lies left of the thread, the run-out right of Z0.
+        position = f"W[-#102-#2{shift.replace('+', '-')}]"
+        travel = f"W[{run}]"
+        end = "-#1"  # where the cut ends, as a distance toward -Z from Z0
+    else:
+        position = f"W[#2{shift}]"
+        travel = f"W[-#2{shift.replace('+', '-')}-#102-#1]"
+        end = "#102+#1"
+    if tapered:
+        # G92 R: the radius at the cut's start minus the radius at its end.  An external
+        # cone grows toward -Z, an internal one shrinks (#106 > 0).
+        towards_minus_z = (not internal) != spec.left_hand
+        out.add(
+            f"#14={'-' if towards_minus_z else ''}#106*[{run}]/2.",
+            "TAPER R OF THE CUT, RADIUS",
+        )
+        taper_word = "R#14"
+        cone = "-" if internal else "+"
+        clear = "-" if internal else "+"
+        start_x = f"[{ref}{clear}ABS[#106]*[{run}]{clear}1.]"
+    else:
+        taper_word = "R0"
+        cone = ""
+        start_x = "[#11-1.]" if internal else "[#100+1.]"
+
+    def target(depth: str, flank: str = "") -> str:
+        """The cut's X: the cone at the cut's end (moved ``flank`` along Z), less the depth."""
+        if not tapered:
+            return f"X[{ref}{depth}]"
+        return f"X[{ref}{cone}#106*[{end}{flank}]{depth}]"
+
+    cut = f"{travel} {taper_word} F{lead}"
+    out.add(f"G01 X{start_x} {position} G99 F0.5", "POSITION")
+    rough = f"{sign}2.*#9"
+    if infeed == "symmetric":
+        out.add("N10 G01 W[-#10]", "LOOP START - STEP LEFT BY U", key="n10")
+        out.add(f"G92 {target(rough, '+#10')} {cut}", "CUT")
+        out.add("G01 W[2.*#10]", "STEP RIGHT BY 2U")
+        out.add(f"G92 {target(rough, '-#10')} {cut}", "CUT")
+        out.add("G01 W[-#10]", "BACK TO THE MIDDLE")
+    elif infeed == "alternate":
+        out.add("N10 G01 W[#13*#10]", "LOOP START - STEP TO THE FLANK BY U", key="n10")
+        out.add(f"G92 {target(rough, '-#13*#10')} {cut}", "CUT")
+        out.add("G01 W[-#13*#10]", "BACK TO THE MIDDLE")
+        out.add("#13=-#13", "THE OTHER FLANK NEXT PASS")
+    else:
+        left = infeed == "left"
+        out.add(
+            f"N10 G01 W[{'-' if left else ''}#10]",
+            f"LOOP START - STEP {infeed.upper()} BY U",
+            key="n10",
+        )
+        out.add(f"G92 {target(rough, '+#10' if left else '-#10')} {cut}", "CUT")
+        out.add(f"G01 W[{'' if left else '-'}#10]", "BACK TO THE MIDDLE")
     out.add("#7=#7+1.", "NEXT PASS")
     out.add("#8=#5*[SQRT[#7]-SQRT[#7-1.]]", "DEPTH OF THE NEXT PASS")
     out.add(
@@ -238,18 +340,30 @@ def _render_module(spec: _ModuleSpec, notes: Mapping[str, str]) -> Lines:
         key="if_lt",
     )
     out.add("#10=[#4+#3-#6-#9]*TAN[30]-#3*TAN[30]", "NEXT SIDE OFFSET")
+    paper = infeed == "symmetric" and not tapered
+    # The paper's pairs cut the last depth left and right of the straight rough pass; a
+    # single cut there within 0.001 mm of H-AP MIN would only repeat that pass.
     out.add(
-        "IF[#9LT[#4-#6]] GOTO10",
+        "IF[#9LT[#4-#6]] GOTO10" if paper else "IF[#9LT[#4-#6-0.001]] GOTO10",
         note("loop", "UNTIL THE TOTAL DEPTH REACHES H-AP MIN"),
         key="loop",
     )
-    out.add(f"G92 X[{ref}{sign}2.*#4{back}2.*#6] {cut}", "STRAIGHT INFEED ROUGH - LEAVE AP MIN")
-    out.add(f"X[{ref}{sign}2.*#4]", note("finish", "STRAIGHT INFEED FINISH"), key="finish")
+    out.add(
+        f"G92 {target(f'{sign}2.*#4{back}2.*#6')} {cut}", "STRAIGHT INFEED ROUGH - LEAVE AP MIN"
+    )
+    out.add(target(f"{sign}2.*#4"), note("finish", "STRAIGHT INFEED FINISH"), key="finish")
     if spec.spring_passes >= 1:
-        out.add(f"N20 G92 X[{ref}{sign}2.*#4] {cut}", note("spring", "SPRING PASS"), key="spring")
+        out.add(
+            f"N20 G92 {target(f'{sign}2.*#4')} {cut}", note("spring", "SPRING PASS"), key="spring"
+        )
     if spec.spring_passes >= 2:
         out.add("#12=#12-1.", "COUNT THE SPRING PASSES")
         out.add("IF[#12GT0.] GOTO20", "REPEAT THE SPRING PASS")
+    if multi:
+        back_to_z0 = "W[#102+#2+#15]" if spec.left_hand else "W[-#2-#15]"
+        out.add(f"G01 {back_to_z0} F0.5", "BACK TO Z0")
+        out.add("#16=#16+1.", "NEXT START")
+        out.add("END1")
     out.add("M99", "BACK TO THE MAIN PROGRAM")
     out.add("%")
     return out
@@ -271,8 +385,17 @@ def build_module_from_values(
     designation: ThreadDesignation | None = None,
     deviation_note: str | None = None,
     tolerance_note: str | None = None,
+    infeed: str = "symmetric",
+    taper: float = 0.0,
+    starts: int = 1,
+    left_hand: bool = False,
 ) -> ThreadModule:
-    """The module for explicit values; ``deviation`` is |es| or EI, a magnitude (#103)."""
+    """The module for explicit values; ``deviation`` is |es| or EI, a magnitude (#103).
+
+    ``infeed`` is one of :data:`INFEEDS`; ``taper`` the diameter change per mm of length
+    (1/16 for a 1:16 cone; positive: an external thread grows toward -Z, an internal one
+    shrinks, the nominal diameter being the one at Z0); ``starts`` the number of starts (the
+    lead is ``starts`` x ``pitch``); ``left_hand`` cuts toward +Z."""
     for name, value in (("diameter", diameter), ("pitch", pitch), ("length", length)):
         if not value > 0 or not math.isfinite(value):
             raise ValueError(f"thread {name} {value!r} must be a positive number")
@@ -288,6 +411,14 @@ def build_module_from_values(
         raise ValueError(f"spring passes {spring_passes} must be 0-99")
     if not 1 <= spindle_speed <= 99999:
         raise ValueError(f"spindle speed S{spindle_speed} is outside 1-99999")
+    if infeed not in INFEEDS:
+        raise ValueError(f"infeed {infeed!r} is not one of {', '.join(INFEEDS)}")
+    # Beyond 1:2 (a half-angle of 14 degrees) a G92 thread's depth is no longer the
+    # radial depth the module computes; pipe threads are 1:16.
+    if not math.isfinite(taper) or abs(taper) > 0.5:
+        raise ValueError(f"taper {taper!r} must be a diameter change of at most 0.5 per mm (1:2)")
+    if not 1 <= starts <= 9:
+        raise ValueError(f"{starts} starts: the module cuts 1-9")
     default_main, default_sub = default_program_numbers(internal)
     main = program_number(default_main if main_number is None else main_number, "main")
     sub = program_number(default_sub if sub_number is None else sub_number, "sub")
@@ -318,6 +449,10 @@ def build_module_from_values(
         title=title,
         deviation_note=deviation_note,
         tolerance_note=tolerance_note,
+        infeed=infeed,
+        taper=taper,
+        starts=starts,
+        left_hand=left_hand,
     )
 
     draft = _render_module(spec, {})
@@ -330,11 +465,16 @@ def build_module_from_values(
     first = _written(facts, at["apmax"])
     smallest = _written(facts, at["apmin"])
     u = _written(facts, at["u"])
-    passes = _runs(facts, at["n10"])
+    passes = _runs(facts, at["n10"]) // starts  # of each start
+    per_pass = 2 if infeed == "symmetric" else 1
     g92 = [m for m in facts.motions if m.code == "G92"]
     if not g92 or "X" not in g92[-1].words:
         raise RuntimeError("executing the generated module gave no G92 cut")
     final_x = g92[-1].words["X"]
+    # On a cone the final X is the one at the cut's end.
+    where = f"X{mm(final_x)}"
+    if taper and g92[-1].z is not None:
+        where += f" AT Z{mm(g92[-1].z)}"
 
     notes = {
         "r": f"TOOL NOSE RADIUS R={mm(r)}",
@@ -343,10 +483,12 @@ def build_module_from_values(
         "apmin": f"MIN DEPTH AND FINISH ALLOWANCE AP MIN={mm(smallest)}",
         "u": f"SIDE OFFSET U={mm(u)} OF THE FIRST PASS",
         "loop": f"UNTIL THE TOTAL DEPTH REACHES H-AP MIN: {count_of(passes, 'ROUGH PASS')}, "
-        f"{2 * passes} G92 CUTS",
-        "finish": f"STRAIGHT INFEED FINISH AT X{mm(final_x)}",
-        "spring": f"{count_of(spring_passes, 'SPRING PASS')} AT X{mm(final_x)}",
-        "call": f"CALL O{sub:04d}: {len(g92)} G92 CUTS, FINAL X{mm(final_x)}",
+        f"{per_pass * passes} G92 CUTS",
+        "finish": f"STRAIGHT INFEED FINISH AT {where}",
+        "spring": f"{count_of(spring_passes, 'SPRING PASS')} AT {where}",
+        "call": f"CALL O{sub:04d}: {len(g92)} G92 CUTS, FINAL {where}"
+        if starts == 1
+        else f"CALL O{sub:04d}: {starts} STARTS OF {len(g92) // starts} G92 CUTS, FINAL {where}",
     }
     if internal:
         notes["d1"] = f"MINOR DIAMETER D1={mm(_written(facts, at['d1']))}"
@@ -390,6 +532,8 @@ def build_module(
     td2_override: float | None = None,
     deviation_override: float | None = None,
     spindle_speed: int = 400,
+    infeed: str = "symmetric",
+    taper: float = 0.0,
 ) -> ThreadModule:
     """:func:`generate_module` with the measured values (see :class:`ThreadModule`)."""
     if isinstance(designation, str):
@@ -398,15 +542,6 @@ def build_module(
         des = designation
         if internal is not None and internal != des.internal:
             raise ValueError(f"{des.text!r} is {'in' if des.internal else 'ex'}ternal")
-    if des.left_hand:
-        raise ValueError(
-            f"{des.text!r} is left-hand; the symmetric module cuts toward -Z with M03 "
-            "(right hand only)"
-        )
-    if des.starts > 1:
-        raise ValueError(
-            f"{des.text!r} has {des.starts} starts; the symmetric module cuts one start"
-        )
     grade = des.pitch_class
     which = "EI" if des.internal else "ES"
     tol_name = "TD2" if des.internal else "Td2"
@@ -449,6 +584,10 @@ def build_module(
         designation=des,
         deviation_note=deviation_note,
         tolerance_note=tolerance_note,
+        infeed=infeed,
+        taper=taper,
+        starts=des.starts,
+        left_hand=des.left_hand,
     )
 
 
@@ -463,6 +602,8 @@ def generate_module(
     sub_number: int | None = None,
     td2_override: float | None = None,
     deviation_override: float | None = None,
+    infeed: str = "symmetric",
+    taper: float = 0.0,
 ) -> str:
     """The symmetric thread module (main + sub-program) for ``designation``, thread length L.
 
@@ -470,6 +611,10 @@ def generate_module(
     from ISO 965-1 unless overridden.  ``coefficient`` is 0.2 for steel, 0.2/3 (default, the
     paper's) for molybdenum; ``spring_passes`` is n' (``#12``).  Raises ValueError for a bad
     designation or a thread the tables do not cover (give both overrides then).
+
+    A multi-start designation (``M24xPh4P2-6g``) cuts each start in turn, one pitch further
+    in Z, with the lead as F and the depth from the pitch; a left-hand one (``...-LH``) cuts
+    toward +Z.  ``infeed`` and ``taper``: see :func:`build_module_from_values`.
     """
     return build_module(
         designation,
@@ -481,6 +626,8 @@ def generate_module(
         sub_number=sub_number,
         td2_override=td2_override,
         deviation_override=deviation_override,
+        infeed=infeed,
+        taper=taper,
     ).text
 
 

@@ -163,12 +163,17 @@ def _growing(ctx: RuleContext, thread: Thread, internal: bool) -> Iterator[Diagn
     limit = ctx.config.max_depth_per_pass
     passes = thread.job.passes
     events = thread.job.remember(
-        ("growing", internal, limit), lambda: _growing_events(passes, internal, limit), ("x",)
+        ("growing", internal, limit),
+        lambda: _growing_events(passes, internal, limit),
+        ("x", "z", "start_z", "R", "W", "Z"),
     )
+    xs = _cone_xs(passes)
     for code, i, before in events:
         m, previous = passes[i], passes[before]
+        x, x_before = xs[i], xs[before]
         assert m.x is not None and previous.x is not None
-        step = (-1.0 if internal else 1.0) * (previous.x - m.x) / 2.0
+        assert x is not None and x_before is not None
+        step = (-1.0 if internal else 1.0) * (x_before - x) / 2.0
         if code == "MB803":
             message = (
                 f"{pass_name(thread, i, m)} at X{mm(m.x)} is {-step:.3f} mm shallower than "
@@ -191,16 +196,17 @@ def _growing_events(
     events: list[tuple[str, int, int]] = []
     reported: set[str] = set()
     previous: int | None = None
-    top = next((m.x for m in passes if m.x is not None), None)
-    for i, m in enumerate(passes):
-        if m.x is None or top is None:
+    xs = _cone_xs(passes)
+    top = next((x for x in xs if x is not None), None)
+    for i, x in enumerate(xs):
+        if x is None or top is None:
             continue
-        before = passes[previous].x if previous is not None else None
+        before = xs[previous] if previous is not None else None
         if previous is not None and before is not None:
-            step = sign * (before - m.x) / 2.0
+            step = sign * (before - x) / 2.0
             # Back to the first depth is the next start of a multi-start thread, or the
             # whole thread cut again: a new series, not a pass out of order.
-            restart = sign * (top - m.x) <= EPS
+            restart = sign * (top - x) <= EPS
             if step < -EPS and "back" not in reported and not restart:
                 reported.add("back")
                 events.append(("MB803", i, previous))
@@ -209,6 +215,30 @@ def _growing_events(
                 events.append(("MB804", i, previous))
         previous = i
     return events
+
+
+def _cone_xs(passes: list[Motion]) -> list[float | None]:
+    """Each pass's X, for a taper pass (G92 R) the X its cut reaches where the first pass ends.
+
+    Passes of a taper thread moved along Z (flank infeed, the steps of the symmetric module)
+    end on the cone at other diameters for one depth: compared at one Z, their X differ by
+    the depth alone.  G92's R is the radius at the cut's start less the one at its end, and
+    a block that repeats the cycle with X alone keeps the Z and R in force (0i-TF manual,
+    "Canned cycle for lathe"; unverified on a machine)."""
+    z_ref = next((m.z for m in passes if m.z is not None), None)
+    xs: list[float | None] = []
+    taper = end_z = None
+    for m in passes:
+        words = m.words
+        if "R" in words or "Z" in words or "W" in words:
+            taper, end_z = words.get("R"), m.z
+        x = m.x
+        if x is None or not taper or z_ref is None or end_z is None or m.start_z in (None, end_z):
+            xs.append(x)
+            continue
+        assert m.start_z is not None
+        xs.append(x + 2.0 * taper * (z_ref - end_z) / (m.start_z - end_z))
+    return xs
 
 
 def _same_pass(a: Motion, b: Motion) -> bool:
