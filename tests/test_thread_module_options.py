@@ -156,7 +156,7 @@ def test_a_taper_cuts_every_pass_along_the_cone(
         module.height, abs=0.001
     )
     assert module.final_x == pytest.approx(last.x, abs=EPS)  # as the control rounds it
-    assert f"AT Z{-LENGTH - delta2:.3f}" in module.call_line()
+    assert f"X{last.words['X']:.3f} Z{-LENGTH - delta2:.3f}" in module.call_line()
 
 
 @pytest.mark.parametrize("designation", ["M24xPh4P2-6g", "M24xPh6P2-6H"])

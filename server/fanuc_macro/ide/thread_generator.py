@@ -474,7 +474,7 @@ def build_module_from_values(
     # On a cone the final X is the one at the cut's end.
     where = f"X{mm(final_x)}"
     if taper and g92[-1].z is not None:
-        where += f" AT Z{mm(g92[-1].z)}"
+        where += f" Z{mm(g92[-1].z)}"
 
     notes = {
         "r": f"TOOL NOSE RADIUS R={mm(r)}",
