@@ -41,7 +41,9 @@ document(
         "MB803",
         reports="""
 A threading cycle pass (`G92`, `G76`) that is shallower than the pass
-before it.
+before it. Passes of a taper thread (`G92 R`) are compared where the first pass ends, on the
+line each cut follows: a pass moved along Z (flank infeed) ends on the cone at another
+diameter for the same depth.
 """,
         why="""
 The pass cuts nothing or rubs the flank it has already cut:
