@@ -11,6 +11,10 @@ export interface ThreadDesignation {
   readonly nominal: number;
   /** Pitch in mm, or undefined for a coarse-pitch designation such as `M10-6g`. */
   readonly pitch: number | undefined;
+  /** Starts: lead / pitch of a multi-start designation (`M24xPh4P2`), else 1. */
+  readonly starts: number;
+  /** A left-hand thread (`LH`). */
+  readonly leftHand: boolean;
   /** Tolerance class such as `5g6g` or `6H`, if given. */
   readonly tolerance: string | undefined;
   /**
@@ -24,7 +28,11 @@ export interface ThreadDesignation {
 }
 
 const NUMBER = String.raw`\d+(?:[.,]\d+)?`;
-const HEAD = new RegExp(String.raw`^M(${NUMBER})(?:[xX×*](${NUMBER}))?(LH|RH)?$`, 'i');
+// ISO 965-1 writes a multi-start thread with its lead and pitch: M16xPh3P1.5.
+const HEAD = new RegExp(
+  String.raw`^M(${NUMBER})(?:[xX×*](?:Ph(${NUMBER})P(${NUMBER})|(${NUMBER})))?(LH|RH)?$`,
+  'i',
+);
 const CLASS = /^([3-9])([A-Za-z])(?:([3-9])([A-Za-z]))?$/;
 const EXTERNAL_POSITIONS = 'efgh';
 const INTERNAL_POSITIONS = 'GH';
@@ -50,7 +58,20 @@ export function parseThreadDesignation(input: string): ThreadDesignation | strin
     return `"${input.trim()}" is not an ISO metric thread designation; ${EXAMPLE}.`;
   }
   const nominal = toNumber(match[1] ?? '');
-  const pitch = match[2] === undefined ? undefined : toNumber(match[2]);
+  const pitchText = match[3] ?? match[4];
+  const pitch = pitchText === undefined ? undefined : toNumber(pitchText);
+  let starts = 1;
+  if (match[2] !== undefined && pitch !== undefined) {
+    const ratio = toNumber(match[2]) / pitch;
+    starts = Math.round(ratio);
+    if (!(pitch > 0) || Math.abs(ratio - starts) > 1e-9 || starts < 1) {
+      return `The lead Ph${match[2]} must be a whole number of pitches P${pitchText ?? ''}.`;
+    }
+    if (starts > 9) {
+      return `Ph${match[2]}P${pitchText ?? ''} has ${starts} starts: the module cuts 1 to 9.`;
+    }
+  }
+  let leftHand = (match[5] ?? '').toUpperCase() === 'LH';
   if (!(nominal > 0)) {
     return 'The nominal diameter must be greater than zero.';
   }
@@ -64,6 +85,7 @@ export function parseThreadDesignation(input: string): ThreadDesignation | strin
   let classMatch: RegExpExecArray | null = null;
   for (const part of tail) {
     if (/^(LH|RH|S|N|L)$/i.test(part)) {
+      leftHand ||= part.toUpperCase() === 'LH';
       continue;
     }
     const m = CLASS.exec(part);
@@ -101,7 +123,7 @@ export function parseThreadDesignation(input: string): ThreadDesignation | strin
       internal = letters.every((l) => INTERNAL_POSITIONS.includes(l)) ? null : false;
     }
   }
-  return { text, nominal, pitch, tolerance, internal };
+  return { text, nominal, pitch, starts, leftHand, tolerance, internal };
 }
 
 /** For `showInputBox.validateInput`: undefined when valid, else the message. */
@@ -129,11 +151,48 @@ export function validateThreadLength(input: string): string | undefined {
   return typeof parsed === 'string' ? parsed : undefined;
 }
 
+/** How the module's rough passes go down (server: thread_generator.INFEEDS). */
+export const INFEEDS = ['symmetric', 'alternate', 'left', 'right'] as const;
+export type Infeed = (typeof INFEEDS)[number];
+
+/**
+ * Parses a taper: empty or `0` for a parallel thread, `1:16` (diameter change per length, as
+ * pipe threads give it), `-1:16`, or the change per mm (`0.0625`); at most 1:2, as the server.
+ */
+export function parseTaper(input: string): number | string {
+  const text = input.trim().replace(',', '.');
+  if (text === '' || text === '0') return 0;
+  const ratio = /^(-?)\s*1\s*:\s*(\d+(?:\.\d*)?)$/.exec(text);
+  let value: number;
+  if (ratio !== null) {
+    value = 1 / Number(ratio[2]);
+    if (ratio[1] === '-') value = -value;
+  } else if (/^-?(\d+(\.\d*)?|\.\d+)$/.test(text)) {
+    value = Number(text);
+  } else {
+    return 'Enter the taper as 1:16, or as the diameter change per mm (0.0625); empty for a parallel thread.';
+  }
+  if (!Number.isFinite(value) || Math.abs(value) > 0.5) {
+    return 'The taper must be at most 1:2 (0.5 mm of diameter per mm).';
+  }
+  return value;
+}
+
+/** For `showInputBox.validateInput`: undefined when valid, else the message. */
+export function validateTaper(input: string): string | undefined {
+  const parsed = parseTaper(input);
+  return typeof parsed === 'string' ? parsed : undefined;
+}
+
 /** Arguments of the server command `fanuc-macro.threadModule`. */
 export interface ThreadModuleArgs {
   readonly designation: string;
   readonly length: number;
   readonly internal: boolean | null;
+  /** Left out: the paper's symmetric infeed. */
+  readonly infeed?: Infeed;
+  /** Diameter change per mm; left out: a parallel thread. */
+  readonly taper?: number;
 }
 
 /** Validates the untyped answer `{ text }` / `{ error }` of `fanuc-macro.threadModule`. */

@@ -1,9 +1,11 @@
 import assert from 'node:assert/strict';
 import { describe, it } from 'node:test';
 import {
+  parseTaper,
   parseThreadDesignation,
   parseThreadLength,
   threadModuleText,
+  validateTaper,
   validateThreadDesignation,
   validateThreadLength,
 } from '../src/threadDesignation';
@@ -14,9 +16,24 @@ describe('parseThreadDesignation', () => {
       text: 'M50x3-5g6g',
       nominal: 50,
       pitch: 3,
+      starts: 1,
+      leftHand: false,
       tolerance: '5g6g',
       internal: false,
     });
+  });
+  it('reads the starts of a multi-start designation and the hand', () => {
+    const d = parseThreadDesignation('M24xPh4P2-6g');
+    assert.equal(typeof d !== 'string' && d.starts, 2);
+    assert.equal(typeof d !== 'string' && d.pitch, 2);
+    const e = parseThreadDesignation('M24XPH6P2-6H-LH');
+    assert.equal(typeof e !== 'string' && e.starts, 3);
+    assert.equal(typeof e !== 'string' && e.leftHand, true);
+    const f = parseThreadDesignation('M20x2LH-6g');
+    assert.equal(typeof f !== 'string' && f.leftHand, true);
+    for (const bad of ['M24xPh5P2-6g', 'M24xPh20P2-6g', 'M24xPh4-6g', 'M24xPhP2-6g']) {
+      assert.equal(typeof validateThreadDesignation(bad), 'string', bad);
+    }
   });
   it('reads an internal designation', () => {
     const d = parseThreadDesignation(' M20 x 1.5 - 6H ');
@@ -62,6 +79,22 @@ describe('parseThreadLength', () => {
   it('rejects others', () => {
     for (const bad of ['', '0', '-5', 'abc', '1e3', '0.0']) {
       assert.equal(typeof validateThreadLength(bad), 'string', bad);
+    }
+  });
+});
+
+describe('parseTaper', () => {
+  it('reads ratios and changes per mm', () => {
+    assert.equal(parseTaper(''), 0);
+    assert.equal(parseTaper('0'), 0);
+    assert.equal(parseTaper('1:16'), 0.0625);
+    assert.equal(parseTaper(' 1 : 16 '), 0.0625);
+    assert.equal(parseTaper('-1:32'), -0.03125);
+    assert.equal(parseTaper('0,0625'), 0.0625);
+  });
+  it('rejects others, and cones steeper than 1:2', () => {
+    for (const bad of ['1:x', 'steep', '0.6', '1:1', '1:0']) {
+      assert.equal(typeof validateTaper(bad), 'string', bad);
     }
   });
 });
