@@ -774,6 +774,19 @@ async def test_thread_module_command(client: LanguageClient) -> None:
         assert good["text"].startswith("%\nO4009")
         wrong = await run({"designation": "M50x3-9z", "length": 40.0, "internal": None})
         assert "tolerance position 'z'" in wrong["error"]  # the generator's ValueError
+        # The module's options: flank infeed, taper; multi-start and hand from the designation.
+        from fanuc_macro.ide.thread_generator import generate_module
+
+        spec = {"designation": "M24xPh4P2-6g-LH", "length": 30.0, "internal": None}
+        options = await run({**spec, "infeed": "left", "taper": 0.0625})
+        assert options["text"] == generate_module(
+            "M24xPh4P2-6g-LH", 30.0, None, infeed="left", taper=0.0625
+        )
+        assert "LEFT FLANK INFEED, LEFT HAND" in options["text"]
+        unknown = await run({**spec, "infeed": "both"})
+        assert "infeed 'both'" in unknown["error"]
+        steep = await run({**spec, "taper": "1:16"})
+        assert "taper must be a number" in steep["error"]
 
 
 # ---- robustness ------------------------------------------------------------------------------

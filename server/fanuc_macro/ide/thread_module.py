@@ -8,8 +8,9 @@ from collections.abc import Callable
 
 GENERATOR_MODULE = "fanuc_macro.ide.thread_generator"
 
-# generate_module(designation, length in mm, internal or None) -> the module's text
-Generator = Callable[[str, float, "bool | None"], object]
+# generate_module(designation, length in mm, internal or None, *, infeed=..., taper=...)
+# -> the module's text
+Generator = Callable[..., object]
 
 
 class NoGenerator(Exception):

@@ -79,28 +79,44 @@ async def run_toolpath(engine: Engine, args: tuple[Any, ...]) -> dict[str, Any]:
     return await _on_document(engine, TOOLPATH, args, _toolpath_view)
 
 
-def _thread_arguments(args: tuple[Any, ...]) -> tuple[str, float, bool | None] | str:
+ThreadArguments = tuple[str, float, bool | None, dict[str, Any]]
+
+
+def _thread_arguments(args: tuple[Any, ...]) -> ThreadArguments | str:
+    """(designation, length, internal, the module's options) or what is wrong."""
     if not args or not isinstance(args[0], dict):
         return 'expected one argument {"designation": str, "length": number, "internal": ...}'
     spec = args[0]
     designation = spec.get("designation")
     length = spec.get("length")
     internal = spec.get("internal")
+    options: dict[str, Any] = {}
+    infeed = spec.get("infeed")
+    if infeed is not None:
+        if not isinstance(infeed, str):
+            return "infeed must be symmetric, alternate, left or right"
+        options["infeed"] = infeed  # the generator refuses a name it does not know
+    taper = spec.get("taper")
+    if taper is not None:
+        if isinstance(taper, bool) or not isinstance(taper, int | float):
+            return "the taper must be a number: the diameter change per mm (0.0625 for 1:16)"
+        options["taper"] = float(taper)
     if not isinstance(designation, str) or not designation.strip():
         return "the thread designation is missing (for example M50x3-5g6g)"
     if isinstance(length, bool) or not isinstance(length, int | float) or length <= 0:
         return "the thread length must be a positive number of millimetres"
     if internal is not None and not isinstance(internal, bool):
         return "internal must be true, false or null"
-    return designation.strip(), float(length), internal
+    return designation.strip(), float(length), internal, options
 
 
 async def run_thread_module(args: tuple[Any, ...]) -> dict[str, Any]:
-    """``[{designation, length, internal}]`` -> ``{"text": ...}`` or ``{"error": ...}``."""
+    """``[{designation, length, internal, infeed?, taper?}]`` -> ``{"text": ...}`` or
+    ``{"error": ...}``."""
     parsed = _thread_arguments(args)
     if isinstance(parsed, str):
         return {"error": parsed}
-    designation, length, internal = parsed
+    designation, length, internal, options = parsed
     from ..ide.thread_module import NoGenerator, load_generator
 
     try:
@@ -114,7 +130,7 @@ async def run_thread_module(args: tuple[Any, ...]) -> dict[str, Any]:
         log.exception("the thread module generator cannot be imported")
         return {"error": f"the thread module generator cannot be loaded: {err!r}"}
     try:
-        text = await asyncio.to_thread(generate, designation, length, internal)
+        text = await asyncio.to_thread(generate, designation, length, internal, **options)
     except ValueError as err:  # a designation the generator does not accept: its message
         return {"error": str(err)}
     except Exception as err:
