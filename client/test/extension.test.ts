@@ -2,28 +2,16 @@
 // aliases `vscode` and `vscode-languageclient/node` to them), with real
 // --version probes of small shell scripts standing in for the server.
 import assert from 'node:assert/strict';
-import { chmodSync, mkdtempSync, rmSync, writeFileSync } from 'node:fs';
-import { tmpdir } from 'node:os';
+import { mkdtempSync } from 'node:fs';
 import { join } from 'node:path';
 import { after, describe, it } from 'node:test';
 import type { ExtensionContext } from 'vscode';
 import { activate, deactivate } from '../src/extension';
 import { clients, serverAnswers, type LanguageClient } from './fakes/languageclient';
+import { serverScripts } from './fakes/serverScripts';
 import * as fake from './fakes/vscode';
 
-const dir = mkdtempSync(join(tmpdir(), 'fanuc-macro-ext-'));
-function script(name: string, body: string): string {
-  const path = join(dir, name);
-  writeFileSync(path, `#!/bin/sh\n${body}\n`);
-  chmodSync(path, 0o755);
-  return path;
-}
-
-const server = script('fanuc-macro-ls', 'echo "fanuc-macro-ls 0.1.0"');
-const python = script(
-  'python3',
-  'if [ "$1 $2 $3" = "-m fanuc_macro.lsp.server --version" ]; then echo "fanuc-macro-ls 0.1.0"; else exit 2; fi',
-);
+const { dir, server, python, remove } = serverScripts('fanuc-macro-ext-');
 
 const baseSettings = {
   'server.path': server,
@@ -52,7 +40,7 @@ describe('extension', { skip: process.platform === 'win32' }, () => {
   const context = { subscriptions: [] as Array<{ dispose(): unknown }> };
   after(async () => {
     await deactivate();
-    rmSync(dir, { recursive: true, force: true });
+    remove();
   });
 
   it('starts the server from fanuc-macro.server.path with the settings', async () => {
