@@ -77,9 +77,9 @@ async def test_what_cannot_be_cut_is_refused_naming_the_parameter(client: Langua
     pitch = await run(client, DRUM, {"layers": 9})
     assert set(pitch) == {"error"} and pitch["error"].startswith("pitch is missing")
     unknown = await run(client, DRUM, {"pitch": 40, "depth": 2})
-    assert set(unknown) == {"error"} and "unknown drum groove parameter 'depth'" in unknown["error"]
+    assert set(unknown) == {"error"} and 'unknown drum groove parameter "depth"' in unknown["error"]
     text = await run(client, ARC, {"layers": "108,x"})
-    assert text == {"error": "layers[2]: 'x' is not a number"}
+    assert text == {"error": 'layers[2]: "x" is not a number'}
     two = await run(client, ARC, {}, {})
     assert "one argument" in two["error"]
 
@@ -88,9 +88,9 @@ async def test_what_cannot_be_cut_is_refused_naming_the_parameter(client: Langua
     ("parameters", "message"),
     [
         ({"cuts_per_layer": 7.5}, "cuts_per_layer: 7.5 is not a whole number"),
-        ({"pitch": True}, "pitch: True is not a number"),
-        ({"layers": {"a": 1}}, "layers: {'a': 1} is not a list of diameters"),
-        ({"outer_diameter": "inf"}, "outer_diameter: 'inf' is not a finite number"),
+        ({"pitch": True}, "pitch: true is not a number"),
+        ({"layers": {"a": 1}}, 'layers: {"a": 1} is not a list of diameters'),
+        ({"outer_diameter": "inf"}, 'outer_diameter: "inf" is not a finite number'),
         ({"finishing_diameter": 130}, "ASIN argument"),
     ],
 )
@@ -105,4 +105,4 @@ def test_drum_groove_points_as_lists_or_text() -> None:
     # An empty text or null is the paper's profile.
     assert drum_groove_request({"pitch": 40, "points": ""}) == drum_groove_request({"pitch": 40})
     bad = drum_groove_request({"pitch": 40, "points": "300,10;310"})
-    assert bad == {"error": "points point 2: '310' is not a point X,Z"}
+    assert bad == {"error": 'points point 2: "310" is not a point X,Z'}

@@ -8,6 +8,7 @@ generators are imported only when a request comes: a start of the server loads n
 
 from __future__ import annotations
 
+import json
 import math
 import re
 from collections.abc import Callable, Mapping
@@ -26,7 +27,11 @@ class _Refused(ValueError):
 
 
 def _shown(value: Any) -> str:
-    text = repr(value) if isinstance(value, str) else str(value)
+    """A value as the client wrote it: JSON (``"x"``, ``true``, ``null``), cut short."""
+    try:
+        text = json.dumps(value, ensure_ascii=False)
+    except (TypeError, ValueError):
+        text = repr(value)
     return text if len(text) <= 60 else text[:57] + "..."
 
 
@@ -154,7 +159,7 @@ def _read(
     unknown = [key for key in parameters if key not in readers]
     if unknown:
         raise _Refused(
-            f"unknown {what} parameter {_shown(str(unknown[0]))}; the parameters are "
+            f"unknown {what} parameter {_shown(unknown[0])}; the parameters are "
             + ", ".join(readers)
         )
     for key, why in (required or {}).items():
