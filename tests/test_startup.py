@@ -90,6 +90,10 @@ def test_the_language_server_starts_without_the_thread_generator() -> None:
     assert "pygls" in loaded and "fanuc_macro.lsp.engine" in loaded
     assert "fanuc_macro.ide.thread_generator" not in loaded
     assert "fanuc_macro.ide.thread_snippet" not in loaded
+    # The arc-thread and drum-groove commands load their requests and generators when run.
+    assert "fanuc_macro.ide.generator_requests" not in loaded
+    assert "fanuc_macro.ide.arc_thread_generator" not in loaded
+    assert "fanuc_macro.ide.drum_groove_generator" not in loaded
     assert "regex" not in loaded
 
 

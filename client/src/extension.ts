@@ -12,6 +12,7 @@ import {
 } from 'vscode-languageclient/node';
 import { registerCheckTasks } from './checkTaskProvider';
 import { registerDebugger } from './debugAdapter';
+import { registerGeneratorCommands } from './generatorCommands';
 import { DEFAULT_PROBE_TIMEOUT_MS, probeCandidate } from './probe';
 import {
   BUNDLED_MIN_PYTHON,
@@ -506,6 +507,10 @@ export function activate(context: vscode.ExtensionContext): void {
     vscode.commands.registerCommand('fanuc-macro.showTrace', showTrace),
     vscode.commands.registerCommand('fanuc-macro.showToolpath', showToolpath),
     vscode.commands.registerCommand('fanuc-macro.insertThreadModule', insertThreadModule),
+    ...registerGeneratorCommands(async (command, args) => {
+      const languageClient = await runningClient();
+      return languageClient === undefined ? undefined : { answer: await executeServerCommand(languageClient, command, args) };
+    }),
     vscode.commands.registerCommand('fanuc-macro.openSample', openSample),
     vscode.workspace.onDidChangeConfiguration((event) => {
       if (event.affectsConfiguration(SERVER_PATH_SETTING)) {

@@ -2,27 +2,15 @@
 // what started the language server, launch configurations get the settings, the hover gets the
 // whole `#` variable and "Debug This Program" debugs the active file.
 import assert from 'node:assert/strict';
-import { chmodSync, mkdtempSync, rmSync, writeFileSync } from 'node:fs';
-import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { after, describe, it } from 'node:test';
 import type { ExtensionContext } from 'vscode';
 import { activate, deactivate } from '../src/extension';
 import { ToolpathPanel } from '../src/toolpathView';
+import { serverScripts } from './fakes/serverScripts';
 import * as fake from './fakes/vscode';
 
-const dir = mkdtempSync(join(tmpdir(), 'fanuc-macro-debug-'));
-function script(name: string, body: string): string {
-  const path = join(dir, name);
-  writeFileSync(path, `#!/bin/sh\n${body}\n`);
-  chmodSync(path, 0o755);
-  return path;
-}
-const server = script('fanuc-macro-ls', 'echo "fanuc-macro-ls 0.1.0"');
-const python = script(
-  'python3',
-  'if [ "$1 $2 $3" = "-m fanuc_macro.lsp.server --version" ]; then echo "fanuc-macro-ls 0.1.0"; else exit 2; fi',
-);
+const { dir, server, python, remove } = serverScripts('fanuc-macro-debug-');
 
 function registered<T>(map: Map<string, T>): T {
   const found = map.get('fanuc-macro');
@@ -40,7 +28,7 @@ describe('debugger', { skip: process.platform === 'win32' }, () => {
   const context = { subscriptions: [] as Array<{ dispose(): unknown }> };
   after(async () => {
     await deactivate();
-    rmSync(dir, { recursive: true, force: true });
+    remove();
   });
 
   it('starts fanuc-macro-dap beside the fanuc-macro-ls the server runs', async () => {

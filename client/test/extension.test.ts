@@ -2,28 +2,17 @@
 // aliases `vscode` and `vscode-languageclient/node` to them), with real
 // --version probes of small shell scripts standing in for the server.
 import assert from 'node:assert/strict';
-import { chmodSync, mkdtempSync, rmSync, writeFileSync } from 'node:fs';
-import { tmpdir } from 'node:os';
+import { mkdtempSync } from 'node:fs';
 import { join } from 'node:path';
 import { after, describe, it } from 'node:test';
 import type { ExtensionContext } from 'vscode';
 import { activate, deactivate } from '../src/extension';
+import { arcThreadForm, defaultAnswers, drumGrooveForm } from '../src/generatorParameters';
 import { clients, serverAnswers, type LanguageClient } from './fakes/languageclient';
+import { serverScripts } from './fakes/serverScripts';
 import * as fake from './fakes/vscode';
 
-const dir = mkdtempSync(join(tmpdir(), 'fanuc-macro-ext-'));
-function script(name: string, body: string): string {
-  const path = join(dir, name);
-  writeFileSync(path, `#!/bin/sh\n${body}\n`);
-  chmodSync(path, 0o755);
-  return path;
-}
-
-const server = script('fanuc-macro-ls', 'echo "fanuc-macro-ls 0.1.0"');
-const python = script(
-  'python3',
-  'if [ "$1 $2 $3" = "-m fanuc_macro.lsp.server --version" ]; then echo "fanuc-macro-ls 0.1.0"; else exit 2; fi',
-);
+const { dir, server, python, remove } = serverScripts('fanuc-macro-ext-');
 
 const baseSettings = {
   'server.path': server,
@@ -52,7 +41,7 @@ describe('extension', { skip: process.platform === 'win32' }, () => {
   const context = { subscriptions: [] as Array<{ dispose(): unknown }> };
   after(async () => {
     await deactivate();
-    rmSync(dir, { recursive: true, force: true });
+    remove();
   });
 
   it('starts the server from fanuc-macro.server.path with the settings', async () => {
@@ -202,6 +191,63 @@ describe('extension', { skip: process.platform === 'win32' }, () => {
     await run('fanuc-macro.insertThreadModule');
     assert.equal(fake.recorded.inserts.length, 0);
     assert.match(fake.recorded.errors[0]?.message ?? '', /pitch 3 is not standard for M50/);
+  });
+
+  it('inserts the arc thread program of the defaults, the paper\'s part', async () => {
+    fake.resetRecorded();
+    const form = arcThreadForm();
+    fake.answers.inputBox.push(...defaultAnswers(form));
+    serverAnswers.set('fanuc-macro.arcThread', () => ({
+      text: '%\nO0002\nG65 P0003\n%\n',
+      summary: { layer_cuts: [7, 7], finishing_cuts: 19, g32_cuts: 33 },
+    }));
+    await run('fanuc-macro.insertArcThread');
+    assert.deepEqual(
+      fake.recorded.inputBoxes.map((b) => b.value),
+      ['93.82, 10, 1.2', '25, 113', '108, 103', '7', '100, 19'],
+    );
+    assert.equal(fake.recorded.inputBoxes[0]?.title, 'Arc Thread Program (1/5)');
+    assert.deepEqual(lastClient().requests.pop()?.params, {
+      command: 'fanuc-macro.arcThread',
+      arguments: [
+        {
+          outer_diameter: 93.82,
+          groove_radius: 10,
+          tool_radius: 1.2,
+          pitch: 25,
+          length: 113,
+          layers: [108, 103],
+          cuts_per_layer: 7,
+          finishing_diameter: 100,
+          finishing_cuts: 19,
+        },
+      ],
+    });
+    assert.deepEqual(fake.recorded.inserts, [{ position: new fake.Position(4, 0), text: '%\nO0002\nG65 P0003\n%\n' }]);
+    assert.deepEqual(fake.recorded.statusMessages, ['FANUC Macro: 33 G32 cuts: 7, 7 per roughing layer, 19 finishing.']);
+  });
+
+  it("shows the server's refusal of a drum groove and inserts nothing", async () => {
+    fake.resetRecorded();
+    fake.answers.inputBox.push(defaultAnswers(drumGrooveForm())[0], '40', '9, 0.8', '1, 0.5');
+    serverAnswers.set('fanuc-macro.drumGroove', (args) => {
+      assert.equal((args[0] as { pitch: number }).pitch, 40);
+      return { error: 'segment 1-2 is steeper than 45 degrees' };
+    });
+    await run('fanuc-macro.insertDrumGroove');
+    assert.equal(fake.recorded.inputBoxes[1]?.value, '');
+    assert.equal(fake.recorded.inserts.length, 0);
+    assert.match(fake.recorded.errors[0]?.message ?? '', /not generated: segment 1-2 is steeper/);
+  });
+
+  it('asks nothing of the server when the drum groove has no pitch', async () => {
+    fake.resetRecorded();
+    fake.answers.inputValidation.length = 0;
+    fake.answers.inputBox.push(defaultAnswers(drumGrooveForm())[0], '');
+    const before = lastClient().requests.length;
+    await run('fanuc-macro.insertDrumGroove');
+    assert.equal(fake.answers.inputValidation[1], 'Enter the pitch in mm: it has no default.');
+    assert.equal(lastClient().requests.length, before);
   });
 
   it("uses the Python extension's interpreter when no path is set", async () => {

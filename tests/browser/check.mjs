@@ -4,7 +4,8 @@
 // (no colour swatch, the status bar item, the rule links, the Settings UI's title), navigation
 // (rename, document highlight, folding, workspace symbols), semantic tokens, a code lens,
 // signature help, the Toolpath view (webview), the trace view (a read-only document whose
-// rows link to the blocks) and the debugger (a breakpoint, Debug This Program, the stop).
+// rows link to the blocks), the debugger (a breakpoint, Debug This Program, the stop) and the
+// arc-thread program inserted from the palette with its defaults.
 // Every step waits for a condition (a status bar text, a data- attribute), never a fixed delay.
 //
 // Usage: node check.mjs <code-server base url> <workspace folder> <out dir>
@@ -573,6 +574,44 @@ async function checkDebug() {
   }
 }
 
+// "Insert Arc Thread Program..." from the command palette, in the walkthrough's sample (an
+// untitled program, so nothing on disk changes): each of its input boxes opens on the paper's
+// value and Enter accepts it; the server's program (main O0002, G65 P0003 per roughing layer)
+// is inserted at the cursor. Then the sample is closed unsaved.
+async function checkGenerators() {
+  const quick = page.locator('.quick-input-widget');
+  const input = quick.locator('input').first();
+  const defaults = [];
+  try {
+    await runCommand('FANUC Macro: Open Walkthrough Sample Program');
+    await waitActiveEditor('Untitled', 'FANUC Macro B');
+    await runCommand('FANUC Macro: Insert Arc Thread Program');
+    for (let n = 1; n <= 5; n++) {
+      await quick.locator('.quick-input-title', { hasText: `Arc Thread Program (${n}/5)` }).waitFor();
+      defaults.push(await input.inputValue());
+      await page.keyboard.press('Enter');
+    }
+    await page.waitForFunction(
+      () => /O0002 \(ARC THREAD BY THE FITTING METHOD[^\n]*\n\s*G65 P0003 A93\.82 /.test(
+        (document.querySelector('.editor-group-container.active .monaco-editor .view-lines')?.innerText || '')
+          .replace(/\u00a0/g, ' ')),
+      null,
+      { timeout: STEP_MS },
+    );
+    const lines = (await activeEditorText()).split('\n');
+    const call = lines.find((l) => l.startsWith('G65 P0003'))?.replace(/ +/g, ' ');
+    const said = await page.locator('.statusbar', { hasText: 'G32 cuts' }).first().innerText().catch(() => '');
+    record('arc thread program', true,
+      `defaults ${defaults.join(' | ')}; ${call?.slice(0, 120)}; ${said.split('\n').find((l) => l.includes('G32 cuts')) ?? ''}`);
+  } catch (e) {
+    record('arc thread program', false,
+      `${e.message.split('\n')[0]}; defaults ${defaults.join(' | ')}; ${JSON.stringify((await activeEditorText()).slice(0, 300))}`);
+  }
+  await shot('arc-thread.png');
+  await page.keyboard.press('Escape');
+  await runCommand('View: Revert and Close Editor').catch(() => {});
+}
+
 /**
  * Opens `name` of the workspace through Quick Open and waits for its editor. F1, then the name
  * without `>`: Ctrl+P did not reach the workbench once the status bar item had been clicked.
@@ -875,6 +914,7 @@ try {
   await checkToolpath();
   await checkTrace();
   await checkDebug();
+  await checkGenerators();
 } catch (e) {
   record('session', false, e.stack || String(e));
   await shot('failure.png').catch(() => {});

@@ -10,7 +10,8 @@ hierarchy), semantic tokens, a code lens,
 signature help, the Toolpath view (drawn, a click on a segment reveals its block, the cursor's
 block lit), the trace view (a row's values, its link and F12 to the block) and the debugger (a
 breakpoint, Debug This Program, the stop's Variables, the Toolpath view lighting the stopped
-block). It takes minutes on a first run, so it only runs when FANUC_MACRO_BROWSER_TEST=1.
+block), and Insert Arc Thread Program... with its defaults. It takes minutes on a first run, so
+it only runs when FANUC_MACRO_BROWSER_TEST=1.
 """
 
 from __future__ import annotations
@@ -74,5 +75,6 @@ def test_extension_in_code_server(tmp_path: Path) -> None:
     tokens = ("semantic tokens", "code lens", "signature help")
     views = ("toolpath view", "toolpath click", "toolpath cursor", "trace view", "trace link")
     debugger = ("debug", "debug toolpath")
-    for check in (*ui, *navigation, *tokens, *views, *debugger):
+    generators = ("arc thread program",)
+    for check in (*ui, *navigation, *tokens, *views, *debugger, *generators):
         assert f"PASS {check}:" in proc.stdout, tail

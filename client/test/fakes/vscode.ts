@@ -183,6 +183,8 @@ export const recorded = {
   shownDocuments: [] as Array<{ content: string; options: unknown }>,
   revealed: [] as Array<{ line: number; type: number | undefined }>,
   inserts: [] as Array<{ position: Position; text: string }>,
+  inputBoxes: [] as Array<{ title: string | undefined; value: string | undefined }>,
+  statusMessages: [] as string[],
   log: [] as string[],
 };
 
@@ -202,6 +204,8 @@ export function resetRecorded(): void {
   recorded.shownDocuments.length = 0;
   recorded.revealed.length = 0;
   recorded.inserts.length = 0;
+  recorded.inputBoxes.length = 0;
+  recorded.statusMessages.length = 0;
   recorded.settingUpdates.length = 0;
 }
 
@@ -365,7 +369,12 @@ export const window = {
     recorded.warnings.push(message);
     return Promise.resolve(undefined);
   },
-  showInputBox(options: { validateInput?: (value: string) => string | undefined }): Promise<string | undefined> {
+  showInputBox(options: {
+    title?: string;
+    value?: string;
+    validateInput?: (value: string) => string | undefined;
+  }): Promise<string | undefined> {
+    recorded.inputBoxes.push({ title: options.title, value: options.value });
     const answer = answers.inputBox.shift();
     if (answer !== undefined && options.validateInput) {
       answers.inputValidation.push(options.validateInput(answer));
@@ -375,6 +384,10 @@ export const window = {
   showQuickPick<T extends { label: string }>(items: readonly T[], _options?: unknown): Promise<T | undefined> {
     const choose = answers.quickPick.shift();
     return Promise.resolve(choose ? (choose(items) as T | undefined) : undefined);
+  },
+  setStatusBarMessage(text: string, _timeout?: number) {
+    recorded.statusMessages.push(text);
+    return { dispose: () => undefined };
   },
   withProgress<T>(_options: unknown, task: () => Promise<T>): Promise<T> {
     return task();

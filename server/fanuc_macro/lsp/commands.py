@@ -1,5 +1,5 @@
 """The server's commands (workspace/executeCommand): the trace and the toolpath of a program,
-and thread modules."""
+thread modules, and the arc-thread and drum-groove programs."""
 
 from __future__ import annotations
 
@@ -15,6 +15,8 @@ log = logging.getLogger(__name__)
 TRACE = "fanuc-macro.trace"
 TOOLPATH = "fanuc-macro.toolpath"
 THREAD_MODULE = "fanuc-macro.threadModule"
+ARC_THREAD = "fanuc-macro.arcThread"
+DRUM_GROOVE = "fanuc-macro.drumGroove"
 
 
 def _uri_argument(args: tuple[Any, ...]) -> str | None:
@@ -139,3 +141,32 @@ async def run_thread_module(args: tuple[Any, ...]) -> dict[str, Any]:
     if not isinstance(text, str):
         return {"error": "the thread module generator returned no text"}
     return {"text": text}
+
+
+async def _generated(
+    command: str, args: tuple[Any, ...], request: Callable[[Any], dict[str, Any]]
+) -> dict[str, Any]:
+    # A generator runs its program on the evaluator: off the event loop, as the thread module.
+    if len(args) > 1:
+        return {"error": f"{command} takes one argument, the object of its parameters"}
+    try:
+        return await asyncio.to_thread(request, args[0] if args else None)
+    except Exception as err:
+        log.exception("%s failed", command)
+        return {"error": f"{command} failed: {err!r}"}
+
+
+async def run_arc_thread(args: tuple[Any, ...]) -> dict[str, Any]:
+    """``[{parameter: value}]`` -> ``{"text", "summary"}`` or ``{"error"}``
+    (ide/generator_requests.py)."""
+    from ..ide.generator_requests import arc_thread_request
+
+    return await _generated(ARC_THREAD, args, arc_thread_request)
+
+
+async def run_drum_groove(args: tuple[Any, ...]) -> dict[str, Any]:
+    """``[{parameter: value}]`` (``pitch`` required) -> ``{"text", "summary"}`` or
+    ``{"error"}``."""
+    from ..ide.generator_requests import drum_groove_request
+
+    return await _generated(DRUM_GROOVE, args, drum_groove_request)

@@ -25,7 +25,18 @@ from ..code_cache import save_code_cache
 from ..diagnostics import REPORT_INTERNAL_ERROR
 from ..ide.token_legend import TOKEN_MODIFIERS, TOKEN_TYPES
 from .client import CompletionSupport
-from .commands import THREAD_MODULE, TOOLPATH, TRACE, run_thread_module, run_toolpath, run_trace
+from .commands import (
+    ARC_THREAD,
+    DRUM_GROOVE,
+    THREAD_MODULE,
+    TOOLPATH,
+    TRACE,
+    run_arc_thread,
+    run_drum_groove,
+    run_thread_module,
+    run_toolpath,
+    run_trace,
+)
 from .convert import Codec
 from .documents import OpenDocument
 from .engine import Engine, Result
@@ -824,6 +835,14 @@ def create_server() -> FanucMacroLanguageServer:
     @server.command(THREAD_MODULE)
     async def thread_module_command(ls: FanucMacroLanguageServer, *args: Any) -> dict[str, Any]:
         return await run_thread_module(args)
+
+    @server.command(ARC_THREAD)
+    async def arc_thread_command(ls: FanucMacroLanguageServer, *args: Any) -> dict[str, Any]:
+        return await run_arc_thread(args)
+
+    @server.command(DRUM_GROOVE)
+    async def drum_groove_command(ls: FanucMacroLanguageServer, *args: Any) -> dict[str, Any]:
+        return await run_drum_groove(args)
 
     _forward_package_errors(server)
     return server
