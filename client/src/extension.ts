@@ -23,11 +23,14 @@ import {
   type ServerCandidate,
 } from './serverCandidates';
 import {
+  parseTaper,
   parseThreadDesignation,
   parseThreadLength,
   threadModuleText,
+  validateTaper,
   validateThreadDesignation,
   validateThreadLength,
+  type Infeed,
   type ThreadModuleArgs,
 } from './threadDesignation';
 import { RuleDocs, linkToShippedDocs } from './ruleDocsView';
@@ -387,7 +390,7 @@ async function insertThreadModule(): Promise<void> {
     return;
   }
   const designationInput = await vscode.window.showInputBox({
-    title: vscode.l10n.t('Symmetric Thread Module (1/3)'),
+    title: vscode.l10n.t('Symmetric Thread Module ({0}/{1})', 1, 4),
     prompt: vscode.l10n.t('Metric thread designation: lower-case tolerance for external (M50x3-5g6g), upper case for internal (M50x3-6H)'),
     placeHolder: 'M50x3-5g6g',
     ignoreFocusOut: true,
@@ -399,8 +402,10 @@ async function insertThreadModule(): Promise<void> {
     void vscode.window.showErrorMessage(`FANUC Macro: ${designation}`);
     return;
   }
+  // One more box when the designation does not tell an external from an internal thread.
+  const steps = designation.internal === null ? 5 : 4;
   const lengthInput = await vscode.window.showInputBox({
-    title: vscode.l10n.t('Symmetric Thread Module (2/3)'),
+    title: vscode.l10n.t('Symmetric Thread Module ({0}/{1})', 2, steps),
     prompt: vscode.l10n.t('Thread length of {0} in mm', designation.text),
     placeHolder: '40',
     ignoreFocusOut: true,
@@ -417,16 +422,55 @@ async function insertThreadModule(): Promise<void> {
     const external = { label: vscode.l10n.t('External thread'), description: vscode.l10n.t('bolt, turned on the outside'), internal: false };
     const inner = { label: vscode.l10n.t('Internal thread'), description: vscode.l10n.t('nut, bored on the inside'), internal: true };
     const picked = await vscode.window.showQuickPick([external, inner], {
-      title: vscode.l10n.t('Symmetric Thread Module (3/3)'),
+      title: vscode.l10n.t('Symmetric Thread Module ({0}/{1})', 3, steps),
       placeHolder: `${designation.text} has no tolerance class: is it an external or an internal thread?`,
       ignoreFocusOut: true,
     });
     if (picked === undefined) return;
     internal = picked.internal;
   }
+  const infeeds: { label: string; description: string; infeed: Infeed }[] = [
+    { label: vscode.l10n.t('Symmetric'), description: vscode.l10n.t('both flanks every pass, the paper\'s'), infeed: 'symmetric' },
+    { label: vscode.l10n.t('Alternate flanks'), description: vscode.l10n.t('left one pass, right the next'), infeed: 'alternate' },
+    { label: vscode.l10n.t('Left flank'), description: vscode.l10n.t('every pass on the -Z flank, as G76'), infeed: 'left' },
+    { label: vscode.l10n.t('Right flank'), description: vscode.l10n.t('every pass on the +Z flank'), infeed: 'right' },
+  ];
+  const kind = [
+    designation.starts > 1 ? vscode.l10n.t('{0} starts', designation.starts) : '',
+    designation.leftHand ? vscode.l10n.t('left hand') : '',
+  ].filter((part) => part !== '');
+  const infeed = await vscode.window.showQuickPick(infeeds, {
+    title: vscode.l10n.t('Symmetric Thread Module ({0}/{1})', steps - 1, steps),
+    placeHolder: kind.length > 0
+      ? vscode.l10n.t('How the rough passes of {0} ({1}) go down', designation.text, kind.join(', '))
+      : vscode.l10n.t('How the rough passes of {0} go down', designation.text),
+    ignoreFocusOut: true,
+  });
+  if (infeed === undefined) return;
+  const taperInput = await vscode.window.showInputBox({
+    title: vscode.l10n.t('Symmetric Thread Module ({0}/{1})', steps, steps),
+    prompt: vscode.l10n.t('Taper as 1:16, or the diameter change per mm; empty for a parallel thread'),
+    placeHolder: '1:16',
+    value: '',
+    ignoreFocusOut: true,
+    validateInput: validateTaper,
+  });
+  if (taperInput === undefined) return;
+  const taper = parseTaper(taperInput);
+  if (typeof taper === 'string') {
+    void vscode.window.showErrorMessage(`FANUC Macro: ${taper}`);
+    return;
+  }
   const languageClient = await runningClient();
   if (languageClient === undefined) return;
-  const args: ThreadModuleArgs = { designation: designation.text, length, internal };
+  // The paper's module is sent without options: a server from before them answers too.
+  const args: ThreadModuleArgs = {
+    designation: designation.text,
+    length,
+    internal,
+    ...(infeed.infeed === 'symmetric' ? {} : { infeed: infeed.infeed }),
+    ...(taper === 0 ? {} : { taper }),
+  };
   let answer: unknown;
   try {
     answer = await executeServerCommand(languageClient, SERVER_COMMAND_THREAD_MODULE, [args]);

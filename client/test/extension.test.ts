@@ -142,13 +142,19 @@ describe('extension', { skip: process.platform === 'win32' }, () => {
 
   it('inserts an external thread module at the cursor', async () => {
     fake.resetRecorded();
-    fake.answers.inputBox.push(' M50x3-5g6g ', '40');
+    fake.answers.inputBox.push(' M50x3-5g6g ', '40', '');
+    fake.answers.quickPick.push((items) => items[0]);
     serverAnswers.set('fanuc-macro.threadModule', () => ({ text: '#100=50.\nM98 P0013331\n' }));
     await run('fanuc-macro.insertThreadModule');
+    // The paper's module (symmetric, parallel) is asked for without options.
     assert.deepEqual(lastClient().requests.pop()?.params, {
       command: 'fanuc-macro.threadModule',
       arguments: [{ designation: 'M50x3-5g6g', length: 40, internal: false }],
     });
+    assert.deepEqual(
+      fake.recorded.inputBoxes.map((b) => b.title),
+      ['Symmetric Thread Module (1/4)', 'Symmetric Thread Module (2/4)', 'Symmetric Thread Module (4/4)'],
+    );
     assert.deepEqual(fake.recorded.inserts, [
       { position: new fake.Position(4, 0), text: '#100=50.\nM98 P0013331\n' },
     ]);
@@ -156,12 +162,37 @@ describe('extension', { skip: process.platform === 'win32' }, () => {
 
   it('asks external or internal when the designation does not say', async () => {
     fake.resetRecorded();
-    fake.answers.inputBox.push('M50x3', '32.5');
+    fake.answers.inputBox.push('M50x3', '32.5', '');
     fake.answers.quickPick.push((items) => items.find((i) => i.label.startsWith('Internal')));
+    fake.answers.quickPick.push((items) => items[0]);
     await run('fanuc-macro.insertThreadModule');
     assert.deepEqual(lastClient().requests.pop()?.params.arguments, [
       { designation: 'M50x3', length: 32.5, internal: true },
     ]);
+  });
+
+  it('sends the infeed and the taper asked for', async () => {
+    fake.resetRecorded();
+    fake.answers.inputValidation.length = 0;
+    fake.answers.inputBox.push('M24xPh4P2-6g-LH', '30', '1:16');
+    fake.answers.quickPick.push((items) => items.find((i) => i.label === 'Left flank'));
+    await run('fanuc-macro.insertThreadModule');
+    assert.deepEqual(lastClient().requests.pop()?.params.arguments, [
+      { designation: 'M24xPh4P2-6g-LH', length: 30, internal: false, infeed: 'left', taper: 0.0625 },
+    ]);
+    assert.equal(fake.answers.inputValidation.at(-1), undefined);
+  });
+
+  it('stops at a taper it cannot read', async () => {
+    fake.resetRecorded();
+    fake.answers.inputValidation.length = 0;
+    fake.answers.inputBox.push('M24x2-6g', '30', '1:x');
+    fake.answers.quickPick.push((items) => items[0]);
+    const before = lastClient().requests.length;
+    await run('fanuc-macro.insertThreadModule');
+    assert.equal(lastClient().requests.length, before);
+    assert.match(fake.answers.inputValidation.at(-1) ?? '', /taper as 1:16/);
+    assert.match(fake.recorded.errors[0]?.message ?? '', /taper as 1:16/);
   });
 
   it('stops when a prompt is dismissed', async () => {
@@ -186,7 +217,8 @@ describe('extension', { skip: process.platform === 'win32' }, () => {
 
   it('shows the error of the thread module command', async () => {
     fake.resetRecorded();
-    fake.answers.inputBox.push('M50x3-6H', '40');
+    fake.answers.inputBox.push('M50x3-6H', '40', '');
+    fake.answers.quickPick.push((items) => items[0]);
     serverAnswers.set('fanuc-macro.threadModule', () => ({ error: 'pitch 3 is not standard for M50' }));
     await run('fanuc-macro.insertThreadModule');
     assert.equal(fake.recorded.inserts.length, 0);
