@@ -180,9 +180,10 @@ def cmd_drum_groove(args: argparse.Namespace) -> int:
     sys.stderr.write(
         f"cuts: {program.g32_cuts} G32 blocks in {program.passes} passes of "
         f"{program.segments_per_pass} taper segments\n"
-        f"blocks: {program.program_blocks} in this program; written out without a macro "
-        f"{program.plain_blocks} ({program.motion_blocks} motions + {program.setup_blocks} "
-        f"set-up), {program.plain_blocks - program.program_blocks} more\n"
+        f"blocks: this program {program.program_blocks}; the same cut written out without a "
+        f"macro {program.plain_blocks} ({program.motion_blocks} motions + "
+        f"{program.setup_blocks} set-up): {program.plain_blocks - program.program_blocks} "
+        "saved\n"
     )
     return EXIT_OK
 
