@@ -114,7 +114,7 @@ def _is_number(text: str) -> bool:
     return re.fullmatch(_NUMBER, text.strip()) is not None
 
 
-def parse_points(
+def _parse_points(
     rows: Sequence[str], where: str, kind: str, header: bool
 ) -> list[tuple[float, float]]:
     """Profile points (X diameter, Z), one a row: ``X,Z``, ``X;Z`` or tab-separated.  With
@@ -146,9 +146,9 @@ def cmd_drum_groove(args: argparse.Namespace) -> int:
                 rows = path.read_text(encoding="utf-8-sig").splitlines()
             except (OSError, UnicodeDecodeError) as err:
                 raise Refused(f"--points-file {args.points_file}: cannot read it ({err})") from None
-            points = parse_points(rows, f"--points-file {args.points_file}", "row", True)
+            points = _parse_points(rows, f"--points-file {args.points_file}", "row", True)
         elif args.points is not None:
-            points = parse_points(args.points.split(";"), "--points", "point", False)
+            points = _parse_points(args.points.split(";"), "--points", "point", False)
         else:
             points = list(DRUM_PROFILE)
         program = build_drum_groove(
