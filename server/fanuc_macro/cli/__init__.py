@@ -1,5 +1,5 @@
-"""The command line: ``fanuc-macro check``, ``trace``, ``plot``, ``thread``, ``hover``,
-``definition`` and ``format``."""
+"""The command line: ``fanuc-macro check``, ``trace``, ``plot``, ``thread``, ``arc-thread``,
+``drum-groove``, ``hover``, ``definition`` and ``format``."""
 
 from __future__ import annotations
 
@@ -20,6 +20,7 @@ from ..diagnostics import REPORT_INTERNAL_ERROR, RULES, Diagnostic, Severity
 from ..ide.trace import motion_text, trace  # small: what it uses, the check uses too
 from ..workspace import PROGRAM_SUFFIXES, Workspace, is_program_file
 from .format_command import add_format_command
+from .generators import add_generator_commands
 from .thread import add_thread_command
 
 EXIT_OK = 0
@@ -490,6 +491,7 @@ def build_parser() -> argparse.ArgumentParser:
     ).set_defaults(func=cmd_definition)
 
     add_thread_command(sub)
+    add_generator_commands(sub)
     add_format_command(sub)
     return parser
 

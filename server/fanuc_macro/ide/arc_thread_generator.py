@@ -43,6 +43,51 @@ def _edge_argument(centre: float, outer: float, radius: float) -> float:
     return ((centre - outer) / 2.0) / radius
 
 
+def _inside_the_blank(
+    outer: float, radius: float, layers: Sequence[float], finishing: float
+) -> None:
+    """Refuse grooves the blank cannot have.  Each groove is the circle of radius R about its
+    centre at radius J/2 swept along the helix; the finished one is the finishing J's.
+
+    - The finished centre below the outer diameter makes a groove of more than half a circle,
+      narrower at its mouth than inside: a tool fed from outside would cut the lips.
+    - The finished groove bottom J - 2R at or below 0 is past the axis.
+    - A roughing centre below the finishing one cuts past the finished profile (same R, lower
+      centre: lower everywhere).
+    - A roughing groove whose bottom J - 2R is at or above the outer diameter cuts nothing, and
+      one whose centre is not below every earlier layer's lies inside what they removed.
+    """
+    if finishing < outer:
+        raise ValueError(
+            f"finishing groove-centre diameter J{finishing:g} is below the outer diameter "
+            f"{outer:g}: the groove would be more than a half circle, narrower at its mouth, "
+            "and the tool would cut its lips"
+        )
+    if finishing - 2.0 * radius <= 0:
+        raise ValueError(
+            f"finishing groove-centre diameter J{finishing:g} with groove radius R{radius:g}: "
+            f"the groove bottom J-2R = {finishing - 2.0 * radius:g} is at or past the axis"
+        )
+    for n, centre in enumerate(layers, 1):
+        what = f"roughing layer {n} J{centre:g}"
+        if centre < finishing:
+            raise ValueError(
+                f"{what} is below the finishing groove-centre diameter J{finishing:g}: "
+                "it would cut past the finished profile"
+            )
+        if centre - 2.0 * radius >= outer:
+            raise ValueError(
+                f"{what}: its groove bottom J-2R = {centre - 2.0 * radius:g} is not below the "
+                f"outer diameter {outer:g}, it cuts nothing"
+            )
+        earlier = min(layers[: n - 1], default=math.inf)
+        if centre >= earlier:
+            raise ValueError(
+                f"{what} is not below an earlier layer's J{earlier:g}: it cuts nothing that "
+                "layer did not"
+            )
+
+
 def _angles_from_motions(motions: Sequence[Motion], centre: float, run_in: float) -> list[float]:
     """Tool-centre angles of the cuts, from the rapid X and Z that precede each G32.
 
@@ -192,13 +237,23 @@ def build_arc_thread(
         raise ValueError(f"finishing cuts {finishing_cuts} must be 2-999")
     if spindle_m not in (3, 4):
         raise ValueError(f"spindle M code {spindle_m} must be 3 or 4")
+    for name, speed in (("roughing speed", rough_speed), ("finishing speed", finishing_speed)):
+        if not 1 <= speed <= 99999:
+            raise ValueError(f"{name} S{speed} is outside 1-99999")
+    for name, t in (("roughing tool", rough_tool), ("finishing tool", finishing_tool)):
+        # The macros call T[#20*100+#21]: a tool and its offset of two digits each.
+        if not 1 <= t <= 99:
+            raise ValueError(f"{name} T{t} is outside 1-99")
     numbers = {
         program_number(main_number, "main"),
         program_number(rough_number, "roughing macro"),
         program_number(finishing_number, "finishing macro"),
     }
     if len(numbers) != 3:
-        raise ValueError("the main program and the two macros need three different numbers")
+        raise ValueError(
+            f"the main program O{main_number:04d}, the roughing macro O{rough_number:04d} and "
+            f"the finishing macro O{finishing_number:04d} need three different numbers"
+        )
     highest = max([*layers, finishing_diameter, outer_diameter])
     if not retract_x > highest or not start_x >= retract_x:
         raise ValueError(
@@ -214,15 +269,22 @@ def build_arc_thread(
     for n, centre in enumerate(layers, 1):
         arg = _edge_argument(centre, outer_diameter, big_r)
         _asin_argument(
-            f"roughing layer {n}",
+            f"roughing layer {n} J{centre:g}",
             f"[[{centre:g}-{outer_diameter:g}]/2]/{big_r:g}",
             arg,
         )
     _asin_argument(
-        "finishing",
+        f"finishing J{finishing_diameter:g}",
         f"[[{finishing_diameter:g}-{outer_diameter:g}]/2]/{big_r:g}",
         _edge_argument(finishing_diameter, outer_diameter, big_r),
     )
+    _inside_the_blank(outer_diameter, big_r, layers, finishing_diameter)
+    lowest_start = run_in - (big_r - min(tool_radius, r_fin))
+    if not lowest_start > -length:
+        raise ValueError(
+            f"run-in Z{run_in:g} and length {length:g}: a cut would start at Z"
+            f"{lowest_start:g}, not before its end Z-{length:g}"
+        )
 
     common = _ArcCall(
         outer=outer_diameter,
@@ -340,7 +402,8 @@ def generate_arc_thread(
     1.2, pitch 25, cut to Z-113 from a run-in Z of 50, roughing layers with groove centres on
     diameters 108 and 103 (7 cuts each), finishing on the centre diameter 100 (19 cuts).
     ``options``: the keyword arguments of :func:`build_arc_thread`.  Raises ValueError when
-    r >= R or an ASIN argument leaves -1..1.
+    r >= R, an ASIN argument leaves -1..1 or a groove is not one the blank can have
+    (``_inside_the_blank``).
     """
     return build_arc_thread(
         outer_diameter,

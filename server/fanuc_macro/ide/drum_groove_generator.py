@@ -53,6 +53,15 @@ class DrumGrooveProgram:
     passes: int  # cuts through the whole profile
     segments_per_pass: int  # taper-thread G32 segments through the profile points
     g32_cuts: int  # every G32 block executed (run-in blocks included)
+    crown: CrownFit | None = None  # the best-fit circle of the points (None: a line, no numpy)
+    motion_blocks: int = 0  # motion blocks executed (G00, G32): each a block of a plain program
+    setup_blocks: int = 0  # what a plain program needs besides: O, T, S M03, M05, M30
+    program_blocks: int = 0  # blocks of the generated text (comment lines and % not counted)
+
+    @property
+    def plain_blocks(self) -> int:
+        """The blocks of the same cut written out without a macro."""
+        return self.motion_blocks + self.setup_blocks
 
 
 def build_drum_groove(
@@ -74,7 +83,8 @@ def build_drum_groove(
     """:func:`generate_drum_groove` with the measured pass and cut counts."""
     pts = [(float(x), float(z)) for x, z in (DRUM_PROFILE if points is None else points)]
     if not 2 <= len(pts) <= _MAX_POINTS:
-        raise ValueError(f"{len(pts)} profile points: give 2-{_MAX_POINTS}")
+        many = "point" if len(pts) == 1 else "points"
+        raise ValueError(f"{len(pts)} profile {many}: give 2-{_MAX_POINTS}")
     for name, value in (("pitch", pitch), ("radial step", radial_step), ("run-in", run_in)):
         if not value > 0 or not math.isfinite(value):
             raise ValueError(f"{name} {value!r} must be a positive number")
@@ -88,6 +98,8 @@ def build_drum_groove(
         raise ValueError(f"clearance {clearance!r} must be positive")
     if not 1 <= spindle_speed <= 99999:
         raise ValueError(f"spindle speed S{spindle_speed} is outside 1-99999")
+    if not 1 <= tool <= 99:
+        raise ValueError(f"tool T{tool} is outside 1-99")
     if program_number(main_number, "main") == program_number(macro_number, "macro"):
         raise ValueError(f"the main program and the macro are both O{main_number:04d}")
     sense = math.copysign(1.0, pts[0][1] - pts[1][1])  # +1: cutting toward -Z
@@ -134,6 +146,8 @@ def build_drum_groove(
                 f"CROWN R{crown.radius:.1f} (BEST-FIT CIRCLE, POINTS WITHIN "
                 f"{crown.max_deviation:.3f} MM OF IT)",
             )
+        if "blocks" in notes:
+            out.add("", notes["blocks"])
         for i, (x, z) in enumerate(pts, 1):
             out.add(f"#{_X_BASE + i}={num(x)}", f"POINT {i} X")
             out.add(f"#{_Z_BASE + i}={num(z)}", f"POINT {i} Z")
@@ -199,15 +213,26 @@ def build_drum_groove(
     passes = sum(1 for m in g32 if m.line == draft.at["runin"])
     if passes == 0 or segments % passes:
         raise RuntimeError("executing the drum groove macro gave no whole passes")
+    # What a plain program would be: every motion the run made, a block each, and the main
+    # program's blocks that are neither motion nor macro (the run knows no other kind here).
+    setup_blocks = 5  # O, T, G97 S M03, M05, M30
+    motion_blocks = len(facts.motions)
+    program_blocks = sum(1 for line in draft.lines if line != "%" and not line.startswith("("))
     notes = {
         "call": f"X {count_of(cuts_per_layer, 'CUT')} = {count_of(passes, 'PASS')} OF "
-        f"{segments // passes} TAPER SEGMENTS, {len(g32)} G32 BLOCKS"
+        f"{count_of(segments // passes, 'TAPER SEGMENT')}, {len(g32)} G32 BLOCKS",
+        "blocks": f"THIS PROGRAM: {program_blocks} BLOCKS; WRITTEN OUT WITHOUT A MACRO: "
+        f"{motion_blocks} MOTION + {setup_blocks} SET-UP = {motion_blocks + setup_blocks} BLOCKS",
     }
     return DrumGrooveProgram(
         text=render(notes).text(),
         passes=passes,
         segments_per_pass=segments // passes,
         g32_cuts=len(g32),
+        crown=crown,
+        motion_blocks=motion_blocks,
+        setup_blocks=setup_blocks,
+        program_blocks=program_blocks,
     )
 
 

@@ -82,6 +82,11 @@ def execute(text: str) -> Analysis:
     facts = analysis.facts
     if facts is None:
         raise RuntimeError("the evaluator failed on the generated program")
+    if facts.stopped == "budget":
+        raise RuntimeError(
+            f"the generated program did not end within the evaluator's budget ({facts.steps} "
+            "executed blocks): it cuts too much for one run"
+        )
     if facts.stopped is not None:
         raise RuntimeError(f"the evaluator stopped early on the generated program: {facts.stopped}")
     alarms = [

@@ -1,0 +1,337 @@
+"""``fanuc-macro arc-thread`` and ``fanuc-macro drum-groove``: print the seed papers' programs
+for other parts.
+
+``arc-thread`` is the large-pitch arc thread by the fitting method (seed 002), ``drum-groove``
+the drum-shaped spiral groove in chained taper threads (seed 003); both default to the papers'
+parts.  The generators run their program with the evaluator before printing it; anything they
+refuse exits 2 with one line on standard error.
+"""
+
+from __future__ import annotations
+
+import argparse
+import re
+import sys
+from collections.abc import Callable, Sequence
+from pathlib import Path
+
+from .thread import _count, _program
+
+__all__ = ["add_generator_commands", "cmd_arc_thread", "cmd_drum_groove"]
+
+EXIT_OK = 0
+EXIT_USAGE = 2
+
+_NUMBER = r"[-+]?(?:\d+(?:\.\d*)?|\.\d+)"
+_POINT = re.compile(rf"\s*({_NUMBER})\s*[,;\t ]\s*({_NUMBER})\s*[,;\t]?\s*")
+
+
+class Refused(Exception):
+    """An input the command refuses: its message is the one line on standard error."""
+
+
+def _number(text: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not a number") from None
+    if value != value or value in (float("inf"), float("-inf")):
+        raise argparse.ArgumentTypeError(f"{text!r} is not a finite number")
+    return value
+
+
+def _diameters(text: str) -> tuple[float, ...]:
+    """``108,103``: roughing groove-centre diameters, in cutting order."""
+    items = [item.strip() for item in text.split(",")]
+    if not items or any(not item for item in items):
+        raise argparse.ArgumentTypeError(f"{text!r} is not a comma list of diameters (108,103)")
+    return tuple(_number(item) for item in items)
+
+
+def _spindle(text: str) -> int:
+    match = re.fullmatch(r"\s*[Mm]?0*([34])\s*", text)
+    if match is None:
+        raise argparse.ArgumentTypeError(f"{text!r} is not M3 or M4")
+    return int(match.group(1))
+
+
+def _speed(text: str) -> int:
+    value = _count(text)
+    if value == 0:
+        raise argparse.ArgumentTypeError(f"{text!r} must be positive")
+    return value
+
+
+def _direction(text: str) -> str:
+    if text not in ("left", "right"):
+        raise argparse.ArgumentTypeError(f"{text!r} is not left or right")
+    return text
+
+
+def _refusal(command: str, err: Exception) -> int:
+    message = " ".join(str(err).split())
+    sys.stderr.write(f"fanuc-macro {command}: {message}\n")
+    return EXIT_USAGE
+
+
+def cmd_arc_thread(args: argparse.Namespace) -> int:
+    # Imported here: ``check`` starts without the generators (tests/test_startup.py).
+    from ..ide.arc_thread_generator import build_arc_thread
+
+    lead = args.lead if args.lead is not None else args.pitch
+    try:
+        program = build_arc_thread(
+            outer_diameter=args.outer_diameter,
+            groove_radius=args.groove_radius,
+            tool_radius=args.tool_radius,
+            pitch=lead,
+            length=args.length,
+            layers=args.layers,
+            cuts_per_layer=args.cuts_per_layer,
+            finishing_diameter=args.finishing_diameter,
+            finishing_cuts=args.finishing_cuts,
+            run_in=args.run_in,
+            finishing_tool_radius=args.finishing_tool_radius,
+            rough_speed=args.rough_speed,
+            finishing_speed=args.finishing_speed,
+            spindle_m=args.spindle,
+            rough_tool=args.rough_tool,
+            finishing_tool=args.finishing_tool,
+            retract_x=args.retract_x,
+            start_x=args.start_x,
+            start_z=args.start_z,
+            main_number=args.main,
+            rough_number=args.rough,
+            finishing_number=args.finishing,
+        )
+    except (ValueError, RuntimeError) as err:  # RuntimeError: the run of the program failed
+        return _refusal("arc-thread", err)
+    sys.stdout.write(program.text)
+    return EXIT_OK
+
+
+def _is_number(text: str) -> bool:
+    return re.fullmatch(_NUMBER, text.strip()) is not None
+
+
+def _parse_points(
+    rows: Sequence[str], where: str, kind: str, header: bool
+) -> list[tuple[float, float]]:
+    """Profile points (X diameter, Z), one a row: ``X,Z``, ``X;Z`` or tab-separated.  With
+    ``header`` a first row of no number at all (``X,Z``) is a header, not a point."""
+    points: list[tuple[float, float]] = []
+    for n, raw in enumerate(rows, 1):
+        row = raw.strip()
+        if not row:
+            continue
+        match = _POINT.fullmatch(row)
+        if match is None:
+            fields = re.split(r"[,;\t]", row)
+            if header and not points and not any(_is_number(f) for f in fields):
+                continue
+            raise Refused(f"{where} {kind} {n}: {row!r} is not X diameter, Z (e.g. 298.91,205)")
+        points.append((float(match.group(1)), float(match.group(2))))
+    if not points:
+        raise Refused(f"{where}: no profile points")
+    return points
+
+
+def cmd_drum_groove(args: argparse.Namespace) -> int:
+    from ..ide.drum_groove_generator import DRUM_PROFILE, build_drum_groove
+
+    try:
+        if args.points_file is not None:
+            path = Path(args.points_file)
+            try:
+                rows = path.read_text(encoding="utf-8-sig").splitlines()
+            except (OSError, UnicodeDecodeError) as err:
+                raise Refused(f"--points-file {args.points_file}: cannot read it ({err})") from None
+            points = _parse_points(rows, f"--points-file {args.points_file}", "row", True)
+        elif args.points is not None:
+            points = _parse_points(args.points.split(";"), "--points", "point", False)
+        else:
+            points = list(DRUM_PROFILE)
+        program = build_drum_groove(
+            points,
+            args.pitch,
+            args.layers,
+            args.radial_step,
+            args.axial_step,
+            cuts_per_layer=args.cuts_per_layer,
+            direction=-1 if args.direction == "left" else 1,
+            run_in=args.run_in,
+            clearance=args.clearance,
+            spindle_speed=args.speed,
+            tool=args.tool,
+            main_number=args.main,
+            macro_number=args.macro,
+        )
+    except (Refused, ValueError, RuntimeError) as err:
+        return _refusal("drum-groove", err)
+    sys.stdout.write(program.text)
+    crown = program.crown
+    if crown is not None:
+        sys.stderr.write(
+            f"crown: R{crown.radius:.1f} mm, the best-fit circle of the {len(points)} points "
+            f"(all within {crown.max_deviation:.2g} mm of it)\n"
+        )
+    else:
+        sys.stderr.write("crown: none fitted (points on a line, fewer than 3, or no numpy)\n")
+    sys.stderr.write(
+        f"cuts: {program.g32_cuts} G32 blocks in {program.passes} passes of "
+        f"{program.segments_per_pass} taper segments\n"
+        f"blocks: this program {program.program_blocks}; the same cut written out without a "
+        f"macro {program.plain_blocks} ({program.motion_blocks} motions + "
+        f"{program.setup_blocks} set-up): {program.plain_blocks - program.program_blocks} "
+        "saved\n"
+    )
+    return EXIT_OK
+
+
+def _shown(value: object) -> str:
+    return f"{value:g}" if isinstance(value, float) else str(value)
+
+
+def _option(
+    parser: argparse.ArgumentParser,
+    name: str,
+    kind: Callable[[str], object],
+    default: object,
+    metavar: str,
+    text: str,
+    shown: str | None = None,
+) -> None:
+    """An option whose help ends with its default, as the paper's value."""
+    parser.add_argument(
+        name,
+        type=kind,
+        default=default,
+        metavar=metavar,
+        help=f"{text} (default {_shown(default) if shown is None else shown})",
+    )
+
+
+def _add_arc_thread(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
+    arc = subparsers.add_parser(
+        "arc-thread",
+        help="print the large-pitch arc thread program (fitting method, G32 cuts)",
+        description="Print the large-pitch arc thread of Ren Guozhu's paper by the fitting "
+        "method: a main program, a G65 roughing macro called once per layer and a G65 "
+        "finishing macro, each cut a G32 at a tool-centre angle on the groove's arc.  The "
+        "defaults are the paper's part (OD 93.82, R10, r1.2, pitch 25, layers 108 and 103 "
+        "of 7 cuts, finishing on 100 in 19 cuts: 33 G32 cuts).  Diameters are on X.",
+    )
+    _option(arc, "--outer-diameter", _number, 93.82, "D", "thread outer diameter (A, #1)")
+    _option(arc, "--groove-radius", _number, 10.0, "R", "groove (profile) radius R (I, #4)")
+    _option(arc, "--tool-radius", _number, 1.2, "r", "roughing tool nose radius r (R, #18)")
+    _option(
+        arc,
+        "--finishing-tool-radius",
+        _number,
+        None,
+        "r",
+        "finishing tool nose radius",
+        shown="--tool-radius",
+    )
+    feed = arc.add_mutually_exclusive_group()
+    feed.add_argument(
+        "--pitch",
+        type=_number,
+        default=25.0,
+        metavar="P",
+        help="pitch of the single-start thread, the G32 F (C, #3) (default 25)",
+    )
+    feed.add_argument(
+        "--lead",
+        type=_number,
+        default=None,
+        metavar="L",
+        help="the lead as the G32 F instead of --pitch (a multi-start thread's other starts "
+        "are not generated)",
+    )
+    _option(arc, "--length", _number, 113.0, "MM", "cut end distance: G32 to Z-MM (B, #2)")
+    _option(arc, "--run-in", _number, 50.0, "Z", "Z of the groove centre at the start (K, #6)")
+    _option(
+        arc,
+        "--layers",
+        _diameters,
+        (108.0, 103.0),
+        "J,J,...",
+        "roughing groove-centre diameters, one layer each, deepest last (J, #5)",
+        shown="108,103",
+    )
+    _option(arc, "--cuts-per-layer", _count, 7, "N", "G32 cuts of each roughing layer (D, #7)")
+    _option(arc, "--finishing-diameter", _number, 100.0, "J", "finishing groove-centre diameter")
+    _option(arc, "--finishing-cuts", _count, 19, "N", "G32 cuts of the finishing")
+    _option(arc, "--rough-tool", _count, 1, "T", "roughing tool and offset number")
+    _option(arc, "--finishing-tool", _count, 2, "T", "finishing tool and offset number")
+    _option(arc, "--rough-speed", _speed, 300, "S", "roughing spindle speed, rpm")
+    _option(arc, "--finishing-speed", _speed, 400, "S", "finishing spindle speed, rpm")
+    _option(arc, "--spindle", _spindle, 3, "M3|M4", "spindle direction", shown="M3")
+    _option(arc, "--retract-x", _number, 140.0, "X", "X the tool retracts to after each cut")
+    _option(arc, "--start-x", _number, 150.0, "X", "start point X, where each macro begins")
+    _option(arc, "--start-z", _number, 100.0, "Z", "start point Z")
+    _option(arc, "--main", _program, 2, "O0002", "main program number", shown="O0002")
+    _option(arc, "--rough", _program, 3, "O0003", "roughing macro number", shown="O0003")
+    _option(arc, "--finishing", _program, 5, "O0005", "finishing macro number", shown="O0005")
+    arc.set_defaults(func=cmd_arc_thread)
+
+
+def _add_drum_groove(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
+    drum = subparsers.add_parser(
+        "drum-groove",
+        help="print the drum-shaped spiral groove program (chained G32 taper threads)",
+        description="Print the drum-shaped spiral groove of Pu Yanmin's paper: a main program "
+        "that enters the profile points in common variables and one G65 macro that cuts the "
+        "groove layer by layer, each pass a G32 run-in and a chain of G32 taper threads "
+        "through the points.  The default profile is the paper's table 1 (12 points).  "
+        "Standard error gets the crown radius fitted to the points and how many blocks the "
+        "macro saves against the same cut written out.",
+    )
+    points = drum.add_mutually_exclusive_group()
+    points.add_argument(
+        "--points",
+        metavar="X,Z;X,Z;...",
+        help="profile points, X diameter and Z, in cutting order (default: the paper's 12)",
+    )
+    points.add_argument(
+        "--points-file",
+        metavar="FILE.csv",
+        help="profile points, one X diameter, Z a row (',', ';' or tab between; a header row "
+        "is skipped)",
+    )
+    drum.add_argument(
+        "--pitch",
+        type=_number,
+        required=True,
+        metavar="P",
+        help="the groove's lead, the G32 F; required: the paper's figure 2, which gives it, "
+        "is lost",
+    )
+    _option(drum, "--layers", _count, 9, "N", "layers, each a radial step deeper")
+    _option(drum, "--radial-step", _number, 0.8, "MM", "depth of each layer, on the radius")
+    _option(drum, "--axial-step", _number, 0.5, "MM", "Z shift between the cuts of a layer")
+    _option(drum, "--cuts-per-layer", _count, 1, "N", "cuts of each layer, an axial step apart")
+    _option(
+        drum,
+        "--direction",
+        _direction,
+        "left",
+        "left|right",
+        "where the cuts of a layer step: left, toward -Z (the paper's T1), or right (T2)",
+    )
+    _option(drum, "--run-in", _number, 10.0, "MM", "straight G32 run-in before the first point")
+    _option(drum, "--clearance", _number, 10.0, "MM", "retract above the largest diameter")
+    _option(drum, "--speed", _speed, 80, "S", "spindle speed, rpm")
+    _option(drum, "--tool", _count, 1, "T", "tool and offset number")
+    _option(drum, "--main", _program, 10, "O0010", "main program number", shown="O0010")
+    _option(drum, "--macro", _program, 1, "O0001", "macro number", shown="O0001")
+    drum.set_defaults(func=cmd_drum_groove)
+
+
+def add_generator_commands(
+    subparsers: argparse._SubParsersAction[argparse.ArgumentParser],
+) -> None:
+    """Register ``arc-thread`` and ``drum-groove`` on the ``fanuc-macro`` sub-command parsers."""
+    _add_arc_thread(subparsers)
+    _add_drum_groove(subparsers)
