@@ -61,7 +61,7 @@ async def test_the_commands_are_advertised_and_give_the_papers_programs(
 
 async def test_an_override_changes_the_program(client: LanguageClient) -> None:
     await start(client, None)
-    arc = await run(client, ARC, {"layers": "108,103,99", "cuts_per_layer": 5})
+    arc = await run(client, ARC, {"layers": "108,104,101", "cuts_per_layer": 5})
     assert arc["summary"]["layer_cuts"] == [5, 5, 5]
     assert arc["summary"]["g32_cuts"] == 34 == g32_cuts(arc["text"])
     drum = await run(client, DRUM, {"pitch": "40", "layers": 3, "points": "300,10;310,0;300,-10"})
