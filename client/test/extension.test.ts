@@ -7,7 +7,7 @@ import { join } from 'node:path';
 import { after, describe, it } from 'node:test';
 import type { ExtensionContext } from 'vscode';
 import { activate, deactivate } from '../src/extension';
-import { arcThreadForm, defaultAnswers, drumGrooveForm } from '../src/generatorParameters';
+import { arcThreadForm, defaultAnswers, drumGrooveForm, readAnswers } from '../src/generatorParameters';
 import { clients, serverAnswers, type LanguageClient } from './fakes/languageclient';
 import { serverScripts } from './fakes/serverScripts';
 import * as fake from './fakes/vscode';
@@ -241,19 +241,8 @@ describe('extension', { skip: process.platform === 'win32' }, () => {
     assert.equal(fake.recorded.inputBoxes[0]?.title, 'Arc Thread Program (1/5)');
     assert.deepEqual(lastClient().requests.pop()?.params, {
       command: 'fanuc-macro.arcThread',
-      arguments: [
-        {
-          outer_diameter: 93.82,
-          groove_radius: 10,
-          tool_radius: 1.2,
-          pitch: 25,
-          length: 113,
-          layers: [108, 103],
-          cuts_per_layer: 7,
-          finishing_diameter: 100,
-          finishing_cuts: 19,
-        },
-      ],
+      // The boxes' defaults as read (generatorParameters.test.ts holds the paper's values).
+      arguments: [readAnswers(form, defaultAnswers(form))],
     });
     assert.deepEqual(fake.recorded.inserts, [{ position: new fake.Position(4, 0), text: '%\nO0002\nG65 P0003\n%\n' }]);
     assert.deepEqual(fake.recorded.statusMessages, ['FANUC Macro: 33 G32 cuts: 7, 7 per roughing layer, 19 finishing.']);
