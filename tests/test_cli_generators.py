@@ -120,6 +120,10 @@ REFUSALS: dict[tuple[str, ...], tuple[str, ...]] = {
     ("arc-thread", "--main", "3"): ("O0003", "three different numbers"),
     ("arc-thread", "--rough-tool", "100"): ("roughing tool T100",),
     ("drum-groove", "--pitch", "0"): ("pitch 0.0",),
+    # A value the program's four decimals would change is not rounded behind the user's back.
+    ("drum-groove", "--pitch", "0.00001"): ("pitch 1e-05", "4 decimals", "enter 0."),
+    ("arc-thread", "--pitch", "25.00004"): ("pitch 25.00004", "4 decimals", "enter 25."),
+    ("arc-thread", "--layers", "108,103.00001"): ("roughing layer 2 J 103.00001",),
     ("drum-groove", "--pitch", "12", "--points", "300,10;abc"): ("--points point 2", "'abc'"),
     ("drum-groove", "--pitch", "12", "--points-file", "bad.csv"): (
         "--points-file bad.csv row 4",

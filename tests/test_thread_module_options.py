@@ -247,6 +247,7 @@ def test_the_command_line_takes_the_options(tmp_path: Path) -> None:
         (("--taper", "1:x"), "'1:x' is not a taper"),
         (("--taper", "0.7"), "taper 0.7"),
         (("--infeed", "both"), "invalid choice: 'both'"),
+        (("--td2", "0.12345"), "Td2/TD2 0.12345 has more than 4 decimals"),
     ],
 )
 def test_the_command_line_refuses_bad_options(args: tuple[str, ...], fragment: str) -> None:

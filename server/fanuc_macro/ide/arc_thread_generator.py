@@ -12,6 +12,7 @@ from typing import Any
 from ..evaluator import Motion
 from .generated_program import (
     Lines,
+    entered,
     execute,
     num,
     program_number,
@@ -231,6 +232,21 @@ def build_arc_thread(
             )
     if not layers:
         raise ValueError("give at least one roughing layer (groove-centre diameter)")
+    for name, value in (
+        ("outer diameter", outer_diameter),
+        ("groove radius R", big_r),
+        ("tool nose radius r", tool_radius),
+        ("finishing tool nose radius r", r_fin),
+        ("pitch", pitch),
+        ("length", length),
+        ("run-in", run_in),
+        ("retract X", retract_x),
+        ("start X", start_x),
+        ("start Z", start_z),
+        ("finishing diameter", finishing_diameter),
+        *((f"roughing layer {n} J", j) for n, j in enumerate(layers, 1)),
+    ):
+        entered(name, value)
     if not 1 <= cuts_per_layer <= 999:
         raise ValueError(f"cuts per layer {cuts_per_layer} must be 1-999")
     if not 2 <= finishing_cuts <= 999:

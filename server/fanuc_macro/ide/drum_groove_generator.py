@@ -14,6 +14,7 @@ from ..threads.profile import CrownFit, fit_crown
 from .generated_program import (
     Lines,
     count_of,
+    entered,
     execute,
     num,
     program_number,
@@ -90,6 +91,16 @@ def build_drum_groove(
             raise ValueError(f"{name} {value!r} must be a positive number")
     if not axial_step >= 0 or not math.isfinite(axial_step):
         raise ValueError(f"axial step {axial_step!r} must not be negative")
+    for name, value in (
+        ("pitch", pitch),
+        ("radial step", radial_step),
+        ("axial step", axial_step),
+        ("run-in", run_in),
+        ("clearance", clearance),
+        *((f"point {i} X", x) for i, (x, _) in enumerate(pts, 1)),
+        *((f"point {i} Z", z) for i, (_, z) in enumerate(pts, 1)),
+    ):
+        entered(name, value)
     if not 1 <= layers <= 999 or not 1 <= cuts_per_layer <= 999:
         raise ValueError(f"layers {layers} and cuts per layer {cuts_per_layer} must be 1-999")
     if direction not in (-1, 1):

@@ -11,6 +11,7 @@ __all__ = [
     "Lines",
     "clean_comment",
     "count_of",
+    "entered",
     "execute",
     "mm",
     "num",
@@ -26,6 +27,16 @@ def num(value: float, places: int = 4) -> str:
     if text in ("-0.", "0.", "-."):
         return "0."
     return text
+
+
+def entered(what: str, value: float, places: int = 4) -> None:
+    """Refuse a value the program's ``places`` decimals would change: 1e-05 would be entered
+    as ``0.``, 25.00004 as ``25.``, and the program would cut something else than asked."""
+    text = num(value, places)
+    if abs(float(text) - value) > 1e-12 * max(1.0, abs(value)):
+        raise ValueError(
+            f"{what} {value!r} has more than {places} decimals: the program would enter {text}"
+        )
 
 
 def mm(value: float) -> str:

@@ -24,6 +24,7 @@ from .generated_program import (
     GENERATED_URI,
     Lines,
     count_of,
+    entered,
     execute,
     mm,
     num,
@@ -542,6 +543,12 @@ def build_module(
         des = designation
         if internal is not None and internal != des.internal:
             raise ValueError(f"{des.text!r} is {'in' if des.internal else 'ex'}ternal")
+    # What the user typed goes into the main program as typed, or is refused.
+    # (The taper's eighth decimal is far below the control's increment over any length.)
+    entered("thread length", length)
+    for name, override in (("Td2/TD2", td2_override), ("es/EI", deviation_override)):
+        if override is not None:
+            entered(name, override)
     grade = des.pitch_class
     which = "EI" if des.internal else "ES"
     tol_name = "TD2" if des.internal else "Td2"
