@@ -33,6 +33,9 @@ register(
              "maximum spindle speed.", FAMILY),
     RuleInfo("MB603", "feed-not-set", Severity.WARNING,
              "A G01/G02/G03 cut runs before any F was commanded.", FAMILY),
+    RuleInfo("MB604", "feed-zero", Severity.ERROR,
+             "A cut or a thread runs with F0: the control stops with PS0011 FEED ZERO.",
+             FAMILY),
 )  # fmt: skip
 
 # What each rule above reports, why, an example, the fix and what it leaves out:
@@ -140,11 +143,47 @@ analysed files, which may have commanded F, and each later cut without F as a wa
 own.
 """,
     ),
+    RuleDoc(
+        "MB604",
+        reports="""
+A cutting move (`G01`, `G02`, `G03`), a thread (`G32`, `G92`, `G76`) or a
+lathe turning or facing cycle (`G90`, `G94`) that the evaluator runs with F exactly 0: written
+`F0`, a variable that holds 0 (the message says where it was set), or the modal F left at 0
+by an earlier block. Once per line.
+""",
+        why="""
+The control stops at that block with alarm PS0011 FEED ZERO
+(COMMAND) (FANUC 0i-TF/0i-MF alarm lists; for a threading lead of 0 the alarm number is not
+verified here). A feed or lead computed into a variable that comes out 0 is usually a formula
+or an argument gone wrong, found on the machine in the middle of a job.
+""",
+        example="""
+```nc
+O1010 (PITCH FROM A VARIABLE)
+G97 S500 M03
+G00 X22. Z5.
+#9=0
+G32 Z-30. F#9
+G00 X40.
+M30
+```
+""",
+        fix="""
+Give the feed (the lead for a thread): correct the formula or the argument
+that gives 0, or the `F` word.
+""",
+        not_reported="""
+Rapid moves, which do not use F; `G70`–`G73` and the drilling cycles;
+a feed the analysis cannot compute (a macro's argument nobody passes); a feed that is tiny
+but not 0 (MB602 reports a negative one).
+""",
+    ),
 )
 
 
 def check(ctx: RuleContext) -> Iterator[Diagnostic]:
     yield from _feed_not_set(ctx)
+    yield from _feed_zero(ctx)
     for f in ctx.findings("address-"):
         code = "MB601" if f.kind == "address-non-integer" else "MB602"
         message = f.message
@@ -194,6 +233,66 @@ def _feed_not_set(ctx: RuleContext) -> Iterator[Diagnostic]:
             len(text.rstrip()),
             related=[Related(n, 0, 0, "a cut without F") for n in cuts[1:20]],
         )
+
+
+# The moves that cut at F: G01-G03 at the feed, G32-G34 and the threading cycles at F as the
+# lead, the lathe's turning and facing cycles at the feed.  G70-G73 and the mill's drilling
+# cycles take F in ways the motions do not record apart, and are left out.
+_FED = frozenset({"G01", "G02", "G03", "G32", "G33", "G34", "G76", "G90", "G92", "G94"})
+_LEAD = frozenset({"G32", "G33", "G34", "G76", "G92"})
+
+
+def _feed_zero(ctx: RuleContext) -> Iterator[Diagnostic]:
+    """MB604: the first block of each line that the run cuts with F exactly 0 (FANUC 0i-TF /
+    0i-MF alarm list, PS0011 FEED ZERO (COMMAND): "the cutting feedrate instructed by an F
+    code has been set to 0"; for a threading lead of 0 the alarm number is unverified)."""
+    facts = ctx.facts
+    if facts is None:
+        return
+    uri = ctx.doc.uri
+    seen: set[int] = set()
+    for m in facts.motions:
+        if m.uri != uri or m.code not in _FED or m.line in seen or m.words.get("F") != 0.0:
+            continue
+        seen.add(m.line)
+        text = ctx.doc.blocks[m.line].text
+        word = _word_in_block(ctx, m.line, "F")
+        if word is None:
+            where = "the modal F, commanded 0 before this block"
+            start, end = len(text) - len(text.lstrip()), len(text.rstrip())
+        else:
+            written = text[word.span.start : word.span.end]
+            where = f"{written} in this block"
+            if constant_value(word.value) is None:
+                where += " gives 0"
+                value = word.value
+                if isinstance(value, Var) and value.number is not None:
+                    assigned = _last_assignment(ctx, m.line, int(value.number))
+                    if assigned is not None:
+                        where += f"; #{value.number:g} set at line {assigned[0] + 1}: {assigned[1]}"
+            start, end = word.span.start, word.span.end
+        what = "the lead F" if m.code in _LEAD else "the feed F"
+        yield make(
+            "MB604",
+            f"{m.code} runs with {what} = 0 ({where}): the control stops at this block with "
+            "alarm PS0011 FEED ZERO; give the feed" + (" (the lead)" if m.code in _LEAD else ""),
+            m.line,
+            start,
+            end,
+        )
+
+
+def _word_in_block(ctx: RuleContext, line: int, address: str) -> Word | None:
+    from ..syntax.parser import statements_of
+    from ..syntax.tree import IfNc, NcStatement
+
+    for statement in statements_of(ctx.doc.blocks[line].statement):
+        nc = statement.words if isinstance(statement, IfNc) else statement
+        if isinstance(nc, NcStatement):
+            for w in nc.words:
+                if w.address == address:
+                    return w
+    return None
 
 
 def _word_at(ctx: RuleContext, line: int, column: int) -> Word | None:
