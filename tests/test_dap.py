@@ -217,6 +217,18 @@ def test_an_alarm_stops_with_its_message(dap: DapClient) -> None:
     assert "stopped on an alarm" in dap.output_text()
 
 
+def test_a_feed_of_zero_stops_as_the_control_does(dap: DapClient) -> None:
+    program = DEBUG / "o5010_feed_zero.nc"
+    dap.start({"program": str(program)})
+    stop = dap.stopped()
+    assert stop["reason"] == "exception"
+    assert "G01 runs with the feed F = 0" in stop["text"] and "PS0011" in stop["text"]
+    assert top(dap)["line"] == line_of(program, "G01 Z-1. F#4")
+    assert dap.evaluate("#4") == "0."
+    dap.ok("continue", {"threadId": 1})
+    assert dap.event("exited")["body"]["exitCode"] == 1
+
+
 def test_alarms_can_be_let_through(dap: DapClient) -> None:
     dap.start({"program": str(DEBUG / "o5000_alarm.nc")}, filters=[])
     assert dap.event("exited")["body"]["exitCode"] == 1

@@ -90,6 +90,8 @@ MAX_NESTING = 10
 MAX_MOTIONS = 200_000  # motion records kept per analysis
 MAX_SHARED_WORDS = 4096  # distinct motion words a run looks up to share (Machine._words)
 THREADING_CODES = frozenset({32.0, 33.0, 34.0, 76.0, 92.0})
+# The lathe's moves that cut at F besides G01-G03: threads (F the lead), turning and facing.
+LATHE_FED = frozenset({32.0, 33.0, 34.0, 76.0, 90.0, 92.0, 94.0})
 MAX_REMEMBERED_RUNS = 1000  # executions whose variables are kept when they start a thread
 CHECK_EVERY = 1024  # blocks between two looks at the budgets and a newer edit
 # Blocks between two checkpoints (at the next boundary line): a resumed run re-runs about
@@ -1647,6 +1649,11 @@ class Machine:
         words = const.words if const is not None else _motion_words(values)
         if "F" not in words and isinstance(modal.feed, float) and code != 0.0:
             words = {**words, "F": modal.feed}
+        if words.get("F") == 0.0 and (code in FEED_MOTIONS or (lathe and code in LATHE_FED)):
+            # PS0011 FEED ZERO (COMMAND), 0i-TF/0i-MF alarm lists: the control stops here.
+            # (For a threading lead of 0 the alarm number is unverified.)
+            what = "the lead" if code in THREADING_CODES else "the feed"
+            raise MacroAlarm("PS0011", "feed-zero", f"{_g_name(code)} runs with {what} F = 0")
         if const is None or words is not const.words:
             words = self._shared_words(words)
         if code in FEED_MOTIONS and modal.feed is None:

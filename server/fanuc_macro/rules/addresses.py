@@ -149,7 +149,8 @@ own.
 A cutting move (`G01`, `G02`, `G03`), a thread (`G32`, `G92`, `G76`) or a
 lathe turning or facing cycle (`G90`, `G94`) that the evaluator runs with F exactly 0: written
 `F0`, a variable that holds 0 (the message says where it was set), or the modal F left at 0
-by an earlier block. Once per line.
+by an earlier block. The evaluator stops the run there, as the control does (so does the
+debugger, on its alarm filter).
 """,
         why="""
 The control stops at that block with alarm PS0011 FEED ZERO
@@ -235,48 +236,33 @@ def _feed_not_set(ctx: RuleContext) -> Iterator[Diagnostic]:
         )
 
 
-# The moves that cut at F: G01-G03 at the feed, G32-G34 and the threading cycles at F as the
-# lead, the lathe's turning and facing cycles at the feed.  G70-G73 and the mill's drilling
-# cycles take F in ways the motions do not record apart, and are left out.
-_FED = frozenset({"G01", "G02", "G03", "G32", "G33", "G34", "G76", "G90", "G92", "G94"})
-_LEAD = frozenset({"G32", "G33", "G34", "G76", "G92"})
-
-
 def _feed_zero(ctx: RuleContext) -> Iterator[Diagnostic]:
-    """MB604: the first block of each line that the run cuts with F exactly 0 (FANUC 0i-TF /
-    0i-MF alarm list, PS0011 FEED ZERO (COMMAND): "the cutting feedrate instructed by an F
-    code has been set to 0"; for a threading lead of 0 the alarm number is unverified)."""
-    facts = ctx.facts
-    if facts is None:
-        return
-    uri = ctx.doc.uri
-    seen: set[int] = set()
-    for m in facts.motions:
-        if m.uri != uri or m.code not in _FED or m.line in seen or m.words.get("F") != 0.0:
-            continue
-        seen.add(m.line)
-        text = ctx.doc.blocks[m.line].text
-        word = _word_in_block(ctx, m.line, "F")
+    """MB604: the evaluator's PS0011 FEED ZERO, a cut or thread run with F exactly 0, where it
+    stopped the run; the message says where the 0 comes from."""
+    for f in ctx.findings("alarm:feed-zero"):
+        text = ctx.doc.blocks[f.line].text
+        word = _word_in_block(ctx, f.line, "F")
         if word is None:
             where = "the modal F, commanded 0 before this block"
             start, end = len(text) - len(text.lstrip()), len(text.rstrip())
         else:
-            written = text[word.span.start : word.span.end]
-            where = f"{written} in this block"
+            where = f"{text[word.span.start : word.span.end]} in this block"
             if constant_value(word.value) is None:
                 where += " gives 0"
                 value = word.value
                 if isinstance(value, Var) and value.number is not None:
-                    assigned = _last_assignment(ctx, m.line, int(value.number))
+                    assigned = _last_assignment(ctx, f.line, int(value.number))
                     if assigned is not None:
-                        where += f"; #{value.number:g} set at line {assigned[0] + 1}: {assigned[1]}"
+                        where += (
+                            f" (#{value.number:g} set at line {assigned[0] + 1}: {assigned[1]})"
+                        )
             start, end = word.span.start, word.span.end
-        what = "the lead F" if m.code in _LEAD else "the feed F"
+        lead = "the lead" in f.message  # the evaluator's words for a thread
         yield make(
             "MB604",
-            f"{m.code} runs with {what} = 0 ({where}): the control stops at this block with "
-            "alarm PS0011 FEED ZERO; give the feed" + (" (the lead)" if m.code in _LEAD else ""),
-            m.line,
+            f"{f.message}, {where}: the control stops at this block; give the "
+            + ("lead" if lead else "feed"),
+            f.line,
             start,
             end,
         )
