@@ -215,14 +215,15 @@ def build_arc_thread(
     """:func:`generate_arc_thread` with the measured cuts and angles."""
     r_fin = tool_radius if finishing_tool_radius is None else finishing_tool_radius
     big_r = groove_radius
-    for name, value in (
+    positive = (
         ("outer diameter", outer_diameter),
         ("groove radius R", big_r),
         ("tool nose radius r", tool_radius),
         ("finishing tool nose radius r", r_fin),
         ("pitch", pitch),
         ("length", length),
-    ):
+    )
+    for name, value in positive:
         if not value > 0 or not math.isfinite(value):
             raise ValueError(f"{name} {value!r} must be a positive number")
     for name, r in (("tool", tool_radius), ("finishing tool", r_fin)):
@@ -233,12 +234,7 @@ def build_arc_thread(
     if not layers:
         raise ValueError("give at least one roughing layer (groove-centre diameter)")
     for name, value in (
-        ("outer diameter", outer_diameter),
-        ("groove radius R", big_r),
-        ("tool nose radius r", tool_radius),
-        ("finishing tool nose radius r", r_fin),
-        ("pitch", pitch),
-        ("length", length),
+        *positive,
         ("run-in", run_in),
         ("retract X", retract_x),
         ("start X", start_x),
