@@ -1652,8 +1652,9 @@ class Machine:
         if words.get("F") == 0.0 and (code in FEED_MOTIONS or (lathe and code in LATHE_FED)):
             # PS0011 FEED ZERO (COMMAND), 0i-TF/0i-MF alarm lists: the control stops here.
             # (For a threading lead of 0 the alarm number is unverified.)
-            what = "the lead" if code in THREADING_CODES else "the feed"
-            raise MacroAlarm("PS0011", "feed-zero", f"{_g_name(code)} runs with {what} F = 0")
+            if code in THREADING_CODES:
+                raise MacroAlarm("PS0011", "lead-zero", f"{_g_name(code)} runs with the lead F = 0")
+            raise MacroAlarm("PS0011", "feed-zero", f"{_g_name(code)} runs with the feed F = 0")
         if const is None or words is not const.words:
             words = self._shared_words(words)
         if code in FEED_MOTIONS and modal.feed is None:

@@ -239,7 +239,7 @@ def _feed_not_set(ctx: RuleContext) -> Iterator[Diagnostic]:
 def _feed_zero(ctx: RuleContext) -> Iterator[Diagnostic]:
     """MB604: the evaluator's PS0011 FEED ZERO, a cut or thread run with F exactly 0, where it
     stopped the run; the message says where the 0 comes from."""
-    for f in ctx.findings("alarm:feed-zero"):
+    for f in ctx.findings("alarm:feed-zero", "alarm:lead-zero"):
         text = ctx.doc.blocks[f.line].text
         word = _word_in_block(ctx, f.line, "F")
         if word is None:
@@ -257,41 +257,33 @@ def _feed_zero(ctx: RuleContext) -> Iterator[Diagnostic]:
                             f" (#{value.number:g} set at line {assigned[0] + 1}: {assigned[1]})"
                         )
             start, end = word.span.start, word.span.end
-        lead = "the lead" in f.message  # the evaluator's words for a thread
         yield make(
             "MB604",
             f"{f.message}, {where}: the control stops at this block; give the "
-            + ("lead" if lead else "feed"),
+            + ("lead" if f.kind == "alarm:lead-zero" else "feed"),
             f.line,
             start,
             end,
         )
 
 
-def _word_in_block(ctx: RuleContext, line: int, address: str) -> Word | None:
+def _block_words(ctx: RuleContext, line: int) -> Iterator[Word]:
+    """The NC words of the block at ``line``, an IF's included."""
     from ..syntax.parser import statements_of
     from ..syntax.tree import IfNc, NcStatement
 
     for statement in statements_of(ctx.doc.blocks[line].statement):
         nc = statement.words if isinstance(statement, IfNc) else statement
         if isinstance(nc, NcStatement):
-            for w in nc.words:
-                if w.address == address:
-                    return w
-    return None
+            yield from nc.words
+
+
+def _word_in_block(ctx: RuleContext, line: int, address: str) -> Word | None:
+    return next((w for w in _block_words(ctx, line) if w.address == address), None)
 
 
 def _word_at(ctx: RuleContext, line: int, column: int) -> Word | None:
-    from ..syntax.parser import statements_of
-    from ..syntax.tree import IfNc, NcStatement
-
-    for statement in statements_of(ctx.doc.blocks[line].statement):
-        nc = statement.words if isinstance(statement, IfNc) else statement
-        if isinstance(nc, NcStatement):
-            for w in nc.words:
-                if w.span.start == column:
-                    return w
-    return None
+    return next((w for w in _block_words(ctx, line) if w.span.start == column), None)
 
 
 def _last_assignment(ctx: RuleContext, before: int, number: int) -> tuple[int, str] | None:

@@ -248,8 +248,6 @@ def _lead(ctx: RuleContext, thread: Thread) -> Iterator[Diagnostic]:
     want = thread.lead
     if lead is None or want is None or thread.pitch_source not in ("designation", "comment"):
         return
-    if lead == 0.0:
-        return  # no lead at all: MB604 stops the run there
     if abs(lead - want) < 1e-6:
         return
     job = thread.job
