@@ -9,6 +9,7 @@ without options is the paper's text (tests/test_thread_generator.py holds its nu
 from __future__ import annotations
 
 import itertools
+import json
 import math
 import os
 import subprocess
@@ -281,3 +282,17 @@ def test_taper_passes_moved_along_z_compare_on_the_cone() -> None:
     found = [d for d in shallower.diagnostics if d.code == "MB803"]
     assert len(found) == 1 and found[0].line == 6
     assert "0.013 mm shallower" in found[0].message
+
+
+def test_a_repeated_taper_cycle_keeps_its_end_z_and_r(tmp_path: Path) -> None:
+    # "X29.4" repeats the G92 above it: the control cuts the same cone to the same Z.
+    path = tmp_path / "taper.nc"
+    path.write_text(TAPER_PASSES.format(shifted="29.3"), encoding="utf-8")
+    done = cli("trace", str(path), "--format", "json")
+    assert done.returncode == 0, done.stderr
+    cuts = [m for m in json.loads(done.stdout)["motions"] if m["code"] == "G92"]
+    repeat = next(m for m in cuts if m["line"] == 5)
+    assert repeat["words"] == {"X": 29.4, "F": 2.0, "R": -1.25}
+    thread = next(move for move in repeat["moves"] if move["kind"] == "thread")
+    assert thread["start"] == {"X": pytest.approx(26.9), "Z": 5.0}
+    assert thread["end"] == {"X": 29.4, "Z": pytest.approx(-35.0)}

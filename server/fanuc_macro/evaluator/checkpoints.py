@@ -63,6 +63,7 @@ class ModalState:
     position_line: tuple[tuple[str, tuple[str, int]], ...]
     inch: bool
     g76: object  # G76Parameters: frozen
+    cycle: tuple[float | None, float | None]  # G90/G92/G94's end Z and R in force
 
 
 @dataclass(frozen=True, slots=True, eq=False, repr=False)
@@ -158,6 +159,7 @@ def _same_modal(a: ModalState, b: ModalState) -> bool:
         and a.constant_surface_speed == b.constant_surface_speed
         and a.inch == b.inch
         and a.g76 == b.g76
+        and a.cycle == b.cycle
         and a.position_line == b.position_line
         and same_value(a.feed, b.feed)
         and same_value(a.speed, b.speed)

@@ -263,6 +263,7 @@ def _state(state: MachineState, line: Renumber, chunks: dict[int, Keys]) -> Mach
         tuple((axis, (uri, line(uri, n))) for axis, (uri, n) in m.position_line),
         m.inch,
         m.g76,
+        m.cycle,
     )
     return MachineState(
         state.run,

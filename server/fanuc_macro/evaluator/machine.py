@@ -672,6 +672,9 @@ class Modal:
     position_line: dict[str, tuple[str, int]] = field(default_factory=dict)
     inch: bool = False  # G20
     g76: G76Parameters = field(default_factory=lambda: G76Parameters())
+    # G90/G92/G94: the end Z and the taper R in force for a block that repeats the cycle
+    # with X alone (0i-TF "Canned cycle for lathe"), as the toolpath draws it.
+    cycle: tuple[float | None, float | None] = (None, None)
 
 
 @dataclass(frozen=True)
@@ -884,6 +887,7 @@ class Machine:
             tuple(m.position_line.items()),
             m.inch,
             m.g76,
+            m.cycle,
         )
         if self._seen_since:
             self._seen_chunks = (*self._seen_chunks, frozenset(self._seen_since))
@@ -934,6 +938,7 @@ class Machine:
             dict(ms.position_line),
             ms.inch,
             ms.g76,
+            ms.cycle,
         )
         caller: Activation | None = None
         for level in state.levels:
@@ -1385,6 +1390,8 @@ class Machine:
         for g in g_codes:
             if g in MOTION_GROUP or (self.lathe and g in LATHE_CYCLES):
                 modal.motion = g
+                if g not in LATHE_CYCLES:
+                    modal.cycle = (None, None)
             elif g == 65.0:
                 call_kind = "G65"
             elif g in (66.0, 66.1):
@@ -1649,6 +1656,11 @@ class Machine:
         words = const.words if const is not None else _motion_words(values)
         if "F" not in words and isinstance(modal.feed, float) and code != 0.0:
             words = {**words, "F": modal.feed}
+        lathe_cycle = lathe and code in LATHE_CYCLES
+        if lathe_cycle:
+            taper = values.get("R") if "R" in values else modal.cycle[1]
+            if "R" not in words and isinstance(taper, float) and taper != 0.0:
+                words = {**words, "R": taper}  # a repeat of a taper cycle: the cone in force
         if words.get("F") == 0.0 and (code in FEED_MOTIONS or (lathe and code in LATHE_FED)):
             # PS0011 FEED ZERO (COMMAND), 0i-TF/0i-MF alarm lists: the control stops here.
             # (For a threading lead of 0 the alarm number is unverified.)
@@ -1674,6 +1686,11 @@ class Machine:
         z = values.get("Z")
         if type(z) is not float:
             z = self._axis(values, "Z", "W") if lathe else None
+        if lathe_cycle:
+            if "Z" not in values and "W" not in values:
+                z = modal.cycle[0]  # the cycle repeated: its end Z stays
+            r = words.get("R")
+            modal.cycle = (z, r if isinstance(r, float) else None)
         start_x = position.get("X")
         start_z = position.get("Z")
         ctx = act.ctx

@@ -167,7 +167,7 @@ def _growing(ctx: RuleContext, thread: Thread, internal: bool) -> Iterator[Diagn
     events = thread.job.remember(
         ("growing", internal, limit),
         lambda: _growing_events(passes, internal, limit),
-        ("x", "z", "start_z", "R", "W", "Z"),
+        ("x", "z", "start_z", "R"),
     )
     xs = _cone_xs(passes)
     for code, i, before in events:
@@ -224,22 +224,18 @@ def _cone_xs(passes: list[Motion]) -> list[float | None]:
 
     Passes of a taper thread moved along Z (flank infeed, the steps of the symmetric module)
     end on the cone at other diameters for one depth: compared at one Z, their X differ by
-    the depth alone.  G92's R is the radius at the cut's start less the one at its end, and
-    a block that repeats the cycle with X alone keeps the Z and R in force (0i-TF manual,
-    "Canned cycle for lathe"; unverified on a machine)."""
+    the depth alone.  G92's R is the radius at the cut's start less the one at its end (0i-TF
+    manual, "Canned cycle for lathe"; unverified on a machine); a block that repeats the
+    cycle has the R and end Z in force (the evaluator's motion carries them)."""
     z_ref = next((m.z for m in passes if m.z is not None), None)
     xs: list[float | None] = []
-    taper = end_z = None
     for m in passes:
-        words = m.words
-        if "R" in words or "Z" in words or "W" in words:
-            taper, end_z = words.get("R"), m.z
-        x = m.x
-        if x is None or not taper or z_ref is None or end_z is None or m.start_z in (None, end_z):
-            xs.append(x)
+        taper = m.words.get("R")
+        if m.x is None or not taper or None in (z_ref, m.z, m.start_z) or m.start_z == m.z:
+            xs.append(m.x)
             continue
-        assert m.start_z is not None
-        xs.append(x + 2.0 * taper * (z_ref - end_z) / (m.start_z - end_z))
+        assert z_ref is not None and m.z is not None and m.start_z is not None
+        xs.append(m.x + 2.0 * taper * (z_ref - m.z) / (m.start_z - m.z))
     return xs
 
 
