@@ -610,6 +610,55 @@ async function checkGenerators() {
   await shot('arc-thread.png');
   await page.keyboard.press('Escape');
   await runCommand('View: Revert and Close Editor').catch(() => {});
+  await checkThreadModuleOptions();
+}
+
+// "Insert Symmetric Thread Module..." with its options: a two-start left-hand designation,
+// the left flank infeed picked, a 1:16 taper typed; the server's module (lead in #105, taper
+// in #106, the sub-program's left-flank infeed) is inserted at the cursor of a new program.
+async function checkThreadModuleOptions() {
+  const quick = page.locator('.quick-input-widget');
+  const input = quick.locator('input').first();
+  const title = (step) => quick.locator('.quick-input-title', { hasText: `Symmetric Thread Module (${step}/4)` });
+  try {
+    await runCommand('FANUC Macro: Open Walkthrough Sample Program');
+    await waitActiveEditor('Untitled', 'FANUC Macro B');
+    await runCommand('FANUC Macro: Insert Symmetric Thread Module');
+    await title(1).waitFor();
+    await input.fill('M24xPh4P2-6g-LH');
+    await page.keyboard.press('Enter');
+    await title(2).waitFor();
+    await input.fill('30');
+    await page.keyboard.press('Enter');
+    await title(3).waitFor();
+    await input.fill('Left flank');
+    await quick.locator('.monaco-list-row', { hasText: 'Left flank' }).first().waitFor();
+    await page.keyboard.press('Enter');
+    await title(4).waitFor();
+    await input.fill('1:16');
+    await page.keyboard.press('Enter');
+    // The module lands at the cursor, the sample's first line: its top is shown from the
+    // file's start, whichever way the editor scrolled after the insertion.
+    const until = Date.now() + STEP_MS;
+    let text = '';
+    while (!(text.includes('LEFT FLANK INFEED, LEFT HAND') && text.includes('#105='))) {
+      if (Date.now() > until) throw new Error('the module did not appear in the editor');
+      await page.waitForTimeout(500);
+      await page.keyboard.press('Control+Home');
+      text = await activeEditorText();
+    }
+    const lines = text.split('\n').map((l) => l.replace(/ +/g, ' '));
+    const lead = lines.find((l) => l.startsWith('#105='));
+    const taper = lines.find((l) => l.startsWith('#106='));
+    if (lead === undefined || taper === undefined) throw new Error('no #105 or #106 in the module');
+    record('thread module options', true, `${lead}; ${taper}`);
+  } catch (e) {
+    record('thread module options', false,
+      `${e.message.split('\n')[0]}; ${JSON.stringify((await activeEditorText()).slice(0, 300))}`);
+  }
+  await shot('thread-module.png');
+  await page.keyboard.press('Escape');
+  await runCommand('View: Revert and Close Editor').catch(() => {});
 }
 
 /**

@@ -75,6 +75,6 @@ def test_extension_in_code_server(tmp_path: Path) -> None:
     tokens = ("semantic tokens", "code lens", "signature help")
     views = ("toolpath view", "toolpath click", "toolpath cursor", "trace view", "trace link")
     debugger = ("debug", "debug toolpath")
-    generators = ("arc thread program",)
+    generators = ("arc thread program", "thread module options")
     for check in (*ui, *navigation, *tokens, *views, *debugger, *generators):
         assert f"PASS {check}:" in proc.stdout, tail
