@@ -19,6 +19,7 @@ from pathlib import Path
 import pytest
 
 from fanuc_macro.analysis import analyse
+from fanuc_macro.cli.thread import INFEED_CHOICES
 from fanuc_macro.evaluator import Motion
 from fanuc_macro.ide.thread_generator import INFEEDS, ThreadModule, build_module, generate_module
 from fanuc_macro.rules.threading import EPS
@@ -224,6 +225,10 @@ def cli(*args: str) -> subprocess.CompletedProcess[str]:
     env = {**os.environ, "PYTHONPATH": str(ROOT / "server")}
     command = [sys.executable, "-m", "fanuc_macro.cli", *args]
     return subprocess.run(command, capture_output=True, text=True, env=env, timeout=120)
+
+
+def test_the_command_line_offers_every_infeed() -> None:
+    assert tuple(INFEEDS) == INFEED_CHOICES
 
 
 def test_the_command_line_takes_the_options(tmp_path: Path) -> None:

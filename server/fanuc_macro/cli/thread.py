@@ -17,6 +17,8 @@ __all__ = ["add_thread_command", "cmd_thread"]
 
 EXIT_OK = 0
 EXIT_USAGE = 2
+# The generator's INFEEDS, named here so that building the parser does not import it.
+INFEED_CHOICES = ("symmetric", "alternate", "left", "right")
 
 
 def _coefficient(text: str) -> float:
@@ -168,7 +170,7 @@ def add_thread_command(
     )
     thread.add_argument(
         "--infeed",
-        choices=("symmetric", "alternate", "left", "right"),
+        choices=INFEED_CHOICES,
         default="symmetric",
         help="how the rough passes go down: symmetric, both flanks each pass (the paper's; "
         "default); alternate, the left flank one pass and the right the next (the left-right "
