@@ -21,6 +21,7 @@ from ..ide.trace import motion_text, trace  # small: what it uses, the check use
 from ..workspace import PROGRAM_SUFFIXES, Workspace, is_program_file
 from .format_command import add_format_command
 from .generators import add_generator_commands
+from .plot_command import add_plot_command
 from .thread import add_thread_command
 
 EXIT_OK = 0
@@ -309,46 +310,6 @@ def cmd_trace(args: argparse.Namespace) -> int:
     return EXIT_OK
 
 
-def cmd_plot(args: argparse.Namespace) -> int:
-    from collections import Counter
-
-    from ..ide.plot import NothingToPlot, pass_maps, plot_svg, run_toolpath
-
-    config, workspace, uri = _traced_workspace(args)
-    doc = workspace.document(uri)
-    assert doc is not None
-    try:
-        toolpath = run_toolpath(
-            uri, doc, workspace.index(uri), workspace.others(uri), config, args.entry
-        )
-        # The pass maps of the threads the rules see in the file.
-        threads = (
-            workspace.analyse(uri).threads
-            if any(m.kind == "thread" for m in toolpath.moves)
-            else []
-        )
-        title = f"O{args.entry:04d}" if args.entry is not None else Path(args.file).name
-        svg = plot_svg(toolpath, args.plane, pass_maps(threads), title=title, main_uri=uri)
-    except NothingToPlot as err:
-        sys.stderr.write(f"fanuc-macro: {args.file}: {err}\n")
-        return EXIT_USAGE
-    output = args.output or Path(args.file).with_suffix(".svg").name
-    if output == "-":
-        sys.stdout.write(svg)
-    else:
-        Path(output).write_text(svg, encoding="utf-8")
-    for lost in toolpath.lost:
-        where = lost.uri or uri
-        sys.stderr.write(
-            f"{where}:{lost.line + 1}: lost track of {', '.join(lost.axes)}: {lost.reason}\n"
-        )
-    kinds = Counter(m.kind for m in toolpath.moves)
-    counts = ", ".join(f"{kind} {n}" for kind, n in sorted(kinds.items()))
-    shown = "standard output" if output == "-" else output
-    sys.stderr.write(f"{shown}: {len(toolpath.moves)} moves ({counts})\n")
-    return EXIT_OK
-
-
 def cmd_hover(args: argparse.Namespace) -> int:
     from .ide_commands import cmd_hover as hover
 
@@ -468,22 +429,7 @@ def build_parser() -> argparse.ArgumentParser:
     _add_format_option(tr, "one line a motion and a summary (default), or JSON")
     tr.set_defaults(func=cmd_trace)
 
-    pl = sub.add_parser(
-        "plot", parents=[logs], help="draw the toolpath a program cuts, as SVG (a backplot)"
-    )
-    _add_run_options(pl)
-    pl.add_argument(
-        "--plane",
-        choices=("XZ", "XY", "YZ"),
-        help="the view (default: XZ on a lathe, Z across and X up; XY on a mill)",
-    )
-    pl.add_argument(
-        "--output",
-        "-o",
-        metavar="PATH",
-        help="where the SVG goes (default: FILE's name with .svg, here; - for standard output)",
-    )
-    pl.set_defaults(func=cmd_plot)
+    add_plot_command(sub, logs)
 
     _add_place_command(sub, logs, "hover", "the hover text (markdown)").set_defaults(func=cmd_hover)
     _add_place_command(
