@@ -186,14 +186,32 @@ def test_a_file_named_on_the_command_line_is_checked_whatever_its_extension(
     assert {r["path"] for r in parsed_lines(result.stdout)} == {"post.mc12"}
 
 
-def test_legacy_encoded_file(tmp_path: Path) -> None:
-    text = "O1000 (外螺纹 主程序)\nG00 X100. Z100. (退刀)\nM30\n"
-    (tmp_path / "gb.nc").write_bytes(text.encode("gb18030"))
-    result = run(tmp_path, "check", "--format", "json", "gb.nc")
+def test_a_file_in_a_shops_encoding_is_read_without_a_note(tmp_path: Path) -> None:
+    chinese = "O1000 (外螺纹 主程序)\nG00 X100. Z100. (退刀)\nM30\n"
+    (tmp_path / "gb.nc").write_bytes(chinese.encode("gb18030"))
+    (tmp_path / "sjis.nc").write_bytes("O2000 (ねじ切り)\nM30\n".encode("shift_jis"))
+    western = "O3000 (Fräser Ø20, Fase 45°)\nG00 X100. (Planfläche)\nM30\n"
+    (tmp_path / "w.nc").write_bytes(western.encode("cp1252"))
+    for name in ("gb.nc", "sjis.nc", "w.nc"):
+        result = run(tmp_path, "check", "--format", "json", name)
+        assert (result.returncode, json.loads(result.stdout)) == (0, []), result.stderr
+    # The comments are read as written: hover shows the Western program's comment.
+    hover = run(tmp_path, "hover", "w.nc", "1", "2")
+    assert "Fräser Ø20, Fase 45°" in hover.stdout, hover.stdout + hover.stderr
+
+
+def test_a_file_of_two_encodings_is_reported_with_its_lines(tmp_path: Path) -> None:
+    head = "O1000 (外螺纹 主程序)\n".encode("gb18030")
+    pasted = "(螺纹 精车)\n".encode()  # a line copied from a UTF-8 file
+    tail = "G00 X100. Z100. (退刀)\nM30\n".encode("gb18030")
+    (tmp_path / "mixed.nc").write_bytes(head + pasted + tail)
+    result = run(tmp_path, "check", "--format", "json", "mixed.nc")
     assert result.returncode == 0, result.stdout + result.stderr
-    records = json.loads(result.stdout)
-    assert [(r["code"], r["line"]) for r in records] == [("MB007", 1)]
-    assert "GB18030" in records[0]["message"]
+    [record] = json.loads(result.stdout)
+    assert (record["code"], record["line"], record["severity"]) == ("MB007", 1, "information")
+    assert record["message"].startswith(
+        "file mixes encodings: line 2 in UTF-8, 2 lines (the first: line 1) in GB18030"
+    )
 
 
 def test_exit_2_when_no_programs_are_found(tmp_path: Path) -> None:

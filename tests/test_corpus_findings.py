@@ -28,7 +28,6 @@ if not CORPUS.is_dir():
 MISSING = "the called program is in no file of the corpus: the control must have it (PS0076)"
 SCALED = "FANUC reads an argument without a decimal point in its address's least increment"
 NO_O = "the file's first program has no O number, and its name gives none"
-ENCODING = "the file is not UTF-8 (Shift-JIS, or GB2312 Cyrillic): it was read as said"
 NO_END = "the program has no M30, M02 or M99 before its end"
 
 # file -> (1-based line, code, true?, why)
@@ -45,17 +44,8 @@ FINDINGS: dict[str, list[tuple[int, str, bool, str]]] = {
     "Just-Jools__LNC-Probe-macros__Documentation__Syntec documentation__OP510 Probe Macros 07-07-2023__O9811": [
         (221, "MB403", True, MISSING),
     ],
-    "NCVC-CAM__Scripts__NC.Code.Checker1.4__errors__1_grammar_errors__sampleNC(full-width-address).ncd": [
-        (1, "MB007", True, ENCODING),
-    ],
-    "NCVC-CAM__Scripts__NC.Code.Checker1.4__errors__1_grammar_errors__sampleNC(full-width-comment-parens).ncd": [
-        (1, "MB007", True, ENCODING),
-    ],
     "NCVC-CAM__Scripts__NC.Code.Checker1.4__errors__1_grammar_errors__sampleNC(percent-not-alone).ncd": [
         (1, "MB009", True, "'%O100': the sample's mistake; the control skips the rest of the line"),
-    ],
-    "NCVC-CAM__Scripts__NC.Code.Checker1.4__errors__2_syntax_errors__sampleNC(error-inside-subprogram).ncd": [
-        (1, "MB007", True, ENCODING),
     ],
     "NCVC-CAM__Scripts__NC.Code.Checker1.4__errors__2_syntax_errors__sampleNC(multiple-O-codes).ncd": [
         (14, "MB407", True, NO_END),
@@ -89,7 +79,6 @@ FINDINGS: dict[str, list[tuple[int, str, bool, str]]] = {
         (17, "MB404", True, SCALED),
     ],
     "NCVC-CAM__Scripts__NC.Code.Checker1.4__errors__4_macro_errors__sampleNC(grammar-error-inside-macro).ncd": [
-        (1, "MB007", True, ENCODING),
         (17, "MB404", True, SCALED),
     ],
     "NCVC-CAM__Scripts__NC.Code.Checker1.4__errors__4_macro_errors__sampleNC(macro-grammar-error-collection).ncd": [
@@ -158,9 +147,6 @@ FINDINGS: dict[str, list[tuple[int, str, bool, str]]] = {
         (7, "MB010", True, NO_O),
         (12, "MB403", True, MISSING),
         (37, "MB403", True, MISSING),
-    ],
-    "fchabot-dxf__DDCS-Expert-skill__ddcs-expert__references__example-macros__macro_Thread_milling.nc": [
-        (1, "MB007", True, ENCODING),
     ],
     "henkikobo-cloud__nc-macro-visualizer__samples__06_long_jump_connector.nc": [
         (4, "MB701", True, "N10 #100 = 1 just before: IF [#100 EQ 1] GOTO 90 always jumps"),

@@ -91,9 +91,9 @@ EXPECTED: dict[str, list[tuple[int, str]]] = {
         (29, UNBRACKETED_COPY),
     ],
     "4_macro_errors__sampleNC(function-arg-not-in-brackets).ncd": [(17, "MB001")],
-    # A kanji comment (the word 全角, "full-width"): reported by MB007 on the first line, where
-    # file diagnostics stand, pointing at line 26 (test_kanji_comment_is_pointed_at).
-    "4_macro_errors__sampleNC(grammar-error-inside-macro).ncd": [(1, "MB007")],
+    # A kanji comment (the word 全角, "full-width") in Shift-JIS, read as written
+    # (test_kanji_comment_is_read_as_written): nothing to report.
+    "4_macro_errors__sampleNC(grammar-error-inside-macro).ncd": [],
     "4_macro_errors__sampleNC(macro-grammar-error-collection).ncd": [
         (17, "MB001"),  # '5.0'
         (18, "MB001"),  # '.10'
@@ -124,7 +124,6 @@ EXPECTED: dict[str, list[tuple[int, str]]] = {
 # Notes (information, hint) these samples may give besides, and why each is true there.
 TOLERATED_NOTES = {
     "MB404": "G65 arguments without a decimal point (A1, D100): their value depends on the machine",
-    "MB007": "the Shift-JIS samples are not UTF-8",
     "MB701": "WHILE[#1LE10] with #1=1 from A1, in a loop whose END is missing: always true",
 }
 
@@ -165,8 +164,9 @@ def test_the_no_warning_samples_hold_only_the_unbracketed_expressions() -> None:
         assert loud and all("must be in brackets" in d.message for d in loud)
 
 
-def test_kanji_comment_is_pointed_at() -> None:
+def test_kanji_comment_is_read_as_written() -> None:
+    """The samples are in Shift-JIS, the encoding of a Japanese shop: read without a note."""
     analysis = analysis_of("4_macro_errors__sampleNC(grammar-error-inside-macro).ncd")
-    (encoding,) = [d for d in analysis.diagnostics if d.code == "MB007"]
-    assert [(r.line + 1, r.column + 1) for r in encoding.related] == [(26, 15)]
-    assert "'全角'" in encoding.message
+    assert analysis.doc.encoding == "shift_jis"
+    assert "全角" in analysis.doc.blocks[25].text
+    assert "MB007" not in {d.code for d in analysis.diagnostics}

@@ -212,8 +212,11 @@ def test_doc_example_triggers_its_rule(code: str) -> None:
     MB000 has none: no correct program makes the analyser fail.
     """
     text = _example(code)
-    if code == "MB007":  # the example is a file saved in GB18030
-        data = text.encode("gb18030")
+    if code == "MB007":  # the example is a file saved in GB18030, its third line in UTF-8
+        lines = text.splitlines(keepends=True)
+        data = b"".join(
+            line.encode("utf-8" if n == 2 else "gb18030") for n, line in enumerate(lines)
+        )
         analysis = analyse(text, "example.nc", doc=parse_bytes(data, "example.nc"))
     else:
         analysis = analyse(text, "example.nc", _example_config(code))
@@ -292,7 +295,7 @@ def test_other_comment_does_not_suppress() -> None:
 def test_suppression_of_a_file_diagnostic_on_the_first_line() -> None:
     def mb007(first_comment: str) -> set[str]:
         text = f"O1000 ({first_comment})\n(中文注释 螺纹)\nM30\n"
-        data = text.encode("gb18030")
+        data = text.encode("gb18030") + "(粘贴的 UTF-8 注释)\n".encode()  # two encodings
         return {d.code for d in analyse(text, doc=parse_bytes(data)).diagnostics}
 
     assert "MB007" in mb007("MAIN")

@@ -32,8 +32,8 @@ register(
     RuleInfo("MB006", "lowercase", Severity.WARNING,
              "Lowercase letters outside comments; FANUC program text is uppercase.", FAMILY),
     RuleInfo("MB007", "encoding", Severity.INFORMATION,
-             "The file is not UTF-8; it was read in another encoding, or, not being text, "
-             "not read.", FAMILY),
+             "The file's encoding is in doubt (lines in two encodings, an encoding unclear, "
+             "bytes no encoding reads), or, not being text, the file is not read.", FAMILY),
     RuleInfo("MB008", "unknown-function", Severity.ERROR,
              "A name used as a function that FANUC does not have.", FAMILY),
     RuleInfo("MB009", "tape-mark-not-alone", Severity.WARNING,
@@ -217,10 +217,20 @@ lowercase letter of a line is reported.
     RuleDoc(
         "MB007",
         reports="""
-The file is not UTF-8; it was read as GB18030 (Chinese) or Shift-JIS
-(Japanese), or, when neither fits, as Latin-1. The message names the encoding used and the
-first non-ASCII text, with its line (the diagnostic's related location points at it). It is
-reported on the first line.
+A file whose encoding is in doubt, read from disk:
+
+- lines in UTF-8 beside lines in another encoding (GB18030, Shift-JIS or Windows-1252), as when
+  a comment copied from a UTF-8 file is pasted into a GB18030 one. Each line is read in its own
+  encoding; the message names the lines of each.
+- a file that is not UTF-8 and whose reading in GB18030, Shift-JIS and Windows-1252 all look
+  wrong: more than a tenth of its non-ASCII characters are ones seldom written (ideographs
+  outside GB2312 and kana for GB18030, second-level kanji for Shift-JIS, runs of three or more
+  accented letters for Windows-1252). The message names the encoding chosen.
+- a file with bytes that none of UTF-8, GB18030, Shift-JIS and Windows-1252 reads: it is read
+  as Latin-1, byte for byte, and the message names the first line with such bytes.
+
+The message quotes the first non-ASCII text, with its line (the diagnostic's related location
+points at it). It is reported on the first line.
 
 A file that is not a program text at all is reported once, here, and not analysed: one that
 holds NUL bytes (a binary file, or text saved as UTF-16 without a byte order mark), one whose
@@ -230,31 +240,40 @@ before and after the text, a punched tape's leader and trailer, do not count.
 """,
         why="""
 Nothing changes for the motion, since only comments hold
-these characters. But the control shows comments in its own character set: Chinese or Japanese
-text may show as garbage or be refused by an older control or a transfer program, and on
-input a control may drop them (FANUC's 16i/18i-TB manual, B-63524EN, says kana characters in a
-memory-card file are ignored when it is read). If the guess of the checker is wrong, comment
-text in the editor is garbled as well.
+non-ASCII characters. But an editor or a transfer program reads a file in one encoding: in a
+file of two encodings the lines of the other show garbled there, and a wrong guess of the
+checker garbles the comments it quotes (hover, outline, messages). Bytes no encoding reads are
+often a damaged file. On input a control may drop characters it does not have (FANUC's
+16i/18i-TB manual, B-63524EN, says kana characters in a memory-card file are ignored when it is
+read).
 """,
         example="""
-A file saved in GB18030 with a Chinese comment:
+A file saved in GB18030, with the third line pasted from a file in UTF-8:
 
 ```nc
 O4009 (外螺纹 M50X3 主程序)
 G00 X100. Z100. (退刀)
+(螺纹 精车 M50X3)
 M30
 ```
 """,
         fix="""
-Nothing to fix if the encoding is right and the control accepts these
-comments. To avoid the question, save files as UTF-8 or keep comments in ASCII. A file that is
-not a program text: leave it out of the folder checked, or save the program as UTF-8 text.
+Save the file in one encoding, preferably UTF-8: retype or re-save the lines
+named in the message. A file whose encoding is unclear: save it as UTF-8, or keep comments in
+ASCII. A file that is not a program text: leave it out of the folder checked, or save the
+program as UTF-8 text.
 """,
         not_reported="""
-A file in UTF-8 (with or without a byte order mark), which includes
-plain ASCII, and a document open in the editor: the editor has already decoded it, so only the
-files the workspace reads from disk, and the command line's, are judged. The programs and
-problems of a file that is not text: its bytes are not read as a program.
+A file in one encoding that a shop normally uses, read cleanly:
+UTF-8 (with or without a byte order mark, which includes plain ASCII), GB18030 (GBK and GB2312:
+Chinese, and the Cyrillic and Greek they hold), Shift-JIS (Japanese, half-width katakana
+included) and Windows-1252 (Latin-1's accented letters and signs: Western European). A
+document open in the editor: the editor has already decoded it, so only the files the
+workspace reads from disk, and the command line's, are judged. The programs and problems of a
+file that is not text: its bytes are not read as a program. A file in an encoding the checker
+does not try whose bytes read as usual text in one it does: EUC-KR (Korean) and Windows-1253
+(Greek) comments read as everyday GB18030 hanzi, garbled and without a note (Windows-1251,
+Russian, reads as runs of accented letters: reported as unclear).
 """,
     ),
     RuleDoc(
@@ -499,7 +518,8 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
 
 def _encoding(ctx: RuleContext, note: str) -> Diagnostic:
     """MB007 stands on the first line, where a file diagnostic is suppressed; it points at the
-    first text the encoding concerns. On input a control may drop such characters: "When a
+    first text the encoding concerns (the note, ``syntax.lines.decode_bytes``, says what is in
+    doubt). On input a control may drop such characters: "When a
     file containing lowercase letters, kana characters, and several special characters ... is
     read, those letters and characters are ignored" (FANUC B-63524EN/01, 16i/18i-TB, p.649,
     memory card files)."""

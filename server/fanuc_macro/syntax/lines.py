@@ -22,37 +22,6 @@ _LINE_BREAK = re.compile(r"\r\n|\r|\n")
 _BLANK_TAIL = re.compile(r"[ \t;%]*")
 
 
-@dataclass(frozen=True, slots=True)
-class DecodedText:
-    text: str
-    encoding: str
-    note: str | None  # set when the bytes were not clean UTF-8
-
-
-def _kana_count(text: str) -> int:
-    return sum(1 for ch in text if "\u3040" <= ch <= "\u30ff")
-
-
-def _halfwidth_kana_count(text: str) -> int:
-    return sum(1 for ch in text if "\uff61" <= ch <= "\uff9f")
-
-
-def _rare_hanzi_count(text: str) -> int:
-    """Ideographs outside GB2312, the everyday Chinese set.
-
-    Shift-JIS kanji read as GB18030 land mostly in GBK's extension rows: rare characters that
-    no Chinese comment would be written in.
-    """
-    rare = 0
-    for ch in text:
-        if "\u4e00" <= ch <= "\u9fff":
-            try:
-                ch.encode("gb2312")
-            except UnicodeEncodeError:
-                rare += 1
-    return rare
-
-
 # What is looked at to tell a program text from a binary file: the start, as git does.
 _SNIFF = 8000
 # Control bytes that a program text may hold: tab, line ends, form feed, the tape reader's
@@ -85,12 +54,137 @@ def not_text_reason(data: bytes) -> str | None:
     return None
 
 
-def decode_bytes(data: bytes) -> DecodedText:
-    """Decode a program file. UTF-8 first; then GB18030 or Shift-JIS (common in comments).
+@dataclass(frozen=True, slots=True)
+class DecodedText:
+    text: str
+    encoding: str
+    # Set when the reading is in doubt (lines in two encodings, an encoding unclear, bytes no
+    # encoding reads) or the bytes are not a program text; None for a clean reading.
+    note: str | None
 
-    Both legacy encodings accept most byte strings, so the choice is made on what the text
-    looks like: Japanese comments have kana, Chinese ones do not; GB18030 bytes read as
-    Shift-JIS turn into half-width katakana.
+
+# The encodings a file that is not UTF-8 is read in, the first preferred on a tie: those of
+# the shops that write comments in their own script (GB18030, which holds GBK and GB2312, in
+# China; Shift-JIS in Japan; Windows-1252, which holds Latin-1's letters, in Western Europe
+# and the Americas).
+_LEGACY = ("gb18030", "shift_jis", "cp1252")
+_NAMES = {
+    "utf-8": "UTF-8",
+    "gb18030": "GB18030",
+    "shift_jis": "Shift-JIS",
+    "cp1252": "Windows-1252",
+    "latin-1": "Latin-1",
+}
+# A reading is taken as the file's encoding, without a note, when at most this share of its
+# non-ASCII characters is seldom written in that encoding's script.
+_UNUSUAL_SHARE = 0.1
+_NON_ASCII = re.compile(r"[^\x00-\x7f]+")
+# Windows-1252's characters in 0x80-0x9F that Western text holds (the euro, quotes, dashes,
+# ellipsis, bullet); the others (Š, ‰, ˆ, ...) come up mostly when other bytes are read so.
+_WESTERN_PUNCTUATION = frozenset("€‘’“”–—…•")
+
+
+def _is_kana(ch: str) -> bool:
+    return "\u3040" <= ch <= "\u30ff"
+
+
+def _in_gb2312(ch: str) -> bool:
+    """GB2312 is the everyday Chinese set (with Cyrillic, Greek and full-width forms): the
+    characters outside it that GB18030 bytes give are mostly other encodings' bytes (a
+    Shift-JIS kanji, a Western letter before an ASCII one)."""
+    try:
+        ch.encode("gb2312")
+    except UnicodeEncodeError:
+        return False
+    return True
+
+
+def _jis_level_1(ch: str) -> bool:
+    """A kanji of JIS X 0208's first level, the common ones (Shift-JIS 889F-9872); Western
+    letters before an ASCII one read as Shift-JIS land in the second level."""
+    code = ch.encode("shift_jis")
+    return len(code) < 2 or code < b"\x98\x9f"
+
+
+def _unusual_count(run: str, encoding: str, halfwidth_kana_unusual: bool) -> int:
+    """How many characters of ``run`` (non-ASCII characters side by side) are seldom written in
+    ``encoding``'s script: the sign that the bytes are in another encoding. Half-width
+    katakana, which older Japanese controls and files use, are also what GB18030 bytes read as
+    Shift-JIS turn into: unusual when GB18030 reads the bytes too."""
+    if encoding == "gb18030":
+        # Kana are in GB2312, but Chinese comments do not hold them: GB18030 kana are other
+        # bytes (Shift-JIS half-width katakana).
+        return sum(1 for ch in run if _is_kana(ch) or not _in_gb2312(ch))
+    if encoding == "shift_jis":
+        return sum(
+            1
+            for ch in run
+            if ("\uff61" <= ch <= "\uff9f" and halfwidth_kana_unusual)
+            or ("\u4e00" <= ch <= "\u9fff" and not _jis_level_1(ch))
+        )
+    # Western text has its accented letters and signs one or two at a time; longer runs,
+    # and pairs that are UTF-8 bytes ("Ã©" for "é"), are another encoding's characters.
+    if len(run) > 2 or _is_utf8(run.encode("cp1252")):
+        return len(run)
+    # Bytes 0x80-0x9F are Windows-1252's characters above U+00FF.
+    return sum(1 for ch in run if ch > "\xff" and ch not in _WESTERN_PUNCTUATION)
+
+
+def _is_utf8(data: bytes) -> bool:
+    try:
+        data.decode("utf-8")
+    except UnicodeDecodeError:
+        return False
+    return True
+
+
+@dataclass(frozen=True, slots=True)
+class _Reading:
+    encoding: str
+    text: str
+    unusual: int  # non-ASCII characters seldom written in the encoding's script
+    non_ascii: int
+
+    @property
+    def clear(self) -> bool:
+        return self.unusual <= self.non_ascii * _UNUSUAL_SHARE
+
+
+def _reading(data: bytes, encoding: str, halfwidth_kana_unusual: bool = True) -> _Reading | None:
+    """``data`` read in ``encoding``, or None when it has bytes the encoding does not hold."""
+    try:
+        text = data.decode(encoding)
+    except UnicodeDecodeError:
+        return None
+    unusual = non_ascii = 0
+    for run in _NON_ASCII.findall(text):
+        non_ascii += len(run)
+        unusual += _unusual_count(run, encoding, halfwidth_kana_unusual)
+    return _Reading(encoding, text, unusual, non_ascii)
+
+
+def _best_reading(data: bytes) -> _Reading | None:
+    """The legacy encoding whose reading of ``data`` has the smallest share of unusual
+    characters (the first of ``_LEGACY`` on a tie); None when none reads all its bytes."""
+    chinese = _reading(data, "gb18030")
+    japanese = _reading(data, "shift_jis", halfwidth_kana_unusual=chinese is not None)
+    readings = [r for r in (chinese, japanese, _reading(data, "cp1252")) if r is not None]
+    if not readings:
+        return None
+    return min(readings, key=lambda r: r.unusual / max(r.non_ascii, 1))
+
+
+def decode_bytes(data: bytes) -> DecodedText:
+    """Decode a program file: UTF-8 (with or without a byte order mark), else the legacy
+    encoding whose reading looks most like text of its script: GB18030, Shift-JIS or
+    Windows-1252. Comments are the only non-ASCII text of a program, so the choice is made on
+    what they look like: kana for Japanese, everyday hanzi (or Cyrillic) for GB18030, accented
+    letters one at a time for Western text.
+
+    A clean reading carries no note. The note says what is in doubt: lines in UTF-8 beside
+    lines in a legacy encoding (each line is then read in its own); a reading in which many
+    characters are unusual (the encoding is unclear); bytes that none of the encodings reads
+    (read as Latin-1, byte for byte).
 
     Bytes that are not a program text (:func:`not_text_reason`) are not read: the text is
     empty, the encoding :data:`BINARY`, and the note says why.
@@ -104,23 +198,61 @@ def decode_bytes(data: bytes) -> DecodedText:
         return DecodedText(data.decode("utf-8"), "utf-8", None)
     except UnicodeDecodeError:
         pass
-    candidates: list[tuple[int, str, str]] = []
-    for encoding in ("gb18030", "shift_jis"):
-        try:
-            text = data.decode(encoding)
-        except UnicodeDecodeError:
-            continue
-        score = _kana_count(text) * 3 - _halfwidth_kana_count(text) * 5
-        if encoding == "gb18030":
-            score -= _kana_count(text) * 4  # kana decoded from GB bytes are unlikely
-            score -= _rare_hanzi_count(text) * 2
-        candidates.append((score, encoding, text))
-    if candidates:
-        candidates.sort(key=lambda c: -c[0])
-        _, encoding, text = candidates[0]
-        return DecodedText(text, encoding, f"file is not UTF-8; read as {encoding.upper()}")
-    text = data.decode("latin-1")
-    return DecodedText(text, "latin-1", "file is not UTF-8, GB18030 or Shift-JIS; read as Latin-1")
+    lines = data.split(b"\n")  # no legacy encoding has a line feed inside a character
+    foreign = [n for n, line in enumerate(lines) if not line.isascii() and not _is_utf8(line)]
+    best = _best_reading(b"\n".join(lines[n] for n in foreign))
+    if best is None:
+        return DecodedText(data.decode("latin-1"), "latin-1", _unreadable_note(lines, foreign))
+    encoding = best.encoding
+    utf8 = [n for n, line in enumerate(lines) if _utf8_rather(line, encoding)]
+    if utf8:
+        texts = [line.decode("utf-8" if n in utf8 else encoding) for n, line in enumerate(lines)]
+        name = _NAMES[encoding]
+        return DecodedText(
+            "\n".join(texts),
+            encoding,
+            f"file mixes encodings: {_lines(utf8)} in UTF-8, {_lines(foreign)} in {name}; "
+            "each line is read in its own, but an editor or a transfer program reads the file "
+            "in one and shows the other lines garbled",
+        )
+    text = data.decode(encoding)
+    if best.clear:
+        return DecodedText(text, encoding, None)
+    return DecodedText(
+        text,
+        encoding,
+        f"file is not UTF-8 and its encoding is unclear: read as {_NAMES[encoding]}, in which "
+        f"{best.unusual} of its {best.non_ascii} non-ASCII characters are seldom written; if "
+        "its comments show garbled, the file is in another encoding",
+    )
+
+
+def _utf8_rather(line: bytes, encoding: str) -> bool:
+    """A line in UTF-8 in a file in ``encoding``: valid UTF-8 with non-ASCII characters, that
+    ``encoding`` reads as unusual text or not at all (short legacy text can be valid UTF-8 by
+    chance, and then reads as usual text in its own encoding)."""
+    if line.isascii() or not _is_utf8(line):
+        return False
+    reading = _reading(line, encoding)
+    return reading is None or reading.unusual > 0
+
+
+def _lines(numbers: list[int]) -> str:
+    """'line 3' or '4 lines (the first: line 3)', 1-based."""
+    if len(numbers) == 1:
+        return f"line {numbers[0] + 1}"
+    return f"{len(numbers)} lines (the first: line {numbers[0] + 1})"
+
+
+def _unreadable_note(lines: list[bytes], foreign: list[int]) -> str:
+    tried = "UTF-8, GB18030, Shift-JIS or Windows-1252"
+    for n in foreign:
+        if all(_reading(lines[n], e) is None for e in _LEGACY):
+            where = f"line {n + 1} holds bytes that none of them reads"
+            break
+    else:
+        where = "its lines are in more than one of them"
+    return f"file is not text in {tried} ({where}); read as Latin-1, byte for byte"
 
 
 def split_lines(text: str) -> list[str]:
