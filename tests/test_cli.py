@@ -266,6 +266,28 @@ def test_a_binary_file_is_reported_once(tmp_path: Path) -> None:
     assert row["code"] == "MB007" and "are control codes: a binary file" in row["message"]
 
 
+def test_a_punched_tapes_leader_and_trailer_of_nuls_are_blank(tmp_path: Path) -> None:
+    """NUL bytes (blank tape, feed holes only) before the first '%' and after the last are a
+    tape's leader and trailer, which the control does not read: neither a syntax error nor a
+    sign of a binary file, also when the leader is punched over several lines."""
+    program = CLEAN_PROGRAM.encode()
+    leaders = {
+        "one.nc": b"\0" * 40 + program + b"\0" * 40,
+        "lines.nc": b"\0" * 20 + b"\r\n" + b"\0" * 20 + b"\r\n" + program + b"\0" * 8,
+        "same-line.nc": b"\0" * 20 + program,  # the leader runs into the '%'
+    }
+    for name, data in leaders.items():
+        (tmp_path / name).write_bytes(data)
+        result = run(tmp_path, "check", "--format", "json", name)
+        assert (result.returncode, json.loads(result.stdout)) == (0, []), (name, result.stdout)
+        formatted = run(tmp_path, "format", "--check", name)
+        assert formatted.returncode == 0, (name, formatted.stdout + formatted.stderr)
+    # A NUL among the program's blocks is still not text.
+    (tmp_path / "inside.nc").write_bytes(program[:10] + b"\0" + program[10:])
+    [row] = parsed_lines(run(tmp_path, "check", "inside.nc").stdout)
+    assert row["code"] == "MB007" and "it holds NUL bytes (the first at byte 11)" in row["message"]
+
+
 def test_a_utf16_file_is_named_as_such(tmp_path: Path) -> None:
     (tmp_path / "u16.nc").write_bytes(ERROR_PROGRAM.encode("utf-16"))  # with its byte order mark
     result = run(tmp_path, "check", "u16.nc")

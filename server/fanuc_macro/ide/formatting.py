@@ -17,7 +17,7 @@ from dataclasses import dataclass, field, fields, is_dataclass
 from itertools import pairwise
 
 from ..config import FormatSettings
-from ..syntax.lines import decode_bytes, not_text_reason, split_lines
+from ..syntax.lines import decode_bytes, not_text_reason, split_lines, tape_leader_bounds
 from ..syntax.parser import default_parser, statements_of
 from ..syntax.tree import Assign, IfThen, NcStatement, ParsedLine, Print, Span
 from .data import Position, Range, TextEdit
@@ -282,6 +282,9 @@ def format_file(data: bytes, options: FormatOptions) -> bytes:
     reason = not_text_reason(data)
     if reason is not None:
         raise CannotFormat(reason)
+    start, end = tape_leader_bounds(data)
+    if (start, end) != (0, len(data)):  # a punched tape's leader and trailer of NULs: kept
+        return data[:start] + format_file(data[start:end], options) + data[end:]
     decoded = decode_bytes(data)
     bom = _BOM if data.startswith(_BOM) else b""
     if bom + decoded.text.encode(decoded.encoding, "replace") != data:

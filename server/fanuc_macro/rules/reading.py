@@ -236,7 +236,8 @@ A file that is not a program text at all is reported once, here, and not analyse
 holds NUL bytes (a binary file, or text saved as UTF-16 without a byte order mark), one whose
 first 8,000 bytes are more than 5% control codes other than tab, the line ends, form feed,
 DC1-DC4 and SUB, and one that starts with a UTF-16 or UTF-32 byte order mark. NUL bytes
-before and after the text, a punched tape's leader and trailer, do not count.
+before and after the text, a punched tape's leader and trailer (also when line ends run
+through them), do not count: they are read as blank, as the control disregards them.
 """,
         why="""
 Nothing changes for the motion, since only comments hold

@@ -32,6 +32,27 @@ _BINARY_SHARE = 0.05  # of the bytes looked at: control bytes no text holds
 BINARY = "binary"  # ``DecodedText.encoding`` of bytes that are not program text
 
 
+# What a punched tape's leader and trailer are in a file: NUL bytes, the blank tape that carries
+# only feed holes, with line ends and spaces among them. The tape reader disregards NUL in ISO
+# code (YASNAC LX3 manual, table of function characters: "NUL ... Disregarded in ISO"; FANUC's
+# own tape code table unverified), and reads nothing before the first end of block after a
+# reset (the label skip: Mitsubishi M700V manual, "Significant data section").
+_LEADER_BYTES = b"\0\r\n \t"
+
+
+def tape_leader_bounds(data: bytes) -> tuple[int, int]:
+    """``(start, end)``: ``data[:start]`` is a punched tape's leader, up to its last NUL byte,
+    and ``data[end:]`` its trailer, from its first NUL byte; ``(0, len(data))`` for a file
+    without NUL bytes around its text."""
+    head = len(data) - len(data.lstrip(_LEADER_BYTES))
+    start = data.rfind(0, 0, head) + 1
+    if head == len(data):  # nothing but leader
+        return start, start
+    tail = len(data.rstrip(_LEADER_BYTES))
+    nul = data.find(0, tail)
+    return start, len(data) if nul < 0 else nul
+
+
 def not_text_reason(data: bytes) -> str | None:
     """Why ``data`` is not a program text, or None when it may be one: NUL bytes, or many other
     control bytes, in its first 8,000 bytes (after a punched tape's leader of NULs, the blank
@@ -40,12 +61,12 @@ def not_text_reason(data: bytes) -> str | None:
         return "it is UTF-32 text (save it as UTF-8 or ASCII)"
     if data.startswith((codecs.BOM_UTF16_LE, codecs.BOM_UTF16_BE)):
         return "it is UTF-16 text (save it as UTF-8 or ASCII)"
-    leader = len(data) - len(data.lstrip(b"\0"))
-    sample = data[leader : leader + _SNIFF].rstrip(b"\0")
+    start, end = tape_leader_bounds(data)
+    sample = data[start : min(end, start + _SNIFF)]
     nul = sample.find(0)
     if nul >= 0:
         return (
-            f"it holds NUL bytes (the first at byte {leader + nul + 1}): a binary file, or "
+            f"it holds NUL bytes (the first at byte {start + nul + 1}): a binary file, or "
             "text saved as UTF-16"
         )
     controls = len(sample) - len(sample.translate(None, _CONTROL_BYTES))
@@ -187,11 +208,17 @@ def decode_bytes(data: bytes) -> DecodedText:
     (read as Latin-1, byte for byte).
 
     Bytes that are not a program text (:func:`not_text_reason`) are not read: the text is
-    empty, the encoding :data:`BINARY`, and the note says why.
+    empty, the encoding :data:`BINARY`, and the note says why. The NUL bytes of a punched
+    tape's leader and trailer (:func:`tape_leader_bounds`) are read as spaces.
     """
     reason = not_text_reason(data)
     if reason is not None:
         return DecodedText("", BINARY, f"not a program text: {reason}; the file is not analysed")
+    start, end = tape_leader_bounds(data)
+    if (start, end) != (0, len(data)):
+        # The NULs of a punched tape's leader and trailer are read as spaces: blank, as the
+        # control takes them, in the file's own columns.
+        data = data[:start].replace(b"\0", b" ") + data[start:end] + data[end:].replace(b"\0", b" ")
     if data.startswith(codecs.BOM_UTF8):
         data = data[len(codecs.BOM_UTF8) :]
     try:
