@@ -13,7 +13,7 @@ import pytest
 ROOT = Path(__file__).resolve().parents[1]
 PACKAGE = ROOT / "server" / "fanuc_macro"
 
-BASE = {"cancel", "diagnostics", "lazy_regex"}
+BASE = {"cancel", "diagnostics", "lazy_regex", "program_files"}
 SYNTAX = BASE | {"syntax", "line_maps", "per_line"}
 CONFIG = SYNTAX | {"config"}
 PROGRAM = CONFIG | {"program"}
@@ -31,6 +31,7 @@ FRONT_END = {
     "diagnostics",
     "cancel",
     "code_cache",
+    "program_files",
     "__version__",
 }
 
@@ -40,6 +41,7 @@ ALLOWED: dict[str, set[str]] = {
     "code_cache": set(),
     "diagnostics": set(),
     "lazy_regex": set(),
+    "program_files": set(),
     "syntax": {"cancel", "diagnostics", "lazy_regex", "line_maps", "per_line"},
     "per_line": {"syntax"},
     "line_maps": {"cancel", "syntax"},

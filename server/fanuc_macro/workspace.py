@@ -2,9 +2,7 @@
 
 from __future__ import annotations
 
-import re
 from dataclasses import dataclass, replace
-from pathlib import Path
 
 from .analysis import Analysis, analyse
 from .cancel import CancelToken
@@ -12,32 +10,11 @@ from .config import Config
 from .evaluator import Facts
 from .line_maps import line_diff
 from .program.index import Call, ProgramIndex, build_index, index_after_edit
+from .program_files import PROGRAM_SUFFIXES as PROGRAM_SUFFIXES  # for the server, the debugger
+from .program_files import is_program_file as is_program_file
 from .syntax.lines import BINARY, ReadLimits, decode_bytes
 from .syntax.parser import BlockParser, default_parser, parse_text
 from .syntax.tree import Document
-
-PROGRAM_SUFFIXES = frozenset({".nc", ".mac", ".tap", ".cnc", ".eia", ".txt"})
-_PROGRAM_HEAD = re.compile(rb"\A(?:\xef\xbb\xbf)?\s*(%|[oO]\d)")
-
-
-_NUMBER_NAME = re.compile(r"O\d{1,8}", re.I)
-
-
-def is_program_file(path: Path) -> bool:
-    """Program files by extension, or with none and a first line that is '%' or 'O<number>',
-    or a name that is a program number ('O09010', as a control's memory card holds them)."""
-    if path.suffix.lower() in PROGRAM_SUFFIXES:
-        return True
-    if path.suffix:
-        return False
-    if _NUMBER_NAME.fullmatch(path.name):
-        return True
-    try:
-        with path.open("rb") as f:
-            head = f.read(64)
-    except OSError:
-        return False
-    return _PROGRAM_HEAD.match(head) is not None
 
 
 @dataclass(eq=False, repr=False)

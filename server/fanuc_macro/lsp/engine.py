@@ -54,7 +54,6 @@ PROGRESS_EVERY = 0.2  # seconds between two progress reports of an analysis
 SCAN_MAX_FILES = 2000
 SCAN_MAX_BYTES = 2 * 1024 * 1024
 SCAN_CHUNK = 25  # files per worker job, so that edits are analysed between chunks
-SKIP_DIRS = frozenset({"node_modules", "__pycache__", "site-packages", "venv", "env"})
 FAULT_ENV = "FANUC_MACRO_LS_FAULT"  # tests: analysing a text that contains it raises
 # Tests: every feature request fails while an open document contains it.
 FEATURE_FAULT_ENV = "FANUC_MACRO_LS_FEATURE_FAULT"
@@ -869,12 +868,15 @@ def _read_program(path: Path) -> bytes | None:
 
 
 def _program_files(folders: Sequence[Path], limit: int) -> Iterable[Path]:
-    """Program files under ``folders``, hidden and tool folders skipped, at most ``limit``."""
+    """Program files under ``folders``, hidden and tool folders skipped as ``check`` skips
+    them (``program_files.is_tool_folder``), at most ``limit``."""
+    from ..program_files import is_tool_folder
+
     count = 0
     seen: set[Path] = set()
     for folder in folders:
         for root, dirs, files in os.walk(folder):
-            dirs[:] = sorted(d for d in dirs if not d.startswith(".") and d not in SKIP_DIRS)
+            dirs[:] = sorted(d for d in dirs if not is_tool_folder(Path(root, d)))
             for name in sorted(files):
                 path = Path(root, name)
                 if name.startswith(".") or path in seen:
