@@ -61,7 +61,7 @@ from .facts import (
     RunValues,
     ValueSummary,
 )
-from .toolpath import ProfileBlock, Recorder
+from .toolpath import NOT_MOVES, ProfileBlock, Recorder
 from .values import UNKNOWN, MacroAlarm, Unknown, Value, fmt
 
 # Block kinds of the compiled program.
@@ -84,6 +84,13 @@ AXES = frozenset("XYZUVWABC")
 # rounds to that increment); the others take whole numbers.
 LENGTH_ADDRESSES = frozenset("XYZUVWABCIJKRQF")
 FEED_MOTIONS = {1.0, 2.0, 3.0}  # cutting moves at the modal F (G32 and the cycles take F as lead)
+# One-shot moves at rapid, whatever the modal motion: recorded under their own code. G27 goes to
+# its words; G28 and G30 pass through them to the reference point, and G53 goes to them in
+# machine coordinates, neither of which is known in work coordinates (0i-TF "Reference
+# position", "Coordinate system").
+RAPID_ONE_SHOTS = frozenset({27.0, 28.0, 30.0, 53.0})
+LEFT_UNKNOWN = frozenset({28.0, 30.0, 53.0})
+LOCAL_COORDINATES = 52.0  # G52: where the tool is in work coordinates changes, not known here
 INTEGER_ADDRESSES = frozenset("MSTLHD")  # P too, when it names a program (M98, G65, M99)
 MAX_MACRO_LEVEL = 5  # G65/G66 levels (0i-D/30i); 16i has 4
 MAX_NESTING = 10
@@ -732,6 +739,12 @@ class Machine:
         self.value_range = config.value_range
         self._entry_name = ""
         self.lathe = config.is_lathe  # asked at every block
+        # The G codes a block with axis words runs instead of the modal motion: no move
+        # (NOT_MOVES, G52, the coordinate system setting: G50 on a lathe, G92 on a mill; a
+        # lathe's G92 is its threading cycle), or a one-shot move of its own.
+        self._own_codes = (
+            NOT_MOVES | RAPID_ONE_SHOTS | {LOCAL_COORDINATES, 50.0 if self.lathe else 92.0}
+        )
         # The message of a move without F, by motion code: the same for every block of a run.
         self._no_feed: dict[float, str] = {}
         # The motions' words made by the run (a block of computed words, an F added), by
@@ -1635,10 +1648,21 @@ class Machine:
         const = cl.constant
         has_axis = const.has_axis if const is not None else not AXES.isdisjoint(values)
         modal = self.modal
+        own = (
+            next((g for g in g_codes if g in self._own_codes), None)
+            if has_axis and g_codes and not self._own_codes.isdisjoint(g_codes)
+            else None
+        )
         if one_shot is not None:
             code = one_shot
             if code in PROFILE_CYCLES and "P" in values and "Q" in values:
                 self._profile_code = code
+        elif own is not None:
+            if own not in RAPID_ONE_SHOTS:  # no move: a dwell, a setting
+                if own not in NOT_MOVES:
+                    self._coordinates_set(act, values, own)
+                return False
+            code = own
         elif has_axis and modal.motion is not None:
             code = modal.motion
         else:
@@ -1654,7 +1678,12 @@ class Machine:
             self._g76_parameters(values, order)  # the first block of G76 sets, it does not cut
             return False
         words = const.words if const is not None else _motion_words(values)
-        if "F" not in words and isinstance(modal.feed, float) and code != 0.0:
+        if (
+            "F" not in words
+            and isinstance(modal.feed, float)
+            and code != 0.0
+            and code not in RAPID_ONE_SHOTS
+        ):
             words = {**words, "F": modal.feed}
         lathe_cycle = lathe and code in LATHE_CYCLES
         if lathe_cycle:
@@ -1691,6 +1720,11 @@ class Machine:
                 z = modal.cycle[0]  # the cycle repeated: its end Z stays
             r = words.get("R")
             modal.cycle = (z, r if isinstance(r, float) else None)
+        elif code in LEFT_UNKNOWN:  # the axes named end where the analysis does not know
+            if "X" in values or "U" in values:
+                x = None
+            if "Z" in values or "W" in values:
+                z = None
         start_x = position.get("X")
         start_z = position.get("Z")
         ctx = act.ctx
@@ -1730,8 +1764,25 @@ class Machine:
                 position["Z"] = z
                 modal.position_line["Z"] = here
             if "Y" in values:
-                position["Y"] = values["Y"]
+                position["Y"] = None if code in LEFT_UNKNOWN else values["Y"]
         return True
+
+    def _coordinates_set(self, act: Activation, values: dict[str, Value], code: float) -> None:
+        """G52 and the coordinate system setting (G50 on a lathe, G92 on a mill) move nothing,
+        but where the tool is in work coordinates changes: to the words' values after a
+        setting (0i-TF "Setting a workpiece coordinate system"), to a place not known here
+        after G52 (its offset is added to every work coordinate system, 0i-TF "Local
+        coordinate system")."""
+        modal = self.modal
+        here = (act.ctx.uri, self._line)
+        for axis, incremental in (("X", "U"), ("Z", "W")):
+            if axis in values or incremental in values:
+                v = values.get(axis)
+                modal.position[axis] = v if code != LOCAL_COORDINATES and type(v) is float else None
+                modal.position_line[axis] = here
+        if "Y" in values:
+            v = values["Y"]
+            modal.position["Y"] = v if code != LOCAL_COORDINATES and type(v) is float else None
 
     def _remember_run(self, act: Activation) -> None:
         runs = self.facts.run_values

@@ -11,7 +11,8 @@ block's words: ``block_steps`` gives the block's moves and updates the state. Th
 calls them through a ``Recorder`` when it is asked for a toolpath (``evaluate(...,
 toolpath=True)``), after its own handling of the block; a run without it pays one test per NC
 block. The path is the programmed one: tool offsets, tool nose radius compensation (G40-G42)
-and a thread's chamfer are not applied.
+and a thread's chamfer are not applied, nor scaling (G51), mirror image (G51.1) or
+coordinate rotation (G68).
 
 Sources: FANUC Series 0i-TF Operator's Manual (B-64604EN), "Interpolation functions"
 (G00-G03, G32), "Reference position" (G28), "Coordinate system" (G50, G53, G54-G59), "Canned
@@ -87,7 +88,7 @@ class Toolpath:
     inch: bool = False  # G20 in force at the first move: the positions are in inches
     truncated: bool = False  # more moves than kept
     # Where the tool stood at a motion record that makes no move (its index in Facts.motions:
-    # a G04 X dwell, a G10, a cycle's first block): the trace shows it there.
+    # a cycle's first block): the trace shows it there.
     standing: dict[int, dict[str, float]] = field(default_factory=dict)
     # What the variables a motion record's block reads held when it ran (its index in
     # Facts.motions: ``{101: 3.5}``; ``None`` vacant): the trace shows them with the block.
@@ -131,6 +132,11 @@ NOT_IN_PROFILE = frozenset(
     {10.0, 27.0, 28.0, 30.0, 31.0, 32.0, 33.0, 34.0, 50.0, 52.0, 53.0, 90.0, 92.0, 94.0}
     | {70.0, 71.0, 72.0, 73.0, 74.0, 75.0, 76.0}
 )
+# Codes whose block's axis words are no move (0i-TF/0i-MF operator's manuals): G04 dwell (X, U:
+# its time in seconds; P in milliseconds), G10 programmable data input (the values it sets),
+# G22 stored stroke check (the limits), G51 scaling (its centre), G51.1 programmable mirror
+# image (its axis), G68 coordinate rotation (its centre).
+NOT_MOVES = frozenset({4.0, 10.0, 22.0, 51.0, 51.1, 68.0})
 # G71/G72's escape e when no block of the program sets it: parameter 5133, set by the machine
 # builder; 1 mm (0.04 inch) here (unverified).
 ESCAPE_MM = 1.0
@@ -418,7 +424,8 @@ def block_steps(
                 block.lose(modal.axes, f"G{g:g} selects another work coordinate system")
             modal.work_offset = g
         elif (
-            g in (4.0, 10.0, 27.0, 28.0, 30.0, 52.0, 53.0)
+            g in NOT_MOVES
+            or g in (27.0, 28.0, 30.0, 52.0, 53.0)
             or (lathe and g in (50.0, 76.0))
             or (lathe and g in NOT_EXPANDED)
         ):
@@ -491,7 +498,7 @@ def _one_shot(
             f"G{code:g}'s passes are not drawn; the tool is back at the cycle's start point "
             "after it"
         )
-    # G04 (dwell: its X is seconds) and G10 (data setting) make no move.
+    # NOT_MOVES (a G04 dwell, whose X is seconds; a G10) make no move.
 
 
 def _cycle_data(modal: PathModal, code: float, values: Mapping[str, Value]) -> None:

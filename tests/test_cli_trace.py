@@ -1,0 +1,97 @@
+"""``fanuc-macro trace`` run as a user runs it, in a subprocess: what it lists as motions, and
+what it says of a file it reads only in part."""
+
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+from pathlib import Path
+from typing import Any
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def run(cwd: Path, *args: str) -> subprocess.CompletedProcess[str]:
+    env = dict(os.environ)
+    env["PYTHONPATH"] = str(ROOT / "server")
+    return subprocess.run(
+        [sys.executable, "-m", "fanuc_macro.cli", *args],
+        cwd=cwd,
+        env=env,
+        capture_output=True,
+        text=True,
+        encoding="utf-8",
+        timeout=120,
+    )
+
+
+def trace_json(cwd: Path, *args: str) -> dict[str, Any]:
+    result = run(cwd, "trace", "--format", "json", *args)
+    assert result.returncode == 0, result.stdout + result.stderr
+    answer: dict[str, Any] = json.loads(result.stdout)
+    return answer
+
+
+# A lathe program whose blocks with axis words are not all moves: a dwell (X, U in seconds, P
+# in milliseconds), a work offset set by G10, a move to the reference point through U0.
+NOT_MOVES = """\
+O1000 (DWELL AT THE GROOVE)
+G00 X40. Z5.
+G01 Z-10. F0.2
+G04 X0.5
+G04 U1.
+G04 P500
+G10 L2 P1 X5. Z3.
+G01 X30.
+G28 U0.
+M30
+"""
+
+
+def test_a_dwell_and_a_data_setting_are_not_motions(tmp_path: Path) -> None:
+    (tmp_path / "dwell.nc").write_text(NOT_MOVES)
+    answer = trace_json(tmp_path, "dwell.nc")
+    rows = [(m["line"], m["code"], m["words"]) for m in answer["motions"]]
+    assert rows == [
+        (2, "G00", {"X": 40.0, "Z": 5.0}),
+        (3, "G01", {"Z": -10.0, "F": 0.2}),
+        (8, "G01", {"X": 30.0, "F": 0.2}),  # from X40., where the dwells left the tool
+        (9, "G28", {"U": 0.0}),  # a one-shot move at rapid, under its own code
+    ]
+    assert answer["motions"][2]["start"] == {"X": 40.0, "Z": -10.0}
+    assert answer["summary"]["by_code"] == {"G00": 1, "G01": 2, "G28": 1}
+    text = run(tmp_path, "trace", "dwell.nc").stdout
+    assert "G04" not in text and "X0.5" not in text and "G10" not in text
+
+
+def test_a_dwell_before_a_threading_cycle_leaves_its_start_point(tmp_path: Path) -> None:
+    """The cycle starts where G00 put the tool, X26.: a G04 X0.5 before it is no move to
+    X0.5, which would put the start point inside the thread (MB813)."""
+    program = (
+        "%\nO1118 (M24X3)\nG97 S450 M03\nT0101\nG00 X26. Z5.\nG04 X0.5\n"
+        "G92 X23.5 Z-35. F3.\nX23.1\nX22.7\nX22.4\nG00 X100. Z100.\nM30\n%\n"
+    )
+    (tmp_path / "thread.nc").write_text(program)
+    result = run(tmp_path, "check", "--format", "json", "thread.nc")
+    assert (result.returncode, json.loads(result.stdout)) == (0, []), result.stdout
+    cycle = trace_json(tmp_path, "thread.nc")["motions"][1]
+    assert (cycle["code"], cycle["start"]) == ("G92", {"X": 26.0, "Z": 5.0})
+
+
+def test_the_centre_of_a_rotation_or_scaling_is_no_move(tmp_path: Path) -> None:
+    """On a mill, G68's X Y are the centre of the rotation, G51's the centre of the scaling,
+    G51.1's the axis of the mirror image, G22's the stroke limits: the tool stays."""
+    program = (
+        "O2000\nG90 G00 X5. Y5. Z20.\nG68 X10. Y10. R45.\nG51 X0 Y0 P2.\nG51.1 X0\n"
+        "G22 X100. Y100. Z50. I-100. J-100. K-50.\nG01 X6. F100.\nM30\n"
+    )
+    (tmp_path / "mill.nc").write_text(program)
+    answer = trace_json(tmp_path, "mill.nc", "--controller", "0i-MF")
+    rows = [(m["line"], m["code"], m["start"], m["end"]) for m in answer["motions"]]
+    assert rows == [
+        (2, "G00", {}, {"X": 5.0, "Y": 5.0, "Z": 20.0}),
+        (7, "G01", {"X": 5.0, "Y": 5.0, "Z": 20.0}, {"X": 6.0, "Y": 5.0, "Z": 20.0}),
+    ]
+    assert answer["toolpath"]["moves"] == 2
