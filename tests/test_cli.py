@@ -128,17 +128,19 @@ def test_exit_2_naming_a_missing_file(tmp_path: Path) -> None:
     write(tmp_path / "prog.nc", ERROR_PROGRAM)
     result = run(tmp_path, "check", "prog.nc", "missing.nc")
     assert result.returncode == 2
-    assert result.stdout == ""
-    message = result.stderr.strip()
-    assert "\n" not in message
-    assert "missing.nc" in message
+    assert {r["path"] for r in parsed_lines(result.stdout)} == {"prog.nc"}  # checked all the same
+    message, summary = result.stderr.splitlines()
+    assert message == "fanuc-macro: no such file or directory: missing.nc"
+    assert summary.startswith("fanuc-macro: 1 file checked, ")
 
 
 def test_exit_2_on_a_missing_folder(tmp_path: Path) -> None:
     result = run(tmp_path, "check", "no_such_folder")
-    assert result.returncode == 2
-    assert "no_such_folder" in result.stderr.strip()
-    assert "\n" not in result.stderr.strip()
+    assert (result.returncode, result.stdout) == (2, "")
+    assert result.stderr.splitlines() == [
+        "fanuc-macro: no such file or directory: no_such_folder",
+        "fanuc-macro: 0 files checked, 0 skipped, 0 errors, 0 warnings",
+    ]
 
 
 # ---- folders and file kinds ----------------------------------------------------------------------
@@ -158,8 +160,9 @@ def test_folders_are_recursed_with_the_extension_rules(tmp_path: Path) -> None:
         "O1234",  # no extension, starts with O<number>
         "tape",  # no extension, starts with %
         "spaced",  # no extension, blank line then %
+        "post.mc12",  # a post-processor's extension, taken for its content
     ]
-    skipped = ["notes.md", "data.csv", "post.mc12", "readme", "script.py", "Oname"]
+    skipped = ["notes.md", "data.csv", "readme", "script.py", "Oname"]
     for name in checked + skipped:
         text = ERROR_PROGRAM
         if name == "O1234":
@@ -217,12 +220,18 @@ def test_a_file_of_two_encodings_is_reported_with_its_lines(tmp_path: Path) -> N
 def test_exit_2_when_no_programs_are_found(tmp_path: Path) -> None:
     (tmp_path / "empty").mkdir()
     write(tmp_path / "notes" / "readme.md", ERROR_PROGRAM)  # not a program file's extension
-    write(tmp_path / "notes" / "post.mc12", ERROR_PROGRAM)
-    for folder in ("empty", "notes"):
-        for form in ("text", "json"):
+    write(tmp_path / "notes" / "todo.txt", "Order inserts.\nCall the service about X.\n")
+    for folder, skipped in (
+        ("empty", "0 skipped"),
+        ("notes", f"1 skipped (not programs: {Path('notes') / 'todo.txt'})"),
+    ):
+        for form, shown in (("text", ""), ("json", "[]\n")):
             result = run(tmp_path, "check", "--format", form, folder)
-            assert (result.returncode, result.stdout) == (2, ""), result.stderr
-            assert result.stderr == f"fanuc-macro: no programs found in {folder}\n"
+            assert (result.returncode, result.stdout) == (2, shown), result.stderr
+            assert result.stderr == (
+                f"fanuc-macro: no programs found in {folder}\n"
+                f"fanuc-macro: 0 files checked, {skipped}, 0 errors, 0 warnings\n"
+            )
 
 
 def test_a_folder_without_programs_beside_programs_is_told_and_the_rest_checked(
@@ -231,8 +240,8 @@ def test_a_folder_without_programs_beside_programs_is_told_and_the_rest_checked(
     (tmp_path / "empty").mkdir()
     write(tmp_path / "progs" / "prog.nc", ERROR_PROGRAM)
     result = run(tmp_path, "check", "empty", "progs")
-    assert result.returncode == 1
-    assert result.stderr == "fanuc-macro: no programs found in empty\n"
+    assert result.returncode == 2  # a usage problem, told once the rest is checked
+    assert result.stderr.splitlines()[0] == "fanuc-macro: no programs found in empty"
     assert "MB101" in {r["code"] for r in parsed_lines(result.stdout)}
 
 
@@ -645,7 +654,7 @@ def test_internal_error_names_the_rule_without_a_traceback(
     from fanuc_macro.cli import main
 
     path = write(tmp_path / "p.nc", CLEAN_PROGRAM)
-    assert main(["check", str(path)]) == 1
+    assert main(["check", str(path)]) == 3
     out, err = capsys.readouterr()
     internal = [d for d in parsed_lines(out) if d["code"] == "MB000"]
     assert len(internal) == 1
@@ -661,13 +670,13 @@ def test_verbose_and_log_file_give_the_traceback(
     from fanuc_macro.cli import main
 
     path = write(tmp_path / "p.nc", CLEAN_PROGRAM)
-    assert main(["check", "--verbose", str(path)]) == 1
+    assert main(["check", "--verbose", str(path)]) == 3
     assert "Traceback" in capsys.readouterr().err
     log = tmp_path / "analysis.log"
-    assert main(["check", "--log-file", str(log), str(path)]) == 1
+    assert main(["check", "--log-file", str(log), str(path)]) == 3
     assert "Traceback" not in capsys.readouterr().err
     assert "RuntimeError: rule bug" in log.read_text("utf-8")
-    assert main(["check", str(path)]) == 1  # the handlers of the runs before are gone
+    assert main(["check", str(path)]) == 3  # the handlers of the runs before are gone
     assert "Traceback" not in capsys.readouterr().err
 
 
@@ -691,12 +700,12 @@ def test_a_failing_rule_prints_no_traceback_in_a_process_of_its_own(tmp_path: Pa
     done = subprocess.run(
         [sys.executable, "-c", script, str(path)], capture_output=True, text=True, timeout=120
     )
-    assert done.returncode == 1, done.stderr
+    assert done.returncode == 3, done.stderr  # the analyser's failure: an internal error
     assert "MB000" in done.stdout and "rule bug" in done.stdout
     assert "Traceback" not in done.stderr and "failed" not in done.stderr, done.stderr
 
 
-def test_trace_failing_inside_answers_json_and_exit_1(
+def test_trace_failing_inside_answers_json_and_exit_3(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
 ) -> None:
     import fanuc_macro.cli
@@ -706,7 +715,7 @@ def test_trace_failing_inside_answers_json_and_exit_1(
 
     monkeypatch.setattr(fanuc_macro.cli, "trace", broken)
     path = write(tmp_path / "p.nc", CLEAN_PROGRAM)
-    assert fanuc_macro.cli.main(["trace", "--format", "json", str(path)]) == 1
+    assert fanuc_macro.cli.main(["trace", "--format", "json", str(path)]) == 3
     out, err = capsys.readouterr()
     assert "evaluator bug" in json.loads(out)["error"]
     assert "Traceback" not in err and "please report it" in err

@@ -226,7 +226,7 @@ def runs(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Runs]:
         path = folder / f"{name}.nc"
         path.write_text(result.stdout, encoding="utf-8")
         files.append(path.name)
-    second: dict[object, tuple[str, ...]] = {"check": ("check", *files)}
+    second: dict[object, tuple[str, ...]] = {"check": ("check", "--quiet", *files)}
     # The papers' parts through trace; the others' cuts are counted by the evaluator here.
     second.update({name: ("trace", f"{name}.nc", "--format", "json") for name in TRACED})
     finished = run_all(folder, second, tuple(second))

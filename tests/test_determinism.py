@@ -33,7 +33,8 @@ def check_output(files: list[Path], hash_seed: str) -> bytes:
         "PYTHONHASHSEED": hash_seed,
     }
     done = subprocess.run(
-        [sys.executable, "-m", "fanuc_macro.cli", "check", "--format", "json", *map(str, files)],
+        [sys.executable, "-m", "fanuc_macro.cli", "check", "--quiet", "--format", "json"]
+        + list(map(str, files)),
         capture_output=True,
         env=env,
         timeout=120,

@@ -16,39 +16,41 @@ from pathlib import Path
 from .. import __version__
 from ..analysis import analyse, log_failure
 from ..config import CONTROLLERS, NOT_SET, Config
-from ..diagnostics import REPORT_INTERNAL_ERROR, RULES, Diagnostic, Severity
+from ..diagnostics import REPORT_INTERNAL_ERROR, RULES, Severity
 from ..ide.trace import motion_text, trace  # small: what it uses, the check uses too
-from ..workspace import PROGRAM_SUFFIXES, Workspace, is_program_file
+from ..program_files import (
+    PROGRAM_SUFFIXES,
+    SKIPPED_FOLDERS,
+    SNIFFED_SUFFIXES,
+    TOOL_FOLDER_SUFFIXES,
+    TOOL_MARKERS,
+    find_programs,
+)
+from ..workspace import Workspace
 from .format_command import add_format_command
 from .generators import add_generator_commands
 from .plot_command import add_plot_command
+from .streams import STDIN, read_stdin, tolerate_unencodable
 from .thread import add_thread_command
 
 EXIT_OK = 0
-EXIT_ERRORS = 1
+EXIT_ERRORS = 1  # check: findings; hover, definition: nothing there; format --check: changes
 EXIT_USAGE = 2
+EXIT_INTERNAL = 3  # the analyser's own failure
 
 
 class UsageError(Exception):
     pass
 
 
-def collect_files(paths: Sequence[str], empty: list[str] | None = None) -> list[Path]:
-    """The program files of ``paths``: a file as given, a folder's program files
-    (``workspace.is_program_file``) in order. A folder without any is added to ``empty``."""
-    files: list[Path] = []
-    for raw in paths:
-        path = Path(raw)
-        if path.is_dir():
-            found = [p for p in sorted(path.rglob("*")) if p.is_file() and is_program_file(p)]
-            if not found and empty is not None:
-                empty.append(raw)
-            files.extend(found)
-        elif path.is_file():
-            files.append(path)
-        else:
-            raise UsageError(f"fanuc-macro: no such file or directory: {raw}")
-    return files
+def collect_files(paths: Sequence[str]) -> list[Path]:
+    """The program files of ``paths`` (the ``--with`` files): a file as given, a folder's
+    programs as ``check`` walks it (``program_files.find_programs``). A path that is not there
+    is a usage error."""
+    found = find_programs(paths)
+    if found.missing:
+        raise UsageError(f"fanuc-macro: no such file or directory: {found.missing[0]}")
+    return found.programs
 
 
 def one_program_file(command: str, raw: str) -> Path:
@@ -61,27 +63,10 @@ def one_program_file(command: str, raw: str) -> Path:
     return path
 
 
-def _format_text(path: str, d: Diagnostic) -> str:
-    return f"{path}:{d.line + 1}:{d.column + 1}: {d.code} {d.severity.value} {d.message}"
-
-
-def _as_json(path: str, d: Diagnostic) -> dict[str, object]:
-    return {
-        "path": path,
-        "line": d.line + 1,
-        "column": d.column + 1,
-        "end_line": d.end_line + 1,
-        "end_column": d.end_column + 1,
-        "severity": d.severity.value,
-        "code": d.code,
-        "message": d.message,
-    }
-
-
 def _config(args: argparse.Namespace) -> Config:
     return Config(
         controller=args.controller,
-        disabled=args.disable or frozenset(),
+        disabled=frozenset[str]().union(*(args.disable or ())),
         max_spindle_speed=args.max_spindle_speed,
         max_threading_feed=args.max_threading_feed,
         extended_commons=args.extended_commons,
@@ -93,10 +78,21 @@ def _config(args: argparse.Namespace) -> Config:
     )
 
 
+def _rule_code(text: str) -> str:
+    """The code of a rule given by its code or its name, in any case (``mb009``,
+    ``Tape-Mark-Not-Alone``, ``tape_mark_not_alone``); the text in upper case when it is
+    neither."""
+    code = text.upper()
+    if code in RULES:
+        return code
+    name = text.lower().replace("_", "-")
+    return next((c for c, info in RULES.items() if info.name == name), code)
+
+
 def _rule_codes(text: str) -> frozenset[str]:
-    """``--disable``: comma-separated rule codes, in any case; an unknown one is a usage error
-    that names the nearest known code."""
-    codes = [c.strip().upper() for c in text.split(",") if c.strip()]
+    """``--disable``: comma-separated rule codes or names, in any case; an unknown one is a
+    usage error that names the nearest known rule."""
+    codes = [_rule_code(c.strip()) for c in text.split(",") if c.strip()]
     unknown = [c for c in codes if c not in RULES]
     if len(unknown) == 1:
         raise argparse.ArgumentTypeError(
@@ -130,6 +126,26 @@ def _nearest_rule(text: str) -> str:
 
     best = min(sorted(RULES), key=distance)
     return f"{best} {RULES[best].name}"
+
+
+def _controller(text: str) -> str:
+    """``--controller`` in any case, as config.CONTROLLERS spells it (0i-mf is 0i-MF)."""
+    for controller in CONTROLLERS:
+        if controller.lower() == text.strip().lower():
+            return controller
+    raise argparse.ArgumentTypeError(
+        f"unknown controller {text!r} (choose from {', '.join(CONTROLLERS)})"
+    )
+
+
+def _count(text: str) -> int:
+    try:
+        value = int(text.replace("_", ""))
+    except ValueError:
+        value = -1
+    if value < 0:
+        raise argparse.ArgumentTypeError(f"not a whole number from 0: {text!r}")
+    return value
 
 
 def _whole(text: str) -> int:
@@ -218,46 +234,27 @@ def _add_machine_options(parser: argparse.ArgumentParser) -> None:
 
 
 def cmd_check(args: argparse.Namespace) -> int:
-    empty: list[str] = []
-    files = collect_files(args.paths, empty)
-    for folder in empty:
-        sys.stderr.write(f"fanuc-macro: no programs found in {folder}\n")
-    if not files:  # every PATH is a folder without programs
-        return EXIT_USAGE
-    config = _config(args)
-    workspace = Workspace(config)
-    for path in files:
-        workspace.add_bytes(str(path), path.read_bytes())
-    programs = workspace.program_numbers()
-    records: list[dict[str, object]] = []
-    any_error = False
-    out = sys.stdout
-    for path in files:
-        analysis = workspace.analyse(str(path), workspace_programs=programs)
-        stopped = analysis.facts.stop_message() if analysis.facts is not None else None
-        if stopped is not None:  # the safety net: not a finding of the program's
-            sys.stderr.write(f"{path}: {stopped}\n")
-        for d in analysis.diagnostics:
-            any_error |= d.severity is Severity.ERROR
-            if args.format == "json":
-                records.append(_as_json(str(path), d))
-            else:
-                out.write(_format_text(str(path), d) + "\n")
-    if args.format == "json":
-        import json
+    from .check_command import cmd_check as check
 
-        json.dump(records, out, ensure_ascii=False, indent=1)
-        out.write("\n")
-    return EXIT_ERRORS if any_error else EXIT_OK
+    return check(args, _config(args))
 
 
-def read_one(command: str, workspace: Workspace, raw: str) -> str:
+def read_one(command: str, workspace: Workspace, raw: str, stdin_name: str | None = None) -> str:
     """Read the FILE of ``trace``, ``plot``, ``hover`` or ``definition`` into ``workspace``;
     its key. It is one file, not a folder, and a program text (``check`` reports a file that
-    is not as MB007 and goes on; a command that runs or looks into the file stops)."""
-    path = one_program_file(command, raw)
-    key = str(path)
-    workspace.add_bytes(key, path.read_bytes())
+    is not as MB007 and goes on; a command that runs or looks into the file stops). ``-`` is
+    standard input, known by ``stdin_name`` (--stdin-filename) when given."""
+    if raw == STDIN:
+        key = stdin_name or STDIN
+        workspace.add_bytes(key, read_stdin())
+    else:
+        if stdin_name is not None:
+            raise UsageError(
+                f"fanuc-macro: --stdin-filename names standard input: give - as FILE, not {raw}"
+            )
+        path = one_program_file(command, raw)
+        key = str(path)
+        workspace.add_bytes(key, path.read_bytes())
     reason = workspace.not_text(key)
     if reason is not None:
         raise UsageError(f"fanuc-macro: {raw}: {reason}")
@@ -271,14 +268,22 @@ def _program_number(text: str) -> int:
     return int(digits)
 
 
+def read_with_files(workspace: Workspace, paths: Sequence[str] | None, key: str) -> None:
+    """Read the ``--with`` files into ``workspace`` beside the FILE of ``key`` (which stands
+    for a file of its name, as the text of standard input does)."""
+    for extra in collect_files(paths or []):
+        if str(extra) != key:
+            workspace.add_bytes(str(extra), extra.read_bytes())
+
+
 def _traced_workspace(args: argparse.Namespace) -> tuple[Config, Workspace, str]:
     """The file of ``trace`` or ``plot`` and the ``--with`` files it calls, read; its URI."""
+    if args.command == "plot" and args.file == STDIN and not getattr(args, "output", None):
+        raise UsageError("fanuc-macro: plot of standard input: say where the SVG goes (-o)")
     config = _config(args)
     workspace = Workspace(config)
-    uri = read_one(args.command, workspace, args.file)
-    for extra in collect_files(args.with_files or []):
-        if str(extra) != uri:
-            workspace.add_bytes(str(extra), extra.read_bytes())
+    uri = read_one(args.command, workspace, args.file, args.stdin_filename)
+    read_with_files(workspace, args.with_files, uri)
     if args.entry is not None and workspace.find_program(args.entry) is None:
         raise UsageError(f"fanuc-macro: no program O{args.entry:04d} in {args.file}")
     return config, workspace, uri
@@ -335,18 +340,13 @@ def _add_place_command(
         help=f"print {what} at LINE COLUMN of FILE (1-based, as editors show them; "
         "exit status 1 when there is none)",
     )
-    command.add_argument("file", metavar="FILE", help="the program file")
+    command.add_argument("file", metavar="FILE", help="the program file; - for standard input")
     command.add_argument("line", type=_whole, metavar="LINE", help="the line, from 1")
     command.add_argument(
         "column", type=_whole, metavar="COLUMN", help="the column in characters, from 1"
     )
-    command.add_argument(
-        "--with",
-        dest="with_files",
-        nargs="*",
-        metavar="PATH",
-        help="more files or folders with the programs it calls",
-    )
+    _add_with_option(command)
+    _add_stdin_filename_option(command)
     _add_format_option(command, "the answer as text (default) or as JSON")
     _add_rule_options(command)
     _add_machine_options(command)
@@ -363,38 +363,163 @@ def _add_rule_options(parser: argparse.ArgumentParser) -> None:
     fanuc-macro.rules.disabled settings."""
     parser.add_argument(
         "--controller",
+        type=_controller,
         choices=CONTROLLERS,
         default="0i-TF",
-        help="the control the programs are for (default 0i-TF)",
+        help="the control the programs are for, in any case (default 0i-TF)",
     )
     parser.add_argument(
         "--disable",
         type=_rule_codes,
-        metavar="CODES",
-        help="comma-separated rule codes to skip, e.g. MB006,MB403 (docs/rules.md lists them)",
+        action="append",
+        metavar="RULES",
+        help="comma-separated rules to skip, by code or name in any case, e.g. "
+        "MB006,tape-mark-not-alone (docs/rules.md lists them); may be repeated",
+    )
+
+
+def _add_with_option(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument(
+        "--with",
+        dest="with_files",
+        action="append",
+        metavar="PATH",
+        help="a file or folder with programs it calls; repeat it for more (--with lib "
+        "--with subs.nc), or give several after FILE (--with lib subs.nc); anywhere among "
+        "the arguments",
+    )
+
+
+def _add_stdin_filename_option(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument(
+        "--stdin-filename",
+        metavar="NAME",
+        help="the name of the file standard input (-) holds: shown in messages, and its "
+        "program number when it has no O line (O1234.nc)",
     )
 
 
 def _add_run_options(parser: argparse.ArgumentParser) -> None:
     """What ``trace`` and ``plot`` run: a file, where to start, the files it calls, the
     machine."""
-    parser.add_argument("file", metavar="FILE", help="the program file to run")
-    parser.add_argument("--entry", type=_program_number, help="program to start from, e.g. O4009")
     parser.add_argument(
-        "--with",
-        dest="with_files",
-        nargs="*",
-        metavar="PATH",
-        help="more files or folders with the programs it calls",
+        "file", metavar="FILE", help="the program file to run; - for standard input"
     )
+    parser.add_argument("--entry", type=_program_number, help="program to start from, e.g. O4009")
+    _add_with_option(parser)
+    _add_stdin_filename_option(parser)
     _add_rule_options(parser)
     _add_machine_options(parser)
     _add_analysis_options(parser)
 
 
+EXIT_STATUS_HELP = """\
+exit status:
+  0  done: no finding at or above --fail-on (check), nothing to reformat (format --check)
+  1  check: a finding at or above --fail-on (default: an error), or more warnings than
+     --max-warnings; format --check: a file would be reformatted; hover, definition:
+     nothing there
+  2  a usage problem: a bad option or argument, a path that is not there, a folder
+     without programs, a file that cannot be read or is not a program text (check
+     still checks the other paths)
+  3  an internal error of fanuc-macro: a bug, please report it"""
+
+
+def _walk_help() -> str:
+    """What ``check --help`` says of the folder walk, the summary and the exit status, from
+    program_files' own lists."""
+    import textwrap
+
+    def item(text: str) -> str:
+        return textwrap.fill(
+            text, 88, initial_indent="  ", subsequent_indent="     ", break_on_hyphens=False
+        )
+
+    skipped = [*sorted(SKIPPED_FOLDERS), *(f"*{s}" for s in TOOL_FOLDER_SUFFIXES)]
+    walk = [
+        item(f"by extension, in any case: {' '.join(sorted(PROGRAM_SUFFIXES))}"),
+        item(
+            f"by content, for {' '.join(sorted(SNIFFED_SUFFIXES))} and files with no "
+            "extension: a first line that is %, O1234, O<NAME>, :1234 or an NC block, and "
+            "most of the first lines NC blocks (a file with no extension named O1234 is a "
+            "program too); the other text files are skipped and counted in the summary"
+        ),
+        item(
+            f"skipped: hidden files and folders, {', '.join(skipped)}, any folder holding "
+            f"{' or '.join(TOOL_MARKERS)}, and what --exclude matches"
+        ),
+    ]
+    return "\n".join(
+        [
+            "a folder is walked for programs:",
+            *walk,
+            "a file named on the command line is checked whatever it is.",
+            "",
+            "a summary goes to standard error, after the findings (-q: none):",
+            "  fanuc-macro: 12 files checked, 2 skipped (not programs: notes.txt, a/b.txt),",
+            "  1 error, 5 warnings",
+            "",
+            EXIT_STATUS_HELP,
+        ]
+    )
+
+
+def _add_check_command(
+    sub: argparse._SubParsersAction[argparse.ArgumentParser], logs: argparse.ArgumentParser
+) -> None:
+    check = sub.add_parser(
+        "check",
+        parents=[logs],
+        help="report problems in programs (files or folders)",
+        epilog=_walk_help(),
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+    check.add_argument(
+        "paths",
+        nargs="+",
+        metavar="PATH",
+        help="program files (- for standard input), or folders whose programs are checked "
+        "together (which files: below)",
+    )
+    _add_format_option(
+        check, "one line PATH:LINE:COLUMN: CODE severity message each (default), or a JSON list"
+    )
+    check.add_argument(
+        "--exclude",
+        action="append",
+        metavar="GLOB",
+        help="skip what matches in the folders walked: a name anywhere (*.bak, old) or, "
+        "with a /, a path from the folder walked (old/*.nc); may be repeated; a file named "
+        "on the command line is checked all the same",
+    )
+    check.add_argument(
+        "--fail-on",
+        choices=[s.value for s in Severity],
+        default=Severity.ERROR.value,
+        help="the least severe finding that makes the exit status 1 (default error)",
+    )
+    check.add_argument(
+        "--max-warnings",
+        type=_count,
+        metavar="N",
+        help="exit status 1 also when there are more than N warnings",
+    )
+    check.add_argument(
+        "--quiet", "-q", action="store_true", help="no summary line on standard error"
+    )
+    _add_stdin_filename_option(check)
+    _add_rule_options(check)
+    _add_machine_options(check)
+    _add_analysis_options(check)
+    check.set_defaults(func=cmd_check)
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
-        prog="fanuc-macro", description="Check FANUC Custom Macro B programs."
+        prog="fanuc-macro",
+        description="Check FANUC Custom Macro B programs.",
+        epilog=EXIT_STATUS_HELP,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
     )
     parser.add_argument("--version", action="version", version=f"fanuc-macro {__version__}")
     sub = parser.add_subparsers(dest="command", required=True)
@@ -405,24 +530,7 @@ def build_parser() -> argparse.ArgumentParser:
     )
     logs.add_argument("--log-file", metavar="PATH", help="write the analyser's log to this file")
 
-    check = sub.add_parser(
-        "check", parents=[logs], help="report problems in programs (files or folders)"
-    )
-    check.add_argument(
-        "paths",
-        nargs="+",
-        metavar="PATH",
-        help="program files, or folders whose program files are checked together (by "
-        f"extension: {', '.join(sorted(PROGRAM_SUFFIXES))}; without one, a name such as "
-        "O1234 or a first line '%%' or 'O<number>')",
-    )
-    _add_format_option(
-        check, "one line PATH:LINE:COLUMN: CODE severity message each (default), or a JSON list"
-    )
-    _add_rule_options(check)
-    _add_machine_options(check)
-    _add_analysis_options(check)
-    check.set_defaults(func=cmd_check)
+    _add_check_command(sub, logs)
 
     tr = sub.add_parser("trace", parents=[logs], help="print the motion blocks a program executes")
     _add_run_options(tr)
@@ -472,12 +580,96 @@ def _log_to(verbose: bool, log_file: str | None) -> Callable[[], None] | None:
     return undo
 
 
+WITH = "--with"
+
+
+def _command_parser(
+    parser: argparse.ArgumentParser, argv: Sequence[str]
+) -> tuple[int, argparse.ArgumentParser] | None:
+    """Where the command's name is in ``argv``, and its parser."""
+    for action in parser._actions:
+        if isinstance(action, argparse._SubParsersAction):
+            for i, token in enumerate(argv):
+                if token in action.choices:
+                    return i, action.choices[token]
+                if not token.startswith("-"):
+                    return None
+    return None
+
+
+def spread_with_paths(parser: argparse.ArgumentParser, argv: Sequence[str]) -> list[str]:
+    """``--with A B`` as ``--with A --with B``, short of the positional arguments the command
+    needs: in ``hover --with lib prog.nc 3 5`` the last three are FILE LINE COLUMN, in
+    ``hover prog.nc 3 5 --with lib subs.nc`` both paths are ``--with``'s. (argparse alone
+    would give every word after ``--with`` to it, or take one.)"""
+    argv = list(argv)
+    found = _command_parser(parser, argv) if WITH in argv else None
+    if found is None:
+        return argv
+    start, command = found
+    options = {o: a.nargs != 0 for a in command._actions for o in a.option_strings}
+    if WITH not in options:
+        return argv
+    needed = sum(1 for a in command._actions if not a.option_strings)
+
+    def takes_value(token: str) -> bool:
+        if "=" in token or (not token.startswith("--") and len(token) > 2):
+            return False  # --format=json, -oplot.svg
+        if token in options:
+            return options[token]
+        prefixed = [value for option, value in options.items() if option.startswith(token)]
+        return len(prefixed) == 1 and prefixed[0]  # argparse's abbreviations
+
+    # Each word: [kind, token], kind "as is", "positional", "path" (a --with's) or WITH.
+    words: list[list[str]] = []
+    groups: list[tuple[int, list[int]]] = []  # a --with: its word, the words after it
+    group: list[int] | None = None
+    tokens = iter(argv[start + 1 :])
+    for token in tokens:
+        if token == "--":
+            group = None
+            words.append(["as is", token])
+            words.extend(["positional", rest] for rest in tokens)
+        elif token == STDIN or not token.startswith("-"):
+            if group is not None:
+                group.append(len(words))
+            words.append(["path" if group is not None else "positional", token])
+        elif token == WITH:
+            group = []
+            groups.append((len(words), group))
+            words.append([WITH, token])
+        else:
+            group = None
+            words.append(["as is", token])
+            if takes_value(token):
+                words.extend(["as is", v] for v in [next(tokens, None)] if v is not None)
+    missing = needed - sum(1 for kind, _ in words if kind == "positional")
+    for _, paths in reversed(groups):  # what the command lacks: the last words given
+        taken = paths[max(len(paths) - missing, 0) :] if missing > 0 else []
+        missing -= len(taken)
+        for i in taken:
+            words[i][0] = "positional"
+    spread = argv[: start + 1]
+    for kind, token in words:
+        if kind == "path":
+            spread.extend([WITH, token])
+        elif kind != WITH:
+            spread.append(token)
+    if any(all(words[i][0] == "positional" for i in paths) for _, paths in groups):
+        # A --with left without a path: last, where argparse says it wants one.
+        end = spread.index("--") if "--" in spread[start + 1 :] else len(spread)
+        spread.insert(end, WITH)
+    return spread
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     parser = build_parser()
+    tolerate_unencodable()
     try:
-        args = parser.parse_args(argv)
+        args = parser.parse_args(spread_with_paths(parser, sys.argv[1:] if argv is None else argv))
     except SystemExit as exc:  # argparse exits 2 on a usage problem, 0 for --help
         return int(exc.code or 0)
+    tolerate_unencodable(args.command)
     stop_logging = _log_to(getattr(args, "verbose", False), getattr(args, "log_file", None))
     try:
         result: int = args.func(args)
@@ -496,7 +688,7 @@ def main(argv: Sequence[str] | None = None) -> int:
             json.dump({"error": message}, sys.stdout, ensure_ascii=False, indent=1)
             sys.stdout.write("\n")
         sys.stderr.write(f"fanuc-macro: {message}\n")
-        return EXIT_ERRORS
+        return EXIT_INTERNAL
     finally:
         save_code_cache()
         if stop_logging is not None:

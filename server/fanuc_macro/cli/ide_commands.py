@@ -14,15 +14,14 @@ from ..ide.hover import hover
 from ..ide.navigation import definition
 from ..ide.view import View
 from ..workspace import Workspace
-from . import EXIT_ERRORS, EXIT_OK, collect_files, read_one
+from . import EXIT_ERRORS, EXIT_OK, read_one, read_with_files
+from .streams import writes_unicode
 
 
 def _view(args: argparse.Namespace, config: Config) -> View:
     workspace = Workspace(config)
-    key = read_one(args.command, workspace, args.file)
-    for extra in collect_files(args.with_files or []):
-        if str(extra) != key:
-            workspace.add_bytes(str(extra), extra.read_bytes())
+    key = read_one(args.command, workspace, args.file, args.stdin_filename)
+    read_with_files(workspace, args.with_files, key)
     documents = {}
     for uri in workspace.uris():
         doc = workspace.document(uri)
@@ -47,7 +46,7 @@ def _nothing(args: argparse.Namespace) -> None:
 
 
 def _dump(value: object) -> None:
-    json.dump(value, sys.stdout, ensure_ascii=False, indent=1)
+    json.dump(value, sys.stdout, ensure_ascii=not writes_unicode(sys.stdout), indent=1)
     sys.stdout.write("\n")
 
 
