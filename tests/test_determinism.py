@@ -32,9 +32,9 @@ def check_output(files: list[Path], hash_seed: str) -> bytes:
         ),
         "PYTHONHASHSEED": hash_seed,
     }
+    check = [sys.executable, "-m", "fanuc_macro.cli", "check", "--quiet", "--format", "json"]
     done = subprocess.run(
-        [sys.executable, "-m", "fanuc_macro.cli", "check", "--quiet", "--format", "json"]
-        + list(map(str, files)),
+        [*check, *map(str, files)],
         capture_output=True,
         env=env,
         timeout=120,
