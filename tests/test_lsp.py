@@ -8,6 +8,7 @@ import importlib.util
 import math
 import os
 import random
+import re
 import subprocess
 import sys
 import time
@@ -326,7 +327,8 @@ async def test_threading_verdicts_and_the_thread_in_the_hover(client: LanguageCl
     open_text(client, plain.as_uri(), plain.read_text("utf-8").replace("(M24X3-6G)", ""))
     await diagnostics(client, plain.as_uri())
     unknown = await hover(client, plain.as_uri(), 5, 1)
-    assert "not identified" in unknown and "(M50X3-5G6G)" in unknown
+    # The example names a thread and its side: in the case of ISO 965-1.
+    assert "not identified" in unknown and "(M50x3-5g6g)" in unknown
 
 
 async def test_hover_counts_utf16_columns(client: LanguageClient) -> None:
@@ -556,6 +558,28 @@ async def test_completion_offers_the_thread_module_of_the_document(client: Langu
     assert "#100=" not in sub.new_text
 
 
+async def test_completion_offers_both_kinds_when_the_document_does_not_tell(
+    client: LanguageClient,
+) -> None:
+    await start(client, None)
+    uri = "untitled:capitals.nc"
+    # All capitals, a class both kinds have, no es/EI, no word or program number that tells.
+    open_text(client, uri, "O0001 (M10X1.5-6G)\n#100=10.\n#102=20.\nthr\nM30\n")
+    await diagnostics(client, uri)
+    result = await client.text_document_completion_async(
+        types.CompletionParams(
+            text_document=types.TextDocumentIdentifier(uri=uri),
+            position=types.Position(line=3, character=3),
+        )
+    )
+    assert isinstance(result, types.CompletionList)
+    labels = sorted(i.label for i in result.items if i.label.startswith("thread module"))
+    assert [label.split(",")[0] for label in labels] == [
+        "thread module M10x1.5-6G internal",
+        "thread module M10x1.5-6g external",
+    ]
+
+
 async def test_snippets_are_left_to_an_extension_that_contributes_them(
     client: LanguageClient,
 ) -> None:
@@ -773,7 +797,28 @@ async def test_thread_module_command(client: LanguageClient) -> None:
     if importlib.util.find_spec("fanuc_macro.ide.thread_generator") is not None:
         assert good["text"].startswith("%\nO4009")
         wrong = await run({"designation": "M50x3-9z", "length": 40.0, "internal": None})
-        assert "tolerance position 'z'" in wrong["error"]  # the generator's ValueError
+        assert "tolerance position z is not" in wrong["error"]  # the generator's ValueError
+        # All capitals with a class both kinds have: refused, never guessed; "internal" says.
+        capitals = {"designation": "M50X3-5G6G", "length": 40.0}
+        undecided = await run({**capitals, "internal": None})
+        assert undecided == {
+            "error": "M50X3-5G6G: the class 5G6G fits an external (5g6g) or an internal (5G6G) "
+            'thread: say which with "internal": false (external) or true (internal), or write '
+            "the class in the standard's case: M50x3-5g6g external, M50x3-5G6G internal"
+        }
+        external = await run({**capitals, "internal": False})
+        assert external["text"].startswith("%\nO4009 (MAIN - EXTERNAL THREAD M50x3-5g6g L=40)")
+        internal = await run({**capitals, "internal": True})
+        assert internal["text"].startswith("%\nO4010 (MAIN - INTERNAL THREAD M50x3-5G6G L=40)")
+        paper = await run({"designation": "M50X3-4H5H", "length": 40.0, "internal": None})
+        assert paper["text"].startswith("%\nO4010 (MAIN - INTERNAL THREAD M50x3-4H5H L=40)")
+        conflict = await run({"designation": "M50x3-5g6g", "length": 40.0, "internal": True})
+        assert conflict == {
+            "error": "M50x3-5g6g is an external thread (its class 5g6g is in lower case), but "
+            '"internal": true was sent'
+        }
+        for refused in (wrong, undecided, conflict):
+            assert not re.search(r"internal=|\bNone\b|\bTrue\b|'[^'\s]+'", refused["error"])
         # The module's options: flank infeed, taper; multi-start and hand from the designation.
         from fanuc_macro.ide.thread_generator import generate_module
 
@@ -784,7 +829,7 @@ async def test_thread_module_command(client: LanguageClient) -> None:
         )
         assert "LEFT FLANK INFEED, LEFT HAND" in options["text"]
         unknown = await run({**spec, "infeed": "both"})
-        assert "infeed 'both'" in unknown["error"]
+        assert "infeed both is not one of" in unknown["error"]
         steep = await run({**spec, "taper": "1:16"})
         assert "taper must be a number" in steep["error"]
 

@@ -29,7 +29,9 @@ from fanuc_macro.ide.drum_groove_generator import (
 )
 from fanuc_macro.ide.thread_generator import build_module, generate_module
 from fanuc_macro.ide.thread_snippet import module_from_document
+from fanuc_macro.syntax.parser import parse_text
 from fanuc_macro.threads import parse_designation, plan_from_tolerances, tolerances
+from fanuc_macro.threads.identify import thread_words
 
 ROOT = Path(__file__).resolve().parent.parent
 SEEDS = ROOT / "tests" / "fixtures" / "seeds"
@@ -64,7 +66,9 @@ def assert_clean(text: str) -> None:
         assert "(" not in code and ")" not in code, f"nested or unclosed comment: {line}"
         assert code == code.upper(), f"lower case outside a comment: {line}"
         for comment in re.findall(r"\(([^()]*)\)", line):
-            assert comment == comment.upper(), line
+            # Upper case, but for the designation after THREAD, in the case of ISO 965-1.
+            rest = re.sub(r"(?<=THREAD )M\S+", "", comment)
+            assert rest == rest.upper(), line
 
 
 def assert_no_diagnostics(text: str, tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
@@ -159,7 +163,7 @@ def test_m10x1_5_6g_table_values() -> None:
         ("M50x3-5g6g", 50.0, None, 0.2 / 3),
         ("M50x3-4H5H", 50.0, None, 0.2 / 3),
         ("M10x1.5-6g", 20.0, None, 0.2 / 3),
-        ("M10-6H", 15.0, None, 0.2),
+        ("M10-6H", 15.0, True, 0.2),  # all capitals, 6H or 6h: the side is said
         ("M24x2-6g", 30.0, None, 0.2),
         ("M64X6-6H", 80.0, True, 0.2 / 3),
         ("M3x0.5-6g", 8.0, None, 0.2),  # square-root rule never applies: MB701 noted
@@ -186,6 +190,35 @@ def test_module_matches_geometry_and_checks_clean(
     assert module.g92_cuts == plan.g92_cut_count
     assert_clean(module.text)
     assert_no_diagnostics(module.text, tmp_path, capsys)
+
+
+@pytest.mark.parametrize(
+    ("designation", "internal", "written", "is_internal"),
+    [
+        ("M50x3-5g6g", None, "M50x3-5g6g", False),
+        ("M50X3-5G6G", False, "M50x3-5g6g", False),
+        ("M50X3-5G6G", True, "M50x3-5G6G", True),
+        ("M50X3-4H5H", None, "M50x3-4H5H", True),  # the seed paper's internal thread
+        ("M10X1.5", True, "M10x1.5-6H", True),
+        ("M24xPh4P2-6g-LH", None, "M24xPh4P2-6g-LH", False),
+    ],
+)
+def test_a_generated_module_reads_back_as_written(
+    designation: str, internal: bool | None, written: str, is_internal: bool
+) -> None:
+    text = generate_module(designation, 40, internal)
+    header = text.splitlines()[1]
+    assert f" THREAD {written} L=40)" in header
+    # The comment alone says the thread and its side, by the case of its class.
+    (form,) = [f for _w, f in thread_words(parse_text(header).blocks[0].parsed).designations]
+    read = parse_designation(form)
+    assert (read.canonical(), read.internal, read.internal_basis) == (written, is_internal, "case")
+    # The checker takes the module's thread for that one.
+    threads = analyse(text, URI).threads
+    assert threads
+    for thread in threads:
+        assert thread.designation is not None and thread.designation.canonical() == written
+        assert thread.internal is is_internal
 
 
 def test_constant_branches_are_explained_only_when_needed() -> None:
@@ -229,7 +262,7 @@ def test_program_numbers_and_overrides() -> None:
         deviation_override=-0.05,
     )
     text = module.text
-    assert text.splitlines()[1].startswith("O0100 (MAIN - EXTERNAL THREAD M50X3-5G6G")
+    assert text.splitlines()[1].startswith("O0100 (MAIN - EXTERNAL THREAD M50x3-5g6g")
     assert "M98 P0011234 " in text and "\nO1234 (" in text
     assert "#103=0.05 (ES MAGNITUDE 0.05 GIVEN)" in text
     assert "#104=0.2 (TD2 0.2 GIVEN)" in text
@@ -241,10 +274,10 @@ def test_program_numbers_and_overrides() -> None:
 @pytest.mark.parametrize(
     ("kwargs", "fragment"),
     [
-        ({"designation": "M50x3-5q", "length": 50}, "'q'"),
+        ({"designation": "M50x3-5q", "length": 50}, "position q is not defined"),
         ({"designation": "Tr20x4-7e", "length": 50}, "trapezoidal"),
         ({"designation": "M50x3.7-6g", "length": 50}, "3.7"),
-        ({"designation": "M20x1.5-6g", "length": 20, "infeed": "zigzag"}, "'zigzag'"),
+        ({"designation": "M20x1.5-6g", "length": 20, "infeed": "zigzag"}, "infeed zigzag"),
         ({"designation": "M20x1.5-6g", "length": 20, "taper": 0.8}, "taper 0.8"),
         ({"designation": "M20x1.5-6g", "length": -1}, "length"),
         ({"designation": "M20x1.5-6g", "length": 20, "main_number": 5, "sub_number": 5}, "O0005"),
@@ -429,11 +462,11 @@ def test_drum_groove_bad_inputs(kwargs: dict[str, object], fragment: str) -> Non
 def test_snippet_from_the_papers_main_programs() -> None:
     external = module_from_document((SEEDS / "o4009_external_m50x3.nc").read_text("utf-8"))
     assert external is not None
-    assert "O4009 (MAIN - EXTERNAL THREAD M50X3-5G6G" in external
+    assert "O4009 (MAIN - EXTERNAL THREAD M50x3-5g6g" in external
     assert "186 G92 CUTS" in external and "H=1.907" in external
     internal = module_from_document((SEEDS / "o4010_internal_m50x3.nc").read_text("utf-8"))
     assert internal is not None
-    assert "O4010 (MAIN - INTERNAL THREAD M50X3-4H5H" in internal
+    assert "O4010 (MAIN - INTERNAL THREAD M50x3-4H5H" in internal
     assert "176 G92 CUTS" in internal
 
 
@@ -443,14 +476,16 @@ def test_snippet_from_values_and_from_a_designation() -> None:
     assert module is not None
     assert "#102=20. " in module  # read by executing the document
     assert "#103=0.032 " in module and "#104=0.132 " in module
-    assert "\nO0001 (MAIN - EXTERNAL THREAD M10X1.5 " in module  # the tables say 6g
+    assert "\nO0001 (MAIN - EXTERNAL THREAD M10x1.5 " in module  # the tables say 6g
     assert "M98 P0013331 " in module
     # A designation in a comment fills what the document does not assign.
-    partial = module_from_document("O0001 (M10X1.5-6G)\n#100=10.\n#102=20.\nM30\n")
+    partial = module_from_document("O0001 (M10x1.5-6g)\n#100=10.\n#102=20.\nM30\n")
     assert partial is not None
     assert "#101=1.5 " in partial and "#103=0.032 " in partial and "#104=0.132 " in partial
     nut = module_from_document("O0002 (NUT M10X1.5-6H)\n#102=15.\nM30\n")
-    assert nut is not None and "INTERNAL THREAD M10X1.5-6H" in nut and "#104=0.18 " in nut
+    assert nut is not None and "INTERNAL THREAD M10x1.5-6H" in nut and "#104=0.18 " in nut
+    # All capitals, a class both kinds have, and nothing else telling the side: no module.
+    assert module_from_document("O0001 (M10X1.5-6G)\n#100=10.\n#102=20.\nM30\n") is None
 
 
 def test_snippet_none_without_values() -> None:
@@ -506,6 +541,88 @@ def test_cli_thread_subprocess() -> None:
     assert done.returncode == 2
     assert done.stdout == ""
     assert len(done.stderr.strip().splitlines()) == 1
+
+
+# The command line's refusals, each a one-line message in the user's words (exit 2).
+UNDECIDED_5G6G = (
+    "fanuc-macro thread: M50X3-5G6G: the class 5G6G fits an external (5g6g) or an internal "
+    "(5G6G) thread: say which with --external or --internal, or write the class in the "
+    "standard's case: M50x3-5g6g external, M50x3-5G6G internal\n"
+)
+THREAD_COMMANDS: dict[tuple[str, ...], tuple[int, str]] = {
+    # All capitals (as the seed paper and CNC comments write): the case may be lost.
+    ("M50X3-5G6G",): (2, UNDECIDED_5G6G),
+    ("M20X1.5-6H",): (2, "the class 6H fits an external (6h) or an internal (6H) thread"),
+    ("M10-6G",): (2, "say which with --external or --internal"),
+    ("M10x1.5",): (2, "M10x1.5 has no tolerance class, so it may be an external thread (6g)"),
+    ("M50X3-5G6G", "--external"): (0, "O4009 (MAIN - EXTERNAL THREAD M50x3-5g6g L=40)"),
+    ("M50X3-5G6G", "--internal"): (0, "O4010 (MAIN - INTERNAL THREAD M50x3-5G6G L=40)"),
+    # A class only one kind has in ISO 965-1 decides.
+    ("M50X3-4H5H",): (0, "O4010 (MAIN - INTERNAL THREAD M50x3-4H5H L=40)"),
+    ("M50X3-6E",): (0, "O4009 (MAIN - EXTERNAL THREAD M50x3-6e L=40)"),
+    # The standard's case decides.
+    ("M50x3-5g6g",): (0, "O4009 (MAIN - EXTERNAL THREAD M50x3-5g6g L=40)"),
+    ("M20x1.5-6H",): (0, "O4010 (MAIN - INTERNAL THREAD M20x1.5-6H L=40)"),
+    ("M20x1.5-6H", "--internal"): (0, "O4010 (MAIN - INTERNAL THREAD M20x1.5-6H L=40)"),
+    # A flag that contradicts the class.
+    ("M50x3-5g6g", "--internal"): (
+        2,
+        "fanuc-macro thread: M50x3-5g6g is an external thread (its class 5g6g is in lower "
+        "case), but --internal was given\n",
+    ),
+    ("M20x1.5-6H", "--external"): (2, "M20x1.5-6H is an internal thread (its class 6H is in"),
+    ("M50X3-4H5H", "--external"): (
+        2,
+        "M50X3-4H5H is an internal thread (ISO 965-1 has no crest-diameter grade 5 for "
+        "external threads), but --external was given",
+    ),
+    ("M50X3-6E", "--internal"): (2, "the position E only for external threads"),
+}
+
+
+def test_cli_thread_side_of_a_designation() -> None:
+    env = {**os.environ, "PYTHONPATH": str(ROOT / "server")}
+    started = {
+        args: subprocess.Popen(
+            [sys.executable, "-m", "fanuc_macro.cli", "thread", *args, "--length", "40"],
+            stdout=subprocess.PIPE,
+            stderr=subprocess.PIPE,
+            text=True,
+            env=env,
+        )
+        for args in THREAD_COMMANDS
+    }
+    for args, process in started.items():
+        out, err = process.communicate(timeout=120)
+        status, expected = THREAD_COMMANDS[args]
+        assert process.returncode == status, (args, err)
+        if status == 0:
+            assert out.splitlines()[1] == expected, args
+            internal = "--internal" in args or ("--external" not in args and "INTERNAL" in expected)
+            assert out == generate_module(args[0], 40, internal), args
+            continue
+        assert out == "", args
+        assert err.count("\n") == 1 and err.startswith("fanuc-macro thread: "), err
+        assert err == expected if expected.endswith("\n") else expected in err, err
+        # The user's words, not Python's.
+        assert not re.search(r"internal=|\bNone\b|\bTrue\b|\bFalse\b|'[^'\s]+'", err), err
+
+
+def test_cli_thread_help_says_what_happens() -> None:
+    env = {**os.environ, "PYTHONPATH": str(ROOT / "server")}
+    command = [sys.executable, "-m", "fanuc_macro.cli", "thread", "--help"]
+    done = subprocess.run(command, capture_output=True, text=True, env=env, timeout=60)
+    assert done.returncode == 0
+    text = " ".join(done.stdout.split())
+    assert "needed only when the designation is all capitals" not in text
+    for said in (
+        "lower case external (5g6g), upper case internal (4H5H)",
+        "a class only one kind has in ISO 965-1 decides (6E external, 4H5H internal)",
+        "a class both kinds have (5G6G, 6H), or no class, is refused unless --external or "
+        "--internal says which",
+        "A flag that contradicts the class is refused",
+    ):
+        assert said in text, said
 
 
 def test_drum_profile_fits_the_papers_crown_radius() -> None:

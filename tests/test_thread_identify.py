@@ -69,7 +69,48 @@ def test_no_size_known_is_said_in_the_hover() -> None:
     (t,) = _threads(HAND.format("OD THREAD", 22, 19.5, 2.5, 19.0, 18.5))
     assert not t.identified
     text = describe(t)
-    assert "not identified" in text and "(M50X3-5G6G)" in text
+    # The example names a thread and its side: in the case of ISO 965-1.
+    assert "not identified" in text and "(M50x3-5g6g)" in text
+
+
+# One G32 cut and no move after it: the cut does not tell an external thread from an internal
+# one.  At X45. it is past the root of M50x3-5g6g (X45.985).
+ONE_CUT = "O1 ({})\nG97 S500 M03\nG00 X45. Z5.\nG32 Z-30. F3.\nM30\n"
+
+
+@pytest.mark.parametrize("comment", ["M50X3-5G6G", "M50X3"])
+def test_a_designation_of_either_kind_is_not_used_when_nothing_tells_the_side(
+    comment: str,
+) -> None:
+    (t,) = _threads(ONE_CUT.format(comment))
+    assert t.job.internal is None
+    assert not t.identified and t.internal is None and t.designation is None
+    text = describe(t)
+    assert f"the designation {comment} at line 1 has" in text
+    assert "or an internal" in text and "neither the cuts nor the program's first comments" in text
+    # No verdict from a guessed side: the same pass under a designation that says external is
+    # past the root.
+    assert analyse(ONE_CUT.format(comment), "t.nc").diagnostics == []
+    said = {d.code for d in analyse(ONE_CUT.format("M50x3-5g6g"), "t.nc").diagnostics}
+    assert {"MB801", "MB802"} <= said
+
+
+@pytest.mark.parametrize(
+    ("comment", "internal", "name"),
+    [
+        ("M50x3-5g6g", False, "M50x3-5g6g"),
+        ("M50x3-5G6G", True, "M50x3-5G6G"),  # the x shows the case was kept
+        ("M50X3-4H5H", True, "M50x3-4H5H"),  # the seed paper's: ISO 965-1 has no external 4h5h
+        ("M50X3-6E", False, "M50x3-6e"),  # E is an external position only
+        ("EXTERNAL M50X3-5G6G", False, "M50x3-5g6g"),  # the program's first comment says
+    ],
+)
+def test_a_designation_that_tells_its_side_is_used_without_the_cuts(
+    comment: str, internal: bool, name: str
+) -> None:
+    (t,) = _threads(ONE_CUT.format(comment))
+    assert t.job.internal is None
+    assert t.internal is internal and t.designation is not None and t.name == name
 
 
 @pytest.mark.parametrize(

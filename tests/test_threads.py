@@ -11,6 +11,8 @@ import math
 import pytest
 
 from fanuc_macro.threads import (
+    SideConflict,
+    SideUndecided,
     ToleranceClass,
     ap_max,
     ap_min,
@@ -143,8 +145,10 @@ def test_coarse_designation_uses_coarse_pitch_tolerances() -> None:
         ("M6-6g", 5.212, 5.324),
         ("M12-6g", 10.679, 10.829),
         ("M24-6g", 21.803, 22.003),
-        ("M36-6H", 33.402, 33.702),
-        ("M64-6H", 60.103, 60.478),
+        # Coarse internal designations spelt with the pitch: "M36-6H" has no lower-case letter,
+        # so it does not say internal (it may be M36-6h upper-cased).
+        ("M36x4-6H", 33.402, 33.702),
+        ("M64x6-6H", 60.103, 60.478),
     ],
 )
 def test_common_6g_6h_pitch_limits(text: str, pitch_min: float, pitch_max: float) -> None:
@@ -162,7 +166,7 @@ def test_fundamental_deviations() -> None:
     assert fundamental_deviation("g", 1.5).micrometres == -32
     assert fundamental_deviation("g", 8.0).micrometres == -100
     assert tolerances("M3-6e").es == pytest.approx(-0.050)
-    with pytest.raises(ValueError, match="no fundamental deviation 'e'"):
+    with pytest.raises(ValueError, match=r"no fundamental deviation e for P = 0\.4"):
         fundamental_deviation("e", 0.4)
     with pytest.raises(ValueError, match="not tabulated"):
         fundamental_deviation("d", 1.5)
@@ -197,7 +201,7 @@ def test_diameter_ranges() -> None:
         ("M10x1.5-6g5g", "no grade 5"),  # Td has grades 4, 6, 8 only
         ("M10x1.5-3H", "no grade 3"),  # TD2 starts at grade 4
         ("M1x0.25-6H", "no grade-6 value for P = 0.25"),  # blank cell
-        ("M2x0.4-6e", "no fundamental deviation 'e'"),
+        ("M2x0.4-6e", "no fundamental deviation e "),
         ("M700x6-6g", "outside"),
     ],
 )
@@ -289,12 +293,21 @@ def test_parse_internal_with_multiplication_sign() -> None:
     assert d.internal_basis == "case"  # the typographic × shows lower case was available
 
 
-def test_parse_all_uppercase_is_ambiguous() -> None:
-    d = parse_designation("M50X3-5G6G")
-    assert d.internal_ambiguous
-    assert d.internal_basis == "assumed"
-    assert d.internal  # G read at face value
-    assert d.pitch_class == ToleranceClass(5, "G")
+def test_parse_all_uppercase_class_of_both_kinds_is_undecided() -> None:
+    # All capitals: the case may have been lost, and ISO 965-1 has 5g6g and 5G6G.
+    with pytest.raises(SideUndecided) as undecided:
+        parse_designation("M50X3-5G6G")
+    err = undecided.value
+    assert (err.external.canonical(), err.internal.canonical()) == ("M50x3-5g6g", "M50x3-5G6G")
+    assert str(err) == (
+        "M50X3-5G6G: the class 5G6G fits an external (5g6g) or an internal (5G6G) thread: "
+        "say which, or write the class in the standard's case: M50x3-5g6g external, "
+        "M50x3-5G6G internal"
+    )
+    assert "with --external or --internal" in err.question("with --external or --internal")
+    for text in ("M20X1.5-6H", "M10-6H", "M50X3-7H6H", "M24XPH4P2-6G"):
+        with pytest.raises(SideUndecided):
+            parse_designation(text)
 
     ext = parse_designation("M50X3-5G6G", internal=False)
     assert not ext.internal
@@ -303,21 +316,41 @@ def test_parse_all_uppercase_is_ambiguous() -> None:
     assert ext.crest_class == ToleranceClass(6, "g")
     assert tolerances(ext).pitch_diameter_tolerance == pytest.approx(0.170)
 
-    nut = parse_designation("M50X3-4H5H", internal=True)
+    nut = parse_designation("M50X3-5G6G", internal=True)
     assert nut.internal and nut.internal_basis == "caller"
+    assert nut.canonical() == "M50x3-5G6G"
 
-    # E and F exist only as external positions, so upper case E is read as e.
+
+def test_parse_all_uppercase_class_of_one_kind_is_that_kind() -> None:
+    # E and F exist only as external positions (ISO 965-1), so upper case E is e.
     e = parse_designation("M10X1.5-6E")
-    assert not e.internal and e.internal_basis == "assumed"
+    assert not e.internal and e.internal_basis == "class"
     assert e.pitch_class == ToleranceClass(6, "e")
-
-    assert parse_designation("M10-6H").internal_basis == "assumed"
+    # The seed paper's M50X3-4H5H: ISO 965-1 has no crest grade 5 for external threads (Td
+    # grades 4, 6, 8), so only the internal 4H5H exists.
+    nut = parse_designation("M50X3-4H5H")
+    assert nut.internal and nut.internal_basis == "class"
+    assert nut.canonical() == "M50x3-4H5H"
+    # 7H: no Td grade 7; 3G4G: no TD2 grade 3.
+    assert parse_designation("M20X1.5-7H").internal
+    assert not parse_designation("M20X1.5-3G4G").internal
+    assert parse_designation("M50X3-4H5H", internal=True).internal_basis == "class"
+    with pytest.raises(SideConflict, match="no crest-diameter grade 5 for external threads"):
+        parse_designation("M50X3-4H5H", internal=False)
+    with pytest.raises(SideConflict, match="position E only for external threads"):
+        parse_designation("M10X1.5-6E", internal=True)
+    with pytest.raises(ValueError, match="neither kind of thread has the class 9H"):
+        parse_designation("M50X3-9H", internal=True)
 
 
 def test_case_contradicting_internal_argument() -> None:
-    with pytest.raises(ValueError, match="says external"):
+    with pytest.raises(SideConflict) as conflict:
         parse_designation("M10x1.5-6g", internal=True)
-    with pytest.raises(ValueError, match="says internal"):
+    assert str(conflict.value) == (
+        "M10x1.5-6g is an external thread (its class 6g is in lower case), but an internal "
+        "thread was asked for"
+    )
+    with pytest.raises(SideConflict, match="is an internal thread"):
         parse_designation("M10x1.5-6H", internal=False)
     assert parse_designation("M10x1.5-6g", internal=False).internal_basis == "case"
 
@@ -343,10 +376,12 @@ def test_parse_engagement_and_default_class() -> None:
     d = parse_designation("M20x2-7g6g-L")
     assert d.engagement == "L"
     assert d.pitch_class == ToleranceClass(7, "g")
-    bare = parse_designation("M10x1.5")
+    with pytest.raises(SideUndecided, match="no tolerance class") as undecided:
+        parse_designation("M10x1.5")
+    bare = undecided.value.external
     assert bare.class_omitted
     assert bare.pitch_class == ToleranceClass(6, "g")
-    assert bare.internal_basis == "assumed"
+    assert parse_designation("M10x1.5", internal=False).internal_basis == "caller"
     nut = parse_designation("M10x1.5", internal=True)
     assert nut.pitch_class == ToleranceClass(6, "H")
     small = parse_designation("M1.2", internal=True)
@@ -375,9 +410,11 @@ def test_parse_multiple_start() -> None:
         ("MJ10x1.25-4h6h", "MJ"),
         ("M16xPh4P1.5-6H", "whole multiple of the pitch"),
         ("M10x1.5-6H/6g", "fit"),
-        ("M10-1.5", "after 'x'"),
-        ("M10x1.5-6k", "position 'k' is not defined"),
-        ("M10x1.5-6G6g", "mixed letter case"),
+        ("M10-1.5", "after an x"),
+        ("M10x1.5-6k", "position k is not defined for external threads"),
+        ("M10x1.5-6E", "position E is not defined for internal threads"),
+        ("M10X1.5-6K", "no tolerance position K"),
+        ("M10x1.5-6G6g", "mixes letter cases"),
         ("M10x1.5-5g6h", "share one tolerance position"),
         ("M10x1.5-6g-XY", "unexpected part"),
         ("M10x12", "not smaller than the diameter"),

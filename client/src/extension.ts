@@ -26,6 +26,7 @@ import {
   parseTaper,
   parseThreadDesignation,
   parseThreadLength,
+  sideQuestion,
   threadModuleText,
   validateTaper,
   validateThreadDesignation,
@@ -423,7 +424,7 @@ async function insertThreadModule(): Promise<void> {
     const inner = { label: vscode.l10n.t('Internal thread'), description: vscode.l10n.t('nut, bored on the inside'), internal: true };
     const picked = await vscode.window.showQuickPick([external, inner], {
       title: vscode.l10n.t('Symmetric Thread Module ({0}/{1})', 3, steps),
-      placeHolder: `${designation.text} has no tolerance class: is it an external or an internal thread?`,
+      placeHolder: sideQuestion(designation),
       ignoreFocusOut: true,
     });
     if (picked === undefined) return;

@@ -21,10 +21,16 @@ export interface ThreadDesignation {
    * true for an internal thread (upper-case tolerance position, `6H`), false
    * for an external one (lower case, `6g`), null when the designation does
    * not say: no tolerance class, or an all-capital string such as
-   * `M50X3-6G` (as written in CNC comments) with a position that exists for
-   * both kinds (G, H).
+   * `M50X3-5G6G` (as CNC comments write, the case may be lost) whose class
+   * both kinds have in ISO 965-1. An all-capital class
+   * only one kind has says that kind: `6E` external, `4H5H` internal.
    */
   readonly internal: boolean | null;
+  /**
+   * When `internal` is null: the class as each kind writes it, in the case of
+   * ISO 965-1 (`5g6g` and `5G6G`; `6g` and `6H` when no class is written).
+   */
+  readonly classes?: { readonly external: string; readonly internal: string };
 }
 
 const NUMBER = String.raw`\d+(?:[.,]\d+)?`;
@@ -34,8 +40,52 @@ const HEAD = new RegExp(
   'i',
 );
 const CLASS = /^([3-9])([A-Za-z])(?:([3-9])([A-Za-z]))?$/;
+// ISO 965-1:1998 as GB/T 197-2003 tabulates it (unverified against the ISO text; the server's
+// threads/designation.py): positions e, f, g, h external and G, H internal; pitch-diameter
+// grades 3-9 external (Td2) and 4-8 internal (TD2); crest grades 4, 6, 8 external (Td) and
+// 4-8 internal (TD1).
 const EXTERNAL_POSITIONS = 'efgh';
 const INTERNAL_POSITIONS = 'GH';
+const PITCH_GRADES = { external: [3, 4, 5, 6, 7, 8, 9], internal: [4, 5, 6, 7, 8] };
+const CREST_GRADES = { external: [4, 6, 8], internal: [4, 5, 6, 7, 8] };
+
+/** `5g6g` for grades 5, 6 and position g; `6H` when both grades are 6. */
+function classText(pitchGrade: number, crestGrade: number, position: string): string {
+  return pitchGrade === crestGrade ? `${pitchGrade}${position}` : `${pitchGrade}${position}${crestGrade}${position}`;
+}
+
+/**
+ * The kinds whose ISO 965-1 tables have an all-capital class (whose case may be lost), or a
+ * message when neither has it.
+ */
+function kindsWithClass(letter: string, pitchGrade: number, crestGrade: number, tolerance: string): boolean[] | string {
+  const byPosition = [false, true].filter((internal) =>
+    internal ? INTERNAL_POSITIONS.includes(letter) : EXTERNAL_POSITIONS.includes(letter.toLowerCase()),
+  );
+  if (byPosition.length < 2) return byPosition;
+  const byGrades = byPosition.filter((internal) => {
+    const kind = internal ? 'internal' : 'external';
+    return PITCH_GRADES[kind].includes(pitchGrade) && CREST_GRADES[kind].includes(crestGrade);
+  });
+  if (byGrades.length === 0) {
+    return `No thread has the class ${tolerance} in ISO 965-1: external threads have pitch-diameter grades 3-9 and crest grades 4, 6, 8, internal ones 4-8.`;
+  }
+  return byGrades;
+}
+
+/**
+ * The question that asks the kind of a designation that does not say it (`internal` null):
+ * for the quick pick that offers "External thread" and "Internal thread".
+ */
+export function sideQuestion(designation: ThreadDesignation): string {
+  const classes = designation.classes;
+  if (designation.tolerance === undefined) {
+    const kinds = classes === undefined ? '' : ` (${classes.external} or ${classes.internal})`;
+    return `${designation.text} has no tolerance class: is it an external or an internal thread${kinds}?`;
+  }
+  if (classes === undefined) return `Is ${designation.text} an external or an internal thread?`;
+  return `${designation.text}: the class ${designation.tolerance} fits an external (${classes.external}) or an internal (${classes.internal}) thread: which is it?`;
+}
 
 function toNumber(text: string): number {
   return Number(text.replace(',', '.'));
@@ -99,8 +149,14 @@ export function parseThreadDesignation(input: string): ThreadDesignation | strin
       : `"${input.trim()}": unexpected part "${part}"; ${EXAMPLE}.`;
   }
   let internal: boolean | null = null;
-  if (classMatch !== null) {
+  let classes: { external: string; internal: string } | undefined;
+  if (classMatch === null) {
+    // GB/T 197: the medium classes are not written (5H/6h up to 1.4 mm, else 6H/6g).
+    classes = nominal <= 1.4 ? { external: '6h', internal: '5H' } : { external: '6g', internal: '6H' };
+  } else {
     const letters = [classMatch[2], classMatch[4]].filter((l): l is string => l !== undefined);
+    const [first = '', second = first] = letters;
+    const onePosition = `The pitch-diameter and crest classes of "${tolerance ?? ''}" must share one tolerance position.`;
     // Case tells internal from external only if the writer could use lower case.
     const caseMeaningful = /[a-z]/.test(text) || text.includes('×');
     if (caseMeaningful) {
@@ -115,15 +171,31 @@ export function parseThreadDesignation(input: string): ThreadDesignation | strin
           ? 'Internal threads use tolerance positions G or H (for example 6H).'
           : 'External threads use tolerance positions e, f, g or h (for example 6g).';
       }
+      if (first !== second) return onePosition;
     } else {
       if (!letters.every((l) => 'EFGH'.includes(l))) {
         return 'Tolerance positions are e, f, g, h (external) or G, H (internal), for example 6g or 6H.';
       }
-      // E and F exist only for external threads; G and H for both.
-      internal = letters.every((l) => INTERNAL_POSITIONS.includes(l)) ? null : false;
+      if (first !== second) return onePosition;
+      // All capitals: the case may be lost. A class only one kind has in ISO 965-1 says that
+      // kind (E and F are external positions only; 4H5H internal, no external crest grade 5);
+      // one both kinds have is asked, never guessed.
+      const pitchGrade = Number(classMatch[1]);
+      const crestGrade = classMatch[3] === undefined ? pitchGrade : Number(classMatch[3]);
+      const kinds = kindsWithClass(first, pitchGrade, crestGrade, tolerance ?? '');
+      if (typeof kinds === 'string') return kinds;
+      if (kinds.length === 1) {
+        internal = kinds[0] ?? null;
+      } else {
+        classes = {
+          external: classText(pitchGrade, crestGrade, first.toLowerCase()),
+          internal: classText(pitchGrade, crestGrade, first.toUpperCase()),
+        };
+      }
     }
   }
-  return { text, nominal, pitch, starts, leftHand, tolerance, internal };
+  const asked = internal === null && classes !== undefined ? { classes } : {};
+  return { text, nominal, pitch, starts, leftHand, tolerance, internal, ...asked };
 }
 
 /** For `showInputBox.validateInput`: undefined when valid, else the message. */

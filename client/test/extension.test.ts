@@ -171,6 +171,48 @@ describe('extension', { skip: process.platform === 'win32' }, () => {
     ]);
   });
 
+  it('asks external or internal for an all-capital class both kinds have, and sends the answer', async () => {
+    fake.resetRecorded();
+    fake.answers.inputBox.push('M50X3-5G6G', '40', '');
+    fake.answers.quickPick.push((items) => items.find((i) => i.label.startsWith('External')));
+    fake.answers.quickPick.push((items) => items[0]);
+    await run('fanuc-macro.insertThreadModule');
+    assert.deepEqual(fake.recorded.quickPicks[0], {
+      title: 'Symmetric Thread Module (3/5)',
+      placeHolder: 'M50X3-5G6G: the class 5G6G fits an external (5g6g) or an internal (5G6G) thread: which is it?',
+    });
+    assert.deepEqual(lastClient().requests.pop()?.params.arguments, [
+      { designation: 'M50X3-5G6G', length: 40, internal: false },
+    ]);
+  });
+
+  it('does not ask the kind of the seed paper\'s M50X3-4H5H: ISO 965-1 has it internal only', async () => {
+    fake.resetRecorded();
+    fake.answers.inputBox.push('M50X3-4H5H', '40', '');
+    fake.answers.quickPick.push((items) => items[0]);
+    await run('fanuc-macro.insertThreadModule');
+    assert.deepEqual(
+      fake.recorded.quickPicks.map((p) => p.title),
+      ['Symmetric Thread Module (3/4)'],
+    );
+    assert.deepEqual(lastClient().requests.pop()?.params.arguments, [
+      { designation: 'M50X3-4H5H', length: 40, internal: true },
+    ]);
+  });
+
+  it('shows the server\'s refusal of a designation that does not say its kind', async () => {
+    fake.resetRecorded();
+    fake.answers.inputBox.push('M50x3-6H', '40', '');
+    fake.answers.quickPick.push((items) => items[0]);
+    const refusal =
+      'M50X3-5G6G: the class 5G6G fits an external (5g6g) or an internal (5G6G) thread: say which';
+    serverAnswers.set('fanuc-macro.threadModule', () => ({ error: refusal }));
+    await run('fanuc-macro.insertThreadModule');
+    assert.equal(fake.recorded.inserts.length, 0);
+    assert.equal(fake.recorded.errors[0]?.message, `FANUC Macro: thread module failed: ${refusal}`);
+    serverAnswers.set('fanuc-macro.threadModule', () => ({ text: '#100=50.\nM98 P0013331\n' }));
+  });
+
   it('sends the infeed and the taper asked for', async () => {
     fake.resetRecorded();
     fake.answers.inputValidation.length = 0;

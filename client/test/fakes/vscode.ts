@@ -184,6 +184,7 @@ export const recorded = {
   revealed: [] as Array<{ line: number; type: number | undefined }>,
   inserts: [] as Array<{ position: Position; text: string }>,
   inputBoxes: [] as Array<{ title: string | undefined; value: string | undefined }>,
+  quickPicks: [] as Array<{ title: string | undefined; placeHolder: string | undefined }>,
   statusMessages: [] as string[],
   log: [] as string[],
 };
@@ -205,6 +206,7 @@ export function resetRecorded(): void {
   recorded.revealed.length = 0;
   recorded.inserts.length = 0;
   recorded.inputBoxes.length = 0;
+  recorded.quickPicks.length = 0;
   recorded.statusMessages.length = 0;
   recorded.settingUpdates.length = 0;
 }
@@ -381,7 +383,11 @@ export const window = {
     }
     return Promise.resolve(answer);
   },
-  showQuickPick<T extends { label: string }>(items: readonly T[], _options?: unknown): Promise<T | undefined> {
+  showQuickPick<T extends { label: string }>(
+    items: readonly T[],
+    options?: { title?: string; placeHolder?: string },
+  ): Promise<T | undefined> {
+    recorded.quickPicks.push({ title: options?.title, placeHolder: options?.placeHolder });
     const choose = answers.quickPick.shift();
     return Promise.resolve(choose ? (choose(items) as T | undefined) : undefined);
   },

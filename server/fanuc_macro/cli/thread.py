@@ -3,8 +3,10 @@
 The main program (O4009 shape, O4010 internal) enters D, P, L, es/EI and Td2/TD2 from the
 ISO 965-1 tables; the sub-program (O3331 / O3330) is the seed paper's, extended as its
 "parameter adjustment" paragraph says: flank infeed, taper, multi-start (``M24xPh4P2-6g``)
-and left-hand (``M20x2-6g-LH``) threads.  A designation that
-cannot be read or is not in the tables exits 2 with a one-line message.
+and left-hand (``M20x2-6g-LH``) threads.  A designation that cannot be read, is not in the
+tables, or does not say whether the thread is external or internal (all capitals with a class
+both kinds have, ``M50X3-5G6G``, or no class) without ``--external`` / ``--internal``, exits 2
+with a one-line message.
 """
 
 from __future__ import annotations
@@ -32,16 +34,17 @@ def _coefficient(text: str) -> float:
     match = re.fullmatch(r"\s*(\d+(?:\.\d*)?|\.\d+)\s*(?:/\s*(\d+(?:\.\d*)?)\s*)?", text)
     if match is None:
         raise argparse.ArgumentTypeError(
-            f"{text!r} is not a coefficient (e.g. 0.2, 0.2/3, steel, molybdenum)"
+            f"the coefficient is a number, a fraction or a material (e.g. 0.2, 0.2/3, steel, "
+            f"molybdenum), not {text}"
         )
     value = float(match.group(1))
     if match.group(2) is not None:
         divisor = float(match.group(2))
         if divisor == 0:
-            raise argparse.ArgumentTypeError(f"{text!r} divides by zero")
+            raise argparse.ArgumentTypeError(f"the coefficient {text} divides by zero")
         value /= divisor
     if value <= 0:
-        raise argparse.ArgumentTypeError(f"coefficient {text!r} must be positive")
+        raise argparse.ArgumentTypeError(f"the coefficient {text} must be positive")
     return value
 
 
@@ -49,7 +52,7 @@ def _program(text: str) -> int:
     """``O4009``, ``o4009`` or ``4009``."""
     match = re.fullmatch(r"\s*[Oo]?(\d{1,4})\s*", text)
     if match is None or int(match.group(1)) == 0:
-        raise argparse.ArgumentTypeError(f"{text!r} is not a program number O0001-O9999")
+        raise argparse.ArgumentTypeError(f"a program number is O0001-O9999, not {text}")
     return int(match.group(1))
 
 
@@ -64,7 +67,8 @@ def _taper(text: str) -> float:
     except (ValueError, ZeroDivisionError):
         pass
     raise argparse.ArgumentTypeError(
-        f"{text!r} is not a taper (e.g. 1:16, or 0.0625 mm of diameter per mm of length)"
+        f"the taper is a ratio or a number (e.g. 1:16, or 0.0625 mm of diameter per mm of "
+        f"length), not {text}"
     )
 
 
@@ -72,14 +76,15 @@ def _count(text: str) -> int:
     try:
         value = int(text)
     except ValueError:
-        raise argparse.ArgumentTypeError(f"{text!r} is not a whole number") from None
+        raise argparse.ArgumentTypeError(f"a whole number is needed, not {text}") from None
     if value < 0:
-        raise argparse.ArgumentTypeError(f"{text!r} must not be negative")
+        raise argparse.ArgumentTypeError(f"the count {text} must not be negative")
     return value
 
 
 def cmd_thread(args: argparse.Namespace) -> int:
     from ..ide.thread_generator import generate_module
+    from ..ide.thread_module import SideConflict, SideUndecided
 
     try:
         text = generate_module(
@@ -95,12 +100,21 @@ def cmd_thread(args: argparse.Namespace) -> int:
             infeed=args.infeed,
             taper=args.taper,
         )
+    except SideUndecided as err:
+        return _refuse(err.question("with --external or --internal"))
+    except SideConflict as err:
+        return _refuse(
+            err.refusal(f"--{'external' if err.designation.internal else 'internal'} was given")
+        )
     except ValueError as err:
-        message = " ".join(str(err).split())
-        sys.stderr.write(f"fanuc-macro thread: {message}\n")
-        return EXIT_USAGE
+        return _refuse(str(err))
     sys.stdout.write(text)
     return EXIT_OK
+
+
+def _refuse(message: str) -> int:
+    sys.stderr.write(f"fanuc-macro thread: {' '.join(message.split())}\n")
+    return EXIT_USAGE
 
 
 def add_thread_command(
@@ -112,12 +126,19 @@ def add_thread_command(
         help="print the symmetric thread module (main + sub-program) for an ISO metric thread",
         description="Print the symmetric thread module of Deng Ronggang's paper (main program "
         "O4009 external / O4010 internal, sub-program O3331 / O3330) for an ISO metric thread, "
-        "with es/EI and Td2/TD2 from ISO 965-1 and the computed values in comments.",
+        "with es/EI and Td2/TD2 from ISO 965-1 and the computed values in comments.  The "
+        "tolerance class says the kind of thread in the case ISO 965-1 writes it: lower case "
+        "external (5g6g), upper case internal (4H5H).  A designation without a lower-case letter "
+        "(M50X3-5G6G, M10-6H) may have lost its case: a class only one kind has in ISO 965-1 "
+        "decides (6E external, 4H5H internal); "
+        "a class both kinds have (5G6G, 6H), or no class, is refused unless --external or "
+        "--internal says which.  A flag that contradicts the class is refused.",
     )
     thread.add_argument(
         "designation",
         metavar="DESIGNATION",
-        help="e.g. M50x3-5g6g, M10-6H, M24xPh4P2-6g (two starts), M20x2-6g-LH (left hand)",
+        help="e.g. M50x3-5g6g (external), M20x1.5-6H (internal), M24xPh4P2-6g (two starts), "
+        "M20x2-6g-LH (left hand); M50X3-5G6G needs --external or --internal",
     )
     thread.add_argument(
         "--length", type=float, required=True, metavar="L", help="thread length L (mm)"
@@ -129,10 +150,16 @@ def add_thread_command(
         action="store_const",
         const=True,
         default=None,
-        help="internal thread (needed only when the designation is all capitals)",
+        help="an internal thread: needed when the designation does not say (all capitals with "
+        "a class both kinds have, M50X3-5G6G, or no class); refused when its class is external",
     )
     side.add_argument(
-        "--external", dest="internal", action="store_const", const=False, help="external thread"
+        "--external",
+        dest="internal",
+        action="store_const",
+        const=False,
+        help="an external thread: needed when the designation does not say; refused when its "
+        "class is internal",
     )
     thread.add_argument(
         "--coefficient",

@@ -13,7 +13,7 @@ from ..program.variables import classify
 from ..syntax.lines import cut_comments
 from .data import CompletionItem, CompletionKind, CompletionList, Range
 from .locate import number_of, uses
-from .thread_completion import thread_insertion, trigger_for
+from .thread_completion import thread_insertions, trigger_for
 from .values import variable_kind
 from .view import View, comment_of, lines_of
 
@@ -180,9 +180,6 @@ def _thread_items(
     trigger = trigger_for(word)
     if view is None or trigger is None:
         return []
-    found = thread_insertion(view, line, eol)
-    if found is None:
-        return []
     return [
         CompletionItem(
             label=f"thread module {found.title}",
@@ -196,6 +193,8 @@ def _thread_items(
             replace=edit_range,
             additional_edits=(found.sub_program,),
         )
+        # Both kinds when the program does not tell an external thread from an internal one.
+        for found in thread_insertions(view, line, eol)
     ]
 
 

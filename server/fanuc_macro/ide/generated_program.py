@@ -51,11 +51,16 @@ def count_of(n: int, word: str) -> str:
     return f"{n} {word if n == 1 else plural}"
 
 
-def clean_comment(text: str) -> str:
+def clean_comment(text: str, keep_case: str = "") -> str:
+    """``text`` in upper case, but for ``keep_case``: a word whose case carries meaning (a thread
+    designation's class, ``5g6g`` external, ``5G6G`` internal)."""
     # Old controls read only upper-case ASCII in comments, and a ')' would end the comment.
     cleaned = text.upper().replace("(", "").replace(")", "").replace("%", " PCT")
     if not cleaned.isascii():
-        raise ValueError(f"comment {text!r} must be ASCII for old controls")
+        raise ValueError(f"the comment {text} must be ASCII for old controls")
+    # A control shows lower case in a comment as it is (MB006 reports it outside comments only).
+    if keep_case and keep_case.isascii() and not set(keep_case) & set("()% "):
+        cleaned = cleaned.replace(keep_case.upper(), keep_case)
     return " ".join(cleaned.split())
 
 
@@ -66,10 +71,12 @@ class Lines:
         self.lines: list[str] = []
         self.at: dict[str, int] = {}
 
-    def add(self, code: str, comment: str = "", key: str | None = None) -> None:
+    def add(
+        self, code: str, comment: str = "", key: str | None = None, keep_case: str = ""
+    ) -> None:
         if key is not None:
             self.at[key] = len(self.lines)
-        note = clean_comment(comment)
+        note = clean_comment(comment, keep_case)
         if code and note:
             self.lines.append(f"{code} ({note})")
         elif note:

@@ -5,15 +5,22 @@ at the cursor, the M98 call of the module (and the assignments of whichever of `
 it leaves to a designation comment), and after the program the module's sub-program under the
 first free O number from the paper's (O3331 external, O3330 internal). The user's values are
 used, never entered twice; a call the program already has to a missing program gets that
-program. Pure: the analysis in, text and edits out.
+program. When nothing in the document tells an external thread from an internal one (an
+all-capital designation such as ``M50X3-5G6G`` and no other sign), both modules are offered,
+never one guessed. Pure: the analysis in, text and edits out.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 from .data import Position, Range, TextEdit
 from .view import View
+
+if TYPE_CHECKING:
+    from ..program.index import Program
+    from .thread_snippet import ThreadInputs
 
 # The words that find the item: what a machinist types for it.
 TRIGGERS = ("thread", "M98", "螺纹")
@@ -65,20 +72,31 @@ def _insertion_point(view: View, first_line: int, end_line: int) -> tuple[Positi
     return Position(last, len(blocks[last].text)), True
 
 
-def thread_insertion(view: View, line: int, eol: str = "\n") -> ThreadInsertion | None:
-    """The module for the thread the program at ``line`` enters; None when that program enters
-    none, when its thread is not complete, or when the module it calls is there already."""
+def thread_insertions(view: View, line: int, eol: str = "\n") -> list[ThreadInsertion]:
+    """The module for the thread the program at ``line`` enters: the external and the internal
+    one when nothing in the document tells which it is; none when that program enters none,
+    when its thread is not complete, or when the module it calls is there already."""
     facts = view.facts
     program = view.index.program_at(line)
     if facts is None or program is None:
-        return None
+        return []
     # The generator is imported on the first thread completion, not before initialize.
-    from .thread_generator import default_program_numbers
     from .thread_snippet import thread_inputs
 
-    inputs = thread_inputs(view.doc, view.index, facts)
-    if inputs is None or not program.contains(inputs.first_line):
-        return None
+    found = []
+    for inputs in thread_inputs(view.doc, view.index, facts):
+        if program.contains(inputs.first_line):
+            insertion = _insertion(view, program, inputs, eol)
+            if insertion is not None:
+                found.append(insertion)
+    return found
+
+
+def _insertion(
+    view: View, program: Program, inputs: ThreadInputs, eol: str
+) -> ThreadInsertion | None:
+    from .thread_generator import default_program_numbers
+
     used = _used_numbers(view)
     called = next((c for c in program.calls if c.kind == "M98" and c.program is not None), None)
     if called is not None and called.program in used:

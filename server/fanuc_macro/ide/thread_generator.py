@@ -118,7 +118,7 @@ def default_program_numbers(internal: bool) -> tuple[int, int]:
 def _coefficient_text(coefficient: float) -> str:
     """``0.2/3.`` for the paper's molybdenum coefficient, else the number."""
     if not coefficient > 0 or not math.isfinite(coefficient):
-        raise ValueError(f"depth coefficient {coefficient!r} must be a positive number")
+        raise ValueError(f"the depth coefficient {coefficient} must be a positive number")
     for divisor in range(2, 13):
         top = coefficient * divisor
         # A fraction of a short decimal (0.2/3) is entered as the paper does, exactly.
@@ -126,7 +126,7 @@ def _coefficient_text(coefficient: float) -> str:
             return f"{num(round(top, 6), 6)}/{divisor}."
     if abs(coefficient - round(coefficient, 8)) > 1e-15:
         raise ValueError(
-            f"depth coefficient {coefficient!r} has more than 8 decimals; "
+            f"the depth coefficient {coefficient} has more than 8 decimals; "
             "give it as a short decimal or a fraction of one (0.2/3)"
         )
     return num(coefficient, 8)
@@ -155,7 +155,7 @@ class _ModuleSpec:
     main_number: int
     sub_number: int
     spindle_speed: int
-    title: str  # designation (or "M50X3") for the header
+    title: str  # designation (or "M50x3") for the header, in the case ISO 965-1 writes it
     deviation_note: str
     tolerance_note: str
     infeed: str = "symmetric"
@@ -188,7 +188,11 @@ def _render_module(spec: _ModuleSpec, notes: Mapping[str, str]) -> Lines:
     side = "INTERNAL" if internal else "EXTERNAL"
     out = Lines()
     out.add("%")
-    out.add(f"O{spec.main_number:04d}", f"MAIN - {side} THREAD {spec.title} L={spec.length:g}")
+    out.add(
+        f"O{spec.main_number:04d}",
+        f"MAIN - {side} THREAD {spec.title} L={spec.length:g}",
+        keep_case=spec.title,
+    )
     out.add("T0101", f"{side} THREADING TOOL")
     home_x = num(math.ceil(d + 50.0))
     if internal:
@@ -399,13 +403,13 @@ def build_module_from_values(
     lead is ``starts`` x ``pitch``); ``left_hand`` cuts toward +Z."""
     for name, value in (("diameter", diameter), ("pitch", pitch), ("length", length)):
         if not value > 0 or not math.isfinite(value):
-            raise ValueError(f"thread {name} {value!r} must be a positive number")
+            raise ValueError(f"the thread {name} {value} must be a positive number")
     if pitch >= diameter:
         raise ValueError(f"pitch {pitch:g} is not smaller than the diameter {diameter:g}")
     if not math.isfinite(deviation) or not math.isfinite(pitch_tolerance) or pitch_tolerance < 0:
         raise ValueError(
-            f"deviation {deviation!r} and pitch-diameter tolerance {pitch_tolerance!r} "
-            "must be finite, the tolerance not negative"
+            f"the deviation {deviation} and the pitch-diameter tolerance {pitch_tolerance} "
+            "must be finite numbers, the tolerance not negative"
         )
     deviation = abs(deviation)  # the paper enters es as a magnitude
     if not 0 <= spring_passes <= 99:
@@ -413,11 +417,11 @@ def build_module_from_values(
     if not 1 <= spindle_speed <= 99999:
         raise ValueError(f"spindle speed S{spindle_speed} is outside 1-99999")
     if infeed not in INFEEDS:
-        raise ValueError(f"infeed {infeed!r} is not one of {', '.join(INFEEDS)}")
+        raise ValueError(f"the infeed {infeed} is not one of {', '.join(INFEEDS)}")
     # Beyond 1:2 (a half-angle of 14 degrees) a G92 thread's depth is no longer the
     # radial depth the module computes; pipe threads are 1:16.
     if not math.isfinite(taper) or abs(taper) > 0.5:
-        raise ValueError(f"taper {taper!r} must be a diameter change of at most 0.5 per mm (1:2)")
+        raise ValueError(f"the taper {taper} must be a diameter change of at most 0.5 per mm (1:2)")
     if not 1 <= starts <= 9:
         raise ValueError(f"{starts} starts: the module cuts 1-9")
     default_main, default_sub = default_program_numbers(internal)
@@ -425,10 +429,12 @@ def build_module_from_values(
     sub = program_number(default_sub if sub_number is None else sub_number, "sub")
     if main == sub:
         raise ValueError(f"the main program and the sub-program are both O{main:04d}")
+    # The designation as ISO 965-1 writes it, the class's case telling the kind (5g6g external,
+    # 5G6G internal): the checker reads the comment back as the same thread and side.
     if designation is not None:
-        title = designation.canonical().upper()
+        title = designation.canonical()
     else:
-        title = f"M{num(diameter).rstrip('.')}X{num(pitch).rstrip('.')}"
+        title = f"M{num(diameter).rstrip('.')}x{num(pitch).rstrip('.')}"
     which = "EI" if internal else "ES"
     if deviation_note is None:
         signed = deviation if internal else -deviation
@@ -542,7 +548,10 @@ def build_module(
     else:
         des = designation
         if internal is not None and internal != des.internal:
-            raise ValueError(f"{des.text!r} is {'in' if des.internal else 'ex'}ternal")
+            raise ValueError(
+                f"{des.canonical()} is an {des.side} thread, but an "
+                f"{'external' if des.internal else 'internal'} one was asked for"
+            )
     # What the user typed goes into the main program as typed, or is refused.
     # (The taper's eighth decimal is far below the control's increment over any length.)
     entered("thread length", length)
@@ -618,6 +627,13 @@ def generate_module(
     from ISO 965-1 unless overridden.  ``coefficient`` is 0.2 for steel, 0.2/3 (default, the
     paper's) for molybdenum; ``spring_passes`` is n' (``#12``).  Raises ValueError for a bad
     designation or a thread the tables do not cover (give both overrides then).
+
+    ``internal`` says the kind of thread when the designation does not: all capitals with a
+    class both kinds have in ISO 965-1 (``M50X3-5G6G``), or no class.  Such a designation with
+    ``internal`` None raises :class:`~fanuc_macro.threads.designation.SideUndecided`, one
+    whose class says the other kind :class:`~fanuc_macro.threads.designation.SideConflict`
+    (both ValueErrors): the kind is never guessed.  The main program's comment writes the
+    designation in the case of ISO 965-1 (``M50x3-5g6g``, ``M50x3-5G6G``).
 
     A multi-start designation (``M24xPh4P2-6g``) cuts each start in turn, one pitch further
     in Z, with the lead as F and the depth from the pitch; a left-hand one (``...-LH``) cuts

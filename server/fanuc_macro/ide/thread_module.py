@@ -6,6 +6,19 @@ from __future__ import annotations
 import importlib
 from collections.abc import Callable
 
+# The generator's refusals of a designation that does not say its side, or says the other one:
+# a front end words them with its own way of saying the side.
+from ..threads.designation import SideConflict, SideUndecided
+
+__all__ = [
+    "GENERATOR_MODULE",
+    "Generator",
+    "NoGenerator",
+    "SideConflict",
+    "SideUndecided",
+    "load_generator",
+]
+
 GENERATOR_MODULE = "fanuc_macro.ide.thread_generator"
 
 # generate_module(designation, length in mm, internal or None, *, infeed=..., taper=...)

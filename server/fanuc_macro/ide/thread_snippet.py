@@ -4,8 +4,13 @@ A main program in the shape of the paper's O4009 / O4010 assigns ``#100`` D, ``#
 ``#102`` L, ``#103`` es/EI (a magnitude) and ``#104`` Td2/TD2, then calls the sub-program.
 :func:`module_from_document` reads those values by running the document with the evaluator
 (so ``#102=2*#101`` works too), fills what is missing from a designation written in a
-comment (``(M50X3-5G6G)``), and returns the module generated for them: the language server
+comment (``(M50x3-5g6g)``), and returns the module generated for them: the language server
 offers it as a completion item.  Pure: text in, text out, no LSP types.
+
+The side comes from the designation's class (its case, or a class only one kind has), else
+the program's words (INTERNAL, NUT ...), the paper's sub-program numbers, or the ISO 965-1
+class that has the entered es/EI and Td2/TD2.  When none of these tells, the side is not
+guessed: :func:`thread_inputs` gives both readings, and the completion offers both modules.
 """
 
 from __future__ import annotations
@@ -16,9 +21,9 @@ from ..evaluator import DocumentFacts, evaluate
 from ..program.index import ProgramIndex, build_index
 from ..syntax.parser import default_parser, parse_text
 from ..syntax.tree import Assign, Document, IfThen
-from ..threads.designation import ThreadDesignation, parse_designation
+from ..threads.designation import SideUndecided, ThreadDesignation, parse_designation
 from ..threads.identify import thread_words
-from ..threads.iso965 import tolerances
+from ..threads.iso965 import pitch_classes, tolerances
 from .thread_generator import ThreadModule, build_module_from_values, default_program_numbers
 
 __all__ = ["ThreadInputs", "module_from_analysis", "module_from_document", "thread_inputs"]
@@ -81,25 +86,27 @@ def _side_from_tables(
 ) -> bool | None:
     """Which side's ISO 965-1 cells give these |es|/EI and Td2/TD2, if only one does."""
     matches: set[bool] = set()
-    for internal, positions, grades in ((False, "efgh", "3456789"), (True, "GH", "45678")):
-        for position in positions:
-            for grade in grades:
-                try:
-                    tol = tolerances(f"M{diameter:g}x{pitch:g}-{grade}{position}")
-                except ValueError:
-                    continue
-                if abs(abs(tol.fundamental_deviation) - deviation) < 5e-4 and (
-                    abs(tol.pitch_diameter_tolerance - pitch_tolerance) < 5e-4
-                ):
-                    matches.add(internal)
+    for internal in (False, True):
+        # The pitch-diameter classes alone: a class such as 5g (crest grade 5, which Td does not
+        # have) still names its es and Td2.
+        for c in pitch_classes(diameter, pitch, internal=internal):
+            if (
+                abs(abs(c.deviation) - deviation) < 5e-4
+                and abs(c.tolerance - pitch_tolerance) < 5e-4
+            ):
+                matches.add(internal)
     return matches.pop() if len(matches) == 1 else None
 
 
-def _parse(text: str, internal: bool | None) -> ThreadDesignation | None:
+def _readings(text: str) -> tuple[ThreadDesignation, ...]:
+    """The designation as its text reads; both readings (external, internal) when the text
+    does not say its side; none when it cannot be read."""
     try:
-        return parse_designation(text, internal=internal)
+        return (parse_designation(text),)
+    except SideUndecided as err:
+        return (err.external, err.internal)
     except ValueError:
-        return None
+        return ()
 
 
 def _numbers(doc: Document, index: ProgramIndex, first_line: int) -> tuple[int | None, int | None]:
@@ -114,9 +121,9 @@ def _numbers(doc: Document, index: ProgramIndex, first_line: int) -> tuple[int |
 def module_from_document(text: str) -> str | None:
     """The symmetric thread module for the thread this document enters in #100-#104.
 
-    None when the document assigns none of #100-#104, or when D, P, L, es/EI and Td2/TD2
+    None when the document assigns none of #100-#104, when D, P, L, es/EI and Td2/TD2
     cannot all be found (from the executed assignments, else from a designation comment),
-    or when they do not make a thread.
+    when they do not make a thread, or when nothing tells an external from an internal one.
     """
     doc = parse_text(text, _URI, default_parser())
     if not _assigned_lines(doc):
@@ -162,12 +169,13 @@ class ThreadInputs:
             return None
 
 
-def thread_inputs(doc: Document, index: ProgramIndex, facts: DocumentFacts) -> ThreadInputs | None:
-    """The thread a document enters in #100-#104; None when it assigns none of them, or when
-    D, P, L, es/EI and Td2/TD2 cannot all be found."""
+def thread_inputs(doc: Document, index: ProgramIndex, facts: DocumentFacts) -> list[ThreadInputs]:
+    """The thread a document enters in #100-#104: one reading when the document tells its
+    side, the external and the internal one when it does not; none when it assigns none of
+    #100-#104, or when D, P, L, es/EI and Td2/TD2 cannot all be found."""
     assigned = _assigned_lines(doc)
     if not assigned:
-        return None
+        return []
     writes = facts.writes
     values: dict[int, float] = {}
     for number, lines in assigned.items():
@@ -176,27 +184,33 @@ def thread_inputs(doc: Document, index: ProgramIndex, facts: DocumentFacts) -> T
             if write is not None and isinstance(write[1].last, float):
                 values[number] = write[1].last
 
-    comments = _comments(doc)
-    texts = _designation_texts(doc)
-    des = next((d for d in (_parse(t, None) for t in texts) if d is not None), None)
-    internal: bool | None = None
-    if des is not None and not des.internal_ambiguous:
-        internal = des.internal
+    readings = next((r for r in map(_readings, _designation_texts(doc)) if r), ())
+    internal: bool | None = readings[0].internal if len(readings) == 1 else None
     if internal is None:
-        internal = _side_from_words(comments)
+        internal = _side_from_words(_comments(doc))
     if internal is None:
         internal = _side_from_programs(index)
     if internal is None and all(n in values for n in (100, 101, 103, 104)):
         internal = _side_from_tables(values[100], values[101], values[103], values[104])
-    if internal is None and des is not None:
-        # All capitals and no other hint: 6g bolts are common and internal G rare, while
-        # H is the usual nut; read G as external, H as internal.
-        internal = des.pitch_class.position.upper() == "H"
-    if internal is None:
-        internal = False
-    if des is not None and des.internal != internal:
-        des = _parse(des.text, internal)
+    sides = (False, True) if internal is None else (internal,)
+    found: list[ThreadInputs] = []
+    for side in sides:
+        des = next((d for d in readings if d.internal == side), None)
+        inputs = _inputs(doc, index, assigned, values, side, des)
+        if inputs is not None:
+            found.append(inputs)
+    return found
 
+
+def _inputs(
+    doc: Document,
+    index: ProgramIndex,
+    assigned: dict[int, list[int]],
+    values: dict[int, float],
+    internal: bool,
+    des: ThreadDesignation | None,
+) -> ThreadInputs | None:
+    """The inputs on one side, ``des`` the designation read on that side."""
     deviation = values.get(103)
     pitch_tolerance = values.get(104)
     if des is not None and (deviation is None or pitch_tolerance is None):
@@ -240,9 +254,10 @@ def thread_inputs(doc: Document, index: ProgramIndex, facts: DocumentFacts) -> T
 def module_from_analysis(doc: Document, index: ProgramIndex, facts: DocumentFacts) -> str | None:
     """:func:`module_from_document` for a document already parsed, indexed and evaluated
     (the language server has all three): no second run of the evaluator."""
-    inputs = thread_inputs(doc, index, facts)
-    if inputs is None:
+    found = thread_inputs(doc, index, facts)
+    if len(found) != 1:
         return None
+    inputs = found[0]
     main, sub = inputs.main, inputs.sub
     default_main, default_sub = default_program_numbers(inputs.internal)
     if main is not None and sub is not None and main == sub:

@@ -114,12 +114,15 @@ def _thread_arguments(args: tuple[Any, ...]) -> ThreadArguments | str:
 
 async def run_thread_module(args: tuple[Any, ...]) -> dict[str, Any]:
     """``[{designation, length, internal, infeed?, taper?}]`` -> ``{"text": ...}`` or
-    ``{"error": ...}``."""
+    ``{"error": ...}``.  ``internal`` (true, false or null) says the kind of thread when the
+    designation does not (all capitals with a class both kinds have, or no class): such a
+    designation with ``internal`` null, or one whose class contradicts ``internal``, is refused,
+    never guessed."""
     parsed = _thread_arguments(args)
     if isinstance(parsed, str):
         return {"error": parsed}
     designation, length, internal, options = parsed
-    from ..ide.thread_module import NoGenerator, load_generator
+    from ..ide.thread_module import NoGenerator, SideConflict, SideUndecided, load_generator
 
     try:
         generate = load_generator()
@@ -130,14 +133,18 @@ async def run_thread_module(args: tuple[Any, ...]) -> dict[str, Any]:
         return {"error": f"the thread module generator cannot be loaded: {err}"}
     except Exception as err:
         log.exception("the thread module generator cannot be imported")
-        return {"error": f"the thread module generator cannot be loaded: {err!r}"}
+        return {"error": f"the thread module generator cannot be loaded: {err}"}
     try:
         text = await asyncio.to_thread(generate, designation, length, internal, **options)
+    except SideUndecided as err:
+        return {"error": err.question('with "internal": false (external) or true (internal)')}
+    except SideConflict as err:
+        return {"error": err.refusal(f'"internal": {"true" if internal else "false"} was sent')}
     except ValueError as err:  # a designation the generator does not accept: its message
         return {"error": str(err)}
     except Exception as err:
         log.exception("thread module %s failed", designation)
-        return {"error": f"the thread module generator failed: {err!r}"}
+        return {"error": f"the thread module generator failed ({err}); the server's log has more"}
     if not isinstance(text, str):
         return {"error": "the thread module generator returned no text"}
     return {"text": text}

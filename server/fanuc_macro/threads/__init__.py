@@ -4,6 +4,8 @@ from __future__ import annotations
 
 from .designation import (
     COARSE_PITCH,
+    SideConflict,
+    SideUndecided,
     ThreadDesignation,
     ToleranceClass,
     coarse_pitch,
@@ -47,6 +49,8 @@ from .iso965 import (
 __all__ = [
     "COARSE_PITCH",
     "RoughPass",
+    "SideConflict",
+    "SideUndecided",
     "SymmetricThreadPlan",
     "TableCell",
     "TableValue",

@@ -10,12 +10,14 @@ Accepted forms (spaces are ignored, the pitch separator may be ``x``, ``X``, ``�
     M10x1.5         no class: GB/T 197 medium default (6H/6g, or 5H/6h up to 1.4 mm)
     M16xPh3P1.5-6H  multiple-start: lead Ph 3, pitch P 1.5, so two starts (ISO 965-1)
 
-The letter case of the tolerance position tells internal (upper case, nut) from external
-(lower case, bolt).  CNC comments are often all upper case (``M50X3-5G6G``); such a string
-cannot say which one is meant, so it is accepted, ``internal_basis`` records that the answer
-was assumed (or taken from the caller's ``internal=`` argument) and the position letter is
-normalised to the case that matches the chosen reading.  A string that contains any lower-case
-letter or a typographic ``×`` is taken to mean what its case says.
+ISO 965-1 writes the tolerance position of an external thread in lower case (``6g``) and of
+an internal one in upper case (``6H``).  A string with a lower-case letter or a typographic
+``×`` is read by its case.  An all-capital string (``M50X3-5G6G``, as CNC controls write;
+the seed paper writes ``M50X3-5g6g`` and ``M50X3-4H5H``) may have lost its case: its class is
+read as whichever kind has it in the standard (``6E`` only external, ``4H5H`` only internal,
+as ISO 965-1 has no crest grade 5 for external threads), and a class that both kinds have
+(``5G6G``: 5g6g or 5G6G), or no class at all, is decided only by the caller's ``internal=``;
+without it :class:`SideUndecided` is raised, never a guess.
 """
 
 from __future__ import annotations
@@ -28,18 +30,35 @@ from ..lazy_regex import LazyPattern
 
 __all__ = [
     "COARSE_PITCH",
+    "EXTERNAL_CREST_GRADES",
+    "EXTERNAL_PITCH_GRADES",
     "EXTERNAL_POSITIONS",
+    "INTERNAL_CREST_GRADES",
+    "INTERNAL_PITCH_GRADES",
     "INTERNAL_POSITIONS",
     "InternalBasis",
+    "SideConflict",
+    "SideUndecided",
     "ThreadDesignation",
     "ToleranceClass",
     "coarse_pitch",
     "parse_designation",
 ]
 
-# Tolerance positions for which ISO 965-1:1998 / GB/T 197-2003 tabulate fundamental deviations.
+# Tolerance positions for which ISO 965-1:1998 / GB/T 197-2003 tabulate fundamental deviations:
+# e, f, g, h for external threads, G, H for internal ones (as GB/T 197-2003 tabulates them;
+# unverified against the ISO 965-1 text itself, whose 2013 edition may add more).
 EXTERNAL_POSITIONS: frozenset[str] = frozenset("efgh")
 INTERNAL_POSITIONS: frozenset[str] = frozenset("GH")
+
+# Tolerance grades the same tables have (ISO 965-1:1998 as GB/T 197-2003 tabulates it, the
+# tables of iso965.py; unverified against the ISO text): Td2 3-9 and Td 4, 6, 8 for external
+# threads, TD2 and TD1 4-8 for internal ones.  In ``5g6g`` the first class is the pitch
+# diameter's, the second the crest's.
+EXTERNAL_PITCH_GRADES: tuple[int, ...] = (3, 4, 5, 6, 7, 8, 9)
+EXTERNAL_CREST_GRADES: tuple[int, ...] = (4, 6, 8)
+INTERNAL_PITCH_GRADES: tuple[int, ...] = (4, 5, 6, 7, 8)
+INTERNAL_CREST_GRADES: tuple[int, ...] = (4, 5, 6, 7, 8)
 
 # ISO 261 / ISO 262 coarse-pitch series (mm).  First- and second-choice sizes M1..M68, plus the
 # third-choice sizes M9 and M11, which ISO 261 also lists with a coarse pitch.  Above M68 ISO 261
@@ -87,7 +106,9 @@ COARSE_PITCH: dict[float, float] = {
     68.0: 6.0,
 }
 
-InternalBasis = Literal["case", "caller", "assumed"]
+# How a designation's side was decided: by the letter case of its class, by its class being
+# one only one kind has in ISO 965-1 (the case lost), or by the caller (the text fits both).
+InternalBasis = Literal["case", "class", "caller"]
 
 
 @dataclass(frozen=True)
@@ -112,8 +133,8 @@ class ThreadDesignation:
     ``pitch_class`` is the pitch-diameter class (first in ``5g6g``), ``crest_class`` the
     crest-diameter class (major diameter d for external, minor diameter D1 for internal).
     ``internal_basis`` says how ``internal`` was decided: ``"case"`` (from the letter case),
-    ``"caller"`` (the text was ambiguous and the caller's ``internal=`` was used) or
-    ``"assumed"`` (ambiguous and nobody said; see :func:`parse_designation`).
+    ``"class"`` (the case is lost, and only one kind has the class) or ``"caller"`` (the text
+    fits both kinds and the caller's ``internal=`` said which).
     """
 
     nominal_diameter: float
@@ -140,19 +161,25 @@ class ThreadDesignation:
 
     @property
     def internal_ambiguous(self) -> bool:
-        """True when the text itself does not say internal or external."""
-        return self.internal_basis != "case"
+        """True when the text itself does not say internal or external: the caller did."""
+        return self.internal_basis == "caller"
+
+    @property
+    def side(self) -> str:
+        return "internal" if self.internal else "external"
+
+    def class_text(self) -> str:
+        """The tolerance class as ISO 965-1 writes it: ``5g6g``, ``6H`` (one grade for both)."""
+        if self.pitch_class == self.crest_class:
+            return str(self.pitch_class)
+        return f"{self.pitch_class}{self.crest_class}"
 
     def canonical(self) -> str:
         """The designation written the ISO way, e.g. ``M50x3-5g6g``."""
         pitch = "" if self.coarse_pitch_used else f"x{_fmt(self.pitch)}"
         if self.lead:
             pitch = f"xPh{_fmt(self.lead)}P{_fmt(self.pitch)}"
-        if self.pitch_class == self.crest_class:
-            cls = str(self.pitch_class)
-        else:
-            cls = f"{self.pitch_class}{self.crest_class}"
-        text = f"M{_fmt(self.nominal_diameter)}{pitch}-{cls}"
+        text = f"M{_fmt(self.nominal_diameter)}{pitch}-{self.class_text()}"
         if self.engagement is not None:
             text += f"-{self.engagement}"
         if self.left_hand:
@@ -205,51 +232,157 @@ def _number(text: str) -> float:
     return float(text.replace(",", "."))
 
 
-def _decide_internal(
-    letter: str, case_meaningful: bool, internal: bool | None, text: str
-) -> tuple[bool, InternalBasis]:
-    if letter.islower() or case_meaningful:
-        from_case = letter.isupper()
-        if internal is not None and internal != from_case:
-            side = "internal" if from_case else "external"
-            raise ValueError(
-                f"{text!r}: the letter case of {letter!r} says {side}, "
-                f"but internal={internal} was requested"
+def _side(internal: bool) -> str:
+    return "internal" if internal else "external"
+
+
+class SideUndecided(ValueError):
+    """A designation that fits an external and an internal thread and does not say which: an
+    all-capital class both kinds have (``M50X3-5G6G``), or no class (``M10x1.5``).
+
+    ``external`` and ``internal`` are its two readings; :meth:`question` words the refusal
+    with how the caller's user can say which."""
+
+    def __init__(
+        self, external: ThreadDesignation, internal: ThreadDesignation, written_class: str | None
+    ) -> None:
+        self.external = external
+        self.internal = internal
+        self.written_class = written_class
+        super().__init__(self.question())
+
+    @property
+    def text(self) -> str:
+        return self.external.text.strip()
+
+    def what(self) -> str:
+        """What is undecided, e.g. "M50X3-5G6G: the class 5G6G fits an external (5g6g) or an
+        internal (5G6G) thread": no advice."""
+        if self.written_class is None:
+            return f"{self.text} {self.fits()}"
+        return f"{self.text}: the class {self.written_class} {self._kinds()}"
+
+    def fits(self) -> str:
+        """What the designation fits, to follow its name: "has the class 5G6G, which fits an
+        external (5g6g) or an internal (5G6G) thread"."""
+        if self.written_class is None:
+            return (
+                f"has no tolerance class, so it may be an external thread "
+                f"({self.external.class_text()}) or an internal one ({self.internal.class_text()})"
             )
-        return from_case, "case"
-    # All upper case: the case carries no information.
-    if internal is not None:
-        return internal, "caller"
-    low = letter.lower()
-    if low in EXTERNAL_POSITIONS and letter not in INTERNAL_POSITIONS:
-        # E or F: only the external reading exists in the tables, so it is the likely one.
-        return False, "assumed"
-    # G or H: both readings exist; take the letter at face value (internal).
-    return True, "assumed"
+        return f"has the class {self.written_class}, which {self._kinds()}"
 
+    def _kinds(self) -> str:
+        ext, nut = self.external.class_text(), self.internal.class_text()
+        return f"fits an external ({ext}) or an internal ({nut}) thread"
 
-def _position_for(letter: str, internal: bool, text: str) -> str:
-    position = letter.upper() if internal else letter.lower()
-    allowed = INTERNAL_POSITIONS if internal else EXTERNAL_POSITIONS
-    if position not in allowed:
-        side = "internal" if internal else "external"
-        names = ", ".join(sorted(allowed))
-        raise ValueError(
-            f"{text!r}: tolerance position {position!r} is not defined for {side} threads "
-            f"in ISO 965-1 (available: {names})"
+    def question(self, how: str = "") -> str:
+        """The refusal; ``how`` tells how to say which, e.g. "with --external or --internal"."""
+        ext, nut = self.external.canonical(), self.internal.canonical()
+        write = (
+            "write the class"
+            if self.written_class is None
+            else "write the class in the standard's case"
         )
-    return position
+        said = f" {how}" if how else ""
+        return f"{self.what()}: say which{said}, or {write}: {ext} external, {nut} internal"
+
+
+class SideConflict(ValueError):
+    """The caller asked for the other kind of thread than the designation's class is."""
+
+    def __init__(self, designation: ThreadDesignation, because: str) -> None:
+        self.designation = designation  # as its text reads
+        self.because = because
+        super().__init__(self.refusal(f"an {_side(not designation.internal)} thread was asked for"))
+
+    def refusal(self, asked: str) -> str:
+        """The refusal, ``asked`` saying what asked for the other kind (e.g. "--internal was
+        given")."""
+        des = self.designation
+        return f"{des.text.strip()} is an {des.side} thread ({self.because}), but {asked}"
+
+
+_POSITIONS = {False: EXTERNAL_POSITIONS, True: INTERNAL_POSITIONS}
+_PITCH_GRADES = {False: EXTERNAL_PITCH_GRADES, True: INTERNAL_PITCH_GRADES}
+_CREST_GRADES = {False: EXTERNAL_CREST_GRADES, True: INTERNAL_CREST_GRADES}
+
+
+def _position(letter: str, internal: bool) -> str:
+    return letter.upper() if internal else letter.lower()
+
+
+def _grades(grades: tuple[int, ...]) -> str:
+    if grades == tuple(range(grades[0], grades[-1] + 1)):
+        return f"{grades[0]}-{grades[-1]}"
+    return ", ".join(map(str, grades))
+
+
+def _kinds_with_class(
+    letter: str, pitch: int, crest: int, written: str, shown: str
+) -> tuple[list[bool], str]:
+    """The kinds (False external, True internal) whose ISO 965-1 tables have the class
+    ``written`` of a designation whose case is lost, and, when only one has it, why.
+    ValueError when none has it."""
+    by_position = [k for k in (False, True) if _position(letter, k) in _POSITIONS[k]]
+    if not by_position:
+        raise ValueError(
+            f"{shown}: ISO 965-1 has no tolerance position {letter} (external threads: "
+            "e, f, g, h; internal threads: G, H)"
+        )
+    if len(by_position) == 1:
+        kind = by_position[0]
+        return by_position, (
+            f"ISO 965-1 has the position {letter} only for {_side(kind)} threads, "
+            f"as {_position(letter, kind)}"
+        )
+    by_grades = [k for k in by_position if pitch in _PITCH_GRADES[k] and crest in _CREST_GRADES[k]]
+    if not by_grades:
+        raise ValueError(
+            f"{shown}: neither kind of thread has the class {written} in "
+            f"ISO 965-1 (external: pitch-diameter grades {_grades(EXTERNAL_PITCH_GRADES)}, "
+            f"crest grades {_grades(EXTERNAL_CREST_GRADES)}; internal: "
+            f"{_grades(INTERNAL_PITCH_GRADES)} both)"
+        )
+    if len(by_grades) == 1:
+        other = not by_grades[0]
+        if pitch not in _PITCH_GRADES[other]:
+            missing = f"pitch-diameter grade {pitch}"
+        else:
+            missing = f"crest-diameter grade {crest}"
+        return by_grades, f"ISO 965-1 has no {missing} for {_side(other)} threads"
+    return by_grades, ""
+
+
+def _check_position(letter: str, internal: bool, shown: str) -> None:
+    """ValueError when ``letter`` (in the case that tells ``internal``) is no position of the
+    kind in ISO 965-1."""
+    if letter in _POSITIONS[internal]:
+        return
+    names = ", ".join(sorted(_POSITIONS[internal]))
+    other = _position(letter, not internal)
+    elsewhere = (
+        f"; {other} is an {_side(not internal)} position"
+        if other in _POSITIONS[not internal]
+        else ""
+    )
+    raise ValueError(
+        f"{shown}: the tolerance position {letter} is not defined for {_side(internal)} threads "
+        f"in ISO 965-1 ({_side(internal)} threads have {names}{elsewhere})"
+    )
 
 
 def parse_designation(text: str, *, internal: bool | None = None) -> ThreadDesignation:
     """Parse an ISO metric thread designation such as ``M50x3-5g6g``.
 
-    ``internal`` resolves designations whose letter case cannot tell internal from external
-    (all upper case, as CNC comments are written).  It must agree with the letter case when
-    the text does tell.  When neither the text nor the caller decides, positions G/H are read
-    as internal and E/F as external, and ``internal_basis`` is ``"assumed"``.
+    ``internal`` says the kind of thread when the text does not: an all-capital class that both
+    kinds have in ISO 965-1 (``M50X3-5G6G``), or no class.  Without it such a text raises
+    :class:`SideUndecided`, which holds both readings.  When the text does say (by its case, or
+    by an all-capital class only one kind has, ``6E`` or ``4H5H``), an ``internal`` that says
+    otherwise raises :class:`SideConflict`.
     """
     original = text
+    shown = original.strip()
     compact = "".join(text.split())
     if not compact:
         raise ValueError("empty thread designation")
@@ -257,29 +390,29 @@ def parse_designation(text: str, *, internal: bool | None = None) -> ThreadDesig
         for pattern, what in _NON_METRIC:
             if pattern.search(compact):
                 raise ValueError(
-                    f"{original!r} is {what}; only ISO metric 'M' threads "
-                    "(ISO 261 / ISO 965-1) are supported"
+                    f"{shown} is {what}; only ISO metric M threads (ISO 261 / ISO 965-1) "
+                    "are supported"
                 )
         raise ValueError(
-            f"{original!r} is not an ISO metric thread designation (expected e.g. M10x1.5-6g)"
+            f"{shown} is not an ISO metric thread designation (expected e.g. M10x1.5-6g)"
         )
     if "/" in compact:
         raise ValueError(
-            f"{original!r} looks like a fit (e.g. 6H/6g); parse the internal and external "
-            "designations separately"
+            f"{shown} looks like a fit (e.g. 6H/6g); give the internal and the external "
+            "designation separately"
         )
 
     head, *tail = compact.split("-")
     match = _HEAD.match(head)
     if match is None:
         raise ValueError(
-            f"{original!r}: cannot read diameter and pitch from {head!r} "
+            f"{shown}: cannot read the diameter and pitch from {head or 'its start'} "
             "(expected e.g. M10 or M10x1.5)"
         )
     diameter = _number(match["d"])
     left_hand = (match["lh"] or "").upper() == "LH"
     if diameter <= 0:
-        raise ValueError(f"{original!r}: nominal diameter must be positive")
+        raise ValueError(f"{shown}: the nominal diameter must be positive")
 
     class_text: str | None = None
     engagement: str | None = None
@@ -295,10 +428,12 @@ def parse_designation(text: str, *, internal: bool | None = None) -> ThreadDesig
             class_text = part
         elif re.fullmatch(_NUMBER, part):
             raise ValueError(
-                f"{original!r}: write the pitch after 'x' (M{_fmt(diameter)}x{part}), not after '-'"
+                f"{shown}: write the pitch after an x (M{_fmt(diameter)}x{part}), not after a dash"
             )
+        elif not part:
+            raise ValueError(f"{shown}: nothing between two dashes")
         else:
-            raise ValueError(f"{original!r}: unexpected part {part!r}")
+            raise ValueError(f"{shown}: unexpected part {part}")
 
     lead = 0.0
     if match["ph"] is not None:
@@ -306,72 +441,88 @@ def parse_designation(text: str, *, internal: bool | None = None) -> ThreadDesig
         coarse_used = False
         if pitch <= 0 or lead < pitch or abs(lead / pitch - round(lead / pitch)) > 1e-6:
             raise ValueError(
-                f"{original!r}: the lead Ph {_fmt(lead)} must be a whole multiple of the "
+                f"{shown}: the lead Ph {_fmt(lead)} must be a whole multiple of the "
                 f"pitch P {_fmt(pitch)}"
             )
     else:
         coarse_used = match["p"] is None
         pitch = coarse_pitch(diameter) if coarse_used else _number(match["p"])
     if pitch <= 0:
-        raise ValueError(f"{original!r}: pitch must be positive")
+        raise ValueError(f"{shown}: the pitch must be positive")
     if pitch >= diameter:
-        raise ValueError(f"{original!r}: pitch {_fmt(pitch)} is not smaller than the diameter")
+        raise ValueError(f"{shown}: pitch {_fmt(pitch)} is not smaller than the diameter")
 
-    # Case carries meaning only if the writer could use lower case: a lower-case letter or a
-    # typographic '×' shows that; an all-capital ASCII string may have been upper-cased.
-    has_lower = any(ch.islower() for ch in compact) or "×" in compact
-    if class_text is None:
-        # GB/T 197: the medium classes are not written (5H/6h up to 1.4 mm, else 6H/6g).
-        basis: InternalBasis
-        if internal is None:
-            is_internal, basis = False, "assumed"
-        else:
-            is_internal, basis = internal, "caller"
-        small = diameter <= 1.4
-        if is_internal:
-            cls = ToleranceClass(5 if small else 6, "H")
-        else:
-            cls = ToleranceClass(6, "h" if small else "g")
+    def reading(
+        is_internal: bool, basis: InternalBasis, pitch_class: ToleranceClass,
+        crest_class: ToleranceClass, omitted: bool = False,
+    ) -> ThreadDesignation:  # fmt: skip
         return ThreadDesignation(
             nominal_diameter=diameter,
             pitch=pitch,
             internal=is_internal,
-            pitch_class=cls,
-            crest_class=cls,
+            pitch_class=pitch_class,
+            crest_class=crest_class,
             left_hand=left_hand,
             coarse_pitch_used=coarse_used,
             text=original,
             internal_basis=basis,
-            class_omitted=True,
+            class_omitted=omitted,
             engagement=engagement,
             lead=lead if lead != pitch else 0.0,
         )
+
+    if class_text is None:
+        # GB/T 197: the medium classes are not written (5H/6h up to 1.4 mm, else 6H/6g).
+        small = diameter <= 1.4
+        nut = ToleranceClass(5 if small else 6, "H")
+        bolt = ToleranceClass(6, "h" if small else "g")
+        if internal is None:
+            raise SideUndecided(
+                reading(False, "caller", bolt, bolt, True),
+                reading(True, "caller", nut, nut, True),
+                None,
+            )
+        cls = nut if internal else bolt
+        return reading(internal, "caller", cls, cls, True)
 
     cmatch = _CLASS.match(class_text)
     assert cmatch is not None  # matched in the loop above
     letter1 = cmatch["p1"]
     letter2 = cmatch["p2"] or letter1
     if letter1.isupper() != letter2.isupper():
-        raise ValueError(f"{original!r}: mixed letter case in tolerance class {class_text!r}")
+        raise ValueError(
+            f"{shown}: the class {class_text} mixes letter cases (upper case is internal, "
+            "lower case external)"
+        )
     if letter1.lower() != letter2.lower():
         raise ValueError(
-            f"{original!r}: pitch and crest classes must share one tolerance position "
-            f"({letter1!r} vs {letter2!r})"
+            f"{shown}: the pitch and crest classes must share one tolerance position "
+            f"({letter1} and {letter2} in {class_text})"
         )
-    is_internal, basis = _decide_internal(letter1, has_lower, internal, original)
-    position = _position_for(letter1, is_internal, original)
     grade1 = int(cmatch["g1"])
     grade2 = int(cmatch["g2"]) if cmatch["g2"] else grade1
-    return ThreadDesignation(
-        nominal_diameter=diameter,
-        pitch=pitch,
-        internal=is_internal,
-        pitch_class=ToleranceClass(grade1, position),
-        crest_class=ToleranceClass(grade2, position),
-        left_hand=left_hand,
-        coarse_pitch_used=coarse_used,
-        text=original,
-        internal_basis=basis,
-        engagement=engagement,
-        lead=lead if lead != pitch else 0.0,
-    )
+
+    def read_as(is_internal: bool, basis: InternalBasis) -> ThreadDesignation:
+        position = _position(letter1, is_internal)
+        return reading(
+            is_internal, basis, ToleranceClass(grade1, position), ToleranceClass(grade2, position)
+        )
+
+    # Case carries meaning only if the writer could use lower case: a lower-case letter or a
+    # typographic '×' shows that; an all-capital ASCII string may have been upper-cased.
+    case_kept = any(ch.islower() for ch in compact) or "×" in compact
+    if case_kept:
+        kind = letter1.isupper()
+        _check_position(letter1, kind, shown)
+        if internal is not None and internal != kind:
+            case = "upper" if kind else "lower"
+            raise SideConflict(read_as(kind, "case"), f"its class {class_text} is in {case} case")
+        return read_as(kind, "case")
+    kinds, because = _kinds_with_class(letter1, grade1, grade2, class_text, shown)
+    if internal is None:
+        if len(kinds) == 2:
+            raise SideUndecided(read_as(False, "caller"), read_as(True, "caller"), class_text)
+        return read_as(kinds[0], "class")
+    if internal not in kinds:
+        raise SideConflict(read_as(kinds[0], "class"), because)
+    return read_as(internal, "class" if len(kinds) == 1 else "caller")

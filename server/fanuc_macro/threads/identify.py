@@ -5,7 +5,10 @@ In order of trust (the first source that tells a fact gives it):
 1. the executed cuts (:mod:`.jobs`): the lead (``F``), the side, the X range of the passes;
 2. a designation anywhere in the file's comments (``M50X3-5G6G``, ``M50×3``, ``M10-6g``,
    ``M20X1.5LH``, ``M16xPh3P1.5`` or ``M50X6(P3`` multi-start, ``2 START``) whose size fits
-   the passes;
+   the passes.  Its class's case tells the side (ISO 965-1: ``5g6g`` external, ``5G6G``
+   internal) unless the text is all capitals; then a class only one kind has tells it
+   (``6E``, ``4H5H``), and one both kinds have (``5G6G``), or none, is read on the side the
+   cuts (or the program's first comments) show, and not used when nothing shows it;
 3. a thread module recognised by the shape of its formulas (:mod:`.module_shape`): its
    nominal diameter, lead, nose radius and the es / Td2 it adds to the height;
 4. the words of comments on assignments (:mod:`fanuc_macro.program.meanings`).
@@ -33,7 +36,7 @@ from ..per_line import PerLine
 from ..program.index import Program, ProgramIndex
 from ..program.meanings import Meaning, program_is_internal, variable_roles
 from ..syntax.tree import Document, ParsedLine
-from .designation import ThreadDesignation, parse_designation
+from .designation import SideUndecided, ThreadDesignation, parse_designation
 from .geometry import SIN60
 from .iso965 import PitchClass, loosest_pitch_class, pitch_classes
 from .jobs import ThreadJob, thread_jobs
@@ -279,6 +282,8 @@ def _designations(lines: Found[LineThreadWords]) -> list[FoundDesignation]:
 
 
 def _parse(found: FoundDesignation, internal: bool | None) -> ThreadDesignation | None:
+    """The designation read on the side ``internal`` (the cuts'), or as its text says; None
+    when it cannot be read, or the side is known from neither (never guessed)."""
     try:
         return parse_designation(found.form, internal=internal)
     except ValueError:
@@ -286,6 +291,22 @@ def _parse(found: FoundDesignation, internal: bool | None) -> ThreadDesignation 
             return parse_designation(found.form) if internal is not None else None
         except ValueError:
             return None
+
+
+def _undecided(
+    found: list[FoundDesignation], job: ThreadJob
+) -> tuple[FoundDesignation, SideUndecided] | None:
+    """A designation whose size fits the passes but whose side nothing tells (all capitals with
+    a class both kinds have, or no class): for the message that says why it is not used."""
+    for f in found:
+        try:
+            parse_designation(f.form)
+        except SideUndecided as err:
+            if _fits(err.external, job, False) or _fits(err.internal, job, True):
+                return f, err
+        except ValueError:
+            continue
+    return None
 
 
 def _fits(des: ThreadDesignation, job: ThreadJob, internal: bool) -> bool:
@@ -308,8 +329,6 @@ def _choose_designation(
         if des is None:
             continue
         side = des.internal if internal is None else internal
-        if des.internal_ambiguous and internal is None:
-            continue  # all capitals and the cuts do not tell the side: not enough to go on
         if _fits(des, job, side):
             fitting.append((des, f))
     if not fitting:
@@ -592,11 +611,17 @@ def _identify(
         if loosest is not None:
             thread.pitch_class = loosest
             thread.class_reason = "no class is known: the loosest of ISO 965-1 stands in"
-    _unsupported(job, thread, words)
+    undecided = _undecided(found, job) if chosen is None and thread.internal is None else None
+    _unsupported(job, thread, words, undecided)
     return thread
 
 
-def _unsupported(job: ThreadJob, thread: Thread, words: _ProgramWords) -> None:
+def _unsupported(
+    job: ThreadJob,
+    thread: Thread,
+    words: _ProgramWords,
+    undecided: tuple[FoundDesignation, SideUndecided] | None = None,
+) -> None:
     if words.fitting:
         thread.unsupported = (
             "an arc (round) thread cut by the fitting method: its profile is an arc, not the "
@@ -617,9 +642,18 @@ def _unsupported(job: ThreadJob, thread: Thread, words: _ProgramWords) -> None:
             "profile"
         )
         return
-    if thread.major is None:
+    if undecided is not None and (thread.major is None or thread.internal is None):
+        where, err = undecided
+        case = "" if err.written_class is None else " in the standard's case"
         thread.missing = (
-            "the thread's size is not known: no designation such as (M50X3-5G6G) in the "
+            f"the designation {where.text} at line {where.line + 1} {err.fits()}, and neither "
+            f"the cuts nor the program's first comments tell which: write the class{case} "
+            f"({err.external.canonical()} or {err.internal.canonical()}), or say EXTERNAL or "
+            "INTERNAL in the program's first comment"
+        )
+    elif thread.major is None:
+        thread.missing = (
+            "the thread's size is not known: no designation such as (M50x3-5g6g) in the "
             "file's comments fits these passes, no thread module's formulas name the nominal "
             "diameter, and no comment on an assignment does"
         )
@@ -651,7 +685,7 @@ def describe(thread: Thread) -> str:
             f"**Thread** cut by {job.code} in {job.program}: not identified, {thread.missing}. "
             "The root, nose-radius and lead checks need it; the passes are still checked among "
             "themselves (order, depth per pass, feed, start point). A comment such as "
-            "(M50X3-5G6G) names the thread."
+            "(M50x3-5g6g) names the thread."
         )
     reason = f" ({job.side_reason})" if job.side_reason else ""
     lines = [f"**Thread {thread.name}**, {side}{reason}"]

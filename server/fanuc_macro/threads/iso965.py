@@ -45,7 +45,14 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field
 from functools import cache
 
-from .designation import ThreadDesignation, parse_designation
+from .designation import (
+    EXTERNAL_CREST_GRADES,
+    EXTERNAL_PITCH_GRADES,
+    INTERNAL_CREST_GRADES,
+    INTERNAL_PITCH_GRADES,
+    ThreadDesignation,
+    parse_designation,
+)
 
 __all__ = [
     "DERIVED_RANGES",
@@ -136,7 +143,7 @@ _FUNDAMENTAL: dict[float, tuple[int, int | None, int | None, int]] = {
 }
 
 # Td, major-diameter tolerance of external threads.  pitch: (grade 4, grade 6, grade 8)
-_TD_MAJOR_GRADES: tuple[int, ...] = (4, 6, 8)
+_TD_MAJOR_GRADES: tuple[int, ...] = EXTERNAL_CREST_GRADES  # 4, 6, 8
 _TD_MAJOR: dict[float, tuple[int | None, ...]] = {
     0.2: (36, 56, None),
     0.25: (42, 67, None),
@@ -166,7 +173,7 @@ _TD_MAJOR: dict[float, tuple[int | None, ...]] = {
 }
 
 # TD1, minor-diameter tolerance of internal threads.  pitch: (grades 4, 5, 6, 7, 8)
-_TD1_MINOR_GRADES: tuple[int, ...] = (4, 5, 6, 7, 8)
+_TD1_MINOR_GRADES: tuple[int, ...] = INTERNAL_CREST_GRADES  # 4-8
 _TD1_MINOR: dict[float, tuple[int | None, ...]] = {
     0.2: (38, None, None, None, None),
     0.25: (45, 56, None, None, None),
@@ -196,7 +203,7 @@ _TD1_MINOR: dict[float, tuple[int | None, ...]] = {
 }
 
 # Td2, pitch-diameter tolerance of external threads.  pitch: (grades 3, 4, 5, 6, 7, 8, 9)
-_TD2_EXT_GRADES: tuple[int, ...] = (3, 4, 5, 6, 7, 8, 9)
+_TD2_EXT_GRADES: tuple[int, ...] = EXTERNAL_PITCH_GRADES  # 3-9
 _N = None
 _TD2_EXT: dict[tuple[float, float], dict[float, tuple[int | None, ...]]] = {
     (0.99, 1.4): {
@@ -267,7 +274,7 @@ _TD2_EXT: dict[tuple[float, float], dict[float, tuple[int | None, ...]]] = {
 }
 
 # TD2, pitch-diameter tolerance of internal threads.  pitch: (grades 4, 5, 6, 7, 8)
-_TD2_INT_GRADES: tuple[int, ...] = (4, 5, 6, 7, 8)
+_TD2_INT_GRADES: tuple[int, ...] = INTERNAL_PITCH_GRADES  # 4-8
 _TD2_INT: dict[tuple[float, float], dict[float, tuple[int | None, ...]]] = {
     (0.99, 1.4): {
         0.2: (40, _N, _N, _N, _N),
@@ -373,7 +380,7 @@ def formula_fundamental_deviation(position: str, pitch: float) -> float:
     if position in ("h", "H"):
         return 0.0
     if position not in offsets:
-        raise ValueError(f"no fundamental-deviation formula for position {position!r}")
+        raise ValueError(f"no fundamental-deviation formula for the position {position}")
     magnitude = offsets[position] + 11.0 * pitch
     return magnitude if position.isupper() else -magnitude
 
@@ -442,7 +449,7 @@ def fundamental_deviation(position: str, pitch: float) -> TableValue:
     """es (e f g h, <= 0) or EI (G H, >= 0) in µm for ``pitch``."""
     if position not in ("e", "f", "g", "h", "G", "H"):
         raise ValueError(
-            f"tolerance position {position!r} is not tabulated in ISO 965-1 "
+            f"the tolerance position {position} is not tabulated in ISO 965-1 "
             "(external e f g h, internal G H)"
         )
     key = _pitch_key(_FUNDAMENTAL, pitch)
@@ -456,7 +463,7 @@ def fundamental_deviation(position: str, pitch: float) -> TableValue:
     value = {"G": big_g, "e": e, "f": f, "g": g}[position]
     if value is None:
         raise ValueError(
-            f"ISO 965-1 defines no fundamental deviation {position!r} for P = {pitch:g} mm"
+            f"ISO 965-1 defines no fundamental deviation {position} for P = {pitch:g} mm"
         )
     return TableValue(value)
 
