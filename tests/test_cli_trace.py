@@ -95,3 +95,35 @@ def test_the_centre_of_a_rotation_or_scaling_is_no_move(tmp_path: Path) -> None:
         (7, "G01", {"X": 5.0, "Y": 5.0, "Z": 20.0}, {"X": 6.0, "Y": 5.0, "Z": 20.0}),
     ]
     assert answer["toolpath"]["moves"] == 2
+
+
+# A program of 32 lines: 29 cuts of 1 mm each.
+LONG = "\n".join(["O1000", "G00 X40. Z5.", *(f"G01 Z-{i}. F0.2" for i in range(1, 30)), "M30"])
+
+
+def test_a_file_read_in_part_is_said_so_with_the_setting(tmp_path: Path) -> None:
+    (tmp_path / "long.nc").write_text(LONG + "\n")
+    text = run(tmp_path, "trace", "--max-blocks", "10", "long.nc").stdout
+    assert text.splitlines()[-2:] == [
+        "9 motions (G00 1, G01 8); 10 blocks executed",
+        "read only up to line 10: analysed the first 10 blocks of 32: the document has 32 "
+        "blocks, more than the 10 the analysis reads (setting "
+        "fanuc-macro.analysis.maxBlocks, --max-blocks); the blocks from line 11 on are not "
+        "checked",
+    ]
+    summary = trace_json(tmp_path, "--max-file-size", "100", "long.nc")["summary"]
+    [part] = summary["read_in_part"]
+    assert part["last_line_read"] == 7 and "--max-file-size" in part["message"]
+    whole = trace_json(tmp_path, "long.nc")["summary"]
+    assert (whole["read_in_part"], whole["motions"]) == ([], 30)
+
+
+def test_a_called_file_read_in_part_is_named(tmp_path: Path) -> None:
+    (tmp_path / "main.nc").write_text("O2000\nM98 P1000\nM30\n")
+    (tmp_path / "long.nc").write_text(LONG.replace("M30", "M99") + "\n")
+    result = run(tmp_path, "trace", "--max-blocks", "10", "main.nc", "--with", "long.nc")
+    assert result.stdout.splitlines()[-1].startswith("long.nc: read only up to line 10: ")
+    [part] = trace_json(tmp_path, "--max-blocks", "10", "main.nc", "--with", "long.nc")["summary"][
+        "read_in_part"
+    ]
+    assert (part["path"], part["last_line_read"]) == ("long.nc", 10)

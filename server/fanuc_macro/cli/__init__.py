@@ -310,6 +310,11 @@ def cmd_trace(args: argparse.Namespace) -> int:
     )
     if summary["stopped"]:
         out.write(f"stopped early: {summary.get('stop_message') or summary['stopped']}\n")
+    for part in summary["read_in_part"]:
+        where = f"{part['path']}: read" if "path" in part else "read"
+        out.write(f"{where} only up to line {part['last_line_read']}: {part['message']}\n")
+    if result["toolpath"]["truncated"]:
+        out.write(f"the toolpath keeps the first {result['toolpath']['moves']:,} moves only\n")
     for f in summary["findings"]:
         out.write(f"line {f['line']}: {f['message']}\n")
     return EXIT_OK

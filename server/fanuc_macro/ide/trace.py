@@ -48,7 +48,10 @@ def trace(
     positions before and after the block (the axes known; a lathe's X a diameter); a canned
     cycle's record lists its ``moves``; ``values`` are what the variables the block reads held
     when it ran (``{"#101": 3.5}``: a number, ``null`` vacant, or a text such as "depends on
-    #500" for a value the analysis cannot compute), in the order the block names them."""
+    #500" for a value the analysis cannot compute), in the order the block names them. The
+    summary's ``read_in_part`` lists the files the analysis read only up to a line, with why
+    (``[{"last_line_read": 10, "message": "analysed the first 10 blocks of 32: ... (setting
+    ...)"[, "path"]}]``): the run stops there."""
     facts = run_with_toolpath(uri, doc, index, others, config, entry)
     path = facts.toolpath
     assert path is not None
@@ -112,8 +115,25 @@ def trace(
             "stopped": facts.stopped,
             "stop_message": facts.stop_message(),
             "findings": findings,
+            "read_in_part": _read_in_part(uri, doc, others),
         },
     }
+
+
+def _read_in_part(
+    uri: str, doc: Document, others: Sequence[tuple[str, Document, ProgramIndex]]
+) -> list[dict[str, Any]]:
+    """The documents the analysis reads only up to a line (the limits on blocks and size,
+    MB013's note): what is past it is not run."""
+    out: list[dict[str, Any]] = []
+    for other_uri, other, _ in ((uri, doc, None), *others):
+        if other.unread_from is None or other.unread_note is None:
+            continue
+        part: dict[str, Any] = {"last_line_read": other.unread_from, "message": other.unread_note}
+        if other_uri != uri:
+            part["path"] = other_uri
+        out.append(part)
+    return out
 
 
 def _value(value: Value) -> float | str | None:
