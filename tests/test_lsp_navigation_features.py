@@ -275,3 +275,23 @@ async def test_call_hierarchy_across_files(client: LanguageClient, tmp_path: Pat
     assert [(r.start.line, r.start.character, r.end.character) for r in callee.from_ranges] == [
         (1, 0, 9)
     ]
+
+
+async def test_definition_of_a_common_variable_is_where_the_caller_sets_it(
+    client: LanguageClient, tmp_path: Path
+) -> None:
+    seed = Path(__file__).resolve().parent / "fixtures" / "seeds" / "o4009_external_m50x3.nc"
+    lines = seed.read_text("utf-8").splitlines(keepends=True)
+    (tmp_path / "main.nc").write_text("".join(lines[:17]), "utf-8")  # % and O4009
+    (tmp_path / "sub.nc").write_text("".join(lines[17:]), "utf-8")  # O3331 and %
+    await start(client, tmp_path)
+    uri = (tmp_path / "sub.nc").as_uri()
+    open_text(client, uri, (tmp_path / "sub.nc").read_text("utf-8"))
+    found = await answered(
+        client.text_document_definition_async(
+            types.DefinitionParams(text_document=doc(uri), position=at(12, 8))  # X[#100+1.]
+        )
+    )
+    assert [(loc.uri, loc.range.start.line) for loc in found] == [
+        ((tmp_path / "main.nc").as_uri(), 5)  # #100=50. in O4009, before M98 P0013331
+    ]

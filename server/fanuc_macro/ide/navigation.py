@@ -5,16 +5,19 @@ from __future__ import annotations
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 
+from ..program.index import Program, ProgramIndex
+from ..program.variables import classify
 from ..syntax.parser import statements_of
-from ..syntax.tree import ProgramStart, Span, While
+from ..syntax.tree import Assign, Document, ProgramStart, Span, Var, While
 from .data import Location, Range, Symbol, SymbolKind
-from .locate import goto_target, number_of, uses
+from .locate import assignments_in, goto_target, number_of, uses
 from .view import View, call_at, comment_of, first_comment, lines_of
 
 
 def definition(view: View, line: int, column: int) -> list[Location]:
     """Where what is at ``line``, ``column`` is defined: the label a GOTO jumps to, the program
-    a call runs, the assignments of a variable in its program. Empty when nothing is."""
+    a call runs, the assignments of a local or system variable in its program, those of a
+    common variable that reach it (:func:`_common_definitions`). Empty when nothing is."""
     found = view.hit_at(line, column)
     if found is None:
         return []
@@ -47,6 +50,8 @@ def definition(view: View, line: int, column: int) -> list[Location]:
         n = number_of(hit.var)
         if n is None:
             return []
+        if classify(n).kind in COMMON_KINDS:
+            return _common_definitions(view, block.line, hit.var, n)
         first, end = lines_of(program, view.doc)
         return [
             view.location(view.key, use.line, use.var.span.start, use.var.span.end)
@@ -54,6 +59,95 @@ def definition(view: View, line: int, column: int) -> list[Location]:
             if use.assign is not None and number_of(use.var) == n
         ]
     return []
+
+
+# Common variables (#100-#199, #500-#999, and the extended #200-#499): shared by every program,
+# so the value a program reads may have been set by the program that called it, or by any.
+COMMON_KINDS = frozenset({"common", "retained", "extended-common"})
+
+
+def _common_definitions(view: View, line: int, var: Var, n: int) -> list[Location]:
+    """The assignments of common variable ``n`` that reach its use ``var`` on ``line``: those
+    of its program that run before it (above it, or below it in a loop or before a jump back);
+    when there are none, those of the programs that call it, before their call, and of their
+    callers in turn; when there are none either, every assignment of it in the workspace. The
+    target of an assignment is its own definition."""
+    doc = view.doc
+    if any(assign.target is var for assign in _assignments_on(doc, line)):
+        return [view.location(view.key, line, var.span.start, var.span.end)]
+    program = view.index.program_at(line)
+    found = _reaching(view, view.key, doc, program, line, n, set())
+    if found:
+        return found
+    return [
+        view.location(key, use.line, use.var.span.start, use.var.span.end)
+        for key, other, _index in _documents(view)
+        for use in uses(other.blocks, 0, len(other.blocks))
+        if use.assign is not None and number_of(use.var) == n
+    ]
+
+
+def _reaching(
+    view: View,
+    key: str,
+    doc: Document,
+    program: Program | None,
+    line: int,
+    n: int,
+    seen: set[int],
+) -> list[Location]:
+    """The assignments of ``n`` that reach ``line`` of ``program`` (see
+    :func:`_common_definitions`); ``seen``: the programs whose callers were looked at."""
+    found = [
+        view.location(key, use.line, use.var.span.start, use.var.span.end)
+        for first, end in _before(program, doc, line)
+        for use in uses(doc.blocks, first, end)
+        if use.assign is not None and number_of(use.var) == n
+    ]
+    if found or program is None or program.number is None or program.number in seen:
+        return found
+    seen.add(program.number)
+    for caller_key, caller_doc, caller_index in _documents(view):
+        for caller in caller_index.programs:
+            for call in caller.calls:
+                if call.program == program.number and call.kind != "M97":
+                    found += _reaching(view, caller_key, caller_doc, caller, call.line, n, seen)
+    return list(dict.fromkeys(found))
+
+
+def _before(program: Program | None, doc: Document, line: int) -> list[tuple[int, int]]:
+    """The stretches of lines whose blocks may run before ``line`` in its program: the lines
+    above it; and, from ``line`` itself, the body of a WHILE loop that holds it (its END goes
+    back to the WHILE) and the lines up to a GOTO that jumps back above it."""
+    first, _end = lines_of(program, doc)
+    stretches = [(first, line)]
+    if program is None:
+        return stretches
+    for loop in program.loops:
+        if loop.end_line is not None and loop.do_line <= line <= loop.end_line:
+            stretches.append((line, loop.end_line + 1))
+    for jump in program.jumps:
+        if jump.line >= line and jump.target is not None:
+            target = program.label_line(jump.target, jump.line)
+            if target is not None and target <= line:
+                stretches.append((line, jump.line + 1))
+    return stretches
+
+
+def _assignments_on(doc: Document, line: int) -> list[Assign]:
+    return [
+        assign
+        for statement in statements_of(doc.blocks[line].statement)
+        for assign in assignments_in(statement)
+    ]
+
+
+def _documents(view: View) -> list[tuple[str, Document, ProgramIndex]]:
+    """The document and every other of the workspace, with their program indexes."""
+    return [
+        (view.key, view.doc, view.index),
+        *((key, doc, index) for key, (doc, index) in view.workspace.items() if key != view.key),
+    ]
 
 
 def references(
