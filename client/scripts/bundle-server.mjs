@@ -6,7 +6,7 @@
 // It needs only node and a Python ≥ 3.10 with its venv module: the Python
 // packages are not read from what that Python has installed. The script makes
 // a temporary venv, whose pip installs the [project] dependencies of
-// pyproject.toml (numpy excepted) with `pip install --target` as universal
+// pyproject.toml with `pip install --target` as universal
 // (py3-none-any) wheels for Python 3.10 and later, from PyPI (or the index pip
 // is configured for).
 //
@@ -20,7 +20,8 @@
 // The client runs `python -m fanuc_macro.lsp.server` with OUTPUT_DIR first on
 // PYTHONPATH (client/src/serverCandidates.ts).
 //
-// numpy is not bundled: it is binary and platform-specific.
+// numpy is never bundled: it is binary and platform-specific (the project does not
+// depend on it; the build fails if a dependency brings it).
 //
 // The Python is $PYTHON, else python3 (python on Windows). Before the bundle
 // replaces the previous one, the script starts it with `--version` in a minimal

@@ -176,7 +176,7 @@ def cmd_drum_groove(args: argparse.Namespace) -> int:
             f"(all within {crown.max_deviation:.2g} mm of it)\n"
         )
     else:
-        sys.stderr.write("crown: none fitted (points on a line, fewer than 3, or no numpy)\n")
+        sys.stderr.write("crown: none fitted (fewer than 3 points, or points on a line)\n")
     sys.stderr.write(
         f"cuts: {program.g32_cuts} G32 blocks in {program.passes} passes of "
         f"{program.segments_per_pass} taper segments\n"

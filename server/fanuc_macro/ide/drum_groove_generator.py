@@ -54,7 +54,7 @@ class DrumGrooveProgram:
     passes: int  # cuts through the whole profile
     segments_per_pass: int  # taper-thread G32 segments through the profile points
     g32_cuts: int  # every G32 block executed (run-in blocks included)
-    crown: CrownFit | None = None  # the best-fit circle of the points (None: a line, no numpy)
+    crown: CrownFit | None = None  # the best-fit circle of the points (None: a line)
     motion_blocks: int = 0  # motion blocks executed (G00, G32): each a block of a plain program
     setup_blocks: int = 0  # what a plain program needs besides: O, T, S M03, M05, M30
     program_blocks: int = 0  # blocks of the generated text (comment lines and % not counted)
@@ -140,8 +140,6 @@ def build_drum_groove(
         crown: CrownFit | None = fit_crown(pts)
     except ValueError:
         crown = None  # two points, or points on a line: a taper, not a crown
-    except ImportError:
-        crown = None  # no numpy (the bundled server): the program is the same without it
 
     def render(notes: Mapping[str, str]) -> Lines:
         out = Lines()
