@@ -76,6 +76,17 @@ class LostTrack:
     axes: tuple[str, ...]
     reason: str
     uri: str = ""
+    # How many moves the path had when it lost track: the moves from this index on are the
+    # ones it can leave undrawn (-1: not said).
+    at: int = -1
+
+
+# The reason of the note on the axes placed for the first time: before it, the tool stood
+# where the run began, which the program does not say.
+UNKNOWN_START = (
+    "where the tool stands when the run begins is not known: the path starts at the first "
+    "absolute position of each axis"
+)
 
 
 @dataclass(slots=True)
@@ -93,6 +104,9 @@ class Toolpath:
     # What the variables a motion record's block reads held when it ran (its index in
     # Facts.motions: ``{101: 3.5}``; ``None`` vacant): the trace shows them with the block.
     values: dict[int, dict[int, Value]] = field(default_factory=dict)
+    # Where each run (an entry program) begins: the index of its first move and of its first
+    # ``lost``. Where the tool stands is not known again at each.
+    runs: list[tuple[int, int]] = field(default_factory=list)
 
     def axes(self) -> tuple[str, ...]:
         """The axes any move places, in X, Y, Z order."""
@@ -846,6 +860,8 @@ class Recorder:
         """A new run (an entry program): where the machine stands is not known again."""
         self.modal = PathModal(self.modal.lathe)
         self._unplaced = set(self.modal.axes)
+        path = self.toolpath
+        path.runs.append((len(path.moves), len(path.lost)))
         self._seen = motions
         self._finishing = None
 
@@ -871,7 +887,8 @@ class Recorder:
         if gone:
             modal.position = {}
             if self.keep:
-                self.toolpath.lost.append(LostTrack(line, program, gone, reason, uri))
+                path = self.toolpath
+                path.lost.append(LostTrack(line, program, gone, reason, uri, len(path.moves)))
 
     def end_profile(self) -> None:
         """The end of a G70's profile: the control returns to the cycle's start point at
@@ -926,7 +943,7 @@ class Recorder:
             for i in range(first, first + made):
                 path.values[i] = read
         for axes, reason in lost:
-            path.lost.append(LostTrack(line, program, axes, reason, uri))
+            path.lost.append(LostTrack(line, program, axes, reason, uri, len(path.moves)))
         unplaced = self._unplaced
         placed = (
             [a for a in modal.axes if a in unplaced and a in modal.position] if unplaced else []
@@ -935,14 +952,7 @@ class Recorder:
             unplaced.difference_update(placed)
             if steps:  # not a coordinate system setting (G50), which says where the tool is
                 path.lost.append(
-                    LostTrack(
-                        line,
-                        program,
-                        tuple(placed),
-                        "where the tool stands when the run begins is not known: the path "
-                        "starts at the first absolute position of each axis",
-                        uri,
-                    )
+                    LostTrack(line, program, tuple(placed), UNKNOWN_START, uri, len(path.moves))
                 )
         if not steps:
             for i in range(first, first + made):
