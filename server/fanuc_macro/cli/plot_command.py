@@ -13,14 +13,14 @@ EXIT_NOTHING_TO_PLOT = 2
 def cmd_plot(args: argparse.Namespace) -> int:
     from collections import Counter
 
-    from ..ide.plot import NothingToPlot, pass_maps, plot_svg, run_toolpath
+    from ..ide.plot import NothingToPlot, backplot, pass_maps, run_plot
     from . import _traced_workspace
 
     config, workspace, uri = _traced_workspace(args)
     doc = workspace.document(uri)
     assert doc is not None
     try:
-        toolpath = run_toolpath(
+        toolpath, stop = run_plot(
             uri, doc, workspace.index(uri), workspace.others(uri), config, args.entry
         )
         # The pass maps of the threads the rules see in the file.
@@ -30,24 +30,33 @@ def cmd_plot(args: argparse.Namespace) -> int:
             else []
         )
         title = f"O{args.entry:04d}" if args.entry is not None else Path(args.file).name
-        svg = plot_svg(toolpath, args.plane, pass_maps(threads), title=title, main_uri=uri)
+        drawing = backplot(
+            toolpath, args.plane, pass_maps(threads), title=title, main_uri=uri, stop=stop
+        )
     except NothingToPlot as err:
         sys.stderr.write(f"fanuc-macro: {args.file}: {err}\n")
         return EXIT_NOTHING_TO_PLOT
     output = args.output or Path(args.file).with_suffix(".svg").name
     if output == "-":
-        sys.stdout.write(svg)
+        sys.stdout.write(drawing.svg)
     else:
-        Path(output).write_text(svg, encoding="utf-8")
-    for lost in toolpath.lost:
-        where = lost.uri or uri
-        sys.stderr.write(
-            f"{where}:{lost.line + 1}: lost track of {', '.join(lost.axes)}: {lost.reason}\n"
-        )
+        Path(output).write_text(drawing.svg, encoding="utf-8")
+    stderr = sys.stderr
+    if drawing.plane_reason is not None:
+        # A mill's program read as a lathe's is the usual way to get here.
+        hint = " (a mill's program? --controller 0i-MF)" if toolpath.lathe else ""
+        stderr.write(f"{args.file}: {drawing.plane_reason}{hint}; --plane chooses the view\n")
+    # One line for each cause of what the drawing leaves out, at the first block it happened.
+    for note in drawing.notes:
+        if note.sites:
+            where, line = note.sites[0]
+            stderr.write(f"{where or uri}:{line + 1}: {note.text(uri, first_site=False)}\n")
+        else:
+            stderr.write(f"{args.file}: {note.text(uri)}\n")
     kinds = Counter(m.kind for m in toolpath.moves)
     counts = ", ".join(f"{kind} {n}" for kind, n in sorted(kinds.items()))
     shown = "standard output" if output == "-" else output
-    sys.stderr.write(f"{shown}: {len(toolpath.moves)} moves ({counts})\n")
+    stderr.write(f"{shown}: {drawing.summary(counts)}\n")
     return EXIT_OK
 
 
@@ -63,7 +72,8 @@ def add_plot_command(
     command.add_argument(
         "--plane",
         choices=("XZ", "XY", "YZ"),
-        help="the view (default: XZ on a lathe, Z across and X up; XY on a mill)",
+        help="the view (default: XZ on a lathe, Z across and X up; XY on a mill; a path that "
+        "makes no move there is drawn in the plane it goes furthest in)",
     )
     command.add_argument(
         "--output",
