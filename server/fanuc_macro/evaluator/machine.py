@@ -1772,7 +1772,7 @@ class Machine:
         but where the tool is in work coordinates changes: to the words' values after a
         setting (0i-TF "Setting a workpiece coordinate system"), to a place not known here
         after G52 (its offset is added to every work coordinate system, 0i-TF "Local
-        coordinate system")."""
+        coordinate system"; unverified against the manual's text)."""
         modal = self.modal
         here = (act.ctx.uri, self._line)
         for axis, incremental in (("X", "U"), ("Z", "W")):

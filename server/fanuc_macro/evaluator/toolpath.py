@@ -146,10 +146,11 @@ NOT_IN_PROFILE = frozenset(
     {10.0, 27.0, 28.0, 30.0, 31.0, 32.0, 33.0, 34.0, 50.0, 52.0, 53.0, 90.0, 92.0, 94.0}
     | {70.0, 71.0, 72.0, 73.0, 74.0, 75.0, 76.0}
 )
-# Codes whose block's axis words are no move (0i-TF/0i-MF operator's manuals): G04 dwell (X, U:
-# its time in seconds; P in milliseconds), G10 programmable data input (the values it sets),
-# G22 stored stroke check (the limits), G51 scaling (its centre), G51.1 programmable mirror
-# image (its axis), G68 coordinate rotation (its centre).
+# Codes whose block's axis words are no move: G04 dwell (X, U: its time in seconds; P in
+# milliseconds), G10 programmable data input (the values it sets), G22 stored stroke check (the
+# limits), G51 scaling (its centre), G51.1 programmable mirror image (its axis), G68
+# coordinate rotation (its centre). From the G code lists of FANUC's 0i-TF/0i-MF operator's
+# manuals as commonly described; unverified against the manuals' text.
 NOT_MOVES = frozenset({4.0, 10.0, 22.0, 51.0, 51.1, 68.0})
 # G71/G72's escape e when no block of the program sets it: parameter 5133, set by the machine
 # builder; 1 mm (0.04 inch) here (unverified).
