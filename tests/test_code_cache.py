@@ -142,7 +142,10 @@ def test_dataclasses_built_through_the_cache_behave_alike() -> None:
             del dataclasses.exec  # type: ignore[attr-defined]
         else:
             dataclasses.exec = real  # type: ignore[attr-defined]
-    assert compiled > 3 and cache.compiled == compiled == len(cache.used)
+    # A source per method (__init__, __repr__, __eq__, the orderings...), and from Python 3.13
+    # on one source for all the methods of a class.
+    assert compiled >= (1 if sys.version_info >= (3, 13) else 4)
+    assert cache.compiled == compiled == len(cache.used)
     assert Pass(0.5) == Pass(0.5, 0.0) and Pass(0.5) < Pass(0.6)
     assert repr(Same(1.0, 2.0)).endswith("Same(depth=1.0, x=2.0)")
     assert hash(Pass(0.5)) == hash(Pass(0.5))

@@ -385,9 +385,25 @@ def _fast_value(text: str, start: int) -> Expr:
 # A block of plain words as ``PlainNc`` keeps them: numbers written right after their letter,
 # of at most MAX_DIGITS characters (a longer one goes the way that reports a number too long to
 # read). The repeats are possessive: a line that fails at its end is not scanned again.
-_PLAIN_BLOCK = re.compile(
+PLAIN_BLOCK_PATTERN = (
     r"(?:[A-MP-Za-mp-z][-+]?(?=[.0-9]{1,12}+(?![.0-9]))"
     r"(?:[0-9]++(?:\.[0-9]*+)?|\.[0-9]++)[ \t]*+)++"
+)
+
+
+def without_possessive_repeats(pattern: str) -> str:
+    """``pattern`` with its possessive repeats (``*+``, ``++``, ``?+``, ``{m,n}+``) made
+    greedy ones, for Python 3.10's ``re``, which has none (the pattern has no ``+`` after one
+    of ``*+?}`` in a character class). A pattern of which no repeat can give back a character
+    that what follows takes, as _PLAIN_BLOCK's, matches the same lines: only a line that fails
+    is scanned again, its length once more at most."""
+    return re.sub(r"(?<!\\)([*+?}])\+", r"\1", pattern)
+
+
+_PLAIN_BLOCK = re.compile(
+    PLAIN_BLOCK_PATTERN
+    if sys.version_info >= (3, 11)
+    else without_possessive_repeats(PLAIN_BLOCK_PATTERN)
 )
 # The G and M words of a plain block (its code is known to be words of numbers).
 _PLAIN_CODE_WORDS = re.compile(r"([GMgm])([-+]?[.0-9]+)")

@@ -410,8 +410,16 @@ class Block(NamedTuple):
         return self.parsed.text[span.start : span.end]
 
 
-@dataclass(frozen=True, slots=True, weakref_slot=True)
-class Document:
+class WeaklyReferable:
+    """A base whose one slot is ``__weakref__``, for a slotted dataclass that must be weakly
+    referable: ``dataclass(weakref_slot=True)`` came with Python 3.11, and ``slots=True``
+    refuses a class that names its own ``__slots__``."""
+
+    __slots__ = ("__weakref__",)
+
+
+@dataclass(frozen=True, slots=True)
+class Document(WeaklyReferable):
     """A whole file: its blocks, in order, one per line. (Weakly referable: the cache of line
     diffs names versions without keeping them alive, ``line_maps.line_diff``.)"""
 
