@@ -5,7 +5,6 @@ interpreter it has (.ci/run)."""
 
 from __future__ import annotations
 
-import gc
 import importlib
 import pkgutil
 import re
@@ -46,14 +45,30 @@ def _possessive() -> re.Pattern[str]:
     return re.compile(PLAIN_BLOCK_PATTERN)
 
 
+def _lazy_patterns(value: object, found: list[LazyPattern], depth: int = 0) -> None:
+    """The LazyPatterns a module's global holds, in containers and class attributes."""
+    if isinstance(value, LazyPattern):
+        found.append(value)
+    elif depth < 4 and isinstance(value, (tuple, list, set, frozenset)):
+        for item in value:
+            _lazy_patterns(item, found, depth + 1)
+    elif depth < 4 and isinstance(value, dict):
+        for item in value.values():
+            _lazy_patterns(item, found, depth + 1)
+    elif depth == 0 and isinstance(value, type):
+        for item in vars(value).values():
+            _lazy_patterns(item, found, depth + 1)
+
+
 def test_every_module_imports_and_every_regex_compiles() -> None:
     # A module's regexes compile when it is imported; the lazy ones, only on the texts that need
     # them (Python 3.10's re has no possessive repeats or atomic groups).
     names = [m.name for m in pkgutil.walk_packages(fanuc_macro.__path__, "fanuc_macro.")]
+    lazy: list[LazyPattern] = []
     for name in names:
         if not name.endswith("__main__"):
-            importlib.import_module(name)
-    lazy = [o for o in gc.get_objects() if isinstance(o, LazyPattern)]
+            for value in vars(importlib.import_module(name)).values():
+                _lazy_patterns(value, lazy)
     assert len(names) > 50 and len(lazy) > 30
     for pattern in lazy:
         assert pattern.compiled.pattern == pattern.pattern
