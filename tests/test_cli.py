@@ -5,13 +5,14 @@ from __future__ import annotations
 
 import json
 import math
-import os
 import re
 import subprocess
 import sys
 from pathlib import Path
 
 import pytest
+
+from cli_runner import run
 
 ROOT = Path(__file__).resolve().parents[1]
 SEEDS = ROOT / "tests" / "fixtures" / "seeds"
@@ -29,20 +30,6 @@ ERROR_COLUMN = "IF[#1GT0]GOTO99".index("99") + 1
 # Only a warning: a call of a program that is in no file given (MB403 warning).
 WARNING_PROGRAM = "%\nO1000 (MAIN)\nM98 P2000\nM30\n%\n"
 CLEAN_PROGRAM = "%\nO1000 (MAIN)\nG00 X100. Z100.\nM30\n%\n"
-
-
-def run(cwd: Path, *args: str) -> subprocess.CompletedProcess[str]:
-    env = dict(os.environ)
-    env["PYTHONPATH"] = str(ROOT / "server")
-    return subprocess.run(
-        [sys.executable, "-m", "fanuc_macro.cli", *args],
-        cwd=cwd,
-        env=env,
-        capture_output=True,
-        text=True,
-        encoding="utf-8",
-        timeout=120,
-    )
 
 
 def parsed_lines(stdout: str) -> list[dict[str, str]]:

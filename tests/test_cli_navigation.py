@@ -4,11 +4,10 @@ is set, across programs and files."""
 from __future__ import annotations
 
 import json
-import os
-import subprocess
-import sys
 from pathlib import Path
 from typing import Any
+
+from cli_runner import run
 
 ROOT = Path(__file__).resolve().parents[1]
 SEED = ROOT / "tests" / "fixtures" / "seeds" / "o4009_external_m50x3.nc"
@@ -16,17 +15,7 @@ SEED = ROOT / "tests" / "fixtures" / "seeds" / "o4009_external_m50x3.nc"
 
 def definitions(cwd: Path, *args: str) -> list[tuple[str, int, int]]:
     """(path, line, column) of each place ``definition`` gives, 1-based."""
-    env = dict(os.environ)
-    env["PYTHONPATH"] = str(ROOT / "server")
-    result = subprocess.run(
-        [sys.executable, "-m", "fanuc_macro.cli", "definition", "--format", "json", *args],
-        cwd=cwd,
-        env=env,
-        capture_output=True,
-        text=True,
-        encoding="utf-8",
-        timeout=120,
-    )
+    result = run(cwd, "definition", "--format", "json", *args)
     found: list[dict[str, Any]] = json.loads(result.stdout)
     return [(Path(f["path"]).name, f["line"], f["column"]) for f in found]
 

@@ -4,27 +4,12 @@ what it says of a file it reads only in part."""
 from __future__ import annotations
 
 import json
-import os
-import subprocess
-import sys
 from pathlib import Path
 from typing import Any
 
+from cli_runner import run
+
 ROOT = Path(__file__).resolve().parents[1]
-
-
-def run(cwd: Path, *args: str) -> subprocess.CompletedProcess[str]:
-    env = dict(os.environ)
-    env["PYTHONPATH"] = str(ROOT / "server")
-    return subprocess.run(
-        [sys.executable, "-m", "fanuc_macro.cli", *args],
-        cwd=cwd,
-        env=env,
-        capture_output=True,
-        text=True,
-        encoding="utf-8",
-        timeout=120,
-    )
 
 
 def trace_json(cwd: Path, *args: str) -> dict[str, Any]:
