@@ -21,6 +21,7 @@ from fanuc_macro.evaluator import Facts, Motion, ValueSummary, evaluate, machine
 from fanuc_macro.evaluator.facts import same_value
 from fanuc_macro.program.index import build_index
 from fanuc_macro.syntax.parser import BlockParser, parse_text
+from fanuc_macro.workspace import Workspace
 
 FIXTURES = Path(__file__).parent / "fixtures"
 PROGRAMS = sorted(
@@ -429,3 +430,38 @@ def test_lathe_cycles_resume_and_equal_full(turns: int) -> None:
     previous = evaluate_text("\n".join(lines), parser, config)
     assert previous.stopped == ("budget" if turns == 400 else None)
     resume_through_random_edits(lines, rng, parser, config, previous, 12)
+
+
+# A document with no program (empty, or bytes that are not a text) leaves no compiled lines in
+# the record: the next version, its first keystroke, is analysed as from scratch.
+NO_PROGRAM_EDITS = [("", "G"), ("", "1"), ("", "%"), ("", "X\n"), ("X", ""), ("G", "")]
+NOT_TEXT = bytes(range(32)) * 4
+
+
+@pytest.mark.parametrize(("before", "after"), NO_PROGRAM_EDITS, ids=repr)
+def test_an_edit_from_or_to_a_document_without_program_equals_a_fresh_analysis(
+    before: str, after: str
+) -> None:
+    fresh = analyse(after, URI, parser=BlockParser()).diagnostics
+    assert "MB000" not in {d.code for d in fresh}
+    parser = BlockParser()
+    previous = analyse(before, URI, parser=parser).facts
+    assert analyse(after, URI, parser=parser, previous_facts=previous).diagnostics == fresh
+    assert_same(
+        evaluate_text(after, parser, Config(), evaluate_text(before, parser, Config())),
+        evaluate_text(after, BlockParser(), Config()),
+    )
+    ws = Workspace()
+    ws.add_text(URI, before)
+    ws.analyse(URI)
+    ws.add_text(URI, after)
+    assert ws.analyse(URI).diagnostics == fresh
+
+
+@pytest.mark.parametrize("after", ["G", "G01 X1.\nM30\n"])
+def test_a_document_not_text_then_typed_in_equals_a_fresh_analysis(after: str) -> None:
+    ws = Workspace()
+    ws.add_bytes(URI, NOT_TEXT)
+    assert "MB007" in {d.code for d in ws.analyse(URI).diagnostics}
+    ws.add_text(URI, after)
+    assert ws.analyse(URI).diagnostics == analyse(after, URI, parser=BlockParser()).diagnostics

@@ -210,6 +210,16 @@ async def test_edit_updates_diagnostics(client: LanguageClient) -> None:
     await diagnostics(client, uri, lambda d: "MB101" not in codes(d))
 
 
+async def test_the_first_keystroke_in_an_empty_document(client: LanguageClient) -> None:
+    await start(client, None)
+    uri = "untitled:new.nc"
+    open_text(client, uri, "")
+    assert not await diagnostics(client, uri)  # the empty version analysed first
+    edit(client, uri, 2, [replace(0, 0, 0, "G")])
+    found = await diagnostics(client, uri, lambda d: bool(d))
+    assert codes(found) == {"MB001"}, found  # the incomplete word, no internal error (MB000)
+
+
 async def test_never_executed_is_unnecessary(client: LanguageClient) -> None:
     await start(client, None)
     uri = "untitled:dead.nc"

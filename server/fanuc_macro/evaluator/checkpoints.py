@@ -281,14 +281,15 @@ def plan(
         return None
     # A run of an entry program begins with the locals it reads before it sets them unknown:
     # an edit that changes which those are changes the run from its first block.
-    moved = set(old.shifted) | {
-        uri
-        for uri, lines in changed.items()
-        if any(
-            local_access(old.lines[uri][line]) != local_access(record.lines[uri][line])
-            for line in lines
-        )
-    }
+    moved = set(old.shifted)
+    for uri, lines in changed.items():
+        # A record holds the compiled lines of the documents that have a program only: one
+        # without (empty, or unread as not text) in either version leaves nothing to reuse.
+        before, after = old.lines.get(uri), record.lines.get(uri)
+        if before is None or after is None:
+            return None
+        if any(local_access(before[line]) != local_access(after[line]) for line in lines):
+            moved.add(uri)
     for key, first in old.read_first.items():
         if key[0] in moved and read_first(key) != first:
             return None
