@@ -292,6 +292,36 @@ def test_a_utf16_file_is_named_as_such(tmp_path: Path) -> None:
     assert "it is UTF-16 text (save it as UTF-8 or ASCII)" in row["message"]
 
 
+# A blank before a comment: the ASCII space and tab/form feed the grammar skips, the
+# Unicode spaces it rejects (MB001). A line's verdict is its own, whatever line of the same
+# code but another blank was read before it.
+BLANKS = {"nbsp": "\u00a0", "em": "\u2003", "ideographic": "\u3000", "tab": "\t", "ff": "\f"}
+
+
+def test_a_blank_before_a_comment_gives_the_same_verdict_alone_and_after_its_twin(
+    tmp_path: Path,
+) -> None:
+    def program(number: int, blank: str) -> str:
+        return f"%\nO{number}\n#3000=91{blank}(D INPUT MISSING)\nM30\n%\n"
+
+    def verdicts(*names: str) -> dict[str, list[tuple[int, int, str]]]:
+        result = run(tmp_path, "check", "--format", "json", *names)
+        out: dict[str, list[tuple[int, int, str]]] = {name: [] for name in names}
+        for r in json.loads(result.stdout):
+            out[r["path"]].append((r["line"], r["column"], r["code"]))
+        return out
+
+    write(tmp_path / "space.nc", program(1000, " "))
+    for i, (name, blank) in enumerate(BLANKS.items(), 1):
+        write(tmp_path / f"{name}.nc", program(1000 + i, blank))
+    together = verdicts("space.nc", *(f"{name}.nc" for name in BLANKS))
+    assert together["space.nc"] == [(3, 1, "MB503")]
+    for name, blank in BLANKS.items():
+        alone = verdicts(f"{name}.nc")[f"{name}.nc"]
+        assert together[f"{name}.nc"] == alone, name
+        assert alone == ([(3, 1, "MB503")] if blank in "\t\f" else [(3, 9, "MB001")]), name
+
+
 # ---- --disable ---------------------------------------------------------------------------------
 
 

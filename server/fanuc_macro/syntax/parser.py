@@ -688,6 +688,10 @@ def _too_deep(statement: Statement, depth: int) -> LineNote:
 # the nodes are immutable and their spans are columns of the line, which the comments keep.
 _ParsedCode = tuple[bool, int | None, int | None, Span | None, Statement | None, bool]
 _BY_CODE_LIMIT = 4096  # codes kept; the oldest quarter goes when it is full
+# The blanks the grammar skips (its %ignore): codes that differ only in trailing ones parse
+# alike. str.rstrip() with no argument also strips U+00A0, U+3000 and the like, which the
+# grammar rejects (MB001): keyed by that, such a code took its ASCII twin's parse.
+_BLANKS = " \t\f\v"
 
 
 def _line_of_code(text: str, cut: LineCode, has_lower: bool, code: _ParsedCode) -> ParsedLine:
@@ -787,7 +791,7 @@ class BlockParser:
             return _line(text, cut, None, None, None, None, None, False)
         has_lower = code != code.upper()
         # A line with a comment: lines of the same code share what it parses to.
-        key = code.rstrip() if code is not text else None
+        key = code.rstrip(_BLANKS) if code is not text else None
         if key is not None:
             known = self._by_code.get(key)
             if known is not None:
