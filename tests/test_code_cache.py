@@ -6,16 +6,19 @@ from __future__ import annotations
 import builtins
 import dataclasses
 import json
+import marshal
 import os
+import stat
 import subprocess
 import sys
 from pathlib import Path
+from types import CodeType
 
 import attr._make
 import pytest
 
 from fanuc_macro import code_cache
-from fanuc_macro.code_cache import CodeCache, cache_file
+from fanuc_macro.code_cache import CodeCache, Key, cache_file
 
 ROOT = Path(__file__).resolve().parents[1]
 SMALL = ROOT / "tests" / "fixtures" / "seeds" / "o2_arc_thread_roughing.nc"
@@ -195,3 +198,228 @@ def test_a_server_session_over_stdio_writes_the_cache_once(tmp_path: Path) -> No
         written.append(path.read_bytes())
     assert len(written[0]) > 100_000
     assert written[1] == written[0]
+
+
+# Loading a file runs its code: only a file this user wrote, unchanged, is read.
+
+DETAIL = (
+    "import json\n"
+    "from fanuc_macro import code_cache\n"
+    "cache = code_cache._installed\n"
+    "print(json.dumps(None if cache is None else {'compiled': cache.compiled,"
+    " 'used': len(cache.used), 'loaded': cache.loaded, 'rejected': cache.rejected,"
+    " 'writes': cache.path is not None}))\n"
+)
+OTHER_USER = 12345
+
+
+def _check_in(directory: Path) -> tuple[str, dict[str, object]]:
+    """The JSON output of a check of the seed, and what the process reports of its cache."""
+    env = {**os.environ, "FANUC_MACRO_CODE_CACHE": str(directory)}
+    done = subprocess.run(
+        [sys.executable, "-c", _check(SMALL) + DETAIL],
+        capture_output=True,
+        text=True,
+        env=env,
+        timeout=120,
+    )
+    assert done.returncode == 0, done.stderr
+    output, detail = done.stdout.splitlines()[-2:]
+    report: dict[str, object] = json.loads(detail)
+    return output, report
+
+
+@pytest.fixture(scope="module")
+def expected_output(tmp_path_factory: pytest.TempPathFactory) -> str:
+    """The check's output, and a file the package wrote, beside it."""
+    directory = tmp_path_factory.mktemp("written")
+    output, report = _check_in(directory)
+    assert report["loaded"] == 0 and report["rejected"] is None
+    return output
+
+
+def _written(tmp_path: Path) -> bytes:
+    directory = tmp_path / "written"
+    _check_in(directory)
+    return cache_file(directory, "cli").read_bytes()
+
+
+def _poisoned(data: bytes, marker: Path) -> dict[Key, CodeType]:
+    """The file's code, each piece made to create ``marker`` before doing what it did."""
+    known = code_cache.decode(data)
+    assert isinstance(known, dict) and known
+    poison = f"open({str(marker)!r}, 'a').close()\n"
+    return {
+        key: builtins.compile(poison + key[0], key[1], key[2], key[3], dont_inherit=True)
+        for key in known
+    }
+
+
+def _assert_ignored(directory: Path, marker: Path, expected: str) -> dict[str, object]:
+    output, report = _check_in(directory)
+    assert not marker.exists()
+    assert output == expected
+    assert report["loaded"] == 0 and report["compiled"] == report["used"]
+    assert report["rejected"]
+    return report
+
+
+def test_the_poisoned_code_would_run_from_a_file_the_user_wrote(
+    tmp_path: Path, expected_output: str
+) -> None:
+    """What the tests below keep out: the digest is no signature, whoever writes the file can
+    write a digest that matches."""
+    marker = tmp_path / "marker"
+    path = cache_file(tmp_path, "cli")
+    path.write_bytes(code_cache.encode(_poisoned(_written(tmp_path), marker)))
+    path.chmod(0o600)
+    output, report = _check_in(tmp_path)
+    assert marker.exists() and output == expected_output
+    assert report["loaded"] and report["rejected"] is None
+
+
+def test_a_file_whose_content_was_altered_is_not_run(tmp_path: Path, expected_output: str) -> None:
+    marker = tmp_path / "marker"
+    data = _written(tmp_path)
+    header = data[: len(code_cache.MARK) + code_cache.DIGEST_SIZE]  # the digest of the original
+    path = cache_file(tmp_path, "cli")
+    path.write_bytes(header + marshal.dumps(_poisoned(data, marker)))
+    path.chmod(0o600)
+    report = _assert_ignored(tmp_path, marker, expected_output)
+    assert "digest" in str(report["rejected"])
+    assert code_cache.decode(path.read_bytes())  # written anew, by the package
+
+
+def test_a_file_owned_by_another_user_is_not_run(tmp_path: Path, expected_output: str) -> None:
+    marker = tmp_path / "marker"
+    path = cache_file(tmp_path, "cli")
+    path.write_bytes(code_cache.encode(_poisoned(_written(tmp_path), marker)))
+    path.chmod(0o600)
+    os.chown(path, OTHER_USER, OTHER_USER)
+    report = _assert_ignored(tmp_path, marker, expected_output)
+    assert "owned by another user" in str(report["rejected"])
+
+
+def test_a_file_others_can_write_is_not_run(tmp_path: Path, expected_output: str) -> None:
+    marker = tmp_path / "marker"
+    path = cache_file(tmp_path, "cli")
+    path.write_bytes(code_cache.encode(_poisoned(_written(tmp_path), marker)))
+    path.chmod(0o666)
+    report = _assert_ignored(tmp_path, marker, expected_output)
+    assert "others can write" in str(report["rejected"])
+    assert stat.S_IMODE(path.stat().st_mode) == 0o600  # written anew, for the user only
+
+
+def test_a_file_in_a_directory_others_can_write_is_not_run(
+    tmp_path: Path, expected_output: str
+) -> None:
+    """Without the sticky bit, another user could have put the file there under the user's
+    name (renamed the user's own away): it is not read, nor written."""
+    marker = tmp_path / "marker"
+    shared = tmp_path / "shared"
+    shared.mkdir()
+    path = cache_file(shared, "cli")
+    data = code_cache.encode(_poisoned(_written(tmp_path), marker))
+    path.write_bytes(data)
+    path.chmod(0o600)
+    shared.chmod(0o777)
+    report = _assert_ignored(shared, marker, expected_output)
+    assert "directory others can write" in str(report["rejected"])
+    assert report["writes"] is False and path.read_bytes() == data
+
+
+def test_a_file_in_a_directory_owned_by_another_user_is_not_run(
+    tmp_path: Path, expected_output: str
+) -> None:
+    marker = tmp_path / "marker"
+    theirs = tmp_path / "theirs"
+    theirs.mkdir()
+    path = cache_file(theirs, "cli")
+    path.write_bytes(code_cache.encode(_poisoned(_written(tmp_path), marker)))
+    path.chmod(0o600)
+    os.chown(theirs, OTHER_USER, OTHER_USER)
+    report = _assert_ignored(theirs, marker, expected_output)
+    assert "directory owned by another user" in str(report["rejected"])
+
+
+def test_a_sticky_shared_directory_keeps_the_users_own_file(
+    tmp_path: Path, expected_output: str
+) -> None:
+    """As in /tmp: others may write there, but neither replace nor rename the user's file."""
+    sticky = tmp_path / "sticky"
+    sticky.mkdir()
+    sticky.chmod(0o1777)
+    first_output, first = _check_in(sticky)
+    assert first["writes"] is True and first["compiled"] == first["used"]
+    output, second = _check_in(sticky)
+    assert output == first_output == expected_output
+    assert second["rejected"] is None and second["compiled"] == 0
+    assert second["loaded"] == second["used"] == first["used"]
+
+
+def test_a_truncated_file_is_compiled_again(tmp_path: Path, expected_output: str) -> None:
+    data = _written(tmp_path)
+    path = cache_file(tmp_path, "cli")
+    path.write_bytes(data[: len(data) // 2])
+    path.chmod(0o600)
+    report = _assert_ignored(tmp_path, tmp_path / "marker", expected_output)
+    assert "digest" in str(report["rejected"])
+    output, again = _check_in(tmp_path)  # the file written anew is read
+    assert output == expected_output
+    assert again["compiled"] == 0 and again["loaded"] == report["used"]
+
+
+def test_a_second_start_loads_from_the_file(tmp_path: Path, expected_output: str) -> None:
+    old = os.umask(0)  # the file is the user's alone whatever the umask
+    try:
+        first_output, first = _check_in(tmp_path)
+    finally:
+        os.umask(old)
+    assert stat.S_IMODE(cache_file(tmp_path, "cli").stat().st_mode) == 0o600
+    output, second = _check_in(tmp_path)
+    assert output == first_output == expected_output
+    assert first["loaded"] == 0 and first["compiled"] == first["used"]
+    assert second["compiled"] == 0 and second["loaded"] == second["used"] == first["used"]
+
+
+def test_the_owner_is_compared_with_the_effective_user(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    path = cache_file(tmp_path, "cli")
+    known = {("x = 1\n", "<x>", "exec", 0): builtins.compile("x = 1\n", "<x>", "exec")}
+    path.write_bytes(code_cache.encode(known))
+    path.chmod(0o600)
+    os.chown(path, OTHER_USER, OTHER_USER)
+    assert code_cache._read(path)[0] == {}
+    monkeypatch.setattr(os, "geteuid", lambda: OTHER_USER)
+    assert code_cache._read(path) == (known, None, True)
+
+
+def test_a_fifo_in_the_files_place_is_refused_without_blocking(tmp_path: Path) -> None:
+    os.mkfifo(cache_file(tmp_path, "cli"), 0o600)
+    known, rejected, writable = code_cache._read(cache_file(tmp_path, "cli"))
+    assert known == {} and "not a regular file" in str(rejected) and writable
+
+
+def test_a_file_of_another_version_of_the_package_is_not_read(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    path = cache_file(tmp_path, "cli")
+    known = {("x = 1\n", "<x>", "exec", 0): builtins.compile("x = 1\n", "<x>", "exec")}
+    path.write_bytes(code_cache.encode(known))
+    path.chmod(0o600)
+    assert code_cache._read(path)[0] == known
+    monkeypatch.setattr(code_cache, "DIGEST_KEY", b"another version")
+    assert code_cache._read(path)[0] == {}
+
+
+def test_a_file_someone_put_in_the_place_of_the_temporary_one_is_left_alone(
+    tmp_path: Path,
+) -> None:
+    path = cache_file(tmp_path, "cli")
+    theirs = path.with_name(f"{path.name}.{os.getpid()}.tmp")
+    theirs.write_bytes(b"theirs")
+    cache = CodeCache(path, {})
+    cache.code("x = 1\n", "<x>", "exec", 0)
+    assert cache.save() is False  # not written through it, and no error
+    assert theirs.read_bytes() == b"theirs" and not path.exists()

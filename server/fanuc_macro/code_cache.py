@@ -15,21 +15,34 @@ file name, the mode and the ``__future__`` flags the builder's module compiles w
 file written by another Python version is not read (its name carries the interpreter's magic
 number, as .pyc files do). A missing, unreadable or corrupt file only means compiling again.
 ``FANUC_MACRO_CODE_CACHE=0`` turns it off; another value names the directory to keep it in.
+
+Loading a file runs its code, so a file is read only if this user could have written it and
+no one else could have changed it (see :func:`_untrusted_file`), and only if its digest,
+keyed by the package's and Python's versions, matches its content.
 """
 
 from __future__ import annotations
 import __future__
 
 import builtins
+import contextlib
 import importlib
 import marshal
 import os
+import stat
 import sys
 from collections.abc import Callable
 from importlib.util import MAGIC_NUMBER
 from pathlib import Path
 from types import CodeType, ModuleType
 from typing import Any
+
+from . import __version__
+
+try:  # the builtin module: hashlib would load OpenSSL, 4 ms of a start
+    from _blake2 import blake2b
+except ImportError:  # pragma: no cover - a Python built without it
+    from hashlib import blake2b
 
 ENVIRONMENT = "FANUC_MACRO_CODE_CACHE"
 
@@ -56,6 +69,36 @@ CHANGING_SOURCES = 8
 
 Key = tuple[str, str, str, int]
 
+# A file is this mark, the digest of what follows, then the marshalled code.
+MARK = b"fanuc-macro code cache\n"
+DIGEST_SIZE = 32
+# The digest is keyed by the versions, so a file written by another version of the package or
+# of Python does not match. It is no signature: whoever can write the file can write a digest
+# that matches. What keeps out a foreign writer is the check of the file's owner and mode and
+# of its directory; the digest keeps out a stale, truncated or otherwise damaged file.
+DIGEST_KEY = blake2b(f"{__version__}\0{sys.version}\0{MAGIC_NUMBER.hex()}".encode()).digest()
+
+
+def _digest(payload: bytes | memoryview) -> bytes:
+    return blake2b(payload, digest_size=DIGEST_SIZE, key=DIGEST_KEY).digest()
+
+
+def encode(known: dict[Key, CodeType]) -> bytes:
+    """The content of a file holding these code objects."""
+    payload = marshal.dumps(known)
+    return MARK + _digest(payload) + payload
+
+
+def decode(data: bytes) -> object:
+    """The object a file's content holds; ValueError if its mark or digest do not match."""
+    start = len(MARK) + DIGEST_SIZE
+    if not data.startswith(MARK) or len(data) < start:
+        raise ValueError("not a code cache file")
+    payload = memoryview(data)[start:]
+    if _digest(payload) != data[len(MARK) : start]:
+        raise ValueError("digest does not match the content")
+    return marshal.loads(payload)
+
 
 class CodeCache:
     """The code objects of one kind of process: those read from its file, and those it used."""
@@ -68,6 +111,8 @@ class CodeCache:
         self.compiled = 0  # sources not found in the file
         self.compiled_unnamed = 0  # of those, the ones under a name the file does not hold
         self.saved_at = (0, 0)  # the two counts when the file was last written
+        self.loaded = len(known)  # the entries read from the file
+        self.rejected: str | None = None  # why the file was not read, if it was there
 
     def code(self, source: str, filename: str, mode: str, flags: int) -> CodeType:
         key = (source, filename, mode, flags)
@@ -91,14 +136,24 @@ class CodeCache:
         if self.path is None or not self.worth_saving():
             return False
         temporary = self.path.with_name(f"{self.path.name}.{os.getpid()}.tmp")
+        created = False
         try:
-            self.path.parent.mkdir(parents=True, exist_ok=True)
+            self.path.parent.mkdir(mode=0o700, parents=True, exist_ok=True)
             # dict() copies in one C call, while another thread may be building a class
-            temporary.write_bytes(marshal.dumps(dict(self.used)))
+            data = encode(dict(self.used))
+            # Only the user may write it, whatever the umask: a reader trusts nothing else.
+            # O_EXCL and O_NOFOLLOW: not through a file or link someone else put there.
+            flags = os.O_WRONLY | os.O_CREAT | os.O_EXCL | getattr(os, "O_NOFOLLOW", 0)
+            fd = os.open(temporary, flags | getattr(os, "O_BINARY", 0), 0o600)
+            created = True
+            with open(fd, "wb") as file:
+                file.write(data)
             os.replace(temporary, self.path)  # a reader sees the old file or the new, whole
         except OSError as err:
             _log_debug("code cache not written to %s: %s", self.path, err)
-            temporary.unlink(missing_ok=True)
+            if created:  # not a file of that name someone else made
+                with contextlib.suppress(OSError):
+                    temporary.unlink()
             return False
         self.saved_at = (self.compiled, self.compiled_unnamed)
         return True
@@ -144,18 +199,77 @@ def cache_file(directory: Path, kind: str) -> Path:
     return directory / f"code-{kind}-{tag}-{MAGIC_NUMBER.hex()}{optimized}.marshal"
 
 
-def _read(path: Path) -> dict[Key, CodeType]:
+class Untrusted(PermissionError):
+    """A file or directory someone other than this user could have written."""
+
+    def __init__(self, reason: str, directory: bool) -> None:
+        super().__init__(f"not trusted: {reason}")
+        self.directory = directory
+
+
+def _untrusted_directory(status: os.stat_result) -> str | None:
+    """Why a directory's files could have been put there by another user, or None."""
+    if status.st_uid not in (os.geteuid(), 0):
+        return "directory owned by another user"
+    # In a directory others can write, they can rename this user's files away and put theirs;
+    # with the sticky bit (/tmp) they cannot, and a file they create there is theirs.
+    if status.st_mode & 0o022 and not status.st_mode & stat.S_ISVTX:
+        return "directory others can write"
+    return None
+
+
+def _untrusted_file(status: os.stat_result) -> str | None:
+    """Why a file could have been written by someone other than this user, or None."""
+    if not stat.S_ISREG(status.st_mode):
+        return "not a regular file"
+    if status.st_uid != os.geteuid():
+        return "file owned by another user"
+    if status.st_mode & 0o022:
+        return "file others can write"
+    return None
+
+
+def _read_trusted(path: Path) -> bytes:
+    """The file's content if this user owns it and its directory, and no one else can write
+    either; else OSError. The checks are of the open file and directory, not of their names,
+    so that what is read is what was checked."""
+    if not hasattr(os, "geteuid"):  # Windows: no owners to check, the digest only
+        return path.read_bytes()
+    # O_NONBLOCK: a FIFO in the file's place is refused below instead of blocking the start
+    flags = os.O_RDONLY | os.O_NONBLOCK | getattr(os, "O_NOFOLLOW", 0)
+    directory = os.open(path.parent, os.O_RDONLY | getattr(os, "O_DIRECTORY", 0))
     try:
-        # loads() of the bytes: load() of the file reads it in thousands of small calls
-        known = marshal.loads(path.read_bytes())
+        reason = _untrusted_directory(os.fstat(directory))
+        if reason is not None:
+            raise Untrusted(reason, directory=True)
+        if os.open in os.supports_dir_fd:
+            fd = os.open(path.name, flags, dir_fd=directory)
+        else:  # pragma: no cover - every POSIX Python this runs on has dir_fd
+            fd = os.open(path, flags)
+        with open(fd, "rb") as file:
+            reason = _untrusted_file(os.fstat(file.fileno()))
+            if reason is not None:
+                raise Untrusted(reason, directory=False)
+            return file.read()
+    finally:
+        os.close(directory)
+
+
+def _read(path: Path) -> tuple[dict[Key, CodeType], str | None, bool]:
+    """The code objects the file holds; why it was not read (None if it was, or if there was
+    none), and whether its directory may be written: any doubt only means compiling again."""
+    try:
+        known = decode(_read_trusted(path))
     except FileNotFoundError:
-        return {}
+        return {}, None, True
     except (OSError, EOFError, ValueError, TypeError) as err:
         _log_debug("code cache %s not read: %s", path, err)
-        return {}
+        # A directory others could write to is not written to: its file would not be read.
+        writable = not (isinstance(err, Untrusted) and err.directory)
+        return {}, str(err) or type(err).__name__, writable
     if not isinstance(known, dict) or len(known) > MAX_ENTRIES:
-        return {}
-    return known
+        return {}, "not a table of code", True
+    return known, None, True
 
 
 def _future_flags(module: ModuleType) -> int:
@@ -207,7 +321,9 @@ def install_code_cache(kind: str) -> CodeCache | None:
     if directory is None:
         return None
     path = cache_file(directory, kind)
-    cache = CodeCache(path, _read(path))
+    known, rejected, writable = _read(path)
+    cache = CodeCache(path if writable else None, known)
+    cache.rejected = rejected
     makers = {"compile": _compile_through, "exec": _exec_through}
     for module_name, builtin in BUILDERS[kind]:
         try:
