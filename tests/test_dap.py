@@ -7,6 +7,7 @@ from __future__ import annotations
 import json
 from collections.abc import Iterator
 from pathlib import Path
+from typing import Any
 
 import pytest
 
@@ -15,6 +16,7 @@ from dap_client import DapClient
 HERE = Path(__file__).resolve().parent
 SEED = HERE / "fixtures" / "thread_variants" / "o4009_clean.nc"
 DEBUG = HERE / "fixtures" / "debug"
+SEEDS = HERE / "fixtures" / "seeds"
 CORPUS = HERE.parent.parent / "shared" / "corpus"
 SAMPLES = "NCVC-CAM__Scripts__NC.Code.Checker1.4__errors__4_macro_errors__"
 GOTO_LOOP = CORPUS / (SAMPLES + "sampleNC(GOTO-infinite-loop).ncd")
@@ -373,3 +375,83 @@ def test_program_stops_stop_when_asked(dap: DapClient, tmp_path: Path) -> None:
     assert stop["reason"] == "exception" and stop["text"] == "M00 program stop: TURN THE PART"
     assert top(dap)["line"] == 5  # after the M00, as the control
     assert dap.ok("exceptionInfo", {"threadId": 1})["exceptionId"] == "programStop"
+
+
+def frame(message: dict[str, Any]) -> bytes:
+    body = json.dumps(message).encode()
+    return b"Content-Length: %d\r\n\r\n" % len(body) + body
+
+
+def test_a_message_nested_too_deep_is_refused_and_the_session_goes_on(dap: DapClient) -> None:
+    deep = b"[" * 5000 + b"]" * 5000
+    dap.send_raw(b"Content-Length: %d\r\n\r\n" % len(deep) + deep)
+    said = dap.event("output")["body"]
+    assert said["category"] == "stderr" and "nested too deep" in said["output"]
+    dap.start({"program": str(SEEDS / "o4009_external_m50x3.nc"), "stopOnEntry": True})
+    assert dap.stopped()["reason"] == "entry"
+    assert dap.proc.poll() is None
+
+
+@pytest.mark.parametrize(
+    "bad",
+    [
+        # A length larger than the body: the next messages would be read as its body.
+        b'Content-Length: 9999\r\n\r\n{"seq": 1, "type": "request"',
+        b"Content-Length: 9999\r\n\r\n{}",
+        # A length that is no number, with no line end: glued to the next header.
+        b"Content-Length: abc",
+        b"Content-Length: 99999999999\r\n\r\n{}",
+        b"\x00\xff garbage Content-Length: 12",
+    ],
+)
+def test_the_reader_finds_the_next_message_after_a_bad_one(dap: DapClient, bad: bytes) -> None:
+    dap.send_raw(bad)
+    seqs = [dap.send("threads") for _ in range(5)]
+    for seq in seqs:
+        response = dap._next(lambda m, seq=seq: m.get("request_seq") == seq)
+        assert response["success"] and response["command"] == "threads"
+    assert "could not be read" in dap.output_text()
+
+
+def test_a_length_that_swallows_the_next_message_is_found_out(dap: DapClient) -> None:
+    # The wrong length ends inside the next message: the body is no JSON but holds a header.
+    following = frame({"seq": 1, "type": "request", "command": "threads"})
+    short = b'{"seq": 7}'
+    dap._seq = 1
+    dap.send_raw(b"Content-Length: %d\r\n\r\n" % (len(short) + 30) + short + following)
+    response = dap._next(lambda m: m.get("request_seq") == 1)
+    assert response["success"] and response["command"] == "threads"
+    dap.ok("threads")
+
+
+@pytest.mark.parametrize(
+    ("message", "said"),
+    [
+        ({"seq": 3, "type": "request"}, "has no command"),
+        ({"seq": 3, "type": "request", "command": 5}, "not a command name"),
+        ({"seq": 3, "type": "request", "command": ""}, "not a command name"),
+        ({"seq": 3, "type": "request", "command": "threads", "arguments": [1]}, "not an object"),
+        ({"seq": 3, "type": "reqest", "command": "threads"}, "'reqest', not 'request'"),
+        ({"seq": 3, "command": "threads"}, "None, not 'request'"),
+        (
+            {"seq": 3, "type": "request", "command": "setBreakpoints", "arguments": {"source": 1}},
+            "setBreakpoints",
+        ),
+    ],
+)
+def test_a_malformed_request_gets_an_error_response(
+    dap: DapClient, message: dict[str, Any], said: str
+) -> None:
+    dap.send_raw(frame(message))
+    response = dap._next(lambda m: m.get("type") == "response")
+    assert response["request_seq"] == 3 and response["success"] is False, response
+    assert said in response["message"], response
+    dap._seq = 3
+    dap.ok("threads")
+
+
+def test_a_request_without_a_seq_is_answered_too(dap: DapClient) -> None:
+    dap.send_raw(frame({"type": "request", "command": "threads"}))
+    response = dap._next(lambda m: m.get("type") == "response")
+    assert response["success"] is False and "no integer seq" in response["message"]
+    dap.ok("threads")

@@ -3,9 +3,10 @@ Protocol over stdio. It converts requests to the session of :mod:`fanuc_macro.id
 and the session's stops, output and end to events; it holds no debugging logic of its own.
 
 One thread reads requests; the run goes in the session's thread, whose events are written as
-they come. A request that cannot be done gets an error response that says why; a message that
-cannot be read is reported on stderr and skipped: the adapter stays up until the client
-disconnects or the stream ends.
+they come. A request that cannot be done, or is malformed, gets an error response that says
+why; a message that cannot be read is reported on stderr and in an output event and skipped,
+and reading goes on at the next header: the adapter stays up until the client disconnects or
+the stream ends.
 """
 
 from __future__ import annotations
@@ -78,21 +79,62 @@ class Adapter(Listener):
             try:
                 message = self.reader.read()
             except WireError as err:
-                sys.stderr.write(f"fanuc-macro-dap: {err}\n")
+                # Said to the client too: a request lost here would otherwise wait for ever.
+                text = f"fanuc-macro-dap: a message could not be read: {err}"
+                sys.stderr.write(text + "\n")
+                self.event("output", {"category": "stderr", "output": text + "\n"})
                 continue
             if message is None:
                 break
-            if message.get("type") == "request":
+            kind = message.get("type")
+            if kind == "request":
                 self._handle(message)
+            elif kind not in ("response", "event"):
+                # Not a message the protocol knows: answered, so that no sender waits.
+                self.writer.send(
+                    {
+                        "type": "response",
+                        "request_seq": self._seq_of(message),
+                        "command": str(message.get("command", "")),
+                        "success": False,
+                        "message": f"a message whose type is {kind!r}, not 'request'",
+                    }
+                )
         if self.session is not None:
             self.session.terminate()
         return 0
 
+    @staticmethod
+    def _seq_of(message: dict[str, Any]) -> int:
+        seq = message.get("seq")
+        return seq if isinstance(seq, int) and not isinstance(seq, bool) else 0
+
+    @staticmethod
+    def _malformed(request: dict[str, Any]) -> str | None:
+        """What makes a request unfit to handle, or None."""
+        seq = request.get("seq")
+        if not isinstance(seq, int) or isinstance(seq, bool):
+            return "the request has no integer seq"
+        command = request.get("command")
+        if command is None:
+            return "the request has no command"
+        if not isinstance(command, str) or not command:
+            return f"the request's command {command!r} is not a command name"
+        args = request.get("arguments")
+        if args is not None and not isinstance(args, dict):
+            return f"the arguments of {command} are not an object"
+        return None
+
     def _handle(self, request: dict[str, Any]) -> None:
-        command = str(request.get("command", ""))
+        raw = request.get("command", "")
+        command = raw if isinstance(raw, str) else ""
         handler = self._handlers.get(command)
         self._after = None
-        base = {"type": "response", "request_seq": request.get("seq", 0), "command": command}
+        base = {"type": "response", "request_seq": self._seq_of(request), "command": command}
+        wrong = self._malformed(request)
+        if wrong is not None:
+            self.writer.send({**base, "success": False, "message": wrong})
+            return
         if handler is None:
             self.writer.send({**base, "success": False, "message": f"{command} is not supported"})
             return
