@@ -15,7 +15,12 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, TypeVar
 
 from lsprotocol import types
-from pygls.exceptions import JsonRpcException, JsonRpcInternalError, JsonRpcInvalidParams
+from pygls.exceptions import (
+    JsonRpcException,
+    JsonRpcInternalError,
+    JsonRpcInvalidParams,
+    JsonRpcInvalidRequest,
+)
 from pygls.lsp.server import LanguageServer
 from pygls.protocol import LanguageServerProtocol
 from pygls.protocol.language_server import lsp_method
@@ -77,6 +82,11 @@ class AnsweringProtocol(LanguageServerProtocol):
     of 2**31), and the client waits for ever: here it gets the JSON-RPC error InvalidParams."""
 
     def structure_message(self, data: dict[str, Any]) -> Any:
+        wrong = _invalid_request(data)
+        if wrong is not None:
+            # pygls drops these (no "jsonrpc") or reads them as responses (no "method"):
+            # a client that sent one would wait for ever. The id is all that is needed.
+            return _Unreadable(wrong[0], "", JsonRpcInvalidRequest(wrong[1]))
         try:
             return super().structure_message(data)
         except JsonRpcException as error:
@@ -117,6 +127,25 @@ class AnsweringProtocol(LanguageServerProtocol):
         handler = self.fm.features.get(method)
         if handler is not None:
             yield handler, (params,), None
+
+
+def _invalid_request(data: Any) -> tuple[int | str, str] | None:
+    """The id and what is wrong, for a message with an id that is neither a request nor a
+    response (JSON-RPC 2.0, "Request object"); None for anything else."""
+    if not isinstance(data, dict):
+        return None
+    msg_id = data.get("id")
+    if isinstance(msg_id, bool) or not isinstance(msg_id, int | str):
+        return None  # a notification, or an id nothing can be answered to
+    if "result" in data or "error" in data:
+        return None  # a response of the client
+    if data.get("jsonrpc") != "2.0":
+        return msg_id, 'invalid request: "jsonrpc" must be "2.0"'
+    if "method" not in data:
+        return msg_id, "invalid request: no method"
+    if not isinstance(data["method"], str):
+        return msg_id, "invalid request: the method is not a string"
+    return None
 
 
 def _validation_errors(error: BaseException | None) -> str:
