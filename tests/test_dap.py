@@ -383,10 +383,13 @@ def frame(message: dict[str, Any]) -> bytes:
 
 
 def test_a_message_nested_too_deep_is_refused_and_the_session_goes_on(dap: DapClient) -> None:
+    # Python 3.13's json reads 5,000 levels (then it is no object); older ones give up sooner.
     deep = b"[" * 5000 + b"]" * 5000
     dap.send_raw(b"Content-Length: %d\r\n\r\n" % len(deep) + deep)
     said = dap.event("output")["body"]
-    assert said["category"] == "stderr" and "nested too deep" in said["output"]
+    assert said["category"] == "stderr"
+    assert said["output"].startswith("fanuc-macro-dap: a message could not be read: ")
+    assert "nested too deep" in said["output"] or "not a JSON object" in said["output"]
     dap.start({"program": str(SEEDS / "o4009_external_m50x3.nc"), "stopOnEntry": True})
     assert dap.stopped()["reason"] == "entry"
     assert dap.proc.poll() is None
