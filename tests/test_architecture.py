@@ -13,7 +13,7 @@ import pytest
 ROOT = Path(__file__).resolve().parents[1]
 PACKAGE = ROOT / "server" / "fanuc_macro"
 
-BASE = {"cancel", "diagnostics", "lazy_regex", "program_files"}
+BASE = {"cancel", "database", "diagnostics", "lazy_regex", "program_files"}
 SYNTAX = BASE | {"syntax", "line_maps", "per_line"}
 CONFIG = SYNTAX | {"config"}
 PROGRAM = CONFIG | {"program"}
@@ -30,6 +30,7 @@ FRONT_END = {
     "config",
     "diagnostics",
     "cancel",
+    "database",
     "code_cache",
     "program_files",
     "__version__",
@@ -38,6 +39,7 @@ FRONT_END = {
 # What each module or folder may import from the package (ARCHITECTURE.md, "Code map").
 ALLOWED: dict[str, set[str]] = {
     "cancel": set(),
+    "database": {"cancel"},
     "code_cache": {"__version__"},
     "diagnostics": set(),
     "lazy_regex": set(),

@@ -1,0 +1,124 @@
+"""The analysis database: the one owner of every value derived from the documents.
+
+Parsed and compiled lines, line maps, what rules keep between edits and interning tables all
+live in a :class:`Database`, in tables named by :class:`TableKey`. The modules that compute
+those values declare their keys (and their ``PerLine`` and ``LineMap`` queries) at module
+level; the storage is the current database's. A workspace owns one database and runs its
+analyses inside :meth:`Database.active`; closing a document frees what the per-document
+tables held for it. Code outside any workspace (a script calling the parser) uses a process
+default database.
+
+The active database is a :class:`contextvars.ContextVar`: a thread started inside
+:meth:`Database.active` does not inherit it (it sees the default), while
+``contextvars.copy_context().run`` does. This module is the only one of the package that holds
+module-level mutable state: the context variable and the default database.
+"""
+
+from __future__ import annotations
+
+import threading
+from collections.abc import Iterator
+from contextlib import contextmanager
+from contextvars import ContextVar
+from dataclasses import dataclass
+from typing import Any, Generic, TypeVar
+
+K = TypeVar("K")
+V = TypeVar("V")
+
+
+@dataclass(frozen=True, eq=False)
+class TableKey(Generic[K, V]):
+    """The name of a table of every database, declared once at module level by the module
+    that fills it, e.g. ``CODES: TableKey[str, Codes] = TableKey("evaluator.codes")``.
+
+    Keys compare by identity (a declaration is one object; hashing it costs what an ``id``
+    costs). ``per_document``: the table's keys are document URIs, and
+    :meth:`Database.close_document` drops the document's entry.
+    """
+
+    name: str
+    per_document: bool = False
+
+    def __repr__(self) -> str:
+        return f"TableKey({self.name!r})"
+
+
+class _Tables(dict[TableKey[Any, Any], dict[Any, Any]]):
+    """A database's tables by key; a missing one is made on first use (a hit stays in C)."""
+
+    __slots__ = ("_lock",)
+
+    def __init__(self) -> None:
+        super().__init__()
+        self._lock = threading.Lock()
+
+    def __missing__(self, key: TableKey[Any, Any]) -> dict[Any, Any]:
+        with self._lock:  # two threads asking at once get the same table
+            return self.setdefault(key, {})
+
+
+class Database:
+    """Every derived value of one workspace (or of the process, for the default database).
+
+    Tables are plain dicts, made on first use; the code that fills one keeps its own order
+    and limits (a dict's single operations are atomic; a compound update takes its own
+    lock).
+    """
+
+    __slots__ = ("_tables", "name")
+
+    def __init__(self, name: str = "workspace") -> None:
+        self.name = name
+        self._tables = _Tables()
+
+    def __repr__(self) -> str:
+        return f"<Database {self.name}: {len(self._tables)} tables>"
+
+    def table(self, key: TableKey[K, V]) -> dict[K, V]:
+        """The table ``key`` of this database, made empty on first use."""
+        table: dict[K, V] = self._tables[key]
+        return table
+
+    @contextmanager
+    def active(self) -> Iterator[Database]:
+        """Make this the current database of this thread (or context) until the block ends.
+        Blocks nest: the database active before is active again after."""
+        token = _active.set(self)
+        try:
+            yield self
+        finally:
+            _active.reset(token)
+
+    def close_document(self, uri: str) -> None:
+        """Free what every per-document table holds for ``uri``."""
+        for key, table in list(self._tables.items()):
+            if key.per_document:
+                table.pop(uri, None)
+
+    def forget(self) -> None:
+        """Drop every table (tests, memory pressure): values are computed again when asked."""
+        self._tables.clear()
+
+    def tables(self) -> dict[str, int]:
+        """How many entries each table holds, by its name (for tests and memory reports)."""
+        return {key.name: len(table) for key, table in list(self._tables.items())}
+
+
+# The database of code running outside any workspace (the command line's single documents,
+# scripts calling the parser): its tables live as long as the process.
+_DEFAULT = Database("default")
+_active: ContextVar[Database] = ContextVar("fanuc_macro.database", default=_DEFAULT)
+
+
+def current() -> Database:
+    """The active database (:meth:`Database.active`), else the process default."""
+    return _active.get()
+
+
+def default() -> Database:
+    """The process default database (the one :func:`current` gives outside ``active``)."""
+    return _DEFAULT
+
+
+__all__ = ["Database", "TableKey", "current", "default"]
