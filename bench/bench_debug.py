@@ -28,7 +28,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
 from dap_client import DapClient
 from fanuc_macro.analysis import analyse
 from fanuc_macro.config import Config
-from fanuc_macro.ide.debugger import Ended, Listener, Output, Session, Stop, read_launch
+from fanuc_macro.debugger import Ended, Listener, Output, Session, Stop, read_launch
 
 
 def program(blocks: int) -> str:

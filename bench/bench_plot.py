@@ -42,7 +42,7 @@ CLI_LIMITS = ["--max-blocks", "1000000", "--max-file-size", "50000000", "--time-
 
 def drum_program() -> str:
     """Seed 003's groove cut by tool T1: 9 layers of 0.8 mm, 111 cuts of 0.5 mm a layer."""
-    from fanuc_macro.ide.drum_groove_generator import build_drum_groove
+    from fanuc_macro.generators.drum_groove_generator import build_drum_groove
 
     return build_drum_groove(None, 12.0, layers=9, cuts_per_layer=111).text
 

@@ -22,9 +22,12 @@ THREADS = EVALUATOR | {"threads"}
 RULES = THREADS | {"rules"}
 ANALYSIS = RULES | {"analysis"}
 WORKSPACE = ANALYSIS | {"workspace", "rules_doc"}
-IDE = WORKSPACE | {"ide"}
+GENERATORS = WORKSPACE | {"generators"}
+IDE = GENERATORS | {"ide"}
 FRONT_END = {
     "ide",
+    "generators",
+    "debugger",
     "workspace",
     "analysis",
     "config",
@@ -55,7 +58,9 @@ ALLOWED: dict[str, set[str]] = {
     "analysis": RULES,
     "workspace": ANALYSIS,
     "rules_doc": ANALYSIS,
-    "ide": WORKSPACE,
+    "generators": WORKSPACE,
+    "ide": GENERATORS,
+    "debugger": IDE,
     "lsp": FRONT_END,
     "cli": FRONT_END,
     "dap": FRONT_END,

@@ -12,7 +12,7 @@ from pathlib import Path
 
 import pytest
 
-from fanuc_macro.ide.drum_groove_generator import DRUM_PROFILE
+from fanuc_macro.generators.drum_groove_generator import DRUM_PROFILE
 from fanuc_macro.threads.profile import fit_crown, least_squares
 
 ROOT = Path(__file__).resolve().parents[1]

@@ -798,13 +798,13 @@ async def test_thread_module_command(client: LanguageClient) -> None:
         return result
 
     good = await run({"designation": "M50x3-5g6g", "length": 40.0, "internal": None})
-    if importlib.util.find_spec("fanuc_macro.ide.thread_generator") is None:
+    if importlib.util.find_spec("fanuc_macro.generators.thread_generator") is None:
         assert "no thread module generator" in good["error"]
     else:
         assert isinstance(good.get("text"), str) and good["text"]
     bad = await run({"designation": "M50x3-5g6g", "length": -1, "internal": False})
     assert "length" in bad["error"]
-    if importlib.util.find_spec("fanuc_macro.ide.thread_generator") is not None:
+    if importlib.util.find_spec("fanuc_macro.generators.thread_generator") is not None:
         assert good["text"].startswith("%\nO4009")
         wrong = await run({"designation": "M50x3-9z", "length": 40.0, "internal": None})
         assert "tolerance position z is not" in wrong["error"]  # the generator's ValueError
@@ -830,7 +830,7 @@ async def test_thread_module_command(client: LanguageClient) -> None:
         for refused in (wrong, undecided, conflict):
             assert not re.search(r"internal=|\bNone\b|\bTrue\b|'[^'\s]+'", refused["error"])
         # The module's options: flank infeed, taper; multi-start and hand from the designation.
-        from fanuc_macro.ide.thread_generator import generate_module
+        from fanuc_macro.generators.thread_generator import generate_module
 
         spec = {"designation": "M24xPh4P2-6g-LH", "length": 30.0, "internal": None}
         options = await run({**spec, "infeed": "left", "taper": 0.0625})

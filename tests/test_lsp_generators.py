@@ -11,7 +11,7 @@ from lsprotocol import types
 from pytest_lsp import LanguageClient
 
 from fanuc_macro.analysis import analyse
-from fanuc_macro.ide.generator_requests import arc_thread_request, drum_groove_request
+from fanuc_macro.generators.generator_requests import arc_thread_request, drum_groove_request
 from test_lsp import CAPABILITIES, WAIT, client, start
 
 __all__ = ["client"]  # the fixture, shared with test_lsp.py

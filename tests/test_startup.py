@@ -33,10 +33,10 @@ NOT_FOR_CHECK = (
     "cattrs",
     "regex",
     "fanuc_macro.lsp",
-    "fanuc_macro.ide.thread_generator",
-    "fanuc_macro.ide.arc_thread_generator",
-    "fanuc_macro.ide.drum_groove_generator",
-    "fanuc_macro.ide.thread_snippet",
+    "fanuc_macro.generators.thread_generator",
+    "fanuc_macro.generators.arc_thread_generator",
+    "fanuc_macro.generators.drum_groove_generator",
+    "fanuc_macro.generators.thread_snippet",
 )
 
 
@@ -82,18 +82,18 @@ def test_the_thread_command_still_loads_its_generator(tmp_path: Path) -> None:
         "    status = main(['thread', 'M50x3-5g6g', '--length', '30'])\n"
         "assert status == 0, status\n"
     )
-    assert "fanuc_macro.ide.thread_generator" in loaded
+    assert "fanuc_macro.generators.thread_generator" in loaded
 
 
 def test_the_language_server_starts_without_the_thread_generator() -> None:
     loaded = loaded_after("import fanuc_macro.lsp.server\n")
     assert "pygls" in loaded and "fanuc_macro.lsp.engine" in loaded
-    assert "fanuc_macro.ide.thread_generator" not in loaded
-    assert "fanuc_macro.ide.thread_snippet" not in loaded
+    assert "fanuc_macro.generators.thread_generator" not in loaded
+    assert "fanuc_macro.generators.thread_snippet" not in loaded
     # The arc-thread and drum-groove commands load their requests and generators when run.
-    assert "fanuc_macro.ide.generator_requests" not in loaded
-    assert "fanuc_macro.ide.arc_thread_generator" not in loaded
-    assert "fanuc_macro.ide.drum_groove_generator" not in loaded
+    assert "fanuc_macro.generators.generator_requests" not in loaded
+    assert "fanuc_macro.generators.arc_thread_generator" not in loaded
+    assert "fanuc_macro.generators.drum_groove_generator" not in loaded
     assert "regex" not in loaded
 
 

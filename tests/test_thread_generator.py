@@ -21,14 +21,14 @@ from fanuc_macro import cli
 from fanuc_macro.analysis import Analysis, analyse
 from fanuc_macro.cli.thread import add_thread_command
 from fanuc_macro.evaluator import Motion
-from fanuc_macro.ide.arc_thread_generator import build_arc_thread, generate_arc_thread
-from fanuc_macro.ide.drum_groove_generator import (
+from fanuc_macro.generators.arc_thread_generator import build_arc_thread, generate_arc_thread
+from fanuc_macro.generators.drum_groove_generator import (
     DRUM_PROFILE,
     build_drum_groove,
     generate_drum_groove,
 )
-from fanuc_macro.ide.thread_generator import build_module, generate_module
-from fanuc_macro.ide.thread_snippet import module_from_document
+from fanuc_macro.generators.thread_generator import build_module, generate_module
+from fanuc_macro.generators.thread_snippet import module_from_document
 from fanuc_macro.syntax.parser import parse_text
 from fanuc_macro.threads import parse_designation, plan_from_tolerances, tolerances
 from fanuc_macro.threads.identify import thread_words
@@ -626,7 +626,7 @@ def test_cli_thread_help_says_what_happens() -> None:
 
 
 def test_drum_profile_fits_the_papers_crown_radius() -> None:
-    from fanuc_macro.ide.drum_groove_generator import DRUM_PROFILE
+    from fanuc_macro.generators.drum_groove_generator import DRUM_PROFILE
     from fanuc_macro.threads.profile import fit_crown
 
     crown = fit_crown(DRUM_PROFILE)

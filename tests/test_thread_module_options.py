@@ -21,7 +21,12 @@ import pytest
 from fanuc_macro.analysis import analyse
 from fanuc_macro.cli.thread import INFEED_CHOICES
 from fanuc_macro.evaluator import Motion
-from fanuc_macro.ide.thread_generator import INFEEDS, ThreadModule, build_module, generate_module
+from fanuc_macro.generators.thread_generator import (
+    INFEEDS,
+    ThreadModule,
+    build_module,
+    generate_module,
+)
 from fanuc_macro.rules.threading import EPS
 
 ROOT = Path(__file__).resolve().parent.parent

@@ -1,5 +1,5 @@
 """``fanuc-macro-dap``: a debug adapter for FANUC Macro B programs, speaking the Debug Adapter
-Protocol over stdio. It converts requests to the session of :mod:`fanuc_macro.ide.debugger`
+Protocol over stdio. It converts requests to the session of :mod:`fanuc_macro.debugger`
 and the session's stops, output and end to events; it holds no debugging logic of its own.
 
 One thread reads requests; the run goes in the session's thread, whose events are written as
@@ -19,7 +19,7 @@ from typing import IO, Any
 
 from .. import __version__
 from ..config import Config
-from ..ide.debugger import (
+from ..debugger import (
     EXCEPTION_FILTERS,
     Breakpoint,
     DebugError,

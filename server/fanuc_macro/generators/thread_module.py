@@ -19,7 +19,7 @@ __all__ = [
     "load_generator",
 ]
 
-GENERATOR_MODULE = "fanuc_macro.ide.thread_generator"
+GENERATOR_MODULE = "fanuc_macro.generators.thread_generator"
 
 # generate_module(designation, length in mm, internal or None, *, infeed=..., taper=...)
 # -> the module's text

@@ -36,12 +36,12 @@ from ..evaluator.machine import (
 )
 from ..evaluator.run import entry_programs
 from ..evaluator.values import MacroAlarm, Unknown, Value
+from ..ide.values import Precision
 from ..program.knowledge import code_name, modal_group
 from ..program.variables import ARGUMENT_VARIABLES, classify
 from ..syntax.parser import default_parser
 from ..syntax.tree import Assign, IfGoto, Print, Var
 from ..workspace import Workspace, is_program_file
-from .values import Precision
 
 # The exception breakpoints a user can turn on and off (DAP exceptionBreakpointFilters).
 ALARM_FILTER = "alarm"  # #3000 and the PS alarms the evaluator raises
