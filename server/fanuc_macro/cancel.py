@@ -96,7 +96,7 @@ def raise_if_cancelled(token: CancelToken | None) -> None:
         raise Cancelled(token.stage, token.done, token.total)
 
 
-__all__ = [
+__all__ = (
     "CHECKING",
     "COMPILING",
     "READING",
@@ -107,4 +107,4 @@ __all__ = [
     "Cancelled",
     "Stage",
     "raise_if_cancelled",
-]
+)

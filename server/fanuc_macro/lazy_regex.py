@@ -7,7 +7,7 @@ import re
 import sys
 from collections.abc import Iterator
 
-__all__ = ["LazyPattern"]
+__all__ = ("LazyPattern",)
 
 
 class LazyPattern:

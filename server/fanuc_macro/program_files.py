@@ -272,7 +272,7 @@ def find_programs(paths: Iterable[str], exclude: Sequence[str] = ()) -> Found:
     return found
 
 
-__all__ = [
+__all__ = (
     "PROGRAM_SUFFIXES",
     "SKIPPED_FOLDERS",
     "SNIFFED_SUFFIXES",
@@ -287,4 +287,4 @@ __all__ = [
     "is_tool_folder",
     "looks_like_program",
     "walk_folder",
-]
+)

@@ -9,7 +9,9 @@ that the shared reference (macro-b.md) marks as unverified are worded with that 
 from __future__ import annotations
 
 import re
+from collections.abc import Mapping
 from dataclasses import dataclass
+from types import MappingProxyType
 
 # ---- G and M codes ---------------------------------------------------------------------------
 
@@ -40,7 +42,7 @@ def _both(title: str, text: str = "", modal: str = "") -> tuple[Meaning, Meaning
     return m, m
 
 
-_G: list[tuple[str, Meaning | None, Meaning | None]] = [
+_G: tuple[tuple[str, Meaning | None, Meaning | None], ...] = (
     ("G00", *_both(
         "Rapid positioning",
         "Moves to the end point at rapid traverse. Depending on a parameter the axes move "
@@ -336,9 +338,9 @@ _G: list[tuple[str, Meaning | None, Meaning | None]] = [
      Meaning("Feed per revolution", "F is mm/rev: the lathe's power-on default; for threading "
              "F is the lead.", "modal, group 05"),
      Meaning("Canned cycle: return to R point level", "", "modal, group 10")),
-]  # fmt: skip
+)  # fmt: skip
 
-_M: list[tuple[str, str, str]] = [
+_M: tuple[tuple[str, str, str], ...] = (
     (
         "M00",
         "Program stop",
@@ -386,12 +388,14 @@ _M: list[tuple[str, str, str]] = [
         "Returns to the block after the call; `M99 P<n>` returns to Nn of the caller instead. In a "
         "main program M99 restarts it from the head (an endless repetition).",
     ),
-]
+)
 
-G_CODES: dict[str, CodeInfo] = {code: CodeInfo(code, lathe, mill) for code, lathe, mill in _G}
-M_CODES: dict[str, CodeInfo] = {
-    code: CodeInfo(code, m, m) for code, m in ((c, Meaning(t, x)) for c, t, x in _M)
-}
+G_CODES: Mapping[str, CodeInfo] = MappingProxyType(
+    {code: CodeInfo(code, lathe, mill) for code, lathe, mill in _G}
+)
+M_CODES: Mapping[str, CodeInfo] = MappingProxyType(
+    {code: CodeInfo(code, m, m) for code, m in ((c, Meaning(t, x)) for c, t, x in _M)}
+)
 
 _BUILDER_M = (
     "Not a standard FANUC code: M codes other than M00-M02, M30, M98 and M99 are defined by "
@@ -491,7 +495,7 @@ class FunctionInfo:
 
 
 _DEG = "Angles are in degrees."
-_FUNCTIONS: list[FunctionInfo] = [
+_FUNCTIONS: tuple[FunctionInfo, ...] = (
     FunctionInfo("SIN", "SIN[a]", "Sine", f"{_DEG} `SIN[30]` = 0.5.", "SIN[$1]"),
     FunctionInfo("COS", "COS[a]", "Cosine", f"{_DEG} `COS[60]` = 0.5.", "COS[$1]"),
     FunctionInfo(
@@ -607,8 +611,8 @@ _FUNCTIONS: list[FunctionInfo] = [
         "For PMC signals. A negative argument stops with alarm PS0119.",
         "BCD[$1]",
     ),
-]
-FUNCTIONS: dict[str, FunctionInfo] = {f.name: f for f in _FUNCTIONS}
+)
+FUNCTIONS: Mapping[str, FunctionInfo] = MappingProxyType({f.name: f for f in _FUNCTIONS})
 
 
 def function_markdown(name: str) -> str | None:
@@ -626,70 +630,76 @@ _VACANT_NOTE = (
     "(`#1 EQ #0` is true only when #1 is vacant)."
 )
 
-KEYWORDS: dict[str, tuple[str, str]] = {
-    "IF": (
-        "Conditional",
-        "`IF [cond] GOTO n` jumps when the condition is true; `IF [cond] "
-        "THEN <one macro statement>` runs one assignment. An NC statement after THEN is not "
-        "FANUC (Haas).",
-    ),
-    "THEN": ("Conditional statement", "`IF [cond] THEN #1=...`: exactly one macro statement."),
-    "GOTO": (
-        "Branch",
-        "`GOTO n` jumps to the block Nn of the same program. The control "
-        "searches forward from here, then from the program head, so backward jumps are "
-        "slower. n may be an expression (`GOTO#10`); a missing or out-of-range n stops "
-        "with alarm PS0128 (ILLEGAL MACRO SEQUENCE NUMBER).",
-    ),
-    "WHILE": (
-        "Loop",
-        "`WHILE [cond] DOm` ... `ENDm` repeats the blocks while the condition is "
-        "true; m is 1, 2 or 3, loops nest at most three deep and must not cross. Jumping "
-        "out of a loop is allowed, into one is not.",
-    ),
-    "WH": ("Loop (abbreviation of WHILE)", "Accepted on input by FANUC controls."),
-    "DO": (
-        "Loop start",
-        "`DOm` without WHILE loops forever. m is 1-3 (alarm PS0126 "
-        "otherwise); a DO without its END stops with alarm PS0124.",
-    ),
-    "END": (
-        "Loop end",
-        "`ENDm` goes back to the WHILE of the same number; the number must "
-        "match the open DO (alarm PS0126).",
-    ),
-    "EQ": ("Equal", _VACANT_NOTE),
-    "NE": ("Not equal", _VACANT_NOTE),
-    "GT": ("Greater than", _VACANT_NOTE),
-    "GE": ("Greater than or equal", _VACANT_NOTE),
-    "LT": ("Less than", _VACANT_NOTE),
-    "LE": ("Less than or equal", _VACANT_NOTE),
-    "AND": (
-        "And",
-        "Between conditions in IF/WHILE: logical (`[[c1] AND [c2]]`, compound "
-        "conditions need a recent control). In an expression: bitwise on the integer "
-        "values, with the priority of `*`.",
-    ),
-    "OR": (
-        "Or",
-        "Logical between conditions; bitwise on integers in an expression, with the "
-        "priority of `+`.",
-    ),
-    "XOR": ("Exclusive or", "Logical between conditions; bitwise on integers in an expression."),
-    "MOD": (
-        "Remainder",
-        "`a MOD b` on the integer parts (30i / 0i-F; not on 16i). `MOD 0` stops with alarm PS0112.",
-    ),
-    "DPRNT": (
-        "Print data",
-        "`DPRNT[text#100[53]]` sends text and variables (3 integer and 5 "
-        "decimal digits here) to the output device; `*` prints a space. Open the device "
-        "with POPEN first.",
-    ),
-    "BPRNT": ("Print binary data", "Like DPRNT with variables in binary."),
-    "POPEN": ("Open output device", "Before DPRNT/BPRNT."),
-    "PCLOS": ("Close output device", "After DPRNT/BPRNT."),
-}
+KEYWORDS: Mapping[str, tuple[str, str]] = MappingProxyType(
+    {
+        "IF": (
+            "Conditional",
+            "`IF [cond] GOTO n` jumps when the condition is true; `IF [cond] "
+            "THEN <one macro statement>` runs one assignment. An NC statement after THEN is not "
+            "FANUC (Haas).",
+        ),
+        "THEN": ("Conditional statement", "`IF [cond] THEN #1=...`: exactly one macro statement."),
+        "GOTO": (
+            "Branch",
+            "`GOTO n` jumps to the block Nn of the same program. The control "
+            "searches forward from here, then from the program head, so backward jumps are "
+            "slower. n may be an expression (`GOTO#10`); a missing or out-of-range n stops "
+            "with alarm PS0128 (ILLEGAL MACRO SEQUENCE NUMBER).",
+        ),
+        "WHILE": (
+            "Loop",
+            "`WHILE [cond] DOm` ... `ENDm` repeats the blocks while the condition is "
+            "true; m is 1, 2 or 3, loops nest at most three deep and must not cross. Jumping "
+            "out of a loop is allowed, into one is not.",
+        ),
+        "WH": ("Loop (abbreviation of WHILE)", "Accepted on input by FANUC controls."),
+        "DO": (
+            "Loop start",
+            "`DOm` without WHILE loops forever. m is 1-3 (alarm PS0126 "
+            "otherwise); a DO without its END stops with alarm PS0124.",
+        ),
+        "END": (
+            "Loop end",
+            "`ENDm` goes back to the WHILE of the same number; the number must "
+            "match the open DO (alarm PS0126).",
+        ),
+        "EQ": ("Equal", _VACANT_NOTE),
+        "NE": ("Not equal", _VACANT_NOTE),
+        "GT": ("Greater than", _VACANT_NOTE),
+        "GE": ("Greater than or equal", _VACANT_NOTE),
+        "LT": ("Less than", _VACANT_NOTE),
+        "LE": ("Less than or equal", _VACANT_NOTE),
+        "AND": (
+            "And",
+            "Between conditions in IF/WHILE: logical (`[[c1] AND [c2]]`, compound "
+            "conditions need a recent control). In an expression: bitwise on the integer "
+            "values, with the priority of `*`.",
+        ),
+        "OR": (
+            "Or",
+            "Logical between conditions; bitwise on integers in an expression, with the "
+            "priority of `+`.",
+        ),
+        "XOR": (
+            "Exclusive or",
+            "Logical between conditions; bitwise on integers in an expression.",
+        ),
+        "MOD": (
+            "Remainder",
+            "`a MOD b` on the integer parts (30i / 0i-F; not on 16i). `MOD 0` stops with alarm "
+            "PS0112.",
+        ),
+        "DPRNT": (
+            "Print data",
+            "`DPRNT[text#100[53]]` sends text and variables (3 integer and 5 "
+            "decimal digits here) to the output device; `*` prints a space. Open the device "
+            "with POPEN first.",
+        ),
+        "BPRNT": ("Print binary data", "Like DPRNT with variables in binary."),
+        "POPEN": ("Open output device", "Before DPRNT/BPRNT."),
+        "PCLOS": ("Close output device", "After DPRNT/BPRNT."),
+    }
+)
 
 
 def keyword_markdown(word: str) -> str | None:
@@ -703,46 +713,48 @@ def keyword_markdown(word: str) -> str | None:
 # ---- addresses -------------------------------------------------------------------------------
 
 # letter: (lathe, mill); one text when the same.
-_ADDRESSES: dict[str, tuple[str, str]] = {
-    "A": ("A axis (rotary about X) or chamfer angle", "A axis (rotary about X)"),
-    "B": ("B axis or second auxiliary function", "B axis (rotary about Y)"),
-    "C": ("C axis (spindle as an axis) or chamfer size", "C axis (rotary about Z)"),
-    "D": ("Depth in some cycles", "Cutter radius offset number (G41/G42)"),
-    "E": ("Thread lead, precise", "Thread lead, precise"),
-    "F": (
-        "Feed (mm/rev in G99, mm/min in G98); the lead in threading",
-        "Feed (mm/min in G94, mm/rev in G95)",
-    ),
-    "G": ("Preparatory function", "Preparatory function"),
-    "H": ("Incremental C axis (some machines)", "Tool length offset number (G43/G44)"),
-    "I": (
-        "Arc centre X offset (radius) / cycle parameter",
-        "Arc centre X offset / cycle parameter",
-    ),
-    "J": ("Arc centre Y offset", "Arc centre Y offset"),
-    "K": (
-        "Arc centre Z offset / cycle parameter",
-        "Arc centre Z offset / repeat count of drilling cycles",
-    ),
-    "L": ("Repeat count (M98, G65)", "Repeat count (M98, G65)"),
-    "M": ("Miscellaneous function", "Miscellaneous function"),
-    "N": ("Sequence number (GOTO target)", "Sequence number (GOTO target)"),
-    "O": ("Program number", "Program number"),
-    "P": (
-        "Program number (M98, G65), dwell in ms (G04), first block of a cycle shape",
-        "Program number (M98, G65), dwell in ms (G04, G82)",
-    ),
-    "Q": ("Last block of a cycle shape / cycle depth", "Peck depth (G73, G83) / shift (G76)"),
-    "R": ("Arc radius, taper of a cycle, retract", "Arc radius, R point of a drilling cycle"),
-    "S": ("Spindle speed (rpm in G97, m/min in G96); maximum speed with G50", "Spindle speed"),
-    "T": ("Tool and offset: T0101 = tool 1, offset 1; T0100 cancels the offset", "Tool number"),
-    "U": ("Incremental X (diameter)", "U axis"),
-    "V": ("Incremental Y", "V axis"),
-    "W": ("Incremental Z", "W axis"),
-    "X": ("X position, a diameter", "X position"),
-    "Y": ("Y position", "Y position"),
-    "Z": ("Z position", "Z position"),
-}
+_ADDRESSES: Mapping[str, tuple[str, str]] = MappingProxyType(
+    {
+        "A": ("A axis (rotary about X) or chamfer angle", "A axis (rotary about X)"),
+        "B": ("B axis or second auxiliary function", "B axis (rotary about Y)"),
+        "C": ("C axis (spindle as an axis) or chamfer size", "C axis (rotary about Z)"),
+        "D": ("Depth in some cycles", "Cutter radius offset number (G41/G42)"),
+        "E": ("Thread lead, precise", "Thread lead, precise"),
+        "F": (
+            "Feed (mm/rev in G99, mm/min in G98); the lead in threading",
+            "Feed (mm/min in G94, mm/rev in G95)",
+        ),
+        "G": ("Preparatory function", "Preparatory function"),
+        "H": ("Incremental C axis (some machines)", "Tool length offset number (G43/G44)"),
+        "I": (
+            "Arc centre X offset (radius) / cycle parameter",
+            "Arc centre X offset / cycle parameter",
+        ),
+        "J": ("Arc centre Y offset", "Arc centre Y offset"),
+        "K": (
+            "Arc centre Z offset / cycle parameter",
+            "Arc centre Z offset / repeat count of drilling cycles",
+        ),
+        "L": ("Repeat count (M98, G65)", "Repeat count (M98, G65)"),
+        "M": ("Miscellaneous function", "Miscellaneous function"),
+        "N": ("Sequence number (GOTO target)", "Sequence number (GOTO target)"),
+        "O": ("Program number", "Program number"),
+        "P": (
+            "Program number (M98, G65), dwell in ms (G04), first block of a cycle shape",
+            "Program number (M98, G65), dwell in ms (G04, G82)",
+        ),
+        "Q": ("Last block of a cycle shape / cycle depth", "Peck depth (G73, G83) / shift (G76)"),
+        "R": ("Arc radius, taper of a cycle, retract", "Arc radius, R point of a drilling cycle"),
+        "S": ("Spindle speed (rpm in G97, m/min in G96); maximum speed with G50", "Spindle speed"),
+        "T": ("Tool and offset: T0101 = tool 1, offset 1; T0100 cancels the offset", "Tool number"),
+        "U": ("Incremental X (diameter)", "U axis"),
+        "V": ("Incremental Y", "V axis"),
+        "W": ("Incremental Z", "W axis"),
+        "X": ("X position, a diameter", "X position"),
+        "Y": ("Y position", "Y position"),
+        "Z": ("Z position", "Z position"),
+    }
+)
 
 
 def address_markdown(letter: str, lathe: bool) -> str | None:

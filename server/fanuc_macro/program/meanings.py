@@ -12,7 +12,9 @@ Two sources, in this order:
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass
+from types import MappingProxyType
 
 from ..line_maps import LineMap
 from ..syntax.tree import Assign, Document, ParsedLine
@@ -21,7 +23,7 @@ from .papers import DENG_MOLYBDENUM, REN_ARC_THREAD
 
 # Role -> words that name it in a comment. The first role with a matching word wins, so the
 # more specific come first: "刀尖圆弧半径" (nose radius) holds "圆弧半径" (arc radius).
-ROLE_WORDS: dict[str, tuple[str, ...]] = {
+ROLE_WORDS: Mapping[str, tuple[str, ...]] = MappingProxyType({
     "nose_radius": ("NOSE RADIUS", "TOOL RADIUS", "刀尖圆弧半径", "刀尖半径", "刀具半径"),
     "groove_radius": ("GROOVE RADIUS", "圆弧槽的半径", "圆弧半径", "槽半径"),
     "thread_height": ("THREAD HEIGHT", "THREAD DEPTH", "牙高", "牙深"),
@@ -32,70 +34,88 @@ ROLE_WORDS: dict[str, tuple[str, ...]] = {
                          "螺纹外径", "大径"),
     "pitch": ("PITCH", "LEAD", "螺距", "导程"),
     "thread_length": ("THREAD LENGTH", "标注长度", "螺纹长度"),
-}  # fmt: skip
+})  # fmt: skip
 
 # Known modules' parameter tables: program number -> {variable: role}.
-KNOWN_MODULES: dict[int, dict[int, str]] = {
-    3331: {3: "nose_radius", 4: "thread_height", 5: "ap_max", 6: "ap_min"},
-    3330: {3: "nose_radius", 4: "thread_height", 5: "ap_max", 6: "ap_min", 11: "minor_diameter"},
-    3: {1: "nominal_diameter", 3: "pitch", 4: "groove_radius", 18: "nose_radius"},
-    4: {1: "nominal_diameter", 3: "pitch", 4: "groove_radius", 18: "nose_radius"},
-}
+_ARC_THREAD_ROLES: Mapping[int, str] = MappingProxyType(
+    {1: "nominal_diameter", 3: "pitch", 4: "groove_radius", 18: "nose_radius"}
+)
+KNOWN_MODULES: Mapping[int, Mapping[int, str]] = MappingProxyType(
+    {
+        3331: MappingProxyType({3: "nose_radius", 4: "thread_height", 5: "ap_max", 6: "ap_min"}),
+        3330: MappingProxyType(
+            {3: "nose_radius", 4: "thread_height", 5: "ap_max", 6: "ap_min", 11: "minor_diameter"}
+        ),
+        3: _ARC_THREAD_ROLES,
+        4: _ARC_THREAD_ROLES,
+    }
+)
+_NO_ROLES: Mapping[int, str] = MappingProxyType({})
 # The seed papers' parameter tables (paper 000, tables 2 and 3; paper 002, section 2.2).
-_SYMMETRIC_SUB = {
-    1: "δ2, run-out (slow-down) length = P",
-    2: "δ1, run-in (speed-up) length = 2P + P + FIX[L/P]·P − L",
-    3: "r, tool nose radius (theoretical: P/(8·sin60°) external, P/(16·sin60°) internal)",
-    4: "h, thread height, radius: 7H/8 − r + es/2 + Td2/4 (internal 6H/8 − r + EI/2 + TD2/4)",
-    5: "ap(max), first depth of cut, radius: coefficient·√h",
-    6: "ap(min), minimum depth of cut and finish allowance, radius: coefficient·√ap(max)",
-    7: "n, rough pass counter",
-    8: "ap(n), depth of pass n, radius: ap(max)·(√n − √(n−1))",
-    9: "Σap(n), total depth after pass n, radius",
-    10: "u, side offset of the pass: (h + r − ap(min) − Σap(n))·tan30° − r·tan30°",
-    11: "D1, minor diameter of the internal thread: D − 2·(5/8)·sin60°·P",
-    12: "n', spring (idle) passes at full depth",
-}
-_SYMMETRIC_MAIN = {
-    100: "d / D, nominal diameter of the thread",
-    101: "P, pitch (at most 2/3 of the insert width)",
-    102: "L, thread length, cut from right to left",
-    103: "es / EI, fundamental deviation, entered as a magnitude (GB/T 197 = ISO 965-1)",
-    104: "Td2 / TD2, pitch-diameter tolerance (GB/T 197 = ISO 965-1)",
-}
-_ARC_THREAD = {
-    1: "thread outer diameter",
-    2: "thread length including the run-out δ2",
-    3: "pitch (lead)",
-    4: "R, radius of the arc groove of this layer",
-    5: "diameter of the groove's centre for this layer",
-    6: "δ1, run-in length (Z of the groove centre)",
-    7: "number of cuts per layer",
-    10: "right edge angle of the sector: ASIN[((#5 − #1)/2)/#4]",
-    11: "tangency correction: ASIN[#18/(#4 − #18)]",
-    12: "Δα, angle between two cuts",
-    13: "M code of the spindle direction (3 for this left-hand thread)",
-    14: "angle of the tool centre tangent to the right edge",
-    15: "angle of the last cut (left edge of the sector)",
-    16: "α, angle of the tool centre of this cut",
-    18: "r, tool nose radius",
-    19: "spindle speed of this layer",
-    20: "tool number",
-    21: "tool offset number",
-    22: "X of the start and retract point of each cut",
-    24: "X of the overall start and return point",
-    26: "Z of the overall start and return point",
-}
+_SYMMETRIC_SUB: Mapping[int, str] = MappingProxyType(
+    {
+        1: "δ2, run-out (slow-down) length = P",
+        2: "δ1, run-in (speed-up) length = 2P + P + FIX[L/P]·P − L",
+        3: "r, tool nose radius (theoretical: P/(8·sin60°) external, P/(16·sin60°) internal)",
+        4: "h, thread height, radius: 7H/8 − r + es/2 + Td2/4 (internal 6H/8 − r + EI/2 + TD2/4)",
+        5: "ap(max), first depth of cut, radius: coefficient·√h",
+        6: "ap(min), minimum depth of cut and finish allowance, radius: coefficient·√ap(max)",
+        7: "n, rough pass counter",
+        8: "ap(n), depth of pass n, radius: ap(max)·(√n − √(n−1))",
+        9: "Σap(n), total depth after pass n, radius",
+        10: "u, side offset of the pass: (h + r − ap(min) − Σap(n))·tan30° − r·tan30°",
+        11: "D1, minor diameter of the internal thread: D − 2·(5/8)·sin60°·P",
+        12: "n', spring (idle) passes at full depth",
+    }
+)
+_SYMMETRIC_MAIN: Mapping[int, str] = MappingProxyType(
+    {
+        100: "d / D, nominal diameter of the thread",
+        101: "P, pitch (at most 2/3 of the insert width)",
+        102: "L, thread length, cut from right to left",
+        103: "es / EI, fundamental deviation, entered as a magnitude (GB/T 197 = ISO 965-1)",
+        104: "Td2 / TD2, pitch-diameter tolerance (GB/T 197 = ISO 965-1)",
+    }
+)
+_ARC_THREAD: Mapping[int, str] = MappingProxyType(
+    {
+        1: "thread outer diameter",
+        2: "thread length including the run-out δ2",
+        3: "pitch (lead)",
+        4: "R, radius of the arc groove of this layer",
+        5: "diameter of the groove's centre for this layer",
+        6: "δ1, run-in length (Z of the groove centre)",
+        7: "number of cuts per layer",
+        10: "right edge angle of the sector: ASIN[((#5 − #1)/2)/#4]",
+        11: "tangency correction: ASIN[#18/(#4 − #18)]",
+        12: "Δα, angle between two cuts",
+        13: "M code of the spindle direction (3 for this left-hand thread)",
+        14: "angle of the tool centre tangent to the right edge",
+        15: "angle of the last cut (left edge of the sector)",
+        16: "α, angle of the tool centre of this cut",
+        18: "r, tool nose radius",
+        19: "spindle speed of this layer",
+        20: "tool number",
+        21: "tool offset number",
+        22: "X of the start and retract point of each cut",
+        24: "X of the overall start and return point",
+        26: "Z of the overall start and return point",
+    }
+)
 _DENG = DENG_MOLYBDENUM.short
 _REN = REN_ARC_THREAD.citation
-PARAMETER_TABLES: dict[int, tuple[str, dict[int, str]]] = {
-    3331: (f"symmetric thread module, external ({_DENG}, table 3)", _SYMMETRIC_SUB),
-    3330: (f"symmetric thread module, internal ({_DENG}, table 3)", _SYMMETRIC_SUB),
-    3: (f"arc thread by the fitting method, roughing layer ({_REN})", _ARC_THREAD),
-    4: (f"arc thread by the fitting method, roughing layer ({_REN})", _ARC_THREAD),
-}
-MAIN_TABLE = (f"main program of the symmetric thread module ({_DENG}, table 2)",
-              _SYMMETRIC_MAIN)  # fmt: skip
+PARAMETER_TABLES: Mapping[int, tuple[str, Mapping[int, str]]] = MappingProxyType(
+    {
+        3331: (f"symmetric thread module, external ({_DENG}, table 3)", _SYMMETRIC_SUB),
+        3330: (f"symmetric thread module, internal ({_DENG}, table 3)", _SYMMETRIC_SUB),
+        3: (f"arc thread by the fitting method, roughing layer ({_REN})", _ARC_THREAD),
+        4: (f"arc thread by the fitting method, roughing layer ({_REN})", _ARC_THREAD),
+    }
+)
+MAIN_TABLE: tuple[str, Mapping[int, str]] = (
+    f"main program of the symmetric thread module ({_DENG}, table 2)",
+    _SYMMETRIC_MAIN,
+)
 
 
 def table_meaning(index: ProgramIndex, program_number: int | None, number: int) -> str | None:
@@ -116,17 +136,19 @@ def table_meaning(index: ProgramIndex, program_number: int | None, number: int) 
 INTERNAL_WORDS = ("INTERNAL", "内螺纹", "内孔")
 EXTERNAL_WORDS = ("EXTERNAL", "外螺纹")
 
-ROLE_TITLES = {
-    "groove_radius": "groove (arc) radius",
-    "nose_radius": "tool nose radius",
-    "thread_height": "thread height (radius)",
-    "ap_max": "first (maximum) depth of cut",
-    "ap_min": "minimum depth of cut / finish allowance",
-    "minor_diameter": "minor diameter",
-    "nominal_diameter": "nominal (major) diameter",
-    "pitch": "pitch",
-    "thread_length": "thread length",
-}
+ROLE_TITLES: Mapping[str, str] = MappingProxyType(
+    {
+        "groove_radius": "groove (arc) radius",
+        "nose_radius": "tool nose radius",
+        "thread_height": "thread height (radius)",
+        "ap_max": "first (maximum) depth of cut",
+        "ap_min": "minimum depth of cut / finish allowance",
+        "minor_diameter": "minor diameter",
+        "nominal_diameter": "nominal (major) diameter",
+        "pitch": "pitch",
+        "thread_length": "thread length",
+    }
+)
 
 
 # Not cached: the line map below asks once per commented assignment of a version, again only
@@ -153,7 +175,7 @@ def variable_roles(doc: Document, index: ProgramIndex) -> dict[tuple[int, int], 
     roles: dict[tuple[int, int], Meaning] = {}
     said_at = _role_lines(doc)
     for program in index.programs:
-        table = KNOWN_MODULES.get(program.number or -1, {})
+        table = KNOWN_MODULES.get(program.number or -1, _NO_ROLES)
         for var, role in table.items():
             roles[(program.first_line, var)] = Meaning(role, -1, f"module {program.display_name}")
         for line, (var, role) in said_at.within(program.first_line, program.end_line):

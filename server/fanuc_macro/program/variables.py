@@ -6,7 +6,9 @@ they are kept here as they are there, and the hover text says "unverified" for t
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass
+from types import MappingProxyType
 
 
 @dataclass(frozen=True, slots=True)
@@ -93,10 +95,10 @@ def exists(number: int) -> bool:
 
 
 # G65 argument letters, specification I: letter -> local variable.
-ARGUMENT_VARIABLES: dict[str, int] = {
+ARGUMENT_VARIABLES: Mapping[str, int] = MappingProxyType({
     "A": 1, "B": 2, "C": 3, "I": 4, "J": 5, "K": 6, "D": 7, "E": 8, "F": 9, "H": 11,
     "M": 13, "Q": 17, "R": 18, "S": 19, "T": 20, "U": 21, "V": 22, "W": 23, "X": 24,
     "Y": 25, "Z": 26,
-}  # fmt: skip
+})  # fmt: skip
 
 FORBIDDEN_ARGUMENTS = frozenset("GLNOP")

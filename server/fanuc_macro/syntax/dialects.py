@@ -15,7 +15,9 @@ rather than only "unexpected character". Two levels:
 from __future__ import annotations
 
 import re
+from collections.abc import Mapping
 from dataclasses import dataclass
+from types import MappingProxyType
 
 from ..lazy_regex import LazyPattern
 
@@ -273,7 +275,9 @@ _FILE_MARKS: tuple[tuple[re.Pattern[str], str, str], ...] = (
     (re.compile(r"^\s*(N\d+\s*)?[EH]\d+\s*=", re.I), WIRE_EDM, "register setting"),
 )
 # Strongest first: a Syntec file may hold R words, a LinuxCNC file comparisons.
-_FILE_MARK_ORDER = {SYNTEC: 0, SIEMENS: 1, LINUXCNC: 2, DDCS: 3, OKUMA: 4, WIRE_EDM: 5}
+_FILE_MARK_ORDER: Mapping[str, int] = MappingProxyType(
+    {SYNTEC: 0, SIEMENS: 1, LINUXCNC: 2, DDCS: 3, OKUMA: 4, WIRE_EDM: 5}
+)
 
 
 @dataclass(frozen=True, slots=True)

@@ -32,7 +32,7 @@ if TYPE_CHECKING:
     from lark import Lark
     from lark.lexer import TerminalDef
 
-__all__ = [
+__all__ = (
     "TABLES_FORMAT",
     "TableParser",
     "Token",
@@ -40,7 +40,7 @@ __all__ = [
     "UnexpectedInput",
     "UnexpectedToken",
     "lalr_tables",
-]
+)
 
 _Callback = Callable[[list[Any]], Any]
 _Match = Callable[[str, int], Any]

@@ -10,7 +10,9 @@ from __future__ import annotations
 
 import codecs
 import re
+from collections.abc import Mapping
 from dataclasses import dataclass
+from types import MappingProxyType
 
 # What the analysis reads: defined apart, for the settings (re-exported here).
 from .limits import MAX_LINE_LENGTH as MAX_LINE_LENGTH
@@ -89,13 +91,15 @@ class DecodedText:
 # China; Shift-JIS in Japan; Windows-1252, which holds Latin-1's letters, in Western Europe
 # and the Americas).
 _LEGACY = ("gb18030", "shift_jis", "cp1252")
-_NAMES = {
-    "utf-8": "UTF-8",
-    "gb18030": "GB18030",
-    "shift_jis": "Shift-JIS",
-    "cp1252": "Windows-1252",
-    "latin-1": "Latin-1",
-}
+_NAMES: Mapping[str, str] = MappingProxyType(
+    {
+        "utf-8": "UTF-8",
+        "gb18030": "GB18030",
+        "shift_jis": "Shift-JIS",
+        "cp1252": "Windows-1252",
+        "latin-1": "Latin-1",
+    }
+)
 # A reading is taken as the file's encoding, without a note, when at most this share of its
 # non-ASCII characters is seldom written in that encoding's script.
 _UNUSUAL_SHARE = 0.1

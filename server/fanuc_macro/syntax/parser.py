@@ -14,13 +14,14 @@ import threading
 import unicodedata
 import zlib
 from bisect import bisect_right
-from collections.abc import Callable, Iterable, Iterator, Sequence
+from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
 from contextlib import contextmanager
 from dataclasses import replace
 from functools import cached_property
 from importlib import resources
 from itertools import accumulate, islice
 from operator import attrgetter, itemgetter
+from types import MappingProxyType
 from typing import TYPE_CHECKING, Any, cast
 
 from ..cancel import READING, SLICE, CancelToken, raise_if_cancelled
@@ -352,9 +353,9 @@ _FAST_WORD = re.compile(
 
 # Address letters in upper case, one string each: str.upper() makes a new one every time, and
 # every word holds its address.
-_ADDRESSES = {
-    ch: sys.intern(ch.upper()) for ch in "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz"
-}
+_ADDRESSES: Mapping[str, str] = MappingProxyType(
+    {ch: sys.intern(ch.upper()) for ch in "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz"}
+)
 
 # Words of a number written as it stands, by column and text ('G01' at column 0, 'Z-2.5' at
 # 20): the nodes are immutable, so blocks share them (a CAM file repeats its G code and a few
@@ -867,24 +868,26 @@ class BlockParser:
             return [parse(line, max_line_length) for line in lines]
 
 
-_TOKEN_NAMES = {
-    "NUMBER": "a number",
-    "SIGNED_NUMBER": "a number",
-    "ADDRESS": "an address letter",
-    "LSQB": "'['",
-    "RSQB": "']'",
-    "EQUAL": "'='",
-    "RELOP": "EQ/NE/GT/GE/LT/LE",
-    "HASH": "'#'",
-    "MINUS": "'-'",
-    "PLUS": "'+'",
-    "COMMA": "','",
-    "COLON": "':'",
-    "FUNC": "a function",
-    "ADD_OP": "an operator",
-    "MUL_OP": "an operator",
-    "$END": "end of block",
-}
+_TOKEN_NAMES: Mapping[str, str] = MappingProxyType(
+    {
+        "NUMBER": "a number",
+        "SIGNED_NUMBER": "a number",
+        "ADDRESS": "an address letter",
+        "LSQB": "'['",
+        "RSQB": "']'",
+        "EQUAL": "'='",
+        "RELOP": "EQ/NE/GT/GE/LT/LE",
+        "HASH": "'#'",
+        "MINUS": "'-'",
+        "PLUS": "'+'",
+        "COMMA": "','",
+        "COLON": "':'",
+        "FUNC": "a function",
+        "ADD_OP": "an operator",
+        "MUL_OP": "an operator",
+        "$END": "end of block",
+    }
+)
 
 
 def _expected_words(expected: Iterable[str]) -> tuple[str, ...]:
@@ -1412,7 +1415,7 @@ def statements_of(statement: Statement | None) -> Sequence[Statement]:
     return (statement,)
 
 
-__all__ = [
+__all__ = (
     "MAX_EXPRESSION_DEPTH",
     "BlockParser",
     "Expr",
@@ -1421,4 +1424,4 @@ __all__ = [
     "parse_bytes",
     "parse_text",
     "statements_of",
-]
+)

@@ -46,7 +46,7 @@ from .iso965 import (
     tolerances,
 )
 
-__all__ = [
+__all__ = (
     "COARSE_PITCH",
     "RoughPass",
     "SideConflict",
@@ -84,4 +84,4 @@ __all__ = [
     "theoretical_nose_radius",
     "thread_height",
     "tolerances",
-]
+)

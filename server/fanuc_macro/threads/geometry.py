@@ -16,7 +16,7 @@ from dataclasses import dataclass
 
 from .iso965 import ThreadTolerances
 
-__all__ = [
+__all__ = (
     "DEFAULT_DEPTH_COEFFICIENT",
     "SIN60",
     "TAN30",
@@ -40,7 +40,7 @@ __all__ = [
     "side_offset",
     "theoretical_nose_radius",
     "thread_height",
-]
+)
 
 SIN60 = math.sqrt(3.0) / 2.0
 TAN30 = 1.0 / math.sqrt(3.0)
