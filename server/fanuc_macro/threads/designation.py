@@ -23,12 +23,14 @@ without it :class:`SideUndecided` is raised, never a guess.
 from __future__ import annotations
 
 import re
+from collections.abc import Mapping
 from dataclasses import dataclass
+from types import MappingProxyType
 from typing import Literal
 
 from ..lazy_regex import LazyPattern
 
-__all__ = [
+__all__ = (
     "COARSE_PITCH",
     "EXTERNAL_CREST_GRADES",
     "EXTERNAL_PITCH_GRADES",
@@ -43,7 +45,7 @@ __all__ = [
     "ToleranceClass",
     "coarse_pitch",
     "parse_designation",
-]
+)
 
 # Tolerance positions for which ISO 965-1:1998 / GB/T 197-2003 tabulate fundamental deviations:
 # e, f, g, h for external threads, G, H for internal ones (as GB/T 197-2003 tabulates them;
@@ -63,48 +65,50 @@ INTERNAL_CREST_GRADES: tuple[int, ...] = (4, 5, 6, 7, 8)
 # ISO 261 / ISO 262 coarse-pitch series (mm).  First- and second-choice sizes M1..M68, plus the
 # third-choice sizes M9 and M11, which ISO 261 also lists with a coarse pitch.  Above M68 ISO 261
 # has fine pitches only; sizes such as M50 or M55 (third choice) have no coarse pitch at all.
-COARSE_PITCH: dict[float, float] = {
-    1.0: 0.25,
-    1.1: 0.25,
-    1.2: 0.25,
-    1.4: 0.3,
-    1.6: 0.35,
-    1.8: 0.35,
-    2.0: 0.4,
-    2.2: 0.45,
-    2.5: 0.45,
-    3.0: 0.5,
-    3.5: 0.6,
-    4.0: 0.7,
-    4.5: 0.75,
-    5.0: 0.8,
-    6.0: 1.0,
-    7.0: 1.0,
-    8.0: 1.25,
-    9.0: 1.25,
-    10.0: 1.5,
-    11.0: 1.5,
-    12.0: 1.75,
-    14.0: 2.0,
-    16.0: 2.0,
-    18.0: 2.5,
-    20.0: 2.5,
-    22.0: 2.5,
-    24.0: 3.0,
-    27.0: 3.0,
-    30.0: 3.5,
-    33.0: 3.5,
-    36.0: 4.0,
-    39.0: 4.0,
-    42.0: 4.5,
-    45.0: 4.5,
-    48.0: 5.0,
-    52.0: 5.0,
-    56.0: 5.5,
-    60.0: 5.5,
-    64.0: 6.0,
-    68.0: 6.0,
-}
+COARSE_PITCH: Mapping[float, float] = MappingProxyType(
+    {
+        1.0: 0.25,
+        1.1: 0.25,
+        1.2: 0.25,
+        1.4: 0.3,
+        1.6: 0.35,
+        1.8: 0.35,
+        2.0: 0.4,
+        2.2: 0.45,
+        2.5: 0.45,
+        3.0: 0.5,
+        3.5: 0.6,
+        4.0: 0.7,
+        4.5: 0.75,
+        5.0: 0.8,
+        6.0: 1.0,
+        7.0: 1.0,
+        8.0: 1.25,
+        9.0: 1.25,
+        10.0: 1.5,
+        11.0: 1.5,
+        12.0: 1.75,
+        14.0: 2.0,
+        16.0: 2.0,
+        18.0: 2.5,
+        20.0: 2.5,
+        22.0: 2.5,
+        24.0: 3.0,
+        27.0: 3.0,
+        30.0: 3.5,
+        33.0: 3.5,
+        36.0: 4.0,
+        39.0: 4.0,
+        42.0: 4.5,
+        45.0: 4.5,
+        48.0: 5.0,
+        52.0: 5.0,
+        56.0: 5.5,
+        60.0: 5.5,
+        64.0: 6.0,
+        68.0: 6.0,
+    }
+)
 
 # How a designation's side was decided: by the letter case of its class, by its class being
 # one only one kind has in ISO 965-1 (the case lost), or by the caller (the text fits both).
@@ -303,9 +307,16 @@ class SideConflict(ValueError):
         return f"{des.text.strip()} is an {des.side} thread ({self.because}), but {asked}"
 
 
-_POSITIONS = {False: EXTERNAL_POSITIONS, True: INTERNAL_POSITIONS}
-_PITCH_GRADES = {False: EXTERNAL_PITCH_GRADES, True: INTERNAL_PITCH_GRADES}
-_CREST_GRADES = {False: EXTERNAL_CREST_GRADES, True: INTERNAL_CREST_GRADES}
+# By kind: False external, True internal.
+_POSITIONS: Mapping[bool, frozenset[str]] = MappingProxyType(
+    {False: EXTERNAL_POSITIONS, True: INTERNAL_POSITIONS}
+)
+_PITCH_GRADES: Mapping[bool, tuple[int, ...]] = MappingProxyType(
+    {False: EXTERNAL_PITCH_GRADES, True: INTERNAL_PITCH_GRADES}
+)
+_CREST_GRADES: Mapping[bool, tuple[int, ...]] = MappingProxyType(
+    {False: EXTERNAL_CREST_GRADES, True: INTERNAL_CREST_GRADES}
+)
 
 
 def _position(letter: str, internal: bool) -> str:
@@ -381,9 +392,38 @@ def parse_designation(text: str, *, internal: bool | None = None) -> ThreadDesig
     by an all-capital class only one kind has, ``6E`` or ``4H5H``), an ``internal`` that says
     otherwise raises :class:`SideConflict`.
     """
-    original = text
-    shown = original.strip()
+    shown = text.strip()
     compact = "".join(text.split())
+    _check_metric(compact, shown)
+    head, *tail = compact.split("-")
+    match = _HEAD.match(head)
+    if match is None:
+        raise ValueError(
+            f"{shown}: cannot read the diameter and pitch from {head or 'its start'} "
+            "(expected e.g. M10 or M10x1.5)"
+        )
+    diameter = _number(match["d"])
+    if diameter <= 0:
+        raise ValueError(f"{shown}: the nominal diameter must be positive")
+    class_text, engagement, left_hand = _read_tail(tail, diameter, shown)
+    pitch, lead, coarse_used = _pitch_and_lead(match, diameter, shown)
+    written = _Written(
+        text=text,
+        diameter=diameter,
+        pitch=pitch,
+        lead=lead,
+        coarse_pitch_used=coarse_used,
+        left_hand=left_hand or (match["lh"] or "").upper() == "LH",
+        engagement=engagement,
+    )
+    if class_text is None:
+        return _class_omitted(written, internal)
+    return _class_written(written, class_text, case_kept=_case_kept(compact), internal=internal)
+
+
+def _check_metric(compact: str, shown: str) -> None:
+    """ValueError unless ``compact`` (the text without spaces) starts as an ISO metric thread:
+    another thread system, a fit (``6H/6g``) or nothing are refused."""
     if not compact:
         raise ValueError("empty thread designation")
     if compact[:1] not in ("M", "m") or compact[:2].upper() == "MJ":
@@ -402,20 +442,13 @@ def parse_designation(text: str, *, internal: bool | None = None) -> ThreadDesig
             "designation separately"
         )
 
-    head, *tail = compact.split("-")
-    match = _HEAD.match(head)
-    if match is None:
-        raise ValueError(
-            f"{shown}: cannot read the diameter and pitch from {head or 'its start'} "
-            "(expected e.g. M10 or M10x1.5)"
-        )
-    diameter = _number(match["d"])
-    left_hand = (match["lh"] or "").upper() == "LH"
-    if diameter <= 0:
-        raise ValueError(f"{shown}: the nominal diameter must be positive")
 
+def _read_tail(tail: list[str], diameter: float, shown: str) -> tuple[str | None, str | None, bool]:
+    """The parts after the first dash: (the tolerance class as written, the length of
+    engagement ``S``/``N``/``L``, whether one says ``LH``)."""
     class_text: str | None = None
     engagement: str | None = None
+    left_hand = False
     for part in tail:
         upper = part.upper()
         if upper == "LH":
@@ -434,10 +467,14 @@ def parse_designation(text: str, *, internal: bool | None = None) -> ThreadDesig
             raise ValueError(f"{shown}: nothing between two dashes")
         else:
             raise ValueError(f"{shown}: unexpected part {part}")
+    return class_text, engagement, left_hand
 
+
+def _pitch_and_lead(head: re.Match[str], diameter: float, shown: str) -> tuple[float, float, bool]:
+    """(pitch, lead Ph or 0.0 when not written, whether the pitch is ISO 261's coarse one)."""
     lead = 0.0
-    if match["ph"] is not None:
-        lead, pitch = _number(match["ph"]), _number(match["pp"])
+    if head["ph"] is not None:
+        lead, pitch = _number(head["ph"]), _number(head["pp"])
         coarse_used = False
         if pitch <= 0 or lead < pitch or abs(lead / pitch - round(lead / pitch)) > 1e-6:
             raise ValueError(
@@ -445,50 +482,114 @@ def parse_designation(text: str, *, internal: bool | None = None) -> ThreadDesig
                 f"pitch P {_fmt(pitch)}"
             )
     else:
-        coarse_used = match["p"] is None
-        pitch = coarse_pitch(diameter) if coarse_used else _number(match["p"])
+        coarse_used = head["p"] is None
+        pitch = coarse_pitch(diameter) if coarse_used else _number(head["p"])
     if pitch <= 0:
         raise ValueError(f"{shown}: the pitch must be positive")
     if pitch >= diameter:
         raise ValueError(f"{shown}: pitch {_fmt(pitch)} is not smaller than the diameter")
+    return pitch, lead, coarse_used
+
+
+def _case_kept(compact: str) -> bool:
+    """Whether the letter case of a designation carries meaning: only if the writer could use
+    lower case. A lower-case letter or a typographic '×' shows that; an all-capital ASCII
+    string may have been upper-cased."""
+    return any(ch.islower() for ch in compact) or "×" in compact
+
+
+@dataclass(frozen=True)
+class _Written:
+    """What a designation's text says besides its tolerance class."""
+
+    text: str
+    diameter: float
+    pitch: float
+    lead: float  # 0.0 when not written
+    coarse_pitch_used: bool
+    left_hand: bool
+    engagement: str | None
 
     def reading(
-        is_internal: bool, basis: InternalBasis, pitch_class: ToleranceClass,
-        crest_class: ToleranceClass, omitted: bool = False,
-    ) -> ThreadDesignation:  # fmt: skip
+        self,
+        internal: bool,
+        basis: InternalBasis,
+        pitch_class: ToleranceClass,
+        crest_class: ToleranceClass,
+        omitted: bool = False,
+    ) -> ThreadDesignation:
+        """The designation read as an internal or an external thread of these classes."""
         return ThreadDesignation(
-            nominal_diameter=diameter,
-            pitch=pitch,
-            internal=is_internal,
+            nominal_diameter=self.diameter,
+            pitch=self.pitch,
+            internal=internal,
             pitch_class=pitch_class,
             crest_class=crest_class,
-            left_hand=left_hand,
-            coarse_pitch_used=coarse_used,
-            text=original,
+            left_hand=self.left_hand,
+            coarse_pitch_used=self.coarse_pitch_used,
+            text=self.text,
             internal_basis=basis,
             class_omitted=omitted,
-            engagement=engagement,
-            lead=lead if lead != pitch else 0.0,
+            engagement=self.engagement,
+            lead=self.lead if self.lead != self.pitch else 0.0,
         )
 
-    if class_text is None:
-        # GB/T 197: the medium classes are not written (5H/6h up to 1.4 mm, else 6H/6g).
-        small = diameter <= 1.4
-        nut = ToleranceClass(5 if small else 6, "H")
-        bolt = ToleranceClass(6, "h" if small else "g")
-        if internal is None:
-            raise SideUndecided(
-                reading(False, "caller", bolt, bolt, True),
-                reading(True, "caller", nut, nut, True),
-                None,
-            )
-        cls = nut if internal else bolt
-        return reading(internal, "caller", cls, cls, True)
 
-    cmatch = _CLASS.match(class_text)
-    assert cmatch is not None  # matched in the loop above
-    letter1 = cmatch["p1"]
-    letter2 = cmatch["p2"] or letter1
+def _class_omitted(written: _Written, internal: bool | None) -> ThreadDesignation:
+    """A designation without a class: GB/T 197's medium classes, which are not written (5H/6h up
+    to 1.4 mm, else 6H/6g), on the side the caller says."""
+    small = written.diameter <= 1.4
+    nut = ToleranceClass(5 if small else 6, "H")
+    bolt = ToleranceClass(6, "h" if small else "g")
+    if internal is None:
+        raise SideUndecided(
+            written.reading(False, "caller", bolt, bolt, True),
+            written.reading(True, "caller", nut, nut, True),
+            None,
+        )
+    cls = nut if internal else bolt
+    return written.reading(internal, "caller", cls, cls, True)
+
+
+def _class_written(
+    written: _Written, class_text: str, *, case_kept: bool, internal: bool | None
+) -> ThreadDesignation:
+    """A designation with the class ``class_text``: on the side its letter case says when the
+    case is kept, else on the side whose ISO 965-1 tables have the class, or the caller's."""
+    shown = written.text.strip()
+    letter, pitch_grade, crest_grade = _class_parts(class_text, shown)
+
+    def read_as(is_internal: bool, basis: InternalBasis) -> ThreadDesignation:
+        position = _position(letter, is_internal)
+        pitch_class = ToleranceClass(pitch_grade, position)
+        return written.reading(
+            is_internal, basis, pitch_class, ToleranceClass(crest_grade, position)
+        )
+
+    if case_kept:
+        kind = letter.isupper()
+        _check_position(letter, kind, shown)
+        if internal is not None and internal != kind:
+            case = "upper" if kind else "lower"
+            raise SideConflict(read_as(kind, "case"), f"its class {class_text} is in {case} case")
+        return read_as(kind, "case")
+    kinds, because = _kinds_with_class(letter, pitch_grade, crest_grade, class_text, shown)
+    if internal is None:
+        if len(kinds) == 2:
+            raise SideUndecided(read_as(False, "caller"), read_as(True, "caller"), class_text)
+        return read_as(kinds[0], "class")
+    if internal not in kinds:
+        raise SideConflict(read_as(kinds[0], "class"), because)
+    return read_as(internal, "class" if len(kinds) == 1 else "caller")
+
+
+def _class_parts(class_text: str, shown: str) -> tuple[str, int, int]:
+    """(the position letter as written, the pitch-diameter grade, the crest-diameter grade) of
+    a class such as ``5g6g`` or ``6H``; ValueError when its two letters differ."""
+    found = _CLASS.match(class_text)
+    assert found is not None  # matched when the parts were read
+    letter1 = found["p1"]
+    letter2 = found["p2"] or letter1
     if letter1.isupper() != letter2.isupper():
         raise ValueError(
             f"{shown}: the class {class_text} mixes letter cases (upper case is internal, "
@@ -499,30 +600,6 @@ def parse_designation(text: str, *, internal: bool | None = None) -> ThreadDesig
             f"{shown}: the pitch and crest classes must share one tolerance position "
             f"({letter1} and {letter2} in {class_text})"
         )
-    grade1 = int(cmatch["g1"])
-    grade2 = int(cmatch["g2"]) if cmatch["g2"] else grade1
-
-    def read_as(is_internal: bool, basis: InternalBasis) -> ThreadDesignation:
-        position = _position(letter1, is_internal)
-        return reading(
-            is_internal, basis, ToleranceClass(grade1, position), ToleranceClass(grade2, position)
-        )
-
-    # Case carries meaning only if the writer could use lower case: a lower-case letter or a
-    # typographic '×' shows that; an all-capital ASCII string may have been upper-cased.
-    case_kept = any(ch.islower() for ch in compact) or "×" in compact
-    if case_kept:
-        kind = letter1.isupper()
-        _check_position(letter1, kind, shown)
-        if internal is not None and internal != kind:
-            case = "upper" if kind else "lower"
-            raise SideConflict(read_as(kind, "case"), f"its class {class_text} is in {case} case")
-        return read_as(kind, "case")
-    kinds, because = _kinds_with_class(letter1, grade1, grade2, class_text, shown)
-    if internal is None:
-        if len(kinds) == 2:
-            raise SideUndecided(read_as(False, "caller"), read_as(True, "caller"), class_text)
-        return read_as(kinds[0], "class")
-    if internal not in kinds:
-        raise SideConflict(read_as(kinds[0], "class"), because)
-    return read_as(internal, "class" if len(kinds) == 1 else "caller")
+    grade1 = int(found["g1"])
+    grade2 = int(found["g2"]) if found["g2"] else grade1
+    return letter1, grade1, grade2

@@ -27,7 +27,9 @@ designation of another form (trapezoidal, pipe, Unified) and a taper cut are nam
 from __future__ import annotations
 
 import re
+from collections.abc import Mapping
 from dataclasses import dataclass, field
+from types import MappingProxyType
 
 from ..evaluator.facts import DocumentFacts, Motion, RunValues
 from ..evaluator.values import fmt_address
@@ -58,7 +60,7 @@ _OTHER_FORMS = (
     (re.compile(r"(?<![A-Z])(?:RC|RP|R|G)\s*\d+(?:/\d+)\b", re.I), "a pipe thread (ISO 7 / 228)"),
 )
 _STARTS = re.compile(r"(?<![\w.])(?P<n>[2-6])\s*-?\s*STARTS?\b|(?P<cn>[双两三四])线", re.I)
-_CHINESE_STARTS = {"双": 2, "两": 2, "三": 3, "四": 4}
+_CHINESE_STARTS: Mapping[str, int] = MappingProxyType({"双": 2, "两": 2, "三": 3, "四": 4})
 
 
 @dataclass(frozen=True, eq=False, repr=False)
@@ -501,61 +503,100 @@ def _identify(
     run: RunValues | None,
     words: _ProgramWords,
 ) -> Thread:
+    """The thread of one job, from the sources in the module's order of trust."""
     thread = Thread(job, internal=job.internal)
     if not job.xs:
         thread.missing = "the passes' X is not known"
         return thread
     thread.evidence.append(Evidence(_describe_cuts(job), job.passes[0].line))
-    program = index.program_at(job.program_line)
-    end = program.end_line if program is not None else job.program_line + 1
-    # The designation that fits the passes (its letter case tells the side, if the cuts do
-    # not); then the program's first comments.
+    chosen = _read_designation(thread, doc, index, found)
+    pitch_is_lead = _read_module(thread, doc, index, facts, run)
+    pitch_is_lead = _read_assignment_comments(thread, roles, facts) or pitch_is_lead
+    _read_starts(thread, words, pitch_is_lead)
+    _read_tolerance_class(thread)
+    undecided = _undecided(found, job) if chosen is None and thread.internal is None else None
+    _unsupported(job, thread, words, undecided)
+    return thread
+
+
+def _read_designation(
+    thread: Thread, doc: Document, index: ProgramIndex, found: list[FoundDesignation]
+) -> tuple[ThreadDesignation, FoundDesignation] | None:
+    """The designation that fits the passes, taken into ``thread``: its letter case tells the
+    side if the cuts do not, then the program's first comments."""
+    job = thread.job
     chosen = _choose_designation(found, job, thread.internal)
     if thread.internal is None and chosen is None:
+        program = index.program_at(job.program_line)
+        end = program.end_line if program is not None else job.program_line + 1
         said = program_is_internal(doc, job.program_line, end)
         if said is not None:
             thread.internal = said
             thread.evidence.append(Evidence("the program's first comments", job.program_line))
             chosen = _choose_designation(found, job, said)
-    if chosen is not None:
-        des, where = chosen
-        thread.designation, thread.designation_line = des, where.line
-        if thread.internal is None:
-            thread.internal = des.internal
-        thread.major, thread.pitch, thread.starts = des.nominal_diameter, des.pitch, des.starts
-        thread.pitch_source = "designation"
-        thread.evidence.append(
-            Evidence(f"the designation {where.text} at line {where.line + 1}", where.line)
+    if chosen is None:
+        return None
+    des, where = chosen
+    thread.designation, thread.designation_line = des, where.line
+    if thread.internal is None:
+        thread.internal = des.internal
+    thread.major, thread.pitch, thread.starts = des.nominal_diameter, des.pitch, des.starts
+    thread.pitch_source = "designation"
+    thread.evidence.append(
+        Evidence(f"the designation {where.text} at line {where.line + 1}", where.line)
+    )
+    tabulated = next(
+        (
+            c
+            for c in pitch_classes(des.nominal_diameter, des.pitch, internal=des.internal)
+            if c.position == des.pitch_class.position and c.grade == des.pitch_class.grade
+        ),
+        None,
+    )
+    if tabulated is not None:
+        thread.pitch_class, thread.class_exact = tabulated, True
+        thread.class_reason = (
+            "the designation, whose class is not written: 6g / 6H by ISO 965-1"
+            if des.class_omitted
+            else "the designation"
         )
-        try:
-            c = next(
-                c
-                for c in pitch_classes(des.nominal_diameter, des.pitch, internal=des.internal)
-                if c.position == des.pitch_class.position and c.grade == des.pitch_class.grade
-            )
-            thread.pitch_class, thread.class_exact = c, True
-            thread.class_reason = (
-                "the designation, whose class is not written: 6g / 6H by ISO 965-1"
-                if des.class_omitted
-                else "the designation"
-            )
-        except StopIteration:
-            pass
-    # The module's formulas.
+    return chosen
+
+
+def _read_module(
+    thread: Thread,
+    doc: Document,
+    index: ProgramIndex,
+    facts: DocumentFacts,
+    run: RunValues | None,
+) -> bool:
+    """What the thread module's formulas say, taken into ``thread``; whether the pitch taken
+    is the cut's lead (to be divided by the starts a comment names)."""
+    if thread.internal is None:
+        return False
+    shape = module_shape(doc, index, facts, thread.job, thread.internal, run)
+    if shape is None or (shape.major is None and shape.height is None):
+        return False
+    thread.module = shape
     pitch_is_lead = False
-    if thread.internal is not None:
-        shape = module_shape(doc, index, facts, job, thread.internal, run)
-        if shape is not None and (shape.major is not None or shape.height is not None):
-            thread.module = shape
-            if thread.major is None and shape.major is not None and shape.pitch is not None:
-                thread.major, thread.pitch, pitch_is_lead = shape.major, shape.pitch, True
-                thread.pitch_source = "lead"
-                thread.evidence.append(Evidence(shape.describe(), shape.height_line))
-            if shape.radius is not None:
-                thread.nose_radius, thread.nose_line = shape.radius, shape.radius_line
-                thread.nose_reason = f"#{shape.radius_var}, the radius {shape.radius_how}"
-    # Comments on assignments, last.
+    if thread.major is None and shape.major is not None and shape.pitch is not None:
+        thread.major, thread.pitch, pitch_is_lead = shape.major, shape.pitch, True
+        thread.pitch_source = "lead"
+        thread.evidence.append(Evidence(shape.describe(), shape.height_line))
+    if shape.radius is not None:
+        thread.nose_radius, thread.nose_line = shape.radius, shape.radius_line
+        thread.nose_reason = f"#{shape.radius_var}, the radius {shape.radius_how}"
+    return pitch_is_lead
+
+
+def _read_assignment_comments(
+    thread: Thread, roles: dict[tuple[int, int], Meaning], facts: DocumentFacts
+) -> bool:
+    """What the comments on assignments say (the last source), taken into ``thread`` where
+    nothing said it before; whether the pitch taken is the cut's lead."""
+    job = thread.job
     first = job.program_line
+    pitch_is_lead = False
     if thread.major is None:
         major = _role_value(roles, facts, first, "nominal_diameter")
         pitch = _role_value(roles, facts, first, "pitch")
@@ -573,22 +614,30 @@ def _identify(
         if nose is not None:
             thread.nose_radius, thread.nose_line = nose
             thread.nose_reason = f"named by the comment at line {nose[1] + 1}"
-    if thread.starts == 1:
-        starts = words.starts
-        if starts is not None:
-            thread.starts, thread.starts_line = starts
-            if pitch_is_lead and thread.pitch is not None:
-                thread.pitch /= thread.starts
-            thread.evidence.append(
-                Evidence(
-                    f"{thread.starts} starts, by the comment at line {starts[1] + 1}", starts[1]
-                )
-            )
+    return pitch_is_lead
+
+
+def _read_starts(thread: Thread, words: _ProgramWords, pitch_is_lead: bool) -> None:
+    """The number of starts a comment names, when the designation did not: a pitch taken from
+    the lead is the lead over the starts."""
+    if thread.starts != 1 or words.starts is None:
+        return
+    starts = words.starts
+    thread.starts, thread.starts_line = starts
+    if pitch_is_lead and thread.pitch is not None:
+        thread.pitch /= thread.starts
+    thread.evidence.append(
+        Evidence(f"{thread.starts} starts, by the comment at line {starts[1] + 1}", starts[1])
+    )
+
+
+def _read_tolerance_class(thread: Thread) -> None:
+    """The module's es and Td2 inputs, and the class when no designation gave it: from those
+    inputs, else the loosest of ISO 965-1 for the size."""
     if thread.module is not None:
         roles_of_inputs = _input_roles(thread, thread.module)
         thread.deviation_var = roles_of_inputs.get("deviation")
         thread.tolerance_var = roles_of_inputs.get("tolerance")
-    # The class when no designation gave it.
     if thread.pitch_class is None and thread.module is not None:
         from_inputs = _class_from_inputs(thread, thread.module)
         if from_inputs is not None:
@@ -611,9 +660,6 @@ def _identify(
         if loosest is not None:
             thread.pitch_class = loosest
             thread.class_reason = "no class is known: the loosest of ISO 965-1 stands in"
-    undecided = _undecided(found, job) if chosen is None and thread.internal is None else None
-    _unsupported(job, thread, words, undecided)
-    return thread
 
 
 def _unsupported(
