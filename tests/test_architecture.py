@@ -4,6 +4,7 @@ and only the language server knows the protocol."""
 from __future__ import annotations
 
 import ast
+import os
 import re
 from collections.abc import Iterator
 from pathlib import Path
@@ -157,3 +158,245 @@ def test_the_map_check_sees_a_wrong_import(tmp_path: Path) -> None:
     names = [name for _, name in _imported("fanuc_macro.rules.example", rule)]
     assert names == ["fanuc_macro.syntax.tree.Block", "fanuc_macro.lsp.server", "fanuc_macro.cli"]
     assert [_target_layer(n) for n in names] == ["syntax", "lsp", "cli"]
+
+
+# ---- ARCHITECTURE.md stays short and true ------------------------------------------------------
+
+ARCHITECTURE = ROOT / "ARCHITECTURE.md"
+MAX_WORDS_PER_SENTENCE = 22
+# Folders that hold nothing ARCHITECTURE.md names: version control, installed, built, cached.
+NOT_SOURCE = {
+    ".git",
+    ".mypy_cache",
+    ".pytest_cache",
+    ".ruff_cache",
+    ".venv",
+    "__pycache__",
+    "build",
+    "dist",
+    "node_modules",
+    "out",
+}
+FILE_SUFFIXES = (".py", ".ts", ".mjs", ".md", ".lark", ".json", ".lua", ".toml")
+# First parts of dotted names in backticks that are not the package's modules.
+NOT_MODULES = {"vscode", "vim"}
+_LIST_ITEM = re.compile(r"([-*]|\d+\.)\s+")
+_SENTENCE_END = re.compile(r"[.!?](?=\s|$)")
+_ABBREVIATION = re.compile(r"\b(e\.g|i\.e)\.$")
+_CODE_SPAN = re.compile(r"`([^`]+)`")
+_LOWER_PATH = re.compile(r"[a-z0-9_.-]+(/[a-z0-9_.-]+)*/?")
+_DOTTED = re.compile(r"([a-z_][a-z0-9_]*(?:/[a-z_][a-z0-9_]*)*)\.([A-Za-z_]\w*)")
+
+
+def prose_units(text: str) -> list[str]:
+    """The paragraphs and list items of a markdown text, each joined into one line; fenced
+    code blocks, table rows and headings are left out."""
+    units: list[str] = []
+    current: list[str] = []
+    fenced = False
+
+    def end_unit() -> None:
+        if current:
+            units.append(" ".join(current))
+            current.clear()
+
+    for raw in text.splitlines():
+        line = raw.strip()
+        if line.startswith("```"):
+            end_unit()
+            fenced = not fenced
+        elif fenced or not line or line.startswith(("|", "#")):
+            end_unit()
+        else:
+            item = _LIST_ITEM.match(line)
+            if item:
+                end_unit()
+                line = line[item.end() :]
+            current.append(line)
+    end_unit()
+    return units
+
+
+def sentences(unit: str) -> list[str]:
+    """A unit's sentences: each ends at ``.``, ``!`` or ``?`` before white space or the end,
+    except inside inline code and after ``e.g.``/``i.e.``; what follows the last end (a list
+    item without a full stop) is a sentence too."""
+    masked = _CODE_SPAN.sub(lambda m: "x" * len(m.group()), unit)
+    found: list[str] = []
+    start = 0
+    for end in _SENTENCE_END.finditer(masked):
+        if _ABBREVIATION.search(masked[: end.end()]):
+            continue
+        found.append(unit[start : end.end()])
+        start = end.end()
+    found.append(unit[start:])
+    return [s.strip() for s in found if s.strip()]
+
+
+def words_per_sentence(text: str) -> float:
+    """Words are what white space separates (an inline code span without spaces is one)."""
+    counts = [len(s.split()) for unit in prose_units(text) for s in sentences(unit)]
+    return sum(counts) / len(counts)
+
+
+def test_the_sentence_count_reads_prose_only() -> None:
+    text = (
+        "# A heading is no sentence\n"
+        "\n"
+        "One two three. The file `per_line.py` is one word, e.g. this\n"
+        "goes on over a line break.\n"
+        "\n"
+        "- an item without a full stop\n"
+        "- another item. And a second sentence!\n"
+        "\n"
+        "| a table row. | is left out. |\n"
+        "```\n"
+        "code is. left out.\n"
+        "```\n"
+    )
+    found = [s for unit in prose_units(text) for s in sentences(unit)]
+    assert found == [
+        "One two three.",
+        "The file `per_line.py` is one word, e.g. this goes on over a line break.",
+        "an item without a full stop",
+        "another item.",
+        "And a second sentence!",
+    ]
+    assert words_per_sentence(text) == (3 + 14 + 6 + 2 + 4) / 5
+
+
+def test_architecture_sentences_are_short() -> None:
+    """ARCHITECTURE.md averages at most 22 words a sentence (rust-analyzer's about 15).
+
+    Counted: prose paragraphs (their lines joined) and list items (``-``, ``*``, ``1.``), each
+    split into sentences at ``.``, ``!`` or ``?`` before white space, never inside inline code
+    or after ``e.g.``/``i.e.``. Fenced code blocks, table rows and headings are not prose.
+    """
+    average = words_per_sentence(ARCHITECTURE.read_text("utf-8"))
+    assert average <= MAX_WORDS_PER_SENTENCE, f"{average:.1f} words a sentence"
+
+
+def _repository_names() -> tuple[set[str], set[str]]:
+    """Every file and every folder of the repository, by each tail of its path
+    (``a/b/c.py`` as ``a/b/c.py``, ``b/c.py`` and ``c.py``)."""
+    files: set[str] = set()
+    folders: set[str] = set()
+    for folder, subfolders, names in os.walk(ROOT):
+        subfolders[:] = [s for s in subfolders if s not in NOT_SOURCE]
+        parts = Path(folder).relative_to(ROOT).parts
+        for tails, children in ((folders, subfolders), (files, names)):
+            for child in children:
+                path = [*parts, child]
+                tails.update("/".join(path[i:]) for i in range(len(path)))
+    return files, folders
+
+
+def _package_modules() -> dict[str, Path]:
+    """The package's modules by dotted name (a package by its ``__init__.py``)."""
+    modules: dict[str, Path] = {}
+    for module, path in MODULES:
+        modules[module.removesuffix(".__init__")] = path
+    return modules
+
+
+def _defines(source: str, name: str) -> bool:
+    """Whether a module's text defines ``name`` (a function, class, assignment, annotated
+    name or import)."""
+    defined = re.compile(
+        rf"^\s*((async\s+)?def|class)\s+{name}\b|^\s*{name}\s*[:=]|^\s*(from\s.*)?import\s.*\b{name}\b",
+        re.M,
+    )
+    return defined.search(source) is not None
+
+
+def named_in_code(text: str) -> Iterator[str]:
+    """The words of the inline code spans outside fenced code blocks."""
+    outside = re.sub(r"(?ms)^```.*?^```", "", text)
+    for span in _CODE_SPAN.finditer(outside):
+        yield from span.group(1).split()
+
+
+def missing_names(text: str) -> list[str]:
+    """The paths and ``module.name``s in backticks that the repository does not hold.
+
+    A word is a path when it ends in a file suffix (``.py``, ``.ts``...) or ``/``, or when it
+    has a ``/`` and is all lower case (``textDocument/publishDiagnostics`` is a protocol
+    method); a path matches any file or folder whose path ends with it (``lines.py``,
+    ``evaluator/checkpoints.py``, ``src/extension.ts``). A lower case ``module.name`` must
+    name a module of the package whose text defines ``name``, or a submodule. Words with
+    ``<``, ``*`` or ``@``, or starting with ``.``, are patterns or outside names, not checked.
+    """
+    files, folders = _repository_names()
+    modules = _package_modules()
+    missing: list[str] = []
+    for word in named_in_code(text):
+        word = word.split("#")[0].strip("()[],;:")
+        if not word or word.startswith((".", "@")) or any(c in word for c in "<*"):
+            continue
+        if word.endswith("/") and _LOWER_PATH.fullmatch(word):
+            if word.rstrip("/") not in folders:
+                missing.append(word)
+        elif word.endswith(FILE_SUFFIXES):
+            if word not in files:
+                missing.append(word)
+        elif dotted := _DOTTED.fullmatch(word):
+            module, name = dotted.group(1).replace("/", "."), dotted.group(2)
+            if module.split(".")[0] in NOT_MODULES:
+                continue
+            owners = [m for m in modules if m == module or m.endswith("." + module)]
+            if not any(
+                f"{owner}.{name}" in modules or _defines(modules[owner].read_text("utf-8"), name)
+                for owner in owners
+            ):
+                missing.append(word)
+        elif (
+            "/" in word
+            and _LOWER_PATH.fullmatch(word)
+            and word not in files
+            and word not in folders
+        ):
+            missing.append(word)
+    return missing
+
+
+def test_the_name_check_sees_a_missing_name() -> None:
+    text = (
+        "`lines.py`, `evaluator/checkpoints.py`, `tests/fixtures/rules/`, `src/extension.ts`,\n"
+        "`per_line.PerLine`, `program/knowledge.modal_group`, `fanuc_macro.cli`,\n"
+        "`docs/rules.md#x`, `textDocument/publishDiagnostics`, `vscode.l10n`,\n"
+        "`data/messages.<locale>.json`,\n"
+        "`ide/debugger.py`, `nowhere.py`, `per_line.Nothing`, `nomodule.thing`, `gone/`\n"
+        "```\n`in_a_code_block.py`\n```\n"
+    )
+    assert missing_names(text) == [
+        "ide/debugger.py",
+        "nowhere.py",
+        "per_line.Nothing",
+        "nomodule.thing",
+        "gone/",
+    ]
+
+
+def test_architecture_names_what_exists() -> None:
+    """Every path and ``module.name`` ARCHITECTURE.md names in backticks exists, so that the
+    map stays true when code moves."""
+    missing = missing_names(ARCHITECTURE.read_text("utf-8"))
+    assert not missing, f"ARCHITECTURE.md names what the repository does not hold: {missing}"
+
+
+PACKAGES = sorted(path.parent for path in PACKAGE.rglob("__init__.py"))
+
+
+@pytest.mark.parametrize(
+    "package", PACKAGES, ids=[p.relative_to(PACKAGE.parent).as_posix() for p in PACKAGES]
+)
+def test_every_package_says_what_it_owns(package: Path) -> None:
+    """Each package's ``__init__.py`` has a docstring, and the modules it names with
+    ``:mod:`` exist."""
+    docstring = ast.get_docstring(ast.parse((package / "__init__.py").read_text("utf-8")))
+    assert docstring, f"{package.name}/__init__.py has no docstring"
+    modules = _package_modules()
+    here = ".".join(package.relative_to(PACKAGE.parent).parts)
+    for named in re.findall(r":mod:`~?([\w.]+)`", docstring):
+        full = here + named if named.startswith(".") else named
+        assert full in modules, f"{package.name}/__init__.py names {named}, which is not a module"
