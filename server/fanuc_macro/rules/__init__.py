@@ -1,4 +1,9 @@
-"""Rule families, one module each. Importing this package registers every rule."""
+"""The rules: one module per rule family, each rule registered with its documentation beside
+it. :mod:`.context` is what a rule reads: the document, its index, the settings, the facts.
+
+Importing this package registers every rule. ``LINE_CHECKS`` run on one line's text, once per
+distinct line; ``ALL_CHECKS`` run on a document (see ARCHITECTURE.md).
+"""
 
 from __future__ import annotations
 

@@ -1,2 +1,8 @@
-"""The syntax: text to lines, the grammar and its LALR driver, the parser, the syntax
-tree, other controls' dialects and the walks over expressions (see ARCHITECTURE.md)."""
+"""The syntax: text to syntax trees, one block at a time (see ARCHITECTURE.md).
+
+:mod:`.lines` decodes and splits the text, and :mod:`.limits` says how much of it is read.
+:mod:`.parser` parses a block: plain NC words on a fast path, the rest with the LALR tables of
+:mod:`.grammar_tables`, run by :mod:`.lalr_driver`. :mod:`.tree` is the typed syntax tree.
+:mod:`.dialects` recognises other controls' forms, :mod:`.marks` is what a line tells the
+layers above, and :mod:`.walk` walks expressions. Nothing here knows programs, values or rules.
+"""

@@ -1,4 +1,11 @@
-"""ISO metric thread designations, ISO 965-1 / GB/T 197 tolerances and thread-cutting math."""
+"""What a thread is (see ARCHITECTURE.md).
+
+:mod:`.designation` reads ISO metric designations, and :mod:`.iso965` holds the ISO 965-1 /
+GB/T 197 tolerances. :mod:`.geometry`, :mod:`.profile` and :mod:`.linear` are the
+thread-cutting math. :mod:`.module_shape` recognises a thread module by what its formulas
+compute. :mod:`.jobs` groups the executed passes into threads, and :mod:`.identify` says what
+each thread is.
+"""
 
 from __future__ import annotations
 
