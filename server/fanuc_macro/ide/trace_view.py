@@ -1,0 +1,258 @@
+"""The trace view's text: a header, one row per motion block (where it is, its code and words,
+where the tool goes from and to, the values the block read), a canned cycle's moves under its
+row, where the path is not known, and the summary.  Each row of a block says which line of
+which file it leads to, for the editor's links and Go to Definition.
+
+Values are written at the control's precision: words and positions to the least increment
+(0.001), macro variables as the control's display shows them (8 significant digits)."""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+from typing import Any
+
+from ..evaluator.values import fmt, fmt_address
+
+__all__ = ["TraceRow", "TraceView", "view_of_trace"]
+
+# Addresses whose values are integers on a FANUC control (no decimal point).
+INTEGER_ADDRESSES = frozenset("DGHLMNOPST")
+
+# A column is padded to the widest of its cells, up to this many characters.
+MAX_COLUMN = 40
+
+
+@dataclass(frozen=True)
+class TraceRow:
+    """A row of the view that leads to a block: ``line`` in the view (0-based), the block's
+    ``source_line`` (0-based) in ``path`` (a URI; None: the traced document), the columns of
+    its link (``O0003 line 33``) if it has one, and what the link opens."""
+
+    line: int
+    source_line: int
+    path: str | None
+    link: tuple[int, int] | None
+    label: str
+
+
+@dataclass(frozen=True)
+class TraceView:
+    text: str
+    rows: tuple[TraceRow, ...]
+
+
+def _word(address: str, value: Any) -> str:
+    """A word's value as the control writes it: ``49.816``, ``-60.``; ``G1`` without a point."""
+    if value is None:
+        return "<vacant>"
+    if isinstance(value, str):
+        return value
+    text = fmt_address(float(value))
+    if address.upper() in INTEGER_ADDRESSES and text.endswith("."):
+        return text[:-1]
+    return text
+
+
+def _program(program: Any) -> str:
+    """``O3331`` from 3331, "3331" or "O3331"; a name such as ``<THREAD>`` as it is."""
+    if program is None or program == "":
+        return ""
+    text = str(program).strip()
+    return f"O{text.zfill(4)}" if text.isdigit() else text
+
+
+def _words(words: Mapping[str, Any] | None) -> str:
+    return " ".join(f"{a}{_word(a, v)}" for a, v in (words or {}).items())
+
+
+def _position(position: Mapping[str, Any] | None) -> str:
+    """``X51. Z5.964``; ``?`` when no axis is known."""
+    known = [
+        f"{axis}{_word(axis, value)}"
+        for axis, value in (position or {}).items()
+        if isinstance(value, int | float) and not isinstance(value, bool)
+    ]
+    return " ".join(known) or "?"
+
+
+def _macro_value(value: Any) -> str:
+    if value is None:
+        return "<vacant>"
+    if isinstance(value, str):
+        return f"({value})"
+    return fmt(float(value))
+
+
+def _values(values: Mapping[str, Any] | None) -> str:
+    return " ".join(
+        f"{name if name.startswith('#') else '#' + name}={_macro_value(value)}"
+        for name, value in (values or {}).items()
+    )
+
+
+def _scalar(value: Any) -> str:
+    if value is None:
+        return "-"
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, float) and value.is_integer():
+        return str(int(value))
+    if isinstance(value, int | float):
+        return f"{value:.6g}"
+    return str(value)
+
+
+def _is_scalar(value: Any) -> bool:
+    return not isinstance(value, Mapping | list | tuple)
+
+
+def summary_lines(summary: Any, indent: str = "  ") -> list[str]:
+    """Indented ``key: value`` lines, nested objects indented further."""
+    if not isinstance(summary, Mapping):
+        return [] if summary is None else [f"{indent}{_scalar(summary)}"]
+    lines: list[str] = []
+    for key, value in summary.items():
+        if isinstance(value, Mapping | list | tuple) and not value:
+            lines.append(f"{indent}{key}: (none)")
+        elif isinstance(value, Mapping):
+            lines.append(f"{indent}{key}:")
+            lines.extend(summary_lines(value, f"{indent}  "))
+        elif isinstance(value, list | tuple) and all(_is_scalar(v) for v in value):
+            lines.append(f"{indent}{key}: {', '.join(_scalar(v) for v in value)}")
+        elif isinstance(value, list | tuple):
+            lines.append(f"{indent}{key}:")
+            for item in value:
+                nested = summary_lines(item, f"{indent}    ")
+                if nested:
+                    nested[0] = f"{indent}  - {nested[0].lstrip()}"
+                lines.extend(nested)
+        else:
+            lines.append(f"{indent}{key}: {_scalar(value)}")
+    return lines
+
+
+def _source_line(line: Any) -> int | None:
+    """The 0-based line of a 1-based ``line`` (a number, or the text of one)."""
+    if isinstance(line, int) and not isinstance(line, bool):
+        number = line
+    elif isinstance(line, str) and line.strip().isdigit():
+        number = int(line)
+    else:
+        return None
+    return number - 1 if number >= 1 else None
+
+
+def _path(record: Mapping[str, Any]) -> str | None:
+    path = record.get("path")
+    return path if isinstance(path, str) and path else None
+
+
+def _move(move: Mapping[str, Any]) -> str:
+    kind = str(move.get("kind") or "move")
+    text = f"{kind:<6} {_position(move.get('start'))} -> {_position(move.get('end'))}"
+    if move.get("centre") is not None:
+        clockwise = move.get("clockwise")
+        turn = " CW" if clockwise is True else " CCW" if clockwise is False else ""
+        text += f"  centre {_position(move.get('centre'))}{turn}"
+    return text
+
+
+def _plural(count: int, word: str) -> str:
+    return f"{count} {word}{'' if count == 1 else 's'}"
+
+
+class _Writer:
+    """The view's lines and the rows that lead to blocks, in the order of the text."""
+
+    def __init__(self) -> None:
+        self.out: list[str] = []
+        self.rows: list[TraceRow] = []
+
+    def lead(self, at: int, source: int, path: str | None, label: str, link: bool) -> None:
+        """The lines from ``at`` on lead to the block; the first one links to it if ``link``."""
+        for line in range(at, len(self.out)):
+            span = (0, len(label)) if link and line == at else None
+            self.rows.append(TraceRow(line, source, path, span, label))
+
+
+def _motion_rows(writer: _Writer, motions: Sequence[Mapping[str, Any]]) -> None:
+    cells = []
+    for m in motions:
+        program = _program(m.get("program"))
+        line = "" if m.get("line") is None else f"line {m['line']}"
+        has_path = "start" in m or "end" in m
+        cells.append(
+            (
+                f"{program} {line}".strip() if program else line,
+                str(m.get("code") or ""),
+                _words(m.get("words")),
+                f"{_position(m.get('start'))} -> {_position(m.get('end'))}" if has_path else "",
+                _values(m.get("values")),
+            )
+        )
+    titles = ("block", "code", "words", "from -> to", "values read")
+    widths = [min(MAX_COLUMN, max(len(titles[i]), *(len(c[i]) for c in cells))) for i in range(4)]
+
+    def row(cell: tuple[str, ...]) -> str:
+        return "  ".join([*(cell[i].ljust(widths[i]) for i in range(4)), cell[4]]).rstrip()
+
+    writer.out.append(row(titles))
+    for m, cell in zip(motions, cells, strict=True):
+        at = len(writer.out)
+        writer.out.append(row(cell))
+        if m.get("centre") is not None:
+            writer.out.append(f"    centre {_position(m['centre'])}")
+        moves = m.get("moves") or []
+        if moves:
+            cycle = f" ({m['cycle']})" if m.get("cycle") else ""
+            writer.out.append(f"    {_plural(len(moves), 'move')}{cycle}:")
+        writer.out.extend(f"      {_move(move)}" for move in moves)
+        source = _source_line(m.get("line"))
+        if source is not None:
+            writer.lead(at, source, _path(m), cell[0], link=True)
+
+
+def _lost_rows(writer: _Writer, lost: Sequence[Mapping[str, Any]]) -> None:
+    writer.out.extend(["", "Where the path is not known"])
+    for place in lost:
+        line = f"line {place['line']}" if isinstance(place.get("line"), int) else ""
+        block = f"{_program(place.get('program'))} {line}".strip()
+        axes = ", ".join(place.get("axes") or [])
+        at = len(writer.out)
+        writer.out.append(f"  {block}: {axes} {place.get('reason') or ''}".rstrip())
+        source = _source_line(place.get("line"))
+        if source is not None:
+            writer.rows.append(TraceRow(at, source, _path(place), (2, 2 + len(block)), block))
+
+
+def view_of_trace(trace: Mapping[str, Any], source: str) -> TraceView:
+    """The view of ``trace`` (what :func:`~fanuc_macro.ide.trace.trace` answers) for the
+    program ``source`` (a file's path, or an untitled document's URI)."""
+    motions: Sequence[Mapping[str, Any]] = trace.get("motions") or []
+    toolpath: Mapping[str, Any] = trace.get("toolpath") or {}
+    summary = trace.get("summary")
+    executed = summary.get("blocks_executed") if isinstance(summary, Mapping) else None
+    units = toolpath.get("units")
+    writer = _Writer()
+    writer.out.append(f"Trace of {source}")
+    writer.out.append(
+        _plural(len(motions), "motion block")
+        + (f", {_plural(executed, 'block')} executed" if isinstance(executed, int) else "")
+        + (f", positions in {units}" if isinstance(units, str) else "")
+    )
+    writer.out.append(
+        "Ctrl+click a block (O0001 line 12) to open it in its program, or press F12 on its row."
+    )
+    writer.out.append("")
+    if motions:
+        _motion_rows(writer, motions)
+    else:
+        writer.out.append("(no motion)")
+    lost = toolpath.get("lost") or []
+    if lost:
+        _lost_rows(writer, lost)
+    said = summary_lines(summary)
+    if said:
+        writer.out.extend(["", "Summary", *said])
+    return TraceView("\n".join(writer.out) + "\n", tuple(writer.rows))
