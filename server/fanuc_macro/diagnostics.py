@@ -21,6 +21,13 @@ class Severity(str, Enum):
     HINT = "hint"
 
 
+class Tag(str, Enum):
+    """What an editor shows of a diagnostic beside its severity."""
+
+    UNNECESSARY = "unnecessary"  # code that never runs: shown faded
+    DEPRECATED = "deprecated"  # a form the control still reads but should not be written
+
+
 @dataclass(frozen=True, slots=True)
 class Related:
     """Another place that explains a diagnostic (the assignment that produced a bad value)."""
@@ -80,6 +87,7 @@ class Diagnostic:
     # The quick fixes a rule works out with the diagnostic; the command line's output leaves
     # them out, the language server offers them as code actions.
     fixes: tuple[Fix, ...] = ()
+    tags: frozenset[Tag] = frozenset()  # the rule's (RuleInfo.tags)
 
     def with_severity(self, severity: Severity) -> Diagnostic:
         return replace(self, severity=severity)
@@ -92,6 +100,7 @@ class RuleInfo:
     severity: Severity
     summary: str
     family: str
+    tags: frozenset[Tag] = frozenset()  # on every diagnostic of the rule
 
 
 RULES: dict[str, RuleInfo] = {}
@@ -162,6 +171,7 @@ def make(
         tuple(related),
         data,
         tuple(fixes),
+        info.tags,
     )
 
 

@@ -13,11 +13,12 @@ import json
 import re
 from array import array
 from collections.abc import Callable, Sequence
+from types import MappingProxyType
 from typing import overload
 
 from lsprotocol import types
 
-from ..diagnostics import RULES, Diagnostic, Severity
+from ..diagnostics import RULES, Diagnostic, Severity, Tag
 
 LINE_BREAK = re.compile(r"\r\n|\r|\n")
 SOURCE = "fanuc-macro"
@@ -149,6 +150,15 @@ SEVERITY = {
 }
 
 
+# The rules' tags (diagnostics.Tag) in the protocol's terms.
+TAG = MappingProxyType(
+    {
+        Tag.UNNECESSARY: types.DiagnosticTag.Unnecessary,
+        Tag.DEPRECATED: types.DiagnosticTag.Deprecated,
+    }
+)
+
+
 def rule_url(code: str) -> str:
     """The section of docs/rules.md: headings are ``MBxxx name``, anchors ``mbxxx-name``."""
     info = RULES.get(code)
@@ -193,8 +203,7 @@ def to_lsp_diagnostic(
                 message=r.message,
             )
         )
-    # Dead code, shown faded; a restart point (MB709) runs on a search, so it is not.
-    tags = [types.DiagnosticTag.Unnecessary] if diag.code in ("MB702", "MB710") else None
+    tags = [TAG[tag] for tag in sorted(diag.tags)] if diag.tags else None
     data: dict[str, object] = {"code": diag.code}
     if diag.data:
         data.update(_json_safe(diag.data))

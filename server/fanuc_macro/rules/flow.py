@@ -10,8 +10,27 @@ from itertools import chain
 from operator import itemgetter
 from typing import NamedTuple, TypeVar, cast
 
-from ..diagnostics import Diagnostic, RuleDoc, RuleInfo, Severity, document, make, register
-from ..evaluator.facts import DocumentFacts
+from ..diagnostics import (
+    Diagnostic,
+    RuleDoc,
+    RuleInfo,
+    Severity,
+    Tag,
+    document,
+    make,
+    register,
+)
+from ..evaluator.facts import (
+    DocumentFacts,
+    EndlessLoop,
+    Finding,
+    GotoAlarm,
+    LongLoop,
+    NestingAlarm,
+    PollingLoop,
+    ProgramNotFound,
+    ReturnMissing,
+)
 from ..evaluator.machine import compiled
 from ..line_maps import Kept, LineMap
 from ..per_line import PerLine
@@ -30,12 +49,14 @@ from ..syntax.tree import (
 from .context import Changes, RuleContext, Seen
 
 FAMILY = "flow"
+# Dead code, shown faded; a restart point (MB709) runs on a search, so it is not.
+DEAD_CODE = frozenset({Tag.UNNECESSARY})
 register(
     RuleInfo("MB701", "condition-constant", Severity.INFORMATION,
              "An IF or WHILE condition that has the same result every time the analysis "
              "reaches it: the branch is dead or always taken.", FAMILY),
     RuleInfo("MB702", "never-executed", Severity.INFORMATION,
-             "Blocks of an analysed program that no run reaches.", FAMILY),
+             "Blocks of an analysed program that no run reaches.", FAMILY, DEAD_CODE),
     RuleInfo("MB703", "endless-loop", Severity.ERROR,
              "A loop that does not end within the analysis budget.", FAMILY),
     RuleInfo("MB704", "jump-fails", Severity.ERROR,
@@ -58,7 +79,7 @@ register(
              "does.", FAMILY),
     RuleInfo("MB710", "dead-after-end", Severity.INFORMATION,
              "Blocks after the M30 or M02 of a main program that no jump and no sequence "
-             "number search can reach.", FAMILY),
+             "number search can reach.", FAMILY, DEAD_CODE),
 )  # fmt: skip
 
 # What each rule above reports, why, an example, the fix and what it leaves out:
@@ -404,20 +425,21 @@ def check(ctx: RuleContext) -> list[Diagnostic]:
     if facts is None:
         return [d for program in ctx.index.programs for d in _after_end(ctx, program, None)]
     found: list[Diagnostic] = []
-    for f in ctx.findings("endless-loop"):
+    f: Finding  # of each kind in turn
+    for f in ctx.findings(EndlessLoop):
         found.append(make("MB703", f.message, f.line, f.column, f.end_column))
-    for f in ctx.findings("polling-loop"):
+    for f in ctx.findings(PollingLoop):
         found.append(make("MB707", f.message, f.line, f.column, f.end_column))
-    for f in ctx.findings("long-loop"):
+    for f in ctx.findings(LongLoop):
         found.append(make("MB708", f.message, f.line, f.column, f.end_column))
-    for f in ctx.findings("alarm:goto-", "alarm:return-missing"):
+    for f in ctx.findings(GotoAlarm, ReturnMissing):
         statement = ctx.doc.blocks[f.line].statement
         constant = isinstance(statement, IfGoto | Goto) and _is_constant(statement)
         if not constant:  # constant targets are MB101's
             found.append(make("MB704", f.message, f.line, f.column, f.end_column))
-    for f in ctx.findings("alarm:nesting"):
+    for f in ctx.findings(NestingAlarm):
         found.append(make("MB705", f.message, f.line, f.column, f.end_column))
-    for f in ctx.findings("program-not-found"):
+    for f in ctx.findings(ProgramNotFound):
         if not _constant_call(ctx, f.line):
             found.append(make("MB706", f.message, f.line, f.column, f.end_column))
     found.extend(_programs(ctx, facts))
@@ -847,6 +869,8 @@ def _moved_diagnostic(d: Diagnostic, shift: int) -> Diagnostic:
         d.end_column,
         d.related,
         d.data,
+        d.fixes,
+        d.tags,
     )
 
 
