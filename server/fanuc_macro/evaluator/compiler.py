@@ -27,6 +27,7 @@ from ..syntax.tree import (
 from .values import (
     ONE_ARG,
     TWO_ARG,
+    AlarmKind,
     MacroAlarm,
     Unknown,
     Value,
@@ -298,7 +299,7 @@ def _overflow(expr: Binary, a: float, b: float) -> MacroAlarm:
     """PS0111 for an operation whose result no control holds (a float would be inf)."""
     alarm = MacroAlarm(
         "PS0111",
-        "overflow",
+        AlarmKind.OVERFLOW,
         f"{fmt(a)} {expr.op} {fmt(b)} overflows: the result is beyond any value a control "
         "holds (CALCULATED DATA OVERFLOW)",
         a,
@@ -504,7 +505,10 @@ def _compile_call(expr: Call, in_address: bool, args: list[Evaluator]) -> Evalua
 def _function_overflow(expr: Call, *args: float) -> MacroAlarm:
     shown = ",".join(fmt(a) for a in args)
     alarm = MacroAlarm(
-        "PS0111", "overflow", f"{expr.name}[{shown}] overflows (CALCULATED DATA OVERFLOW)", args[0]
+        "PS0111",
+        AlarmKind.OVERFLOW,
+        f"{expr.name}[{shown}] overflows (CALCULATED DATA OVERFLOW)",
+        args[0],
     )
     alarm.node = expr
     return alarm

@@ -8,11 +8,12 @@ from __future__ import annotations
 import itertools
 import math
 from array import array
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, TypeVar
+from types import MappingProxyType
+from typing import TYPE_CHECKING, ClassVar, TypeVar
 
-from .values import Unknown, Value, fmt
+from .values import AlarmKind, Unknown, Value, fmt
 
 if TYPE_CHECKING:
     from .checkpoints import RunRecord
@@ -256,11 +257,14 @@ class Rounding:
     count: int = 1
 
 
-@dataclass(eq=False, repr=False)
+@dataclass(frozen=True, eq=False, repr=False)
 class Finding:
-    """Something to report at a block: an alarm, a bad address value, a loop that never ends."""
+    """Something to report at a block: an alarm, a bad address value, a loop that never ends.
+    Each kind is a class of its own, which the rules match by type
+    (:meth:`fanuc_macro.rules.context.RuleContext.findings`)."""
 
-    kind: str
+    KIND: ClassVar[str] = ""
+
     line: int
     column: int
     end_column: int
@@ -268,6 +272,152 @@ class Finding:
     uri: str = ""
     related_line: int | None = None
     related_message: str = ""
+
+    @property
+    def kind(self) -> str:
+        """The finding's name as the trace and the debugger print it (``endless-loop``)."""
+        return self.KIND
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class EndlessLoop(Finding):
+    """A loop still running when the step budget ran out, and not getting nearer its end."""
+
+    KIND: ClassVar[str] = "endless-loop"
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class PollingLoop(Finding):
+    """A loop waiting for a variable that only something outside the program changes."""
+
+    KIND: ClassVar[str] = "polling-loop"
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class LongLoop(Finding):
+    """A loop still running when the budget ran out, but nearer its end at every turn."""
+
+    KIND: ClassVar[str] = "long-loop"
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class ProgramNotFound(Finding):
+    """A call of a program the analysis does not have (the call is skipped)."""
+
+    KIND: ClassVar[str] = "program-not-found"
+
+    program: int = field(kw_only=True)  # the number called
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class AddressFinding(Finding):
+    """A word whose value its address cannot take."""
+
+    address: str = field(kw_only=True)
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class AddressNotInteger(AddressFinding):
+    """A fraction where the address takes a whole number (or not a G code)."""
+
+    KIND: ClassVar[str] = "address-non-integer"
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class AddressOutOfRange(AddressFinding):
+    """A negative value, or a spindle speed above the machine's maximum."""
+
+    KIND: ClassVar[str] = "address-range"
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class FeedNotSet(Finding):
+    """A cut with no F commanded before it (kept by line: see :class:`CutsWithoutFeed`)."""
+
+    KIND: ClassVar[str] = "feed-not-set"
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class AlarmFinding(Finding):
+    """An alarm the control raises at the block: the run stops there."""
+
+    alarm: AlarmKind = field(kw_only=True)
+    number: str = field(kw_only=True)  # the alarm's number: "PS0112", "3000"
+
+    @property
+    def kind(self) -> str:
+        return f"alarm:{self.alarm.value}"
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class ArithmeticAlarm(AlarmFinding):
+    """ZERO DIVIDE, CALCULATED DATA OVERFLOW, or a function's argument outside its domain."""
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class UserAlarm(AlarmFinding):
+    """The program's own macro alarm: a number written to #3000."""
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class GotoAlarm(AlarmFinding):
+    """A GOTO to no sequence number, or to one the program does not have."""
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class ReturnMissing(AlarmFinding):
+    """An M99 P to a sequence number the caller does not have."""
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class NestingAlarm(AlarmFinding):
+    """Calls nested deeper than the control allows."""
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class ReadOnlyWrite(AlarmFinding):
+    """A write of #0 or of a read-only system variable."""
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class NoSuchVariable(AlarmFinding):
+    """A variable number the control does not have."""
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class FeedZero(AlarmFinding):
+    """A cut or thread run with F = 0 (PS0011 FEED ZERO)."""
+
+    @property
+    def lead(self) -> bool:
+        """F is a thread's lead, not a feed."""
+        return self.alarm is AlarmKind.LEAD_ZERO
+
+
+# The finding each kind of alarm makes.
+ALARM_FINDINGS: Mapping[AlarmKind, type[AlarmFinding]] = MappingProxyType(
+    {
+        AlarmKind.ZERO_DIVIDE: ArithmeticAlarm,
+        AlarmKind.OVERFLOW: ArithmeticAlarm,
+        AlarmKind.SQRT_NEGATIVE: ArithmeticAlarm,
+        AlarmKind.ASIN_RANGE: ArithmeticAlarm,
+        AlarmKind.ACOS_RANGE: ArithmeticAlarm,
+        AlarmKind.LN_DOMAIN: ArithmeticAlarm,
+        AlarmKind.BIN_RANGE: ArithmeticAlarm,
+        AlarmKind.BCD_RANGE: ArithmeticAlarm,
+        AlarmKind.POW_RANGE: ArithmeticAlarm,
+        AlarmKind.ATAN_ZERO: ArithmeticAlarm,
+        AlarmKind.MACRO_ALARM: UserAlarm,
+        AlarmKind.GOTO_TARGET: GotoAlarm,
+        AlarmKind.GOTO_MISSING: GotoAlarm,
+        AlarmKind.RETURN_MISSING: ReturnMissing,
+        AlarmKind.NESTING: NestingAlarm,
+        AlarmKind.WRITE_READ_ONLY: ReadOnlyWrite,
+        AlarmKind.NO_SUCH_VARIABLE: NoSuchVariable,
+        AlarmKind.FEED_ZERO: FeedZero,
+        AlarmKind.LEAD_ZERO: FeedZero,
+    }
+)
 
 
 @dataclass(slots=True, eq=False, repr=False)
@@ -350,7 +500,7 @@ class DocumentFacts:
             for line in cuts.lines:
                 if line not in seen:
                     seen.add(line)
-                    out.append(Finding("feed-not-set", line, 0, 0, cuts.message, cuts.uri))
+                    out.append(FeedNotSet(line, 0, 0, cuts.message, cuts.uri))
         out.extend(reported[taken:])
         return out
 
@@ -403,7 +553,7 @@ class DocumentFacts:
         return self.writes.get(line)
 
 
-@dataclass(frozen=True, slots=True, eq=False, repr=False)
+@dataclass(frozen=True, eq=False, repr=False)
 class RunValues:
     """The variables of one execution of a program when it began to cut a thread: what the
     threading rules read a module's inputs from when it is called more than once."""

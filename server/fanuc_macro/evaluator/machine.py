@@ -52,17 +52,24 @@ from .checkpoints import CtxKey, LevelState, MachineState, ModalState, Resumptio
 from .compiler import CondEvaluator, Evaluator, compile_cond, compile_expr, constant_of, kept
 from .cycles import g76_depths
 from .facts import (
+    ALARM_FINDINGS,
+    AddressNotInteger,
+    AddressOutOfRange,
     CutsWithoutFeed,
     DocumentFacts,
+    EndlessLoop,
     Facts,
     Finding,
+    LongLoop,
     Motion,
+    PollingLoop,
+    ProgramNotFound,
     Rounding,
     RunValues,
     ValueSummary,
 )
 from .toolpath import NOT_MOVES, ProfileBlock, Recorder
-from .values import UNKNOWN, MacroAlarm, Unknown, Value, fmt
+from .values import UNKNOWN, AlarmKind, MacroAlarm, Unknown, Value, fmt
 
 # Block kinds of the compiled program.
 K_EMPTY, K_ASSIGN, K_GOTO, K_IFGOTO, K_IFTHEN, K_WHILE, K_END, K_NC, K_HEADER, K_OTHER = range(10)
@@ -629,7 +636,7 @@ class Activation:
         if classify(n).kind == "none":
             raise MacroAlarm(
                 "PS0115",
-                "no-such-variable",
+                AlarmKind.NO_SUCH_VARIABLE,
                 f"#[...] refers to #{n}, which does not exist (VARIABLE NO. OUT OF RANGE)",
                 float(n),
             )
@@ -988,26 +995,15 @@ class Machine:
         merged.take_segments([s[ctx.uri] for s in record.segments if ctx.uri in s])
         return merged
 
-    def _finding(
-        self,
-        ctx: ProgramContext,
-        kind: str,
-        line: int,
-        start: int,
-        end: int,
-        message: str,
-        related_line: int | None = None,
-        related_message: str = "",
-    ) -> None:
-        key = (kind, ctx.uri, line, start)
+    def _finding(self, ctx: ProgramContext, finding: Finding) -> None:
+        """Report ``finding`` of ``ctx``'s document, once per kind and place in the evaluation."""
+        key = (finding.kind, finding.uri, finding.line, finding.column)
         seen = self._seen_findings
         if key in seen:
             return
         seen.add(key)
         self._seen_since.append(key)
-        ctx.facts.reported.append(
-            Finding(kind, line, start, end, message, ctx.uri, related_line, related_message)
-        )
+        ctx.facts.reported.append(finding)
 
     def _cut_without_feed(self, ctx: ProgramContext, message: str) -> None:
         """MB603's finding at the block being run, recorded by line (see CutsWithoutFeed)."""
@@ -1244,7 +1240,7 @@ class Machine:
             if not -largest <= value <= largest:  # NaN fails both comparisons
                 raise MacroAlarm(
                     "PS0111",
-                    "overflow",
+                    AlarmKind.OVERFLOW,
                     f"the result {fmt(value)} is beyond the control's range "
                     f"±{largest:.3g} (CALCULATED DATA OVERFLOW)",
                 )
@@ -1267,14 +1263,14 @@ class Machine:
             if kind.kind == "none":
                 raise MacroAlarm(
                     "PS0115",
-                    "no-such-variable",
+                    AlarmKind.NO_SUCH_VARIABLE,
                     f"#[...] = ... writes #{n}, which does not exist (VARIABLE NO. OUT OF RANGE)",
                     float(n),
                 )
             if kind.read_only:
                 raise MacroAlarm(
                     "PS0116",
-                    "write-read-only",
+                    AlarmKind.WRITE_READ_ONLY,
                     f"#[...] = ... writes #{n}, which is read-only ({kind.meaning})",
                     float(n),
                 )
@@ -1283,7 +1279,7 @@ class Machine:
         if 1 <= n <= 33:
             act.locals[n] = value
         elif n == 0:
-            raise MacroAlarm("PS0116", "write-read-only", "#0 is read-only", 0.0)
+            raise MacroAlarm("PS0116", AlarmKind.WRITE_READ_ONLY, "#0 is read-only", 0.0)
         else:
             if n == 3000 and self.speculative:
                 # Reached through a condition the analysis could not decide (an argument
@@ -1292,7 +1288,7 @@ class Machine:
             elif n == 3000 and value is not None and not isinstance(value, Unknown):
                 raise MacroAlarm(
                     "3000",
-                    "macro-alarm",
+                    AlarmKind.MACRO_ALARM,
                     f"#3000 = {fmt(value)}: the program raises macro alarm {3000 + int(value)}",
                     value,
                 )
@@ -1325,7 +1321,7 @@ class Machine:
         if target is None or target != int(target) or not 1 <= target <= 99999:
             raise MacroAlarm(
                 "PS0128",
-                "goto-target",
+                AlarmKind.GOTO_TARGET,
                 f"GOTO {fmt(target)}: not a sequence number 1-99999 (ILLEGAL MACRO "
                 "SEQUENCE NUMBER)",
                 target if target is not None else 0.0,
@@ -1334,7 +1330,7 @@ class Machine:
         if line is None:
             raise MacroAlarm(
                 "PS0128",
-                "goto-missing",
+                AlarmKind.GOTO_MISSING,
                 f"GOTO {int(target)}: no N{int(target)} in {ctx.name} (ILLEGAL MACRO "
                 "SEQUENCE NUMBER)",
                 target,
@@ -1694,8 +1690,12 @@ class Machine:
             # PS0011 FEED ZERO (COMMAND), 0i-TF/0i-MF alarm lists: the control stops here.
             # (For a threading lead of 0 the alarm number is unverified.)
             if code in THREADING_CODES:
-                raise MacroAlarm("PS0011", "lead-zero", f"{_g_name(code)} runs with the lead F = 0")
-            raise MacroAlarm("PS0011", "feed-zero", f"{_g_name(code)} runs with the feed F = 0")
+                raise MacroAlarm(
+                    "PS0011", AlarmKind.LEAD_ZERO, f"{_g_name(code)} runs with the lead F = 0"
+                )
+            raise MacroAlarm(
+                "PS0011", AlarmKind.FEED_ZERO, f"{_g_name(code)} runs with the feed F = 0"
+            )
         if const is None or words is not const.words:
             words = self._shared_words(words)
         if code in FEED_MOTIONS and modal.feed is None:
@@ -1867,41 +1867,39 @@ class Machine:
             if isinstance(v, Unknown) or v is None:
                 continue
             if (address in INTEGER_ADDRESSES or (address == "P" and calls)) and v != int(v):
+                message = f"{address} gets {fmt(v)}: {address} takes a whole number"
                 self._finding(
                     act.ctx,
-                    "address-non-integer",
-                    self._line,
-                    w.start,
-                    w.end,
-                    f"{address} gets {fmt(v)}: {address} takes a whole number",
+                    AddressNotInteger(
+                        self._line, w.start, w.end, message, act.ctx.uri, address=address
+                    ),
                 )
             elif address == "G" and round(v, 1) != v:
+                message = f"G gets {fmt(v)}: not a G code"
                 self._finding(
                     act.ctx,
-                    "address-non-integer",
-                    self._line,
-                    w.start,
-                    w.end,
-                    f"G gets {fmt(v)}: not a G code",
+                    AddressNotInteger(
+                        self._line, w.start, w.end, message, act.ctx.uri, address=address
+                    ),
                 )
             elif address in ("S", "T", "M", "H", "D", "F") and v < 0:
+                message = f"{address} gets {fmt(v)}: {address} cannot be negative"
                 self._finding(
                     act.ctx,
-                    "address-range",
-                    self._line,
-                    w.start,
-                    w.end,
-                    f"{address} gets {fmt(v)}: {address} cannot be negative",
+                    AddressOutOfRange(
+                        self._line, w.start, w.end, message, act.ctx.uri, address=address
+                    ),
                 )
             elif address == "S" and v > self.config.max_spindle_speed:
+                message = (
+                    f"S gets {fmt(v)} rpm, above the machine's maximum "
+                    f"{fmt(self.config.max_spindle_speed)} rpm"
+                )
                 self._finding(
                     act.ctx,
-                    "address-range",
-                    self._line,
-                    w.start,
-                    w.end,
-                    f"S gets {fmt(v)} rpm, above the machine's maximum "
-                    f"{fmt(self.config.max_spindle_speed)} rpm",
+                    AddressOutOfRange(
+                        self._line, w.start, w.end, message, act.ctx.uri, address=address
+                    ),
                 )
 
     # ---- calls -----------------------------------------------------------------------------
@@ -1912,14 +1910,14 @@ class Machine:
             return None
         ctx = self.programs.get(int(number))
         if ctx is None:
+            message = (
+                f"{what} calls O{int(number):04d}, which the analysis does not "
+                "have; the call is skipped"
+            )
+            width = len(act.ctx.doc.blocks[self._line].text)
             self._finding(
                 act.ctx,
-                "program-not-found",
-                self._line,
-                0,
-                len(act.ctx.doc.blocks[self._line].text),
-                f"{what} calls O{int(number):04d}, which the analysis does not "
-                "have; the call is skipped",
+                ProgramNotFound(self._line, 0, width, message, act.ctx.uri, program=int(number)),
             )
         return ctx
 
@@ -2044,14 +2042,14 @@ class Machine:
             if level > MAX_MACRO_LEVEL:
                 raise MacroAlarm(
                     "PS0077",
-                    "nesting",
+                    AlarmKind.NESTING,
                     f"macro call nesting deeper than "
                     f"{MAX_MACRO_LEVEL} levels (TOO MANY SUB,MACRO NESTING)",
                 )
         if depth > MAX_NESTING:
             raise MacroAlarm(
                 "PS0077",
-                "nesting",
+                AlarmKind.NESTING,
                 f"call nesting deeper than {MAX_NESTING} (TOO MANY SUB,MACRO NESTING)",
             )
         callee.facts.analysed_programs.add(callee.program.first_line)
@@ -2079,7 +2077,7 @@ class Machine:
             if target is None:
                 raise MacroAlarm(
                     "PS0078",
-                    "return-missing",
+                    AlarmKind.RETURN_MISSING,
                     f"M99 P{int(p)}: no N{int(p)} in {caller.ctx.name} (SEQUENCE NUMBER NOT FOUND)",
                     p,
                 )
@@ -2112,7 +2110,11 @@ class Machine:
                 if shown:
                     detail += " with " + ", ".join(shown)
         message = f"{alarm.message}{detail} (alarm {alarm.alarm}) in {ctx.name}"
-        self._finding(ctx, f"alarm:{alarm.kind}", self._line, start, end, message)
+        found = ALARM_FINDINGS[alarm.kind]
+        self._finding(
+            ctx,
+            found(self._line, start, end, message, ctx.uri, alarm=alarm.kind, number=alarm.alarm),
+        )
         return message
 
     def _budget_spent(self, act: Activation) -> None:
@@ -2147,32 +2149,24 @@ class Machine:
             # Nothing in the loop changes what it tests: it waits for the PMC, a FOCAS client
             # or another path to write a common or system variable.
             names = ", ".join(f"#{n}" for n in sorted(read))
-            self._finding(
-                ctx,
-                "polling-loop",
-                head,
-                0,
-                width,
+            message = (
                 f"loop waits for {names} to be changed from outside the program (PMC, "
                 f"FOCAS, another path): nothing in it writes {names}; the analysis "
-                f"stopped after {runs} turns ({budget})",
+                f"stopped after {runs} turns ({budget})"
             )
+            self._finding(ctx, PollingLoop(head, 0, width, message, ctx.uri))
             return
         cl = ctx.lines[head]
         still = [n for n in cl.reads if (s := facts.reads.get((head, n))) and s.constant]
         approaching = _approaching(cl.node, facts, head)
         if not still and approaching:
             # The test's variables move towards its bound: a long loop, not an endless one.
-            self._finding(
-                ctx,
-                "long-loop",
-                head,
-                0,
-                width,
+            message = (
                 f"loop still running after {runs} turns when {budget} ran out: it "
                 "gets nearer its end every turn, so it is long rather than endless; "
-                "values after it are not analysed",
+                "values after it are not analysed"
             )
+            self._finding(ctx, LongLoop(head, 0, width, message, ctx.uri))
             return
         moving = [n for n in cl.reads if n not in still]
         if still:
@@ -2182,14 +2176,8 @@ class Machine:
             why = f"the condition stays true, {names} moving away from its bound"
         else:
             why = "nothing in the condition changes"
-        self._finding(
-            ctx,
-            "endless-loop",
-            head,
-            0,
-            width,
-            f"loop never ends: the block ran {runs} times before {budget} ran out; {why}",
-        )
+        message = f"loop never ends: the block ran {runs} times before {budget} ran out; {why}"
+        self._finding(ctx, EndlessLoop(head, 0, width, message, ctx.uri))
 
 
 def _approaching(node: Statement | None, facts: DocumentFacts, line: int) -> bool:

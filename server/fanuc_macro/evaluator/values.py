@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from enum import Enum
 
 
 @dataclass(frozen=True, slots=True)
@@ -40,13 +41,39 @@ def merge_unknown(*values: Value) -> Unknown:
     return Unknown(frozenset(deps))
 
 
+class AlarmKind(Enum):
+    """What an alarm is about; its value is the name the trace and the debugger print."""
+
+    ZERO_DIVIDE = "zero-divide"
+    OVERFLOW = "overflow"
+    SQRT_NEGATIVE = "sqrt-negative"
+    ASIN_RANGE = "asin-range"
+    ACOS_RANGE = "acos-range"
+    LN_DOMAIN = "ln-domain"
+    BIN_RANGE = "bin-range"
+    BCD_RANGE = "bcd-range"
+    POW_RANGE = "pow-range"
+    ATAN_ZERO = "atan-zero"
+    MACRO_ALARM = "macro-alarm"  # #3000
+    GOTO_TARGET = "goto-target"
+    GOTO_MISSING = "goto-missing"
+    RETURN_MISSING = "return-missing"
+    NESTING = "nesting"
+    WRITE_READ_ONLY = "write-read-only"
+    NO_SUCH_VARIABLE = "no-such-variable"
+    FEED_ZERO = "feed-zero"
+    LEAD_ZERO = "lead-zero"
+
+
 class MacroAlarm(Exception):
     """An alarm the control would raise (``PS0112 ZERO DIVIDE`` ...)."""
 
-    def __init__(self, alarm: str, kind: str, message: str, operand: float | None = None) -> None:
+    def __init__(
+        self, alarm: str, kind: AlarmKind, message: str, operand: float | None = None
+    ) -> None:
         super().__init__(message)
         self.alarm = alarm
-        self.kind = kind  # "zero-divide", "sqrt-negative", "asin-range", "ln-domain", ...
+        self.kind = kind
         self.message = message
         self.operand = operand
         self.node: object | None = None  # the AST node, set by the compiled closure
@@ -100,7 +127,7 @@ def f_tan(x: float) -> float:
     if abs(c) < 1e-12:
         raise MacroAlarm(
             "PS0112",
-            "zero-divide",
+            AlarmKind.ZERO_DIVIDE,
             f"TAN[{fmt(x)}]: the tangent of {fmt(x)} degrees is infinite (ZERO DIVIDE)",
             x,
         )
@@ -109,13 +136,17 @@ def f_tan(x: float) -> float:
 
 def f_asin(x: float) -> float:
     if not -1.0 <= x <= 1.0:
-        raise MacroAlarm("PS0119", "asin-range", f"ASIN argument {fmt(x)} is outside [-1, 1]", x)
+        raise MacroAlarm(
+            "PS0119", AlarmKind.ASIN_RANGE, f"ASIN argument {fmt(x)} is outside [-1, 1]", x
+        )
     return math.degrees(math.asin(x))
 
 
 def f_acos(x: float) -> float:
     if not -1.0 <= x <= 1.0:
-        raise MacroAlarm("PS0119", "acos-range", f"ACOS argument {fmt(x)} is outside [-1, 1]", x)
+        raise MacroAlarm(
+            "PS0119", AlarmKind.ACOS_RANGE, f"ACOS argument {fmt(x)} is outside [-1, 1]", x
+        )
     return math.degrees(math.acos(x))
 
 
@@ -127,19 +158,21 @@ def f_atan(x: float) -> float:
 
 def f_atan2(a: float, b: float) -> float:
     if a == 0.0 and b == 0.0:
-        raise MacroAlarm("PS0119", "atan-zero", "ATAN[0]/[0] has no angle", 0.0)
+        raise MacroAlarm("PS0119", AlarmKind.ATAN_ZERO, "ATAN[0]/[0] has no angle", 0.0)
     return math.degrees(math.atan2(a, b)) % 360.0
 
 
 def f_sqrt(x: float) -> float:
     if x < 0.0:
-        raise MacroAlarm("PS0119", "sqrt-negative", f"SQRT argument {fmt(x)} is negative", x)
+        raise MacroAlarm(
+            "PS0119", AlarmKind.SQRT_NEGATIVE, f"SQRT argument {fmt(x)} is negative", x
+        )
     return math.sqrt(x)
 
 
 def f_ln(x: float) -> float:
     if x <= 0.0:
-        raise MacroAlarm("PS0119", "ln-domain", f"LN argument {fmt(x)} is not positive", x)
+        raise MacroAlarm("PS0119", AlarmKind.LN_DOMAIN, f"LN argument {fmt(x)} is not positive", x)
     return math.log(x)
 
 
@@ -147,7 +180,7 @@ def f_exp(x: float) -> float:
     try:
         return math.exp(x)
     except OverflowError:
-        raise MacroAlarm("PS0111", "overflow", f"EXP[{fmt(x)}] overflows", x) from None
+        raise MacroAlarm("PS0111", AlarmKind.OVERFLOW, f"EXP[{fmt(x)}] overflows", x) from None
 
 
 def f_round(x: float) -> float:
@@ -171,14 +204,14 @@ def f_abs(x: float) -> float:
 def f_bin(x: float) -> float:
     """BCD to binary."""
     if x < 0:
-        raise MacroAlarm("PS0119", "bin-range", f"BIN argument {fmt(x)} is negative", x)
+        raise MacroAlarm("PS0119", AlarmKind.BIN_RANGE, f"BIN argument {fmt(x)} is negative", x)
     n = int(x)
     result = 0
     scale = 1
     while n:
         digit = n & 0xF
         if digit > 9:
-            raise MacroAlarm("PS0119", "bin-range", f"BIN argument {fmt(x)} is not BCD", x)
+            raise MacroAlarm("PS0119", AlarmKind.BIN_RANGE, f"BIN argument {fmt(x)} is not BCD", x)
         result += digit * scale
         scale *= 10
         n >>= 4
@@ -188,7 +221,7 @@ def f_bin(x: float) -> float:
 def f_bcd(x: float) -> float:
     """Binary to BCD."""
     if x < 0:
-        raise MacroAlarm("PS0119", "bcd-range", f"BCD argument {fmt(x)} is negative", x)
+        raise MacroAlarm("PS0119", AlarmKind.BCD_RANGE, f"BCD argument {fmt(x)} is negative", x)
     n = int(x)
     result = 0
     shift = 0
@@ -200,7 +233,7 @@ def f_bcd(x: float) -> float:
         return float(result)
     except OverflowError:  # 4 bits a digit: past 77 digits the BCD form is no double
         raise MacroAlarm(
-            "PS0111", "overflow", f"BCD[{fmt(x)}] overflows (CALCULATED DATA OVERFLOW)", x
+            "PS0111", AlarmKind.OVERFLOW, f"BCD[{fmt(x)}] overflows (CALCULATED DATA OVERFLOW)", x
         ) from None
 
 
@@ -216,13 +249,13 @@ def f_pow(a: float, b: float) -> float:
     except OverflowError:
         raise MacroAlarm(
             "PS0111",
-            "overflow",
+            AlarmKind.OVERFLOW,
             f"POW[{fmt(a)},{fmt(b)}] overflows (CALCULATED DATA OVERFLOW)",
             a,
         ) from None
     except ValueError:
         raise MacroAlarm(
-            "PS0119", "pow-range", f"POW[{fmt(a)},{fmt(b)}] has no real value", a
+            "PS0119", AlarmKind.POW_RANGE, f"POW[{fmt(a)},{fmt(b)}] has no real value", a
         ) from None
     return result
 
@@ -237,14 +270,16 @@ TWO_ARG = {"ATAN": f_atan2, "POW": f_pow}
 
 def divide(a: float, b: float) -> float:
     if b == 0.0:
-        raise MacroAlarm("PS0112", "zero-divide", f"division of {fmt(a)} by zero (ZERO DIVIDE)", b)
+        raise MacroAlarm(
+            "PS0112", AlarmKind.ZERO_DIVIDE, f"division of {fmt(a)} by zero (ZERO DIVIDE)", b
+        )
     return a / b
 
 
 def modulo(a: float, b: float) -> float:
     ia, ib = int(a), int(b)
     if ib == 0:
-        raise MacroAlarm("PS0112", "zero-divide", f"{fmt(a)} MOD 0 (ZERO DIVIDE)", b)
+        raise MacroAlarm("PS0112", AlarmKind.ZERO_DIVIDE, f"{fmt(a)} MOD 0 (ZERO DIVIDE)", b)
     return float(math.fmod(ia, ib))
 
 

@@ -19,6 +19,7 @@ from ..diagnostics import (
     make,
     register,
 )
+from ..evaluator.facts import AddressNotInteger, AddressOutOfRange, FeedZero
 from ..syntax.marks import constant_value
 from ..syntax.tree import Assign, Var, Word
 from .context import RuleContext
@@ -185,8 +186,8 @@ but not 0 (MB602 reports a negative one).
 def check(ctx: RuleContext) -> Iterator[Diagnostic]:
     yield from _feed_not_set(ctx)
     yield from _feed_zero(ctx)
-    for f in ctx.findings("address-"):
-        code = "MB601" if f.kind == "address-non-integer" else "MB602"
+    for f in ctx.findings(AddressNotInteger, AddressOutOfRange):
+        code = "MB601" if isinstance(f, AddressNotInteger) else "MB602"
         message = f.message
         related: list[Related] = []
         fixes: tuple[Fix, ...] = ()
@@ -239,7 +240,7 @@ def _feed_not_set(ctx: RuleContext) -> Iterator[Diagnostic]:
 def _feed_zero(ctx: RuleContext) -> Iterator[Diagnostic]:
     """MB604: the evaluator's PS0011 FEED ZERO, a cut or thread run with F exactly 0, where it
     stopped the run; the message says where the 0 comes from."""
-    for f in ctx.findings("alarm:feed-zero", "alarm:lead-zero"):
+    for f in ctx.findings(FeedZero):
         text = ctx.doc.blocks[f.line].text
         word = _word_in_block(ctx, f.line, "F")
         if word is None:
@@ -260,7 +261,7 @@ def _feed_zero(ctx: RuleContext) -> Iterator[Diagnostic]:
         yield make(
             "MB604",
             f"{f.message}, {where}: the control stops at this block; give the "
-            + ("lead" if f.kind == "alarm:lead-zero" else "feed"),
+            + ("lead" if f.lead else "feed"),
             f.line,
             start,
             end,

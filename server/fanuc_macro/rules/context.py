@@ -5,7 +5,7 @@ from __future__ import annotations
 from bisect import bisect_left
 from collections.abc import Callable, Iterable, Iterator, Sequence
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, NamedTuple, cast
+from typing import TYPE_CHECKING, NamedTuple, TypeVar, cast
 
 from ..config import Config
 from ..diagnostics import Diagnostic, Fix
@@ -18,6 +18,12 @@ from ..syntax.tree import Block, Document, ParsedLine, Statement
 if TYPE_CHECKING:
     from ..program.meanings import Meaning
     from ..threads.identify import Thread
+
+F = TypeVar("F", bound=Finding)
+
+
+def _position_in_run(indexed: tuple[int, Finding]) -> int:
+    return indexed[0]
 
 
 @dataclass(frozen=True, eq=False, repr=False)
@@ -80,25 +86,26 @@ class RuleContext:
             )
         return cast("list[Thread]", found)
 
-    def findings(self, *kinds: str) -> Iterator[Finding]:
-        """The evaluator's findings in this document whose kind starts with one of ``kinds``,
-        in the order the run found them; not the cuts without F (``feed-not-set``), which
+    def findings(self, *kinds: type[F]) -> Iterator[F]:
+        """The evaluator's findings in this document of the classes ``kinds`` (or their
+        subclasses), in the order the run found them; not the cuts without F
+        (:class:`~fanuc_macro.evaluator.facts.FeedNotSet`), which
         :meth:`DocumentFacts.feedless` gives by program."""
         by_kind = self.memo.get("findings by kind")
         if by_kind is None:
             # Grouped once per analysis: a dozen rules ask.
             facts = self.doc_facts()
-            grouped: dict[str, list[tuple[int, Finding]]] = {}
+            grouped: dict[type[Finding], list[tuple[int, Finding]]] = {}
             for i, finding in enumerate(facts.reported if facts is not None else ()):
-                grouped.setdefault(finding.kind, []).append((i, finding))
+                grouped.setdefault(type(finding), []).append((i, finding))
             by_kind = self.memo["findings by kind"] = grouped
-        groups = cast("dict[str, list[tuple[int, Finding]]]", by_kind)
-        chosen = [found for kind, found in groups.items() if kind.startswith(kinds)]
+        groups = cast("dict[type[Finding], list[tuple[int, F]]]", by_kind)
+        chosen = [found for kind, found in groups.items() if issubclass(kind, kinds)]
         if len(chosen) == 1:
             for _, finding in chosen[0]:
                 yield finding
         elif chosen:
-            for _, finding in sorted(f for found in chosen for f in found):
+            for _, finding in sorted((f for found in chosen for f in found), key=_position_in_run):
                 yield finding
 
     def statements(self) -> Iterator[tuple[Block, Statement]]:

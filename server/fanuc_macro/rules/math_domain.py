@@ -5,6 +5,7 @@ from __future__ import annotations
 from collections.abc import Iterator
 
 from ..diagnostics import Diagnostic, RuleDoc, RuleInfo, Severity, document, make, register
+from ..evaluator.facts import ArithmeticAlarm, UserAlarm
 from .context import RuleContext
 
 FAMILY = "math-domain"
@@ -129,8 +130,8 @@ _DOMAIN = (
 
 
 def check(ctx: RuleContext) -> Iterator[Diagnostic]:
-    for f in ctx.findings("alarm:"):
-        kind = f.kind.split(":", 1)[1]
+    for f in ctx.findings(ArithmeticAlarm, UserAlarm):
+        kind = f.alarm.value
         code = _CODES.get(kind) or ("MB501" if kind in _DOMAIN else None)
         if code is not None:
             yield make(code, f.message, f.line, f.column, f.end_column)

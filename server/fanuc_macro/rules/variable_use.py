@@ -6,7 +6,7 @@ from bisect import bisect_left
 from collections.abc import Iterable, Iterator
 
 from ..diagnostics import Diagnostic, RuleDoc, RuleInfo, Severity, document, make, register
-from ..evaluator.facts import DocumentFacts
+from ..evaluator.facts import DocumentFacts, Finding, NoSuchVariable, ReadOnlyWrite
 from ..evaluator.machine import compiled
 from ..line_maps import Kept, LineMap
 from ..program.variables import ARGUMENT_VARIABLES
@@ -165,9 +165,10 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
     facts = ctx.doc_facts()
     if facts is None:
         return
-    for f in ctx.findings("alarm:write-read-only"):
+    f: Finding  # of each kind in turn
+    for f in ctx.findings(ReadOnlyWrite):
         yield make("MB902", f.message, f.line, f.column, f.end_column)
-    for f in ctx.findings("alarm:no-such-variable"):
+    for f in ctx.findings(NoSuchVariable):
         yield make("MB903", f.message, f.line, f.column, f.end_column)
     yield from _assumed_arguments(ctx, facts)
     # Locals that were vacant every time a block read them: few or none in most programs. The
