@@ -38,7 +38,13 @@ def module_text() -> str:
     from fanuc_macro.syntax.parser import grammar_crc32, grammar_lark
 
     tables: dict[str, Any] = lalr_tables(grammar_lark())
-    body = f"GRAMMAR_CRC32 = {grammar_crc32()!r}\nTABLES: dict[str, Any] = {tables!r}\n"
+    body = (
+        f"GRAMMAR_CRC32 = {grammar_crc32()!r}\n\n\n"
+        "def tables() -> dict[str, Any]:\n"
+        '    """The tables, built at each call: the parser converts them once, and a module-level\n'
+        '    dict would be kept (and could be changed) for the whole process."""\n'
+        f"    return {tables!r}\n"
+    )
     formatted = subprocess.run(
         [sys.executable, "-m", "ruff", "format", "--stdin-filename", str(OUTPUT), "-"],
         input=HEADER + body,

@@ -27,7 +27,7 @@ SMALL = ROOT / "tests" / "fixtures" / "seeds" / "o2_arc_thread_roughing.nc"
 REPORT = (
     "import json\n"
     "from fanuc_macro import code_cache\n"
-    "cache = code_cache._installed\n"
+    "cache = code_cache.installed_code_cache()\n"
     "print(json.dumps(None if cache is None else [cache.compiled, len(cache.used)]))\n"
 )
 
@@ -205,7 +205,7 @@ def test_a_server_session_over_stdio_writes_the_cache_once(tmp_path: Path) -> No
 DETAIL = (
     "import json\n"
     "from fanuc_macro import code_cache\n"
-    "cache = code_cache._installed\n"
+    "cache = code_cache.installed_code_cache()\n"
     "print(json.dumps(None if cache is None else {'compiled': cache.compiled,"
     " 'used': len(cache.used), 'loaded': cache.loaded, 'rejected': cache.rejected,"
     " 'writes': cache.path is not None}))\n"

@@ -277,7 +277,7 @@ def driver(lark: Lark, request: pytest.FixtureRequest) -> TableParser:
     (what BlockParser runs): each must give what Lark gives."""
     if request.param == "from Lark":
         return TableParser(lark)
-    return TableParser.from_tables(grammar_tables.TABLES, _ToAst())
+    return TableParser.from_tables(grammar_tables.tables(), _ToAst())
 
 
 def _outcome(parse: Any, code: str) -> tuple[str, Any]:
@@ -468,7 +468,7 @@ def test_the_shipped_tables_are_what_lark_builds_from_the_grammar() -> None:
     tables' format changes; Lark builds them afresh here, without its cache."""
     fresh = grammar_lark(cache=False)
     assert grammar_crc32() == grammar_tables.GRAMMAR_CRC32
-    assert lalr_tables(fresh) == grammar_tables.TABLES
+    assert lalr_tables(fresh) == grammar_tables.tables()
 
 
 def test_the_tables_do_not_depend_on_the_hash_seed() -> None:
@@ -480,7 +480,7 @@ def test_the_tables_do_not_depend_on_the_hash_seed() -> None:
         "from fanuc_macro.syntax.parser import _ToAst, grammar_text\n"
         "fresh = Lark(grammar_text(), parser='lalr', lexer='basic', transformer=_ToAst(),\n"
         "             keep_all_tokens=True, maybe_placeholders=False)\n"
-        "print(lalr_tables(fresh) == grammar_tables.TABLES)\n"
+        "print(lalr_tables(fresh) == grammar_tables.tables())\n"
     )
     for seed in ("1", "2", "3"):
         env = {**os.environ, "PYTHONHASHSEED": seed}
@@ -516,7 +516,7 @@ def test_the_tables_do_not_depend_on_larks_state_numbers() -> None:
     table.start_states = {name: flipped(s) for name, s in table.start_states.items()}
     table.end_states = {name: flipped(s) for name, s in table.end_states.items()}
     assert flipped(0) in table.states and table.start_states != {}
-    assert lalr_tables(fresh) == grammar_tables.TABLES
+    assert lalr_tables(fresh) == grammar_tables.tables()
 
 
 def test_the_block_parser_runs_the_shipped_tables_and_lark_when_they_are_stale(

@@ -31,10 +31,10 @@ import marshal
 import os
 import stat
 import sys
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from importlib.util import MAGIC_NUMBER
 from pathlib import Path
-from types import CodeType, ModuleType
+from types import CodeType, MappingProxyType, ModuleType
 from typing import Any
 
 from . import __version__
@@ -49,15 +49,20 @@ ENVIRONMENT = "FANUC_MACRO_CODE_CACHE"
 # The modules that build classes for each kind of process, and the name of the builtin each
 # compiles through. The command line builds only dataclasses; the language server also builds
 # lsprotocol's attrs classes and cattrs' hooks for the messages it receives.
-BUILDERS: dict[str, tuple[tuple[str, str], ...]] = {
-    "cli": (("dataclasses", "exec"),),
-    "server": (
-        ("dataclasses", "exec"),
-        ("attr._make", "compile"),
-        ("cattrs.gen", "compile"),
-        ("cattrs.gen.typeddicts", "compile"),
-    ),
-}
+BUILDERS: Mapping[str, tuple[tuple[str, str], ...]] = MappingProxyType(
+    {
+        "cli": (("dataclasses", "exec"),),
+        "server": (
+            ("dataclasses", "exec"),
+            ("attr._make", "compile"),
+            ("cattrs.gen", "compile"),
+            ("cattrs.gen.typeddicts", "compile"),
+        ),
+    }
+)
+# The attribute of a shadowing compile or exec that holds its cache: the one record of the
+# cache a process installed is on the builtins it shadows.
+SHADOW_ATTRIBUTE = "fanuc_macro_code_cache"
 
 # A file holding more entries than this is not read: it was written by a process gone wrong.
 MAX_ENTRIES = 50_000
@@ -157,9 +162,6 @@ class CodeCache:
             return False
         self.saved_at = (self.compiled, self.compiled_unnamed)
         return True
-
-
-_installed: CodeCache | None = None
 
 
 def _log_debug(message: str, *args: object) -> None:
@@ -314,9 +316,9 @@ def _exec_through(cache: CodeCache, flags: int) -> Callable[..., Any]:
 def install_code_cache(kind: str) -> CodeCache | None:
     """Installs the cache for a kind of process (a key of :data:`BUILDERS`) once; later calls
     return the installed one."""
-    global _installed
-    if _installed is not None:
-        return _installed
+    installed = installed_code_cache()
+    if installed is not None:
+        return installed
     directory = cache_directory()
     if directory is None:
         return None
@@ -334,12 +336,27 @@ def install_code_cache(kind: str) -> CodeCache | None:
             builtins, builtin
         ):
             continue  # the module has a compile of its own: leave it alone
-        setattr(module, builtin, makers[builtin](cache, _future_flags(module)))
-    _installed = cache
+        shadow = makers[builtin](cache, _future_flags(module))
+        shadow.__dict__[SHADOW_ATTRIBUTE] = cache
+        setattr(module, builtin, shadow)
     return cache
+
+
+def installed_code_cache() -> CodeCache | None:
+    """The cache this process installed, if any: the one the builders' modules compile
+    through."""
+    for builders in BUILDERS.values():
+        for module_name, builtin in builders:
+            module = sys.modules.get(module_name)
+            shadow = None if module is None else module.__dict__.get(builtin)
+            cache = getattr(shadow, SHADOW_ATTRIBUTE, None)
+            if isinstance(cache, CodeCache):
+                return cache
+    return None
 
 
 def save_code_cache() -> None:
     """Writes the installed cache if this process compiled what its file lacked."""
-    if _installed is not None:
-        _installed.save()
+    installed = installed_code_cache()
+    if installed is not None:
+        installed.save()

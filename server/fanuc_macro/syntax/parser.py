@@ -716,7 +716,7 @@ class BlockParser:
         # Our driver runs the grammar's LALR tables faster than Lark's loop. They are shipped
         # as data (grammar_tables.py): a start loads no Lark object, unless the grammar changed.
         if grammar_crc32() == grammar_tables.GRAMMAR_CRC32:
-            self._table = TableParser.from_tables(grammar_tables.TABLES, _ToAst())
+            self._table = TableParser.from_tables(grammar_tables.tables(), _ToAst())
         else:
             self._table = TableParser(self._lark)
         # Insertion-ordered, so that the oldest lines are looked at first when it is full. A hit
