@@ -168,10 +168,14 @@ CALLABLES = (
     types.MethodWrapperType,
     types.WrapperDescriptorType,
     types.MethodDescriptorType,
+    types.MemberDescriptorType,  # a slot's descriptor, and its __get__/__set__ bound to it
+    types.GetSetDescriptorType,
+    property,
     operator.itemgetter,
     operator.attrgetter,
     operator.methodcaller,
 )
+BOUND_METHODS = (types.BuiltinMethodType, types.MethodType, types.MethodWrapperType)
 SCALARS = (int, float, complex, str, bytes, bool, type(None), range, re.Pattern, LazyPattern)
 
 
@@ -221,11 +225,24 @@ def _imported_names(module: types.ModuleType) -> set[str]:
     return names
 
 
+def _bound_to(value: object) -> object | None:
+    """The object a bound method reads and may change (``{}.get``'s dict), None for a function
+    of a module or class."""
+    if not isinstance(value, BOUND_METHODS):
+        return None
+    owner = getattr(value, "__self__", None)
+    return None if owner is None or isinstance(owner, (types.ModuleType, type)) else owner
+
+
 def _is_declaration(value: object) -> bool:
     """A module, class, function, type, type variable, context variable or logger: code, not
-    state (a function behind ``functools.lru_cache`` is not: it holds a cache)."""
+    state (a function behind ``functools.lru_cache`` is not: it holds a cache; nor is a method
+    bound to a mutable object)."""
     if isinstance(value, functools._lru_cache_wrapper):
         return False
+    owner = _bound_to(value)
+    if owner is not None:
+        return _mutable_part(owner) is None
     if isinstance(value, (types.ModuleType, type, *CALLABLES)):
         return True
     if isinstance(value, (typing.TypeVar, typing.ParamSpec, contextvars.ContextVar)):
@@ -250,6 +267,9 @@ def _mutable_part(value: object, seen: set[int] | None = None) -> str | None:
     if isinstance(value, functools.partial):
         parts: tuple[object, ...] = (value.func, *value.args, *value.keywords.values())
         return _first_mutable(parts, seen, "functools.partial")
+    owner = _bound_to(value)
+    if owner is not None:
+        return _first_mutable((owner,), seen, "a method")
     if _is_declaration(value):
         return None
     if isinstance(value, (tuple, frozenset)):
@@ -380,6 +400,8 @@ def test_the_checks_see_what_they_look_for() -> None:
             "_SENTINEL": object(),
             "cached": functools.lru_cache(maxsize=None)(lambda: 1),
             "function": lambda: 1,
+            "lookup": {}.get,
+            "_match": re.compile("a").match,
         }
     )
     problems = {problem.split(":", 1)[0]: problem for problem in _problems(module, ())}
@@ -388,6 +410,7 @@ def test_the_checks_see_what_they_look_for() -> None:
         "fanuc_macro.example._PAIRS",
         "fanuc_macro.example.__all__",
         "fanuc_macro.example.cached",
+        "fanuc_macro.example.lookup",
         "fanuc_macro.example.lower_constant",
     ]
     assert problems["fanuc_macro.example._PAIRS"].endswith("(mutable: list)")
