@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, replace
 
 from .analysis import Analysis, analyse
@@ -63,6 +64,18 @@ class Workspace:
         self._executions = 0
         # uri -> (the config, the executions of the documents run, the evaluator's facts)
         self._facts: dict[str, tuple[Config, tuple[tuple[str, int], ...], Facts]] = {}
+        # Every document's (document, index): replaced on each change, never changed, so that
+        # another thread (the language server's requests) may read the one it got.
+        self._indexes: dict[str, tuple[Document, ProgramIndex]] = {}
+
+    def _reindexed(self, uri: str) -> None:
+        indexes = dict(self._indexes)
+        entry = self._entries.get(uri)
+        if entry is None:
+            indexes.pop(uri, None)
+        else:
+            indexes[uri] = (entry.doc, entry.index)
+        self._indexes = indexes
 
     def _next_execution(self) -> int:
         self._executions += 1
@@ -91,6 +104,7 @@ class Workspace:
             execution = self._next_execution()
         index = index_after_edit(old.index, old.doc, doc) if old is not None else build_index(doc)
         self._entries[uri] = _Entry(text, doc, index, "utf-8", None, execution, limits)
+        self._reindexed(uri)
         return doc
 
     def add_bytes(self, uri: str, data: bytes) -> Document:
@@ -107,6 +121,7 @@ class Workspace:
             self._next_execution(),
             limits,
         )
+        self._reindexed(uri)
         return doc
 
     def set_config(self, config: Config) -> list[str]:
@@ -122,12 +137,14 @@ class Workspace:
             doc = replace(doc, encoding=entry.encoding, decode_note=entry.decode_note)
             entry.doc, entry.index, entry.limits = doc, build_index(doc), limits
             entry.execution = self._next_execution()
+            self._reindexed(uri)
             reread.append(uri)
         return reread
 
     def remove(self, uri: str) -> None:
         self._entries.pop(uri, None)
         self._facts.pop(uri, None)
+        self._reindexed(uri)
 
     def not_text(self, uri: str) -> str | None:
         """Why the file ``uri`` was not read, when its bytes are not a program text (the
@@ -145,9 +162,28 @@ class Workspace:
     def index(self, uri: str) -> ProgramIndex:
         return self._entries[uri].index
 
+    def indexes(self) -> Mapping[str, tuple[Document, ProgramIndex]]:
+        """Every document and its index, in workspace order: a snapshot that later changes
+        replace and never change, so any thread may read it."""
+        return self._indexes
+
+    def links(self, uri: str) -> frozenset[tuple[str, int | None]]:
+        """What ties ``uri`` to other documents: see :func:`program_links`."""
+        entry = self._entries.get(uri)
+        return frozenset() if entry is None else program_links(entry.doc, entry.index)
+
+    def readers(self, uri: str, of: Iterable[str]) -> list[str]:
+        """Those of ``of`` whose analysis reads ``uri`` (:func:`related_documents`)."""
+        readers: list[str] = []
+        for key in of:
+            needed = related_documents(key, self._indexes)
+            if key != uri and key in self._indexes and (needed is None or uri in needed):
+                readers.append(key)
+        return readers
+
     def others(self, uri: str) -> list[tuple[str, Document, ProgramIndex]]:
         """The other documents an analysis of ``uri`` needs: see :func:`related_documents`."""
-        indexes = {u: (e.doc, e.index) for u, e in self._entries.items()}
+        indexes = self._indexes
         needed = related_documents(uri, indexes)
         keys = [u for u in indexes if u != uri] if needed is None else needed
         return [(u, *indexes[u]) for u in keys]
@@ -175,8 +211,10 @@ class Workspace:
         uri: str,
         workspace_programs: frozenset[int] | None = None,
         cancel: CancelToken | None = None,
+        others: list[tuple[str, Document, ProgramIndex]] | None = None,
     ) -> Analysis:
-        """Analyse ``uri`` with the programs of the workspace it calls.
+        """Analyse ``uri`` with the programs of the workspace it calls (``others``, when the
+        caller has them already from :meth:`others`).
 
         The evaluator's facts are kept while no document it ran changed what it does: typing in
         a comment re-runs the rules (comments name parameters and suppress diagnostics), not
@@ -184,7 +222,7 @@ class Workspace:
         """
         entry = self._entries[uri]
         programs = self.program_numbers() if workspace_programs is None else workspace_programs
-        others = self.others(uri)
+        others = self.others(uri) if others is None else others
         runs = ((uri, entry.execution), *((u, self._entries[u].execution) for u, _, _ in others))
         cached = self._facts.get(uri)
         facts = cached[2] if cached and cached[0] is self.config and cached[1] == runs else None
@@ -221,8 +259,25 @@ def _called_numbers(doc: Document, call: Call) -> list[int] | None:
     return numbers
 
 
+def program_links(doc: Document, index: ProgramIndex) -> frozenset[tuple[str, int | None]]:
+    """The program numbers a document defines ("defines", n) and calls ("calls", n; n None
+    for a number computed at run time): two versions with the same links relate the same
+    documents in :func:`related_documents`."""
+    links: set[tuple[str, int | None]] = set()
+    for program in index.programs:
+        if program.number is not None:
+            links.add(("defines", program.number))
+        for call in program.calls:
+            numbers = _called_numbers(doc, call)
+            if numbers is not None:
+                links.update(("calls", n) for n in numbers)  # an M97 too: counted as a caller
+            elif call.kind != "M97":  # a Haas local call is a sequence number
+                links.add(("calls", None))
+    return frozenset(links)
+
+
 def related_documents(
-    key: str, indexes: dict[str, tuple[Document, ProgramIndex]]
+    key: str, indexes: Mapping[str, tuple[Document, ProgramIndex]]
 ) -> list[str] | None:
     """The documents the evaluator needs to analyse ``key``, in workspace order; None when all
     of them may be (a call whose program is computed, ``M98 P#1``).

@@ -19,10 +19,11 @@ import os
 import threading
 import time
 import traceback
-from collections.abc import Callable, Iterable, Sequence
+from collections.abc import Callable, Iterable, Mapping, Sequence
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
 from pathlib import Path, PurePosixPath
+from types import MappingProxyType
 from typing import TYPE_CHECKING, Any, Protocol, TypeVar
 from urllib.parse import unquote, urlparse
 
@@ -33,7 +34,7 @@ from ..cancel import RUNNING, Cancelled, CancelToken, Stage
 from ..code_cache import save_code_cache
 from ..config import Config, FormatSettings
 from ..diagnostics import REPORT_INTERNAL_ERROR
-from ..ide.messages import Catalogue, catalogue
+from ..ide import Catalogue, catalogue
 from .convert import Codec, ConvertedDiagnostics, Lines, TextLines
 from .documents import OpenDocument
 
@@ -57,6 +58,7 @@ SCAN_CHUNK = 25  # files per worker job, so that edits are analysed between chun
 FAULT_ENV = "FANUC_MACRO_LS_FAULT"  # tests: analysing a text that contains it raises
 # Tests: every feature request fails while an open document contains it.
 FEATURE_FAULT_ENV = "FANUC_MACRO_LS_FEATURE_FAULT"
+NO_INDEXES: Mapping[str, tuple[Document, ProgramIndex]] = MappingProxyType({})
 
 
 def key_of(uri: str) -> str:
@@ -84,6 +86,9 @@ class Result:
     seconds: float
     changed_workspace: bool  # this run put a new text of the document into the workspace
     error: str | None = None
+    # The other open documents whose analysis the new text can change (their analysis reads
+    # this document, before or after the change).
+    affects: frozenset[str] = frozenset()
 
 
 @dataclass(frozen=True)
@@ -94,6 +99,7 @@ class Stopped:
     version: int | None
     where: str  # how far it got, for the log
     changed_workspace: bool  # it put a new text of the document into the workspace
+    affects: frozenset[str] = frozenset()  # as in Result
 
 
 class ProgressDisplay(Protocol):
@@ -130,6 +136,9 @@ class _Job:
     token: CancelToken
     keys: frozenset[str]  # the documents it reads
     changed: bool = False  # it put a new text of the document into the workspace
+    affects: frozenset[str] = frozenset()  # the other open documents the new text may change
+    # The other documents the analysis reads, computed once for it.
+    others: list[tuple[str, Document, ProgramIndex]] = field(default_factory=list)
 
 
 class Engine:
@@ -147,8 +156,6 @@ class Engine:
         self.debounce = DEFAULT_DEBOUNCE_MS / 1000.0
         self.docs: dict[str, OpenDocument] = {}  # by key
         self.results: dict[str, Result] = {}  # newest analysis of each open document
-        # Read by the loop, replaced (never mutated) by the worker: every workspace document.
-        self.indexes: dict[str, tuple[Document, ProgramIndex]] = {}
         self.folders: list[Path] = []
         self.scan_done = asyncio.Event()
         self.scanned_files = 0
@@ -171,6 +178,11 @@ class Engine:
         self._workspace: Workspace | None = None  # made by the worker's first job
         self._ws_seq: dict[str, int | None] = {}  # which text of each document is in _ws
         self._analysed: dict[str, tuple[int, int]] = {}  # key -> (text seq, generation)
+        # The documents each open document's last analysis read (worker thread): an edit of
+        # one of them is what reschedules it.
+        self._reads_of: dict[str, frozenset[str]] = {}
+        # The program numbers each open document defines and calls, when its text last changed.
+        self._links: dict[str, frozenset[tuple[str, int | None]]] = {}
         # The protocol's form of each open document's last diagnostics (worker thread).
         self._converted: dict[str, ConvertedDiagnostics] = {}
         self.generation = 0  # written by the worker only
@@ -181,6 +193,13 @@ class Engine:
         self._feature_fault = os.environ.get(FEATURE_FAULT_ENV) or None
 
     # ---- helpers ---------------------------------------------------------------------------
+    @property
+    def indexes(self) -> Mapping[str, tuple[Document, ProgramIndex]]:
+        """Every workspace document and its index: the workspace's snapshot, which the worker
+        replaces and never changes, so the event loop and feature threads may read it."""
+        workspace = self._workspace
+        return NO_INDEXES if workspace is None else workspace.indexes()
+
     @property
     def _ws(self) -> Workspace:
         """The package's workspace (worker only). The analysis modules it imports take a
@@ -274,10 +293,7 @@ class Engine:
         self.config = config
 
         def apply() -> None:
-            for key in self._ws.set_config(config):  # read again: the limits changed
-                doc = self._ws.document(key)
-                if doc is not None:
-                    self._set_index(key, doc, self._ws.index(key))
+            self._ws.set_config(config)  # the documents read with other limits are read again
             self.generation += 1
 
         self._submit(apply, then=lambda _: self.schedule_all(0.0))
@@ -337,6 +353,7 @@ class Engine:
         def reload() -> None:
             # A closed file stays in the workspace as it is on disk, for the others' calls.
             data = _read_program(path) if keep and path is not None else None
+            self._reads_of.pop(key, None)
             if data is not None:
                 self._add_file(key, data)
             else:
@@ -452,7 +469,7 @@ class Engine:
             return result
         except Cancelled as stop:
             ending = "cancelled: a document it reads changed"
-            return Stopped(key, text.version, stop.where(), job.changed)
+            return Stopped(key, text.version, stop.where(), job.changed, job.affects)
         except BaseException:
             ending = "failed"
             raise
@@ -470,13 +487,15 @@ class Engine:
         try:
             changed = self._ensure_text(key, text, job.token)
             job.changed = changed
+            if changed:
+                job.affects = self._affected_by(key)
             generation = self.generation
             if self._analysed.get(key) == (text.seq, generation):
                 return None  # already fresh: a duplicate request
             self._reads(job)
             if self._fault is not None and self._fault in text.text:
                 raise RuntimeError("fault injected for testing")
-            analysis = self._analyse(key, job.token)
+            analysis = self._analyse(key, job.token, job.others)
             converted = self._converted.setdefault(key, ConvertedDiagnostics())
             diagnostics = converted.convert(
                 self.catalogue.localised(analysis.diagnostics), key, text.uri, lines, self._resolve
@@ -494,24 +513,31 @@ class Engine:
             self._analysed[key] = (text.seq, self.generation)
             seconds = time.perf_counter() - started
             return Result(key, text.version, self.generation, lines, None, [failure], seconds,
-                          changed, repr(err))  # fmt: skip
+                          changed, repr(err), job.affects)  # fmt: skip
         self._analysed[key] = (text.seq, generation)
         seconds = time.perf_counter() - started
         return Result(key, text.version, generation, lines, analysis, diagnostics, seconds,
-                      changed)  # fmt: skip
+                      changed, None, job.affects)  # fmt: skip
 
     def _reads(self, job: _Job) -> None:
         """Worker thread: record the documents the analysis of ``job.key`` reads, so that an
         edit of any of them cancels it (one that came before it knew them too)."""
-        keys = frozenset({job.key, *(k for k, _, _ in self.documents_for(job.key))})
+        job.others = self.documents_for(job.key)
+        keys = frozenset({job.key, *(k for k, _, _ in job.others)})
+        self._reads_of[job.key] = keys
         with self._lock:
             job.keys = keys
             if any(t.seq > job.seq for k, t in self._texts.items() if k in keys):
                 job.token.cancel()
 
-    def _analyse(self, key: str, cancel: CancelToken | None = None) -> Analysis:
+    def _analyse(
+        self,
+        key: str,
+        cancel: CancelToken | None = None,
+        others: list[tuple[str, Document, ProgramIndex]] | None = None,
+    ) -> Analysis:
         """The package's analysis of ``key``, given only the documents it can reach."""
-        return self._ws.analyse(key, cancel=cancel)
+        return self._ws.analyse(key, cancel=cancel, others=others)
 
     def _progress_of(self, key: str) -> _AnalysisProgress | None:
         """Worker thread: what reports the progress of an analysis, if the client shows it."""
@@ -524,12 +550,20 @@ class Engine:
 
     def documents_for(self, key: str) -> list[tuple[str, Document, ProgramIndex]]:
         """Worker thread: the other documents an analysis or trace of ``key`` needs."""
-        indexes = self.indexes
-        from ..workspace import related_documents
+        return self._ws.others(key)
 
-        needed = related_documents(key, indexes)
-        keys = [k for k in indexes if k != key] if needed is None else needed
-        return [(k, *indexes[k]) for k in keys]
+    def _affected_by(self, key: str) -> frozenset[str]:
+        """Worker thread, after a new text of ``key`` went into the workspace: the other open
+        documents whose analysis it can change. Those whose last analysis read ``key``; and,
+        when the program numbers ``key`` defines or calls changed, those that read it now."""
+        affected = {k for k, reads in self._reads_of.items() if key in reads and k != key}
+        links = self._ws.links(key)
+        if self._links.get(key) != links:
+            self._links[key] = links
+            with self._lock:
+                open_keys = list(self._texts)
+            affected.update(self._ws.readers(key, open_keys))
+        return frozenset(affected)
 
     def _ensure_text(self, key: str, text: _Text, cancel: CancelToken | None = None) -> bool:
         """Put the newest text of an open document into the workspace; True if it was not.
@@ -539,30 +573,19 @@ class Engine:
         self._ws.add_text(key, text.text, cancel)
         self._ws_seq[key] = text.seq
         self.generation += 1
-        doc = self._ws.document(key)
-        if doc is not None:
-            self._set_index(key, doc, self._ws.index(key))
         return True
 
-    def _set_index(self, key: str, doc: Document, index: ProgramIndex) -> None:
-        indexes = dict(self.indexes)
-        indexes[key] = (doc, index)
-        self.indexes = indexes
-
     def _add_file(self, key: str, data: bytes) -> None:
-        doc = self._ws.add_bytes(key, data)
+        self._ws.add_bytes(key, data)
         self._ws_seq[key] = None
         self.generation += 1
-        self._set_index(key, doc, self._ws.index(key))
 
     def _remove(self, key: str) -> None:
         self._ws.remove(key)
         self._ws_seq.pop(key, None)
         self._analysed.pop(key, None)
+        self._links.pop(key, None)
         self.generation += 1
-        indexes = dict(self.indexes)
-        indexes.pop(key, None)
-        self.indexes = indexes
 
     def _resolve(self, key: str) -> tuple[str, Lines] | None:
         doc = self._ws.document(key)
@@ -592,9 +615,8 @@ class Engine:
         self._wake(key, result)
         del previous  # the earlier analysis: freed now, before the memory is given back
         self._submit(release_memory)
-        if result.changed_workspace:
-            # Another open document may call a program of this one (or be called by it).
-            self.schedule_all(self.debounce, but=key)
+        # The other open documents that call a program of this one, or are called by it.
+        self._schedule_each(result.affects)
 
     def _stopped(self, doc: OpenDocument, stopped: Stopped) -> None:
         message = (
@@ -603,13 +625,16 @@ class Engine:
         )
         log.info("%s", message)
         self.log_message(message, types.MessageType.Log)
-        if stopped.changed_workspace:
-            self.schedule_all(self.debounce, but=doc.key)
+        self._schedule_each(stopped.affects)
         with self._lock:
             queued = doc.key in self._queued
         if not queued and doc.key not in self._timers:
             # Cancelled by an edit of another document: this one is analysed again too.
             self.schedule(doc.key, self.debounce)
+
+    def _schedule_each(self, keys: Iterable[str]) -> None:
+        for key in keys:
+            self.schedule(key, self.debounce)
 
     def _wake(self, key: str, result: Result) -> None:
         for waiter in list(self._waiters.get(key, [])):
@@ -666,7 +691,7 @@ class Engine:
             return any(path.is_relative_to(folder) for folder in gone)
 
         def forget() -> None:
-            for key in list(self.indexes):
+            for key in self._ws.uris():
                 path = _path_of(key)
                 with self._lock:
                     is_open = key in self._texts
@@ -736,14 +761,14 @@ class Engine:
             texts = dict(self._texts)
         for k, text in texts.items():
             self._ensure_text(k, text)
-        own = self.indexes.get(key)
+        own = self._ws.indexes().get(key)
         if own is None:
             return None
         return [(key, *own), *self.documents_for(key)]
 
     def load(self, key: str) -> bool:
         """Worker thread: make sure ``key`` is in the workspace, reading it from disk if need be."""
-        if key in self.indexes:
+        if key in self._ws.indexes():
             return True
         path = _path_of(key)
         data = _read_program(path) if path is not None else None
@@ -811,9 +836,6 @@ class _AnalysisProgress:
             log.debug("cannot show progress", exc_info=True)
 
 
-_TRIM: list[Callable[[int], int] | None] = []  # the C library's malloc_trim, once looked up
-
-
 def release_memory() -> bool:
     """Give the C allocator's free memory back to the system (glibc's ``malloc_trim``); False
     where there is none to call.
@@ -825,14 +847,13 @@ def release_memory() -> bool:
     arena, which it trims seldom: the server of a 100,000-block document grew by about 35 MB
     of such free memory in 8 keystrokes. A trim takes 2-3 ms there; it runs in the worker
     after the analysis is delivered, off the keystroke's path."""
-    if not _TRIM:
-        import ctypes
+    import ctypes
 
-        try:
-            _TRIM.append(getattr(ctypes.CDLL(None), "malloc_trim", None))
-        except OSError:  # no C library to load (Windows)
-            _TRIM.append(None)
-    trim = _TRIM[0]
+    try:
+        # Looked up each time (a few microseconds, once per analysis): nothing kept.
+        trim = getattr(ctypes.CDLL(None), "malloc_trim", None)
+    except OSError:  # no C library to load (Windows)
+        return False
     if trim is None:
         return False
     trim(0)

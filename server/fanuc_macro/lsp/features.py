@@ -6,21 +6,18 @@ in a thread.
 
 from __future__ import annotations
 
-from collections.abc import Callable, Iterable, Sequence
+from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass, field
 from functools import cached_property
+from types import MappingProxyType
 
 from lsprotocol import types
 
+from .. import ide
 from ..analysis import Analysis
 from ..config import Config
-from ..ide import actions as ide_actions
-from ..ide import completion as ide_completion
-from ..ide import data, navigation
-from ..ide import hover as ide_hover
-from ..ide import inlay as ide_inlay
-from ..ide.view import Indexed
-from ..ide.view import View as IdeView
+from ..ide import Indexed
+from ..ide import View as IdeView
 from .client import CompletionSupport
 from .convert import Codec, Lines
 
@@ -35,7 +32,7 @@ class View:
     lines: Lines
     config: Config
     # Every workspace document by key: (document, index), for calls across files.
-    workspace: dict[str, Indexed] = field(default_factory=dict)
+    workspace: Mapping[str, Indexed] = field(default_factory=dict)
     client_uri: Callable[[str], str] = lambda key: key
     markdown: bool = True
 
@@ -57,15 +54,15 @@ class View:
 # ---- conversions -----------------------------------------------------------------------------
 
 
-def position(lines: Lines, p: data.Position) -> types.Position:
+def position(lines: Lines, p: ide.Position) -> types.Position:
     return lines.position(p.line, p.column)
 
 
-def lsp_range(lines: Lines, r: data.Range) -> types.Range:
+def lsp_range(lines: Lines, r: ide.Range) -> types.Range:
     return lines.range(r.start.line, r.start.column, r.end.line, r.end.column)
 
 
-def locations(view: View, found: Iterable[data.Location]) -> list[types.Location]:
+def locations(view: View, found: Iterable[ide.Location]) -> list[types.Location]:
     lines: dict[str, Lines] = {}  # a document's lines, made once for all its places
     out: list[types.Location] = []
     for loc in found:
@@ -76,26 +73,30 @@ def locations(view: View, found: Iterable[data.Location]) -> list[types.Location
     return out
 
 
-SYMBOL_KIND = {
-    data.SymbolKind.MAIN_PROGRAM: types.SymbolKind.Module,
-    data.SymbolKind.SUBPROGRAM: types.SymbolKind.Function,
-    data.SymbolKind.LABEL: types.SymbolKind.Key,
-    data.SymbolKind.LOOP: types.SymbolKind.Array,
-}
-PROGRAMS = (data.SymbolKind.MAIN_PROGRAM, data.SymbolKind.SUBPROGRAM)
+SYMBOL_KIND = MappingProxyType(
+    {
+        ide.SymbolKind.MAIN_PROGRAM: types.SymbolKind.Module,
+        ide.SymbolKind.SUBPROGRAM: types.SymbolKind.Function,
+        ide.SymbolKind.LABEL: types.SymbolKind.Key,
+        ide.SymbolKind.LOOP: types.SymbolKind.Array,
+    }
+)
+PROGRAMS = (ide.SymbolKind.MAIN_PROGRAM, ide.SymbolKind.SUBPROGRAM)
 
-COMPLETION_KIND = {
-    data.CompletionKind.VARIABLE: types.CompletionItemKind.Variable,
-    data.CompletionKind.CODE: types.CompletionItemKind.Value,
-    data.CompletionKind.FUNCTION: types.CompletionItemKind.Function,
-    data.CompletionKind.KEYWORD: types.CompletionItemKind.Keyword,
-    data.CompletionKind.SNIPPET: types.CompletionItemKind.Snippet,
-}
+COMPLETION_KIND = MappingProxyType(
+    {
+        ide.CompletionKind.VARIABLE: types.CompletionItemKind.Variable,
+        ide.CompletionKind.CODE: types.CompletionItemKind.Value,
+        ide.CompletionKind.FUNCTION: types.CompletionItemKind.Function,
+        ide.CompletionKind.KEYWORD: types.CompletionItemKind.Keyword,
+        ide.CompletionKind.SNIPPET: types.CompletionItemKind.Snippet,
+    }
+)
 
-ACTION_KIND = {data.ActionKind.QUICK_FIX: types.CodeActionKind.QuickFix}
+ACTION_KIND = MappingProxyType({ide.ActionKind.QUICK_FIX: types.CodeActionKind.QuickFix})
 
 
-def _symbol(lines: Lines, symbol: data.Symbol) -> types.DocumentSymbol:
+def _symbol(lines: Lines, symbol: ide.Symbol) -> types.DocumentSymbol:
     children = [_symbol(lines, child) for child in symbol.children]
     return types.DocumentSymbol(
         name=symbol.name,
@@ -117,7 +118,7 @@ def _documentation(text: str, support: CompletionSupport) -> types.MarkupContent
 
 
 def _completion_item(
-    item: data.CompletionItem,
+    item: ide.CompletionItem,
     line_text: str,
     codec: Codec,
     support: CompletionSupport,
@@ -160,7 +161,7 @@ def _completion_item(
 
 
 def hover(view: View, at: types.Position) -> types.Hover | None:
-    found = ide_hover.hover(view.ide, at.line, view.lines.column(at))
+    found = ide.hover(view.ide, at.line, view.lines.column(at))
     if found is None:
         return None
     kind = types.MarkupKind.Markdown if view.markdown else types.MarkupKind.PlainText
@@ -178,12 +179,12 @@ def inlay_hints(view: View, first: int, last: int) -> list[types.InlayHint]:
             padding_left=True,
             tooltip=hint.tooltip,
         )
-        for hint in ide_inlay.inlay_hints(view.ide, first, last)
+        for hint in ide.inlay_hints(view.ide, first, last)
     ]
 
 
 def definition(view: View, at: types.Position) -> list[types.Location] | None:
-    found = navigation.definition(view.ide, at.line, view.lines.column(at))
+    found = ide.definition(view.ide, at.line, view.lines.column(at))
     return locations(view, found) or None
 
 
@@ -193,7 +194,7 @@ def references(
     include_declaration: bool,
     open_views: Sequence[View] = (),
 ) -> list[types.Location] | None:
-    found = navigation.references(
+    found = ide.references(
         view.ide,
         at.line,
         view.lines.column(at),
@@ -204,7 +205,7 @@ def references(
 
 
 def document_symbols(view: View) -> list[types.DocumentSymbol]:
-    return [_symbol(view.lines, symbol) for symbol in navigation.document_symbols(view.ide)]
+    return [_symbol(view.lines, symbol) for symbol in ide.document_symbols(view.ide)]
 
 
 def completion(
@@ -223,7 +224,7 @@ def completion(
     an edit away from the cursor (the thread module's sub-program) is made only from a view
     of as many lines, whose other lines are those of the text."""
     same_lines = view is not None and len(view.lines.lines) == line_count
-    found = ide_completion.completion(
+    found = ide.completion(
         line_text,
         line,
         column,
@@ -247,15 +248,15 @@ def completion(
 def code_actions(
     view: View, diagnostics: Iterable[types.Diagnostic], eol: str
 ) -> list[types.CodeAction]:
-    asked: dict[int, tuple[data.Problem, types.Diagnostic]] = {}
+    asked: dict[int, tuple[ide.Problem, types.Diagnostic]] = {}
     for diag in diagnostics:
         if diag.source not in (None, "fanuc-macro") or not isinstance(diag.code, str):
             continue
         start = diag.range.start
-        problem = data.Problem(diag.code, start.line, view.lines.column(start))
+        problem = ide.Problem(diag.code, start.line, view.lines.column(start))
         asked[id(problem)] = (problem, diag)
     out: list[types.CodeAction] = []
-    for action in ide_actions.code_actions(view.ide, [p for p, _ in asked.values()], eol):
+    for action in ide.code_actions(view.ide, [p for p, _ in asked.values()], eol):
         changes: dict[str, list[types.TextEdit]] = {}
         for edit in action.edits:
             lines = view.lines_of(edit.key)
@@ -276,7 +277,7 @@ def code_actions(
     return out
 
 
-__all__ = [
+__all__ = (
     "CompletionSupport",
     "View",
     "code_actions",
@@ -286,4 +287,4 @@ __all__ = [
     "hover",
     "inlay_hints",
     "references",
-]
+)

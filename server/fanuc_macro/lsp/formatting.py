@@ -13,8 +13,7 @@ from ..config import FormatSettings
 from .convert import Codec, Lines
 
 if TYPE_CHECKING:
-    from ..ide.data import TextEdit
-    from ..ide.formatting import FormatOptions
+    from ..ide import FormatOptions, TextEdit
     from .features import View
 
 RENUMBER_KIND = "source.renumber.fanuc-macro"  # ide.data.ActionKind.SOURCE_RENUMBER
@@ -29,7 +28,7 @@ def wants(only: Sequence[str] | None, kind: str) -> bool:
 
 
 def _options(settings: FormatSettings, options: types.FormattingOptions) -> FormatOptions:
-    from ..ide.formatting import FormatOptions
+    from ..ide import FormatOptions
 
     trim = options.trim_trailing_whitespace
     return FormatOptions(
@@ -59,7 +58,7 @@ def document_edits(
     settings: FormatSettings,
     options: types.FormattingOptions,
 ) -> list[types.TextEdit]:
-    from ..ide.formatting import format_document
+    from ..ide import format_document
 
     chosen = _options(settings, options)
     return _converted(format_document(text, chosen), Lines(lines, codec))
@@ -74,7 +73,7 @@ def range_edits(
     asked: types.Range,
 ) -> list[types.TextEdit]:
     """The lines the range touches (a range that ends at a line's start leaves that line)."""
-    from ..ide.formatting import format_lines
+    from ..ide import format_lines
 
     chosen = _options(settings, options)
     first, last = asked.start.line, asked.end.line
@@ -86,7 +85,7 @@ def range_edits(
 def renumber_action(view: View, line: int, step: int) -> types.CodeAction | None:
     """ "Renumber N labels" of the program at ``line``: a source action; disabled, with the
     reason, when it cannot be done."""
-    from ..ide.renumber import renumber_labels
+    from ..ide import renumber_labels
 
     action = renumber_labels(view.ide, line, step)
     if action is None:
@@ -106,4 +105,4 @@ def renumber_action(view: View, line: int, step: int) -> types.CodeAction | None
     )
 
 
-__all__ = ["RENUMBER_KIND", "document_edits", "range_edits", "renumber_action", "wants"]
+__all__ = ("RENUMBER_KIND", "document_edits", "range_edits", "renumber_action", "wants")

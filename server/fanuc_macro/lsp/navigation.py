@@ -7,17 +7,13 @@ from __future__ import annotations
 
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
+from types import MappingProxyType
 from typing import Any
 
 from lsprotocol import types
 
-from ..ide import calls as ide_calls
-from ..ide import data
-from ..ide import highlight as ide_highlight
-from ..ide import ranges as ide_ranges
-from ..ide import rename as ide_rename
-from ..ide import workspace_symbols as ide_symbols
-from ..ide.view import Indexed
+from .. import ide
+from ..ide import Indexed
 from .convert import Codec, Lines
 from .features import SYMBOL_KIND, View, lsp_range
 
@@ -30,15 +26,19 @@ class Refused:
     message: str
 
 
-HIGHLIGHT_KIND = {
-    ide_highlight.HighlightKind.TEXT: types.DocumentHighlightKind.Text,
-    ide_highlight.HighlightKind.READ: types.DocumentHighlightKind.Read,
-    ide_highlight.HighlightKind.WRITE: types.DocumentHighlightKind.Write,
-}
-FOLD_KIND = {
-    ide_ranges.FoldKind.REGION: types.FoldingRangeKind.Region,
-    ide_ranges.FoldKind.COMMENT: types.FoldingRangeKind.Comment,
-}
+HIGHLIGHT_KIND = MappingProxyType(
+    {
+        ide.HighlightKind.TEXT: types.DocumentHighlightKind.Text,
+        ide.HighlightKind.READ: types.DocumentHighlightKind.Read,
+        ide.HighlightKind.WRITE: types.DocumentHighlightKind.Write,
+    }
+)
+FOLD_KIND = MappingProxyType(
+    {
+        ide.FoldKind.REGION: types.FoldingRangeKind.Region,
+        ide.FoldKind.COMMENT: types.FoldingRangeKind.Comment,
+    }
+)
 
 
 class DocumentLines:
@@ -65,8 +65,8 @@ class DocumentLines:
 def prepare_rename(
     view: View, at: types.Position
 ) -> types.PrepareRenamePlaceholder | Refused | None:
-    found = ide_rename.prepare_rename(view.ide, at.line, view.lines.column(at))
-    if isinstance(found, ide_rename.Refusal):
+    found = ide.prepare_rename(view.ide, at.line, view.lines.column(at))
+    if isinstance(found, ide.Refusal):
         return Refused(found.message)
     if found is None:
         return None
@@ -76,8 +76,8 @@ def prepare_rename(
 
 
 def rename(view: View, at: types.Position, new_name: str) -> types.WorkspaceEdit | Refused:
-    found = ide_rename.rename(view.ide, at.line, view.lines.column(at), new_name)
-    if isinstance(found, ide_rename.Refusal):
+    found = ide.rename(view.ide, at.line, view.lines.column(at), new_name)
+    if isinstance(found, ide.Refusal):
         return Refused(found.message)
     changes: dict[str, list[types.TextEdit]] = {}
     for edit in found:
@@ -91,21 +91,21 @@ def rename(view: View, at: types.Position, new_name: str) -> types.WorkspaceEdit
 def document_highlights(view: View, at: types.Position) -> list[types.DocumentHighlight]:
     return [
         types.DocumentHighlight(range=lsp_range(view.lines, h.range), kind=HIGHLIGHT_KIND[h.kind])
-        for h in ide_highlight.highlights(view.ide, at.line, view.lines.column(at))
+        for h in ide.highlights(view.ide, at.line, view.lines.column(at))
     ]
 
 
 def folding_ranges(view: View) -> list[types.FoldingRange]:
     return [
         types.FoldingRange(start_line=f.start, end_line=f.end, kind=FOLD_KIND[f.kind])
-        for f in ide_ranges.folding_ranges(view.ide)
+        for f in ide.folding_ranges(view.ide)
     ]
 
 
 def selection_ranges(view: View, positions: Sequence[types.Position]) -> list[types.SelectionRange]:
-    asked = [data.Position(p.line, view.lines.column(p)) for p in positions]
+    asked = [ide.Position(p.line, view.lines.column(p)) for p in positions]
     out: list[types.SelectionRange] = []
-    for chain in ide_ranges.selection_ranges(view.ide, asked):
+    for chain in ide.selection_ranges(view.ide, asked):
         parent: types.SelectionRange | None = None
         for r in reversed(chain):  # the outermost first: each is the parent of the next
             parent = types.SelectionRange(range=lsp_range(view.lines, r), parent=parent)
@@ -131,12 +131,12 @@ def workspace_symbols(
             ),
             container_name=s.container or (s.detail or None),
         )
-        for s in ide_symbols.workspace_symbols(documents, query)
+        for s in ide.workspace_symbols(documents, query)
     ]
 
 
 def _item(
-    item: ide_calls.CallItem, lines: DocumentLines, client_uri: Callable[[str], str]
+    item: ide.CallItem, lines: DocumentLines, client_uri: Callable[[str], str]
 ) -> types.CallHierarchyItem:
     of = lines.of(item.key)
     return types.CallHierarchyItem(
@@ -151,7 +151,7 @@ def _item(
 
 
 def prepare_call_hierarchy(view: View, at: types.Position) -> list[types.CallHierarchyItem]:
-    found = ide_calls.prepare_call_hierarchy(view.ide, at.line, view.lines.column(at))
+    found = ide.prepare_call_hierarchy(view.ide, at.line, view.lines.column(at))
     documents = dict(view.workspace)
     documents[view.key] = (view.analysis.doc, view.analysis.index)
     lines = DocumentLines(documents, view.lines.codec)
@@ -185,7 +185,7 @@ def incoming_calls(
             from_=_item(edge.item, lines, client_uri),
             from_ranges=[lsp_range(lines.of(edge.item.key), r) for r in edge.ranges],
         )
-        for edge in ide_calls.incoming_calls(documents, *named)
+        for edge in ide.incoming_calls(documents, *named)
     ]
 
 
@@ -205,5 +205,5 @@ def outgoing_calls(
             to=_item(edge.item, lines, client_uri),
             from_ranges=[lsp_range(source, r) for r in edge.ranges],
         )
-        for edge in ide_calls.outgoing_calls(documents, *named)
+        for edge in ide.outgoing_calls(documents, *named)
     ]

@@ -6,21 +6,20 @@ lsprotocol types, in the client's position units. Pure; may run in a thread.
 from __future__ import annotations
 
 from collections.abc import Sequence
+from types import MappingProxyType
 
 from lsprotocol import types
 
-from ..ide import lenses as ide_lenses
-from ..ide import semantic as ide_semantic
-from ..ide import signature as ide_signature
-from ..ide.token_legend import TOKEN_MODIFIERS, TOKEN_TYPES
+from .. import ide
+from ..ide import TOKEN_MODIFIERS, TOKEN_TYPES
 from .convert import Codec
 from .features import View, locations, lsp_range
 
-_TYPE_INDEX = {name: i for i, name in enumerate(TOKEN_TYPES)}
-_MODIFIER_BIT = {name: 1 << i for i, name in enumerate(TOKEN_MODIFIERS)}
+_TYPE_INDEX = MappingProxyType({name: i for i, name in enumerate(TOKEN_TYPES)})
+_MODIFIER_BIT = MappingProxyType({name: 1 << i for i, name in enumerate(TOKEN_MODIFIERS)})
 
 
-def encode(view: View, tokens: list[ide_semantic.SemanticToken]) -> list[int]:
+def encode(view: View, tokens: list[ide.SemanticToken]) -> list[int]:
     """The protocol's packed form: five integers a token, each position relative to the one
     before, in the client's units."""
     data: list[int] = []
@@ -44,7 +43,7 @@ def semantic_tokens(
     view: View, within: types.Range | None = None, result_id: str | None = None
 ) -> types.SemanticTokens:
     first, last = (within.start.line, within.end.line) if within is not None else (0, None)
-    found = ide_semantic.semantic_tokens(view.ide, first, last)
+    found = ide.semantic_tokens(view.ide, first, last)
     return types.SemanticTokens(data=encode(view, found), result_id=result_id)
 
 
@@ -77,7 +76,7 @@ def signature_help(
 ) -> types.SignatureHelp | None:
     """Signature help at ``column`` (code points) of ``line_text``, the open document's newest
     text; ``view``, the newest analysis there is, may be of an older one."""
-    found = ide_signature.signature_help(line_text, column, view.ide if view else None)
+    found = ide.signature_help(line_text, column, view.ide if view else None)
     if found is None:
         return None
     label = found.label
@@ -108,7 +107,7 @@ def code_lenses(view: View) -> list[types.CodeLens]:
     """Each lens with its title as a command of no id: a title to read, nothing to run (the
     places a title counts are the references the lens's data holds)."""
     out: list[types.CodeLens] = []
-    for lens in ide_lenses.code_lenses(view.ide):
+    for lens in ide.code_lenses(view.ide):
         places = locations(view, lens.references)
         out.append(
             types.CodeLens(
@@ -122,4 +121,4 @@ def code_lenses(view: View) -> list[types.CodeLens]:
     return out
 
 
-__all__ = ["code_lenses", "encode", "semantic_tokens", "signature_help", "token_edits"]
+__all__ = ("code_lenses", "encode", "semantic_tokens", "signature_help", "token_edits")
