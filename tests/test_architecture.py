@@ -4,8 +4,12 @@ and only the language server knows the protocol."""
 from __future__ import annotations
 
 import ast
+import importlib
 import os
 import re
+import subprocess
+import sys
+import types
 from collections.abc import Iterator
 from pathlib import Path
 
@@ -400,3 +404,99 @@ def test_every_package_says_what_it_owns(package: Path) -> None:
     for named in re.findall(r":mod:`~?([\w.]+)`", docstring):
         full = here + named if named.startswith(".") else named
         assert full in modules, f"{package.name}/__init__.py names {named}, which is not a module"
+
+
+# The packages the front ends see only through their public API (the package's names).
+FACADES = ("ide", "generators", "debugger")
+FRONT_ENDS = ("lsp", "cli", "dap")
+# The layers below the analysis whose types stay behind the ide layer.
+BEHIND_THE_IDE = {"syntax", "line_maps", "per_line", "program", "evaluator", "threads", "rules"}
+# Imports past the public API still to go, each with what removes it. The list only shrinks: a
+# test fails when an entry is no longer imported.
+NOT_YET_PUBLIC: dict[str, set[str]] = {
+    # The engine's own map of indexes, which the workspace's replaces.
+    "fanuc_macro.lsp.engine": {
+        "fanuc_macro.ide.view.Document",
+        "fanuc_macro.ide.view.ProgramIndex",
+    },
+}
+
+
+def _public(package: str) -> set[str]:
+    module = importlib.import_module(f"fanuc_macro.{package}")
+    public = getattr(module, "PUBLIC", None)
+    return set(public) if public is not None else set(module.__all__)
+
+
+def _checked_names(package: str) -> set[str]:
+    """The names a package's ``TYPE_CHECKING`` block imports: what the type checker sees."""
+    tree = ast.parse((PACKAGE / package / "__init__.py").read_text("utf-8"))
+    names: set[str] = set()
+    for node in tree.body:
+        if isinstance(node, ast.If) and ast.unparse(node.test) == "TYPE_CHECKING":
+            for statement in node.body:
+                assert isinstance(statement, ast.ImportFrom)
+                names.update(alias.asname or alias.name for alias in statement.names)
+    return names
+
+
+@pytest.mark.parametrize("module,path", MODULES, ids=[m for m, _ in MODULES])
+def test_front_ends_import_the_public_api_of_ide_generators_and_debugger(
+    module: str, path: Path
+) -> None:
+    if _layer(module) not in FRONT_ENDS:
+        return
+    wrong = []
+    for line, name in _imported(module, path):
+        if name in NOT_YET_PUBLIC.get(module, set()):
+            continue
+        parts = name.split(".")
+        layer = _target_layer(name)
+        if layer in BEHIND_THE_IDE:
+            wrong.append(f"line {line}: {name} (behind the ide layer)")
+        elif (
+            layer in FACADES
+            and len(parts) > 2
+            and (len(parts) > 3 or parts[2] not in _public(layer))
+        ):
+            wrong.append(f"line {line}: {name} (not in {layer}'s public API)")
+    assert not wrong, f"{module} imports past a package's public API: {wrong}"
+
+
+@pytest.mark.parametrize("package", ["ide", "generators"])
+def test_a_public_name_is_what_its_module_defines(package: str) -> None:
+    module = importlib.import_module(f"fanuc_macro.{package}")
+    public = module.PUBLIC
+    assert _checked_names(package) == set(public)
+    for name, defined_in in public.items():
+        value = getattr(module, name)
+        assert value is getattr(importlib.import_module(f"{module.__name__}.{defined_in}"), name)
+        assert not isinstance(value, types.ModuleType), name
+
+
+def test_what_is_not_yet_public_is_still_imported() -> None:
+    paths = dict(MODULES)
+    for module, names in NOT_YET_PUBLIC.items():
+        imported = {name for _, name in _imported(module, paths[module])}
+        assert names <= imported, f"{module} no longer imports {names - imported}: drop them here"
+
+
+def test_a_module_loaded_first_does_not_hide_a_public_function() -> None:
+    """``ide.hover`` is the function even when ``ide/hover.py`` was imported by its path first:
+    the import system binds a module to its package's attribute of the same name."""
+    script = (
+        "import fanuc_macro.ide.hover, fanuc_macro.ide.trace\n"
+        "import fanuc_macro.generators.thread_module\n"
+        "from fanuc_macro import generators, ide\n"
+        "from fanuc_macro.ide import hover, trace\n"
+        "assert callable(hover) and hover is ide.hover and hover.__name__ == 'hover'\n"
+        "assert callable(trace) and trace.__name__ == 'trace'\n"
+        "assert callable(generators.load_generator)\n"
+    )
+    done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
+
+
+def test_no_public_name_of_generators_is_a_module_name() -> None:
+    modules = {path.stem for path in (PACKAGE / "generators").glob("*.py")}
+    assert not modules & _public("generators")

@@ -17,7 +17,7 @@ from .. import __version__
 from ..analysis import analyse, log_failure
 from ..config import CONTROLLERS, NOT_SET, Config
 from ..diagnostics import REPORT_INTERNAL_ERROR, RULES, Severity
-from ..ide.trace import motion_text, trace  # small: what it uses, the check uses too
+from ..ide import motion_text, trace  # small: what it uses, the check uses too
 from ..program_files import (
     PROGRAM_SUFFIXES,
     SKIPPED_FOLDERS,

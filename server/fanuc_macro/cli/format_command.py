@@ -48,7 +48,7 @@ def _usage_problem(args: argparse.Namespace) -> str | None:
 
 
 def cmd_format(args: argparse.Namespace) -> int:
-    from ..ide.formatting import CannotFormat, FormatOptions, format_file
+    from ..ide import CannotFormat, FormatOptions, format_file
 
     err = sys.stderr
     problem = _usage_problem(args)

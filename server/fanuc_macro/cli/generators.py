@@ -76,7 +76,7 @@ def _refusal(command: str, err: Exception) -> int:
 
 def cmd_arc_thread(args: argparse.Namespace) -> int:
     # Imported here: ``check`` starts without the generators (tests/test_startup.py).
-    from ..generators.arc_thread_generator import build_arc_thread
+    from ..generators import build_arc_thread
 
     lead = args.lead if args.lead is not None else args.pitch
     try:
@@ -137,7 +137,7 @@ def _parse_points(
 
 
 def cmd_drum_groove(args: argparse.Namespace) -> int:
-    from ..generators.drum_groove_generator import DRUM_PROFILE, build_drum_groove
+    from ..generators import DRUM_PROFILE, build_drum_groove
 
     try:
         if args.points_file is not None:

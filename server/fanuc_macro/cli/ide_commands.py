@@ -9,10 +9,7 @@ import json
 import sys
 
 from ..config import Config
-from ..ide.data import Location
-from ..ide.hover import hover
-from ..ide.navigation import definition
-from ..ide.view import View
+from ..ide import Location, View, definition, hover
 from ..workspace import Workspace
 from . import EXIT_ERRORS, EXIT_OK, read_one, read_with_files
 from .streams import writes_unicode

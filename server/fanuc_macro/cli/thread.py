@@ -26,7 +26,7 @@ INFEED_CHOICES = ("symmetric", "alternate", "left", "right")
 def _coefficient(text: str) -> float:
     """``0.2``, ``0.2/3`` (a fraction as the paper writes it), ``steel`` or ``molybdenum``."""
     # The generator is imported by the thread command only: ``check`` starts without it.
-    from ..generators.thread_generator import MATERIAL_COEFFICIENTS
+    from ..generators import MATERIAL_COEFFICIENTS
 
     named = MATERIAL_COEFFICIENTS.get(text.strip().lower())
     if named is not None:
@@ -83,8 +83,7 @@ def _count(text: str) -> int:
 
 
 def cmd_thread(args: argparse.Namespace) -> int:
-    from ..generators.thread_generator import generate_module
-    from ..generators.thread_module import SideConflict, SideUndecided
+    from ..generators import SideConflict, SideUndecided, generate_module
 
     try:
         text = generate_module(

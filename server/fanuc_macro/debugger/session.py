@@ -36,7 +36,7 @@ from ..evaluator.machine import (
 )
 from ..evaluator.run import entry_programs
 from ..evaluator.values import MacroAlarm, Unknown, Value
-from ..ide.values import Precision
+from ..ide import Precision
 from ..program.knowledge import code_name, modal_group
 from ..program.variables import ARGUMENT_VARIABLES, classify
 from ..syntax.parser import default_parser

@@ -1,6 +1,10 @@
 """Editor features without a protocol: plain data that every front end (the language server,
 the command line) converts (see ARCHITECTURE.md).
 
+The front ends import this package, never its modules: the names below are its public API.
+Each name loads its module when first read, so that a start of the language server or a check
+loads only what it uses.
+
 - :mod:`.data`: the results (positions in code points, ranges, markdown, edits, locations,
   symbols, completion items, code actions);
 - :mod:`.view`: one analysed document with the workspace around it, what the features read;
@@ -9,6 +13,153 @@ the command line) converts (see ARCHITECTURE.md).
 - :mod:`.hover`, :mod:`.inlay`, :mod:`.navigation` (definition, references, symbols),
   :mod:`.completion`, :mod:`.actions`, :mod:`.semantic` (semantic tokens, their kinds in
   :mod:`.token_legend`), :mod:`.signature`, :mod:`.lenses`: the features;
-- :mod:`.trace`: the motions a program executes; :mod:`.thread_module`: the generator, loaded
-  when first asked for.
+- :mod:`.trace`, :mod:`.toolpath_view`, :mod:`.plot`: the motions a program executes.
 """
+
+from __future__ import annotations
+
+import importlib
+import sys
+from types import MappingProxyType, ModuleType
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from .actions import code_actions as code_actions
+    from .calls import CallItem as CallItem
+    from .calls import incoming_calls as incoming_calls
+    from .calls import outgoing_calls as outgoing_calls
+    from .calls import prepare_call_hierarchy as prepare_call_hierarchy
+    from .completion import completion as completion
+    from .data import ActionKind as ActionKind
+    from .data import CodeAction as CodeAction
+    from .data import CompletionItem as CompletionItem
+    from .data import CompletionKind as CompletionKind
+    from .data import Location as Location
+    from .data import Position as Position
+    from .data import Problem as Problem
+    from .data import Range as Range
+    from .data import Symbol as Symbol
+    from .data import SymbolKind as SymbolKind
+    from .data import TextEdit as TextEdit
+    from .formatting import CannotFormat as CannotFormat
+    from .formatting import FormatOptions as FormatOptions
+    from .formatting import format_document as format_document
+    from .formatting import format_file as format_file
+    from .formatting import format_lines as format_lines
+    from .highlight import HighlightKind as HighlightKind
+    from .highlight import highlights as highlights
+    from .hover import hover as hover
+    from .inlay import inlay_hints as inlay_hints
+    from .lenses import code_lenses as code_lenses
+    from .messages import Catalogue as Catalogue
+    from .messages import catalogue as catalogue
+    from .navigation import definition as definition
+    from .navigation import document_symbols as document_symbols
+    from .navigation import references as references
+    from .plot import NothingToPlot as NothingToPlot
+    from .plot import backplot as backplot
+    from .plot import pass_maps as pass_maps
+    from .plot import run_plot as run_plot
+    from .ranges import FoldKind as FoldKind
+    from .ranges import folding_ranges as folding_ranges
+    from .ranges import selection_ranges as selection_ranges
+    from .rename import Refusal as Refusal
+    from .rename import prepare_rename as prepare_rename
+    from .rename import rename as rename
+    from .renumber import renumber_labels as renumber_labels
+    from .semantic import SemanticToken as SemanticToken
+    from .semantic import semantic_tokens as semantic_tokens
+    from .signature import signature_help as signature_help
+    from .token_legend import TOKEN_MODIFIERS as TOKEN_MODIFIERS
+    from .token_legend import TOKEN_TYPES as TOKEN_TYPES
+    from .toolpath_view import toolpath_view as toolpath_view
+    from .trace import motion_text as motion_text
+    from .trace import trace as trace
+    from .values import Precision as Precision
+    from .view import Indexed as Indexed
+    from .view import View as View
+    from .workspace_symbols import workspace_symbols as workspace_symbols
+
+# The public API: each name and the module that defines it (the imports above, for the type
+# checker; a test keeps the two the same).
+PUBLIC: MappingProxyType[str, str] = MappingProxyType(
+    {
+        "code_actions": "actions",
+        "CallItem": "calls",
+        "incoming_calls": "calls",
+        "outgoing_calls": "calls",
+        "prepare_call_hierarchy": "calls",
+        "completion": "completion",
+        "ActionKind": "data",
+        "CodeAction": "data",
+        "CompletionItem": "data",
+        "CompletionKind": "data",
+        "Location": "data",
+        "Position": "data",
+        "Problem": "data",
+        "Range": "data",
+        "Symbol": "data",
+        "SymbolKind": "data",
+        "TextEdit": "data",
+        "CannotFormat": "formatting",
+        "FormatOptions": "formatting",
+        "format_document": "formatting",
+        "format_file": "formatting",
+        "format_lines": "formatting",
+        "HighlightKind": "highlight",
+        "highlights": "highlight",
+        "hover": "hover",
+        "inlay_hints": "inlay",
+        "code_lenses": "lenses",
+        "Catalogue": "messages",
+        "catalogue": "messages",
+        "definition": "navigation",
+        "document_symbols": "navigation",
+        "references": "navigation",
+        "NothingToPlot": "plot",
+        "backplot": "plot",
+        "pass_maps": "plot",
+        "run_plot": "plot",
+        "FoldKind": "ranges",
+        "folding_ranges": "ranges",
+        "selection_ranges": "ranges",
+        "Refusal": "rename",
+        "prepare_rename": "rename",
+        "rename": "rename",
+        "renumber_labels": "renumber",
+        "SemanticToken": "semantic",
+        "semantic_tokens": "semantic",
+        "signature_help": "signature",
+        "TOKEN_MODIFIERS": "token_legend",
+        "TOKEN_TYPES": "token_legend",
+        "toolpath_view": "toolpath_view",
+        "motion_text": "trace",
+        "trace": "trace",
+        "Precision": "values",
+        "Indexed": "view",
+        "View": "view",
+        "workspace_symbols": "workspace_symbols",
+    }
+)
+
+
+class _Facade(ModuleType):
+    """This package as its importers see it. A public name loads its module when first read.
+    The import system binds a module loaded later to its package's attribute of the same name
+    (``hover``, ``trace``): that binding is skipped, so the name keeps meaning the function."""
+
+    def __getattr__(self, name: str) -> object:
+        module = PUBLIC.get(name)
+        if module is None:
+            raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+        value: object = getattr(importlib.import_module(f"{__name__}.{module}"), name)
+        ModuleType.__setattr__(self, name, value)
+        return value
+
+    def __setattr__(self, name: str, value: object) -> None:
+        if name in PUBLIC and isinstance(value, ModuleType):
+            return
+        ModuleType.__setattr__(self, name, value)
+
+
+sys.modules[__name__].__class__ = _Facade

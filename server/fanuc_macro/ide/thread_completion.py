@@ -19,7 +19,7 @@ from .data import Position, Range, TextEdit
 from .view import View
 
 if TYPE_CHECKING:
-    from ..generators.thread_snippet import ThreadInputs
+    from ..generators import ThreadInputs
     from ..program.index import Program
 
 # The words that find the item: what a machinist types for it.
@@ -81,7 +81,7 @@ def thread_insertions(view: View, line: int, eol: str = "\n") -> list[ThreadInse
     if facts is None or program is None:
         return []
     # The generator is imported on the first thread completion, not before initialize.
-    from ..generators.thread_snippet import thread_inputs
+    from ..generators import thread_inputs
 
     found = []
     for inputs in thread_inputs(view.doc, view.index, facts):
@@ -95,7 +95,7 @@ def thread_insertions(view: View, line: int, eol: str = "\n") -> list[ThreadInse
 def _insertion(
     view: View, program: Program, inputs: ThreadInputs, eol: str
 ) -> ThreadInsertion | None:
-    from ..generators.thread_generator import default_program_numbers
+    from ..generators import default_program_numbers
 
     used = _used_numbers(view)
     called = next((c for c in program.calls if c.kind == "M98" and c.program is not None), None)

@@ -33,13 +33,13 @@ Answer = Callable[..., dict[str, Any]]
 
 
 def _trace() -> Answer:
-    from ..ide.trace import trace  # the evaluator: loaded by the worker after start-up
+    from ..ide import trace  # the evaluator: loaded by the worker after start-up
 
     return trace
 
 
 def _toolpath_view() -> Answer:
-    from ..ide.toolpath_view import toolpath_view
+    from ..ide import toolpath_view
 
     return toolpath_view
 
@@ -122,7 +122,7 @@ async def run_thread_module(args: tuple[Any, ...]) -> dict[str, Any]:
     if isinstance(parsed, str):
         return {"error": parsed}
     designation, length, internal, options = parsed
-    from ..generators.thread_module import NoGenerator, SideConflict, SideUndecided, load_generator
+    from ..generators import NoGenerator, SideConflict, SideUndecided, load_generator
 
     try:
         generate = load_generator()
@@ -166,7 +166,7 @@ async def _generated(
 async def run_arc_thread(args: tuple[Any, ...]) -> dict[str, Any]:
     """``[{parameter: value}]`` -> ``{"text", "summary"}`` or ``{"error"}``
     (ide/generator_requests.py)."""
-    from ..generators.generator_requests import arc_thread_request
+    from ..generators import arc_thread_request
 
     return await _generated(ARC_THREAD, args, arc_thread_request)
 
@@ -174,6 +174,6 @@ async def run_arc_thread(args: tuple[Any, ...]) -> dict[str, Any]:
 async def run_drum_groove(args: tuple[Any, ...]) -> dict[str, Any]:
     """``[{parameter: value}]`` (``pitch`` required) -> ``{"text", "summary"}`` or
     ``{"error"}``."""
-    from ..generators.generator_requests import drum_groove_request
+    from ..generators import drum_groove_request
 
     return await _generated(DRUM_GROOVE, args, drum_groove_request)

@@ -28,7 +28,7 @@ from pygls.protocol.language_server import lsp_method
 from .. import __version__
 from ..code_cache import save_code_cache
 from ..diagnostics import REPORT_INTERNAL_ERROR
-from ..ide.token_legend import TOKEN_MODIFIERS, TOKEN_TYPES
+from ..ide import TOKEN_MODIFIERS, TOKEN_TYPES
 from .client import CompletionSupport
 from .commands import (
     ARC_THREAD,
