@@ -127,8 +127,6 @@ ALLOWED_STATE: dict[str, str] = {
     "fanuc_macro.syntax.tree.SHARED_SPANS": "database",
     "fanuc_macro.syntax.tree._PLAIN_WORDS_OF": "database",
     "fanuc_macro.threads.jobs._kept": "database",
-    "fanuc_macro.threads.jobs.compared": "database",
-    "fanuc_macro.threads.jobs.grouped": "database",
 }
 
 # Functions still over MAX_FUNCTION_LINES ("path:qualified name"), with their owner.

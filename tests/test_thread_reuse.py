@@ -80,7 +80,7 @@ def test_an_edit_that_cuts_the_same_passes_keeps_the_jobs_and_looks_at_one_line(
     before = first.threads[0].job
     lines = _edit_number(lines, len(lines) // 2)
     grouped, looked, roles = (
-        jobs.grouped,
+        jobs.work_done("grouped"),
         identify._thread_lines.looked,
         meanings._role_lines.looked,
     )
@@ -89,7 +89,7 @@ def test_an_edit_that_cuts_the_same_passes_keeps_the_jobs_and_looks_at_one_line(
     # the job is the earlier one, not grouped again, and only the edited line is read again.
     assert again.facts is not None and again.facts.motions is not first.facts.motions
     assert again.threads[0].job is before
-    assert jobs.grouped == grouped
+    assert jobs.work_done("grouped") == grouped
     assert identify._thread_lines.looked - looked <= 1
     assert meanings._role_lines.looked - roles <= 1
     fresh = _fresh("\n".join(lines))
@@ -101,9 +101,9 @@ def test_an_edit_of_a_pass_groups_again_and_equals_a_fresh_analysis() -> None:
     previous = analyse("\n".join(lines), URI, CONFIG, parser=PARSER).facts
     at = next(i for i in range(len(lines) // 2, len(lines)) if lines[i].startswith("G92"))
     lines[at] = lines[at].replace("#100-0.", "#100+0.", 1)  # a pass shallower than the one before
-    grouped = jobs.grouped
+    grouped = jobs.work_done("grouped")
     previous = _same_as_fresh("\n".join(lines), previous)
-    assert jobs.grouped > grouped
+    assert jobs.work_done("grouped") > grouped
 
 
 def test_an_edit_of_a_pass_over_the_same_z_replaces_that_pass_only() -> None:
@@ -113,9 +113,9 @@ def test_an_edit_of_a_pass_over_the_same_z_replaces_that_pass_only() -> None:
     first = analyse("\n".join(lines), URI, CONFIG, parser=PARSER)
     at = next(i for i in range(len(lines) // 2, len(lines)) if lines[i].startswith("G00 X["))
     lines[at] = lines[at].replace("X[#100+", "X[#100+1", 1)  # where the next G92 starts
-    grouped = jobs.grouped
+    grouped = jobs.work_done("grouped")
     again = analyse("\n".join(lines), URI, CONFIG, parser=PARSER, previous_facts=first.facts)
-    assert 1 <= jobs.grouped - grouped <= 2
+    assert 1 <= jobs.work_done("grouped") - grouped <= 2
     assert len(first.threads[0].job.passes) > 400
     assert again.threads[0].job is not first.threads[0].job
     fresh = _fresh("\n".join(lines))
@@ -128,9 +128,9 @@ def test_an_edit_of_a_pass_over_another_z_groups_all_again() -> None:
     previous = analyse("\n".join(lines), URI, CONFIG, parser=PARSER).facts
     at = next(i for i in range(len(lines) // 2, len(lines)) if lines[i].startswith("G92"))
     lines[at] = lines[at].replace("W-[", "W-2*[", 1)  # a pass twice as long
-    grouped = jobs.grouped
+    grouped = jobs.work_done("grouped")
     analyse("\n".join(lines), URI, CONFIG, parser=PARSER, previous_facts=previous)
-    assert jobs.grouped - grouped > 400
+    assert jobs.work_done("grouped") - grouped > 400
     _same_as_fresh("\n".join(lines), previous)
 
 
@@ -229,9 +229,9 @@ def test_a_pass_from_another_start_within_its_job_replaces_that_pass_only() -> N
     first = analyse("\n".join(lines), URI, CONFIG, parser=PARSER)
     at = next(i for i in range(len(lines) // 2, len(lines)) if lines[i].startswith("G00 X["))
     lines[at] = lines[at].replace("]", "", 1)
-    grouped = jobs.grouped
+    grouped = jobs.work_done("grouped")
     again = analyse("\n".join(lines), URI, CONFIG, parser=PARSER, previous_facts=first.facts)
-    assert 1 <= jobs.grouped - grouped <= 2
+    assert 1 <= jobs.work_done("grouped") - grouped <= 2
     fresh = _fresh("\n".join(lines))
     assert again.diagnostics == fresh.diagnostics
     assert again.threads[0].job.passes == fresh.threads[0].job.passes
@@ -259,8 +259,8 @@ def test_a_chain_of_one_pass_jobs_is_matched_again_job_by_job() -> None:
     assert len(first.threads) == segments
     old_jobs = {id(t.job) for t in first.threads}
     lines.insert(lines.index("G00 X60."), "G32 Z-700. F2.")
-    compared = jobs.compared
+    compared = jobs.work_done("compared")
     _same_as_fresh("\n".join(lines), first.facts)
-    assert jobs.compared - compared <= segments + 1
+    assert jobs.work_done("compared") - compared <= segments + 1
     resumed = analyse("\n".join(lines), URI, CONFIG, parser=PARSER, previous_facts=first.facts)
     assert sum(id(t.job) in old_jobs for t in resumed.threads) >= segments - 1

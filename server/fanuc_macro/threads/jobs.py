@@ -20,6 +20,8 @@ from dataclasses import dataclass, field, fields
 from operator import attrgetter
 from typing import TypeVar
 
+from ..database import TableKey
+from ..database import current as current_database
 from ..evaluator.facts import Motion, same_value
 from ..line_maps import Diff, Kept
 
@@ -263,7 +265,19 @@ def motion_positions(motions: Sequence[Motion], uri: str) -> list[int]:
 TURNING = frozenset({"G90", "G94"})
 # After how many motions a single cut's retract is looked for.
 AFTER = 3
-grouped = 0  # threading motions grouped into jobs, for the tests of the work done
+# The work done, for the tests of reuse after an edit: "grouped", the threading motions
+# grouped into jobs; "compared", the old jobs looked at for a new one.
+WORK_DONE: TableKey[str, int] = TableKey("threads.work_done")
+
+
+def work_done(kind: str) -> int:
+    """How much work of ``kind`` ("grouped", "compared") the current database's analyses did."""
+    return current_database().table(WORK_DONE).get(kind, 0)
+
+
+def _count(kind: str, amount: int) -> None:
+    work = current_database().table(WORK_DONE)
+    work[kind] = work.get(kind, 0) + amount
 
 
 class _Seen:
@@ -416,8 +430,7 @@ def _patched(
     each groups as the one it replaces (:func:`_groups_alike`): the jobs without a changed
     pass are the same objects, the others copies with the new passes (and retracts after
     them)."""
-    global grouped
-    grouped += len(changed)
+    _count("grouped", len(changed))
     copies: dict[int, ThreadJob] = {}
     for t in changed:
         i = positions[t]
@@ -484,19 +497,16 @@ def _start_key(job: ThreadJob) -> tuple[object, ...]:
     return (job.program_line, job.run, len(job.passes), *place)
 
 
-compared = 0  # old jobs looked at for a new one, for the tests of the work done
-
-
 def _reused(jobs: list[ThreadJob], old_jobs: list[ThreadJob]) -> list[ThreadJob]:
     """``jobs``, each one of ``old_jobs`` cut by the same passes taken in its stead."""
-    global compared
     by_start: dict[tuple[object, ...], list[ThreadJob]] = {}
     for old in old_jobs:
         by_start.setdefault(_start_key(old), []).append(old)
     out: list[ThreadJob] = []
+    looked_at = 0
     for job in jobs:
         candidates = by_start.get(_start_key(job), ())
-        compared += len(candidates)
+        looked_at += len(candidates)
         same = next(
             (
                 old
@@ -512,13 +522,13 @@ def _reused(jobs: list[ThreadJob], old_jobs: list[ThreadJob]) -> list[ThreadJob]
             None,
         )
         out.append(job if same is None else same)
+    _count("compared", looked_at)
     return out
 
 
 def _group(motions: Sequence[Motion], positions: list[int]) -> tuple[list[ThreadJob], Owners]:
     """The threading motions at ``positions`` grouped into jobs, and the job and pass of each."""
-    global grouped
-    grouped += len(positions)
+    _count("grouped", len(positions))
     jobs: list[ThreadJob] = []
     owners: Owners = []
     current: dict[tuple[int, bool], tuple[ThreadJob, int]] = {}
