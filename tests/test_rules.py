@@ -386,7 +386,7 @@ def test_logic_operand_fixes(text: str, fixes: list[str]) -> None:
 
 
 def test_logic_operand_fix_must_keep_within_five_brackets() -> None:
-    from fanuc_macro.ide.actions import acceptable_fix
+    from fanuc_macro.rules.expressions import acceptable_fix
 
     assert acceptable_fix("IF [[#1 LT 0] AND [#2 LT 0]] GOTO 5 (OK [[[[[ ]]]]])", 1)
     assert acceptable_fix("IF [[ABS[[[#1]]] LT 0] AND [#2 LT 0]] GOTO 5", 1)  # five deep

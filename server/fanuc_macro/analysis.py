@@ -27,11 +27,10 @@ from .diagnostics import (
 )
 from .evaluator import Facts, evaluate
 from .line_maps import LineMap
-from .per_line import PerLine
 from .program.index import ProgramIndex, build_index
 from .rules import ALL_CHECKS, LINE_CHECKS, LineFinding, plain_line_quiet
 from .rules.context import RuleContext
-from .syntax import dialects
+from .rules.dialect import foreign_dialect, in_foreign_file
 from .syntax.parser import BlockParser, default_parser, parse_text, quiet_gc
 from .syntax.tree import Document, ParsedLine, PlainNc
 from .threads.identify import Thread
@@ -188,28 +187,8 @@ def _findings_of_line(parsed: ParsedLine) -> tuple[LineFinding, ...] | None:
     return _line_findings(parsed) or None
 
 
-def _dialect_mark(parsed: ParsedLine) -> tuple[str, str] | None:
-    return dialects.file_mark(parsed.text)
-
-
-_dialect_marks: PerLine[tuple[str, str] | None] = PerLine(_dialect_mark)
-
-
-def _file_mark(parsed: ParsedLine) -> tuple[str, str] | None:
-    # A mark of another dialect is a block FANUC rejects.
-    return None if parsed.problem is None else _dialect_marks(parsed)
-
-
-# The lines with a line rule's finding, and the marks of another control's dialect: after an
-# edit only the edited lines are looked at again.
+# The lines with a line rule's finding: after an edit only the edited lines are looked at again.
 lines_with_findings: LineMap[tuple[LineFinding, ...]] = LineMap(_findings_of_line)
-file_marks: LineMap[tuple[str, str]] = LineMap(_file_mark)
-
-# What a block of another control's program gives when FANUC cannot read it: these findings
-# of one block become one MB002 naming the file's dialect.
-_FOLDED = frozenset({"MB001", "MB002", "MB003", "MB004", "MB005", "MB008"})
-# FANUC's conventions of writing that another control's program need not follow (lower case).
-_FANUC_STYLE = frozenset({"MB006"})
 
 
 def run_checks(
@@ -218,23 +197,13 @@ def run_checks(
     found: list[Diagnostic] = []
     blocks = ctx.doc.blocks
     per_block = [(line, blocks[line].parsed, f) for line, f in lines_with_findings(ctx.doc, cancel)]
-    marks = [dialects.FileDialect(name, mark, line) for line, (name, mark) in file_marks(ctx.doc)]
-    foreign = dialects.strongest(marks)
+    foreign = foreign_dialect(ctx.doc)
     for line, parsed, findings in per_block:
-        folded = [f for f in findings if f.code in _FOLDED] if foreign is not None else []
+        if foreign is not None:
+            findings = in_foreign_file(findings, parsed, foreign)
         for f in findings:
-            if foreign is not None and f.code in _FANUC_STYLE:
-                continue
-            if not folded or f.code not in _FOLDED:
-                fixes = [fix.on_line(line) for fix in f.fixes] if f.fixes else ()
-                found.append(make(f.code, f.message, line, f.start, f.end, fixes=fixes))
-        if folded and foreign is not None:
-            first = folded[0]
-            found.append(
-                make(
-                    "MB002", _foreign_message(foreign, parsed, first), line, first.start, first.end
-                )
-            )
+            fixes = [fix.on_line(line) for fix in f.fixes] if f.fixes else ()
+            found.append(make(f.code, f.message, line, f.start, f.end, fixes=fixes))
     rules = list(checks)
     for done, rule in enumerate(rules):
         if cancel is not None:
@@ -246,21 +215,6 @@ def run_checks(
             message = internal_error(f"rule {rule_name(rule)}", err)
             found.append(make("MB000", message, 0, 0, 0))
     return found
-
-
-def _foreign_message(foreign: dialects.FileDialect, parsed: ParsedLine, first: LineFinding) -> str:
-    """The message of a rejected block in a file of another control's dialect."""
-    problem = parsed.problem
-    if problem is not None and problem.dialect == foreign.name:
-        return f"{foreign.name}: {problem.message}"
-    where = f"{foreign.mark} on line {foreign.line + 1}"
-    if first.code == "MB005":
-        what = "';' ends the block on FANUC, and the comment after it is read as program text"
-    elif problem is not None and problem.dialect in (None, dialects.NOT_FANUC):
-        what = f"FANUC rejects this block ({problem.message})"
-    else:  # a form of yet another dialect, or a Haas-looking statement: this file's own
-        what = "FANUC rejects this block"
-    return f"{foreign.name} program ({where}): {what}"
 
 
 def analyse(

@@ -7,11 +7,15 @@ from __future__ import annotations
 from collections.abc import Iterable, Iterator
 
 from ..diagnostics import RuleDoc, RuleInfo, Severity, document, register
+from ..line_maps import LineMap
+from ..per_line import PerLine
+from ..syntax import dialects
 from ..syntax.marks import constant_value
 from ..syntax.parser import statements_of
 from ..syntax.tree import (
     BareCond,
     BlockIf,
+    Document,
     IfGoto,
     IfNc,
     NcStatement,
@@ -283,3 +287,67 @@ def _haas_code(address: str, value: float | None, has_p: bool) -> str | None:
             "M109 is whatever the machine builder made it"
         )
     return None
+
+
+# ---- a file of another control's dialect --------------------------------------------------------
+
+
+def _dialect_mark(parsed: ParsedLine) -> tuple[str, str] | None:
+    return dialects.file_mark(parsed.text)
+
+
+_dialect_marks: PerLine[tuple[str, str] | None] = PerLine(_dialect_mark)
+
+
+def _file_mark(parsed: ParsedLine) -> tuple[str, str] | None:
+    # A mark of another dialect is a block FANUC rejects.
+    return None if parsed.problem is None else _dialect_marks(parsed)
+
+
+# The marks of another control's dialect: after an edit only the edited lines are looked at
+# again.
+file_marks: LineMap[tuple[str, str]] = LineMap(_file_mark)
+
+
+def foreign_dialect(doc: Document) -> dialects.FileDialect | None:
+    """The other control whose program the document is, from the marks only its programs
+    have; None for a FANUC program."""
+    marks = [dialects.FileDialect(name, mark, line) for line, (name, mark) in file_marks(doc)]
+    return dialects.strongest(marks)
+
+
+# What a block of another control's program gives when FANUC cannot read it: these findings
+# of one block become one MB002 naming the file's dialect.
+FOLDED_CODES = frozenset({"MB001", "MB002", "MB003", "MB004", "MB005", "MB008"})
+# FANUC's conventions of writing that another control's program need not follow (lower case).
+FANUC_STYLE_CODES = frozenset({"MB006"})
+
+
+def in_foreign_file(
+    findings: tuple[LineFinding, ...], parsed: ParsedLine, foreign: dialects.FileDialect
+) -> tuple[LineFinding, ...]:
+    """A block's line findings in a file of the ``foreign`` dialect: without FANUC's
+    conventions of writing, and those of a block FANUC rejects folded into one MB002 that
+    names the dialect, after the others."""
+    folded = [f for f in findings if f.code in FOLDED_CODES]
+    kept = [f for f in findings if f.code not in FANUC_STYLE_CODES and f.code not in FOLDED_CODES]
+    if folded:
+        first = folded[0]
+        message = _foreign_message(foreign, parsed, first)
+        kept.append(LineFinding("MB002", message, first.start, first.end))
+    return tuple(kept)
+
+
+def _foreign_message(foreign: dialects.FileDialect, parsed: ParsedLine, first: LineFinding) -> str:
+    """The message of a rejected block in a file of another control's dialect."""
+    problem = parsed.problem
+    if problem is not None and problem.dialect == foreign.name:
+        return f"{foreign.name}: {problem.message}"
+    where = f"{foreign.mark} on line {foreign.line + 1}"
+    if first.code == "MB005":
+        what = "';' ends the block on FANUC, and the comment after it is read as program text"
+    elif problem is not None and problem.dialect in (None, dialects.NOT_FANUC):
+        what = f"FANUC rejects this block ({problem.message})"
+    else:  # a form of yet another dialect, or a Haas-looking statement: this file's own
+        what = "FANUC rejects this block"
+    return f"{foreign.name} program ({where}): {what}"

@@ -5,10 +5,21 @@ from __future__ import annotations
 from collections.abc import Iterable, Iterator
 from dataclasses import dataclass
 
-from ..diagnostics import Diagnostic, Related, RuleDoc, RuleInfo, Severity, document, make, register
+from ..diagnostics import (
+    Diagnostic,
+    Fix,
+    FixEdit,
+    Related,
+    RuleDoc,
+    RuleInfo,
+    Severity,
+    document,
+    make,
+    register,
+)
 from ..line_maps import LineMap
 from ..program.variables import classify
-from ..syntax.parser import statements_of
+from ..syntax.parser import default_parser, statements_of
 from ..syntax.tree import (
     Assign,
     Binary,
@@ -238,8 +249,13 @@ def _check_line(whole: Statement | None, text: str) -> Iterator[LineFinding]:
             finding = _no_such_variable(var)
             if finding is not None:
                 yield finding
+        fixed_compares: set[int] = set()  # a comparison's fixes go on its first finding
         for found in logic_operands(statement):
-            yield _logic_finding(text, found)
+            fixes: tuple[Fix, ...] = ()
+            if id(found.compare) not in fixed_compares:
+                fixed_compares.add(id(found.compare))
+                fixes = logic_quick_fixes(text, found, _logic_count(whole))
+            yield _logic_finding(text, found, fixes)
         targets = [statement] if isinstance(statement, Assign) else []
         if isinstance(statement, IfThen):
             targets.append(statement.then)
@@ -439,19 +455,64 @@ def logic_fixes(text: str, found: LogicOperand) -> list[tuple[str, str]]:
     return fixes
 
 
-def _logic_finding(text: str, found: LogicOperand) -> LineFinding:
+def _logic_count(whole: Statement | None) -> int:
+    return sum(len(logic_operands(s)) for s in statements_of(whole))
+
+
+def logic_quick_fixes(text: str, found: LogicOperand, before: int) -> tuple[Fix, ...]:
+    """MB305's fixes, on line 0: the comparison rewritten with brackets, the likely intent
+    first (each operand compared on its own, preferred), then the control's own reading made
+    explicit. A rewrite is offered only when the line it gives parses, keeps within five
+    brackets and has fewer such comparisons than the ``before`` of the line as written."""
+    compare = found.compare
+    start, end = compare.span.start, compare.span.end
+    fixes: list[Fix] = []
+    for i, (what, rewritten) in enumerate(logic_fixes(text, found)):
+        if acceptable_fix(text[:start] + rewritten + text[end:], before):
+            fixes.append(
+                Fix(
+                    f"Bracket the condition: {rewritten} ({what})",
+                    (FixEdit(0, start, 0, end, rewritten),),
+                    preferred=i == 0,
+                )
+            )
+    return tuple(fixes)
+
+
+def acceptable_fix(fixed: str, before: int) -> bool:
+    """The rewritten line parses, nests no bracket more than five deep (the IF's own and the
+    conditions' brackets counted too, to be safe: PS0118), and has fewer MB305 findings. (The
+    one rule that parses: a fix is offered only if the line it gives reads as meant.)"""
+    parsed = default_parser().parse_line(fixed)
+    if parsed.problem is not None or parsed.statement is None:
+        return False
+    depth = deepest = 0
+    for i, ch in enumerate(fixed):
+        if any(c.span.start <= i < c.span.end for c in parsed.comments):
+            continue
+        if ch == "[":
+            depth += 1
+            deepest = max(deepest, depth)
+        elif ch == "]":
+            depth -= 1
+    if deepest > MAX_BRACKET_NESTING:
+        return False
+    return _logic_count(parsed.statement) < before
+
+
+def _logic_finding(text: str, found: LogicOperand, fixes: tuple[Fix, ...]) -> LineFinding:
     """MB305. AND/OR/XOR in an expression are bitwise on the integer values and bind like '*'
     and '+', tighter than EQ...LE: '[#1 AND #2 LT 0]' is '[[#1 AND #2] LT 0]' (macro-b.md 9,
     [K]: check B-64304EN "Arithmetic and logic operation"; unverified)."""
     compare = found.compare
     node = found.nodes[0]
     written = " ".join(_source(text, compare).split())
-    fixes = logic_fixes(text, found)
-    read_as = fixes[-1][1]
+    rewrites = logic_fixes(text, found)
+    read_as = rewrites[-1][1]
     message = (
         f"'{written}' is read [{read_as}]: {node.op} binds tighter than {compare.op} and works "
         "bit by bit on the integer values"
     )
-    if len(fixes) > 1:
-        message += f"; to test each operand, write [{fixes[0][1]}]"
-    return LineFinding("MB305", message, compare.span.start, compare.span.end)
+    if len(rewrites) > 1:
+        message += f"; to test each operand, write [{rewrites[0][1]}]"
+    return LineFinding("MB305", message, compare.span.start, compare.span.end, fixes)

@@ -5,7 +5,22 @@ from __future__ import annotations
 import re
 from collections.abc import Iterator
 
-from ..diagnostics import Diagnostic, Related, RuleDoc, RuleInfo, Severity, document, make, register
+from ..diagnostics import (
+    Diagnostic,
+    Fix,
+    FixEdit,
+    Related,
+    RuleDoc,
+    RuleInfo,
+    Severity,
+    document,
+    make,
+    register,
+)
+from ..program.index import Program
+from ..syntax.marks import constant_value
+from ..syntax.parser import statements_of
+from ..syntax.tree import Block, NcStatement
 from .context import RuleContext
 
 FAMILY = "loops"
@@ -192,6 +207,32 @@ def _rejected_do_lines(ctx: RuleContext, start: int, end: int) -> dict[float, li
 _DO_WORD = re.compile(r"\bDO\s*(\d)\b", re.I)
 
 
+def _insert_end(ctx: RuleContext, program: Program, line: int, n: str) -> Fix:
+    """MB201's fix: close the DO with END<n> before the program's M99/M30 (or after its last
+    block). A line end in the text is "\n": the editor writes the document's own."""
+    blocks = ctx.doc.blocks
+    end = min(program.end_line, len(blocks))
+    target = next((ln for ln in range(line + 1, end) if _ends_program(blocks[ln])), None)
+    if target is not None:
+        edit = FixEdit.insert(target, 0, f"END{n}\n")
+    else:
+        last = max(
+            (ln for ln in range(line, end) if blocks[ln].statement is not None), default=line
+        )
+        edit = FixEdit.insert(last, len(blocks[last].text), f"\nEND{n}")
+    return Fix(f"Insert END{n} to close DO{n}", (edit,), preferred=True)
+
+
+def _ends_program(block: Block) -> bool:
+    for statement in statements_of(block.statement):
+        nc = statement if isinstance(statement, NcStatement) else None
+        if nc is not None and any(
+            w.address == "M" and constant_value(w.value) in (2.0, 30.0, 99.0) for w in nc.words
+        ):
+            return True
+    return False
+
+
 def check(ctx: RuleContext) -> Iterator[Diagnostic]:
     unread = ctx.doc.unread_from
     for program in ctx.index.programs:
@@ -217,6 +258,7 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
                     p.span.start,
                     p.span.end,
                     data={"loop_id": n},
+                    fixes=(_insert_end(ctx, program, p.line, n),),
                 )
             elif p.kind == "no-do":
                 yield make(
