@@ -213,49 +213,135 @@ def build_arc_thread(
     finishing_number: int = 5,
 ) -> ArcThreadProgram:
     """:func:`generate_arc_thread` with the measured cuts and angles."""
-    r_fin = tool_radius if finishing_tool_radius is None else finishing_tool_radius
-    big_r = groove_radius
+    spec = _ArcThreadSpec(
+        outer_diameter=outer_diameter,
+        groove_radius=groove_radius,
+        tool_radius=tool_radius,
+        pitch=pitch,
+        length=length,
+        layers=tuple(layers),
+        cuts_per_layer=cuts_per_layer,
+        finishing_diameter=finishing_diameter,
+        finishing_cuts=finishing_cuts,
+        run_in=run_in,
+        finishing_tool_radius=tool_radius
+        if finishing_tool_radius is None
+        else finishing_tool_radius,
+        rough_speed=rough_speed,
+        finishing_speed=finishing_speed,
+        spindle_m=spindle_m,
+        rough_tool=rough_tool,
+        finishing_tool=finishing_tool,
+        retract_x=retract_x,
+        start_x=start_x,
+        start_z=start_z,
+        main_number=main_number,
+        rough_number=rough_number,
+        finishing_number=finishing_number,
+    )
+    _check_arc_sizes(spec)
+    _check_arc_machine(spec)
+    _check_arc_geometry(spec)
+    facts = execute(_render_arc_thread(spec, {}).text()).facts
+    assert facts is not None
+    layer_cuts, layer_angles, fin_angles = _arc_cuts(spec, facts.motions)
+    notes = {
+        f"layer{n}": f"J{c:g}: {k} CUTS, ANGLE {a:.2f} TO {b:.2f} DEG"
+        for n, (c, k, (a, b)) in enumerate(zip(layers, layer_cuts, layer_angles, strict=True), 1)
+    }
+    notes["finish"] = (
+        f"J{finishing_diameter:g}: {len(fin_angles)} CUTS, ANGLE "
+        f"{fin_angles[0]:.2f} TO {fin_angles[-1]:.2f} DEG"
+    )
+    return ArcThreadProgram(
+        text=_render_arc_thread(spec, notes).text(),
+        layer_cuts=tuple(layer_cuts),
+        layer_angles=tuple(layer_angles),
+        finishing_cuts=len(fin_angles),
+        finishing_angles=(fin_angles[0], fin_angles[-1]),
+    )
+
+
+@dataclass(frozen=True)
+class _ArcThreadSpec:
+    """The arc thread's parameters, as :func:`build_arc_thread` takes them."""
+
+    outer_diameter: float
+    groove_radius: float  # R
+    tool_radius: float  # r of the roughing tool
+    pitch: float
+    length: float
+    layers: tuple[float, ...]  # the roughing layers' groove-centre diameters J
+    cuts_per_layer: int
+    finishing_diameter: float
+    finishing_cuts: int
+    run_in: float
+    finishing_tool_radius: float
+    rough_speed: int
+    finishing_speed: int
+    spindle_m: int
+    rough_tool: int
+    finishing_tool: int
+    retract_x: float
+    start_x: float
+    start_z: float
+    main_number: int
+    rough_number: int
+    finishing_number: int
+
+
+def _check_arc_sizes(spec: _ArcThreadSpec) -> None:
+    """Refuses sizes that are not positive numbers, or a tool not smaller than the groove."""
+    big_r, r_fin = spec.groove_radius, spec.finishing_tool_radius
     positive = (
-        ("outer diameter", outer_diameter),
+        ("outer diameter", spec.outer_diameter),
         ("groove radius R", big_r),
-        ("tool nose radius r", tool_radius),
+        ("tool nose radius r", spec.tool_radius),
         ("finishing tool nose radius r", r_fin),
-        ("pitch", pitch),
-        ("length", length),
+        ("pitch", spec.pitch),
+        ("length", spec.length),
     )
     for name, value in positive:
         if not value > 0 or not math.isfinite(value):
             raise ValueError(f"{name} {value!r} must be a positive number")
-    for name, r in (("tool", tool_radius), ("finishing tool", r_fin)):
+    for name, r in (("tool", spec.tool_radius), ("finishing tool", r_fin)):
         if not r < big_r:
             raise ValueError(
                 f"{name} nose radius r = {r:g} must be smaller than the groove radius R = {big_r:g}"
             )
-    if not layers:
+    if not spec.layers:
         raise ValueError("give at least one roughing layer (groove-centre diameter)")
     for name, value in (
         *positive,
-        ("run-in", run_in),
-        ("retract X", retract_x),
-        ("start X", start_x),
-        ("start Z", start_z),
-        ("finishing diameter", finishing_diameter),
-        *((f"roughing layer {n} J", j) for n, j in enumerate(layers, 1)),
+        ("run-in", spec.run_in),
+        ("retract X", spec.retract_x),
+        ("start X", spec.start_x),
+        ("start Z", spec.start_z),
+        ("finishing diameter", spec.finishing_diameter),
+        *((f"roughing layer {n} J", j) for n, j in enumerate(spec.layers, 1)),
     ):
         entered(name, value)
-    if not 1 <= cuts_per_layer <= 999:
-        raise ValueError(f"cuts per layer {cuts_per_layer} must be 1-999")
-    if not 2 <= finishing_cuts <= 999:
-        raise ValueError(f"finishing cuts {finishing_cuts} must be 2-999")
-    if spindle_m not in (3, 4):
-        raise ValueError(f"spindle M code {spindle_m} must be 3 or 4")
-    for name, speed in (("roughing speed", rough_speed), ("finishing speed", finishing_speed)):
+
+
+def _check_arc_machine(spec: _ArcThreadSpec) -> None:
+    """Refuses counts, speeds, tools and program numbers the control does not take, and a
+    retract or start point that does not clear the part."""
+    if not 1 <= spec.cuts_per_layer <= 999:
+        raise ValueError(f"cuts per layer {spec.cuts_per_layer} must be 1-999")
+    if not 2 <= spec.finishing_cuts <= 999:
+        raise ValueError(f"finishing cuts {spec.finishing_cuts} must be 2-999")
+    if spec.spindle_m not in (3, 4):
+        raise ValueError(f"spindle M code {spec.spindle_m} must be 3 or 4")
+    speeds = (("roughing speed", spec.rough_speed), ("finishing speed", spec.finishing_speed))
+    for name, speed in speeds:
         if not 1 <= speed <= 99999:
             raise ValueError(f"{name} S{speed} is outside 1-99999")
-    for name, t in (("roughing tool", rough_tool), ("finishing tool", finishing_tool)):
+    for name, t in (("roughing tool", spec.rough_tool), ("finishing tool", spec.finishing_tool)):
         # The macros call T[#20*100+#21]: a tool and its offset of two digits each.
         if not 1 <= t <= 99:
             raise ValueError(f"{name} T{t} is outside 1-99")
+    main_number, rough_number = spec.main_number, spec.rough_number
+    finishing_number = spec.finishing_number
     numbers = {
         program_number(main_number, "main"),
         program_number(rough_number, "roughing macro"),
@@ -266,113 +352,117 @@ def build_arc_thread(
             f"the main program O{main_number:04d}, the roughing macro O{rough_number:04d} and "
             f"the finishing macro O{finishing_number:04d} need three different numbers"
         )
-    highest = max([*layers, finishing_diameter, outer_diameter])
+    highest = max([*spec.layers, spec.finishing_diameter, spec.outer_diameter])
+    retract_x, start_x = spec.retract_x, spec.start_x
     if not retract_x > highest or not start_x >= retract_x:
         raise ValueError(
             f"retract X{retract_x:g} must clear the largest diameter {highest:g} the tool "
             f"reaches, and the start point X{start_x:g} must not be below it"
         )
+
+
+def _check_arc_geometry(spec: _ArcThreadSpec) -> None:
+    """Refuses a groove whose macros would take ASIN past 1, a layer outside the blank, or a
+    run-in that starts a cut past the thread's end."""
+    big_r, tool_radius, outer = spec.groove_radius, spec.tool_radius, spec.outer_diameter
     tangency = tool_radius / (big_r - tool_radius)
     _asin_argument(
         "tangency correction #11",
         f"r/[R-r] = {tool_radius:g}/[{big_r:g}-{tool_radius:g}]",
         tangency,
     )
-    for n, centre in enumerate(layers, 1):
-        arg = _edge_argument(centre, outer_diameter, big_r)
+    for n, centre in enumerate(spec.layers, 1):
+        arg = _edge_argument(centre, outer, big_r)
         _asin_argument(
             f"roughing layer {n} J{centre:g}",
-            f"[[{centre:g}-{outer_diameter:g}]/2]/{big_r:g}",
+            f"[[{centre:g}-{outer:g}]/2]/{big_r:g}",
             arg,
         )
+    finishing = spec.finishing_diameter
     _asin_argument(
-        f"finishing J{finishing_diameter:g}",
-        f"[[{finishing_diameter:g}-{outer_diameter:g}]/2]/{big_r:g}",
-        _edge_argument(finishing_diameter, outer_diameter, big_r),
+        f"finishing J{finishing:g}",
+        f"[[{finishing:g}-{outer:g}]/2]/{big_r:g}",
+        _edge_argument(finishing, outer, big_r),
     )
-    _inside_the_blank(outer_diameter, big_r, layers, finishing_diameter)
-    lowest_start = run_in - (big_r - min(tool_radius, r_fin))
-    if not lowest_start > -length:
+    _inside_the_blank(outer, big_r, spec.layers, finishing)
+    lowest_start = spec.run_in - (big_r - min(tool_radius, spec.finishing_tool_radius))
+    if not lowest_start > -spec.length:
         raise ValueError(
-            f"run-in Z{run_in:g} and length {length:g}: a cut would start at Z"
-            f"{lowest_start:g}, not before its end Z-{length:g}"
+            f"run-in Z{spec.run_in:g} and length {spec.length:g}: a cut would start at Z"
+            f"{lowest_start:g}, not before its end Z-{spec.length:g}"
         )
 
+
+def _render_arc_thread(spec: _ArcThreadSpec, notes: Mapping[str, str]) -> Lines:
+    """The main program (a call per roughing layer, then the finishing call) and the two
+    fitting macros; ``notes`` adds measured numbers to the calls' comments."""
     common = _ArcCall(
-        outer=outer_diameter,
-        length=length,
-        pitch=pitch,
-        radius=big_r,
-        run_in=run_in,
-        spindle_m=spindle_m,
-        retract_x=retract_x,
-        start_x=start_x,
-        start_z=start_z,
+        outer=spec.outer_diameter,
+        length=spec.length,
+        pitch=spec.pitch,
+        radius=spec.groove_radius,
+        run_in=spec.run_in,
+        spindle_m=spec.spindle_m,
+        retract_x=spec.retract_x,
+        start_x=spec.start_x,
+        start_z=spec.start_z,
     )
-
-    def render(notes: Mapping[str, str]) -> Lines:
-        out = Lines()
-        out.add("%")
-        out.add(
-            f"O{main_number:04d}",
-            f"ARC THREAD BY THE FITTING METHOD - R{big_r:g} P{pitch:g}",
-        )
-        for n, centre in enumerate(layers, 1):
-            call = common.block(
-                rough_number, centre, cuts_per_layer, tool_radius, rough_speed, rough_tool
-            )
-            out.add(call, f"ROUGH LAYER {n} {notes.get(f'layer{n}', '')}", key=f"layer{n}")
+    out = Lines()
+    out.add("%")
+    out.add(
+        f"O{spec.main_number:04d}",
+        f"ARC THREAD BY THE FITTING METHOD - R{spec.groove_radius:g} P{spec.pitch:g}",
+    )
+    for n, centre in enumerate(spec.layers, 1):
         call = common.block(
-            finishing_number,
-            finishing_diameter,
-            finishing_cuts,
-            r_fin,
-            finishing_speed,
-            finishing_tool,
+            spec.rough_number,
+            centre,
+            spec.cuts_per_layer,
+            spec.tool_radius,
+            spec.rough_speed,
+            spec.rough_tool,
         )
-        out.add(call, f"FINISHING {notes.get('finish', '')}", key="finish")
-        out.add("M05", "SPINDLE STOP")
-        out.add("M30", "END OF PROGRAM")
-        _fitting_macro(out, rough_number, finishing=False)
-        _fitting_macro(out, finishing_number, finishing=True)
-        out.add("%")
-        return out
+        out.add(call, f"ROUGH LAYER {n} {notes.get(f'layer{n}', '')}", key=f"layer{n}")
+    call = common.block(
+        spec.finishing_number,
+        spec.finishing_diameter,
+        spec.finishing_cuts,
+        spec.finishing_tool_radius,
+        spec.finishing_speed,
+        spec.finishing_tool,
+    )
+    out.add(call, f"FINISHING {notes.get('finish', '')}", key="finish")
+    out.add("M05", "SPINDLE STOP")
+    out.add("M30", "END OF PROGRAM")
+    _fitting_macro(out, spec.rough_number, finishing=False)
+    _fitting_macro(out, spec.finishing_number, finishing=True)
+    out.add("%")
+    return out
 
-    analysis = execute(render({}).text())
-    facts = analysis.facts
-    assert facts is not None
-    rough_name = f"O{rough_number:04d}"
-    fin_name = f"O{finishing_number:04d}"
-    rough_motions = [m for m in facts.motions if m.program.startswith(rough_name)]
-    fin_motions = [m for m in facts.motions if m.program.startswith(fin_name)]
+
+def _arc_cuts(
+    spec: _ArcThreadSpec, motions: Sequence[Motion]
+) -> tuple[list[int], list[tuple[float, float]], list[float]]:
+    """From the executed motions: each roughing layer's cuts and its first and last angle,
+    and the finishing cuts' angles."""
+    rough_name = f"O{spec.rough_number:04d}"
+    fin_name = f"O{spec.finishing_number:04d}"
+    rough_motions = [m for m in motions if m.program.startswith(rough_name)]
+    fin_motions = [m for m in motions if m.program.startswith(fin_name)]
     # Each layer's cuts come in order; split them with the known centre diameters.
     layer_cuts: list[int] = []
     layer_angles: list[tuple[float, float]] = []
-    cuts_by_layer = _split_by_calls(rough_motions, len(layers))
-    for n, (centre, chunk) in enumerate(zip(layers, cuts_by_layer, strict=True), 1):
-        angles = _angles_from_motions(chunk, centre, run_in)
+    cuts_by_layer = _split_by_calls(rough_motions, len(spec.layers))
+    for n, (centre, chunk) in enumerate(zip(spec.layers, cuts_by_layer, strict=True), 1):
+        angles = _angles_from_motions(chunk, centre, spec.run_in)
         if not angles:
             raise RuntimeError(f"roughing layer {n} made no cut")
         layer_cuts.append(len(angles))
         layer_angles.append((angles[0], angles[-1]))
-    fin_angles = _angles_from_motions(fin_motions, finishing_diameter, run_in)
+    fin_angles = _angles_from_motions(fin_motions, spec.finishing_diameter, spec.run_in)
     if not fin_angles:
         raise RuntimeError("the finishing macro made no cut")
-    notes = {
-        f"layer{n}": f"J{c:g}: {k} CUTS, ANGLE {a:.2f} TO {b:.2f} DEG"
-        for n, (c, k, (a, b)) in enumerate(zip(layers, layer_cuts, layer_angles, strict=True), 1)
-    }
-    notes["finish"] = (
-        f"J{finishing_diameter:g}: {len(fin_angles)} CUTS, ANGLE "
-        f"{fin_angles[0]:.2f} TO {fin_angles[-1]:.2f} DEG"
-    )
-    return ArcThreadProgram(
-        text=render(notes).text(),
-        layer_cuts=tuple(layer_cuts),
-        layer_angles=tuple(layer_angles),
-        finishing_cuts=len(fin_angles),
-        finishing_angles=(fin_angles[0], fin_angles[-1]),
-    )
+    return layer_cuts, layer_angles, fin_angles
 
 
 def _split_by_calls(motions: Sequence[Motion], calls: int) -> list[list[Motion]]:

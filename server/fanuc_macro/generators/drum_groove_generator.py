@@ -86,135 +86,29 @@ def build_drum_groove(
     if not 2 <= len(pts) <= _MAX_POINTS:
         many = "point" if len(pts) == 1 else "points"
         raise ValueError(f"{len(pts)} profile {many}: give 2-{_MAX_POINTS}")
-    for name, value in (("pitch", pitch), ("radial step", radial_step), ("run-in", run_in)):
-        if not value > 0 or not math.isfinite(value):
-            raise ValueError(f"{name} {value!r} must be a positive number")
-    if not axial_step >= 0 or not math.isfinite(axial_step):
-        raise ValueError(f"axial step {axial_step!r} must not be negative")
-    for name, value in (
-        ("pitch", pitch),
-        ("radial step", radial_step),
-        ("axial step", axial_step),
-        ("run-in", run_in),
-        ("clearance", clearance),
-        *((f"point {i} X", x) for i, (x, _) in enumerate(pts, 1)),
-        *((f"point {i} Z", z) for i, (_, z) in enumerate(pts, 1)),
-    ):
-        entered(name, value)
-    if not 1 <= layers <= 999 or not 1 <= cuts_per_layer <= 999:
-        raise ValueError(f"layers {layers} and cuts per layer {cuts_per_layer} must be 1-999")
-    if direction not in (-1, 1):
-        raise ValueError(f"direction {direction} must be -1 (right to left) or +1")
-    if not clearance > 0:
-        raise ValueError(f"clearance {clearance!r} must be positive")
-    if not 1 <= spindle_speed <= 99999:
-        raise ValueError(f"spindle speed S{spindle_speed} is outside 1-99999")
-    if not 1 <= tool <= 99:
-        raise ValueError(f"tool T{tool} is outside 1-99")
-    if program_number(main_number, "main") == program_number(macro_number, "macro"):
-        raise ValueError(f"the main program and the macro are both O{main_number:04d}")
-    sense = math.copysign(1.0, pts[0][1] - pts[1][1])  # +1: cutting toward -Z
-    for i, ((x0, z0), (x1, z1)) in enumerate(itertools.pairwise(pts), 1):
-        dz = z0 - z1
-        if dz == 0 or math.copysign(1.0, dz) != sense:
-            raise ValueError(
-                f"profile points {i} (Z{z0:g}) and {i + 1} (Z{z1:g}): Z must change in one "
-                "direction along the whole profile"
-            )
-        if abs(x1 - x0) / 2.0 >= abs(dz):
-            raise ValueError(
-                f"segment {i}-{i + 1} (X{x0:g} Z{z0:g} to X{x1:g} Z{z1:g}) is steeper than "
-                "45 degrees: G32 F would be the lead along X, not Z"
-            )
-    depth = layers * radial_step
-    lowest = min(x for x, _ in pts)
-    if 2.0 * depth >= lowest:
-        raise ValueError(
-            f"{layers} layers x {radial_step:g} = {depth:g} mm deep is more than the radius "
-            f"of the smallest profile diameter {lowest:g}"
-        )
-    retract_x = max(x for x, _ in pts) + 2.0 * clearance
-    start_z = pts[0][1] + sense * run_in
-    shift = direction * axial_step
+    spec = _DrumSpec(
+        points=tuple(pts),
+        pitch=pitch,
+        layers=layers,
+        radial_step=radial_step,
+        axial_step=axial_step,
+        cuts_per_layer=cuts_per_layer,
+        direction=direction,
+        run_in=run_in,
+        clearance=clearance,
+        spindle_speed=spindle_speed,
+        tool=tool,
+        main_number=main_number,
+        macro_number=macro_number,
+    )
+    _check_drum_values(spec)
+    _check_drum_profile(spec)
     try:
         crown: CrownFit | None = fit_crown(pts)
     except ValueError:
         crown = None  # two points, or points on a line: a taper, not a crown
-
-    def render(notes: Mapping[str, str]) -> Lines:
-        out = Lines()
-        out.add("%")
-        out.add(f"O{main_number:04d}", "DRUM SPIRAL GROOVE - CHAINED TAPER THREADS")
-        last = len(pts)
-        xs = f"#{_X_BASE + 1}-#{_X_BASE + last}"
-        zs = f"#{_Z_BASE + 1}-#{_Z_BASE + last}"
-        out.add("", f"PROFILE: X IN {xs}, Z IN {zs}")
-        if crown is not None:
-            out.add(
-                "",
-                f"CROWN R{crown.radius:.1f} (BEST-FIT CIRCLE, POINTS WITHIN "
-                f"{crown.max_deviation:.3f} MM OF IT)",
-            )
-        if "blocks" in notes:
-            out.add("", notes["blocks"])
-        for i, (x, z) in enumerate(pts, 1):
-            out.add(f"#{_X_BASE + i}={num(x)}", f"POINT {i} X")
-            out.add(f"#{_Z_BASE + i}={num(z)}", f"POINT {i} Z")
-        out.add(f"T{tool:02d}{tool:02d}", "GROOVING TOOL")
-        out.add(f"G97 S{spindle_speed} M03", "SPINDLE")
-        out.add(f"G00 X{num(retract_x)} Z{num(start_z)}", "START POINT")
-        call = " ".join(
-            [
-                f"G65 P{macro_number:04d}",
-                f"A{last}.",
-                f"B{cuts_per_layer}.",
-                f"C{layers}.",
-                f"D{num(radial_step)}",
-                f"E{num(shift)}",
-                f"F{num(pitch)}",
-                f"K{num(sense * run_in)}",
-                f"V{num(retract_x)}",
-            ]
-        )
-        out.add(call, f"{count_of(layers, 'LAYER')} {notes.get('call', '')}", key="call")
-        out.add(f"G00 X{num(retract_x)} Z{num(start_z)}", "BACK TO THE START POINT")
-        out.add("M05", "SPINDLE STOP")
-        out.add("M30", "END OF PROGRAM")
-
-        out.add(f"O{macro_number:04d}", "DRUM GROOVE - LAYERS OF CHAINED G32 TAPER THREADS")
-        out.add("", f"A=#1 POINTS: X IN #{_X_BASE}+I, Z IN #{_Z_BASE}+I, B=#2 CUTS PER LAYER")
-        out.add("", "C=#3 LAYERS, D=#7 RADIAL STEP, E=#8 AXIAL STEP PER CUT, F=#9 PITCH")
-        out.add("", "K=#6 RUN-IN BEFORE POINT 1, V=#22 RETRACT X")
-        out.add("#30=1.", "LAYER")
-        out.add("WHILE[#30LE#3]DO1", "EACH LAYER")
-        out.add("#31=#30*#7", "RADIAL DEPTH OF THE LAYER")
-        out.add("#32=0.", "CUT OF THE LAYER")
-        out.add("WHILE[#32LT#2]DO2", "EACH CUT OF THE LAYER")
-        out.add("#33=#32*#8", "AXIAL SHIFT OF THE CUT")
-        out.add(f"G00 Z[#{_Z_BASE + 1}+#33+#6]", "RUN-IN START")
-        out.add(f"X[#{_X_BASE + 1}-2.*#31]", "DEPTH OF THE LAYER")
-        out.add(f"G32 Z[#{_Z_BASE + 1}+#33] F#9", "RUN-IN TO POINT 1", key="runin")
-        out.add("#10=2.", "NEXT POINT")
-        out.add("WHILE[#10LE#1]DO3", "THROUGH THE PROFILE")
-        out.add(
-            f"G32 X[#[{_X_BASE}+#10]-2.*#31] Z[#[{_Z_BASE}+#10]+#33]",
-            "TAPER THREAD TO THE POINT",
-            key="segment",
-        )
-        out.add("#10=#10+1.")
-        out.add("END3")
-        out.add("G00 X#22", "RETRACT")
-        out.add("#32=#32+1.")
-        out.add("END2")
-        out.add("#30=#30+1.")
-        out.add("END1")
-        out.add("M99", "BACK TO THE MAIN PROGRAM")
-        out.add("%")
-        return out
-
-    draft = render({})
-    analysis = execute(draft.text())
-    facts = analysis.facts
+    draft = _render_drum_groove(spec, crown, {})
+    facts = execute(draft.text()).facts
     assert facts is not None
     g32 = [m for m in facts.motions if m.code == "G32"]
     segment_line = draft.at["segment"]
@@ -234,7 +128,7 @@ def build_drum_groove(
         f"{motion_blocks} MOTION + {setup_blocks} SET-UP = {motion_blocks + setup_blocks} BLOCKS",
     }
     return DrumGrooveProgram(
-        text=render(notes).text(),
+        text=_render_drum_groove(spec, crown, notes).text(),
         passes=passes,
         segments_per_pass=segments // passes,
         g32_cuts=len(g32),
@@ -243,6 +137,187 @@ def build_drum_groove(
         setup_blocks=setup_blocks,
         program_blocks=program_blocks,
     )
+
+
+@dataclass(frozen=True)
+class _DrumSpec:
+    """The drum groove's parameters, as :func:`build_drum_groove` takes them."""
+
+    points: tuple[tuple[float, float], ...]  # the profile: (X diameter, Z)
+    pitch: float
+    layers: int
+    radial_step: float
+    axial_step: float
+    cuts_per_layer: int
+    direction: int  # -1 right to left, +1
+    run_in: float
+    clearance: float
+    spindle_speed: int
+    tool: int
+    main_number: int
+    macro_number: int
+
+    @property
+    def sense(self) -> float:
+        """+1: the profile is cut toward -Z."""
+        return math.copysign(1.0, self.points[0][1] - self.points[1][1])
+
+    @property
+    def retract_x(self) -> float:
+        return max(x for x, _ in self.points) + 2.0 * self.clearance
+
+    @property
+    def start_z(self) -> float:
+        return self.points[0][1] + self.sense * self.run_in
+
+
+def _check_drum_values(spec: _DrumSpec) -> None:
+    """Refuses sizes, counts, a tool and program numbers the control does not take."""
+    pitch, radial_step, axial_step, run_in = (
+        spec.pitch,
+        spec.radial_step,
+        spec.axial_step,
+        spec.run_in,
+    )
+    for name, value in (("pitch", pitch), ("radial step", radial_step), ("run-in", run_in)):
+        if not value > 0 or not math.isfinite(value):
+            raise ValueError(f"{name} {value!r} must be a positive number")
+    if not axial_step >= 0 or not math.isfinite(axial_step):
+        raise ValueError(f"axial step {axial_step!r} must not be negative")
+    for name, value in (
+        ("pitch", pitch),
+        ("radial step", radial_step),
+        ("axial step", axial_step),
+        ("run-in", run_in),
+        ("clearance", spec.clearance),
+        *((f"point {i} X", x) for i, (x, _) in enumerate(spec.points, 1)),
+        *((f"point {i} Z", z) for i, (_, z) in enumerate(spec.points, 1)),
+    ):
+        entered(name, value)
+    layers, cuts_per_layer = spec.layers, spec.cuts_per_layer
+    if not 1 <= layers <= 999 or not 1 <= cuts_per_layer <= 999:
+        raise ValueError(f"layers {layers} and cuts per layer {cuts_per_layer} must be 1-999")
+    if spec.direction not in (-1, 1):
+        raise ValueError(f"direction {spec.direction} must be -1 (right to left) or +1")
+    if not spec.clearance > 0:
+        raise ValueError(f"clearance {spec.clearance!r} must be positive")
+    if not 1 <= spec.spindle_speed <= 99999:
+        raise ValueError(f"spindle speed S{spec.spindle_speed} is outside 1-99999")
+    if not 1 <= spec.tool <= 99:
+        raise ValueError(f"tool T{spec.tool} is outside 1-99")
+    if program_number(spec.main_number, "main") == program_number(spec.macro_number, "macro"):
+        raise ValueError(f"the main program and the macro are both O{spec.main_number:04d}")
+
+
+def _check_drum_profile(spec: _DrumSpec) -> None:
+    """Refuses a profile G32 cannot follow (Z turning back, a segment steeper than 45
+    degrees), or layers deeper than the smallest radius."""
+    sense = spec.sense
+    for i, ((x0, z0), (x1, z1)) in enumerate(itertools.pairwise(spec.points), 1):
+        dz = z0 - z1
+        if dz == 0 or math.copysign(1.0, dz) != sense:
+            raise ValueError(
+                f"profile points {i} (Z{z0:g}) and {i + 1} (Z{z1:g}): Z must change in one "
+                "direction along the whole profile"
+            )
+        if abs(x1 - x0) / 2.0 >= abs(dz):
+            raise ValueError(
+                f"segment {i}-{i + 1} (X{x0:g} Z{z0:g} to X{x1:g} Z{z1:g}) is steeper than "
+                "45 degrees: G32 F would be the lead along X, not Z"
+            )
+    depth = spec.layers * spec.radial_step
+    lowest = min(x for x, _ in spec.points)
+    if 2.0 * depth >= lowest:
+        raise ValueError(
+            f"{spec.layers} layers x {spec.radial_step:g} = {depth:g} mm deep is more than the "
+            f"radius of the smallest profile diameter {lowest:g}"
+        )
+
+
+def _render_drum_groove(spec: _DrumSpec, crown: CrownFit | None, notes: Mapping[str, str]) -> Lines:
+    """The main program and the macro; ``notes`` adds the measured counts to the comments."""
+    out = Lines()
+    out.add("%")
+    _render_drum_main(out, spec, crown, notes)
+    _render_drum_macro(out, spec)
+    out.add("%")
+    return out
+
+
+def _render_drum_main(
+    out: Lines, spec: _DrumSpec, crown: CrownFit | None, notes: Mapping[str, str]
+) -> None:
+    """The main program: the profile points into #111-, the tool, and the macro's call."""
+    pts = spec.points
+    out.add(f"O{spec.main_number:04d}", "DRUM SPIRAL GROOVE - CHAINED TAPER THREADS")
+    last = len(pts)
+    xs = f"#{_X_BASE + 1}-#{_X_BASE + last}"
+    zs = f"#{_Z_BASE + 1}-#{_Z_BASE + last}"
+    out.add("", f"PROFILE: X IN {xs}, Z IN {zs}")
+    if crown is not None:
+        out.add(
+            "",
+            f"CROWN R{crown.radius:.1f} (BEST-FIT CIRCLE, POINTS WITHIN "
+            f"{crown.max_deviation:.3f} MM OF IT)",
+        )
+    if "blocks" in notes:
+        out.add("", notes["blocks"])
+    for i, (x, z) in enumerate(pts, 1):
+        out.add(f"#{_X_BASE + i}={num(x)}", f"POINT {i} X")
+        out.add(f"#{_Z_BASE + i}={num(z)}", f"POINT {i} Z")
+    out.add(f"T{spec.tool:02d}{spec.tool:02d}", "GROOVING TOOL")
+    out.add(f"G97 S{spec.spindle_speed} M03", "SPINDLE")
+    retract_x, start_z = num(spec.retract_x), num(spec.start_z)
+    out.add(f"G00 X{retract_x} Z{start_z}", "START POINT")
+    call = " ".join(
+        [
+            f"G65 P{spec.macro_number:04d}",
+            f"A{last}.",
+            f"B{spec.cuts_per_layer}.",
+            f"C{spec.layers}.",
+            f"D{num(spec.radial_step)}",
+            f"E{num(spec.direction * spec.axial_step)}",
+            f"F{num(spec.pitch)}",
+            f"K{num(spec.sense * spec.run_in)}",
+            f"V{retract_x}",
+        ]
+    )
+    out.add(call, f"{count_of(spec.layers, 'LAYER')} {notes.get('call', '')}", key="call")
+    out.add(f"G00 X{retract_x} Z{start_z}", "BACK TO THE START POINT")
+    out.add("M05", "SPINDLE STOP")
+    out.add("M30", "END OF PROGRAM")
+
+
+def _render_drum_macro(out: Lines, spec: _DrumSpec) -> None:
+    """The macro: layers of cuts, each a run-in and a G32 taper thread to every point."""
+    out.add(f"O{spec.macro_number:04d}", "DRUM GROOVE - LAYERS OF CHAINED G32 TAPER THREADS")
+    out.add("", f"A=#1 POINTS: X IN #{_X_BASE}+I, Z IN #{_Z_BASE}+I, B=#2 CUTS PER LAYER")
+    out.add("", "C=#3 LAYERS, D=#7 RADIAL STEP, E=#8 AXIAL STEP PER CUT, F=#9 PITCH")
+    out.add("", "K=#6 RUN-IN BEFORE POINT 1, V=#22 RETRACT X")
+    out.add("#30=1.", "LAYER")
+    out.add("WHILE[#30LE#3]DO1", "EACH LAYER")
+    out.add("#31=#30*#7", "RADIAL DEPTH OF THE LAYER")
+    out.add("#32=0.", "CUT OF THE LAYER")
+    out.add("WHILE[#32LT#2]DO2", "EACH CUT OF THE LAYER")
+    out.add("#33=#32*#8", "AXIAL SHIFT OF THE CUT")
+    out.add(f"G00 Z[#{_Z_BASE + 1}+#33+#6]", "RUN-IN START")
+    out.add(f"X[#{_X_BASE + 1}-2.*#31]", "DEPTH OF THE LAYER")
+    out.add(f"G32 Z[#{_Z_BASE + 1}+#33] F#9", "RUN-IN TO POINT 1", key="runin")
+    out.add("#10=2.", "NEXT POINT")
+    out.add("WHILE[#10LE#1]DO3", "THROUGH THE PROFILE")
+    out.add(
+        f"G32 X[#[{_X_BASE}+#10]-2.*#31] Z[#[{_Z_BASE}+#10]+#33]",
+        "TAPER THREAD TO THE POINT",
+        key="segment",
+    )
+    out.add("#10=#10+1.")
+    out.add("END3")
+    out.add("G00 X#22", "RETRACT")
+    out.add("#32=#32+1.")
+    out.add("END2")
+    out.add("#30=#30+1.")
+    out.add("END1")
+    out.add("M99", "BACK TO THE MAIN PROGRAM")
 
 
 def generate_drum_groove(

@@ -177,17 +177,32 @@ def _render_module(spec: _ModuleSpec, notes: Mapping[str, str]) -> Lines:
 
     Without the options (symmetric infeed, parallel, one start, right hand) the statements
     are the paper's, character for character."""
-
-    def note(key: str, base: str) -> str:
-        return notes.get(key, base)
-
-    internal = spec.internal
-    d = spec.diameter
-    multi = spec.starts > 1
-    tapered = spec.taper != 0.0
-    side = "INTERNAL" if internal else "EXTERNAL"
     out = Lines()
     out.add("%")
+    _render_main(out, spec, notes)
+    # The sub-program: the paper's statements; the options change only the words they need.
+    _render_depths(out, spec, notes)
+    if spec.taper != 0.0:
+        out.add(_taper_r(spec), "TAPER R OF THE CUT, RADIUS")
+    cut = _cut_of(spec)
+    out.add(f"G01 X{cut.start_x} {cut.position} G99 F0.5", "POSITION")
+    _render_rough_passes(out, spec, notes, cut)
+    _render_finish(out, spec, notes, cut)
+    out.add("M99", "BACK TO THE MAIN PROGRAM")
+    out.add("%")
+    return out
+
+
+def _side(spec: _ModuleSpec) -> str:
+    return "INTERNAL" if spec.internal else "EXTERNAL"
+
+
+def _render_main(out: Lines, spec: _ModuleSpec, notes: Mapping[str, str]) -> None:
+    """The main program: it enters #100-#104 (and #105, #106 for the options), then calls."""
+    internal = spec.internal
+    d = spec.diameter
+    tapered = spec.taper != 0.0
+    side = _side(spec)
     out.add(
         f"O{spec.main_number:04d}",
         f"MAIN - {side} THREAD {spec.title} L={spec.length:g}",
@@ -210,7 +225,7 @@ def _render_module(spec: _ModuleSpec, notes: Mapping[str, str]) -> Lines:
     out.add(f"#102={num(spec.length)}", "THREAD LENGTH")
     out.add(f"#103={num(spec.deviation)}", spec.deviation_note)
     out.add(f"#104={num(spec.pitch_tolerance)}", spec.tolerance_note)
-    if multi:
+    if spec.starts > 1:
         out.add(
             f"#105={num(spec.starts * spec.pitch)}",
             f"LEAD PH = {spec.starts} STARTS X PITCH",
@@ -221,9 +236,8 @@ def _render_module(spec: _ModuleSpec, notes: Mapping[str, str]) -> Lines:
             f"#106={num(spec.taper, 8)}",
             f"TAPER {_taper_text(spec.taper)}: THE DIAMETER {grows} BY #106 PER MM TOWARD -Z",
         )
-    out.add(
-        f"M98 P001{spec.sub_number:04d}", note("call", f"CALL O{spec.sub_number:04d}"), key="call"
-    )
+    call = notes.get("call", f"CALL O{spec.sub_number:04d}")
+    out.add(f"M98 P001{spec.sub_number:04d}", call, key="call")
     if internal:
         out.add("G00 Z100.", "OUT OF THE BORE")
         out.add(f"X{home_x}", "RETURN")
@@ -234,29 +248,33 @@ def _render_module(spec: _ModuleSpec, notes: Mapping[str, str]) -> Lines:
     out.add("M9", "COOLANT OFF")
     out.add("M30", "END OF PROGRAM")
 
-    # The sub-program: the paper's statements; the options change only the words they need.
+
+def _render_depths(out: Lines, spec: _ModuleSpec, notes: Mapping[str, str]) -> None:
+    """The sub-program's head: run-in and run-out, the thread height, the depths of the
+    passes, the side offset, and the counters of the starts, spring passes and flanks."""
+    internal = spec.internal
+    multi = spec.starts > 1
     coef = spec.coefficient
-    ref = "#11" if internal else "#100"
-    sign = "+" if internal else "-"
-    back = "-" if internal else "+"
     lead = "#105" if multi else "#101"
-    infeed = spec.infeed
-    title = INFEEDS[infeed] + (", LEFT HAND" if spec.left_hand else "")
-    out.add(f"O{spec.sub_number:04d}", f"{side} THREAD SUB - {title}, G92")
+    title = INFEEDS[spec.infeed] + (", LEFT HAND" if spec.left_hand else "")
+    out.add(f"O{spec.sub_number:04d}", f"{_side(spec)} THREAD SUB - {title}, G92")
     if multi:
         out.add(f"#1=1.*{lead}", "RUN-OUT DELTA2 FROM THE LEAD")
         out.add(f"#2=2.*{lead}+{lead}+FIX[#102/{lead}]*{lead}-#102", "RUN-IN DELTA1 FROM THE LEAD")
     else:
         out.add("#1=1.*#101", "RUN-OUT DELTA2")
         out.add("#2=2.*#101+#101+FIX[#102/#101]*#101-#102", "RUN-IN DELTA1")
+    radius = notes.get("r", "TOOL NOSE RADIUS")
+    height = notes.get("h", "THREAD HEIGHT")
     if internal:
-        out.add("#3=#101/[16*SIN[60]]", note("r", "TOOL NOSE RADIUS"), key="r")
-        out.add("#4=[6./8.]*SIN[60]*#101-#3+#103/2.+#104/4.", note("h", "THREAD HEIGHT"), key="h")
+        out.add("#3=#101/[16*SIN[60]]", radius, key="r")
+        out.add("#4=[6./8.]*SIN[60]*#101-#3+#103/2.+#104/4.", height, key="h")
     else:
-        out.add("#3=#101/[8*SIN[60]]", note("r", "TOOL NOSE RADIUS"), key="r")
-        out.add("#4=[7./8.]*SIN[60]*#101-#3+#103/2.+#104/4.", note("h", "THREAD HEIGHT"), key="h")
-    out.add(f"#5=[{coef}]*SQRT[#4]", note("apmax", "FIRST DEPTH AP MAX"), key="apmax")
-    out.add(f"#6=[{coef}]*SQRT[#5]", note("apmin", "MIN DEPTH AND ALLOWANCE AP MIN"), key="apmin")
+        out.add("#3=#101/[8*SIN[60]]", radius, key="r")
+        out.add("#4=[7./8.]*SIN[60]*#101-#3+#103/2.+#104/4.", height, key="h")
+    out.add(f"#5=[{coef}]*SQRT[#4]", notes.get("apmax", "FIRST DEPTH AP MAX"), key="apmax")
+    apmin = notes.get("apmin", "MIN DEPTH AND ALLOWANCE AP MIN")
+    out.add(f"#6=[{coef}]*SQRT[#5]", apmin, key="apmin")
     if multi:
         # One call cuts every start: the passes of all the starts are one thread.
         out.add("#16=0.", "START NUMBER, 0 THE FIRST")
@@ -266,13 +284,42 @@ def _render_module(spec: _ModuleSpec, notes: Mapping[str, str]) -> Lines:
     out.add("#7=1.", "PASS NUMBER")
     out.add("#8=#5*[SQRT[#7]-SQRT[#7-1.]]", "DEPTH OF THE PASS")
     out.add("#9=#5*SQRT[#7]", "TOTAL DEPTH")
-    out.add("#10=[#4+#3-#6-#9]*TAN[30]-#3*TAN[30]", note("u", "SIDE OFFSET U"), key="u")
+    out.add("#10=[#4+#3-#6-#9]*TAN[30]-#3*TAN[30]", notes.get("u", "SIDE OFFSET U"), key="u")
     if internal:
-        out.add("#11=#100-2.*[5./8.]*SIN[60]*#101", note("d1", "MINOR DIAMETER D1"), key="d1")
+        d1 = notes.get("d1", "MINOR DIAMETER D1")
+        out.add("#11=#100-2.*[5./8.]*SIN[60]*#101", d1, key="d1")
     if spec.spring_passes >= 2:
         out.add(f"#12={spec.spring_passes}.", "SPRING PASSES")
-    if infeed == "alternate":
+    if spec.infeed == "alternate":
         out.add("#13=-1.", "FLANK OF THE PASS: -1 LEFT, +1 RIGHT")
+
+
+@dataclass(frozen=True)
+class _Cut:
+    """The words of one G92 cut of the sub-program, for the module's options."""
+
+    ref: str  # the diameter the depths are taken from: #100, or #11 (D1) inside
+    sign: str  # toward the depth: "-" outside, "+" inside
+    back: str  # away from it
+    position: str  # the W move to the cut's start
+    start_x: str  # the X the tool starts from
+    words: str  # the cut's W, R and F words
+    cone: str  # "+"/"-": which way the cone's diameter changes; "" parallel
+    end: str  # where the cut ends, as a distance toward -Z from Z0
+
+    def target(self, depth: str, flank: str = "") -> str:
+        """The cut's X: the cone at the cut's end (moved ``flank`` along Z), less the depth."""
+        if not self.cone:
+            return f"X[{self.ref}{depth}]"
+        return f"X[{self.ref}{self.cone}#106*[{self.end}{flank}]{depth}]"
+
+
+def _cut_of(spec: _ModuleSpec) -> _Cut:
+    """The cut's words; a tapered module adds #14, the cut's R, as it works them out."""
+    internal = spec.internal
+    multi = spec.starts > 1
+    ref = "#11" if internal else "#100"
+    lead = "#105" if multi else "#101"
     # The run-in of a start past the first is one pitch longer per start (#15): every start
     # ends where the first does, and the spindle's one-turn signal puts it a pitch further.
     shift = "+#15" if multi else ""
@@ -281,19 +328,12 @@ def _render_module(spec: _ModuleSpec, notes: Mapping[str, str]) -> Lines:
         # Toward +Z: the run-in lies left of the thread, the run-out right of Z0.
         position = f"W[-#102-#2{shift.replace('+', '-')}]"
         travel = f"W[{run}]"
-        end = "-#1"  # where the cut ends, as a distance toward -Z from Z0
+        end = "-#1"
     else:
         position = f"W[#2{shift}]"
         travel = f"W[-#2{shift.replace('+', '-')}-#102-#1]"
         end = "#102+#1"
-    if tapered:
-        # G92 R: the radius at the cut's start minus the radius at its end.  An external
-        # cone grows toward -Z, an internal one shrinks (#106 > 0).
-        towards_minus_z = (not internal) != spec.left_hand
-        out.add(
-            f"#14={'-' if towards_minus_z else ''}#106*[{run}]/2.",
-            "TAPER R OF THE CUT, RADIUS",
-        )
+    if spec.taper != 0.0:
         taper_word = "R#14"
         cone = "-" if internal else "+"
         clear = "-" if internal else "+"
@@ -302,25 +342,42 @@ def _render_module(spec: _ModuleSpec, notes: Mapping[str, str]) -> Lines:
         taper_word = "R0"
         cone = ""
         start_x = "[#11-1.]" if internal else "[#100+1.]"
+    return _Cut(
+        ref=ref,
+        sign="+" if internal else "-",
+        back="-" if internal else "+",
+        position=position,
+        start_x=start_x,
+        words=f"{travel} {taper_word} F{lead}",
+        cone=cone,
+        end=end,
+    )
 
-    def target(depth: str, flank: str = "") -> str:
-        """The cut's X: the cone at the cut's end (moved ``flank`` along Z), less the depth."""
-        if not tapered:
-            return f"X[{ref}{depth}]"
-        return f"X[{ref}{cone}#106*[{end}{flank}]{depth}]"
 
-    cut = f"{travel} {taper_word} F{lead}"
-    out.add(f"G01 X{start_x} {position} G99 F0.5", "POSITION")
-    rough = f"{sign}2.*#9"
+def _taper_r(spec: _ModuleSpec) -> str:
+    """#14, the tapered cut's R: the radius at the cut's start minus the radius at its end.
+    An external cone grows toward -Z, an internal one shrinks (#106 > 0)."""
+    run = f"#2{'+#15' if spec.starts > 1 else ''}+#102+#1"
+    towards_minus_z = (not spec.internal) != spec.left_hand
+    return f"#14={'-' if towards_minus_z else ''}#106*[{run}]/2."
+
+
+def _render_rough_passes(
+    out: Lines, spec: _ModuleSpec, notes: Mapping[str, str], cut: _Cut
+) -> None:
+    """The loop of rough passes, each by the square-root rule, on the flanks of the infeed."""
+    infeed = spec.infeed
+    words = cut.words
+    rough = f"{cut.sign}2.*#9"
     if infeed == "symmetric":
         out.add("N10 G01 W[-#10]", "LOOP START - STEP LEFT BY U", key="n10")
-        out.add(f"G92 {target(rough, '+#10')} {cut}", "CUT")
+        out.add(f"G92 {cut.target(rough, '+#10')} {words}", "CUT")
         out.add("G01 W[2.*#10]", "STEP RIGHT BY 2U")
-        out.add(f"G92 {target(rough, '-#10')} {cut}", "CUT")
+        out.add(f"G92 {cut.target(rough, '-#10')} {words}", "CUT")
         out.add("G01 W[-#10]", "BACK TO THE MIDDLE")
     elif infeed == "alternate":
         out.add("N10 G01 W[#13*#10]", "LOOP START - STEP TO THE FLANK BY U", key="n10")
-        out.add(f"G92 {target(rough, '-#13*#10')} {cut}", "CUT")
+        out.add(f"G92 {cut.target(rough, '-#13*#10')} {words}", "CUT")
         out.add("G01 W[-#13*#10]", "BACK TO THE MIDDLE")
         out.add("#13=-#13", "THE OTHER FLANK NEXT PASS")
     else:
@@ -330,48 +387,51 @@ def _render_module(spec: _ModuleSpec, notes: Mapping[str, str]) -> Lines:
             f"LOOP START - STEP {infeed.upper()} BY U",
             key="n10",
         )
-        out.add(f"G92 {target(rough, '+#10' if left else '-#10')} {cut}", "CUT")
+        out.add(f"G92 {cut.target(rough, '+#10' if left else '-#10')} {words}", "CUT")
         out.add(f"G01 W[{'' if left else '-'}#10]", "BACK TO THE MIDDLE")
     out.add("#7=#7+1.", "NEXT PASS")
     out.add("#8=#5*[SQRT[#7]-SQRT[#7-1.]]", "DEPTH OF THE NEXT PASS")
     out.add(
         "IF[#8GE#6] THEN #9=#5*SQRT[#7]",
-        note("if_ge", "AP-N GE AP-MIN - TOTAL BY THE SQUARE-ROOT RULE"),
+        notes.get("if_ge", "AP-N GE AP-MIN - TOTAL BY THE SQUARE-ROOT RULE"),
         key="if_ge",
     )
     out.add(
         "IF[#8LT#6] THEN #9=#9+#6",
-        note("if_lt", "AP-N LT AP-MIN - ADD AP-MIN"),
+        notes.get("if_lt", "AP-N LT AP-MIN - ADD AP-MIN"),
         key="if_lt",
     )
     out.add("#10=[#4+#3-#6-#9]*TAN[30]-#3*TAN[30]", "NEXT SIDE OFFSET")
-    paper = infeed == "symmetric" and not tapered
+    paper = infeed == "symmetric" and spec.taper == 0.0
     # The paper's pairs cut the last depth left and right of the straight rough pass; a
     # single cut there within 0.001 mm of H-AP MIN would only repeat that pass.
     out.add(
         "IF[#9LT[#4-#6]] GOTO10" if paper else "IF[#9LT[#4-#6-0.001]] GOTO10",
-        note("loop", "UNTIL THE TOTAL DEPTH REACHES H-AP MIN"),
+        notes.get("loop", "UNTIL THE TOTAL DEPTH REACHES H-AP MIN"),
         key="loop",
     )
+
+
+def _render_finish(out: Lines, spec: _ModuleSpec, notes: Mapping[str, str], cut: _Cut) -> None:
+    """The straight infeed to the full depth, the spring passes, and the next start."""
+    sign, back, words = cut.sign, cut.back, cut.words
     out.add(
-        f"G92 {target(f'{sign}2.*#4{back}2.*#6')} {cut}", "STRAIGHT INFEED ROUGH - LEAVE AP MIN"
+        f"G92 {cut.target(f'{sign}2.*#4{back}2.*#6')} {words}",
+        "STRAIGHT INFEED ROUGH - LEAVE AP MIN",
     )
-    out.add(target(f"{sign}2.*#4"), note("finish", "STRAIGHT INFEED FINISH"), key="finish")
+    finish = notes.get("finish", "STRAIGHT INFEED FINISH")
+    out.add(cut.target(f"{sign}2.*#4"), finish, key="finish")
     if spec.spring_passes >= 1:
-        out.add(
-            f"N20 G92 {target(f'{sign}2.*#4')} {cut}", note("spring", "SPRING PASS"), key="spring"
-        )
+        spring = notes.get("spring", "SPRING PASS")
+        out.add(f"N20 G92 {cut.target(f'{sign}2.*#4')} {words}", spring, key="spring")
     if spec.spring_passes >= 2:
         out.add("#12=#12-1.", "COUNT THE SPRING PASSES")
         out.add("IF[#12GT0.] GOTO20", "REPEAT THE SPRING PASS")
-    if multi:
+    if spec.starts > 1:
         back_to_z0 = "W[#102+#2+#15]" if spec.left_hand else "W[-#2-#15]"
         out.add(f"G01 {back_to_z0} F0.5", "BACK TO Z0")
         out.add("#16=#16+1.", "NEXT START")
         out.add("END1")
-    out.add("M99", "BACK TO THE MAIN PROGRAM")
-    out.add("%")
-    return out
 
 
 def build_module_from_values(
@@ -401,29 +461,9 @@ def build_module_from_values(
     (1/16 for a 1:16 cone; positive: an external thread grows toward -Z, an internal one
     shrinks, the nominal diameter being the one at Z0); ``starts`` the number of starts (the
     lead is ``starts`` x ``pitch``); ``left_hand`` cuts toward +Z."""
-    for name, value in (("diameter", diameter), ("pitch", pitch), ("length", length)):
-        if not value > 0 or not math.isfinite(value):
-            raise ValueError(f"the thread {name} {value} must be a positive number")
-    if pitch >= diameter:
-        raise ValueError(f"pitch {pitch:g} is not smaller than the diameter {diameter:g}")
-    if not math.isfinite(deviation) or not math.isfinite(pitch_tolerance) or pitch_tolerance < 0:
-        raise ValueError(
-            f"the deviation {deviation} and the pitch-diameter tolerance {pitch_tolerance} "
-            "must be finite numbers, the tolerance not negative"
-        )
+    _check_thread(diameter, pitch, length, deviation, pitch_tolerance)
+    _check_options(spring_passes, spindle_speed, infeed, taper, starts)
     deviation = abs(deviation)  # the paper enters es as a magnitude
-    if not 0 <= spring_passes <= 99:
-        raise ValueError(f"spring passes {spring_passes} must be 0-99")
-    if not 1 <= spindle_speed <= 99999:
-        raise ValueError(f"spindle speed S{spindle_speed} is outside 1-99999")
-    if infeed not in INFEEDS:
-        raise ValueError(f"the infeed {infeed} is not one of {', '.join(INFEEDS)}")
-    # Beyond 1:2 (a half-angle of 14 degrees) a G92 thread's depth is no longer the
-    # radial depth the module computes; pipe threads are 1:16.
-    if not math.isfinite(taper) or abs(taper) > 0.5:
-        raise ValueError(f"the taper {taper} must be a diameter change of at most 0.5 per mm (1:2)")
-    if not 1 <= starts <= 9:
-        raise ValueError(f"{starts} starts: the module cuts 1-9")
     default_main, default_sub = default_program_numbers(internal)
     main = program_number(default_main if main_number is None else main_number, "main")
     sub = program_number(default_sub if sub_number is None else sub_number, "sub")
@@ -439,8 +479,6 @@ def build_module_from_values(
     if deviation_note is None:
         signed = deviation if internal else -deviation
         deviation_note = f"{which}={signed:g}" + ("" if internal else " AS A MAGNITUDE")
-    if tolerance_note is None:
-        tolerance_note = "TD2 TOLERANCE"
     spec = _ModuleSpec(
         diameter=diameter,
         pitch=pitch,
@@ -455,49 +493,136 @@ def build_module_from_values(
         spindle_speed=spindle_speed,
         title=title,
         deviation_note=deviation_note,
-        tolerance_note=tolerance_note,
+        tolerance_note="TD2 TOLERANCE" if tolerance_note is None else tolerance_note,
         infeed=infeed,
         taper=taper,
         starts=starts,
         left_hand=left_hand,
     )
-
     draft = _render_module(spec, {})
     analysis = execute(draft.text())
+    measured = _measured(spec, draft, analysis)
+    notes = _measured_notes(spec, measured, draft, analysis)
+    return ThreadModule(
+        text=_render_module(spec, notes).text(),
+        internal=internal,
+        main_number=main,
+        sub_number=sub,
+        nose_radius=measured.nose_radius,
+        height=measured.height,
+        ap_max=measured.ap_max,
+        ap_min=measured.ap_min,
+        first_offset=measured.first_offset,
+        rough_passes=measured.rough_passes,
+        g92_cuts=measured.g92_cuts,
+        final_x=measured.final_x,
+    )
+
+
+def _check_thread(
+    diameter: float, pitch: float, length: float, deviation: float, pitch_tolerance: float
+) -> None:
+    """Refuses a thread the module cannot cut: sizes not positive, a pitch not below the
+    diameter, a deviation or tolerance not a finite number."""
+    for name, value in (("diameter", diameter), ("pitch", pitch), ("length", length)):
+        if not value > 0 or not math.isfinite(value):
+            raise ValueError(f"the thread {name} {value} must be a positive number")
+    if pitch >= diameter:
+        raise ValueError(f"pitch {pitch:g} is not smaller than the diameter {diameter:g}")
+    if not math.isfinite(deviation) or not math.isfinite(pitch_tolerance) or pitch_tolerance < 0:
+        raise ValueError(
+            f"the deviation {deviation} and the pitch-diameter tolerance {pitch_tolerance} "
+            "must be finite numbers, the tolerance not negative"
+        )
+
+
+def _check_options(
+    spring_passes: int, spindle_speed: int, infeed: str, taper: float, starts: int
+) -> None:
+    """Refuses options outside what the module's statements can do."""
+    if not 0 <= spring_passes <= 99:
+        raise ValueError(f"spring passes {spring_passes} must be 0-99")
+    if not 1 <= spindle_speed <= 99999:
+        raise ValueError(f"spindle speed S{spindle_speed} is outside 1-99999")
+    if infeed not in INFEEDS:
+        raise ValueError(f"the infeed {infeed} is not one of {', '.join(INFEEDS)}")
+    # Beyond 1:2 (a half-angle of 14 degrees) a G92 thread's depth is no longer the
+    # radial depth the module computes; pipe threads are 1:16.
+    if not math.isfinite(taper) or abs(taper) > 0.5:
+        raise ValueError(f"the taper {taper} must be a diameter change of at most 0.5 per mm (1:2)")
+    if not 1 <= starts <= 9:
+        raise ValueError(f"{starts} starts: the module cuts 1-9")
+
+
+@dataclass(frozen=True)
+class _Measured:
+    """What executing the draft module gave: the values its comments state."""
+
+    nose_radius: float
+    height: float
+    ap_max: float
+    ap_min: float
+    first_offset: float
+    rough_passes: int  # of each start
+    g92_cuts: int
+    final_x: float
+    where: str  # the final cut's X, and its Z on a cone
+
+
+def _measured(spec: _ModuleSpec, draft: Lines, analysis: Analysis) -> _Measured:
     facts = analysis.facts
     assert facts is not None
     at = draft.at
-    r = _written(facts, at["r"])
-    h = _written(facts, at["h"])
-    first = _written(facts, at["apmax"])
-    smallest = _written(facts, at["apmin"])
-    u = _written(facts, at["u"])
-    passes = _runs(facts, at["n10"]) // starts  # of each start
-    per_pass = 2 if infeed == "symmetric" else 1
     g92 = [m for m in facts.motions if m.code == "G92"]
     if not g92 or "X" not in g92[-1].words:
         raise RuntimeError("executing the generated module gave no G92 cut")
     final_x = g92[-1].words["X"]
     # On a cone the final X is the one at the cut's end.
     where = f"X{mm(final_x)}"
-    if taper and g92[-1].z is not None:
+    if spec.taper and g92[-1].z is not None:
         where += f" Z{mm(g92[-1].z)}"
+    return _Measured(
+        nose_radius=_written(facts, at["r"]),
+        height=_written(facts, at["h"]),
+        ap_max=_written(facts, at["apmax"]),
+        ap_min=_written(facts, at["apmin"]),
+        first_offset=_written(facts, at["u"]),
+        rough_passes=_runs(facts, at["n10"]) // spec.starts,
+        g92_cuts=len(g92),
+        final_x=final_x,
+        where=where,
+    )
 
+
+def _measured_notes(
+    spec: _ModuleSpec, measured: _Measured, draft: Lines, analysis: Analysis
+) -> dict[str, str]:
+    """The keyed blocks' comments with the measured numbers, and the conditions that are
+    decided for this thread (which the checker reports) said to be."""
+    passes = measured.rough_passes
+    per_pass = 2 if spec.infeed == "symmetric" else 1
+    where = measured.where
+    sub = spec.sub_number
+    starts = spec.starts
+    g92_cuts = measured.g92_cuts
     notes = {
-        "r": f"TOOL NOSE RADIUS R={mm(r)}",
-        "h": f"THREAD HEIGHT H={mm(h)}",
-        "apmax": f"FIRST DEPTH AP MAX={mm(first)}",
-        "apmin": f"MIN DEPTH AND FINISH ALLOWANCE AP MIN={mm(smallest)}",
-        "u": f"SIDE OFFSET U={mm(u)} OF THE FIRST PASS",
+        "r": f"TOOL NOSE RADIUS R={mm(measured.nose_radius)}",
+        "h": f"THREAD HEIGHT H={mm(measured.height)}",
+        "apmax": f"FIRST DEPTH AP MAX={mm(measured.ap_max)}",
+        "apmin": f"MIN DEPTH AND FINISH ALLOWANCE AP MIN={mm(measured.ap_min)}",
+        "u": f"SIDE OFFSET U={mm(measured.first_offset)} OF THE FIRST PASS",
         "loop": f"UNTIL THE TOTAL DEPTH REACHES H-AP MIN: {count_of(passes, 'ROUGH PASS')}, "
         f"{per_pass * passes} G92 CUTS",
         "finish": f"STRAIGHT INFEED FINISH AT {where}",
-        "spring": f"{count_of(spring_passes, 'SPRING PASS')} AT {where}",
-        "call": f"CALL O{sub:04d}: {len(g92)} G92 CUTS, FINAL {where}"
+        "spring": f"{count_of(spec.spring_passes, 'SPRING PASS')} AT {where}",
+        "call": f"CALL O{sub:04d}: {g92_cuts} G92 CUTS, FINAL {where}"
         if starts == 1
-        else f"CALL O{sub:04d}: {starts} STARTS OF {len(g92) // starts} G92 CUTS, FINAL {where}",
+        else f"CALL O{sub:04d}: {starts} STARTS OF {g92_cuts // starts} G92 CUTS, FINAL {where}",
     }
-    if internal:
+    at = draft.at
+    if spec.internal:
+        facts = analysis.facts
+        assert facts is not None
         notes["d1"] = f"MINOR DIAMETER D1={mm(_written(facts, at['d1']))}"
     keyed = {at[k]: k for k in ("if_ge", "if_lt", "loop")}
     bases = {
@@ -510,21 +635,7 @@ def build_module_from_values(
         # decided, which the checker rightly reports: say so where it happens.
         key = keyed[line]
         notes[key] = f"{bases[key]} ALWAYS {outcome} FOR THIS THREAD - {_SUPPRESS_MB701}"
-    text = _render_module(spec, notes).text()
-    return ThreadModule(
-        text=text,
-        internal=internal,
-        main_number=main,
-        sub_number=sub,
-        nose_radius=r,
-        height=h,
-        ap_max=first,
-        ap_min=smallest,
-        first_offset=u,
-        rough_passes=passes,
-        g92_cuts=len(g92),
-        final_x=final_x,
-    )
+    return notes
 
 
 def build_module(
