@@ -22,31 +22,18 @@ import {
   type ProbeResult,
   type ServerCandidate,
 } from './serverCandidates';
-import {
-  parseTaper,
-  parseThreadDesignation,
-  parseThreadLength,
-  sideQuestion,
-  threadModuleText,
-  validateTaper,
-  validateThreadDesignation,
-  validateThreadLength,
-  type Infeed,
-  type ThreadModuleArgs,
-} from './threadDesignation';
 import { RuleDocs, linkToShippedDocs } from './ruleDocsView';
 import { StatusItem } from './statusItem';
 import { ToolpathPanel } from './toolpathView';
-import { formatTraceView, traceResultError, type TraceResult } from './traceFormat';
-import { TraceDocuments } from './traceView';
+import { TraceDocuments, traceViewOf } from './traceView';
 
 const LANGUAGE_ID = 'fanuc-macro';
 const CONFIG_SECTION = 'fanuc-macro';
 const SERVER_PATH_SETTING = `${CONFIG_SECTION}.server.path`;
 
 /** Server-side commands (workspace/executeCommand). */
-export const SERVER_COMMAND_TRACE = 'fanuc-macro.trace';
-export const SERVER_COMMAND_THREAD_MODULE = 'fanuc-macro.threadModule';
+export const SERVER_COMMAND_TRACE_VIEW = 'fanuc-macro.traceView';
+export const SERVER_COMMAND_CONTROLLERS = 'fanuc-macro.controllers';
 
 let client: LanguageClient | undefined;
 /** Folder the extension is installed in (holds the bundled server, if any). */
@@ -268,6 +255,12 @@ async function startClient(): Promise<void> {
   try {
     await newClient.start();
     statusItem?.status.ready(version);
+    // The controllers the status item offers, with their kind: the server's list.
+    try {
+      statusItem?.setControllers(await executeServerCommand(newClient, SERVER_COMMAND_CONTROLLERS, []));
+    } catch (err) {
+      log(`The server gave no controllers: ${errorText(err)}`);
+    }
   } catch (err) {
     client = undefined;
     statusItem?.status.failed(errorText(err));
@@ -351,24 +344,22 @@ async function showTrace(): Promise<void> {
   const languageClient = await runningClient();
   if (languageClient === undefined) return;
   const document = editor.document;
-  const uri = document.uri.toString();
+  const source = document.isUntitled ? document.uri.toString() : document.uri.fsPath;
   let answer: unknown;
   try {
     answer = await vscode.window.withProgress(
       { location: vscode.ProgressLocation.Window, title: vscode.l10n.t('FANUC Macro: tracing program') },
-      () => executeServerCommand(languageClient, SERVER_COMMAND_TRACE, [uri]),
+      () => executeServerCommand(languageClient, SERVER_COMMAND_TRACE_VIEW, [document.uri.toString(), source]),
     );
   } catch (err) {
-    void vscode.window.showErrorMessage(`FANUC Macro: trace failed: ${errorText(err)}`);
+    answer = { error: errorText(err) };
+  }
+  const view = traceViewOf(answer);
+  if ('error' in view) {
+    void vscode.window.showErrorMessage(`FANUC Macro: trace failed: ${view.error}`);
     return;
   }
-  const error = traceResultError(answer);
-  if (error !== undefined) {
-    void vscode.window.showErrorMessage(`FANUC Macro: trace failed: ${error}`);
-    return;
-  }
-  const source = document.isUntitled ? document.uri.toString() : document.uri.fsPath;
-  await (traces ??= new TraceDocuments()).show(document.uri, formatTraceView(answer as TraceResult, source));
+  await (traces ??= new TraceDocuments()).show(document.uri, view);
 }
 
 async function showToolpath(): Promise<void> {
@@ -382,115 +373,6 @@ async function showToolpath(): Promise<void> {
   ToolpathPanel.show(extensionUri, editor.document, (command, args) =>
     executeServerCommand(languageClient, command, args),
   );
-}
-
-async function insertThreadModule(): Promise<void> {
-  const editor = vscode.window.activeTextEditor;
-  if (editor === undefined) {
-    void vscode.window.showErrorMessage(vscode.l10n.t('FANUC Macro: open a program to insert the thread module into.'));
-    return;
-  }
-  const designationInput = await vscode.window.showInputBox({
-    title: vscode.l10n.t('Symmetric Thread Module ({0}/{1})', 1, 4),
-    prompt: vscode.l10n.t('Metric thread designation: lower-case tolerance for external (M50x3-5g6g), upper case for internal (M50x3-6H)'),
-    placeHolder: 'M50x3-5g6g',
-    ignoreFocusOut: true,
-    validateInput: validateThreadDesignation,
-  });
-  if (designationInput === undefined) return;
-  const designation = parseThreadDesignation(designationInput);
-  if (typeof designation === 'string') {
-    void vscode.window.showErrorMessage(`FANUC Macro: ${designation}`);
-    return;
-  }
-  // One more box when the designation does not tell an external from an internal thread.
-  const steps = designation.internal === null ? 5 : 4;
-  const lengthInput = await vscode.window.showInputBox({
-    title: vscode.l10n.t('Symmetric Thread Module ({0}/{1})', 2, steps),
-    prompt: vscode.l10n.t('Thread length of {0} in mm', designation.text),
-    placeHolder: '40',
-    ignoreFocusOut: true,
-    validateInput: validateThreadLength,
-  });
-  if (lengthInput === undefined) return;
-  const length = parseThreadLength(lengthInput);
-  if (typeof length === 'string') {
-    void vscode.window.showErrorMessage(`FANUC Macro: ${length}`);
-    return;
-  }
-  let internal = designation.internal;
-  if (internal === null) {
-    const external = { label: vscode.l10n.t('External thread'), description: vscode.l10n.t('bolt, turned on the outside'), internal: false };
-    const inner = { label: vscode.l10n.t('Internal thread'), description: vscode.l10n.t('nut, bored on the inside'), internal: true };
-    const picked = await vscode.window.showQuickPick([external, inner], {
-      title: vscode.l10n.t('Symmetric Thread Module ({0}/{1})', 3, steps),
-      placeHolder: sideQuestion(designation),
-      ignoreFocusOut: true,
-    });
-    if (picked === undefined) return;
-    internal = picked.internal;
-  }
-  const infeeds: { label: string; description: string; infeed: Infeed }[] = [
-    { label: vscode.l10n.t('Symmetric'), description: vscode.l10n.t('both flanks every pass, the paper\'s'), infeed: 'symmetric' },
-    { label: vscode.l10n.t('Alternate flanks'), description: vscode.l10n.t('left one pass, right the next'), infeed: 'alternate' },
-    { label: vscode.l10n.t('Left flank'), description: vscode.l10n.t('every pass on the -Z flank, as G76'), infeed: 'left' },
-    { label: vscode.l10n.t('Right flank'), description: vscode.l10n.t('every pass on the +Z flank'), infeed: 'right' },
-  ];
-  const kind = [
-    designation.starts > 1 ? vscode.l10n.t('{0} starts', designation.starts) : '',
-    designation.leftHand ? vscode.l10n.t('left hand') : '',
-  ].filter((part) => part !== '');
-  const infeed = await vscode.window.showQuickPick(infeeds, {
-    title: vscode.l10n.t('Symmetric Thread Module ({0}/{1})', steps - 1, steps),
-    placeHolder: kind.length > 0
-      ? vscode.l10n.t('How the rough passes of {0} ({1}) go down', designation.text, kind.join(', '))
-      : vscode.l10n.t('How the rough passes of {0} go down', designation.text),
-    ignoreFocusOut: true,
-  });
-  if (infeed === undefined) return;
-  const taperInput = await vscode.window.showInputBox({
-    title: vscode.l10n.t('Symmetric Thread Module ({0}/{1})', steps, steps),
-    prompt: vscode.l10n.t('Taper as 1:16, or the diameter change per mm; empty for a parallel thread'),
-    placeHolder: '1:16',
-    value: '',
-    ignoreFocusOut: true,
-    validateInput: validateTaper,
-  });
-  if (taperInput === undefined) return;
-  const taper = parseTaper(taperInput);
-  if (typeof taper === 'string') {
-    void vscode.window.showErrorMessage(`FANUC Macro: ${taper}`);
-    return;
-  }
-  const languageClient = await runningClient();
-  if (languageClient === undefined) return;
-  // The paper's module is sent without options: a server from before them answers too.
-  const args: ThreadModuleArgs = {
-    designation: designation.text,
-    length,
-    internal,
-    ...(infeed.infeed === 'symmetric' ? {} : { infeed: infeed.infeed }),
-    ...(taper === 0 ? {} : { taper }),
-  };
-  let answer: unknown;
-  try {
-    answer = await executeServerCommand(languageClient, SERVER_COMMAND_THREAD_MODULE, [args]);
-  } catch (err) {
-    void vscode.window.showErrorMessage(`FANUC Macro: thread module failed: ${errorText(err)}`);
-    return;
-  }
-  const result = threadModuleText(answer);
-  if ('error' in result) {
-    void vscode.window.showErrorMessage(`FANUC Macro: thread module failed: ${result.error}`);
-    return;
-  }
-  // The editor may have changed while the user answered the prompts.
-  const target = vscode.window.activeTextEditor ?? editor;
-  const position = target.selection.active;
-  const applied = await target.edit((builder) => builder.insert(position, result.text));
-  if (!applied) {
-    void vscode.window.showErrorMessage(vscode.l10n.t('FANUC Macro: the thread module could not be inserted.'));
-  }
 }
 
 /**
@@ -551,10 +433,9 @@ export function activate(context: vscode.ExtensionContext): void {
     vscode.commands.registerCommand('fanuc-macro.restartServer', restart),
     vscode.commands.registerCommand('fanuc-macro.showTrace', showTrace),
     vscode.commands.registerCommand('fanuc-macro.showToolpath', showToolpath),
-    vscode.commands.registerCommand('fanuc-macro.insertThreadModule', insertThreadModule),
-    ...registerGeneratorCommands(async (command, args) => {
+    ...registerGeneratorCommands(async () => {
       const languageClient = await runningClient();
-      return languageClient === undefined ? undefined : { answer: await executeServerCommand(languageClient, command, args) };
+      return languageClient === undefined ? undefined : (command, args) => executeServerCommand(languageClient, command, args);
     }),
     vscode.commands.registerCommand('fanuc-macro.openSample', openSample),
     vscode.workspace.onDidChangeConfiguration((event) => {

@@ -17,28 +17,34 @@ export type MachineKind = 'lathe' | 'mill' | 'lathe and mill';
 export interface Controller {
   /** The value of the `fanuc-macro.controller` setting. */
   readonly id: string;
-  readonly kind: MachineKind;
+  /** Undefined for a value the server does not know. */
+  readonly kind: MachineKind | undefined;
   /** The series name, as FANUC calls it. */
   readonly series: string;
 }
 
-/** The controllers of the `fanuc-macro.controller` setting, in the order of its enum. */
-export const CONTROLLERS: readonly Controller[] = [
-  { id: '0i-TF', kind: 'lathe', series: 'FANUC Series 0i-TF' },
-  { id: '0i-MF', kind: 'mill', series: 'FANUC Series 0i-MF' },
-  { id: '16i-T', kind: 'lathe', series: 'FANUC Series 16i-T' },
-  { id: '16i-M', kind: 'mill', series: 'FANUC Series 16i-M' },
-  { id: '18i-T', kind: 'lathe', series: 'FANUC Series 18i-T' },
-  { id: '18i-M', kind: 'mill', series: 'FANUC Series 18i-M' },
-  { id: '30i', kind: 'lathe and mill', series: 'FANUC Series 30i/31i/32i' },
-];
+/** What the server's fanuc-macro.controllers gives: its controllers and the setting's default. */
+export interface Controllers {
+  readonly list: readonly Controller[];
+  readonly default: string | undefined;
+}
 
-export const DEFAULT_CONTROLLER = '0i-TF';
+export const NO_CONTROLLERS: Controllers = { list: [], default: undefined };
 
-/** The controller of a setting's value; an unknown value is shown as it is, of no kind. */
-export function controllerOf(id: string | undefined): Controller | { id: string; kind: undefined; series: string } {
-  const value = id === undefined || id.trim() === '' ? DEFAULT_CONTROLLER : id;
-  return CONTROLLERS.find((c) => c.id === value) ?? { id: value, kind: undefined, series: value };
+/** The server's answer read; none when it is not one. */
+export function controllersOf(answer: unknown): Controllers {
+  const { controllers, default: fallback } = (typeof answer === 'object' && answer !== null ? answer : {}) as Record<string, unknown>;
+  if (!Array.isArray(controllers)) return NO_CONTROLLERS;
+  const list = controllers.filter(
+    (c): c is Controller => typeof c === 'object' && c !== null && typeof c.id === 'string' && typeof c.series === 'string',
+  );
+  return { list, default: typeof fallback === 'string' ? fallback : undefined };
+}
+
+/** The controller of a setting's value; one the server did not name is shown as it is, of no kind. */
+export function controllerOf(id: string | undefined, known: Controllers): Controller {
+  const value = id === undefined || id.trim() === '' ? (known.default ?? '') : id;
+  return known.list.find((c) => c.id === value) ?? { id: value, kind: undefined, series: value };
 }
 
 function kindText(kind: MachineKind | undefined, t: Translate): string | undefined {
@@ -55,8 +61,8 @@ function kindText(kind: MachineKind | undefined, t: Translate): string | undefin
 }
 
 /** "0i-TF lathe": the controller as the status bar shows it. */
-export function controllerLabel(id: string | undefined, t: Translate = english): string {
-  const controller = controllerOf(id);
+export function controllerLabel(id: string | undefined, known: Controllers, t: Translate = english): string {
+  const controller = controllerOf(id, known);
   const kind = kindText(controller.kind, t);
   return kind === undefined ? controller.id : `${controller.id} ${kind}`;
 }
@@ -64,10 +70,11 @@ export function controllerLabel(id: string | undefined, t: Translate = english):
 /** A quick pick's item for each controller, the current one marked. */
 export function controllerChoices(
   current: string | undefined,
+  known: Controllers,
   t: Translate = english,
 ): Array<{ label: string; description: string; detail?: string; id: string; picked: boolean }> {
-  const now = controllerOf(current).id;
-  return CONTROLLERS.map((c) => ({
+  const now = controllerOf(current, known).id;
+  return known.list.map((c) => ({
     label: c.id === now ? `$(check) ${c.id}` : c.id,
     description: kindText(c.kind, t) ?? '',
     detail: c.series,
@@ -99,6 +106,8 @@ export class ServerStatus {
   private reason: string | undefined;
   private version: string | undefined;
   private readonly pending = new Set<string>();
+  /** The server's controllers, once it has named them. */
+  controllers: Controllers = NO_CONTROLLERS;
 
   constructor(private readonly changed: () => void = () => undefined) {}
 
@@ -153,8 +162,8 @@ export class ServerStatus {
 
   /** The status bar item's text, tooltip and whether it shows an error. */
   view(controller: string | undefined, t: Translate = english): { text: string; tooltip: string; error: boolean } {
-    const label = controllerLabel(controller, t);
-    const series = controllerOf(controller).series;
+    const label = controllerLabel(controller, this.controllers, t);
+    const series = controllerOf(controller, this.controllers).series;
     const switchHint = t('Click to choose another controller.');
     const state = this.current;
     const server = this.version === undefined ? 'fanuc-macro-ls' : `fanuc-macro-ls ${this.version}`;

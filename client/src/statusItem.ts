@@ -2,7 +2,7 @@
 // language server's state (client/src/serverStatus.ts says what it shows). A click picks
 // another controller and writes the `fanuc-macro.controller` setting.
 import * as vscode from 'vscode';
-import { ServerStatus, controllerChoices, settingTarget } from './serverStatus';
+import { ServerStatus, controllerChoices, controllersOf, settingTarget } from './serverStatus';
 
 export const SELECT_CONTROLLER_COMMAND = 'fanuc-macro.selectController';
 const CONFIG_SECTION = 'fanuc-macro';
@@ -26,12 +26,18 @@ export class StatusItem implements vscode.Disposable {
     this.status = new ServerStatus(() => this.update());
     this.disposables.push(
       this.item,
-      vscode.commands.registerCommand(SELECT_CONTROLLER_COMMAND, () => selectController()),
+      vscode.commands.registerCommand(SELECT_CONTROLLER_COMMAND, () => selectController(this.status)),
       vscode.workspace.onDidChangeConfiguration((event) => {
         if (event.affectsConfiguration(`${CONFIG_SECTION}.${CONTROLLER_KEY}`)) this.update();
       }),
       vscode.window.onDidChangeActiveTextEditor(() => this.update()),
     );
+    this.update();
+  }
+
+  /** The server's answer to fanuc-macro.controllers: the controllers and their kinds. */
+  setControllers(answer: unknown): void {
+    this.status.controllers = controllersOf(answer);
     this.update();
   }
 
@@ -52,10 +58,10 @@ export class StatusItem implements vscode.Disposable {
 }
 
 /** Quick pick of the controllers; the choice is written where the setting is set now. */
-export async function selectController(): Promise<string | undefined> {
+export async function selectController(status: ServerStatus): Promise<string | undefined> {
   const config = vscode.workspace.getConfiguration(CONFIG_SECTION);
   const current = config.get<string>(CONTROLLER_KEY);
-  const picked = await vscode.window.showQuickPick(controllerChoices(current, t), {
+  const picked = await vscode.window.showQuickPick(controllerChoices(current, status.controllers, t), {
     title: t('FANUC Macro: controller of the analysis'),
     placeHolder: t('The controller whose Custom Macro B dialect and limits the analysis uses'),
   });

@@ -1,8 +1,49 @@
 // The trace view: a read-only document of its own scheme and language, one row per motion
-// block the program executes (client/src/traceFormat.ts writes it). A row's `O0003 line 33` is
-// a link to the block, and F12 (Go to Definition) on any line of a row opens the block too.
+// block the program executes (the server's fanuc-macro.traceView writes it). A row's
+// `O0003 line 33` is a link to the block, and F12 (Go to Definition) on any line of a row
+// opens the block too.
 import * as vscode from 'vscode';
-import { rowAt, type TraceRow, type TraceView } from './traceFormat';
+
+/** A row of the trace view that leads to a block (lines 0-based). */
+export interface TraceRow {
+  readonly line: number;
+  readonly sourceLine: number;
+  /** The block's file (a URI) when it is not the traced document. */
+  readonly path?: string;
+  /** Columns of the row's link (the `O0003 line 33` part), when it has one. */
+  readonly link?: { readonly start: number; readonly end: number };
+  /** What the link says it opens. */
+  readonly label: string;
+}
+
+/** The trace view's text and the rows that lead to the source, in the order of the text. */
+export interface TraceView {
+  readonly text: string;
+  readonly rows: readonly TraceRow[];
+}
+
+/** The server's answer as a view, or the error it gives (or why it is none). */
+export function traceViewOf(answer: unknown): TraceView | { error: string } {
+  if (typeof answer !== 'object' || answer === null || Array.isArray(answer)) return { error: 'the language server returned no trace' };
+  const { error, text, rows } = answer as Record<string, unknown>;
+  if (typeof error === 'string' && error !== '') return { error };
+  if (typeof text !== 'string' || !Array.isArray(rows)) return { error: 'the language server returned a trace without its text' };
+  return { text, rows: rows as TraceRow[] };
+}
+
+/** The row on a line of the trace view, if that line leads to a block (rows in text order). */
+export function rowAt(view: TraceView, line: number): TraceRow | undefined {
+  let lo = 0;
+  let hi = view.rows.length - 1;
+  while (lo <= hi) {
+    const mid = (lo + hi) >> 1;
+    const row = view.rows[mid]!;
+    if (row.line === line) return row;
+    if (row.line < line) lo = mid + 1;
+    else hi = mid - 1;
+  }
+  return undefined;
+}
 
 export const TRACE_SCHEME = 'fanuc-macro-trace';
 export const TRACE_LANGUAGE = 'fanuc-macro-trace';

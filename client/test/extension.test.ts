@@ -1,18 +1,27 @@
 // Runs client/src/extension.ts against the fakes in ./fakes (the test build
 // aliases `vscode` and `vscode-languageclient/node` to them), with real
-// --version probes of small shell scripts standing in for the server.
+// --version probes of small shell scripts standing in for the server, and the
+// server's own answers (./fakes/pythonServer.ts) to what the boxes and views ask.
 import assert from 'node:assert/strict';
 import { mkdtempSync } from 'node:fs';
 import { join } from 'node:path';
 import { after, describe, it } from 'node:test';
 import type { ExtensionContext } from 'vscode';
 import { activate, deactivate } from '../src/extension';
-import { arcThreadForm, defaultAnswers, drumGrooveForm, readAnswers } from '../src/generatorParameters';
 import { clients, serverAnswers, type LanguageClient } from './fakes/languageclient';
+import { pythonServer } from './fakes/pythonServer';
 import { serverScripts } from './fakes/serverScripts';
 import * as fake from './fakes/vscode';
 
 const { dir, server, python, remove } = serverScripts('fanuc-macro-ext-');
+const answering = pythonServer();
+for (const command of ['readDesignation', 'checkParameters', 'parameterDefaults', 'controllers']) {
+  serverAnswers.set(`fanuc-macro.${command}`, (args) => answering.answer(`fanuc-macro.${command}`, args));
+}
+
+/** The threadModule, arcThread and drumGroove requests, the last last. */
+const generated = () =>
+  lastClient().requests.filter((r) => ['fanuc-macro.threadModule', 'fanuc-macro.arcThread', 'fanuc-macro.drumGroove'].includes(r.params.command));
 
 const baseSettings = {
   'server.path': server,
@@ -32,6 +41,12 @@ function lastClient(): LanguageClient {
   return client;
 }
 
+/** The drum groove's first box as it opens: the server's default profile. */
+async function drumProfile(): Promise<string> {
+  const answer = (await answering.answer('fanuc-macro.parameterDefaults', ['drumGroove'])) as { defaults: { points: string } };
+  return answer.defaults.points;
+}
+
 /** Runs a command and waits until the extension has settled. */
 async function run(command: string): Promise<void> {
   await fake.commands.executeCommand(command);
@@ -42,6 +57,7 @@ describe('extension', { skip: process.platform === 'win32' }, () => {
   after(async () => {
     await deactivate();
     remove();
+    answering.close();
   });
 
   it('starts the server from fanuc-macro.server.path with the settings', async () => {
@@ -76,7 +92,7 @@ describe('extension', { skip: process.platform === 'win32' }, () => {
   it('shows the trace of the current program in a read-only view beside the editor', async () => {
     fake.resetRecorded();
     fake.window.activeTextEditor = fake.makeEditor('/p/O3331.nc');
-    serverAnswers.set('fanuc-macro.trace', () => ({
+    const trace = {
       motions: [
         {
           program: 'O3331',
@@ -90,12 +106,14 @@ describe('extension', { skip: process.platform === 'win32' }, () => {
         { program: 'O0013', line: 4, code: 'G00', words: { X: 55 }, path: 'file:///p/O13.nc' },
       ],
       summary: { passes: 1 },
-    }));
+    };
+    // The server's view of this trace (fanuc-macro.traceView traces the document first).
+    serverAnswers.set('fanuc-macro.traceView', (args) => answering.answer('viewOfTrace', [trace, args[1]]));
     await run('fanuc-macro.showTrace');
     const request = lastClient().requests.pop();
     assert.deepEqual(request, {
       method: 'workspace/executeCommand',
-      params: { command: 'fanuc-macro.trace', arguments: ['file:///p/O3331.nc'] },
+      params: { command: 'fanuc-macro.traceView', arguments: ['file:///p/O3331.nc', '/p/O3331.nc'] },
     });
     // A document of the trace's own scheme and language (read-only: a content provider's).
     const opened = fake.recorded.openedDocuments[0];
@@ -134,7 +152,7 @@ describe('extension', { skip: process.platform === 'win32' }, () => {
 
   it('shows the error of a failed trace', async () => {
     fake.resetRecorded();
-    serverAnswers.set('fanuc-macro.trace', () => ({ error: 'vacant #101 in O3331 line 12' }));
+    serverAnswers.set('fanuc-macro.traceView', () => ({ error: 'vacant #101 in O3331 line 12' }));
     await run('fanuc-macro.showTrace');
     assert.equal(fake.recorded.openedDocuments.length, 0);
     assert.match(fake.recorded.errors[0]?.message ?? '', /vacant #101 in O3331 line 12/);
@@ -147,7 +165,7 @@ describe('extension', { skip: process.platform === 'win32' }, () => {
     serverAnswers.set('fanuc-macro.threadModule', () => ({ text: '#100=50.\nM98 P0013331\n' }));
     await run('fanuc-macro.insertThreadModule');
     // The paper's module (symmetric, parallel) is asked for without options.
-    assert.deepEqual(lastClient().requests.pop()?.params, {
+    assert.deepEqual(generated().pop()?.params, {
       command: 'fanuc-macro.threadModule',
       arguments: [{ designation: 'M50x3-5g6g', length: 40, internal: false }],
     });
@@ -166,7 +184,7 @@ describe('extension', { skip: process.platform === 'win32' }, () => {
     fake.answers.quickPick.push((items) => items.find((i) => i.label.startsWith('Internal')));
     fake.answers.quickPick.push((items) => items[0]);
     await run('fanuc-macro.insertThreadModule');
-    assert.deepEqual(lastClient().requests.pop()?.params.arguments, [
+    assert.deepEqual(generated().pop()?.params.arguments, [
       { designation: 'M50x3', length: 32.5, internal: true },
     ]);
   });
@@ -181,7 +199,7 @@ describe('extension', { skip: process.platform === 'win32' }, () => {
       title: 'Symmetric Thread Module (3/5)',
       placeHolder: 'M50X3-5G6G: the class 5G6G fits an external (5g6g) or an internal (5G6G) thread: which is it?',
     });
-    assert.deepEqual(lastClient().requests.pop()?.params.arguments, [
+    assert.deepEqual(generated().pop()?.params.arguments, [
       { designation: 'M50X3-5G6G', length: 40, internal: false },
     ]);
   });
@@ -195,7 +213,7 @@ describe('extension', { skip: process.platform === 'win32' }, () => {
       fake.recorded.quickPicks.map((p) => p.title),
       ['Symmetric Thread Module (3/4)'],
     );
-    assert.deepEqual(lastClient().requests.pop()?.params.arguments, [
+    assert.deepEqual(generated().pop()?.params.arguments, [
       { designation: 'M50X3-4H5H', length: 40, internal: true },
     ]);
   });
@@ -219,7 +237,7 @@ describe('extension', { skip: process.platform === 'win32' }, () => {
     fake.answers.inputBox.push('M24xPh4P2-6g-LH', '30', '1:16');
     fake.answers.quickPick.push((items) => items.find((i) => i.label === 'Left flank'));
     await run('fanuc-macro.insertThreadModule');
-    assert.deepEqual(lastClient().requests.pop()?.params.arguments, [
+    assert.deepEqual(generated().pop()?.params.arguments, [
       { designation: 'M24xPh4P2-6g-LH', length: 30, internal: false, infeed: 'left', taper: 0.0625 },
     ]);
     assert.equal(fake.answers.inputValidation.at(-1), undefined);
@@ -230,19 +248,21 @@ describe('extension', { skip: process.platform === 'win32' }, () => {
     fake.answers.inputValidation.length = 0;
     fake.answers.inputBox.push('M24x2-6g', '30', '1:x');
     fake.answers.quickPick.push((items) => items[0]);
-    const before = lastClient().requests.length;
+    const before = generated().length;
     await run('fanuc-macro.insertThreadModule');
-    assert.equal(lastClient().requests.length, before);
-    assert.match(fake.answers.inputValidation.at(-1) ?? '', /taper as 1:16/);
-    assert.match(fake.recorded.errors[0]?.message ?? '', /taper as 1:16/);
+    assert.equal(generated().length, before);
+    // The command line's message (fanuc-macro thread --taper).
+    const taper = /^the taper is a ratio or a number \(e\.g\. 1:16, or 0\.0625 mm of diameter per mm of length\), not 1:x$/;
+    assert.match(fake.answers.inputValidation.at(-1) ?? '', taper);
+    assert.match(fake.recorded.errors[0]?.message ?? '', /the taper is a ratio or a number/);
   });
 
   it('stops when a prompt is dismissed', async () => {
     fake.resetRecorded();
     fake.answers.inputBox.push('M50x3-6g', undefined);
-    const before = lastClient().requests.length;
+    const before = generated().length;
     await run('fanuc-macro.insertThreadModule');
-    assert.equal(lastClient().requests.length, before);
+    assert.equal(generated().length, before);
     assert.deepEqual(fake.recorded.errors, []);
     assert.equal(fake.answers.inputBox.length, 0);
   });
@@ -251,10 +271,14 @@ describe('extension', { skip: process.platform === 'win32' }, () => {
     fake.resetRecorded();
     fake.answers.inputValidation.length = 0;
     fake.answers.inputBox.push('M50x3-5g6H');
-    const before = lastClient().requests.length;
+    const before = generated().length;
     await run('fanuc-macro.insertThreadModule');
-    assert.match(fake.answers.inputValidation[0] ?? '', /mixes an internal/);
-    assert.equal(lastClient().requests.length, before);
+    assert.equal(
+      fake.answers.inputValidation[0],
+      'M50x3-5g6H: the class 5g6H mixes letter cases (upper case is internal, lower case external)',
+    );
+    assert.match(fake.recorded.errors[0]?.message ?? '', /mixes letter cases/);
+    assert.equal(generated().length, before);
   });
 
   it('shows the error of the thread module command', async () => {
@@ -269,30 +293,44 @@ describe('extension', { skip: process.platform === 'win32' }, () => {
 
   it('inserts the arc thread program of the defaults, the paper\'s part', async () => {
     fake.resetRecorded();
-    const form = arcThreadForm();
-    fake.answers.inputBox.push(...defaultAnswers(form));
+    const paper = ['93.82, 10, 1.2', '25, 113', '108, 103', '7', '100, 19'];
+    fake.answers.inputBox.push(...paper);
     serverAnswers.set('fanuc-macro.arcThread', () => ({
       text: '%\nO0002\nG65 P0003\n%\n',
       summary: { layer_cuts: [7, 7], finishing_cuts: 19, g32_cuts: 33 },
     }));
     await run('fanuc-macro.insertArcThread');
+    // The boxes open on the server's defaults, the paper's part.
     assert.deepEqual(
       fake.recorded.inputBoxes.map((b) => b.value),
-      ['93.82, 10, 1.2', '25, 113', '108, 103', '7', '100, 19'],
+      paper,
     );
     assert.equal(fake.recorded.inputBoxes[0]?.title, 'Arc Thread Program (1/5)');
-    assert.deepEqual(lastClient().requests.pop()?.params, {
+    assert.deepEqual(generated().pop()?.params, {
       command: 'fanuc-macro.arcThread',
-      // The boxes' defaults as read (generatorParameters.test.ts holds the paper's values).
-      arguments: [readAnswers(form, defaultAnswers(form))],
+      // The boxes' answers as the server read them.
+      arguments: [
+        {
+          outer_diameter: 93.82,
+          groove_radius: 10,
+          tool_radius: 1.2,
+          pitch: 25,
+          length: 113,
+          layers: [108, 103],
+          cuts_per_layer: 7,
+          finishing_diameter: 100,
+          finishing_cuts: 19,
+        },
+      ],
     });
+    assert.deepEqual(fake.answers.inputValidation.slice(-5), [undefined, undefined, undefined, undefined, undefined]);
     assert.deepEqual(fake.recorded.inserts, [{ position: new fake.Position(4, 0), text: '%\nO0002\nG65 P0003\n%\n' }]);
     assert.deepEqual(fake.recorded.statusMessages, ['FANUC Macro: 33 G32 cuts: 7, 7 per roughing layer, 19 finishing.']);
   });
 
   it("shows the server's refusal of a drum groove and inserts nothing", async () => {
     fake.resetRecorded();
-    fake.answers.inputBox.push(defaultAnswers(drumGrooveForm())[0], '40', '9, 0.8', '1, 0.5');
+    fake.answers.inputBox.push(await drumProfile(), '40', '9, 0.8', '1, 0.5');
     serverAnswers.set('fanuc-macro.drumGroove', (args) => {
       assert.equal((args[0] as { pitch: number }).pitch, 40);
       return { error: 'segment 1-2 is steeper than 45 degrees' };
@@ -306,11 +344,14 @@ describe('extension', { skip: process.platform === 'win32' }, () => {
   it('asks nothing of the server when the drum groove has no pitch', async () => {
     fake.resetRecorded();
     fake.answers.inputValidation.length = 0;
-    fake.answers.inputBox.push(defaultAnswers(drumGrooveForm())[0], '');
-    const before = lastClient().requests.length;
+    fake.answers.inputBox.push(await drumProfile(), '');
+    const before = generated().length;
     await run('fanuc-macro.insertDrumGroove');
-    assert.equal(fake.answers.inputValidation[1], 'Enter the pitch in mm: it has no default.');
-    assert.equal(lastClient().requests.length, before);
+    assert.equal(
+      fake.answers.inputValidation[1],
+      "pitch is missing: give the groove's pitch (lead) in mm; the paper's is not known, its figure 2 is lost",
+    );
+    assert.equal(generated().length, before);
   });
 
   it("uses the Python extension's interpreter when no path is set", async () => {

@@ -8,8 +8,13 @@ import { join } from 'node:path';
 import { after, describe, it } from 'node:test';
 import type { ExtensionContext } from 'vscode';
 import { activate, deactivate } from '../src/extension';
-import { clients, startFailures, type LanguageClient } from './fakes/languageclient';
+import { clients, serverAnswers, startFailures, type LanguageClient } from './fakes/languageclient';
+import { pythonServer } from './fakes/pythonServer';
 import * as fake from './fakes/vscode';
+
+// The controllers and their kinds are the language server's answer.
+const python = pythonServer();
+serverAnswers.set('fanuc-macro.controllers', (args) => python.answer('fanuc-macro.controllers', args));
 
 const root = process.cwd();
 const dir = mkdtempSync(join(tmpdir(), 'fanuc-macro-ui-'));
@@ -52,6 +57,7 @@ describe('extension UI', { skip: process.platform === 'win32' }, () => {
   after(async () => {
     await deactivate();
     rmSync(dir, { recursive: true, force: true });
+    python.close();
   });
 
   it('shows the controller and the server state in the status bar', async () => {
@@ -60,9 +66,11 @@ describe('extension UI', { skip: process.platform === 'win32' }, () => {
     activate(context as unknown as ExtensionContext);
     await fake.commands.executeCommand('fanuc-macro.restartServer'); // waits for the start-up
     assert.equal(item().text, '$(check) 0i-TF lathe');
-    assert.deepEqual(item().texts.slice(0, 3), [
-      '$(circle-slash) 0i-TF lathe · stopped', // before the first start
-      '$(loading~spin) 0i-TF lathe · starting',
+    // The kind of machine comes with the server's controllers, once it runs.
+    assert.deepEqual(item().texts.slice(0, 4), [
+      '$(circle-slash) 0i-TF · stopped', // before the first start
+      '$(loading~spin) 0i-TF · starting',
+      '$(check) 0i-TF',
       '$(check) 0i-TF lathe',
     ]);
     assert.match(String(item().tooltip), /ready \(fanuc-macro-ls 0\.1\.0\)/);

@@ -1,15 +1,18 @@
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
 import { join } from 'node:path';
-import { describe, it } from 'node:test';
+import { after, before, describe, it } from 'node:test';
 import {
-  CONTROLLERS,
+  NO_CONTROLLERS,
   ServerStatus,
   controllerChoices,
   controllerLabel,
+  controllersOf,
   english,
   settingTarget,
+  type Controllers,
 } from '../src/serverStatus';
+import { pythonServer } from './fakes/pythonServer';
 
 const manifest = JSON.parse(readFileSync(join(process.cwd(), 'package.json'), 'utf8')) as {
   contributes: { configuration: Array<{ properties: Record<string, { enum?: string[]; default?: unknown }> }> };
@@ -18,25 +21,37 @@ const controllerSetting = manifest.contributes.configuration
   .map((c) => c.properties['fanuc-macro.controller'])
   .find((p) => p !== undefined);
 
+const server = pythonServer();
+/** The language server's answer to fanuc-macro.controllers. */
+let known: Controllers = NO_CONTROLLERS;
+before(async () => {
+  known = controllersOf(await server.answer('fanuc-macro.controllers', []));
+});
+after(() => server.close());
+
 describe('controllers', () => {
-  it('are those of the fanuc-macro.controller setting, in its order', () => {
+  it("are the server's, those of the fanuc-macro.controller setting, in its order", () => {
     assert.deepEqual(
-      CONTROLLERS.map((c) => c.id),
+      known.list.map((c) => c.id),
       controllerSetting?.enum,
     );
     assert.equal(controllerSetting?.default, '0i-TF');
+    assert.equal(known.default, '0i-TF');
   });
 
   it('are labelled with the machine they are for', () => {
-    assert.equal(controllerLabel('0i-TF'), '0i-TF lathe');
-    assert.equal(controllerLabel('18i-M'), '18i-M mill');
-    assert.equal(controllerLabel('30i'), '30i lathe and mill');
-    assert.equal(controllerLabel(undefined), '0i-TF lathe'); // the setting's default
-    assert.equal(controllerLabel('15-T'), '15-T'); // not one we know: as it is, no kind
+    assert.equal(controllerLabel('0i-TF', known), '0i-TF lathe');
+    assert.equal(controllerLabel('18i-M', known), '18i-M mill');
+    assert.equal(controllerLabel('30i', known), '30i lathe and mill');
+    assert.equal(controllerLabel(undefined, known), '0i-TF lathe'); // the setting's default
+    assert.equal(controllerLabel('15-T', known), '15-T'); // not one we know: as it is, no kind
+    // Before the server has named them: the setting's value, of no kind.
+    assert.equal(controllerLabel('0i-TF', NO_CONTROLLERS), '0i-TF');
+    assert.deepEqual(controllersOf({ error: 'x' }), NO_CONTROLLERS);
   });
 
   it('are offered with the current one marked', () => {
-    const choices = controllerChoices('0i-MF');
+    const choices = controllerChoices('0i-MF', known);
     assert.deepEqual(
       choices.filter((c) => c.picked).map((c) => c.label),
       ['$(check) 0i-MF'],
@@ -67,6 +82,7 @@ describe('ServerStatus', () => {
   it('goes from starting to ready to analysing and back', () => {
     let changes = 0;
     const status = new ServerStatus(() => (changes += 1));
+    status.controllers = known;
     assert.equal(status.current, 'stopped');
     status.starting();
     assert.equal(status.current, 'starting');
@@ -89,6 +105,7 @@ describe('ServerStatus', () => {
 
   it('keeps an error and its reason shown until the next start', () => {
     const status = new ServerStatus();
+    status.controllers = known;
     status.starting();
     status.failed('spawn python3 ENOENT');
     status.stopped(); // the client's state change after the failure
@@ -106,6 +123,7 @@ describe('ServerStatus', () => {
 
   it('forgets the pending analyses of a server that stopped', () => {
     const status = new ServerStatus();
+    status.controllers = known;
     status.ready(undefined);
     status.analysisStarted('file:///a.nc');
     status.stopped();
@@ -119,6 +137,7 @@ describe('ServerStatus', () => {
   it('translates its words and fills in the placeholders', () => {
     const upper = (message: string, ...args: Array<string | number>) => english(message.toUpperCase(), ...args);
     const status = new ServerStatus();
+    status.controllers = known;
     status.failed('boom');
     assert.equal(status.view('0i-TF', upper).text, '$(error) 0i-TF LATHE · ERROR');
     assert.match(status.view('0i-TF', upper).tooltip, /LANGUAGE SERVER: ERROR: boom/);

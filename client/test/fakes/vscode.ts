@@ -5,6 +5,11 @@ export type Handler = (...args: unknown[]) => unknown;
 
 export const ViewColumn = { Active: -1, Beside: -2, One: 1 } as const;
 export const ProgressLocation = { SourceControl: 1, Window: 10, Notification: 15 } as const;
+export enum InputBoxValidationSeverity {
+  Info = 1,
+  Warning = 2,
+  Error = 3,
+}
 export const StatusBarAlignment = { Left: 1, Right: 2 } as const;
 export const ConfigurationTarget = { Global: 1, Workspace: 2, WorkspaceFolder: 3 } as const;
 export const TextEditorRevealType = { Default: 0, InCenter: 1, InCenterIfOutsideViewport: 2, AtTop: 3 } as const;
@@ -194,6 +199,7 @@ export const answers = {
   errorChoice: [] as Array<string | undefined>,
   inputBox: [] as Array<string | undefined>,
   quickPick: [] as Array<(items: ReadonlyArray<{ label: string }>) => unknown>,
+  /** What each answer's validation said: an error's text, `warning: ...`, or undefined. */
   inputValidation: [] as Array<string | undefined>,
 };
 
@@ -371,17 +377,24 @@ export const window = {
     recorded.warnings.push(message);
     return Promise.resolve(undefined);
   },
-  showInputBox(options: {
+  async showInputBox(options: {
     title?: string;
     value?: string;
-    validateInput?: (value: string) => string | undefined;
+    validateInput?: (
+      value: string,
+    ) =>
+      | string
+      | { message: string; severity: InputBoxValidationSeverity }
+      | undefined
+      | PromiseLike<string | { message: string; severity: InputBoxValidationSeverity } | undefined>;
   }): Promise<string | undefined> {
     recorded.inputBoxes.push({ title: options.title, value: options.value });
     const answer = answers.inputBox.shift();
     if (answer !== undefined && options.validateInput) {
-      answers.inputValidation.push(options.validateInput(answer));
+      const said = await options.validateInput(answer);
+      answers.inputValidation.push(typeof said === 'object' ? `warning: ${said.message}` : said);
     }
-    return Promise.resolve(answer);
+    return answer;
   },
   showQuickPick<T extends { label: string }>(
     items: readonly T[],

@@ -21,6 +21,12 @@ if TYPE_CHECKING:
     from .drum_groove_generator import DrumGrooveProgram as DrumGrooveProgram
     from .drum_groove_generator import build_drum_groove as build_drum_groove
     from .drum_groove_generator import generate_drum_groove as generate_drum_groove
+    from .editor_forms import BoxAnswer as BoxAnswer
+    from .editor_forms import DesignationReading as DesignationReading
+    from .editor_forms import FormRefusal as FormRefusal
+    from .editor_forms import check_answers as check_answers
+    from .editor_forms import form_defaults as form_defaults
+    from .editor_forms import read_designation as read_designation
     from .generator_requests import ARC_THREAD_PARAMETERS as ARC_THREAD_PARAMETERS
     from .generator_requests import DRUM_GROOVE_PARAMETERS as DRUM_GROOVE_PARAMETERS
     from .generator_requests import arc_thread_request as arc_thread_request
@@ -69,6 +75,12 @@ PUBLIC: MappingProxyType[str, str] = MappingProxyType(
         "module_from_analysis": "thread_snippet",
         "module_from_document": "thread_snippet",
         "thread_inputs": "thread_snippet",
+        "BoxAnswer": "editor_forms",
+        "DesignationReading": "editor_forms",
+        "FormRefusal": "editor_forms",
+        "check_answers": "editor_forms",
+        "form_defaults": "editor_forms",
+        "read_designation": "editor_forms",
     }
 )
 

@@ -284,8 +284,12 @@ def check_answers(
             parameters.update(_read_answer(answer, form.readers))
     except ValueError as err:
         return FormRefusal(str(err))
-    if not complete and not all(name in parameters for name in form.required):
-        return CheckedAnswers(parameters)
+    answered = {name for answer in answers for name in answer.names}
+    missing = [name for name in form.required if name not in parameters]
+    if not complete and missing:
+        if not answered & set(missing):
+            return CheckedAnswers(parameters)  # asked in a later box
+        complete = True  # a box left empty that must be answered: the generator's refusal
     ran = form.request(parameters)
     error = ran.get("error")
     if not isinstance(error, str):

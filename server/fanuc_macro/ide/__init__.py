@@ -30,6 +30,8 @@ if TYPE_CHECKING:
     from .calls import outgoing_calls as outgoing_calls
     from .calls import prepare_call_hierarchy as prepare_call_hierarchy
     from .completion import completion as completion
+    from .controllers import DEFAULT_CONTROLLER as DEFAULT_CONTROLLER
+    from .controllers import controller_choices as controller_choices
     from .data import ActionKind as ActionKind
     from .data import CodeAction as CodeAction
     from .data import CompletionItem as CompletionItem
@@ -75,6 +77,8 @@ if TYPE_CHECKING:
     from .toolpath_view import toolpath_view as toolpath_view
     from .trace import motion_text as motion_text
     from .trace import trace as trace
+    from .trace_view import TraceView as TraceView
+    from .trace_view import view_of_trace as view_of_trace
     from .values import Precision as Precision
     from .view import Indexed as Indexed
     from .view import View as View
@@ -135,6 +139,10 @@ PUBLIC: MappingProxyType[str, str] = MappingProxyType(
         "toolpath_view": "toolpath_view",
         "motion_text": "trace",
         "trace": "trace",
+        "TraceView": "trace_view",
+        "view_of_trace": "trace_view",
+        "DEFAULT_CONTROLLER": "controllers",
+        "controller_choices": "controllers",
         "Precision": "values",
         "Indexed": "view",
         "View": "view",

@@ -1,14 +1,24 @@
 """The server's commands (workspace/executeCommand): the trace and the toolpath of a program,
-thread modules, and the arc-thread and drum-groove programs."""
+thread modules, and the arc-thread and drum-groove programs.
+
+:data:`EDITOR_COMMANDS` answer what an editor would otherwise compute itself: a thread
+designation read, a generator's boxes read and checked, their defaults, the trace view's text
+and the controllers.  Their answers are typed here and sent as JSON objects, ``{"error"}`` for
+a refusal (the command line's message)."""
 
 from __future__ import annotations
 
 import asyncio
+import dataclasses
 import logging
-from collections.abc import Callable
-from typing import Any
+from collections.abc import Awaitable, Callable, Mapping
+from typing import TYPE_CHECKING, Any
 
 from .engine import Engine, key_of
+
+if TYPE_CHECKING:
+    from ..generators import BoxAnswer, DesignationReading
+    from ..ide import TraceView
 
 log = logging.getLogger(__name__)
 
@@ -17,6 +27,11 @@ TOOLPATH = "fanuc-macro.toolpath"
 THREAD_MODULE = "fanuc-macro.threadModule"
 ARC_THREAD = "fanuc-macro.arcThread"
 DRUM_GROOVE = "fanuc-macro.drumGroove"
+READ_DESIGNATION = "fanuc-macro.readDesignation"
+CHECK_PARAMETERS = "fanuc-macro.checkParameters"
+PARAMETER_DEFAULTS = "fanuc-macro.parameterDefaults"
+TRACE_VIEW = "fanuc-macro.traceView"
+CONTROLLERS = "fanuc-macro.controllers"
 
 
 def _uri_argument(args: tuple[Any, ...]) -> str | None:
@@ -177,3 +192,137 @@ async def run_drum_groove(args: tuple[Any, ...]) -> dict[str, Any]:
     from ..generators import drum_groove_request
 
     return await _generated(DRUM_GROOVE, args, drum_groove_request)
+
+
+# ---- what the editor asks instead of computing it ------------------------------------------
+
+
+def _designation_json(reading: DesignationReading) -> dict[str, Any]:
+    answer: dict[str, Any] = {
+        "text": reading.text,
+        "canonical": reading.canonical,
+        "side": reading.side,
+        "nominalDiameter": reading.nominal_diameter,
+        "pitch": reading.pitch,
+        "lead": reading.lead,
+        "starts": reading.starts,
+        "leftHand": reading.left_hand,
+        "tolerance": reading.tolerance,
+        "pitchDiameter": reading.pitch_diameter,
+        "minorDiameter": reading.minor_diameter,
+    }
+    if reading.question is not None and reading.readings is not None:
+        answer["question"] = reading.question
+        answer["readings"] = {"external": reading.readings[0], "internal": reading.readings[1]}
+    return answer
+
+
+async def run_read_designation(engine: Engine, args: tuple[Any, ...]) -> dict[str, Any]:
+    """``[text]`` -> the designation read (``side`` external, internal or undecided, with the
+    ``question`` and both ``readings`` when undecided) or ``{"error"}``."""
+    from ..generators import FormRefusal, read_designation
+
+    if not args or not isinstance(args[0], str):
+        return {"error": f"{READ_DESIGNATION} takes the designation's text as its argument"}
+    reading = read_designation(args[0])
+    if isinstance(reading, FormRefusal):
+        return {"error": reading.message}
+    return _designation_json(reading)
+
+
+def _answers(value: Any) -> list[BoxAnswer] | str:
+    """``[{"names": [...], "value": ...}, ...]`` or what is wrong with it."""
+    from ..generators import BoxAnswer
+
+    if not isinstance(value, list):
+        return "answers must be a list of {names, value}"
+    answers: list[BoxAnswer] = []
+    for item in value:
+        names = item.get("names") if isinstance(item, dict) else None
+        if not isinstance(names, list) or not all(isinstance(n, str) for n in names):
+            return "each answer must be {names: [parameter names], value}"
+        answers.append(BoxAnswer(tuple(names), item.get("value")))
+    return answers
+
+
+async def run_check_parameters(engine: Engine, args: tuple[Any, ...]) -> dict[str, Any]:
+    """``[{generator, answers: [{names, value}], complete}]`` -> ``{"parameters"[, "warning"]}``
+    (the parameters to send to the generator's command) or ``{"error"}``."""
+    from ..generators import FormRefusal, check_answers
+
+    spec = args[0] if len(args) == 1 and isinstance(args[0], dict) else None
+    if spec is None:
+        return {"error": f"{CHECK_PARAMETERS} takes one object {{generator, answers, complete}}"}
+    answers = _answers(spec.get("answers", []))
+    if isinstance(answers, str):
+        return {"error": answers}
+    generator = spec.get("generator")
+    complete = spec.get("complete") is True
+    checked = await asyncio.to_thread(check_answers, str(generator), answers, complete)
+    if isinstance(checked, FormRefusal):
+        return {"error": checked.message}
+    answer: dict[str, Any] = {"parameters": dict(checked.parameters)}
+    if checked.warning is not None:
+        answer["warning"] = checked.warning
+    return answer
+
+
+async def run_parameter_defaults(engine: Engine, args: tuple[Any, ...]) -> dict[str, Any]:
+    """``[generator]`` -> ``{"defaults": {name: text as a box shows it}}`` or ``{"error"}``."""
+    from ..generators import FormRefusal, form_defaults
+
+    defaults = form_defaults(str(args[0]) if args else "")
+    if isinstance(defaults, FormRefusal):
+        return {"error": defaults.message}
+    return {"defaults": dict(defaults)}
+
+
+def _trace_view_json(view: TraceView) -> dict[str, Any]:
+    rows: list[dict[str, Any]] = []
+    for row in view.rows:
+        json_row: dict[str, Any] = {"line": row.line, "sourceLine": row.source_line}
+        if row.path is not None:
+            json_row["path"] = row.path
+        if row.link is not None:
+            json_row["link"] = {"start": row.link[0], "end": row.link[1]}
+        json_row["label"] = row.label
+        rows.append(json_row)
+    return {"text": view.text, "rows": rows}
+
+
+async def run_trace_view(engine: Engine, args: tuple[Any, ...]) -> dict[str, Any]:
+    """``[uri, source]`` -> ``{"text", "rows": [{line, sourceLine, path?, link?, label}]}``:
+    the trace view of that document, headed with ``source`` (its path as the editor shows
+    it; the URI when left out), or ``{"error"}``."""
+    source = args[1] if len(args) > 1 and isinstance(args[1], str) else _uri_argument(args)
+
+    def load() -> Answer:
+        from ..ide import trace, view_of_trace
+
+        def answer(*document: Any) -> dict[str, Any]:
+            return _trace_view_json(view_of_trace(trace(*document), source or ""))
+
+        return answer
+
+    return await _on_document(engine, TRACE_VIEW, args[:1], load)
+
+
+async def run_controllers(engine: Engine, args: tuple[Any, ...]) -> dict[str, Any]:
+    """``[]`` -> ``{"controllers": [{id, kind, series}], "default"}``."""
+    from ..ide import DEFAULT_CONTROLLER, controller_choices
+
+    return {
+        "controllers": [dataclasses.asdict(c) for c in controller_choices()],
+        "default": DEFAULT_CONTROLLER,
+    }
+
+
+EditorCommand = Callable[[Engine, tuple[Any, ...]], Awaitable[dict[str, Any]]]
+
+EDITOR_COMMANDS: Mapping[str, EditorCommand] = {
+    READ_DESIGNATION: run_read_designation,
+    CHECK_PARAMETERS: run_check_parameters,
+    PARAMETER_DEFAULTS: run_parameter_defaults,
+    TRACE_VIEW: run_trace_view,
+    CONTROLLERS: run_controllers,
+}
