@@ -17,11 +17,11 @@ module-level mutable state: the context variable and the default database.
 from __future__ import annotations
 
 import threading
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from contextvars import ContextVar
 from dataclasses import dataclass
-from typing import Any, Generic, TypeVar
+from typing import Any, Generic, Protocol, TypeVar, cast
 
 K = TypeVar("K")
 V = TypeVar("V")
@@ -58,6 +58,10 @@ class _Tables(dict[TableKey[Any, Any], dict[Any, Any]]):
             return self.setdefault(key, {})
 
 
+class _TableOf(Protocol):
+    def __call__(self, key: TableKey[K, V], /) -> dict[K, V]: ...
+
+
 class Database:
     """Every derived value of one workspace (or of the process, for the default database).
 
@@ -66,19 +70,19 @@ class Database:
     lock).
     """
 
-    __slots__ = ("_tables", "name")
+    __slots__ = ("_tables", "name", "table")
+
+    table: _TableOf
+    """``table(key)``: the table ``key`` of this database, made empty on first use. The dict's
+    own look-up, bound: a hit runs in C (hot paths ask once per line)."""
 
     def __init__(self, name: str = "workspace") -> None:
         self.name = name
         self._tables = _Tables()
+        self.table = cast(_TableOf, self._tables.__getitem__)
 
     def __repr__(self) -> str:
         return f"<Database {self.name}: {len(self._tables)} tables>"
-
-    def table(self, key: TableKey[K, V]) -> dict[K, V]:
-        """The table ``key`` of this database, made empty on first use."""
-        table: dict[K, V] = self._tables[key]
-        return table
 
     @contextmanager
     def active(self) -> Iterator[Database]:
@@ -111,9 +115,9 @@ _DEFAULT = Database("default")
 _active: ContextVar[Database] = ContextVar("fanuc_macro.database", default=_DEFAULT)
 
 
-def current() -> Database:
-    """The active database (:meth:`Database.active`), else the process default."""
-    return _active.get()
+# ``current()``: the active database (:meth:`Database.active`), else the process default. The
+# context variable's own method, called in C: hot paths ask once per line.
+current: Callable[[], Database] = _active.get
 
 
 def default() -> Database:

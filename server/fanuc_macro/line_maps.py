@@ -13,20 +13,23 @@ added or removed.
 What a map gives is always what a look at every line would give: the per-line function depends
 on the line's text alone, and the comparison finds every line that differs from whatever
 version the map saw last (``tests/test_line_maps.py`` compares the two after random edits).
-:class:`Diff` serves other sequences too, such as a run's motions compared by identity.
+:class:`Diff` (in :mod:`fanuc_macro.syntax.diff`) serves other sequences too, such as a run's
+motions compared by identity. A map or a :class:`Kept` is a declaration: what it keeps is the
+current database's (:mod:`fanuc_macro.database`), by document, freed when the document closes.
 """
 
 from __future__ import annotations
 
-import threading
-import weakref
 from bisect import bisect_left
 from collections.abc import Callable, Iterator, Sequence
+from dataclasses import dataclass, field
 from itertools import compress
-from operator import attrgetter, is_, itemgetter, not_
-from typing import Generic, TypeVar
+from operator import attrgetter, itemgetter, not_
+from typing import Any, Generic, TypeVar
 
 from .cancel import CHECKING, SLICE, CancelToken
+from .database import TableKey, current
+from .syntax.diff import Diff, common_prefix, common_suffix, line_diff
 from .syntax.tree import Document, ParsedLine
 
 T = TypeVar("T")
@@ -36,126 +39,30 @@ U = TypeVar("U")
 KEPT = 16
 
 
-def common_prefix(a: Sequence[object], b: Sequence[object], identical: bool = False) -> int:
-    """How many first items of ``a`` and ``b`` are equal (``identical``: the same objects).
-
-    A bisection over slices: each comparison runs at C speed, and the slices compared add up to
-    about the length of the common part."""
-    lo, hi = 0, min(len(a), len(b))
-    same = _identical if identical else _equal
-    while lo < hi:
-        mid = (lo + hi + 1) // 2
-        if same(a[lo:mid], b[lo:mid]):
-            lo = mid
-        else:
-            hi = mid - 1
-    return lo
-
-
-def common_suffix(
-    a: Sequence[object], b: Sequence[object], limit: int, identical: bool = False
-) -> int:
-    """How many last items of ``a`` and ``b`` are equal, at most ``limit``."""
-    lo, hi = 0, min(len(a), len(b), limit)
-    na, nb = len(a), len(b)
-    same = _identical if identical else _equal
-    while lo < hi:
-        mid = (lo + hi + 1) // 2
-        if same(a[na - mid : na - lo], b[nb - mid : nb - lo]):
-            lo = mid
-        else:
-            hi = mid - 1
-    return lo
-
-
-def _equal(a: Sequence[object], b: Sequence[object]) -> bool:
-    return a == b
-
-
-def _identical(a: Sequence[object], b: Sequence[object]) -> bool:
-    return all(map(is_, a, b))
-
-
-class Diff:
-    """Where a new version of a sequence differs from the one before: its items before
-    ``start`` and from ``end`` on are the old version's, the old ones from ``old_end`` on moved
-    by ``shift`` (the items the change added, less those it removed)."""
-
-    __slots__ = ("end", "old_end", "shift", "start")
-
-    def __init__(self, old: Sequence[object], new: Sequence[object], identical: bool) -> None:
-        start = common_prefix(old, new, identical)
-        tail = common_suffix(old, new, min(len(old), len(new)) - start, identical)
-        self.start = start
-        self.end = len(new) - tail
-        self.old_end = len(old) - tail
-        self.shift = len(new) - len(old)
-
-    def moved(self, old: int) -> int | None:
-        """Where the old version's item ``old`` stands in the new one (None: the change
-        replaced it)."""
-        if old < self.start:
-            return old
-        if old >= self.old_end:
-            return old + self.shift
-        return None
-
-    def before(self, new: int) -> int | None:
-        """Where the new version's item ``new`` stood in the old one (None: the change put
-        it in)."""
-        if new < self.start:
-            return new
-        if new >= self.end:
-            return new - self.shift
-        return None
-
-
-# The last few pairs of versions compared, by weak reference: a version the server no longer
-# holds is freed with its blocks (a document of 100,000 lines edited where lines move makes a
-# new block for every line after the edit, about 5 MB a version).
-_diffs: list[tuple[weakref.ref[Document], weakref.ref[Document], Diff]] = []
-_diffs_lock = threading.Lock()
-
-
-def line_diff(old: Document, new: Document) -> Diff:
-    """Which lines of ``new`` differ from ``old`` (worked out once per pair of versions: the
-    maps of one analysis all compare with the same version before)."""
-    with _diffs_lock:
-        for a, b, diff in _diffs:
-            if a() is old and b() is new:
-                return diff
-    if len(old.blocks) == len(new.blocks):
-        # Blocks compare by line number and parsed line, the same object for unchanged text.
-        diff = Diff(old.blocks, new.blocks, identical=False)
-    else:
-        # Lines moved: the blocks after the edit differ by their number, not their line.
-        diff = Diff(_parsed(old), _parsed(new), identical=False)
-    with _diffs_lock:
-        _diffs.insert(0, (weakref.ref(old), weakref.ref(new), diff))
-        del _diffs[4:]
-    return diff
-
-
-def _parsed(doc: Document) -> list[ParsedLine]:
-    return list(map(itemgetter(1), doc.blocks))  # Block.parsed, read in C
-
-
+@dataclass(frozen=True, eq=False)
 class Kept(Generic[U]):
-    """A few keys' last values, the least recently stored dropped first."""
+    """The last values of a few documents (by URI), the least recently stored dropped first,
+    kept in the current database (a per-document table: closing a document frees its value).
+    """
 
-    def __init__(self) -> None:
-        self._items: dict[str, U] = {}
-        self._lock = threading.Lock()
+    name: str = "line_maps.kept"
+    table: TableKey[str, U] = field(init=False, repr=False)
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "table", TableKey(self.name, per_document=True))
 
     def get(self, key: str) -> U | None:
-        return self._items.get(key)
+        return current().table(self.table).get(key)
 
     def put(self, key: str, value: U) -> None:
-        with self._lock:
-            self._items.pop(key, None)
-            self._items[key] = value
-            while len(self._items) > KEPT:
-                del self._items[next(iter(self._items))]
+        items = current().table(self.table)
+        items.pop(key, None)
+        items[key] = value
+        while len(items) > KEPT:  # the oldest first; another thread's put may drop it first
+            try:
+                del items[next(iter(items))]
+            except (KeyError, RuntimeError, StopIteration):
+                break
 
 
 class Found(Generic[T]):
@@ -199,16 +106,24 @@ class LineMap(Generic[T]):
     ``look`` must depend on the parsed line alone (such as a :class:`~fanuc_macro.per_line.
     PerLine` function)."""
 
+    __slots__ = ("_kept", "_look")
+
     def __init__(self, look: Callable[[ParsedLine], T | None]) -> None:
         self._look = look
-        self._kept: Kept[Found[T]] = Kept()
-        self.looked = 0  # lines looked at over the map's life, for the tests of the work done
+        name = getattr(look, "__qualname__", "look")
+        self._kept: Kept[Found[T]] = Kept(f"line_maps.{name}")
+
+    @property
+    def looked(self) -> int:
+        """Lines looked at in the current database, for the tests of the work done."""
+        return current().table(_LOOKED).get(self, 0)
 
     def __call__(self, doc: Document, cancel: CancelToken | None = None) -> Found[T]:
         """What the map found in ``doc``. A set ``cancel`` token is looked at every
         :data:`~fanuc_macro.cancel.SLICE` lines looked at; a cancelled look keeps the last
         version as it was."""
-        last = self._kept.get(doc.uri)
+        kept = current().table(self._kept.table)
+        last = kept.get(doc.uri)
         if last is not None and last.doc is doc:
             return last
         if last is None:
@@ -250,8 +165,13 @@ class LineMap(Generic[T]):
             lines += compress(these, found)
             values += filter(None, found)
             at = high
-        self.looked += end - start
+        looked = current().table(_LOOKED)
+        looked[self] = looked.get(self, 0) + end - start
         return lines, values
+
+
+# Lines each map looked at, by map, in each database.
+_LOOKED: TableKey[LineMap[Any], int] = TableKey("line_maps.looked")
 
 
 _BARE = attrgetter("bare")  # ParsedLine.bare, read in C
@@ -274,4 +194,13 @@ def _unbare(doc: Document, start: int, end: int) -> Sequence[int]:
     return wanted
 
 
-__all__ = ["KEPT", "Diff", "Found", "Kept", "LineMap", "common_prefix", "line_diff"]
+__all__ = (
+    "KEPT",
+    "Diff",
+    "Found",
+    "Kept",
+    "LineMap",
+    "common_prefix",
+    "common_suffix",
+    "line_diff",
+)

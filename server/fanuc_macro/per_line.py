@@ -3,6 +3,8 @@
 Parsed lines are shared by every block with the same text (the parser caches them), so what
 depends on a line's text only (its compiled statement, its line rules' findings, the meaning
 its comment gives a variable) is worked out once per distinct line, not on every analysis.
+A :class:`PerLine` is a declaration; its cache is the current database's
+(:mod:`fanuc_macro.database`), so each workspace keeps its own and frees it with itself.
 """
 
 from __future__ import annotations
@@ -11,6 +13,7 @@ from collections.abc import Callable
 from itertools import islice
 from typing import Any, Generic, TypeVar
 
+from .database import TableKey, current
 from .syntax.tree import ParsedLine
 
 T = TypeVar("T")
@@ -46,46 +49,82 @@ class PerLine(Generic[T]):
     int shared by the entries of a batch (the sweep allows for the batch it may be behind).
     """
 
+    __slots__ = ("_compute", "_limit")
+
     def __init__(self, compute: Callable[[ParsedLine], T], limit: int = 400_000) -> None:
         self._compute = compute
         self._limit = limit
-        self._batch = max(1, limit // 8)
-        self._cache: dict[str, _Entry] = {}  # by the line's text
-        self._misses = 0
-        self._stamp = 0  # the miss count at the last multiple of the batch
-        self._next_sweep = 0  # no sweep before this miss count: the last one found all in use
+
+    def cache(self) -> _LineCache[T]:
+        """This declaration's cache in the current database, made on first use."""
+        caches = current().table(_CACHES)
+        found: _LineCache[T] | None = caches.get(self)
+        if found is None:
+            found = caches.setdefault(self, _LineCache(self._compute, self._limit))
+        return found
 
     def __len__(self) -> int:
-        return len(self._cache)
+        return len(self.cache().entries)
 
     def __contains__(self, parsed: ParsedLine) -> bool:
-        entry = self._cache.get(parsed.text)
+        entry = self.cache().entries.get(parsed.text)
         return entry is not None and entry.line is parsed
 
     def __call__(self, parsed: ParsedLine) -> T:
-        entry = self._cache.get(parsed.text)
+        # The hit path inline: one database look-up, then the entry (no call of the cache's).
+        cache: _LineCache[T] | None = current().table(_CACHES).get(self)
+        if cache is None:
+            cache = self.cache()
+        entry = cache.entries.get(parsed.text)
         if entry is not None and entry.line is parsed:
-            entry.used = self._stamp
+            entry.used = cache.stamp
             value: T = entry.value
             return value
-        value = self._compute(parsed)
-        self._misses += 1
-        if self._misses - self._stamp >= self._batch:
-            self._stamp = self._misses
-        if len(self._cache) >= self._limit:
+        return cache.miss(parsed)
+
+
+class _LineCache(Generic[T]):
+    """The storage of one :class:`PerLine` in one database: the entries by the line's text and
+    the counts of the eviction (see :class:`PerLine`)."""
+
+    __slots__ = ("batch", "compute", "entries", "limit", "misses", "next_sweep", "stamp")
+
+    def __init__(self, compute: Callable[[ParsedLine], T], limit: int) -> None:
+        self.compute = compute
+        self.limit = limit
+        self.batch = max(1, limit // 8)
+        self.entries: dict[str, _Entry] = {}  # by the line's text
+        self.misses = 0
+        self.stamp = 0  # the miss count at the last multiple of the batch
+        self.next_sweep = 0  # no sweep before this miss count: the last one found all in use
+
+    def __call__(self, parsed: ParsedLine) -> T:
+        entry = self.entries.get(parsed.text)
+        if entry is not None and entry.line is parsed:
+            entry.used = self.stamp
+            value: T = entry.value
+            return value
+        return self.miss(parsed)
+
+    def miss(self, parsed: ParsedLine) -> T:
+        value = self.compute(parsed)
+        self.misses += 1
+        if self.misses - self.stamp >= self.batch:
+            self.stamp = self.misses
+        if len(self.entries) >= self.limit:
             self._evict()
-        if len(self._cache) < self._limit:
-            self._cache[parsed.text] = _Entry(parsed, value, self._stamp)
+        if len(self.entries) < self.limit:
+            self.entries[parsed.text] = _Entry(parsed, value, self.stamp)
         return value
 
     def _evict(self) -> None:
-        if self._misses < self._next_sweep:
+        if self.misses < self.next_sweep:
             return
-        cache = self._cache
+        cache = self.entries
         # Used at or before this miss (a stamp is up to a batch behind): not in use.
-        oldest = self._misses - self._limit - self._batch
+        oldest = self.misses - self.limit - self.batch
         dropped = 0
-        for key in list(islice(cache, self._batch)):
+        for key in list(islice(cache, self.batch)):
             entry = cache.pop(key, None)  # None: another thread's sweep took it
             if entry is None:
                 continue
@@ -94,4 +133,8 @@ class PerLine(Generic[T]):
             else:
                 dropped += 1
         if not dropped:
-            self._next_sweep = self._misses + self._batch
+            self.next_sweep = self.misses + self.batch
+
+
+# Each database's caches, by their declaration.
+_CACHES: TableKey[PerLine[Any], _LineCache[Any]] = TableKey("per_line.caches")

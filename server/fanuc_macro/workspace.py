@@ -2,17 +2,20 @@
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Mapping
+import functools
+from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass, replace
+from typing import Concatenate, ParamSpec, TypeVar
 
 from .analysis import Analysis, analyse
 from .cancel import CancelToken
 from .config import Config
+from .database import Database
 from .evaluator import Facts
-from .line_maps import line_diff
 from .program.index import Call, ProgramIndex, build_index, index_after_edit
 from .program_files import PROGRAM_SUFFIXES as PROGRAM_SUFFIXES  # for the server, the debugger
 from .program_files import is_program_file as is_program_file
+from .syntax.diff import line_diff
 from .syntax.lines import BINARY, ReadLimits, decode_bytes
 from .syntax.parser import BlockParser, default_parser, parse_text
 from .syntax.tree import Document
@@ -56,10 +59,38 @@ def same_execution(old: Document, new: Document) -> bool:
     return True
 
 
+P = ParamSpec("P")
+R = TypeVar("R")
+
+
+def _in_database(
+    method: Callable[Concatenate[Workspace, P], R],
+) -> Callable[Concatenate[Workspace, P], R]:
+    """Run a workspace's method inside its database (:meth:`Database.active`): what it derives
+    (parsed lines, line maps, what rules keep) is the workspace's."""
+
+    @functools.wraps(method)
+    def in_database(self: Workspace, /, *args: P.args, **kwargs: P.kwargs) -> R:
+        with self.db.active():
+            return method(self, *args, **kwargs)
+
+    return in_database
+
+
 class Workspace:
-    def __init__(self, config: Config | None = None, parser: BlockParser | None = None) -> None:
+    """The documents analysed together, and the database (:mod:`fanuc_macro.database`) that
+    owns every value derived from them."""
+
+    def __init__(
+        self,
+        config: Config | None = None,
+        parser: BlockParser | None = None,
+        db: Database | None = None,  # the language server makes it before the workspace
+    ) -> None:
         self.config = config or Config()
-        self.parser = parser or default_parser()
+        self.db = db or Database()
+        with self.db.active():
+            self.parser = parser or default_parser()
         self._entries: dict[str, _Entry] = {}
         self._executions = 0
         # uri -> (the config, the executions of the documents run, the evaluator's facts)
@@ -81,6 +112,7 @@ class Workspace:
         self._executions += 1
         return self._executions
 
+    @_in_database
     def add_text(self, uri: str, text: str, cancel: CancelToken | None = None) -> Document:
         """Read a new text of ``uri``. Cancelled (see :mod:`fanuc_macro.cancel`), the workspace
         keeps the text it had: nothing is stored before the whole text is read."""
@@ -107,6 +139,7 @@ class Workspace:
         self._reindexed(uri)
         return doc
 
+    @_in_database
     def add_bytes(self, uri: str, data: bytes) -> Document:
         decoded = decode_bytes(data)
         limits = self.config.read_limits
@@ -124,6 +157,7 @@ class Workspace:
         self._reindexed(uri)
         return doc
 
+    @_in_database
     def set_config(self, config: Config) -> list[str]:
         """Analyse with ``config`` from now on; the documents it reads differently (another
         limit on lines, blocks or size) are read again. Returns their URIs."""
@@ -142,8 +176,10 @@ class Workspace:
         return reread
 
     def remove(self, uri: str) -> None:
+        """Forget ``uri``, and what the database derived from it."""
         self._entries.pop(uri, None)
         self._facts.pop(uri, None)
+        self.db.close_document(uri)
         self._reindexed(uri)
 
     def not_text(self, uri: str) -> str | None:
@@ -206,6 +242,7 @@ class Workspace:
                 return uri, line if line is not None else program.first_line
         return None
 
+    @_in_database
     def analyse(
         self,
         uri: str,

@@ -25,9 +25,10 @@ from types import MappingProxyType
 from typing import TYPE_CHECKING, Any, cast
 
 from ..cancel import READING, SLICE, CancelToken, raise_if_cancelled
+from ..database import TableKey, current
 from ..lazy_regex import LazyPattern
-from ..line_maps import Diff
 from . import dialects, grammar_tables
+from .diff import Diff
 from .lalr_driver import (
     TABLES_FORMAT,
     TableParser,
@@ -47,7 +48,6 @@ from .lines import (
 )
 from .marks import CALL_CODES, INDEXED_STATEMENTS, mentions_call
 from .tree import (
-    _PLAIN_WORDS_OF,
     BARE_CODES,
     SHARED_COLUMNS,
     SHARED_SPANS,
@@ -360,8 +360,8 @@ _ADDRESSES: Mapping[str, str] = MappingProxyType(
 # Words of a number written as it stands, by column and text ('G01' at column 0, 'Z-2.5' at
 # 20): the nodes are immutable, so blocks share them (a CAM file repeats its G code and a few
 # hundred Z depths at a few columns) instead of holding a word, a number, its text and its
-# float each. The first words seen are kept, up to the limit.
-_SHARED_WORDS: dict[tuple[int, str], Word] = {}
+# float each. The first words seen are kept, up to the limit (a table of the database).
+_SHARED_WORDS: TableKey[tuple[int, str], Word] = TableKey("syntax.shared_words")
 _SHARED_WORDS_LIMIT = 1 << 15
 _SHARED_WORD_COLUMNS = 128  # a block's words are near its start; a long line's are its own
 
@@ -409,19 +409,24 @@ _PLAIN_BLOCK = re.compile(
 # The G and M words of a plain block (its code is known to be words of numbers).
 _PLAIN_CODE_WORDS = re.compile(r"([GMgm])([-+]?[.0-9]+)")
 # The G and M codes of plain blocks by their words' text, shared (a program repeats a few
-# combinations); _CALLS for the words of a call or a return.
-_PLAIN_CODES: dict[tuple[tuple[str, str], ...], tuple[tuple[str, float], ...]] = {}
+# combinations; a table of the database); _CALLS for the words of a call or a return.
+_PLAIN_CODES: TableKey[tuple[tuple[str, str], ...], tuple[tuple[str, float], ...]] = TableKey(
+    "syntax.plain_codes"
+)
 _PLAIN_CODES_LIMIT = 10_000
 _CALLS: tuple[tuple[str, float], ...] = (("M", 98.0),)
 
 
-def _plain_codes(written: tuple[tuple[str, str], ...]) -> tuple[tuple[str, float], ...]:
+def _plain_codes(
+    written: tuple[tuple[str, str], ...],
+    shared: dict[tuple[tuple[str, str], ...], tuple[tuple[str, float], ...]],
+) -> tuple[tuple[str, float], ...]:
     codes = tuple([(_ADDRESSES[letter], float(number)) for letter, number in written])
     if not CALL_CODES.isdisjoint(codes):
         codes = _CALLS
-    if len(_PLAIN_CODES) >= _PLAIN_CODES_LIMIT:
-        _PLAIN_CODES.clear()
-    _PLAIN_CODES[written] = codes
+    if len(shared) >= _PLAIN_CODES_LIMIT:
+        shared.clear()
+    shared[written] = codes
     return codes
 
 
@@ -437,9 +442,10 @@ def _plain_block(
     if _PLAIN_BLOCK.fullmatch(code, pos) is None:
         return None
     written = tuple(_PLAIN_CODE_WORDS.findall(code, pos))
-    codes = _PLAIN_CODES.get(written)
+    shared = current().table(_PLAIN_CODES)
+    codes = shared.get(written)
     if codes is None:
-        codes = _plain_codes(written)
+        codes = _plain_codes(written, shared)
     if codes is _CALLS:
         return None  # the index looks at its words: built in full
     skip: int | None = None
@@ -461,14 +467,11 @@ def _plain_block(
 _HEAD_STARTS = frozenset("Nn/ \t")  # what a block's head (block skip, N number) begins with
 
 
-def _plain_words(code: str) -> tuple[Word, ...]:
+def plain_words(code: str) -> tuple[Word, ...]:
     """The words of a ``PlainNc``'s code, as the fast parse builds them."""
     found = _fast_parse(code)
     assert found is not None and found[3] is not None  # a plain block is a fast one
     return found[3].words
-
-
-_PLAIN_WORDS_OF.append(_plain_words)
 
 
 def fast_parse(code: str) -> tuple[int | None, int | None, Span | None, NcStatement | None] | None:
@@ -499,13 +502,14 @@ def _fast_parse(
     if pos == size:
         return skip, seq, seq_span, None, False
     words: list[Word] = []
-    spans = SHARED_SPANS
+    db = current()
+    spans = db.table(SHARED_SPANS)
     has_call = False
     # A number too long to read is reported only once the whole block has matched: in a block
     # the grammar rejects for another reason, the grammar's message is the one to give.
     unreadable: ValueError | None = None
     # The scanner's matches follow one another, each where the last ended, until a word fails.
-    shared = _SHARED_WORDS
+    shared = db.table(_SHARED_WORDS)
     for wm in iter(_scan_words(code, pos).match, None):
         letter, number, other = wm.groups()
         pos = wm.end()
@@ -1166,16 +1170,19 @@ def _unknown_function(code: str, col: int) -> tuple[str, int] | None:
     return None
 
 
-_default_parser: BlockParser | None = None
-_default_lock = threading.Lock()
+# The parser of the code that names none, one per database: its cache of parsed lines is the
+# database's (a workspace's lines live and go with it).
+_DEFAULT_PARSER: TableKey[str, BlockParser] = TableKey("syntax.default_parser")
 
 
 def default_parser() -> BlockParser:
-    global _default_parser
-    with _default_lock:
-        if _default_parser is None:
-            _default_parser = BlockParser()
-        return _default_parser
+    """The current database's parser (:mod:`fanuc_macro.database`), made on first use."""
+    parsers = current().table(_DEFAULT_PARSER)
+    parser = parsers.get("")
+    if parser is None:
+        # Two threads asking at once may both make one: the first stored is the one kept.
+        parser = parsers.setdefault("", BlockParser())
+    return parser
 
 
 def parse_text(

@@ -13,6 +13,8 @@ from collections.abc import Callable, Sequence
 from dataclasses import FrozenInstanceError, dataclass, field, fields
 from typing import NamedTuple
 
+from ..database import TableKey, current
+
 
 @dataclass(frozen=True, slots=True)
 class Span:
@@ -20,10 +22,10 @@ class Span:
     end: int
 
 
-# Spans of short lines, shared: lines hold the same few columns over and over, and a span is
-# frozen. Keyed by start * SHARED_COLUMNS + end.
+# Spans of short lines, shared (a table of the analysis database): lines hold the same few
+# columns over and over, and a span is frozen. Keyed by start * SHARED_COLUMNS + end.
 SHARED_COLUMNS = 512
-SHARED_SPANS: dict[int, Span] = {}
+SHARED_SPANS: TableKey[int, Span] = TableKey("syntax.shared_spans")
 
 
 def shared_span(start: int, end: int) -> Span:
@@ -31,9 +33,10 @@ def shared_span(start: int, end: int) -> Span:
     if end >= SHARED_COLUMNS or start < 0:
         return Span(start, end)
     key = start * SHARED_COLUMNS + end
-    found = SHARED_SPANS.get(key)
+    spans = current().table(SHARED_SPANS)
+    found = spans.get(key)
     if found is None:
-        found = SHARED_SPANS[key] = Span(start, end)
+        found = spans[key] = Span(start, end)
     return found
 
 
@@ -150,8 +153,6 @@ class NcStatement:
         return None
 
 
-# What builds a plain block's words from its code: set by the parser, which owns the reading.
-_PLAIN_WORDS_OF: list[Callable[[str], tuple[Word, ...]]] = []
 # (letter, number) of each word of a plain block's code (letters as written).
 _PLAIN_PAIRS = re.compile(r"([A-Za-z])([-+]?[.0-9]+)")
 
@@ -161,6 +162,14 @@ _PLAIN_PAIRS = re.compile(r"([A-Za-z])([-+]?[.0-9]+)")
 BARE_CODES = frozenset(
     ("G", code) for code in (0.0, 1.0, 2.0, 3.0, 17.0, 18.0, 19.0, 40.0, 90.0, 91.0)
 )
+
+
+def _plain_words(code: str) -> tuple[Word, ...]:
+    """The words of a plain block's code, as the parser reads them (it owns the reading and
+    imports this module: imported when a block's words are first asked for)."""
+    from .parser import plain_words
+
+    return plain_words(code)
 
 
 class PlainNc(NcStatement):
@@ -188,7 +197,7 @@ class PlainNc(NcStatement):
         try:
             found: tuple[Word, ...] = _NC_WORDS_GET(self, PlainNc)
         except AttributeError:
-            found = _PLAIN_WORDS_OF[0](self.code)
+            found = _plain_words(self.code)
             _NC_WORDS(self, found)
         return found
 
@@ -421,7 +430,7 @@ class WeaklyReferable:
 @dataclass(frozen=True, slots=True)
 class Document(WeaklyReferable):
     """A whole file: its blocks, in order, one per line. (Weakly referable: the cache of line
-    diffs names versions without keeping them alive, ``line_maps.line_diff``.)"""
+    diffs names versions without keeping them alive, ``syntax.diff.line_diff``.)"""
 
     uri: str
     blocks: tuple[Block, ...]
