@@ -1061,49 +1061,17 @@ def _backplot(
         _causes(toolpath, undrawn, across, up) if undrawn else (0, (), [])
     )
     notes += _run_notes(toolpath, stop)
-    h_range = (
-        min(h for d in drawn for h, _ in d.points),
-        max(h for d in drawn for h, _ in d.points),
-    )
-    v_range = (
-        min(v for d in drawn for _, v in d.points),
-        max(v for d in drawn for _, v in d.points),
-    )
-    # A path that is a line (a drill's plunge seen from above) still gets a square to sit in.
-    span = max(h_range[1] - h_range[0], v_range[1] - v_range[0]) or 1.0
-    pad = span * 0.04
-    # Neither side of the box under a quarter of the other, so that a thin path has room.
-    h_pad = pad + max(0.0, span / 4 - (h_range[1] - h_range[0])) / 2
-    v_pad = pad + max(0.0, span / 4 - (v_range[1] - v_range[0])) / 2
-    h_range = (h_range[0] - h_pad, h_range[1] + h_pad)
-    v_range = (v_range[0] - v_pad, v_range[1] + v_pad)
+    h_range, v_range = _padded_ranges(drawn)
     # A lathe's X labelled as the diameter the program writes.
     factors = (
         2.0 if toolpath.lathe and across == "X" else 1.0,
         2.0 if toolpath.lathe and up == "X" else 1.0,
     )
-    # The left margin takes the widest tick label up the side and the axis title beside it;
-    # a wider margin, a smaller scale, other ticks: settled in a round or two.
-    left = MARGIN_LEFT
-    for _ in range(3):
-        scale = min(
-            (WIDTH - left - MARGIN_RIGHT) / (h_range[1] - h_range[0]),
-            _BOX_HEIGHT / (v_range[1] - v_range[0]),
-        )
-        ticks = _choose_ticks(h_range, v_range, scale, factors)
-        needed = max(MARGIN_LEFT, math.ceil(ticks.v_width + 12 + FONT_SIZE + 6))
-        if needed <= left:
-            break
-        left = needed
+    scale, ticks, left = _fitted_scale(h_range, v_range, factors)
     units = "inch" if toolpath.inch else "mm"
     places = _lost_places(toolpath, across, up)
     arrows = _arrows(drawn, scale)
-    kinds = {d.move.kind for d in drawn}
-    entries: list[str] = [kind for kind in KIND_NAMES if kind in kinds]
-    entries += ["start", "end", *(["direction"] if arrows else [])]
-    if any(where is not None for _, where in places):
-        entries.append("lost")
-    legend, legend_low = _legend(entries, 46.0)
+    legend, legend_low = _legend(_legend_entries(drawn, arrows, places), 46.0)
     top = legend_low + 16
     low = top + (v_range[1] - v_range[0]) * scale
     frame = _Frame(h_range[0], v_range[1], scale, left, top)
@@ -1143,7 +1111,76 @@ def _backplot(
     body.append("</g>")
     total = len(toolpath.moves)
     drawn_count = len(drawn)
-    del drawn
+    del drawn  # the pass maps are drawn without the moves' strings kept
+    total_height = _add_pass_maps(body, passes, height, units)
+    head = (
+        '<svg xmlns="http://www.w3.org/2000/svg"'
+        f' width="{_num(WIDTH)}" height="{_num(total_height)}"'
+        f' viewBox="0 0 {_num(WIDTH)} {_num(total_height)}" data-units="{units}">'
+    )
+    svg = "\n".join([head, f"<style>{STYLE}</style>", *body, "</svg>"]) + "\n"
+    return Backplot(
+        svg, view, plane_reason, drawn_count, total, before_start, start_axes, tuple(notes)
+    )
+
+
+def _padded_ranges(
+    drawn: Sequence[_Drawn],
+) -> tuple[tuple[float, float], tuple[float, float]]:
+    """The drawn moves' extent across and up, with a margin around it."""
+    h_range = (
+        min(h for d in drawn for h, _ in d.points),
+        max(h for d in drawn for h, _ in d.points),
+    )
+    v_range = (
+        min(v for d in drawn for _, v in d.points),
+        max(v for d in drawn for _, v in d.points),
+    )
+    # A path that is a line (a drill's plunge seen from above) still gets a square to sit in.
+    span = max(h_range[1] - h_range[0], v_range[1] - v_range[0]) or 1.0
+    pad = span * 0.04
+    # Neither side of the box under a quarter of the other, so that a thin path has room.
+    h_pad = pad + max(0.0, span / 4 - (h_range[1] - h_range[0])) / 2
+    v_pad = pad + max(0.0, span / 4 - (v_range[1] - v_range[0])) / 2
+    return (h_range[0] - h_pad, h_range[1] + h_pad), (v_range[0] - v_pad, v_range[1] + v_pad)
+
+
+def _fitted_scale(
+    h_range: tuple[float, float], v_range: tuple[float, float], factors: tuple[float, float]
+) -> tuple[float, _Ticks, float]:
+    """The scale, the ticks and the left margin. The margin takes the widest tick label up the
+    side and the axis title beside it; a wider margin, a smaller scale, other ticks: settled in
+    a round or two."""
+    left = MARGIN_LEFT
+    for _ in range(3):
+        scale = min(
+            (WIDTH - left - MARGIN_RIGHT) / (h_range[1] - h_range[0]),
+            _BOX_HEIGHT / (v_range[1] - v_range[0]),
+        )
+        ticks = _choose_ticks(h_range, v_range, scale, factors)
+        needed = max(MARGIN_LEFT, math.ceil(ticks.v_width + 12 + FONT_SIZE + 6))
+        if needed <= left:
+            break
+        left = needed
+    return scale, ticks, left
+
+
+def _legend_entries(
+    drawn: Sequence[_Drawn],
+    arrows: Sequence[_Arrow],
+    places: Sequence[tuple[LostTrack, tuple[float, float] | None]],
+) -> list[str]:
+    """What the legend shows: the kinds of moves drawn, the marks, the lost places."""
+    kinds = {d.move.kind for d in drawn}
+    entries: list[str] = [kind for kind in KIND_NAMES if kind in kinds]
+    entries += ["start", "end", *(["direction"] if arrows else [])]
+    if any(where is not None for _, where in places):
+        entries.append("lost")
+    return entries
+
+
+def _add_pass_maps(body: list[str], passes: Sequence[PassMap], height: float, units: str) -> float:
+    """Adds the threads' pass maps below the toolpath; the drawing's height with them."""
     total_height = height
     for pass_map in passes[:MAX_PASS_MAPS]:
         group, h = _pass_map_view(pass_map, total_height, units)
@@ -1162,15 +1199,7 @@ def _backplot(
             + "</g>"
         )
         total_height += 32.0
-    head = (
-        '<svg xmlns="http://www.w3.org/2000/svg"'
-        f' width="{_num(WIDTH)}" height="{_num(total_height)}"'
-        f' viewBox="0 0 {_num(WIDTH)} {_num(total_height)}" data-units="{units}">'
-    )
-    svg = "\n".join([head, f"<style>{STYLE}</style>", *body, "</svg>"]) + "\n"
-    return Backplot(
-        svg, view, plane_reason, drawn_count, total, before_start, start_axes, tuple(notes)
-    )
+    return total_height
 
 
 # ---- the pass maps ---------------------------------------------------------------------------
@@ -1222,10 +1251,34 @@ def _depth_scale(
     return out
 
 
-def _pass_map_view(pass_map: PassMap, top: float, units: str = "mm") -> tuple[list[str], float]:
-    """The second view for one thread, placed at ``top``; its height."""
+@dataclass(frozen=True)
+class _PassPanels:
+    """Where one thread's pass map goes: the passes' depths and Z offsets, the infeed panel's
+    scale and the depth bars' scale."""
+
+    depths: list[float]  # radial, into the material
+    offsets: list[float]  # Z about the middle of the passes
+    basic: float | None  # the basic profile's height, 5H/8, when the pitch is known
+    deepest: float
+    left: float
+    panel_w: float
+    gap: float
+    y0: float  # the depth 0 line
+    base: float  # the panels' bottom
+    scale: float  # the infeed panel's
+    cx: float  # the infeed panel's Z of the middle
+    bar_scale: float
+    bar_labels: tuple[float, list[tuple[float, str]]]
+
+    def px(self, offset: float) -> float:
+        return self.cx + offset * self.scale
+
+    def py(self, depth: float) -> float:
+        return self.y0 + depth * self.scale
+
+
+def _pass_panels(pass_map: PassMap, top: float) -> _PassPanels:
     marks = pass_map.passes
-    count = len(marks)
     # Depth is radial, measured into the material from the major diameter when the thread is
     # known, else from the first pass (the tool cannot cut less deep than that).
     reference = pass_map.major if pass_map.major is not None else marks[0].x
@@ -1240,7 +1293,7 @@ def _pass_map_view(pass_map: PassMap, top: float, units: str = "mm") -> tuple[li
     z_ref = (min(zs) + max(zs)) / 2.0 if zs else 0.0
     offsets = [(m.z - z_ref) if m.z is not None else 0.0 for m in marks]
     # Wide enough for the groove and for the flanks of the tool at every pass.
-    flank = math.tan(math.radians(30.0))
+    flank = _FLANK
     half_width = max(
         deepest * flank * 1.4,
         *(abs(o) + (d + deepest * 0.08) * flank for o, d in zip(offsets, depths, strict=True)),
@@ -1248,46 +1301,79 @@ def _pass_map_view(pass_map: PassMap, top: float, units: str = "mm") -> tuple[li
     inner_h = _PANEL_HEIGHT
     left = MARGIN_LEFT
     y0 = top + _PANEL_TOP
-    base = y0 + inner_h
     # The bars' scale first: the width of its labels sets the gap between the panels.
     bar_top = (max(depths) or 1.0) * 1.1
     bar_scale = inner_h / bar_top
     bar_labels = _depth_labels(bar_top, bar_scale)
     gap = max(40.0, max(text_width(label) for _, label in bar_labels[1]) + 24.0)
     panel_w = (WIDTH - MARGIN_LEFT - MARGIN_RIGHT - gap) / 2.0
-    scale = min(panel_w / (2 * half_width), inner_h / (deepest * 1.1))
-    cx = left + panel_w / 2.0
+    return _PassPanels(
+        depths=depths,
+        offsets=offsets,
+        basic=basic,
+        deepest=deepest,
+        left=left,
+        panel_w=panel_w,
+        gap=gap,
+        y0=y0,
+        base=y0 + inner_h,
+        scale=min(panel_w / (2 * half_width), inner_h / (deepest * 1.1)),
+        cx=left + panel_w / 2.0,
+        bar_scale=bar_scale,
+        bar_labels=bar_labels,
+    )
 
-    def px(offset: float) -> float:
-        return cx + offset * scale
 
-    def py(depth: float) -> float:
-        return y0 + depth * scale
+# The tool's flank from the thread's axis normal: a 60-degree thread's half angle.
+_FLANK = math.tan(math.radians(30.0))
 
+
+def _pass_map_view(pass_map: PassMap, top: float, units: str = "mm") -> tuple[list[str], float]:
+    """The second view for one thread, placed at ``top``; its height."""
+    count = len(pass_map.passes)
+    panels = _pass_panels(pass_map, top)
+    left, y0, base = panels.left, panels.y0, panels.base
     side = "internal" if pass_map.internal else "external"
-    measured = "the major diameter" if pass_map.major is not None else "the first pass"
     title = f"{pass_map.program}: {pass_map.name}, {side}, {_passes(count)}"
     out = [
         f'<g class="view" data-view="passes" data-program={quoteattr(pass_map.program)}'
         f' data-passes="{count}">',
         _text(left, top + 24, shorten(title, _BOX_WIDTH, TITLE_SIZE, True), cls="title"),
-        f'<line class="axis" x1="{_num(left)}" y1="{_num(y0)}" x2="{_num(left + panel_w)}"'
+        f'<line class="axis" x1="{_num(left)}" y1="{_num(y0)}" x2="{_num(left + panels.panel_w)}"'
         f' y2="{_num(y0)}"/>',
         f'<line class="axis" x1="{_num(left)}" y1="{_num(y0)}" x2="{_num(left)}"'
         f' y2="{_num(base)}"/>',
-        *_depth_scale(left, py, _depth_labels(inner_h / scale, scale)),
+        *_depth_scale(left, panels.py, _depth_labels(_PANEL_HEIGHT / panels.scale, panels.scale)),
     ]
+    n_places = _infeed_marks(out, pass_map, panels)
+    flat, largest = _depth_bars(out, pass_map, panels)
+    out.append("</g>")
+    captions = _pass_map_captions(pass_map, panels, units, n_places, flat, largest)
+    y = base + _CAPTION_TOP
+    bars_left = left + panels.panel_w + panels.gap
+    for x, lines in ((left, captions[0]), (bars_left, captions[1])):
+        out += [_text(x, y + k * _CAPTION_LINE, line, cls="note") for k, line in enumerate(lines)]
+    out.append("</g>")
+    rows = max(len(c) for c in captions)
+    return out, _PANEL_TOP + _PANEL_HEIGHT + _CAPTION_TOP + (rows - 1) * _CAPTION_LINE + 18.0
+
+
+def _infeed_marks(out: list[str], pass_map: PassMap, panels: _PassPanels) -> int:
+    """Draws the basic groove and the tool's tip at each pass; the number of places the tips
+    are at."""
+    px, py, scale = panels.px, panels.py, panels.scale
+    basic, deepest = panels.basic, panels.deepest
     if basic is not None:
         # The basic V groove: 60 degrees, its flanks through the major diameter's line.
-        w = basic * math.tan(math.radians(30.0))
+        w = basic * _FLANK
         out.append(
             f'<polygon class="profile" data-kind="profile" points="{_num(px(-w))},{_num(py(0))}'
             f' {_num(px(0))},{_num(py(basic))} {_num(px(w))},{_num(py(0))}"/>'
         )
     places: dict[tuple[str, str], None] = {}
-    for mark, depth, offset in zip(marks, depths, offsets, strict=True):
+    for mark, depth, offset in zip(pass_map.passes, panels.depths, panels.offsets, strict=True):
         # The tool's 60-degree tip at this pass, its point where the pass cuts.
-        w = (depth + deepest * 0.08) * flank
+        w = (depth + deepest * 0.08) * _FLANK
         tip_x, tip_y = px(offset), py(depth)
         rise = deepest * 0.08 + depth
         out.append(
@@ -1302,9 +1388,17 @@ def _pass_map_view(pass_map: PassMap, top: float, units: str = "mm") -> tuple[li
             f' data-depth="{fmt_address(depth)}" data-x="{fmt_address(mark.x)}"'
             f' cx="{_num(tip_x)}" cy="{_num(tip_y)}" r="2.5"/>'
         )
-    # A bar for each pass, as high as the pass is deep; darker, what it cuts deeper than every
-    # pass before it (a pass no deeper cuts nothing new at the root: a bar without).
-    bars_left = left + panel_w + gap
+    return len(places)
+
+
+def _depth_bars(out: list[str], pass_map: PassMap, panels: _PassPanels) -> tuple[int, float]:
+    """Draws a bar for each pass, as high as the pass is deep; darker, what it cuts deeper
+    than every pass before it (a pass no deeper cuts nothing new at the root: a bar without).
+    The passes at depth 0 and the largest cut."""
+    marks = pass_map.passes
+    count = len(marks)
+    base, y0, panel_w, bar_scale = panels.base, panels.y0, panels.panel_w, panels.bar_scale
+    bars_left = panels.left + panel_w + panels.gap
     bar_w = panel_w / count
     out += [
         f'<g class="chart" data-chart="depth" data-bars="{count}">',
@@ -1312,13 +1406,15 @@ def _pass_map_view(pass_map: PassMap, top: float, units: str = "mm") -> tuple[li
         f' x2="{_num(bars_left + panel_w)}" y2="{_num(base)}"/>',
         f'<line class="axis" x1="{_num(bars_left)}" y1="{_num(y0)}" x2="{_num(bars_left)}"'
         f' y2="{_num(base)}"/>',
-        *_depth_scale(bars_left, lambda d: base - d * bar_scale, bar_labels, bars_left + panel_w),
+        *_depth_scale(
+            bars_left, lambda d: base - d * bar_scale, panels.bar_labels, bars_left + panel_w
+        ),
     ]
     bar_class = "bar thin" if bar_w < 5 else "bar"  # an outline would hide a narrow bar
     deepest_before = 0.0
     flat = 0
     largest = 0.0
-    for i, (mark, depth) in enumerate(zip(marks, depths, strict=True)):
+    for i, (mark, depth) in enumerate(zip(marks, panels.depths, strict=True)):
         cut = max(0.0, depth - deepest_before)
         largest = max(largest, cut)
         x = bars_left + i * bar_w + bar_w * 0.1
@@ -1337,8 +1433,16 @@ def _pass_map_view(pass_map: PassMap, top: float, units: str = "mm") -> tuple[li
                 f' width="{_num(bar_w * 0.8)}" height="{_num(cut * bar_scale)}"/>'
             )
         deepest_before = max(deepest_before, depth)
-    out.append("</g>")
-    n_places = len(places)
+    return flat, largest
+
+
+def _pass_map_captions(
+    pass_map: PassMap, panels: _PassPanels, units: str, n_places: int, flat: int, largest: float
+) -> tuple[list[str], list[str]]:
+    """The two panels' captions, wrapped to the panels' width."""
+    count = len(pass_map.passes)
+    basic = panels.basic
+    measured = "the major diameter" if pass_map.major is not None else "the first pass"
     where = _passes(count)
     if n_places < count:
         where += f" at {n_places} places (passes at one place are one dot)"
@@ -1354,13 +1458,7 @@ def _pass_map_view(pass_map: PassMap, top: float, units: str = "mm") -> tuple[li
     )
     if flat:
         chart += f"; {_passes(flat)} at depth 0: a flat mark"
-    captions = (wrap(infeed, panel_w), wrap(chart, panel_w))
-    y = base + _CAPTION_TOP
-    for x, lines in ((left, captions[0]), (bars_left, captions[1])):
-        out += [_text(x, y + k * _CAPTION_LINE, line, cls="note") for k, line in enumerate(lines)]
-    out.append("</g>")
-    rows = max(len(c) for c in captions)
-    return out, _PANEL_TOP + inner_h + _CAPTION_TOP + (rows - 1) * _CAPTION_LINE + 18.0
+    return wrap(infeed, panels.panel_w), wrap(chart, panels.panel_w)
 
 
 # ---- the run ---------------------------------------------------------------------------------
