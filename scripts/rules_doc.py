@@ -3,8 +3,9 @@
     python3 scripts/rules_doc.py          # writes docs/rules.md
     python3 scripts/rules_doc.py --check  # exits 1, saying so, if docs/rules.md is stale
 
-Each rule's documentation is the ``RuleDoc`` next to its ``register(RuleInfo(...))`` in
-server/fanuc_macro/rules/ (MB000 in analysis.py); the general sections are docs/rules-intro.md.
+Each rule's documentation is a ``RuleDoc`` constant (``MB101_DOC``) beside the function that
+finds the rule in server/fanuc_macro/rules/ (MB000 in analysis.py); the general sections are
+docs/rules-intro.md.
 The package is read from this checkout's server/, whatever is installed.
 """
 

@@ -11,8 +11,7 @@ from importlib import resources
 from lsprotocol import types
 from pytest_lsp import LanguageClient
 
-import fanuc_macro.analysis  # noqa: F401  (registers every rule)
-from fanuc_macro.diagnostics import RULES
+from fanuc_macro.analysis import RULES
 from fanuc_macro.ide.messages import LOCALES, catalogue, locale_of
 from test_lsp import CAPABILITIES, SEEDS, WAIT, client, diagnostics, open_seed
 

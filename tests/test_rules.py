@@ -8,11 +8,11 @@ lines, and nowhere else in the file. A rule that needs a setting (a machine limi
 a comment ``(settings: {"machine": {"maxSpindleSpeed": 4000}})``: the editor's settings object
 under ``fanuc-macro``, in JSON.
 
-The lists of codes are read from ``fanuc_macro.diagnostics.RULES`` when the tests are
-collected, so a rule registered later (the evaluator's MB5xx-MB9xx) is covered as soon as it is
-registered: it needs a section in docs/rules.md and a fixture. The sections are generated from
-the RuleDoc beside each registration (scripts/rules_doc.py; tests/test_rules_doc.py checks the
-file is not stale), and these tests read the generated file as a user would.
+The lists of codes are read from ``fanuc_macro.analysis.RULES`` when the tests are
+collected, so a rule declared later (the evaluator's MB5xx-MB9xx) is covered as soon as it is
+declared: it needs a section in docs/rules.md and a fixture. The sections are generated from
+the RuleDoc beside each rule's function (scripts/rules_doc.py; tests/test_rules_doc.py checks
+the file is not stale), and these tests read the generated file as a user would.
 """
 
 from __future__ import annotations
@@ -25,10 +25,9 @@ from pathlib import Path
 
 import pytest
 
-import fanuc_macro.analysis  # noqa: F401  (importing it registers every rule)
-from fanuc_macro.analysis import Analysis, analyse
+from fanuc_macro.analysis import RULES, Analysis, analyse
 from fanuc_macro.config import NOT_SET, Config
-from fanuc_macro.diagnostics import RULES, Diagnostic, Severity
+from fanuc_macro.diagnostics import Diagnostic, Severity
 from fanuc_macro.rules.context import RuleContext
 from fanuc_macro.syntax.lines import decode_bytes, split_lines
 from fanuc_macro.syntax.parser import parse_bytes

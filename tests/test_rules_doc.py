@@ -1,7 +1,7 @@
 """docs/rules.md is generated from the RuleDoc beside each rule and docs/rules-intro.md.
 
-A rule's documentation lives next to its registration (``document(RuleDoc(...))`` after
-``register(RuleInfo(...))``); ``python3 scripts/rules_doc.py`` writes docs/rules.md from it.
+A rule's documentation is a ``RuleDoc`` constant (``MB101_DOC``) beside the function that finds
+the rule; ``python3 scripts/rules_doc.py`` writes docs/rules.md from them.
 These tests fail when the file is stale or a rule lacks a part; tests/test_rules.py reads the
 generated file (a section per code, its severity, an example that triggers the rule).
 """
@@ -15,7 +15,7 @@ from pathlib import Path
 
 import pytest
 
-from fanuc_macro.diagnostics import RULE_DOCS, RULES
+from fanuc_macro.analysis import RULE_DOCS, RULES
 from fanuc_macro.rules_doc import PARTS, part_texts, render
 
 ROOT = Path(__file__).resolve().parents[1]

@@ -7,17 +7,20 @@ from __future__ import annotations
 import ast
 import re
 from pathlib import Path
+from types import MappingProxyType, ModuleType
 
+import pytest
 from lsprotocol import types
 
 import fanuc_macro
-from fanuc_macro.analysis import analyse
+from fanuc_macro.analysis import RULE_DOCS, RULES, analyse
 from fanuc_macro.config import Config
-from fanuc_macro.diagnostics import Diagnostic, Fix, FixEdit, Severity, Tag
+from fanuc_macro.diagnostics import Diagnostic, Fix, FixEdit, RuleDoc, RuleInfo, Severity, Tag
 from fanuc_macro.ide.actions import code_actions
 from fanuc_macro.ide.data import Problem, Range, TextEdit
 from fanuc_macro.ide.view import View
 from fanuc_macro.lsp.convert import Codec, Lines, to_lsp_diagnostic
+from fanuc_macro.rules import FAMILIES, declared
 from fanuc_macro.rules.context import LineFinding
 from fanuc_macro.rules.dialect import in_foreign_file
 from fanuc_macro.syntax import dialects
@@ -110,3 +113,69 @@ def test_no_rule_code_outside_the_rules() -> None:
                 ):
                     found.append(f"{path.relative_to(package)}:{node.lineno} {node.value}")
     assert not found, found
+
+
+# ---- the registry and the layout of a rule family -------------------------------------------
+
+
+def test_the_registry_is_read_only_and_built_from_the_declarations() -> None:
+    assert isinstance(RULES, MappingProxyType) and isinstance(RULE_DOCS, MappingProxyType)
+    assert list(RULES) == sorted(RULES) and list(RULE_DOCS) == list(RULES)
+    for module in FAMILIES:
+        for name, value in vars(module).items():
+            if isinstance(value, RuleInfo):
+                assert name == value.code and RULES[name] is value
+            if isinstance(value, RuleDoc):
+                assert name == f"{value.code}_DOC" and RULE_DOCS[value.code] is value
+    with pytest.raises(TypeError):
+        RULES["MB999"] = RULES["MB101"]  # type: ignore[index]
+
+
+def test_a_code_declared_twice_is_an_error() -> None:
+    other = RuleInfo("MB101", "other", Severity.ERROR, "another rule", "jumps")
+    with pytest.raises(ValueError, match="MB101 declared twice"):
+        declared(RuleInfo, FAMILIES, other)
+
+
+@pytest.mark.parametrize("module", FAMILIES, ids=lambda m: m.__name__.rsplit(".", 1)[-1])
+def test_each_rules_documentation_is_beside_the_function_that_finds_it(module: ModuleType) -> None:
+    """Each ``MBxxx_DOC`` is followed (after the other docs of that place) by the first
+    top-level function that names its rule: ``MBxxx`` given to ``make`` or ``"MBxxx"`` in a
+    line finding."""
+    assert module.__file__ is not None
+    tree = ast.parse(Path(module.__file__).read_text("utf-8"))
+    codes = sorted(n for n, v in vars(module).items() if isinstance(v, RuleInfo))
+    assert codes
+    placed: dict[str, str] = {}
+    pending: list[str] = []
+    for node in tree.body:
+        target = node.targets[0] if isinstance(node, ast.Assign) else None
+        if isinstance(target, ast.Name) and target.id.endswith("_DOC"):
+            pending.append(target.id.removesuffix("_DOC"))
+        elif isinstance(node, ast.FunctionDef | ast.ClassDef) and pending:
+            for code in pending:
+                placed[code] = node.name
+                # the code itself, or a module table naming it (math_domain's alarms)
+                names = {code} | _tables_naming(tree, code)
+                assert any(_names(n, names) for n in ast.walk(node)), (
+                    f"{code}_DOC is above {node.name}, which does not find it"
+                )
+            pending = []
+    assert sorted(placed) == codes, f"documented beside a function: {sorted(placed)}"
+
+
+def _names(node: ast.AST, names: set[str]) -> bool:
+    return (isinstance(node, ast.Name) and node.id in names) or (
+        isinstance(node, ast.Constant) and node.value in names
+    )
+
+
+def _tables_naming(tree: ast.Module, code: str) -> set[str]:
+    """The module-level names whose value names ``code``."""
+    return {
+        target.id
+        for node in tree.body
+        if isinstance(node, ast.Assign) and any(_names(n, {code}) for n in ast.walk(node.value))
+        for target in node.targets
+        if isinstance(target, ast.Name) and not target.id.startswith("MB")
+    }

@@ -14,21 +14,18 @@ from .cancel import RULE_CHECKS, CancelToken, raise_if_cancelled
 from .config import Config
 from .diagnostics import (
     REPORT_INTERNAL_ERROR,
-    RULES,
     Diagnostic,
     Related,
     RuleDoc,
     RuleInfo,
     Severity,
-    document,
     make,
-    register,
     suppressed_codes,
 )
 from .evaluator import Facts, evaluate
 from .line_maps import LineMap
 from .program.index import ProgramIndex, build_index
-from .rules import ALL_CHECKS, LINE_CHECKS, LineFinding, plain_line_quiet
+from .rules import ALL_CHECKS, FAMILIES, LINE_CHECKS, LineFinding, declared, plain_line_quiet
 from .rules.context import RuleContext
 from .rules.dialect import foreign_dialect, in_foreign_file
 from .syntax.parser import BlockParser, default_parser, parse_text, quiet_gc
@@ -50,29 +47,29 @@ def log_failure(logger: str, message: str, *args: object) -> None:
     logging.getLogger(logger).exception(message, *args)
 
 
-register(
-    RuleInfo("MB000", "internal-error", Severity.ERROR,
-             "The analyser failed on this document; the message says where.", "internal"),
-)  # fmt: skip
-
-# What each rule above reports, why, an example, the fix and what it leaves out:
-# docs/rules.md is generated from it (python3 scripts/rules_doc.py).
-document(
-    RuleDoc(
-        "MB000",
-        reports="""
+# The analysis's own code: a rule or the evaluator failed (internal_error gives the message).
+MB000 = RuleInfo(
+    "MB000",
+    "internal-error",
+    Severity.ERROR,
+    "The analyser failed on this document; the message says where.",
+    "internal",
+)
+MB000_DOC = RuleDoc(
+    "MB000",
+    reports="""
 One of the rules (or the evaluator) failed with an exception on this
 document. The message names the rule function and the codes it gives, the exception, and how
 to report it. The other rules still ran, so the other diagnostics are valid. The traceback is
 not printed by default: `fanuc-macro check --verbose` prints it, `--log-file PATH` writes it to
 a file, and the language server writes it to its log.
 """,
-        why="""
+    why="""
 It does not come from the program: nothing will happen on
 the control because of it. But the failed rule checked nothing, so a problem that rule looks
 for may be in the program unreported.
 """,
-        example="""
+    example="""
 No correct program should produce it; a report looks like this:
 
 ```text
@@ -82,16 +79,20 @@ the program text (or this block) and the traceback, which `fanuc-macro check --v
 and the language server writes to its log (--log-file)
 ```
 """,
-        fix="""
+    fix="""
 Report it with the block that causes it (the smallest program that reproduces
 it) and the traceback. Until it is fixed, check by hand what the failed rule family covers.
 """,
-        not_reported="""
+    not_reported="""
 Anything about the program: it says only that a rule failed. A rule
 that fails on one document does not stop the others, nor the analysis of other documents.
 """,
-    ),
 )
+
+
+# Every rule and its documentation, by code: built once from the declarations.
+RULES = declared(RuleInfo, FAMILIES, MB000)
+RULE_DOCS = declared(RuleDoc, FAMILIES, MB000_DOC)
 
 
 def rule_name(check: Callable[..., object]) -> str:
@@ -203,7 +204,7 @@ def run_checks(
             findings = in_foreign_file(findings, parsed, foreign)
         for f in findings:
             fixes = [fix.on_line(line) for fix in f.fixes] if f.fixes else ()
-            found.append(make(f.code, f.message, line, f.start, f.end, fixes=fixes))
+            found.append(make(RULES[f.code], f.message, line, f.start, f.end, fixes=fixes))
     rules = list(checks)
     for done, rule in enumerate(rules):
         if cancel is not None:
@@ -213,7 +214,7 @@ def run_checks(
         except Exception as err:  # a bug in one rule must not hide the others
             log_failure(__name__, "rule %s failed on %s", rule_name(rule), ctx.doc.uri)
             message = internal_error(f"rule {rule_name(rule)}", err)
-            found.append(make("MB000", message, 0, 0, 0))
+            found.append(make(MB000, message, 0, 0, 0))
     return found
 
 
@@ -264,7 +265,7 @@ def analyse(
             except Exception as err:  # the structural rules still report
                 log_failure(__name__, "evaluation of %s failed", uri)
                 message = internal_error("the evaluator (its rules MB501-MB903 did not run)", err)
-                failed.append(make("MB000", message, 0, 0, 0))
+                failed.append(make(MB000, message, 0, 0, 0))
         ctx = RuleContext(doc, index, config, workspace_programs, facts)
         found = failed + run_checks(ctx, [*ALL_CHECKS, *extra_checks], cancel)
         threads: list[Thread] = []
@@ -280,4 +281,4 @@ def with_uri(diag: Diagnostic, uri: str) -> Diagnostic:
     return replace(diag, related=tuple(replace(r, uri=r.uri or uri) for r in diag.related))
 
 
-__all__ = ["Analysis", "Related", "analyse", "run_checks", "with_uri"]
+__all__ = ("RULES", "RULE_DOCS", "Analysis", "Related", "analyse", "run_checks", "with_uri")

@@ -1,9 +1,11 @@
-"""Diagnostics and the registry of rules that produce them.
+"""Diagnostics, and what declares the rules that produce them.
 
-Every diagnostic has a code (``MB101``). Each rule's documentation (what it reports, why it
-matters on the machine, an example, the fix, what it does not report) is a ``RuleDoc`` next to
-its registration; docs/rules.md is generated from them (``python3 scripts/rules_doc.py``).
-Positions are 0-based lines and columns in characters.
+Every diagnostic has a code (``MB101``). A rule family's module declares each of its rules as
+a ``RuleInfo`` constant named by its code (``MB101``), and each rule's documentation (what it
+reports, why it matters on the machine, an example, the fix, what it does not report) as a
+``RuleDoc`` constant (``MB101_DOC``) beside the function that finds it. ``analysis.RULES`` and
+``analysis.RULE_DOCS`` are built once from them; docs/rules.md is generated from them
+(``python3 scripts/rules_doc.py``). Positions are 0-based lines and columns in characters.
 """
 
 from __future__ import annotations
@@ -95,22 +97,14 @@ class Diagnostic:
 
 @dataclass(frozen=True, slots=True, eq=False, repr=False)
 class RuleInfo:
+    """A rule, declared once by its family's module: what each of its diagnostics gets."""
+
     code: str
     name: str  # kebab-case, e.g. "goto-missing-label"
     severity: Severity
     summary: str
     family: str
     tags: frozenset[Tag] = frozenset()  # on every diagnostic of the rule
-
-
-RULES: dict[str, RuleInfo] = {}
-
-
-def register(*infos: RuleInfo) -> None:
-    for info in infos:
-        if info.code in RULES and RULES[info.code] != info:
-            raise ValueError(f"rule code {info.code} registered twice")
-        RULES[info.code] = info
 
 
 @dataclass(frozen=True, slots=True, eq=False, repr=False)
@@ -130,16 +124,6 @@ class RuleDoc:
     severity_note: str = ""  # after the default severity: when the rule gives another
 
 
-RULE_DOCS: dict[str, RuleDoc] = {}
-
-
-def document(*docs: RuleDoc) -> None:
-    for doc in docs:
-        if doc.code in RULE_DOCS and RULE_DOCS[doc.code] != doc:
-            raise ValueError(f"rule code {doc.code} documented twice")
-        RULE_DOCS[doc.code] = doc
-
-
 def line_list(lines: Sequence[int], shown: int = 8) -> str:
     """``12, 40, 77, ...``: the first of some 0-based lines, as the user numbers them."""
     text = ", ".join(str(n + 1) for n in lines[:shown])
@@ -147,7 +131,7 @@ def line_list(lines: Sequence[int], shown: int = 8) -> str:
 
 
 def make(
-    code: str,
+    rule: RuleInfo,
     message: str,
     line: int,
     column: int,
@@ -159,10 +143,9 @@ def make(
     data: dict[str, object] | None = None,
     fixes: Iterable[Fix] = (),
 ) -> Diagnostic:
-    info = RULES[code]
     return Diagnostic(
-        code,
-        severity or info.severity,
+        rule.code,
+        severity or rule.severity,
         message,
         line,
         column,
@@ -171,7 +154,7 @@ def make(
         tuple(related),
         data,
         tuple(fixes),
-        info.tags,
+        rule.tags,
     )
 
 

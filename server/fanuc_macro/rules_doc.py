@@ -1,4 +1,4 @@
-"""docs/rules.md, written from docs/rules-intro.md and the ``RuleDoc`` beside each rule.
+"""docs/rules.md, written from docs/rules-intro.md and the ``RuleDoc`` beside each rule's function.
 
 The intro holds the general sections (the families, suppressing and disabling a rule, how the
 evaluator runs a program, how the threading rules know the thread); then comes one section per
@@ -9,8 +9,8 @@ diagnostic to that heading's anchor (lsp/convert.py), so the heading form must n
 
 from __future__ import annotations
 
-from . import analysis  # noqa: F401  (importing it registers every rule and its documentation)
-from .diagnostics import RULE_DOCS, RULES, RuleDoc, RuleInfo
+from .analysis import RULE_DOCS, RULES
+from .diagnostics import RuleDoc, RuleInfo
 
 GENERATED = """\
 <!-- Generated: do not edit. Each rule's section comes from the RuleDoc beside its registration

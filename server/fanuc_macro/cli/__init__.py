@@ -14,9 +14,9 @@ from collections.abc import Callable, Sequence
 from pathlib import Path
 
 from .. import __version__
-from ..analysis import analyse, log_failure
+from ..analysis import RULES, analyse, log_failure
 from ..config import CONTROLLERS, NOT_SET, Config
-from ..diagnostics import REPORT_INTERNAL_ERROR, RULES, Severity
+from ..diagnostics import REPORT_INTERNAL_ERROR, Severity
 from ..ide import motion_text, trace  # small: what it uses, the check uses too
 from ..program_files import (
     PROGRAM_SUFFIXES,

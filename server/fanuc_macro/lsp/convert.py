@@ -18,7 +18,8 @@ from typing import overload
 
 from lsprotocol import types
 
-from ..diagnostics import RULES, Diagnostic, Severity, Tag
+from ..analysis import RULES
+from ..diagnostics import Diagnostic, Severity, Tag
 
 LINE_BREAK = re.compile(r"\r\n|\r|\n")
 SOURCE = "fanuc-macro"

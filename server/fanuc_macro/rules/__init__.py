@@ -1,12 +1,19 @@
-"""The rules: one module per rule family, each rule registered with its documentation beside
-it. :mod:`.context` is what a rule reads: the document, its index, the settings, the facts.
+"""The rules: one module per rule family. :mod:`.context` is what a rule reads: the document,
+its index, the settings, the facts.
 
-Importing this package registers every rule. ``LINE_CHECKS`` run on one line's text, once per
-distinct line; ``ALL_CHECKS`` run on a document (see ARCHITECTURE.md).
+Each family declares its rules as ``RuleInfo`` constants named by code (``MB101``), and each
+rule's documentation as a ``RuleDoc`` (``MB101_DOC``) beside the function that finds it;
+:func:`declared` collects them once into a read-only table. ``LINE_CHECKS`` run on one line's
+text, once per distinct line; ``ALL_CHECKS`` run on a document (see ARCHITECTURE.md).
 """
 
 from __future__ import annotations
 
+from collections.abc import Iterable, Mapping
+from types import MappingProxyType, ModuleType
+from typing import TypeVar
+
+from ..diagnostics import RuleDoc, RuleInfo
 from ..syntax.tree import ParsedLine
 from . import (
     addresses,
@@ -64,12 +71,49 @@ ALL_CHECKS: tuple[Check, ...] = (
     cycles.check,
 )
 
-__all__ = [
+# The modules that declare rules, one per family.
+FAMILIES: tuple[ModuleType, ...] = (
+    reading,
+    dialect,
+    jumps,
+    loops,
+    expressions,
+    statements,
+    math_domain,
+    addresses,
+    flow,
+    variable_use,
+    angles,
+    threading,
+    thread_passes,
+    thread_tool,
+    thread_lead,
+    cycles,
+)
+
+D = TypeVar("D", RuleInfo, RuleDoc)
+
+
+def declared(kind: type[D], modules: Iterable[ModuleType], *more: D) -> Mapping[str, D]:
+    """Every ``kind`` (``RuleInfo`` or ``RuleDoc``) the modules declare at their top level, and
+    ``more``, by code, in code order: read-only. Two declarations of one code are an error."""
+    found: dict[str, D] = {}
+    for value in [v for module in modules for v in vars(module).values()] + list(more):
+        if isinstance(value, kind):
+            known = found.setdefault(value.code, value)
+            if known is not value:
+                raise ValueError(f"rule code {value.code} declared twice")
+    return MappingProxyType(dict(sorted(found.items())))
+
+
+__all__ = (
     "ALL_CHECKS",
+    "FAMILIES",
     "LINE_CHECKS",
     "Check",
     "LineCheck",
     "LineFinding",
     "RuleContext",
+    "declared",
     "plain_line_quiet",
-]
+)

@@ -14,10 +14,8 @@ from ..diagnostics import (
     RuleDoc,
     RuleInfo,
     Severity,
-    document,
     line_list,
     make,
-    register,
 )
 from ..evaluator.facts import AddressNotInteger, AddressOutOfRange, FeedZero
 from ..syntax.marks import constant_value
@@ -25,36 +23,38 @@ from ..syntax.tree import Assign, Var, Word
 from .context import RuleContext
 
 FAMILY = "addresses"
-register(
-    RuleInfo("MB601", "address-not-integer", Severity.ERROR,
-             "An M, S, T, P, L, H, D or G address gets a value that is not a whole number.",
-             FAMILY),
-    RuleInfo("MB602", "address-out-of-range", Severity.WARNING,
-             "An address gets an impossible value: negative S/T/M/F, S above the machine's "
-             "maximum spindle speed.", FAMILY),
-    RuleInfo("MB603", "feed-not-set", Severity.WARNING,
-             "A G01/G02/G03 cut runs before any F was commanded.", FAMILY),
-    RuleInfo("MB604", "feed-zero", Severity.ERROR,
-             "A cut or a thread runs with F0: the control stops with PS0011 FEED ZERO.",
-             FAMILY),
-)  # fmt: skip
 
-# What each rule above reports, why, an example, the fix and what it leaves out:
-# docs/rules.md is generated from it (python3 scripts/rules_doc.py).
-document(
-    RuleDoc(
-        "MB601",
-        reports="""
+# The family's rules, by code: what diagnostics.make gives each diagnostic (its name,
+# severity and tags). Each rule's documentation, MBxxx_DOC, is beside the function that
+# finds it; docs/rules.md is generated from them (python3 scripts/rules_doc.py).
+# fmt: off
+MB601 = RuleInfo("MB601", "address-not-integer", Severity.ERROR,
+                 "An M, S, T, P, L, H, D or G address gets a value that is not a whole number.",
+                 FAMILY)
+MB602 = RuleInfo("MB602", "address-out-of-range", Severity.WARNING,
+                 "An address gets an impossible value: negative S/T/M/F, S above the machine's "
+                 "maximum spindle speed.", FAMILY)
+MB603 = RuleInfo("MB603", "feed-not-set", Severity.WARNING,
+                 "A G01/G02/G03 cut runs before any F was commanded.", FAMILY)
+MB604 = RuleInfo("MB604", "feed-zero", Severity.ERROR,
+                 "A cut or a thread runs with F0: the control stops with PS0011 FEED ZERO.",
+                 FAMILY)
+# fmt: on
+
+
+MB601_DOC = RuleDoc(
+    "MB601",
+    reports="""
 An `M`, `S`, `T`, `L`, `H` or `D` address, or the `P` of a call, that gets a
 value with a fractional part when the program runs (`M#13` with `#13=3.5`), or a `G` with more
 than one decimal. The message says where the variable was set.
 """,
-        why="""
+    why="""
 These addresses take whole numbers. A control rejects the
 block with an alarm, or rounds the value: `M#13` with 3.5 rounded is `M4`, the spindle in
 reverse, and `T#20` with 1.5 selects a tool other than the one meant.
 """,
-        example="""
+    example="""
 ```nc
 O6001 (SPINDLE FROM A VARIABLE)
 #13=3.5
@@ -62,35 +62,37 @@ M#13
 M30
 ```
 """,
-        fix="""
+    fix="""
 Correct the value (often a variable set for another purpose, `M#1` meant
 `M#13`), or round it explicitly with `ROUND`/`FIX`. When the message suggests a variable
 (one assigned earlier in the program whose comment names the address), the quick fix in the
 editor writes it in the word, offered only when its last assignment before the word is a whole
 number written as a constant, so that the word then gets a whole value.
 """,
-        not_reported="""
+    not_reported="""
 Addresses that take a decimal point (`X`, `Y`, `Z`, `F`, `R`...), a
 `G` code with one decimal (`G66.1`, `G54.1`), a vacant variable (the word is omitted) and values
 the analysis cannot compute.
 """,
-    ),
-    RuleDoc(
-        "MB602",
-        reports="""
+)
+
+
+MB602_DOC = RuleDoc(
+    "MB602",
+    reports="""
 An address that gets an impossible value when the program runs: a negative
 `S`, `T`, `M`, `H`, `D` or `F`, or an `S` above the machine's maximum spindle speed when that
 limit is set (setting `fanuc-macro.machine.maxSpindleSpeed`, command line
 `--max-spindle-speed`). The limit has no default: it is the machine builder's, and a guessed one
 reports good programs.
 """,
-        why="""
+    why="""
 A negative feed or speed raises an alarm. A speed above the
 maximum is clamped by the control (or stopped with an alarm), so the surface speed the program
 computed is not the one cutting: poor finish, broken inserts, and on a lathe a chuck turning
 faster than its rating.
 """,
-        example="""
+    example="""
 ```nc
 O6002 (SURFACE SPEED TO RPM)
 #19=FIX[1000.*300./[3.1416*20.]]
@@ -100,86 +102,15 @@ M30
 
 The example assumes `"fanuc-macro.machine.maxSpindleSpeed": 4000`.
 """,
-        fix="""
+    fix="""
 Clamp the computed speed (`G50 S` on a lathe, or `IF [#19 GT ...]`), or correct
 the formula or the setting of the machine's maximum speed.
 """,
-        not_reported="""
+    not_reported="""
 A spindle speed of any size while the machine's maximum is not
 set; values the analysis cannot compute (an argument of a macro nobody calls); the speed a
 `G96` constant surface speed turns into at a diameter (the control clamps it with `G50 S`).
 """,
-    ),
-    RuleDoc(
-        "MB603",
-        reports="""
-A cutting move (`G01`, `G02`, `G03`) that the evaluator runs before any `F`
-has been commanded since the main program started: once per program, at the first such cut,
-with the number of cuts after it that run without F too (and their lines). A macro analysed
-on its own gets its caller's feed, so it is not reported there.
-""",
-        why="""
-F is modal. With none given, the move runs at the feed an
-earlier program left, which no one chose for this cut, or, after power-on, with F zero, which
-stops the program with PS0011 FEED ZERO (COMMAND) at that block. (The power-on feed of
-parameter 1411 on some controls is not checked here.)
-""",
-        example="""
-```nc
-O0001 (FACE)
-G54 G90 G00 X0 Y0
-S1000 M03
-G01 Z-2.
-X100.
-M30
-```
-""",
-        fix="""
-Give F in the first cutting block (`G01 Z-2. F100.`), or before it.
-""",
-        not_reported="""
-Rapid moves (`G00`), threading and canned cycles, whose F is the
-lead or is given in the cycle block, cutting moves after a call of a program outside the
-analysed files, which may have commanded F, and each later cut without F as a warning of its
-own.
-""",
-    ),
-    RuleDoc(
-        "MB604",
-        reports="""
-A cutting move (`G01`, `G02`, `G03`), a thread (`G32`, `G92`, `G76`) or a
-lathe turning or facing cycle (`G90`, `G94`) that the evaluator runs with F exactly 0: written
-`F0`, a variable that holds 0 (the message says where it was set), or the modal F left at 0
-by an earlier block. The evaluator stops the run there, as the control does (so does the
-debugger, on its alarm filter).
-""",
-        why="""
-The control stops at that block with alarm PS0011 FEED ZERO
-(COMMAND) (FANUC 0i-TF/0i-MF alarm lists; for a threading lead of 0 the alarm number is not
-verified here). A feed or lead computed into a variable that comes out 0 is usually a formula
-or an argument gone wrong, found on the machine in the middle of a job.
-""",
-        example="""
-```nc
-O1010 (PITCH FROM A VARIABLE)
-G97 S500 M03
-G00 X22. Z5.
-#9=0
-G32 Z-30. F#9
-G00 X40.
-M30
-```
-""",
-        fix="""
-Give the feed (the lead for a thread): correct the formula or the argument
-that gives 0, or the `F` word.
-""",
-        not_reported="""
-Rapid moves, which do not use F; `G70`–`G73` and the drilling cycles;
-a feed the analysis cannot compute (a macro's argument nobody passes); a feed that is tiny
-but not 0 (MB602 reports a negative one).
-""",
-    ),
 )
 
 
@@ -187,7 +118,7 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
     yield from _feed_not_set(ctx)
     yield from _feed_zero(ctx)
     for f in ctx.findings(AddressNotInteger, AddressOutOfRange):
-        code = "MB601" if isinstance(f, AddressNotInteger) else "MB602"
+        rule = MB601 if isinstance(f, AddressNotInteger) else MB602
         message = f.message
         related: list[Related] = []
         fixes: tuple[Fix, ...] = ()
@@ -205,7 +136,43 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
                 if hint:
                     message += f"; did you mean {word.address}{hint}?"
                     fixes = _use_meant(ctx, f.line, word, hint)
-        yield make(code, message, f.line, f.column, f.end_column, related=related, fixes=fixes)
+        yield make(rule, message, f.line, f.column, f.end_column, related=related, fixes=fixes)
+
+
+MB603_DOC = RuleDoc(
+    "MB603",
+    reports="""
+A cutting move (`G01`, `G02`, `G03`) that the evaluator runs before any `F`
+has been commanded since the main program started: once per program, at the first such cut,
+with the number of cuts after it that run without F too (and their lines). A macro analysed
+on its own gets its caller's feed, so it is not reported there.
+""",
+    why="""
+F is modal. With none given, the move runs at the feed an
+earlier program left, which no one chose for this cut, or, after power-on, with F zero, which
+stops the program with PS0011 FEED ZERO (COMMAND) at that block. (The power-on feed of
+parameter 1411 on some controls is not checked here.)
+""",
+    example="""
+```nc
+O0001 (FACE)
+G54 G90 G00 X0 Y0
+S1000 M03
+G01 Z-2.
+X100.
+M30
+```
+""",
+    fix="""
+Give F in the first cutting block (`G01 Z-2. F100.`), or before it.
+""",
+    not_reported="""
+Rapid moves (`G00`), threading and canned cycles, whose F is the
+lead or is given in the cycle block, cutting moves after a call of a program outside the
+analysed files, which may have commanded F, and each later cut without F as a warning of its
+own.
+""",
+)
 
 
 def _feed_not_set(ctx: RuleContext) -> Iterator[Diagnostic]:
@@ -227,7 +194,7 @@ def _feed_not_set(ctx: RuleContext) -> Iterator[Diagnostic]:
             later = line_list(cuts[1:])  # the first few: SHOWN_CUTS is more than it shows
             more = f"; {program.count - 1} more cuts run without F after it (lines {later})"
         yield make(
-            "MB603",
+            MB603,
             f"{program.message}: the feed is what an earlier program left, or 0 after power-on "
             f"(alarm PS0011 FEED ZERO); give F in this block or before it{more}",
             line,
@@ -235,6 +202,44 @@ def _feed_not_set(ctx: RuleContext) -> Iterator[Diagnostic]:
             len(text.rstrip()),
             related=[Related(n, 0, 0, "a cut without F") for n in cuts[1:20]],
         )
+
+
+MB604_DOC = RuleDoc(
+    "MB604",
+    reports="""
+A cutting move (`G01`, `G02`, `G03`), a thread (`G32`, `G92`, `G76`) or a
+lathe turning or facing cycle (`G90`, `G94`) that the evaluator runs with F exactly 0: written
+`F0`, a variable that holds 0 (the message says where it was set), or the modal F left at 0
+by an earlier block. The evaluator stops the run there, as the control does (so does the
+debugger, on its alarm filter).
+""",
+    why="""
+The control stops at that block with alarm PS0011 FEED ZERO
+(COMMAND) (FANUC 0i-TF/0i-MF alarm lists; for a threading lead of 0 the alarm number is not
+verified here). A feed or lead computed into a variable that comes out 0 is usually a formula
+or an argument gone wrong, found on the machine in the middle of a job.
+""",
+    example="""
+```nc
+O1010 (PITCH FROM A VARIABLE)
+G97 S500 M03
+G00 X22. Z5.
+#9=0
+G32 Z-30. F#9
+G00 X40.
+M30
+```
+""",
+    fix="""
+Give the feed (the lead for a thread): correct the formula or the argument
+that gives 0, or the `F` word.
+""",
+    not_reported="""
+Rapid moves, which do not use F; `G70`–`G73` and the drilling cycles;
+a feed the analysis cannot compute (a macro's argument nobody passes); a feed that is tiny
+but not 0 (MB602 reports a negative one).
+""",
+)
 
 
 def _feed_zero(ctx: RuleContext) -> Iterator[Diagnostic]:
@@ -259,7 +264,7 @@ def _feed_zero(ctx: RuleContext) -> Iterator[Diagnostic]:
                         )
             start, end = word.span.start, word.span.end
         yield make(
-            "MB604",
+            MB604,
             f"{f.message}, {where}: the control stops at this block; give the "
             + ("lead" if f.lead else "feed"),
             f.line,

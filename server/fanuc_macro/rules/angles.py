@@ -13,7 +13,7 @@ from __future__ import annotations
 import math
 from collections.abc import Iterator
 
-from ..diagnostics import Diagnostic, RuleDoc, RuleInfo, Severity, document, make, register
+from ..diagnostics import Diagnostic, RuleDoc, RuleInfo, Severity, make
 from ..line_maps import LineMap
 from ..per_line import PerLine
 from ..syntax.tree import Call, Num, ParsedLine, Span, Var
@@ -22,54 +22,15 @@ from ..threads.linear import expr_text
 from .context import RuleContext, line_statements
 
 FAMILY = "math-domain"
-register(
-    RuleInfo("MB504", "trig-radians", Severity.WARNING,
-             "SIN, COS or TAN gets angles that look like radians; FANUC takes degrees.", FAMILY),
-)  # fmt: skip
 
-# What each rule above reports, why, an example, the fix and what it leaves out:
-# docs/rules.md is generated from it (python3 scripts/rules_doc.py).
-document(
-    RuleDoc(
-        "MB504",
-        reports="""
-`SIN`, `COS` or `TAN` of one variable whose values over the run look like
-radians: all within ±2π, a sweep of 0.5 or more in steps under 0.8, and either round numbers of
-degrees when read as radians (0.31416 is 18°) or a π in the assignments of the angle
-(`#16=#16+8.*3.14159/180.`). The message gives the range of the argument, the angles
-it would stand for, and how little the function's value moves in degrees.
-""",
-        why="""
-FANUC's trigonometric functions take degrees: an arc written
-in radians (18° to 162° as 0.314 to 2.827) is swept over under 3°, so every cut of a
-fitting-method program lands within a fraction of a millimetre instead of following the
-profile, and the part is cut wrong without any alarm.
-""",
-        example="""
-```nc
-O5001 (ARC FINISHING)
-#16=0.31416
-G00 X150. Z100.
-N5 G00 Z[50.+8.8*COS[#16]]
-X[100.-17.6*SIN[#16]]
-G32 Z-113. F25.
-G00 X140.
-#16=#16+0.13963
-IF[#16LE2.8275]GOTO5
-M30
-```
-""",
-        fix="""
-Write the angles in degrees (`#16=18.`, `#16=#16+8.`), or convert once
-(`#16=#16*57.29578`).
-""",
-        not_reported="""
-Small angles in degrees (a taper of 0.5° to 3° in steps of 0.5°:
-not round numbers of degrees as radians, no π in their assignments), arguments that are
-expressions rather than one variable, and functions run fewer than three times.
-""",
-    ),
-)
+# The family's rules, by code: what diagnostics.make gives each diagnostic (its name,
+# severity and tags). Each rule's documentation, MBxxx_DOC, is beside the function that
+# finds it; docs/rules.md is generated from them (python3 scripts/rules_doc.py).
+# fmt: off
+MB504 = RuleInfo("MB504", "trig-radians", Severity.WARNING,
+                 "SIN, COS or TAN gets angles that look like radians; FANUC takes degrees.", FAMILY)
+# fmt: on
+
 
 TRIG = frozenset({"SIN", "COS", "TAN"})
 _PI_LIKE = (math.pi, 2 * math.pi, math.pi / 2, math.pi / 180, 180 / math.pi)
@@ -124,6 +85,47 @@ def _round_degrees(value: float) -> bool:
     return abs(degrees * 2 - round(degrees * 2)) < 0.04  # a multiple of 0.5° within 0.02°
 
 
+MB504_DOC = RuleDoc(
+    "MB504",
+    reports="""
+`SIN`, `COS` or `TAN` of one variable whose values over the run look like
+radians: all within ±2π, a sweep of 0.5 or more in steps under 0.8, and either round numbers of
+degrees when read as radians (0.31416 is 18°) or a π in the assignments of the angle
+(`#16=#16+8.*3.14159/180.`). The message gives the range of the argument, the angles
+it would stand for, and how little the function's value moves in degrees.
+""",
+    why="""
+FANUC's trigonometric functions take degrees: an arc written
+in radians (18° to 162° as 0.314 to 2.827) is swept over under 3°, so every cut of a
+fitting-method program lands within a fraction of a millimetre instead of following the
+profile, and the part is cut wrong without any alarm.
+""",
+    example="""
+```nc
+O5001 (ARC FINISHING)
+#16=0.31416
+G00 X150. Z100.
+N5 G00 Z[50.+8.8*COS[#16]]
+X[100.-17.6*SIN[#16]]
+G32 Z-113. F25.
+G00 X140.
+#16=#16+0.13963
+IF[#16LE2.8275]GOTO5
+M30
+```
+""",
+    fix="""
+Write the angles in degrees (`#16=18.`, `#16=#16+8.`), or convert once
+(`#16=#16*57.29578`).
+""",
+    not_reported="""
+Small angles in degrees (a taper of 0.5° to 3° in steps of 0.5°:
+not round numbers of degrees as radians, no π in their assignments), arguments that are
+expressions rather than one variable, and functions run fewer than three times.
+""",
+)
+
+
 def check(ctx: RuleContext) -> Iterator[Diagnostic]:
     facts = ctx.doc_facts()
     if facts is None:
@@ -152,7 +154,7 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
             name = text.split("[", 1)[0]
             results = [_degrees_function(name, v) for v in (low, high)]
             yield make(
-                "MB504",
+                MB504,
                 f"{text} gets #{number} from {low:.4g} to {high:.4g} ({summary.count} times): "
                 f"angles of radian size ({math.degrees(low):.4g}° to {math.degrees(high):.4g}° "
                 f"as radians), but {name} takes degrees, so the sweep is {high - low:.3g}° "

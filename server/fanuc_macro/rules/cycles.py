@@ -14,7 +14,7 @@ from __future__ import annotations
 from collections.abc import Iterator
 from dataclasses import dataclass, field
 
-from ..diagnostics import Diagnostic, Related, RuleDoc, RuleInfo, Severity, document, make, register
+from ..diagnostics import Diagnostic, Related, RuleDoc, RuleInfo, Severity, make
 from ..evaluator.facts import Motion
 from ..threads.identify import Thread
 from ..threads.jobs import motion_positions
@@ -23,53 +23,14 @@ from .context import RuleContext
 from .threading import EPS, mm, thread_related, width
 
 FAMILY = "cycles"
-register(
-    RuleInfo("MB813", "cycle-start-side", Severity.ERROR,
-             "A lathe cycle (G90, G92, G76, G94) starts on the wrong side of its cut.", FAMILY),
-)  # fmt: skip
 
-# What each rule above reports, why, an example, the fix and what it leaves out:
-# docs/rules.md is generated from it (python3 scripts/rules_doc.py).
-document(
-    RuleDoc(
-        "MB813",
-        reports="""
-A lathe cycle whose start point, to which it returns after every pass, is
-on the wrong side of its cut: a `G92` or `G76` of an external thread that starts below the
-thread's crest (about d − 0.15P) or below its first pass, of an internal one that starts above
-the bore (about D1 + 0.15P) or above its first pass; a series of `G90` passes that starts on
-the material's side of its first pass, a series of `G94` facing passes that starts on the
-face side of its first one. The side is the one the passes go (deeper towards the axis is an
-outside cut). It stands at the block that put the tool there.
-""",
-        why="""
-The cycle retracts to the start point: into the thread just
-cut, or into the stock, and its return in Z drags the tool across the part. The insert breaks
-and the thread is torn.
-""",
-        example="""
-```nc
-O1108 (M24X3)
-G97 S450 M03
-G00 X22. Z5.
-G92 X23.5 Z-35. F3.
-X23.1
-X22.7
-G00 X100. Z100.
-M30
-```
-""",
-        fix="""
-Start the cycle outside the crest (`X26.` here), or inside the bore for an
-internal thread.
-""",
-        not_reported="""
-A single `G90` or `G94` pass (one pass does not tell the side), a
-thread whose side is not known, and the Z of a threading cycle's start point (the run-in is
-the programmer's choice).
-""",
-    ),
-)
+# The family's rules, by code: what diagnostics.make gives each diagnostic (its name,
+# severity and tags). Each rule's documentation, MBxxx_DOC, is beside the function that
+# finds it; docs/rules.md is generated from them (python3 scripts/rules_doc.py).
+# fmt: off
+MB813 = RuleInfo("MB813", "cycle-start-side", Severity.ERROR,
+                 "A lathe cycle (G90, G92, G76, G94) starts on the wrong side of its cut.", FAMILY)
+# fmt: on
 
 
 def check(ctx: RuleContext) -> Iterator[Diagnostic]:
@@ -81,13 +42,53 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
             yield from _series_start(ctx, series)
 
 
+MB813_DOC = RuleDoc(
+    "MB813",
+    reports="""
+A lathe cycle whose start point, to which it returns after every pass, is
+on the wrong side of its cut: a `G92` or `G76` of an external thread that starts below the
+thread's crest (about d − 0.15P) or below its first pass, of an internal one that starts above
+the bore (about D1 + 0.15P) or above its first pass; a series of `G90` passes that starts on
+the material's side of its first pass, a series of `G94` facing passes that starts on the
+face side of its first one. The side is the one the passes go (deeper towards the axis is an
+outside cut). It stands at the block that put the tool there.
+""",
+    why="""
+The cycle retracts to the start point: into the thread just
+cut, or into the stock, and its return in Z drags the tool across the part. The insert breaks
+and the thread is torn.
+""",
+    example="""
+```nc
+O1108 (M24X3)
+G97 S450 M03
+G00 X22. Z5.
+G92 X23.5 Z-35. F3.
+X23.1
+X22.7
+G00 X100. Z100.
+M30
+```
+""",
+    fix="""
+Start the cycle outside the crest (`X26.` here), or inside the bore for an
+internal thread.
+""",
+    not_reported="""
+A single `G90` or `G94` pass (one pass does not tell the side), a
+thread whose side is not known, and the Z of a threading cycle's start point (the run-in is
+the programmer's choice).
+""",
+)
+
+
 def _report(ctx: RuleContext, m: Motion, message: str, related: list[Related]) -> Diagnostic:
     """At the block that put the tool at the start point (the line to fix), else the cycle."""
     line = m.line
     if m.start_line is not None and m.start_uri == ctx.doc.uri:
         related = [Related(m.line, 0, 0, f"the {m.code} that starts there"), *related]
         line = m.start_line
-    return make("MB813", message, line, 0, width(ctx, line), related=related)
+    return make(MB813, message, line, 0, width(ctx, line), related=related)
 
 
 def _thread_start(ctx: RuleContext, thread: Thread) -> Iterator[Diagnostic]:

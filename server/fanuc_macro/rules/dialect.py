@@ -6,7 +6,7 @@ from __future__ import annotations
 
 from collections.abc import Iterable, Iterator
 
-from ..diagnostics import RuleDoc, RuleInfo, Severity, document, register
+from ..diagnostics import RuleDoc, RuleInfo, Severity
 from ..line_maps import LineMap
 from ..per_line import PerLine
 from ..syntax import dialects
@@ -31,70 +31,14 @@ from ..syntax.walk import variables
 from .context import LineFinding
 
 FAMILY = "dialect"
-register(
-    RuleInfo("MB002", "not-fanuc", Severity.ERROR,
-             "A form another control accepts and a FANUC control rejects.", FAMILY),
-)  # fmt: skip
 
-# What each rule above reports, why, an example, the fix and what it leaves out:
-# docs/rules.md is generated from it (python3 scripts/rules_doc.py).
-document(
-    RuleDoc(
-        "MB002",
-        reports="""
-A form that another control accepts and a FANUC control rejects, with the
-dialect named: Haas (`M97 P`, `G103`, `G154 P`, `M109 P`, `IF [...] <NC words>`,
-`IF [...] THEN M31`, block `IF`/`ELSE`/`ENDIF`, a bare value as a condition, `#30001.116`, the
-settings `#20000`–`#29999`), Mitsubishi/Citizen (`$1`, `!L1`, `S1=500`, `X#1+1.` without
-brackets), LinuxCNC (`#<NAME>`, `o100 sub`, `o<name> call`), LNC/Syntec (`%@MACRO`, `@100`,
-`:=`, `IF (...) THEN ... END_IF`, `WAIT()`), Siemens Sinumerik (`PROC`, `DEF REAL`, `GOTOF`,
-`FOR ... ENDFOR`, `R20=5`, `$AA_IW`), DDCS (`IF #1==0 GOTO5` without brackets), Okuma OSP
-(`VC1`, `VS1` variables, sequence names `NLOOP`, `GOTO NEND`, `IF [...] NLOOP`, `CALL O...`,
-`RTS`) and wire EDM registers (`H1=0.216`, `H000=+00000000`, `E001=`). A form FANUC rejects
-that no dialect here has is named "not FANUC (dialect not recognised)": C-style comparisons
-(`<`, `>=`, `==`, `LTE`), a value assigned to an address or a name (`Q1=12`, `TEMP=10`).
-
-A file that carries a mark only another control's programs have (Syntec's `%@MACRO` header,
-Siemens' `PROC` or `DEF` or R parameters, LinuxCNC's O-word subroutine, DDCS's `IF` without
-brackets, Okuma's `VC1=` or `GOTO NLOOP` or `CALL O...`, a wire EDM's `H1=` register) is read as
-that control's program: every block in it that FANUC rejects is reported
-once, as MB002 naming that dialect and the line of the mark, instead of as syntax errors,
-comment or end-of-block warnings (a `;` comment of Siemens or LinuxCNC, a `(` of a Syntec
-expression). A block `ELSE` in a Siemens file is Siemens', not Haas's.
-""",
-        why="""
-A FANUC control raises an alarm on the block: PS0125 for an
-`IF` without `GOTO`/`THEN`, PS0114 for `<`, `LTE` and unbracketed address expressions, PS0115
-for a variable number with a decimal part, an address or format alarm for `$`, `!`, `@`. A
-program copied from a Haas or a Citizen stops at the first such block, possibly in the middle
-of a cycle.
-""",
-        example="""
-```nc
-O0044 (PART COUNTER - HAAS FORMS)
-IF [#1 EQ #2] S#20 F#30
-IF [FIX[#3901/5.] EQ [#3901/5.]] THEN M31
-M97 P100
-M30
-```
-""",
-        fix="""
-Rewrite in FANUC form: `IF [...] GOTO n` around the NC block, `THEN` only
-with one macro assignment, `M98 P<program>` with the subroutine as its own O program, `[ ]`
-around an address expression (`X[#814+.1]`), `EQ NE GT GE LT LE` for comparisons, numbered
-variables instead of names, `G54.1 P` for `G154 P`, offsets through `G10` or `#2001`–.
-""",
-        not_reported="""
-A code that is Haas's only with its `P` when it stands without
-one (`M97`, `M109` alone are machine builders' M codes on FANUC); `#10000`–`#19999`, which are
-FANUC's tool offsets as well as Haas's commons; the other Haas G codes: `G47` (engraving on a
-Haas, a tool offset on a FANUC mill), `G187` (a FANUC machine may make it a custom macro call);
-and, in another control's file, each rejected block
-once, under that control's name, not as syntax errors. G103 as a FANUC custom G code (set by
-parameters 6050-6059) is reported all the same: that setting is not in the program.
-""",
-    ),
-)
+# The family's rules, by code: what diagnostics.make gives each diagnostic (its name,
+# severity and tags). Each rule's documentation, MBxxx_DOC, is beside the function that
+# finds it; docs/rules.md is generated from them (python3 scripts/rules_doc.py).
+# fmt: off
+MB002 = RuleInfo("MB002", "not-fanuc", Severity.ERROR,
+                 "A form another control accepts and a FANUC control rejects.", FAMILY)
+# fmt: on
 
 
 def check_line(parsed: ParsedLine) -> Iterable[LineFinding]:
@@ -143,6 +87,63 @@ def _plain_nc(parsed: ParsedLine, statement: NcStatement) -> list[LineFinding] |
     if codes:  # the codes' findings come before the variables'
         return [*_code_findings(codes, has_p, has_h), *found]
     return found
+
+
+MB002_DOC = RuleDoc(
+    "MB002",
+    reports="""
+A form that another control accepts and a FANUC control rejects, with the
+dialect named: Haas (`M97 P`, `G103`, `G154 P`, `M109 P`, `IF [...] <NC words>`,
+`IF [...] THEN M31`, block `IF`/`ELSE`/`ENDIF`, a bare value as a condition, `#30001.116`, the
+settings `#20000`–`#29999`), Mitsubishi/Citizen (`$1`, `!L1`, `S1=500`, `X#1+1.` without
+brackets), LinuxCNC (`#<NAME>`, `o100 sub`, `o<name> call`), LNC/Syntec (`%@MACRO`, `@100`,
+`:=`, `IF (...) THEN ... END_IF`, `WAIT()`), Siemens Sinumerik (`PROC`, `DEF REAL`, `GOTOF`,
+`FOR ... ENDFOR`, `R20=5`, `$AA_IW`), DDCS (`IF #1==0 GOTO5` without brackets), Okuma OSP
+(`VC1`, `VS1` variables, sequence names `NLOOP`, `GOTO NEND`, `IF [...] NLOOP`, `CALL O...`,
+`RTS`) and wire EDM registers (`H1=0.216`, `H000=+00000000`, `E001=`). A form FANUC rejects
+that no dialect here has is named "not FANUC (dialect not recognised)": C-style comparisons
+(`<`, `>=`, `==`, `LTE`), a value assigned to an address or a name (`Q1=12`, `TEMP=10`).
+
+A file that carries a mark only another control's programs have (Syntec's `%@MACRO` header,
+Siemens' `PROC` or `DEF` or R parameters, LinuxCNC's O-word subroutine, DDCS's `IF` without
+brackets, Okuma's `VC1=` or `GOTO NLOOP` or `CALL O...`, a wire EDM's `H1=` register) is read as
+that control's program: every block in it that FANUC rejects is reported
+once, as MB002 naming that dialect and the line of the mark, instead of as syntax errors,
+comment or end-of-block warnings (a `;` comment of Siemens or LinuxCNC, a `(` of a Syntec
+expression). A block `ELSE` in a Siemens file is Siemens', not Haas's.
+""",
+    why="""
+A FANUC control raises an alarm on the block: PS0125 for an
+`IF` without `GOTO`/`THEN`, PS0114 for `<`, `LTE` and unbracketed address expressions, PS0115
+for a variable number with a decimal part, an address or format alarm for `$`, `!`, `@`. A
+program copied from a Haas or a Citizen stops at the first such block, possibly in the middle
+of a cycle.
+""",
+    example="""
+```nc
+O0044 (PART COUNTER - HAAS FORMS)
+IF [#1 EQ #2] S#20 F#30
+IF [FIX[#3901/5.] EQ [#3901/5.]] THEN M31
+M97 P100
+M30
+```
+""",
+    fix="""
+Rewrite in FANUC form: `IF [...] GOTO n` around the NC block, `THEN` only
+with one macro assignment, `M98 P<program>` with the subroutine as its own O program, `[ ]`
+around an address expression (`X[#814+.1]`), `EQ NE GT GE LT LE` for comparisons, numbered
+variables instead of names, `G54.1 P` for `G154 P`, offsets through `G10` or `#2001`–.
+""",
+    not_reported="""
+A code that is Haas's only with its `P` when it stands without
+one (`M97`, `M109` alone are machine builders' M codes on FANUC); `#10000`–`#19999`, which are
+FANUC's tool offsets as well as Haas's commons; the other Haas G codes: `G47` (engraving on a
+Haas, a tool offset on a FANUC mill), `G187` (a FANUC machine may make it a custom macro call);
+and, in another control's file, each rejected block
+once, under that control's name, not as syntax errors. G103 as a FANUC custom G code (set by
+parameters 6050-6059) is reported all the same: that setting is not in the program.
+""",
+)
 
 
 def _check_line(parsed: ParsedLine) -> Iterator[LineFinding]:

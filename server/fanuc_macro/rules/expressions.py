@@ -13,9 +13,7 @@ from ..diagnostics import (
     RuleDoc,
     RuleInfo,
     Severity,
-    document,
     make,
-    register,
 )
 from ..line_maps import LineMap
 from ..program.variables import classify
@@ -45,181 +43,24 @@ from .context import LineFinding, RuleContext
 
 FAMILY = "expressions"
 MAX_BRACKET_NESTING = 5
-register(
-    RuleInfo("MB301", "bracket-nesting", Severity.ERROR,
-             "Brackets nested more than five deep, function brackets included (PS0118).", FAMILY),
-    RuleInfo("MB302", "no-such-variable", Severity.ERROR,
-             "A variable number that does not exist on a FANUC control (PS0115).", FAMILY),
-    RuleInfo("MB303", "extended-common", Severity.INFORMATION,
-             "A common variable of #200-#499, which exists only with an option.", FAMILY),
-    RuleInfo("MB304", "write-read-only", Severity.ERROR,
-             "An assignment to #0 or to a read-only system variable (PS0116).", FAMILY),
-    RuleInfo("MB305", "logic-operand-unbracketed", Severity.WARNING,
-             "AND, OR or XOR without brackets in a comparison's operand: it binds tighter than "
-             "the comparison and works on the values bit by bit.", FAMILY),
-)  # fmt: skip
 
-# What each rule above reports, why, an example, the fix and what it leaves out:
-# docs/rules.md is generated from it (python3 scripts/rules_doc.py).
-document(
-    RuleDoc(
-        "MB301",
-        reports="""
-An expression whose brackets nest more than five deep. Function brackets
-(`SIN[`, `SQRT[`) and the brackets of `#[...]` count.
-""",
-        why="""
-FANUC allows five levels; a sixth raises PS0118 TOO MANY
-BRACKET NESTING and stops the program at that block.
-""",
-        example="""
-```nc
-O9020 (TAPER PASS)
-#1=[[[[[[#2+#3]*#4]+#5]*#6]+#7]*#8]
-M99
-```
-""",
-        fix="""
-Split the expression into steps with intermediate variables:
-`#9=[#2+#3]*#4+#5` then `#1=[[#9*#6]+#7]*#8`.
-""",
-        not_reported="""
-Five levels or fewer. The brackets of an `IF` or `WHILE` condition
-and those around joined conditions (`[[#1 LT 0] AND [#2 LT 0]]`) are not counted: they are not
-expression brackets (whether the control counts them is unverified).
-""",
-    ),
-    RuleDoc(
-        "MB302",
-        reports="""
-A variable number that no FANUC control has: `#34`–`#99`. Locals are
-`#1`–`#33`, commons `#100`–`#199` and `#500`–`#999`, system variables `#1000` and up.
-""",
-        why="""
-Reading or writing it raises PS0115 VARIABLE NO. OUT OF
-RANGE, which stops the program at that block. The variable was usually meant as another one
-(`#50` for `#150` or `#500`), so the value the program would use is wrong as well.
-""",
-        example="""
-```nc
-O9030 (THREAD MACRO)
-#50=#26-#17
-G00 X#50
-M99
-```
-""",
-        fix="""
-Use a local (`#1`–`#33`) or a common variable (`#100`–`#199`, `#500`–`#999`).
-""",
-        not_reported="""
-Numbers the analysis knows only at run time (`#[#1+30]`, MB903),
-numbers with a decimal part (`#30001.116`, Haas's, MB002), the extended commons `#200`–`#499`
-(MB303), and numbers from `#1000` up, which are taken as system variables without a list of
-every control's.
-""",
-    ),
-    RuleDoc(
-        "MB303",
-        reports="""
-The use of common variables of `#200`–`#499`, which exist only with the
-extended common variable option. It is reported once per file, at the first use; the message
-gives the number of uses in the file, the range of their lines and the variables used.
-""",
-        why="""
-On a control without the option the variable does not exist
-and the block raises PS0115 VARIABLE NO. OUT OF RANGE. The same program works on the machine
-that has the option and stops on the one that does not.
-""",
-        example="""
-```nc
-O9040 (PROBE RESULTS)
-#200=#5061
-M99
-```
-""",
-        fix="""
-If the machine has the option, say so: the setting
-`fanuc-macro.machine.extendedCommons` (`true`), or `--extended-commons` on the command line.
-Otherwise use `#100`–`#199` or `#500`–`#999`.
-""",
-        not_reported="""
-Any use when the setting says the option is there; every use after
-the first (the option is one fact about the machine, so one note per file says it, with the
-count); `#100`–`#199` and `#500`–`#999`, which every control with Custom Macro B has; an
-indirect `#[...]` whose number is known only at run time.
-""",
-    ),
-    RuleDoc(
-        "MB304",
-        reports="""
-An assignment to `#0` (always vacant) or to a read-only system variable:
-date and time (`#3011`, `#3012`), modal information (`#4001`–), positions (`#5001`–`#5120`),
-and others. Writable system variables (`#3000`, `#3001`, `#3004`, `#3901`, work offsets, tool
-offsets) are not reported.
-""",
-        why="""
-The control raises PS0116 WRITE PROTECTED VARIABLE and stops
-at the block. Writing `#5021` was probably meant to move the axis or to set an offset; neither
-happens.
-""",
-        example="""
-```nc
-O9050 (RESTORE STATE)
-#4001=1
-#0=1
-M99
-```
-""",
-        fix="""
-Restore modal state with a G code (`G#10` after `#10=#4001`), move with a motion
-block, set work offsets through `#5221`– and tool offsets through `#2001`– or `#10001`–.
-""",
-        not_reported="""
-The writable system variables (`#3000`, `#3001`, `#3004`, `#3901`,
-offsets), system variables whose protection the checker does not know, and indirect assignments
-`#[...] = `, whose target is known only at run time (MB902).
-""",
-    ),
-    RuleDoc(
-        "MB305",
-        reports="""
-A comparison in an `IF` or `WHILE` whose operand holds `AND`, `OR` or
-`XOR` outside brackets: `IF [#1 AND #2 LT 0]`, `IF [#3 EQ #1 OR #2]`. The message says how the
-control reads it and how to write each operand's test.
-""",
-        why="""
-In an expression `AND`, `OR` and `XOR` work bit by bit on
-the integer values and bind like `*` (`AND`) and `+` (`OR`, `XOR`), tighter than `EQ`...`LE`:
-`[#1 AND #2 LT 0]` is `[[#1 AND #2] LT 0]`, the bits #1 and #2 share compared with 0, which is
-almost never below 0. The branch meant for "#1 and #2 below 0" is never taken (or always
-taken), and the safety check or the pass it guards does not do what was written. (The
-precedence is the reference's, from background knowledge: to be checked against B-64304EN,
-"Arithmetic and logic operation".)
-""",
-        example="""
-```nc
-O9060 (PROBE CHECK)
-IF [#1 AND #2 LT 0] GOTO 90
-M99
-N90 #3000=1(OUT OF TOLERANCE)
-```
-""",
-        fix="""
-Put each comparison in its own brackets and join them:
-`IF [[#1 LT 0] AND [#2 LT 0]] GOTO 90` (FANUC 0i-D and later combine conditions so). If the
-bitwise reading was meant, say so with brackets: `IF [[#1 AND #2] LT 0] GOTO 90`. In the editor
-the quick fix offers both, each operand compared on its own first (the likely intent, as the
-words read: "if #1 and #2 are below 0"); it is offered only when the operand is one chain of one
-operator (`#1 AND #2 AND #3`) and the rewritten line stays within five brackets.
-""",
-        not_reported="""
-A bit mask with a constant (`IF [#1003 AND 4 EQ 4]`): the
-control's reading is the bit test meant. `AND`, `OR`, `XOR` already in brackets
-(`[[#1 AND #2] LT 0]`) or between bracketed conditions (`[#1 LT 0] AND [#2 LT 0]`), and in an
-assignment (`#3=#1 AND #2`), where no comparison binds to them.
-""",
-    ),
-)
+# The family's rules, by code: what diagnostics.make gives each diagnostic (its name,
+# severity and tags). Each rule's documentation, MBxxx_DOC, is beside the function that
+# finds it; docs/rules.md is generated from them (python3 scripts/rules_doc.py).
+# fmt: off
+MB301 = RuleInfo("MB301", "bracket-nesting", Severity.ERROR,
+                 "Brackets nested more than five deep, function brackets included (PS0118).",
+                 FAMILY)
+MB302 = RuleInfo("MB302", "no-such-variable", Severity.ERROR,
+                 "A variable number that does not exist on a FANUC control (PS0115).", FAMILY)
+MB303 = RuleInfo("MB303", "extended-common", Severity.INFORMATION,
+                 "A common variable of #200-#499, which exists only with an option.", FAMILY)
+MB304 = RuleInfo("MB304", "write-read-only", Severity.ERROR,
+                 "An assignment to #0 or to a read-only system variable (PS0116).", FAMILY)
+MB305 = RuleInfo("MB305", "logic-operand-unbracketed", Severity.WARNING,
+                 "AND, OR or XOR without brackets in a comparison's operand: it binds tighter than "
+                 "the comparison and works on the values bit by bit.", FAMILY)
+# fmt: on
 
 
 def check_line(parsed: ParsedLine) -> Iterable[LineFinding]:
@@ -231,6 +72,68 @@ def check_line(parsed: ParsedLine) -> Iterable[LineFinding]:
         if plain is not None:  # no brackets, no condition, no target: only the numbers
             return [f for var in plain if (f := _no_such_variable(var)) is not None]
     return list(_check_line(whole, parsed.text))
+
+
+MB301_DOC = RuleDoc(
+    "MB301",
+    reports="""
+An expression whose brackets nest more than five deep. Function brackets
+(`SIN[`, `SQRT[`) and the brackets of `#[...]` count.
+""",
+    why="""
+FANUC allows five levels; a sixth raises PS0118 TOO MANY
+BRACKET NESTING and stops the program at that block.
+""",
+    example="""
+```nc
+O9020 (TAPER PASS)
+#1=[[[[[[#2+#3]*#4]+#5]*#6]+#7]*#8]
+M99
+```
+""",
+    fix="""
+Split the expression into steps with intermediate variables:
+`#9=[#2+#3]*#4+#5` then `#1=[[#9*#6]+#7]*#8`.
+""",
+    not_reported="""
+Five levels or fewer. The brackets of an `IF` or `WHILE` condition
+and those around joined conditions (`[[#1 LT 0] AND [#2 LT 0]]`) are not counted: they are not
+expression brackets (whether the control counts them is unverified).
+""",
+)
+
+
+MB304_DOC = RuleDoc(
+    "MB304",
+    reports="""
+An assignment to `#0` (always vacant) or to a read-only system variable:
+date and time (`#3011`, `#3012`), modal information (`#4001`–), positions (`#5001`–`#5120`),
+and others. Writable system variables (`#3000`, `#3001`, `#3004`, `#3901`, work offsets, tool
+offsets) are not reported.
+""",
+    why="""
+The control raises PS0116 WRITE PROTECTED VARIABLE and stops
+at the block. Writing `#5021` was probably meant to move the axis or to set an offset; neither
+happens.
+""",
+    example="""
+```nc
+O9050 (RESTORE STATE)
+#4001=1
+#0=1
+M99
+```
+""",
+    fix="""
+Restore modal state with a G code (`G#10` after `#10=#4001`), move with a motion
+block, set work offsets through `#5221`– and tool offsets through `#2001`– or `#10001`–.
+""",
+    not_reported="""
+The writable system variables (`#3000`, `#3001`, `#3004`, `#3901`,
+offsets), system variables whose protection the checker does not know, and indirect assignments
+`#[...] = `, whose target is known only at run time (MB902).
+""",
+)
 
 
 def _check_line(whole: Statement | None, text: str) -> Iterator[LineFinding]:
@@ -274,6 +177,37 @@ def _check_line(whole: Statement | None, text: str) -> Iterator[LineFinding]:
                 )
 
 
+MB302_DOC = RuleDoc(
+    "MB302",
+    reports="""
+A variable number that no FANUC control has: `#34`–`#99`. Locals are
+`#1`–`#33`, commons `#100`–`#199` and `#500`–`#999`, system variables `#1000` and up.
+""",
+    why="""
+Reading or writing it raises PS0115 VARIABLE NO. OUT OF
+RANGE, which stops the program at that block. The variable was usually meant as another one
+(`#50` for `#150` or `#500`), so the value the program would use is wrong as well.
+""",
+    example="""
+```nc
+O9030 (THREAD MACRO)
+#50=#26-#17
+G00 X#50
+M99
+```
+""",
+    fix="""
+Use a local (`#1`–`#33`) or a common variable (`#100`–`#199`, `#500`–`#999`).
+""",
+    not_reported="""
+Numbers the analysis knows only at run time (`#[#1+30]`, MB903),
+numbers with a decimal part (`#30001.116`, Haas's, MB002), the extended commons `#200`–`#499`
+(MB303), and numbers from `#1000` up, which are taken as system variables without a list of
+every control's.
+""",
+)
+
+
 def _no_such_variable(var: Var) -> LineFinding | None:
     """MB302 for a variable written with its number."""
     if var.number is None or var.number != int(var.number):
@@ -307,6 +241,39 @@ def _extended_commons(parsed: ParsedLine) -> tuple[tuple[int, int, int], ...]:
 _extended_lines: LineMap[tuple[tuple[int, int, int], ...]] = LineMap(_extended_commons)
 
 
+MB303_DOC = RuleDoc(
+    "MB303",
+    reports="""
+The use of common variables of `#200`–`#499`, which exist only with the
+extended common variable option. It is reported once per file, at the first use; the message
+gives the number of uses in the file, the range of their lines and the variables used.
+""",
+    why="""
+On a control without the option the variable does not exist
+and the block raises PS0115 VARIABLE NO. OUT OF RANGE. The same program works on the machine
+that has the option and stops on the one that does not.
+""",
+    example="""
+```nc
+O9040 (PROBE RESULTS)
+#200=#5061
+M99
+```
+""",
+    fix="""
+If the machine has the option, say so: the setting
+`fanuc-macro.machine.extendedCommons` (`true`), or `--extended-commons` on the command line.
+Otherwise use `#100`–`#199` or `#500`–`#999`.
+""",
+    not_reported="""
+Any use when the setting says the option is there; every use after
+the first (the option is one fact about the machine, so one note per file says it, with the
+count); `#100`–`#199` and `#500`–`#999`, which every control with Custom Macro B has; an
+indirect `#[...]` whose number is known only at run time.
+""",
+)
+
+
 def check(ctx: RuleContext) -> Iterator[Diagnostic]:
     """MB303, once per file at the first use: whether the option is there is one fact about
     the machine, not about each block. The range #200-#499 is the reference's (macro-b.md 2.1:
@@ -333,7 +300,7 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
             f"{last + 1} ({shown})"
         )
     yield make(
-        "MB303",
+        MB303,
         f"#{number} is {where}: these common variables exist only with the extended common "
         "variable option (0i-F / 30i); without it each use stops with alarm PS0115. If the "
         "machine has the option, say so (setting fanuc-macro.machine.extendedCommons, "
@@ -498,6 +465,47 @@ def acceptable_fix(fixed: str, before: int) -> bool:
     if deepest > MAX_BRACKET_NESTING:
         return False
     return _logic_count(parsed.statement) < before
+
+
+MB305_DOC = RuleDoc(
+    "MB305",
+    reports="""
+A comparison in an `IF` or `WHILE` whose operand holds `AND`, `OR` or
+`XOR` outside brackets: `IF [#1 AND #2 LT 0]`, `IF [#3 EQ #1 OR #2]`. The message says how the
+control reads it and how to write each operand's test.
+""",
+    why="""
+In an expression `AND`, `OR` and `XOR` work bit by bit on
+the integer values and bind like `*` (`AND`) and `+` (`OR`, `XOR`), tighter than `EQ`...`LE`:
+`[#1 AND #2 LT 0]` is `[[#1 AND #2] LT 0]`, the bits #1 and #2 share compared with 0, which is
+almost never below 0. The branch meant for "#1 and #2 below 0" is never taken (or always
+taken), and the safety check or the pass it guards does not do what was written. (The
+precedence is the reference's, from background knowledge: to be checked against B-64304EN,
+"Arithmetic and logic operation".)
+""",
+    example="""
+```nc
+O9060 (PROBE CHECK)
+IF [#1 AND #2 LT 0] GOTO 90
+M99
+N90 #3000=1(OUT OF TOLERANCE)
+```
+""",
+    fix="""
+Put each comparison in its own brackets and join them:
+`IF [[#1 LT 0] AND [#2 LT 0]] GOTO 90` (FANUC 0i-D and later combine conditions so). If the
+bitwise reading was meant, say so with brackets: `IF [[#1 AND #2] LT 0] GOTO 90`. In the editor
+the quick fix offers both, each operand compared on its own first (the likely intent, as the
+words read: "if #1 and #2 are below 0"); it is offered only when the operand is one chain of one
+operator (`#1 AND #2 AND #3`) and the rewritten line stays within five brackets.
+""",
+    not_reported="""
+A bit mask with a constant (`IF [#1003 AND 4 EQ 4]`): the
+control's reading is the bit test meant. `AND`, `OR`, `XOR` already in brackets
+(`[[#1 AND #2] LT 0]`) or between bracketed conditions (`[#1 LT 0] AND [#2 LT 0]`), and in an
+assignment (`#3=#1 AND #2`), where no comparison binds to them.
+""",
+)
 
 
 def _logic_finding(text: str, found: LogicOperand, fixes: tuple[Fix, ...]) -> LineFinding:

@@ -10,15 +10,15 @@ from itertools import chain
 from operator import itemgetter
 from typing import NamedTuple, TypeVar, cast
 
+from ..database import Database, TableKey
+from ..database import current as current_database
 from ..diagnostics import (
     Diagnostic,
     RuleDoc,
     RuleInfo,
     Severity,
     Tag,
-    document,
     make,
-    register,
 )
 from ..evaluator.facts import (
     DocumentFacts,
@@ -51,116 +51,50 @@ from .context import Changes, RuleContext, Seen
 FAMILY = "flow"
 # Dead code, shown faded; a restart point (MB709) runs on a search, so it is not.
 DEAD_CODE = frozenset({Tag.UNNECESSARY})
-register(
-    RuleInfo("MB701", "condition-constant", Severity.INFORMATION,
-             "An IF or WHILE condition that has the same result every time the analysis "
-             "reaches it: the branch is dead or always taken.", FAMILY),
-    RuleInfo("MB702", "never-executed", Severity.INFORMATION,
-             "Blocks of an analysed program that no run reaches.", FAMILY, DEAD_CODE),
-    RuleInfo("MB703", "endless-loop", Severity.ERROR,
-             "A loop that does not end within the analysis budget.", FAMILY),
-    RuleInfo("MB704", "jump-fails", Severity.ERROR,
-             "A computed GOTO or an M99 P whose sequence number is missing when it runs "
-             "(PS0128/PS0078).", FAMILY),
-    RuleInfo("MB705", "call-nesting", Severity.ERROR,
-             "Calls nested deeper than the control allows (PS0077).", FAMILY),
-    RuleInfo("MB706", "call-target-unknown", Severity.WARNING,
-             "A call whose program number, computed at run time, is not in the workspace.",
-             FAMILY),
-    RuleInfo("MB707", "waits-for-outside", Severity.INFORMATION,
-             "A loop that waits for a common or system variable that only something outside "
-             "the program (PMC, FOCAS, another path) changes.", FAMILY),
-    RuleInfo("MB708", "long-loop", Severity.INFORMATION,
-             "A loop still running when the analysis budget ran out, though nearer its end "
-             "every turn: what comes after it is not analysed.", FAMILY),
-    RuleInfo("MB709", "restart-point", Severity.HINT,
-             "Blocks after an unconditional jump or a program end that begin with an N "
-             "number: no run reaches them, a sequence number search (restart at a tool) "
-             "does.", FAMILY),
-    RuleInfo("MB710", "dead-after-end", Severity.INFORMATION,
-             "Blocks after the M30 or M02 of a main program that no jump and no sequence "
-             "number search can reach.", FAMILY, DEAD_CODE),
-)  # fmt: skip
 
-# What each rule above reports, why, an example, the fix and what it leaves out:
-# docs/rules.md is generated from it (python3 scripts/rules_doc.py).
-document(
-    RuleDoc(
-        "MB701",
-        reports="""
-An `IF` or `WHILE` condition with the same result every time the analysis
-reached it, decided by the program's own values: every variable it reads was set earlier in
-the same program and had one value each time. The branch is never or always taken, the loop
-body never runs or always repeats.
-""",
-        why="""
-Nothing stops, but a branch that is never taken is code that
-never runs, often a sign of a wrong variable or comparison: a safety check that never fires, a
-finishing pass that is always skipped.
-""",
-        example="""
-```nc
-O7001 (ROUGHING)
-#1=5.
-IF[#1GT3.]GOTO10
-G00 X100.
-N10 M30
-```
-""",
-        fix="""
-If the condition tests values that change on the machine (arguments, probe
-results), nothing to do. Otherwise remove the dead branch or correct the condition.
-""",
-        not_reported="""
-Conditions on values the analysis does not know: arguments of a
-macro analysed on its own, common and system variables set by another program, and anything a
-call of a program outside the analysed files (`G65 P9814`) may have changed. Conditions on
-values that come from outside the program even when known (a macro's arguments from its one
-caller, the caller's locals, a common set by the main program, a probing macro's result): the
-outcome is the caller's choice, and another call may change it. Guards whose inputs change
-from one time to the next but that never fire (a clamp on the last step of a loop). Outcomes
-reached on a path that went through an undecided condition, conditions in a program with a
-rejected block that may hold a jump, and conditions in a run that stopped early (an alarm, the
-step budget).
-""",
-    ),
-    RuleDoc(
-        "MB702",
-        reports="""
-A stretch of blocks of an analysed program that no run reached, reported
-on its first block with the number of blocks and the line range. It is not reported when a run
-stopped early or took a branch the analysis could not decide.
-""",
-        why="""
-Blocks that never run are harmless by themselves, but they
-often show a jump to the wrong label or an old pass left in place, and they are not what the
-reader of the program thinks the machine does.
-""",
-        example="""
-```nc
-O7002 (FINISH PASS)
-GOTO10
-G00 X100. Z100.
-N10 M30
-```
-""",
-        fix="""
-Delete the dead blocks or correct the jump that skips them.
-""",
-        not_reported="""
-Blocks after an unconditional jump, `M30`, `M02` or `M99` that
-begin with an N number, and what follows them up to the next jump or end: a sequence number
-search reaches them (MB709). Blocks an N number called by a Haas `M97` starts. Nothing in a
-program whose run stopped early (an alarm, the step budget) or took a branch the analysis could
-not decide: which blocks are reached is not known then (MB710 still reports what no jump can
-reach after the end). Nor in a program with a block that does not parse and may change which
-blocks run: one in another control's language (Syntec `IF (...) THEN`, a Citizen `$2` path) or
-one that holds a `GOTO`, `IF`, `WHILE`, `END` or a call.
-""",
-    ),
-    RuleDoc(
-        "MB703",
-        reports="""
+# The family's rules, by code: what diagnostics.make gives each diagnostic (its name,
+# severity and tags). Each rule's documentation, MBxxx_DOC, is beside the function that
+# finds it; docs/rules.md is generated from them (python3 scripts/rules_doc.py).
+# fmt: off
+MB701 = RuleInfo("MB701", "condition-constant", Severity.INFORMATION,
+                 "An IF or WHILE condition that has the same result every time the analysis "
+                 "reaches it: the branch is dead or always taken.", FAMILY)
+MB702 = RuleInfo("MB702", "never-executed", Severity.INFORMATION,
+                 "Blocks of an analysed program that no run reaches.", FAMILY, DEAD_CODE)
+MB703 = RuleInfo("MB703", "endless-loop", Severity.ERROR,
+                 "A loop that does not end within the analysis budget.", FAMILY)
+MB704 = RuleInfo("MB704", "jump-fails", Severity.ERROR,
+                 "A computed GOTO or an M99 P whose sequence number is missing when it runs "
+                 "(PS0128/PS0078).", FAMILY)
+MB705 = RuleInfo("MB705", "call-nesting", Severity.ERROR,
+                 "Calls nested deeper than the control allows (PS0077).", FAMILY)
+MB706 = RuleInfo("MB706", "call-target-unknown", Severity.WARNING,
+                 "A call whose program number, computed at run time, is not in the workspace.",
+                 FAMILY)
+MB707 = RuleInfo("MB707", "waits-for-outside", Severity.INFORMATION,
+                 "A loop that waits for a common or system variable that only something outside "
+                 "the program (PMC, FOCAS, another path) changes.", FAMILY)
+MB708 = RuleInfo("MB708", "long-loop", Severity.INFORMATION,
+                 "A loop still running when the analysis budget ran out, though nearer its end "
+                 "every turn: what comes after it is not analysed.", FAMILY)
+MB709 = RuleInfo("MB709", "restart-point", Severity.HINT,
+                 "Blocks after an unconditional jump or a program end that begin with an N "
+                 "number: no run reaches them, a sequence number search (restart at a tool) "
+                 "does.", FAMILY)
+MB710 = RuleInfo("MB710", "dead-after-end", Severity.INFORMATION,
+                 "Blocks after the M30 or M02 of a main program that no jump and no sequence "
+                 "number search can reach.", FAMILY, DEAD_CODE)
+# fmt: on
+
+
+# What a dead stretch's blocks are (see _classify_dead), and the state between them.
+DEAD, RESTART, LOCAL_CALL, AFTER_STOP = "dead", "restart", "local call", "after stop"
+LineRange = tuple[int, int]  # first and last line
+
+
+MB703_DOC = RuleDoc(
+    "MB703",
+    reports="""
 A loop (`WHILE`/`DO` or a backward `GOTO`) that was still running when the
 analysis budget ran out, on the loop's first block, with the variables of its condition that
 did not change.
@@ -168,12 +102,12 @@ did not change.
 A loop whose test still moves towards its bound when the budget runs out is reported as
 MB708 (long loop) instead, and one that waits for a variable only the outside changes as MB707.
 """,
-        why="""
+    why="""
 The control repeats the loop until the operator resets it.
 With motion in the loop the same pass is cut again and again; without motion the control
 looks frozen while it executes macro statements.
 """,
-        example="""
+    example="""
 ```nc
 O7003 (PECK DRILL)
 #1=0
@@ -184,27 +118,29 @@ END1
 M30
 ```
 """,
-        fix="""
+    fix="""
 Change the variable the condition tests inside the loop (here `#1=#1+1.`).
 """,
-        not_reported="""
+    not_reported="""
 A loop whose test moves towards its bound (MB708) or waits for a
 common or system variable nothing in it writes (MB707), and a run the 10 s safety net stopped:
 how far a run gets in seconds depends on the machine, so nothing is concluded from it.
 """,
-    ),
-    RuleDoc(
-        "MB704",
-        reports="""
+)
+
+
+MB704_DOC = RuleDoc(
+    "MB704",
+    reports="""
 A computed `GOTO` (`GOTO#22`, `GOTO[#1+10]`) or an `M99 P` return whose
 sequence number does not exist, or is not a whole number from 1 to 99999, when it runs with the
 values the analysis computed.
 """,
-        why="""
+    why="""
 The control raises PS0128 ILLEGAL MACRO SEQUENCE NUMBER
 (PS0078 SEQUENCE NUMBER NOT FOUND for `M99 P`) and stops at the block.
 """,
-        example="""
+    example="""
 ```nc
 O7004 (DISPATCH)
 #22=41.
@@ -212,26 +148,28 @@ GOTO#22
 N40 M30
 ```
 """,
-        fix="""
+    fix="""
 Add the missing label or correct the computation of the target.
 """,
-        not_reported="""
+    not_reported="""
 A `GOTO` written with a constant target (MB101 reports a missing
 label from the text alone), and a target the analysis cannot compute (the run stops there
 without a verdict).
 """,
-    ),
-    RuleDoc(
-        "MB705",
-        reports="""
+)
+
+
+MB705_DOC = RuleDoc(
+    "MB705",
+    reports="""
 Macro calls (`G65`, `G66`) nested more than five levels deep, or calls of
 any kind more than ten deep, when the program runs.
 """,
-        why="""
+    why="""
 The control raises PS0077 TOO MANY SUB,MACRO NESTING and stops
 at the call. A macro that calls itself without an exit reaches it at once.
 """,
-        example="""
+    example="""
 ```nc
 O7051 (MAIN)
 G65 P7052 A1.
@@ -241,26 +179,28 @@ G65 P7052 A1.
 M99
 ```
 """,
-        fix="""
+    fix="""
 Give a recursive macro an exit condition, or flatten the calls into a loop.
 """,
-        not_reported="""
+    not_reported="""
 Nesting through calls of programs outside the analysed files (the
 analysis cannot follow them), and nesting that only a different set of values would reach.
 """,
-    ),
-    RuleDoc(
-        "MB706",
-        reports="""
+)
+
+
+MB706_DOC = RuleDoc(
+    "MB706",
+    reports="""
 A call whose program number is computed (`M98 P#1`, `G65 P#10`) and, with
 the value it has when it runs, names a program that is not in the files analysed. Constant
 program numbers are MB403's.
 """,
-        why="""
+    why="""
 If the program is not on the control either, the call raises
 PS0076 PROGRAM NOT FOUND and stops there.
 """,
-        example="""
+    example="""
 ```nc
 O7061 (MAIN)
 #1=2000.
@@ -268,29 +208,31 @@ M98 P#1
 M30
 ```
 """,
-        fix="""
+    fix="""
 Check the computed number, and check the called programs together with the
 caller.
 """,
-        not_reported="""
+    not_reported="""
 A computed number the analysis cannot know (the call is then
 followed as a call into the unknown), and calls written with a constant number (MB403).
 """,
-    ),
-    RuleDoc(
-        "MB707",
-        reports="""
+)
+
+
+MB707_DOC = RuleDoc(
+    "MB707",
+    reports="""
 A loop whose exit test reads only common or system variables (#100 and up)
 that nothing inside the loop writes: it waits for the PMC, a FOCAS client, a probe or another
 path to change them. The evaluator cannot play that part, so it stops the loop at its budget
 and says so instead of reporting an endless loop (MB703).
 """,
-        why="""
+    why="""
 Such a loop is intended, but it hangs the program for good if
 the outside party never writes the variable: worth a time-out (count the turns, and alarm with
 #3000 after too many).
 """,
-        example="""
+    example="""
 ```nc
 O7071 (WAIT FOR THE CLIENT)
 #890=0
@@ -300,29 +242,31 @@ GOTO1
 N2 M99
 ```
 """,
-        fix="""
+    fix="""
 Nothing, if the wait is intended. Otherwise add a time-out: a counter in the loop
 and an alarm when it runs out.
 """,
-        not_reported="""
+    not_reported="""
 A loop that writes a variable its test reads (MB703 or MB708 when
 it does not end), and a run the 10 s safety net stopped before the step budget.
 """,
-    ),
-    RuleDoc(
-        "MB708",
-        reports="""
+)
+
+
+MB708_DOC = RuleDoc(
+    "MB708",
+    reports="""
 A loop still running when the evaluator's step budget (300,000 blocks
 per entry program) ran out, whose test gets nearer its bound every turn
 (`WHILE [#1 LT 1000000]` with `#1` growing): a long loop rather than an endless one (MB703).
 Blocks after it are not analysed, and their values are not known.
 """,
-        why="""
+    why="""
 Nothing wrong by itself; the note says why the analysis has
 no values past the loop, and a loop of a million turns of macro statements can take the control
 minutes, with the machine standing still.
 """,
-        example="""
+    example="""
 ```nc
 O7081 (COUNT TO TWO MILLION)
 #1=0
@@ -332,92 +276,14 @@ END1
 M30
 ```
 """,
-        fix="""
+    fix="""
 Nothing, if the loop is meant to be that long.
 """,
-        not_reported="""
+    not_reported="""
 A loop whose test stays where it was or moves away from its bound
 (MB703), and a run the 10 s safety net stopped before the step budget.
 """,
-    ),
-    RuleDoc(
-        "MB709",
-        reports="""
-Blocks that no run of the program reaches but that begin with an N number
-right after an unconditional `GOTO`, an `M30`, `M02` or `M99`, and the blocks that follow them
-up to the next jump or end. The message gives the range, the N numbers and the jump or end
-before them. Reported when MB702 would be: runs that were whole and decided every branch.
-""",
-        why="""
-Nothing is wrong: shops restart a program at a tool by a
-sequence number search (the operator searches `N2` and presses cycle start), and blocks kept
-behind a jump or after the end are run that way. The hint says that no normal run reaches them,
-so that a jump put there by mistake is still seen.
-""",
-        example="""
-```nc
-O7091 (TWO TOOLS)
-N1 T0101
-G01 Z-20. F0.2
-GOTO3
-N2 T0202
-G01 Z-20. F0.1
-N3 M30
-```
-""",
-        fix="""
-Nothing, if the blocks are a restart point. If the program should run them,
-correct the jump before them.
-""",
-        not_reported="""
-Blocks without an N number of their own before them (MB702, or
-MB710 after the end), blocks skipped by a conditional jump whose condition is always true
-(MB701 and MB702), an N number a Haas `M97` calls, and the programs MB702 leaves out (runs
-stopped early or undecided, blocks that do not parse and may change which blocks run).
-""",
-    ),
-    RuleDoc(
-        "MB710",
-        reports="""
-Blocks after the first `M30` or `M02` of a program that no N number starts:
-a `GOTO` can only reach an N number, and so can a sequence number search, so nothing ever runs
-them. Typically a second copy of the program pasted below the first without an O number, or
-an old version kept after the end. Reported once per run of blocks, at its first block, with
-the count and the line range.
-""",
-        why="""
-The control never runs these blocks: a correction made
-there does nothing, and the reader of the program sees cuts the machine does not make.
-""",
-        example="""
-```nc
-O7101 (FACE)
-IF[#500EQ1]GOTO20
-G01 X0. F0.2
-N20 G00 X100. Z100.
-M30
-G00 X50. Z2.
-G01 X0. F0.2
-M30
-```
-""",
-        fix="""
-Delete the blocks, or give them an O number of their own if they are another
-program.
-""",
-        not_reported="""
-Blocks MB702 reports already (a program whose runs were whole and
-decided: MB702 names every block they did not reach), blocks that begin with an N number after
-the end and what follows them up to the next jump or end (a jump or a search can reach them;
-MB709), blocks after an `M30` with a block skip (`/M30`), which the control may pass, and
-programs with a block that does not parse and may change which blocks run (see MB702).
-""",
-    ),
 )
-
-# What a dead stretch's blocks are (see _classify_dead), and the state between them.
-DEAD, RESTART, LOCAL_CALL, AFTER_STOP = "dead", "restart", "local call", "after stop"
-LineRange = tuple[int, int]  # first and last line
 
 
 def check(ctx: RuleContext) -> list[Diagnostic]:
@@ -427,21 +293,21 @@ def check(ctx: RuleContext) -> list[Diagnostic]:
     found: list[Diagnostic] = []
     f: Finding  # of each kind in turn
     for f in ctx.findings(EndlessLoop):
-        found.append(make("MB703", f.message, f.line, f.column, f.end_column))
+        found.append(make(MB703, f.message, f.line, f.column, f.end_column))
     for f in ctx.findings(PollingLoop):
-        found.append(make("MB707", f.message, f.line, f.column, f.end_column))
+        found.append(make(MB707, f.message, f.line, f.column, f.end_column))
     for f in ctx.findings(LongLoop):
-        found.append(make("MB708", f.message, f.line, f.column, f.end_column))
+        found.append(make(MB708, f.message, f.line, f.column, f.end_column))
     for f in ctx.findings(GotoAlarm, ReturnMissing):
         statement = ctx.doc.blocks[f.line].statement
         constant = isinstance(statement, IfGoto | Goto) and _is_constant(statement)
         if not constant:  # constant targets are MB101's
-            found.append(make("MB704", f.message, f.line, f.column, f.end_column))
+            found.append(make(MB704, f.message, f.line, f.column, f.end_column))
     for f in ctx.findings(NestingAlarm):
-        found.append(make("MB705", f.message, f.line, f.column, f.end_column))
+        found.append(make(MB705, f.message, f.line, f.column, f.end_column))
     for f in ctx.findings(ProgramNotFound):
         if not _constant_call(ctx, f.line):
-            found.append(make("MB706", f.message, f.line, f.column, f.end_column))
+            found.append(make(MB706, f.message, f.line, f.column, f.end_column))
     found.extend(_programs(ctx, facts))
     return found
 
@@ -524,18 +390,20 @@ class _State:
 _kept: Kept[_State] = Kept()
 
 
-class Work:
-    """What the flow rules looked at over their life (conditions, dead stretches), for the
-    tests of the work an edit costs."""
-
-    __slots__ = ("conditions", "stretches")
-
-    def __init__(self) -> None:
-        self.conditions = 0
-        self.stretches = 0
+# The work done, for the tests of what an edit costs: "conditions", the evaluated conditions
+# looked at; "stretches", the dead stretches worked out.
+WORK_DONE: TableKey[str, int] = TableKey("rules.flow.work_done")
 
 
-work = Work()
+def work_done(kind: str, db: Database | None = None) -> int:
+    """How much work of ``kind`` ("conditions", "stretches") the flow rules did in ``db`` (by
+    default the current database)."""
+    return (db or current_database()).table(WORK_DONE).get(kind, 0)
+
+
+def _add_work(kind: str, amount: int) -> None:
+    work = current_database().table(WORK_DONE)
+    work[kind] = work.get(kind, 0) + amount
 
 
 def _programs(ctx: RuleContext, facts: DocumentFacts) -> list[Diagnostic]:
@@ -714,17 +582,59 @@ def _first_writes_now(
     return found, sorted(redo)
 
 
+MB701_DOC = RuleDoc(
+    "MB701",
+    reports="""
+An `IF` or `WHILE` condition with the same result every time the analysis
+reached it, decided by the program's own values: every variable it reads was set earlier in
+the same program and had one value each time. The branch is never or always taken, the loop
+body never runs or always repeats.
+""",
+    why="""
+Nothing stops, but a branch that is never taken is code that
+never runs, often a sign of a wrong variable or comparison: a safety check that never fires, a
+finishing pass that is always skipped.
+""",
+    example="""
+```nc
+O7001 (ROUGHING)
+#1=5.
+IF[#1GT3.]GOTO10
+G00 X100.
+N10 M30
+```
+""",
+    fix="""
+If the condition tests values that change on the machine (arguments, probe
+results), nothing to do. Otherwise remove the dead branch or correct the condition.
+""",
+    not_reported="""
+Conditions on values the analysis does not know: arguments of a
+macro analysed on its own, common and system variables set by another program, and anything a
+call of a program outside the analysed files (`G65 P9814`) may have changed. Conditions on
+values that come from outside the program even when known (a macro's arguments from its one
+caller, the caller's locals, a common set by the main program, a probing macro's result): the
+outcome is the caller's choice, and another call may change it. Guards whose inputs change
+from one time to the next but that never fire (a clamp on the last step of a loop). Outcomes
+reached on a path that went through an undecided condition, conditions in a program with a
+rejected block that may hold a jump, and conditions in a run that stopped early (an alarm, the
+step budget).
+""",
+)
+
+
 def _conditions_at(
     ctx: RuleContext, facts: DocumentFacts, first_writes: dict[int, int], lines: list[int]
 ) -> list[tuple[int, Diagnostic]]:
     """MB701 on those of ``lines`` (ascending) that hold an evaluated condition."""
     found: list[tuple[int, Diagnostic]] = []
     jumps = facts.jumps
+    looked_at = 0
     for line in lines:
         jc = jumps.get(line)
         if jc is None:
             continue
-        work.conditions += 1
+        looked_at += 1
         if jc.undecided or jc.guessed:
             continue  # an outcome on a guessed path proves nothing
         statement = ctx.doc.blocks[line].statement
@@ -742,7 +652,7 @@ def _conditions_at(
             (
                 line,
                 make(
-                    "MB701",
+                    MB701,
                     f"condition is always {outcome} for the values that reach it "
                     f"({total} time{'s' if total > 1 else ''}): {effect}",
                     line,
@@ -751,6 +661,7 @@ def _conditions_at(
                 ),
             )
         )
+    _add_work("conditions", looked_at)
     return found
 
 
@@ -892,7 +803,7 @@ def _stretch(
     ctx: RuleContext, program: Program, start: int, last: int, local_calls: frozenset[int]
 ) -> _Stretch:
     """What a stretch of blocks no run reached gives: MB702 and MB709 segments."""
-    work.stretches += 1
+    _add_work("stretches", 1)
     blocks = ctx.doc.blocks
     before = _statement_before(ctx, program, start)
     stop = _stops(blocks[before]) if before is not None else None
@@ -929,10 +840,84 @@ def _stretch(
 _diagnostics_of = itemgetter(3)  # a _Stretch's diagnostics, read in C
 
 
+MB702_DOC = RuleDoc(
+    "MB702",
+    reports="""
+A stretch of blocks of an analysed program that no run reached, reported
+on its first block with the number of blocks and the line range. It is not reported when a run
+stopped early or took a branch the analysis could not decide.
+""",
+    why="""
+Blocks that never run are harmless by themselves, but they
+often show a jump to the wrong label or an old pass left in place, and they are not what the
+reader of the program thinks the machine does.
+""",
+    example="""
+```nc
+O7002 (FINISH PASS)
+GOTO10
+G00 X100. Z100.
+N10 M30
+```
+""",
+    fix="""
+Delete the dead blocks or correct the jump that skips them.
+""",
+    not_reported="""
+Blocks after an unconditional jump, `M30`, `M02` or `M99` that
+begin with an N number, and what follows them up to the next jump or end: a sequence number
+search reaches them (MB709). Blocks an N number called by a Haas `M97` starts. Nothing in a
+program whose run stopped early (an alarm, the step budget) or took a branch the analysis could
+not decide: which blocks are reached is not known then (MB710 still reports what no jump can
+reach after the end). Nor in a program with a block that does not parse and may change which
+blocks run: one in another control's language (Syntec `IF (...) THEN`, a Citizen `$2` path) or
+one that holds a `GOTO`, `IF`, `WHILE`, `END` or a call.
+""",
+)
+
+
+MB709_DOC = RuleDoc(
+    "MB709",
+    reports="""
+Blocks that no run of the program reaches but that begin with an N number
+right after an unconditional `GOTO`, an `M30`, `M02` or `M99`, and the blocks that follow them
+up to the next jump or end. The message gives the range, the N numbers and the jump or end
+before them. Reported when MB702 would be: runs that were whole and decided every branch.
+""",
+    why="""
+Nothing is wrong: shops restart a program at a tool by a
+sequence number search (the operator searches `N2` and presses cycle start), and blocks kept
+behind a jump or after the end are run that way. The hint says that no normal run reaches them,
+so that a jump put there by mistake is still seen.
+""",
+    example="""
+```nc
+O7091 (TWO TOOLS)
+N1 T0101
+G01 Z-20. F0.2
+GOTO3
+N2 T0202
+G01 Z-20. F0.1
+N3 M30
+```
+""",
+    fix="""
+Nothing, if the blocks are a restart point. If the program should run them,
+correct the jump before them.
+""",
+    not_reported="""
+Blocks without an N number of their own before them (MB702, or
+MB710 after the end), blocks skipped by a conditional jump whose condition is always true
+(MB701 and MB702), an N number a Haas `M97` calls, and the programs MB702 leaves out (runs
+stopped early or undecided, blocks that do not parse and may change which blocks run).
+""",
+)
+
+
 def _segment_diagnostic(s: _Segment, program_name: str) -> Diagnostic:
     if s.kind == DEAD:
         return make(
-            "MB702",
+            MB702,
             f"{_blocks(s.size)} never executed ({_lines(s.first, s.end)}): no path of the "
             "analysed runs reaches them",
             s.first,
@@ -941,7 +926,7 @@ def _segment_diagnostic(s: _Segment, program_name: str) -> Diagnostic:
             end_line=s.end,
         )
     return make(
-        "MB709",
+        MB709,
         f"{_blocks(s.size)} reached only by a sequence number search "
         f"({_lines(s.first, s.end)}, from {s.labels}): no run of "
         f"{program_name} comes here past the {s.stop} "
@@ -1208,6 +1193,45 @@ def _label_line(ctx: RuleContext, first: int) -> int:
     return line
 
 
+MB710_DOC = RuleDoc(
+    "MB710",
+    reports="""
+Blocks after the first `M30` or `M02` of a program that no N number starts:
+a `GOTO` can only reach an N number, and so can a sequence number search, so nothing ever runs
+them. Typically a second copy of the program pasted below the first without an O number, or
+an old version kept after the end. Reported once per run of blocks, at its first block, with
+the count and the line range.
+""",
+    why="""
+The control never runs these blocks: a correction made
+there does nothing, and the reader of the program sees cuts the machine does not make.
+""",
+    example="""
+```nc
+O7101 (FACE)
+IF[#500EQ1]GOTO20
+G01 X0. F0.2
+N20 G00 X100. Z100.
+M30
+G00 X50. Z2.
+G01 X0. F0.2
+M30
+```
+""",
+    fix="""
+Delete the blocks, or give them an O number of their own if they are another
+program.
+""",
+    not_reported="""
+Blocks MB702 reports already (a program whose runs were whole and
+decided: MB702 names every block they did not reach), blocks that begin with an N number after
+the end and what follows them up to the next jump or end (a jump or a search can reach them;
+MB709), blocks after an `M30` with a block skip (`/M30`), which the control may pass, and
+programs with a block that does not parse and may change which blocks run (see MB702).
+""",
+)
+
+
 def _after_end(
     ctx: RuleContext, program: Program, facts: DocumentFacts | None
 ) -> Iterator[Diagnostic]:
@@ -1234,7 +1258,7 @@ def _after_end(
             continue
         count = _count(ctx, first, end)
         yield make(
-            "MB710",
+            MB710,
             f"{_blocks(count)} after the {end_code} of {program.display_name} (line "
             f"{end_line + 1}) can never run ({_lines(first, end)}): no N number starts "
             "them, so neither a jump nor a sequence number search reaches them",

@@ -13,9 +13,7 @@ from ..diagnostics import (
     RuleDoc,
     RuleInfo,
     Severity,
-    document,
     make,
-    register,
 )
 from ..line_maps import Kept
 from ..per_line import PerLine
@@ -26,160 +24,20 @@ from ..syntax.walk import cond_exprs, subexpressions
 from .context import RuleContext
 
 FAMILY = "jumps"
-register(
-    RuleInfo("MB101", "goto-missing-label", Severity.ERROR,
-             "GOTO to a sequence number that is not in the program.", FAMILY),
-    RuleInfo("MB102", "duplicate-label", Severity.WARNING,
-             "A sequence number that a GOTO uses stands more than once in the program.", FAMILY),
-    RuleInfo("MB103", "goto-into-loop", Severity.ERROR,
-             "GOTO from outside a WHILE loop to a block inside it.", FAMILY),
-    RuleInfo("MB104", "goto-bad-target", Severity.ERROR,
-             "GOTO target that is not a whole number from 1 to 99999.", FAMILY),
-)  # fmt: skip
 
-# What each rule above reports, why, an example, the fix and what it leaves out:
-# docs/rules.md is generated from it (python3 scripts/rules_doc.py).
-document(
-    RuleDoc(
-        "MB101",
-        reports="""
-`GOTO n` or `IF [...] GOTO n` with a constant `n` whose sequence number
-`Nn` is not in the same O program. Labels of other programs in the same file do not count:
-a `GOTO` only searches its own program.
-""",
-        why="""
-When the jump is taken, the control raises PS0128 ILLEGAL
-MACRO SEQUENCE NUMBER and stops. A conditional jump may be taken only on the last pass of a
-loop or for one size of part, so the program can run correctly many times and then stop in the
-middle of a part.
-""",
-        example="""
-```nc
-O3003 (HELICAL HOLE)
-#1=#1+#3
-IF[#1LT#2]GOTO1
-M99
-```
-""",
-        fix="""
-Add the missing `Nn` where the jump should land, or correct the number in the
-`GOTO`. The quick fix in the editor changes the target to the label of the program nearest in
-number (the lower of two as near), naming it and its line; it leaves out labels that stand more
-than once (MB102) and labels inside a loop the jump is outside of (MB103). It is a guess, so it
-is not offered as the preferred fix. No fix adds the missing `Nn`: where the jump should land is
-what the programmer meant, which the text does not say, and a label put on a guessed block would
-silence the alarm and send the tool where no one chose.
-""",
-        not_reported="""
-A computed target (`GOTO#1`), which the evaluator checks when it
-runs (MB704), an `M99 P` return (MB704), a target that is not a whole number from 1 to 99999
-(MB104), and a missing label in a program that goes on past the part of a big file the
-analysis reads (MB013): the label may be in the unread part.
-""",
-    ),
-    RuleDoc(
-        "MB102",
-        reports="""
-A `GOTO` to a sequence number that stands more than once in the program,
-when the copy the control jumps to is not the one the text suggests. The control searches
-forward from the block after the `GOTO` to the end of the program, then from its head, and
-takes the first `Nn` it meets. The text suggests the first copy after a jump that looks
-forward, and the nearest copy before a loop back. A jump looks back when a copy stands before
-it and either no copy stands after it, or the jump is on the copy's own block (a wait loop,
-`N1 IF [#1000 EQ 0] GOTO1`), or a variable the jump tests (for a bare `GOTO`, the test on the
-copy's block) is assigned between that copy and the jump: a counter stepped in the loop. It is
-reported too when the copy the control finds is dead code: the evaluator ran the program to
-its end with every branch decided, and no run reached that copy (an old block left after
-`M30`). The message says where the jump lands, which copy was likely meant, and why.
-""",
-        why="""
-The jump goes to another block than the programmer meant. A
-block copied with its N number can turn a retract into another cutting pass, or a loop into a
-jump past the retract: wrong part, or a tool driven into the work.
-""",
-        example="""
-```nc
-O2001 (ROUGH TURN)
-N10 G00 X#1 Z2.
-#1=#1-4.
-IF[#1GT40.]GOTO10
-N10 G00 X100. Z100.
-M30
-```
-""",
-        fix="""
-Give every jump target a sequence number that stands once in the program.
-""",
-        not_reported="""
-A duplicated N that lands as the text suggests: a forward jump to
-the next copy after it (sections that each end at their own `N20`, a `GOTO77` just before its
-`N77`), whatever other copies stand elsewhere. Sequence numbers that no `GOTO` uses (a `G70 P Q`
-range, an operator's restart point), which may repeat freely. Computed targets (`GOTO#1`),
-whose copy is known only at run time. Without the evaluator's facts, or when a branch was
-undecided, nothing is called dead code.
-""",
-    ),
-    RuleDoc(
-        "MB103",
-        reports="""
-A `GOTO` from outside a `WHILE ... DOm` / `ENDm` range to a block inside
-it. Jumping out of a loop, or within one loop, is allowed and not reported.
-""",
-        why="""
-FANUC forbids branching into a loop: the control did not run
-the `WHILE` block, so it meets an `ENDm` whose `DOm` it never entered. Depending on the
-control this raises a loop alarm or gives a loop that does not behave as written: passes are
-skipped or repeated, and the tool position after the loop is not the one the programmer
-expected.
-""",
-        example="""
-```nc
-O3002 (GROOVE PASSES)
-IF[#19GT0]GOTO20
-WHILE[#1LT#18]DO1
-N20 G01 X[50.-#1*2.] F0.1
-#1=#1+1.
-END1
-M30
-```
-""",
-        fix="""
-Jump to a block before the `WHILE`, or restructure with a second loop or a flag
-tested in the loop condition.
-""",
-        not_reported="""
-Jumps out of a loop, within one loop, and from an inner loop to its
-outer loop; a jump into a `DO` whose `END` is missing (MB201 says so); computed targets. The
-block checked is the one the control's search finds (MB102 says when a duplicated N moves it).
-""",
-    ),
-    RuleDoc(
-        "MB104",
-        reports="""
-A constant `GOTO` target that is not a whole number from 1 to 99999:
-`GOTO0`, `GOTO100000`, `GOTO1.5`, `GOTO-5`.
-""",
-        why="""
-The control raises PS0128 ILLEGAL MACRO SEQUENCE NUMBER when
-the jump is taken, and the program stops there.
-""",
-        example="""
-```nc
-O9002 (DISPATCH)
-IF[#3EQ2]GOTO1.5
-GOTO0
-M99
-```
-""",
-        fix="""
-Use a whole sequence number from 1 to 99999 that stands in the program.
-""",
-        not_reported="""
-A whole target written with a decimal point (`GOTO10.`): the value
-is 10. Computed targets: the evaluator checks their values when it runs (MB704).
-""",
-    ),
-)
+# The family's rules, by code: what diagnostics.make gives each diagnostic (its name,
+# severity and tags). Each rule's documentation, MBxxx_DOC, is beside the function that
+# finds it; docs/rules.md is generated from them (python3 scripts/rules_doc.py).
+# fmt: off
+MB101 = RuleInfo("MB101", "goto-missing-label", Severity.ERROR,
+                 "GOTO to a sequence number that is not in the program.", FAMILY)
+MB102 = RuleInfo("MB102", "duplicate-label", Severity.WARNING,
+                 "A sequence number that a GOTO uses stands more than once in the program.", FAMILY)
+MB103 = RuleInfo("MB103", "goto-into-loop", Severity.ERROR,
+                 "GOTO from outside a WHILE loop to a block inside it.", FAMILY)
+MB104 = RuleInfo("MB104", "goto-bad-target", Severity.ERROR,
+                 "GOTO target that is not a whole number from 1 to 99999.", FAMILY)
+# fmt: on
 
 
 # The last diagnostics of each document, with the program index they were drawn from: an edit
@@ -197,6 +55,109 @@ def check(ctx: RuleContext) -> list[Diagnostic]:
     return list(found)
 
 
+MB101_DOC = RuleDoc(
+    "MB101",
+    reports="""
+`GOTO n` or `IF [...] GOTO n` with a constant `n` whose sequence number
+`Nn` is not in the same O program. Labels of other programs in the same file do not count:
+a `GOTO` only searches its own program.
+""",
+    why="""
+When the jump is taken, the control raises PS0128 ILLEGAL
+MACRO SEQUENCE NUMBER and stops. A conditional jump may be taken only on the last pass of a
+loop or for one size of part, so the program can run correctly many times and then stop in the
+middle of a part.
+""",
+    example="""
+```nc
+O3003 (HELICAL HOLE)
+#1=#1+#3
+IF[#1LT#2]GOTO1
+M99
+```
+""",
+    fix="""
+Add the missing `Nn` where the jump should land, or correct the number in the
+`GOTO`. The quick fix in the editor changes the target to the label of the program nearest in
+number (the lower of two as near), naming it and its line; it leaves out labels that stand more
+than once (MB102) and labels inside a loop the jump is outside of (MB103). It is a guess, so it
+is not offered as the preferred fix. No fix adds the missing `Nn`: where the jump should land is
+what the programmer meant, which the text does not say, and a label put on a guessed block would
+silence the alarm and send the tool where no one chose.
+""",
+    not_reported="""
+A computed target (`GOTO#1`), which the evaluator checks when it
+runs (MB704), an `M99 P` return (MB704), a target that is not a whole number from 1 to 99999
+(MB104), and a missing label in a program that goes on past the part of a big file the
+analysis reads (MB013): the label may be in the unread part.
+""",
+)
+
+
+MB103_DOC = RuleDoc(
+    "MB103",
+    reports="""
+A `GOTO` from outside a `WHILE ... DOm` / `ENDm` range to a block inside
+it. Jumping out of a loop, or within one loop, is allowed and not reported.
+""",
+    why="""
+FANUC forbids branching into a loop: the control did not run
+the `WHILE` block, so it meets an `ENDm` whose `DOm` it never entered. Depending on the
+control this raises a loop alarm or gives a loop that does not behave as written: passes are
+skipped or repeated, and the tool position after the loop is not the one the programmer
+expected.
+""",
+    example="""
+```nc
+O3002 (GROOVE PASSES)
+IF[#19GT0]GOTO20
+WHILE[#1LT#18]DO1
+N20 G01 X[50.-#1*2.] F0.1
+#1=#1+1.
+END1
+M30
+```
+""",
+    fix="""
+Jump to a block before the `WHILE`, or restructure with a second loop or a flag
+tested in the loop condition.
+""",
+    not_reported="""
+Jumps out of a loop, within one loop, and from an inner loop to its
+outer loop; a jump into a `DO` whose `END` is missing (MB201 says so); computed targets. The
+block checked is the one the control's search finds (MB102 says when a duplicated N moves it).
+""",
+)
+
+
+MB104_DOC = RuleDoc(
+    "MB104",
+    reports="""
+A constant `GOTO` target that is not a whole number from 1 to 99999:
+`GOTO0`, `GOTO100000`, `GOTO1.5`, `GOTO-5`.
+""",
+    why="""
+The control raises PS0128 ILLEGAL MACRO SEQUENCE NUMBER when
+the jump is taken, and the program stops there.
+""",
+    example="""
+```nc
+O9002 (DISPATCH)
+IF[#3EQ2]GOTO1.5
+GOTO0
+M99
+```
+""",
+    fix="""
+Use a whole sequence number from 1 to 99999 that stands in the program.
+""",
+    not_reported="""
+A whole target written with a decimal point (`GOTO10.`): the value
+is 10. Computed targets: the evaluator checks their values when it runs (MB704).
+""",
+)
+
+
 def _check(ctx: RuleContext, found: list[Diagnostic]) -> bool:
     """The diagnostics into ``found``; whether they follow from the index alone (a jump to a
     duplicated N asks the facts and the lines where it lands)."""
@@ -210,7 +171,7 @@ def _check(ctx: RuleContext, found: list[Diagnostic]) -> bool:
                 if jump.constant is not None:
                     add(
                         make(
-                            "MB104",
+                            MB104,
                             f"GOTO target {jump.constant:g} is not a whole number (alarm PS0128)",
                             jump.line,
                             ts.start,
@@ -221,7 +182,7 @@ def _check(ctx: RuleContext, found: list[Diagnostic]) -> bool:
             if not 1 <= jump.target <= 99999:
                 add(
                     make(
-                        "MB104",
+                        MB104,
                         f"GOTO target {jump.target} is outside 1-99999 (alarm PS0128)",
                         jump.line,
                         ts.start,
@@ -236,7 +197,7 @@ def _check(ctx: RuleContext, found: list[Diagnostic]) -> bool:
                     continue  # the label may be in the part of the file left unread (MB013)
                 add(
                     make(
-                        "MB101",
+                        MB101,
                         f"GOTO {jump.target}: no N{jump.target} in {name} (alarm "
                         "PS0128 when the jump is taken)",
                         jump.line,
@@ -259,7 +220,7 @@ def _check(ctx: RuleContext, found: list[Diagnostic]) -> bool:
                 if loop not in source_loops:
                     add(
                         make(
-                            "MB103",
+                            MB103,
                             f"GOTO {jump.target} jumps into the DO{loop.loop_id:g} "
                             f"loop of line {loop.do_line + 1} from outside it; FANUC forbids "
                             "branching into a loop",
@@ -377,6 +338,50 @@ def _dead(ctx: RuleContext, program: Program, line: int) -> bool:
     return line not in facts.runs
 
 
+MB102_DOC = RuleDoc(
+    "MB102",
+    reports="""
+A `GOTO` to a sequence number that stands more than once in the program,
+when the copy the control jumps to is not the one the text suggests. The control searches
+forward from the block after the `GOTO` to the end of the program, then from its head, and
+takes the first `Nn` it meets. The text suggests the first copy after a jump that looks
+forward, and the nearest copy before a loop back. A jump looks back when a copy stands before
+it and either no copy stands after it, or the jump is on the copy's own block (a wait loop,
+`N1 IF [#1000 EQ 0] GOTO1`), or a variable the jump tests (for a bare `GOTO`, the test on the
+copy's block) is assigned between that copy and the jump: a counter stepped in the loop. It is
+reported too when the copy the control finds is dead code: the evaluator ran the program to
+its end with every branch decided, and no run reached that copy (an old block left after
+`M30`). The message says where the jump lands, which copy was likely meant, and why.
+""",
+    why="""
+The jump goes to another block than the programmer meant. A
+block copied with its N number can turn a retract into another cutting pass, or a loop into a
+jump past the retract: wrong part, or a tool driven into the work.
+""",
+    example="""
+```nc
+O2001 (ROUGH TURN)
+N10 G00 X#1 Z2.
+#1=#1-4.
+IF[#1GT40.]GOTO10
+N10 G00 X100. Z100.
+M30
+```
+""",
+    fix="""
+Give every jump target a sequence number that stands once in the program.
+""",
+    not_reported="""
+A duplicated N that lands as the text suggests: a forward jump to
+the next copy after it (sections that each end at their own `N20`, a `GOTO77` just before its
+`N77`), whatever other copies stand elsewhere. Sequence numbers that no `GOTO` uses (a `G70 P Q`
+range, an operator's restart point), which may repeat freely. Computed targets (`GOTO#1`),
+whose copy is known only at run time. Without the evaluator's facts, or when a branch was
+undecided, nothing is called dead code.
+""",
+)
+
+
 def _duplicate_lands_wrong(
     ctx: RuleContext, program: Program, jump: Jump, lines: list[int]
 ) -> Diagnostic | None:
@@ -434,4 +439,4 @@ def _duplicate_lands_wrong(
     related = [Related(lands, 0, 0, "the control lands here")]
     if meant != lands:
         related.append(Related(meant, 0, 0, f"the N{seq} the text suggests"))
-    return make("MB102", message, jump.line, ts.start, ts.end, related=related)
+    return make(MB102, message, jump.line, ts.start, ts.end, related=related)

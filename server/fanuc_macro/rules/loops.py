@@ -13,9 +13,7 @@ from ..diagnostics import (
     RuleDoc,
     RuleInfo,
     Severity,
-    document,
     make,
-    register,
 )
 from ..program.index import Program
 from ..syntax.marks import constant_value
@@ -24,171 +22,22 @@ from ..syntax.tree import Block, NcStatement
 from .context import RuleContext
 
 FAMILY = "loops"
-register(
-    RuleInfo("MB201", "do-without-end", Severity.ERROR,
-             "A DO m with no END m after it in the program (alarm PS0124).", FAMILY),
-    RuleInfo("MB202", "end-without-do", Severity.ERROR,
-             "An END m with no open DO m before it (alarm PS0126).", FAMILY),
-    RuleInfo("MB203", "loop-number", Severity.ERROR,
-             "A DO/END identification number other than 1, 2 or 3 (alarm PS0126).", FAMILY),
-    RuleInfo("MB204", "loop-too-deep", Severity.ERROR,
-             "WHILE loops nested more than three deep.", FAMILY),
-    RuleInfo("MB205", "loops-crossed", Severity.ERROR,
-             "Loop ranges that cross (DO1 ... DO2 ... END1 ... END2).", FAMILY),
-)  # fmt: skip
 
-# What each rule above reports, why, an example, the fix and what it leaves out:
-# docs/rules.md is generated from it (python3 scripts/rules_doc.py).
-document(
-    RuleDoc(
-        "MB201",
-        reports="""
-A `DOm` (with or without `WHILE`) with no `ENDm` after it in the same O
-program.
-""",
-        why="""
-The control raises PS0124 MISSING END STATEMENT. When the
-loop condition becomes false it has nowhere to go; a `DOm` without `WHILE` would loop for ever.
-""",
-        example="""
-```nc
-O2002 (WAIT FOR SPINDLE)
-WHILE[#1000EQ0]DO1
-G04 P100
-M99
-```
-""",
-        fix="""
-Add `ENDm` after the last block of the loop body, with the same number `m`.
-""",
-        not_reported="""
-A `DO` in a block FANUC rejects for another reason (a
-`WHILE [#1<3] DO1`): that block's own diagnostic comes first, and its `END` is not reported
-either (MB202). A `DO` of a program that goes on past the part of a big file the analysis
-reads (MB013): its `END` may be in the unread part.
-""",
-    ),
-    RuleDoc(
-        "MB202",
-        reports="""
-An `ENDm` with no open `DOm` before it in the same program.
-""",
-        why="""
-The control raises PS0126 ILLEGAL LOOP NUMBER when it reaches
-the block, and the program stops there.
-""",
-        example="""
-```nc
-O2004 (FINISH PASSES)
-WHILE[#1LT3]DO1
-#1=#1+1
-END1
-END2
-M30
-```
-""",
-        fix="""
-Delete the extra `END`, or add the missing `WHILE [...] DOm` and check that the
-numbers pair up.
-""",
-        not_reported="""
-An `END` whose `DO` stands in a block FANUC rejects: that block is
-reported, and the `END` is no second mistake.
-""",
-    ),
-    RuleDoc(
-        "MB203",
-        reports="""
-A `DO` or `END` identification number other than 1, 2 or 3 (`DO4`, `DO0`,
-`END 5`). It is reported on both the `DO` and the `END`.
-""",
-        why="""
-FANUC accepts only 1, 2 and 3. Another number raises PS0126
-ILLEGAL LOOP NUMBER and stops the program at that block.
-""",
-        example="""
-```nc
-O2005 (PECK LOOP)
-WHILE[#1LT5]DO4
-#1=#1+1
-END4
-M30
-```
-""",
-        fix="""
-Number loops 1, 2 and 3. Numbers may be reused for loops that do not overlap,
-so three numbers are always enough.
-""",
-        not_reported="""
-The numbers 1 to 3 reused for loops that follow one another, or
-nest in another order (`DO2` outside `DO1`; the reference gives no rule on the order,
-unverified).
-""",
-    ),
-    RuleDoc(
-        "MB204",
-        reports="""
-A `WHILE ... DOm` opened while three loops are already open in the same
-program.
-""",
-        why="""
-FANUC nests `DO` loops at most three deep. A fourth level
-raises a loop alarm when the control reads it, in the middle of the pattern being machined.
-""",
-        example="""
-```nc
-O2006 (GRID OF HOLES)
-WHILE[#1LT3]DO1
-WHILE[#2LT3]DO2
-WHILE[#3LT3]DO3
-WHILE[#4LT2]DO1
-END1
-END3
-END2
-END1
-M99
-```
-""",
-        fix="""
-Move the innermost levels into a macro called with `G65` inside the loop (the
-called program may nest three loops again), or replace a level with an `IF [...] GOTO` loop.
-""",
-        not_reported="""
-Loops of a macro called inside a loop (a `G65` call starts a new
-level: its three count again), and loops made with `IF [...] GOTO`, which have no nesting limit.
-""",
-    ),
-    RuleDoc(
-        "MB205",
-        reports="""
-Loop ranges that cross: `DO1 ... DO2 ... END1 ... END2`. It is reported on
-the `END` that closes the outer loop while the inner one is still open.
-""",
-        why="""
-FANUC requires loops to nest. Crossed ranges raise a loop
-alarm, or pass control to the wrong `WHILE`: rows and columns of a pattern are machined in the
-wrong order or the wrong number of times.
-""",
-        example="""
-```nc
-O2007 (ROWS AND COLUMNS)
-WHILE[#1LT3]DO1
-WHILE[#2LT4]DO2
-#2=#2+1
-END1
-END2
-M30
-```
-""",
-        fix="""
-Close the inner loop first: `DO1 ... DO2 ... END2 ... END1`.
-""",
-        not_reported="""
-Loops that nest properly whatever their numbers, and loops made
-with `IF [...] GOTO`, whose ranges the control does not pair.
-""",
-    ),
-)
+# The family's rules, by code: what diagnostics.make gives each diagnostic (its name,
+# severity and tags). Each rule's documentation, MBxxx_DOC, is beside the function that
+# finds it; docs/rules.md is generated from them (python3 scripts/rules_doc.py).
+# fmt: off
+MB201 = RuleInfo("MB201", "do-without-end", Severity.ERROR,
+                 "A DO m with no END m after it in the program (alarm PS0124).", FAMILY)
+MB202 = RuleInfo("MB202", "end-without-do", Severity.ERROR,
+                 "An END m with no open DO m before it (alarm PS0126).", FAMILY)
+MB203 = RuleInfo("MB203", "loop-number", Severity.ERROR,
+                 "A DO/END identification number other than 1, 2 or 3 (alarm PS0126).", FAMILY)
+MB204 = RuleInfo("MB204", "loop-too-deep", Severity.ERROR,
+                 "WHILE loops nested more than three deep.", FAMILY)
+MB205 = RuleInfo("MB205", "loops-crossed", Severity.ERROR,
+                 "Loop ranges that cross (DO1 ... DO2 ... END1 ... END2).", FAMILY)
+# fmt: on
 
 
 def _rejected_do_lines(ctx: RuleContext, start: int, end: int) -> dict[float, list[int]]:
@@ -233,6 +82,164 @@ def _ends_program(block: Block) -> bool:
     return False
 
 
+MB201_DOC = RuleDoc(
+    "MB201",
+    reports="""
+A `DOm` (with or without `WHILE`) with no `ENDm` after it in the same O
+program.
+""",
+    why="""
+The control raises PS0124 MISSING END STATEMENT. When the
+loop condition becomes false it has nowhere to go; a `DOm` without `WHILE` would loop for ever.
+""",
+    example="""
+```nc
+O2002 (WAIT FOR SPINDLE)
+WHILE[#1000EQ0]DO1
+G04 P100
+M99
+```
+""",
+    fix="""
+Add `ENDm` after the last block of the loop body, with the same number `m`.
+""",
+    not_reported="""
+A `DO` in a block FANUC rejects for another reason (a
+`WHILE [#1<3] DO1`): that block's own diagnostic comes first, and its `END` is not reported
+either (MB202). A `DO` of a program that goes on past the part of a big file the analysis
+reads (MB013): its `END` may be in the unread part.
+""",
+)
+
+
+MB202_DOC = RuleDoc(
+    "MB202",
+    reports="""
+An `ENDm` with no open `DOm` before it in the same program.
+""",
+    why="""
+The control raises PS0126 ILLEGAL LOOP NUMBER when it reaches
+the block, and the program stops there.
+""",
+    example="""
+```nc
+O2004 (FINISH PASSES)
+WHILE[#1LT3]DO1
+#1=#1+1
+END1
+END2
+M30
+```
+""",
+    fix="""
+Delete the extra `END`, or add the missing `WHILE [...] DOm` and check that the
+numbers pair up.
+""",
+    not_reported="""
+An `END` whose `DO` stands in a block FANUC rejects: that block is
+reported, and the `END` is no second mistake.
+""",
+)
+
+
+MB203_DOC = RuleDoc(
+    "MB203",
+    reports="""
+A `DO` or `END` identification number other than 1, 2 or 3 (`DO4`, `DO0`,
+`END 5`). It is reported on both the `DO` and the `END`.
+""",
+    why="""
+FANUC accepts only 1, 2 and 3. Another number raises PS0126
+ILLEGAL LOOP NUMBER and stops the program at that block.
+""",
+    example="""
+```nc
+O2005 (PECK LOOP)
+WHILE[#1LT5]DO4
+#1=#1+1
+END4
+M30
+```
+""",
+    fix="""
+Number loops 1, 2 and 3. Numbers may be reused for loops that do not overlap,
+so three numbers are always enough.
+""",
+    not_reported="""
+The numbers 1 to 3 reused for loops that follow one another, or
+nest in another order (`DO2` outside `DO1`; the reference gives no rule on the order,
+unverified).
+""",
+)
+
+
+MB204_DOC = RuleDoc(
+    "MB204",
+    reports="""
+A `WHILE ... DOm` opened while three loops are already open in the same
+program.
+""",
+    why="""
+FANUC nests `DO` loops at most three deep. A fourth level
+raises a loop alarm when the control reads it, in the middle of the pattern being machined.
+""",
+    example="""
+```nc
+O2006 (GRID OF HOLES)
+WHILE[#1LT3]DO1
+WHILE[#2LT3]DO2
+WHILE[#3LT3]DO3
+WHILE[#4LT2]DO1
+END1
+END3
+END2
+END1
+M99
+```
+""",
+    fix="""
+Move the innermost levels into a macro called with `G65` inside the loop (the
+called program may nest three loops again), or replace a level with an `IF [...] GOTO` loop.
+""",
+    not_reported="""
+Loops of a macro called inside a loop (a `G65` call starts a new
+level: its three count again), and loops made with `IF [...] GOTO`, which have no nesting limit.
+""",
+)
+
+
+MB205_DOC = RuleDoc(
+    "MB205",
+    reports="""
+Loop ranges that cross: `DO1 ... DO2 ... END1 ... END2`. It is reported on
+the `END` that closes the outer loop while the inner one is still open.
+""",
+    why="""
+FANUC requires loops to nest. Crossed ranges raise a loop
+alarm, or pass control to the wrong `WHILE`: rows and columns of a pattern are machined in the
+wrong order or the wrong number of times.
+""",
+    example="""
+```nc
+O2007 (ROWS AND COLUMNS)
+WHILE[#1LT3]DO1
+WHILE[#2LT4]DO2
+#2=#2+1
+END1
+END2
+M30
+```
+""",
+    fix="""
+Close the inner loop first: `DO1 ... DO2 ... END2 ... END1`.
+""",
+    not_reported="""
+Loops that nest properly whatever their numbers, and loops made
+with `IF [...] GOTO`, whose ranges the control does not pair.
+""",
+)
+
+
 def check(ctx: RuleContext) -> Iterator[Diagnostic]:
     unread = ctx.doc.unread_from
     for program in ctx.index.programs:
@@ -252,7 +259,7 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
             n = f"{p.loop_id:g}"
             if p.kind == "no-end":
                 yield make(
-                    "MB201",
+                    MB201,
                     f"DO{n} has no END{n} in {name} (alarm PS0124)",
                     p.line,
                     p.span.start,
@@ -262,7 +269,7 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
                 )
             elif p.kind == "no-do":
                 yield make(
-                    "MB202",
+                    MB202,
                     f"END{n} closes no open DO{n} in {name} (alarm PS0126)",
                     p.line,
                     p.span.start,
@@ -270,7 +277,7 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
                 )
             elif p.kind == "bad-id":
                 yield make(
-                    "MB203",
+                    MB203,
                     f"loop number {n} is outside 1-3 (alarm PS0126)",
                     p.line,
                     p.span.start,
@@ -283,7 +290,7 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
                     else [Related(p.other_line, 0, 0, "outermost loop starts here")]
                 )
                 yield make(
-                    "MB204",
+                    MB204,
                     f"DO{n} is a fourth nested loop; FANUC nests at most three",
                     p.line,
                     p.span.start,
@@ -297,7 +304,7 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
                     else [Related(p.other_line, 0, 0, "inner loop opened here is still open")]
                 )
                 yield make(
-                    "MB205",
+                    MB205,
                     f"END{n} closes DO{n} while a loop opened inside it (line "
                     f"{(p.other_line or 0) + 1}) is still open: loop ranges cross",
                     p.line,

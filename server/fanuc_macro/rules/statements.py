@@ -14,10 +14,8 @@ from ..diagnostics import (
     RuleDoc,
     RuleInfo,
     Severity,
-    document,
     line_list,
     make,
-    register,
 )
 from ..line_maps import LineMap
 from ..per_line import PerLine
@@ -42,251 +40,28 @@ from ..syntax.tree import (
 from .context import LineFinding, RuleContext
 
 FAMILY = "statements"
-register(
-    RuleInfo("MB401", "nc-and-macro", Severity.ERROR,
-             "An NC statement and a macro statement in one block (alarm PS0127).", FAMILY),
-    RuleInfo("MB402", "g65-argument-letter", Severity.ERROR,
-             "G, L, N, O or P used as a G65/G66 argument (alarm PS0129 for G).", FAMILY),
-    RuleInfo("MB403", "call-target-missing", Severity.WARNING,
-             "M98/G65/G66 calls a program that is in neither the file nor the workspace.",
-             FAMILY),
-    RuleInfo("MB404", "argument-without-decimal-point", Severity.INFORMATION,
-             "A G65 argument written without a decimal point: its value depends on the "
-             "machine's least input increment.", FAMILY),
-    RuleInfo("MB405", "repeat-count", Severity.ERROR,
-             "An L repeat count outside 1-9999, or a call with no P.", FAMILY),
-    RuleInfo("MB406", "modal-call-not-cancelled", Severity.WARNING,
-             "A G66/G66.1 modal call with no G67 after it in the same program.", FAMILY),
-    RuleInfo("MB407", "program-not-ended", Severity.WARNING,
-             "An O program with no M30, M02 or M99: it runs off its end.", FAMILY),
-)  # fmt: skip
 
-# What each rule above reports, why, an example, the fix and what it leaves out:
-# docs/rules.md is generated from it (python3 scripts/rules_doc.py).
-document(
-    RuleDoc(
-        "MB401",
-        reports="""
-An NC statement and a macro statement in the same block:
-`G01 X#1 #1=#1-2.`, `G00 Z2. GOTO20`, `#2=0 G00 X100.`.
-""",
-        why="""
-FANUC raises PS0127 DUPLICATE NC,MACRO STATEMENT and stops at
-the block. Controls that accept it (Haas, LinuxCNC) do not agree on the order in which the two
-parts run, so even there the value used by the move is uncertain.
-""",
-        example="""
-```nc
-O2008 (FACING PASSES)
-N10 G01 X#1 #1=#1-2.
-M30
-```
-""",
-        fix="""
-Put the macro statement in its own block, before or after the NC block as
-intended.
-""",
-        not_reported="""
-A sequence number, a block skip `/` or a comment beside a macro
-statement (`N10 #1=5`, `/#2=0 (SKIP)`), `IF [...] THEN` with one assignment, and NC blocks whose
-words are variables or expressions (`G01 X#1 Z[#2-1.]`): those are NC statements.
-""",
-    ),
-    RuleDoc(
-        "MB402",
-        reports="""
-`G`, `L`, `N`, `O` or `P` used as an argument of `G65`/`G66`:
-`G65 P9010 A10. G01.`. `P` (the program) and `L` (the repeat count) are not arguments; `G` is
-allowed only with `G66.1`.
-""",
-        why="""
-These letters cannot pass a value to the macro: `G` raises
-PS0129 USE 'G' AS ARGUMENT, and the others are read as the call's own program number, repeat
-count or sequence number. The macro never receives the value, and the call stops or runs with
-another value than the one written.
-""",
-        example="""
-```nc
-O1002 (POCKET CALL)
-G65 P9010 A10. B20. G01.
-M30
-```
-""",
-        fix="""
-Pass the value through another letter (`A`–`Z` except `G L N O P`) and read the
-matching local in the macro (`D` → `#7`, `E` → `#8`, ...).
-""",
-        not_reported="""
-`G` in a `G66.1` block (it is a word of the block, passed as an
-argument), the call's own `P` and `L`, and `M98`, which takes no arguments.
-""",
-    ),
-    RuleDoc(
-        "MB403",
-        reports="""
-`M98 P`, `G65 P`, `G66 P` or `G66.1 P` with a constant program number that
-is in neither the file nor the other files checked with it (a folder or the files given together
-on the command line, the open workspace in the editor). `M98 P0013331` is read as one call of
-O3331. A file without an O line whose name is a program number (`O8501.NC`, see MB010) holds
-that program. Each missing program is reported once, at its first call; the message counts the
-calls and lists the other lines.
-""",
-        why="""
-If the program is not in the control's memory either, the
-call raises PS0076 PROGRAM NOT FOUND and the program stops there. It is a warning because the
-called program often is on the control (a probing or tool-change macro) but not beside the
-file.
-""",
-        example="""
-```nc
-O1000 (MAIN)
-M98 P2000
-M30
-```
-""",
-        fix="""
-Check the called program in the same run (`fanuc-macro check main.nc subs/`),
-correct the number, or disable the rule for programs that live only on the control.
-""",
-        not_reported="""
-Calls whose program number is computed (`M98 P#1`: the evaluator
-reports where it leads, MB706), Haas `M97` (MB002), and each further call of a program already
-reported. Programs the control calls through parameters (custom G and M codes calling
-O9010–O9029, a T code calling O9000), which are not calls in the text. A program in another
-file of the workspace, or of the files given together, or a file without an O line named by
-the number. Nothing, in a file read only in part (MB013): the program may be in the unread part.
-""",
-    ),
-    RuleDoc(
-        "MB404",
-        reports="""
-A `G65`/`G66` argument of a length or angle address written as a number
-without a decimal point: `A10`, `Z-10`, `R5` (the letters A B C I J K Q R U V W X Y Z).
-""",
-        why="""
-Without a decimal point the value passed to the macro is
-counted in least input increments: with metric IS-B, `A10` arrives as `0.01`, not `10.`,
-unless calculator-type decimal point input (parameter 3401#0) is set. A depth of `Z10` becomes
-0.01 mm on one machine and 10 mm on the next: an air cut, or a tool driven 10 mm into the part.
-""",
-        example="""
-```nc
-O0001 (DRILL CALL)
-G65 P9001 A10 B2.5 Z-10.
-M30
-```
-""",
-        fix="""
-Write every argument with a decimal point: `A10.`, `Z-10.`, `R5.`. The quick fix in
-the editor adds the `.` after the argument's digits.
-""",
-        not_reported="""
-A zero (`X0` is 0 in any increment); `S`, `T`, `M`, `D` and
-`H`, which take whole numbers, and `F`, counted in mm/min whatever the increment (FANUC: the
-units of an argument without a decimal point are the least input increment of its address);
-`E`, whose increment is not settled (`G65 P3001 E41` passes the G code 41 to a `G#8`);
-arguments given by variables or expressions (`A#1`, `B[10]`), which carry their value as it
-is; the words of `M98` and a `G66.1` block's own G codes, which are not arguments.
-""",
-    ),
-    RuleDoc(
-        "MB405",
-        reports="""
-An `L` repeat count outside 1–9999 on `M98`/`G65` (`L0`, `L10000`, also the
-leading digits of `M98 P<rrrr><pppp>`), or a call without `P`.
-""",
-        why="""
-The control rejects the block with an alarm, and without `P`
-there is no program to call. A repeat count of 0 intended to skip the call does not do so on
-every control.
-""",
-        example="""
-```nc
-O0010 (BOLT CIRCLE)
-M98 P0011 L0
-M98 L2
-M30
-```
-""",
-        fix="""
-Give `P` and a repeat count from 1 to 9999; skip the call with `IF [...] GOTO`
-instead of `L0`.
-""",
-        not_reported="""
-A repeat count computed at run time (`L#2`) or not written (one
-run; a `G66` without `L` calls the macro after each move).
-""",
-    ),
-    RuleDoc(
-        "MB406",
-        reports="""
-A `G66` or `G66.1` modal call with no `G67` after it in the same O
-program.
-""",
-        why="""
-After `G66 P...`, the control calls the macro after every
-block that moves an axis, until `G67`. FANUC requires the `G66` and its `G67` in one program.
-Without the `G67`, the retract and the moves to the tool change at the end of the program each
-call the macro too: a hole is drilled at the retract position, or the pattern is repeated
-where no part is.
-""",
-        example="""
-```nc
-O0001 (DRILL PATTERN)
-G66 P1001 Z-5. R2. F100.
-X50. Y0
-X100. Y0
-G00 Z100.
-M30
-O1001
-G81 Z#26 R#18 F#9
-M99
-```
-""",
-        fix="""
-Put `G67` after the last block that should call the macro (here before
-`G00 Z100.`).
-""",
-        not_reported="""
-A `G66` whose `G67` stands later in the same program, on any
-path; a `G67` without `G66`; a program that goes on past the part of a big file the analysis
-reads (MB013), whose `G67` may stand in the unread part.
-""",
-    ),
-    RuleDoc(
-        "MB407",
-        reports="""
-An O program with no `M30`, `M02` or `M99` anywhere in it, whose last block
-is not a jump or a `#3000` alarm. When the next O number cuts it off, it is reported on that O
-line (a second O number in the middle of a program); otherwise on the program's last block.
-""",
-        why="""
-A subprogram without `M99` never returns to its caller: the
-blocks after the `M98` or `G65` (the retract, the spindle stop) are not run. An O number typed
-in the middle of a program splits it into two when the file is loaded: the first part stops
-without an end, the second runs without the setup of the first.
-""",
-        example="""
-```nc
-O0201 (POCKET)
-G54 G90 G00 X0 Y0
-S1000 M03
-O0202
-G01 Z-5. F100.
-M30
-```
-""",
-        fix="""
-End every program with `M30` (main program) or `M99` (subprogram or macro);
-delete an O number that does not start a program of its own.
-""",
-        not_reported="""
-Text before the first O number (MB010 speaks of it), programs
-that end with `GOTO` or `#3000=n`, and a program that goes on past the part of a big file the
-analysis reads (MB013): its end is in the unread part.
-""",
-    ),
-)
+# The family's rules, by code: what diagnostics.make gives each diagnostic (its name,
+# severity and tags). Each rule's documentation, MBxxx_DOC, is beside the function that
+# finds it; docs/rules.md is generated from them (python3 scripts/rules_doc.py).
+# fmt: off
+MB401 = RuleInfo("MB401", "nc-and-macro", Severity.ERROR,
+                 "An NC statement and a macro statement in one block (alarm PS0127).", FAMILY)
+MB402 = RuleInfo("MB402", "g65-argument-letter", Severity.ERROR,
+                 "G, L, N, O or P used as a G65/G66 argument (alarm PS0129 for G).", FAMILY)
+MB403 = RuleInfo("MB403", "call-target-missing", Severity.WARNING,
+                 "M98/G65/G66 calls a program that is in neither the file nor the workspace.",
+                 FAMILY)
+MB404 = RuleInfo("MB404", "argument-without-decimal-point", Severity.INFORMATION,
+                 "A G65 argument written without a decimal point: its value depends on the "
+                 "machine's least input increment.", FAMILY)
+MB405 = RuleInfo("MB405", "repeat-count", Severity.ERROR,
+                 "An L repeat count outside 1-9999, or a call with no P.", FAMILY)
+MB406 = RuleInfo("MB406", "modal-call-not-cancelled", Severity.WARNING,
+                 "A G66/G66.1 modal call with no G67 after it in the same program.", FAMILY)
+MB407 = RuleInfo("MB407", "program-not-ended", Severity.WARNING,
+                 "An O program with no M30, M02 or M99: it runs off its end.", FAMILY)
+# fmt: on
 
 
 # "The units used for argument data passed without a decimal point correspond to the least
@@ -295,6 +70,36 @@ analysis reads (MB013): its end is in the unread part.
 # S, T, M, D, H take whole numbers and F is in mm/min (1 mm/min on IS-B), so those are not.
 # E has no axis on a mill and its increment is not settled (a lathe's precise lead): left out.
 SCALED_ARGUMENTS = frozenset("ABCIJKQRUVWXYZ")
+
+
+MB401_DOC = RuleDoc(
+    "MB401",
+    reports="""
+An NC statement and a macro statement in the same block:
+`G01 X#1 #1=#1-2.`, `G00 Z2. GOTO20`, `#2=0 G00 X100.`.
+""",
+    why="""
+FANUC raises PS0127 DUPLICATE NC,MACRO STATEMENT and stops at
+the block. Controls that accept it (Haas, LinuxCNC) do not agree on the order in which the two
+parts run, so even there the value used by the move is uncertain.
+""",
+    example="""
+```nc
+O2008 (FACING PASSES)
+N10 G01 X#1 #1=#1-2.
+M30
+```
+""",
+    fix="""
+Put the macro statement in its own block, before or after the NC block as
+intended.
+""",
+    not_reported="""
+A sequence number, a block skip `/` or a comment beside a macro
+statement (`N10 #1=5`, `/#2=0 (SKIP)`), `IF [...] THEN` with one assignment, and NC blocks whose
+words are variables or expressions (`G01 X#1 Z[#2-1.]`): those are NC statements.
+""",
+)
 
 
 def check_line(parsed: ParsedLine) -> Iterable[LineFinding]:
@@ -315,6 +120,101 @@ def check_line(parsed: ParsedLine) -> Iterable[LineFinding]:
     )
 
 
+MB402_DOC = RuleDoc(
+    "MB402",
+    reports="""
+`G`, `L`, `N`, `O` or `P` used as an argument of `G65`/`G66`:
+`G65 P9010 A10. G01.`. `P` (the program) and `L` (the repeat count) are not arguments; `G` is
+allowed only with `G66.1`.
+""",
+    why="""
+These letters cannot pass a value to the macro: `G` raises
+PS0129 USE 'G' AS ARGUMENT, and the others are read as the call's own program number, repeat
+count or sequence number. The macro never receives the value, and the call stops or runs with
+another value than the one written.
+""",
+    example="""
+```nc
+O1002 (POCKET CALL)
+G65 P9010 A10. B20. G01.
+M30
+```
+""",
+    fix="""
+Pass the value through another letter (`A`–`Z` except `G L N O P`) and read the
+matching local in the macro (`D` → `#7`, `E` → `#8`, ...).
+""",
+    not_reported="""
+`G` in a `G66.1` block (it is a word of the block, passed as an
+argument), the call's own `P` and `L`, and `M98`, which takes no arguments.
+""",
+)
+
+
+MB404_DOC = RuleDoc(
+    "MB404",
+    reports="""
+A `G65`/`G66` argument of a length or angle address written as a number
+without a decimal point: `A10`, `Z-10`, `R5` (the letters A B C I J K Q R U V W X Y Z).
+""",
+    why="""
+Without a decimal point the value passed to the macro is
+counted in least input increments: with metric IS-B, `A10` arrives as `0.01`, not `10.`,
+unless calculator-type decimal point input (parameter 3401#0) is set. A depth of `Z10` becomes
+0.01 mm on one machine and 10 mm on the next: an air cut, or a tool driven 10 mm into the part.
+""",
+    example="""
+```nc
+O0001 (DRILL CALL)
+G65 P9001 A10 B2.5 Z-10.
+M30
+```
+""",
+    fix="""
+Write every argument with a decimal point: `A10.`, `Z-10.`, `R5.`. The quick fix in
+the editor adds the `.` after the argument's digits.
+""",
+    not_reported="""
+A zero (`X0` is 0 in any increment); `S`, `T`, `M`, `D` and
+`H`, which take whole numbers, and `F`, counted in mm/min whatever the increment (FANUC: the
+units of an argument without a decimal point are the least input increment of its address);
+`E`, whose increment is not settled (`G65 P3001 E41` passes the G code 41 to a `G#8`);
+arguments given by variables or expressions (`A#1`, `B[10]`), which carry their value as it
+is; the words of `M98` and a `G66.1` block's own G codes, which are not arguments.
+""",
+)
+
+
+MB405_DOC = RuleDoc(
+    "MB405",
+    reports="""
+An `L` repeat count outside 1–9999 on `M98`/`G65` (`L0`, `L10000`, also the
+leading digits of `M98 P<rrrr><pppp>`), or a call without `P`.
+""",
+    why="""
+The control rejects the block with an alarm, and without `P`
+there is no program to call. A repeat count of 0 intended to skip the call does not do so on
+every control.
+""",
+    example="""
+```nc
+O0010 (BOLT CIRCLE)
+M98 P0011 L0
+M98 L2
+M30
+```
+""",
+    fix="""
+Give `P` and a repeat count from 1 to 9999; skip the call with `IF [...] GOTO`
+instead of `L0`.
+""",
+    not_reported="""
+A repeat count computed at run time (`L#2`) or not written (one
+run; a `G66` without `L` calls the macro after each move).
+""",
+)
+
+
 def check(ctx: RuleContext) -> Iterator[Diagnostic]:
     local_programs = {p.number for p in ctx.index.programs if p.number is not None}
     known = local_programs | set(ctx.workspace_programs or ())
@@ -331,7 +231,7 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
                 if call.kind == "M98" and any(w.address == "H" for w in words):
                     continue  # Citizen's M98 H<n>: MB002 says so
                 yield make(
-                    "MB405",
+                    MB405,
                     f"{call.kind} without P: no program to call",
                     line,
                     span.start,
@@ -344,7 +244,7 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
                 l_word = next((w for w in words if w.address == "L"), None)
                 at = l_word.span if l_word is not None else span
                 yield make(
-                    "MB405",
+                    MB405,
                     f"{call.kind} repeat count {call.repeat} is outside 1-9999",
                     line,
                     at.start,
@@ -355,7 +255,7 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
                     call.kind == "G66.1" and word.address == "G"
                 ):
                     yield make(
-                        "MB402",
+                        MB402,
                         f"{word.address} cannot be a {call.kind} argument; "
                         "arguments are A-Z except G, L, N, O, P",
                         line,
@@ -370,7 +270,7 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
                 ):
                     value = word.value.value
                     yield make(
-                        "MB404",
+                        MB404,
                         f"argument {word.address}{word.value.text} has no decimal "
                         f"point: the macro receives {value:g} x the least input "
                         f"increment (e.g. {value / 1000:g} on IS-B), not {value:g}; write "
@@ -402,6 +302,44 @@ class _LineEnds(NamedTuple):
     cancels_modal_call: bool  # G67
 
 
+MB403_DOC = RuleDoc(
+    "MB403",
+    reports="""
+`M98 P`, `G65 P`, `G66 P` or `G66.1 P` with a constant program number that
+is in neither the file nor the other files checked with it (a folder or the files given together
+on the command line, the open workspace in the editor). `M98 P0013331` is read as one call of
+O3331. A file without an O line whose name is a program number (`O8501.NC`, see MB010) holds
+that program. Each missing program is reported once, at its first call; the message counts the
+calls and lists the other lines.
+""",
+    why="""
+If the program is not in the control's memory either, the
+call raises PS0076 PROGRAM NOT FOUND and the program stops there. It is a warning because the
+called program often is on the control (a probing or tool-change macro) but not beside the
+file.
+""",
+    example="""
+```nc
+O1000 (MAIN)
+M98 P2000
+M30
+```
+""",
+    fix="""
+Check the called program in the same run (`fanuc-macro check main.nc subs/`),
+correct the number, or disable the rule for programs that live only on the control.
+""",
+    not_reported="""
+Calls whose program number is computed (`M98 P#1`: the evaluator
+reports where it leads, MB706), Haas `M97` (MB002), and each further call of a program already
+reported. Programs the control calls through parameters (custom G and M codes calling
+O9010–O9029, a T code calling O9000), which are not calls in the text. A program in another
+file of the workspace, or of the files given together, or a file without an O line named by
+the number. Nothing, in a file read only in part (MB013): the program may be in the unread part.
+""",
+)
+
+
 def _missing_programs(
     ctx: RuleContext, missing: dict[int, list[IndexCall]]
 ) -> Iterator[Diagnostic]:
@@ -418,7 +356,7 @@ def _missing_programs(
             also = line_list([c.line for c in calls[1:]])
             more = f"; it is called {len(calls)} times in all (also at lines {also})"
         yield make(
-            "MB403",
+            MB403,
             f"{first.kind} calls O{number:04d}, which is not in {where} (alarm PS0076 if it "
             f"is not in the control's memory){more}",
             first.line,
@@ -469,6 +407,44 @@ def _end_or_g67(parsed: ParsedLine) -> _LineEnds | None:
 _ends_and_g67s: LineMap[_LineEnds] = LineMap(_end_or_g67)
 
 
+MB406_DOC = RuleDoc(
+    "MB406",
+    reports="""
+A `G66` or `G66.1` modal call with no `G67` after it in the same O
+program.
+""",
+    why="""
+After `G66 P...`, the control calls the macro after every
+block that moves an axis, until `G67`. FANUC requires the `G66` and its `G67` in one program.
+Without the `G67`, the retract and the moves to the tool change at the end of the program each
+call the macro too: a hole is drilled at the retract position, or the pattern is repeated
+where no part is.
+""",
+    example="""
+```nc
+O0001 (DRILL PATTERN)
+G66 P1001 Z-5. R2. F100.
+X50. Y0
+X100. Y0
+G00 Z100.
+M30
+O1001
+G81 Z#26 R#18 F#9
+M99
+```
+""",
+    fix="""
+Put `G67` after the last block that should call the macro (here before
+`G00 Z100.`).
+""",
+    not_reported="""
+A `G66` whose `G67` stands later in the same program, on any
+path; a `G67` without `G66`; a program that goes on past the part of a big file the analysis
+reads (MB013), whose `G67` may stand in the unread part.
+""",
+)
+
+
 def check_programs(ctx: RuleContext) -> Iterator[Diagnostic]:
     """MB406 and MB407: what each O program must hold from its first block to its last."""
     programs = ctx.index.programs
@@ -503,7 +479,7 @@ def check_programs(ctx: RuleContext) -> Iterator[Diagnostic]:
         for call in program.calls:
             if call.kind in ("G66", "G66.1") and not (g67_lines and g67_lines[-1] > call.line):
                 yield make(
-                    "MB406",
+                    MB406,
                     f"{call.kind} at line {call.line + 1} has no G67 after it in "
                     f"{program.display_name}: every later block that moves an axis calls the "
                     "macro again, to the end of the program (FANUC: G66 and G67 pair in one "
@@ -541,6 +517,41 @@ def _calls_by_number(ctx: RuleContext) -> dict[int | None, list[tuple[Program, I
     return cast("dict[int | None, list[tuple[Program, IndexCall]]]", found)
 
 
+MB407_DOC = RuleDoc(
+    "MB407",
+    reports="""
+An O program with no `M30`, `M02` or `M99` anywhere in it, whose last block
+is not a jump or a `#3000` alarm. When the next O number cuts it off, it is reported on that O
+line (a second O number in the middle of a program); otherwise on the program's last block.
+""",
+    why="""
+A subprogram without `M99` never returns to its caller: the
+blocks after the `M98` or `G65` (the retract, the spindle stop) are not run. An O number typed
+in the middle of a program splits it into two when the file is loaded: the first part stops
+without an end, the second runs without the setup of the first.
+""",
+    example="""
+```nc
+O0201 (POCKET)
+G54 G90 G00 X0 Y0
+S1000 M03
+O0202
+G01 Z-5. F100.
+M30
+```
+""",
+    fix="""
+End every program with `M30` (main program) or `M99` (subprogram or macro);
+delete an O number that does not start a program of its own.
+""",
+    not_reported="""
+Text before the first O number (MB010 speaks of it), programs
+that end with `GOTO` or `#3000=n`, and a program that goes on past the part of a big file the
+analysis reads (MB013): its end is in the unread part.
+""",
+)
+
+
 def _not_ended(
     ctx: RuleContext, program: Program, following: Program | None, last_statement: int
 ) -> Diagnostic:
@@ -563,7 +574,7 @@ def _not_ended(
         span = block.statement.span if block.statement is not None else None
         start, end = (span.start, span.end) if span is not None else (0, 0)
         return make(
-            "MB407",
+            MB407,
             f"{following.display_name} starts here while {name} (line "
             f"{program.first_line + 1}) has no M30, M02 or M99: in the control's memory "
             f"{name} ends at line {last_statement + 1} without an end, and the blocks from "
@@ -585,7 +596,7 @@ def _not_ended(
             "it leaves the end to the '%'; add M99 or M30"
         )
     return make(
-        "MB407",
+        MB407,
         f"{name} ends at this block without M30, M02 or M99: {why}",
         last_statement,
         0,

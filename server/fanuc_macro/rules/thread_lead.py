@@ -10,7 +10,7 @@ from __future__ import annotations
 from collections import Counter
 from collections.abc import Iterator
 
-from ..diagnostics import Diagnostic, RuleDoc, RuleInfo, Severity, document, make, register
+from ..diagnostics import Diagnostic, RuleDoc, RuleInfo, Severity, make
 from ..evaluator.facts import Motion
 from ..evaluator.values import fmt
 from ..threads.identify import Thread
@@ -19,36 +19,46 @@ from .context import RuleContext
 from .threading import thread_related, width
 
 FAMILY = "threading"
-register(
-    RuleInfo("MB807", "threading-feed", Severity.ERROR,
-             "Spindle speed times pitch is above the machine's threading feed limit.", FAMILY),
-    RuleInfo("MB810", "thread-lead", Severity.ERROR,
-             "A thread is cut with an F that is not its lead (the pitch times the starts).",
-             FAMILY),
-    RuleInfo("MB811", "multi-start-shift", Severity.ERROR,
-             "A multi-start thread whose passes all start at one place: one start is cut.",
-             FAMILY),
-    RuleInfo("MB812", "thread-feed-mixed", Severity.ERROR,
-             "A pass of a thread is cut with another F than the rest of its passes.", FAMILY),
-)  # fmt: skip
 
-# What each rule above reports, why, an example, the fix and what it leaves out:
-# docs/rules.md is generated from it (python3 scripts/rules_doc.py).
-document(
-    RuleDoc(
-        "MB807",
-        reports="""
+# The family's rules, by code: what diagnostics.make gives each diagnostic (its name,
+# severity and tags). Each rule's documentation, MBxxx_DOC, is beside the function that
+# finds it; docs/rules.md is generated from them (python3 scripts/rules_doc.py).
+# fmt: off
+MB807 = RuleInfo("MB807", "threading-feed", Severity.ERROR,
+                 "Spindle speed times pitch is above the machine's threading feed limit.", FAMILY)
+MB810 = RuleInfo("MB810", "thread-lead", Severity.ERROR,
+                 "A thread is cut with an F that is not its lead (the pitch times the starts).",
+                 FAMILY)
+MB811 = RuleInfo("MB811", "multi-start-shift", Severity.ERROR,
+                 "A multi-start thread whose passes all start at one place: one start is cut.",
+                 FAMILY)
+MB812 = RuleInfo("MB812", "thread-feed-mixed", Severity.ERROR,
+                 "A pass of a thread is cut with another F than the rest of its passes.", FAMILY)
+# fmt: on
+
+
+def check(ctx: RuleContext) -> Iterator[Diagnostic]:
+    for thread in ctx.threads():
+        yield from _feed_limit(ctx, thread.job)
+        yield from _mixed_feed(ctx, thread)
+        yield from _lead(ctx, thread)
+        yield from _starts(ctx, thread)
+
+
+MB807_DOC = RuleDoc(
+    "MB807",
+    reports="""
 A threading pass whose feed, spindle speed (rpm, `G97`) times the lead
 `F`, is above the machine's threading feed limit, when that limit is set: the setting
 `fanuc-macro.machine.maxThreadingFeed` (mm/min), command line `--max-threading-feed`. The limit
 has no default.
 """,
-        why="""
+    why="""
 The Z axis cannot follow the spindle: the control clamps the
 feed or raises an alarm, the lead comes out wrong, and the tool runs past the planned run-out
 at the end of the thread, possibly into a shoulder.
 """,
-        example="""
+    example="""
 ```nc
 O1007 (EXTERNAL THREAD M64X6)
 G97 S3500 M03
@@ -59,124 +69,16 @@ M30
 
 The example assumes `"fanuc-macro.machine.maxThreadingFeed": 10000`.
 """,
-        fix="""
+    fix="""
 Lower the spindle speed for the thread (here S1500 gives 9000 mm/min), or set
 the machine's limit in the settings if it is higher.
 """,
-        not_reported="""
+    not_reported="""
 Any threading feed while the machine's limit is not set, passes in
 constant surface speed (`G96`), whose rpm depends on the diameter, and passes whose speed is not
 known.
 """,
-    ),
-    RuleDoc(
-        "MB810",
-        reports="""
-A thread cut with an `F` that is not its lead, the pitch times the number
-of starts, where the pitch is known apart from the cut: from a designation whose size fits the
-passes (`M16X1.5`), or from a variable named `(PITCH)`.
-""",
-        why="""
-On FANUC's threading commands `F` is the lead: with another
-value the tool follows another helix, the thread does not screw on, and the passes after the
-first tear the flanks the first one cut.
-""",
-        example="""
-```nc
-O1105 (M16X1.5-6G)
-G97 S700 M03
-G00 X18. Z4.
-G92 X15.6 Z-20. F2.
-X15.3
-X15.0
-G00 X100. Z100.
-M30
-```
-""",
-        fix="""
-Cut with the lead (`F1.5` here; `F` = Ph for a multi-start thread).
-""",
-        not_reported="""
-Threads whose pitch is known only from the cut's own `F`, and a
-file whose comments hold several designations that fit the passes (which one is meant cannot
-be told).
-""",
-    ),
-    RuleDoc(
-        "MB811",
-        reports="""
-A thread with several starts (a designation `M20xPh3P1.5`, or `2 START`,
-`双线` in a comment) whose passes all start around one place along the lead: no pass is
-shifted by the pitch in Z, nor by a start angle `Q`. The left and right steps of a
-symmetric module count as their centre.
-""",
-        why="""
-Only one of the starts is cut: the part has a single helix at
-the multi-start lead, and the mating part does not screw on.
-""",
-        example="""
-```nc
-O1106 (M20XPH3P1.5-6G TWO STARTS)
-G97 S600 M03
-G00 X22. Z6.
-G92 X19.6 Z-25. F3.
-X19.3
-X19.
-X18.8
-G00 X100. Z100.
-M30
-```
-""",
-        fix="""
-Cut every start: the same passes again from a start point shifted by the pitch
-(`Z7.5` here), or with `Q180000` (the start angle, 0.001°) for the second start.
-""",
-        not_reported="""
-A thread cut with another lead than pitch × starts (MB810), and
-starts whose shift is not one pitch but any other whole part of the lead.
-""",
-    ),
-    RuleDoc(
-        "MB812",
-        reports="""
-A pass of a thread (the same program execution, the same stretch of Z) cut
-with another `F` than most of the thread's passes.
-""",
-        why="""
-That pass follows another helix: it cuts across the flanks
-the other passes formed, and the thread is scrap. It is usually one block of a copied pair
-edited and its twin forgotten.
-""",
-        example="""
-```nc
-O1107 (M24X3)
-G97 S450 M03
-G00 X26. Z5.
-G92 X23.5 Z-35. F3.
-X23.1
-G92 X22.7 Z-35. F1.5
-G92 X22.4 Z-35. F3.
-G00 X100. Z100.
-M30
-```
-""",
-        fix="""
-Cut every pass with the thread's lead.
-""",
-        not_reported="""
-Threads of two passes or fewer, passes over another stretch of Z
-(another thread), and variable-lead threads (`G34`).
-""",
-    ),
 )
-
-
-def check(ctx: RuleContext) -> Iterator[Diagnostic]:
-    for thread in ctx.threads():
-        yield from _feed_limit(ctx, thread.job)
-        yield from _mixed_feed(ctx, thread)
-        yield from _lead(ctx, thread)
-        yield from _starts(ctx, thread)
 
 
 def _feed_limit(ctx: RuleContext, job: ThreadJob) -> Iterator[Diagnostic]:
@@ -188,7 +90,7 @@ def _feed_limit(ctx: RuleContext, job: ThreadJob) -> Iterator[Diagnostic]:
     assert m.rpm is not None
     feed = m.rpm * pitch
     yield make(
-        "MB807",
+        MB807,
         f"S{fmt(m.rpm)} x lead F{fmt(pitch)} = {fmt(feed)} mm/min, above the machine's "
         f"threading feed limit {fmt(limit)} mm/min",
         m.line,
@@ -206,6 +108,40 @@ def _too_fast(passes: list[Motion], limit: float) -> Motion | None:
     return None
 
 
+MB812_DOC = RuleDoc(
+    "MB812",
+    reports="""
+A pass of a thread (the same program execution, the same stretch of Z) cut
+with another `F` than most of the thread's passes.
+""",
+    why="""
+That pass follows another helix: it cuts across the flanks
+the other passes formed, and the thread is scrap. It is usually one block of a copied pair
+edited and its twin forgotten.
+""",
+    example="""
+```nc
+O1107 (M24X3)
+G97 S450 M03
+G00 X26. Z5.
+G92 X23.5 Z-35. F3.
+X23.1
+G92 X22.7 Z-35. F1.5
+G92 X22.4 Z-35. F3.
+G00 X100. Z100.
+M30
+```
+""",
+    fix="""
+Cut every pass with the thread's lead.
+""",
+    not_reported="""
+Threads of two passes or fewer, passes over another stretch of Z
+(another thread), and variable-lead threads (`G34`).
+""",
+)
+
+
 def _mixed_feed(ctx: RuleContext, thread: Thread) -> Iterator[Diagnostic]:
     job = thread.job
     found = job.remember("mixed feed", lambda: _other_feeds(job.passes), ("F", "line"))
@@ -214,7 +150,7 @@ def _mixed_feed(ctx: RuleContext, thread: Thread) -> Iterator[Diagnostic]:
     usual, count, others = found
     for m in others:
         yield make(
-            "MB812",
+            MB812,
             f"this {m.code} cuts with F{m.words['F']:g}, the other {count} passes of the same "
             f"thread with F{usual:g}: it cuts another helix across the thread's flanks",
             m.line,
@@ -241,6 +177,41 @@ def _other_feeds(passes: list[Motion]) -> tuple[float, int, list[Motion]] | None
         reported.add(m.line)
         others.append(m)
     return usual, count, others
+
+
+MB810_DOC = RuleDoc(
+    "MB810",
+    reports="""
+A thread cut with an `F` that is not its lead, the pitch times the number
+of starts, where the pitch is known apart from the cut: from a designation whose size fits the
+passes (`M16X1.5`), or from a variable named `(PITCH)`.
+""",
+    why="""
+On FANUC's threading commands `F` is the lead: with another
+value the tool follows another helix, the thread does not screw on, and the passes after the
+first tear the flanks the first one cut.
+""",
+    example="""
+```nc
+O1105 (M16X1.5-6G)
+G97 S700 M03
+G00 X18. Z4.
+G92 X15.6 Z-20. F2.
+X15.3
+X15.0
+G00 X100. Z100.
+M30
+```
+""",
+    fix="""
+Cut with the lead (`F1.5` here; `F` = Ph for a multi-start thread).
+""",
+    not_reported="""
+Threads whose pitch is known only from the cut's own `F`, and a
+file whose comments hold several designations that fit the passes (which one is meant cannot
+be told).
+""",
+)
 
 
 def _lead(ctx: RuleContext, thread: Thread) -> Iterator[Diagnostic]:
@@ -270,7 +241,7 @@ def _lead(ctx: RuleContext, thread: Thread) -> Iterator[Diagnostic]:
     else:
         hint = ""
     yield make(
-        "MB810",
+        MB810,
         f"{m.code} cuts with F{lead:g}, but {thread.name} has {starts}: its lead, the F to "
         f"cut with, is {want:g}{hint}; thread known from {thread.known_from()}",
         m.line,
@@ -331,6 +302,42 @@ def _starts_cut(centres: list[float], lead: float, starts: int) -> int:
     return len(hit)
 
 
+MB811_DOC = RuleDoc(
+    "MB811",
+    reports="""
+A thread with several starts (a designation `M20xPh3P1.5`, or `2 START`,
+`双线` in a comment) whose passes all start around one place along the lead: no pass is
+shifted by the pitch in Z, nor by a start angle `Q`. The left and right steps of a
+symmetric module count as their centre.
+""",
+    why="""
+Only one of the starts is cut: the part has a single helix at
+the multi-start lead, and the mating part does not screw on.
+""",
+    example="""
+```nc
+O1106 (M20XPH3P1.5-6G TWO STARTS)
+G97 S600 M03
+G00 X22. Z6.
+G92 X19.6 Z-25. F3.
+X19.3
+X19.
+X18.8
+G00 X100. Z100.
+M30
+```
+""",
+    fix="""
+Cut every start: the same passes again from a start point shifted by the pitch
+(`Z7.5` here), or with `Q180000` (the start angle, 0.001°) for the second start.
+""",
+    not_reported="""
+A thread cut with another lead than pitch × starts (MB810), and
+starts whose shift is not one pitch but any other whole part of the lead.
+""",
+)
+
+
 def _starts(ctx: RuleContext, thread: Thread) -> Iterator[Diagnostic]:
     lead = thread.job.lead
     if thread.starts < 2 or lead is None or thread.pitch is None:
@@ -347,7 +354,7 @@ def _starts(ctx: RuleContext, thread: Thread) -> Iterator[Diagnostic]:
         return
     first = thread.job.passes[0]
     yield make(
-        "MB811",
+        MB811,
         f"{thread.name} has {thread.starts} starts, but its {len(thread.job.passes)} passes "
         f"all start around one place along the lead {lead:g}: only one start is cut; cut the "
         f"next start shifted by the "

@@ -12,7 +12,7 @@ from collections import Counter
 from collections.abc import Iterator
 from itertools import pairwise
 
-from ..diagnostics import Diagnostic, Related, RuleDoc, RuleInfo, Severity, document, make, register
+from ..diagnostics import Diagnostic, Related, RuleDoc, RuleInfo, Severity, make
 from ..evaluator.facts import DocumentFacts, Motion
 from ..program.index import Program
 from ..syntax.tree import Call, Var
@@ -24,129 +24,19 @@ from .context import RuleContext
 from .threading import EPS, mm, pass_name, width
 
 FAMILY = "threading"
-register(
-    RuleInfo("MB803", "thread-depth-not-growing", Severity.WARNING,
-             "A threading pass is shallower than the one before it.", FAMILY),
-    RuleInfo("MB804", "thread-pass-too-deep", Severity.WARNING,
-             "A threading pass takes more depth than the configured maximum per pass.", FAMILY),
-    RuleInfo("MB814", "thread-pass-repeated", Severity.WARNING,
-             "A threading pass repeats the previous pass's X, or one of the program's own "
-             "sequence of depths is never cut.", FAMILY),
-)  # fmt: skip
 
-# What each rule above reports, why, an example, the fix and what it leaves out:
-# docs/rules.md is generated from it (python3 scripts/rules_doc.py).
-document(
-    RuleDoc(
-        "MB803",
-        reports="""
-A threading cycle pass (`G92`, `G76`) that is shallower than the pass
-before it. Passes of a taper thread (`G92 R`) are compared where the first pass ends, on the
-line each cut follows: a pass moved along Z (flank infeed) ends on the cone at another
-diameter for the same depth.
-""",
-        why="""
-The pass cuts nothing or rubs the flank it has already cut:
-wasted time at best, work hardening and a poor finish at worst. It usually shows a pass list
-typed out of order, so the passes after it may not be the ones intended either.
-""",
-        example="""
-```nc
-O1003 (EXTERNAL THREAD M20X2.5)
-G97 S500 M03
-G00 X22. Z5.
-G92 X19.5 Z-30. F2.5
-X18.5
-X18.8
-G00 X100. Z100.
-M30
-```
-""",
-        fix="""
-Put the passes in order of growing depth.
-""",
-        not_reported="""
-The same depth again (a spring pass, or the left and right steps
-of the symmetric module); a return to the first depth, which starts the next start of a
-multi-start thread or cuts the thread again; `G32` single cuts, which fitting-method programs
-move around a profile on purpose.
-""",
-    ),
-    RuleDoc(
-        "MB804",
-        reports="""
-A threading cycle pass that takes more depth (radius) than the maximum per
-pass, the setting `fanuc-macro.threading.maxDepthPerPass` (0.5 mm by default).
-""",
-        why="""
-Depth of cut in threading grows the chip area quickly, since
-the insert cuts on its flanks: an overloaded pass chatters, tears the flank or breaks the
-insert, and a broken insert in the thread usually scraps the part.
-""",
-        example="""
-```nc
-O1004 (EXTERNAL THREAD M20X2.5)
-G97 S500 M03
-G00 X22. Z5.
-G92 X19.5 Z-30. F2.5
-X19.1
-X17.9
-G00 X100. Z100.
-M30
-```
-""",
-        fix="""
-Split the depth over more passes (decreasing depths with a constant chip area
-are the usual rule), or raise the setting if the insert and the material allow it.
-""",
-        not_reported="""
-The first pass (measured from the crest, it is MB802's), and
-`G32` single cuts.
-""",
-    ),
-    RuleDoc(
-        "MB814",
-        reports="""
-In a thread whose passes go down in single steps, a pass that repeats the
-previous one (the same X from the same start point) before the full depth, or a step of twice
-the program's usual step (a depth never cut). When the pass's X is computed through `FIX` or
-`FUP` of a value a hair off a whole number (`FIX[#30*10.]` with `#30` added up in steps of 0.1
-gives 7 for 7.999999999999999), the message names it and stands at that line; it names `ROUND`
-too when the X comes through one.
-""",
-        why="""
-One depth is cut twice and another never: the pass after the
-missing one takes a double depth, and a pass list computed with `FIX` of a sum of decimal steps
-loses its last pass. The control computes in binary floating point like the analysis: 0.1 added
-ten times is not exactly 1.
-""",
-        example="""
-```nc
-O1102 (M24X3-6G)
-G97 S450 M03
-G00 X26. Z5.
-#20=24.
-#30=0.1
-WHILE[#30LE1.]DO1
-#31=FIX[#30*10.]
-#32=#20-#31*0.36
-G92 X#32 Z-32. F3.
-#30=#30+0.1
-END1
-M30
-```
-""",
-        fix="""
-Count passes with an integer counter, or use `ROUND` where a whole number is
-meant (`#31=ROUND[#30*10.]`).
-""",
-        not_reported="""
-Spring passes at the full depth, `G76`'s finishing passes,
-threads cut in pairs of passes per depth (the symmetric module's left and right steps) or that
-repeat every pass on purpose, and `G32` single cuts.
-""",
-    ),
-)
+# The family's rules, by code: what diagnostics.make gives each diagnostic (its name,
+# severity and tags). Each rule's documentation, MBxxx_DOC, is beside the function that
+# finds it; docs/rules.md is generated from them (python3 scripts/rules_doc.py).
+# fmt: off
+MB803 = RuleInfo("MB803", "thread-depth-not-growing", Severity.WARNING,
+                 "A threading pass is shallower than the one before it.", FAMILY)
+MB804 = RuleInfo("MB804", "thread-pass-too-deep", Severity.WARNING,
+                 "A threading pass takes more depth than the configured maximum per pass.", FAMILY)
+MB814 = RuleInfo("MB814", "thread-pass-repeated", Severity.WARNING,
+                 "A threading pass repeats the previous pass's X, or one of the program's own "
+                 "sequence of depths is never cut.", FAMILY)
+# fmt: on
 
 
 def check(ctx: RuleContext) -> Iterator[Diagnostic]:
@@ -159,6 +49,43 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
             continue
         yield from _growing(ctx, thread, internal)
         yield from _repeated(ctx, thread, internal)
+
+
+MB803_DOC = RuleDoc(
+    "MB803",
+    reports="""
+A threading cycle pass (`G92`, `G76`) that is shallower than the pass
+before it. Passes of a taper thread (`G92 R`) are compared where the first pass ends, on the
+line each cut follows: a pass moved along Z (flank infeed) ends on the cone at another
+diameter for the same depth.
+""",
+    why="""
+The pass cuts nothing or rubs the flank it has already cut:
+wasted time at best, work hardening and a poor finish at worst. It usually shows a pass list
+typed out of order, so the passes after it may not be the ones intended either.
+""",
+    example="""
+```nc
+O1003 (EXTERNAL THREAD M20X2.5)
+G97 S500 M03
+G00 X22. Z5.
+G92 X19.5 Z-30. F2.5
+X18.5
+X18.8
+G00 X100. Z100.
+M30
+```
+""",
+    fix="""
+Put the passes in order of growing depth.
+""",
+    not_reported="""
+The same depth again (a spring pass, or the left and right steps
+of the symmetric module); a return to the first depth, which starts the next start of a
+multi-start thread or cuts the thread again; `G32` single cuts, which fitting-method programs
+move around a profile on purpose.
+""",
+)
 
 
 def _growing(ctx: RuleContext, thread: Thread, internal: bool) -> Iterator[Diagnostic]:
@@ -186,7 +113,41 @@ def _growing(ctx: RuleContext, thread: Thread, internal: bool) -> Iterator[Diagn
                 f"{pass_name(thread, i, m)} takes {step:.3f} mm (radius) in one pass, above "
                 f"the maximum {limit:g} mm per pass"
             )
-        yield make(code, message, m.line, 0, width(ctx, m.line))
+        yield make(MB803 if code == MB803.code else MB804, message, m.line, 0, width(ctx, m.line))
+
+
+MB804_DOC = RuleDoc(
+    "MB804",
+    reports="""
+A threading cycle pass that takes more depth (radius) than the maximum per
+pass, the setting `fanuc-macro.threading.maxDepthPerPass` (0.5 mm by default).
+""",
+    why="""
+Depth of cut in threading grows the chip area quickly, since
+the insert cuts on its flanks: an overloaded pass chatters, tears the flank or breaks the
+insert, and a broken insert in the thread usually scraps the part.
+""",
+    example="""
+```nc
+O1004 (EXTERNAL THREAD M20X2.5)
+G97 S500 M03
+G00 X22. Z5.
+G92 X19.5 Z-30. F2.5
+X19.1
+X17.9
+G00 X100. Z100.
+M30
+```
+""",
+    fix="""
+Split the depth over more passes (decreasing depths with a constant chip area
+are the usual rule), or raise the setting if the insert and the material allow it.
+""",
+    not_reported="""
+The first pass (measured from the crest, it is MB802's), and
+`G32` single cuts.
+""",
+)
 
 
 def _growing_events(
@@ -316,6 +277,50 @@ def _repeated_pass(
     return passes, "repeat", repeats[0], 0.0
 
 
+MB814_DOC = RuleDoc(
+    "MB814",
+    reports="""
+In a thread whose passes go down in single steps, a pass that repeats the
+previous one (the same X from the same start point) before the full depth, or a step of twice
+the program's usual step (a depth never cut). When the pass's X is computed through `FIX` or
+`FUP` of a value a hair off a whole number (`FIX[#30*10.]` with `#30` added up in steps of 0.1
+gives 7 for 7.999999999999999), the message names it and stands at that line; it names `ROUND`
+too when the X comes through one.
+""",
+    why="""
+One depth is cut twice and another never: the pass after the
+missing one takes a double depth, and a pass list computed with `FIX` of a sum of decimal steps
+loses its last pass. The control computes in binary floating point like the analysis: 0.1 added
+ten times is not exactly 1.
+""",
+    example="""
+```nc
+O1102 (M24X3-6G)
+G97 S450 M03
+G00 X26. Z5.
+#20=24.
+#30=0.1
+WHILE[#30LE1.]DO1
+#31=FIX[#30*10.]
+#32=#20-#31*0.36
+G92 X#32 Z-32. F3.
+#30=#30+0.1
+END1
+M30
+```
+""",
+    fix="""
+Count passes with an integer counter, or use `ROUND` where a whole number is
+meant (`#31=ROUND[#30*10.]`).
+""",
+    not_reported="""
+Spring passes at the full depth, `G76`'s finishing passes,
+threads cut in pairs of passes per depth (the symmetric module's left and right steps) or that
+repeat every pass on purpose, and `G32` single cuts.
+""",
+)
+
+
 def _pass_finding(
     ctx: RuleContext, thread: Thread, m: Motion, what: str, before_cause: str
 ) -> Diagnostic:
@@ -324,7 +329,7 @@ def _pass_finding(
     cause, fix_line, related = _rounding_cause(ctx, thread, m)
     line = m.line if fix_line is None else fix_line
     message = what + (f"{before_cause}{cause}" if cause else "")
-    return make("MB814", message, line, 0, width(ctx, line), related=related)
+    return make(MB814, message, line, 0, width(ctx, line), related=related)
 
 
 def _steps(passes: list[Motion], sign: float) -> list[float]:

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
-from ..diagnostics import Diagnostic, Related, RuleDoc, RuleInfo, Severity, document, make, register
+from ..diagnostics import Diagnostic, Related, RuleDoc, RuleInfo, Severity, make
 from ..evaluator.facts import Motion
 from ..evaluator.values import fmt_address
 from ..program.papers import DENG_MOLYBDENUM
@@ -22,191 +22,22 @@ from ..threads.module_shape import D1_FACTOR, writes_in_document
 from .context import RuleContext
 
 FAMILY = "threading"
-register(
-    RuleInfo("MB801", "thread-past-root", Severity.ERROR,
-             "A threading pass reaches past the root of the thread being cut.", FAMILY),
-    RuleInfo("MB802", "thread-first-depth", Severity.ERROR,
-             "The first threading pass is deeper than the whole thread height.", FAMILY),
-    RuleInfo("MB808", "thread-height", Severity.WARNING,
-             "A thread module's height puts the pitch diameter outside the thread's class.",
-             FAMILY),
-    RuleInfo("MB809", "deviation-sign", Severity.WARNING,
-             "es or EI entered with its sign where the module adds it as a magnitude.", FAMILY),
-)  # fmt: skip
 
-# What each rule above reports, why, an example, the fix and what it leaves out:
-# docs/rules.md is generated from it (python3 scripts/rules_doc.py).
-document(
-    RuleDoc(
-        "MB801",
-        reports="""
-A threading pass (`G32`, `G92`, a pass of `G76`) whose X goes past the root
-of the thread being cut: deeper than the X that keeps the pitch diameter inside the thread's
-class with the tool's nose radius (d2 min − H + 2r outside, D2 max + H − 2r inside; see "How
-the threading rules know the thread"). The message names the pass, its X, the root X and by
-how much, and where the thread was known from. It is reported once per thread, at the first
-pass too deep.
-""",
-        why="""
-The thread comes out too deep: the pitch diameter of an
-external thread is undersize (an internal one oversize), the thread fails its gauge, and the
-part is scrap. The last passes also load the full flank of the insert.
-""",
-        example="""
-```nc
-O1001 (EXTERNAL THREAD M20X2.5)
-G97 S500 M03
-G00 X22. Z5.
-G92 X19.5 Z-30. F2.5
-X19.1
-X18.7
-X18.3
-X17.9
-X17.5
-X17.1
-X16.8
-X16.5
-G00 X100. Z100.
-M30
-```
-""",
-        fix="""
-Stop at the root of the class (here X16.624 for M20x2.5-6g with a 0.3125
-nose radius: d2 min 18.164 − H + 2r), or correct the thread height the passes are computed
-from (MB808 says which term when a module computes it).
-""",
-        not_reported="""
-Passes of a thread whose size is not known (no designation, no
-module, no comment names it), of a taper cut, of an arc thread by the fitting method, or of a
-trapezoidal, pipe or inch thread: there is no ISO metric profile to compare with. A class not
-written is ISO 965-1's medium class (6g / 6H); a class not known at all is the loosest of the
-tables, so a pass between a tight class's root and the loosest one's is not reported.
-""",
-    ),
-    RuleDoc(
-        "MB802",
-        reports="""
-The first threading pass of a thread is deeper (radius, from the crest:
-the nominal diameter outside, D1 inside) than the whole height of the thread down to its root.
-""",
-        why="""
-The whole profile, or more, is cut in one pass: the insert
-takes the full load on both flanks and usually breaks; the thread is torn. It is almost always a
-final diameter typed where the first pass belongs.
-""",
-        example="""
-```nc
-O1002 (EXTERNAL THREAD M20X2.5)
-G97 S500 M03
-G00 X22. Z5.
-G92 X16.0 Z-30. F2.5
-G00 X100. Z100.
-M30
-```
-""",
-        fix="""
-Start with a light pass and reach the full depth in steps (G76 computes them),
-or correct the first X.
-""",
-        not_reported="""
-A first pass that is deep but within the height (MB804 reports a
-pass deeper than the configured maximum), and threads that are not identified (see MB801).
-""",
-    ),
-    RuleDoc(
-        "MB808",
-        reports="""
-A thread module's own thread height (the variable its last pass is cut
-to: `#4` of `X[#100-2.*#4]`) that differs from the height the standard and Deng Ronggang's
-formula give for the identified thread, 7H/8 − r + es/2 + Td2/4 outside or 6H/8 − r + EI/2 +
-TD2/4 inside (es and Td2 of the class, r the program's nose radius), by more than a quarter of
-Td2: enough to put the pitch diameter outside the class. The message gives the expected
-height, the difference, the pitch diameter that results, and the term of the formula that
-differs (`#103 is taken ×2 where the formula has es/2`), or the input that is not the class's
-(`#104 = 0.7 where M50x3-5g6g's Td2 is 0.17`); it stands at the formula, or at that input.
-""",
-        why="""
-Every pass is computed from the height: a typo in the formula
-moves the whole thread, and the gauge shows it only after the part is cut.
-""",
-        example="""
-```nc
-O4001 (M30X2)
-G97 S600 M03
-G00 X32. Z5.
-#100=30.
-#101=2.
-#103=0.038
-#104=0.170
-M98 P3001
-M30
-O3001
-#3=#101/[8*SIN[60]]
-#4=[7./8.]*SIN[60]*#101-#3+#103*2.+#104/4.
-#9=0.15
-N10 G92 X[#100-2.*#9] Z-30. F#101
-#9=#9+0.15
-IF[#9LT#4]GOTO10
-G92 X[#100-2.*#4] Z-30. F#101
-M99
-```
-""",
-        fix="""
-Correct the term the message names (here `#103/2.`), or the input.
-""",
-        not_reported="""
-A height within a quarter of Td2 of the standard's: that is the
-tuning Deng Ronggang's paper leaves to `#103` (coarse) and `#104` (fine). Heights of hand-written
-pass lists (only MB801 checks their depth), and threads whose class is not known.
-""",
-    ),
-    RuleDoc(
-        "MB809",
-        reports="""
-A thread module whose height adds the fundamental deviation (es, or EI)
-with a coefficient of +1/2, fed with a signed value that makes the thread shallower: es
-entered as ISO 965-1 writes it (`#103=-0.048`) where the module expects its magnitude (seed
-paper 000, table 2: `0.048` for es = −0.048), or a negative EI, which no internal class has. It
-stands at the assignment of the value.
-""",
-        why="""
-The height loses |es| instead of gaining it: the thread is
-cut |es| (radius) shallower than its class, its pitch diameter stays above d2 max and the ring
-gauge does not go on.
-""",
-        example="""
-```nc
-O4003 (M30X2-6G)
-G97 S600 M03
-G00 X32. Z5.
-#100=30.
-#101=2.
-#103=-0.038
-#104=0.170
-M98 P3003
-M30
-O3003
-#3=#101/[8*SIN[60]]
-#4=[7./8.]*SIN[60]*#101-#3+#103/2.+#104/4.
-#9=0.15
-N10 G92 X[#100-2.*#9] Z-30. F#101
-#9=#9+0.15
-IF[#9LT#4]GOTO10
-G92 X[#100-2.*#4] Z-30. F#101
-M99
-```
-""",
-        fix="""
-Enter the magnitude (`#103=0.038`), or change the module to subtract es
-(`-#103/2.`) if signed values are the shop's habit.
-""",
-        not_reported="""
-A module that takes es with its sign (`-#103/2.` fed
-`-0.048`): the height is right. When this rule fires, MB808 is not reported for the same
-thread.
-""",
-    ),
-)
+# The family's rules, by code: what diagnostics.make gives each diagnostic (its name,
+# severity and tags). Each rule's documentation, MBxxx_DOC, is beside the function that
+# finds it; docs/rules.md is generated from them (python3 scripts/rules_doc.py).
+# fmt: off
+MB801 = RuleInfo("MB801", "thread-past-root", Severity.ERROR,
+                 "A threading pass reaches past the root of the thread being cut.", FAMILY)
+MB802 = RuleInfo("MB802", "thread-first-depth", Severity.ERROR,
+                 "The first threading pass is deeper than the whole thread height.", FAMILY)
+MB808 = RuleInfo("MB808", "thread-height", Severity.WARNING,
+                 "A thread module's height puts the pitch diameter outside the thread's class.",
+                 FAMILY)
+MB809 = RuleInfo("MB809", "deviation-sign", Severity.WARNING,
+                 "es or EI entered with its sign where the module adds it as a magnitude.", FAMILY)
+# fmt: on
+
 
 EPS = 0.0005  # half the least input increment (IS-B, mm)
 
@@ -245,6 +76,86 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
             yield from _height_check(ctx, thread)
 
 
+MB801_DOC = RuleDoc(
+    "MB801",
+    reports="""
+A threading pass (`G32`, `G92`, a pass of `G76`) whose X goes past the root
+of the thread being cut: deeper than the X that keeps the pitch diameter inside the thread's
+class with the tool's nose radius (d2 min − H + 2r outside, D2 max + H − 2r inside; see "How
+the threading rules know the thread"). The message names the pass, its X, the root X and by
+how much, and where the thread was known from. It is reported once per thread, at the first
+pass too deep.
+""",
+    why="""
+The thread comes out too deep: the pitch diameter of an
+external thread is undersize (an internal one oversize), the thread fails its gauge, and the
+part is scrap. The last passes also load the full flank of the insert.
+""",
+    example="""
+```nc
+O1001 (EXTERNAL THREAD M20X2.5)
+G97 S500 M03
+G00 X22. Z5.
+G92 X19.5 Z-30. F2.5
+X19.1
+X18.7
+X18.3
+X17.9
+X17.5
+X17.1
+X16.8
+X16.5
+G00 X100. Z100.
+M30
+```
+""",
+    fix="""
+Stop at the root of the class (here X16.624 for M20x2.5-6g with a 0.3125
+nose radius: d2 min 18.164 − H + 2r), or correct the thread height the passes are computed
+from (MB808 says which term when a module computes it).
+""",
+    not_reported="""
+Passes of a thread whose size is not known (no designation, no
+module, no comment names it), of a taper cut, of an arc thread by the fitting method, or of a
+trapezoidal, pipe or inch thread: there is no ISO metric profile to compare with. A class not
+written is ISO 965-1's medium class (6g / 6H); a class not known at all is the loosest of the
+tables, so a pass between a tight class's root and the loosest one's is not reported.
+""",
+)
+
+
+MB802_DOC = RuleDoc(
+    "MB802",
+    reports="""
+The first threading pass of a thread is deeper (radius, from the crest:
+the nominal diameter outside, D1 inside) than the whole height of the thread down to its root.
+""",
+    why="""
+The whole profile, or more, is cut in one pass: the insert
+takes the full load on both flanks and usually breaks; the thread is torn. It is almost always a
+final diameter typed where the first pass belongs.
+""",
+    example="""
+```nc
+O1002 (EXTERNAL THREAD M20X2.5)
+G97 S500 M03
+G00 X22. Z5.
+G92 X16.0 Z-30. F2.5
+G00 X100. Z100.
+M30
+```
+""",
+    fix="""
+Start with a light pass and reach the full depth in steps (G76 computes them),
+or correct the first X.
+""",
+    not_reported="""
+A first pass that is deep but within the height (MB804 reports a
+pass deeper than the configured maximum), and threads that are not identified (see MB801).
+""",
+)
+
+
 def _root_checks(ctx: RuleContext, thread: Thread) -> Iterator[Diagnostic]:
     root = thread.root_x()
     full = thread.full_depth()
@@ -272,7 +183,7 @@ def _root_checks(ctx: RuleContext, thread: Thread) -> Iterator[Diagnostic]:
         assert m.x is not None
         past = sign * (root - m.x) / 2.0
         yield make(
-            "MB801",
+            MB801,
             f"{pass_name(thread, i, m)} at X{mm(m.x)} is {past:.3f} mm (radius) past the "
             f"root X{mm(root)} of {thread.name} ({thread.limit_text()}); thread known "
             f"from {thread.known_from()}",
@@ -288,7 +199,7 @@ def _root_checks(ctx: RuleContext, thread: Thread) -> Iterator[Diagnostic]:
     depth = sign * (crest - first.x) / 2.0
     if depth > full + EPS:
         yield make(
-            "MB802",
+            MB802,
             f"first {first.code} pass at X{mm(first.x)} is {depth:.3f} mm deep (radius), more "
             f"than the whole height {full:.3f} of {thread.name} (crest X{mm(crest)}, root "
             f"X{mm(root)})",
@@ -319,6 +230,55 @@ def expected_height(thread: Thread) -> float | None:
         r = thread.pitch / (16.0 * SIN60) if thread.internal else thread.pitch / (8.0 * SIN60)
     base = (6.0 if thread.internal else 7.0) / 8.0 * big_h
     return base - r + abs(c.deviation) / 2.0 + c.tolerance / 4.0
+
+
+MB808_DOC = RuleDoc(
+    "MB808",
+    reports="""
+A thread module's own thread height (the variable its last pass is cut
+to: `#4` of `X[#100-2.*#4]`) that differs from the height the standard and Deng Ronggang's
+formula give for the identified thread, 7H/8 − r + es/2 + Td2/4 outside or 6H/8 − r + EI/2 +
+TD2/4 inside (es and Td2 of the class, r the program's nose radius), by more than a quarter of
+Td2: enough to put the pitch diameter outside the class. The message gives the expected
+height, the difference, the pitch diameter that results, and the term of the formula that
+differs (`#103 is taken ×2 where the formula has es/2`), or the input that is not the class's
+(`#104 = 0.7 where M50x3-5g6g's Td2 is 0.17`); it stands at the formula, or at that input.
+""",
+    why="""
+Every pass is computed from the height: a typo in the formula
+moves the whole thread, and the gauge shows it only after the part is cut.
+""",
+    example="""
+```nc
+O4001 (M30X2)
+G97 S600 M03
+G00 X32. Z5.
+#100=30.
+#101=2.
+#103=0.038
+#104=0.170
+M98 P3001
+M30
+O3001
+#3=#101/[8*SIN[60]]
+#4=[7./8.]*SIN[60]*#101-#3+#103*2.+#104/4.
+#9=0.15
+N10 G92 X[#100-2.*#9] Z-30. F#101
+#9=#9+0.15
+IF[#9LT#4]GOTO10
+G92 X[#100-2.*#4] Z-30. F#101
+M99
+```
+""",
+    fix="""
+Correct the term the message names (here `#103/2.`), or the input.
+""",
+    not_reported="""
+A height within a quarter of Td2 of the standard's: that is the
+tuning Deng Ronggang's paper leaves to `#103` (coarse) and `#104` (fine). Heights of hand-written
+pass lists (only MB801 checks their depth), and threads whose class is not known.
+""",
+)
 
 
 def _height_check(ctx: RuleContext, thread: Thread) -> Iterator[Diagnostic]:
@@ -363,7 +323,7 @@ def _height_check(ctx: RuleContext, thread: Thread) -> Iterator[Diagnostic]:
         cut = middle + 2.0 * difference if thread.internal else middle - 2.0 * difference
         effect = f"; the pitch diameter comes out {cut:.3f}, outside {band[0]:.3f}–{band[1]:.3f}"
     yield make(
-        "MB808",
+        MB808,
         f"thread height #{module.height_var} = {module.height:.4f} (radius) is "
         f"{abs(difference):.3f} mm {how} than the {expected:.4f} that {thread.name} needs "
         f"with {r_text} ({formula}){effect}"
@@ -424,6 +384,54 @@ def _formula_cause(thread: Thread) -> str:
     return "; ".join(causes)
 
 
+MB809_DOC = RuleDoc(
+    "MB809",
+    reports="""
+A thread module whose height adds the fundamental deviation (es, or EI)
+with a coefficient of +1/2, fed with a signed value that makes the thread shallower: es
+entered as ISO 965-1 writes it (`#103=-0.048`) where the module expects its magnitude (seed
+paper 000, table 2: `0.048` for es = −0.048), or a negative EI, which no internal class has. It
+stands at the assignment of the value.
+""",
+    why="""
+The height loses |es| instead of gaining it: the thread is
+cut |es| (radius) shallower than its class, its pitch diameter stays above d2 max and the ring
+gauge does not go on.
+""",
+    example="""
+```nc
+O4003 (M30X2-6G)
+G97 S600 M03
+G00 X32. Z5.
+#100=30.
+#101=2.
+#103=-0.038
+#104=0.170
+M98 P3003
+M30
+O3003
+#3=#101/[8*SIN[60]]
+#4=[7./8.]*SIN[60]*#101-#3+#103/2.+#104/4.
+#9=0.15
+N10 G92 X[#100-2.*#9] Z-30. F#101
+#9=#9+0.15
+IF[#9LT#4]GOTO10
+G92 X[#100-2.*#4] Z-30. F#101
+M99
+```
+""",
+    fix="""
+Enter the magnitude (`#103=0.038`), or change the module to subtract es
+(`-#103/2.`) if signed values are the shop's habit.
+""",
+    not_reported="""
+A module that takes es with its sign (`-#103/2.` fed
+`-0.048`): the height is right. When this rule fires, MB808 is not reported for the same
+thread.
+""",
+)
+
+
 def _deviation_sign(ctx: RuleContext, thread: Thread) -> Iterator[Diagnostic]:
     module = thread.module
     facts = ctx.doc_facts()
@@ -441,7 +449,7 @@ def _deviation_sign(ctx: RuleContext, thread: Thread) -> Iterator[Diagnostic]:
     name = "EI" if thread.internal else "es"
     shallower = abs(2.0 * coefficient * value)
     yield make(
-        "MB809",
+        MB809,
         f"#{var} = {value:g} enters the height #{module.height_var} as {name} with its sign, "
         f"but the module adds {name} as a magnitude ({DENG_MOLYBDENUM.by}, table 2: 0.048 for es = "
         f"−0.048): the thread comes out {shallower:.3f} mm (radius) shallower than "

@@ -4,8 +4,9 @@ from __future__ import annotations
 
 from bisect import bisect_left
 from collections.abc import Iterable, Iterator
+from types import MappingProxyType
 
-from ..diagnostics import Diagnostic, RuleDoc, RuleInfo, Severity, document, make, register
+from ..diagnostics import Diagnostic, RuleDoc, RuleInfo, Severity, make
 from ..evaluator.facts import DocumentFacts, Finding, NoSuchVariable, ReadOnlyWrite
 from ..evaluator.machine import compiled
 from ..line_maps import Kept, LineMap
@@ -15,37 +16,42 @@ from ..syntax.walk import subexpressions, top_expressions
 from .context import RuleContext, Seen
 
 FAMILY = "variable-use"
-register(
-    RuleInfo("MB901", "vacant-local-read", Severity.WARNING,
-             "A local variable read while vacant: never assigned in the program and not an "
-             "argument it receives.", FAMILY),
-    RuleInfo("MB902", "indirect-write-read-only", Severity.ERROR,
-             "#[...] = ... writes #0 or a read-only system variable at run time (PS0116).",
-             FAMILY),
-    RuleInfo("MB903", "indirect-no-such-variable", Severity.ERROR,
-             "#[...] refers to a variable number that does not exist (PS0115).", FAMILY),
-    RuleInfo("MB904", "arguments-assumed", Severity.HINT,
-             "A program ending with M30 or M02 reads locals before setting them: it is "
-             "analysed as a macro with unknown arguments.", FAMILY),
-)  # fmt: skip
 
-# What each rule above reports, why, an example, the fix and what it leaves out:
-# docs/rules.md is generated from it (python3 scripts/rules_doc.py).
-document(
-    RuleDoc(
-        "MB901",
-        reports="""
+# The family's rules, by code: what diagnostics.make gives each diagnostic (its name,
+# severity and tags). Each rule's documentation, MBxxx_DOC, is beside the function that
+# finds it; docs/rules.md is generated from them (python3 scripts/rules_doc.py).
+# fmt: off
+MB901 = RuleInfo("MB901", "vacant-local-read", Severity.WARNING,
+                 "A local variable read while vacant: never assigned in the program and not an "
+                 "argument it receives.", FAMILY)
+MB902 = RuleInfo("MB902", "indirect-write-read-only", Severity.ERROR,
+                 "#[...] = ... writes #0 or a read-only system variable at run time (PS0116).",
+                 FAMILY)
+MB903 = RuleInfo("MB903", "indirect-no-such-variable", Severity.ERROR,
+                 "#[...] refers to a variable number that does not exist (PS0115).", FAMILY)
+MB904 = RuleInfo("MB904", "arguments-assumed", Severity.HINT,
+                 "A program ending with M30 or M02 reads locals before setting them: it is "
+                 "analysed as a macro with unknown arguments.", FAMILY)
+# fmt: on
+
+
+ARGUMENT_LETTER = MappingProxyType({n: letter for letter, n in ARGUMENT_VARIABLES.items()})
+
+
+MB901_DOC = RuleDoc(
+    "MB901",
+    reports="""
 A local variable (`#1`–`#33`) read while vacant when another program calls
 this one: the program never assigns it, its `G65` caller does not pass it as an argument (or,
 with `M98`, the caller never sets it), and the program does not test it against `#0` first. It
 is reported once per variable and program, at the first read.
 """,
-        why="""
+    why="""
 A vacant variable counts as 0 in arithmetic and removes the
 word from an NC block: `G00 X#1 Z#2` with `#2` vacant moves X only, and `Z[#2-5.]` goes to
 Z-5. The tool goes somewhere the programmer did not compute.
 """,
-        example="""
+    example="""
 ```nc
 O9011 (MAIN)
 G65 P9012 X10.
@@ -55,11 +61,11 @@ G00 X#24 Z#26
 M99
 ```
 """,
-        fix="""
+    fix="""
 Assign the variable, pass it as an argument (here `Z`), or check it with
 `IF [#26 EQ #0] GOTO ...` and raise a `#3000` alarm.
 """,
-        not_reported="""
+    not_reported="""
 A local the program assigns anywhere (even in a block that does
 not parse), one a caller passes as an argument (any caller in the analysed files), one tested
 against `#0` before it is read, and the locals of a program that nothing in the analysed files
@@ -67,18 +73,20 @@ calls: it runs with unknown arguments, not vacant ones. That includes a program 
 `M30` that reads locals before setting them (MB904 says it is taken for a macro). A vacant
 local passed on as a `G65` argument is no read: the argument is simply not given.
 """,
-    ),
-    RuleDoc(
-        "MB902",
-        reports="""
+)
+
+
+MB902_DOC = RuleDoc(
+    "MB902",
+    reports="""
 An indirect assignment `#[...] = ...` whose index, when the program runs,
 is `#0` or a read-only system variable. Direct assignments are MB304's.
 """,
-        why="""
+    why="""
 The control raises PS0116 WRITE PROTECTED VARIABLE and stops
 at the block, often part-way through a table being filled.
 """,
-        example="""
+    example="""
 ```nc
 O9021 (CLEAR A TABLE)
 #1=5021.
@@ -86,25 +94,27 @@ O9021 (CLEAR A TABLE)
 M30
 ```
 """,
-        fix="""
+    fix="""
 Check the index range of the table (the first and last values of the index).
 """,
-        not_reported="""
+    not_reported="""
 Direct assignments (`#5021=0`, MB304), and indexes the analysis
 cannot compute (a common variable set elsewhere): only values it knows are judged.
 """,
-    ),
-    RuleDoc(
-        "MB903",
-        reports="""
+)
+
+
+MB903_DOC = RuleDoc(
+    "MB903",
+    reports="""
 An indirect variable `#[...]` (read or written) whose index, when the
 program runs, is a variable number that does not exist (for example `#34`–`#99`).
 """,
-        why="""
+    why="""
 The control raises PS0115 VARIABLE NO. OUT OF RANGE and stops
 at the block.
 """,
-        example="""
+    example="""
 ```nc
 O9031 (PROBE TABLE)
 #1=50.
@@ -112,53 +122,15 @@ O9031 (PROBE TABLE)
 M30
 ```
 """,
-        fix="""
+    fix="""
 Correct the base of the index (`#[#1+100]`) or the range of the loop that
 computes it.
 """,
-        not_reported="""
+    not_reported="""
 Direct variable numbers (`#50`, MB302) and indexes the analysis
 cannot compute.
 """,
-    ),
-    RuleDoc(
-        "MB904",
-        reports="""
-A program that ends as a main program does (`M30`, `M02`) but reads local
-variables before any block of it sets them, when nothing in the analysed files calls it. It is
-analysed as a macro called by `G65` from a program elsewhere: its locals are unknown arguments,
-not vacant, and the caller's feed is unknown. Reported once per program, at the first such
-read; the message lists the locals with their argument letters.
-""",
-        why="""
-Probe and cycle macros are often saved with `M30` and called
-with `G65`; then their `IF [#26 EQ #0]` argument checks pass or fail with the caller's values,
-and the analysis must not pretend they fail. But if the program is run from cycle start as a
-main program, those locals are vacant: `G00 X#24` moves no X, `Z[#26-5.]` goes to Z-5.
-""",
-        example="""
-```nc
-O9041 (BORE)
-IF[#26EQ#0]GOTO90
-G01 Z#26 F#9
-M30
-N90 #3000=1(Z IS NEEDED)
-M30
-```
-""",
-        fix="""
-Nothing, if the program is a macro. If it is a main program, set the locals
-before reading them (`#26=-5.`); if it is a macro, end it with `M99`.
-""",
-        not_reported="""
-Programs ending with `M99` (they are analysed as macros anyway),
-programs another analysed program calls (their caller's arguments are used), and locals the
-program sets before it reads them.
-""",
-    ),
 )
-
-ARGUMENT_LETTER = {n: letter for letter, n in ARGUMENT_VARIABLES.items()}
 
 
 def check(ctx: RuleContext) -> Iterator[Diagnostic]:
@@ -167,9 +139,9 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
         return
     f: Finding  # of each kind in turn
     for f in ctx.findings(ReadOnlyWrite):
-        yield make("MB902", f.message, f.line, f.column, f.end_column)
+        yield make(MB902, f.message, f.line, f.column, f.end_column)
     for f in ctx.findings(NoSuchVariable):
-        yield make("MB903", f.message, f.line, f.column, f.end_column)
+        yield make(MB903, f.message, f.line, f.column, f.end_column)
     yield from _assumed_arguments(ctx, facts)
     # Locals that were vacant every time a block read them: few or none in most programs. The
     # run records the reads of the variables a block names (CompiledLine.reads), so only the
@@ -206,7 +178,7 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
             reported.add(n)
             span = _var_span(ctx, line, n)
             yield make(
-                "MB901",
+                MB901,
                 f"#{n} is read while vacant: {program.display_name} never "
                 f"sets it and no caller passes it (a vacant local counts as 0 in "
                 "arithmetic, and omits the word in an address)",
@@ -296,6 +268,43 @@ def _var_span(ctx: RuleContext, line: int, number: int) -> tuple[int, int]:
     return 0, len(ctx.doc.blocks[line].text)
 
 
+MB904_DOC = RuleDoc(
+    "MB904",
+    reports="""
+A program that ends as a main program does (`M30`, `M02`) but reads local
+variables before any block of it sets them, when nothing in the analysed files calls it. It is
+analysed as a macro called by `G65` from a program elsewhere: its locals are unknown arguments,
+not vacant, and the caller's feed is unknown. Reported once per program, at the first such
+read; the message lists the locals with their argument letters.
+""",
+    why="""
+Probe and cycle macros are often saved with `M30` and called
+with `G65`; then their `IF [#26 EQ #0]` argument checks pass or fail with the caller's values,
+and the analysis must not pretend they fail. But if the program is run from cycle start as a
+main program, those locals are vacant: `G00 X#24` moves no X, `Z[#26-5.]` goes to Z-5.
+""",
+    example="""
+```nc
+O9041 (BORE)
+IF[#26EQ#0]GOTO90
+G01 Z#26 F#9
+M30
+N90 #3000=1(Z IS NEEDED)
+M30
+```
+""",
+    fix="""
+Nothing, if the program is a macro. If it is a main program, set the locals
+before reading them (`#26=-5.`); if it is a macro, end it with `M99`.
+""",
+    not_reported="""
+Programs ending with `M99` (they are analysed as macros anyway),
+programs another analysed program calls (their caller's arguments are used), and locals the
+program sets before it reads them.
+""",
+)
+
+
 def _assumed_arguments(ctx: RuleContext, facts: DocumentFacts) -> Iterator[Diagnostic]:
     """MB904, at the first read of the first local a main-looking program reads unset."""
     for program in ctx.index.programs:
@@ -311,7 +320,7 @@ def _assumed_arguments(ctx: RuleContext, facts: DocumentFacts) -> Iterator[Diagn
         number, line = read_first[0]
         start, end = _var_span(ctx, line, number)
         yield make(
-            "MB904",
+            MB904,
             f"{program.display_name} ends with M30 or M02 but reads {shown} before setting "
             f"{'it' if one else 'them'}: it is analysed as a macro called with "
             f"{'an argument' if one else 'arguments'} of unknown value; run from cycle start "
