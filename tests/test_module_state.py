@@ -112,12 +112,6 @@ ALLOWED_STATE: dict[str, str] = {
 ALLOWED_LONG: dict[str, str] = {
     "evaluator/machine.py:Machine._loop": "evaluator",
     "evaluator/machine.py:Machine._motion": "evaluator",
-    "generators/arc_thread_generator.py:build_arc_thread": "ide",
-    "generators/drum_groove_generator.py:build_drum_groove": "ide",
-    "generators/thread_generator.py:_render_module": "ide",
-    "generators/thread_generator.py:build_module_from_values": "ide",
-    "ide/plot.py:_backplot": "ide",
-    "ide/plot.py:_pass_map_view": "ide",
     "lsp/server.py:create_server": "lsp",
 }
 
