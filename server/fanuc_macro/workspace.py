@@ -59,6 +59,9 @@ def same_execution(old: Document, new: Document) -> bool:
     return True
 
 
+# Another document an analysis reads: its URI, its syntax tree and its index.
+OtherDocument = tuple[str, Document, ProgramIndex]
+
 P = ParamSpec("P")
 R = TypeVar("R")
 
@@ -217,7 +220,7 @@ class Workspace:
                 readers.append(key)
         return readers
 
-    def others(self, uri: str) -> list[tuple[str, Document, ProgramIndex]]:
+    def others(self, uri: str) -> list[OtherDocument]:
         """The other documents an analysis of ``uri`` needs: see :func:`related_documents`."""
         indexes = self._indexes
         needed = related_documents(uri, indexes)

@@ -1,14 +1,16 @@
-"""Scheduling the package's analysis for the language server.
+"""The package's analysis for the language server: the analysis job, its results, and the
+workspace's documents (settings, folders, files changed on disk).
 
-One worker thread owns the package :class:`~fanuc_macro.workspace.Workspace`: every change to it
-and every analysis runs there, one at a time, so the workspace needs no lock and the event loop
-never waits for an analysis. The loop side keeps the open documents' texts and asks the worker
-to make a document fresh; the worker always takes the newest text when it starts, so a request
-for an older version that is still queued analyses the newer one instead. An edit of a document
-that the running analysis reads cancels it (:mod:`fanuc_macro.cancel`): it stops at its next
-block boundary, publishes nothing, and the newest text is analysed after the debounce. An
-analysis that goes on for more than half a second shows its progress in the client
-(``window/workDoneProgress``), when the client can show it.
+One worker thread (:mod:`.scheduler`) owns the package :class:`~fanuc_macro.workspace.Workspace`:
+every change to it and every analysis runs there, one at a time. The loop side keeps the open
+documents' texts (:mod:`.documents`) and asks the worker to make a document fresh; the worker
+always takes the newest text when it starts, so a request for an older version that is still
+queued analyses the newer one instead. An edit of a document that the running analysis reads
+cancels it (:mod:`fanuc_macro.cancel`): it stops at its next block boundary, publishes
+nothing, and the newest text is analysed after the debounce. An edit reschedules the other
+open documents whose analysis reads the edited one, before or after the edit
+(:meth:`Engine._affected_by`). An analysis that goes on for more than half a second shows its
+progress in the client (``window/workDoneProgress``), when the client can show it.
 """
 
 from __future__ import annotations
@@ -16,32 +18,35 @@ from __future__ import annotations
 import asyncio
 import logging
 import os
-import threading
 import time
 import traceback
 from collections.abc import Callable, Iterable, Mapping, Sequence
-from concurrent.futures import ThreadPoolExecutor
+from contextlib import AbstractContextManager
 from dataclasses import dataclass, field
 from pathlib import Path, PurePosixPath
 from types import MappingProxyType
-from typing import TYPE_CHECKING, Any, Protocol, TypeVar
+from typing import TYPE_CHECKING, Any, TypeVar
 from urllib.parse import unquote, urlparse
 
 from lsprotocol import types
 from pygls.uris import from_fs_path, to_fs_path
 
-from ..cancel import RUNNING, Cancelled, CancelToken, Stage
+from ..cancel import Cancelled, CancelToken
 from ..code_cache import save_code_cache
 from ..config import Config, FormatSettings
+from ..database import Database
 from ..diagnostics import REPORT_INTERNAL_ERROR
 from ..ide import Catalogue, catalogue
-from .convert import Codec, ConvertedDiagnostics, Lines, TextLines
-from .documents import OpenDocument
+from .convert import Codec, ConvertedDiagnostics, Lines
+from .documents import DocumentStore, NewestText, OpenDocument
+from .documents import key_of as key_of  # where the commands read it
+from .progress import AnalysisProgress, ProgressDisplay
+from .scheduler import Job, Scheduler
 
 if TYPE_CHECKING:  # the analysis is imported by the worker, after the server has started
     from ..analysis import Analysis
-    from ..ide.view import Document, ProgramIndex
-    from ..workspace import Workspace
+    from ..ide import Indexed
+    from ..workspace import OtherDocument, Workspace
 
 log = logging.getLogger(__name__)
 
@@ -51,26 +56,13 @@ DEFAULT_DEBOUNCE_MS = 250.0
 # An analysis shows its progress once it has run this long (setting analysis.progressDelayMs);
 # only at a checkpoint that counts blocks, so a document too small for one never shows any.
 DEFAULT_PROGRESS_DELAY_MS = 500.0
-PROGRESS_EVERY = 0.2  # seconds between two progress reports of an analysis
 SCAN_MAX_FILES = 2000
 SCAN_MAX_BYTES = 2 * 1024 * 1024
 SCAN_CHUNK = 25  # files per worker job, so that edits are analysed between chunks
 FAULT_ENV = "FANUC_MACRO_LS_FAULT"  # tests: analysing a text that contains it raises
 # Tests: every feature request fails while an open document contains it.
 FEATURE_FAULT_ENV = "FANUC_MACRO_LS_FEATURE_FAULT"
-NO_INDEXES: Mapping[str, tuple[Document, ProgramIndex]] = MappingProxyType({})
-
-
-def key_of(uri: str) -> str:
-    """The package's name of a document: file URIs in one normal form, so that a URI the client
-    sends and one made from a path found on disk name the same file."""
-    if uri.startswith("file:"):
-        path = to_fs_path(uri)
-        if path:
-            normal = from_fs_path(path)
-            if normal:
-                return str(normal)
-    return uri
+NO_INDEXES: Mapping[str, Indexed] = MappingProxyType({})
 
 
 @dataclass(frozen=True)
@@ -102,43 +94,10 @@ class Stopped:
     affects: frozenset[str] = frozenset()  # as in Result
 
 
-class ProgressDisplay(Protocol):
-    """Shows the progress of long analyses in the client; called on the event loop only."""
-
-    def begin(self, token: str, title: str, message: str, percentage: int) -> None: ...
-
-    def report(self, token: str, message: str, percentage: int) -> None: ...
-
-    def end(self, token: str, message: str) -> None: ...
-
-
-@dataclass(frozen=True)
-class _Text:
-    seq: int  # increases with every text the loop side receives
-    version: int | None
-    text: str
-    uri: str
-    lines: TextLines  # of ``text``: its line starts are the open document's
-
-
 @dataclass
 class _Waiter:
     version: int | None
     future: asyncio.Future[Result | None] = field(repr=False)
-
-
-@dataclass
-class _Job:
-    """The analysis the worker runs: what cancels it."""
-
-    key: str
-    seq: int  # the newest text's seq when it started: a text with a greater one is newer
-    token: CancelToken
-    keys: frozenset[str]  # the documents it reads
-    changed: bool = False  # it put a new text of the document into the workspace
-    affects: frozenset[str] = frozenset()  # the other open documents the new text may change
-    # The other documents the analysis reads, computed once for it.
-    others: list[tuple[str, Document, ProgramIndex]] = field(default_factory=list)
 
 
 class Engine:
@@ -150,27 +109,21 @@ class Engine:
     ) -> None:
         self.publish = publish
         self.log_message = log_message
+        # The workspace's: every handler runs inside it (:meth:`active`), the analyses too.
+        self.database = Database()
         self.codec = codec or Codec()
         self.config = Config()
         self.format_settings = FormatSettings()  # the formatter's: no analysis reads them
         self.debounce = DEFAULT_DEBOUNCE_MS / 1000.0
-        self.docs: dict[str, OpenDocument] = {}  # by key
+        self.documents = DocumentStore()
+        self.scheduler = Scheduler(self.database, self._report)
         self.results: dict[str, Result] = {}  # newest analysis of each open document
         self.folders: list[Path] = []
         self.scan_done = asyncio.Event()
         self.scanned_files = 0
         self._scans = 0  # folder scans under way
         self._scan_listed = 0  # files listed by all scans (the bound is for all of them)
-        self._executor = ThreadPoolExecutor(max_workers=1, thread_name_prefix="fanuc-macro")
-        self._loop: asyncio.AbstractEventLoop | None = None
-        self._lock = threading.Lock()  # guards _texts and _queued, shared with the worker
-        self._texts: dict[str, _Text] = {}
-        self._queued: set[str] = set()
-        self._seq = 0
-        self._timers: dict[str, asyncio.TimerHandle] = {}
         self._waiters: dict[str, list[_Waiter]] = {}
-        self._closed = False
-        self._running: _Job | None = None  # guarded by _lock
         self.progress: ProgressDisplay | None = None  # when the client shows progress
         self.progress_delay = DEFAULT_PROGRESS_DELAY_MS / 1000.0
         self._progress_count = 0  # worker only: names the progress tokens
@@ -194,7 +147,7 @@ class Engine:
 
     # ---- helpers ---------------------------------------------------------------------------
     @property
-    def indexes(self) -> Mapping[str, tuple[Document, ProgramIndex]]:
+    def indexes(self) -> Mapping[str, Indexed]:
         """Every workspace document and its index: the workspace's snapshot, which the worker
         replaces and never changes, so the event loop and feature threads may read it."""
         workspace = self._workspace
@@ -208,8 +161,13 @@ class Engine:
         if self._workspace is None:
             from ..workspace import Workspace
 
-            self._workspace = Workspace(self.config)
+            self._workspace = Workspace(self.config, db=self.database)
         return self._workspace
+
+    def active(self) -> AbstractContextManager[Database]:
+        """Make the workspace's database the current one (:mod:`fanuc_macro.database`): the
+        handlers' table runs every handler inside it."""
+        return self.database.active()
 
     def preload(self) -> None:
         """Load the analysis in the worker while the client sends its first documents."""
@@ -220,28 +178,30 @@ class Engine:
             self._ws.uris()
             save_code_cache()  # the code of the classes built so far, for the next start
 
-        self._executor.submit(job)
+        self.scheduler.start(job)
+
+    @property
+    def docs(self) -> dict[str, OpenDocument]:
+        """The open documents by key (event loop)."""
+        return self.documents.docs
 
     @property
     def loop(self) -> asyncio.AbstractEventLoop:
-        if self._loop is None:
-            self._loop = asyncio.get_running_loop()
-        return self._loop
+        return self.scheduler.loop
 
     def bind_loop(self, loop: asyncio.AbstractEventLoop) -> None:
-        self._loop = loop
+        self.scheduler.bind_loop(loop)
 
     @property
     def bound_loop(self) -> asyncio.AbstractEventLoop | None:
         """The event loop, once the server runs (any thread may read it)."""
-        return self._loop
+        return self.scheduler.bound_loop
 
     def client_uri(self, key: str) -> str:
-        doc = self.docs.get(key)
-        return doc.uri if doc is not None else key
+        return self.documents.client_uri(key)
 
     def document(self, uri: str) -> OpenDocument | None:
-        return self.docs.get(key_of(uri))
+        return self.documents.document(uri)
 
     def check_feature_fault(self) -> None:
         """Tests: fail as a bug in a feature would (see FEATURE_FAULT_ENV)."""
@@ -251,15 +211,10 @@ class Engine:
 
     async def in_worker(self, fn: Callable[[], T]) -> T:
         """Run ``fn`` in the worker thread, after the work queued before it."""
-        return await self.loop.run_in_executor(self._executor, fn)
+        return await self.scheduler.in_worker(fn)
 
     def shutdown(self) -> None:
-        self._closed = True
-        self._cancel_running(lambda job: True)
-        for timer in self._timers.values():
-            timer.cancel()
-        self._timers.clear()
-        self._executor.shutdown(wait=False, cancel_futures=True)
+        self.scheduler.shutdown()
 
     # ---- settings --------------------------------------------------------------------------
     @property
@@ -280,7 +235,7 @@ class Engine:
             before = self.catalogue
             self.language = language
             if self.catalogue != before and config == self.config:
-                self._submit(self._new_generation, then=lambda _: self.schedule_all(0.0))
+                self.scheduler.submit(self._new_generation, then=lambda _: self.schedule_all(0.0))
         analysis = (settings or {}).get("analysis") or {}
         debounce = analysis.get("debounceMs") if isinstance(analysis, dict) else None
         if isinstance(debounce, int | float) and not isinstance(debounce, bool) and debounce >= 0:
@@ -296,54 +251,28 @@ class Engine:
             self._ws.set_config(config)  # the documents read with other limits are read again
             self.generation += 1
 
-        self._submit(apply, then=lambda _: self.schedule_all(0.0))
+        self.scheduler.submit(apply, then=lambda _: self.schedule_all(0.0))
 
     # ---- documents -------------------------------------------------------------------------
-    def _set_text(self, key: str, doc: OpenDocument) -> None:
-        with self._lock:
-            self._seq += 1
-            self._texts[key] = _Text(self._seq, doc.version, doc.text, doc.uri, doc.lines())
-
-    def _cancel_running(self, which: Callable[[_Job], bool]) -> None:
-        """Cancel the running analysis if ``which`` says so; any thread."""
-        with self._lock:
-            job = self._running
-            if job is not None and which(job):
-                job.token.cancel()
-
     def open(self, uri: str, text: str, version: int | None, language_id: str = "") -> None:
-        key = key_of(uri)
-        doc = OpenDocument(uri, key, text, version, language_id)
-        self.docs[key] = doc
-        self._set_text(key, doc)
-        self.schedule(key, 0.0)
+        self.schedule(self.documents.open(uri, text, version, language_id), 0.0)
 
     def change(
         self, uri: str, version: int | None, changes: Sequence[types.TextDocumentContentChangeEvent]
     ) -> None:
-        key = key_of(uri)
-        doc = self.docs.get(key)
-        if doc is None:
+        key = self.documents.change(uri, version, changes, self.codec)
+        if key is None:
             return
-        for change in changes:
-            doc.apply(change, self.codec)
-        doc.version = version
-        self._set_text(key, doc)
         # The running analysis reads an older text of this document: its result is of no use.
-        self._cancel_running(lambda job: key in job.keys)
+        self.scheduler.cancel_running(lambda job: key in job.keys)
         self.schedule(key, self.debounce)
 
     def close(self, uri: str) -> None:
-        key = key_of(uri)
-        self.docs.pop(key, None)
+        key = self.documents.close(uri)
         self.results.pop(key, None)
         self._converted.pop(key, None)
-        timer = self._timers.pop(key, None)
-        if timer is not None:
-            timer.cancel()
-        with self._lock:
-            self._texts.pop(key, None)
-        self._cancel_running(lambda job: job.key == key)
+        self.scheduler.drop_timer(key)
+        self.scheduler.cancel_running(lambda job: job.key == key)
         for waiter in self._waiters.pop(key, []):
             if not waiter.future.done():
                 waiter.future.set_result(None)
@@ -359,20 +288,14 @@ class Engine:
             else:
                 self._remove(key)
 
-        self._submit(reload, then=lambda _: self.schedule_all(self.debounce))
+        self.scheduler.submit(reload, then=lambda _: self.schedule_all(self.debounce))
 
     # ---- scheduling ------------------------------------------------------------------------
     def schedule(self, key: str, delay: float) -> None:
         """Analyse ``key`` after ``delay`` seconds without a newer request (the debounce)."""
-        if self._closed or key not in self.docs:
+        if self.scheduler.closed or key not in self.docs:
             return
-        timer = self._timers.pop(key, None)
-        if timer is not None:
-            timer.cancel()
-        if delay <= 0:
-            self._request(key)
-        else:
-            self._timers[key] = self.loop.call_later(delay, self._request, key)
+        self.scheduler.later(key, delay, self._request)
 
     def schedule_all(self, delay: float, but: str | None = None) -> None:
         for key in list(self.docs):
@@ -380,37 +303,12 @@ class Engine:
                 self.schedule(key, delay)
 
     def _request(self, key: str) -> None:
-        self._timers.pop(key, None)
-        if self._closed or key not in self.docs:
+        if self.scheduler.closed or key not in self.docs:
+            self.scheduler.drop_timer(key)
             return
-        with self._lock:
-            if key in self._queued:
-                return  # the queued job will read the newest text when it starts
-            self._queued.add(key)
-        self._submit(lambda: self._analyse_job(key), then=lambda r: self._deliver(key, r))
-
-    def _submit(self, fn: Callable[[], T], then: Callable[[T], None] | None = None) -> None:
-        if self._closed:
-            return
-        try:
-            future = self.loop.run_in_executor(self._executor, fn)
-        except RuntimeError:  # executor shut down
-            return
-
-        def done(f: asyncio.Future[T]) -> None:
-            if f.cancelled():
-                return
-            error = f.exception()
-            if error is not None:
-                self._report(f"fanuc-macro: internal error: {error!r}", error)
-                return
-            if then is not None:
-                try:
-                    then(f.result())
-                except Exception as err:  # a bug on the loop side must not stop the server
-                    self._report(f"fanuc-macro: internal error: {err!r}", err)
-
-        future.add_done_callback(done)
+        if not self.scheduler.enqueue(key):
+            return  # the queued job will read the newest text when it starts
+        self.scheduler.submit(lambda: self._analyse_job(key), then=lambda r: self._deliver(key, r))
 
     def _report(self, message: str, error: BaseException | None = None) -> None:
         """Log an error and show it in the client's log; callable from any thread."""
@@ -418,7 +316,7 @@ class Engine:
             detail = "".join(traceback.format_exception(error))
             log.error("%s\n%s", message, detail)
             message = f"{message}\n{detail}"
-        loop = self._loop
+        loop = self.bound_loop
         if loop is None or loop.is_closed():
             return
         # Messages go out from the event loop only: the protocol writer is not thread-safe.
@@ -453,12 +351,12 @@ class Engine:
     def _analyse_job(self, key: str) -> Result | Stopped | None:
         progress = self._progress_of(key)
         token = CancelToken(progress)
-        with self._lock:
-            self._queued.discard(key)
-            text = self._texts.get(key)
-            if text is None:
-                return None  # closed meanwhile
-            job = self._running = _Job(key, self._seq, token, frozenset({key}))
+        self.scheduler.dequeue(key)
+        text, seq = self.documents.newest(key)
+        if text is None:
+            return None  # closed meanwhile
+        job = Job(key, seq, token, frozenset({key}))
+        self.scheduler.running(job)
         if progress is not None:
             progress.title = f"fanuc-macro: analysing {_display_name(text.uri)}"
         ending = "done"
@@ -474,12 +372,11 @@ class Engine:
             ending = "failed"
             raise
         finally:
-            with self._lock:
-                self._running = None
+            self.scheduler.running(None)
             if progress is not None:
                 progress.finish(ending)
 
-    def _run_job(self, job: _Job, text: _Text) -> Result | None:
+    def _run_job(self, job: Job, text: NewestText) -> Result | None:
         key = job.key
         started = time.perf_counter()
         lines = Lines(text.lines, self.codec)
@@ -519,36 +416,33 @@ class Engine:
         return Result(key, text.version, generation, lines, analysis, diagnostics, seconds,
                       changed, None, job.affects)  # fmt: skip
 
-    def _reads(self, job: _Job) -> None:
+    def _reads(self, job: Job) -> None:
         """Worker thread: record the documents the analysis of ``job.key`` reads, so that an
         edit of any of them cancels it (one that came before it knew them too)."""
         job.others = self.documents_for(job.key)
         keys = frozenset({job.key, *(k for k, _, _ in job.others)})
         self._reads_of[job.key] = keys
-        with self._lock:
-            job.keys = keys
-            if any(t.seq > job.seq for k, t in self._texts.items() if k in keys):
-                job.token.cancel()
+        self.scheduler.read_by(job, keys, lambda: self.documents.changed_since(job.seq, keys))
 
     def _analyse(
         self,
         key: str,
         cancel: CancelToken | None = None,
-        others: list[tuple[str, Document, ProgramIndex]] | None = None,
+        others: list[OtherDocument] | None = None,
     ) -> Analysis:
         """The package's analysis of ``key``, given only the documents it can reach."""
         return self._ws.analyse(key, cancel=cancel, others=others)
 
-    def _progress_of(self, key: str) -> _AnalysisProgress | None:
+    def _progress_of(self, key: str) -> AnalysisProgress | None:
         """Worker thread: what reports the progress of an analysis, if the client shows it."""
-        display, loop = self.progress, self._loop
+        display, loop = self.progress, self.bound_loop
         if display is None or loop is None:
             return None
         self._progress_count += 1
         token = f"fanuc-macro/analysis/{self._progress_count}"
-        return _AnalysisProgress(display, loop, token, self.progress_delay)
+        return AnalysisProgress(display, loop, token, self.progress_delay)
 
-    def documents_for(self, key: str) -> list[tuple[str, Document, ProgramIndex]]:
+    def documents_for(self, key: str) -> list[OtherDocument]:
         """Worker thread: the other documents an analysis or trace of ``key`` needs."""
         return self._ws.others(key)
 
@@ -560,12 +454,10 @@ class Engine:
         links = self._ws.links(key)
         if self._links.get(key) != links:
             self._links[key] = links
-            with self._lock:
-                open_keys = list(self._texts)
-            affected.update(self._ws.readers(key, open_keys))
+            affected.update(self._ws.readers(key, self.documents.open_keys()))
         return frozenset(affected)
 
-    def _ensure_text(self, key: str, text: _Text, cancel: CancelToken | None = None) -> bool:
+    def _ensure_text(self, key: str, text: NewestText, cancel: CancelToken | None = None) -> bool:
         """Put the newest text of an open document into the workspace; True if it was not.
         Cancelled, the workspace keeps the text it had."""
         if self._ws_seq.get(key) == text.seq:
@@ -614,7 +506,7 @@ class Engine:
             self.publish(doc, result)
         self._wake(key, result)
         del previous  # the earlier analysis: freed now, before the memory is given back
-        self._submit(release_memory)
+        self.scheduler.submit(release_memory)
         # The other open documents that call a program of this one, or are called by it.
         self._schedule_each(result.affects)
 
@@ -626,9 +518,7 @@ class Engine:
         log.info("%s", message)
         self.log_message(message, types.MessageType.Log)
         self._schedule_each(stopped.affects)
-        with self._lock:
-            queued = doc.key in self._queued
-        if not queued and doc.key not in self._timers:
+        if not self.scheduler.waiting(doc.key):
             # Cancelled by an edit of another document: this one is analysed again too.
             self.schedule(doc.key, self.debounce)
 
@@ -680,7 +570,7 @@ class Engine:
             self._add_files(files[:SCAN_CHUNK])
             return files[SCAN_CHUNK:]
 
-        self._submit(walk, then=self._scan_chunk)
+        self.scheduler.submit(walk, then=self._scan_chunk)
 
     def remove_folders(self, folders: Iterable[str]) -> None:
         """Forget the files of folders that left the workspace (open documents stay)."""
@@ -693,20 +583,17 @@ class Engine:
         def forget() -> None:
             for key in self._ws.uris():
                 path = _path_of(key)
-                with self._lock:
-                    is_open = key in self._texts
+                is_open = self.documents.is_open(key)
                 if path is not None and not is_open and under(path):
                     self._remove(key)
 
-        self._submit(forget, then=lambda _: self.schedule_all(self.debounce))
+        self.scheduler.submit(forget, then=lambda _: self.schedule_all(self.debounce))
 
     def _add_files(self, chunk: list[Path]) -> None:
         """Read files of a folder scan into the workspace (worker only)."""
         for path in chunk:
             key = key_of(from_fs_path(str(path)) or path.as_uri())
-            with self._lock:
-                is_open = key in self._texts
-            if is_open or key in self._ws_seq:
+            if self.documents.is_open(key) or key in self._ws_seq:
                 continue
             data = _read_program(path)
             if data is None:
@@ -726,7 +613,7 @@ class Engine:
             self.schedule_all(0.0)
             return
         chunk, rest = files[:SCAN_CHUNK], files[SCAN_CHUNK:]
-        self._submit(lambda: self._add_files(chunk), then=lambda _: self._scan_chunk(rest))
+        self.scheduler.submit(lambda: self._add_files(chunk), then=lambda _: self._scan_chunk(rest))
 
     def files_changed(self, events: Sequence[types.FileEvent]) -> None:
         """Files changed on disk (workspace/didChangeWatchedFiles): those not open are reread."""
@@ -751,14 +638,13 @@ class Engine:
                 else:
                     self._add_file(key, data)
 
-        self._submit(apply, then=lambda _: self.schedule_all(self.debounce))
+        self.scheduler.submit(apply, then=lambda _: self.schedule_all(self.debounce))
 
     # ---- for commands ----------------------------------------------------------------------
-    def trace_documents(self, key: str) -> list[tuple[str, Document, ProgramIndex]] | None:
+    def trace_documents(self, key: str) -> list[OtherDocument] | None:
         """Worker thread: ``key`` first, then the documents its trace needs, with the newest
         texts of the open ones; None when ``key`` is not in the workspace."""
-        with self._lock:
-            texts = dict(self._texts)
+        texts = self.documents.newest_all()
         for k, text in texts.items():
             self._ensure_text(k, text)
         own = self._ws.indexes().get(key)
@@ -776,64 +662,6 @@ class Engine:
             return False
         self._add_file(key, data)
         return True
-
-
-class _AnalysisProgress:
-    """The progress of one analysis, told by its checkpoints in the worker thread and shown by
-    the display on the event loop: begun at the first checkpoint that counts blocks once the
-    analysis has run ``delay`` seconds, reported at most every PROGRESS_EVERY seconds."""
-
-    def __init__(
-        self,
-        display: ProgressDisplay,
-        loop: asyncio.AbstractEventLoop,
-        token: str,
-        delay: float,
-    ) -> None:
-        self.display = display
-        self.loop = loop
-        self.token = token
-        self.title = "fanuc-macro: analysing"
-        self.delay = delay
-        self.started = time.monotonic()
-        self.shown = False
-        self.last = 0.0
-        self.percentage = 0
-
-    def __call__(self, stage: Stage, done: int, total: int) -> None:
-        now = time.monotonic()
-        if self.shown:
-            if now - self.last < PROGRESS_EVERY:
-                return
-        elif not stage.counts_blocks or now - self.started < self.delay:
-            return
-        self.last = now
-        share = min(done / total, 1.0) if total > 0 else 0.0
-        # Steadily rising, as the protocol asks: a run of another entry starts from 0 again.
-        percentage = int(100 * (stage.start + (stage.end - stage.start) * share))
-        self.percentage = max(self.percentage, min(percentage, 100))
-        if stage is RUNNING:
-            message = f"{stage.name}: {done:,} blocks run (budget {total:,})"
-        else:
-            message = f"{stage.name}: {done:,} of {total:,}"
-        if self.shown:
-            self._post(self.display.report, self.token, message, self.percentage)
-        else:
-            self.shown = True
-            self._post(self.display.begin, self.token, self.title, message, self.percentage)
-
-    def finish(self, message: str) -> None:
-        if self.shown:
-            self._post(self.display.end, self.token, message)
-
-    def _post(self, fn: Callable[..., None], *args: Any) -> None:
-        # The protocol writer is not thread-safe: the display runs on the event loop.
-        if self.loop.is_closed():
-            return
-        try:
-            self.loop.call_soon_threadsafe(fn, *args)
-        except RuntimeError:  # the loop closed meanwhile
-            log.debug("cannot show progress", exc_info=True)
 
 
 def release_memory() -> bool:

@@ -1,0 +1,63 @@
+"""The commands (``workspace/executeCommand``) of ``lsp/commands.py``, as one table: its five
+first commands by name, then every one of its ``EDITOR_COMMANDS``, which it extends."""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any
+
+from ..commands import (
+    ARC_THREAD,
+    DRUM_GROOVE,
+    EDITOR_COMMANDS,
+    THREAD_MODULE,
+    TOOLPATH,
+    TRACE,
+    EditorCommand,
+    run_arc_thread,
+    run_drum_groove,
+    run_thread_module,
+    run_toolpath,
+    run_trace,
+)
+from . import Command
+
+if TYPE_CHECKING:
+    from ..server import FanucMacroLanguageServer
+
+
+async def trace(ls: FanucMacroLanguageServer, args: tuple[Any, ...]) -> dict[str, Any]:
+    return await run_trace(ls.engine, args)
+
+
+async def toolpath(ls: FanucMacroLanguageServer, args: tuple[Any, ...]) -> dict[str, Any]:
+    return await run_toolpath(ls.engine, args)
+
+
+async def thread_module(ls: FanucMacroLanguageServer, args: tuple[Any, ...]) -> dict[str, Any]:
+    return await run_thread_module(args)
+
+
+async def arc_thread(ls: FanucMacroLanguageServer, args: tuple[Any, ...]) -> dict[str, Any]:
+    return await run_arc_thread(args)
+
+
+async def drum_groove(ls: FanucMacroLanguageServer, args: tuple[Any, ...]) -> dict[str, Any]:
+    return await run_drum_groove(args)
+
+
+def _editor_command(name: str, run: EditorCommand) -> Command:
+    async def editor_command(ls: FanucMacroLanguageServer, args: tuple[Any, ...]) -> Any:
+        return await run(ls.engine, args)
+
+    editor_command.__name__ = name
+    return Command(name, editor_command)
+
+
+COMMANDS = (
+    Command(TRACE, trace),
+    Command(TOOLPATH, toolpath),
+    Command(THREAD_MODULE, thread_module),
+    Command(ARC_THREAD, arc_thread),
+    Command(DRUM_GROOVE, drum_groove),
+    *(_editor_command(name, run) for name, run in EDITOR_COMMANDS.items()),
+)
