@@ -18,7 +18,6 @@ from typing import overload
 
 from lsprotocol import types
 
-from ..analysis import RULES
 from ..diagnostics import Diagnostic, Severity, Tag
 
 LINE_BREAK = re.compile(r"\r\n|\r|\n")
@@ -164,6 +163,9 @@ TAG = MappingProxyType(
 
 def rule_url(code: str) -> str:
     """The section of docs/rules.md: headings are ``MBxxx name``, anchors ``mbxxx-name``."""
+    # Imported here: the server answers initialize before it loads the analysis.
+    from ..analysis import RULES
+
     info = RULES.get(code)
     anchor = code.lower() if info is None else f"{code.lower()}-{info.name}"
     return f"{RULES_URL}#{anchor}"
