@@ -1,6 +1,6 @@
 // The VS Code side of the Macro B debugger: starts the debug adapter (fanuc-macro-dap) with the
 // Python the language server runs on, completes launch configurations from the settings, gives
-// the hover the whole `#` variable, lets the Toolpath view follow the stopped block, and the
+// the hover the whole `#` variable (the server's fanuc-macro.variableAt), lets the Toolpath view follow the stopped block, and the
 // "Debug This Program" command.
 import * as vscode from 'vscode';
 import {
@@ -11,7 +11,6 @@ import {
   type LaunchProblem,
 } from './debugConfiguration';
 import { TOP_FRAME_REQUEST, isStoppedEvent, stoppedLine } from './debugFollow';
-import { macroExpressionAt } from './macroExpression';
 import { candidateEnv, type ServerCandidate } from './serverCandidates';
 import { ToolpathPanel } from './toolpathView';
 
@@ -104,15 +103,21 @@ const followStops: vscode.DebugAdapterTrackerFactory = {
   },
 };
 
-const hoverVariables: vscode.EvaluatableExpressionProvider = {
-  provideEvaluatableExpression(document, position) {
-    const range = macroExpressionAt(document.lineAt(position.line).text, position.character);
-    if (range === undefined) return undefined;
-    return new vscode.EvaluatableExpression(
-      new vscode.Range(position.line, range.start, position.line, range.end),
-    );
-  },
-};
+/** Asks the running language server, if there is one; undefined otherwise. */
+export type AskServer = (command: string, args: unknown[]) => Promise<unknown>;
+
+/** The hover's expression: the whole `#` variable under the mouse, as the server finds it. */
+function hoverVariables(ask: AskServer): vscode.EvaluatableExpressionProvider {
+  return {
+    async provideEvaluatableExpression(document, position) {
+      const found = (await ask('fanuc-macro.variableAt', [document.lineAt(position.line).text, position.character])) as
+        | { start?: unknown; end?: unknown }
+        | undefined;
+      if (typeof found?.start !== 'number' || typeof found.end !== 'number') return undefined;
+      return new vscode.EvaluatableExpression(new vscode.Range(position.line, found.start, position.line, found.end));
+    },
+  };
+}
 
 /** "Debug This Program": runs the active program until a breakpoint, an alarm or its end. */
 async function debugProgram(resource?: vscode.Uri): Promise<void> {
@@ -128,12 +133,12 @@ async function debugProgram(resource?: vscode.Uri): Promise<void> {
 }
 
 /** Registers the debugger's parts; `startedServer` waits for the language server's start-up. */
-export function registerDebugger(startedServer: StartedServer): vscode.Disposable[] {
+export function registerDebugger(startedServer: StartedServer, ask: AskServer): vscode.Disposable[] {
   return [
     vscode.debug.registerDebugConfigurationProvider(DEBUG_TYPE, new LaunchConfigurations()),
     vscode.debug.registerDebugAdapterDescriptorFactory(DEBUG_TYPE, new AdapterFactory(startedServer)),
     vscode.debug.registerDebugAdapterTrackerFactory(DEBUG_TYPE, followStops),
-    vscode.languages.registerEvaluatableExpressionProvider(LANGUAGE_ID, hoverVariables),
+    vscode.languages.registerEvaluatableExpressionProvider(LANGUAGE_ID, hoverVariables(ask)),
     vscode.commands.registerCommand(COMMAND_DEBUG_PROGRAM, debugProgram),
   ];
 }

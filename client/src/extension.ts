@@ -423,10 +423,15 @@ export function activate(context: vscode.ExtensionContext): void {
   context.subscriptions.push(registerCheckTasks(() => startedCandidate));
   // The debug adapter runs on the language server's Python: wait for its start-up first.
   context.subscriptions.push(
-    ...registerDebugger(async () => {
-      await lifecycle;
-      return startedCandidate;
-    }),
+    ...registerDebugger(
+      async () => {
+        await lifecycle;
+        return startedCandidate;
+      },
+      // The hover asks the server quietly: without one it has no expression.
+      async (command, args) =>
+        client?.state === State.Running ? executeServerCommand(client, command, args).catch(() => undefined) : undefined,
+    ),
   );
 
   context.subscriptions.push(

@@ -1,31 +1,28 @@
-// The boxes of "Insert Symmetric Thread Module...", "Insert Arc Thread Program..." and "Insert
-// Drum Groove Program...": what each asks and the generator's parameters its answer gives. The
-// server reads and checks every answer (fanuc-macro.readDesignation, .checkParameters), gives
-// the boxes' defaults (.parameterDefaults) and writes the program. Pure: no `vscode` import,
-// the UI strings go through the translator given.
+// The steps of "Insert Symmetric Thread Module...", "Insert Arc Thread Program..." and "Insert
+// Drum Groove Program...": what each box asks and the generator's parameters its answer gives.
+// The server reads and checks every answer (fanuc-macro.readDesignation, .checkParameters),
+// gives the boxes' defaults (.parameterDefaults) and writes the program. Pure: the UI strings go
+// through the translator given.
 import { english, type Translate } from './serverStatus';
 
 export const SERVER_COMMAND_THREAD_MODULE = 'fanuc-macro.threadModule';
 export const SERVER_COMMAND_ARC_THREAD = 'fanuc-macro.arcThread';
-export const SERVER_COMMAND_DRUM_GROOVE = 'fanuc-macro.drumGroove';
-export const SERVER_COMMAND_READ_DESIGNATION = 'fanuc-macro.readDesignation';
-export const SERVER_COMMAND_CHECK = 'fanuc-macro.checkParameters';
-export const SERVER_COMMAND_DEFAULTS = 'fanuc-macro.parameterDefaults';
 
-/** An input box: the parameters its answer gives (several: as many numbers apart by commas). */
-export interface Box {
+/** An input box, or a quick pick when it has `picks`; its answer gives the parameters `names`. */
+export interface Step {
   readonly names: readonly string[];
   readonly prompt: string;
   readonly placeHolder?: string;
+  readonly picks?: ReadonlyArray<{ readonly label: string; readonly description: string; readonly value: unknown }>;
 }
 
 export interface GeneratorForm {
   /** The generator's name in the server's checkParameters and parameterDefaults. */
-  readonly generator: 'arcThread' | 'drumGroove';
-  /** The input boxes' title, before "(1/5)". */
+  readonly generator: 'threadModule' | 'arcThread' | 'drumGroove';
+  /** The boxes' title, before "(1/5)". */
   readonly title: string;
   readonly command: string;
-  readonly boxes: readonly Box[];
+  readonly steps: readonly Step[];
 }
 
 /** An answer as the server's checkParameters reads it. */
@@ -34,24 +31,20 @@ export interface Answer {
   readonly value: unknown;
 }
 
+const box = (names: string[], prompt: string, placeHolder?: string): Step => (placeHolder === undefined ? { names, prompt } : { names, prompt, placeHolder });
+
 /** Seed 002's arc thread: 5 boxes for the 9 values of the part; the rest as the paper. */
 export function arcThreadForm(t: Translate = english): GeneratorForm {
   return {
     generator: 'arcThread',
     title: t('Arc Thread Program'),
     command: SERVER_COMMAND_ARC_THREAD,
-    boxes: [
-      {
-        names: ['outer_diameter', 'groove_radius', 'tool_radius'],
-        prompt: t('Thread outer diameter, groove radius R and tool nose radius r in mm'),
-      },
-      { names: ['pitch', 'length'], prompt: t('Pitch (lead) and length of the thread in mm') },
-      { names: ['layers'], prompt: t('Roughing layers: the groove-centre diameter of each layer in mm') },
-      { names: ['cuts_per_layer'], prompt: t('Cuts per roughing layer') },
-      {
-        names: ['finishing_diameter', 'finishing_cuts'],
-        prompt: t('Finishing: the groove-centre diameter in mm and the number of cuts'),
-      },
+    steps: [
+      box(['outer_diameter', 'groove_radius', 'tool_radius'], t('Thread outer diameter, groove radius R and tool nose radius r in mm')),
+      box(['pitch', 'length'], t('Pitch (lead) and length of the thread in mm')),
+      box(['layers'], t('Roughing layers: the groove-centre diameter of each layer in mm')),
+      box(['cuts_per_layer'], t('Cuts per roughing layer')),
+      box(['finishing_diameter', 'finishing_cuts'], t('Finishing: the groove-centre diameter in mm and the number of cuts')),
     ],
   };
 }
@@ -61,49 +54,21 @@ export function drumGrooveForm(t: Translate = english): GeneratorForm {
   return {
     generator: 'drumGroove',
     title: t('Drum Groove Program'),
-    command: SERVER_COMMAND_DRUM_GROOVE,
-    boxes: [
-      {
-        names: ['points'],
-        prompt: t('Profile points X,Z (X a diameter) apart by semicolons, from the start of the groove; the default is the paper\'s drum'),
-        placeHolder: '298.91,205; 302.104,173; 304.83,140',
-      },
-      {
-        names: ['pitch'],
-        prompt: t('Pitch (lead) of the groove in mm: the paper\'s is lost (its figure 2), so it has no default'),
-        placeHolder: t('required, for example 40'),
-      },
-      { names: ['layers', 'radial_step'], prompt: t('Number of layers and radial step per layer in mm (on the radius)') },
-      { names: ['cuts_per_layer', 'axial_step'], prompt: t('Cuts per layer and axial step per cut in mm') },
+    command: 'fanuc-macro.drumGroove',
+    steps: [
+      box(
+        ['points'],
+        t('Profile points X,Z (X a diameter) apart by semicolons, from the start of the groove; the default is the paper\'s drum'),
+        '298.91,205; 302.104,173; 304.83,140',
+      ),
+      box(['pitch'], t('Pitch (lead) of the groove in mm: the paper\'s is lost (its figure 2), so it has no default'), t('required, for example 40')),
+      box(['layers', 'radial_step'], t('Number of layers and radial step per layer in mm (on the radius)')),
+      box(['cuts_per_layer', 'axial_step'], t('Cuts per layer and axial step per cut in mm')),
     ],
   };
 }
 
-/** A box's text from the server's defaults: `93.82, 10, 1.2`; '' where there is none. */
-export function boxValue(box: Box, defaults: Readonly<Record<string, string>>): string {
-  const known = box.names.map((name) => defaults[name]).filter((v): v is string => v !== undefined);
-  return known.length === box.names.length ? known.join(', ') : '';
-}
-
-export const isRecord = (value: unknown): value is Record<string, unknown> =>
-  typeof value === 'object' && value !== null && !Array.isArray(value);
-
-/** The server's `{ error }` answer, or `error` when the answer is not an object. */
-export function refusal(answer: unknown, error: string): string | undefined {
-  if (!isRecord(answer)) return error;
-  return typeof answer['error'] === 'string' && answer['error'] !== '' ? answer['error'] : undefined;
-}
-
-/** A checkParameters answer: the parameters read (with the generator's warning), or its refusal. */
-export function checked(answer: unknown): { parameters: Record<string, unknown>; warning?: string } | { error: string } {
-  const error = refusal(answer, 'the language server did not check the answers');
-  if (error !== undefined) return { error };
-  const { parameters, warning } = answer as Record<string, unknown>;
-  if (!isRecord(parameters)) return { error: 'the language server did not check the answers' };
-  return typeof warning === 'string' ? { parameters, warning } : { parameters };
-}
-
-/** A readDesignation answer, or its refusal. */
+/** A designation as the server read it (fanuc-macro.readDesignation). */
 export interface DesignationReading {
   readonly text: string;
   readonly side: 'external' | 'internal' | 'undecided';
@@ -113,14 +78,50 @@ export interface DesignationReading {
   readonly question?: string;
 }
 
-export function designationReading(answer: unknown): DesignationReading | { error: string } {
-  const error = refusal(answer, 'the language server did not read the designation');
-  if (error !== undefined) return { error };
-  const reading = answer as Partial<DesignationReading>;
-  if (typeof reading.text !== 'string' || typeof reading.side !== 'string') {
-    return { error: 'the language server did not read the designation' };
-  }
-  return reading as DesignationReading;
+/** The thread module's steps after its designation: the kind only when the designation does not say it. */
+export function threadModuleForm(designation: DesignationReading, t: Translate = english): GeneratorForm {
+  const kind = [designation.starts > 1 ? t('{0} starts', designation.starts) : '', designation.leftHand ? t('left hand') : ''].filter((k) => k !== '');
+  const side: Step = {
+    names: ['internal'],
+    prompt: designation.question ?? '',
+    picks: [
+      { label: t('External thread'), description: t('bolt, turned on the outside'), value: false },
+      { label: t('Internal thread'), description: t('nut, bored on the inside'), value: true },
+    ],
+  };
+  const steps: Step[] = [
+    box(['length'], t('Thread length of {0} in mm', designation.text), '40'),
+    ...(designation.side === 'undecided' ? [side] : []),
+    {
+      names: ['infeed'],
+      prompt: kind.length > 0
+        ? t('How the rough passes of {0} ({1}) go down', designation.text, kind.join(', '))
+        : t('How the rough passes of {0} go down', designation.text),
+      picks: [
+        { label: t('Symmetric'), description: t('both flanks every pass, the paper\'s'), value: 'symmetric' },
+        { label: t('Alternate flanks'), description: t('left one pass, right the next'), value: 'alternate' },
+        { label: t('Left flank'), description: t('every pass on the -Z flank, as G76'), value: 'left' },
+        { label: t('Right flank'), description: t('every pass on the +Z flank'), value: 'right' },
+      ],
+    },
+    box(['taper'], t('Taper as 1:16, or the diameter change per mm; empty for a parallel thread'), '1:16'),
+  ];
+  return { generator: 'threadModule', title: t('Symmetric Thread Module'), command: SERVER_COMMAND_THREAD_MODULE, steps };
+}
+
+/** A box's text from the server's defaults: `93.82, 10, 1.2`; '' where there is none. */
+export function boxValue(step: Step, defaults: Readonly<Record<string, string>>): string {
+  const known = step.names.map((name) => defaults[name]).filter((v): v is string => v !== undefined);
+  return known.length === step.names.length ? known.join(', ') : '';
+}
+
+export const isRecord = (value: unknown): value is Record<string, unknown> =>
+  typeof value === 'object' && value !== null && !Array.isArray(value);
+
+/** The server's answer, or its `{ error }` (`none` when the answer lacks the field `needed`). */
+export function answerOf(answer: unknown, needed: string, none: string): Record<string, unknown> | { error: string } {
+  if (isRecord(answer) && typeof answer['error'] === 'string' && answer['error'] !== '') return { error: answer['error'] };
+  return isRecord(answer) && answer[needed] !== undefined ? answer : { error: none };
 }
 
 /** The arguments of fanuc-macro.threadModule: the paper's infeed and no taper left out. */
@@ -129,21 +130,15 @@ export function threadModuleArgs(parameters: Record<string, unknown>): Record<st
   return { ...rest, ...(infeed === 'symmetric' ? {} : { infeed }), ...(taper === 0 ? {} : { taper }) };
 }
 
-const count = (value: unknown): number | undefined => (typeof value === 'number' && Number.isFinite(value) ? value : undefined);
-
 /** What the inserted program does, from the run the server made of it (undefined: not said). */
 export function summaryText(command: string, summary: unknown, t: Translate = english): string | undefined {
-  if (!isRecord(summary)) return undefined;
-  const g32 = count(summary['g32_cuts']);
-  if (g32 === undefined) return undefined;
+  const s = isRecord(summary) ? summary : {};
+  const [g32, layers, finishing, passes, segments] = ['g32_cuts', 'layer_cuts', 'finishing_cuts', 'passes', 'segments_per_pass'].map((k) => s[k]);
+  if (typeof g32 !== 'number') return undefined;
   if (command === SERVER_COMMAND_ARC_THREAD) {
-    const layers = summary['layer_cuts'];
-    const finishing = count(summary['finishing_cuts']);
-    if (!Array.isArray(layers) || finishing === undefined) return undefined;
+    if (!Array.isArray(layers) || typeof finishing !== 'number') return undefined;
     return t('{0} G32 cuts: {1} per roughing layer, {2} finishing.', g32, layers.join(', '), finishing);
   }
-  const passes = count(summary['passes']);
-  const segments = count(summary['segments_per_pass']);
-  if (passes === undefined || segments === undefined) return undefined;
+  if (typeof passes !== 'number' || typeof segments !== 'number') return undefined;
   return t('{0} G32 cuts: {1} passes of {2} taper segments and a run-in.', g32, passes, segments);
 }

@@ -164,44 +164,20 @@ export class ServerStatus {
   view(controller: string | undefined, t: Translate = english): { text: string; tooltip: string; error: boolean } {
     const label = controllerLabel(controller, this.controllers, t);
     const series = controllerOf(controller, this.controllers).series;
-    const switchHint = t('Click to choose another controller.');
-    const state = this.current;
     const server = this.version === undefined ? 'fanuc-macro-ls' : `fanuc-macro-ls ${this.version}`;
-    switch (state) {
-      case 'starting':
-        return {
-          text: `$(loading~spin) ${label} · ${t('starting')}`,
-          tooltip: `${t('Controller: {0}', series)}\n${t('Language server: starting')}\n${switchHint}`,
-          error: false,
-        };
-      case 'ready':
-        return {
-          text: `$(check) ${label}`,
-          tooltip: `${t('Controller: {0}', series)}\n${t('Language server: ready ({0})', server)}\n${switchHint}`,
-          error: false,
-        };
-      case 'analysing':
-        return {
-          text: `$(sync~spin) ${label} · ${t('analysing')}`,
-          tooltip:
-            `${t('Controller: {0}', series)}\n` +
-            `${t('Language server: analysing {0} document(s) ({1})', this.pending.size, server)}\n${switchHint}`,
-          error: false,
-        };
-      case 'stopped':
-        return {
-          text: `$(circle-slash) ${label} · ${t('stopped')}`,
-          tooltip: `${t('Controller: {0}', series)}\n${t('Language server: stopped')}\n${switchHint}`,
-          error: false,
-        };
-      case 'error':
-        return {
-          text: `$(error) ${label} · ${t('error')}`,
-          tooltip:
-            `${t('Controller: {0}', series)}\n` +
-            `${t('Language server: error: {0}', this.reason ?? t('unknown reason'))}\n${switchHint}`,
-          error: true,
-        };
-    }
+    // Each state: its icon, its word after the label (none when ready), its tooltip line.
+    const shown: Record<ServerState, [string, string | undefined, string]> = {
+      starting: ['loading~spin', t('starting'), t('Language server: starting')],
+      ready: ['check', undefined, t('Language server: ready ({0})', server)],
+      analysing: ['sync~spin', t('analysing'), t('Language server: analysing {0} document(s) ({1})', this.pending.size, server)],
+      stopped: ['circle-slash', t('stopped'), t('Language server: stopped')],
+      error: ['error', t('error'), t('Language server: error: {0}', this.reason ?? t('unknown reason'))],
+    };
+    const [icon, word, line] = shown[this.current];
+    return {
+      text: `$(${icon}) ${label}${word === undefined ? '' : ` · ${word}`}`,
+      tooltip: `${t('Controller: {0}', series)}\n${line}\n${t('Click to choose another controller.')}`,
+      error: this.current === 'error',
+    };
   }
 }

@@ -7,10 +7,14 @@ import { after, describe, it } from 'node:test';
 import type { ExtensionContext } from 'vscode';
 import { activate, deactivate } from '../src/extension';
 import { ToolpathPanel } from '../src/toolpathView';
+import { serverAnswers } from './fakes/languageclient';
+import { pythonServer } from './fakes/pythonServer';
 import { serverScripts } from './fakes/serverScripts';
 import * as fake from './fakes/vscode';
 
 const { dir, server, python, remove } = serverScripts('fanuc-macro-debug-');
+const answering = pythonServer();
+serverAnswers.set('fanuc-macro.variableAt', (args) => answering.answer('fanuc-macro.variableAt', args));
 
 function registered<T>(map: Map<string, T>): T {
   const found = map.get('fanuc-macro');
@@ -29,6 +33,7 @@ describe('debugger', { skip: process.platform === 'win32' }, () => {
   after(async () => {
     await deactivate();
     remove();
+    answering.close();
   });
 
   it('starts fanuc-macro-dap beside the fanuc-macro-ls the server runs', async () => {
@@ -76,13 +81,13 @@ describe('debugger', { skip: process.platform === 'win32' }, () => {
     ]);
   });
 
-  it('gives the debug hover the variable with its #', () => {
+  it("gives the debug hover the variable with its #, as the server finds it", async () => {
     const entry = fake.providers.evaluatable.find((p) => p.selector === 'fanuc-macro');
     assert.ok(entry);
     const document = { lineAt: (_line: number) => ({ text: 'G92 X[#100-2*#9] Z#26 F#4' }) };
-    const expression = entry.provider.provideEvaluatableExpression(document, new fake.Position(3, 14));
+    const expression = await entry.provider.provideEvaluatableExpression(document, new fake.Position(3, 14));
     assert.deepEqual(expression?.range, new fake.Range(3, 13, 3, 15));
-    assert.equal(entry.provider.provideEvaluatableExpression(document, new fake.Position(3, 1)), undefined);
+    assert.equal(await entry.provider.provideEvaluatableExpression(document, new fake.Position(3, 1)), undefined);
   });
 
   it('lets the tracker ignore stops while no Toolpath view is open', async () => {

@@ -4,7 +4,7 @@
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
 import { join } from 'node:path';
-import { describe, it } from 'node:test';
+import { after, describe, it } from 'node:test';
 import {
   DAP_MODULE,
   DEBUG_TYPE,
@@ -13,7 +13,7 @@ import {
   resolveLaunch,
 } from '../src/debugConfiguration';
 import { isStoppedEvent, samePath, stoppedLine } from '../src/debugFollow';
-import { macroExpressionAt } from '../src/macroExpression';
+import { pythonServer } from './fakes/pythonServer';
 import { SERVER_MODULE, buildCandidates, type ServerCandidate } from '../src/serverCandidates';
 
 describe('adapterCommand', () => {
@@ -104,38 +104,40 @@ describe('resolveLaunch', () => {
   });
 });
 
-describe('macroExpressionAt', () => {
+describe("the server's variable under the hover (fanuc-macro.variableAt)", () => {
+  const server = pythonServer();
+  after(() => server.close());
   /** The text of the expression under the first `^` of `marker`, on `line`. */
-  const under = (line: string, marker: string) => {
-    const range = macroExpressionAt(line, marker.indexOf('^'));
-    return range === undefined ? undefined : line.slice(range.start, range.end);
+  const under = async (line: string, marker: string) => {
+    const range = (await server.answer('fanuc-macro.variableAt', [line, marker.indexOf('^')])) as { start?: number; end?: number };
+    return range.start === undefined ? undefined : line.slice(range.start, range.end);
   };
   const line = '#1=#[#2+1]*#101 (RADIUS #5)';
 
-  it('keeps the # of a numbered variable', () => {
-    assert.equal(under(line, '^'), '#1');
-    assert.equal(under(line, ' ^'), '#1');
-    assert.equal(under(line, '            ^'), '#101');
-    assert.equal(under('G00 X#24 Z#26;', '      ^'), '#24');
+  it('keeps the # of a numbered variable', async () => {
+    assert.equal(await under(line, '^'), '#1');
+    assert.equal(await under(line, ' ^'), '#1');
+    assert.equal(await under(line, '            ^'), '#101');
+    assert.equal(await under('G00 X#24 Z#26;', '      ^'), '#24');
   });
 
-  it('gives the innermost variable of an indirection, and the whole one between', () => {
-    assert.equal(under(line, '     ^'), '#2');
-    assert.equal(under(line, '       ^'), '#[#2+1]');
-    assert.equal(under(line, '   ^'), '#[#2+1]');
-    assert.equal(under('#[#[#1]+2]', '   ^'), '#[#1]');
+  it('gives the innermost variable of an indirection, and the whole one between', async () => {
+    assert.equal(await under(line, '     ^'), '#2');
+    assert.equal(await under(line, '       ^'), '#[#2+1]');
+    assert.equal(await under(line, '   ^'), '#[#2+1]');
+    assert.equal(await under('#[#[#1]+2]', '   ^'), '#[#1]');
   });
 
-  it('reads system variable names', () => {
-    assert.equal(under('#_UI[2]=1', ' ^'), '#_UI[2]');
-    assert.equal(under('#<TOOLNO>=1', '  ^'), '#<TOOLNO>');
+  it('reads system variable names', async () => {
+    assert.equal(await under('#_UI[2]=1', ' ^'), '#_UI[2]');
+    assert.equal(await under('#<TOOLNO>=1', '  ^'), '#<TOOLNO>');
   });
 
-  it('gives nothing off a variable, in a comment or for an unclosed bracket', () => {
-    assert.equal(under(line, '  ^'), undefined); // the =
-    assert.equal(under(line, '                        ^'), undefined); // #5 in the comment
-    assert.equal(under('#[#2+1', '^'), undefined);
-    assert.equal(under('G65 P9000 A#', '           ^'), undefined);
+  it('gives nothing off a variable, in a comment or for an unclosed bracket', async () => {
+    assert.equal(await under(line, '  ^'), undefined); // the =
+    assert.equal(await under(line, '                        ^'), undefined); // #5 in the comment
+    assert.equal(await under('#[#2+1', '^'), undefined);
+    assert.equal(await under('G65 P9000 A#', '           ^'), undefined);
   });
 });
 

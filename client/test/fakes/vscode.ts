@@ -173,7 +173,10 @@ export const providers = {
   evaluatable: [] as Array<{
     selector: unknown;
     provider: {
-      provideEvaluatableExpression(d: { lineAt(line: number): { text: string } }, p: Position): EvaluatableExpression | undefined;
+      provideEvaluatableExpression(
+        d: { lineAt(line: number): { text: string } },
+        p: Position,
+      ): EvaluatableExpression | undefined | PromiseLike<EvaluatableExpression | undefined>;
     };
   }>,
 };

@@ -80,6 +80,7 @@ if TYPE_CHECKING:
     from .trace_view import TraceView as TraceView
     from .trace_view import view_of_trace as view_of_trace
     from .values import Precision as Precision
+    from .variable_at import variable_at as variable_at
     from .view import Indexed as Indexed
     from .view import View as View
     from .workspace_symbols import workspace_symbols as workspace_symbols
@@ -144,6 +145,7 @@ PUBLIC: MappingProxyType[str, str] = MappingProxyType(
         "DEFAULT_CONTROLLER": "controllers",
         "controller_choices": "controllers",
         "Precision": "values",
+        "variable_at": "variable_at",
         "Indexed": "view",
         "View": "view",
         "workspace_symbols": "workspace_symbols",

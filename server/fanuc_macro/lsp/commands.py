@@ -2,9 +2,9 @@
 thread modules, and the arc-thread and drum-groove programs.
 
 :data:`EDITOR_COMMANDS` answer what an editor would otherwise compute itself: a thread
-designation read, a generator's boxes read and checked, their defaults, the trace view's text
-and the controllers.  Their answers are typed here and sent as JSON objects, ``{"error"}`` for
-a refusal (the command line's message)."""
+designation read, a generator's boxes read and checked, their defaults, the trace view's text,
+the controllers and the variable under the debugger's hover.  Their answers are typed here and
+sent as JSON objects, ``{"error"}`` for a refusal (the command line's message)."""
 
 from __future__ import annotations
 
@@ -32,6 +32,7 @@ CHECK_PARAMETERS = "fanuc-macro.checkParameters"
 PARAMETER_DEFAULTS = "fanuc-macro.parameterDefaults"
 TRACE_VIEW = "fanuc-macro.traceView"
 CONTROLLERS = "fanuc-macro.controllers"
+VARIABLE_AT = "fanuc-macro.variableAt"
 
 
 def _uri_argument(args: tuple[Any, ...]) -> str | None:
@@ -317,6 +318,17 @@ async def run_controllers(engine: Engine, args: tuple[Any, ...]) -> dict[str, An
     }
 
 
+async def run_variable_at(engine: Engine, args: tuple[Any, ...]) -> dict[str, Any]:
+    """``[line's text, column]`` -> ``{"start", "end"}`` of the Macro B variable under the
+    column (the debugger's hover), ``{}`` off a variable."""
+    from ..ide import variable_at
+
+    if len(args) != 2 or not isinstance(args[0], str) or not isinstance(args[1], int):
+        return {"error": f"{VARIABLE_AT} takes a line's text and a column"}
+    found = variable_at(args[0], args[1])
+    return {} if found is None else {"start": found[0], "end": found[1]}
+
+
 EditorCommand = Callable[[Engine, tuple[Any, ...]], Awaitable[dict[str, Any]]]
 
 EDITOR_COMMANDS: Mapping[str, EditorCommand] = {
@@ -325,4 +337,5 @@ EDITOR_COMMANDS: Mapping[str, EditorCommand] = {
     PARAMETER_DEFAULTS: run_parameter_defaults,
     TRACE_VIEW: run_trace_view,
     CONTROLLERS: run_controllers,
+    VARIABLE_AT: run_variable_at,
 }
