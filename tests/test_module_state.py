@@ -46,7 +46,6 @@ ALLOWED_STATE: dict[str, str] = {
     "fanuc_macro.cli.generators.__all__": "ide",
     "fanuc_macro.cli.streams.__all__": "ide",
     "fanuc_macro.cli.thread.__all__": "ide",
-    "fanuc_macro.debugger.session._LETTER_OF": "ide",
     "fanuc_macro.evaluator.__all__": "evaluator",
     "fanuc_macro.evaluator.compiler._ARITH": "evaluator",
     "fanuc_macro.evaluator.compiler._NUMBER_OPS": "evaluator",
