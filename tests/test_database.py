@@ -5,9 +5,12 @@ from __future__ import annotations
 
 import contextvars
 import threading
+from typing import Any
+
+import pytest
 
 from fanuc_macro import database
-from fanuc_macro.database import Database, TableKey, current
+from fanuc_macro.database import Database, Derived, TableKey, current
 
 NAMES: TableKey[str, int] = TableKey("tests.names")
 BY_URI: TableKey[str, list[int]] = TableKey("tests.by_uri", per_document=True)
@@ -132,3 +135,148 @@ def test_tables_made_at_once_on_two_threads_are_one() -> None:
     for thread in threads:
         thread.join()
     assert all(table is tables[0] for table in tables)
+
+
+# ---- derived per-document queries -----------------------------------------------------------
+
+
+class _Doc:
+    """A document's inputs, as a query reads them."""
+
+    def __init__(self, index: object, read_to: int | None, facts_needed: bool = False) -> None:
+        self.index = index
+        self.read_to = read_to
+        self.facts_needed = facts_needed
+
+
+def _counting_query() -> tuple[Derived[_Doc, list[int]], list[_Doc]]:
+    computed: list[_Doc] = []
+
+    def compute(doc: _Doc) -> tuple[list[int], bool]:
+        computed.append(doc)
+        return [len(computed)], not doc.facts_needed
+
+    query: Derived[_Doc, list[int]] = Derived(
+        "tests.derived", lambda doc: (doc.index, doc.read_to), compute
+    )
+    return query, computed
+
+
+def test_a_derived_value_is_computed_again_only_when_an_input_changed() -> None:
+    query, computed = _counting_query()
+    index = object()
+    with Database().active():
+        first = query("a", _Doc(index, None))
+        assert query("a", _Doc(index, None)) is first  # the same inputs: kept
+        assert query("b", _Doc(index, None)) is not first  # another document
+        assert query("a", _Doc(index, 10)) is not first  # a number read changed
+        assert query("a", _Doc(object(), 10)) is not first  # another index
+        assert len(computed) == 4
+
+
+def test_inputs_compare_by_identity_but_numbers_and_strings_by_value() -> None:
+    query, computed = _counting_query()
+    with Database().active():
+        query("a", _Doc([1], 10**6 + 1))
+        query("a", _Doc([1], int("1000001")))  # an equal list is another input
+        assert len(computed) == 2
+        same = [1]
+        query("a", _Doc(same, int("1000001")))
+        query("a", _Doc(same, int("1000001")))  # an equal int, another object: the same
+        assert len(computed) == 3
+
+
+def test_a_value_that_read_more_than_its_inputs_is_not_kept() -> None:
+    query, computed = _counting_query()
+    index = object()
+    other = object()  # an index with a jump whose diagnostic reads the facts, say
+    with Database().active():
+        query("a", _Doc(index, None))
+        query("a", _Doc(other, None, facts_needed=True))  # not kept, and the last one dropped
+        query("a", _Doc(other, None, facts_needed=True))
+        query("a", _Doc(index, None))
+        assert len(computed) == 4
+
+
+def test_derived_values_are_the_database_s_and_freed_with_the_document() -> None:
+    query, computed = _counting_query()
+    index = object()
+    one, two = Database(), Database()
+    with one.active():
+        query("a", _Doc(index, None))
+    with two.active():
+        query("a", _Doc(index, None))  # another database computes its own
+    assert len(computed) == 2
+    one.close_document("a")
+    with one.active():
+        query("a", _Doc(index, None))
+    assert len(computed) == 3
+
+
+def test_a_derived_query_keeps_the_last_few_documents() -> None:
+    computed: list[str] = []
+
+    def compute(uri: str) -> tuple[str, bool]:
+        computed.append(uri)
+        return uri, True
+
+    query: Derived[str, str] = Derived("tests.few", lambda uri: (uri,), compute, kept=2)
+    with Database().active():
+        for uri in ("a", "b", "c", "a"):
+            query(uri, uri)
+    assert computed == ["a", "b", "c", "a"]  # "a" was dropped when "c" came
+
+
+def test_the_jumps_rule_after_an_edit_equals_a_fresh_analysis(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """The jumps rule reads the program index: an edit the index skips gives back the last
+    diagnostics without a look at the jumps, an edit of a label looks again; each time they
+    are those of an analysis from scratch, in a new workspace (a new database)."""
+    from fanuc_macro.rules import jumps
+    from fanuc_macro.workspace import Workspace
+
+    looked: list[int] = []
+    real = jumps._check
+
+    def spy(ctx: Any, found: list[Any]) -> bool:
+        looked.append(len(ctx.doc.blocks))
+        return real(ctx, found)
+
+    monkeypatch.setattr(jumps, "_check", spy)
+    lines = [
+        "O1000",
+        "#1=0",
+        "G00 X10.",
+        "IF [#1 GT 3] GOTO 30",
+        "WHILE [#1 LT 5] DO1",
+        "N20 #1=#1+1",
+        "END1",
+        "GOTO 20",
+        "N10 M05",
+        "M30",
+    ]
+    uri = "file:///jumps.nc"
+    edited = Workspace()
+
+    def jumps_of(workspace: Workspace) -> list[object]:
+        workspace.add_text(uri, "\n".join(lines))
+        return [d for d in workspace.analyse(uri).diagnostics if d.code.startswith("MB10")]
+
+    def fresh() -> list[object]:
+        return jumps_of(Workspace())
+
+    first = jumps_of(edited)
+    assert {d.code for d in first} >= {"MB101", "MB103"}  # type: ignore[attr-defined]
+    assert first == fresh()
+    assert looked == [10, 10]  # once each for the edited and the fresh workspace
+    lines[2] = "G00 X20."  # a motion: the index is kept
+    looked.clear()
+    assert jumps_of(edited) == first
+    assert looked == []
+    assert jumps_of(edited) == fresh()
+    lines.insert(9, "N30")  # the missing label: looked at again
+    looked.clear()
+    again = jumps_of(edited)
+    assert looked == [len(lines)]
+    assert again == fresh() and "MB101" not in {d.code for d in again}  # type: ignore[attr-defined]

@@ -20,9 +20,10 @@ import threading
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from contextvars import ContextVar
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any, Generic, Protocol, TypeVar, cast
 
+A = TypeVar("A")
 K = TypeVar("K")
 V = TypeVar("V")
 
@@ -109,6 +110,61 @@ class Database:
         return {key.name: len(table) for key, table in list(self._tables.items())}
 
 
+@dataclass(frozen=True, eq=False)
+class Derived(Generic[A, V]):
+    """A value derived from one document, computed again only when what it reads changed.
+
+    ``reads(arg)`` names the inputs the value is drawn from (say the document's program index
+    and how far it was read): the current database keeps the value with them, by document,
+    and gives it back while every input is the same (the same object; a number, a string or
+    None equal). ``compute(arg)`` gives the value and whether it follows from those inputs
+    alone: a value that read more (the evaluator's facts, say) is not kept. The last values
+    of ``kept`` documents are kept, the least recently stored dropped first; closing a
+    document frees its value.
+
+    So a rule says what it reads, and the database decides what to compute again.
+    """
+
+    name: str
+    reads: Callable[[A], tuple[object, ...]]
+    compute: Callable[[A], tuple[V, bool]]
+    kept: int = 16
+    table: TableKey[str, tuple[tuple[object, ...], V]] = field(init=False, repr=False)
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "table", TableKey(self.name, per_document=True))
+
+    def __call__(self, uri: str, arg: A) -> V:
+        values = current().table(self.table)
+        inputs = self.reads(arg)
+        last = values.get(uri)
+        if last is not None and _same_inputs(last[0], inputs):
+            return last[1]
+        value, keep = self.compute(arg)
+        values.pop(uri, None)
+        if keep:
+            values[uri] = (inputs, value)
+            while len(values) > self.kept:  # another thread's call may drop the oldest first
+                try:
+                    del values[next(iter(values))]
+                except (KeyError, RuntimeError, StopIteration):
+                    break
+        return value
+
+
+_BY_VALUE = (int, float, str, bool, type(None))
+
+
+def _same_inputs(old: tuple[object, ...], new: tuple[object, ...]) -> bool:
+    """Whether two reads of a query's inputs are the same: each input the same object, or an
+    equal number, string or None (an equal object that is another one may differ in what
+    the query does not compare: it counts as changed)."""
+    return len(old) == len(new) and all(
+        a is b or (type(a) is type(b) and isinstance(a, _BY_VALUE) and a == b)
+        for a, b in zip(old, new, strict=True)
+    )
+
+
 # The database of code running outside any workspace (the command line's single documents,
 # scripts calling the parser): its tables live as long as the process.
 _DEFAULT = Database("default")
@@ -125,4 +181,4 @@ def default() -> Database:
     return _DEFAULT
 
 
-__all__ = ["Database", "TableKey", "current", "default"]
+__all__ = ("Database", "Derived", "TableKey", "current", "default")

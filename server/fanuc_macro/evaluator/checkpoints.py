@@ -23,8 +23,8 @@ from operator import itemgetter
 from typing import TYPE_CHECKING
 
 from ..config import Config
-from ..line_maps import Diff, common_prefix, common_suffix, line_diff
 from ..program.index import Loop
+from ..syntax.diff import Diff, common_prefix, common_suffix, line_diff
 from ..syntax.tree import Document
 from .facts import DocumentFacts, Facts, same_value
 

@@ -5,6 +5,7 @@ from __future__ import annotations
 from bisect import bisect_left, bisect_right
 from typing import cast
 
+from ..database import Derived
 from ..diagnostics import (
     Diagnostic,
     Fix,
@@ -15,9 +16,8 @@ from ..diagnostics import (
     Severity,
     make,
 )
-from ..line_maps import Kept
 from ..per_line import PerLine
-from ..program.index import Jump, Program, ProgramIndex
+from ..program.index import Jump, Program
 from ..syntax.parser import statements_of
 from ..syntax.tree import Assign, IfGoto, IfThen, ParsedLine, Var, While
 from ..syntax.walk import cond_exprs, subexpressions
@@ -40,19 +40,23 @@ MB104 = RuleInfo("MB104", "goto-bad-target", Severity.ERROR,
 # fmt: on
 
 
-# The last diagnostics of each document, with the program index they were drawn from: an edit
-# of lines the index skips (an assignment, a motion) keeps the index, and so the diagnostics.
-_kept: Kept[tuple[ProgramIndex, int | None, list[Diagnostic]]] = Kept()
+def _reads(ctx: RuleContext) -> tuple[object, ...]:
+    """What the diagnostics are drawn from: the program index and where reading stopped."""
+    return ctx.index, ctx.doc.unread_from
+
+
+def _checked(ctx: RuleContext) -> tuple[list[Diagnostic], bool]:
+    found: list[Diagnostic] = []
+    return found, _check(ctx, found)
+
+
+# An edit of lines the index skips (an assignment, a motion) keeps the index, and so the
+# diagnostics: the database gives back the last ones.
+_diagnostics: Derived[RuleContext, list[Diagnostic]] = Derived("rules.jumps", _reads, _checked)
 
 
 def check(ctx: RuleContext) -> list[Diagnostic]:
-    last = _kept.get(ctx.doc.uri)
-    if last is not None and last[0] is ctx.index and last[1] == ctx.doc.unread_from:
-        return list(last[2])
-    found: list[Diagnostic] = []
-    if _check(ctx, found):
-        _kept.put(ctx.doc.uri, (ctx.index, ctx.doc.unread_from, found))
-    return list(found)
+    return list(_diagnostics(ctx.doc.uri, ctx))
 
 
 MB101_DOC = RuleDoc(
