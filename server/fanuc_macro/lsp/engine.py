@@ -23,13 +23,12 @@ import traceback
 from collections.abc import Callable, Iterable, Mapping, Sequence
 from contextlib import AbstractContextManager
 from dataclasses import dataclass, field
-from pathlib import Path, PurePosixPath
+from pathlib import PurePosixPath
 from types import MappingProxyType
 from typing import TYPE_CHECKING, Any, TypeVar
 from urllib.parse import unquote, urlparse
 
 from lsprotocol import types
-from pygls.uris import from_fs_path, to_fs_path
 
 from ..cancel import Cancelled, CancelToken
 from ..code_cache import save_code_cache
@@ -40,6 +39,7 @@ from ..ide import Catalogue, catalogue
 from .convert import Codec, ConvertedDiagnostics, Lines
 from .documents import DocumentStore, NewestText, OpenDocument
 from .documents import key_of as key_of  # where the commands read it
+from .folders import Folders, path_of, read_program
 from .progress import AnalysisProgress, ProgressDisplay
 from .scheduler import Job, Scheduler
 
@@ -56,9 +56,6 @@ DEFAULT_DEBOUNCE_MS = 250.0
 # An analysis shows its progress once it has run this long (setting analysis.progressDelayMs);
 # only at a checkpoint that counts blocks, so a document too small for one never shows any.
 DEFAULT_PROGRESS_DELAY_MS = 500.0
-SCAN_MAX_FILES = 2000
-SCAN_MAX_BYTES = 2 * 1024 * 1024
-SCAN_CHUNK = 25  # files per worker job, so that edits are analysed between chunks
 FAULT_ENV = "FANUC_MACRO_LS_FAULT"  # tests: analysing a text that contains it raises
 # Tests: every feature request fails while an open document contains it.
 FEATURE_FAULT_ENV = "FANUC_MACRO_LS_FEATURE_FAULT"
@@ -116,13 +113,9 @@ class Engine:
         self.format_settings = FormatSettings()  # the formatter's: no analysis reads them
         self.debounce = DEFAULT_DEBOUNCE_MS / 1000.0
         self.documents = DocumentStore()
-        self.scheduler = Scheduler(self.database, self._report)
+        self.scheduler = Scheduler(self.database, self.report)
         self.results: dict[str, Result] = {}  # newest analysis of each open document
-        self.folders: list[Path] = []
-        self.scan_done = asyncio.Event()
-        self.scanned_files = 0
-        self._scans = 0  # folder scans under way
-        self._scan_listed = 0  # files listed by all scans (the bound is for all of them)
+        self.folders = Folders(self)
         self._waiters: dict[str, list[_Waiter]] = {}
         self.progress: ProgressDisplay | None = None  # when the client shows progress
         self.progress_delay = DEFAULT_PROGRESS_DELAY_MS / 1000.0
@@ -135,7 +128,9 @@ class Engine:
         # one of them is what reschedules it.
         self._reads_of: dict[str, frozenset[str]] = {}
         # The program numbers each open document defines and calls, when its text last changed.
-        self._links: dict[str, frozenset[tuple[str, int | None]]] = {}
+        # Kept with the index they were read from: an edit that keeps the index (a keystroke
+        # in a line the index skips) keeps them, and costs nothing here.
+        self._links: dict[str, tuple[object, frozenset[tuple[str, int | None]]]] = {}
         # The protocol's form of each open document's last diagnostics (worker thread).
         self._converted: dict[str, ConvertedDiagnostics] = {}
         self.generation = 0  # written by the worker only
@@ -276,17 +271,17 @@ class Engine:
         for waiter in self._waiters.pop(key, []):
             if not waiter.future.done():
                 waiter.future.set_result(None)
-        path = _path_of(key)
-        keep = path is not None and self._in_folders(path)
+        path = path_of(key)
+        keep = path is not None and self.folders.contains(path)
 
         def reload() -> None:
             # A closed file stays in the workspace as it is on disk, for the others' calls.
-            data = _read_program(path) if keep and path is not None else None
+            data = read_program(path) if keep and path is not None else None
             self._reads_of.pop(key, None)
             if data is not None:
-                self._add_file(key, data)
+                self.add_file(key, data)
             else:
-                self._remove(key)
+                self.remove_file(key)
 
         self.scheduler.submit(reload, then=lambda _: self.schedule_all(self.debounce))
 
@@ -310,7 +305,7 @@ class Engine:
             return  # the queued job will read the newest text when it starts
         self.scheduler.submit(lambda: self._analyse_job(key), then=lambda r: self._deliver(key, r))
 
-    def _report(self, message: str, error: BaseException | None = None) -> None:
+    def report(self, message: str, error: BaseException | None = None) -> None:
         """Log an error and show it in the client's log; callable from any thread."""
         if error is not None:
             detail = "".join(traceback.format_exception(error))
@@ -398,7 +393,7 @@ class Engine:
                 self.catalogue.localised(analysis.diagnostics), key, text.uri, lines, self._resolve
             )
         except Exception as err:  # logged and shown; the server goes on with other work
-            self._report(f"fanuc-macro: the analysis of {text.uri} failed: {err!r}", err)
+            self.report(f"fanuc-macro: the analysis of {text.uri} failed: {err!r}", err)
             failure = types.Diagnostic(
                 range=lines.range(0, 0, 0, len(lines.text(0))),
                 message=f"fanuc-macro could not analyse this document ({err!r}): "
@@ -451,9 +446,13 @@ class Engine:
         documents whose analysis it can change. Those whose last analysis read ``key``; and,
         when the program numbers ``key`` defines or calls changed, those that read it now."""
         affected = {k for k, reads in self._reads_of.items() if key in reads and k != key}
+        index = self._ws.index(key)
+        known = self._links.get(key)
+        if known is not None and known[0] is index:
+            return frozenset(affected)
         links = self._ws.links(key)
-        if self._links.get(key) != links:
-            self._links[key] = links
+        self._links[key] = (index, links)
+        if known is None or known[1] != links:
             affected.update(self._ws.readers(key, self.documents.open_keys()))
         return frozenset(affected)
 
@@ -467,12 +466,12 @@ class Engine:
         self.generation += 1
         return True
 
-    def _add_file(self, key: str, data: bytes) -> None:
+    def add_file(self, key: str, data: bytes) -> None:
         self._ws.add_bytes(key, data)
         self._ws_seq[key] = None
         self.generation += 1
 
-    def _remove(self, key: str) -> None:
+    def remove_file(self, key: str) -> None:
         self._ws.remove(key)
         self._ws_seq.pop(key, None)
         self._analysed.pop(key, None)
@@ -531,114 +530,28 @@ class Engine:
             if not waiter.future.done() and _newer_or_same(result.version, waiter.version):
                 waiter.future.set_result(result)
 
-    # ---- workspace folders -----------------------------------------------------------------
-    def _in_folders(self, path: Path) -> bool:
-        for folder in self.folders:
-            try:
-                path.relative_to(folder)
-                return True
-            except ValueError:
-                continue
-        return False
+    # ---- workspace folders (lsp/folders.py) ------------------------------------------------
+    @property
+    def scan_done(self) -> asyncio.Event:
+        """Set while no folder scan is under way."""
+        return self.folders.scan_done
 
     def add_folders(self, folders: Iterable[str]) -> None:
-        """Add the program files of workspace folders (bounded in all: SCAN_MAX_FILES files of
-        at most SCAN_MAX_BYTES each), in chunks, so that calls across files resolve."""
-        paths: list[Path] = []
-        for folder in folders:
-            path = _path_of(folder)
-            if path is not None and path.is_dir() and path not in self.folders:
-                paths.append(path)
-        self.folders.extend(paths)
-        if not paths:
-            if self._scans == 0:
-                self.scan_done.set()
-            return
-        self._scans += 1
-        self.scan_done.clear()
-        budget = max(0, SCAN_MAX_FILES - self._scan_listed)
-
-        def walk() -> list[Path]:
-            try:
-                files = list(_program_files(paths, budget))
-            except Exception as err:  # an unreadable folder: scan nothing there
-                self._report(f"fanuc-macro: cannot list {paths}: {err!r}", err)
-                return []
-            self._scan_listed += len(files)
-            # The first chunk in the same job: an analysis the client asks for next (its
-            # first document opened) then sees the programs of a small workspace.
-            self._add_files(files[:SCAN_CHUNK])
-            return files[SCAN_CHUNK:]
-
-        self.scheduler.submit(walk, then=self._scan_chunk)
+        self.folders.add(folders)
 
     def remove_folders(self, folders: Iterable[str]) -> None:
-        """Forget the files of folders that left the workspace (open documents stay)."""
-        gone = [p for p in (_path_of(f) for f in folders) if p is not None]
-        self.folders = [f for f in self.folders if f not in gone]
-
-        def under(path: Path) -> bool:
-            return any(path.is_relative_to(folder) for folder in gone)
-
-        def forget() -> None:
-            for key in self._ws.uris():
-                path = _path_of(key)
-                is_open = self.documents.is_open(key)
-                if path is not None and not is_open and under(path):
-                    self._remove(key)
-
-        self.scheduler.submit(forget, then=lambda _: self.schedule_all(self.debounce))
-
-    def _add_files(self, chunk: list[Path]) -> None:
-        """Read files of a folder scan into the workspace (worker only)."""
-        for path in chunk:
-            key = key_of(from_fs_path(str(path)) or path.as_uri())
-            if self.documents.is_open(key) or key in self._ws_seq:
-                continue
-            data = _read_program(path)
-            if data is None:
-                continue
-            try:
-                self._add_file(key, data)
-                self.scanned_files += 1
-            except Exception as err:  # one unreadable file must not end the scan
-                self._report(f"fanuc-macro: cannot read {path}: {err!r}", err)
-
-    def _scan_chunk(self, files: list[Path]) -> None:
-        """The rest of a folder scan, a chunk per job, so that edits are analysed between."""
-        if not files:
-            self._scans -= 1
-            if self._scans == 0:
-                self.scan_done.set()
-            self.schedule_all(0.0)
-            return
-        chunk, rest = files[:SCAN_CHUNK], files[SCAN_CHUNK:]
-        self.scheduler.submit(lambda: self._add_files(chunk), then=lambda _: self._scan_chunk(rest))
+        self.folders.remove(folders)
 
     def files_changed(self, events: Sequence[types.FileEvent]) -> None:
-        """Files changed on disk (workspace/didChangeWatchedFiles): those not open are reread."""
-        todo: list[tuple[str, Path | None, bool]] = []
-        for event in events:
-            key = key_of(event.uri)
-            if key in self.docs:
-                continue  # the editor's text wins
-            path = _path_of(key)
-            deleted = event.type == types.FileChangeType.Deleted
-            if path is None or (not deleted and not _is_program_file(path)):
-                continue
-            todo.append((key, path, deleted))
-        if not todo:
-            return
+        self.folders.files_changed(events)
 
-        def apply() -> None:
-            for key, path, deleted in todo:
-                data = None if deleted or path is None else _read_program(path)
-                if data is None:
-                    self._remove(key)
-                else:
-                    self._add_file(key, data)
+    def has_file(self, key: str) -> bool:
+        """Worker thread: ``key`` is in the workspace."""
+        return key in self._ws_seq
 
-        self.scheduler.submit(apply, then=lambda _: self.schedule_all(self.debounce))
+    def file_keys(self) -> list[str]:
+        """Worker thread: every document of the workspace."""
+        return self._ws.uris()
 
     # ---- for commands ----------------------------------------------------------------------
     def trace_documents(self, key: str) -> list[OtherDocument] | None:
@@ -656,11 +569,11 @@ class Engine:
         """Worker thread: make sure ``key`` is in the workspace, reading it from disk if need be."""
         if key in self._ws.indexes():
             return True
-        path = _path_of(key)
-        data = _read_program(path) if path is not None else None
+        path = path_of(key)
+        data = read_program(path) if path is not None else None
         if data is None:
             return False
-        self._add_file(key, data)
+        self.add_file(key, data)
         return True
 
 
@@ -698,51 +611,3 @@ def _newer_or_same(version: int | None, than: int | None) -> bool:
     if version is None or than is None:
         return True
     return version >= than
-
-
-def _path_of(uri: str) -> Path | None:
-    if not uri.startswith("file:"):
-        return None
-    path = to_fs_path(uri)
-    return Path(path) if path else None
-
-
-def _read_program(path: Path) -> bytes | None:
-    try:
-        if not path.is_file() or path.stat().st_size > SCAN_MAX_BYTES:
-            return None
-        return path.read_bytes()
-    except OSError:
-        return None
-
-
-def _program_files(folders: Sequence[Path], limit: int) -> Iterable[Path]:
-    """Program files under ``folders``, hidden and tool folders skipped as ``check`` skips
-    them (``program_files.is_tool_folder``), at most ``limit``."""
-    from ..program_files import is_tool_folder
-
-    count = 0
-    seen: set[Path] = set()
-    for folder in folders:
-        for root, dirs, files in os.walk(folder):
-            dirs[:] = sorted(d for d in dirs if not is_tool_folder(Path(root, d)))
-            for name in sorted(files):
-                path = Path(root, name)
-                if name.startswith(".") or path in seen:
-                    continue
-                try:
-                    if path.stat().st_size > SCAN_MAX_BYTES or not _is_program_file(path):
-                        continue
-                except OSError:
-                    continue
-                seen.add(path)
-                yield path
-                count += 1
-                if count >= limit:
-                    return
-
-
-def _is_program_file(path: Path) -> bool:
-    from ..workspace import is_program_file
-
-    return is_program_file(path)
