@@ -1276,14 +1276,15 @@ def test_incremental_edits_keep_line_starts_right() -> None:
 
 
 def test_converted_diagnostics_are_kept_while_their_lines_are() -> None:
-    import fanuc_macro.rules  # noqa: F401  (registers the codes)
     from fanuc_macro.diagnostics import Related, make
     from fanuc_macro.lsp.convert import Codec, ConvertedDiagnostics, Lines, to_lsp_diagnostic
+    from fanuc_macro.rules.addresses import MB603
+    from fanuc_macro.rules.math_domain import MB501
 
     lines = Lines(["G01 X1.", "#1=SQRT[-1] (根)", "M30"], Codec())
     diags = [
-        make("MB501", "SQRT of -1", 1, 3, 11),
-        make("MB603", "no F", 0, 0, 7, related=[Related(2, 0, 3, "here")], data={"a": 1}),
+        make(MB501, "SQRT of -1", 1, 3, 11),
+        make(MB603, "no F", 0, 0, 7, related=[Related(2, 0, 3, "here")], data={"a": 1}),
     ]
     cache = ConvertedDiagnostics()
     first = cache.convert(diags, "k", "file:///k.nc", lines)
@@ -1295,7 +1296,7 @@ def test_converted_diagnostics_are_kept_while_their_lines_are() -> None:
     third = cache.convert(diags, "k", "file:///k.nc", edited)
     assert third[0] is first[0] and third[1] is not first[1]
     # Other data, another client's units: converted again, as the protocol needs them.
-    other = [diags[0], make("MB603", "no F", 0, 0, 7, related=diags[1].related, data={"a": 2})]
+    other = [diags[0], make(MB603, "no F", 0, 0, 7, related=diags[1].related, data={"a": 2})]
     assert cache.convert(other, "k", "file:///k.nc", edited)[1].data == {"code": "MB603", "a": 2}
     utf8 = Lines(edited.lines, Codec("utf-8"))
     converted = cache.convert(diags, "k", "file:///k.nc", utf8)

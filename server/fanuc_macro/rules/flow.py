@@ -481,6 +481,7 @@ def _program_flow(
         for a, b in windows
         for start, last in _stretches_between(ctx, facts.runs, a + 1, b)
     ]
+    _add_work("stretches", len(fresh))
     name = program.display_name
     dead = _spliced(
         before.dead_starts,
@@ -514,6 +515,7 @@ def _fresh_flow(
     if not gates[0]:  # decided: which blocks no run reached is known
         for start, last in _dead_stretches(ctx, program.first_line, program.end_line, facts.runs):
             dead.append(_stretch(ctx, program, start, last, local_calls))
+        _add_work("stretches", len(dead))
     return _Flow(
         program.end_line,
         gates,
@@ -803,7 +805,6 @@ def _stretch(
     ctx: RuleContext, program: Program, start: int, last: int, local_calls: frozenset[int]
 ) -> _Stretch:
     """What a stretch of blocks no run reached gives: MB702 and MB709 segments."""
-    _add_work("stretches", 1)
     blocks = ctx.doc.blocks
     before = _statement_before(ctx, program, start)
     stop = _stops(blocks[before]) if before is not None else None
