@@ -190,6 +190,7 @@ _ABBREVIATION = re.compile(r"\b(e\.g|i\.e)\.$")
 _CODE_SPAN = re.compile(r"`([^`]+)`")
 _LOWER_PATH = re.compile(r"[a-z0-9_.-]+(/[a-z0-9_.-]+)*/?")
 _DOTTED = re.compile(r"([a-z_][a-z0-9_]*(?:/[a-z_][a-z0-9_]*)*)\.([A-Za-z_]\w*)")
+_CLASS_DOTTED = re.compile(r"([A-Z]\w*)\.([A-Za-z_]\w*)")
 
 
 def prose_units(text: str) -> list[str]:
@@ -307,7 +308,8 @@ def _defines(source: str, name: str) -> bool:
     """Whether a module's text defines ``name`` (a function, class, assignment, annotated
     name or import)."""
     defined = re.compile(
-        rf"^\s*((async\s+)?def|class)\s+{name}\b|^\s*{name}\s*[:=]|^\s*(from\s.*)?import\s.*\b{name}\b",
+        rf"^\s*((async\s+)?def|class)\s+{name}\b|^\s*{name}\s*[:=]|^\s*(from\s.*)?import\s.*\b{name}\b"
+        rf"|\bself\.{name}\s*[:=]",
         re.M,
     )
     return defined.search(source) is not None
@@ -327,11 +329,13 @@ def missing_names(text: str) -> list[str]:
     has a ``/`` and is all lower case (``textDocument/publishDiagnostics`` is a protocol
     method); a path matches any file or folder whose path ends with it (``lines.py``,
     ``evaluator/checkpoints.py``, ``src/extension.ts``). A lower case ``module.name`` must
-    name a module of the package whose text defines ``name``, or a submodule. Words with
+    name a module of the package whose text defines ``name``, or a submodule; a
+    ``Class.name`` must name a class of the package whose module defines ``name``. Words with
     ``<``, ``*`` or ``@``, or starting with ``.``, are patterns or outside names, not checked.
     """
     files, folders = _repository_names()
     modules = _package_modules()
+    texts = {module: path.read_text("utf-8") for module, path in modules.items()}
     missing: list[str] = []
     for word in named_in_code(text):
         word = word.split("#")[0].strip("()[],;:")
@@ -349,9 +353,13 @@ def missing_names(text: str) -> list[str]:
                 continue
             owners = [m for m in modules if m == module or m.endswith("." + module)]
             if not any(
-                f"{owner}.{name}" in modules or _defines(modules[owner].read_text("utf-8"), name)
-                for owner in owners
+                f"{owner}.{name}" in modules or _defines(texts[owner], name) for owner in owners
             ):
+                missing.append(word)
+        elif dotted := _CLASS_DOTTED.fullmatch(word):
+            cls, name = dotted.groups()
+            has_class = re.compile(rf"^\s*class\s+{cls}\b", re.M)
+            if not any(has_class.search(s) and _defines(s, name) for s in texts.values()):
                 missing.append(word)
         elif (
             "/" in word
@@ -369,7 +377,9 @@ def test_the_name_check_sees_a_missing_name() -> None:
         "`per_line.PerLine`, `program/knowledge.modal_group`, `fanuc_macro.cli`,\n"
         "`docs/rules.md#x`, `textDocument/publishDiagnostics`, `vscode.l10n`,\n"
         "`data/messages.<locale>.json`,\n"
-        "`ide/debugger.py`, `nowhere.py`, `per_line.Nothing`, `nomodule.thing`, `gone/`\n"
+        "`Workspace.analyse`, `Workspace.db`, `ParsedLine.bare`, `Database.table`,\n"
+        "`ide/debugger.py`, `nowhere.py`, `per_line.Nothing`, `nomodule.thing`, `gone/`,\n"
+        "`Workspace.nothing`, `NoSuchClass.analyse`\n"
         "```\n`in_a_code_block.py`\n```\n"
     )
     assert missing_names(text) == [
@@ -378,6 +388,8 @@ def test_the_name_check_sees_a_missing_name() -> None:
         "per_line.Nothing",
         "nomodule.thing",
         "gone/",
+        "Workspace.nothing",
+        "NoSuchClass.analyse",
     ]
 
 
