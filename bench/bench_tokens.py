@@ -20,6 +20,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "server"))
 
 from bench_lsp import program
 
+from fanuc_macro import database
 from fanuc_macro.analysis import analyse
 from fanuc_macro.config import Config
 from fanuc_macro.ide import semantic
@@ -32,7 +33,7 @@ def measure(blocks: int, distinct: bool, runs: int) -> tuple[float, float, int]:
     first = again = float("inf")
     count = 0
     for _ in range(runs):
-        semantic._LINE_TOKENS.clear()
+        database.current().table(semantic.LINE_TOKENS).clear()
         started = time.process_time()
         count = len(semantic.semantic_tokens(view))
         first = min(first, time.process_time() - started)

@@ -305,12 +305,14 @@ def test_locals_read_before_set_follow_the_lines_and_read_a_value_before_its_tar
 
 
 def test_the_tokens_kept_from_an_earlier_request_are_those_of_the_line_now() -> None:
+    from fanuc_macro import database
     from fanuc_macro.ide import semantic
 
     text = "O1000\n#1=SIN[30]\nG65 P9010 A1.\nM30\nO9010\n#3=#1+#24\n#3=#1+#24\nM99\n"
     config = Config()
     view = View("t.nc", analyse(text, "t.nc", config), config)
-    semantic._LINE_TOKENS.clear()
+    worked_out = database.current().table(semantic.LINE_TOKENS)
+    worked_out.clear()
 
     def fresh(v: View) -> list[SemanticToken]:
         out: list[SemanticToken] = []
@@ -324,7 +326,7 @@ def test_the_tokens_kept_from_an_earlier_request_are_those_of_the_line_now() -> 
 
     first = semantic_tokens(view)
     assert first == fresh(view)
-    assert semantic._LINE_TOKENS  # kept for the next request
+    assert worked_out  # kept for the next request
     # Two lines moved down by one: their tokens come from the cache, on their new lines; the
     # sub-program is no longer called with G65, so its locals are no longer arguments.
     edited = text.replace("G65 P9010 A1.\n", "(NO CALL)\nM98 P9010\n")

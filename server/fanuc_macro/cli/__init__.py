@@ -704,4 +704,4 @@ if __name__ == "__main__":
     sys.exit(main())
 
 
-__all__ = ["analyse", "main"]
+__all__ = ("analyse", "main")

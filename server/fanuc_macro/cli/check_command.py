@@ -161,4 +161,4 @@ def cmd_check(args: argparse.Namespace, config: Config) -> int:
     )
 
 
-__all__ = ["as_json", "cmd_check", "exit_status", "format_text", "summary_line"]
+__all__ = ("as_json", "cmd_check", "exit_status", "format_text", "summary_line")

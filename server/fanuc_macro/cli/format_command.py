@@ -179,4 +179,4 @@ def add_format_command(sub: argparse._SubParsersAction[argparse.ArgumentParser])
     command.set_defaults(func=cmd_format)
 
 
-__all__ = ["add_format_command", "cmd_format"]
+__all__ = ("add_format_command", "cmd_format")

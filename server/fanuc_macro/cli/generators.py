@@ -17,7 +17,7 @@ from pathlib import Path
 
 from .thread import _count, _program
 
-__all__ = ["add_generator_commands", "cmd_arc_thread", "cmd_drum_groove"]
+__all__ = ("add_generator_commands", "cmd_arc_thread", "cmd_drum_groove")
 
 EXIT_OK = 0
 EXIT_USAGE = 2

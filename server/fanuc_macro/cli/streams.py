@@ -51,4 +51,4 @@ def read_stdin() -> bytes:
     return sys.stdin.read().encode("utf-8")
 
 
-__all__ = ["STDIN", "read_stdin", "tolerate_unencodable", "writes_unicode"]
+__all__ = ("STDIN", "read_stdin", "tolerate_unencodable", "writes_unicode")

@@ -15,7 +15,7 @@ import argparse
 import re
 import sys
 
-__all__ = ["add_thread_command", "cmd_thread"]
+__all__ = ("add_thread_command", "cmd_thread")
 
 EXIT_OK = 0
 EXIT_USAGE = 2

@@ -18,7 +18,7 @@ from .generated_program import (
     program_number,
 )
 
-__all__ = ["ArcThreadProgram", "build_arc_thread", "generate_arc_thread"]
+__all__ = ("ArcThreadProgram", "build_arc_thread", "generate_arc_thread")
 
 
 @dataclass(frozen=True)

@@ -20,7 +20,7 @@ from .generated_program import (
     program_number,
 )
 
-__all__ = ["DRUM_PROFILE", "DrumGrooveProgram", "build_drum_groove", "generate_drum_groove"]
+__all__ = ("DRUM_PROFILE", "DrumGrooveProgram", "build_drum_groove", "generate_drum_groove")
 
 # Seed 003, table 1: the drum profile (X diameter, Z), 5 segments right of Z0, 6 left.
 DRUM_PROFILE: tuple[tuple[float, float], ...] = (

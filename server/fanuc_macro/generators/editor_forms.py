@@ -31,7 +31,7 @@ from .generator_requests import (
     drum_groove_request,
 )
 
-__all__ = [
+__all__ = (
     "GENERATORS",
     "BoxAnswer",
     "CheckedAnswers",
@@ -42,7 +42,7 @@ __all__ = [
     "form_defaults",
     "read_designation",
     "read_taper",
-]
+)
 
 Generator = Literal["threadModule", "arcThread", "drumGroove"]
 GENERATORS: tuple[Generator, ...] = ("threadModule", "arcThread", "drumGroove")

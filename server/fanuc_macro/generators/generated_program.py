@@ -6,7 +6,7 @@ from __future__ import annotations
 
 from ..analysis import Analysis, analyse
 
-__all__ = [
+__all__ = (
     "GENERATED_URI",
     "Lines",
     "clean_comment",
@@ -16,7 +16,7 @@ __all__ = [
     "mm",
     "num",
     "program_number",
-]
+)
 
 GENERATED_URI = "generated:thread-program.nc"
 

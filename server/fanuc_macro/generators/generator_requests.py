@@ -12,14 +12,15 @@ import json
 import math
 import re
 from collections.abc import Callable, Mapping
+from types import MappingProxyType
 from typing import Any
 
-__all__ = [
+__all__ = (
     "ARC_THREAD_PARAMETERS",
     "DRUM_GROOVE_PARAMETERS",
     "arc_thread_request",
     "drum_groove_request",
-]
+)
 
 
 class _Refused(ValueError):
@@ -104,46 +105,50 @@ def _points(name: str, value: Any) -> tuple[tuple[float, float], ...] | None:
 # Each parameter: its reader.  The names are the keyword names of the generators.
 Reader = Callable[[str, Any], Any]
 
-ARC_THREAD_PARAMETERS: Mapping[str, Reader] = {
-    "outer_diameter": _number,
-    "groove_radius": _number,
-    "tool_radius": _number,
-    "pitch": _number,
-    "length": _number,
-    "layers": _diameters,
-    "cuts_per_layer": _whole,
-    "finishing_diameter": _number,
-    "finishing_cuts": _whole,
-    "run_in": _number,
-    "finishing_tool_radius": _optional_number,
-    "rough_speed": _whole,
-    "finishing_speed": _whole,
-    "spindle_m": _whole,
-    "rough_tool": _whole,
-    "finishing_tool": _whole,
-    "retract_x": _number,
-    "start_x": _number,
-    "start_z": _number,
-    "main_number": _whole,
-    "rough_number": _whole,
-    "finishing_number": _whole,
-}
+ARC_THREAD_PARAMETERS: Mapping[str, Reader] = MappingProxyType(
+    {
+        "outer_diameter": _number,
+        "groove_radius": _number,
+        "tool_radius": _number,
+        "pitch": _number,
+        "length": _number,
+        "layers": _diameters,
+        "cuts_per_layer": _whole,
+        "finishing_diameter": _number,
+        "finishing_cuts": _whole,
+        "run_in": _number,
+        "finishing_tool_radius": _optional_number,
+        "rough_speed": _whole,
+        "finishing_speed": _whole,
+        "spindle_m": _whole,
+        "rough_tool": _whole,
+        "finishing_tool": _whole,
+        "retract_x": _number,
+        "start_x": _number,
+        "start_z": _number,
+        "main_number": _whole,
+        "rough_number": _whole,
+        "finishing_number": _whole,
+    }
+)
 
-DRUM_GROOVE_PARAMETERS: Mapping[str, Reader] = {
-    "points": _points,
-    "pitch": _number,
-    "layers": _whole,
-    "radial_step": _number,
-    "axial_step": _number,
-    "cuts_per_layer": _whole,
-    "direction": _whole,
-    "run_in": _number,
-    "clearance": _number,
-    "spindle_speed": _whole,
-    "tool": _whole,
-    "main_number": _whole,
-    "macro_number": _whole,
-}
+DRUM_GROOVE_PARAMETERS: Mapping[str, Reader] = MappingProxyType(
+    {
+        "points": _points,
+        "pitch": _number,
+        "layers": _whole,
+        "radial_step": _number,
+        "axial_step": _number,
+        "cuts_per_layer": _whole,
+        "direction": _whole,
+        "run_in": _number,
+        "clearance": _number,
+        "spindle_speed": _whole,
+        "tool": _whole,
+        "main_number": _whole,
+        "macro_number": _whole,
+    }
+)
 
 
 def _read(
@@ -190,16 +195,19 @@ def arc_thread_request(parameters: Any) -> dict[str, Any]:
     }
 
 
-_DRUM_REQUIRED = {
-    "pitch": "give the groove's pitch (lead) in mm; the paper's is not known, its figure 2 is lost"
-}
+DRUM_REQUIRED: Mapping[str, str] = MappingProxyType(
+    {
+        "pitch": "give the groove's pitch (lead) in mm; the paper's is not known, "
+        "its figure 2 is lost"
+    }
+)
 
 
 def drum_groove_request(parameters: Any) -> dict[str, Any]:
     """``{name: value}`` of ``build_drum_groove``'s parameters (``pitch`` required, ``points``
     left out or null: the paper's profile) -> ``{"text", "summary"}`` or ``{"error"}``."""
     try:
-        keywords = _read("drum groove", parameters, DRUM_GROOVE_PARAMETERS, _DRUM_REQUIRED)
+        keywords = _read("drum groove", parameters, DRUM_GROOVE_PARAMETERS, DRUM_REQUIRED)
         from .drum_groove_generator import build_drum_groove
 
         points = keywords.pop("points", None)

@@ -15,6 +15,7 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping
 from dataclasses import dataclass
+from types import MappingProxyType
 
 from ..analysis import Analysis
 from ..evaluator import Facts
@@ -31,7 +32,7 @@ from .generated_program import (
     program_number,
 )
 
-__all__ = [
+__all__ = (
     "INFEEDS",
     "MATERIAL_COEFFICIENTS",
     "ThreadModule",
@@ -39,7 +40,7 @@ __all__ = [
     "build_module_from_values",
     "default_program_numbers",
     "generate_module",
-]
+)
 
 # Depth coefficient of the paper: 0.2 for ordinary steel, a third of it for molybdenum.
 STEEL_COEFFICIENT = 0.2
@@ -134,12 +135,14 @@ def _coefficient_text(coefficient: float) -> str:
 
 # How the rough passes reach the depth (seed 000, "参数调整方法": with fewer statements the
 # module becomes the left-right method; one flank only is G76's infeed).
-INFEEDS: Mapping[str, str] = {
-    "symmetric": "SYMMETRIC LEFT-RIGHT CUTTING",  # both flanks every pass: the paper's
-    "alternate": "ALTERNATE FLANK INFEED",  # left flank one pass, right flank the next
-    "left": "LEFT FLANK INFEED",  # every pass on the -Z flank
-    "right": "RIGHT FLANK INFEED",  # every pass on the +Z flank
-}
+INFEEDS: Mapping[str, str] = MappingProxyType(
+    {
+        "symmetric": "SYMMETRIC LEFT-RIGHT CUTTING",  # both flanks every pass: the paper's
+        "alternate": "ALTERNATE FLANK INFEED",  # left flank one pass, right flank the next
+        "left": "LEFT FLANK INFEED",  # every pass on the -Z flank
+        "right": "RIGHT FLANK INFEED",  # every pass on the +Z flank
+    }
+)
 
 
 @dataclass(frozen=True)
@@ -766,7 +769,9 @@ def generate_module(
 
 
 # For callers that pick a material by name.
-MATERIAL_COEFFICIENTS: Mapping[str, float] = {
-    "steel": STEEL_COEFFICIENT,
-    "molybdenum": MOLYBDENUM_COEFFICIENT,
-}
+MATERIAL_COEFFICIENTS: Mapping[str, float] = MappingProxyType(
+    {
+        "steel": STEEL_COEFFICIENT,
+        "molybdenum": MOLYBDENUM_COEFFICIENT,
+    }
+)

@@ -10,14 +10,14 @@ from collections.abc import Callable
 # a front end words them with its own way of saying the side.
 from ..threads.designation import SideConflict, SideUndecided
 
-__all__ = [
+__all__ = (
     "GENERATOR_MODULE",
     "Generator",
     "NoGenerator",
     "SideConflict",
     "SideUndecided",
     "load_generator",
-]
+)
 
 GENERATOR_MODULE = "fanuc_macro.generators.thread_generator"
 

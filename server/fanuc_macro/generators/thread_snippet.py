@@ -26,7 +26,7 @@ from ..threads.identify import thread_words
 from ..threads.iso965 import pitch_classes, tolerances
 from .thread_generator import ThreadModule, build_module_from_values, default_program_numbers
 
-__all__ = ["ThreadInputs", "module_from_analysis", "module_from_document", "thread_inputs"]
+__all__ = ("ThreadInputs", "module_from_analysis", "module_from_document", "thread_inputs")
 
 _URI = "snippet:thread-module.nc"
 _VARIABLES = range(100, 105)

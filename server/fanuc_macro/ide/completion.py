@@ -4,10 +4,11 @@ from __future__ import annotations
 
 import json
 import re
-from functools import lru_cache
 from importlib import resources
 
+from .. import database
 from ..config import Config
+from ..database import TableKey
 from ..program import knowledge
 from ..program.variables import classify
 from ..syntax.lines import cut_comments
@@ -25,9 +26,22 @@ _CODE_PREFIX = re.compile(r"([GgMm])(\d*\.?\d*)$")
 NOTHING = CompletionList(())
 
 
-@lru_cache(maxsize=1)
+# The snippets, read once per database from the package's data.
+_SNIPPETS: TableKey[str, tuple[tuple[str, str, str, str], ...]] = TableKey(
+    "ide.completion.snippets"
+)
+
+
 def snippets() -> tuple[tuple[str, str, str, str], ...]:
     """(prefix, name, description, body) of the extension's snippets, shipped with the package."""
+    read = database.current().table(_SNIPPETS)
+    found = read.get("snippets")
+    if found is None:
+        found = read["snippets"] = _read_snippets()
+    return found
+
+
+def _read_snippets() -> tuple[tuple[str, str, str, str], ...]:
     try:
         raw = (resources.files("fanuc_macro") / "data" / "fanuc-macro.code-snippets").read_text(
             "utf-8"

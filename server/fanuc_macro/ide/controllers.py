@@ -8,7 +8,7 @@ from typing import Literal
 
 from ..config import CONTROLLERS, Config
 
-__all__ = ["DEFAULT_CONTROLLER", "Controller", "controller_choices"]
+__all__ = ("DEFAULT_CONTROLLER", "Controller", "controller_choices")
 
 MachineKind = Literal["lathe", "mill", "lathe and mill"]
 

@@ -132,7 +132,7 @@ class CodeAction:
     disabled: str = ""  # why it cannot be done ("" when it can)
 
 
-__all__ = [
+__all__ = (
     "ActionKind",
     "CodeAction",
     "CompletionItem",
@@ -148,4 +148,4 @@ __all__ = [
     "Symbol",
     "SymbolKind",
     "TextEdit",
-]
+)

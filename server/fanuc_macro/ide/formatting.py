@@ -293,7 +293,7 @@ def format_file(data: bytes, options: FormatOptions) -> bytes:
     return data if formatted == decoded.text else bom + formatted.encode(decoded.encoding)
 
 
-__all__ = [
+__all__ = (
     "CannotFormat",
     "FormatOptions",
     "Rewrite",
@@ -306,4 +306,4 @@ __all__ = [
     "formatted_line",
     "line_meaning",
     "same_meaning",
-]
+)

@@ -3,7 +3,8 @@ analysed runs did with it."""
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
+from types import MappingProxyType
 
 from ..evaluator.facts import ValueSummary
 from ..program import knowledge
@@ -21,7 +22,9 @@ from .locate import Hit, assignments_in, goto_target, number_of
 from .values import Precision, code, inch_at, substituted, times, variable_kind
 from .view import View, call_at, comment_of, first_comment
 
-ARGUMENT_LETTER = {n: letter for letter, n in ARGUMENT_VARIABLES.items()}
+ARGUMENT_LETTER: Mapping[int, str] = MappingProxyType(
+    {n: letter for letter, n in ARGUMENT_VARIABLES.items()}
+)
 
 
 def find_assignment(

@@ -127,4 +127,4 @@ def code_lenses(view: View) -> list[CodeLens]:
     return out
 
 
-__all__ = ["CodeLens", "code_lenses"]
+__all__ = ("CodeLens", "code_lenses")

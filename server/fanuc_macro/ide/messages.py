@@ -14,23 +14,27 @@ from __future__ import annotations
 import json
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field, replace
-from functools import lru_cache
 from importlib import resources
+from types import MappingProxyType
 
+from .. import database
+from ..database import TableKey
 from ..diagnostics import Diagnostic
 
 # The locales with a catalogue, and the names the editors give them (VS Code's display
 # language "zh-cn", Neovim's $LANG "zh_CN.UTF-8", BCP 47 "zh-Hans"). FANUC's own manuals use
 # the Japanese terms of the ja catalogue (シーケンス番号, コモン変数, ノーズ半径).
 LOCALES = ("en", "zh-cn", "ja")
-_ALIASES = {
-    "zh": "zh-cn",
-    "zh-cn": "zh-cn",
-    "zh-hans": "zh-cn",
-    "zh-sg": "zh-cn",
-    "ja": "ja",
-    "ja-jp": "ja",
-}
+_ALIASES: Mapping[str, str] = MappingProxyType(
+    {
+        "zh": "zh-cn",
+        "zh-cn": "zh-cn",
+        "zh-hans": "zh-cn",
+        "zh-sg": "zh-cn",
+        "ja": "ja",
+        "ja-jp": "ja",
+    }
+)
 
 
 def locale_of(name: str | None) -> str:
@@ -59,10 +63,20 @@ class Catalogue:
         return [replace(d, message=self.message(d.code, d.message)) for d in diagnostics]
 
 
-@lru_cache(maxsize=len(LOCALES))
+# The catalogues read, by locale, once per database.
+_CATALOGUES: TableKey[str, Catalogue] = TableKey("ide.messages.catalogues")
+
+
 def catalogue(locale: str) -> Catalogue:
     """The catalogue of ``locale`` (a name :func:`locale_of` knows); English when none loads."""
-    locale = locale_of(locale)
+    read = database.current().table(_CATALOGUES)
+    found = read.get(locale)
+    if found is None:
+        found = read[locale] = _read_catalogue(locale_of(locale))
+    return found
+
+
+def _read_catalogue(locale: str) -> Catalogue:
     if locale == "en":
         return Catalogue()
     try:

@@ -310,7 +310,7 @@ def doc_text(doc: Document, line: int) -> str:
     return doc.blocks[line].text if 0 <= line < len(doc.blocks) else ""
 
 
-__all__ = [
+__all__ = (
     "CALL_KINDS",
     "Named",
     "NumberUse",
@@ -324,4 +324,4 @@ __all__ = [
     "program_uses",
     "resolve",
     "word_number",
-]
+)

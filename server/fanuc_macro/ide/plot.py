@@ -33,8 +33,9 @@ from __future__ import annotations
 import math
 import unicodedata
 from bisect import bisect_right
-from collections.abc import Callable, Iterable, Sequence
+from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass
+from types import MappingProxyType
 from typing import NamedTuple
 from xml.sax.saxutils import escape, quoteattr
 
@@ -91,24 +92,32 @@ STYLE = (
 )
 
 # What the legend calls each kind of move.
-KIND_NAMES = {"rapid": "rapid", "feed": "feed", "arc": "arc", "thread": "threading"}
+KIND_NAMES: Mapping[str, str] = MappingProxyType(
+    {"rapid": "rapid", "feed": "feed", "arc": "arc", "thread": "threading"}
+)
 
 # Which axes are across and up in each view, as machinists draw them: a lathe's XZ view has Z
 # across and X up (the rear-turret convention of FANUC's lathe manuals, unverified for a front
 # turret: it is the same picture upside down); a mill's views are seen from +Z, -Y and +X.
-_VIEW_AXES: dict[tuple[bool, Plane], tuple[str, str]] = {
-    (True, "XZ"): ("Z", "X"),
-    (True, "XY"): ("X", "Y"),
-    (True, "YZ"): ("Y", "Z"),
-    (False, "XY"): ("X", "Y"),
-    (False, "XZ"): ("X", "Z"),
-    (False, "YZ"): ("Y", "Z"),
-}
+_VIEW_AXES: Mapping[tuple[bool, Plane], tuple[str, str]] = MappingProxyType(
+    {
+        (True, "XZ"): ("Z", "X"),
+        (True, "XY"): ("X", "Y"),
+        (True, "YZ"): ("Y", "Z"),
+        (False, "XY"): ("X", "Y"),
+        (False, "XZ"): ("X", "Z"),
+        (False, "YZ"): ("Y", "Z"),
+    }
+)
 # The planes in the order a machine's drawing prefers them: its usual view first.
-_PLANES: dict[bool, tuple[Plane, ...]] = {True: ("XZ", "XY", "YZ"), False: ("XY", "XZ", "YZ")}
+_PLANES: Mapping[bool, tuple[Plane, ...]] = MappingProxyType(
+    {True: ("XZ", "XY", "YZ"), False: ("XY", "XZ", "YZ")}
+)
 # The axes of each arc plane in the order in which G02 turns clockwise, seen from the plane's
 # positive normal (FANUC: G17 X-Y seen from +Z, G18 Z-X from +Y, G19 Y-Z from +X).
-_ARC_AXES: dict[Plane, tuple[str, str]] = {"XY": ("X", "Y"), "XZ": ("Z", "X"), "YZ": ("Y", "Z")}
+_ARC_AXES: Mapping[Plane, tuple[str, str]] = MappingProxyType(
+    {"XY": ("X", "Y"), "XZ": ("Z", "X"), "YZ": ("Y", "Z")}
+)
 
 
 class NothingToPlot(Exception):
@@ -905,13 +914,15 @@ def _legend_sample(entry: str, x: float, y: float) -> str:
     return f'<circle class="lost" cx="{_num(mid)}" cy="{_num(y)}" r="5"/>'
 
 
-_LEGEND_LABELS = {
-    **KIND_NAMES,
-    "start": "start",
-    "end": "end",
-    "direction": "direction of travel",
-    "lost": "lost track (hover: why)",
-}
+_LEGEND_LABELS: Mapping[str, str] = MappingProxyType(
+    {
+        **KIND_NAMES,
+        "start": "start",
+        "end": "end",
+        "direction": "direction of travel",
+        "lost": "lost track (hover: why)",
+    }
+)
 
 
 def _legend(entries: Sequence[str], top: float) -> tuple[list[str], float]:

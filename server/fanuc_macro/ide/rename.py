@@ -8,7 +8,9 @@ Numbers are what the control reads, so a rename is of a number to another number
 from __future__ import annotations
 
 import re
+from collections.abc import Mapping
 from dataclasses import dataclass
+from types import MappingProxyType
 
 from ..program.index import Program
 from .data import DocumentEdit, Range, TextEdit
@@ -31,7 +33,9 @@ from .view import Indexed, View
 # The numbers FANUC accepts (FANUC Series 0i-F operator's manual B-64604EN, "Program number"
 # and "Sequence number": O1-O9999, N1-N99999; the 8-digit program number option of the 30i is
 # not assumed. Unverified against every series' manual.)
-LIMITS = {"label": ("N", 99999), "program": ("O", 9999)}
+LIMITS: Mapping[str, tuple[str, int]] = MappingProxyType(
+    {"label": ("N", 99999), "program": ("O", 9999)}
+)
 
 
 @dataclass(frozen=True)
@@ -240,4 +244,4 @@ def _is_called(documents: dict[str, Indexed], key: str, program: Program) -> boo
     return bool([u for u in program_uses(documents, key, program) if u.kind == "call"])
 
 
-__all__ = ["LIMITS", "Refusal", "RenameTarget", "parse_number", "prepare_rename", "rename"]
+__all__ = ("LIMITS", "Refusal", "RenameTarget", "parse_number", "prepare_rename", "rename")

@@ -194,4 +194,4 @@ def renumber_labels(view: View, line: int, step: int = DEFAULT_STEP) -> CodeActi
     )
 
 
-__all__ = ["DEFAULT_STEP", "MAX_SEQUENCE_NUMBER", "TITLE", "renumber_labels"]
+__all__ = ("DEFAULT_STEP", "MAX_SEQUENCE_NUMBER", "TITLE", "renumber_labels")

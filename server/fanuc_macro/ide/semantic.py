@@ -11,6 +11,8 @@ import re
 from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
 
+from .. import database
+from ..database import TableKey
 from ..evaluator.compiler import kept
 from ..program.index import Program
 from ..program.variables import classify
@@ -213,20 +215,28 @@ def _without_overlaps(tokens: list[SemanticToken]) -> list[SemanticToken]:
 # an edit only the lines that changed are read again; the parse is kept with its tokens, for an
 # id of a parse no longer cached may be another's.
 _LineKey = tuple[int, frozenset[int], tuple[tuple[Span, TokenType], ...]]
-_LINE_TOKENS: dict[_LineKey, tuple[object, tuple[SemanticToken, ...]]] = {}
+LINE_TOKENS: TableKey[_LineKey, tuple[object, tuple[SemanticToken, ...]]] = TableKey(
+    "ide.semantic.line_tokens"
+)
 MAX_LINE_TOKENS = 65_536  # more than the lines a document is read to (max_blocks 25,000)
 
 
 def line_tokens(
-    block: Block, arguments: frozenset[int], targets: Sequence[tuple[Span, TokenType]] = ()
+    block: Block,
+    arguments: frozenset[int],
+    targets: Sequence[tuple[Span, TokenType]] = (),
+    worked_out: dict[_LineKey, tuple[object, tuple[SemanticToken, ...]]] | None = None,
 ) -> list[SemanticToken]:
-    """:func:`block_tokens`, from the tokens of the same line worked out before if any."""
+    """:func:`block_tokens`, from the tokens of the same line worked out before if any (in
+    ``worked_out``, the current database's table when not given)."""
+    if worked_out is None:
+        worked_out = database.current().table(LINE_TOKENS)
     parsed = block.parsed
     key = (id(parsed), arguments, tuple(targets))
-    entry = _LINE_TOKENS.get(key)
+    entry = worked_out.get(key)
     if entry is None or entry[0] is not parsed:
         made = tuple(block_tokens(block, arguments, targets))
-        entry = kept(_LINE_TOKENS, key, (parsed, made), MAX_LINE_TOKENS)
+        entry = kept(worked_out, key, (parsed, made), MAX_LINE_TOKENS)
     tokens = entry[1]
     line = block.line
     if tokens and tokens[0].line != line:
@@ -243,19 +253,20 @@ def semantic_tokens(view: View, first: int = 0, last: int | None = None) -> list
     program: Program | None = None
     arguments: frozenset[int] = frozenset()
     targets: dict[int, list[tuple[Span, TokenType]]] = {}
+    worked_out = database.current().table(LINE_TOKENS)
     for line in range(max(0, first), stop):
         if program is None or not program.contains(line):
             program = view.index.program_at(line)
             arguments = _arguments_of(view, program, called)
             targets = _targets_by_line(program) if program is not None else {}
-        out.extend(line_tokens(blocks[line], arguments, targets.get(line, ())))
+        out.extend(line_tokens(blocks[line], arguments, targets.get(line, ()), worked_out))
     return out
 
 
-__all__ = [
+__all__ = (
     "CalledPrograms",
     "SemanticToken",
     "block_tokens",
     "line_tokens",
     "semantic_tokens",
-]
+)

@@ -8,7 +8,9 @@ looked up in the analysis (this document, then the workspace).
 from __future__ import annotations
 
 import re
+from collections.abc import Mapping
 from dataclasses import dataclass
+from types import MappingProxyType
 
 from ..program import knowledge
 from ..program.index import Program
@@ -42,16 +44,18 @@ _CALL = re.compile(r"G0*(65|66(?:\.1)?)(?![.\d])", re.I)
 _PROGRAM = re.compile(r"P\s*(\d+)", re.I)
 
 # What each parameter of a function is, where its name alone does not say.
-_FUNCTION_PARAMETERS: dict[str, tuple[str, ...]] = {
-    "SIN": ("an angle in degrees",),
-    "COS": ("an angle in degrees",),
-    "TAN": ("an angle in degrees",),
-    "ASIN": ("a value from -1 to 1",),
-    "ACOS": ("a value from -1 to 1",),
-    "ATAN": ("the ordinate (the sine side)", "the abscissa (the cosine side)"),
-    "POW": ("the base", "the exponent"),
-    "ADP": ("a local #1-#33 given as an argument",),
-}
+_FUNCTION_PARAMETERS: Mapping[str, tuple[str, ...]] = MappingProxyType(
+    {
+        "SIN": ("an angle in degrees",),
+        "COS": ("an angle in degrees",),
+        "TAN": ("an angle in degrees",),
+        "ASIN": ("a value from -1 to 1",),
+        "ACOS": ("a value from -1 to 1",),
+        "ATAN": ("the ordinate (the sine side)", "the abscissa (the cosine side)"),
+        "POW": ("the base", "the exponent"),
+        "ADP": ("a local #1-#33 given as an argument",),
+    }
+)
 
 
 def argument_numbers(letters: list[str]) -> list[int | None]:
@@ -243,7 +247,7 @@ def signature_help(line_text: str, column: int, view: View | None) -> Signature 
     return function_signature(line_text, column) or call_signature(view, line_text, column)
 
 
-__all__ = [
+__all__ = (
     "LETTER_ORDER",
     "Parameter",
     "Signature",
@@ -251,4 +255,4 @@ __all__ = [
     "call_signature",
     "function_signature",
     "signature_help",
-]
+)

@@ -33,4 +33,4 @@ class TokenModifier(str, Enum):
 TOKEN_TYPES: tuple[str, ...] = tuple(t.value for t in TokenType)
 TOKEN_MODIFIERS: tuple[str, ...] = tuple(m.value for m in TokenModifier)
 
-__all__ = ["TOKEN_MODIFIERS", "TOKEN_TYPES", "TokenModifier", "TokenType"]
+__all__ = ("TOKEN_MODIFIERS", "TOKEN_TYPES", "TokenModifier", "TokenType")

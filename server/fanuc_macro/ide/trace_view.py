@@ -14,7 +14,7 @@ from typing import Any
 
 from ..evaluator.values import fmt, fmt_address
 
-__all__ = ["TraceRow", "TraceView", "view_of_trace"]
+__all__ = ("TraceRow", "TraceView", "view_of_trace")
 
 # Addresses whose values are integers on a FANUC control (no decimal point).
 INTEGER_ADDRESSES = frozenset("DGHLMNOPST")

@@ -3,7 +3,7 @@ be ``123`` of ``#123`` and drop the ``#``, so the server gives it the whole vari
 
 from __future__ import annotations
 
-__all__ = ["variable_at"]
+__all__ = ("variable_at",)
 
 _DIGITS = frozenset("0123456789")
 _NAME_CHARACTERS = frozenset("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789_")

@@ -110,7 +110,7 @@ def lines_of(program: Program | None, doc: Document) -> tuple[int, int]:
     return (program.first_line, program.end_line) if program else (0, len(doc.blocks))
 
 
-__all__ = [
+__all__ = (
     "Document",
     "Indexed",
     "ProgramIndex",
@@ -119,4 +119,4 @@ __all__ = [
     "comment_of",
     "first_comment",
     "lines_of",
-]
+)
