@@ -130,7 +130,7 @@ def _query_declarations() -> tuple[type, ...]:
     except ModuleNotFoundError:
         pass
     else:
-        kinds.append(database.TableKey)
+        kinds += [database.TableKey, database.Derived]  # a derived query: a declaration too
     return tuple(kinds)
 
 
