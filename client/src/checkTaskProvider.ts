@@ -1,13 +1,7 @@
 // Provides the `fanuc-macro` check task of each workspace folder, and resolves those written in
 // tasks.json, with the command line of the package the language server runs (checkTask.ts).
 import * as vscode from 'vscode';
-import {
-  PROBLEM_MATCHER,
-  TASK_TYPE,
-  checkTaskCommand,
-  isCheckTaskDefinition,
-  type CheckTaskDefinition,
-} from './checkTask';
+import { PROBLEM_MATCHER, TASK_TYPE, checkTaskCommand, isCheckTaskDefinition, type CheckTaskDefinition } from './checkTask';
 import { candidateEnv, type ServerCandidate } from './serverCandidates';
 
 function makeTask(

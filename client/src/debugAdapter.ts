@@ -3,13 +3,7 @@
 // the hover the whole `#` variable (the server's fanuc-macro.variableAt), lets the Toolpath view follow the stopped block, and the
 // "Debug This Program" command.
 import * as vscode from 'vscode';
-import {
-  DEBUG_TYPE,
-  adapterCommand,
-  programConfiguration,
-  resolveLaunch,
-  type LaunchProblem,
-} from './debugConfiguration';
+import { DEBUG_TYPE, adapterCommand, programConfiguration, resolveLaunch, type LaunchProblem } from './debugConfiguration';
 import { TOP_FRAME_REQUEST, isStoppedEvent, stoppedLine } from './debugFollow';
 import { candidateEnv, type ServerCandidate } from './serverCandidates';
 import { ToolpathPanel } from './toolpathView';

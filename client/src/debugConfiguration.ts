@@ -41,9 +41,7 @@ export function adapterCommand(candidate: ServerCandidate, platform: NodeJS.Plat
   // Keep an extension such as `.exe` (`fanuc-macro-ls.exe` -> `fanuc-macro-dap.exe`).
   const suffix = name.toLowerCase().startsWith(SERVER_EXECUTABLE) ? name.slice(SERVER_EXECUTABLE.length) : '';
   const sibling = `${DAP_EXECUTABLE}${/^\.[a-z]+$/i.test(suffix) ? suffix : ''}`;
-  if (name === candidate.command) {
-    return { command: sibling, args: [], env: candidate.env };
-  }
+  if (name === candidate.command) return { command: sibling, args: [], env: candidate.env };
   const path = platform === 'win32' ? win32 : posix;
   return { command: path.join(path.dirname(candidate.command), sibling), args: [], env: candidate.env };
 }
@@ -96,23 +94,15 @@ export function resolveLaunch(config: LaunchConfiguration, context: LaunchContex
   let resolved: LaunchConfiguration = { ...config };
   const empty = config['type'] === undefined && config['request'] === undefined && config['name'] === undefined;
   if (empty) {
-    if (context.activeProgram === undefined) {
-      return { ok: false, problem: 'no-active-program' };
-    }
+    if (context.activeProgram === undefined) return { ok: false, problem: 'no-active-program' };
     resolved = programConfiguration(context.activeProgram, true);
   }
-  if (resolved['request'] !== undefined && resolved['request'] !== 'launch') {
-    return { ok: false, problem: 'not-launch' };
-  }
+  if (resolved['request'] !== undefined && resolved['request'] !== 'launch') return { ok: false, problem: 'not-launch' };
   const program = resolved['program'];
-  if (typeof program !== 'string' || program.trim() === '') {
-    return { ok: false, problem: 'no-program' };
-  }
+  if (typeof program !== 'string' || program.trim() === '') return { ok: false, problem: 'no-program' };
   if (resolved['controller'] === undefined && context.controller !== undefined && context.controller !== '') {
     resolved['controller'] = context.controller;
   }
-  if (resolved['stepBudget'] === undefined) {
-    resolved['stepBudget'] = context.stepBudget ?? DEFAULT_STEP_BUDGET;
-  }
+  if (resolved['stepBudget'] === undefined) resolved['stepBudget'] = context.stepBudget ?? DEFAULT_STEP_BUDGET;
   return { ok: true, config: resolved };
 }

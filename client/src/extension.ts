@@ -79,56 +79,37 @@ function settingsObject(): Record<string, unknown> {
 
 const PYTHON_EXTENSION_TIMEOUT_MS = 10000;
 
+/** `promise`'s value, or undefined after `ms` milliseconds. */
 function withTimeout<T>(promise: Thenable<T>, ms: number): Promise<T | undefined> {
-  return new Promise<T | undefined>((resolve, reject) => {
-    const timer = setTimeout(() => resolve(undefined), ms);
-    promise.then(
-      (value) => {
-        clearTimeout(timer);
-        resolve(value);
-      },
-      (err: unknown) => {
-        clearTimeout(timer);
-        reject(err instanceof Error ? err : new Error(String(err)));
-      },
-    );
-  });
+  let timer: ReturnType<typeof setTimeout> | undefined;
+  const late = new Promise<undefined>((resolve) => (timer = setTimeout(resolve, ms, undefined)));
+  return Promise.race([Promise.resolve(promise), late]).finally(() => clearTimeout(timer));
 }
 
 /** Interpreter selected in the Python extension, if that extension is installed and answers. */
 async function pythonExtensionInterpreter(): Promise<string | undefined> {
   try {
     const extension = vscode.extensions.getExtension('ms-python.python');
-    if (extension === undefined) {
-      return undefined;
-    }
+    if (extension === undefined) return undefined;
     const api: unknown = extension.isActive
       ? extension.exports
       : await withTimeout(extension.activate(), PYTHON_EXTENSION_TIMEOUT_MS);
     const environments = (api as { environments?: unknown } | undefined)?.environments as
       | {
           getActiveEnvironmentPath?: (resource?: vscode.Uri) => { path?: unknown } | undefined;
-          resolveEnvironment?: (
-            env: unknown,
-          ) => Promise<{ executable?: { uri?: vscode.Uri } } | undefined>;
+          resolveEnvironment?: (env: unknown) => Promise<{ executable?: { uri?: vscode.Uri } } | undefined>;
         }
       | undefined;
-    if (typeof environments?.getActiveEnvironmentPath !== 'function') {
-      return undefined;
-    }
+    if (typeof environments?.getActiveEnvironmentPath !== 'function') return undefined;
     const resource = vscode.workspace.workspaceFolders?.[0]?.uri;
     const active = environments.getActiveEnvironmentPath(resource);
-    if (active === undefined) {
-      return undefined;
-    }
+    if (active === undefined) return undefined;
     // `path` may be an environment folder rather than an interpreter: resolve it when possible.
     if (typeof environments.resolveEnvironment === 'function') {
       try {
         const resolved = await environments.resolveEnvironment(active);
         const executable = resolved?.executable?.uri?.fsPath;
-        if (typeof executable === 'string' && executable !== '') {
-          return executable;
-        }
+        if (typeof executable === 'string' && executable !== '') return executable;
       } catch {
         // fall back to the raw path below
       }
@@ -162,11 +143,7 @@ async function findServer(): Promise<
   const attempts: Array<{ candidate: ServerCandidate; result: ProbeResult }> = [];
   for (const candidate of candidates) {
     log(`Trying ${candidate.description}`);
-    const result = await probeCandidate(
-      candidate,
-      DEFAULT_PROBE_TIMEOUT_MS,
-      candidateEnv(candidate, process.env),
-    );
+    const result = await probeCandidate(candidate, DEFAULT_PROBE_TIMEOUT_MS, candidateEnv(candidate, process.env));
     attempts.push({ candidate, result });
     log(`  ${describeAttempts([{ candidate, result }])[0] ?? ''}`);
     if (result.ok) {
@@ -227,10 +204,7 @@ async function startClient(): Promise<void> {
   };
   const serverOptions: ServerOptions = { run: executable, debug: executable };
   const clientOptions: LanguageClientOptions = {
-    documentSelector: [
-      { scheme: 'file', language: LANGUAGE_ID },
-      { scheme: 'untitled', language: LANGUAGE_ID },
-    ],
+    documentSelector: [{ scheme: 'file', language: LANGUAGE_ID }, { scheme: 'untitled', language: LANGUAGE_ID }],
     // The settings, and that this extension contributes the snippets (the server then does not
     // offer them a second time).
     initializationOptions: { ...settingsObject(), contributesSnippets: true },
@@ -239,12 +213,7 @@ async function startClient(): Promise<void> {
     traceOutputChannel: outputChannel(),
     middleware: statusMiddleware(),
   };
-  const newClient = new LanguageClient(
-    LANGUAGE_ID,
-    'FANUC Macro Language Server',
-    serverOptions,
-    clientOptions,
-  );
+  const newClient = new LanguageClient(LANGUAGE_ID, 'FANUC Macro Language Server', serverOptions, clientOptions);
   client = newClient;
   newClient.onDidChangeState((event) => {
     if (client !== newClient) return;
@@ -277,14 +246,10 @@ async function startClient(): Promise<void> {
 async function stopClient(): Promise<void> {
   const current = client;
   client = undefined;
-  if (current === undefined) {
-    return;
-  }
+  if (current === undefined) return;
   statusItem?.status.stopped();
   try {
-    if (current.state !== State.Stopped) {
-      await current.stop(5000);
-    }
+    if (current.state !== State.Stopped) await current.stop(5000);
   } catch (err) {
     log(`Stopping the language server failed: ${String(err)}`);
   }
@@ -304,9 +269,7 @@ function restart(): Promise<void> {
 
 function errorText(err: unknown): string {
   if (err instanceof Error) return err.message;
-  if (typeof err === 'object' && err !== null && 'message' in err) {
-    return String((err as { message: unknown }).message);
-  }
+  if (typeof err === 'object' && err !== null && 'message' in err) return String((err as { message: unknown }).message);
   return String(err);
 }
 
@@ -319,9 +282,7 @@ async function runningClient(): Promise<LanguageClient | undefined> {
       vscode.l10n.t('FANUC Macro: the language server is not running.'),
       restartLabel,
     );
-    if (choice === restartLabel) {
-      await vscode.commands.executeCommand('fanuc-macro.restartServer');
-    }
+    if (choice === restartLabel) await vscode.commands.executeCommand('fanuc-macro.restartServer');
     return undefined;
   }
   return client;

@@ -1,13 +1,7 @@
 // Checks a server candidate by running it with `--version`. Uses only
 // node's child_process, so it is unit-tested without VS Code.
-import { spawn } from 'node:child_process';
-import {
-  candidateEnv,
-  parseVersionOutput,
-  versionArgs,
-  type ProbeResult,
-  type ServerCandidate,
-} from './serverCandidates';
+import { execFile, type ExecFileException } from 'node:child_process';
+import { candidateEnv, parseVersionOutput, versionArgs, type ProbeResult, type ServerCandidate } from './serverCandidates';
 
 /** Default time allowed for `--version` (Python start-up can be slow on a cold cache). */
 export const DEFAULT_PROBE_TIMEOUT_MS = 15000;
@@ -34,69 +28,31 @@ export function probeCandidate(
   env: NodeJS.ProcessEnv = process.env,
 ): Promise<ProbeResult> {
   return new Promise<ProbeResult>((resolve) => {
-    let settled = false;
-    let stdout = '';
-    let stderr = '';
-    const finish = (result: ProbeResult): void => {
-      if (!settled) {
-        settled = true;
-        clearTimeout(timer);
-        resolve(result);
-      }
-    };
-
-    let child: ReturnType<typeof spawn>;
+    const options = { env: candidateEnv(candidate, env), timeout: timeoutMs, maxBuffer: MAX_OUTPUT, windowsHide: true };
     try {
-      child = spawn(candidate.command, versionArgs(candidate), {
-        env: candidateEnv(candidate, env),
-        shell: false,
-        windowsHide: true,
-        stdio: ['ignore', 'pipe', 'pipe'],
-      });
+      execFile(candidate.command, versionArgs(candidate), options, (err, stdout, stderr) =>
+        resolve(err === null ? versionOf(stdout, stderr) : failure(err, stdout, stderr, timeoutMs)),
+      );
     } catch (err) {
       resolve({ ok: false, reason: `cannot be started (${String(err)})` });
-      return;
     }
-
-    const timer = setTimeout(() => {
-      child.kill();
-      finish({ ok: false, reason: `no answer to --version within ${timeoutMs} ms` });
-    }, timeoutMs);
-
-    child.stdout?.setEncoding('utf8');
-    child.stderr?.setEncoding('utf8');
-    child.stdout?.on('data', (chunk: string) => {
-      if (stdout.length < MAX_OUTPUT) stdout += chunk;
-    });
-    child.stderr?.on('data', (chunk: string) => {
-      if (stderr.length < MAX_OUTPUT) stderr += chunk;
-    });
-
-    child.on('error', (err: NodeJS.ErrnoException) => {
-      const reason =
-        err.code === 'ENOENT'
-          ? 'not found'
-          : err.code === 'EACCES'
-            ? 'not executable'
-            : `cannot be started (${err.message})`;
-      finish({ ok: false, reason });
-    });
-
-    child.on('close', (code, signal) => {
-      if (settled) return;
-      if (code !== 0) {
-        const detail = lastLine(stderr) || lastLine(stdout);
-        const how = code === null ? `was killed by ${signal ?? 'a signal'}` : `exited with code ${code}`;
-        finish({ ok: false, reason: detail ? `${how}: ${detail}` : how });
-        return;
-      }
-      const version = parseVersionOutput(stdout) ?? parseVersionOutput(stderr);
-      if (version === undefined) {
-        const shown = lastLine(stdout) || lastLine(stderr) || '(nothing)';
-        finish({ ok: false, reason: `--version printed ${JSON.stringify(shown)}, not fanuc-macro-ls` });
-        return;
-      }
-      finish({ ok: true, version });
-    });
   });
+}
+
+function versionOf(stdout: string, stderr: string): ProbeResult {
+  const version = parseVersionOutput(stdout) ?? parseVersionOutput(stderr);
+  if (version !== undefined) return { ok: true, version };
+  const shown = lastLine(stdout) || lastLine(stderr) || '(nothing)';
+  return { ok: false, reason: `--version printed ${JSON.stringify(shown)}, not fanuc-macro-ls` };
+}
+
+/** Why the run failed: not started, too slow, or an exit that is not 0. */
+function failure(err: ExecFileException, stdout: string, stderr: string, timeoutMs: number): ProbeResult {
+  if (err.code === 'ENOENT') return { ok: false, reason: 'not found' };
+  if (err.code === 'EACCES') return { ok: false, reason: 'not executable' };
+  if (err.killed === true && err.code === null) return { ok: false, reason: `no answer to --version within ${timeoutMs} ms` };
+  if (typeof err.code !== 'number' && err.signal === null) return { ok: false, reason: `cannot be started (${err.message})` };
+  const detail = lastLine(stderr) || lastLine(stdout);
+  const how = typeof err.code === 'number' ? `exited with code ${err.code}` : `was killed by ${err.signal ?? 'a signal'}`;
+  return { ok: false, reason: detail ? `${how}: ${detail}` : how };
 }

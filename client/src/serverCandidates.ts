@@ -74,16 +74,10 @@ export function isPythonInterpreter(path: string): boolean {
 }
 
 /** Expands `~`, `${userHome}` and `${workspaceFolder}` in a configured path. */
-export function expandPath(
-  raw: string,
-  homeDir: string | undefined,
-  workspaceFolder: string | undefined,
-): string {
+export function expandPath(raw: string, homeDir: string | undefined, workspaceFolder: string | undefined): string {
   let path = raw.trim();
   // Strip one pair of surrounding quotes, as people paste "C:\Program Files\...".
-  if (path.length >= 2 && /^(["']).*\1$/.test(path)) {
-    path = path.slice(1, -1);
-  }
+  if (path.length >= 2 && /^(["']).*\1$/.test(path)) path = path.slice(1, -1);
   if (homeDir !== undefined) {
     path = path.replace(/\$\{userHome\}/g, homeDir);
     if (path === '~') {
@@ -92,9 +86,7 @@ export function expandPath(
       path = homeDir + path.slice(1);
     }
   }
-  if (workspaceFolder !== undefined) {
-    path = path.replace(/\$\{workspaceFolder\}/g, workspaceFolder);
-  }
+  if (workspaceFolder !== undefined) path = path.replace(/\$\{workspaceFolder\}/g, workspaceFolder);
   return path;
 }
 
@@ -141,11 +133,7 @@ export function directoryExists(path: string): boolean {
 }
 
 /** Value of an environment variable; on Windows names are case-insensitive. */
-function getEnv(
-  env: NodeJS.ProcessEnv | undefined,
-  name: string,
-  platform: NodeJS.Platform,
-): string | undefined {
+function getEnv(env: NodeJS.ProcessEnv | undefined, name: string, platform: NodeJS.Platform): string | undefined {
   if (env === undefined) return undefined;
   if (platform !== 'win32') return env[name];
   const key = Object.keys(env).find((k) => k.toUpperCase() === name.toUpperCase());
@@ -159,11 +147,7 @@ export function bundledServerPath(extensionPath: string, platform: NodeJS.Platfo
 }
 
 /** `dir` followed by the current PYTHONPATH, if any. */
-export function prependPythonPath(
-  dir: string,
-  env: NodeJS.ProcessEnv | undefined,
-  platform: NodeJS.Platform,
-): string {
+export function prependPythonPath(dir: string, env: NodeJS.ProcessEnv | undefined, platform: NodeJS.Platform): string {
   const existing = getEnv(env, 'PYTHONPATH', platform) ?? '';
   const delimiter = platform === 'win32' ? ';' : ':';
   return existing === '' ? dir : `${dir}${delimiter}${existing}`;
@@ -209,15 +193,11 @@ export function candidateEnv(
 export function buildCandidates(inputs: CandidateInputs): ServerCandidate[] {
   const result: ServerCandidate[] = [];
   const add = (candidate: ServerCandidate): void => {
-    if (!result.some((c) => sameCandidate(c, candidate))) {
-      result.push(candidate);
-    }
+    if (!result.some((c) => sameCandidate(c, candidate))) result.push(candidate);
   };
 
   const setting = inputs.settingPath?.trim() ?? '';
-  if (setting !== '') {
-    add(candidateFromPath(expandPath(setting, inputs.homeDir, inputs.workspaceFolder), 'setting'));
-  }
+  if (setting !== '') add(candidateFromPath(expandPath(setting, inputs.homeDir, inputs.workspaceFolder), 'setting'));
 
   const interpreter = inputs.pythonExtensionInterpreter?.trim() ?? '';
   if (interpreter !== '') {

@@ -48,16 +48,7 @@ export function controllerOf(id: string | undefined, known: Controllers): Contro
 }
 
 function kindText(kind: MachineKind | undefined, t: Translate): string | undefined {
-  switch (kind) {
-    case 'lathe':
-      return t('lathe');
-    case 'mill':
-      return t('mill');
-    case 'lathe and mill':
-      return t('lathe and mill');
-    default:
-      return undefined;
-  }
+  return kind === undefined ? undefined : { lathe: t('lathe'), mill: t('mill'), 'lathe and mill': t('lathe and mill') }[kind];
 }
 
 /** "0i-TF lathe": the controller as the status bar shows it. */

@@ -3,6 +3,7 @@
 // the document as the user types, highlights the cursor's block, and a click on a segment
 // reveals its block in the editor. While a debug session is stopped in the document, it lights
 // the stopped block instead (client/src/debugAdapter.ts), until the cursor moves.
+import { randomBytes } from 'node:crypto';
 import * as vscode from 'vscode';
 
 export const SERVER_COMMAND_TOOLPATH = 'fanuc-macro.toolpath';
@@ -34,12 +35,8 @@ export function toolpathError(answer: unknown): string | undefined {
   return undefined;
 }
 
-function nonce(): string {
-  const chars = 'ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789';
-  let text = '';
-  for (let i = 0; i < 32; i++) text += chars.charAt(Math.floor(Math.random() * chars.length));
-  return text;
-}
+/** A script nonce of the page's content security policy: 128 random bits. */
+const nonce = (): string => randomBytes(16).toString('hex');
 
 export function toolpathHtml(scriptUri: string, cspSource: string): string {
   const n = nonce();

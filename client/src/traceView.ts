@@ -31,19 +31,8 @@ export function traceViewOf(answer: unknown): TraceView | { error: string } {
   return { text, rows: rows as TraceRow[] };
 }
 
-/** The row on a line of the trace view, if that line leads to a block (rows in text order). */
-export function rowAt(view: TraceView, line: number): TraceRow | undefined {
-  let lo = 0;
-  let hi = view.rows.length - 1;
-  while (lo <= hi) {
-    const mid = (lo + hi) >> 1;
-    const row = view.rows[mid]!;
-    if (row.line === line) return row;
-    if (row.line < line) lo = mid + 1;
-    else hi = mid - 1;
-  }
-  return undefined;
-}
+/** The row on a line of the trace view, if that line leads to a block. */
+export const rowAt = (view: TraceView, line: number): TraceRow | undefined => view.rows.find((row) => row.line === line);
 
 export const TRACE_SCHEME = 'fanuc-macro-trace';
 export const TRACE_LANGUAGE = 'fanuc-macro-trace';
