@@ -423,9 +423,6 @@ FACADES = ("ide", "generators", "debugger")
 FRONT_ENDS = ("lsp", "cli", "dap")
 # The layers below the analysis whose types stay behind the ide layer.
 BEHIND_THE_IDE = {"syntax", "line_maps", "per_line", "program", "evaluator", "threads", "rules"}
-# Imports past the public API still to go, each with what removes it. The list only shrinks: a
-# test fails when an entry is no longer imported.
-NOT_YET_PUBLIC: dict[str, set[str]] = {}
 
 
 def _public(package: str) -> set[str]:
@@ -454,8 +451,6 @@ def test_front_ends_import_the_public_api_of_ide_generators_and_debugger(
         return
     wrong = []
     for line, name in _imported(module, path):
-        if name in NOT_YET_PUBLIC.get(module, set()):
-            continue
         parts = name.split(".")
         layer = _target_layer(name)
         if layer in BEHIND_THE_IDE:
@@ -480,11 +475,24 @@ def test_a_public_name_is_what_its_module_defines(package: str) -> None:
         assert not isinstance(value, types.ModuleType), name
 
 
-def test_what_is_not_yet_public_is_still_imported() -> None:
-    paths = dict(MODULES)
-    for module, names in NOT_YET_PUBLIC.items():
-        imported = {name for _, name in _imported(module, paths[module])}
-        assert names <= imported, f"{module} no longer imports {names - imported}: drop them here"
+def test_the_ide_public_api_is_its_own() -> None:
+    """What ide gives the front ends is defined in ide (or is a type alias of it), never a
+    syntax, program or evaluator type passed on."""
+    ide = importlib.import_module("fanuc_macro.ide")
+    foreign = [
+        f"{name} ({value.__module__})"
+        for name in ide.PUBLIC
+        for value in [getattr(ide, name)]
+        if isinstance(value, type | types.FunctionType)
+        and not value.__module__.startswith("fanuc_macro.ide.")
+    ]
+    assert not foreign, f"ide passes on what it does not define: {foreign}"
+    for path in (PACKAGE / "ide").glob("*.py"):
+        module = importlib.import_module(f"fanuc_macro.ide.{path.stem}")
+        for name in getattr(module, "__all__", ()):
+            value = getattr(module, name)
+            if isinstance(value, type | types.FunctionType):
+                assert value.__module__ == module.__name__, f"ide/{path.name} passes on {name}"
 
 
 def test_a_module_loaded_first_does_not_hide_a_public_function() -> None:

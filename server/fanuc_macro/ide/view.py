@@ -111,9 +111,7 @@ def lines_of(program: Program | None, doc: Document) -> tuple[int, int]:
 
 
 __all__ = (
-    "Document",
     "Indexed",
-    "ProgramIndex",
     "View",
     "call_at",
     "comment_of",
