@@ -93,3 +93,11 @@ async def test_an_edit_reschedules_only_the_documents_it_can_change(
     await until(lambda: "MB403" not in codes(published[CALLER]), "the caller finds O0100")
     after = await settled(published)
     assert after[CALLED] == counts[CALLED], after
+
+    # Closed, an untitled document leaves the workspace: its readers alone are analysed again.
+    client.text_document_did_close(
+        types.DidCloseTextDocumentParams(text_document=types.TextDocumentIdentifier(uri=APART))
+    )
+    await until(lambda: "MB403" in codes(published[CALLER]), "the caller misses O0100 again")
+    final = await settled(published)
+    assert final[CALLED] == after[CALLED], final

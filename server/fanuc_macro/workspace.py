@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import functools
 from collections.abc import Callable, Iterable, Mapping
+from collections.abc import Set as AbstractSet
 from dataclasses import dataclass, replace
 from typing import Concatenate, ParamSpec, TypeVar
 
@@ -211,12 +212,15 @@ class Workspace:
         entry = self._entries.get(uri)
         return frozenset() if entry is None else program_links(entry.doc, entry.index)
 
-    def readers(self, uri: str, of: Iterable[str]) -> list[str]:
-        """Those of ``of`` whose analysis reads ``uri`` (:func:`related_documents`)."""
+    def readers(self, uris: AbstractSet[str], of: Iterable[str]) -> list[str]:
+        """Those of ``of`` (but ``uris``) whose analysis reads one of ``uris``
+        (:func:`related_documents`)."""
         readers: list[str] = []
         for key in of:
+            if key in uris or key not in self._indexes:
+                continue
             needed = related_documents(key, self._indexes)
-            if key != uri and key in self._indexes and (needed is None or uri in needed):
+            if needed is None or not uris.isdisjoint(needed):
                 readers.append(key)
         return readers
 

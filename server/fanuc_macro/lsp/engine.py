@@ -274,16 +274,13 @@ class Engine:
         path = path_of(key)
         keep = path is not None and self.folders.contains(path)
 
-        def reload() -> None:
+        def reload() -> frozenset[str]:
             # A closed file stays in the workspace as it is on disk, for the others' calls.
             data = read_program(path) if keep and path is not None else None
             self._reads_of.pop(key, None)
-            if data is not None:
-                self.add_file(key, data)
-            else:
-                self.remove_file(key)
+            return self.changed_files({key: data})
 
-        self.scheduler.submit(reload, then=lambda _: self.schedule_all(self.debounce))
+        self.scheduler.submit(reload, then=self.schedule_each)
 
     # ---- scheduling ------------------------------------------------------------------------
     def schedule(self, key: str, delay: float) -> None:
@@ -441,20 +438,29 @@ class Engine:
         """Worker thread: the other documents an analysis or trace of ``key`` needs."""
         return self._ws.others(key)
 
-    def _affected_by(self, key: str) -> frozenset[str]:
-        """Worker thread, after a new text of ``key`` went into the workspace: the other open
-        documents whose analysis it can change. Those whose last analysis read ``key``; and,
-        when the program numbers ``key`` defines or calls changed, those that read it now."""
-        affected = {k for k, reads in self._reads_of.items() if key in reads and k != key}
-        index = self._ws.index(key)
-        known = self._links.get(key)
-        if known is not None and known[0] is index:
-            return frozenset(affected)
-        links = self._ws.links(key)
-        self._links[key] = (index, links)
-        if known is None or known[1] != links:
-            affected.update(self._ws.readers(key, self.documents.open_keys()))
-        return frozenset(affected)
+    def _affected_by(self, *keys: str) -> frozenset[str]:
+        """Worker thread, after new texts of ``keys`` went into the workspace (or they left
+        it): the other open documents whose analysis they can change. Those whose last
+        analysis read one of them; and, when the program numbers one of them defines or calls
+        changed, those that read one of them now."""
+        changed = frozenset(keys)
+        affected = {k for k, reads in self._reads_of.items() if not changed.isdisjoint(reads)}
+        relinked = False
+        indexes = self._ws.indexes()
+        for key in changed:
+            entry = indexes.get(key)
+            known = self._links.get(key)
+            if entry is None:  # removed: who read it is known
+                self._links.pop(key, None)
+                continue
+            if known is not None and known[0] is entry[1]:
+                continue  # the same index: the same programs and calls
+            links = self._ws.links(key)
+            self._links[key] = (entry[1], links)
+            relinked = relinked or known is None or known[1] != links
+        if relinked:
+            affected.update(self._ws.readers(changed, self.documents.open_keys()))
+        return frozenset(affected - changed)
 
     def _ensure_text(self, key: str, text: NewestText, cancel: CancelToken | None = None) -> bool:
         """Put the newest text of an open document into the workspace; True if it was not.
@@ -507,7 +513,7 @@ class Engine:
         del previous  # the earlier analysis: freed now, before the memory is given back
         self.scheduler.submit(release_memory)
         # The other open documents that call a program of this one, or are called by it.
-        self._schedule_each(result.affects)
+        self.schedule_each(result.affects)
 
     def _stopped(self, doc: OpenDocument, stopped: Stopped) -> None:
         message = (
@@ -516,12 +522,12 @@ class Engine:
         )
         log.info("%s", message)
         self.log_message(message, types.MessageType.Log)
-        self._schedule_each(stopped.affects)
+        self.schedule_each(stopped.affects)
         if not self.scheduler.waiting(doc.key):
             # Cancelled by an edit of another document: this one is analysed again too.
             self.schedule(doc.key, self.debounce)
 
-    def _schedule_each(self, keys: Iterable[str]) -> None:
+    def schedule_each(self, keys: Iterable[str]) -> None:
         for key in keys:
             self.schedule(key, self.debounce)
 
@@ -544,6 +550,16 @@ class Engine:
 
     def files_changed(self, events: Sequence[types.FileEvent]) -> None:
         self.folders.files_changed(events)
+
+    def changed_files(self, files: dict[str, bytes | None]) -> frozenset[str]:
+        """Worker thread: read files of the workspace again (None: removed); the open documents
+        whose analysis that can change."""
+        for key, data in files.items():
+            if data is not None:
+                self.add_file(key, data)
+            else:
+                self.remove_file(key)
+        return self._affected_by(*files)
 
     def has_file(self, key: str) -> bool:
         """Worker thread: ``key`` is in the workspace."""

@@ -140,17 +140,15 @@ class Folders:
         if not todo:
             return
 
-        def apply() -> None:
-            for key, path, deleted in todo:
-                data = None if deleted or path is None else read_program(path)
-                if data is None:
-                    self.engine.remove_file(key)
-                else:
-                    self.engine.add_file(key, data)
+        def apply() -> frozenset[str]:
+            return self.engine.changed_files(
+                {
+                    key: None if deleted or path is None else read_program(path)
+                    for key, path, deleted in todo
+                }
+            )
 
-        self.engine.scheduler.submit(
-            apply, then=lambda _: self.engine.schedule_all(self.engine.debounce)
-        )
+        self.engine.scheduler.submit(apply, then=self.engine.schedule_each)
 
 
 def path_of(uri: str) -> Path | None:
