@@ -58,18 +58,12 @@ def _program(text: str) -> int:
 
 def _taper(text: str) -> float:
     """``1:16`` (a diametral taper as pipe threads give it), ``-1:16`` or ``0.0625``."""
-    match = re.fullmatch(r"\s*(-?)\s*1\s*:\s*(\d+(?:\.\d*)?)\s*", text)
+    from ..generators import read_taper  # the generators' reading, the editor's too
+
     try:
-        if match is not None:
-            value = 1.0 / float(match.group(2))
-            return -value if match.group(1) else value
-        return float(text)
-    except (ValueError, ZeroDivisionError):
-        pass
-    raise argparse.ArgumentTypeError(
-        f"the taper is a ratio or a number (e.g. 1:16, or 0.0625 mm of diameter per mm of "
-        f"length), not {text}"
-    )
+        return read_taper(text)
+    except ValueError as err:
+        raise argparse.ArgumentTypeError(str(err)) from None
 
 
 def _count(text: str) -> int:

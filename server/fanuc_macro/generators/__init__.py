@@ -27,6 +27,7 @@ if TYPE_CHECKING:
     from .editor_forms import check_answers as check_answers
     from .editor_forms import form_defaults as form_defaults
     from .editor_forms import read_designation as read_designation
+    from .editor_forms import read_taper as read_taper
     from .generator_requests import ARC_THREAD_PARAMETERS as ARC_THREAD_PARAMETERS
     from .generator_requests import DRUM_GROOVE_PARAMETERS as DRUM_GROOVE_PARAMETERS
     from .generator_requests import arc_thread_request as arc_thread_request
@@ -81,6 +82,7 @@ PUBLIC: MappingProxyType[str, str] = MappingProxyType(
         "check_answers": "editor_forms",
         "form_defaults": "editor_forms",
         "read_designation": "editor_forms",
+        "read_taper": "editor_forms",
     }
 )
 

@@ -135,10 +135,8 @@ _TAPER_RATIO = re.compile(r"\s*(-?)\s*1\s*:\s*(\d+(?:\.\d*)?)\s*")
 
 
 def read_taper(text: str) -> float:
-    """``1:16`` (a diametral taper as pipe threads give it), ``-1:16``, ``0.0625``, or nothing
-    (a parallel thread); ValueError with the command line's message otherwise."""
-    if not text.strip():
-        return 0.0
+    """``1:16`` (a diametral taper as pipe threads give it), ``-1:16`` or ``0.0625``; ValueError
+    with the command line's message otherwise."""
     match = _TAPER_RATIO.fullmatch(text)
     try:
         if match is not None:
@@ -177,7 +175,7 @@ def _infeed(name: str, value: Any) -> str:
 
 def _taper(name: str, value: Any) -> float:
     if isinstance(value, str):
-        return read_taper(value)
+        return read_taper(value) if value.strip() else 0.0  # an empty box: a parallel thread
     return float(_number(name, value))
 
 
