@@ -6,8 +6,8 @@ from __future__ import annotations
 import pytest
 
 from fanuc_macro.config import Config
-from fanuc_macro.evaluator import evaluate, machine
-from fanuc_macro.evaluator.machine import (
+from fanuc_macro.evaluator import compile_lines, evaluate
+from fanuc_macro.evaluator.compile_lines import (
     CompiledLine,
     _compile_nc,
     _compile_plain_nc,
@@ -60,7 +60,7 @@ def _compare(lines: list[str]) -> int:
         if type(nc) is PlainNc:
             # Compiled from its code, without its nodes: as the nodes compile.
             built = nc.built()  # a line seen before has its nodes from that comparison
-            plain = machine.compile_statement(nc, text)
+            plain = compile_lines.compile_statement(nc, text)
             assert nc.built() == built, text
             nodes = NcStatement(nc.words, nc.span)
             from_nodes = _compile_plain_nc(nodes)
@@ -98,7 +98,7 @@ def test_random_plain_blocks_compile_as_the_general_path_compiles_them() -> None
 
 
 def _findings(lines: list[str], quiet: bool, monkeypatch: pytest.MonkeyPatch) -> list[object]:
-    compile_plain = machine._compile_plain_nc
+    compile_plain = compile_lines._compile_plain_nc
 
     def compile_loud(nc: NcStatement) -> CompiledLine | None:
         compiled = compile_plain(nc)
@@ -107,7 +107,7 @@ def _findings(lines: list[str], quiet: bool, monkeypatch: pytest.MonkeyPatch) ->
         return compiled
 
     if not quiet:
-        monkeypatch.setattr(machine, "_compile_plain_nc", compile_loud)
+        monkeypatch.setattr(compile_lines, "_compile_plain_nc", compile_loud)
     # The calls go nowhere and M02/M30/M99 would end the run: each line is a program.
     text = "".join(
         f"O{n + 1}\n{line}\nM30\n" for n, line in enumerate(lines) if "M" not in line.upper()

@@ -17,7 +17,15 @@ import pytest
 
 from fanuc_macro.analysis import analyse
 from fanuc_macro.config import Config
-from fanuc_macro.evaluator import Facts, Motion, ValueSummary, evaluate, machine
+from fanuc_macro.evaluator import (
+    Facts,
+    Motion,
+    ValueSummary,
+    canned_cycles,
+    evaluate,
+    machine,
+    motion,
+)
 from fanuc_macro.evaluator.facts import same_value
 from fanuc_macro.program.index import build_index
 from fanuc_macro.syntax.parser import BlockParser, parse_text
@@ -380,7 +388,8 @@ def test_edits_that_add_or_remove_motions_near_the_records_kept(
     parser = BlockParser()
     lines = long_program(3_000, 7).splitlines()
     total = len(evaluate_text("\n".join(lines), BlockParser(), config).motions)
-    monkeypatch.setattr(machine, "MAX_MOTIONS", total - below)
+    for module in (machine, motion, canned_cycles):  # each part that records motions
+        monkeypatch.setattr(module, "MAX_MOTIONS", total - below)
     previous = evaluate_text("\n".join(lines), parser, config)
     movers = [i for i, line in enumerate(lines) if line.startswith(("G00 X[", "G01"))]
     for _ in range(8):

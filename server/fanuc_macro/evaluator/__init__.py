@@ -13,7 +13,7 @@ from .facts import DocumentFacts, Facts, Finding, Motion, Rounding, RunValues, V
 from .run import evaluate
 from .values import Unknown, Value, fmt
 
-__all__ = [
+__all__ = (
     "DocumentFacts",
     "Facts",
     "Finding",
@@ -25,4 +25,4 @@ __all__ = [
     "ValueSummary",
     "evaluate",
     "fmt",
-]
+)

@@ -7,10 +7,12 @@ is what makes a few hundred thousand macro statements a second possible in Pytho
 from __future__ import annotations
 
 import operator
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from itertools import islice
+from types import MappingProxyType
 from typing import Any, Protocol, TypeVar
 
+from ..database import TableKey, current
 from ..syntax.tree import (
     BareCond,
     Binary,
@@ -82,9 +84,10 @@ def _constant(value: Value) -> Evaluator:
     # keys, get their own.
     if type(value) is not _float or not value:
         return _constant_closure(value)
-    found = _constants.get(value)
+    constants = current().table(CONSTANTS)
+    found = constants.get(value)
     if found is None:
-        found = kept(_constants, value, _constant_closure(value), MAX_SHARED_CONSTANTS)
+        found = kept(constants, value, _constant_closure(value), MAX_SHARED_CONSTANTS)
     return found
 
 
@@ -105,7 +108,8 @@ def _constant_closure(value: Value) -> Evaluator:
     return constant
 
 
-_constants: dict[float, Evaluator] = {}
+# The closures of numbers, shared by every expression with the number.
+CONSTANTS: TableKey[float, Evaluator] = TableKey("evaluator.constants")
 MAX_SHARED_CONSTANTS = 10_000
 
 
@@ -243,9 +247,10 @@ def _compile_var(var: Var, index: Evaluator | None) -> Evaluator:
                 return unknown
 
             return haas
-        found = _readers.get(n)
+        readers = current().table(READERS)
+        found = readers.get(n)
         if found is None:
-            found = kept(_readers, n, _reader(n), MAX_SHARED_READERS)
+            found = kept(readers, n, _reader(n), MAX_SHARED_READERS)
         return found
     assert index is not None
 
@@ -275,21 +280,23 @@ def _reader(n: int) -> Evaluator:
 
 
 # The readers of #n, shared by every expression that reads #n (a reader depends on n only).
-_readers: dict[int, Evaluator] = {}
+READERS: TableKey[int, Evaluator] = TableKey("evaluator.readers")
 MAX_SHARED_READERS = 10_000
 
 
 # The operations, one function each, shared by every expression.
-_ARITH: dict[str, Callable[[float, float], float]] = {
-    "+": lambda a, b: a + b,
-    "-": lambda a, b: a - b,
-    "*": lambda a, b: a * b,
-    "/": divide,
-    "MOD": modulo,
-    "AND": bit_and,
-    "OR": bit_or,
-    "XOR": bit_xor,
-}
+_ARITH: Mapping[str, Callable[[float, float], float]] = MappingProxyType(
+    {
+        "+": lambda a, b: a + b,
+        "-": lambda a, b: a - b,
+        "*": lambda a, b: a * b,
+        "/": divide,
+        "MOD": modulo,
+        "AND": bit_and,
+        "OR": bit_or,
+        "XOR": bit_xor,
+    }
+)
 
 
 _LARGEST = 1.7976931348623157e308  # the largest double: past it a result is inf
@@ -327,12 +334,9 @@ def _slow_binary(expr: Binary, a: Value, b: Value) -> Value:
 
 # The operations that hold a number on their right in their closure (a division by zero
 # takes the general way, which raises the control's alarm).
-_NUMBER_OPS: dict[str, Callable[[float, float], float]] = {
-    "+": operator.add,
-    "-": operator.sub,
-    "*": operator.mul,
-    "/": operator.truediv,
-}
+_NUMBER_OPS: Mapping[str, Callable[[float, float], float]] = MappingProxyType(
+    {"+": operator.add, "-": operator.sub, "*": operator.mul, "/": operator.truediv}
+)
 
 
 def _with_number(

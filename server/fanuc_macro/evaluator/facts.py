@@ -5,7 +5,6 @@ These are the facts the rules, the hover and the inlay hints read. They carry no
 
 from __future__ import annotations
 
-import itertools
 import math
 from array import array
 from collections.abc import Callable, Mapping, Sequence
@@ -82,10 +81,9 @@ class _Spread:
                 self.maximum = value
 
 
+@dataclass(frozen=True, slots=True)
 class _Nothing:
     """The first value of a summary of no values."""
-
-    __slots__ = ()
 
 
 _NOTHING = _Nothing()
@@ -448,6 +446,13 @@ class FeedlessProgram:
 SHOWN_CUTS = 20
 
 
+class Stretch:
+    """The identity of one stretch of a run's facts: equal only to itself, so that no two
+    stretches of any evaluations are taken for one another."""
+
+    __slots__ = ()
+
+
 @dataclass(slots=True, eq=False, repr=False)
 class JumpCount:
     taken: int = 0
@@ -481,7 +486,7 @@ class DocumentFacts:
     # Which stretch of a run these facts are (0: a document's whole facts): a stretch
     # renumbered after an edit of lines keeps it, so that the rules can tell the stretches an
     # evaluation took from the earlier one (:func:`.checkpoints.lines_with_other_facts`).
-    stretch: int = field(default=0, repr=False, compare=False)
+    stretch: Stretch | int = field(default=0, repr=False, compare=False)
 
     @property
     def findings(self) -> list[Finding]:
@@ -520,7 +525,7 @@ class DocumentFacts:
             analysed_programs=self.analysed_programs,
             program_ends=self.program_ends,
             assumed_arguments=self.assumed_arguments,
-            stretch=next(_stretches),
+            stretch=Stretch(),
         )
 
     def take_segments(self, segments: Sequence[DocumentFacts]) -> None:
@@ -595,9 +600,6 @@ class Facts:
         if facts is None:
             facts = self.by_uri[uri] = DocumentFacts()
         return facts
-
-
-_stretches = itertools.count(1)  # the stretches' numbers, new in every run
 
 
 def _feedless(records: Sequence[CutsWithoutFeed]) -> dict[int, FeedlessProgram]:

@@ -28,6 +28,7 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
+from types import MappingProxyType
 from typing import Literal
 
 from . import stock_removal
@@ -120,15 +121,17 @@ LATHE_AXES = ("X", "Z", "Y")
 MILL_AXES = ("X", "Y", "Z")
 # A lathe's incremental addresses in G-code system A (0i-TF "Absolute and incremental
 # programming"): U, W, V for X, Z, Y.
-LATHE_INCREMENTAL = {"X": "U", "Z": "W", "Y": "V"}
-LINEAR_KINDS: dict[float, MoveKind] = {
-    0.0: "rapid",
-    1.0: "feed",
-    31.0: "feed",  # skip function: a linear feed, stopped by the signal (drawn whole)
-    32.0: "thread",
-    33.0: "thread",
-    34.0: "thread",  # variable lead: straight, as G32
-}
+LATHE_INCREMENTAL: Mapping[str, str] = MappingProxyType({"X": "U", "Z": "W", "Y": "V"})
+LINEAR_KINDS: Mapping[float, MoveKind] = MappingProxyType(
+    {
+        0.0: "rapid",
+        1.0: "feed",
+        31.0: "feed",  # skip function: a linear feed, stopped by the signal (drawn whole)
+        32.0: "thread",
+        33.0: "thread",
+        34.0: "thread",  # variable lead: straight, as G32
+    }
+)
 LATHE_CYCLE_CODES = (90.0, 92.0, 94.0)
 # The mill's drilling cycles (group 09, 0i-MF "Canned cycle for drilling").
 DRILLING = frozenset({73.0, 74.0, 76.0, 81.0, 82.0, 83.0, 84.0, 85.0, 86.0, 87.0, 88.0, 89.0})
@@ -321,11 +324,13 @@ def _rounded(modal: PathModal, axis: str, placed: float, written: float) -> None
 # The two axes of each plane, in the order that makes G03 counter-clockwise (the third axis
 # pointing at the viewer: Z for XY, Y for ZX, X for YZ; 0i-MF "Plane selection"); with the
 # word of the centre's offset along each (I J K).
-PLANE_AXES: dict[Plane, tuple[tuple[str, str], tuple[str, str]]] = {
-    "XY": (("X", "I"), ("Y", "J")),
-    "XZ": (("Z", "K"), ("X", "I")),
-    "YZ": (("Y", "J"), ("Z", "K")),
-}
+PLANE_AXES: Mapping[Plane, tuple[tuple[str, str], tuple[str, str]]] = MappingProxyType(
+    {
+        "XY": (("X", "I"), ("Y", "J")),
+        "XZ": (("Z", "K"), ("X", "I")),
+        "YZ": (("Y", "J"), ("Z", "K")),
+    }
+)
 
 
 def arc_centre(

@@ -9,8 +9,10 @@ plain copy ``#2=#1`` keeps it vacant; trigonometry is in degrees.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from enum import Enum
+from types import MappingProxyType
 
 
 @dataclass(frozen=True, slots=True)
@@ -260,12 +262,14 @@ def f_pow(a: float, b: float) -> float:
     return result
 
 
-ONE_ARG = {
+ONE_ARG: Mapping[str, Callable[[float], float]] = MappingProxyType({
     "SIN": f_sin, "COS": f_cos, "TAN": f_tan, "ASIN": f_asin, "ACOS": f_acos, "ATAN": f_atan,
     "SQRT": f_sqrt, "ABS": f_abs, "ROUND": f_round, "FIX": f_fix, "FUP": f_fup, "LN": f_ln,
     "EXP": f_exp, "BIN": f_bin, "BCD": f_bcd, "ADP": f_adp,
-}  # fmt: skip
-TWO_ARG = {"ATAN": f_atan2, "POW": f_pow}
+})  # fmt: skip
+TWO_ARG: Mapping[str, Callable[[float, float], float]] = MappingProxyType(
+    {"ATAN": f_atan2, "POW": f_pow}
+)
 
 
 def divide(a: float, b: float) -> float:

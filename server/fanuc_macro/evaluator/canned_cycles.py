@@ -1,0 +1,233 @@
+"""The lathe's multiple repetitive cycles as the machine runs them: G70-G73's profile, G76.
+
+G71-G73 read their profile N(ns)..N(nf) (its words evaluated, none run) and go on after N(nf);
+G70 runs the profile's blocks as part of its own block (see :mod:`.motion`). G76's first block
+sets modal parameters, its cutting block expands into passes (:func:`.cycles.g76_depths`).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Sequence
+from dataclasses import replace
+
+from ..syntax.marks import constant_value
+from .compile_lines import K_EMPTY, K_NC, K_OTHER, CompiledLine, CompiledWord
+from .cycles import g76_depths
+from .facts import Motion
+from .machine_base import MAX_MOTIONS, Activation, G76Parameters, MachineBase, StopRun
+from .toolpath import ProfileBlock
+from .values import MacroAlarm, Unknown, Value
+
+# The lathe's cycles that name a profile N(ns)..N(nf) by P and Q: G71-G73 read it, G70 runs it.
+PROFILE_CYCLES = frozenset({70.0, 71.0, 72.0, 73.0})
+# What a block of the profile may not hold for the evaluator to follow it: calls, returns, ends,
+# the cycles themselves (FANUC forbids M98/M99 and the one-shot cycles in a profile: 0i-TF
+# "Multiple repetitive cycle", limitations).
+NOT_IN_PROFILE_G = frozenset({65.0, 66.0, 66.1, 70.0, 71.0, 72.0, 73.0, 74.0, 75.0, 76.0})
+NOT_IN_PROFILE_M = frozenset({2.0, 30.0, 98.0, 99.0, 198.0})
+
+
+class CyclesPart(MachineBase):
+    """The machine's G70-G73 profiles and G76 threading cycle."""
+
+    def _profile(
+        self, act: Activation, values: dict[str, Value], code: float
+    ) -> tuple[list[ProfileBlock] | str, int, tuple[int, int] | None]:
+        """A G70-G73 that names its profile ``P(ns) Q(nf)``: what the toolpath gets of the
+        profile (its blocks' words, or why it cannot be followed), the block to run next, and
+        for G70 the profile's lines to run now.
+
+        FANUC Series 0i-TF / 0i-TD Operator's Manual, "Multiple repetitive cycle (G70-G76)":
+        G71, G72 and G73 read the blocks N(ns) to N(nf) to work out their passes and, done,
+        go on with the block after N(nf); G70 runs them and goes on with the block after the
+        G70, back at its start point. A profile the evaluator cannot follow (its N not in the
+        program, a call, a jump or an assignment in it) is run as before: the block after the
+        cycle comes next."""
+        line = self._line
+        ctx = act.ctx
+        p, q = values.get("P"), values.get("Q")
+        if not isinstance(p, float) or not isinstance(q, float):
+            return "its P or Q is not known", line + 1, None
+        first = self._label(ctx, int(p), line)
+        if first is None:
+            return f"no N{int(p)} (its P) in {ctx.name}", line + 1, None
+        last = self._label(ctx, int(q), first - 1)
+        if last is None or last < first:
+            return f"no N{int(q)} (its Q) after N{int(p)} in {ctx.name}", line + 1, None
+        lines = ctx.lines
+        for n in range(first, last + 1):
+            if not _plain_profile_line(lines[n]):
+                return (
+                    f"the profile N{int(p)}-N{int(q)} holds a block the analysis does not "
+                    f"follow in a profile (line {n + 1})",
+                    line + 1,
+                    None,
+                )
+        if self.modal.modal_calls:
+            return "a G66 modal call is in force", line + 1, None
+        self._profile_budget(act, last + 1 - first)
+        if code == 70.0:
+            return [], line + 1, (first, last)
+        return self._read_profile(act, first, last), last + 1, None
+
+    def _profile_budget(self, act: Activation, blocks: int) -> None:
+        """The profiles' blocks run within the G70-G73 block that names them, which the step
+        budget counts once: they have a budget of their own, as many blocks, so that a loop
+        around a G70 ends as soon."""
+        self._profile_blocks += blocks
+        if self._profile_blocks > self.budget:
+            self._budget_spent(act)
+            self._mark_incomplete(act)
+            raise StopRun("budget")
+
+    def _read_profile(self, act: Activation, first: int, last: int) -> list[ProfileBlock]:
+        """The blocks of a G71-G73's profile as the control reads them: their words evaluated
+        now (with the variables' values now) and checked, each block counted as reached, none
+        run (no motion, no modal change)."""
+        line = self._line
+        blocks: list[ProfileBlock] = []
+        for n in range(first, last + 1):
+            pcl = self._profile_line(act, n)
+            if pcl.kind != K_NC:
+                continue
+            try:
+                values, g_codes, order = self._words_of(act, pcl)
+                if order is not None:
+                    self._check_addresses(act, pcl, order)
+            except MacroAlarm as alarm:
+                self._profile_alarm(act, pcl, alarm)
+            blocks.append((values, g_codes))
+        self._line = line
+        return blocks
+
+    def _profile_alarm(self, act: Activation, pcl: CompiledLine, alarm: MacroAlarm) -> None:
+        """An alarm in a block of a profile (the run is at that block): the run stops."""
+        message = self._alarm(act, pcl, alarm)
+        if self.stepper is not None:
+            self.stepper.alarm(act, self._line, message)
+        self._mark_incomplete(act)
+        raise StopRun("alarm") from None
+
+    def _profile_line(self, act: Activation, n: int) -> CompiledLine:
+        """Line ``n`` of a profile, counted as reached and its reads recorded: the block the
+        evaluator is at from now on."""
+        pcl = act.ctx.lines[n]
+        self._line = n
+        facts = act.ctx.facts
+        facts.runs[n] = facts.runs.get(n, 0) + 1
+        if pcl.reads:
+            self._record_reads(act, pcl, facts)
+        return pcl
+
+    def _words_of(
+        self, act: Activation, cl: CompiledLine
+    ) -> tuple[dict[str, Value], Sequence[float], list[tuple[str, Value, CompiledWord]] | None]:
+        """An NC block's words evaluated: by address (the first of each), its G codes, and
+        the words in order when a check may find something in them (None: it cannot)."""
+        const = cl.constant
+        if const is not None:
+            return const.values, const.g_codes, None if const.quiet else const.order
+        values: dict[str, Value] = {}
+        g_codes: list[float] = []
+        order: list[tuple[str, Value, CompiledWord]] = []
+        for w in cl.words:
+            v = w.evaluate(act)
+            if v is None:
+                continue
+            order.append((w.address, v, w))
+            if w.address == "G" and not isinstance(v, Unknown):
+                g_codes.append(round(v, 1))
+            if w.address not in values:
+                values[w.address] = v
+        return values, g_codes, order
+
+    def _least_increments(self, value: Value, word: CompiledWord | None) -> float | None:
+        """A G76 word given in least input increments (P, Q: no decimal point, 0.001 mm); one
+        written with a decimal point is taken in mm (unverified: FANUC may reject it)."""
+        if not isinstance(value, float):
+            return None
+        if word is not None and word.decimal_point:
+            return value
+        return value * (0.0001 if self.modal.inch else 0.001)
+
+    @staticmethod
+    def _word(order: list[tuple[str, Value, CompiledWord]], address: str) -> CompiledWord | None:
+        return next((w for a, _v, w in order if a == address), None)
+
+    def _g76_parameters(
+        self, values: dict[str, Value], order: list[tuple[str, Value, CompiledWord]]
+    ) -> None:
+        old = self.modal.g76
+        m, chamfer, angle = old.finishing_passes, old.chamfer, old.tool_angle
+        p = values.get("P")
+        if isinstance(p, float):  # P mmrraa: finishing passes, chamfer, tool angle
+            digits = round(p)
+            m, chamfer, angle = digits // 10000, float(digits // 100 % 100), float(digits % 100)
+        q = self._least_increments(values.get("Q"), self._word(order, "Q"))
+        r = self._least_increments(values.get("R"), self._word(order, "R"))
+        self.modal.g76 = G76Parameters(
+            m,
+            chamfer,
+            angle,
+            old.min_depth if q is None else q,
+            old.finishing_allowance if r is None else r,
+            self._line,
+        )
+
+    def _g76_passes(
+        self, cut: Motion, values: dict[str, Value], order: list[tuple[str, Value, CompiledWord]]
+    ) -> None:
+        """The passes of G76's cutting block ``G76 X Z R(i) P(k) Q(Δd) F(L)``: X is the root,
+        k the thread height and Δd the first depth, both radius values in least increments."""
+        motions = self.facts.motions
+        height = self._least_increments(values.get("P"), self._word(order, "P"))
+        first = self._least_increments(values.get("Q"), self._word(order, "Q"))
+        if cut.x is None or cut.start_x is None or height is None or first is None:
+            if len(motions) < MAX_MOTIONS:
+                motions.append(cut)  # what the control would cut cannot be known: one record
+            return
+        params = self.modal.g76
+        outward = cut.x > cut.start_x  # an internal thread: the cuts go away from the axis
+        sign = -1.0 if outward else 1.0
+        depths = g76_depths(
+            height, first, params.min_depth, params.finishing_allowance, params.finishing_passes
+        )
+        for n, (depth, finishing) in enumerate(depths, 1):
+            if len(motions) >= MAX_MOTIONS:
+                return
+            x = round(cut.x + sign * 2.0 * (height - depth), 4)
+            motions.append(
+                replace(
+                    cut,
+                    words={**cut.words, "X": round(x, 3)},
+                    x=x,
+                    cycle_pass=n,
+                    finishing=finishing,
+                )
+            )
+
+
+def _plain_profile_line(cl: CompiledLine) -> bool:
+    """Whether a line of a G70-G73 profile is one the evaluator follows: an NC block with no
+    call, return, end or cycle, or a line with no block (empty, a comment)."""
+    kind = cl.kind
+    if kind in (K_EMPTY, K_OTHER):
+        return True
+    if kind != K_NC or cl.cond is not None or cl.second is not None:
+        return False
+    const = cl.constant
+    if const is not None:
+        g_codes: Iterable[float] = const.g_codes
+        m_codes: Iterable[float] = const.m_codes
+    else:
+        assert cl.nc is not None
+        g_list: list[float] = []
+        m_list: list[float] = []
+        for w in cl.nc.words:
+            if w.address in ("G", "M"):
+                v = constant_value(w.value)
+                if v is None:
+                    return False  # a computed G or M code
+                (g_list if w.address == "G" else m_list).append(round(v, 1))
+        g_codes, m_codes = g_list, m_list
+    return NOT_IN_PROFILE_G.isdisjoint(g_codes) and NOT_IN_PROFILE_M.isdisjoint(m_codes)

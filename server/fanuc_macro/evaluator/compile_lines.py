@@ -1,0 +1,557 @@
+"""Statement compilation: each parsed line to the closures and constants the machine runs.
+
+A line compiles once per distinct statement (the compiled form is kept on the ``ParsedLine``);
+a block of constant words is folded at compile time into its ``ConstantWords``. What compiled
+lines share (G and M code tuples, folded words, expressions at the same place) is interned in
+tables of the current database (:mod:`fanuc_macro.database`).
+"""
+
+from __future__ import annotations
+
+import re
+import zlib
+from collections.abc import Callable, Iterable, Mapping
+from dataclasses import dataclass, field
+from types import MappingProxyType
+
+from ..database import TableKey, current
+from ..syntax.marks import constant_value
+from ..syntax.tree import (
+    Assign,
+    Bracket,
+    End,
+    Expr,
+    Goto,
+    IfGoto,
+    IfNc,
+    IfThen,
+    Mixed,
+    NcStatement,
+    Num,
+    ParsedLine,
+    PlainNc,
+    ProgramStart,
+    Statement,
+    Unary,
+    Var,
+    While,
+)
+from ..syntax.walk import subexpressions, top_expressions
+from .compiler import CondEvaluator, Evaluator, compile_cond, compile_expr, constant_of, kept
+from .values import UNKNOWN, Value
+
+# Block kinds of the compiled program.
+K_EMPTY, K_ASSIGN, K_GOTO, K_IFGOTO, K_IFTHEN, K_WHILE, K_END, K_NC, K_HEADER, K_OTHER = range(10)
+
+AXES = frozenset("XYZUVWABC")
+# Addresses whose values are lengths or angles in the least input increment (ROUND in them
+# rounds to that increment); the others take whole numbers.
+LENGTH_ADDRESSES = frozenset("XYZUVWABCIJKRQF")
+INTEGER_ADDRESSES = frozenset("MSTLHD")  # P too, when it names a program (M98, G65, M99)
+
+
+@dataclass(slots=True, eq=False, repr=False)
+class CompiledWord:
+    address: str
+    evaluate: Evaluator
+    start: int
+    end: int
+    decimal_point: bool = False  # written as a number with a decimal point (``Q0.4``)
+
+
+@dataclass(slots=True)
+class CompiledLine:
+    kind: int
+    reads: tuple[int, ...] = ()  # direct variables the block reads (for the facts)
+    target: Evaluator | None = None  # assignment target index (indirect) or GOTO target
+    target_number: int | None = None  # direct assignment target
+    value: Evaluator | None = None
+    cond: CondEvaluator | None = None
+    words: tuple[CompiledWord, ...] = ()
+    nc: NcStatement | None = None
+    node: Statement | None = None
+    second: CompiledLine | None = None  # the macro part of a mixed block
+    constant: ConstantWords | None = None  # an NC block whose words are all constants
+    ends_program: bool = False  # M02/M30: the program is a main program
+    # One line in eight, by its text: where the run may take a checkpoint (see Machine._loop).
+    boundary: bool = False
+
+
+@dataclass(slots=True)
+class ConstantWords:
+    """What an NC block of constant words evaluates to, worked out once at compile time.
+    Most blocks of a long program are such; nothing here is mutated by a run."""
+
+    values: dict[str, Value]
+    g_codes: tuple[float, ...]
+    m_codes: tuple[float, ...]
+    nc: NcStatement
+    # The words' values, in the order of the block; None when each is its Num's value.
+    constants: tuple[float, ...] | None
+    words: dict[str, float]  # the motion record's words
+    has_axis: bool
+    # No word can get an address finding (MB5xx: whole numbers, G codes, signs, the spindle's
+    # maximum), whatever the settings: the run need not look at them.
+    quiet: bool = False
+    _order: list[tuple[str, Value, CompiledWord]] | None = field(default=None, compare=False)
+
+    @property
+    def order(self) -> list[tuple[str, Value, CompiledWord]]:
+        """Each word: its address, value and compiled word. Made when a run first asks (a
+        block with a call, a G76, a word to check): most blocks never need it."""
+        order = self._order
+        if order is None:
+            words = self.nc.words
+            constants = self.constants
+            values = [w.value.value for w in words] if constants is None else constants  # type: ignore[union-attr]
+            order = self._order = [
+                (
+                    w.address,
+                    v,
+                    _folded_word(
+                        w.address, w.span.start, w.span.end, _written_with_decimal_point(w.value)
+                    ),
+                )
+                for w, v in zip(words, values, strict=True)
+            ]
+        return order
+
+
+def _direct_reads(statement: Statement) -> tuple[int, ...]:
+    numbers: list[int] = []
+    skip_target: Var | None = None
+    if isinstance(statement, Assign):
+        skip_target = statement.target
+    elif isinstance(statement, IfThen):
+        skip_target = statement.then.target
+    for top in top_expressions(statement):
+        for node in subexpressions(top):
+            if node is skip_target:
+                continue
+            if (
+                isinstance(node, Var)
+                and node.number is not None
+                and node.number == int(node.number)
+            ):
+                n = int(node.number)
+                if n and n not in numbers:
+                    numbers.append(n)
+    return tuple(numbers)
+
+
+def _compile_assign(kind: int, assign: Assign, text: str | None) -> CompiledLine:
+    target = assign.target
+    compiled = CompiledLine(kind, value=_compile_word(assign.value, False, text), node=assign)
+    if target.number is not None:
+        compiled.target_number = int(target.number) if target.number == int(target.number) else -1
+    else:
+        assert target.index is not None
+        compiled.target = compile_expr(target.index)
+    return compiled
+
+
+def compile_statement(statement: Statement | None, text: str | None = None) -> CompiledLine:
+    """The closures of one statement; they do not depend on where the line stands. With the
+    line's ``text``, expressions are shared with other lines' (see ``_compile_word``)."""
+    if statement is None:
+        return CompiledLine(K_EMPTY)
+    if type(statement) is PlainNc:
+        return _compile_plain_code(statement)
+    if type(statement) is NcStatement:
+        plain = _compile_plain_nc(statement)
+        if plain is not None:
+            return plain
+    reads = _direct_reads(statement)
+    if isinstance(statement, Mixed):
+        first = compile_statement(statement.nc, text)
+        first.second = compile_statement(statement.macro, text)
+        first.reads = reads
+        return first
+    if isinstance(statement, Assign):
+        c = _compile_assign(K_ASSIGN, statement, text)
+    elif isinstance(statement, IfThen):
+        c = _compile_assign(K_IFTHEN, statement.then, text)
+        c.cond = compile_cond(statement.cond)
+        c.node = statement
+    elif isinstance(statement, Goto):
+        c = CompiledLine(K_GOTO, target=compile_expr(statement.target), node=statement)
+    elif isinstance(statement, IfGoto):
+        c = CompiledLine(
+            K_IFGOTO,
+            target=compile_expr(statement.goto.target),
+            cond=compile_cond(statement.cond),
+            node=statement,
+        )
+    elif isinstance(statement, While):
+        cond = compile_cond(statement.cond) if statement.cond is not None else None
+        c = CompiledLine(K_WHILE, cond=cond, node=statement)
+    elif isinstance(statement, End):
+        c = CompiledLine(K_END, node=statement)
+    elif isinstance(statement, NcStatement):
+        c = _compile_nc(statement, text)
+    elif isinstance(statement, IfNc):
+        c = _compile_nc(statement.words, text)
+        c.cond = compile_cond(statement.cond)
+    elif isinstance(statement, ProgramStart):
+        c = CompiledLine(K_HEADER, node=statement)
+    else:
+        c = CompiledLine(K_OTHER, node=statement)
+    c.reads = reads
+    c.ends_program = _ends_program(statement)
+    return c
+
+
+def _folded(_: object) -> Value:
+    raise AssertionError("a block of constant words is run from its ConstantWords")
+
+
+def _compile_nc(nc: NcStatement, text: str | None = None) -> CompiledLine:
+    constants = [constant_of(w.value, w.address in LENGTH_ADDRESSES) for w in nc.words]
+    folded = all(c is not None for c in constants)
+    if not folded:
+        words = tuple(
+            CompiledWord(
+                w.address,
+                _compile_word(w.value, w.address in LENGTH_ADDRESSES, text),
+                w.span.start,
+                w.span.end,
+                _written_with_decimal_point(w.value),
+            )
+            for w in nc.words
+        )
+        return CompiledLine(K_NC, words=words, nc=nc, node=nc)
+    # A block of constant words is run from its ConstantWords: its words need no closures.
+    compiled = CompiledLine(K_NC, nc=nc, node=nc)
+    values: dict[str, Value] = {}
+    pairs = [(w.address, c) for w, c in zip(nc.words, constants, strict=True)]
+    for a, c in pairs:
+        values.setdefault(a, c)
+    compiled.constant = ConstantWords(
+        values,
+        _shared_codes(round(v, 1) for a, v in pairs if a == "G" and isinstance(v, float)),
+        _shared_codes(v for a, v in pairs if a == "M" and isinstance(v, float)),
+        nc,
+        tuple(c for c in constants if c is not None),
+        _motion_words(values),
+        any(a in AXES for a in values),
+    )
+    return compiled
+
+
+def _compile_plain_nc(nc: NcStatement) -> CompiledLine | None:
+    """``_compile_nc`` of a block whose words are all numbers (the fast parse's blocks, most of
+    a program), in one pass over its words; None for any other block. The result is the one
+    ``compile_statement`` gives: no variable read, a ConstantWords, M02/M30 an end."""
+    words: list[tuple[str, str, float]] = []
+    for w in nc.words:
+        num = w.value
+        if type(num) is not Num or type(num.value) is not float:
+            return None
+        words.append((w.address, num.text, num.value))
+    return _compile_words(nc, words)
+
+
+# Address letters as written to the address (upper case, one string each).
+_ADDRESS_OF: Mapping[str, str] = MappingProxyType(
+    {ch: ch.upper() for ch in "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz"}
+)
+
+
+# A number with more than three decimals: its motion word is rounded (see _compile_words).
+_FOUR_DECIMALS = re.compile(r"\.[0-9]{4}")
+
+
+def _compile_plain_code(nc: PlainNc) -> CompiledLine:
+    """``_compile_words`` of a plain block, read from its code: each address once, no number
+    with more than three decimals (a CAM block), with its G and M codes as the parser read
+    them; otherwise word by word."""
+    span = nc.span
+    words = nc.code[span.start : span.end]  # nc.text()
+    values: dict[str, float] | None = None
+    if "E" not in words and "e" not in words:
+        # Spaces part the words (CAM output): each token is a letter and its number. A token
+        # of two words holds a letter after its first, which float() refuses (E aside).
+        tokens = words.split()
+        try:
+            values = {_ADDRESS_OF[t[0]]: float(t[1:]) for t in tokens}
+        except ValueError:
+            values = None
+        count = len(tokens)
+    if values is None:
+        pairs = nc.pairs()
+        values = {_ADDRESS_OF[letter]: float(number) for letter, number in pairs}
+        count = len(pairs)
+    if len(values) < count or _FOUR_DECIMALS.search(words):
+        return _compile_words(
+            nc, [(_ADDRESS_OF[letter], number, float(number)) for letter, number in nc.pairs()]
+        )
+    written = nc.codes
+    codes = current().table(CODES_COMPILED).get(written)
+    if codes is None:
+        codes = _compile_codes(written)
+    g_codes, m_codes, quiet, ends_program = codes
+    motion_words = values
+    if written:  # G or M words (the words hold no N): the motion's are the others
+        motion_words = values.copy()  # in the same order
+        if g_codes:
+            del motion_words["G"]
+        if m_codes:
+            del motion_words["M"]
+    if quiet and not _CHECKED_ADDRESSES.isdisjoint(values):
+        for address in _CHECKED_ADDRESSES.intersection(values):
+            v = values[address]
+            if address == "S" or v < 0 or (address in _WHOLE_ADDRESSES and v != int(v)):
+                quiet = False
+                break
+    constant = ConstantWords(
+        values,  # type: ignore[arg-type]  # of floats only
+        g_codes,
+        m_codes,
+        nc,
+        None,
+        motion_words,
+        not AXES.isdisjoint(values),
+        quiet,
+    )
+    # CompiledLine(K_NC, nc=nc, node=nc, constant=constant, ends_program=ends_program), its
+    # arguments by position (faster by a third).
+    return CompiledLine(K_NC, (), None, None, None, None, (), nc, nc, None, constant, ends_program)
+
+
+# What a plain block's G and M codes (shared by the parser) compile to: the G codes at their
+# least increment, the M codes, whether the G codes need no rounding, whether M02/M30 ends.
+CompiledCodes = tuple[tuple[float, ...], tuple[float, ...], bool, bool]
+CODES_COMPILED: TableKey[tuple[tuple[str, float], ...], CompiledCodes] = TableKey(
+    "evaluator.codes_compiled"
+)
+
+
+def _compile_codes(codes: tuple[tuple[str, float], ...]) -> CompiledCodes:
+    g_codes: list[float] = []
+    m_codes: list[float] = []
+    quiet = True
+    for address, v in codes:
+        if address == "G":
+            code = round(v, 1)  # v itself when written with at most one decimal
+            g_codes.append(code)
+            quiet = quiet and code == v
+        else:
+            m_codes.append(v)
+    found = (
+        _shared_codes(g_codes) if g_codes else (),
+        _shared_codes(m_codes) if m_codes else (),
+        quiet,
+        2.0 in m_codes or 30.0 in m_codes,
+    )
+    compiled_codes = current().table(CODES_COMPILED)
+    if len(compiled_codes) >= MAX_SHARED_CODES:
+        compiled_codes.clear()
+    compiled_codes[codes] = found
+    return found
+
+
+def _compile_words(nc: NcStatement, words: list[tuple[str, str, float]]) -> CompiledLine:
+    """``_compile_plain_nc`` of the words' addresses, number texts and values, in order."""
+    values: dict[str, Value] = {}
+    g_codes: list[float] = []
+    m_codes: list[float] = []
+    motion_words: dict[str, float] = {}
+    quiet = True
+    rounded_any = False
+    for address, text, v in words:
+        point = text.find(".")
+        # Digits after the point: a number read from at most n decimals is its own round(v, n)
+        # (float() and round() both give the double nearest the decimal), so most words need
+        # no rounding (which costs more than the rest of the word).
+        decimals = 0 if point < 0 else len(text) - point - 1
+        if address not in values:
+            values[address] = v
+            if address not in ("G", "M", "N"):
+                if decimals <= 3:
+                    motion_words[address] = v
+                else:
+                    rounded = round(v, 3)  # the least input increment (IS-B)
+                    motion_words[address] = v if rounded == v else rounded
+                    rounded_any = rounded_any or rounded != v
+        if address == "G":
+            code = v if decimals <= 1 else round(v, 1)
+            g_codes.append(code)
+            quiet = quiet and code == v
+        elif address == "M":
+            m_codes.append(v)
+        if quiet and address in _CHECKED_ADDRESSES:
+            # What _check_addresses looks at: S against a setting, the others' signs and
+            # whole numbers.
+            quiet = address != "S" and v >= 0 and (address not in _WHOLE_ADDRESSES or v == int(v))
+    if len(motion_words) == len(values) and not rounded_any:
+        # No G, M or N, nothing rounded ("X1.5 Y2.", a modal CAM block): the same words, in
+        # the same order. Neither dict is changed after this.
+        motion_words = values  # type: ignore[assignment]
+    compiled = CompiledLine(K_NC, nc=nc, node=nc)
+    compiled.constant = ConstantWords(
+        values,
+        _shared_codes(g_codes) if g_codes else (),
+        _shared_codes(m_codes) if m_codes else (),
+        nc,
+        None,
+        motion_words,
+        not AXES.isdisjoint(values),
+        quiet,
+    )
+    compiled.ends_program = 2.0 in m_codes or 30.0 in m_codes
+    return compiled
+
+
+_WHOLE_ADDRESSES = INTEGER_ADDRESSES | {"P"}  # P when it names a program
+_CHECKED_ADDRESSES = _WHOLE_ADDRESSES | {"F"}
+
+
+# The words of constant blocks, by address, columns and decimal point: they hold no closure,
+# so every block with a word at the same place shares it.
+FOLDED_WORDS: TableKey[tuple[str, int, int, bool], CompiledWord] = TableKey(
+    "evaluator.folded_words"
+)
+# The G and M codes of constant blocks: a few combinations recur in every program.
+CODE_TUPLES: TableKey[tuple[float, ...], tuple[float, ...]] = TableKey("evaluator.code_tuples")
+MAX_SHARED_CODES = 10_000  # entries of each: emptied when full
+
+
+def _folded_word(address: str, start: int, end: int, decimal_point: bool) -> CompiledWord:
+    key = (address, start, end, decimal_point)
+    folded_words = current().table(FOLDED_WORDS)
+    word = folded_words.get(key)
+    if word is None:
+        if len(folded_words) >= MAX_SHARED_CODES:
+            folded_words.clear()
+        word = folded_words[key] = CompiledWord(address, _folded, start, end, decimal_point)
+    return word
+
+
+def _shared_codes(codes: Iterable[float]) -> tuple[float, ...]:
+    found = tuple(codes)
+    code_tuples = current().table(CODE_TUPLES)
+    shared = code_tuples.get(found)
+    if shared is None:
+        if len(code_tuples) >= MAX_SHARED_CODES:
+            code_tuples.clear()
+        shared = code_tuples[found] = found
+    return shared
+
+
+# Compiled expressions by their place and text in a line: the same text at the same column
+# compiles to the same closures (spans included, which alarms report), so lines that repeat an
+# expression (X[#100+2.] in every pass) share them. Emptied when it reaches its bound.
+SHARED_EXPRESSIONS: TableKey[tuple[int, int, str, bool], Evaluator] = TableKey(
+    "evaluator.shared_expressions"
+)
+MAX_SHARED_EXPRESSIONS = 100_000
+
+
+def _compile_word(expr: Expr, in_address: bool, text: str | None) -> Evaluator:
+    """``compile_expr``, shared between lines with the same expression at the same place when
+    the line's ``text`` is given."""
+    if text is None or isinstance(expr, Num):
+        return compile_expr(expr, in_address)
+    span = expr.span
+    key = (span.start, span.end, text[span.start : span.end], in_address)
+    shared = current().table(SHARED_EXPRESSIONS)
+    evaluator = shared.get(key)
+    if evaluator is None:
+        made = compile_expr(expr, in_address)
+        evaluator = kept(shared, key, made, MAX_SHARED_EXPRESSIONS)
+    return evaluator
+
+
+def _written_with_decimal_point(expr: Expr) -> bool:
+    while isinstance(expr, Unary | Bracket):
+        expr = expr.operand if isinstance(expr, Unary) else expr.inner
+    return isinstance(expr, Num) and expr.has_decimal_point
+
+
+def _motion_words(values: dict[str, Value]) -> dict[str, float]:
+    words: dict[str, float] = {}
+    for address, v in values.items():
+        if address in ("G", "M", "N") or not isinstance(v, float):
+            continue
+        rounded = round(v, 3)  # the least input increment (IS-B)
+        words[address] = v if rounded == v else rounded  # the same value, no second float
+    return words
+
+
+def _unknown_value(frame: object) -> Value:
+    return UNKNOWN
+
+
+def compile_line(parsed: ParsedLine) -> CompiledLine:
+    """A parsed line's statement; a block that does not parse but plainly assigns ``#n``
+    assigns it an unknown value, so that later reads of #n are not taken for vacant.
+
+    Lines of the same code share their statement (the parser's lines that differ in their
+    comments only) and so their compiled line, boundary included: a line is a boundary by the
+    text of its statement."""
+    statement = parsed.statement
+    if statement is None:
+        if parsed.failed_assignment is not None:
+            line = CompiledLine(
+                K_ASSIGN, target_number=parsed.failed_assignment, value=_unknown_value
+            )
+        else:
+            line = CompiledLine(K_EMPTY)
+        line.boundary = _is_boundary(parsed.text)
+        return line
+    by_statement = current().table(COMPILED_BY_STATEMENT)
+    shared = by_statement.get(id(statement))
+    if shared is not None and shared[0] is statement:
+        return shared[1]
+    if type(statement) is PlainNc:  # most lines: compile_statement's first case
+        line = _compile_plain_code(statement)
+    else:
+        line = compile_statement(statement, parsed.text)
+    line.boundary = _is_boundary(_statement_text(parsed, statement))
+    kept(by_statement, id(statement), (statement, line), _COMPILED_BY_STATEMENT_LIMIT)
+    return line
+
+
+# Compiled lines by their statement (kept alive here, so that its id names it): the statements
+# the parser shares between lines of the same code compile once. The oldest quarter goes when
+# it is full; a line whose statement is no longer here compiles again, to an equal line.
+COMPILED_BY_STATEMENT: TableKey[int, tuple[Statement, CompiledLine]] = TableKey(
+    "evaluator.compiled_by_statement"
+)
+_COMPILED_BY_STATEMENT_LIMIT = 4096
+
+
+def _is_boundary(text: str) -> bool:
+    return zlib.crc32(text.encode("utf-8", "surrogatepass")) & 7 == 0
+
+
+def _statement_text(parsed: ParsedLine, statement: Statement) -> str:
+    """The statement's columns of the line, the comments among them blanked: the same for
+    every line of the same code."""
+    start, end = statement.span.start, statement.span.end
+    text = parsed.text[start:end]
+    for comment in parsed.comments:
+        c_start, c_end = comment.span.start, comment.span.end
+        if start <= c_start and c_end <= end:
+            text = text[: c_start - start] + " " * (c_end - c_start) + text[c_end - start :]
+    return text
+
+
+_KEEP_COMPILED: Callable[[ParsedLine, object], None] = vars(ParsedLine)["compiled"].__set__
+
+
+def compiled(parsed: ParsedLine) -> CompiledLine:
+    """The compiled statement of a parsed line: closures that do not depend on where it stands,
+    kept on the line (every block of the same text shares it)."""
+    found = parsed.compiled
+    if found is None:
+        found = compile_line(parsed)
+        _KEEP_COMPILED(parsed, found)
+    return found  # type: ignore[return-value]  # only compile_line sets it
+
+
+def _ends_program(statement: Statement | None) -> bool:
+    nc = statement.nc if isinstance(statement, Mixed) else statement
+    return isinstance(nc, NcStatement) and any(
+        w.address == "M" and constant_value(w.value) in (2.0, 30.0) for w in nc.words
+    )

@@ -1,0 +1,526 @@
+"""What every part of the machine shares: the running program, the modal state, the findings.
+
+:class:`MachineBase` holds the state of a run (the variables, the modal state, the facts) and
+what every part reports through (findings, alarms, the step budget's verdict); the parts
+(:mod:`.calls`, :mod:`.canned_cycles`, :mod:`.motion`) and :class:`.machine.Machine` derive
+from it, so the block loop finds every method on one class.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Protocol
+
+from ..cancel import CancelToken
+from ..config import Config
+from ..program.index import Program
+from ..program.variables import classify
+from ..syntax.tree import Compare, Document, Expr, Statement, Var
+from ..syntax.walk import subexpressions
+from .checkpoints import CtxKey, Resumption, RunRecord
+from .compile_lines import INTEGER_ADDRESSES, K_IFGOTO, K_WHILE, CompiledLine, CompiledWord
+from .compiler import constant_of
+from .facts import (
+    ALARM_FINDINGS,
+    AddressNotInteger,
+    AddressOutOfRange,
+    DocumentFacts,
+    EndlessLoop,
+    Facts,
+    Finding,
+    LongLoop,
+    PollingLoop,
+    Rounding,
+    ValueSummary,
+)
+from .toolpath import NOT_MOVES
+from .values import AlarmKind, MacroAlarm, Unknown, Value, fmt
+
+if TYPE_CHECKING:
+    from .toolpath import Recorder
+
+# The block end position #5001-#5008 (workpiece coordinates, axis = number - 5000).
+BLOCK_END_FIRST, BLOCK_END_LAST = 5001, 5008
+# One-shot moves at rapid, whatever the modal motion: recorded under their own code. G27 goes to
+# its words; G28 and G30 pass through them to the reference point, and G53 goes to them in
+# machine coordinates, neither of which is known in work coordinates (0i-TF "Reference
+# position", "Coordinate system").
+RAPID_ONE_SHOTS = frozenset({27.0, 28.0, 30.0, 53.0})
+LOCAL_COORDINATES = 52.0  # G52: where the tool is in work coordinates changes, not known here
+MAX_MOTIONS = 200_000  # motion records kept per analysis
+
+
+@dataclass(eq=False, repr=False)
+class ProgramContext:
+    uri: str
+    doc: Document
+    program: Program
+    lines: list[CompiledLine]  # indexed by document line
+    loop_end: dict[int, int]  # DO line -> END line
+    loop_do: dict[int, int]  # END line -> DO line
+    facts: DocumentFacts
+    is_main: bool  # ends with M30/M02: locals start vacant, unless it reads them first
+    name: str = ""  # O3331, for the motion records
+
+    def __post_init__(self) -> None:
+        self.name = self.program.display_name
+
+
+class Activation:
+    """One running program: its place, its locals and how it returns."""
+
+    __slots__ = (
+        "arguments",
+        "caller",
+        "ctx",
+        "locals",
+        "machine",
+        "macro_level",
+        "modal_depth",
+        "pc",
+        "repeats_left",
+        "return_pc",
+        "serial",
+        "store",
+        "undecided_loops",
+    )
+
+    def __init__(
+        self,
+        machine: MachineBase,
+        ctx: ProgramContext,
+        locals_: list[Value],
+        macro_level: int,
+        caller: Activation | None,
+        return_pc: int,
+        repeats_left: int,
+    ) -> None:
+        self.machine = machine
+        self.ctx = ctx
+        self.locals = locals_
+        self.store = machine.store
+        self.macro_level = macro_level
+        self.caller = caller
+        self.return_pc = return_pc
+        self.repeats_left = repeats_left
+        self.pc = ctx.program.first_line
+        self.undecided_loops: set[int] = set()
+        self.arguments: tuple[Value, ...] | None = None
+        machine.runs += 1
+        self.serial = machine.runs  # tells one call of a program from the next
+        # Index in Modal.modal_calls of the G66 macro this program runs for (None: none). A move
+        # here calls the macro specified before it, not itself (FANUC: multiple modal calls).
+        self.modal_depth: int | None = None if caller is None else caller.modal_depth
+
+    def read_global(self, number: int) -> Value:
+        machine = self.machine
+        if BLOCK_END_FIRST <= number <= BLOCK_END_LAST and machine.toolpath is not None:
+            # Where the last NC block sent the axis, when the run follows the tool (see
+            # run.tracks_positions); the other position variables stay unknown.
+            found = machine.toolpath.block_end(number - 5000)
+            if found is not None:
+                return found
+        return machine.unknown_of(number)
+
+    @property
+    def signed_atan(self) -> bool:
+        return self.machine.config.atan_signed
+
+    @property
+    def length_increment(self) -> float:
+        # IS-B: 0.001 mm, 0.0001 inch (G20).
+        return 0.0001 if self.machine.modal.inch else 0.001
+
+    def note_rounding(self, name: str, argument: float, result: float) -> None:
+        machine = self.machine
+        found = self.ctx.facts.roundings
+        line = machine._line
+        seen = found.get(line)
+        if seen is None:
+            found[line] = Rounding(name, argument, result)
+        else:
+            seen.count += 1
+
+    def read_indirect(self, index: Value, node: Var) -> Value:
+        if isinstance(index, Unknown):
+            return index
+        # A vacant index refers to #0, and a fractional one is rounded (both unverified).
+        n = 0 if index is None else round(index)
+        if n == 0:
+            return None
+        if 1 <= n <= 33:
+            return self.locals[n]
+        if classify(n).kind == "none":
+            raise MacroAlarm(
+                "PS0115",
+                AlarmKind.NO_SUCH_VARIABLE,
+                f"#[...] refers to #{n}, which does not exist (VARIABLE NO. OUT OF RANGE)",
+                float(n),
+            )
+        v = self.store.get(n, self)
+        # Unknown, not read_global: an indirect read of a position is not one the run is
+        # known to need when it chooses to follow the tool (run.tracks_positions).
+        return self.machine.unknown_of(n) if v is self else v  # type: ignore[return-value]
+
+
+class StopRun(Exception):
+    """The run ends here; ``reason`` says why ("budget", "alarm", "end of program"...)."""
+
+    def __init__(self, reason: str) -> None:
+        super().__init__(reason)
+        self.reason = reason
+
+
+class Stepper(Protocol):
+    """What a debugger puts between the blocks of a run (``Machine.stepper``): it sees each
+    block before it runs, and each alarm before the run stops. It may wait there (the run is
+    paused) or raise an exception of its own, which ends the run and leaves ``Machine.run``."""
+
+    def before(self, act: Activation, line: int) -> None: ...
+
+    def alarm(self, act: Activation, line: int, message: str) -> None: ...
+
+
+class Converged(Exception):
+    """The resumed run's state, after ``done`` blocks of its run, equals the earlier run's at
+    its checkpoint ``index``."""
+
+    def __init__(self, index: int, done: int) -> None:
+        super().__init__(index, done)
+        self.index = index
+        self.done = done
+
+
+@dataclass(eq=False, repr=False)
+class Modal:
+    motion: float | None = None  # group 01
+    feed: Value = None
+    speed: Value = None
+    constant_surface_speed: bool = False  # G96: S is m/min, not rpm
+    # G66/G66.1 in force, in the order specified; G67 cancels the last one. None for a macro
+    # the analysis cannot run (not in the analysed files, or its P unknown).
+    modal_calls: list[tuple[ProgramContext | None, list[Value], int]] = field(default_factory=list)
+    position: dict[str, Value] = field(default_factory=dict)
+    # Where each axis was last set: (uri, line), for the verdicts on a cycle's start point.
+    position_line: dict[str, tuple[str, int]] = field(default_factory=dict)
+    inch: bool = False  # G20
+    g76: G76Parameters = field(default_factory=lambda: G76Parameters())
+    # G90/G92/G94: the end Z and the taper R in force for a block that repeats the cycle
+    # with X alone (0i-TF "Canned cycle for lathe"), as the toolpath draws it.
+    cycle: tuple[float | None, float | None] = (None, None)
+
+
+@dataclass(frozen=True)
+class G76Parameters:
+    """The first block of FANUC's two-block G76, ``G76 P(m)(r)(a) Q(dmin) R(d)``: modal values
+    the cutting block uses (FANUC 0i-TF Operator's Manual, "Multiple threading cycle (G76)").
+    Without that block the control takes parameters 5142 (m), 5130 (r), 5143 (a), 5140
+    (dmin) and 5141 (d); the defaults below stand for them (unverified: machine-dependent)."""
+
+    finishing_passes: int = 1  # m
+    chamfer: float = 0.0  # r, in tenths of the lead
+    tool_angle: float = 60.0  # a
+    min_depth: float = 0.0  # dmin, radius, mm
+    finishing_allowance: float = 0.0  # d, radius, mm
+    line: int | None = None  # the block that set them
+
+
+class MachineBase:
+    """The state of a run and what its parts report through."""
+
+    def __init__(
+        self,
+        programs: dict[int, ProgramContext],
+        config: Config,
+        facts: Facts,
+        contexts: Sequence[ProgramContext] = (),
+        cancel: CancelToken | None = None,
+    ) -> None:
+        self.programs = programs
+        self.cancel = cancel
+        # Every program, by document and first line: what a checkpoint names them by.
+        self.contexts: dict[CtxKey, ProgramContext] = {
+            (c.uri, c.program.first_line): c for c in contexts
+        }
+        self.record: RunRecord | None = None  # checkpoints are taken when set
+        self.resumption: Resumption | None = None  # the earlier run a resumed one may meet
+        self.run_index = 0  # which run of the evaluation is under way
+        self._checkpointed = 0  # blocks done in this run at its last checkpoint
+        self.config = config
+        self.facts = facts
+        self.store: dict[int, Value] = {}
+        self._unknowns: dict[int, Unknown] = {}
+        self._seen_findings: set[tuple[str, str, int, int]] = set()  # kind, uri, line, column
+        # What the checkpoints hold of them: the chunks so far, and the keys since the last.
+        self._seen_chunks: tuple[frozenset[tuple[str, str, int, int]], ...] = ()
+        self._seen_since: list[tuple[str, str, int, int]] = []
+        # The lines of cuts without F recorded in this stretch of the run, by document: each
+        # stretch lists a line once, and depends on nothing before it but the state.
+        self._cuts_seen: dict[str, set[int]] = {}
+        self.steps = 0
+        self._steps = 0
+        self.speculative = False
+        self.deadline = 0.0
+        self.budget = config.step_budget
+        self.runs = 0  # activations so far: each gets its number
+        self.modal = Modal()
+        self.value_range = config.value_range
+        self._entry_name = ""
+        self.lathe = config.is_lathe  # asked at every block
+        # The G codes a block with axis words runs instead of the modal motion: no move
+        # (NOT_MOVES, G52, the coordinate system setting: G50 on a lathe, G92 on a mill; a
+        # lathe's G92 is its threading cycle), or a one-shot move of its own.
+        self._own_codes = (
+            NOT_MOVES | RAPID_ONE_SHOTS | {LOCAL_COORDINATES, 50.0 if self.lathe else 92.0}
+        )
+        # The message of a move without F, by motion code: the same for every block of a run.
+        self._no_feed: dict[float, str] = {}
+        # The motions' words made by the run (a block of computed words, an F added), by
+        # content: most blocks of a long program move to one of few places, and the motions
+        # that go alike share one dict (nothing changes a motion's words once recorded).
+        self._words: dict[tuple[object, ...], dict[str, float]] = {}
+        # The toolpath's recorder, when one is asked for (see evaluate) or the programs read
+        # the block end position: None costs a run one test per NC block.
+        self.toolpath: Recorder | None = None
+        # A debugger's hook between blocks (None: no cost but one test per block).
+        self.stepper: Stepper | None = None
+        # A G70-G73 with P and Q met by _motion, for _nc to follow its profile.
+        self._profile_code: float | None = None
+        self._profile_blocks = 0  # blocks of profiles read or run in this run
+        self._line = 0  # the block being executed, for the facts and findings
+
+    def unknown_of(self, number: int) -> Unknown:
+        u = self._unknowns.get(number)
+        if u is None:
+            u = self._unknowns[number] = Unknown(frozenset({number}))
+        return u
+
+    def _document_so_far(self, ctx: ProgramContext) -> DocumentFacts:
+        """The facts of ``ctx``'s document from every stretch of the evaluation so far."""
+        record = self.record
+        if record is None:
+            return ctx.facts
+        merged = ctx.facts.segment()
+        merged.take_segments([s[ctx.uri] for s in record.segments if ctx.uri in s])
+        return merged
+
+    def _finding(self, ctx: ProgramContext, finding: Finding) -> None:
+        """Report ``finding`` of ``ctx``'s document, once per kind and place in the evaluation."""
+        key = (finding.kind, finding.uri, finding.line, finding.column)
+        seen = self._seen_findings
+        if key in seen:
+            return
+        seen.add(key)
+        self._seen_since.append(key)
+        ctx.facts.reported.append(finding)
+
+    @staticmethod
+    def _mark_incomplete(act: Activation | None) -> None:
+        """Programs on the call stack when a run stops early: their unrun blocks prove nothing."""
+        while act is not None:
+            act.ctx.facts.incomplete_programs.add(act.ctx.program.first_line)
+            act = act.caller
+
+    def _values_read(self, act: Activation, cl: CompiledLine) -> dict[int, Value]:
+        """What the block's direct variables hold as it runs (the toolpath's runs only: no
+        block of a diagnostics run asks). The block's motion assigns none of them."""
+        locals_ = act.locals
+        store = self.store
+        out: dict[int, Value] = {}
+        for n in cl.reads:
+            if n <= 33:
+                out[n] = locals_[n]
+            else:
+                v = store.get(n, act)
+                out[n] = self.unknown_of(n) if v is act else v  # type: ignore[assignment]
+        return out
+
+    def _record_reads(self, act: Activation, cl: CompiledLine, facts: DocumentFacts) -> None:
+        reads = facts.reads
+        line = self._line
+        locals_ = act.locals
+        store = self.store
+        for n in cl.reads:
+            key = (line, n)
+            summary = reads.get(key)
+            if summary is None:
+                summary = reads[key] = ValueSummary()
+            if n <= 33:
+                summary.add(locals_[n])
+            else:
+                v = store.get(n, act)
+                summary.add(act.read_global(n) if v is act else v)  # type: ignore[arg-type]
+
+    @staticmethod
+    def _label(ctx: ProgramContext, seq: int, from_line: int) -> int | None:
+        return ctx.program.label_line(seq, from_line)
+
+    def _check_addresses(
+        self,
+        act: Activation,
+        cl: CompiledLine,
+        order: list[tuple[str, Value, CompiledWord]],
+        calls: bool = False,
+    ) -> None:
+        # ``calls``: P is a program or sequence number (M98, M99, G65: a whole number); with
+        # G04 it is a dwell.
+        for address, v, w in order:
+            if isinstance(v, Unknown) or v is None:
+                continue
+            if (address in INTEGER_ADDRESSES or (address == "P" and calls)) and v != int(v):
+                message = f"{address} gets {fmt(v)}: {address} takes a whole number"
+                self._finding(
+                    act.ctx,
+                    AddressNotInteger(
+                        self._line, w.start, w.end, message, act.ctx.uri, address=address
+                    ),
+                )
+            elif address == "G" and round(v, 1) != v:
+                message = f"G gets {fmt(v)}: not a G code"
+                self._finding(
+                    act.ctx,
+                    AddressNotInteger(
+                        self._line, w.start, w.end, message, act.ctx.uri, address=address
+                    ),
+                )
+            elif address in ("S", "T", "M", "H", "D", "F") and v < 0:
+                message = f"{address} gets {fmt(v)}: {address} cannot be negative"
+                self._finding(
+                    act.ctx,
+                    AddressOutOfRange(
+                        self._line, w.start, w.end, message, act.ctx.uri, address=address
+                    ),
+                )
+            elif address == "S" and v > self.config.max_spindle_speed:
+                message = (
+                    f"S gets {fmt(v)} rpm, above the machine's maximum "
+                    f"{fmt(self.config.max_spindle_speed)} rpm"
+                )
+                self._finding(
+                    act.ctx,
+                    AddressOutOfRange(
+                        self._line, w.start, w.end, message, act.ctx.uri, address=address
+                    ),
+                )
+
+    def _alarm(self, act: Activation, cl: CompiledLine, alarm: MacroAlarm) -> str:
+        ctx = act.ctx
+        block = ctx.doc.blocks[self._line]
+        node = alarm.node
+        span = getattr(node, "span", None) or getattr(cl.node, "span", None)
+        start, end = (span.start, span.end) if span is not None else (0, len(block.text))
+        detail = ""
+        if node is not None:
+            args = getattr(node, "args", None) or (getattr(node, "right", None),)
+            arg = args[0]
+            if arg is not None:
+                detail = f" = {block.source(arg.span).strip()}"
+                shown: list[str] = []
+                for sub in subexpressions(arg):
+                    if isinstance(sub, Var) and sub.number is not None:
+                        n = int(sub.number)
+                        v = act.locals[n] if 1 <= n <= 33 else self.store.get(n)
+                        text = f"#{n}={fmt(v)}"
+                        if text not in shown:
+                            shown.append(text)
+                if shown:
+                    detail += " with " + ", ".join(shown)
+        message = f"{alarm.message}{detail} (alarm {alarm.alarm}) in {ctx.name}"
+        found = ALARM_FINDINGS[alarm.kind]
+        self._finding(
+            ctx,
+            found(self._line, start, end, message, ctx.uri, alarm=alarm.kind, number=alarm.alarm),
+        )
+        return message
+
+    def _budget_spent(self, act: Activation) -> None:
+        ctx = act.ctx
+        facts = self._document_so_far(ctx)
+        program = ctx.program
+        top = max((n for ln, n in facts.runs.items() if program.contains(ln)), default=0)
+        hot = sorted(ln for ln, n in facts.runs.items() if program.contains(ln) and n * 2 >= top)
+        tests = [ln for ln in hot if ctx.lines[ln].kind in (K_IFGOTO, K_WHILE)]
+        loops = program.enclosing_loops(act.pc)
+        if loops:
+            head = loops[-1].do_line
+        elif tests:
+            head = tests[0]
+        else:  # a GOTO back with no test: the loop begins at its label
+            heads = [
+                target
+                for jump in program.jumps
+                if not jump.conditional
+                and jump.target is not None
+                and jump.line in facts.runs
+                and (target := program.label_line(jump.target, jump.line)) is not None
+                and target <= act.pc <= jump.line
+            ]
+            head = min(heads, default=act.pc)
+        read = {n for ln in tests for n in ctx.lines[ln].reads}
+        written = {ctx.lines[ln].target_number for ln in hot}
+        budget = f"the step budget ({self.budget:,} blocks)"
+        runs = facts.runs.get(head, 0)
+        width = len(ctx.doc.blocks[head].text)
+        if read and all(n >= 100 for n in read) and not read & written:
+            # Nothing in the loop changes what it tests: it waits for the PMC, a FOCAS client
+            # or another path to write a common or system variable.
+            names = ", ".join(f"#{n}" for n in sorted(read))
+            message = (
+                f"loop waits for {names} to be changed from outside the program (PMC, "
+                f"FOCAS, another path): nothing in it writes {names}; the analysis "
+                f"stopped after {runs} turns ({budget})"
+            )
+            self._finding(ctx, PollingLoop(head, 0, width, message, ctx.uri))
+            return
+        cl = ctx.lines[head]
+        still = [n for n in cl.reads if (s := facts.reads.get((head, n))) and s.constant]
+        approaching = _approaching(cl.node, facts, head)
+        if not still and approaching:
+            # The test's variables move towards its bound: a long loop, not an endless one.
+            message = (
+                f"loop still running after {runs} turns when {budget} ran out: it "
+                "gets nearer its end every turn, so it is long rather than endless; "
+                "values after it are not analysed"
+            )
+            self._finding(ctx, LongLoop(head, 0, width, message, ctx.uri))
+            return
+        moving = [n for n in cl.reads if n not in still]
+        if still:
+            why = ", ".join(f"#{n} stays {fmt(facts.reads[(head, n)].first)}" for n in still)
+        elif moving:
+            names = ", ".join(f"#{n}" for n in moving)
+            why = f"the condition stays true, {names} moving away from its bound"
+        else:
+            why = "nothing in the condition changes"
+        message = f"loop never ends: the block ran {runs} times before {budget} ran out; {why}"
+        self._finding(ctx, EndlessLoop(head, 0, width, message, ctx.uri))
+
+
+def _approaching(node: Statement | None, facts: DocumentFacts, line: int) -> bool:
+    """Whether a loop test ``#v OP bound`` is nearer its bound at the last turn than the first."""
+    cond = getattr(node, "cond", None)
+    if not isinstance(cond, Compare) or cond.op in ("EQ", "NE"):
+        return False
+    distances = []
+    for side, other in ((cond.left, cond.right), (cond.right, cond.left)):
+        if isinstance(side, Var) and side.number is not None:
+            summary = facts.reads.get((line, int(side.number)))
+            bound = _fixed(other, facts, line)
+            if summary is None or bound is None:
+                continue
+            first, last = summary.first, summary.last
+            if isinstance(first, float) and isinstance(last, float):
+                distances.append((abs(first - bound), abs(last - bound)))
+    return bool(distances) and all(last < first for first, last in distances)
+
+
+def _fixed(expr: Expr, facts: DocumentFacts, line: int) -> float | None:
+    value = constant_of(expr)
+    if value is not None:
+        return value
+    if isinstance(expr, Var) and expr.number is not None:
+        summary = facts.reads.get((line, int(expr.number)))
+        if summary is not None and summary.constant:
+            return float(summary.minimum)
+    return None

@@ -1,0 +1,440 @@
+"""NC blocks as the machine runs them: modal codes, moves, where the tool goes, cuts without F.
+
+:meth:`MotionPart._nc` runs a block of words: its modal G codes, the address checks, a call
+(G65, G66, M98, M99), the move it commands and the motion record, the profile a G70-G73 names.
+"""
+
+from __future__ import annotations
+
+import math
+import sys
+from array import array
+from collections.abc import Mapping, Sequence
+from types import MappingProxyType
+
+from .calls import CallsPart
+from .canned_cycles import PROFILE_CYCLES, CyclesPart
+from .compile_lines import AXES, K_NC, CompiledLine, CompiledWord, _motion_words
+from .facts import CutsWithoutFeed, Motion, RunValues
+from .machine_base import (
+    LOCAL_COORDINATES,
+    MAX_MOTIONS,
+    RAPID_ONE_SHOTS,
+    Activation,
+    ProgramContext,
+    StopRun,
+)
+from .toolpath import NOT_MOVES, ProfileBlock
+from .values import AlarmKind, MacroAlarm, Unknown, Value
+
+MOTION_GROUP = frozenset({0.0, 1.0, 2.0, 3.0, 32.0, 33.0, 34.0})
+LATHE_CYCLES = frozenset({90.0, 92.0, 94.0})  # G-code system A: modal canned cycles of group 01
+ONE_SHOT_CYCLES = frozenset({70.0, 71.0, 72.0, 73.0, 74.0, 75.0, 76.0})  # group 00: no repeat
+FEED_MOTIONS = frozenset({1.0, 2.0, 3.0})  # cutting at the modal F (G32, cycles: F the lead)
+LEFT_UNKNOWN = frozenset({28.0, 30.0, 53.0})
+MAX_SHARED_WORDS = 4096  # distinct motion words a run looks up to share (Machine._words)
+THREADING_CODES = frozenset({32.0, 33.0, 34.0, 76.0, 92.0})
+# The lathe's moves that cut at F besides G01-G03: threads (F the lead), turning and facing.
+LATHE_FED = frozenset({32.0, 33.0, 34.0, 76.0, 90.0, 92.0, 94.0})
+MAX_REMEMBERED_RUNS = 1000  # executions whose variables are kept when they start a thread
+
+
+class MotionPart(CyclesPart, CallsPart):
+    """The machine's NC blocks and moves."""
+
+    def _nc(self, act: Activation, cl: CompiledLine) -> Activation:
+        """An NC block: its modal codes, checks, call or move, and the block that runs next."""
+        if cl.cond is not None:  # Haas IF [c] <words>
+            result = cl.cond(act)
+            if result is not True:
+                act.pc = self._line + 1
+                return act
+        const = cl.constant
+        g_codes: Sequence[float]
+        m_codes: Sequence[float]
+        # A constant block's words in order: made only when something below needs them.
+        order: list[tuple[str, Value, CompiledWord]] | None = None
+        if const is not None:
+            values, g_codes, m_codes = const.values, const.g_codes, const.m_codes
+        else:
+            values, g_codes, m_codes, order = self._evaluated_words(act, cl)
+        call_kind = self._modal_codes(g_codes) if g_codes else None
+        quiet = const is not None and const.quiet  # no word of it can get a finding
+        if call_kind is not None:
+            return self._call_block(act, cl, order, call_kind, quiet)
+        if not quiet:
+            if order is None:
+                assert const is not None
+                order = const.order
+            self._check_addresses(act, cl, order, 98.0 in m_codes or 99.0 in m_codes)
+        modal = self.modal
+        if "F" in values:
+            modal.feed = values["F"]
+        if "S" in values:
+            modal.speed = values["S"]
+        moved = self._motion(act, cl, values, g_codes, order)
+        next_pc = self._line + 1
+        profile: list[ProfileBlock] | str | None = None
+        finishing: tuple[int, int] | None = None
+        if self._profile_code is not None:
+            profile, next_pc, finishing = self._profile(act, values, self._profile_code)
+            self._profile_code = None
+        if self.toolpath is not None:
+            ctx = act.ctx
+            read = self._values_read(act, cl) if cl.reads else None
+            self.toolpath.block(
+                ctx.name, ctx.uri, self._line, values, g_codes, self.facts.motions, profile, read
+            )
+        if finishing is not None:
+            self._run_profile(act, *finishing)
+        for m in m_codes:
+            if m == 98.0:
+                return self._sub_call(act, cl, values)
+            if m == 99.0:
+                return self._return(act, values.get("P"), self._line)
+            if m in (2.0, 30.0):
+                raise StopRun("end of program")
+        act.pc = next_pc
+        if moved and modal.modal_calls:
+            return self._modal_call_after_move(act)
+        return act
+
+    def _evaluated_words(
+        self, act: Activation, cl: CompiledLine
+    ) -> tuple[dict[str, Value], list[float], list[float], list[tuple[str, Value, CompiledWord]]]:
+        """A computed block's words: by address (the first of each), its G and M codes, and
+        the words in order (a vacant variable omits its word)."""
+        values: dict[str, Value] = {}
+        g_codes: list[float] = []
+        m_codes: list[float] = []
+        order: list[tuple[str, Value, CompiledWord]] = []
+        for w in cl.words:
+            v = w.evaluate(act)
+            if v is None:
+                continue  # a vacant variable omits the word
+            order.append((w.address, v, w))
+            if w.address == "G" and not isinstance(v, Unknown):
+                g_codes.append(round(v, 1))
+            elif w.address == "M" and not isinstance(v, Unknown):
+                m_codes.append(v)
+            if w.address not in values:
+                values[w.address] = v
+        return values, g_codes, m_codes, order
+
+    def _modal_codes(self, g_codes: Sequence[float]) -> str | None:
+        """Set the modal state the block's G codes set; the call it makes ("G65", "G66")."""
+        modal = self.modal
+        call_kind: str | None = None
+        for g in g_codes:
+            if g in MOTION_GROUP or (self.lathe and g in LATHE_CYCLES):
+                modal.motion = g
+                if g not in LATHE_CYCLES:
+                    modal.cycle = (None, None)
+            elif g == 65.0:
+                call_kind = "G65"
+            elif g in (66.0, 66.1):
+                call_kind = "G66"
+            elif g == 67.0 and modal.modal_calls:
+                modal.modal_calls.pop()
+            elif g == 96.0:
+                modal.constant_surface_speed = True
+            elif g == 97.0:
+                modal.constant_surface_speed = False
+            elif g == 20.0:
+                modal.inch = True
+            elif g == 21.0:
+                modal.inch = False
+        return call_kind
+
+    def _call_block(
+        self,
+        act: Activation,
+        cl: CompiledLine,
+        order: list[tuple[str, Value, CompiledWord]] | None,
+        call_kind: str,
+        quiet: bool,
+    ) -> Activation:
+        """A G65 block (the call) or a G66 block (the modal call specified, no move)."""
+        if order is None:
+            assert cl.constant is not None
+            order = cl.constant.order
+        if not quiet:  # after G65/G66 the words are arguments (#1-#26): only P names a program
+            self._check_addresses(act, cl, [w for w in order if w[0] == "P"], calls=True)
+        if call_kind == "G65":
+            return self._macro_call(act, cl, order, modal_call=False)
+        self._macro_call(act, cl, order, modal_call=True)
+        act.pc = self._line + 1
+        return act
+
+    def _modal_call_after_move(self, act: Activation) -> Activation:
+        """The G66 macro called after a move: the program to run next."""
+        # FANUC calls the macro after each move; a move in a modal macro calls the one
+        # specified before it, and none in the first. Source: a FANUC operator's manual page,
+        # custom macro "multiple modal call" (photo shipped with NCVC's G66 sample; series
+        # not named on it).
+        calls = self.modal.modal_calls
+        target = len(calls) - 1 if act.modal_depth is None else act.modal_depth - 1
+        if target < 0:
+            return act
+        callee, args, _ = calls[target]
+        if callee is None:
+            self._call_unknown(act, shares_locals=False)
+            return act
+        new = self._enter(act, callee, list(args), True, self._line + 1, 1)
+        new.modal_depth = target
+        return new
+
+    def _run_profile(self, act: Activation, first: int, last: int) -> None:
+        """G70: the blocks N(ns) to N(nf) run as blocks of the G70 (the step budget counts the
+        G70 once), then the tool is back at the G70's start point."""
+        line = self._line
+        modal = self.modal
+        start, start_lines = dict(modal.position), dict(modal.position_line)
+        for n in range(first, last + 1):
+            pcl = self._profile_line(act, n)
+            if pcl.kind != K_NC:
+                continue
+            try:
+                self._nc(act, pcl)
+            except MacroAlarm as alarm:
+                self._profile_alarm(act, pcl, alarm)
+        self._line = line
+        modal.position = start
+        modal.position_line = start_lines
+        if self.toolpath is not None:
+            self.toolpath.end_profile()
+
+    def _cut_without_feed(self, ctx: ProgramContext, message: str) -> None:
+        """MB603's finding at the block being run, recorded by line (see CutsWithoutFeed)."""
+        line = self._line
+        uri = ctx.uri
+        seen = self._cuts_seen.get(uri)
+        if seen is None:
+            seen = self._cuts_seen[uri] = set()
+        elif line in seen:
+            return
+        seen.add(line)
+        facts = ctx.facts
+        records = facts.cuts
+        after = len(facts.reported)
+        program = ctx.program.first_line
+        last = records[-1] if records else None
+        if (
+            last is None
+            or last.after != after
+            or last.program != program
+            or last.message != message
+        ):
+            records.append(CutsWithoutFeed(uri, program, message, after, array("i", (line,))))
+        else:
+            if line <= last.lines[-1]:
+                last.ascending = False
+            last.lines.append(line)
+
+    def _shared_words(self, words: dict[str, float]) -> dict[str, float]:
+        """``words``, or an equal dict an earlier motion of the run holds."""
+        key: tuple[object, ...] = tuple(words.items())
+        if 0.0 in words.values():  # 0.0 and -0.0 are equal but print differently
+            key += tuple(math.copysign(1.0, v) for v in words.values())
+        table = self._words
+        shared = table.get(key)
+        if shared is not None:
+            return shared
+        if len(table) < MAX_SHARED_WORDS:  # a run of all different moves keeps no more
+            table[key] = words
+        return words
+
+    def _axis(self, values: dict[str, Value], absolute: str, incremental: str) -> float | None:
+        """Where a block sends an axis: its absolute word, else where it is plus the
+        incremental word (U, W on a lathe in G-code system A), else where it is."""
+        v = values.get(absolute)
+        if isinstance(v, float):
+            return v
+        here = self.modal.position.get(absolute)
+        if not isinstance(here, float):
+            return None
+        step = values.get(incremental)
+        if step is None:
+            return here
+        return here + step if isinstance(step, float) else None
+
+    def _motion(
+        self,
+        act: Activation,
+        cl: CompiledLine,
+        values: dict[str, Value],
+        g_codes: Sequence[float],
+        order: list[tuple[str, Value, CompiledWord]] | None,  # None: the constant block's
+    ) -> bool:
+        """The move a block commands, if any (True): its motion record, where the tool goes."""
+        lathe = self.lathe
+        const = cl.constant
+        has_axis = const.has_axis if const is not None else not AXES.isdisjoint(values)
+        code: float | None
+        if g_codes and (
+            (lathe and not ONE_SHOT_CYCLES.isdisjoint(g_codes))
+            or (has_axis and not self._own_codes.isdisjoint(g_codes))
+        ):
+            code = self._cycle_or_own_code(act, values, g_codes, has_axis)
+        else:
+            code = self.modal.motion if has_axis else None
+        if code is None:
+            return False
+        if code == 76.0:
+            order = const.order if order is None and const is not None else order
+            assert order is not None
+            if not any(a in values for a in "XUZW"):
+                self._g76_parameters(values, order)  # G76's first block sets, it does not cut
+                return False
+        modal = self.modal
+        words = const.words if const is not None else _motion_words(values)
+        feed = modal.feed
+        if "F" not in words and isinstance(feed, float) and code and code not in RAPID_ONE_SHOTS:
+            words = {**words, "F": feed}
+        lathe_cycle = lathe and code in LATHE_CYCLES
+        if lathe_cycle:
+            words = self._taper_in_force(values, words)
+        if words.get("F") == 0.0 and (code in FEED_MOTIONS or (lathe and code in LATHE_FED)):
+            _feed_zero(code)
+        if const is None or words is not const.words:
+            words = self._shared_words(words)
+        if feed is None and code in FEED_MOTIONS:
+            self._cut_without_feed(act.ctx, self._no_feed_message(code))
+        # An axis's absolute word (most blocks) is where it goes, without _axis.
+        x = values.get("X")
+        if type(x) is not float:
+            x = self._axis(values, "X", "U")
+        z = values.get("Z")
+        if type(z) is not float:
+            z = self._axis(values, "Z", "W") if lathe else None
+        if lathe_cycle:
+            if "Z" not in values and "W" not in values:
+                z = modal.cycle[0]  # the cycle repeated: its end Z stays
+            r = words.get("R")
+            modal.cycle = (z, r if isinstance(r, float) else None)
+        elif code in LEFT_UNKNOWN:  # the axes named end where the analysis does not know
+            if "X" in values or "U" in values:
+                x = None
+            if "Z" in values or "W" in values:
+                z = None
+        position = modal.position
+        start_x = position.get("X")
+        start_z = position.get("Z")
+        ctx = act.ctx
+        where = modal.position_line.get("X")
+        speed = modal.speed
+        motion = Motion(
+            ctx.name,
+            self._line,
+            G_NAMES.get(code) or _g_name(code),
+            words,
+            ctx.uri,
+            x,
+            None if modal.constant_surface_speed or not isinstance(speed, float) else speed,
+            ctx.program.first_line,
+            z,
+            start_x if isinstance(start_x, float) else None,
+            start_z if isinstance(start_z, float) else None,
+            None if where is None else where[1],
+            "" if where is None else where[0],
+            act.serial,
+        )
+        facts = self.facts
+        if code in THREADING_CODES and act.serial not in facts.run_values:
+            self._remember_run(act)
+        if code == 76.0:
+            assert order is not None
+            self._g76_passes(motion, values, order)
+        elif len(facts.motions) < MAX_MOTIONS:
+            facts.motions.append(motion)
+        if code not in LATHE_CYCLES and code not in ONE_SHOT_CYCLES:  # cycles end where they began
+            here = (ctx.uri, self._line)
+            if x is not None or "X" in values or "U" in values:
+                position["X"] = x
+                modal.position_line["X"] = here
+            if z is not None or "Z" in values or "W" in values:
+                position["Z"] = z
+                modal.position_line["Z"] = here
+            if "Y" in values:
+                position["Y"] = None if code in LEFT_UNKNOWN else values["Y"]
+        return True
+
+    def _cycle_or_own_code(
+        self, act: Activation, values: dict[str, Value], g_codes: Sequence[float], has_axis: bool
+    ) -> float | None:
+        """The move of a block with a lathe's one-shot cycle, or with a G code that runs instead
+        of the modal motion (``_own_codes``); None: it moves nothing."""
+        # G70-G76 are the lathe's multiple repetitive cycles; on a mill G73-G76 are canned
+        # drilling and boring cycles (G76 fine boring), which the analysis does not run.
+        if self.lathe and not ONE_SHOT_CYCLES.isdisjoint(g_codes):
+            code = next(g for g in g_codes if g in ONE_SHOT_CYCLES)
+            if code in PROFILE_CYCLES and "P" in values and "Q" in values:
+                self._profile_code = code
+            return code
+        if has_axis and not self._own_codes.isdisjoint(g_codes):
+            own = next(g for g in g_codes if g in self._own_codes)
+            if own in RAPID_ONE_SHOTS:
+                return own
+            if own not in NOT_MOVES:  # no move: a dwell, a setting
+                self._coordinates_set(act, values, own)
+            return None
+        return self.modal.motion if has_axis else None
+
+    def _taper_in_force(
+        self, values: dict[str, Value], words: dict[str, float]
+    ) -> dict[str, float]:
+        """A lathe cycle's words, with the taper R in force when the block repeats the cycle."""
+        taper = values.get("R") if "R" in values else self.modal.cycle[1]
+        if "R" not in words and isinstance(taper, float) and taper != 0.0:
+            return {**words, "R": taper}  # a repeat of a taper cycle: the cone in force
+        return words
+
+    def _no_feed_message(self, code: float) -> str:
+        """What a cut without F is told: one string for the many blocks that give it (a CAM
+        file: every block)."""
+        message = self._no_feed.get(code)
+        if message is None:
+            message = self._no_feed[code] = sys.intern(
+                f"G{code:02g} cuts with no F commanded before it since {self._entry_name} started"
+            )
+        return message
+
+    def _coordinates_set(self, act: Activation, values: dict[str, Value], code: float) -> None:
+        """G52 and the coordinate system setting (G50 on a lathe, G92 on a mill) move nothing,
+        but where the tool is in work coordinates changes: to the words' values after a
+        setting (0i-TF "Setting a workpiece coordinate system"), to a place not known here
+        after G52 (its offset is added to every work coordinate system, 0i-TF "Local
+        coordinate system"; unverified against the manual's text)."""
+        modal = self.modal
+        here = (act.ctx.uri, self._line)
+        for axis, incremental in (("X", "U"), ("Z", "W")):
+            if axis in values or incremental in values:
+                v = values.get(axis)
+                modal.position[axis] = v if code != LOCAL_COORDINATES and type(v) is float else None
+                modal.position_line[axis] = here
+        if "Y" in values:
+            v = values["Y"]
+            modal.position["Y"] = v if code != LOCAL_COORDINATES and type(v) is float else None
+
+    def _remember_run(self, act: Activation) -> None:
+        runs = self.facts.run_values
+        if len(runs) < MAX_REMEMBERED_RUNS:
+            runs[act.serial] = RunValues(tuple(act.locals), dict(self.store))
+
+
+def _feed_zero(code: float) -> None:
+    """PS0011 FEED ZERO (COMMAND), 0i-TF/0i-MF alarm lists: the control stops here. (For a
+    threading lead of 0 the alarm number is unverified.)"""
+    if code in THREADING_CODES:
+        raise MacroAlarm("PS0011", AlarmKind.LEAD_ZERO, f"{_g_name(code)} runs with the lead F = 0")
+    raise MacroAlarm("PS0011", AlarmKind.FEED_ZERO, f"{_g_name(code)} runs with the feed F = 0")
+
+
+def _g_name(code: float) -> str:
+    return f"G{int(code):02d}" if code == int(code) else f"G{code:g}"
+
+
+# The names of the G codes a motion records, G00-G99.9 (others are named when met).
+G_NAMES: Mapping[float, str] = MappingProxyType(
+    {round(n / 10, 1): _g_name(round(n / 10, 1)) for n in range(1000)}
+)
