@@ -98,6 +98,10 @@ class _Waiter:
 
 
 class Engine:
+    """The language server's analysis: the open documents (:class:`DocumentStore`), the
+    worker that analyses them (:class:`Scheduler`), the workspace the worker owns and the
+    newest result of each open document."""
+
     def __init__(
         self,
         publish: Callable[[OpenDocument, Result], None],
