@@ -12,7 +12,9 @@ import asyncio
 import collections
 import time
 from collections.abc import Callable, Sequence
+from typing import Any
 
+import pytest
 from lsprotocol import types
 from pytest_lsp import LanguageClient
 
@@ -101,3 +103,37 @@ async def test_an_edit_reschedules_only_the_documents_it_can_change(
     await until(lambda: "MB403" in codes(published[CALLER]), "the caller misses O0100 again")
     final = await settled(published)
     assert final[CALLED] == after[CALLED], final
+
+
+def test_an_analysis_finds_the_documents_it_reads_once(monkeypatch: pytest.MonkeyPatch) -> None:
+    """The engine asks the workspace which documents an analysis reads (to know what cancels
+    it) and hands them to the analysis, which does not look for them again."""
+    from fanuc_macro import workspace
+    from fanuc_macro.lsp.engine import Engine
+
+    looked_up: list[str] = []
+    related = workspace.related_documents
+
+    def counted(key: str, indexes: Any) -> list[str] | None:
+        looked_up.append(key)
+        return related(key, indexes)
+
+    monkeypatch.setattr(workspace, "related_documents", counted)
+
+    async def run() -> None:
+        engine = Engine(lambda doc, result: None, lambda message, kind: None)
+        engine.bind_loop(asyncio.get_running_loop())
+        engine.debounce = 0.0
+        try:
+            engine.open(CALLED, "O0100\nG00 X1.\nM99\n", 1)
+            assert (await engine.fresh(CALLED, WAIT)) is not None
+            looked_up.clear()
+            engine.change(CALLED, 2, [replace(1, 5, 7, "3.")])
+            result = await engine.fresh(CALLED, WAIT)
+            assert result is not None and result.version == 2 and result.analysis is not None
+            await engine.in_worker(lambda: None)
+        finally:
+            engine.shutdown()
+
+    asyncio.run(run())
+    assert looked_up == [CALLED]
