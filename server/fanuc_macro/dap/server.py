@@ -94,7 +94,7 @@ class Adapter(Listener):
                 self.writer.send(
                     {
                         "type": "response",
-                        "request_seq": self._seq_of(message),
+                        "request_seq": _seq_of(message),
                         "command": str(message.get("command", "")),
                         "success": False,
                         "message": f"a message whose type is {kind!r}, not 'request'",
@@ -104,34 +104,13 @@ class Adapter(Listener):
             self.session.terminate()
         return 0
 
-    @staticmethod
-    def _seq_of(message: dict[str, Any]) -> int:
-        seq = message.get("seq")
-        return seq if isinstance(seq, int) and not isinstance(seq, bool) else 0
-
-    @staticmethod
-    def _malformed(request: dict[str, Any]) -> str | None:
-        """What makes a request unfit to handle, or None."""
-        seq = request.get("seq")
-        if not isinstance(seq, int) or isinstance(seq, bool):
-            return "the request has no integer seq"
-        command = request.get("command")
-        if command is None:
-            return "the request has no command"
-        if not isinstance(command, str) or not command:
-            return f"the request's command {command!r} is not a command name"
-        args = request.get("arguments")
-        if args is not None and not isinstance(args, dict):
-            return f"the arguments of {command} are not an object"
-        return None
-
     def _handle(self, request: dict[str, Any]) -> None:
         raw = request.get("command", "")
         command = raw if isinstance(raw, str) else ""
         handler = self._handlers.get(command)
         self._after = None
-        base = {"type": "response", "request_seq": self._seq_of(request), "command": command}
-        wrong = self._malformed(request)
+        base = {"type": "response", "request_seq": _seq_of(request), "command": command}
+        wrong = _malformed(request)
         if wrong is not None:
             self.writer.send({**base, "success": False, "message": wrong})
             return
@@ -442,6 +421,27 @@ class Adapter(Listener):
         if not self._terminated:
             self._terminated = True
             self.event("terminated")
+
+
+def _seq_of(message: dict[str, Any]) -> int:
+    seq = message.get("seq")
+    return seq if isinstance(seq, int) and not isinstance(seq, bool) else 0
+
+
+def _malformed(request: dict[str, Any]) -> str | None:
+    """What makes a request unfit to handle, or None."""
+    seq = request.get("seq")
+    if not isinstance(seq, int) or isinstance(seq, bool):
+        return "the request has no integer seq"
+    command = request.get("command")
+    if command is None:
+        return "the request has no command"
+    if not isinstance(command, str) or not command:
+        return f"the request's command {command!r} is not a command name"
+    args = request.get("arguments")
+    if args is not None and not isinstance(args, dict):
+        return f"the arguments of {command} are not an object"
+    return None
 
 
 def serve(stdin: IO[bytes], stdout: IO[bytes]) -> int:
