@@ -307,16 +307,8 @@ class MotionPart(CyclesPart, CallsPart):
         z = values.get("Z")
         if type(z) is not float:
             z = self._axis(values, "Z", "W") if lathe else None
-        if lathe_cycle:
-            if "Z" not in values and "W" not in values:
-                z = modal.cycle[0]  # the cycle repeated: its end Z stays
-            r = words.get("R")
-            modal.cycle = (z, r if isinstance(r, float) else None)
-        elif code in LEFT_UNKNOWN:  # the axes named end where the analysis does not know
-            if "X" in values or "U" in values:
-                x = None
-            if "Z" in values or "W" in values:
-                z = None
+        if lathe_cycle or code in LEFT_UNKNOWN:
+            x, z = self._cycle_end(values, words, lathe_cycle, x, z)
         position = modal.position
         start_x = position.get("X")
         start_z = position.get("Z")
@@ -358,6 +350,28 @@ class MotionPart(CyclesPart, CallsPart):
             if "Y" in values:
                 position["Y"] = None if code in LEFT_UNKNOWN else values["Y"]
         return True
+
+    def _cycle_end(
+        self,
+        values: dict[str, Value],
+        words: dict[str, float],
+        lathe_cycle: bool,
+        x: float | None,
+        z: float | None,
+    ) -> tuple[float | None, float | None]:
+        """Where a lathe cycle's block (its end Z and taper kept for a repeat) or a move to
+        the reference point or in machine coordinates (the axes it names: not known) ends."""
+        if lathe_cycle:
+            if "Z" not in values and "W" not in values:
+                z = self.modal.cycle[0]  # the cycle repeated: its end Z stays
+            r = words.get("R")
+            self.modal.cycle = (z, r if isinstance(r, float) else None)
+            return x, z
+        if "X" in values or "U" in values:
+            x = None
+        if "Z" in values or "W" in values:
+            z = None
+        return x, z
 
     def _cycle_or_own_code(
         self, act: Activation, values: dict[str, Value], g_codes: Sequence[float], has_axis: bool
