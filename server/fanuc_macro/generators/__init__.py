@@ -1,6 +1,8 @@
 """Program generators: the symmetric thread module (seed 000), the arc thread (seed 002) and the
 drum groove (seed 003), and the editor's requests for them. Each writes Macro B text and checks
-it by running it with the evaluator.
+it by running it with the evaluator. :mod:`.generated_program` is what they share;
+:mod:`.generator_requests` reads an editor's parameters, and :mod:`.editor_forms` reads and
+checks the boxes of an editor's forms with the generators themselves.
 
 The front ends import this package, never its modules: the names below are its public API.
 Each name loads its module when first read, so that a start of the language server or a check

@@ -13,7 +13,14 @@ loads only what it uses.
 - :mod:`.hover`, :mod:`.inlay`, :mod:`.navigation` (definition, references, symbols),
   :mod:`.completion`, :mod:`.actions`, :mod:`.semantic` (semantic tokens, their kinds in
   :mod:`.token_legend`), :mod:`.signature`, :mod:`.lenses`: the features;
-- :mod:`.trace`, :mod:`.toolpath_view`, :mod:`.plot`: the motions a program executes.
+- :mod:`.trace`, :mod:`.toolpath_view`, :mod:`.plot`: the motions a program executes;
+  :mod:`.trace_view`: the trace view's text;
+- :mod:`.formatting`, :mod:`.renumber`: blocks and labels rewritten;
+- :mod:`.number_uses`, :mod:`.rename`, :mod:`.highlight`, :mod:`.calls`, :mod:`.ranges`,
+  :mod:`.workspace_symbols`: navigation by number, ranges and symbols;
+- :mod:`.messages`: the server's words in other languages; :mod:`.controllers`: the controllers
+  an editor offers; :mod:`.variable_at`: the variable under the mouse;
+  :mod:`.thread_completion`: a generated thread module fitted into the user's program.
 """
 
 from __future__ import annotations
