@@ -5,8 +5,9 @@ expressions into closures, and :mod:`.compile_lines` compiles each distinct stat
 :mod:`.machine` runs blocks, jumps, loops, calls and modal state within a budget of executed
 blocks. Its parts run on the shared state of :mod:`.machine_base`: :mod:`.motion` the NC blocks
 and moves, :mod:`.calls` calls and returns, :mod:`.canned_cycles` G70-G73 and G76 (passes by
-:mod:`.cycles`). :mod:`.run` chooses the entry programs and collects the :mod:`.facts`. :mod:`.toolpath` is where the tool goes, when a run asks for it.
-:mod:`.checkpoints` and :mod:`.line_shift` resume a run after an edit (see ARCHITECTURE.md).
+:mod:`.cycles`). :mod:`.run` chooses the entry programs and collects the :mod:`.facts`.
+:mod:`.toolpath` is where the tool goes, when a run asks for it. :mod:`.checkpoints` and
+:mod:`.line_shift` resume a run after an edit (see ARCHITECTURE.md).
 """
 
 from __future__ import annotations
