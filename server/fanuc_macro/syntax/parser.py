@@ -442,7 +442,8 @@ def _plain_block(
     if _PLAIN_BLOCK.fullmatch(code, pos) is None:
         return None
     written = tuple(_PLAIN_CODE_WORDS.findall(code, pos))
-    shared = current().table(_PLAIN_CODES)
+    db = current()
+    shared = db.table(_PLAIN_CODES)
     codes = shared.get(written)
     if codes is None:
         codes = _plain_codes(written, shared)
@@ -461,7 +462,12 @@ def _plain_block(
         if n_letter is not None:
             seq = int(float(n_value))
             seq_span = shared_span(head.start(3), head.end(4))
-    return skip, seq, seq_span, quick_plain(code, shared_span(pos, len(code.rstrip())), codes)
+    # The words' span from the database at hand: a look-up of it less per plain block.
+    end = len(code.rstrip())
+    span = db.table(SHARED_SPANS).get(pos * SHARED_COLUMNS + end) if end < SHARED_COLUMNS else None
+    if span is None:
+        span = shared_span(pos, end)
+    return skip, seq, seq_span, quick_plain(code, span, codes)
 
 
 _HEAD_STARTS = frozenset("Nn/ \t")  # what a block's head (block skip, N number) begins with
