@@ -280,3 +280,32 @@ def test_the_jumps_rule_after_an_edit_equals_a_fresh_analysis(
     again = jumps_of(edited)
     assert looked == [len(lines)]
     assert again == fresh() and "MB101" not in {d.code for d in again}  # type: ignore[attr-defined]
+
+
+def _per_document_entries(db: Database, uri: str) -> list[str]:
+    """The names of the per-document tables of ``db`` that hold something for ``uri``."""
+    return [
+        key.name for key, table in list(db._tables.items()) if key.per_document and uri in table
+    ]
+
+
+def test_a_workspace_keeps_what_it_derives_in_its_database_and_frees_a_removed_document() -> None:
+    from fanuc_macro.analysis import lines_with_findings
+    from fanuc_macro.workspace import Workspace
+
+    uri = "file:///kept.nc"
+    text = "O1000\n#1=1.\nIF [#1 GT 0] GOTO 10\nG01 X#1 F0.2\nM30\n"
+    one, two = Workspace(), Workspace()
+    one.add_text(uri, text)
+    one.analyse(uri)
+    held = _per_document_entries(one.db, uri)
+    assert any(name.startswith("line_maps.") for name in held)
+    assert _per_document_entries(two.db, uri) == []  # another workspace: nothing of it
+    assert _per_document_entries(database.default(), uri) == []  # nor the process default
+    with one.db.active():
+        looked = lines_with_findings.looked
+        assert looked > 0
+    with two.db.active():
+        assert lines_with_findings.looked == 0
+    one.remove(uri)
+    assert _per_document_entries(one.db, uri) == []
