@@ -12,6 +12,7 @@ import asyncio
 import dataclasses
 import logging
 from collections.abc import Awaitable, Callable, Mapping
+from types import MappingProxyType
 from typing import TYPE_CHECKING, Any
 
 from .engine import Engine, key_of
@@ -331,11 +332,13 @@ async def run_variable_at(engine: Engine, args: tuple[Any, ...]) -> dict[str, An
 
 EditorCommand = Callable[[Engine, tuple[Any, ...]], Awaitable[dict[str, Any]]]
 
-EDITOR_COMMANDS: Mapping[str, EditorCommand] = {
-    READ_DESIGNATION: run_read_designation,
-    CHECK_PARAMETERS: run_check_parameters,
-    PARAMETER_DEFAULTS: run_parameter_defaults,
-    TRACE_VIEW: run_trace_view,
-    CONTROLLERS: run_controllers,
-    VARIABLE_AT: run_variable_at,
-}
+EDITOR_COMMANDS: Mapping[str, EditorCommand] = MappingProxyType(
+    {
+        READ_DESIGNATION: run_read_designation,
+        CHECK_PARAMETERS: run_check_parameters,
+        PARAMETER_DEFAULTS: run_parameter_defaults,
+        TRACE_VIEW: run_trace_view,
+        CONTROLLERS: run_controllers,
+        VARIABLE_AT: run_variable_at,
+    }
+)
