@@ -287,19 +287,8 @@ class MotionPart(CyclesPart, CallsPart):
                 self._g76_parameters(values, order)  # G76's first block sets, it does not cut
                 return False
         modal = self.modal
-        words = const.words if const is not None else _motion_words(values)
-        feed = modal.feed
-        if "F" not in words and isinstance(feed, float) and code and code not in RAPID_ONE_SHOTS:
-            words = {**words, "F": feed}
         lathe_cycle = lathe and code in LATHE_CYCLES
-        if lathe_cycle:
-            words = self._taper_in_force(values, words)
-        if words.get("F") == 0.0 and (code in FEED_MOTIONS or (lathe and code in LATHE_FED)):
-            _feed_zero(code)
-        if const is None or words is not const.words:
-            words = self._shared_words(words)
-        if feed is None and code in FEED_MOTIONS:
-            self._cut_without_feed(act.ctx, self._no_feed_message(code))
+        words = self._move_words(act, cl, values, code, lathe_cycle)
         # An axis's absolute word (most blocks) is where it goes, without _axis.
         x = values.get("X")
         if type(x) is not float:
@@ -350,6 +339,32 @@ class MotionPart(CyclesPart, CallsPart):
             if "Y" in values:
                 position["Y"] = None if code in LEFT_UNKNOWN else values["Y"]
         return True
+
+    def _move_words(
+        self,
+        act: Activation,
+        cl: CompiledLine,
+        values: dict[str, Value],
+        code: float,
+        lathe_cycle: bool,
+    ) -> dict[str, float]:
+        """A move's words as its motion records them: the modal F (and a lathe cycle's taper)
+        added, shared with an equal earlier motion's. A cut at F 0 raises the control's alarm;
+        a cut with no F commanded is reported."""
+        const = cl.constant
+        words = const.words if const is not None else _motion_words(values)
+        feed = self.modal.feed
+        if "F" not in words and isinstance(feed, float) and code and code not in RAPID_ONE_SHOTS:
+            words = {**words, "F": feed}
+        if lathe_cycle:
+            words = self._taper_in_force(values, words)
+        if words.get("F") == 0.0 and (code in FEED_MOTIONS or (self.lathe and code in LATHE_FED)):
+            _feed_zero(code)
+        if const is None or words is not const.words:
+            words = self._shared_words(words)
+        if feed is None and code in FEED_MOTIONS:
+            self._cut_without_feed(act.ctx, self._no_feed_message(code))
+        return words
 
     def _cycle_end(
         self,
