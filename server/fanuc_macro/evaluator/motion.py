@@ -270,7 +270,6 @@ class MotionPart(CyclesPart, CallsPart):
         lathe = self.lathe
         const = cl.constant
         has_axis = const.has_axis if const is not None else not AXES.isdisjoint(values)
-        code: float | None
         if g_codes and (
             (lathe and not ONE_SHOT_CYCLES.isdisjoint(g_codes))
             or (has_axis and not self._own_codes.isdisjoint(g_codes))
