@@ -232,7 +232,7 @@ def _compile_nc(nc: NcStatement, text: str | None = None) -> CompiledLine:
         _shared_codes(v for a, v in pairs if a == "M" and isinstance(v, float)),
         nc,
         tuple(c for c in constants if c is not None),
-        _motion_words(values),
+        recorded_words(values),
         any(a in AXES for a in values),
     )
     return compiled
@@ -468,7 +468,9 @@ def _written_with_decimal_point(expr: Expr) -> bool:
     return isinstance(expr, Num) and expr.has_decimal_point
 
 
-def _motion_words(values: dict[str, Value]) -> dict[str, float]:
+def recorded_words(values: dict[str, Value]) -> dict[str, float]:
+    """A block's words as its motion records them: no G, M or N, numbers at the least input
+    increment."""
     words: dict[str, float] = {}
     for address, v in values.items():
         if address in ("G", "M", "N") or not isinstance(v, float):

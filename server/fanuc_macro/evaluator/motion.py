@@ -14,7 +14,7 @@ from types import MappingProxyType
 
 from .calls import CallsPart
 from .canned_cycles import PROFILE_CYCLES, CyclesPart
-from .compile_lines import AXES, K_NC, CompiledLine, CompiledWord, _motion_words
+from .compile_lines import AXES, K_NC, CompiledLine, CompiledWord, recorded_words
 from .facts import CutsWithoutFeed, Motion, RunValues
 from .machine_base import (
     LOCAL_COORDINATES,
@@ -351,7 +351,7 @@ class MotionPart(CyclesPart, CallsPart):
         added, shared with an equal earlier motion's. A cut at F 0 raises the control's alarm;
         a cut with no F commanded is reported."""
         const = cl.constant
-        words = const.words if const is not None else _motion_words(values)
+        words = const.words if const is not None else recorded_words(values)
         feed = self.modal.feed
         if "F" not in words and isinstance(feed, float) and code and code not in RAPID_ONE_SHOTS:
             words = {**words, "F": feed}
