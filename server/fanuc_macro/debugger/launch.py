@@ -32,6 +32,7 @@ class Launch:
 
 def read_launch(args: Mapping[str, Any], base: Config | None = None) -> Launch:
     """The launch request's arguments, checked; DebugError names the one that is wrong."""
+    # ``args`` is the client's JSON as it came: each value is checked here, where it is read.
     program = args.get("program")
     if not isinstance(program, str) or not program.strip():
         raise DebugError("launch: 'program' must be the path of a program file")
@@ -52,32 +53,29 @@ def read_launch(args: Mapping[str, Any], base: Config | None = None) -> Launch:
     gave = bool(arguments)
     preset.update(_arguments(arguments))
     preset.update(_commons(args.get("commons")))
-    settings: dict[str, Any] = {}
     if base is None:
         base = Config()
-    controller = args.get("controller")
-    if controller not in (None, ""):
-        if controller not in CONTROLLERS:
+    controller = base.controller
+    step_budget = base.step_budget
+    given = args.get("controller")
+    if given not in (None, ""):
+        if given not in CONTROLLERS:
             raise DebugError(
-                f"launch: 'controller' {controller!r} is not one of {', '.join(CONTROLLERS)}"
+                f"launch: 'controller' {given!r} is not one of {', '.join(CONTROLLERS)}"
             )
-        settings["controller"] = controller
+        controller = given
     budget = args.get("stepBudget")
     if budget is not None:
         if not isinstance(budget, int) or isinstance(budget, bool) or budget < 1:
             raise DebugError(
                 f"launch: 'stepBudget' must be a whole number of blocks, not {budget!r}"
             )
-        settings["stepBudget"] = budget
+        step_budget = budget
     config = base
-    if settings:
+    if controller != base.controller or step_budget != base.step_budget:
         from dataclasses import replace
 
-        config = replace(
-            base,
-            controller=settings.get("controller", base.controller),
-            step_budget=settings.get("stepBudget", base.step_budget),
-        )
+        config = replace(base, controller=controller, step_budget=step_budget)
     return Launch(
         path,
         entry_number,

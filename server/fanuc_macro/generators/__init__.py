@@ -32,6 +32,9 @@ if TYPE_CHECKING:
     from .editor_forms import read_taper as read_taper
     from .generator_requests import ARC_THREAD_PARAMETERS as ARC_THREAD_PARAMETERS
     from .generator_requests import DRUM_GROOVE_PARAMETERS as DRUM_GROOVE_PARAMETERS
+    from .generator_requests import ArcThreadAnswer as ArcThreadAnswer
+    from .generator_requests import DrumGrooveAnswer as DrumGrooveAnswer
+    from .generator_requests import GeneratorRefusal as GeneratorRefusal
     from .generator_requests import arc_thread_request as arc_thread_request
     from .generator_requests import drum_groove_request as drum_groove_request
     from .thread_generator import INFEEDS as INFEEDS
@@ -62,6 +65,9 @@ PUBLIC: MappingProxyType[str, str] = MappingProxyType(
         "generate_drum_groove": "drum_groove_generator",
         "ARC_THREAD_PARAMETERS": "generator_requests",
         "DRUM_GROOVE_PARAMETERS": "generator_requests",
+        "ArcThreadAnswer": "generator_requests",
+        "DrumGrooveAnswer": "generator_requests",
+        "GeneratorRefusal": "generator_requests",
         "arc_thread_request": "generator_requests",
         "drum_groove_request": "generator_requests",
         "INFEEDS": "thread_generator",

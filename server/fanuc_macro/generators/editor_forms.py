@@ -19,7 +19,7 @@ import re
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from types import MappingProxyType
-from typing import Any, Literal
+from typing import Any, Literal, TypedDict, final
 
 from ..threads.designation import SideUndecided, ThreadDesignation, parse_designation
 from ..threads.geometry import basic_minor_diameter, basic_pitch_diameter
@@ -27,6 +27,9 @@ from ..threads.iso965 import tolerances
 from .generator_requests import (
     ARC_THREAD_PARAMETERS,
     DRUM_GROOVE_PARAMETERS,
+    ArcThreadAnswer,
+    DrumGrooveAnswer,
+    GeneratorRefusal,
     arc_thread_request,
     drum_groove_request,
 )
@@ -190,7 +193,23 @@ THREAD_MODULE_PARAMETERS: Mapping[str, Reader] = MappingProxyType(
 )
 
 
-def _thread_module_request(parameters: Mapping[str, Any]) -> dict[str, Any]:
+@final
+class _ModuleText(TypedDict):
+    text: str
+
+
+@final
+class _ModuleRefusal(TypedDict):
+    error: str
+    undecided: bool  # the designation does not say the side: its box asks it
+
+
+# What running a form's generator gives: its program, or its refusal (final TypedDicts, told
+# apart by their keys).
+_FormRun = ArcThreadAnswer | DrumGrooveAnswer | _ModuleText | GeneratorRefusal | _ModuleRefusal
+
+
+def _thread_module_request(parameters: Mapping[str, Any]) -> _ModuleText | _ModuleRefusal:
     """The module for read parameters: ``{"text"}`` or ``{"error"}``, as the command line
     refuses it."""
     from .thread_generator import generate_module
@@ -198,7 +217,10 @@ def _thread_module_request(parameters: Mapping[str, Any]) -> dict[str, Any]:
     keywords = dict(parameters)
     designation = keywords.pop("designation", None)
     if designation is None:
-        return {"error": "the thread designation is missing (for example M50x3-5g6g)"}
+        return {
+            "error": "the thread designation is missing (for example M50x3-5g6g)",
+            "undecided": False,
+        }
     length = keywords.pop("length", 40.0)  # a box not answered yet: any length the tables take
     internal = keywords.pop("internal", None)
     try:
@@ -210,7 +232,7 @@ def _thread_module_request(parameters: Mapping[str, Any]) -> dict[str, Any]:
 @dataclass(frozen=True)
 class _Form:
     readers: Mapping[str, Reader]
-    request: Callable[[Mapping[str, Any]], dict[str, Any]]
+    request: Callable[[Mapping[str, Any]], _FormRun]
     required: tuple[str, ...]
 
 
@@ -289,13 +311,14 @@ def check_answers(
             return CheckedAnswers(parameters)  # asked in a later box
         complete = True  # a box left empty that must be answered: the generator's refusal
     ran = form.request(parameters)
-    error = ran.get("error")
-    if not isinstance(error, str):
+    if "error" not in ran:
         return CheckedAnswers(parameters)
+    error = ran["error"]
     if complete:
         return FormRefusal(error)
     # A side the designation does not say is asked in a box of its own.
-    return CheckedAnswers(parameters, None if ran.get("undecided") else error)
+    undecided = "undecided" in ran and ran["undecided"]
+    return CheckedAnswers(parameters, None if undecided else error)
 
 
 def _text(value: Any) -> str:

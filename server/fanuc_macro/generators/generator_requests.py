@@ -13,14 +13,56 @@ import math
 import re
 from collections.abc import Callable, Mapping
 from types import MappingProxyType
-from typing import Any
+from typing import Any, TypedDict, final
 
 __all__ = (
     "ARC_THREAD_PARAMETERS",
     "DRUM_GROOVE_PARAMETERS",
+    "ArcThreadAnswer",
+    "ArcThreadSummary",
+    "DrumGrooveAnswer",
+    "DrumGrooveSummary",
+    "GeneratorRefusal",
     "arc_thread_request",
     "drum_groove_request",
 )
+
+
+# The answers go to the editor as they are: TypedDicts, their keys in the order they are sent;
+# final (closed), so that the key an answer lacks tells which answer it is.
+
+
+@final
+class GeneratorRefusal(TypedDict):
+    """A parameter the generator cannot take, or a part it cannot cut: its message."""
+
+    error: str
+
+
+class ArcThreadSummary(TypedDict):
+    layer_cuts: list[int]  # G32 cuts of each roughing layer
+    layer_angles: list[list[float]]  # each layer's first and last tool-centre angle
+    finishing_cuts: int
+    finishing_angles: list[float]
+    g32_cuts: int
+
+
+@final
+class ArcThreadAnswer(TypedDict):
+    text: str
+    summary: ArcThreadSummary
+
+
+class DrumGrooveSummary(TypedDict):
+    passes: int
+    segments_per_pass: int
+    g32_cuts: int
+
+
+@final
+class DrumGrooveAnswer(TypedDict):
+    text: str
+    summary: DrumGrooveSummary
 
 
 class _Refused(ValueError):
@@ -157,6 +199,8 @@ def _read(
     readers: Mapping[str, Reader],
     required: Mapping[str, str] | None = None,
 ) -> dict[str, Any]:
+    """The generator's keyword arguments: ``parameters`` is the client's JSON, checked here
+    name by name, each value by its reader (so a value's type follows from its name only)."""
     if parameters is None:
         parameters = {}
     if not isinstance(parameters, dict):
@@ -173,7 +217,7 @@ def _read(
     return {key: readers[key](key, value) for key, value in parameters.items()}
 
 
-def arc_thread_request(parameters: Any) -> dict[str, Any]:
+def arc_thread_request(parameters: Any) -> ArcThreadAnswer | GeneratorRefusal:
     """``{name: value}`` of ``build_arc_thread``'s keywords -> ``{"text", "summary"}`` or
     ``{"error"}``."""
     try:
@@ -203,7 +247,7 @@ DRUM_REQUIRED: Mapping[str, str] = MappingProxyType(
 )
 
 
-def drum_groove_request(parameters: Any) -> dict[str, Any]:
+def drum_groove_request(parameters: Any) -> DrumGrooveAnswer | GeneratorRefusal:
     """``{name: value}`` of ``build_drum_groove``'s parameters (``pitch`` required, ``points``
     left out or null: the paper's profile) -> ``{"text", "summary"}`` or ``{"error"}``."""
     try:

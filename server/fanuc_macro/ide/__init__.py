@@ -81,7 +81,11 @@ if TYPE_CHECKING:
     from .signature import signature_help as signature_help
     from .token_legend import TOKEN_MODIFIERS as TOKEN_MODIFIERS
     from .token_legend import TOKEN_TYPES as TOKEN_TYPES
+    from .toolpath_view import NoToolpathView as NoToolpathView
+    from .toolpath_view import ToolpathViewData as ToolpathViewData
     from .toolpath_view import toolpath_view as toolpath_view
+    from .trace import Trace as Trace
+    from .trace import TraceMotion as TraceMotion
     from .trace import motion_text as motion_text
     from .trace import trace as trace
     from .trace_view import TraceView as TraceView
@@ -144,7 +148,11 @@ PUBLIC: MappingProxyType[str, str] = MappingProxyType(
         "signature_help": "signature",
         "TOKEN_MODIFIERS": "token_legend",
         "TOKEN_TYPES": "token_legend",
+        "NoToolpathView": "toolpath_view",
+        "ToolpathViewData": "toolpath_view",
         "toolpath_view": "toolpath_view",
+        "Trace": "trace",
+        "TraceMotion": "trace",
         "motion_text": "trace",
         "trace": "trace",
         "TraceView": "trace_view",

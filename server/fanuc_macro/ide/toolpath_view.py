@@ -18,7 +18,7 @@ import math
 import sys
 from array import array
 from collections.abc import Sequence
-from typing import Any
+from typing import Any, TypedDict
 
 from ..config import Config
 from ..evaluator.toolpath import MOVE_KINDS, Toolpath
@@ -42,6 +42,46 @@ MAX_VIEW_PATHS = 0xFFFF + 1
 ARC_DECIMALS = 4
 
 
+# The payload goes to the editor as it is: TypedDicts, their keys in the order they are sent.
+
+
+class ViewSegments(TypedDict):
+    """Per segment, one packed array each (base64 of little-endian items)."""
+
+    kind: str  # uint8, an index in ``kinds``
+    line: str  # int32, the block's 0-based line
+    path: str  # uint16, an index in ``paths``
+    point: str  # int32, the index of its start point
+
+
+class ViewLostTrack(TypedDict):
+    line: int  # 0-based
+    path: int  # an index in ``paths``
+    axes: list[str]
+    reason: str
+
+
+class ToolpathViewData(TypedDict):
+    """What the Toolpath view draws (see :func:`view_data`)."""
+
+    format: int
+    lathe: bool
+    units: str  # "mm" or "inch"
+    kinds: list[str]
+    paths: list[str]
+    count: int
+    points: str  # float64 x, y, z per point, packed
+    segments: ViewSegments
+    lost: list[ViewLostTrack]
+    truncated: bool
+
+
+class NoToolpathView(TypedDict):
+    """The program makes no move: the view shows why."""
+
+    error: str
+
+
 def packed(values: array[Any]) -> str:
     """The array's items as little-endian bytes, in base64."""
     if sys.byteorder == "big":
@@ -50,7 +90,7 @@ def packed(values: array[Any]) -> str:
     return base64.b64encode(values).decode("ascii")
 
 
-def view_data(toolpath: Toolpath, main_uri: str) -> dict[str, Any]:
+def view_data(toolpath: Toolpath, main_uri: str) -> ToolpathViewData:
     """``{"format", "lathe", "units", "kinds", "paths", "count", "points", "segments": {"kind",
     "line", "path", "point"}, "lost", "truncated"}``: ``points`` holds x, y, z per point
     (float64); per segment, ``kind`` (uint8) indexes ``kinds``, ``line`` (int32) is 0-based,
@@ -119,7 +159,7 @@ def view_data(toolpath: Toolpath, main_uri: str) -> dict[str, Any]:
             points.extend((lx, ly, lz))
             last += 1
         count += n
-    lost = [
+    lost: list[ViewLostTrack] = [
         {
             "line": lost.line,
             "path": paths.setdefault(lost.uri or main_uri, len(paths)),
@@ -154,7 +194,7 @@ def toolpath_view(
     others: Sequence[tuple[str, Document, ProgramIndex]] = (),
     config: Config | None = None,
     entry: int | None = None,
-) -> dict[str, Any]:
+) -> ToolpathViewData | NoToolpathView:
     """The view's data for ``uri``'s programs, or ``{"error": ...}`` when it makes no move."""
     try:
         toolpath = run_toolpath(uri, doc, index, others, config, entry)

@@ -6,14 +6,109 @@ from __future__ import annotations
 import math
 from collections import Counter
 from collections.abc import Sequence
-from typing import Any
+from typing import TypedDict
 
 from ..config import Config
 from ..evaluator import Facts, evaluate
-from ..evaluator.toolpath import Move, Toolpath
+from ..evaluator.toolpath import LostTrack, Move, Toolpath
 from ..evaluator.values import Value, fmt, fmt_address
 from ..program.index import ProgramIndex
 from ..syntax.tree import Document
+
+# The trace is sent to the editor and written by ``trace --format json`` as it is: TypedDicts,
+# built in the order their keys are written. A key a record may lack is in a ``total=False``
+# class of its own (Python 3.10 has no NotRequired).
+
+Point = dict[str, float]  # the axes known, in X, Y, Z order
+VariableValue = float | str | None  # a number, None (vacant), or a text ("depends on #500")
+
+
+class _TraceMoveRequired(TypedDict):
+    kind: str
+    start: Point
+    end: Point
+
+
+class TraceMove(_TraceMoveRequired, total=False):
+    """One move of a canned cycle's record; an arc's with its centre and direction."""
+
+    centre: Point
+    clockwise: bool | None
+
+
+class _TraceMotionRequired(TypedDict):
+    program: str
+    line: int  # 1-based
+    code: str
+    words: dict[str, float]
+
+
+class TraceMotion(_TraceMotionRequired, total=False):
+    """One executed motion block; ``path`` when it is in another file than the traced one."""
+
+    path: str
+    values: dict[str, VariableValue]
+    start: Point
+    end: Point
+    centre: Point
+    moves: list[TraceMove]
+    cycle: str
+
+
+class _LostTrackRequired(TypedDict):
+    program: str
+    line: int
+    axes: list[str]
+    reason: str
+
+
+class TraceLostTrack(_LostTrackRequired, total=False):
+    """Where the path stops being known for some axes, and why."""
+
+    path: str
+
+
+class TraceToolpath(TypedDict):
+    moves: int
+    units: str  # "mm" or "inch"
+    lathe: bool
+    truncated: bool
+    lost: list[TraceLostTrack]
+
+
+class TraceFinding(TypedDict):
+    line: int
+    kind: str
+    message: str
+
+
+class _ReadInPartRequired(TypedDict):
+    last_line_read: int
+    message: str
+
+
+class ReadInPart(_ReadInPartRequired, total=False):
+    """A file the analysis read only up to a line: the run stops there."""
+
+    path: str
+
+
+class TraceSummary(TypedDict):
+    motions: int
+    by_code: dict[str, int]
+    blocks_executed: int
+    stopped: str | None
+    stop_message: str | None
+    findings: list[TraceFinding]
+    read_in_part: list[ReadInPart]
+
+
+class Trace(TypedDict):
+    """What ``trace`` answers (see :func:`trace`)."""
+
+    motions: list[TraceMotion]
+    toolpath: TraceToolpath
+    summary: TraceSummary
 
 
 def run_with_toolpath(
@@ -42,7 +137,7 @@ def trace(
     others: Sequence[tuple[str, Document, ProgramIndex]] = (),
     config: Config | None = None,
     entry: int | None = None,
-) -> dict[str, Any]:
+) -> Trace:
     """``{"motions": [{program, line, code, words, start, end[, centre][, moves][, values]}],
     "toolpath": {...}, "summary": {...}}``; lines are 1-based. ``start`` and ``end`` are the
     positions before and after the block (the axes known; a lathe's X a diameter); a canned
@@ -56,9 +151,9 @@ def trace(
     path = facts.toolpath
     assert path is not None
     by_motion = _moves_by_motion(path)
-    motions: list[dict[str, Any]] = []
+    motions: list[TraceMotion] = []
     for i, m in enumerate(facts.motions):
-        record: dict[str, Any] = {
+        record: TraceMotion = {
             "program": m.program,
             "line": m.line + 1,
             "code": m.code,
@@ -85,7 +180,7 @@ def trace(
             record["end"] = here
         motions.append(record)
     codes = Counter(m.code for m in facts.motions)
-    findings = [
+    findings: list[TraceFinding] = [
         {"line": f.line + 1, "kind": f.kind, "message": f.message}
         for df in facts.by_uri.values()
         for f in df.findings
@@ -97,16 +192,7 @@ def trace(
             "units": "inch" if path.inch else "mm",
             "lathe": path.lathe,
             "truncated": path.truncated,
-            "lost": [
-                {
-                    "program": lt.program,
-                    "line": lt.line + 1,
-                    "axes": list(lt.axes),
-                    "reason": lt.reason,
-                }
-                | ({"path": lt.uri} if lt.uri != uri else {})
-                for lt in path.lost
-            ],
+            "lost": [_lost_track(lt, uri) for lt in path.lost],
         },
         "summary": {
             "motions": len(motions),
@@ -122,21 +208,33 @@ def trace(
 
 def _read_in_part(
     uri: str, doc: Document, others: Sequence[tuple[str, Document, ProgramIndex]]
-) -> list[dict[str, Any]]:
+) -> list[ReadInPart]:
     """The documents the analysis reads only up to a line (the limits on blocks and size,
     MB013's note): what is past it is not run."""
-    out: list[dict[str, Any]] = []
+    out: list[ReadInPart] = []
     for other_uri, other, _ in ((uri, doc, None), *others):
         if other.unread_from is None or other.unread_note is None:
             continue
-        part: dict[str, Any] = {"last_line_read": other.unread_from, "message": other.unread_note}
+        part: ReadInPart = {"last_line_read": other.unread_from, "message": other.unread_note}
         if other_uri != uri:
             part["path"] = other_uri
         out.append(part)
     return out
 
 
-def _value(value: Value) -> float | str | None:
+def _lost_track(lost: LostTrack, uri: str) -> TraceLostTrack:
+    out: TraceLostTrack = {
+        "program": lost.program,
+        "line": lost.line + 1,
+        "axes": list(lost.axes),
+        "reason": lost.reason,
+    }
+    if lost.uri != uri:
+        out["path"] = lost.uri
+    return out
+
+
+def _value(value: Value) -> VariableValue:
     """A variable's value in JSON: a number, ``None`` (vacant), or a text (unknown, overflow)."""
     if value is None or (isinstance(value, float) and math.isfinite(value)):
         return value
@@ -151,13 +249,13 @@ def _moves_by_motion(path: Toolpath) -> dict[int, list[Move]]:
     return out
 
 
-def _point(position: dict[str, float]) -> dict[str, float]:
+def _point(position: dict[str, float]) -> Point:
     """The axes in X, Y, Z order (the values are at the least increment already)."""
     return {a: position[a] for a in "XYZ" if a in position}
 
 
-def _move(move: Move) -> dict[str, Any]:
-    out: dict[str, Any] = {"kind": move.kind, "start": _point(move.start), "end": _point(move.end)}
+def _move(move: Move) -> TraceMove:
+    out: TraceMove = {"kind": move.kind, "start": _point(move.start), "end": _point(move.end)}
     if move.centre is not None:
         out["centre"] = _point(move.centre)
         out["clockwise"] = move.clockwise
@@ -169,7 +267,7 @@ def position_text(position: dict[str, float]) -> str:
     return " ".join(f"{a}{fmt_address(v)}" for a, v in position.items()) or "?"
 
 
-def motion_text(motion: dict[str, Any]) -> str:
+def motion_text(motion: TraceMotion) -> str:
     """One motion of a trace as the command line prints it: program, line, code, its words at
     the control's precision, where it goes from and to, and a cycle's moves."""
     words = " ".join(f"{k}{fmt_address(v)}" for k, v in motion["words"].items())

@@ -10,9 +10,12 @@ from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from ..evaluator.values import fmt, fmt_address
+
+if TYPE_CHECKING:
+    from .trace import Trace
 
 __all__ = ("TraceRow", "TraceView", "view_of_trace")
 
@@ -226,9 +229,11 @@ def _lost_rows(writer: _Writer, lost: Sequence[Mapping[str, Any]]) -> None:
             writer.rows.append(TraceRow(at, source, _path(place), (2, 2 + len(block)), block))
 
 
-def view_of_trace(trace: Mapping[str, Any], source: str) -> TraceView:
+def view_of_trace(trace: Trace, source: str) -> TraceView:
     """The view of ``trace`` (what :func:`~fanuc_macro.ide.trace.trace` answers) for the
-    program ``source`` (a file's path, or an untitled document's URI)."""
+    program ``source`` (a file's path, or an untitled document's URI).  The rows read its
+    records as JSON, a key left out or of another type skipped, so a trace read back from a
+    file is shown too."""
     motions: Sequence[Mapping[str, Any]] = trace.get("motions") or []
     toolpath: Mapping[str, Any] = trace.get("toolpath") or {}
     summary = trace.get("summary")

@@ -9,19 +9,128 @@ sent as JSON objects, ``{"error"}`` for a refusal (the command line's message)."
 from __future__ import annotations
 
 import asyncio
-import dataclasses
 import logging
 from collections.abc import Awaitable, Callable, Mapping
 from types import MappingProxyType
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, TypedDict, TypeVar, final
 
 from .engine import Engine, key_of
 
 if TYPE_CHECKING:
-    from ..generators import BoxAnswer, DesignationReading
-    from ..ide import TraceView
+    from ..generators import (
+        ArcThreadAnswer,
+        BoxAnswer,
+        DesignationReading,
+        DrumGrooveAnswer,
+        GeneratorRefusal,
+    )
+    from ..ide import NoToolpathView, ToolpathViewData, Trace, TraceView
 
 log = logging.getLogger(__name__)
+
+# The commands' arguments are the client's JSON (``tuple[Any, ...]``): each command checks
+# them where it reads them.  Their answers are TypedDicts, sent as they are.
+
+
+@final
+class CommandRefusal(TypedDict):
+    """A command that cannot answer: the message the editor shows."""
+
+    error: str
+
+
+@final
+class ThreadModuleText(TypedDict):
+    text: str
+
+
+class _Link(TypedDict):
+    start: int
+    end: int
+
+
+class _TraceViewRowRequired(TypedDict):
+    line: int
+    sourceLine: int
+
+
+class TraceViewRow(_TraceViewRowRequired, total=False):
+    path: str
+    link: _Link
+    label: str  # always sent, after path and link
+
+
+class TraceViewAnswer(TypedDict):
+    text: str
+    rows: list[TraceViewRow]
+
+
+class _DesignationRequired(TypedDict):
+    text: str
+    canonical: str
+    side: str
+    nominalDiameter: float
+    pitch: float
+    lead: float
+    starts: int
+    leftHand: bool
+    tolerance: str | None
+    pitchDiameter: float
+    minorDiameter: float
+
+
+class _Readings(TypedDict):
+    external: str
+    internal: str
+
+
+class DesignationAnswer(_DesignationRequired, total=False):
+    """An undecided designation adds the question and both readings."""
+
+    question: str
+    readings: _Readings
+
+
+class _CheckedRequired(TypedDict):
+    # The generator's parameters as read: numbers, texts, lists of numbers or points.
+    parameters: dict[str, object]
+
+
+class CheckedParameters(_CheckedRequired, total=False):
+    warning: str
+
+
+class ParameterDefaults(TypedDict):
+    defaults: dict[str, str]
+
+
+class ControllerChoice(TypedDict):
+    id: str
+    kind: str
+    series: str
+
+
+class ControllersAnswer(TypedDict):
+    controllers: list[ControllerChoice]
+    default: str
+
+
+class VariableSpan(TypedDict, total=False):
+    """Empty off a variable."""
+
+    start: int
+    end: int
+
+
+EditorAnswer = (
+    DesignationAnswer
+    | CheckedParameters
+    | ParameterDefaults
+    | TraceViewAnswer
+    | ControllersAnswer
+    | VariableSpan
+    | CommandRefusal
+)
 
 TRACE = "fanuc-macro.trace"
 TOOLPATH = "fanuc-macro.toolpath"
@@ -45,25 +154,28 @@ def _uri_argument(args: tuple[Any, ...]) -> str | None:
     return first if isinstance(first, str) and first else None
 
 
+# What an ide function answers for one document: a TypedDict sent as it is.
+A = TypeVar("A", bound=Mapping[str, object])
+
 # An ide function answering for one document: (key, doc, index, others, config) -> JSON.
-Answer = Callable[..., dict[str, Any]]
+Answer = Callable[..., A]
 
 
-def _trace() -> Answer:
+def _trace() -> Answer[Trace]:
     from ..ide import trace  # the evaluator: loaded by the worker after start-up
 
     return trace
 
 
-def _toolpath_view() -> Answer:
+def _toolpath_view() -> Answer[ToolpathViewData | NoToolpathView]:
     from ..ide import toolpath_view
 
     return toolpath_view
 
 
 async def _on_document(
-    engine: Engine, command: str, args: tuple[Any, ...], load: Callable[[], Answer]
-) -> dict[str, Any]:
+    engine: Engine, command: str, args: tuple[Any, ...], load: Callable[[], Answer[A]]
+) -> A | CommandRefusal:
     """``[uri]`` -> what the function ``load`` gives answers for that document, with the
     workspace's documents for its calls, computed in the engine's worker."""
     uri = _uri_argument(args)
@@ -72,7 +184,7 @@ async def _on_document(
     key = key_of(uri)
     config = engine.config
 
-    def job() -> dict[str, Any]:
+    def job() -> A | CommandRefusal:
         if not engine.load(key):
             return {"error": f"{uri} is neither open nor a readable program file"}
         documents = engine.trace_documents(key)
@@ -88,16 +200,19 @@ async def _on_document(
         return {"error": f"{command} failed: {err!r}"}
 
 
-async def run_trace(engine: Engine, args: tuple[Any, ...]) -> dict[str, Any]:
+async def run_trace(engine: Engine, args: tuple[Any, ...]) -> Trace | CommandRefusal:
     """``[uri]`` -> the trace of that document."""
     return await _on_document(engine, TRACE, args, _trace)
 
 
-async def run_toolpath(engine: Engine, args: tuple[Any, ...]) -> dict[str, Any]:
+async def run_toolpath(
+    engine: Engine, args: tuple[Any, ...]
+) -> ToolpathViewData | NoToolpathView | CommandRefusal:
     """``[uri]`` -> the Toolpath view's data of that document (ide/toolpath_view.py)."""
     return await _on_document(engine, TOOLPATH, args, _toolpath_view)
 
 
+# The module's options (infeed: str, taper: float), passed on as keywords.
 ThreadArguments = tuple[str, float, bool | None, dict[str, Any]]
 
 
@@ -129,7 +244,7 @@ def _thread_arguments(args: tuple[Any, ...]) -> ThreadArguments | str:
     return designation.strip(), float(length), internal, options
 
 
-async def run_thread_module(args: tuple[Any, ...]) -> dict[str, Any]:
+async def run_thread_module(args: tuple[Any, ...]) -> ThreadModuleText | CommandRefusal:
     """``[{designation, length, internal, infeed?, taper?}]`` -> ``{"text": ...}`` or
     ``{"error": ...}``.  ``internal`` (true, false or null) says the kind of thread when the
     designation does not (all capitals with a class both kinds have, or no class): such a
@@ -168,8 +283,8 @@ async def run_thread_module(args: tuple[Any, ...]) -> dict[str, Any]:
 
 
 async def _generated(
-    command: str, args: tuple[Any, ...], request: Callable[[Any], dict[str, Any]]
-) -> dict[str, Any]:
+    command: str, args: tuple[Any, ...], request: Callable[[Any], A]
+) -> A | CommandRefusal:
     # A generator runs its program on the evaluator: off the event loop, as the thread module.
     if len(args) > 1:
         return {"error": f"{command} takes one argument, the object of its parameters"}
@@ -180,7 +295,9 @@ async def _generated(
         return {"error": f"{command} failed: {err!r}"}
 
 
-async def run_arc_thread(args: tuple[Any, ...]) -> dict[str, Any]:
+async def run_arc_thread(
+    args: tuple[Any, ...],
+) -> ArcThreadAnswer | GeneratorRefusal | CommandRefusal:
     """``[{parameter: value}]`` -> ``{"text", "summary"}`` or ``{"error"}``
     (ide/generator_requests.py)."""
     from ..generators import arc_thread_request
@@ -188,7 +305,9 @@ async def run_arc_thread(args: tuple[Any, ...]) -> dict[str, Any]:
     return await _generated(ARC_THREAD, args, arc_thread_request)
 
 
-async def run_drum_groove(args: tuple[Any, ...]) -> dict[str, Any]:
+async def run_drum_groove(
+    args: tuple[Any, ...],
+) -> DrumGrooveAnswer | GeneratorRefusal | CommandRefusal:
     """``[{parameter: value}]`` (``pitch`` required) -> ``{"text", "summary"}`` or
     ``{"error"}``."""
     from ..generators import drum_groove_request
@@ -199,8 +318,8 @@ async def run_drum_groove(args: tuple[Any, ...]) -> dict[str, Any]:
 # ---- what the editor asks instead of computing it ------------------------------------------
 
 
-def _designation_json(reading: DesignationReading) -> dict[str, Any]:
-    answer: dict[str, Any] = {
+def _designation_json(reading: DesignationReading) -> DesignationAnswer:
+    answer: DesignationAnswer = {
         "text": reading.text,
         "canonical": reading.canonical,
         "side": reading.side,
@@ -219,7 +338,9 @@ def _designation_json(reading: DesignationReading) -> dict[str, Any]:
     return answer
 
 
-async def run_read_designation(engine: Engine, args: tuple[Any, ...]) -> dict[str, Any]:
+async def run_read_designation(
+    engine: Engine, args: tuple[Any, ...]
+) -> DesignationAnswer | CommandRefusal:
     """``[text]`` -> the designation read (``side`` external, internal or undecided, with the
     ``question`` and both ``readings`` when undecided) or ``{"error"}``."""
     from ..generators import FormRefusal, read_designation
@@ -247,7 +368,9 @@ def _answers(value: Any) -> list[BoxAnswer] | str:
     return answers
 
 
-async def run_check_parameters(engine: Engine, args: tuple[Any, ...]) -> dict[str, Any]:
+async def run_check_parameters(
+    engine: Engine, args: tuple[Any, ...]
+) -> CheckedParameters | CommandRefusal:
     """``[{generator, answers: [{names, value}], complete}]`` -> ``{"parameters"[, "warning"]}``
     (the parameters to send to the generator's command) or ``{"error"}``."""
     from ..generators import FormRefusal, check_answers
@@ -263,13 +386,15 @@ async def run_check_parameters(engine: Engine, args: tuple[Any, ...]) -> dict[st
     checked = await asyncio.to_thread(check_answers, str(generator), answers, complete)
     if isinstance(checked, FormRefusal):
         return {"error": checked.message}
-    answer: dict[str, Any] = {"parameters": dict(checked.parameters)}
+    answer: CheckedParameters = {"parameters": dict(checked.parameters)}
     if checked.warning is not None:
         answer["warning"] = checked.warning
     return answer
 
 
-async def run_parameter_defaults(engine: Engine, args: tuple[Any, ...]) -> dict[str, Any]:
+async def run_parameter_defaults(
+    engine: Engine, args: tuple[Any, ...]
+) -> ParameterDefaults | CommandRefusal:
     """``[generator]`` -> ``{"defaults": {name: text as a box shows it}}`` or ``{"error"}``."""
     from ..generators import FormRefusal, form_defaults
 
@@ -279,10 +404,10 @@ async def run_parameter_defaults(engine: Engine, args: tuple[Any, ...]) -> dict[
     return {"defaults": dict(defaults)}
 
 
-def _trace_view_json(view: TraceView) -> dict[str, Any]:
-    rows: list[dict[str, Any]] = []
+def _trace_view_json(view: TraceView) -> TraceViewAnswer:
+    rows: list[TraceViewRow] = []
     for row in view.rows:
-        json_row: dict[str, Any] = {"line": row.line, "sourceLine": row.source_line}
+        json_row: TraceViewRow = {"line": row.line, "sourceLine": row.source_line}
         if row.path is not None:
             json_row["path"] = row.path
         if row.link is not None:
@@ -292,16 +417,16 @@ def _trace_view_json(view: TraceView) -> dict[str, Any]:
     return {"text": view.text, "rows": rows}
 
 
-async def run_trace_view(engine: Engine, args: tuple[Any, ...]) -> dict[str, Any]:
+async def run_trace_view(engine: Engine, args: tuple[Any, ...]) -> TraceViewAnswer | CommandRefusal:
     """``[uri, source]`` -> ``{"text", "rows": [{line, sourceLine, path?, link?, label}]}``:
     the trace view of that document, headed with ``source`` (its path as the editor shows
     it; the URI when left out), or ``{"error"}``."""
     source = args[1] if len(args) > 1 and isinstance(args[1], str) else _uri_argument(args)
 
-    def load() -> Answer:
+    def load() -> Answer[TraceViewAnswer]:
         from ..ide import trace, view_of_trace
 
-        def answer(*document: Any) -> dict[str, Any]:
+        def answer(*document: Any) -> TraceViewAnswer:
             return _trace_view_json(view_of_trace(trace(*document), source or ""))
 
         return answer
@@ -309,17 +434,19 @@ async def run_trace_view(engine: Engine, args: tuple[Any, ...]) -> dict[str, Any
     return await _on_document(engine, TRACE_VIEW, args[:1], load)
 
 
-async def run_controllers(engine: Engine, args: tuple[Any, ...]) -> dict[str, Any]:
+async def run_controllers(engine: Engine, args: tuple[Any, ...]) -> ControllersAnswer:
     """``[]`` -> ``{"controllers": [{id, kind, series}], "default"}``."""
     from ..ide import DEFAULT_CONTROLLER, controller_choices
 
     return {
-        "controllers": [dataclasses.asdict(c) for c in controller_choices()],
+        "controllers": [
+            {"id": c.id, "kind": c.kind, "series": c.series} for c in controller_choices()
+        ],
         "default": DEFAULT_CONTROLLER,
     }
 
 
-async def run_variable_at(engine: Engine, args: tuple[Any, ...]) -> dict[str, Any]:
+async def run_variable_at(engine: Engine, args: tuple[Any, ...]) -> VariableSpan | CommandRefusal:
     """``[line's text, column]`` -> ``{"start", "end"}`` of the Macro B variable under the
     column (the debugger's hover), ``{}`` off a variable."""
     from ..ide import variable_at
@@ -330,7 +457,7 @@ async def run_variable_at(engine: Engine, args: tuple[Any, ...]) -> dict[str, An
     return {} if found is None else {"start": found[0], "end": found[1]}
 
 
-EditorCommand = Callable[[Engine, tuple[Any, ...]], Awaitable[dict[str, Any]]]
+EditorCommand = Callable[[Engine, tuple[Any, ...]], Awaitable[EditorAnswer]]
 
 EDITOR_COMMANDS: Mapping[str, EditorCommand] = MappingProxyType(
     {

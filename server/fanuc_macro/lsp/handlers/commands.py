@@ -12,7 +12,9 @@ from ..commands import (
     THREAD_MODULE,
     TOOLPATH,
     TRACE,
+    CommandRefusal,
     EditorCommand,
+    ThreadModuleText,
     run_arc_thread,
     run_drum_groove,
     run_thread_module,
@@ -22,26 +24,36 @@ from ..commands import (
 from . import Command
 
 if TYPE_CHECKING:
+    from ...generators import ArcThreadAnswer, DrumGrooveAnswer, GeneratorRefusal
+    from ...ide import NoToolpathView, ToolpathViewData, Trace
     from ..server import FanucMacroLanguageServer
 
 
-async def trace(ls: FanucMacroLanguageServer, args: tuple[Any, ...]) -> dict[str, Any]:
+async def trace(ls: FanucMacroLanguageServer, args: tuple[Any, ...]) -> Trace | CommandRefusal:
     return await run_trace(ls.engine, args)
 
 
-async def toolpath(ls: FanucMacroLanguageServer, args: tuple[Any, ...]) -> dict[str, Any]:
+async def toolpath(
+    ls: FanucMacroLanguageServer, args: tuple[Any, ...]
+) -> ToolpathViewData | NoToolpathView | CommandRefusal:
     return await run_toolpath(ls.engine, args)
 
 
-async def thread_module(ls: FanucMacroLanguageServer, args: tuple[Any, ...]) -> dict[str, Any]:
+async def thread_module(
+    ls: FanucMacroLanguageServer, args: tuple[Any, ...]
+) -> ThreadModuleText | CommandRefusal:
     return await run_thread_module(args)
 
 
-async def arc_thread(ls: FanucMacroLanguageServer, args: tuple[Any, ...]) -> dict[str, Any]:
+async def arc_thread(
+    ls: FanucMacroLanguageServer, args: tuple[Any, ...]
+) -> ArcThreadAnswer | GeneratorRefusal | CommandRefusal:
     return await run_arc_thread(args)
 
 
-async def drum_groove(ls: FanucMacroLanguageServer, args: tuple[Any, ...]) -> dict[str, Any]:
+async def drum_groove(
+    ls: FanucMacroLanguageServer, args: tuple[Any, ...]
+) -> DrumGrooveAnswer | GeneratorRefusal | CommandRefusal:
     return await run_drum_groove(args)
 
 
