@@ -29,6 +29,7 @@ from .generator_requests import (
     DRUM_GROOVE_PARAMETERS,
     ArcThreadAnswer,
     DrumGrooveAnswer,
+    GeneratorKeywords,
     GeneratorRefusal,
     arc_thread_request,
     drum_groove_request,
@@ -269,7 +270,7 @@ class CheckedAnswers:
 _WORDS = re.compile(r"[,;\s]+")
 
 
-def _read_answer(answer: BoxAnswer, readers: Mapping[str, Reader]) -> dict[str, Any]:
+def _read_answer(answer: BoxAnswer, readers: Mapping[str, Reader]) -> GeneratorKeywords:
     unknown = [name for name in answer.names if name not in readers]
     if unknown or not answer.names:
         raise ValueError(
@@ -298,7 +299,7 @@ def check_answers(
     form = _form(generator)
     if form is None:
         return FormRefusal(f"no generator {generator}; the generators are " + ", ".join(GENERATORS))
-    parameters: dict[str, Any] = {}
+    parameters: GeneratorKeywords = {}
     try:
         for answer in answers:
             parameters.update(_read_answer(answer, form.readers))

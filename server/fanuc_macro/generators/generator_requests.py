@@ -22,11 +22,16 @@ __all__ = (
     "ArcThreadSummary",
     "DrumGrooveAnswer",
     "DrumGrooveSummary",
+    "GeneratorKeywords",
     "GeneratorRefusal",
     "arc_thread_request",
     "drum_groove_request",
 )
 
+
+# A generator's keyword arguments as read from the client's JSON: each value is what its
+# name's reader gives (a number, a text, a list of points), so its type follows the name only.
+GeneratorKeywords = dict[str, Any]
 
 # The answers go to the editor as they are: TypedDicts, their keys in the order they are sent;
 # final (closed), so that the key an answer lacks tells which answer it is.
@@ -198,7 +203,7 @@ def _read(
     parameters: Any,
     readers: Mapping[str, Reader],
     required: Mapping[str, str] | None = None,
-) -> dict[str, Any]:
+) -> GeneratorKeywords:
     """The generator's keyword arguments: ``parameters`` is the client's JSON, checked here
     name by name, each value by its reader (so a value's type follows from its name only)."""
     if parameters is None:

@@ -212,8 +212,14 @@ async def run_toolpath(
     return await _on_document(engine, TOOLPATH, args, _toolpath_view)
 
 
-# The module's options (infeed: str, taper: float), passed on as keywords.
-ThreadArguments = tuple[str, float, bool | None, dict[str, Any]]
+class ThreadOptions(TypedDict, total=False):
+    """The module's options the command passes on as keywords (its defaults otherwise)."""
+
+    infeed: str
+    taper: float
+
+
+ThreadArguments = tuple[str, float, bool | None, ThreadOptions]
 
 
 def _thread_arguments(args: tuple[Any, ...]) -> ThreadArguments | str:
@@ -224,7 +230,7 @@ def _thread_arguments(args: tuple[Any, ...]) -> ThreadArguments | str:
     designation = spec.get("designation")
     length = spec.get("length")
     internal = spec.get("internal")
-    options: dict[str, Any] = {}
+    options: ThreadOptions = {}
     infeed = spec.get("infeed")
     if infeed is not None:
         if not isinstance(infeed, str):
