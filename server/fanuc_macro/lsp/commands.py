@@ -12,7 +12,7 @@ import asyncio
 import logging
 from collections.abc import Awaitable, Callable, Mapping
 from types import MappingProxyType
-from typing import TYPE_CHECKING, Any, TypedDict, TypeVar, final
+from typing import TYPE_CHECKING, Any, Literal, TypedDict, TypeVar, final
 
 from .engine import Engine, key_of
 
@@ -68,7 +68,7 @@ class TraceViewAnswer(TypedDict):
 class _DesignationRequired(TypedDict):
     text: str
     canonical: str
-    side: str
+    side: Literal["external", "internal", "undecided"]
     nominalDiameter: float
     pitch: float
     lead: float
@@ -155,10 +155,10 @@ def _uri_argument(args: tuple[Any, ...]) -> str | None:
 
 
 # What an ide function answers for one document: a TypedDict sent as it is.
-A = TypeVar("A", bound=Mapping[str, object])
+AnswerT = TypeVar("AnswerT", bound=Mapping[str, object])
 
 # An ide function answering for one document: (key, doc, index, others, config) -> JSON.
-Answer = Callable[..., A]
+Answer = Callable[..., AnswerT]
 
 
 def _trace() -> Answer[Trace]:
@@ -174,8 +174,8 @@ def _toolpath_view() -> Answer[ToolpathViewData | NoToolpathView]:
 
 
 async def _on_document(
-    engine: Engine, command: str, args: tuple[Any, ...], load: Callable[[], Answer[A]]
-) -> A | CommandRefusal:
+    engine: Engine, command: str, args: tuple[Any, ...], load: Callable[[], Answer[AnswerT]]
+) -> AnswerT | CommandRefusal:
     """``[uri]`` -> what the function ``load`` gives answers for that document, with the
     workspace's documents for its calls, computed in the engine's worker."""
     uri = _uri_argument(args)
@@ -184,7 +184,7 @@ async def _on_document(
     key = key_of(uri)
     config = engine.config
 
-    def job() -> A | CommandRefusal:
+    def job() -> AnswerT | CommandRefusal:
         if not engine.load(key):
             return {"error": f"{uri} is neither open nor a readable program file"}
         documents = engine.trace_documents(key)
@@ -289,8 +289,8 @@ async def run_thread_module(args: tuple[Any, ...]) -> ThreadModuleText | Command
 
 
 async def _generated(
-    command: str, args: tuple[Any, ...], request: Callable[[Any], A]
-) -> A | CommandRefusal:
+    command: str, args: tuple[Any, ...], request: Callable[[Any], AnswerT]
+) -> AnswerT | CommandRefusal:
     # A generator runs its program on the evaluator: off the event loop, as the thread module.
     if len(args) > 1:
         return {"error": f"{command} takes one argument, the object of its parameters"}
