@@ -12,6 +12,7 @@ import contextlib
 import logging
 import sys
 from collections.abc import Callable, Sequence
+from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, TypeVar
 
 from lsprotocol import types
@@ -36,6 +37,16 @@ NAME = "fanuc-macro-ls"
 FEATURE_TIMEOUT = 60.0  # seconds a request waits for the analysis of the current version
 
 T = TypeVar("T")
+
+
+@dataclass(frozen=True)
+class TypedAt:
+    """The newest text of a document at the position typed, and the newest analysis."""
+
+    doc: OpenDocument
+    line_text: str
+    column: int
+    view: View | None
 
 
 class FanucMacroLanguageServer(LanguageServer):
@@ -83,6 +94,18 @@ class FanucMacroLanguageServer(LanguageServer):
         if result is None or result.analysis is None:
             return None
         return self.make_view(result)
+
+    def typed_at(self, uri: str, position: types.Position) -> TypedAt | None:
+        """Where the user types in the newest text, with the newest analysis there is (it may
+        be of an older version): completion and signature help must not wait for one."""
+        doc = self.engine.document(uri)
+        if doc is None:
+            return None
+        line_text = doc.line(position.line)
+        column = self.engine.codec.from_client(line_text, position.character)
+        result = self.engine.results.get(doc.key)
+        view = self.make_view(result) if result is not None and result.analysis else None
+        return TypedAt(doc, line_text, column, view)
 
     def make_view(self, result: Result) -> View:
         from .features import View

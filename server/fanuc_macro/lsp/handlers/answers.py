@@ -95,19 +95,13 @@ async def document_symbol(
 async def completion(
     ls: FanucMacroLanguageServer, params: types.CompletionParams
 ) -> types.CompletionList | None:
-    engine = ls.engine
-    doc = engine.document(params.text_document.uri)
-    if doc is None:
+    at = ls.typed_at(params.text_document.uri, params.position)
+    if at is None:
         return None
-    line_text = doc.line(params.position.line)
-    codec = engine.codec
-    column = codec.from_client(line_text, params.position.character)
-    # Completion must not wait for an analysis: the newest one there is will do.
-    result = engine.results.get(doc.key)
-    view = ls.make_view(result) if result is not None and result.analysis else None
     from ..features import completion
 
-    support, config = ls.completion_support, engine.config
+    doc, line_text, column, view = at.doc, at.line_text, at.column, at.view
+    support, config, codec = ls.completion_support, ls.engine.config, ls.engine.codec
     line, line_count, eol = params.position.line, len(doc.lines()), _end_of_line(doc.text)
     return await ls.compute(
         "completion",

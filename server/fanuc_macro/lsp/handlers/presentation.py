@@ -91,20 +91,14 @@ async def semantic_tokens_range(
 async def signature_help(
     ls: FanucMacroLanguageServer, params: types.SignatureHelpParams
 ) -> types.SignatureHelp | None:
-    engine = ls.engine
-    doc = engine.document(params.text_document.uri)
-    if doc is None:
+    at = ls.typed_at(params.text_document.uri, params.position)
+    if at is None:
         return None
-    line_text = doc.line(params.position.line)
-    codec = engine.codec
-    column = codec.from_client(line_text, params.position.character)
-    # Like completion, it reads the newest text and does not wait for its analysis.
-    result = engine.results.get(doc.key)
-    view = ls.make_view(result) if result is not None and result.analysis else None
     from ..presentation import signature_help
 
+    codec = ls.engine.codec
     return await ls.compute(
-        "signature help", lambda: signature_help(line_text, column, codec, view)
+        "signature help", lambda: signature_help(at.line_text, at.column, codec, at.view)
     )
 
 
