@@ -72,7 +72,10 @@ def _in_database(server: FanucMacroLanguageServer, handler: Handler) -> Callable
 def _command_in_database(
     server: FanucMacroLanguageServer, handler: CommandHandler
 ) -> Callable[..., Awaitable[Any]]:
-    async def run(*args: Any) -> Any:
+    # Named ``ls``, pygls passes the server first and the command's arguments after it, on
+    # every Python (without it, pygls guesses from the first annotation with issubclass, and
+    # before Python 3.11 ``Any`` is no class and ``object`` takes the server).
+    async def run(ls: object, *args: object) -> Any:
         with server.engine.active():
             return await handler(server, args)
 
