@@ -40,6 +40,7 @@ FRONT_END = {
     "cancel",
     "database",
     "code_cache",
+    "framing",
     "program_files",
     "__version__",
 }
@@ -50,6 +51,7 @@ ALLOWED: dict[str, set[str]] = {
     "database": {"cancel"},
     "code_cache": {"__version__"},
     "diagnostics": set(),
+    "framing": set(),
     "lazy_regex": set(),
     "program_files": set(),
     "syntax": {"cancel", "database", "diagnostics", "lazy_regex"},

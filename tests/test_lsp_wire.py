@@ -104,3 +104,51 @@ def test_an_invalid_request_gets_invalid_request(
     assert said in answer["error"]["message"], answer
     lsp.send(INITIALIZE)
     assert "capabilities" in lsp.answer(100)["result"]
+
+
+@pytest.mark.parametrize(
+    "bad",
+    [
+        # A length larger than its body: pygls would read the next messages as its body.
+        b'Content-Length: 9999\r\n\r\n{"jsonrpc": "2.0", "id": 1, "method": "shutdown"',
+        b"Content-Length: 9999\r\n\r\n{}",
+        # A length that is no number, with no line end: glued in front of the next header.
+        b"Content-Length: abc",
+        b"\x00\xff garbage Content-Length: 12",
+        # A header line pygls does not take (another spacing) before a valid message.
+        b"content-length:3\r\n\r\n{}}",
+    ],
+)
+def test_the_server_finds_the_next_message_after_a_bad_one(lsp: RawClient, bad: bytes) -> None:
+    lsp.send(INITIALIZE)
+    assert "capabilities" in lsp.answer(100)["result"]
+    lsp.send({"jsonrpc": "2.0", "method": "initialized", "params": {}})
+    lsp.send_raw(bad)
+    ids = list(range(200, 220))
+    for msg_id in ids:
+        lsp.send(
+            {
+                "jsonrpc": "2.0",
+                "id": msg_id,
+                "method": "workspace/symbol",
+                "params": {"query": "O1"},
+            }
+        )
+    for msg_id in ids:
+        assert "result" in lsp.answer(msg_id), msg_id
+
+
+def test_a_length_that_swallows_the_next_message_costs_that_message_only(
+    lsp: RawClient,
+) -> None:
+    lsp.send(INITIALIZE)
+    lsp.answer(100)
+    following = json.dumps({"jsonrpc": "2.0", "id": 300, "method": "shutdown"}).encode()
+    short = b'{"jsonrpc": "2.0", "method": "initialized", "params": {}}'
+    lsp.send_raw(
+        b"Content-Length: %d\r\n\r\n" % (len(short) + 30)
+        + short
+        + b"Content-Length: %d\r\n\r\n" % len(following)
+        + following
+    )
+    assert lsp.answer(300)["result"] is None

@@ -30,7 +30,8 @@ from ..debugger import (
     Stop,
     read_launch,
 )
-from .wire import Reader, WireError, Writer
+from ..framing import Reader, WireError
+from .wire import Writer
 
 THREAD_ID = 1  # the control runs one path: one thread
 

@@ -1,130 +1,13 @@
-"""Messages of the Debug Adapter Protocol on a byte stream: a ``Content-Length`` header, a blank
-line, a JSON body (https://microsoft.github.io/debug-adapter-protocol/overview, "Base
-protocol")."""
+"""Messages of the Debug Adapter Protocol written to a byte stream, with the sequence numbers
+the protocol wants (https://microsoft.github.io/debug-adapter-protocol/overview, "Base
+protocol"). They are read by :class:`fanuc_macro.framing.Reader`, shared with the language
+server."""
 
 from __future__ import annotations
 
 import json
-import re
 import threading
-from collections.abc import Callable
 from typing import IO, Any
-
-# A body larger than this is not a request any client sends: it is read and dropped.
-MAX_BODY = 64 * 1024 * 1024
-
-
-# A header block: Content-Length, maybe other headers, a blank line. No valid JSON body can hold
-# one (a JSON string cannot hold a raw line break), so one seen inside a body means the body is
-# cut short or its length is wrong: reading starts again at it.
-_HEADER = re.compile(
-    rb"Content-Length[ \t]*:[ \t]*(\d{1,19})[ \t]*\r?\n"
-    rb"(?:[A-Za-z][A-Za-z0-9-]*[ \t]*:[^\r\n]*\r?\n)*\r?\n",
-    re.IGNORECASE,
-)
-# Header lines before Content-Length (Content-Type) are no garbage.
-_OTHER_HEADERS = re.compile(rb"\s*(?:[A-Za-z][A-Za-z0-9-]*[ \t]*:[^\r\n]*\r?\n\s*)*")
-_KEEP = 256  # the tail kept while no header is found: a header may be split across reads
-
-
-class WireError(Exception):
-    """A message that cannot be read (a bad header or body); the stream goes on after it."""
-
-
-class Reader:
-    def __init__(self, stream: IO[bytes]) -> None:
-        self.stream = stream
-        self._buf = bytearray()
-        self._eof = False
-        read1 = getattr(stream, "read1", None)
-        self._read_some: Callable[[], bytes] = (
-            (lambda: read1(1 << 16)) if callable(read1) else (lambda: stream.readline(1 << 16))
-        )
-
-    def _fill(self) -> bool:
-        """More bytes into the buffer; False at the end of the stream."""
-        if self._eof:
-            return False
-        chunk = self._read_some()
-        if not chunk:
-            self._eof = True
-            return False
-        self._buf += chunk
-        return True
-
-    def read(self) -> dict[str, Any] | None:
-        """The next message; None at the end of the stream. A WireError says what was skipped;
-        the next call reads on from the next header."""
-        skipped = 0
-        searched = 0
-        while True:
-            header = _HEADER.search(self._buf, searched)
-            if header is not None:
-                break
-            junk = len(self._buf) - _KEEP
-            if junk > 0:
-                skipped += len(self._buf[:junk].strip())
-                del self._buf[:junk]
-            searched = max(0, len(self._buf) - _KEEP)
-            if not self._fill():
-                self._buf.clear()
-                return None
-        before = bytes(self._buf[: header.start()])
-        del self._buf[: header.start()]
-        if skipped or not _OTHER_HEADERS.fullmatch(before):
-            raise WireError(f"skipped {skipped + len(before.strip()):,} bytes that are no message")
-        length = int(header.group(1))
-        start = header.end() - header.start()
-        if length > MAX_BODY:
-            self._drop(start, length)
-            return None  # the end of the stream inside it
-        searched = start
-        while len(self._buf) - start < length:
-            following = _HEADER.search(self._buf, searched)
-            if following is not None:
-                del self._buf[: following.start()]
-                raise WireError(
-                    f"a message shorter than its Content-Length of {length:,}: "
-                    "read on from the next header"
-                )
-            searched = max(start, len(self._buf) - _KEEP)
-            if not self._fill():
-                self._buf.clear()
-                return None
-        body = bytes(self._buf[start : start + length])
-        del self._buf[: start + length]
-        try:
-            message = json.loads(body.decode("utf-8"))
-        except (UnicodeDecodeError, json.JSONDecodeError) as err:
-            following = _HEADER.search(body)
-            if following is not None:  # a length that swallowed the next message
-                self._buf[:0] = body[following.start() :]
-            raise WireError(f"a message that is not JSON: {err}") from None
-        except RecursionError:
-            raise WireError("a message nested too deep to read") from None
-        if not isinstance(message, dict):
-            raise WireError("a message that is not a JSON object")
-        return message
-
-    def _drop(self, start: int, length: int) -> None:
-        """Skips a body too large to hold (or up to a header inside it), then says so."""
-        del self._buf[:start]
-        remaining = length
-        while True:
-            following = _HEADER.search(self._buf)
-            if following is not None:
-                del self._buf[: following.start()]
-                break
-            if len(self._buf) >= remaining:
-                del self._buf[:remaining]
-                break
-            cut = max(0, len(self._buf) - _KEEP)
-            del self._buf[:cut]
-            remaining -= cut
-            if not self._fill():
-                self._buf.clear()
-                return None
-        raise WireError(f"a message of {length:,} bytes is too large")
 
 
 class Writer:

@@ -13,7 +13,7 @@ import logging
 import sys
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any, TypeVar
+from typing import TYPE_CHECKING, Any, BinaryIO, TypeVar, cast
 
 from lsprotocol import types
 from pygls.exceptions import JsonRpcInternalError
@@ -21,6 +21,7 @@ from pygls.lsp.server import LanguageServer
 
 from .. import __version__
 from ..diagnostics import REPORT_INTERNAL_ERROR
+from ..framing import Reframed
 from .client import CompletionSupport
 from .documents import OpenDocument
 from .engine import Engine, Result
@@ -209,7 +210,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     )
     stdin, stdout = sys.stdin.buffer, sys.stdout.buffer
     sys.stdout = sys.stderr  # a stray print must not corrupt the protocol stream
-    create_server().start_io(stdin, stdout)
+    # pygls' reader takes each Content-Length on trust: one wrong length or a stray byte and it
+    # reads every later message out of step. The reframed input resynchronises on the next header.
+    create_server().start_io(cast(BinaryIO, Reframed(stdin)), stdout)
     return 0
 
 
