@@ -220,6 +220,24 @@ async def test_the_first_keystroke_in_an_empty_document(client: LanguageClient) 
     assert codes(found) == {"MB001"}, found  # the incomplete word, no internal error (MB000)
 
 
+async def test_an_edit_that_makes_a_failed_block_assign_is_analysed_again(
+    client: LanguageClient,
+) -> None:
+    # Both versions of line 3 fail to parse, but only the second plainly assigns #9: the run
+    # changes (#9 is set before G0 reads it), so the earlier run's facts must not be kept.
+    await start(client, None)
+    text = "O1000\n#5=2.\n#7=3\n#9BCD#5*0.[#7]\nG0X#9Z5.\nM30\n"
+    uri = "untitled:failed-assignment.nc"
+    open_text(client, uri, text)
+    await diagnostics(client, uri, lambda d: "MB904" in codes(d))
+    edit(client, uri, 2, [replace(3, 2, 5, "=")])  # #9BCD#5*0.[#7] -> #9=#5*0.[#7]
+    found = await diagnostics(client, uri, lambda d: "MB904" not in codes(d))
+    fresh_uri = "untitled:failed-assignment-fresh.nc"
+    open_text(client, fresh_uri, text.replace("BCD", "="))
+    fresh = await diagnostics(client, fresh_uri, lambda d: bool(d))
+    assert [(d.code, d.range) for d in found] == [(d.code, d.range) for d in fresh]
+
+
 async def test_never_executed_is_unnecessary(client: LanguageClient) -> None:
     await start(client, None)
     uri = "untitled:dead.nc"

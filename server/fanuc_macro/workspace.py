@@ -38,7 +38,8 @@ def same_execution(old: Document, new: Document) -> bool:
     """Whether two versions of a document run the same: an edit in comments or spaces only.
 
     Lines an edit did not touch keep their block (the ``is`` test); a touched line counts as
-    the same when its statement, label, block delete and tape mark are equal.
+    the same when its statement, label, block delete, tape mark and the variable a block that
+    does not parse plainly assigns (``#9=#5*0.[#7]`` sets #9 all the same) are equal.
     """
     if len(old.blocks) != len(new.blocks) or old.unread_from != new.unread_from:
         return False
@@ -54,6 +55,7 @@ def same_execution(old: Document, new: Document) -> bool:
             or p.seq != q.seq
             or p.skip != q.skip
             or p.tape_mark != q.tape_mark
+            or p.failed_assignment != q.failed_assignment
             or (p.problem is None) != (q.problem is None)
         ):
             return False
