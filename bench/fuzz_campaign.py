@@ -36,7 +36,7 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "server"))
 sys.path.insert(1, str(ROOT / "tests"))
 
-from fuzzing import FuzzInput, RandomDraw, check, make_input  # noqa: E402
+from fuzzing import FuzzInput, RandomDraw, check, digest, make_input, outcome  # noqa: E402
 
 SAVE_EVERY = 500  # inputs between two saves of the state
 
@@ -49,13 +49,18 @@ def _worker(conn: Connection, seed: int, seconds: float) -> None:
     # MB000 is counted from the diagnostics: its traceback would only flood the terminal.
     logging.getLogger("fanuc_macro").addHandler(logging.NullHandler())
     while True:
-        index = conn.recv()
-        if index is None:
+        job = conn.recv()
+        if job is None:
             return
+        index, only_digest = job
         case = input_of(seed, index)
         started = time.perf_counter()
-        problem = check(case, seconds)
-        conn.send((index, case.level, case.seed, problem, time.perf_counter() - started))
+        if only_digest:  # the same input in another process, after other inputs than the first
+            conn.send((index, case.level, case.seed, None, 0.0, digest(case)))
+            continue
+        problem, digested = outcome(case, seconds)
+        seconds_taken = time.perf_counter() - started
+        conn.send((index, case.level, case.seed, problem, seconds_taken, digested))
 
 
 class Worker:
@@ -67,12 +72,14 @@ class Worker:
         self.process.start()
         child.close()
         self.index: int | None = None
+        self.only_digest = False
         self.started = 0.0
 
-    def give(self, index: int) -> None:
+    def give(self, index: int, only_digest: bool = False) -> None:
         self.index = index
+        self.only_digest = only_digest
         self.started = time.monotonic()
-        self.conn.send(index)
+        self.conn.send((index, only_digest))
 
     def kill(self) -> None:
         self.process.kill()
@@ -95,6 +102,7 @@ def load_state(path: Path, seed: int) -> dict[str, Any]:
         "failures_by_kind": {},
         "seconds_of_analysis": 0.0,
         "slowest": [],
+        "compared_across_processes": 0,  # inputs whose digest a second process computed
         "wall_seconds": 0.0,
         "machine": "",
     }
@@ -107,7 +115,7 @@ def save_state(path: Path, state: dict[str, Any]) -> None:
 
 
 def record(state: dict[str, Any], out: Path, result: tuple[Any, ...]) -> None:
-    index, level, seed_name, problem, seconds = result
+    index, level, seed_name, problem, seconds = result[:5]
     state["inputs_run"] += 1
     state["by_level"][level] = state["by_level"].get(level, 0) + 1
     state["seconds_of_analysis"] += seconds
@@ -125,6 +133,16 @@ def record(state: dict[str, Any], out: Path, result: tuple[Any, ...]) -> None:
         failures.mkdir(parents=True, exist_ok=True)
         (failures / f"{index}.nc").write_text(case.text, "utf-8", errors="surrogatepass")
         (failures / f"{index}.txt").write_text(f"{problem}\n", "utf-8")
+
+
+def compare_digests(state: dict[str, Any], out: Path, result: tuple[Any, ...], first: str) -> None:
+    """The digest another worker process computed for an input, against the first one."""
+    state["compared_across_processes"] = state.get("compared_across_processes", 0) + 1
+    index, level, seed_name, _, _, second = result
+    if second != first:
+        problem = f"not deterministic across processes: digest {first} then {second}"
+        record(state, out, (index, level, seed_name, problem, 0.0))
+        state["inputs_run"] -= 1  # recorded as a failure of an input already counted
 
 
 def advance(state: dict[str, Any], finished: int) -> None:
@@ -161,11 +179,22 @@ def campaign(args: argparse.Namespace) -> int:
     wall_before = state["wall_seconds"]
     since_save = 0
     hangs = Counter[int]()
+    # Checked inputs waiting for their digest from another worker: index -> (digest, pid).
+    waiting: dict[int, tuple[str, int]] = {}
+
+    def give_next(w: Worker) -> None:
+        pid = w.process.pid or 0
+        other = next((i for i, (_, by) in waiting.items() if by != pid), None)
+        if other is not None:
+            w.give(other, only_digest=True)
+            return
+        index = next(todo, None)
+        if index is not None:
+            w.give(index)
+
     try:
         for w in workers:
-            index = next(todo, None)
-            if index is not None:
-                w.give(index)
+            give_next(w)
         while any(w.index is not None for w in workers):
             ready = wait([w.conn for w in workers if w.index is not None], timeout=1.0)
             now = time.monotonic()
@@ -174,22 +203,35 @@ def campaign(args: argparse.Namespace) -> int:
                     continue
                 if w.conn in ready:
                     result = w.conn.recv()
+                    if w.only_digest:
+                        compare_digests(state, out, result, waiting.pop(w.index)[0])
+                        w.index = None
+                        give_next(w)
+                        continue
                     record(state, out, result)
+                    if args.workers > 1 and result[5]:
+                        waiting[w.index] = (result[5], w.process.pid or 0)
                     finished = w.index
                 elif now - w.started > args.hang:
                     hangs[w.index] += 1
-                    finished = w.index
+                    finished, was_digest = w.index, w.only_digest
                     record(state, out, (w.index, "?", "?", f"hang: over {args.hang:g} s", 0.0))
+                    waiting.pop(w.index, None)
                     w.kill()
                     workers[workers.index(w)] = w = Worker(args.seed, args.seconds)
+                    if was_digest:  # the input was counted when it was checked
+                        state["inputs_run"] -= 1
+                        give_next(w)
+                        continue
                 else:
                     continue
                 advance(state, finished)
                 w.index = None
-                index = next(todo, None)
-                if index is not None:
-                    w.give(index)
+                give_next(w)
                 since_save += 1
+            for w in workers:  # an idle worker takes a digest the other one left
+                if w.index is None:
+                    give_next(w)
             if since_save >= SAVE_EVERY:
                 state["wall_seconds"] = wall_before + time.monotonic() - started
                 save_state(state_path, state)

@@ -18,6 +18,7 @@ which then shrinks a failing input to a small one.
 
 from __future__ import annotations
 
+import hashlib
 import json
 import random
 import re
@@ -29,11 +30,13 @@ from functools import cache
 from pathlib import Path
 from typing import Any, Protocol, TypeVar
 
-from fanuc_macro.analysis import analyse
+from fanuc_macro.analysis import Analysis
 from fanuc_macro.config import Config
+from fanuc_macro.database import Database
 from fanuc_macro.ide.trace import trace
 from fanuc_macro.syntax.lines import decode_bytes, split_lines
 from fanuc_macro.syntax.parser import BlockParser, parse_text
+from fanuc_macro.workspace import Workspace
 
 ROOT = Path(__file__).resolve().parents[1]
 FIXTURES = ROOT / "tests" / "fixtures"
@@ -44,6 +47,7 @@ T = TypeVar("T")
 # The evaluator stops on its step budget, well before its safety-net time limit: the same input
 # then gives the same result whatever the load of the machine.
 CONFIG = Config.from_settings({"analysis": {"stepBudget": 20_000, "timeLimit": 60.0}})
+URI = "fuzz.nc"
 SECONDS = 10.0  # an analysis that takes longer is a finding (most take milliseconds)
 
 
@@ -291,12 +295,56 @@ class FuzzInput:
     level: str  # one of LEVELS
     before: str  # the seed's text: the document as it was before the edit
     text: str  # the mutated text
+    start: str = "seed"  # where the editor's edit path begins: one of STARTS
+    # The versions the editor's document goes through, analysed one after the other in one
+    # workspace as the language server does (each must give what a fresh analysis gives).
+    path: tuple[str, ...] = ()
+    opened: bytes = b""  # start "binary": the file's bytes, read before the first version
 
 
 LEVELS = ("bytes", "tokens", "grammar", "extreme")
+# The edit path: from the unmutated program to the mutated one; typing into an empty document;
+# a binary file's document turned into text; one-character edits of the mutated text.
+STARTS = ("seed", "empty", "binary", "mutated")
+# What a one-character edit types: the characters of Macro B, line breaks, and spaces the
+# parser must not take for ASCII ones.
+TYPED = "#=[]()*/+-.,;%0123456789GXZFIOPNM \n\t\r\xa0\u3000"
 
 
-def make_input(draw: Draw, level: str | None = None) -> FuzzInput:
+def one_char_edit(draw: Draw, text: str) -> str:
+    """``text`` with one character deleted, inserted or replaced, as a keystroke does."""
+    at = draw.integer(0, len(text))
+    kind = draw.integer(0, 2) if text else 1
+    if kind == 0:
+        at = min(at, len(text) - 1)
+        return text[:at] + text[at + 1 :]
+    typed = draw.choice(TYPED)
+    if kind == 1:
+        return text[:at] + typed + text[at:]
+    at = min(at, len(text) - 1)
+    return text[:at] + typed + text[at + 1 :]
+
+
+def edit_path(
+    draw: Draw, data: bytes, before: str, text: str, start: str | None = None
+) -> tuple[str, tuple[str, ...], bytes]:
+    """(start, versions, opened bytes) of an edit path that ends at or goes on from ``text``."""
+    start = start or draw.choice(STARTS)
+    if start == "seed":
+        return start, (before, text), b""
+    if start == "empty":  # a new file: the first keystrokes, then the whole text pasted
+        typed = text[: draw.integer(1, 3)]
+        return start, ("", *(typed[:n] for n in range(1, len(typed) + 1)), text), b""
+    if start == "binary":
+        at = draw.integer(0, len(data))
+        return start, (text,), data[:at] + b"\x00" * draw.integer(1, 8) + data[at:]
+    versions = [text]
+    for _ in range(draw.integer(1, 3)):
+        versions.append(one_char_edit(draw, versions[-1]))
+    return start, tuple(versions), b""
+
+
+def make_input(draw: Draw, level: str | None = None, start: str | None = None) -> FuzzInput:
     name, data = draw.choice(seeds())
     level = level or draw.choice(LEVELS)
     before = decode_bytes(data).text
@@ -306,7 +354,8 @@ def make_input(draw: Draw, level: str | None = None) -> FuzzInput:
         text = mutate_tokens(draw, before)
     else:
         text = mutate_grammar(draw, before, extreme=level == "extreme")
-    return FuzzInput(name, level, before, text)
+    start, path, opened = edit_path(draw, data, before, text, start)
+    return FuzzInput(name, level, before, text, start, path, opened)
 
 
 # ---- the properties ----------------------------------------------------------------------------
@@ -317,63 +366,130 @@ def _summary(diagnostics: Sequence[Any]) -> list[tuple[str, int, int, str]]:
 
 
 def check(case: FuzzInput, seconds: float = SECONDS) -> str | None:
-    """What is wrong with the analysis of ``case`` (None: nothing).
+    """What is wrong with the analysis of ``case`` (None: nothing): see :func:`outcome`."""
+    return outcome(case, seconds)[0]
+
+
+def outcome(case: FuzzInput, seconds: float = SECONDS) -> tuple[str | None, str]:
+    """What is wrong with the analysis of ``case`` (None: nothing), and the digest of its
+    diagnostics (:func:`digest`), which another process, after other inputs, must find the
+    same.
 
     No exception escapes the analysis and no rule fails inside it (MB000); it ends within
-    ``seconds``; a second analysis, with a parser of its own,
-    gives the same diagnostics; the edit path (the previous version's blocks reused, as the
-    language server parses after an edit) gives the document a fresh parse gives, and the
-    evaluation resumed from the previous version's (see evaluator/checkpoints.py) the
-    diagnostics of a fresh one; and the trace of the program is JSON.
+    ``seconds``; an analysis in a database and with a parser of its own gives what one in the
+    database of this process's earlier analyses gives (no history dependence); the edit path
+    of the parser (the previous version's blocks reused) gives the document a fresh parse
+    gives; each version of the case's edit path, analysed one after the
+    other in one workspace as the language server does (the evaluation resumed, the facts
+    kept, see evaluator/checkpoints.py), gives the diagnostics of a fresh workspace; and the
+    trace of the program is JSON.
     """
-    uri = "fuzz.nc"
+    uri = URI
     limits = CONFIG.read_limits
+    digested = ""
     try:
         started = time.perf_counter()
-        first = analyse(case.text, uri, config=CONFIG, parser=BlockParser())
+        first = _after_history(case.text)
         elapsed = time.perf_counter() - started
+        digested = _digest_of(first.diagnostics)
         internal = [d.message for d in first.diagnostics if d.code == "MB000"]
         if internal:
-            return f"MB000: {internal[0]}"
+            return f"MB000: {internal[0]}", digested
         if elapsed > seconds:
-            return f"slow: {elapsed:.1f} s"
-        second = analyse(case.text, uri, config=CONFIG, parser=BlockParser())
-        if _summary(first.diagnostics) != _summary(second.diagnostics):
-            return "not deterministic: two analyses differ"
+            return f"slow: {elapsed:.1f} s", digested
+        if _summary(first.diagnostics) != _summary(_fresh(case.text).diagnostics):
+            return "history dependence: after other analyses, not what a fresh one gives", digested
         parser = BlockParser()
         previous = parse_text(case.before, uri, parser, limits=limits)
         edited = parse_text(case.text, uri, parser, previous, limits)
         if edited != parse_text(case.text, uri, BlockParser(), limits=limits):
-            return "the edit path's document differs from a fresh parse"
-        # The evaluation resumed from the unmutated program's, as after an edit in the editor.
-        before = analyse(case.before, uri, config=CONFIG, parser=parser, doc=previous)
-        resumed = analyse(
-            case.text, uri, config=CONFIG, parser=parser, doc=edited, previous_facts=before.facts
-        )
-        if _summary(resumed.diagnostics) != _summary(first.diagnostics):
-            return "the evaluation resumed after the edit differs from a fresh one"
+            return "the edit path's document differs from a fresh parse", digested
+        problem = _edit_path_problem(case, first)
+        if problem is not None:
+            return problem, digested
         # What `fanuc-macro trace --format json` prints.
         json.dumps(trace(uri, first.doc, first.index, (), CONFIG))
     except Exception:  # the finding: what escaped, from where
         lines = traceback.format_exc().splitlines()
         shown = lines if len(lines) <= 24 else [*lines[:13], "  ...", *lines[-8:]]
-        return "exception: " + "\n".join(shown)
+        return "exception: " + "\n".join(shown), digested
+    return None, digested
+
+
+# The database of every analysis this process has run, as a language server's builds up over a
+# day: an analysis in it must give what one in a fresh database gives.
+_HISTORY = Database()
+
+
+def _after_history(text: str) -> Analysis:
+    """The analysis of ``text`` in the database of this process's earlier analyses."""
+    workspace = Workspace(CONFIG, db=_HISTORY)
+    workspace.add_text(URI, text)
+    try:
+        return workspace.analyse(URI)
+    finally:
+        workspace.remove(URI)
+
+
+def _fresh(text: str) -> Analysis:
+    """The analysis of ``text`` alone, in a workspace and database of its own."""
+    workspace = Workspace(CONFIG)
+    workspace.add_text(URI, text)
+    return workspace.analyse(URI)
+
+
+def _edit_path_problem(case: FuzzInput, fresh_text: Analysis) -> str | None:
+    """How the workspace's analysis of a version of the edit path differs from a fresh one."""
+    workspace = Workspace(CONFIG)
+    if case.opened:
+        workspace.add_bytes(URI, case.opened)
+        if workspace.not_text(URI) is None:
+            workspace.analyse(URI)
+    for step, version in enumerate(case.path):
+        workspace.add_text(URI, version)
+        got = _summary(workspace.analyse(URI).diagnostics)
+        internal = [m for code, _, _, m in got if code == "MB000"]
+        if internal:
+            return f"MB000 on the edit path ({case.start}, version {step}): {internal[0]}"
+        want = fresh_text if version == case.text else _fresh(version)
+        if got != _summary(want.diagnostics):
+            extra = [d for d in got if d not in _summary(want.diagnostics)][:3]
+            missing = [d for d in _summary(want.diagnostics) if d not in got][:3]
+            return (
+                f"the edit path ({case.start}, version {step}) differs from a fresh analysis: "
+                f"extra {extra}, missing {missing}"
+            )
     return None
+
+
+def _digest_of(diagnostics: Sequence[Any]) -> str:
+    text = json.dumps(_summary(diagnostics), ensure_ascii=False)
+    return hashlib.sha256(text.encode("utf-8", "surrogatepass")).hexdigest()[:16]
+
+
+def digest(case: FuzzInput) -> str:
+    """A digest of the diagnostics of ``case``'s text: the same in any process."""
+    return _digest_of(_after_history(case.text).diagnostics)
 
 
 def describe(case: FuzzInput, shown: int = 300) -> str:
     text = case.text if len(case.text) <= shown else case.text[:shown] + "..."
-    return f"{case.level} mutation of {case.seed}: {text!r}"
+    path = f", edit path from {case.start}: {[v[:80] for v in case.path]!r}"
+    return f"{case.level} mutation of {case.seed}: {text!r}{path}"
 
 
 __all__ = [
     "CONFIG",
     "LEVELS",
+    "STARTS",
     "Draw",
     "FuzzInput",
     "RandomDraw",
     "check",
     "describe",
+    "digest",
     "make_input",
+    "one_char_edit",
+    "outcome",
     "seeds",
 ]
