@@ -361,7 +361,7 @@ _ADDRESSES: Mapping[str, str] = MappingProxyType(
 # 20): the nodes are immutable, so blocks share them (a CAM file repeats its G code and a few
 # hundred Z depths at a few columns) instead of holding a word, a number, its text and its
 # float each. The first words seen are kept, up to the limit (a table of the database).
-_SHARED_WORDS: TableKey[tuple[int, str], Word] = TableKey("syntax.shared_words")
+_SHARED_WORDS: TableKey[tuple[int, str], Word] = TableKey("syntax.shared_words", cache=True)
 _SHARED_WORDS_LIMIT = 1 << 15
 _SHARED_WORD_COLUMNS = 128  # a block's words are near its start; a long line's are its own
 
@@ -411,7 +411,7 @@ _PLAIN_CODE_WORDS = re.compile(r"([GMgm])([-+]?[.0-9]+)")
 # The G and M codes of plain blocks by their words' text, shared (a program repeats a few
 # combinations; a table of the database); _CALLS for the words of a call or a return.
 _PLAIN_CODES: TableKey[tuple[tuple[str, str], ...], tuple[tuple[str, float], ...]] = TableKey(
-    "syntax.plain_codes"
+    "syntax.plain_codes", cache=True
 )
 _PLAIN_CODES_LIMIT = 10_000
 _CALLS: tuple[tuple[str, float], ...] = (("M", 98.0),)
@@ -627,14 +627,14 @@ _REJECTED_HEAD = re.compile(
 
 @contextmanager
 def quiet_gc() -> Iterator[None]:
-    """No cyclic garbage collection while a document is parsed or analysed, and what survives
-    it kept out of later collections (``gc.freeze``).
+    """No cyclic garbage collection while a document is parsed or analysed.
 
     The AST and the facts have no cycles, so reference counting frees them. Left on, the
     collector rescans the parse cache's growing heap again and again: it took more time than
-    the parse itself, and a full collection stalled a keystroke in the language server for
-    half a second now and then. (Measured: 240 edits of a 20,000-block program in the server
-    grew its RSS by 3 MB, the caches of the new lines.)
+    the parse itself. What exists after the run is not frozen out of later collections
+    (``gc.freeze``): a frozen cycle is never freed, and every run left some (a parser's
+    closures, a dropped workspace, an exception's frames), 1.4 MB an input in a fuzz campaign.
+    The caches' budget (``analysis.CACHE_BUDGET``) bounds the heap a full collection scans.
     """
     collecting = gc.isenabled()
     gc.disable()
@@ -642,7 +642,6 @@ def quiet_gc() -> Iterator[None]:
         yield
     finally:
         if collecting:
-            gc.freeze()  # what exists now is long-lived: keep it out of future collections
             gc.enable()
 
 
@@ -735,8 +734,23 @@ class BlockParser:
         self._cache_size = cache_size
         self._sweep_at = cache_size  # the size at which the cache next looks for lines to drop
         self._longest_cached = 0  # no cached line is longer: a hit needs no length check
+        self._cached_chars = 0  # of the cached lines' texts: what their trees grow with
         self._by_code: dict[str, _ParsedCode] = {}  # insertion-ordered: the oldest go first
         self._lock = threading.Lock()
+
+    def cached(self) -> tuple[int, int]:
+        """How many lines the cache holds, and their characters."""
+        return len(self._cache), self._cached_chars
+
+    def clear_cache(self) -> None:
+        """Forget every cached line (the documents keep theirs). The dicts are replaced, so a
+        parse in another thread goes on with the old ones."""
+        with self._lock:
+            self._cache = {}
+            self._by_code = {}
+            self._cached_chars = 0
+            self._longest_cached = 0
+            self._sweep_at = self._cache_size
 
     @cached_property
     def _lark(self) -> Lark:
@@ -751,6 +765,8 @@ class BlockParser:
             return cached
         parsed = self._parse_uncached(text)
         with self._lock:
+            if text not in self._cache:
+                self._cached_chars += len(text)
             self._cache[text] = parsed
             self._longest_cached = max(self._longest_cached, len(text))
             if len(self._cache) > self._sweep_at:
@@ -773,6 +789,8 @@ class BlockParser:
             # The references: the line's holders, ``parsed`` and getrefcount's argument.
             if _refcount(parsed) > 2:
                 cache[key] = parsed
+            else:
+                self._cached_chars -= len(key)
         # When documents hold most lines, no new sweep before the cache has grown by a batch:
         # a sweep per new line would make a big document's parse quadratic.
         self._sweep_at = max(self._cache_size, len(cache) + batch)
