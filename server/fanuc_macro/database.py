@@ -17,7 +17,7 @@ module-level mutable state: the context variable and the default database.
 from __future__ import annotations
 
 import threading
-from collections.abc import Callable, Iterator
+from collections.abc import Callable, Iterator, Sized
 from contextlib import contextmanager
 from contextvars import ContextVar
 from dataclasses import dataclass, field
@@ -35,11 +35,15 @@ class TableKey(Generic[K, V]):
 
     Keys compare by identity (a declaration is one object; hashing it costs what an ``id``
     costs). ``per_document``: the table's keys are document URIs, and
-    :meth:`Database.close_document` drops the document's entry.
+    :meth:`Database.close_document` drops the document's entry. ``cache``: the table's values
+    are shared between documents and computed again when asked (interned lines, compiled
+    expressions): :meth:`Database.drop_caches` drops the whole table, when a document closes
+    and when the caches pass their budget.
     """
 
     name: str
     per_document: bool = False
+    cache: bool = False
 
     def __repr__(self) -> str:
         return f"TableKey({self.name!r})"
@@ -96,10 +100,29 @@ class Database:
             _active.reset(token)
 
     def close_document(self, uri: str) -> None:
-        """Free what every per-document table holds for ``uri``."""
+        """Free what every per-document table holds for ``uri``, and the shared caches, which
+        may hold its lines (:meth:`drop_caches`)."""
         for key, table in list(self._tables.items()):
             if key.per_document:
                 table.pop(uri, None)
+        self.drop_caches()
+
+    def drop_caches(self) -> None:
+        """Drop every cache table (``TableKey.cache``). A table is replaced, not emptied: a
+        thread that holds it goes on with it, and the next look-up makes a new one. The open
+        documents keep their own lines; what they shared is built again as lines are read."""
+        for key in [key for key in list(self._tables) if key.cache]:
+            self._tables.pop(key, None)
+
+    def cache_entries(self) -> int:
+        """How many entries the cache tables hold: a table of containers (one per-line cache
+        per declaration) counts their entries."""
+        count = 0
+        for key, table in list(self._tables.items()):
+            if key.cache:
+                count += len(table)
+                count += sum(len(v) for v in list(table.values()) if isinstance(v, Sized))
+        return count
 
     def forget(self) -> None:
         """Drop every table (tests, memory pressure): values are computed again when asked."""

@@ -98,6 +98,9 @@ class _LineCache(Generic[T]):
         self.stamp = 0  # the miss count at the last multiple of the batch
         self.next_sweep = 0  # no sweep before this miss count: the last one found all in use
 
+    def __len__(self) -> int:
+        return len(self.entries)
+
     def __call__(self, parsed: ParsedLine) -> T:
         entry = self.entries.get(parsed.text)
         if entry is not None and entry.line is parsed:
@@ -137,4 +140,4 @@ class _LineCache(Generic[T]):
 
 
 # Each database's caches, by their declaration.
-_CACHES: TableKey[PerLine[Any], _LineCache[Any]] = TableKey("per_line.caches")
+_CACHES: TableKey[PerLine[Any], _LineCache[Any]] = TableKey("per_line.caches", cache=True)

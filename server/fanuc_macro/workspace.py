@@ -8,7 +8,7 @@ from collections.abc import Set as AbstractSet
 from dataclasses import dataclass, replace
 from typing import Concatenate, ParamSpec, TypeVar
 
-from .analysis import Analysis, analyse
+from .analysis import Analysis, analyse, keep_caches_within_budget
 from .cancel import CancelToken
 from .config import Config
 from .database import Database
@@ -124,6 +124,7 @@ class Workspace:
         keeps the text it had: nothing is stored before the whole text is read."""
         old = self._entries.get(uri)
         limits = self.config.read_limits
+        keep_caches_within_budget(self.parser)
         # The previous version's blocks are reused for the lines an edit did not touch.
         previous = old.doc if old is not None else None
         doc = parse_text(
@@ -182,10 +183,13 @@ class Workspace:
         return reread
 
     def remove(self, uri: str) -> None:
-        """Forget ``uri``, and what the database derived from it."""
+        """Forget ``uri``, and what the database derived from it: its tables' entries, and the
+        shared caches and parsed lines, which may hold its lines (the other documents keep
+        their own)."""
         self._entries.pop(uri, None)
         self._facts.pop(uri, None)
         self.db.close_document(uri)
+        self.parser.clear_cache()
         self._reindexed(uri)
 
     def not_text(self, uri: str) -> str | None:

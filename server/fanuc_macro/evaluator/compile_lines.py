@@ -322,7 +322,7 @@ def _compile_plain_code(nc: PlainNc) -> CompiledLine:
 # least increment, the M codes, whether the G codes need no rounding, whether M02/M30 ends.
 CompiledCodes = tuple[tuple[float, ...], tuple[float, ...], bool, bool]
 CODES_COMPILED: TableKey[tuple[tuple[str, float], ...], CompiledCodes] = TableKey(
-    "evaluator.codes_compiled"
+    "evaluator.codes_compiled", cache=True
 )
 
 
@@ -409,10 +409,12 @@ _CHECKED_ADDRESSES = _WHOLE_ADDRESSES | {"F"}
 # The words of constant blocks, by address, columns and decimal point: they hold no closure,
 # so every block with a word at the same place shares it.
 FOLDED_WORDS: TableKey[tuple[str, int, int, bool], CompiledWord] = TableKey(
-    "evaluator.folded_words"
+    "evaluator.folded_words", cache=True
 )
 # The G and M codes of constant blocks: a few combinations recur in every program.
-CODE_TUPLES: TableKey[tuple[float, ...], tuple[float, ...]] = TableKey("evaluator.code_tuples")
+CODE_TUPLES: TableKey[tuple[float, ...], tuple[float, ...]] = TableKey(
+    "evaluator.code_tuples", cache=True
+)
 MAX_SHARED_CODES = 10_000  # entries of each: emptied when full
 
 
@@ -442,7 +444,7 @@ def _shared_codes(codes: Iterable[float]) -> tuple[float, ...]:
 # compiles to the same closures (spans included, which alarms report), so lines that repeat an
 # expression (X[#100+2.] in every pass) share them. Emptied when it reaches its bound.
 SHARED_EXPRESSIONS: TableKey[tuple[int, int, str, bool], Evaluator] = TableKey(
-    "evaluator.shared_expressions"
+    "evaluator.shared_expressions", cache=True
 )
 MAX_SHARED_EXPRESSIONS = 100_000
 
@@ -518,7 +520,7 @@ def compile_line(parsed: ParsedLine) -> CompiledLine:
 # the parser shares between lines of the same code compile once. The oldest quarter goes when
 # it is full; a line whose statement is no longer here compiles again, to an equal line.
 COMPILED_BY_STATEMENT: TableKey[int, tuple[Statement, CompiledLine]] = TableKey(
-    "evaluator.compiled_by_statement"
+    "evaluator.compiled_by_statement", cache=True
 )
 _COMPILED_BY_STATEMENT_LIMIT = 4096
 

@@ -109,7 +109,7 @@ def _constant_closure(value: Value) -> Evaluator:
 
 
 # The closures of numbers, shared by every expression with the number.
-CONSTANTS: TableKey[float, Evaluator] = TableKey("evaluator.constants")
+CONSTANTS: TableKey[float, Evaluator] = TableKey("evaluator.constants", cache=True)
 MAX_SHARED_CONSTANTS = 10_000
 
 
@@ -280,7 +280,7 @@ def _reader(n: int) -> Evaluator:
 
 
 # The readers of #n, shared by every expression that reads #n (a reader depends on n only).
-READERS: TableKey[int, Evaluator] = TableKey("evaluator.readers")
+READERS: TableKey[int, Evaluator] = TableKey("evaluator.readers", cache=True)
 MAX_SHARED_READERS = 10_000
 
 

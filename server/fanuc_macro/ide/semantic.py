@@ -216,7 +216,7 @@ def _without_overlaps(tokens: list[SemanticToken]) -> list[SemanticToken]:
 # id of a parse no longer cached may be another's.
 _LineKey = tuple[int, frozenset[int], tuple[tuple[Span, TokenType], ...]]
 LINE_TOKENS: TableKey[_LineKey, tuple[object, tuple[SemanticToken, ...]]] = TableKey(
-    "ide.semantic.line_tokens"
+    "ide.semantic.line_tokens", cache=True
 )
 MAX_LINE_TOKENS = 65_536  # more than the lines a document is read to (max_blocks 25,000)
 

@@ -282,7 +282,9 @@ class Engine:
             # A closed file stays in the workspace as it is on disk, for the others' calls.
             data = read_program(path) if keep and path is not None else None
             self._reads_of.pop(key, None)
-            return self.changed_files({key: data})
+            changed = self.changed_files({key: data})
+            release_memory()  # what the document and the caches held, back to the system
+            return changed
 
         self.scheduler.submit(reload, then=self.schedule_each)
 

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import logging
 from collections.abc import Callable, Iterator
+from concurrent.futures import Future
 from typing import Any
 
 from lsprotocol import types
@@ -62,6 +63,16 @@ class AnsweringProtocol(LanguageServerProtocol):
             self._send_response(message.id, None, message.error.to_response_error())
             return
         super().handle_message(message)
+
+    def _check_handler_result(self, future: Future[Any]) -> None:
+        # pygls files the future of a notification whose handler is a generator (did_open,
+        # did_change, did_close below) in _request_futures under a made-up id, and only a
+        # response takes it out: 2 KB kept a keystroke. Done, it goes.
+        super()._check_handler_result(future)
+        for msg_id, kept in list(self._request_futures.items()):
+            if kept is future:
+                self._request_futures.pop(msg_id, None)
+                break
 
     # The engine keeps the open documents' texts (lsp/documents.py). pygls' workspace would
     # keep a second copy and apply every change to it again, splitting the whole text into

@@ -96,7 +96,7 @@ class Diff:
 # 100,000 lines edited where lines move makes a new block for every line after the edit, about
 # 5 MB a version), and an id used again by a later version is told apart by its reference.
 _DIFFS: TableKey[tuple[int, int], tuple[weakref.ref[Document], weakref.ref[Document], Diff]] = (
-    TableKey("syntax.line_diffs")
+    TableKey("syntax.line_diffs", cache=True)
 )
 _DIFFS_KEPT = 4
 

@@ -25,7 +25,7 @@ class Span:
 # Spans of short lines, shared (a table of the analysis database): lines hold the same few
 # columns over and over, and a span is frozen. Keyed by start * SHARED_COLUMNS + end.
 SHARED_COLUMNS = 512
-SHARED_SPANS: TableKey[int, Span] = TableKey("syntax.shared_spans")
+SHARED_SPANS: TableKey[int, Span] = TableKey("syntax.shared_spans", cache=True)
 
 
 def shared_span(start: int, end: int) -> Span:
