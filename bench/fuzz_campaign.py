@@ -199,34 +199,38 @@ def campaign(args: argparse.Namespace) -> int:
             ready = wait([w.conn for w in workers if w.index is not None], timeout=1.0)
             now = time.monotonic()
             for w in list(workers):
-                if w.index is None:
+                index, only_digest = w.index, w.only_digest
+                if index is None:
                     continue
                 if w.conn in ready:
-                    result = w.conn.recv()
-                    if w.only_digest:
-                        compare_digests(state, out, result, waiting.pop(w.index)[0])
-                        w.index = None
-                        give_next(w)
-                        continue
-                    record(state, out, result)
-                    if args.workers > 1 and result[5]:
-                        waiting[w.index] = (result[5], w.process.pid or 0)
-                    finished = w.index
+                    try:
+                        result = w.conn.recv()
+                    except EOFError:  # the worker died (killed for its memory, say)
+                        problem = f"crash: the worker died (exit {w.process.exitcode})"
+                        result = (index, "?", "?", problem, 0.0, "")
+                        w.kill()
+                        workers[workers.index(w)] = w = Worker(args.seed, args.seconds)
                 elif now - w.started > args.hang:
-                    hangs[w.index] += 1
-                    finished, was_digest = w.index, w.only_digest
-                    record(state, out, (w.index, "?", "?", f"hang: over {args.hang:g} s", 0.0))
-                    waiting.pop(w.index, None)
+                    hangs[index] += 1
+                    result = (index, "?", "?", f"hang: over {args.hang:g} s", 0.0, "")
                     w.kill()
                     workers[workers.index(w)] = w = Worker(args.seed, args.seconds)
-                    if was_digest:  # the input was counted when it was checked
-                        state["inputs_run"] -= 1
-                        give_next(w)
-                        continue
                 else:
                     continue
-                advance(state, finished)
                 w.index = None
+                if only_digest:
+                    first = waiting.pop(index)[0]
+                    if result[3] is None:
+                        compare_digests(state, out, result, first)
+                    else:  # counted when it was checked: recorded as a failure only
+                        record(state, out, result[:5])
+                        state["inputs_run"] -= 1
+                    give_next(w)
+                    continue
+                record(state, out, result[:5])
+                if args.workers > 1 and result[5]:
+                    waiting[index] = (result[5], w.process.pid or 0)
+                advance(state, index)
                 give_next(w)
                 since_save += 1
             for w in workers:  # an idle worker takes a digest the other one left

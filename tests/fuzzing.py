@@ -417,18 +417,26 @@ def outcome(case: FuzzInput, seconds: float = SECONDS) -> tuple[str | None, str]
 
 
 # The database of every analysis this process has run, as a language server's builds up over a
-# day: an analysis in it must give what one in a fresh database gives.
+# day: an analysis in it must give what one in a fresh database gives. Its workspace holds a
+# few documents, each input replacing the oldest one's text (as a paste over a whole document
+# does), so the caches are those of edits, never dropped by a close.
 _HISTORY = Database()
+_HISTORY_URIS = ("history-0.nc", "history-1.nc", "history-2.nc")
+_history: list[Workspace] = []
+_turn = [0]
 
 
 def _after_history(text: str) -> Analysis:
-    """The analysis of ``text`` in the database of this process's earlier analyses."""
-    workspace = Workspace(CONFIG, db=_HISTORY)
-    workspace.add_text(URI, text)
-    try:
-        return workspace.analyse(URI)
-    finally:
-        workspace.remove(URI)
+    """The analysis of ``text`` in the database of this process's earlier analyses, alone
+    (the workspace's other documents take no part)."""
+    if not _history:
+        _history.append(Workspace(CONFIG, db=_HISTORY))
+    workspace = _history[0]
+    uri = _HISTORY_URIS[_turn[0] % len(_HISTORY_URIS)]
+    _turn[0] += 1
+    workspace.add_text(uri, text)
+    own = frozenset(p.number for p in workspace.index(uri).programs if p.number is not None)
+    return workspace.analyse(uri, own, others=[])
 
 
 def _fresh(text: str) -> Analysis:
