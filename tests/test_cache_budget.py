@@ -246,3 +246,33 @@ def test_the_server_gives_back_what_5000_typed_lines_held(server: Server) -> Non
     print(f"RSS: {start:.1f} MB at the start, {peak:.1f} MB typed, {end:.1f} MB closed")
     assert peak > start + 5, (start, peak)  # the document and its analysis took memory
     assert end < start + 20, (start, peak, end)
+
+
+def test_workspaces_dropped_leave_nothing_behind() -> None:
+    # A parser's closures and a workspace's database hold cycles: the collector must be free
+    # to collect them (no gc.freeze), or every dropped workspace stays for good.
+    def one(n: int) -> None:
+        workspace = Workspace(db=Database())
+        workspace.add_text("p.nc", program(n, 20))
+        workspace.analyse("p.nc")
+
+    one(0)
+    tracemalloc.start()
+    try:
+        before = traced_after_collect()
+        for n in range(1, 21):
+            one(n)
+        left = traced_after_collect() - before
+    finally:
+        tracemalloc.stop()
+    assert left < 500_000, left  # a parser's tables alone are 240 KB
+
+
+def test_no_module_freezes_the_collector() -> None:
+    package = Path(analysis.__file__).parent
+    freezing = [
+        str(path.relative_to(package))
+        for path in sorted(package.rglob("*.py"))
+        if "gc.freeze(" in path.read_text("utf-8")
+    ]
+    assert not freezing
