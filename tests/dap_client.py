@@ -8,49 +8,20 @@ import json
 import queue
 import subprocess
 import sys
-import threading
 from collections.abc import Callable
-from typing import IO, Any
+from typing import Any
+
+from raw_stdio import StdioProcess
 
 WAIT_S = 60.0  # a safety net for a broken adapter, not a time the tests measure
 
 
-class DapClient:
+class DapClient(StdioProcess):
     def __init__(self, *args: str) -> None:
-        self.proc = subprocess.Popen(
-            [sys.executable, "-m", "fanuc_macro.dap", *args],
-            stdin=subprocess.PIPE,
-            stdout=subprocess.PIPE,
-            stderr=subprocess.PIPE,
-        )
+        super().__init__([sys.executable, "-m", "fanuc_macro.dap", *args], subprocess.PIPE)
         self._seq = 0
-        self.messages: queue.Queue[dict[str, Any] | None] = queue.Queue()
         self.events: list[dict[str, Any]] = []  # every event so far, in order
         self._pending: list[dict[str, Any]] = []
-        assert self.proc.stdout is not None
-        threading.Thread(target=self._read, args=(self.proc.stdout,), daemon=True).start()
-
-    def _read(self, stream: IO[bytes]) -> None:
-        while True:
-            length = None
-            while True:
-                line = stream.readline()
-                if not line:
-                    self.messages.put(None)
-                    return
-                if line in (b"\r\n", b"\n"):
-                    break
-                name, _, value = line.decode().partition(":")
-                if name.lower() == "content-length":
-                    length = int(value)
-            assert length is not None
-            body = stream.read(length)
-            self.messages.put(json.loads(body))
-
-    def send_raw(self, data: bytes) -> None:
-        assert self.proc.stdin is not None
-        self.proc.stdin.write(data)
-        self.proc.stdin.flush()
 
     def send(self, command: str, arguments: dict[str, Any] | None = None) -> int:
         self._seq += 1

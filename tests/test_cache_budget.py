@@ -8,16 +8,10 @@ distinct lines into a document and closing it, read from /proc).
 from __future__ import annotations
 
 import gc
-import json
-import queue
-import subprocess
-import sys
-import threading
 import time
 import tracemalloc
 from collections.abc import Iterator
 from pathlib import Path
-from typing import IO, Any
 
 import pytest
 
@@ -25,6 +19,7 @@ from fanuc_macro import analysis
 from fanuc_macro.analysis import cache_bytes
 from fanuc_macro.database import Database
 from fanuc_macro.workspace import Workspace
+from raw_stdio import RawLspClient
 
 CORPUS = Path(__file__).resolve().parents[2] / "shared" / "corpus"
 
@@ -117,91 +112,16 @@ def test_the_caches_stay_within_their_budget_in_bytes(monkeypatch: pytest.Monkey
 
 # ---- the language server's RSS -----------------------------------------------------------------
 
-WAIT_S = 60.0
-
-
-class Server:
-    """The language server as the editor starts it, over raw stdio."""
-
-    def __init__(self) -> None:
-        self.proc = subprocess.Popen(
-            [sys.executable, "-m", "fanuc_macro.lsp.server"],
-            stdin=subprocess.PIPE,
-            stdout=subprocess.PIPE,
-            stderr=subprocess.DEVNULL,
-        )
-        self.messages: queue.Queue[dict[str, Any] | None] = queue.Queue()
-        assert self.proc.stdout is not None
-        threading.Thread(target=self._read, args=(self.proc.stdout,), daemon=True).start()
-
-    def _read(self, stream: IO[bytes]) -> None:
-        while True:
-            length = None
-            while True:
-                line = stream.readline()
-                if not line:
-                    self.messages.put(None)
-                    return
-                if line in (b"\r\n", b"\n"):
-                    break
-                name, _, value = line.decode().partition(":")
-                if name.lower() == "content-length":
-                    length = int(value)
-            assert length is not None
-            self.messages.put(json.loads(stream.read(length)))
-
-    def send(self, message: dict[str, Any]) -> None:
-        assert self.proc.stdin is not None
-        body = json.dumps(message).encode()
-        self.proc.stdin.write(b"Content-Length: %d\r\n\r\n" % len(body) + body)
-        self.proc.stdin.flush()
-
-    def notify(self, method: str, params: dict[str, Any]) -> None:
-        self.send({"jsonrpc": "2.0", "method": method, "params": params})
-
-    def answer(self, msg_id: int) -> dict[str, Any]:
-        while True:
-            message = self.messages.get(timeout=WAIT_S)
-            assert message is not None, "the server closed its output"
-            if message.get("id") == msg_id and "method" not in message:
-                return message
-
-    def published(self, uri: str, version: int, seconds: float = 10.0) -> None:
-        """Wait for the diagnostics of ``uri`` at ``version`` or later, or ``seconds`` (the
-        server publishes nothing when they did not change)."""
-        end = time.monotonic() + seconds
-        while (left := end - time.monotonic()) > 0:
-            try:
-                message = self.messages.get(timeout=left)
-            except queue.Empty:
-                return
-            assert message is not None, "the server closed its output"
-            params = message.get("params") or {}
-            if (
-                message.get("method") == "textDocument/publishDiagnostics"
-                and params.get("uri") == uri
-                and (params.get("version") or 0) >= version
-            ):
-                return
-
-    def rss_mb(self) -> float:
-        with open(f"/proc/{self.proc.pid}/status", encoding="ascii") as status:
-            for line in status:
-                if line.startswith("VmRSS:"):
-                    return int(line.split()[1]) / 1024
-        raise AssertionError("no VmRSS")
-
 
 @pytest.fixture
-def server() -> Iterator[Server]:
-    started = Server()
+def server() -> Iterator[RawLspClient]:
+    started = RawLspClient()
     yield started
-    started.proc.kill()
-    started.proc.wait(timeout=10)
+    started.close()
 
 
 @pytest.mark.skipif(not Path("/proc/self/status").exists(), reason="RSS read from /proc")
-def test_the_server_gives_back_what_5000_typed_lines_held(server: Server) -> None:
+def test_the_server_gives_back_what_5000_typed_lines_held(server: RawLspClient) -> None:
     server.send(
         {
             "jsonrpc": "2.0",

@@ -4,81 +4,12 @@ are answered with an error, and the server goes on."""
 from __future__ import annotations
 
 import json
-import queue
-import subprocess
-import sys
-import threading
 from collections.abc import Iterator
-from typing import IO, Any
+from typing import Any
 
 import pytest
 
-WAIT_S = 30.0  # a safety net for a server that does not answer
-
-
-class RawClient:
-    def __init__(self) -> None:
-        self.proc = subprocess.Popen(
-            [sys.executable, "-m", "fanuc_macro.lsp.server"],
-            stdin=subprocess.PIPE,
-            stdout=subprocess.PIPE,
-            stderr=subprocess.DEVNULL,
-        )
-        self.messages: queue.Queue[dict[str, Any] | None] = queue.Queue()
-        assert self.proc.stdout is not None
-        threading.Thread(target=self._read, args=(self.proc.stdout,), daemon=True).start()
-
-    def _read(self, stream: IO[bytes]) -> None:
-        while True:
-            length = None
-            while True:
-                line = stream.readline()
-                if not line:
-                    self.messages.put(None)
-                    return
-                if line in (b"\r\n", b"\n"):
-                    break
-                name, _, value = line.decode().partition(":")
-                if name.lower() == "content-length":
-                    length = int(value)
-            assert length is not None
-            self.messages.put(json.loads(stream.read(length)))
-
-    def send_raw(self, data: bytes) -> None:
-        assert self.proc.stdin is not None
-        self.proc.stdin.write(data)
-        self.proc.stdin.flush()
-
-    def send(self, message: dict[str, Any]) -> None:
-        body = json.dumps(message).encode()
-        self.send_raw(b"Content-Length: %d\r\n\r\n" % len(body) + body)
-
-    def answer(self, msg_id: object) -> dict[str, Any]:
-        while True:
-            message = self.messages.get(timeout=WAIT_S)
-            if message is None:
-                raise EOFError("the server closed its output")
-            if message.get("id") == msg_id and "method" not in message:
-                return message
-
-    def answers(self, ids: set[object]) -> dict[object, dict[str, Any]]:
-        """The answers to the requests ``ids``, whichever comes first."""
-        found: dict[object, dict[str, Any]] = {}
-        while len(found) < len(ids):
-            message = self.messages.get(timeout=WAIT_S)
-            if message is None:
-                raise EOFError("the server closed its output")
-            if message.get("id") in ids and "method" not in message:
-                found[message["id"]] = message
-        return found
-
-    def close(self) -> None:
-        if self.proc.poll() is None:
-            self.proc.kill()
-        self.proc.wait(timeout=10)
-        for stream in (self.proc.stdin, self.proc.stdout):
-            if stream is not None:
-                stream.close()
+from raw_stdio import RawLspClient as RawClient
 
 
 @pytest.fixture
