@@ -350,7 +350,8 @@ M99
 Read the message: it gives the column and what is expected there. A `:` typed
 for `;`, a missing `GOTO n`, a missing `]` and `#26` written without its address (`G01 #26`,
 meant `G01 Z#26`) are the usual causes. The message names the typing mistakes it recognises:
-a full-width letter or bracket (`Ｇ91`, `（`), a decimal comma (`Z-5,0`), a second decimal point
+a full-width letter or bracket (`Ｇ91`, `（`), a space that is not ASCII (U+3000, U+00A0,
+alone on a line too), a decimal comma (`Z-5,0`), a second decimal point
 (`X10.0.0`), a number without its address (`G01X-50. 30.`, or `00001` for `O0001`), an
 address without its value (`G01XY0`), an expression or a function after an address without
 brackets (`X10.*#1`, `XCOS[45]`: write `X[10.*#1]`), `=` or `<>` in a condition (write `EQ`,

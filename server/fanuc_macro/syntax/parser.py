@@ -816,7 +816,8 @@ class BlockParser:
                 )  # fmt: skip
         cut = cut_comments(text)
         code = cut.code
-        if not code.strip():
+        # ASCII blanks only: a line of U+3000 or U+00A0 is no empty block to FANUC.
+        if not code.strip(_BLANKS):
             return _line(text, cut, None, None, None, None, None, False)
         has_lower = code != code.upper()
         # A line with a comment: lines of the same code share what it parses to.
@@ -1021,8 +1022,10 @@ def _typing_mistake(
     if ch and ord(ch) > 127:
         plain = unicodedata.normalize("NFKC", ch)
         if plain != ch and plain.isascii():
+            name = unicodedata.name(ch, "")
+            kind = "full-width" if name.startswith("FULLWIDTH") or not name else name.lower()
             return (
-                f"full-width {ch!r} (U+{ord(ch):04X}) at column {col + 1}: FANUC reads ASCII "
+                f"{kind} {ch!r} (U+{ord(ch):04X}) at column {col + 1}: FANUC reads ASCII "
                 f"program text only; write {plain!r}",
                 Span(col, col + 1),
             )
