@@ -29,6 +29,7 @@ from .program.index import ProgramIndex, build_index
 from .rules import ALL_CHECKS, FAMILIES, LINE_CHECKS, LineFinding, declared, plain_line_quiet
 from .rules.context import RuleContext
 from .rules.dialect import foreign_dialect, in_foreign_file
+from .rules.reading import fold_runaway_comments
 from .syntax.parser import BlockParser, default_parser, parse_text, quiet_gc
 from .syntax.tree import Document, ParsedLine, PlainNc
 from .threads.identify import Thread
@@ -200,6 +201,8 @@ def run_checks(
     blocks = ctx.doc.blocks
     per_block = [(line, blocks[line].parsed, f) for line, f in lines_with_findings(ctx.doc, cancel)]
     foreign = foreign_dialect(ctx.doc)
+    if foreign is None:  # another control's file: its blocks' findings fold into MB002
+        per_block = fold_runaway_comments(per_block)
     for line, parsed, findings in per_block:
         if foreign is not None:
             findings = in_foreign_file(findings, parsed, foreign)

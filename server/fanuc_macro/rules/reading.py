@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import re
 from collections.abc import Iterable, Iterator
 from types import MappingProxyType
 
@@ -362,6 +363,12 @@ Forms of another control's dialect: MB002 names them. Nor what
 follows from the rejected block: its N number stays a label, and an assignment in it sets its
 variable to an unknown value, so a `GOTO` to it is no missing label (MB101) and a later read
 of the variable no vacant one (MB901).
+
+A comment whose text goes on over the next lines without its `(` (after an MB004 line): the
+control reads the first of them as a block and stops there with an alarm, so that line gets
+one MB001 that says so and names the lines after it, which are not reported one by one. A line
+of Macro B words only (`IF`, `GOTO`, `SIN`, ...) or an empty line ends the run: it is reported
+as itself.
 """,
 )
 
@@ -425,7 +432,8 @@ of the line (before any trailing blanks), where the comment's text ends as the c
 """,
     not_reported="""
 A `)` with no `(` before it (a syntax error, MB001), and comments
-that are closed on their line however long they are.
+that are closed on their line however long they are. When the comment's text goes on over the
+next lines, those lines are one MB001 on the first of them, not one a line (see MB001).
 """,
 )
 
@@ -717,3 +725,107 @@ def _tape_mark_not_alone(parsed: ParsedLine) -> LineFinding:
 
 def _outside(parsed: ParsedLine, col: int) -> bool:
     return all(not (c.span.start <= col < c.span.end) for c in parsed.comments)
+
+
+# ---- a comment run on over several lines ------------------------------------------------------
+
+# Words of Macro B and of its functions: a line made of them is code, not a comment's prose.
+_MACRO_WORDS = frozenset(
+    (
+        "IF",
+        "WHILE",
+        "GOTO",
+        "THEN",
+        "END",
+        "DO",
+        "AND",
+        "OR",
+        "XOR",
+        "MOD",
+        "EQ",
+        "NE",
+        "GT",
+        "GE",
+        "LT",
+        "LE",
+        "POPEN",
+        "PCLOS",
+        "DPRNT",
+        "BPRNT",
+        "SIN",
+        "COS",
+        "TAN",
+        "ASIN",
+        "ACOS",
+        "ATAN",
+        "SQRT",
+        "ABS",
+        "ROUND",
+        "FIX",
+        "FUP",
+        "LN",
+        "EXP",
+        "POW",
+        "ADP",
+        "BIN",
+        "BCD",
+    )
+)
+_WORD = re.compile(r"[^\W\d_]{3,}")
+
+# A block's findings, with its line: what run_checks folds.
+LineFindings = tuple[int, ParsedLine, tuple[LineFinding, ...]]
+
+
+def _prose(parsed: ParsedLine) -> bool:
+    """Whether a line that does not parse reads as a comment's text: a word of three letters
+    or more that no block has (a Chinese character counts as one)."""
+    if parsed.problem is None or parsed.statement is not None:
+        return False
+    return any(not w.isascii() or w.upper() not in _MACRO_WORDS for w in _WORD.findall(parsed.text))
+
+
+def fold_runaway_comments(blocks: list[LineFindings]) -> list[LineFindings]:
+    """A comment whose ``(`` is not closed on its line (MB004) and whose text goes on over the
+    next lines: the control ends the comment at the end of the block and reads the next line
+    as a block, and stops there with an alarm. That first line keeps one MB001 that says so;
+    the lines after it, which the control never reaches, are not reported one by one.
+
+    ``blocks`` are the lines with a finding, in order; a line in between without one (an
+    empty line) ends the run. The run ends after a line with ``)``, which closes the text."""
+    out: list[LineFindings] = []
+    i = 0
+    while i < len(blocks):
+        line, _, findings = blocks[i]
+        out.append(blocks[i])
+        i += 1
+        if not any(f.code == "MB004" for f in findings):
+            continue
+        run: list[LineFindings] = []
+        while i < len(blocks) and blocks[i][0] == line + 1 + len(run) and _prose(blocks[i][1]):
+            run.append(blocks[i])
+            i += 1
+            if ")" in run[-1][1].text:
+                break
+        if run:
+            out.append(_first_of_run(line, run))
+    return out
+
+
+def _first_of_run(opened: int, run: list[LineFindings]) -> LineFindings:
+    line, parsed, _ = run[0]
+    shown = parsed.text.strip()
+    shown = shown if len(shown) <= 30 else shown[:27] + "..."
+    rest = (
+        f"; lines {line + 2}-{run[-1][0] + 1} go on with it too"
+        if len(run) > 2
+        else (f"; line {line + 2} goes on with it too" if len(run) == 2 else "")
+    )
+    message = (
+        f"line {line + 1} goes on with the comment opened on line {opened + 1} without its "
+        f"'(': the control ends a comment at the end of its block, reads {shown!r} as a block "
+        f"and stops with an alarm here{rest}; put each line of the comment in ( )"
+    )
+    end = len(parsed.text.rstrip())
+    first = LineFinding("MB001", message, len(parsed.text) - len(parsed.text.lstrip()), end)
+    return line, parsed, (first,)
