@@ -18,8 +18,9 @@ from ..diagnostics import (
 )
 from ..per_line import PerLine
 from ..program.index import Jump, Program
+from ..syntax.marks import constant_value
 from ..syntax.parser import statements_of
-from ..syntax.tree import Assign, IfGoto, IfThen, ParsedLine, Var, While
+from ..syntax.tree import Assign, IfGoto, IfThen, NcStatement, ParsedLine, Var, While
 from ..syntax.walk import cond_exprs, subexpressions
 from .context import RuleContext
 
@@ -342,6 +343,41 @@ def _dead(ctx: RuleContext, program: Program, line: int) -> bool:
     return line not in facts.runs
 
 
+# How many blocks from two copies of an N are compared before they are taken as different.
+_SAME_RUN_BLOCKS = 32
+
+
+def _same_run(ctx: RuleContext, a: int, b: int) -> bool:
+    """Whether the blocks from line ``a`` and from line ``b`` are the same text (blanks aside)
+    up to one that ends the run (an alarm, ``#3000=``; ``M02``, ``M30``, ``M99``): whichever
+    copy of the N the control lands on, the program does the same (two copies of
+    ``N906 #3000=6 (...)``)."""
+    blocks = ctx.doc.blocks
+    for k in range(_SAME_RUN_BLOCKS):
+        if a + k >= len(blocks) or b + k >= len(blocks):
+            return False
+        x, y = blocks[a + k].parsed, blocks[b + k].parsed
+        # The control reads no blanks in a block: only what is written counts.
+        if "".join(x.text.split()) != "".join(y.text.split()) or x.problem is not None:
+            return False
+        if _ends_run(x):
+            return True
+    return False
+
+
+def _ends_run(parsed: ParsedLine) -> bool:
+    for statement in statements_of(parsed.statement):
+        target = statement.target.number if isinstance(statement, Assign) else None
+        if target is not None and int(target) == 3000:
+            return True
+        nc = statement if isinstance(statement, NcStatement) else None
+        if nc is not None and any(
+            w.address == "M" and constant_value(w.value) in (2.0, 30.0, 99.0) for w in nc.words
+        ):
+            return True
+    return False
+
+
 MB102_DOC = RuleDoc(
     "MB102",
     reports="""
@@ -381,7 +417,9 @@ the next copy after it (sections that each end at their own `N20`, a `GOTO77` ju
 `N77`), whatever other copies stand elsewhere. Sequence numbers that no `GOTO` uses (a `G70 P Q`
 range, an operator's restart point), which may repeat freely. Computed targets (`GOTO#1`),
 whose copy is known only at run time. Without the evaluator's facts, or when a branch was
-undecided, nothing is called dead code.
+undecided, nothing is called dead code. Copies that run the same blocks (blanks aside) up to
+an alarm (`#3000=`), `M02`, `M30` or `M99`, such as two `N906 #3000=6 (TOOL NOT SET)`: the
+program does the same wherever it lands.
 """,
 )
 
@@ -407,6 +445,8 @@ def _duplicate_lands_wrong(
     meant = last_before if looks_back else lines[split]
     name = program.display_name
     ts = jump.target_span
+    if lands != meant and _same_run(ctx, lands, meant):
+        return None  # either copy runs the same blocks to the same end
     if lands != meant:
         if after:
             why = (
