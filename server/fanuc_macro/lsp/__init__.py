@@ -33,10 +33,15 @@ def run_on_the_c_allocator() -> None:
     returns it (``engine.release_memory``). An allocator the user set is kept; Windows, where
     ``exec`` starts another process, keeps Python's."""
     argv = getattr(sys, "orig_argv", [])
-    if "PYTHONMALLOC" in os.environ or sys.platform == "win32" or not _started_as_server(argv):
+    if "PYTHONMALLOC" in os.environ or sys.platform == "win32" or not sys.executable:
+        return
+    if not _started_as_server(argv):
         return
     os.environ["PYTHONMALLOC"] = "malloc"
-    os.execv(sys.executable, [sys.executable, *argv[1:]])
+    try:
+        os.execv(sys.executable, [sys.executable, *argv[1:]])
+    except OSError:  # the interpreter cannot be started again: go on with Python's allocator
+        del os.environ["PYTHONMALLOC"]
 
 
 run_on_the_c_allocator()
