@@ -196,3 +196,36 @@ def test_no_module_freezes_the_collector() -> None:
         if "gc.freeze(" in path.read_text("utf-8")
     ]
     assert not freezing
+
+
+@pytest.mark.parametrize(
+    ("argv", "server"),
+    [
+        (["python3", "-m", "fanuc_macro.lsp.server"], True),
+        (["python3", "-m", "fanuc_macro.lsp.server", "--stdio"], True),
+        (["/usr/bin/python3", "/venv/bin/fanuc-macro-ls"], True),
+        (["/usr/bin/python3", "/venv/bin/fanuc-macro-ls", "--log-level", "DEBUG"], True),
+        (["python3", "-m", "pytest"], False),
+        (["python3", "-c", "import fanuc_macro.lsp"], False),
+        (["/venv/bin/fanuc-macro"], False),
+    ],
+)
+def test_the_server_is_recognised_by_its_command_line(argv: list[str], server: bool) -> None:
+    from fanuc_macro.lsp import _started_as_server
+
+    assert _started_as_server(argv) is server
+
+
+@pytest.mark.skipif(not Path("/proc/self/environ").exists(), reason="environment from /proc")
+def test_the_server_runs_on_the_c_allocator(server: RawLspClient) -> None:
+    server.send(
+        {
+            "jsonrpc": "2.0",
+            "id": 1,
+            "method": "initialize",
+            "params": {"processId": None, "rootUri": None, "capabilities": {}},
+        }
+    )
+    server.answer(1)  # started again, then answering: the environment is the final one
+    environ = Path(f"/proc/{server.proc.pid}/environ").read_bytes().split(b"\0")
+    assert b"PYTHONMALLOC=malloc" in environ
