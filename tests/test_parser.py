@@ -1042,21 +1042,33 @@ def test_haas_only_codes_in_a_fanuc_block() -> None:
     assert found[4].startswith("Haas NGC: #20001 reads Haas setting 1")
 
 
-def test_an_okuma_file_names_okuma_on_every_rejected_block() -> None:
+def test_an_okuma_file_is_one_diagnostic_that_lists_its_rejected_blocks() -> None:
     text = "O1234\nVC1=0\nG00 X10.\nX#1+1.\nNLOOP VC1=VC1+1\nM02\n"
     rejected = [d for d in analyse(text).diagnostics if d.code in ("MB001", "MB002")]
-    assert [d.line for d in rejected] == [1, 3, 4]
-    assert rejected[1].message.startswith("Okuma OSP program (VC/VS variable assignment on line 2)")
-    assert all(d.message.startswith("Okuma OSP") for d in rejected)
+    assert [d.line for d in rejected] == [0]
+    assert rejected[0].message.startswith(
+        "a program written for Okuma OSP (VC/VS variable assignment on line 2)"
+    )
+    assert [r.line for r in rejected[0].related] == [1, 3, 4]
+    assert all(r.message.startswith("Okuma OSP") for r in rejected[0].related)
 
 
-def test_a_file_of_another_dialect_names_it_on_every_rejected_block() -> None:
+def test_a_file_of_another_dialect_is_one_diagnostic_on_its_first_line() -> None:
     text = "PROC MS140\n;COMMENT\nG0 X10.\nif(A<>0)\nelse\nendif\nM17\n"
     diags = analyse(text).diagnostics
     rejected = [(d.line, d.code) for d in diags if d.code in ("MB001", "MB002", "MB005", "MB008")]
-    assert rejected == [(0, "MB002"), (1, "MB002"), (3, "MB002"), (4, "MB002"), (5, "MB002")]
-    assert all("Siemens" in d.message for d in diags if d.code == "MB002")
+    assert rejected == [(0, "MB002")]
+    whole = next(d for d in diags if d.code == "MB002")
+    assert "Siemens" in whole.message and "5 of its blocks are" in whole.message
+    assert [r.line for r in whole.related] == [0, 1, 3, 4, 5]
     assert not [d for d in diags if "Haas" in d.message]
+
+
+def test_the_whole_file_diagnostic_skips_a_leading_tape_mark() -> None:
+    text = "%\n\nO1234\nVC1=0\nM02\n%\n"
+    whole = [d for d in analyse(text).diagnostics if d.code == "MB002"]
+    assert [d.line for d in whole] == [2]
+    assert "1 of its blocks is in forms FANUC rejects (line 4)" in whole[0].message
 
 
 def test_a_fanuc_file_keeps_its_own_findings() -> None:

@@ -28,7 +28,7 @@ from .line_maps import LineMap
 from .program.index import ProgramIndex, build_index
 from .rules import ALL_CHECKS, FAMILIES, LINE_CHECKS, LineFinding, declared, plain_line_quiet
 from .rules.context import RuleContext
-from .rules.dialect import foreign_dialect, in_foreign_file
+from .rules.dialect import fold_foreign_file, foreign_dialect
 from .rules.reading import fold_runaway_comments
 from .syntax.parser import BlockParser, default_parser, parse_text, quiet_gc
 from .syntax.tree import Document, ParsedLine, PlainNc
@@ -201,11 +201,14 @@ def run_checks(
     blocks = ctx.doc.blocks
     per_block = [(line, blocks[line].parsed, f) for line, f in lines_with_findings(ctx.doc, cancel)]
     foreign = foreign_dialect(ctx.doc)
-    if foreign is None:  # another control's file: its blocks' findings fold into MB002
+    if foreign is None:
         per_block = fold_runaway_comments(per_block)
-    for line, parsed, findings in per_block:
-        if foreign is not None:
-            findings = in_foreign_file(findings, parsed, foreign)
+    elif blocks:  # another control's file: one MB002 for the blocks FANUC rejects
+        first = next((b for b in blocks if b.text.strip() not in ("", "%")), blocks[0])
+        per_block, whole_file = fold_foreign_file(per_block, foreign, first.line, first.text)
+        if whole_file is not None:
+            found.append(whole_file)
+    for line, _, findings in per_block:
         for f in findings:
             fixes = [fix.on_line(line) for fix in f.fixes] if f.fixes else ()
             found.append(make(RULES[f.code], f.message, line, f.start, f.end, fixes=fixes))

@@ -6,7 +6,7 @@ from __future__ import annotations
 
 from collections.abc import Iterable, Iterator
 
-from ..diagnostics import RuleDoc, RuleInfo, Severity
+from ..diagnostics import Diagnostic, Related, RuleDoc, RuleInfo, Severity, make
 from ..line_maps import LineMap
 from ..per_line import PerLine
 from ..syntax import dialects
@@ -107,10 +107,12 @@ that no dialect here has is named "not FANUC (dialect not recognised)": C-style 
 A file that carries a mark only another control's programs have (Syntec's `%@MACRO` header,
 Siemens' `PROC` or `DEF` or R parameters, LinuxCNC's O-word subroutine, DDCS's `IF` without
 brackets, Okuma's `VC1=` or `GOTO NLOOP` or `CALL O...`, a wire EDM's `H1=` register) is read as
-that control's program: every block in it that FANUC rejects is reported
-once, as MB002 naming that dialect and the line of the mark, instead of as syntax errors,
-comment or end-of-block warnings (a `;` comment of Siemens or LinuxCNC, a `(` of a Syntec
-expression). A block `ELSE` in a Siemens file is Siemens', not Haas's.
+that control's program: one MB002 on its first line (past a tape mark and empty lines) names
+the control and the line of the mark, and counts the blocks FANUC rejects. The editor lists
+each of them as a related place, with what FANUC rejects in it, instead of one diagnostic a
+block, syntax errors, comment or end-of-block warnings (a `;` comment of Siemens or LinuxCNC, a
+`(` of a Syntec expression). A block `ELSE` in a Siemens file is Siemens', not Haas's. A FANUC
+program with a few foreign blocks (no such mark) keeps one MB002 a block.
 """,
     why="""
 A FANUC control raises an alarm on the block: PS0125 for an
@@ -139,8 +141,8 @@ A code that is Haas's only with its `P` when it stands without
 one (`M97`, `M109` alone are machine builders' M codes on FANUC); `#10000`–`#19999`, which are
 FANUC's tool offsets as well as Haas's commons; the other Haas G codes: `G47` (engraving on a
 Haas, a tool offset on a FANUC mill), `G187` (a FANUC machine may make it a custom macro call);
-and, in another control's file, each rejected block
-once, under that control's name, not as syntax errors. G103 as a FANUC custom G code (set by
+and, in another control's file, its rejected blocks one by one: they are the related places of
+its one MB002. G103 as a FANUC custom G code (set by
 parameters 6050-6059) is reported all the same: that setting is not in the program.
 """,
 )
@@ -352,3 +354,41 @@ def _foreign_message(foreign: dialects.FileDialect, parsed: ParsedLine, first: L
     else:  # a form of yet another dialect, or a Haas-looking statement: this file's own
         what = "FANUC rejects this block"
     return f"{foreign.name} program ({where}): {what}"
+
+
+def _blocks(n: int) -> str:
+    return "1 of its blocks is" if n == 1 else f"{n} of its blocks are"
+
+
+def fold_foreign_file(
+    blocks: list[tuple[int, ParsedLine, tuple[LineFinding, ...]]],
+    foreign: dialects.FileDialect,
+    first_line: int,
+    first_text: str,
+) -> tuple[list[tuple[int, ParsedLine, tuple[LineFinding, ...]]], Diagnostic | None]:
+    """The line findings of a file written for another control: the blocks FANUC rejects give
+    one MB002 on the file's first line (``first_line``: the first but an empty line or a
+    tape mark), which names the control and the
+    evidence and lists them as related places, in place of one a block. The other findings of
+    each block stay (see :func:`in_foreign_file`)."""
+    kept_blocks: list[tuple[int, ParsedLine, tuple[LineFinding, ...]]] = []
+    rejected: list[Related] = []
+    for line, parsed, findings in blocks:
+        kept = in_foreign_file(findings, parsed, foreign)
+        for f in kept:
+            if f.code == "MB002":
+                rejected.append(Related(line, f.start, f.end, f.message))
+        kept = tuple(f for f in kept if f.code != "MB002")
+        if kept:
+            kept_blocks.append((line, parsed, kept))
+    if not rejected:
+        return kept_blocks, None
+    shown = ", ".join(str(r.line + 1) for r in rejected[:8])
+    more = f" and {len(rejected) - 8} more" if len(rejected) > 8 else ""
+    message = (
+        f"a program written for {foreign.name} ({foreign.mark} on line {foreign.line + 1}): "
+        f"FANUC cannot run it as written; {_blocks(len(rejected))} in forms FANUC rejects "
+        f"(line{'s' if len(rejected) > 1 else ''} {shown}{more}), not reported one by one"
+    )
+    end = len(first_text.rstrip())
+    return kept_blocks, make(MB002, message, first_line, 0, end, related=rejected)
