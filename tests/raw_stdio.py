@@ -82,6 +82,18 @@ class RawLspClient(StdioProcess):
                 found[message["id"]] = message
         return found
 
+    def initialize(self, msg_id: int = 1) -> dict[str, Any]:
+        """The ``initialize`` request of a client with no capabilities, and its answer."""
+        self.send(
+            {
+                "jsonrpc": "2.0",
+                "id": msg_id,
+                "method": "initialize",
+                "params": {"processId": None, "rootUri": None, "capabilities": {}},
+            }
+        )
+        return self.answer(msg_id)
+
     def notify(self, method: str, params: dict[str, Any]) -> None:
         self.send({"jsonrpc": "2.0", "method": method, "params": params})
 

@@ -122,15 +122,7 @@ def server() -> Iterator[RawLspClient]:
 
 @pytest.mark.skipif(not Path("/proc/self/status").exists(), reason="RSS read from /proc")
 def test_the_server_gives_back_what_5000_typed_lines_held(server: RawLspClient) -> None:
-    server.send(
-        {
-            "jsonrpc": "2.0",
-            "id": 1,
-            "method": "initialize",
-            "params": {"processId": None, "rootUri": None, "capabilities": {}},
-        }
-    )
-    server.answer(1)
+    server.initialize()
     server.notify("initialized", {})
     warm = {"uri": "untitled:warm.nc", "languageId": "fanuc-macro", "version": 1}
     server.notify("textDocument/didOpen", {"textDocument": {**warm, "text": "O1\n#1=1\nM30\n"}})
@@ -218,14 +210,6 @@ def test_the_server_is_recognised_by_its_command_line(argv: list[str], server: b
 
 @pytest.mark.skipif(not Path("/proc/self/environ").exists(), reason="environment from /proc")
 def test_the_server_runs_on_the_c_allocator(server: RawLspClient) -> None:
-    server.send(
-        {
-            "jsonrpc": "2.0",
-            "id": 1,
-            "method": "initialize",
-            "params": {"processId": None, "rootUri": None, "capabilities": {}},
-        }
-    )
-    server.answer(1)  # started again, then answering: the environment is the final one
+    server.initialize()  # started again, then answering: the environment is the final one
     environ = Path(f"/proc/{server.proc.pid}/environ").read_bytes().split(b"\0")
     assert b"PYTHONMALLOC=malloc" in environ

@@ -16,6 +16,7 @@ from ..diagnostics import (
     Severity,
     make,
 )
+from ..program.knowledge import FUNCTIONS, KEYWORDS
 from ..syntax.tree import ParsedLine, ProgramStart
 from .context import LineFinding, RuleContext
 
@@ -730,47 +731,7 @@ def _outside(parsed: ParsedLine, col: int) -> bool:
 # ---- a comment run on over several lines ------------------------------------------------------
 
 # Words of Macro B and of its functions: a line made of them is code, not a comment's prose.
-_MACRO_WORDS = frozenset(
-    (
-        "IF",
-        "WHILE",
-        "GOTO",
-        "THEN",
-        "END",
-        "DO",
-        "AND",
-        "OR",
-        "XOR",
-        "MOD",
-        "EQ",
-        "NE",
-        "GT",
-        "GE",
-        "LT",
-        "LE",
-        "POPEN",
-        "PCLOS",
-        "DPRNT",
-        "BPRNT",
-        "SIN",
-        "COS",
-        "TAN",
-        "ASIN",
-        "ACOS",
-        "ATAN",
-        "SQRT",
-        "ABS",
-        "ROUND",
-        "FIX",
-        "FUP",
-        "LN",
-        "EXP",
-        "POW",
-        "ADP",
-        "BIN",
-        "BCD",
-    )
-)
+_MACRO_WORDS = frozenset(KEYWORDS) | frozenset(FUNCTIONS)
 _WORD = re.compile(r"[^\W\d_]{3,}")
 
 # A block's findings, with its line: what run_checks folds.
