@@ -238,6 +238,25 @@ async def test_an_edit_that_makes_a_failed_block_assign_is_analysed_again(
     assert [(d.code, d.range) for d in found] == [(d.code, d.range) for d in fresh]
 
 
+async def test_lines_added_after_a_call_run_when_the_call_returns(client: LanguageClient) -> None:
+    # The earlier run returned from O2000 to "G00 X100.", and met the new run inside O2000:
+    # resuming there skipped the block added after the M98 (MB702 for it, no alarm).
+    await start(client, None)
+    body = "".join(f"G01 X{10 + i}. Z-{i}.5 F0.1\n" for i in range(60))
+    text = "O1000\nM98 P2000\nG00 X100.\nM30\nO2000\n#1=0\nWHILE[#1LT20]DO1\n"
+    text += body + "#1=#1+1\nEND1\nM99\n"
+    uri = "untitled:call-return.nc"
+    open_text(client, uri, text)
+    await diagnostics(client, uri)
+    edit(client, uri, 2, [replace(2, 0, 0, "#3000=1(STOP)\n")])
+    found = await diagnostics(client, uri, lambda d: "MB503" in codes(d))
+    assert "MB702" not in codes(found)
+    fresh_uri = "untitled:call-return-fresh.nc"
+    open_text(client, fresh_uri, text.replace("M98 P2000\n", "M98 P2000\n#3000=1(STOP)\n"))
+    fresh = await diagnostics(client, fresh_uri, lambda d: bool(d))
+    assert [(d.code, d.range) for d in found] == [(d.code, d.range) for d in fresh]
+
+
 async def test_never_executed_is_unnecessary(client: LanguageClient) -> None:
     await start(client, None)
     uri = "untitled:dead.nc"

@@ -19,6 +19,7 @@ from __future__ import annotations
 
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
+from itertools import pairwise
 from operator import itemgetter
 from typing import TYPE_CHECKING
 
@@ -335,9 +336,22 @@ def plan(
     convergeable: dict[tuple[object, ...], list[int]] = {}
     for i in range(last + 1, len(old.checkpoints)):
         c = old.checkpoints[i]
-        if c.run > last_budget and i not in old.unusable:
+        if c.run > last_budget and i not in old.unusable and not _returns_into(c, changed):
             convergeable.setdefault(c.meeting_key(), []).append(i)
     return Resumption(previous, old, start, convergeable)
+
+
+def _returns_into(state: MachineState, changed: dict[str, set[int]]) -> bool:
+    """Whether a call in ``state`` returns to a changed line. The earlier run went on from
+    there with the line that stood there then: after lines were added just past an ``M98``,
+    it returned to the block that now follows them, and no stretch of it ran the new lines,
+    so meeting the new run inside the called program would skip them."""
+    levels = state.levels
+    for caller, level in pairwise(levels):
+        lines = changed.get(caller.ctx[0])
+        if lines and level.return_pc in lines:
+            return True
+    return False
 
 
 def local_access(cl: CompiledLine) -> tuple[tuple[int, ...], tuple[int, ...]]:
