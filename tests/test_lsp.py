@@ -220,6 +220,28 @@ async def test_the_first_keystroke_in_an_empty_document(client: LanguageClient) 
     assert codes(found) == {"MB001"}, found  # the incomplete word, no internal error (MB000)
 
 
+async def edited_as_fresh(
+    client: LanguageClient,
+    name: str,
+    text: str,
+    change: types.TextDocumentContentChangePartial,
+    edited: str,
+    done: Callable[[Sequence[types.Diagnostic]], bool],
+) -> Sequence[types.Diagnostic]:
+    """Open ``text``, make ``change`` (which gives ``edited``) and wait for ``done``; the
+    diagnostics must be those of ``edited`` opened fresh. Returns them."""
+    uri = f"untitled:{name}.nc"
+    open_text(client, uri, text)
+    await diagnostics(client, uri)
+    edit(client, uri, 2, [change])
+    found = await diagnostics(client, uri, done)
+    fresh_uri = f"untitled:{name}-fresh.nc"
+    open_text(client, fresh_uri, edited)
+    fresh = await diagnostics(client, fresh_uri, lambda d: bool(d))
+    assert [(d.code, d.range) for d in found] == [(d.code, d.range) for d in fresh]
+    return found
+
+
 async def test_an_edit_that_makes_a_failed_block_assign_is_analysed_again(
     client: LanguageClient,
 ) -> None:
@@ -227,15 +249,9 @@ async def test_an_edit_that_makes_a_failed_block_assign_is_analysed_again(
     # changes (#9 is set before G0 reads it), so the earlier run's facts must not be kept.
     await start(client, None)
     text = "O1000\n#5=2.\n#7=3\n#9BCD#5*0.[#7]\nG0X#9Z5.\nM30\n"
-    uri = "untitled:failed-assignment.nc"
-    open_text(client, uri, text)
-    await diagnostics(client, uri, lambda d: "MB904" in codes(d))
-    edit(client, uri, 2, [replace(3, 2, 5, "=")])  # #9BCD#5*0.[#7] -> #9=#5*0.[#7]
-    found = await diagnostics(client, uri, lambda d: "MB904" not in codes(d))
-    fresh_uri = "untitled:failed-assignment-fresh.nc"
-    open_text(client, fresh_uri, text.replace("BCD", "="))
-    fresh = await diagnostics(client, fresh_uri, lambda d: bool(d))
-    assert [(d.code, d.range) for d in found] == [(d.code, d.range) for d in fresh]
+    change = replace(3, 2, 5, "=")  # #9BCD#5*0.[#7] -> #9=#5*0.[#7]
+    edited = text.replace("BCD", "=")
+    await edited_as_fresh(client, "assign", text, change, edited, lambda d: "MB904" not in codes(d))
 
 
 async def test_lines_added_after_a_call_run_when_the_call_returns(client: LanguageClient) -> None:
@@ -245,16 +261,12 @@ async def test_lines_added_after_a_call_run_when_the_call_returns(client: Langua
     body = "".join(f"G01 X{10 + i}. Z-{i}.5 F0.1\n" for i in range(60))
     text = "O1000\nM98 P2000\nG00 X100.\nM30\nO2000\n#1=0\nWHILE[#1LT20]DO1\n"
     text += body + "#1=#1+1\nEND1\nM99\n"
-    uri = "untitled:call-return.nc"
-    open_text(client, uri, text)
-    await diagnostics(client, uri)
-    edit(client, uri, 2, [replace(2, 0, 0, "#3000=1(STOP)\n")])
-    found = await diagnostics(client, uri, lambda d: "MB503" in codes(d))
+    change = replace(2, 0, 0, "#3000=1(STOP)\n")
+    edited = text.replace("M98 P2000\n", "M98 P2000\n#3000=1(STOP)\n")
+    found = await edited_as_fresh(
+        client, "call-return", text, change, edited, lambda d: "MB503" in codes(d)
+    )
     assert "MB702" not in codes(found)
-    fresh_uri = "untitled:call-return-fresh.nc"
-    open_text(client, fresh_uri, text.replace("M98 P2000\n", "M98 P2000\n#3000=1(STOP)\n"))
-    fresh = await diagnostics(client, fresh_uri, lambda d: bool(d))
-    assert [(d.code, d.range) for d in found] == [(d.code, d.range) for d in fresh]
 
 
 async def test_never_executed_is_unnecessary(client: LanguageClient) -> None:
