@@ -9,7 +9,10 @@ from typing import Any
 from .diagnostics import Severity
 from .syntax.limits import MAX_LINE_LENGTH, ReadLimits
 
-CONTROLLERS = ("0i-TF", "0i-MF", "16i-T", "16i-M", "18i-T", "18i-M", "30i")
+# "0i-F": a 0i-F whose machine, lathe (0i-TF) or mill (0i-MF), each document's codes show
+# (program.machine_kind); the others say the machine.
+CONTROLLERS = ("0i-F", "0i-TF", "0i-MF", "16i-T", "16i-M", "18i-T", "18i-M", "30i")
+BY_PROGRAM = "0i-F"
 ATAN_RANGES = ("0-360", "-180-180")
 
 # A machine limit nobody set: nothing is above it, so the rules that compare with it stay quiet.
@@ -20,7 +23,7 @@ NOT_SET = math.inf
 
 @dataclass(frozen=True)
 class Config:
-    controller: str = "0i-TF"
+    controller: str = BY_PROGRAM
     max_spindle_speed: float = NOT_SET  # rpm (setting machine.maxSpindleSpeed)
     max_threading_feed: float = NOT_SET  # mm/min: S x lead must stay under it
     max_depth_per_pass: float = 0.5  # mm, radius, for a threading pass
@@ -47,6 +50,20 @@ class Config:
     # Hovers show values at the least input increment (0.001 mm, 0.0001 inch); with this set,
     # in full (the 8 digits the control keeps). No verdict depends on it.
     hover_full_precision: bool = False
+    # Set when the machine was read from the document (controller 0i-F): why it is a lathe or
+    # a mill, or why neither could be told; then ``machine_known`` is False, the document is
+    # read as a lathe (the 0i-TF) and the verdicts that depend on the machine are not given.
+    machine_note: str = ""
+    machine_known: bool = True
+    # The codes the control's parameters make calls (machine.customCalls): each a
+    # CustomCallSetting, read and checked by read_custom_calls.
+    custom_calls: tuple[CustomCallSetting, ...] = ()
+    # Programs kept on the control, not beside the files (machine.programsOnControl): ranges
+    # of program numbers, first and last included.
+    programs_on_control: tuple[tuple[int, int], ...] = ()
+    # What the settings above could not read, each a sentence naming the value: the front
+    # ends show them (log, stderr); the analysis uses only what was read.
+    setting_problems: tuple[str, ...] = field(default=(), compare=False)
 
     @property
     def read_limits(self) -> ReadLimits:
@@ -54,7 +71,13 @@ class Config:
 
     @property
     def is_lathe(self) -> bool:
-        return self.controller.endswith("T") or self.controller.endswith("TF")
+        """Whether codes are read as a lathe's (a 0i-F not resolved for a document: yes)."""
+        return self.controller.endswith(("T", "TF")) or self.controller == BY_PROGRAM
+
+    @property
+    def machine_by_program(self) -> bool:
+        """Whether each document's codes say its machine (controller 0i-F)."""
+        return self.controller == BY_PROGRAM
 
     @property
     def value_range(self) -> tuple[float, float]:
@@ -87,10 +110,12 @@ class Config:
                 severities[str(code).upper()] = Severity(str(value).lower())
             except ValueError:
                 continue
-        controller = str(settings.get("controller") or "0i-TF")
+        controller = str(settings.get("controller") or BY_PROGRAM)
         default = cls()
+        custom_calls, call_problems = read_custom_calls(machine.get("customCalls"))
+        on_control, range_problems = read_program_ranges(machine.get("programsOnControl"))
         return cls(
-            controller=controller if controller in CONTROLLERS else "0i-TF",
+            controller=controller if controller in CONTROLLERS else BY_PROGRAM,
             max_spindle_speed=_number(machine.get("maxSpindleSpeed"), default.max_spindle_speed),
             max_threading_feed=_number(machine.get("maxThreadingFeed"), default.max_threading_feed),
             max_depth_per_pass=_number(
@@ -106,6 +131,9 @@ class Config:
             max_blocks=int(_number(analysis.get("maxBlocks"), default.max_blocks)),
             max_file_size=int(_number(analysis.get("maxFileSize"), default.max_file_size)),
             hover_full_precision=hover.get("fullPrecision") is True,
+            custom_calls=custom_calls,
+            programs_on_control=on_control,
+            setting_problems=(*call_problems, *range_problems),
         )
 
 
@@ -146,3 +174,151 @@ class FormatSettings:
 
 def _choice(value: Any, choices: tuple[str, ...], default: str) -> str:
     return value if isinstance(value, str) and value in choices else default
+
+
+# Calls through parameters: the code a parameter registers calls a program of a fixed range
+# (FANUC Custom Macro chapter, "Macro call using a G code / an M code", "Subprogram call using an
+# M code / a T code / an S code / a second auxiliary function code"). Per range: the address,
+# the first and last program, whether the call is a macro call (G65-like: the words are
+# arguments, a new level of locals) and the common variable that receives the code's value.
+# Sources: G code -> O9010-O9019 (parameters 6050-6059): zappettini wiki "macro structure" and
+# ZapCon1/KnowledgeBase FanucParameters.md (shared reference macro-b.md 5.4, secondary); T code
+# -> O9000 (parameter 6001#5 TCS), value in #149, and M code -> O9001-O9003 as subprograms:
+# FANUC Power Mate i-D/H Macro Compiler/Executor B-62093E-1/02, 3.1.1-3.1.2. Unverified against
+# a 0i/16i/30i manual: M code -> O9020-O9029 macro calls (6080-6089), O9004-O9009 and the
+# parameters 6071-6079, S -> O9029 (#147), B -> O9028 (#146). A G code with a decimal point
+# and the extended ranges of newer controls are not read (no manual seen).
+@dataclass(frozen=True)
+class CustomCallRange:
+    address: str
+    first: int
+    last: int
+    macro: bool
+    value_variable: int | None  # the variable that receives the code's value (T: #149)
+    parameters: str  # where the control registers the code, for the messages
+
+
+CUSTOM_CALL_RANGES = (
+    CustomCallRange("G", 9010, 9019, True, None, "parameters 6050-6059"),
+    CustomCallRange("M", 9020, 9029, True, None, "parameters 6080-6089"),
+    CustomCallRange("M", 9001, 9009, False, None, "parameters 6071-6079"),
+    CustomCallRange("T", 9000, 9000, False, 149, "parameter 6001#5 TCS"),
+    CustomCallRange("S", 9029, 9029, False, 147, "the S code call"),
+    CustomCallRange("B", 9028, 9028, False, 146, "the second auxiliary code call"),
+)
+# Codes that already call or return: a parameter cannot make them call something else.
+_FIXED_CALL_CODES = frozenset({("G", 65), ("G", 66), ("G", 67), ("M", 98), ("M", 99)})
+
+
+@dataclass(frozen=True)
+class CustomCallSetting:
+    """One code the control calls a program with: ``M165`` -> O9022 (``number`` None for a
+    whole address: every T word calls O9000)."""
+
+    address: str
+    number: int | None
+    program: int
+    macro: bool  # G65-like (the words are arguments); else M98-like
+    value_variable: int | None = None
+
+    @property
+    def code(self) -> str:
+        return self.address if self.number is None else f"{self.address}{self.number}"
+
+    @property
+    def kind(self) -> str:
+        """What the call is like: ``G65`` or ``M98``."""
+        return "G65" if self.macro else "M98"
+
+
+def _custom_call(code: str, program: object) -> CustomCallSetting | str:
+    """One entry of ``machine.customCalls`` read, or why it cannot be."""
+    text = code.strip().upper()
+    address, digits = text[:1], text[1:]
+    what = f"machine.customCalls: {code!r}"
+    if address not in "GMTSB" or not address or (digits and not digits.isdigit()):
+        return f"{what} is not a code a parameter can register (G<n>, M<n>, T, S or B)"
+    number = int(digits) if digits else None
+    if (number is None) != (address in "TSB"):
+        return f"{what}: a G or M code takes its number (G100, M165); T, S and B stand alone"
+    if number is not None and (address, number) in _FIXED_CALL_CODES:
+        return f"{what} already calls or returns: a parameter cannot make it call a program"
+    if isinstance(program, str):
+        program = program.strip().upper().removeprefix("O")
+        program = int(program) if program.isdigit() else program
+    if isinstance(program, bool) or not isinstance(program, int | float) or program != int(program):
+        return f"{what} calls {program!r}, not a program number"
+    ranges = [r for r in CUSTOM_CALL_RANGES if r.address == address]
+    for r in ranges:
+        if r.first <= program <= r.last:
+            return CustomCallSetting(address, number, int(program), r.macro, r.value_variable)
+    allowed = " or ".join(
+        f"O{r.first}" + (f"-O{r.last}" if r.last != r.first else "") + f" ({r.parameters})"
+        for r in ranges
+    )
+    article = "an" if address in "MS" else "a"
+    return f"{what} calls O{int(program):04d}: {article} {address} code can call only {allowed}"
+
+
+def read_custom_calls(value: Any) -> tuple[tuple[CustomCallSetting, ...], tuple[str, ...]]:
+    """``machine.customCalls`` (``{"G100": 9010, "M165": 9022, "T": 9000}``): the calls read,
+    and a sentence for each entry that cannot be one. One program is called by one code (its
+    parameter holds one)."""
+    if value is None:
+        return (), ()
+    if not isinstance(value, dict):
+        return (), (f"machine.customCalls: {value!r} is not an object of code: program",)
+    calls: list[CustomCallSetting] = []
+    problems: list[str] = []
+    for code, program in value.items():
+        found = _custom_call(str(code), program)
+        if isinstance(found, str):
+            problems.append(found)
+        elif any(c.program == found.program or c.code == found.code for c in calls):
+            problems.append(
+                f"machine.customCalls: {code!r}: O{found.program:04d} or {found.code} is "
+                "already set up (one parameter holds one code)"
+            )
+        else:
+            calls.append(found)
+    return tuple(calls), tuple(problems)
+
+
+def _program_range(item: object) -> tuple[int, int] | None:
+    if isinstance(item, bool):
+        return None
+    if isinstance(item, int) and item >= 0:
+        return item, item
+    if not isinstance(item, str):
+        return None
+    ends = [e.strip().upper().removeprefix("O") for e in item.split("-")]
+    if len(ends) > 2 or not all(e.isdigit() for e in ends):
+        return None
+    first, last = int(ends[0]), int(ends[-1])
+    return (first, last) if first <= last else None
+
+
+def read_program_ranges(value: Any) -> tuple[tuple[tuple[int, int], ...], tuple[str, ...]]:
+    """``machine.programsOnControl``: numbers and ranges (``9000``, ``"O9000-O9999"``)."""
+    if value is None:
+        return (), ()
+    items = value.split(",") if isinstance(value, str) else value
+    if not isinstance(items, list | tuple):
+        return (), (f"machine.programsOnControl: {value!r} is not a list of programs",)
+    ranges: list[tuple[int, int]] = []
+    problems: list[str] = []
+    for item in items:
+        found = _program_range(item)
+        if found is None:
+            problems.append(
+                f"machine.programsOnControl: {item!r} is not a program number or a range "
+                "like O9000-O9999"
+            )
+        else:
+            ranges.append(found)
+    return tuple(ranges), tuple(problems)
+
+
+def on_control(config: Config, number: int) -> bool:
+    """Whether the settings say program ``number`` is kept on the control."""
+    return any(first <= number <= last for first, last in config.programs_on_control)

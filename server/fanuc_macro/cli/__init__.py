@@ -15,7 +15,15 @@ from pathlib import Path
 
 from .. import __version__
 from ..analysis import RULES, analyse, log_failure
-from ..config import CONTROLLERS, NOT_SET, Config
+from ..config import (
+    BY_PROGRAM,
+    CONTROLLERS,
+    NOT_SET,
+    Config,
+    CustomCallSetting,
+    read_custom_calls,
+    read_program_ranges,
+)
 from ..diagnostics import REPORT_INTERNAL_ERROR, Severity
 from ..ide import motion_text, trace  # small: what it uses, the check uses too
 from ..program_files import (
@@ -75,7 +83,34 @@ def _config(args: argparse.Namespace) -> Config:
         max_file_size=args.max_file_size,
         step_budget=args.step_budget,
         time_limit=args.time_limit,
+        custom_calls=_custom_calls(args.custom_call or ()),
+        programs_on_control=tuple(r for ranges in args.on_control or () for r in ranges),
     )
+
+
+def _custom_calls(given: Sequence[tuple[str, str]]) -> tuple[CustomCallSetting, ...]:
+    """``--custom-call`` read as the editor's machine.customCalls; what cannot be read is said
+    on stderr, and the rest is used."""
+    calls, problems = read_custom_calls(dict(given))
+    for problem in problems:
+        print(f"fanuc-macro: {problem}", file=sys.stderr)
+    return calls
+
+
+def _custom_call_option(text: str) -> tuple[str, str]:
+    code, sep, program = text.partition("=")
+    if not sep or not code.strip() or not program.strip():
+        raise argparse.ArgumentTypeError(f"not CODE=PROGRAM (M165=9022): {text!r}")
+    return code.strip(), program.strip()
+
+
+def _on_control_option(text: str) -> tuple[tuple[int, int], ...]:
+    ranges, problems = read_program_ranges(text)
+    if problems:
+        raise argparse.ArgumentTypeError(
+            problems[0].removeprefix("machine.programsOnControl: ")
+        )
+    return ranges
 
 
 def _rule_code(text: str) -> str:
@@ -231,6 +266,22 @@ def _add_machine_options(parser: argparse.ArgumentParser) -> None:
         action="store_true",
         help="the machine has the extended common variables #200-#499 (no MB303)",
     )
+    parser.add_argument(
+        "--custom-call",
+        action="append",
+        type=_custom_call_option,
+        metavar="CODE=PROGRAM",
+        help="a code the control's parameters make call a program, e.g. M165=9022, G100=9010, "
+        "T=9000 (repeatable)",
+    )
+    parser.add_argument(
+        "--on-control",
+        action="append",
+        type=_on_control_option,
+        metavar="PROGRAMS",
+        help="programs kept on the control, not beside the files: numbers or ranges, e.g. "
+        "O9000-O9999 (repeatable, or a comma list); their calls are not reported missing",
+    )
 
 
 def cmd_check(args: argparse.Namespace) -> int:
@@ -370,8 +421,9 @@ def _add_rule_options(parser: argparse.ArgumentParser) -> None:
         "--controller",
         type=_controller,
         choices=CONTROLLERS,
-        default="0i-TF",
-        help="the control the programs are for, in any case (default 0i-TF)",
+        default=BY_PROGRAM,
+        help="the control the programs are for, in any case; the default, 0i-F, reads each "
+        "file as a lathe (0i-TF) or a mill (0i-MF) as its codes show",
     )
     parser.add_argument(
         "--disable",

@@ -6,7 +6,10 @@ G66 open a new level of them with the arguments; the control's nesting limits ra
 
 from __future__ import annotations
 
+from ..config import CustomCallSetting, on_control
+from ..program.custom_calls import called_by_code, calling_word
 from ..program.variables import ARGUMENT_VARIABLES
+from ..program.vendor_cycles import known_cycle
 from .compile_lines import CompiledLine, CompiledWord
 from .facts import ProgramNotFound
 from .machine_base import Activation, MachineBase, ProgramContext, StopRun
@@ -19,13 +22,22 @@ MAX_NESTING = 10
 class CallsPart(MachineBase):
     """The machine's calls and returns."""
 
+    # The custom call each compiled NC line makes (by the line's id, with the line kept alive),
+    # worked out when the run first meets it: most runs set up no custom code and never ask.
+    _custom_lines: dict[int, tuple[CompiledLine, CustomCallSetting | None]] | None = None
+
     def _find(
-        self, act: Activation, cl: CompiledLine, number: Value, what: str
+        self, act: Activation, cl: CompiledLine, number: Value, what: str, quiet: bool = False
     ) -> ProgramContext | None:
+        """The program a call runs; a finding when it is not there, unless the settings say the
+        control has it (``quiet``: a custom code's program, which its parameter names;
+        machine.programsOnControl) or it is a vendor's known cycle."""
         if isinstance(number, Unknown) or number is None:
             return None
         ctx = self.programs.get(int(number))
-        if ctx is None:
+        if ctx is None and not (
+            quiet or on_control(self.config, int(number)) or known_cycle(int(number))
+        ):
             message = (
                 f"{what} calls O{int(number):04d}, which the analysis does not "
                 "have; the call is skipped"
@@ -60,17 +72,64 @@ class CallsPart(MachineBase):
         # M98 opens no new local level: the callee shares the caller's locals.
         return self._enter(act, callee, act.locals, False, self._line + 1, repeat)
 
+    def _custom_setting(self, act: Activation, cl: CompiledLine) -> CustomCallSetting | None:
+        """The custom code an NC line calls with, as the settings set up; None inside a program
+        such a code calls, where the codes are plain codes."""
+        settings = self.config.custom_calls
+        if called_by_code(act.ctx.program.number, settings):
+            return None
+        lines = self._custom_lines
+        if lines is None:
+            lines = self._custom_lines = {}
+        known = lines.get(id(cl))
+        if known is None:
+            found = calling_word(cl.nc, settings) if cl.nc is not None else None
+            known = lines[id(cl)] = (cl, found[1] if found is not None else None)
+        return known[1]
+
+    def _custom_call(
+        self, act: Activation, cl: CompiledLine, setting: CustomCallSetting
+    ) -> Activation:
+        """A block whose code the control's parameters make call a program: a macro call whose
+        arguments are the other words, like G65; or a subprogram call, like M98, the code's
+        value in its common variable (T: #149). The block's other words do not run as NC words
+        (unverified: on the control those of a subprogram call run before the call)."""
+        order: list[tuple[str, Value, CompiledWord]] = []
+        code_value: Value = None
+        if cl.constant is not None:
+            words = cl.constant.order
+        else:  # a vacant variable omits its word
+            words = [(w.address, v, w) for w in cl.words if (v := w.evaluate(act)) is not None]
+        for address, v, w in words:
+            if code_value is None and address == setting.address:
+                code_value = v
+                continue
+            order.append((address, v, w))
+        callee = self._find(act, cl, float(setting.program), setting.code, quiet=True)
+        if setting.macro and callee is not None:
+            return self._macro_call(act, cl, order, modal_call=False, callee=callee)
+        if setting.value_variable is not None and code_value is not None:
+            self.store[setting.value_variable] = code_value
+        if callee is None:
+            self._call_unknown(act, shares_locals=not setting.macro)
+            act.pc = self._line + 1
+            return act
+        return self._enter(act, callee, act.locals, False, self._line + 1, 1)
+
     def _macro_call(
         self,
         act: Activation,
         cl: CompiledLine,
         order: list[tuple[str, Value, CompiledWord]],
         modal_call: bool,
+        callee: ProgramContext | None = None,
     ) -> Activation:
+        """G65 or G66 (``order`` the block's words), or a custom macro call (``callee`` given,
+        ``order`` the words but the code)."""
         p: Value = None
         repeat = 1
         args: list[Value] = [None] * 34
-        seen_g = False
+        seen_g = False  # the G65/G66 itself (G is no argument letter)
         ijk_set = -1
         ijk_seen: set[str] = set()
         for address, v, _w in order:
@@ -96,7 +155,8 @@ class CallsPart(MachineBase):
                     args[n] = v
             elif address in ARGUMENT_VARIABLES:
                 args[ARGUMENT_VARIABLES[address]] = v
-        callee = self._find(act, cl, p, "G66" if modal_call else "G65")
+        if callee is None:
+            callee = self._find(act, cl, p, "G66" if modal_call else "G65")
         if modal_call:
             self.modal.modal_calls.append((callee, args, repeat))
             return act

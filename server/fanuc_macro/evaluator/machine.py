@@ -310,6 +310,7 @@ class Machine(MotionPart):
         next_due = self._checkpointed + CHECKPOINT_EVERY + 1 if recording else budget + 1
         next_event = min(next_check, next_due)
         stepper = self.stepper
+        custom_calls = self.config.custom_calls  # codes the parameters make call (often none)
         while True:
             ctx = act.ctx
             pc = act.pc
@@ -337,7 +338,8 @@ class Machine(MotionPart):
                 self._record_reads(act, cl, facts)
             try:
                 if kind == K_NC:  # most blocks: first
-                    act = self._nc(act, cl)
+                    call = self._custom_setting(act, cl) if custom_calls else None
+                    act = self._nc(act, cl) if call is None else self._custom_call(act, cl, call)
                     if cl.second is not None and act.ctx is ctx and act.pc == pc + 1:
                         act.pc = pc
                         self._run_second(act, cl.second, facts)

@@ -61,7 +61,9 @@ class Jump:
 
 @dataclass(frozen=True, slots=True)
 class Call:
-    """M98, G65, G66, G66.1 (and Haas M97) with what the text says of its target."""
+    """M98, G65, G66, G66.1 (and Haas M97) with what the text says of its target; or a code
+    the control's parameters make call a program (``code``: ``M165``, a G65-like or M98-like
+    ``kind``; see :mod:`.custom_calls`)."""
 
     line: int
     kind: str  # "M98", "G65", "G66", "G66.1", "M97"
@@ -70,6 +72,7 @@ class Call:
     program_span: Span | None
     repeat: int | None
     arguments: tuple[Word, ...]
+    code: str | None = None  # the custom code that calls, as the settings name it
 
 
 @dataclass(slots=True)
