@@ -6,6 +6,7 @@ from bisect import bisect_left
 from collections.abc import Iterable, Iterator
 from typing import NamedTuple, cast
 
+from ..config import on_control
 from ..diagnostics import (
     Diagnostic,
     Fix,
@@ -19,9 +20,12 @@ from ..diagnostics import (
 )
 from ..line_maps import LineMap
 from ..per_line import PerLine
+from ..program.custom_calls import calling_word
 from ..program.index import Call as IndexCall
 from ..program.index import Program
+from ..program.knowledge import M_CODES
 from ..program.variables import FORBIDDEN_ARGUMENTS
+from ..program.vendor_cycles import describe, known_cycle
 from ..syntax.marks import constant_value
 from ..syntax.parser import statements_of
 from ..syntax.tree import (
@@ -61,6 +65,12 @@ MB406 = RuleInfo("MB406", "modal-call-not-cancelled", Severity.WARNING,
                  "A G66/G66.1 modal call with no G67 after it in the same program.", FAMILY)
 MB407 = RuleInfo("MB407", "program-not-ended", Severity.WARNING,
                  "An O program with no M30, M02 or M99: it runs off its end.", FAMILY)
+MB408 = RuleInfo("MB408", "vendor-cycle-on-control", Severity.HINT,
+                 "A call of a vendor's known probing or tool-setting cycle that is not in the "
+                 "workspace: it lives on the control.", FAMILY)
+MB409 = RuleInfo("MB409", "m-code-call-not-set-up", Severity.HINT,
+                 "An M code with P and argument words, as a macro call through a parameter "
+                 "takes, that the settings do not set up as a call.", FAMILY)
 # fmt: on
 
 
@@ -220,6 +230,7 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
     known = local_programs | set(ctx.workspace_programs or ())
     # Calls of a program that is not there, by program: one diagnostic each, at the first call.
     missing: dict[int, list[IndexCall]] = {}
+    vendor: dict[int, list[IndexCall]] = {}  # known vendor cycles, MB408's
     for program in ctx.index.programs:
         for call in program.calls:
             line = call.line
@@ -238,8 +249,9 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
                     span.end,
                 )
                 continue
-            if call.program is not None and call.program not in known:
-                missing.setdefault(call.program, []).append(call)
+            number = call.program
+            if number is not None and number not in known and not on_control(ctx.config, number):
+                (vendor if known_cycle(number) else missing).setdefault(number, []).append(call)
             if call.repeat is not None and not 1 <= call.repeat <= 9999:
                 l_word = next((w for w in words if w.address == "L"), None)
                 at = l_word.span if l_word is not None else span
@@ -281,6 +293,8 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
                         fixes=(_decimal_point(line, word.address, word.value),),
                     )
     yield from _missing_programs(ctx, missing)
+    yield from _missing_programs(ctx, vendor)
+    yield from _m_calls_not_set_up(ctx)
 
 
 def _decimal_point(line: int, address: str, value: Num) -> Fix:
@@ -333,7 +347,9 @@ correct the number, or disable the rule for programs that live only on the contr
 Calls whose program number is computed (`M98 P#1`: the evaluator
 reports where it leads, MB706), Haas `M97` (MB002), and each further call of a program already
 reported. Programs the control calls through parameters (custom G and M codes calling
-O9010–O9029, a T code calling O9000), which are not calls in the text. A program in another
+O9010–O9029, a T code calling O9000, set up in `machine.customCalls`), which the parameter
+says the control has. A program listed in `machine.programsOnControl` (`--on-control`), and
+a vendor's known cycle (MB408 names it). A program in another
 file of the workspace, or of the files given together, or a file without an O line named by
 the number. Nothing, in a file read only in part (MB013): the program may be in the unread part.
 """,
@@ -355,10 +371,17 @@ def _missing_programs(
         if len(calls) > 1:
             also = line_list([c.line for c in calls[1:]])
             more = f"; it is called {len(calls)} times in all (also at lines {also})"
-        yield make(
-            MB403,
+        cycle = known_cycle(number)
+        message = (
             f"{first.kind} calls O{number:04d}, which is not in {where} (alarm PS0076 if it "
-            f"is not in the control's memory){more}",
+            f"is not in the control's memory){more}"
+            if cycle is None
+            else f"{first.kind} calls {describe(cycle)}; a cycle kept on the control, not in "
+            f"{where}: the analysis does not follow it{more}"
+        )
+        yield make(
+            MB403 if cycle is None else MB408,
+            message,
             first.line,
             span.start,
             span.end,
@@ -366,6 +389,129 @@ def _missing_programs(
                 Related(c.line, 0, 0, f"O{number:04d} called again here") for c in calls[1:20]
             ],
             data={"program": number},
+        )
+
+
+MB408_DOC = RuleDoc(
+    "MB408",
+    reports="""
+`G65 P`, `G66 P` or `M98 P` with the number of a probing or tool-setting cycle a vendor
+installs on the control (Renishaw Inspection Plus O9810-O9834, the tool setting cycles
+O9851-O9858), when no file checked with it holds that program. The hint names the cycle.
+""",
+    why="""
+The cycle is on the control, not beside the shop's programs: its call is no mistake, but the
+analysis cannot follow it, and what it does to variables and positions after the call is
+unknown. Hovering the call gives the cycle's arguments as the vendor's manual gives them.
+""",
+    example="""
+```nc
+O1000 (BORE CHECK)
+G65 P9814 D50. Z-10. S1.
+M30
+```
+""",
+    fix="""
+Nothing to fix. Check the cycle's copy with the program (`fanuc-macro check main.nc probe/`)
+to have its run followed; list the programs with `machine.programsOnControl`
+(`--on-control O9000-O9999`) to silence the hint.
+""",
+    not_reported="""
+A cycle in the workspace (it is run), and a number the settings list as kept on the control.
+Other numbers not in the workspace are MB403's.
+""",
+)
+
+
+MB409_DOC = RuleDoc(
+    "MB409",
+    reports="""
+A block with an M code that is not a standard FANUC code, with no G code, with a `P` word and
+an argument word that a plain M block never takes (A-E, I-K, Q, R, U-W):
+`M165 P9814 D1.415 S1.`. Such a block is a macro call through an M code (parameters 6080-6089
+register the M code that calls O9020-O9029) on the machine it was written for.
+""",
+    why="""
+Without the setting, the block is read as a plain M block: its words are checked as NC words
+(`D takes a whole number`) and the program it calls is not run.
+""",
+    example="""
+```nc
+O1000 (PROBE)
+M165 P9814 D1.415 S1.
+M30
+```
+""",
+    fix="""
+Set the code up as the control's parameter does, in the setting `machine.customCalls`:
+`{"M165": 9022}` (`--custom-call M165=9022`).
+""",
+    not_reported="""
+An M code set up in `machine.customCalls`, the standard M codes, a block with a G code, and an
+M block with only P (`M98`-like codes of other controls are MB002's).
+""",
+)
+
+# The words a macro call's arguments use that a block of an M code alone never takes.
+_ARGUMENT_LETTERS = frozenset("ABCDEIJKQRUVW")
+
+
+def _m_call_candidate(parsed: ParsedLine) -> tuple[float, int, int] | None:
+    """An M code (not a standard one) with P and an argument word, no G code: the M code and
+    its word's columns."""
+    statement = parsed.statement
+    if type(statement) is PlainNc:
+        codes = statement.codes
+        if not any(a == "M" for a, _ in codes) or any(a == "G" for a, _ in codes):
+            return None
+    if not isinstance(statement, NcStatement | PlainNc):
+        return None
+    m_word: Word | None = None
+    has_p = has_argument = False
+    for word in statement.words:
+        address = word.address
+        if address == "G":
+            return None
+        if address == "M":
+            value = constant_value(word.value)
+            if m_word is not None or value is None or f"M{value:02g}" in M_CODES:
+                return None
+            if value in (97.0, 98.0, 99.0):
+                return None
+            m_word = word
+        elif address == "P":
+            has_p = True
+        elif address in _ARGUMENT_LETTERS:
+            has_argument = True
+    if m_word is None or not (has_p and has_argument):
+        return None
+    value = constant_value(m_word.value)
+    assert value is not None
+    return value, m_word.span.start, m_word.span.end
+
+
+# Blocks that look like a macro call through an M code: few, and kept from edit to edit.
+_m_call_candidates: LineMap[tuple[float, int, int]] = LineMap(_m_call_candidate)
+
+
+def _m_calls_not_set_up(ctx: RuleContext) -> Iterator[Diagnostic]:
+    """MB409: the candidates whose M code the settings do not set up as a call."""
+    found = _m_call_candidates(ctx.doc)
+    settings = ctx.config.custom_calls
+    for line, (value, start, end) in zip(found.lines, found.values, strict=True):
+        statement = ctx.doc.blocks[line].parsed.statement
+        if isinstance(statement, NcStatement | PlainNc) and calling_word(statement, settings):
+            continue
+        code = f"M{value:g}"
+        yield make(
+            MB409,
+            f"{code} with P and argument words reads as a macro call through an M code, which "
+            "the settings do not set up: name the program the control's parameter (6080-6089) "
+            f'makes it call, one of O9020-O9029, in machine.customCalls ({{"{code}": 9022}}, '
+            f"--custom-call {code}=9022)",
+            line,
+            start,
+            end,
         )
 
 
