@@ -369,7 +369,12 @@ def local_access(cl: CompiledLine) -> tuple[tuple[int, ...], tuple[int, ...]]:
 
 def stretches_of(facts: Facts, uri: str) -> list[DocumentFacts] | None:
     """A document's facts by stretch of the run, in order: what its whole facts are merged
-    from (None: the evaluation kept no record)."""
+    from (None: the evaluation kept no record). Facts of both positions of the block-delete
+    switch give the switch-off run's stretches, then the switch-on run's: each run resumes
+    from its own, so no stretch is in both."""
+    if facts.ways is not None:
+        off, on = (stretches_of(way, uri) for way in facts.ways)
+        return None if off is None or on is None else [*off, *on]
     record = facts.record
     if record is None:
         return None

@@ -8,7 +8,7 @@ from __future__ import annotations
 import math
 from array import array
 from collections.abc import Callable, Mapping, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from types import MappingProxyType
 from typing import TYPE_CHECKING, ClassVar, TypeVar
 
@@ -583,6 +583,10 @@ class Facts:
     # The run's checkpoints and facts by stretch, from which the next analysis resumes.
     record: RunRecord | None = field(default=None, repr=False, compare=False)
     toolpath: Toolpath | None = None  # the moves, when the evaluation was asked for them
+    # The runs with the block-delete switch off and on, when the programs run have a block
+    # that begins with '/': these facts are the two merged (see :func:`both_ways`), and the
+    # next evaluation resumes each from its own.
+    ways: tuple[Facts, Facts] | None = field(default=None, repr=False, compare=False)
 
     def stop_message(self) -> str | None:
         """What a user is told when the safety net stopped the analysis (None otherwise)."""
@@ -687,3 +691,114 @@ def _add_jumps(a: JumpCount, b: JumpCount) -> JumpCount:
 
 def _add_roundings(a: Rounding, b: Rounding) -> Rounding:
     return Rounding(a.function, a.argument, a.result, a.count + b.count)
+
+
+# The clause a verdict found with the block-delete switch in one position only ends with.
+SWITCH_OFF = " (with the block-delete switch off)"
+SWITCH_ON = " (with the block-delete switch on)"
+
+
+def both_ways(off: Facts, on: Facts) -> Facts:
+    """The facts of a run with the block-delete switch off (``off``, every '/' block runs)
+    and on (``on``, they are skipped), as one: what the rules, the hover and the inlay hints
+    read.
+
+    - A block ran if either run reached it, so a verdict that a block never runs (MB702)
+      holds both ways. Its count, values read and written and roundings are the switch-off
+      run's, or the switch-on run's at a block only that run reached.
+    - The outcomes of a jump or loop condition are added: a condition is constant (MB701)
+      only when it is so both ways.
+    - A finding of one class at one place in both runs is reported once, with the switch-off
+      run's message; a finding of one run only ends with the clause saying which
+      (:data:`SWITCH_OFF`, :data:`SWITCH_ON`). So do cuts without F.
+    - A program is incomplete if either run stopped in it; the motions, the values at the
+      first cut of each run and the toolpath are the switch-off run's.
+    """
+    out = Facts(
+        motions=off.motions,
+        steps=off.steps + on.steps,
+        run_values=off.run_values,
+        record=off.record,
+        ways=(off, on),
+    )
+    reasons = (off.stopped, on.stopped)
+    out.stopped = "time" if "time" in reasons else "budget" if "budget" in reasons else None
+    out.time_limit = max(off.time_limit, on.time_limit)
+    for uri in [*off.by_uri, *(u for u in on.by_uri if u not in off.by_uri)]:
+        a = off.by_uri.get(uri) or DocumentFacts()
+        b = on.by_uri.get(uri) or DocumentFacts()
+        out.by_uri[uri] = _document_both_ways(a, b)
+    return out
+
+
+def _document_both_ways(a: DocumentFacts, b: DocumentFacts) -> DocumentFacts:
+    reported = _findings_both_ways(a.reported, b.reported)
+    return DocumentFacts(
+        runs={**b.runs, **a.runs},
+        reads={**b.reads, **a.reads},
+        writes={**b.writes, **a.writes},
+        jumps=_merged([a.jumps, b.jumps], _add_jumps),
+        reported=reported,
+        cuts=_cuts_both_ways(a.cuts, b.cuts, len(reported)),
+        analysed_programs=a.analysed_programs | b.analysed_programs,
+        incomplete_programs=a.incomplete_programs | b.incomplete_programs,
+        roundings={**b.roundings, **a.roundings},
+        program_ends=a.program_ends or b.program_ends,
+        assumed_arguments={**b.assumed_arguments, **a.assumed_arguments},
+    )
+
+
+def _place(f: Finding) -> tuple[object, ...]:
+    return (type(f), f.uri, f.line, f.column, f.end_column)
+
+
+def _findings_both_ways(a: list[Finding], b: list[Finding]) -> list[Finding]:
+    """``a``'s findings (switch off) in their order, then those of ``b`` only (switch on)."""
+    unmatched: dict[tuple[object, ...], int] = {}
+    for f in b:
+        key = _place(f)
+        unmatched[key] = unmatched.get(key, 0) + 1
+    out: list[Finding] = []
+    matched: dict[tuple[object, ...], int] = {}
+    for f in a:
+        key = _place(f)
+        left = unmatched.get(key, 0)
+        if left:
+            unmatched[key] = left - 1
+            matched[key] = matched.get(key, 0) + 1
+            out.append(f)
+        else:
+            out.append(replace(f, message=f.message + SWITCH_OFF))
+    for f in b:
+        key = _place(f)
+        taken = matched.get(key, 0)
+        if taken:
+            matched[key] = taken - 1
+        else:
+            out.append(replace(f, message=f.message + SWITCH_ON))
+    return out
+
+
+def _cuts_both_ways(
+    a: list[CutsWithoutFeed], b: list[CutsWithoutFeed], findings: int
+) -> list[CutsWithoutFeed]:
+    """``a``'s records (switch off), each split into the lines ``b`` has too and those it has
+    not (their message ends with the clause), then ``b``'s lines of its own (after every
+    finding: ``findings`` of them)."""
+    if not a and not b:
+        return []
+    in_a = {line for cuts in a for line in cuts.lines}
+    in_b = {line for cuts in b for line in cuts.lines}
+    out: list[CutsWithoutFeed] = []
+    for cuts in a:
+        both = array("i", [line for line in cuts.lines if line in in_b])
+        only = array("i", [line for line in cuts.lines if line not in in_b])
+        if both:
+            out.append(replace(cuts, lines=both))
+        if only:
+            out.append(replace(cuts, lines=only, message=cuts.message + SWITCH_OFF))
+    for cuts in b:
+        only = array("i", [line for line in cuts.lines if line not in in_a])
+        if only:
+            out.append(replace(cuts, lines=only, message=cuts.message + SWITCH_ON, after=findings))
+    return out

@@ -9,11 +9,13 @@ from dataclasses import replace
 
 from ..cancel import COMPILING, SLICE, CancelToken
 from ..config import Config
+from ..database import Derived
 from ..program.index import Program, ProgramIndex
 from ..syntax.parser import quiet_gc
 from ..syntax.tree import Document
 from .checkpoints import ProgramShape, Resumption, RunRecord, changed_in, changed_lines, plan
-from .facts import Facts
+from .compile_lines import K_EMPTY, CompiledLine
+from .facts import Facts, both_ways
 from .line_shift import line_shifts, renumbered
 from .machine import (
     Converged,
@@ -139,7 +141,84 @@ def _evaluate(
     cancel: CancelToken | None,
     toolpath: bool = False,
 ) -> Facts:
+    """Run with the block-delete switch off (every '/' block runs), and, when that run
+    reached a block that begins with '/', again with the switch on (those blocks skipped):
+    until it reaches one, the second run would be the first. A '/1'-'/9' block (multiple
+    block skip) counts as a '/' block: the second run has every switch on. Each run resumes
+    from its own run of ``previous``. One wall-clock limit for the whole analysis, a safety
+    net only: the step budget, per entry of each run, is what ends a run that goes on (see
+    Config)."""
     docs = list(docs)
+    deadline = time.monotonic() + config.time_limit
+    ways = previous.ways if previous is not None else None
+    previous_off = ways[0] if ways is not None else previous
+    off = _evaluate_way(docs, config, only_uri, entry, previous_off, cancel, toolpath, deadline)
+    if toolpath or not _reaches_block_delete(docs, off):
+        return off
+    previous_on = ways[1] if ways is not None else None
+    on = _evaluate_way(
+        docs, config, only_uri, entry, previous_on, cancel, False, deadline, skipping=True
+    )
+    if ways is not None and previous is not None and off is ways[0] and on is ways[1]:
+        return previous  # nothing that runs changed
+    return both_ways(off, on)
+
+
+def _block_delete_lines_of(doc: Document) -> tuple[tuple[int, ...], bool]:
+    lines = tuple(i for i, block in enumerate(doc.blocks) if block.parsed.skip is not None)
+    return lines, True
+
+
+# The lines of a document that begin with '/' (a bare line may, so no LineMap finds them).
+_block_delete_lines: Derived[Document, tuple[int, ...]] = Derived(
+    "evaluator.block_delete_lines", lambda doc: (doc,), _block_delete_lines_of
+)
+
+
+def _reaches_block_delete(docs: Sequence[tuple[str, Document, ProgramIndex]], facts: Facts) -> bool:
+    """Whether the run reached a block that begins with '/'."""
+    for uri, doc, _ in docs:
+        lines = _block_delete_lines(uri, doc)
+        if not lines:
+            continue
+        doc_facts = facts.by_uri.get(uri)
+        if doc_facts is not None and not doc_facts.runs.keys().isdisjoint(lines):
+            return True
+    return False
+
+
+# What a '/' block is with the switch on: nothing, a boundary line where its text is one.
+_SKIPPED = (CompiledLine(K_EMPTY), CompiledLine(K_EMPTY, boundary=True))
+
+
+def _skip_block_delete(
+    docs: Sequence[tuple[str, Document, ProgramIndex]], every: Sequence[ProgramContext]
+) -> None:
+    """The switch on: every '/' block of the compiled lines runs as an empty one (its
+    checkpoints where the switch-off run has them)."""
+    done: set[int] = set()
+    by_uri = {uri: doc for uri, doc, _ in docs}
+    for ctx in every:
+        lines = ctx.lines
+        if id(lines) in done:
+            continue
+        done.add(id(lines))
+        for line in _block_delete_lines(ctx.uri, by_uri[ctx.uri]):
+            lines[line] = _SKIPPED[lines[line].boundary]
+
+
+def _evaluate_way(
+    docs: list[tuple[str, Document, ProgramIndex]],
+    config: Config,
+    only_uri: str | None,
+    entry: int | None,
+    previous: Facts | None,
+    cancel: CancelToken | None,
+    toolpath: bool,
+    deadline: float,
+    skipping: bool = False,
+) -> Facts:
+    """One run of the programs, the block-delete switch on if ``skipping``."""
     documents = tuple((uri, doc) for uri, doc, _ in docs)
     facts = Facts()
     follow = not toolpath and tracks_positions(docs, only_uri)
@@ -151,14 +230,13 @@ def _evaluate(
     if cancel is not None and compiled_before is None:
         _compile_lines(docs, cancel)
     programs, every = build_contexts(docs, facts, compiled_before, changed)
+    if skipping:
+        _skip_block_delete(docs, every)
     if entry is not None:
         chosen = programs.get(entry)
         entries = [chosen] if chosen is not None else []
     else:
         entries = entry_programs(every, only_uri)
-    # One wall-clock limit for the whole analysis, a safety net only: the step budget, per
-    # entry, is what ends a run that goes on (see Config).
-    deadline = time.monotonic() + config.time_limit
     machine = Machine(programs, config, facts, every, cancel)
     if toolpath:
         recorder = machine.toolpath = Recorder(config.is_lathe)

@@ -101,6 +101,11 @@ did not change.
 
 A loop whose test still moves towards its bound when the budget runs out is reported as
 MB708 (long loop) instead, and one that waits for a variable only the outside changes as MB707.
+
+A program that reaches a block beginning with `/` runs with the block-delete switch off and
+on. A finding of one run only (this one, any alarm the evaluator reports) ends with "(with the
+block-delete switch off)" or "(with the block-delete switch on)"; one of both runs is reported
+once, as the switch-off run found it.
 """,
     why="""
 The control repeats the loop until the operator resets it.
@@ -620,7 +625,9 @@ outcome is the caller's choice, and another call may change it. Guards whose inp
 from one time to the next but that never fire (a clamp on the last step of a loop). Outcomes
 reached on a path that went through an undecided condition, conditions in a program with a
 rejected block that may hold a jump, and conditions in a run that stopped early (an alarm, the
-step budget).
+step budget). A condition whose result depends on the block-delete switch (a `/` block sets
+what it reads): both runs, switch off and on, count, so it is reported only when it has the
+same result with either.
 """,
 )
 
@@ -846,7 +853,10 @@ MB702_DOC = RuleDoc(
     reports="""
 A stretch of blocks of an analysed program that no run reached, reported
 on its first block with the number of blocks and the line range. It is not reported when a run
-stopped early or took a branch the analysis could not decide.
+stopped early or took a branch the analysis could not decide. A program that reaches a block
+beginning with `/` (block delete, `/1`-`/9` too) runs twice, with the operator's block-delete
+switch off (those blocks run) and on (they are skipped): a block is never executed only when
+neither run reaches it.
 """,
     why="""
 Blocks that never run are harmless by themselves, but they
@@ -872,7 +882,10 @@ program whose run stopped early (an alarm, the step budget) or took a branch the
 not decide: which blocks are reached is not known then (MB710 still reports what no jump can
 reach after the end). Nor in a program with a block that does not parse and may change which
 blocks run: one in another control's language (Syntec `IF (...) THEN`, a Citizen `$2` path) or
-one that holds a `GOTO`, `IF`, `WHILE`, `END` or a call.
+one that holds a `GOTO`, `IF`, `WHILE`, `END` or a call. Blocks that only one position of the
+block-delete switch passes over (`/GOTO10` skips them when the switch is off, runs them when it
+is on): the operator decides. The second run has every switch on (`/1`-`/9` together), so a
+block that only a mix of switches passes over may still be reported.
 """,
 )
 
