@@ -6,11 +6,13 @@ from __future__ import annotations
 from collections.abc import Mapping, Sequence
 from types import MappingProxyType
 
+from ..config import on_control
 from ..evaluator.facts import ValueSummary
 from ..program import knowledge
 from ..program.index import Program
 from ..program.meanings import table_meaning
 from ..program.variables import ARGUMENT_VARIABLES, classify
+from ..program.vendor_cycles import VendorCycle, known_cycle, manual_of
 from ..syntax.lines import cut_comments
 from ..syntax.marks import constant_value
 from ..syntax.parser import statements_of
@@ -19,8 +21,9 @@ from ..threads.identify import describe as describe_thread
 from ..threads.identify import module_meanings
 from .data import Hover, Range
 from .locate import Hit, assignments_in, goto_target, number_of
+from .navigation import block_call
 from .values import Precision, code, inch_at, substituted, times, variable_kind
-from .view import View, call_at, comment_of, first_comment
+from .view import View, comment_of, first_comment
 
 ARGUMENT_LETTER: Mapping[int, str] = MappingProxyType(
     {n: letter for letter, n in ARGUMENT_VARIABLES.items()}
@@ -188,6 +191,11 @@ def hover_program(view: View, number: int, line: int | None = None, diagnosed: b
     """What O``number`` is; ``diagnosed``: the hovered call has a diagnostic, which the editor
     shows with the hover, so a missing program is not explained twice."""
     entry = view.program_entry(number)
+    cycle = known_cycle(number) if entry is None else None
+    if cycle is not None:
+        return _cycle_text(cycle)
+    if entry is None and on_control(view.config, number):
+        return f"**O{number:04d}** — kept on the control (setting machine.programsOnControl)."
     if entry is None:
         if diagnosed:
             return f"**O{number:04d}** — not in the workspace."
@@ -241,6 +249,23 @@ def hover_program(view: View, number: int, line: int | None = None, diagnosed: b
     return "\n\n".join(parts)
 
 
+def _cycle_text(cycle: VendorCycle) -> str:
+    """A vendor's cycle kept on the control: its name, its arguments, the manual."""
+    parts = [
+        f"**O{cycle.number}** — {cycle.package}: {cycle.name}. A cycle kept on the control, "
+        "not in the workspace: the analysis does not follow it."
+    ]
+    if cycle.arguments:
+        parts.append(
+            "Arguments: " + "; ".join(f"**{letter}** {what}" for letter, what in cycle.arguments)
+        )
+    parts.append(
+        f"Source: {manual_of(cycle)}; the meanings are not checked against its pages "
+        f"(the cycle is named by: {cycle.verified})."
+    )
+    return "\n\n".join(parts)
+
+
 def _argument_variable(arguments: Sequence[Word], word: Word) -> int | None:
     """The local an argument fills: specification I, or II for a repeated I/J/K (sets of
     three from #4)."""
@@ -266,16 +291,22 @@ def hover_word(view: View, block: Block, hit: Hit) -> str | None:
     word = hit.word
     assert word is not None
     program = view.index.program_at(block.line)
-    call = call_at(program, block.line)
+    call = block_call(view, program, block.line)
     value = constant_value(word.value)
     lathe = view.config.is_lathe
     if (
         call is not None
         and call.program is not None
-        and (word.address == "P" or word.span == call.span)
+        and ((word.address == "P" and call.code is None) or word.span == call.span)
     ):
         head = ""
-        if word.span == call.span and value is not None:
+        if call.code is not None:
+            how = "a macro, like G65" if call.kind == "G65" else "a subprogram, like M98"
+            head = (
+                f"**{call.code}** — calls O{call.program:04d} as {how} (setting "
+                "machine.customCalls, as the control's parameter sets it up)\n\n---\n\n"
+            )
+        elif word.span == call.span and value is not None:
             head = (knowledge.code_markdown(word.address, value, lathe) or "") + "\n\n---\n\n"
         diagnosed = _diagnosed(view, block.line, word.span)
         return head + hover_program(view, call.program, block.line, diagnosed)
@@ -287,9 +318,15 @@ def hover_word(view: View, block: Block, hit: Hit) -> str | None:
     if call is not None and any(arg is word for arg in call.arguments):
         target = f"O{call.program:04d}" if call.program is not None else "the macro"
         number = _argument_variable(call.arguments, word)
+        kind = call.code or call.kind
         if number is None:
-            return f"**{word.address}** cannot be a {call.kind} argument"
-        return f"{call.kind} argument **{word.address}** → **#{number}** in {target}"
+            return f"**{word.address}** cannot be a {kind} argument"
+        text = f"{kind} argument **{word.address}** → **#{number}** in {target}"
+        cycle = known_cycle(call.program)
+        if cycle is None or view.program_entry(cycle.number) is not None:
+            return text
+        meaning = dict(cycle.arguments).get(word.address)
+        return text if meaning is None else f"{text}: {meaning} ({manual_of(cycle)})"
     address = knowledge.address_markdown(word.address, lathe)
     if address is not None:
         parts.append(address)

@@ -5,13 +5,27 @@ from __future__ import annotations
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 
-from ..program.index import Program, ProgramIndex
+from ..program.custom_calls import called_by_code, custom_call_of
+from ..program.index import Call, Program, ProgramIndex
 from ..program.variables import classify
 from ..syntax.parser import statements_of
 from ..syntax.tree import Assign, Document, ProgramStart, Span, Var, While
 from .data import Location, Range, Symbol, SymbolKind
 from .locate import assignments_in, goto_target, number_of, uses
 from .view import View, call_at, comment_of, first_comment, lines_of
+
+
+def block_call(view: View, program: Program | None, line: int) -> Call | None:
+    """The call the block at ``line`` makes: a ``G65``/``M98``/``G66`` of the index, or a code
+    the settings' ``machine.customCalls`` make call (not inside the program it calls, where
+    the code is a plain code)."""
+    call = call_at(program, line)
+    settings = view.config.custom_calls
+    if call is not None or not settings or program is None:
+        return call
+    if called_by_code(program.number, settings):
+        return None
+    return custom_call_of(line, view.doc.blocks[line].statement, settings)
 
 
 def definition(view: View, line: int, column: int) -> list[Location]:
@@ -33,11 +47,11 @@ def definition(view: View, line: int, column: int) -> list[Location]:
             return [view.location(view.key, label)]
         return [view.location(view.key, label, seq_span.start, seq_span.end)]
     if hit.kind == "word" and hit.word is not None:
-        call = call_at(program, block.line)
+        call = block_call(view, program, block.line)
         if (
             call is not None
             and call.program is not None
-            and (hit.word.address == "P" or hit.word.span == call.span)
+            and ((hit.word.address == "P" and call.code is None) or hit.word.span == call.span)
         ):
             entry = view.program_entry(call.program)
             if entry is None:
