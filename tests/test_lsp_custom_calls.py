@@ -60,3 +60,15 @@ async def test_hover_of_a_known_cycle_names_it_and_its_arguments(client: Languag
     assert "**Z** the depth to measure a boss at" in text
     argument = await hover(client, uri, 1, 16)
     assert "G65 argument **Z** → **#26** in O9814: the depth to measure a boss at" in argument
+
+
+async def test_a_custom_call_the_manual_does_not_allow_is_logged(client: LanguageClient) -> None:
+    await start(client, None, {"machine": {"customCalls": {"M165": 9010, "G100": 9010}}})
+    uri = "untitled:probe.nc"
+    open_text(client, uri, PROBE)
+    await diagnostics(client, uri, lambda d: "MB409" in codes(d))
+    logged = [m.message for m in client.log_messages]
+    assert (
+        "fanuc-macro: machine.customCalls: 'M165' calls O9010: an M code can call only "
+        "O9020-O9029 (parameters 6080-6089) or O9001-O9009 (parameters 6071-6079)"
+    ) in logged

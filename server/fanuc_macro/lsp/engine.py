@@ -227,6 +227,9 @@ class Engine:
 
     def configure(self, settings: dict[str, Any] | None) -> None:
         config = Config.from_settings(settings)
+        for problem in config.setting_problems:  # the rest of the settings are used
+            log.warning("%s", problem)
+            self.log_message(f"fanuc-macro: {problem}", types.MessageType.Warning)
         self.format_settings = FormatSettings.from_settings(settings)
         language = (settings or {}).get("language")
         language = language if isinstance(language, str) and language else "auto"
