@@ -6,11 +6,14 @@ import time
 from bisect import bisect_left
 from collections.abc import Iterator, Sequence
 from dataclasses import replace
+from itertools import compress, repeat
+from operator import attrgetter, is_not, itemgetter
 
 from ..cancel import COMPILING, SLICE, CancelToken
 from ..config import Config
-from ..database import Derived
+from ..line_maps import Kept
 from ..program.index import Program, ProgramIndex
+from ..syntax.diff import line_diff
 from ..syntax.parser import quiet_gc
 from ..syntax.tree import Document
 from .checkpoints import ProgramShape, Resumption, RunRecord, changed_in, changed_lines, plan
@@ -164,21 +167,46 @@ def _evaluate(
     return both_ways(off, on)
 
 
-def _block_delete_lines_of(doc: Document) -> tuple[tuple[int, ...], bool]:
-    lines = tuple(i for i, block in enumerate(doc.blocks) if block.parsed.skip is not None)
-    return lines, True
+_SKIP = attrgetter("skip")  # ParsedLine.skip, read in C
+_PARSED = itemgetter(1)  # Block.parsed
+
+# The lines of each document that begin with '/', by URI, with the version they are of: a bare
+# line may begin with one, so no LineMap finds them; like one, the next version is looked at
+# only where the edit changed it.
+_kept_block_delete: Kept[tuple[Document, list[int]]] = Kept("evaluator.block_delete_lines")
 
 
-# The lines of a document that begin with '/' (a bare line may, so no LineMap finds them).
-_block_delete_lines: Derived[Document, tuple[int, ...]] = Derived(
-    "evaluator.block_delete_lines", lambda doc: (doc,), _block_delete_lines_of
-)
+def _block_delete_lines(doc: Document) -> list[int]:
+    """The lines of ``doc`` that begin with '/' (block delete), ascending."""
+    last = _kept_block_delete.get(doc.uri)
+    if last is not None and last[0] is doc:
+        return last[1]
+    if last is None:
+        lines = _looked(doc, 0, len(doc.blocks))
+    else:
+        diff = line_diff(last[0], doc)
+        before = last[1]
+        moved = before[bisect_left(before, diff.old_end) :]
+        if diff.shift:
+            moved = [line + diff.shift for line in moved]
+        lines = [
+            *before[: bisect_left(before, diff.start)],
+            *_looked(doc, diff.start, diff.end),
+            *moved,
+        ]
+    _kept_block_delete.put(doc.uri, (doc, lines))
+    return lines
+
+
+def _looked(doc: Document, start: int, end: int) -> list[int]:
+    skips = map(_SKIP, map(_PARSED, doc.blocks[start:end]))
+    return list(compress(range(start, end), map(is_not, skips, repeat(None))))
 
 
 def _reaches_block_delete(docs: Sequence[tuple[str, Document, ProgramIndex]], facts: Facts) -> bool:
     """Whether the run reached a block that begins with '/'."""
     for uri, doc, _ in docs:
-        lines = _block_delete_lines(uri, doc)
+        lines = _block_delete_lines(doc)
         if not lines:
             continue
         doc_facts = facts.by_uri.get(uri)
@@ -187,15 +215,13 @@ def _reaches_block_delete(docs: Sequence[tuple[str, Document, ProgramIndex]], fa
     return False
 
 
-# What a '/' block is with the switch on: nothing, a boundary line where its text is one.
-_SKIPPED = (CompiledLine(K_EMPTY), CompiledLine(K_EMPTY, boundary=True))
-
-
 def _skip_block_delete(
     docs: Sequence[tuple[str, Document, ProgramIndex]], every: Sequence[ProgramContext]
 ) -> None:
     """The switch on: every '/' block of the compiled lines runs as an empty one (its
     checkpoints where the switch-off run has them)."""
+    # What a '/' block is with the switch on: nothing, a boundary line where its text is one.
+    skipped = (CompiledLine(K_EMPTY), CompiledLine(K_EMPTY, boundary=True))
     done: set[int] = set()
     by_uri = {uri: doc for uri, doc, _ in docs}
     for ctx in every:
@@ -203,8 +229,8 @@ def _skip_block_delete(
         if id(lines) in done:
             continue
         done.add(id(lines))
-        for line in _block_delete_lines(ctx.uri, by_uri[ctx.uri]):
-            lines[line] = _SKIPPED[lines[line].boundary]
+        for line in _block_delete_lines(by_uri[ctx.uri]):
+            lines[line] = skipped[lines[line].boundary]
 
 
 def _evaluate_way(
