@@ -148,7 +148,9 @@ def _evaluate(
     reached a block that begins with '/', again with the switch on (those blocks skipped):
     until it reaches one, the second run would be the first. A '/1'-'/9' block (multiple
     block skip) counts as a '/' block: the second run has every switch on. Each run resumes
-    from its own run of ``previous``. One wall-clock limit for the whole analysis, a safety
+    from its own run of ``previous``. (The switch and '/n': FANUC Series 16i/18i operator's
+    manual B-63684EN, Part II "Program configuration", optional block skip; its section
+    number and the '/n' option's text unverified here.) One wall-clock limit for the whole analysis, a safety
     net only: the step budget, per entry of each run, is what ends a run that goes on (see
     Config)."""
     docs = list(docs)
