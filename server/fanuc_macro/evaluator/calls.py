@@ -83,7 +83,8 @@ class CallsPart(MachineBase):
             lines = self._custom_lines = {}
         known = lines.get(id(cl))
         if known is None:
-            found = calling_word(cl.nc, settings) if cl.nc is not None else None
+            # Not a Haas ``IF [c] <words>`` block: another control's (MB002), run by _nc.
+            found = calling_word(cl.nc, settings) if cl.nc is not None and not cl.cond else None
             known = lines[id(cl)] = (cl, found[1] if found is not None else None)
         return known[1]
 
