@@ -127,3 +127,10 @@ def test_hover_and_definition_of_a_custom_code(tmp_path: Path) -> None:
     found = run(tmp_path, "definition", "--custom-call", "M165=9022", "probe.nc", "2", "2")
     assert found.stdout.strip().endswith("probe.nc:4:1")
     assert run(tmp_path, "definition", "probe.nc", "2", "2").stdout.strip() == ""
+
+
+def test_another_m_code_of_the_block_is_an_argument_of_the_call(tmp_path: Path) -> None:
+    text = "O1000\nM08 M165 D2.\nM30\nO9022\n#3=1/[#13-8.]\nM99\n"
+    _write(tmp_path, "m.nc", text)
+    done = run(tmp_path, "check", "--custom-call", "M165=9022", "m.nc")
+    assert "m.nc:5:4: MB502" in done.stdout and "with #13=8." in done.stdout

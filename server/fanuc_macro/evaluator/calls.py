@@ -101,9 +101,10 @@ class CallsPart(MachineBase):
             words = cl.constant.order
         else:  # a vacant variable omits its word
             words = [(w.address, v, w) for w in cl.words if (v := w.evaluate(act)) is not None]
+        number = setting.number
         for address, v, w in words:
-            if code_value is None and address == setting.address:
-                code_value = v
+            if code_value is None and address == setting.address and number in (None, v):
+                code_value = v  # the code itself: no argument (M08 M165: M08 is one, #13)
                 continue
             order.append((address, v, w))
         callee = self._find(act, cl, float(setting.program), setting.code, quiet=True)
