@@ -320,7 +320,8 @@ def hover_word(view: View, block: Block, hit: Hit) -> str | None:
         number = _argument_variable(call.arguments, word)
         kind = call.code or call.kind
         if number is None:
-            return f"**{word.address}** cannot be a {kind} argument"
+            article = "an" if kind[0] in "MS" else "a"  # an M165, a G65
+            return f"**{word.address}** cannot be {article} {kind} argument"
         text = f"{kind} argument **{word.address}** → **#{number}** in {target}"
         cycle = known_cycle(call.program)
         if cycle is None or view.program_entry(cycle.number) is not None:
