@@ -89,10 +89,12 @@ REJECTED: dict[str, list[tuple[int, str]]] = {
     "RomanBoreyko__r_cod2__cnc__(SHABLON 3)__RAZNOE__shabloNi__0000__O00094.nc": [
         (4, "MB002"),  # 'IF [ #1 EQ #2 ] S#20 F#30': Haas; IF without GOTO/THEN is PS0125
     ],
+    # Files with 5 or more blocks in one control's forms are that control's: their rejected
+    # blocks are the related places of one MB002 (listed here as MB002, one per block).
     "appliedengdesign__vscode-gcode-syntax__samplenc__sample-colors.nc": [
         (41, "MB002"),  # 'G154 P25': Haas additional work offset; FANUC writes G54.1 P25
-        (82, "MB001"),  # 'WHILE[ABS[#5+7.]]LT0.1]D02': unbalanced ']', 'D02' for 'DO2' (PS0125)
-        (89, "MB001"),  # 'E.#234': '.' then '#' is no number (format error)
+        (82, "MB002"),  # 'WHILE[ABS[#5+7.]]LT0.1]D02': unbalanced ']', 'D02' for 'DO2' (PS0125)
+        (89, "MB002"),  # 'E.#234': '.' then '#' is no number (format error)
         (102, "MB002"),  # 'IF [...] THEN' alone: Haas NGC block IF, not FANUC 0i/16i/30i
         (104, "MB002"),  # 'ELSE': Haas NGC block IF
         (106, "MB002"),  # 'ENDIF': Haas NGC block IF
@@ -107,8 +109,7 @@ REJECTED: dict[str, list[tuple[int, str]]] = {
     ],
     "jpaullee__renishaw_macros__09000__O09023_RENISHAW_Storm.nc": sorted(
         [
-            (152, "MB002"),  # 'IF [ #30057.21 ] GOTO22': Haas NGC bare value as a condition
-            (152, "MB002"),  # ... and DECIMAL_VAR
+            (152, "MB002"),  # 'IF [ #30057.21 ] GOTO22': Haas NGC bare value, DECIMAL_VAR
             (198, "MB002"),  # 'G31 Z [ ... #30003.036 ... ]': DECIMAL_VAR
             (210, "MB002"),  # 'IF [ #20040 EQ 1 ] GOTO51': HAAS_SETTING
             (241, "MB002"),  # same block again: DECIMAL_VAR
@@ -126,14 +127,10 @@ REJECTED: dict[str, list[tuple[int, str]]] = {
         (6, "MB002"),  # 'IF[#598 NE 1.]G65 P9725': Haas IF without GOTO/THEN (PS0125)
         (9, "MB002"),  # 'IF [ #20040 EQ 1 ] GOTO90': HAAS_SETTING
         (18, "MB002"),  # '#162 = #30001.116': DECIMAL_VAR
-        (25, "MB002"),  # '#30001.037 * #30001.035': DECIMAL_VAR, twice in the block
-        (25, "MB002"),
+        (25, "MB002"),  # '#30001.037 * #30001.035': DECIMAL_VAR (twice in the block)
         (28, "MB002"),  # same two variables: DECIMAL_VAR
-        (28, "MB002"),
         (38, "MB002"),  # same two variables: DECIMAL_VAR
-        (38, "MB002"),
         (41, "MB002"),  # same two variables: DECIMAL_VAR
-        (41, "MB002"),
     ],
     "jpaullee__renishaw_macros__09000__O09726_RENISHAW_Storm.nc": [(3, "MB002")],  # HAAS_G103
     "jpaullee__renishaw_macros__09000__O09730_RENISHAW_Storm.nc": [(4, "MB002")],  # HAAS_G103
@@ -150,38 +147,38 @@ REJECTED: dict[str, list[tuple[int, str]]] = {
     "madsenmj__vscode-gcode-syntax-citizen__samplenc__sample-citizen-linter.cnc": [
         (1, "MB002"),  # '$1': PATH_SELECT
         (22, "MB002"),  # 'G0 Z-.05 M3 S1=500': SPINDLE_SELECT
-        (27, "MB001"),  # 'IF[#814GT1] (MISSING GOTO)': IF without GOTO/THEN (PS0125)
-        (29, "MB001"),  # 'IF[#814GT1]': IF without GOTO/THEN (PS0125)
-        (31, "MB001"),  # 'IF[#814MM1] GOTO333': 'MM' is no comparison (PS0114)
-        (50, "MB001"),  # 'WHILE[#500MM1]DO1': 'MM' is no comparison (PS0114)
-        (61, "MB001"),  # 'WHILE[#500LT1]': WHILE without DO (PS0125)
-        (75, "MB001"),  # 'WHILE[#500LT1]DO': DO without its number (PS0125)
+        (27, "MB002"),  # 'IF[#814GT1] (MISSING GOTO)': IF without GOTO/THEN (PS0125)
+        (29, "MB002"),  # 'IF[#814GT1]': IF without GOTO/THEN (PS0125)
+        (31, "MB002"),  # 'IF[#814MM1] GOTO333': 'MM' is no comparison (PS0114)
+        (50, "MB002"),  # 'WHILE[#500MM1]DO1': 'MM' is no comparison (PS0114)
+        (61, "MB002"),  # 'WHILE[#500LT1]': WHILE without DO (PS0125)
+        (75, "MB002"),  # 'WHILE[#500LT1]DO': DO without its number (PS0125)
         (80, "MB002"),  # 'G0 X#814+.1 Z0 T2': UNBRACKETED
         (81, "MB002"),  # 'G97 S1=700 M3': SPINDLE_SELECT
-        (89, "MB001"),  # 'G1 #814': NO_ADDRESS
-        (90, "MB001"),  # 'G2 #814 R.123': NO_ADDRESS
-        (91, "MB001"),  # 'G3 #814 R.123': NO_ADDRESS
-        (92, "MB001"),  # 'G32 #814 F.123': NO_ADDRESS
-        (93, "MB001"),  # 'G83 #814 F.123': NO_ADDRESS
-        (94, "MB001"),  # 'G87 #814 F.123': NO_ADDRESS
+        (89, "MB002"),  # 'G1 #814': NO_ADDRESS
+        (90, "MB002"),  # 'G2 #814 R.123': NO_ADDRESS
+        (91, "MB002"),  # 'G3 #814 R.123': NO_ADDRESS
+        (92, "MB002"),  # 'G32 #814 F.123': NO_ADDRESS
+        (93, "MB002"),  # 'G83 #814 F.123': NO_ADDRESS
+        (94, "MB002"),  # 'G87 #814 F.123': NO_ADDRESS
         (96, "MB002"),  # 'G1 X#814-.04': UNBRACKETED
         (101, "MB002"),  # 'G97 S1=500 M3': SPINDLE_SELECT
-        (104, "MB001"),  # 'TO': letter O typed for zero; T has no value (format error)
+        (104, "MB002"),  # 'TO': letter O typed for zero; T has no value (format error)
         (109, "MB002"),  # 'G0 X#814+.1 Z0 T19': UNBRACKETED
         (110, "MB002"),  # 'G97 S1=700 M3': SPINDLE_SELECT
         (119, "MB002"),  # 'G0 X#814+.1 Z#501': UNBRACKETED
-        (124, "MB001"),  # '#501 + 1': an expression that is no statement (no '=')
+        (124, "MB002"),  # '#501 + 1': an expression that is no statement (no '=')
         (131, "MB002"),  # 'G97 S1=500 M3': SPINDLE_SELECT
         (132, "MB002"),  # 'S2=500 M24': SPINDLE_SELECT
         (135, "MB002"),  # 'G97 S1=1500 M3': SPINDLE_SELECT
         (138, "MB002"),  # '!L1': PATH_WAIT
-        (141, "MB001"),  # 'GOTO (MISSING NUMBER AFTER GOTO)': GOTO without target (PS0125)
+        (141, "MB002"),  # 'GOTO (MISSING NUMBER AFTER GOTO)': GOTO without target (PS0125)
         (142, "MB002"),  # 'G0 X#814+.1': UNBRACKETED
         (166, "MB002"),  # '$2': PATH_SELECT
         (175, "MB002"),  # '!L1': PATH_WAIT
         (180, "MB002"),  # 'M98 H1': Citizen call to a sequence number (FANUC needs P)
         (199, "MB002"),  # '$0': PATH_SELECT (Citizen variable-dump section follows)
-        (200, "MB001"),  # 'A': header of the Citizen $0 dump, an address without a value
+        (200, "MB002"),  # 'A': header of the Citizen $0 dump, an address without a value
     ],
     # Citizen Swiss lathe program; line 17, a bare 'M97', is not listed (see above).
     "madsenmj__vscode-gcode-syntax-citizen__samplenc__sample-citizen.cnc": [
@@ -201,7 +198,7 @@ REJECTED: dict[str, list[tuple[int, str]]] = {
         (87, "MB002"),  # '!L1': PATH_WAIT
         (92, "MB002"),  # 'M98 H1': Citizen call to a sequence number (FANUC needs P)
         (111, "MB002"),  # '$0': PATH_SELECT (Citizen variable-dump section follows)
-        (112, "MB001"),  # 'A': header of the Citizen $0 dump, an address without a value
+        (112, "MB002"),  # 'A': header of the Citizen $0 dump, an address without a value
     ],
     # NCVC's "NC Code Checker 1.4" error samples (each written to hold one mistake; see
     # tests/test_ncvc_samples.py for every diagnostic they must give).

@@ -254,12 +254,13 @@ async def test_the_trace_view_is_written_by_the_server(client: LanguageClient) -
 async def test_the_controllers_come_from_the_configuration(client: LanguageClient) -> None:
     await start(client, None)
     answer = await run(client, CONTROLLERS)
-    assert answer["default"] == "0i-TF"
+    assert answer["default"] == "0i-F"
     kinds = {c["id"]: c["kind"] for c in answer["controllers"]}
-    assert list(kinds) == ["0i-TF", "0i-MF", "16i-T", "16i-M", "18i-T", "18i-M", "30i"]
+    assert list(kinds) == ["0i-F", "0i-TF", "0i-MF", "16i-T", "16i-M", "18i-T", "18i-M", "30i"]
     assert (
         kinds["0i-TF"] == "lathe" and kinds["18i-M"] == "mill" and kinds["30i"] == "lathe and mill"
     )
+    assert kinds["0i-F"] == "lathe or mill"  # each document as its codes show
     assert answer["controllers"][-1]["series"] == "FANUC Series 30i/31i/32i"
 
 

@@ -1124,3 +1124,11 @@ def test_a_new_version_keeps_the_blocks_of_the_lines_an_edit_did_not_touch() -> 
     assert [b.text for b in moved.blocks] == edited
     assert moved.blocks[30].parsed is new.blocks[28].parsed
     assert parse_text("\n".join(edited), "file:///v.nc", parser).blocks == moved.blocks
+
+
+def test_a_line_of_dos_end_of_file_marks_is_an_empty_block() -> None:
+    """Ctrl-Z (0x1A) after the closing % of a file saved under DOS: the sending program stops at
+    it, the control never reads it."""
+    parsed = BlockParser().parse_line("\x1a")
+    assert parsed.is_empty and parsed.problem is None
+    assert BlockParser().parse_line("G00\x1a").problem is not None  # inside a block: rejected

@@ -605,10 +605,10 @@ def test_no_label_overlaps_another_or_leaves_the_drawing(tmp_path: Path) -> None
             assert not overlap, (path.name, a, b)
 
 
-def test_a_mill_program_under_the_lathe_default_is_drawn_in_xy_and_says_so(tmp_path: Path) -> None:
+def test_a_mill_program_read_as_a_lathe_is_drawn_in_xy_and_says_so(tmp_path: Path) -> None:
     outline = tmp_path / "outline.nc"
     outline.write_text(MILL_OUTLINE, encoding="utf-8")
-    done = _plot(tmp_path, str(outline))
+    done = _plot(tmp_path, str(outline), "--controller", "0i-TF")
     assert done.returncode == 0, done.stderr
     root = _root((tmp_path / "outline.svg").read_text(encoding="utf-8"))
     assert [g.get("data-plane") for g in _with(root, "data-view", "toolpath")] == ["XY"]
@@ -622,9 +622,13 @@ def test_a_mill_program_under_the_lathe_default_is_drawn_in_xy_and_says_so(tmp_p
     blocks = MILL_OUTLINE.splitlines()
     blocks[3:3] = ["G00 Z2.", "G01 Z-3. F100."]
     pocket.write_text("\n".join([*blocks, ""]), encoding="utf-8")
-    plunged = _plot(tmp_path, str(pocket))
+    plunged = _plot(tmp_path, str(pocket), "--controller", "0i-TF")
     assert plunged.returncode == 0, plunged.stderr
     assert "drawn in XY: the path goes further in XY than in XZ" in plunged.stderr
+    # The default, 0i-F, reads it as the mill its Y moves show: XY, nothing to say.
+    default = _plot(tmp_path, str(pocket))
+    assert default.returncode == 0, default.stderr
+    assert "drawn in XY:" not in default.stderr and "moves drawn in XY" in default.stderr
     # On a mill, XY is the usual view: nothing to say about it.
     milled = _plot(tmp_path, str(pocket), "--controller", "0i-MF")
     assert milled.returncode == 0, milled.stderr

@@ -26,9 +26,16 @@ from .diagnostics import (
 from .evaluator import Facts, evaluate
 from .line_maps import LineMap
 from .program.index import ProgramIndex, build_index
+from .program.machine_kind import machine_config, readings_differ
 from .rules import ALL_CHECKS, FAMILIES, LINE_CHECKS, LineFinding, declared, plain_line_quiet
 from .rules.context import RuleContext
-from .rules.dialect import fold_foreign_file, foreign_dialect
+from .rules.dialect import (
+    FOLDED_CODES,
+    dialect_of_blocks,
+    fold_foreign_file,
+    foreign_dialect,
+    unrecognised_dialect,
+)
 from .rules.reading import fold_runaway_comments
 from .syntax.parser import BlockParser, default_parser, parse_text, quiet_gc
 from .syntax.tree import Document, ParsedLine, PlainNc
@@ -123,6 +130,8 @@ class Analysis:
     diagnostics: list[Diagnostic] = field(default_factory=list)
     facts: Facts | None = None  # the evaluator's, when it ran
     threads: list[Thread] = field(default_factory=list)  # what the threading rules saw
+    # The settings the document was analysed with: its machine resolved (machine_kind).
+    config: Config | None = None
 
 
 def _suppressed_on(parsed: ParsedLine) -> frozenset[str] | None:
@@ -200,7 +209,10 @@ def run_checks(
     found: list[Diagnostic] = []
     blocks = ctx.doc.blocks
     per_block = [(line, blocks[line].parsed, f) for line, f in lines_with_findings(ctx.doc, cancel)]
-    foreign = foreign_dialect(ctx.doc)
+    foreign = foreign_dialect(ctx.doc) or dialect_of_blocks(per_block)
+    if foreign is None:
+        rejected = [line for line, _, f in per_block if any(x.code in FOLDED_CODES for x in f)]
+        foreign = unrecognised_dialect(ctx.doc, rejected)
     if foreign is None:
         per_block = fold_runaway_comments(per_block)
     elif blocks:  # another control's file: one MB002 for the blocks FANUC rejects
@@ -293,6 +305,7 @@ def analyse(
             )
         if index is None:
             index = build_index(doc)
+        config = machine_config(config, doc, index)
         failed: list[Diagnostic] = []
         if run_evaluator and facts is None:
             try:
@@ -315,7 +328,30 @@ def analyse(
                 threads = ctx.threads()
             except Exception:  # reported as MB000 by the rules that asked for them
                 log_failure(__name__, "thread identification of %s failed", uri)
-        return Analysis(doc, index, _apply_settings(found, doc, config), facts, threads)
+        diagnostics = _apply_settings(found, doc, config)
+        if not config.machine_known and readings_differ(doc):
+            # Neither machine shown: only what a lathe's and a mill's reading both find.
+            mill = analyse(
+                text,
+                uri,
+                replace(config, controller="0i-MF", machine_known=True),
+                workspace_programs,
+                parser,
+                extra_checks,
+                doc,
+                index,
+                other_documents,
+                run_evaluator,
+                cancel=cancel,
+            )
+            both = {_verdict(d) for d in mill.diagnostics}
+            diagnostics = [d for d in diagnostics if _verdict(d) in both]
+        return Analysis(doc, index, diagnostics, facts, threads, config)
+
+
+def _verdict(diag: Diagnostic) -> tuple[str, str, int, int, int, int]:
+    """What a diagnostic says, where: the same in two readings of a document."""
+    return diag.code, diag.message, diag.line, diag.column, diag.end_line, diag.end_column
 
 
 def with_uri(diag: Diagnostic, uri: str) -> Diagnostic:

@@ -55,6 +55,9 @@ class Config:
     # read as a lathe (the 0i-TF) and the verdicts that depend on the machine are not given.
     machine_note: str = ""
     machine_known: bool = True
+    # (document, first line, lathe?) of each program of a file that holds both a lathe's and
+    # a mill's programs: each runs as its own machine.
+    program_machines: tuple[tuple[str, int, bool], ...] = ()
     # The codes the control's parameters make calls (machine.customCalls): each a
     # CustomCallSetting, read and checked by read_custom_calls.
     custom_calls: tuple[CustomCallSetting, ...] = ()

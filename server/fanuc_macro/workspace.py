@@ -14,6 +14,7 @@ from .config import Config
 from .database import Database
 from .evaluator import Facts
 from .program.index import Call, ProgramIndex, build_index, index_after_edit
+from .program.machine_kind import machine_config
 from .program_files import PROGRAM_SUFFIXES as PROGRAM_SUFFIXES  # for the server, the debugger
 from .program_files import is_program_file as is_program_file
 from .syntax.diff import line_diff
@@ -275,13 +276,17 @@ class Workspace:
         others = self.others(uri) if others is None else others
         runs = ((uri, entry.execution), *((u, self._entries[u].execution) for u, _, _ in others))
         cached = self._facts.get(uri)
-        facts = cached[2] if cached and cached[0] is self.config and cached[1] == runs else None
+        # The machine the document's codes show (controller 0i-F): a run of another machine's
+        # reading is neither kept nor resumed.
+        config = machine_config(self.config, entry.doc, entry.index)
+        same = cached is not None and (cached[0] is config or cached[0] == config)
+        facts = cached[2] if cached and same and cached[1] == runs else None
         # Otherwise the evaluator resumes the earlier run where the edit begins to matter.
-        previous = cached[2] if cached is not None and facts is None else None
+        previous = cached[2] if cached is not None and same and facts is None else None
         analysis = analyse(
             entry.text,
             uri,
-            self.config,
+            config,
             programs,
             self.parser,
             doc=entry.doc,
@@ -292,7 +297,7 @@ class Workspace:
             cancel=cancel,
         )
         if analysis.facts is not None:
-            self._facts[uri] = (self.config, runs, analysis.facts)
+            self._facts[uri] = (config, runs, analysis.facts)
         return analysis
 
 

@@ -583,7 +583,10 @@ def build_parser() -> argparse.ArgumentParser:
     # How the analyser's own failures (MB000) are told: by default one line in the output.
     logs = argparse.ArgumentParser(add_help=False)
     logs.add_argument(
-        "--verbose", action="store_true", help="print the traceback of an internal error"
+        "--verbose",
+        action="store_true",
+        help="print the traceback of an internal error; check also says which machine, lathe "
+        "or mill, each file is read as and why",
     )
     logs.add_argument("--log-file", metavar="PATH", help="write the analyser's log to this file")
 

@@ -14,6 +14,7 @@ from collections.abc import Sequence
 
 from ..config import Config
 from ..diagnostics import Diagnostic, Severity
+from ..ide import machine_text
 from ..program_files import Found, find_programs
 from ..workspace import Workspace
 from .streams import STDIN, read_stdin, writes_unicode
@@ -140,6 +141,8 @@ def cmd_check(args: argparse.Namespace, config: Config) -> int:
         stopped = analysis.facts.stop_message() if analysis.facts is not None else None
         if stopped is not None:  # the safety net: not a finding of the program's
             err.write(f"{key}: {stopped}\n")
+        if args.verbose and analysis.config is not None:
+            err.write(f"{key}: {machine_text(analysis.config)}\n")
         for d in analysis.diagnostics:
             counts[d.severity] += 1
             internal_error |= d.code == INTERNAL_ERROR

@@ -19,6 +19,7 @@ from ..evaluator.machine import K_ASSIGN, Activation, Machine, ProgramContext, b
 from ..evaluator.run import entry_programs
 from ..evaluator.values import Value
 from ..ide import Precision
+from ..program.machine_kind import machine_config
 from ..workspace import Workspace, is_program_file
 from .answers import (
     ALARM_FILTER,
@@ -162,7 +163,12 @@ class Session:
         while True:
             facts, every, programs = self._contexts()
             entry = self._entry_context(every)
-            machine = Machine(programs, self.launch.config, facts, every)
+            # The machine of the entry's document (controller 0i-F: as its codes show).
+            indexed = self.workspace.indexes().get(entry.uri)
+            config = machine_config(
+                self.launch.config, entry.doc, None if indexed is None else indexed[1]
+            )
+            machine = Machine(programs, config, facts, every)
             machine.stepper = self
             self._machine = machine
             self._record.clear()

@@ -96,6 +96,7 @@ class Machine(MotionPart):
         self.modal = Modal()
         self._entry_name = entry.name
         self._no_feed = {}
+        self.use_machine_of(entry)
         locals_: list[Value] = [None] * 34
         # A program that reads #1-#33 before it sets them receives arguments: a G65 from a
         # program outside the analysed files calls it, even if it ends with M30.
@@ -120,7 +121,7 @@ class Machine(MotionPart):
         act = Activation(self, entry, locals_, 0, None, 0, 0)
         entry.facts.analysed_programs.add(entry.program.first_line)
         if self.toolpath is not None:
-            self.toolpath.begin_run(len(self.facts.motions))
+            self.toolpath.begin_run(len(self.facts.motions), self.lathe)
         self._steps = 0
         self._profile_blocks = 0
         self._checkpoint(act, 0)
@@ -293,6 +294,7 @@ class Machine(MotionPart):
         assert caller is not None
         self._entry_name = contexts[state.levels[0].ctx].name
         self._no_feed = {}
+        self.use_machine_of(contexts[state.levels[0].ctx])
         return caller
 
     def _loop(self, act: Activation, done: int = 0) -> None:

@@ -229,6 +229,21 @@ class G76Parameters:
 class MachineBase:
     """The state of a run and what its parts report through."""
 
+    def _set_lathe(self, lathe: bool) -> None:
+        self.lathe = lathe  # asked at every block
+        # The G codes a block with axis words runs instead of the modal motion: no move
+        # (NOT_MOVES, G52, the coordinate system setting: G50 on a lathe, G92 on a mill; a
+        # lathe's G92 is its threading cycle), or a one-shot move of its own.
+        self._own_codes = NOT_MOVES | RAPID_ONE_SHOTS | {LOCAL_COORDINATES, 50.0 if lathe else 92.0}
+
+    def use_machine_of(self, entry: ProgramContext) -> None:
+        """Run as the machine of ``entry``'s program: a called program runs on its caller's."""
+        if not self._program_lathe:
+            return
+        lathe = self._program_lathe.get((entry.uri, entry.program.first_line), self.config_lathe)
+        if lathe != self.lathe:
+            self._set_lathe(lathe)
+
     def __init__(
         self,
         programs: dict[int, ProgramContext],
@@ -267,13 +282,11 @@ class MachineBase:
         self.modal = Modal()
         self.value_range = config.value_range
         self._entry_name = ""
-        self.lathe = config.is_lathe  # asked at every block
-        # The G codes a block with axis words runs instead of the modal motion: no move
-        # (NOT_MOVES, G52, the coordinate system setting: G50 on a lathe, G92 on a mill; a
-        # lathe's G92 is its threading cycle), or a one-shot move of its own.
-        self._own_codes = (
-            NOT_MOVES | RAPID_ONE_SHOTS | {LOCAL_COORDINATES, 50.0 if self.lathe else 92.0}
-        )
+        # The machine of each entry program of a file that holds a lathe's and a mill's
+        # programs (program.machine_kind); any other runs as the configured one.
+        self._program_lathe = {(uri, line): lathe for uri, line, lathe in config.program_machines}
+        self.config_lathe = config.is_lathe
+        self._set_lathe(config.is_lathe)
         # The message of a move without F, by motion code: the same for every block of a run.
         self._no_feed: dict[float, str] = {}
         # The motions' words made by the run (a block of computed words, an F added), by

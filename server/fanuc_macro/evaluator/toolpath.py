@@ -862,9 +862,10 @@ class Recorder:
         # A G70 under way: its start point, its motion record, line, program and document.
         self._finishing: tuple[Point, int, int, str, str] | None = None
 
-    def begin_run(self, motions: int) -> None:
-        """A new run (an entry program): where the machine stands is not known again."""
-        self.modal = PathModal(self.modal.lathe)
+    def begin_run(self, motions: int, lathe: bool | None = None) -> None:
+        """A new run (an entry program, on a lathe or a mill): where the machine stands is
+        not known again."""
+        self.modal = PathModal(self.modal.lathe if lathe is None else lathe)
         self._unplaced = set(self.modal.axes)
         path = self.toolpath
         path.runs.append((len(path.moves), len(path.lost)))

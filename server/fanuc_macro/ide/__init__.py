@@ -19,7 +19,8 @@ loads only what it uses.
 - :mod:`.number_uses`, :mod:`.rename`, :mod:`.highlight`, :mod:`.calls`, :mod:`.ranges`,
   :mod:`.workspace_symbols`: navigation by number, ranges and symbols;
 - :mod:`.messages`: the server's words in other languages; :mod:`.controllers`: the controllers
-  an editor offers; :mod:`.variable_at`: the variable under the mouse;
+  an editor offers, and the machine a document was read as; :mod:`.variable_at`: the variable
+  under the mouse;
   :mod:`.thread_completion`: a generated thread module fitted into the user's program.
 """
 
@@ -38,7 +39,10 @@ if TYPE_CHECKING:
     from .calls import prepare_call_hierarchy as prepare_call_hierarchy
     from .completion import completion as completion
     from .controllers import DEFAULT_CONTROLLER as DEFAULT_CONTROLLER
+    from .controllers import DocumentMachine as DocumentMachine
     from .controllers import controller_choices as controller_choices
+    from .controllers import machine_text as machine_text
+    from .controllers import document_machine as document_machine
     from .data import ActionKind as ActionKind
     from .data import CodeAction as CodeAction
     from .data import CompletionItem as CompletionItem
@@ -158,7 +162,10 @@ PUBLIC: MappingProxyType[str, str] = MappingProxyType(
         "TraceView": "trace_view",
         "view_of_trace": "trace_view",
         "DEFAULT_CONTROLLER": "controllers",
+        "DocumentMachine": "controllers",
         "controller_choices": "controllers",
+        "machine_text": "controllers",
+        "document_machine": "controllers",
         "Precision": "values",
         "variable_at": "variable_at",
         "Indexed": "view",

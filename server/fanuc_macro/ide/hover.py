@@ -10,6 +10,7 @@ from ..config import on_control
 from ..evaluator.facts import ValueSummary
 from ..program import knowledge
 from ..program.index import Program
+from ..program.machine_kind import machine_text
 from ..program.meanings import table_meaning
 from ..program.variables import ARGUMENT_VARIABLES, classify
 from ..program.vendor_cycles import VendorCycle, known_cycle, manual_of
@@ -212,6 +213,8 @@ def hover_program(view: View, number: int, line: int | None = None, diagnosed: b
     parts[-1] += f" · {kind}"
     if program.named_by_file is not None:
         parts[-1] += " · no O line: the number is the file name's"
+    if key == view.key and line == header:
+        parts.append(machine_text(view.config))
     callers: list[str] = []
     for c_key, (_, c_index) in {**view.workspace, view.key: (view.doc, view.index)}.items():
         for c_program in c_index.programs:

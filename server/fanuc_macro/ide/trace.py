@@ -13,6 +13,7 @@ from ..evaluator import Facts, evaluate
 from ..evaluator.toolpath import LostTrack, Move, Toolpath
 from ..evaluator.values import Value, fmt, fmt_address
 from ..program.index import ProgramIndex
+from ..program.machine_kind import machine_config
 from ..syntax.tree import Document
 
 # The trace is sent to the editor and written by ``trace --format json`` as it is: TypedDicts,
@@ -120,10 +121,11 @@ def run_with_toolpath(
     entry: int | None = None,
 ) -> Facts:
     """One full run of ``uri``'s programs (or of ``entry``, with ``others`` for its calls), the
-    toolpath recorded: what ``trace``, ``plot`` and the Toolpath view show."""
+    toolpath recorded: what ``trace``, ``plot`` and the Toolpath view show. The machine is
+    ``doc``'s (controller 0i-F: as its codes show, ``program.machine_kind``)."""
     return evaluate(
         [(uri, doc, index), *others],
-        config,
+        machine_config(config or Config(), doc, index),
         only_uri=None if entry else uri,
         entry=entry,
         toolpath=True,

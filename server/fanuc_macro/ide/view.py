@@ -30,6 +30,11 @@ class View:
     # the analysis read (MB013) too. None: the blocks' texts.
     lines: Sequence[str] | None = None
 
+    def __post_init__(self) -> None:
+        # The document's own settings: its machine as its codes show it (controller 0i-F).
+        if self.analysis.config is not None:
+            self.config = self.analysis.config
+
     @property
     def doc(self) -> Document:
         return self.analysis.doc

@@ -77,7 +77,10 @@ internal thread.
     not_reported="""
 A single `G90` or `G94` pass (one pass does not tell the side), a
 thread whose side is not known, and the Z of a threading cycle's start point (the run-in is
-the programmer's choice).
+the programmer's choice). A mill's program (controller `0i-MF`, or `0i-F` when its codes show a
+mill: `M06`, `G43 H`, `G91`, `Y` moves), where `G90` is absolute programming, `G92` the
+coordinate system and `G94` the feed per minute; nor a program whose codes show neither machine
+(`0i-F`): a mill's reading does not give it.
 """,
 )
 

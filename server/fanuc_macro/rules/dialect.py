@@ -5,6 +5,7 @@ in blocks FANUC's grammar reads."""
 from __future__ import annotations
 
 from collections.abc import Iterable, Iterator
+from types import MappingProxyType
 
 from ..diagnostics import Diagnostic, Related, RuleDoc, RuleInfo, Severity, make
 from ..line_maps import LineMap
@@ -22,6 +23,7 @@ from ..syntax.tree import (
     Num,
     ParsedLine,
     PlainNc,
+    ProgramStart,
     Unary,
     Var,
     While,
@@ -112,7 +114,11 @@ the control and the line of the mark, and counts the blocks FANUC rejects. The e
 each of them as a related place, with what FANUC rejects in it, instead of one diagnostic a
 block, syntax errors, comment or end-of-block warnings (a `;` comment of Siemens or LinuxCNC, a
 `(` of a Syntec expression). A block `ELSE` in a Siemens file is Siemens', not Haas's. A FANUC
-program with a few foreign blocks (no such mark) keeps one MB002 a block.
+program with a few foreign blocks (no such mark) keeps one MB002 a block. A file without such a
+mark or program number most of whose blocks (at least 5, and half of them or more) FANUC
+rejects is read the same way, as the program of another control whose dialect is not
+recognised (Heidenhain's `BEGIN PGM`, Okuma's named variables): a FANUC program with mistakes
+has a few such blocks among many, and a file with an O number is meant for FANUC.
 """,
     why="""
 A FANUC control raises an alarm on the block: PS0125 for an
@@ -312,6 +318,78 @@ def _file_mark(parsed: ParsedLine) -> tuple[str, str] | None:
 file_marks: LineMap[tuple[str, str]] = LineMap(_file_mark)
 
 
+# A file without a program number most of whose blocks FANUC rejects is another control's
+# program even without a mark of a dialect known here (Heidenhain's BEGIN PGM, Okuma's named
+# variables): a FANUC program with mistakes has a few such blocks among many (the corpus's
+# worst, NC Code Checker's collection of macro errors: 13 of 47; a Swiss-type lathe's program in
+# Citizen's dialect, 34 of 160), and a file with an O number is meant for FANUC.
+MOSTLY_REJECTED = 0.5
+MIN_REJECTED = 5
+UNRECOGNISED = "another control (its dialect not recognised)"
+
+
+def unrecognised_dialect(doc: Document, rejected: list[int]) -> dialects.FileDialect | None:
+    """Another control's program whose dialect has no mark known here, from the lines of
+    ``doc`` FANUC rejects (``rejected``, ascending): most of its blocks."""
+    if len(rejected) < MIN_REJECTED or any(
+        isinstance(b.parsed.statement, ProgramStart) for b in doc.blocks
+    ):
+        return None  # a program number: a FANUC program, however many its mistakes
+    lines = set(rejected)
+    lines.update(
+        b.line for b in doc.blocks if b.parsed.statement is not None or b.parsed.problem is not None
+    )
+    if len(rejected) < MOSTLY_REJECTED * len(lines):
+        return None
+    mark = f"{len(rejected)} of its {len(lines)} blocks"
+    return dialects.FileDialect(UNRECOGNISED, mark, rejected[0])
+
+
+# The dialects the line rules name in an MB002 ("Haas: ..."), by the control they are of.
+_NAMED = MappingProxyType(
+    {
+        "Haas": "Haas",
+        "Haas NGC": "Haas",
+        dialects.MITSUBISHI: dialects.MITSUBISHI,
+        dialects.SYNTEC: dialects.SYNTEC,
+        dialects.SIEMENS: dialects.SIEMENS,
+        dialects.LINUXCNC: dialects.LINUXCNC,
+        dialects.DDCS: dialects.DDCS,
+        dialects.OKUMA: dialects.OKUMA,
+        dialects.WIRE_EDM: dialects.WIRE_EDM,
+    }
+)
+# Blocks in one control's forms that make a file that control's program: a FANUC program with
+# a stray form or two keeps one MB002 a block (the corpus: at most 3 in a FANUC-looking file;
+# a Haas NGC program, 9; a Citizen lathe's, 34).
+MIN_DIALECT_BLOCKS = 5
+
+
+def _named_dialect(finding: LineFinding) -> str | None:
+    if finding.code != "MB002":
+        return None
+    name = finding.message.partition(": ")[0]
+    return _NAMED.get(name)
+
+
+def dialect_of_blocks(
+    per_block: list[tuple[int, ParsedLine, tuple[LineFinding, ...]]],
+) -> dialects.FileDialect | None:
+    """Another control's program from its blocks: at least :data:`MIN_DIALECT_BLOCKS` in the
+    forms of one control (the line rules name it)."""
+    counts: dict[str, list[int]] = {}
+    for line, _, findings in per_block:
+        names = {n for n in map(_named_dialect, findings) if n is not None}
+        for name in names:
+            counts.setdefault(name, []).append(line)
+    if not counts:
+        return None
+    name, lines = max(counts.items(), key=lambda item: (len(item[1]), -item[1][0]))
+    if len(lines) < MIN_DIALECT_BLOCKS:
+        return None
+    return dialects.FileDialect(name, f"{len(lines)} blocks in its forms, the first", lines[0])
+
+
 def foreign_dialect(doc: Document) -> dialects.FileDialect | None:
     """The other control whose program the document is, from the marks only its programs
     have; None for a FANUC program."""
@@ -336,7 +414,9 @@ def in_foreign_file(
     kept = [f for f in findings if f.code not in FANUC_STYLE_CODES and f.code not in FOLDED_CODES]
     if folded:
         first = folded[0]
-        message = _foreign_message(foreign, parsed, first)
+        named = next((f for f in folded if _named_dialect(f) == foreign.name), None)
+        # A form of the file's own dialect says what it is; otherwise what FANUC rejects.
+        message = named.message if named else _foreign_message(foreign, parsed, first)
         kept.append(LineFinding("MB002", message, first.start, first.end))
     return tuple(kept)
 
@@ -385,10 +465,17 @@ def fold_foreign_file(
         return kept_blocks, None
     shown = ", ".join(str(r.line + 1) for r in rejected[:8])
     more = f" and {len(rejected) - 8} more" if len(rejected) > 8 else ""
-    message = (
-        f"a program written for {foreign.name} ({foreign.mark} on line {foreign.line + 1}): "
-        f"FANUC cannot run it as written; {_blocks(len(rejected))} in forms FANUC rejects "
-        f"(line{'s' if len(rejected) > 1 else ''} {shown}{more}), not reported one by one"
-    )
+    where = f"line{'s' if len(rejected) > 1 else ''} {shown}{more}"
+    if foreign.name == UNRECOGNISED:
+        message = (
+            f"not a FANUC program: {foreign.mark} are in forms FANUC rejects ({where}), in the "
+            "dialect of another control, not recognised; not reported one by one"
+        )
+    else:
+        message = (
+            f"a program written for {foreign.name} ({foreign.mark} on line {foreign.line + 1}): "
+            f"FANUC cannot run it as written; {_blocks(len(rejected))} in forms FANUC rejects "
+            f"({where}), not reported one by one"
+        )
     end = len(first_text.rstrip())
     return kept_blocks, make(MB002, message, first_line, 0, end, related=rejected)

@@ -702,6 +702,7 @@ _BY_CODE_LIMIT = 4096  # codes kept; the oldest quarter goes when it is full
 # alike. str.rstrip() with no argument also strips U+00A0, U+3000 and the like, which the
 # grammar rejects (MB001): keyed by that, such a code took its ASCII twin's parse.
 _BLANKS = " \t\f\v"
+_BLANKS_OR_EOF = _BLANKS + "\x1a"
 
 
 def _line_of_code(text: str, cut: LineCode, has_lower: bool, code: _ParsedCode) -> ParsedLine:
@@ -816,8 +817,10 @@ class BlockParser:
                 )  # fmt: skip
         cut = cut_comments(text)
         code = cut.code
-        # ASCII blanks only: a line of U+3000 or U+00A0 is no empty block to FANUC.
-        if not code.strip(_BLANKS):
+        # ASCII blanks only: a line of U+3000 or U+00A0 is no empty block to FANUC. A line of
+        # DOS's end-of-file mark (Ctrl-Z, 0x1A, after the closing % of an old file) is none
+        # either: the sending program stops at it, and the control never reads it.
+        if not code.strip(_BLANKS_OR_EOF):
             return _line(text, cut, None, None, None, None, None, False)
         has_lower = code != code.upper()
         # A line with a comment: lines of the same code share what it parses to.

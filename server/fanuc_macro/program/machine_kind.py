@@ -1,0 +1,286 @@
+"""Which machine a program is written for, a lathe or a mill, read from its own codes.
+
+Several G codes mean one thing on a lathe and another on a mill (G code system A of the
+0i-TF against the 0i-MF): ``G90`` is the turning cycle on a lathe and absolute programming on a
+mill, ``G92`` the threading cycle or the coordinate system setting, ``G91`` incremental
+programming on a mill and nothing on a system A lathe, ``U``/``W`` the lathe's incremental
+axes. A program read as the wrong machine gets wrong verdicts, so when the controller setting
+does not say the machine (controller ``0i-F``), each document is read as the machine its own
+blocks show, from marks only one machine's programs have:
+
+- a mill's: ``M06`` tool change, ``G43``/``G44`` with ``H`` (tool length compensation),
+  ``G91``, a ``Y`` move, the drilling cycles a system A lathe does not have (``G81``,
+  ``G82``, ``G86``; ``G73`` with ``Z``), ``G90`` with no axis or with a move code (on a lathe
+  it is a cycle that needs its X and Z), ``G41``/``G42`` with ``D``;
+- a lathe's: ``G96`` constant surface speed, ``G50`` with words (spindle clamp, coordinate
+  system), ``U``/``W`` words, ``G70``-``G72`` and ``G73`` with ``P`` and ``Q``, the
+  two-block ``G76``'s first block (no axis), ``G32``, ``G92`` with ``F``, a four-digit ``T``
+  (tool and offset, ``T0101``).
+
+Sources: FANUC Series 0i-F Plus Operator's Manual, common to lathe and machining centre
+(B-64694EN), "G code list" of the lathe (system A) and of the machining centre; "Tool length
+compensation", "Tool function (T function)". A mill-turn program shows both: it gets no
+verdict that depends on the machine (``MachineGuess.kind`` None), as does a program that shows
+neither (a macro of arithmetic alone).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+from ..config import Config
+from ..database import Derived
+from ..per_line import PerLine
+from ..syntax.marks import constant_value
+from ..syntax.parser import statements_of
+from ..syntax.tree import Document, NcStatement, ParsedLine, PlainNc
+from .index import ProgramIndex
+from .knowledge import G_CODES
+
+LATHE = "lathe"
+MILL = "mill"
+
+# Words that make a block a call or a setting whose letters are arguments or data, not axes.
+_NOT_AXES_G = frozenset({4.0, 10.0, 65.0, 66.0, 66.1})
+_NOT_AXES_M = frozenset({98.0, 99.0})
+_MOVES = frozenset({0.0, 1.0, 2.0, 3.0})
+# Kinds of marks one machine must have more than the other when both show.
+MARGIN = 2
+
+
+@dataclass(frozen=True, slots=True)
+class Mark:
+    """One sign of a machine: which (``LATHE`` or ``MILL``), what it is, where (0-based)."""
+
+    machine: str
+    what: str
+    line: int
+
+
+@dataclass(frozen=True, slots=True)
+class MachineGuess:
+    """What a document's codes say of its machine: ``kind`` ``LATHE``, ``MILL`` or None
+    (neither shown, or both), with the first marks of each machine found."""
+
+    kind: str | None
+    marks: tuple[Mark, ...]
+
+    @property
+    def reason(self) -> str:
+        """Why, in a sentence's tail: "G43 H (tool length compensation) on line 12"."""
+        if not self.marks:
+            return "no code of the program is a lathe's or a mill's alone"
+        lathe = [m for m in self.marks if m.machine == LATHE]
+        mill = [m for m in self.marks if m.machine == MILL]
+        if self.kind is None:
+            return (
+                f"it has a lathe's {lathe[0].what} on line {lathe[0].line + 1} and a mill's "
+                f"{mill[0].what} on line {mill[0].line + 1}"
+            )
+        own, other = (lathe, mill) if self.kind == LATHE else (mill, lathe)
+        text = f"{own[0].what} on line {own[0].line + 1}"
+        if len(own) > 1:
+            text += f" and {len(own) - 1} more kind{'s' if len(own) > 2 else ''} of mark"
+        if other:
+            text += (
+                f"; a {other[0].machine}'s mark, {other[0].what} on line "
+                f"{other[0].line + 1}, is taken for an option of the machine"
+            )
+        return text
+
+
+def _words(parsed: ParsedLine) -> list[tuple[str, float | None, str]]:
+    """The NC words of a line: address, constant value (None: computed), text as written."""
+    found: list[tuple[str, float | None, str]] = []
+    if type(parsed.statement) is PlainNc:
+        for letter, number in parsed.statement.pairs():
+            try:
+                found.append((letter.upper(), float(number), number))
+            except ValueError:
+                continue
+        return found
+    text = parsed.text
+    for statement in statements_of(parsed.statement):
+        if isinstance(statement, NcStatement):
+            for word in statement.words:
+                written = text[word.span.start : word.span.end]
+                found.append((word.address, constant_value(word.value), written[1:].strip()))
+    return found
+
+
+def _line_marks(parsed: ParsedLine) -> tuple[tuple[str, str], ...]:
+    """The machine marks of one line: (machine, what) pairs; () for most lines."""
+    if parsed.statement is None or parsed.problem is not None:
+        return ()
+    words = _words(parsed)
+    if not words:
+        return ()
+    g = {v for a, v, _ in words if a == "G" and v is not None}
+    m = {v for a, v, _ in words if a == "M" and v is not None}
+    letters = {a for a, _, _ in words}
+    if not g.isdisjoint(_NOT_AXES_G) or not m.isdisjoint(_NOT_AXES_M):
+        return ()  # a call's letters are its arguments; G10's, data; G04's U, a dwell
+    marks: list[tuple[str, str]] = []
+    if 6.0 in m:
+        marks.append((MILL, "M06 (tool change)"))
+    if not g.isdisjoint({43.0, 44.0}) and "H" in letters:
+        marks.append((MILL, "G43/G44 H (tool length compensation)"))
+    if 91.0 in g:
+        marks.append((MILL, "G91 (incremental programming)"))
+    if "Y" in letters:
+        marks.append((MILL, "a Y axis word"))
+    if not g.isdisjoint({81.0, 82.0, 86.0}) or (73.0 in g and "Z" in letters):
+        marks.append((MILL, "a drilling cycle a lathe does not have (G81, G82, G86, G73 Z)"))
+    if 90.0 in g and (not g.isdisjoint(_MOVES) or letters.isdisjoint("XZUW")):
+        marks.append((MILL, "G90 without a turning cycle's X and Z (absolute programming)"))
+    if not g.isdisjoint({41.0, 42.0}) and "D" in letters:
+        marks.append((MILL, "G41/G42 D (cutter compensation with an offset number)"))
+    if 96.0 in g:
+        marks.append((LATHE, "G96 (constant surface speed)"))
+    if 50.0 in g and not letters.isdisjoint("SXZ"):
+        marks.append((LATHE, "G50 with S, X or Z (spindle clamp, coordinate system)"))
+    if not letters.isdisjoint("UW"):
+        marks.append((LATHE, "a U or W word (incremental X or Z)"))
+    if not g.isdisjoint({70.0, 71.0, 72.0}) or (73.0 in g and {"P", "Q"} <= letters):
+        marks.append((LATHE, "a multiple repetitive cycle (G70-G73 with P and Q)"))
+    if 76.0 in g and letters.isdisjoint("XYZ"):
+        marks.append((LATHE, "G76's first block (threading cycle parameters)"))
+    if 32.0 in g:
+        marks.append((LATHE, "G32 (threading)"))
+    if 92.0 in g and "F" in letters:
+        marks.append((LATHE, "G92 with F (threading cycle)"))
+    if 6.0 not in m and any(
+        a == "T" and len(w) == 4 and w.isdigit() and w[:2] != "00" for a, _, w in words
+    ):
+        marks.append((LATHE, "a four-digit T (tool and offset number)"))
+    return tuple(marks)
+
+
+_marks_of: PerLine[tuple[tuple[str, str], ...]] = PerLine(_line_marks)
+
+# The G codes that mean one thing on a lathe (system A) and another on a mill.
+_TWO_MEANINGS = frozenset(
+    float(code[1:]) for code, info in G_CODES.items() if not info.same_on_both
+)
+
+
+def _line_reads_differ(parsed: ParsedLine) -> bool:
+    """Whether a lathe reads the line otherwise than a mill: a G code of two meanings, a U or
+    W word (a lathe's incremental axes)."""
+    if parsed.statement is None:
+        return False
+    return any((a == "G" and v in _TWO_MEANINGS) or a in ("U", "W") for a, v, _ in _words(parsed))
+
+
+_reads_differ_of: PerLine[bool] = PerLine(_line_reads_differ)
+
+
+def readings_differ(doc: Document) -> bool:
+    """Whether a lathe and a mill read any block of ``doc`` otherwise."""
+    return any(_reads_differ_of(block.parsed) for block in doc.blocks)
+
+
+def guess_machine(doc: Document, first: int = 0, end: int | None = None) -> MachineGuess:
+    """The machine ``doc``'s blocks (lines ``first`` to ``end``, exclusive) show: the first
+    mark of each kind, and the verdict."""
+    seen: dict[tuple[str, str], int] = {}
+    for block in doc.blocks[first:end]:
+        parsed = block.parsed
+        if parsed.statement is None:
+            continue
+        for mark in _marks_of(parsed):
+            seen.setdefault(mark, block.line)
+    marks = tuple(
+        sorted(
+            (Mark(k[0], k[1], line) for k, line in seen.items()),
+            key=lambda m: (m.line, m.machine, m.what),
+        )
+    )
+    lathe = sum(m.machine == LATHE for m in marks)
+    mill = len(marks) - lathe
+    # A lathe with a Y axis or a Swiss-type's M06, a mill with a four-digit T: one mark of the
+    # other machine among several of one is the machine's option, not a mill-turn program.
+    if lathe and mill and abs(lathe - mill) < MARGIN:
+        kind = None
+    elif lathe or mill:
+        kind = LATHE if lathe > mill else MILL
+    else:
+        kind = None
+    return MachineGuess(kind, marks)
+
+
+def machine_text(config: Config) -> str:
+    """Which machine an analysis read the document as, and why: a sentence."""
+    if config.machine_note and not config.machine_known:
+        return (
+            f"Machine: {config.machine_note}. Read as a lathe (0i-TF), with only the verdicts "
+            "a mill's reading gives too; set fanuc-macro.controller (--controller) to say which."
+        )
+    if config.machine_note:
+        return f"Machine: {config.machine_note}."
+    machine = "a lathe" if config.is_lathe else "a mill"
+    return f"Machine: {machine}, as the controller setting {config.controller} says."
+
+
+def _by_program(
+    config: Config, doc: Document, index: ProgramIndex | None, guess: MachineGuess
+) -> Config | None:
+    """``config`` for a file of several programs each of which shows one machine, some a
+    lathe and some a mill (a folder of programs pasted into one file): each runs as its own.
+    The file's features (hover, completion) read it as its first program's machine."""
+    if index is None or len(index.programs) < 2 or len({m.machine for m in guess.marks}) < 2:
+        return None
+    each = [(p, guess_machine(doc, p.first_line, p.end_line)) for p in index.programs]
+    if any(g.kind is None and g.marks for _, g in each):
+        return None  # a program of both machines' marks: a mill-turn program
+    decided = [(p, g) for p, g in each if g.kind is not None]
+    if len({g.kind for _, g in decided}) < 2:
+        return None
+    lathe = [p.display_name for p, g in decided if g.kind == LATHE]
+    mill = [p.display_name for p, g in decided if g.kind == MILL]
+    first = decided[0][1]
+    controller = "0i-TF" if first.kind == LATHE else "0i-MF"
+    note = (
+        f"a lathe for {', '.join(lathe)} and a mill for {', '.join(mill)} (0i-F read as a "
+        f"0i-TF or a 0i-MF for each program), from their codes"
+    )
+    machines = tuple((doc.uri, p.first_line, g.kind == LATHE) for p, g in decided)
+    return replace(config, controller=controller, machine_note=note, program_machines=machines)
+
+
+# The whole document's guess, kept while the document is the same version: the analysis and
+# the workspace's cache of facts both ask for it.
+_document_guess: Derived[Document, MachineGuess] = Derived(
+    "machine_kind.document_guess", lambda doc: (doc,), lambda doc: (guess_machine(doc), True)
+)
+
+
+def machine_config(config: Config, doc: Document, index: ProgramIndex | None = None) -> Config:
+    """``config`` for ``doc``: with controller 0i-F, that of a 0i-TF or a 0i-MF as the
+    document's codes show (:func:`guess_machine`; with its ``index``, for each program when
+    its programs show different machines), or a lathe's reading without the verdicts that
+    depend on the machine when they show neither; any other ``config`` as it is."""
+    if not config.machine_by_program:
+        return config
+    guess = _document_guess(doc.uri, doc)
+    each = _by_program(config, doc, index, guess)
+    if each is not None:
+        return each
+    if guess.kind is None:
+        note = f"not known, {guess.reason}"
+        return replace(config, controller="0i-TF", machine_note=note, machine_known=False)
+    controller = "0i-TF" if guess.kind == LATHE else "0i-MF"
+    note = f"a {guess.kind} (0i-F read as {controller}), from its codes: {guess.reason}"
+    return replace(config, controller=controller, machine_note=note)
+
+
+__all__ = (
+    "LATHE",
+    "MILL",
+    "MachineGuess",
+    "Mark",
+    "guess_machine",
+    "machine_config",
+    "machine_text",
+    "readings_differ",
+)
