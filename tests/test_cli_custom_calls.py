@@ -134,3 +134,11 @@ def test_another_m_code_of_the_block_is_an_argument_of_the_call(tmp_path: Path) 
     _write(tmp_path, "m.nc", text)
     done = run(tmp_path, "check", "--custom-call", "M165=9022", "m.nc")
     assert "m.nc:5:4: MB502" in done.stdout and "with #13=8." in done.stdout
+
+
+def test_a_computed_call_of_a_program_on_the_control_is_not_reported(tmp_path: Path) -> None:
+    _write(tmp_path, "comp.nc", "O1000\n#1=9814\nG65 P#1 D50.\n#2=2000\nM98 P#2\nM30\n")
+    plain = run(tmp_path, "check", "comp.nc").stdout
+    assert "comp.nc:5:1: MB706 warning M98 calls O2000" in plain
+    assert "O9814" not in plain  # a known cycle: on the control
+    assert "MB706" not in run(tmp_path, "check", "--on-control", "2000", "comp.nc").stdout
