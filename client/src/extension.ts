@@ -353,13 +353,20 @@ function statusMiddleware(): Middleware {
     },
     didClose: (document, next) => {
       statusItem?.status.analysisDone(document.uri.toString());
+      statusItem?.documentClosed(document.uri.toString());
       return next(document);
     },
     handleDiagnostics: (uri, diagnostics, next) => {
       statusItem?.status.analysisDone(uri.toString());
       next(uri, diagnostics.map(linkToShippedDocs));
+      statusItem?.documentAnalysed(uri.toString()); // the machine it was read as
     },
   };
+}
+
+/** Asks the running server quietly: undefined without one or when it fails. */
+async function askServer(command: string, args: unknown[]): Promise<unknown> {
+  return client?.state === State.Running ? executeServerCommand(client, command, args).catch(() => undefined) : undefined;
 }
 
 /** The walkthrough's sample, as an untitled program: edited freely, nothing on disk changes. */
@@ -378,7 +385,7 @@ export function activate(context: vscode.ExtensionContext): void {
   extensionPath = typeof context.extensionPath === 'string' ? context.extensionPath : undefined;
   extensionUri = context.extensionUri;
   traces = new TraceDocuments();
-  statusItem = new StatusItem();
+  statusItem = new StatusItem(askServer);
   context.subscriptions.push(outputChannel(), ...traces.register(), statusItem);
   if (extensionUri !== undefined) context.subscriptions.push(...new RuleDocs(extensionUri).register());
   context.subscriptions.push(registerCheckTasks(() => startedCandidate));
@@ -390,8 +397,7 @@ export function activate(context: vscode.ExtensionContext): void {
         return startedCandidate;
       },
       // The hover asks the server quietly: without one it has no expression.
-      async (command, args) =>
-        client?.state === State.Running ? executeServerCommand(client, command, args).catch(() => undefined) : undefined,
+      askServer,
     ),
   );
 

@@ -1,6 +1,7 @@
-// What the status bar item says: the controller the analysis is for (lathe or mill) and the
-// language server's state. Pure logic, no `vscode` import: the UI strings go through the
-// translator given (vscode.l10n.t in the extension), so it is unit-tested with node:test.
+// What the status bar item says: the controller the analysis is for (lathe or mill; with 0i-F,
+// the machine the active document was read as) and the language server's state. Pure logic,
+// no `vscode` import: the UI strings go through the translator given (vscode.l10n.t in the
+// extension), so it is unit-tested with node:test.
 
 /** Formats a UI string: `{0}`, `{1}`... are replaced by the arguments (as vscode.l10n.t does). */
 export type Translate = (message: string, ...args: Array<string | number>) => string;
@@ -12,7 +13,7 @@ export const english: Translate = (message, ...args) =>
     return value === undefined ? whole : String(value);
   });
 
-export type MachineKind = 'lathe' | 'mill' | 'lathe and mill';
+export type MachineKind = 'lathe' | 'mill' | 'lathe and mill' | 'lathe or mill';
 
 export interface Controller {
   /** The value of the `fanuc-macro.controller` setting. */
@@ -48,7 +49,7 @@ export function controllerOf(id: string | undefined, known: Controllers): Contro
 }
 
 function kindText(kind: MachineKind | undefined, t: Translate): string | undefined {
-  return kind === undefined ? undefined : { lathe: t('lathe'), mill: t('mill'), 'lathe and mill': t('lathe and mill') }[kind];
+  return kind === undefined ? undefined : { lathe: t('lathe'), mill: t('mill'), 'lathe and mill': t('lathe and mill'), 'lathe or mill': t('lathe or mill') }[kind];
 }
 
 /** "0i-TF lathe": the controller as the status bar shows it. */
@@ -56,6 +57,51 @@ export function controllerLabel(id: string | undefined, known: Controllers, t: T
   const controller = controllerOf(id, known);
   const kind = kindText(controller.kind, t);
   return kind === undefined ? controller.id : `${controller.id} ${kind}`;
+}
+
+/**
+ * The machine the server read a document as (its fanuc-macro.machine): the controller resolved
+ * (0i-F as 0i-TF or 0i-MF), the kind ("unknown": the codes show neither, read as a lathe), and
+ * the sentence that says which and why.
+ */
+export interface DocumentMachine {
+  readonly controller: string;
+  readonly kind: 'lathe' | 'mill' | 'unknown';
+  readonly text: string;
+}
+
+/** The server's answer read; undefined when it is not one (a refusal, no server). */
+export function documentMachineOf(answer: unknown): DocumentMachine | undefined {
+  const { controller, kind, text } = (typeof answer === 'object' && answer !== null ? answer : {}) as Record<string, unknown>;
+  if (typeof controller !== 'string' || typeof text !== 'string') return undefined;
+  if (kind !== 'lathe' && kind !== 'mill' && kind !== 'unknown') return undefined;
+  return { controller, kind, text };
+}
+
+/**
+ * "0i-F mill": the controller whose kind is "lathe or mill" (each document read as its codes
+ * show) with the machine the active document was read as; "0i-F lathe?" when its codes show
+ * neither. Any other controller, or no answer yet: the controller's label.
+ */
+export function machineLabel(
+  id: string | undefined,
+  known: Controllers,
+  machine: DocumentMachine | undefined,
+  t: Translate = english,
+): string {
+  const shown = shownMachine(id, known, machine);
+  if (shown === undefined) return controllerLabel(id, known, t);
+  const kind = { lathe: t('lathe'), mill: t('mill'), unknown: t('lathe?') }[shown.kind];
+  return `${controllerOf(id, known).id} ${kind}`;
+}
+
+/** The document's machine, with a controller that reads each document as its codes show. */
+function shownMachine(
+  id: string | undefined,
+  known: Controllers,
+  machine: DocumentMachine | undefined,
+): DocumentMachine | undefined {
+  return controllerOf(id, known).kind === 'lathe or mill' ? machine : undefined;
 }
 
 /** A quick pick's item for each controller, the current one marked. */
@@ -97,6 +143,10 @@ export class ServerStatus {
   private reason: string | undefined;
   private version: string | undefined;
   private readonly pending = new Set<string>();
+  /** The machine each document was read as, by URI, and the number of the newest question. */
+  private readonly machines = new Map<string, DocumentMachine>();
+  private readonly asked = new Map<string, number>();
+  private questions = 0;
   /** The server's controllers, once it has named them. */
   controllers: Controllers = NO_CONTROLLERS;
 
@@ -144,6 +194,43 @@ export class ServerStatus {
     if (this.pending.delete(uri)) this.changed();
   }
 
+  /** A question of `uri`'s machine is sent: its number, for {@link machineAnswered}. */
+  askingMachine(uri: string): number {
+    this.questions += 1;
+    this.asked.set(uri, this.questions);
+    return this.questions;
+  }
+
+  /**
+   * The server's answer to question `question` of `uri`'s machine; the answer to an older
+   * question than the newest one sent is dropped, a refusal forgets the machine.
+   */
+  machineAnswered(uri: string, question: number, answer: unknown): void {
+    if (this.asked.get(uri) !== question) return;
+    this.asked.delete(uri);
+    const machine = documentMachineOf(answer);
+    if (machine === undefined) this.machines.delete(uri);
+    else this.machines.set(uri, machine);
+    this.changed();
+  }
+
+  /** The machine `uri` was read as, when the server has said. */
+  machine(uri: string | undefined): DocumentMachine | undefined {
+    return uri === undefined ? undefined : this.machines.get(uri);
+  }
+
+  /** Forgets the machine of `uri` (closed), or of every document (the controller changed). */
+  forgetMachines(uri?: string): void {
+    if (uri === undefined) {
+      this.machines.clear();
+      this.asked.clear();
+    } else {
+      this.machines.delete(uri);
+      this.asked.delete(uri);
+    }
+    this.changed();
+  }
+
   private set(state: Exclude<ServerState, 'analysing'>, reason: string | undefined): void {
     this.state = state;
     this.reason = reason;
@@ -151,10 +238,21 @@ export class ServerStatus {
     this.changed();
   }
 
-  /** The status bar item's text, tooltip and whether it shows an error. */
-  view(controller: string | undefined, t: Translate = english): { text: string; tooltip: string; error: boolean } {
-    const label = controllerLabel(controller, this.controllers, t);
+  /**
+   * The status bar item's text, tooltip and whether it shows an error; `document`, the active
+   * editor's URI, names the machine shown with a controller that reads each document as its
+   * codes show.
+   */
+  view(
+    controller: string | undefined,
+    t: Translate = english,
+    document?: string,
+  ): { text: string; tooltip: string; error: boolean } {
+    const machine = this.machine(document);
+    const label = machineLabel(controller, this.controllers, machine, t);
     const series = controllerOf(controller, this.controllers).series;
+    const machineShown = shownMachine(controller, this.controllers, machine);
+    const machineLine = machineShown === undefined ? '' : `\n${machineShown.text}`;
     const server = this.version === undefined ? 'fanuc-macro-ls' : `fanuc-macro-ls ${this.version}`;
     // Each state: its icon, its word after the label (none when ready), its tooltip line.
     const shown: Record<ServerState, [string, string | undefined, string]> = {
@@ -167,7 +265,7 @@ export class ServerStatus {
     const [icon, word, line] = shown[this.current];
     return {
       text: `$(${icon}) ${label}${word === undefined ? '' : ` · ${word}`}`,
-      tooltip: `${t('Controller: {0}', series)}\n${line}\n${t('Click to choose another controller.')}`,
+      tooltip: `${t('Controller: {0}', series)}${machineLine}\n${line}\n${t('Click to choose another controller.')}`,
       error: this.current === 'error',
     };
   }

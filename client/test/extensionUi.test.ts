@@ -181,4 +181,59 @@ describe('extension UI', { skip: process.platform === 'win32' }, () => {
     assert.equal(item().text, '$(check) 18i-M mill');
     assert.equal(item().backgroundColor, undefined);
   });
+
+  it("shows with 0i-F the machine the active document was read as, once its diagnostics come", async () => {
+    // The server's answer for each document: its program analysed with the settings.
+    const programs: Record<string, string> = {
+      'file:///p/O1.nc': 'O1\nT1 M06\nG43 H1 Z50.\nG91 G28 Z0\nM30\n',
+      'file:///p/O2.nc': 'O2\nT0101\nG96 S200 M03\nM30\n',
+    };
+    serverAnswers.set('fanuc-macro.machine', (args) =>
+      python.answer('machineOf', [programs[String(args[0])] ?? '', { controller: fake.settings['controller'] }]),
+    );
+    const middleware = lastClient().clientOptions['middleware'] as Middleware;
+    const asked = () =>
+      lastClient()
+        .requests.filter((r) => r.params.command === 'fanuc-macro.machine')
+        .map((r) => r.params.arguments[0]);
+    fake.setSettings({ ...fake.settings, controller: '0i-F' });
+    fake.fireConfigurationChange('fanuc-macro.controller');
+    assert.equal(item().text, '$(check) 0i-F lathe or mill');
+
+    const uri = fake.Uri.file('/p/O1.nc'); // the active editor's
+    middleware.handleDiagnostics(uri, [], () => undefined);
+    await until(() => item().text === '$(check) 0i-F mill');
+    assert.match(String(item().tooltip), /\nMachine: a mill \(0i-F read as 0i-MF\), from its codes: M06 \(tool change\) on line 2/);
+    // Another document's diagnostics: not asked, the active one's machine stays.
+    middleware.handleDiagnostics(fake.Uri.file('/p/O2.nc'), [], () => undefined);
+    assert.deepEqual(asked(), ['file:///p/O1.nc']);
+
+    // Another program made active: asked at once.
+    fake.setActiveEditor(fake.makeEditor('/p/O2.nc'));
+    await until(() => item().text === '$(check) 0i-F lathe');
+    assert.deepEqual(asked(), ['file:///p/O1.nc', 'file:///p/O2.nc']);
+    fake.setActiveEditor(fake.makeEditor('/p/O1.nc'));
+    await until(() => item().text === '$(check) 0i-F mill');
+
+    // A controller set: its label, the codes not asked about.
+    fake.setSettings({ ...fake.settings, controller: '0i-TF' });
+    fake.fireConfigurationChange('fanuc-macro.controller');
+    assert.equal(item().text, '$(check) 0i-TF lathe');
+    assert.doesNotMatch(String(item().tooltip), /Machine:/);
+    // Closed: its machine is forgotten.
+    fake.setSettings({ ...fake.settings, controller: '0i-F' });
+    middleware.handleDiagnostics(uri, [], () => undefined);
+    await until(() => item().text === '$(check) 0i-F mill');
+    await middleware.didClose({ uri }, () => Promise.resolve());
+    assert.equal(item().text, '$(check) 0i-F lathe or mill');
+  });
 });
+
+/** Waits until `done` holds (the server's answers come asynchronously). */
+async function until(done: () => boolean, ms = 10000): Promise<void> {
+  const deadline = Date.now() + ms;
+  while (!done()) {
+    if (Date.now() > deadline) throw new Error(`not so after ${ms} ms: the status bar says ${item().text}`);
+    await new Promise((resolve) => setTimeout(resolve, 10));
+  }
+}

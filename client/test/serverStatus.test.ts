@@ -8,6 +8,7 @@ import {
   controllerChoices,
   controllerLabel,
   controllersOf,
+  documentMachineOf,
   english,
   settingTarget,
   type Controllers,
@@ -35,15 +36,16 @@ describe('controllers', () => {
       known.list.map((c) => c.id),
       controllerSetting?.enum,
     );
-    assert.equal(controllerSetting?.default, '0i-TF');
-    assert.equal(known.default, '0i-TF');
+    assert.equal(controllerSetting?.default, '0i-F');
+    assert.equal(known.default, '0i-F');
   });
 
   it('are labelled with the machine they are for', () => {
     assert.equal(controllerLabel('0i-TF', known), '0i-TF lathe');
     assert.equal(controllerLabel('18i-M', known), '18i-M mill');
     assert.equal(controllerLabel('30i', known), '30i lathe and mill');
-    assert.equal(controllerLabel(undefined, known), '0i-TF lathe'); // the setting's default
+    assert.equal(controllerLabel('0i-F', known), '0i-F lathe or mill'); // as each program shows
+    assert.equal(controllerLabel(undefined, known), '0i-F lathe or mill'); // the setting's default
     assert.equal(controllerLabel('15-T', known), '15-T'); // not one we know: as it is, no kind
     // Before the server has named them: the setting's value, of no kind.
     assert.equal(controllerLabel('0i-TF', NO_CONTROLLERS), '0i-TF');
@@ -59,6 +61,7 @@ describe('controllers', () => {
     assert.deepEqual(
       choices.map((c) => [c.id, c.description]),
       [
+        ['0i-F', 'lathe or mill'],
         ['0i-TF', 'lathe'],
         ['0i-MF', 'mill'],
         ['16i-T', 'lathe'],
@@ -129,7 +132,7 @@ describe('ServerStatus', () => {
     status.stopped();
     assert.equal(status.current, 'stopped');
     assert.equal(status.analysing, 0);
-    assert.equal(status.view(undefined).text, '$(circle-slash) 0i-TF lathe · stopped');
+    assert.equal(status.view(undefined).text, '$(circle-slash) 0i-F lathe or mill · stopped'); // the default
     status.ready(undefined);
     assert.equal(status.current, 'ready');
   });
@@ -141,5 +144,87 @@ describe('ServerStatus', () => {
     status.failed('boom');
     assert.equal(status.view('0i-TF', upper).text, '$(error) 0i-TF LATHE · ERROR');
     assert.match(status.view('0i-TF', upper).tooltip, /LANGUAGE SERVER: ERROR: boom/);
+  });
+});
+
+// Programs whose codes show a mill, a lathe, and neither (the server's tests read the same).
+const MILL = 'O1000\nT1 M06\nG90 G54 G00 X0 Y0\nG43 H1 Z50.\nG91 G28 Z0\nM30\n';
+const LATHE = 'O2000\nT0101\nG96 S200 M03\nG00 X50. Z2.\nG01 Z-20. F0.2\nM30\n';
+const MACRO = 'O3000\n#1=10\n#2=#1*2\nM30\n';
+
+/** A ready status that has the server's answer to fanuc-macro.machine for each program. */
+async function statusWithMachines(settings: Record<string, unknown> = {}): Promise<ServerStatus> {
+  const status = new ServerStatus();
+  status.controllers = known;
+  status.ready('0.1.0');
+  for (const [uri, text] of [
+    ['file:///mill.nc', MILL],
+    ['file:///lathe.nc', LATHE],
+    ['file:///macro.nc', MACRO],
+  ] as const) {
+    status.machineAnswered(uri, status.askingMachine(uri), await server.answer('machineOf', [text, settings]));
+  }
+  return status;
+}
+
+describe('the machine of the active document', () => {
+  it('is shown with 0i-F, and its reason in the tooltip', async () => {
+    const status = await statusWithMachines();
+    const mill = status.view('0i-F', english, 'file:///mill.nc');
+    assert.equal(mill.text, '$(check) 0i-F mill');
+    assert.equal(
+      mill.tooltip.split('\n')[1],
+      'Machine: a mill (0i-F read as 0i-MF), from its codes: M06 (tool change) on line 2 and 4 more kinds of mark.',
+    );
+    assert.equal(status.view(undefined, english, 'file:///lathe.nc').text, '$(check) 0i-F lathe'); // the default
+    assert.match(status.view('0i-F', english, 'file:///lathe.nc').tooltip, /\nMachine: a lathe \(0i-F read as 0i-TF\), from its codes: a four-digit T/);
+    const macro = status.view('0i-F', english, 'file:///macro.nc');
+    assert.equal(macro.text, '$(check) 0i-F lathe?');
+    assert.match(macro.tooltip, /\nMachine: not known, no code of the program is a lathe's or a mill's alone\. Read as a lathe/);
+    // The server's state goes on showing after the machine.
+    status.analysisStarted('file:///mill.nc');
+    assert.equal(status.view('0i-F', english, 'file:///mill.nc').text, '$(sync~spin) 0i-F mill · analysing');
+    // No program active, or one the server has not answered for: the controller's kind.
+    const none = status.view('0i-F', english, undefined);
+    assert.equal(none.text, '$(sync~spin) 0i-F lathe or mill · analysing');
+    assert.doesNotMatch(none.tooltip, /Machine:/);
+    assert.equal(status.view('0i-F', english, 'file:///other.nc').text, '$(sync~spin) 0i-F lathe or mill · analysing');
+  });
+
+  it('is not shown with a controller set: the setting says the machine', async () => {
+    const status = await statusWithMachines({ controller: '0i-MF' });
+    assert.equal(status.machine('file:///lathe.nc')?.kind, 'mill'); // the setting wins over the codes
+    const view = status.view('0i-MF', english, 'file:///lathe.nc');
+    assert.equal(view.text, '$(check) 0i-MF mill');
+    assert.doesNotMatch(view.tooltip, /Machine:/);
+    // An answer read with 0i-F, shown with a controller set since: the controller's label.
+    const byCodes = await statusWithMachines();
+    assert.equal(byCodes.view('0i-TF', english, 'file:///mill.nc').text, '$(check) 0i-TF lathe');
+  });
+
+  it('keeps the newest answer, and forgets a refused, a closed and every document', async () => {
+    const status = await statusWithMachines();
+    const uri = 'file:///mill.nc';
+    const older = status.askingMachine(uri);
+    const newer = status.askingMachine(uri);
+    status.machineAnswered(uri, newer, await server.answer('machineOf', [LATHE, {}]));
+    status.machineAnswered(uri, older, await server.answer('machineOf', [MILL, {}])); // too late
+    assert.equal(status.view('0i-F', english, uri).text, '$(check) 0i-F lathe');
+    status.machineAnswered(uri, status.askingMachine(uri), { error: `${uri} is not open` });
+    assert.equal(status.view('0i-F', english, uri).text, '$(check) 0i-F lathe or mill');
+    status.forgetMachines('file:///lathe.nc');
+    assert.equal(status.machine('file:///lathe.nc'), undefined);
+    assert.equal(status.machine('file:///macro.nc')?.kind, 'unknown');
+    status.forgetMachines();
+    assert.equal(status.machine('file:///macro.nc'), undefined);
+    assert.equal(documentMachineOf({ controller: '0i-MF', kind: 'drill', text: 'x' }), undefined);
+    assert.equal(documentMachineOf(undefined), undefined);
+  });
+
+  it('translates the kind', async () => {
+    const upper = (message: string, ...args: Array<string | number>) => english(message.toUpperCase(), ...args);
+    const status = await statusWithMachines();
+    assert.equal(status.view('0i-F', upper, 'file:///macro.nc').text, '$(check) 0i-F LATHE?');
+    assert.equal(status.view('0i-F', upper, 'file:///mill.nc').text, '$(check) 0i-F MILL');
   });
 });

@@ -7,12 +7,22 @@ import { createInterface } from 'node:readline';
 
 const SCRIPT = `
 import asyncio, json, sys
-from fanuc_macro.lsp.commands import EDITOR_COMMANDS, _trace_view_json
+from fanuc_macro.lsp.commands import EDITOR_COMMANDS, _machine_json, _trace_view_json
 from fanuc_macro.ide.trace_view import view_of_trace
+
+def machine_of(text, settings):
+    # fanuc-macro.machine of a program analysed with the settings, without a workspace
+    from fanuc_macro.analysis import analyse
+    from fanuc_macro.config import Config
+    from fanuc_macro.ide import View, document_machine
+    config = Config.from_settings(settings)
+    return _machine_json(document_machine(View("o.nc", analyse(text, "o.nc", config), config)))
 
 async def answer(command, args):
     if command == "viewOfTrace":  # the view of a trace given, without a workspace
         return _trace_view_json(view_of_trace(args[0], args[1]))
+    if command == "machineOf":
+        return machine_of(args[0], args[1])
     return await EDITOR_COMMANDS[command](None, tuple(args))
 
 for line in sys.stdin:

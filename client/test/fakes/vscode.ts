@@ -353,6 +353,14 @@ export const commands = {
   },
 };
 
+const activeEditorListeners: Handler[] = [];
+
+/** Makes `editor` the active one, as a click on its tab does. */
+export function setActiveEditor(editor: FakeEditor | undefined): void {
+  window.activeTextEditor = editor;
+  for (const listener of [...activeEditorListeners]) listener(editor);
+}
+
 export const window = {
   activeTextEditor: undefined as FakeEditor | undefined,
   createStatusBarItem(id: string, _alignment?: number, _priority?: number): FakeStatusBarItem {
@@ -360,8 +368,9 @@ export const window = {
     statusBarItems.push(item);
     return item;
   },
-  onDidChangeActiveTextEditor(_listener: Handler) {
-    return { dispose: () => undefined };
+  onDidChangeActiveTextEditor(listener: Handler) {
+    activeEditorListeners.push(listener);
+    return { dispose: () => activeEditorListeners.splice(activeEditorListeners.indexOf(listener), 1) };
   },
   createOutputChannel(_name: string) {
     return {

@@ -3,8 +3,9 @@ thread modules, and the arc-thread and drum-groove programs.
 
 :data:`EDITOR_COMMANDS` answer what an editor would otherwise compute itself: a thread
 designation read, a generator's boxes read and checked, their defaults, the trace view's text,
-the controllers and the variable under the debugger's hover.  Their answers are typed here and
-sent as JSON objects, ``{"error"}`` for a refusal (the command line's message)."""
+the controllers, the machine a document was read as and the variable under the debugger's
+hover.  Their answers are typed here and sent as JSON objects, ``{"error"}`` for a refusal (the
+command line's message)."""
 
 from __future__ import annotations
 
@@ -24,7 +25,7 @@ if TYPE_CHECKING:
         DrumGrooveAnswer,
         GeneratorRefusal,
     )
-    from ..ide import NoToolpathView, ToolpathViewData, Trace, TraceView
+    from ..ide import DocumentMachine, NoToolpathView, ToolpathViewData, Trace, TraceView
 
 log = logging.getLogger(__name__)
 
@@ -115,6 +116,15 @@ class ControllersAnswer(TypedDict):
     default: str
 
 
+class MachineAnswer(TypedDict):
+    """The machine a document was read as: the controller resolved (0i-F as 0i-TF or 0i-MF),
+    ``kind`` lathe, mill or unknown (neither shown: read as a lathe), and why in a sentence."""
+
+    controller: str
+    kind: Literal["lathe", "mill", "unknown"]
+    text: str
+
+
 class VariableSpan(TypedDict, total=False):
     """Empty off a variable."""
 
@@ -128,6 +138,7 @@ EditorAnswer = (
     | ParameterDefaults
     | TraceViewAnswer
     | ControllersAnswer
+    | MachineAnswer
     | VariableSpan
     | CommandRefusal
 )
@@ -142,6 +153,7 @@ CHECK_PARAMETERS = "fanuc-macro.checkParameters"
 PARAMETER_DEFAULTS = "fanuc-macro.parameterDefaults"
 TRACE_VIEW = "fanuc-macro.traceView"
 CONTROLLERS = "fanuc-macro.controllers"
+MACHINE = "fanuc-macro.machine"
 VARIABLE_AT = "fanuc-macro.variableAt"
 
 
@@ -452,6 +464,30 @@ async def run_controllers(engine: Engine, args: tuple[Any, ...]) -> ControllersA
     }
 
 
+def _machine_json(machine: DocumentMachine) -> MachineAnswer:
+    return {"controller": machine.controller, "kind": machine.kind, "text": machine.text}
+
+
+# Seconds the machine of a document waits for the analysis of its current version.
+MACHINE_TIMEOUT = 60.0
+
+
+async def run_machine(engine: Engine, args: tuple[Any, ...]) -> MachineAnswer | CommandRefusal:
+    """``[uri]`` -> ``{"controller", "kind", "text"}``: the machine the newest analysis of that
+    open document read it as, or ``{"error"}``."""
+    from ..ide import View, document_machine
+
+    uri = _uri_argument(args)
+    if uri is None:
+        return {"error": f"{MACHINE} takes the document's URI as its argument"}
+    result = await engine.fresh(uri, MACHINE_TIMEOUT)
+    if result is None:
+        return {"error": f"{uri} is not open"}
+    if result.analysis is None:
+        return {"error": f"{uri} has no analysis: {result.error or 'it failed'}"}
+    return _machine_json(document_machine(View(result.key, result.analysis, engine.config)))
+
+
 async def run_variable_at(engine: Engine, args: tuple[Any, ...]) -> VariableSpan | CommandRefusal:
     """``[line's text, column]`` -> ``{"start", "end"}`` of the Macro B variable under the
     column (the debugger's hover), ``{}`` off a variable."""
@@ -472,6 +508,7 @@ EDITOR_COMMANDS: Mapping[str, EditorCommand] = MappingProxyType(
         PARAMETER_DEFAULTS: run_parameter_defaults,
         TRACE_VIEW: run_trace_view,
         CONTROLLERS: run_controllers,
+        MACHINE: run_machine,
         VARIABLE_AT: run_variable_at,
     }
 )
