@@ -17,11 +17,15 @@ Sources, for every entry:
   O9023 calls O9832 "(PROBE ON)", O9833 "(FLASH OFF)", O9855 "(OTS ON)", O9856 "(FLASH OTS
   OFF)", O9814 with D, Z, R, T, W, Q, O9812 with X or Y, Z, R, T, W, Q, O9815 and O9816 with
   X, Y, I, J, Q, O9802 and O9803 with D.
+* [CPS] Autodesk's Fusion post processors for Fanuc and Haas controls (the public post
+  library's ``.cps`` files, ``onCyclePoint`` "probing-*" and ``getProbingArguments``): the
+  letters they write for O9810-O9816, O9819, O9823 and O9843 and what each carries (secondary:
+  a CAM vendor's reading of the manual).
 * [IMD] industrialmonitordirect.com, "Resolving Renishaw OTS probe already triggered alarm on
   FANUC 31i": O9855/O9856 switch the tool setter on and off, O9858 is the broken tool cycle.
 
-An entry's ``verified`` says which of these name it; the argument meanings are [IP] as
-remembered, unverified.
+An entry's ``verified`` says which of these name it. The argument meanings are those [CPS]
+writes where it writes the cycle; the others are [IP] as remembered, unverified.
 """
 
 from __future__ import annotations
@@ -36,7 +40,7 @@ class VendorCycle:
     number: int
     package: str
     name: str
-    # Each argument letter and what it means to the cycle, in the manual's order.
+    # Each argument letter and what it means to the cycle, in the order the sources give.
     arguments: tuple[tuple[str, str], ...]
     verified: str  # which sources name the cycle (see the module's documentation)
 
@@ -46,18 +50,24 @@ TOOL_SETTING = "Renishaw tool setting"
 _MANUAL_IP = "Renishaw Inspection Plus programming manual H-2000-6031 / H-2000-6222"
 _MANUAL_TS = "Renishaw tool setting software (manual number unverified)"
 
-# The letters most measuring cycles of Inspection Plus share.
+# The letters most measuring cycles of Inspection Plus share: [CPS], but E and U ([IP],
+# unverified).
 _RESULT = (
     ("Q", "overtravel past the expected surface"),
-    ("S", "work offset to update (54-59 for G54-G59)"),
-    ("T", "tool offset to update"),
-    ("H", "tolerance of the size"),
-    ("M", "true position tolerance"),
-    ("E", "experience value: the offset of an adjustment"),
-    ("U", "upper tolerance: out of it, the cycle alarms"),
-    ("V", "feedback percentage of the error put in the offset"),
-    ("W", "print the results (1 or 2)"),
+    ("S", "work offset to update (54-59 for G54-G59, 154.01- for G54.1 P1-)"),
+    ("T", "tool offset to update (length for Z, else diameter)"),
+    ("H", "tolerance of the size: out of it, the cycle stops with a message"),
+    ("M", "tolerance of the position: out of it, the cycle stops with a message"),
+    ("B", "tolerance of the angle"),
+    ("F", "feedback: the fraction of the error put in the tool offset"),
+    ("V", "null band: an error below it leaves the tool offset as it is"),
+    ("W", "print the results (1; 2 starts a new component)"),
+    ("E", "experience value: an adjustment added to the result"),
+    ("U", "upper tolerance: out of it, the tool offset is not updated"),
 )
+_POSITION = "the surface's expected position"
+_BOSS_DEPTH = "the depth to measure a boss at (absent: a bore)"
+_CLEARANCE = "radial clearance (negative: an internal boss or web)"
 
 _CYCLES = (
     VendorCycle(
@@ -86,19 +96,14 @@ _CYCLES = (
         INSPECTION_PLUS,
         "protected positioning: a move that stops when the probe touches",
         (("X", "target"), ("Y", "target"), ("Z", "target"), ("F", "feed")),
-        "CORPUS",
+        "CORPUS, CPS",
     ),
     VendorCycle(
         9811,
         INSPECTION_PLUS,
         "single surface measurement in X, Y or Z",
-        (
-            ("X", "the surface's expected position"),
-            ("Y", "the surface's expected position"),
-            ("Z", "the surface's expected position"),
-            *_RESULT,
-        ),
-        "ZAP, CORPUS",
+        (("X", _POSITION), ("Y", _POSITION), ("Z", _POSITION), *_RESULT),
+        "ZAP, CORPUS, CPS",
     ),
     VendorCycle(
         9812,
@@ -108,22 +113,17 @@ _CYCLES = (
             ("X", "the width, measured in X"),
             ("Y", "the width, measured in Y"),
             ("Z", "the depth to measure a web at (absent: a pocket)"),
-            ("R", "radial clearance (negative: an internal web)"),
+            ("R", _CLEARANCE),
             *_RESULT,
         ),
-        "ZAP, CORPUS",
+        "ZAP, CORPUS, CPS",
     ),
     VendorCycle(
         9814,
         INSPECTION_PLUS,
         "bore or boss measurement",
-        (
-            ("D", "the nominal diameter"),
-            ("Z", "the depth to measure a boss at (absent: a bore)"),
-            ("R", "radial clearance (negative: an internal boss)"),
-            *_RESULT,
-        ),
-        "ZAP, CORPUS",
+        (("D", "the nominal diameter"), ("Z", _BOSS_DEPTH), ("R", _CLEARANCE), *_RESULT),
+        "ZAP, CORPUS, CPS",
     ),
     VendorCycle(
         9815,
@@ -132,11 +132,11 @@ _CYCLES = (
         (
             ("X", "the corner's expected position"),
             ("Y", "the corner's expected position"),
-            ("I", "distance of the Y surface's touch from the corner"),
-            ("J", "distance of the X surface's touch from the corner"),
+            ("I", "distance of the touches along X from the corner"),
+            ("J", "distance of the touches along Y from the corner"),
             *_RESULT,
         ),
-        "ZAP, CORPUS",
+        "ZAP, CORPUS, CPS",
     ),
     VendorCycle(
         9816,
@@ -145,36 +145,34 @@ _CYCLES = (
         (
             ("X", "the corner's expected position"),
             ("Y", "the corner's expected position"),
-            ("I", "distance of the Y surface's touch from the corner"),
-            ("J", "distance of the X surface's touch from the corner"),
+            ("I", "distance of the touches along X from the corner"),
+            ("J", "distance of the touches along Y from the corner"),
             *_RESULT,
         ),
-        "ZAP, CORPUS",
+        "ZAP, CORPUS, CPS",
     ),
     VendorCycle(
         9819,
         INSPECTION_PLUS,
         "bores or bosses on a pitch circle (PCD)",
         (
-            ("D", "the feature's diameter"),
             ("A", "angle of the first feature"),
-            ("B", "angular pitch"),
-            ("K", "the pitch circle's diameter"),
+            ("B", "number of features"),
+            ("C", "the pitch circle's diameter"),
+            ("D", "the features' diameter"),
+            ("K", "the depth to measure bores at"),
+            ("Z", "the depth to measure bosses at"),
+            ("R", "radial clearance"),
             *_RESULT,
         ),
-        "ZAP",
+        "ZAP, CPS",
     ),
     VendorCycle(
         9820,
         INSPECTION_PLUS,
         "stock allowance",
-        (
-            ("X", "the surface's expected position"),
-            ("Y", "the surface's expected position"),
-            ("Z", "the surface's expected position"),
-            *_RESULT,
-        ),
-        "ZAP",
+        (("X", _POSITION), ("Y", _POSITION), ("Z", _POSITION), *_RESULT),
+        "ZAP (arguments unverified)",
     ),
     VendorCycle(
         9821,
@@ -183,11 +181,26 @@ _CYCLES = (
         (
             ("A", "the surface normal's angle"),
             ("D", "the distance to the surface"),
-            ("X", "the surface's expected position"),
-            ("Y", "the surface's expected position"),
+            ("X", _POSITION),
+            ("Y", _POSITION),
             *_RESULT,
         ),
-        "ZAP",
+        "ZAP (arguments unverified)",
+    ),
+    VendorCycle(
+        9823,
+        INSPECTION_PLUS,
+        "bore or boss measured at three points (a partial circle)",
+        (
+            ("A", "angle of the first point"),
+            ("B", "angle of the second point"),
+            ("C", "angle of the third point"),
+            ("D", "the nominal diameter"),
+            ("Z", _BOSS_DEPTH),
+            ("R", _CLEARANCE),
+            *_RESULT,
+        ),
+        "CPS",
     ),
     VendorCycle(9832, INSPECTION_PLUS, "switch the spindle probe on", (), "CORPUS"),
     VendorCycle(9833, INSPECTION_PLUS, "switch the spindle probe off", (), "CORPUS"),
@@ -197,6 +210,19 @@ _CYCLES = (
         "feature to feature: the distance between the last two features measured",
         (),
         "unverified (called after O9814 in CORPUS)",
+    ),
+    VendorCycle(
+        9843,
+        INSPECTION_PLUS,
+        "angle of a surface, measured in X or Y",
+        (
+            ("X", "the surface's expected position, measured in X"),
+            ("Y", "the surface's expected position, measured in Y"),
+            ("D", "distance between the two touches"),
+            ("A", "the surface's nominal angle"),
+            *_RESULT,
+        ),
+        "CPS",
     ),
     VendorCycle(
         9851,
