@@ -340,8 +340,10 @@ class Machine(MotionPart):
                 self._record_reads(act, cl, facts)
             try:
                 if kind == K_NC:  # most blocks: first
-                    call = self._custom_setting(act, cl) if custom_calls else None
-                    act = self._nc(act, cl) if call is None else self._custom_call(act, cl, call)
+                    if custom_calls and (call := self._custom_setting(act, cl)) is not None:
+                        act = self._custom_call(act, cl, call)
+                    else:
+                        act = self._nc(act, cl)
                     if cl.second is not None and act.ctx is ctx and act.pc == pc + 1:
                         act.pc = pc
                         self._run_second(act, cl.second, facts)
