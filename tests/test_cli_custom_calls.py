@@ -127,6 +127,8 @@ def test_hover_and_definition_of_a_custom_code(tmp_path: Path) -> None:
     found = run(tmp_path, "definition", "--custom-call", "M165=9022", "probe.nc", "2", "2")
     assert found.stdout.strip().endswith("probe.nc:4:1")
     assert run(tmp_path, "definition", "probe.nc", "2", "2").stdout.strip() == ""
+    header = run(tmp_path, "hover", "--custom-call", "M165=9022", "probe.nc", "4", "2").stdout
+    assert "Called by every M165 block (setting machine.customCalls)." in header
 
 
 def test_another_m_code_of_the_block_is_an_argument_of_the_call(tmp_path: Path) -> None:

@@ -231,6 +231,9 @@ def hover_program(view: View, number: int, line: int | None = None, diagnosed: b
             f" and {len(callers) - 5} more" if len(callers) > 5 else ""
         )
         parts.append(f"Called by {shown}.")
+    codes = [c.code for c in view.config.custom_calls if c.program == number]
+    if codes:  # the blocks of such a code are not in the index: the code is named
+        parts.append(f"Called by every {codes[0]} block (setting machine.customCalls).")
     facts = view.analysis.facts
     if facts is not None:
         runs = facts.by_uri.get(key)
