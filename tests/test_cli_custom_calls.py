@@ -144,3 +144,18 @@ def test_a_computed_call_of_a_program_on_the_control_is_not_reported(tmp_path: P
     assert "comp.nc:5:1: MB706 warning M98 calls O2000" in plain
     assert "O9814" not in plain  # a known cycle: on the control
     assert "MB706" not in run(tmp_path, "check", "--on-control", "2000", "comp.nc").stdout
+
+
+def test_each_address_calls_only_its_range(tmp_path: Path) -> None:
+    _write(tmp_path, "g.nc", G_CODE_CALL)
+    done = run(tmp_path, "check", "--custom-call", "G100=9020", "--custom-call", "B=9028", "g.nc")
+    assert done.stderr.count("machine.customCalls") == 1
+    assert (
+        "machine.customCalls: 'G100' calls O9020: a G code can call only O9010-O9019 "
+        "(parameters 6050-6059)"
+    ) in done.stderr
+    done = run(tmp_path, "check", "--custom-call", "G65=9010", "--custom-call", "T5=9000", "g.nc")
+    assert "'G65' already calls or returns" in done.stderr
+    assert "'T5': a G or M code takes its number (G100, M165); T, S and B stand alone" in (
+        done.stderr
+    )
