@@ -159,3 +159,16 @@ def test_each_address_calls_only_its_range(tmp_path: Path) -> None:
     assert "'T5': a G or M code takes its number (G100, M165); T, S and B stand alone" in (
         done.stderr
     )
+
+
+def test_a_custom_call_runs_its_program_from_another_file(tmp_path: Path) -> None:
+    """The called program's file is handed to the analysis of the caller though no index holds
+    the call: the value the macro sets reaches the caller's next block."""
+    _write(tmp_path, "main.nc", "O1000\nT1 M06\nM165 P9814 D1.415 S1.\n#101=#100\nM30\n")
+    _write(tmp_path, "O9022.nc", "O9022\n#100=#7*2\nM99\n")
+    hovered = run(
+        tmp_path, "hover", "--custom-call", "M165=9022", "--with", "O9022.nc", "main.nc", "4", "7"
+    )
+    assert "Value here: **2.83**" in hovered.stdout
+    plain = run(tmp_path, "hover", "--with", "O9022.nc", "main.nc", "4", "7")
+    assert "Value here: **depends on #100**" in plain.stdout

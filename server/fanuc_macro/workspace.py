@@ -226,7 +226,7 @@ class Workspace:
         for key in of:
             if key in uris or key not in self._indexes:
                 continue
-            needed = related_documents(key, self._indexes)
+            needed = related_documents(key, self._indexes, self._custom_called())
             if needed is None or not uris.isdisjoint(needed):
                 readers.append(key)
         return readers
@@ -234,9 +234,14 @@ class Workspace:
     def others(self, uri: str) -> list[OtherDocument]:
         """The other documents an analysis of ``uri`` needs: see :func:`related_documents`."""
         indexes = self._indexes
-        needed = related_documents(uri, indexes)
+        needed = related_documents(uri, indexes, self._custom_called())
         keys = [u for u in indexes if u != uri] if needed is None else needed
         return [(u, *indexes[u]) for u in keys]
+
+    def _custom_called(self) -> frozenset[int]:
+        """The programs the settings' custom calls run (``M165`` -> O9022): any block of any
+        document may call them, and the index holds none of those calls."""
+        return frozenset(c.program for c in self.config.custom_calls)
 
     def program_numbers(self) -> frozenset[int]:
         return frozenset(
@@ -332,13 +337,16 @@ def program_links(doc: Document, index: ProgramIndex) -> frozenset[tuple[str, in
 
 
 def related_documents(
-    key: str, indexes: Mapping[str, tuple[Document, ProgramIndex]]
+    key: str,
+    indexes: Mapping[str, tuple[Document, ProgramIndex]],
+    custom_called: frozenset[int] = frozenset(),
 ) -> list[str] | None:
     """The documents the evaluator needs to analyse ``key``, in workspace order; None when all
     of them may be (a call whose program is computed, ``M98 P#1``).
 
     Those are the documents defining the programs ``key`` calls, transitively, and those calling
-    a program of ``key`` (they decide which of its programs are entry points). The others are
+    a program of ``key`` (they decide which of its programs are entry points), and those
+    defining the programs of ``custom_called``, which a code set up as a call runs. The others are
     never run: handing them over only makes the evaluator compile them, which with a scanned
     workspace of a few thousand files costs seconds per keystroke.
     """
@@ -357,6 +365,12 @@ def related_documents(
                     callers.setdefault(number, set()).add(k)
     needed = {key}
     todo = [key]
+    # A code the settings set up as a call may stand in any block: its program is needed.
+    for number in sorted(custom_called):
+        target = owner.get(number)
+        if target is not None and target not in needed:
+            needed.add(target)
+            todo.append(target)
     while todo:
         doc, index = indexes[todo.pop()]
         for program in index.programs:

@@ -228,7 +228,7 @@ def completion(
         line_text,
         line,
         column,
-        config,
+        view.ide.config if view is not None else config,  # its machine, as its codes show
         view.ide if view is not None else None,
         snippets_supported=support.snippets,
         has_snippets=support.builtin_snippets,
