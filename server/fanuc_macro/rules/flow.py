@@ -219,7 +219,9 @@ caller.
 """,
     not_reported="""
 A computed number the analysis cannot know (the call is then
-followed as a call into the unknown), and calls written with a constant number (MB403).
+followed as a call into the unknown), and calls written with a constant number (MB403). A
+computed number that comes out as a program kept on the control (the setting
+`fanuc-macro.machine.programsOnControl`, `--on-control`) or as a vendor's known cycle (MB408).
 """,
 )
 
