@@ -107,9 +107,7 @@ def _custom_call_option(text: str) -> tuple[str, str]:
 def _on_control_option(text: str) -> tuple[tuple[int, int], ...]:
     ranges, problems = read_program_ranges(text)
     if problems:
-        raise argparse.ArgumentTypeError(
-            problems[0].removeprefix("machine.programsOnControl: ")
-        )
+        raise argparse.ArgumentTypeError(problems[0].removeprefix("machine.programsOnControl: "))
     return ranges
 
 

@@ -150,9 +150,9 @@ def _evaluate(
     block skip) counts as a '/' block: the second run has every switch on. Each run resumes
     from its own run of ``previous``. (The switch and '/n': FANUC Series 16i/18i operator's
     manual B-63684EN, Part II "Program configuration", optional block skip; its section
-    number and the '/n' option's text unverified here.) One wall-clock limit for the whole analysis, a safety
-    net only: the step budget, per entry of each run, is what ends a run that goes on (see
-    Config)."""
+    number and the '/n' option's text unverified here.) One wall-clock limit for the whole
+    analysis, a safety net only: the step budget, per entry of each run, is what ends a run
+    that goes on (see Config)."""
     docs = list(docs)
     deadline = time.monotonic() + config.time_limit
     ways = previous.ways if previous is not None else None

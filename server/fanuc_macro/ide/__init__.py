@@ -41,8 +41,8 @@ if TYPE_CHECKING:
     from .controllers import DEFAULT_CONTROLLER as DEFAULT_CONTROLLER
     from .controllers import DocumentMachine as DocumentMachine
     from .controllers import controller_choices as controller_choices
-    from .controllers import machine_text as machine_text
     from .controllers import document_machine as document_machine
+    from .controllers import machine_text as machine_text
     from .data import ActionKind as ActionKind
     from .data import CodeAction as CodeAction
     from .data import CompletionItem as CompletionItem

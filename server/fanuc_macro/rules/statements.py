@@ -397,7 +397,8 @@ MB408_DOC = RuleDoc(
     reports="""
 `G65 P`, `G66 P` or `M98 P` with the number of a probing or tool-setting cycle a vendor
 installs on the control (Renishaw Inspection Plus O9801-O9843, the tool setting cycles
-O9851-O9858; `program/vendor_cycles.py` lists them with their sources), when no file checked with it holds that program. The hint names the cycle.
+O9851-O9858; `program/vendor_cycles.py` lists them with their sources), when no file
+checked with it holds that program. The hint names the cycle.
 """,
     why="""
 The cycle is on the control, not beside the shop's programs: its call is no mistake, but the
