@@ -114,9 +114,9 @@ def test_an_analysis_finds_the_documents_it_reads_once(monkeypatch: pytest.Monke
     looked_up: list[str] = []
     related = workspace.related_documents
 
-    def counted(key: str, indexes: Any) -> list[str] | None:
+    def counted(key: str, indexes: Any, *custom_called: Any) -> list[str] | None:
         looked_up.append(key)
-        return related(key, indexes)
+        return related(key, indexes, *custom_called)
 
     monkeypatch.setattr(workspace, "related_documents", counted)
 

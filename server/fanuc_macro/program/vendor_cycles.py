@@ -68,6 +68,14 @@ _RESULT = (
 _POSITION = "the surface's expected position"
 _BOSS_DEPTH = "the depth to measure a boss at (absent: a bore)"
 _CLEARANCE = "radial clearance (negative: an internal boss or web)"
+# O9815 and O9816 take the same words.
+_CORNER = (
+    ("X", "the corner's expected position"),
+    ("Y", "the corner's expected position"),
+    ("I", "distance of the touches along X from the corner"),
+    ("J", "distance of the touches along Y from the corner"),
+    *_RESULT,
+)
 
 _CYCLES = (
     VendorCycle(
@@ -129,26 +137,14 @@ _CYCLES = (
         9815,
         INSPECTION_PLUS,
         "internal corner find",
-        (
-            ("X", "the corner's expected position"),
-            ("Y", "the corner's expected position"),
-            ("I", "distance of the touches along X from the corner"),
-            ("J", "distance of the touches along Y from the corner"),
-            *_RESULT,
-        ),
+        _CORNER,
         "ZAP, CORPUS, CPS",
     ),
     VendorCycle(
         9816,
         INSPECTION_PLUS,
         "external corner find",
-        (
-            ("X", "the corner's expected position"),
-            ("Y", "the corner's expected position"),
-            ("I", "distance of the touches along X from the corner"),
-            ("J", "distance of the touches along Y from the corner"),
-            *_RESULT,
-        ),
+        _CORNER,
         "ZAP, CORPUS, CPS",
     ),
     VendorCycle(
