@@ -81,7 +81,8 @@ def test_one_mark_of_the_other_machine_among_several_is_an_option_of_the_machine
     mill_turn = "O1000\nT0101\nG96 S150\nT1 M06\nG43 H1 Z5.\nM30\n"
     kind, reason = guess(mill_turn)
     assert kind is None
-    assert reason.startswith("it has a lathe's a four-digit T") and "a mill's M06" in reason
+    assert reason.startswith("it has marks of both: a four-digit T (tool and offset number) on")
+    assert "and M06 (tool change) on line 4 (a mill's)" in reason
 
 
 LATHE_CYCLE_INSIDE = "G90 X40. Z-10. F0.2\nX30.\n"  # starts at X10.: inside its passes

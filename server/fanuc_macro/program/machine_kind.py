@@ -74,8 +74,8 @@ class MachineGuess:
         mill = [m for m in self.marks if m.machine == MILL]
         if self.kind is None:
             return (
-                f"it has a lathe's {lathe[0].what} on line {lathe[0].line + 1} and a mill's "
-                f"{mill[0].what} on line {mill[0].line + 1}"
+                f"it has marks of both: {lathe[0].what} on line {lathe[0].line + 1} (a lathe's) "
+                f"and {mill[0].what} on line {mill[0].line + 1} (a mill's)"
             )
         own, other = (lathe, mill) if self.kind == LATHE else (mill, lathe)
         text = f"{own[0].what} on line {own[0].line + 1}"
