@@ -197,6 +197,8 @@ def test_no_line_map_finds_anything_in_a_bare_line() -> None:
         )
         assert p.bare == expected or (expected and ";" in p.text), p.text
     for line_map in maps:
+        if line_map.every_line:
+            continue  # it looks at bare lines too (the machine's marks)
         for p in bare:
             assert not line_map._look(p), (line_map._look, p.text)
     doc = parse_text("\n".join(texts) + "\n", "file:///bare.nc", parser)

@@ -106,10 +106,13 @@ class LineMap(Generic[T]):
     ``look`` must depend on the parsed line alone (such as a :class:`~fanuc_macro.per_line.
     PerLine` function)."""
 
-    __slots__ = ("_kept", "_look")
+    __slots__ = ("_kept", "_look", "every_line")
 
-    def __init__(self, look: Callable[[ParsedLine], T | None]) -> None:
+    def __init__(self, look: Callable[[ParsedLine], T | None], every_line: bool = False) -> None:
         self._look = look
+        # Whether ``look`` may find something in a bare line too (a Y word, a G91): then every
+        # changed line is looked at, not only those that are not bare.
+        self.every_line = every_line
         name = getattr(look, "__qualname__", "look")
         self._kept: Kept[Found[T]] = Kept(f"line_maps.{name}")
 
@@ -153,7 +156,7 @@ class LineMap(Generic[T]):
         values: list[T] = []
         # The lines that are not bare (in which no map finds anything), a slice at a time,
         # looked at in C but for ``look`` itself; the token is looked at every SLICE lines.
-        wanted = _unbare(doc, start, end)
+        wanted = range(start, end) if self.every_line else _unbare(doc, start, end)
         at = 0
         while at < len(wanted):
             low = wanted[at]

@@ -26,10 +26,12 @@ neither (a macro of arithmetic alone).
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass, replace
 
 from ..config import Config
 from ..database import Derived
+from ..line_maps import LineMap
 from ..per_line import PerLine
 from ..syntax.marks import constant_value
 from ..syntax.parser import statements_of
@@ -108,18 +110,38 @@ def _words(parsed: ParsedLine) -> list[tuple[str, float | None, str]]:
     return found
 
 
-def _line_marks(parsed: ParsedLine) -> tuple[tuple[str, str], ...]:
-    """The machine marks of one line: (machine, what) pairs; () for most lines."""
-    if parsed.statement is None or parsed.problem is not None:
-        return ()
-    words = _words(parsed)
-    if not words:
-        return ()
-    g = {v for a, v, _ in words if a == "G" and v is not None}
-    m = {v for a, v, _ in words if a == "M" and v is not None}
-    letters = {a for a, _, _ in words}
+_ADDRESSES = frozenset("ABCDEFGHIJKLMNOPQRSTUVWXYZ")
+_FOUR_DIGIT_T = re.compile(r"T(\d{4})(?![\d.])")
+
+
+def _line_marks(parsed: ParsedLine) -> tuple[tuple[str, str], ...] | None:
+    """The machine marks of one line: (machine, what) pairs; None for most lines."""
+    statement = parsed.statement
+    if statement is None or parsed.problem is not None:
+        return None
+    if type(statement) is PlainNc:
+        # Most blocks (CAM output): the G and M codes the parser read, the letters of the text.
+        words_text = statement.text().upper()
+        letters: frozenset[str] | set[str] = _ADDRESSES.intersection(words_text)
+        g = {v for a, v in statement.codes if a in "Gg"}
+        m = {v for a, v in statement.codes if a in "Mm"}
+        four_digit_t = "T" in letters and any(
+            t[:2] != "00" for t in _FOUR_DIGIT_T.findall(words_text)
+        )
+    else:
+        words = _words(parsed)
+        if not words:
+            return None
+        g = {v for a, v, _ in words if a == "G" and v is not None}
+        m = {v for a, v, _ in words if a == "M" and v is not None}
+        letters = {a for a, _, _ in words}
+        four_digit_t = any(
+            a == "T" and len(w) == 4 and w.isdigit() and w[:2] != "00" for a, _, w in words
+        )
     if not g.isdisjoint(_NOT_AXES_G) or not m.isdisjoint(_NOT_AXES_M):
-        return ()  # a call's letters are its arguments; G10's, data; G04's U, a dwell
+        return None  # a call's letters are its arguments; G10's, data; G04's U, a dwell
+    if g.isdisjoint(_MARK_G) and 6.0 not in m:  # most blocks: moves, marked by words alone
+        return _word_marks(letters, four_digit_t)
     marks: list[tuple[str, str]] = []
     if 6.0 in m:
         marks.append((MILL, "M06 (tool change)"))
@@ -149,14 +171,36 @@ def _line_marks(parsed: ParsedLine) -> tuple[tuple[str, str], ...]:
         marks.append((LATHE, "G32 (threading)"))
     if 92.0 in g and "F" in letters:
         marks.append((LATHE, "G92 with F (threading cycle)"))
-    if 6.0 not in m and any(
-        a == "T" and len(w) == 4 and w.isdigit() and w[:2] != "00" for a, _, w in words
-    ):
+    if 6.0 not in m and four_digit_t:
         marks.append((LATHE, "a four-digit T (tool and offset number)"))
-    return tuple(marks)
+    return tuple(marks) or None
 
 
-_marks_of: PerLine[tuple[tuple[str, str], ...]] = PerLine(_line_marks)
+# The G codes that are marks, or make a block's words marks (U of G71 is the lathe's anyway).
+_MARK_G = frozenset(
+    {32.0, 41.0, 42.0, 43.0, 44.0, 50.0, 70.0, 71.0, 72.0, 73.0, 76.0, 81.0, 82.0, 86.0, 90.0}
+    | {91.0, 92.0, 96.0}
+)
+_Y = ((MILL, "a Y axis word"),)
+_UW = ((LATHE, "a U or W word (incremental X or Z)"),)
+_T = ((LATHE, "a four-digit T (tool and offset number)"),)
+
+
+def _word_marks(
+    letters: frozenset[str] | set[str], four_digit_t: bool
+) -> tuple[tuple[str, str], ...] | None:
+    """The marks of a block without a G or M code that is one: its Y, U/W and T words."""
+    marks = (
+        (_Y if "Y" in letters else ())
+        + (_UW if "U" in letters or "W" in letters else ())
+        + (_T if four_digit_t else ())
+    )
+    return marks or None
+
+
+# The lines with a mark: after an edit only the changed lines are looked at again. A mark may
+# stand in a bare line (a Y word, G91), so every line is looked at.
+_marks_of: LineMap[tuple[tuple[str, str], ...]] = LineMap(_line_marks, every_line=True)
 
 # The G codes that mean one thing on a lathe (system A) and another on a mill.
 _TWO_MEANINGS = frozenset(
@@ -184,12 +228,16 @@ def guess_machine(doc: Document, first: int = 0, end: int | None = None) -> Mach
     """The machine ``doc``'s blocks (lines ``first`` to ``end``, exclusive) show: the first
     mark of each kind, and the verdict."""
     seen: dict[tuple[str, str], int] = {}
-    for block in doc.blocks[first:end]:
-        parsed = block.parsed
-        if parsed.statement is None:
-            continue
-        for mark in _marks_of(parsed):
-            seen.setdefault(mark, block.line)
+    found = _marks_of(doc)
+    at = found.between(first, len(doc.blocks) if end is None else end)
+    lines, values = found.lines[at.start : at.stop], found.values[at.start : at.stop]
+    # Most marked lines repeat a few sets of marks (a Y word on every line of a mill's
+    # program): each distinct one, at its first line, found in C.
+    for on_line in dict.fromkeys(values):
+        line = lines[values.index(on_line)]
+        for mark in on_line:
+            if mark not in seen or line < seen[mark]:
+                seen[mark] = line
     marks = tuple(
         sorted(
             (Mark(k[0], k[1], line) for k, line in seen.items()),
