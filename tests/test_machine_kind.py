@@ -273,3 +273,21 @@ def test_a_mills_incremental_moves_add_up_in_the_trace(tmp_path: Path) -> None:
     assert ends == ["X0. Y10.", "X0. Y20.", "X0. Y30."]
     as_lathe = run(tmp_path, "trace", "--controller", "0i-TF", "face.nc")
     assert "X0. Y30." not in as_lathe.stdout  # a lathe has no G91: Y10. each time
+
+
+def test_both_readings_of_an_unknown_machine_are_kept_between_edits() -> None:
+    """A document whose machine is not known is run as a lathe and as a mill; an edit that
+    changes no block's run (a comment) runs neither again, and the diagnostics stay."""
+    from fanuc_macro.workspace import Workspace
+
+    text = "O1000\nG00 X10. Z2.\n" + LATHE_CYCLE_INSIDE + "#1=1/0\nM30\n"
+    workspace = Workspace(Config())
+    workspace.add_bytes("t.nc", text.encode())
+    first = workspace.analyse("t.nc")
+    assert first.mill_facts is not None and first.facts is not None
+    workspace.add_bytes("t.nc", text.replace("M30", "M30 (END)").encode())
+    again = workspace.analyse("t.nc")
+    assert again.facts is first.facts and again.mill_facts is first.mill_facts
+    assert [(d.code, d.line) for d in again.diagnostics] == [
+        (d.code, d.line) for d in first.diagnostics
+    ]

@@ -26,7 +26,7 @@ from .diagnostics import (
 from .evaluator import Facts, evaluate
 from .line_maps import LineMap
 from .program.index import ProgramIndex, build_index
-from .program.machine_kind import machine_config, readings_differ
+from .program.machine_kind import machine_config, mill_reading, readings_differ
 from .rules import ALL_CHECKS, FAMILIES, LINE_CHECKS, LineFinding, declared, plain_line_quiet
 from .rules.context import RuleContext
 from .rules.dialect import (
@@ -132,6 +132,8 @@ class Analysis:
     threads: list[Thread] = field(default_factory=list)  # what the threading rules saw
     # The settings the document was analysed with: its machine resolved (machine_kind).
     config: Config | None = None
+    # The mill's reading's facts when the machine is not known (kept for the next analysis).
+    mill_facts: Facts | None = None
 
 
 def _suppressed_on(parsed: ParsedLine) -> frozenset[str] | None:
@@ -284,6 +286,8 @@ def analyse(
     facts: Facts | None = None,
     previous_facts: Facts | None = None,
     cancel: CancelToken | None = None,
+    mill_facts: Facts | None = None,
+    mill_previous: Facts | None = None,
 ) -> Analysis:
     """Parse (unless ``doc`` is given), index, evaluate and check one document.
 
@@ -329,12 +333,13 @@ def analyse(
             except Exception:  # reported as MB000 by the rules that asked for them
                 log_failure(__name__, "thread identification of %s failed", uri)
         diagnostics = _apply_settings(found, doc, config)
+        kept_mill: Facts | None = None
         if not config.machine_known and readings_differ(doc):
             # Neither machine shown: only what a lathe's and a mill's reading both find.
             mill = analyse(
                 text,
                 uri,
-                replace(config, controller="0i-MF", machine_known=True),
+                mill_reading(config),
                 workspace_programs,
                 parser,
                 extra_checks,
@@ -342,11 +347,14 @@ def analyse(
                 index,
                 other_documents,
                 run_evaluator,
-                cancel=cancel,
+                mill_facts,
+                mill_previous,
+                cancel,
             )
             both = {_verdict(d) for d in mill.diagnostics}
             diagnostics = [d for d in diagnostics if _verdict(d) in both]
-        return Analysis(doc, index, diagnostics, facts, threads, config)
+            kept_mill = mill.facts
+        return Analysis(doc, index, diagnostics, facts, threads, config, kept_mill)
 
 
 def _verdict(diag: Diagnostic) -> tuple[str, str, int, int, int, int]:

@@ -14,7 +14,7 @@ from .config import Config
 from .database import Database
 from .evaluator import Facts
 from .program.index import Call, ProgramIndex, build_index, index_after_edit
-from .program.machine_kind import machine_config
+from .program.machine_kind import machine_config, mill_reading
 from .program_files import PROGRAM_SUFFIXES as PROGRAM_SUFFIXES  # for the server, the debugger
 from .program_files import is_program_file as is_program_file
 from .syntax.diff import line_diff
@@ -102,6 +102,8 @@ class Workspace:
         self._executions = 0
         # uri -> (the config, the executions of the documents run, the evaluator's facts)
         self._facts: dict[str, tuple[Config, tuple[tuple[str, int], ...], Facts]] = {}
+        # The same for the mill's reading of a document whose machine is not known.
+        self._mill_facts: dict[str, tuple[Config, tuple[tuple[str, int], ...], Facts]] = {}
         # Every document's (document, index): replaced on each change, never changed, so that
         # another thread (the language server's requests) may read the one it got.
         self._indexes: dict[str, tuple[Document, ProgramIndex]] = {}
@@ -189,6 +191,7 @@ class Workspace:
         their own)."""
         self._entries.pop(uri, None)
         self._facts.pop(uri, None)
+        self._mill_facts.pop(uri, None)
         self.db.close_document(uri)
         self.parser.clear_cache()
         self._reindexed(uri)
@@ -280,14 +283,13 @@ class Workspace:
         programs = self.program_numbers() if workspace_programs is None else workspace_programs
         others = self.others(uri) if others is None else others
         runs = ((uri, entry.execution), *((u, self._entries[u].execution) for u, _, _ in others))
-        cached = self._facts.get(uri)
         # The machine the document's codes show (controller 0i-F): a run of another machine's
         # reading is neither kept nor resumed.
         config = machine_config(self.config, entry.doc, entry.index)
-        same = cached is not None and (cached[0] is config or cached[0] == config)
-        facts = cached[2] if cached and same and cached[1] == runs else None
-        # Otherwise the evaluator resumes the earlier run where the edit begins to matter.
-        previous = cached[2] if cached is not None and same and facts is None else None
+        facts, previous = _kept_facts(self._facts.get(uri), config, runs)
+        mill_facts, mill_previous = _kept_facts(
+            self._mill_facts.get(uri), mill_reading(config), runs
+        )
         analysis = analyse(
             entry.text,
             uri,
@@ -300,10 +302,29 @@ class Workspace:
             facts=facts,
             previous_facts=previous,
             cancel=cancel,
+            mill_facts=mill_facts,
+            mill_previous=mill_previous,
         )
         if analysis.facts is not None:
             self._facts[uri] = (config, runs, analysis.facts)
+        if analysis.mill_facts is not None:
+            self._mill_facts[uri] = (mill_reading(config), runs, analysis.mill_facts)
         return analysis
+
+
+def _kept_facts(
+    cached: tuple[Config, tuple[tuple[str, int], ...], Facts] | None,
+    config: Config,
+    runs: tuple[tuple[str, int], ...],
+) -> tuple[Facts | None, Facts | None]:
+    """The facts kept of a run with ``config`` to use as they are (no document it ran changed
+    what it does), else to resume (the evaluator resumes the earlier run where the edit begins
+    to matter): (facts, previous)."""
+    if cached is None or not (cached[0] is config or cached[0] == config):
+        return None, None
+    if cached[1] == runs:
+        return cached[2], None
+    return None, cached[2]
 
 
 def _called_numbers(doc: Document, call: Call) -> list[int] | None:

@@ -257,6 +257,12 @@ def guess_machine(doc: Document, first: int = 0, end: int | None = None) -> Mach
     return MachineGuess(kind, marks)
 
 
+def mill_reading(config: Config) -> Config:
+    """The mill's reading of a document whose machine is not known (``config``'s is the
+    lathe's): what both find is reported."""
+    return replace(config, controller="0i-MF", machine_known=True)
+
+
 def machine_text(config: Config) -> str:
     """Which machine an analysis read the document as, and why: a sentence."""
     if config.machine_note and not config.machine_known:
