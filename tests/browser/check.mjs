@@ -677,11 +677,13 @@ async function openFile(name) {
 }
 
 // The extension's workbench parts: no colour swatch on `#101` (VS Code would read it as a hex
-// colour), the status bar item with the controller (a click offers the others), the rule code's
+// colour), the status bar item with the controller and the program's machine (a click offers the
+// others), the rule code's
 // link in the Problems panel opening the shipped rules page, and the Settings UI's group title.
 async function checkExtensionUi() {
   const SWATCH_FILE = 'o4009_external_m50x3.nc'; // line 7: `#101=3.`
-  const status = page.locator('.statusbar-item', { hasText: /0i-TF lathe/ }).first();
+  // The default controller, 0i-F, with the machine the open program's codes show (a lathe's).
+  const status = page.locator('.statusbar-item', { hasText: /0i-F lathe(?! or|\?)/ }).first();
   try {
     await openFile(SWATCH_FILE);
     await gotoPosition(7, 1);
@@ -689,7 +691,7 @@ async function checkExtensionUi() {
     // The server has analysed the file (its state back to ready) before the swatches are counted.
     await page.waitForFunction(
       () => [...document.querySelectorAll('.statusbar-item')].some((e) =>
-        /0i-TF lathe/.test(e.innerText) && !/analysing|starting/.test(e.innerText)
+        /0i-F lathe(?! or|\?)/.test(e.innerText) && !/analysing|starting/.test(e.innerText)
         && e.querySelector('.codicon-check') !== null),
       null,
       { timeout: STEP_MS },
@@ -710,7 +712,7 @@ async function checkExtensionUi() {
     const offered = (await rows.allInnerTexts()).map((t) => t.split('\n')[0].trim()).slice(0, 8);
     await page.keyboard.press('Escape');
     await page.locator('.quick-input-widget').waitFor({ state: 'hidden' });
-    record('status bar controller', /0i-TF lathe/.test(text) && offered.length >= 7,
+    record('status bar controller', /0i-F lathe(?! or|\?)/.test(text) && offered.length >= 8,
       `${JSON.stringify(text)} (${tooltip ?? 'no label'}); a click offers ${offered.join(', ')}`);
   } catch (e) {
     record('status bar controller', false, e.message.split('\n')[0]);

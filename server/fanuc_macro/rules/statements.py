@@ -356,6 +356,38 @@ the number. Nothing, in a file read only in part (MB013): the program may be in 
 )
 
 
+MB408_DOC = RuleDoc(
+    "MB408",
+    reports="""
+`G65 P`, `G66 P` or `M98 P` with the number of a probing or tool-setting cycle a vendor
+installs on the control (Renishaw Inspection Plus O9801-O9843, the tool setting cycles
+O9851-O9858; `program/vendor_cycles.py` lists them with their sources), when no file
+checked with it holds that program. The hint names the cycle.
+""",
+    why="""
+The cycle is on the control, not beside the shop's programs: its call is no mistake, but the
+analysis cannot follow it, and what it does to variables and positions after the call is
+unknown. Hovering the call gives the cycle's arguments as the vendor's manual gives them.
+""",
+    example="""
+```nc
+O1000 (BORE CHECK)
+G65 P9814 D50. Z-10. S1.
+M30
+```
+""",
+    fix="""
+Nothing to fix. Check the cycle's copy with the program (`fanuc-macro check main.nc probe/`)
+to have its run followed; list the programs with `machine.programsOnControl`
+(`--on-control O9000-O9999`) to silence the hint.
+""",
+    not_reported="""
+A cycle in the workspace (it is run), and a number the settings list as kept on the control.
+Other numbers not in the workspace are MB403's.
+""",
+)
+
+
 def _missing_programs(
     ctx: RuleContext, missing: dict[int, list[IndexCall]]
 ) -> Iterator[Diagnostic]:
@@ -391,67 +423,6 @@ def _missing_programs(
             data={"program": number},
         )
 
-
-MB408_DOC = RuleDoc(
-    "MB408",
-    reports="""
-`G65 P`, `G66 P` or `M98 P` with the number of a probing or tool-setting cycle a vendor
-installs on the control (Renishaw Inspection Plus O9801-O9843, the tool setting cycles
-O9851-O9858; `program/vendor_cycles.py` lists them with their sources), when no file
-checked with it holds that program. The hint names the cycle.
-""",
-    why="""
-The cycle is on the control, not beside the shop's programs: its call is no mistake, but the
-analysis cannot follow it, and what it does to variables and positions after the call is
-unknown. Hovering the call gives the cycle's arguments as the vendor's manual gives them.
-""",
-    example="""
-```nc
-O1000 (BORE CHECK)
-G65 P9814 D50. Z-10. S1.
-M30
-```
-""",
-    fix="""
-Nothing to fix. Check the cycle's copy with the program (`fanuc-macro check main.nc probe/`)
-to have its run followed; list the programs with `machine.programsOnControl`
-(`--on-control O9000-O9999`) to silence the hint.
-""",
-    not_reported="""
-A cycle in the workspace (it is run), and a number the settings list as kept on the control.
-Other numbers not in the workspace are MB403's.
-""",
-)
-
-
-MB409_DOC = RuleDoc(
-    "MB409",
-    reports="""
-A block with an M code that is not a standard FANUC code, with no G code, with a `P` word and
-an argument word that a plain M block never takes (A-E, I-K, Q, R, U-W):
-`M165 P9814 D1.415 S1.`. Such a block is a macro call through an M code (parameters 6080-6089
-register the M code that calls O9020-O9029) on the machine it was written for.
-""",
-    why="""
-Without the setting, the block is read as a plain M block: its words are checked as NC words
-(`D takes a whole number`) and the program it calls is not run.
-""",
-    example="""
-```nc
-O1000 (PROBE)
-M165 P9814 D1.415 S1.
-M30
-```
-""",
-    fix="""
-Set the code up as the control's parameter does, in the setting `machine.customCalls`:
-`{"M165": 9022}` (`--custom-call M165=9022`).
-""",
-    not_reported="""
-An M code set up in `machine.customCalls`, the standard M codes, a block with a G code, and an
-M block with only P (`M98`-like codes of other controls are MB002's).
-""",
-)
 
 # The words a macro call's arguments use that a block of an M code alone never takes.
 _ARGUMENT_LETTERS = frozenset("ABCDEIJKQRUVW")
@@ -493,6 +464,36 @@ def _m_call_candidate(parsed: ParsedLine) -> tuple[float, int, int] | None:
 
 # Blocks that look like a macro call through an M code: few, and kept from edit to edit.
 _m_call_candidates: LineMap[tuple[float, int, int]] = LineMap(_m_call_candidate)
+
+
+MB409_DOC = RuleDoc(
+    "MB409",
+    reports="""
+A block with an M code that is not a standard FANUC code, with no G code, with a `P` word and
+an argument word that a plain M block never takes (A-E, I-K, Q, R, U-W):
+`M165 P9814 D1.415 S1.`. Such a block is a macro call through an M code (parameters 6080-6089
+register the M code that calls O9020-O9029) on the machine it was written for.
+""",
+    why="""
+Without the setting, the block is read as a plain M block: its words are checked as NC words
+(`D takes a whole number`) and the program it calls is not run.
+""",
+    example="""
+```nc
+O1000 (PROBE)
+M165 P9814 D1.415 S1.
+M30
+```
+""",
+    fix="""
+Set the code up as the control's parameter does, in the setting `machine.customCalls`:
+`{"M165": 9022}` (`--custom-call M165=9022`).
+""",
+    not_reported="""
+An M code set up in `machine.customCalls`, the standard M codes, a block with a G code, and an
+M block with only P (`M98`-like codes of other controls are MB002's).
+""",
+)
 
 
 def _m_calls_not_set_up(ctx: RuleContext) -> Iterator[Diagnostic]:
