@@ -33,11 +33,24 @@ def test_a_file_most_of_whose_blocks_fanuc_rejects_is_one_mb002() -> None:
 
 
 def test_a_fanuc_program_with_many_mistakes_keeps_one_diagnostic_a_block() -> None:
-    # The same blocks after an O number: a program meant for FANUC, each mistake its own.
-    numbered = "O1200 (PLATE)\n" + CONVERSATIONAL
+    # 9 rejected blocks of 16: another control's file without a program number; with one, a
+    # program meant for FANUC, each mistake its own.
+    blocks = CONVERSATIONAL.splitlines(True)[1:10]
+    plain = ["G00 X0 Y0\n", "G01 X10. F100.\n", "G01 Y10.\n", "G01 X0\n", "G01 Y0\n", "M30\n"]
+    text = "".join(plain[:3] + blocks + plain[3:])
+    alone = [d for d in analyse(text, "part.nc").diagnostics if d.severity.value == "error"]
+    assert [d.message[:20] for d in alone] == ["not a FANUC program:"]
+    numbered = "O1200 (PLATE)\n" + text
     found = [d for d in analyse(numbered, "part.nc").diagnostics if d.severity.value == "error"]
-    assert len(found) >= 6
+    assert len(found) == 9
     assert all(not d.message.startswith("not a FANUC program") for d in found)
+
+
+def test_a_numbered_file_nearly_all_of_whose_blocks_fanuc_rejects_is_one_mb002() -> None:
+    numbered = "O1200 (PLATE)\n" + CONVERSATIONAL  # 12 rejected blocks of 13
+    found = [d for d in analyse(numbered, "part.nc").diagnostics if d.severity.value == "error"]
+    assert [(d.code, d.line) for d in found] == [("MB002", 0)]
+    assert found[0].message.startswith("not a FANUC program: 12 of its 13 blocks")
 
 
 def test_a_few_rejected_blocks_are_reported_one_by_one() -> None:

@@ -115,10 +115,11 @@ each of them as a related place, with what FANUC rejects in it, instead of one d
 block, syntax errors, comment or end-of-block warnings (a `;` comment of Siemens or LinuxCNC, a
 `(` of a Syntec expression). A block `ELSE` in a Siemens file is Siemens', not Haas's. A FANUC
 program with a few foreign blocks (no such mark) keeps one MB002 a block. A file without such a
-mark or program number most of whose blocks (at least 5, and half of them or more) FANUC
-rejects is read the same way, as the program of another control whose dialect is not
-recognised (Heidenhain's `BEGIN PGM`, Okuma's named variables): a FANUC program with mistakes
-has a few such blocks among many, and a file with an O number is meant for FANUC.
+mark most of whose blocks (at least 5, and half of them or more; three in four with an O
+program number, which says the file is meant for FANUC) FANUC rejects is read the same way, as
+the program of another control whose dialect is not recognised (Heidenhain's `BEGIN PGM`,
+Okuma's named variables, an editor's template): a FANUC program with mistakes has a few such
+blocks among many.
 """,
     why="""
 A FANUC control raises an alarm on the block: PS0125 for an
@@ -322,24 +323,26 @@ file_marks: LineMap[tuple[str, str]] = LineMap(_file_mark)
 # program even without a mark of a dialect known here (Heidenhain's BEGIN PGM, Okuma's named
 # variables): a FANUC program with mistakes has a few such blocks among many (the corpus's
 # worst, NC Code Checker's collection of macro errors: 13 of 47; a Swiss-type lathe's program in
-# Citizen's dialect, 34 of 160), and a file with an O number is meant for FANUC.
+# Citizen's dialect, 34 of 160).
 MOSTLY_REJECTED = 0.5
 MIN_REJECTED = 5
+# A file with a program number is meant for FANUC: only three blocks in four make it another's
+# (an editor's template behind an O line; the fixtures' collection of syntax errors: 18 of 34).
+NEARLY_ALL_REJECTED = 0.75
 UNRECOGNISED = "another control (its dialect not recognised)"
 
 
 def unrecognised_dialect(doc: Document, rejected: list[int]) -> dialects.FileDialect | None:
     """Another control's program whose dialect has no mark known here, from the lines of
     ``doc`` FANUC rejects (``rejected``, ascending): most of its blocks."""
-    if len(rejected) < MIN_REJECTED or any(
-        isinstance(b.parsed.statement, ProgramStart) for b in doc.blocks
-    ):
-        return None  # a program number: a FANUC program, however many its mistakes
+    if len(rejected) < MIN_REJECTED:
+        return None
+    numbered = any(isinstance(b.parsed.statement, ProgramStart) for b in doc.blocks)
     lines = set(rejected)
     lines.update(
         b.line for b in doc.blocks if b.parsed.statement is not None or b.parsed.problem is not None
     )
-    if len(rejected) < MOSTLY_REJECTED * len(lines):
+    if len(rejected) < (NEARLY_ALL_REJECTED if numbered else MOSTLY_REJECTED) * len(lines):
         return None
     mark = f"{len(rejected)} of its {len(lines)} blocks"
     return dialects.FileDialect(UNRECOGNISED, mark, rejected[0])
