@@ -97,3 +97,15 @@ def test_a_fanuc_program_with_a_few_foreign_forms_keeps_one_mb002_a_block() -> N
     found = [d for d in analyse(_haas_file(HAAS_FORMS[:4]), "p.nc").diagnostics]
     lines = [d.line for d in found if d.code == "MB002"]
     assert lines == [7, 8, 9, 10]
+
+
+def test_in_another_controls_file_the_run_stops_at_its_first_rejected_block() -> None:
+    """The F of a block FANUC drops is not lost to a warning: FANUC stops at that block."""
+    okuma = "%\nO1234 (LATHE)\nVC1=0\nG00 X20. Z2.\nNSTART G01 X10. F0.2\nG01 Z-5.\nM30\n%\n"
+    codes = [(d.code, d.line) for d in analyse(okuma, "p.nc").diagnostics]
+    assert [c for c, _ in codes] == ["MB002"]  # no MB603 at G01 Z-5.: the run is of no control
+    # A FANUC program with a block FANUC rejects: the run goes on past it, as the checker reads
+    # it, to find the next mistakes.
+    fanuc = "%\nO1234 (LATHE)\nX10.Y\nG00 X20. Z2.\nG01 X10.\nG01 Z-5.\nM30\n%\n"
+    found = [(d.code, d.line) for d in analyse(fanuc, "p.nc").diagnostics]
+    assert ("MB001", 2) in found and ("MB603", 4) in found

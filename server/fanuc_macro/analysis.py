@@ -210,6 +210,7 @@ def run_checks(
 ) -> list[Diagnostic]:
     found: list[Diagnostic] = []
     blocks = ctx.doc.blocks
+    stop_line: int | None = None  # a foreign file's first block FANUC rejects
     per_block = [(line, blocks[line].parsed, f) for line, f in lines_with_findings(ctx.doc, cancel)]
     foreign = foreign_dialect(ctx.doc) or dialect_of_blocks(per_block)
     if foreign is None:
@@ -222,6 +223,7 @@ def run_checks(
         per_block, whole_file = fold_foreign_file(per_block, foreign, first.line, first.text)
         if whole_file is not None:
             found.append(whole_file)
+            stop_line = min(r.line for r in whole_file.related)
     for line, _, findings in per_block:
         for f in findings:
             fixes = [fix.on_line(line) for fix in f.fixes] if f.fixes else ()
@@ -231,12 +233,23 @@ def run_checks(
         if cancel is not None:
             cancel.reached(RULE_CHECKS, done, len(rules))
         try:
-            found.extend(rule(ctx))
+            found.extend(d for d in rule(ctx) if not _past_the_stop(d, stop_line))
         except Exception as err:  # a bug in one rule must not hide the others
             log_failure(__name__, "rule %s failed on %s", rule_name(rule), ctx.doc.uri)
             message = internal_error(f"rule {rule_name(rule)}", err)
             found.append(make(MB000, message, 0, 0, 0))
     return found
+
+
+# The codes of the verdicts of a run (the evaluator's rules), as strings compare.
+RUN_VERDICTS = "MB501"
+
+
+def _past_the_stop(diag: Diagnostic, stop_line: int | None) -> bool:
+    """Whether ``diag`` is a verdict of the run (MB501-MB999) past the first block FANUC
+    rejects in another control's file: FANUC stops there with an alarm, and the run, which
+    goes on without the blocks it cannot read (their F, their variables), is of no control."""
+    return stop_line is not None and diag.line > stop_line and diag.code >= RUN_VERDICTS
 
 
 # What the caches of a database (its cache tables and its parser's lines) may hold, in bytes
