@@ -440,3 +440,17 @@ def test_the_manifests_language_is_the_one_the_extension_starts_on() -> None:
     assert language in languages
     assert f"onLanguage:{language}" in manifest["activationEvents"]
     assert {g["language"] for g in manifest["contributes"]["grammars"]} <= set(languages)
+
+
+def test_a_g76_whose_p_has_too_many_digits_makes_a_bounded_number_of_passes() -> None:
+    """``G76 P857855151995.`` reads m (finishing passes) as 85,785,515: the passes were made
+    one by one (2 minutes, gigabytes). The control's m has two digits; the passes are bounded
+    like the roughing ones (found by the fuzz campaign, input 81415 of seed 35)."""
+    from fanuc_macro.evaluator.cycles import MAX_PASSES, g76_depths
+
+    assert len(g76_depths(1.0, 0.3, 0.05, 0.02, 85_785_515)) <= 2 * MAX_PASSES
+    assert len(g76_depths(0.0, 0.3, 0.05, 0.02, 85_785_515)) == MAX_PASSES
+    text = "O1000\nT0101\nG00 X30. Z5.\nG76 P857855151995. Q17. R0.1\n"
+    text += "G76 X18. Z-20. P1000 Q200 F1.5\nM30\n"
+    analysis = analyse(text, "g76.nc")
+    assert analysis.facts is not None and len(analysis.facts.motions) <= 2 * MAX_PASSES + 10

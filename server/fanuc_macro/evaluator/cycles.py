@@ -26,8 +26,11 @@ def g76_depths(
     ``height`` is k, ``first_depth`` Δd, ``min_depth`` Δdmin, ``allowance`` d and
     ``finishing_passes`` m.
     """
+    # m has two digits on the control (P mmrraa); a P of more digits gives a bigger number
+    # here, bounded like the roughing passes.
+    finishing = max(1, min(finishing_passes, MAX_PASSES))
     if height <= 0.0:
-        return [(0.0, True)] * max(1, finishing_passes)
+        return [(0.0, True)] * finishing
     rough_end = max(0.0, height - max(0.0, allowance))
     passes: list[tuple[float, bool]] = []
     done = 0.0
@@ -42,5 +45,5 @@ def g76_depths(
         passes.append((depth, False))
         done = depth
         n += 1
-    passes.extend([(height, True)] * max(1, finishing_passes))
+    passes.extend([(height, True)] * finishing)
     return passes
