@@ -32,7 +32,6 @@ from dataclasses import dataclass, replace
 from ..config import Config
 from ..database import Derived
 from ..line_maps import LineMap
-from ..per_line import PerLine
 from ..syntax.marks import constant_value
 from ..syntax.parser import statements_of
 from ..syntax.tree import Document, NcStatement, ParsedLine, PlainNc
@@ -216,12 +215,14 @@ def _line_reads_differ(parsed: ParsedLine) -> bool:
     return any((a == "G" and v in _TWO_MEANINGS) or a in ("U", "W") for a, v, _ in _words(parsed))
 
 
-_reads_differ_of: PerLine[bool] = PerLine(_line_reads_differ)
+# The lines a lathe and a mill read otherwise: after an edit only the changed lines are looked
+# at again (a bare line may be one: U, W, G90, G91).
+_reads_differ_at: LineMap[bool] = LineMap(_line_reads_differ, every_line=True)
 
 
 def readings_differ(doc: Document) -> bool:
     """Whether a lathe and a mill read any block of ``doc`` otherwise."""
-    return any(_reads_differ_of(block.parsed) for block in doc.blocks)
+    return len(_reads_differ_at(doc)) > 0
 
 
 def guess_machine(doc: Document, first: int = 0, end: int | None = None) -> MachineGuess:
