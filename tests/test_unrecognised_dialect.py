@@ -4,6 +4,9 @@ with many mistakes keeps one diagnostic a block."""
 
 from __future__ import annotations
 
+from pathlib import Path
+
+from cli_runner import run
 from fanuc_macro.analysis import analyse
 
 # A conversational program (Heidenhain's plain language), written for this test.
@@ -109,3 +112,16 @@ def test_in_another_controls_file_the_run_stops_at_its_first_rejected_block() ->
     fanuc = "%\nO1234 (LATHE)\nX10.Y\nG00 X20. Z2.\nG01 X10.\nG01 Z-5.\nM30\n%\n"
     found = [(d.code, d.line) for d in analyse(fanuc, "p.nc").diagnostics]
     assert ("MB001", 2) in found and ("MB603", 4) in found
+
+
+def test_the_command_line_says_it_once(tmp_path: Path) -> None:
+    (tmp_path / "part.h").write_text(CONVERSATIONAL, encoding="ascii")
+    (tmp_path / "lathe.nc").write_text(
+        "%\nO1234 (LATHE)\nVC1=0\nG00 X20. Z2.\nNSTART G01 X10. F0.2\nG01 Z-5.\nM30\n%\n",
+        encoding="ascii",
+    )
+    done = run(tmp_path, "check", "part.h", "lathe.nc")
+    lines = done.stdout.splitlines()
+    assert [line.split(": ")[0] for line in lines] == ["part.h:1:1", "lathe.nc:2:1"]
+    assert "MB002 error not a FANUC program: 12 of its 12 blocks" in lines[0]
+    assert "MB002 error a program written for Okuma OSP" in lines[1]
