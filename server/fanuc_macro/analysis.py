@@ -34,6 +34,7 @@ from .rules.dialect import (
     dialect_of_blocks,
     fold_foreign_file,
     foreign_dialect,
+    past_the_stop,
     unrecognised_dialect,
 )
 from .rules.reading import fold_runaway_comments
@@ -233,23 +234,12 @@ def run_checks(
         if cancel is not None:
             cancel.reached(RULE_CHECKS, done, len(rules))
         try:
-            found.extend(d for d in rule(ctx) if not _past_the_stop(d, stop_line))
+            found.extend(d for d in rule(ctx) if not past_the_stop(d, stop_line))
         except Exception as err:  # a bug in one rule must not hide the others
             log_failure(__name__, "rule %s failed on %s", rule_name(rule), ctx.doc.uri)
             message = internal_error(f"rule {rule_name(rule)}", err)
             found.append(make(MB000, message, 0, 0, 0))
     return found
-
-
-# The codes of the verdicts of a run (the evaluator's rules), as strings compare.
-RUN_VERDICTS = "MB501"
-
-
-def _past_the_stop(diag: Diagnostic, stop_line: int | None) -> bool:
-    """Whether ``diag`` is a verdict of the run (MB501-MB999) past the first block FANUC
-    rejects in another control's file: FANUC stops there with an alarm, and the run, which
-    goes on without the blocks it cannot read (their F, their variables), is of no control."""
-    return stop_line is not None and diag.line > stop_line and diag.code >= RUN_VERDICTS
 
 
 # What the caches of a database (its cache tables and its parser's lines) may hold, in bytes

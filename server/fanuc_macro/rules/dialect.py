@@ -484,3 +484,14 @@ def fold_foreign_file(
         )
     end = len(first_text.rstrip())
     return kept_blocks, make(MB002, message, first_line, 0, end, related=rejected)
+
+
+# The codes of the verdicts of a run (the evaluator's rules), as strings compare.
+RUN_VERDICTS = "MB501"
+
+
+def past_the_stop(diag: Diagnostic, stop_line: int | None) -> bool:
+    """Whether ``diag`` is a verdict of the run (MB501-MB999) past the first block FANUC
+    rejects in another control's file: FANUC stops there with an alarm, and the run, which
+    goes on without the blocks it cannot read (their F, their variables), is of no control."""
+    return stop_line is not None and diag.line > stop_line and diag.code >= RUN_VERDICTS
