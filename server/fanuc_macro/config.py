@@ -14,6 +14,9 @@ from .syntax.limits import MAX_LINE_LENGTH, ReadLimits
 CONTROLLERS = ("0i-F", "0i-TF", "0i-MF", "16i-T", "16i-M", "18i-T", "18i-M", "30i")
 BY_PROGRAM = "0i-F"
 ATAN_RANGES = ("0-360", "-180-180")
+# The lathe's G code systems (program.g_code_systems): A, the 0i-TF default, or B or C.
+G_CODE_SYSTEMS = ("A", "B", "C")
+SYSTEM_A = "A"
 
 # A machine limit nobody set: nothing is above it, so the rules that compare with it stay quiet.
 # A limit is the machine builder's (spindle and chuck rating, servo speed), not FANUC's: no
@@ -58,6 +61,9 @@ class Config:
     # (document, first line, lathe?) of each program of a file that holds both a lathe's and
     # a mill's programs: each runs as its own machine.
     program_machines: tuple[tuple[str, int, bool], ...] = ()
+    # The lathe's G code system, A, B or C (parameters GSB, GSC: No. 3401#6, #7): a lathe
+    # program's codes are read in it (program.g_code_systems); a mill has one system.
+    g_code_system: str = SYSTEM_A
     # The codes the control's parameters make calls (machine.customCalls): each a
     # CustomCallSetting, read and checked by read_custom_calls.
     custom_calls: tuple[CustomCallSetting, ...] = ()
@@ -117,6 +123,7 @@ class Config:
         default = cls()
         custom_calls, call_problems = read_custom_calls(machine.get("customCalls"))
         on_control, range_problems = read_program_ranges(machine.get("programsOnControl"))
+        system, system_problems = read_g_code_system(machine.get("gCodeSystem"))
         return cls(
             controller=controller if controller in CONTROLLERS else BY_PROGRAM,
             max_spindle_speed=_number(machine.get("maxSpindleSpeed"), default.max_spindle_speed),
@@ -134,9 +141,10 @@ class Config:
             max_blocks=int(_number(analysis.get("maxBlocks"), default.max_blocks)),
             max_file_size=int(_number(analysis.get("maxFileSize"), default.max_file_size)),
             hover_full_precision=hover.get("fullPrecision") is True,
+            g_code_system=system,
             custom_calls=custom_calls,
             programs_on_control=on_control,
-            setting_problems=(*call_problems, *range_problems),
+            setting_problems=(*call_problems, *range_problems, *system_problems),
         )
 
 
@@ -173,6 +181,18 @@ class FormatSettings:
             spaces_around_assignment=_choice(fmt.get("spacesAroundAssignment"), SPACING, "keep"),
             renumber_step=int(_number(fmt.get("renumberStep"), default.renumber_step)),
         )
+
+
+def read_g_code_system(value: Any) -> tuple[str, tuple[str, ...]]:
+    """machine.gCodeSystem ("A", "B", "C", in any case; not set: A) and what could not be read."""
+    if value is None or value == "":
+        return SYSTEM_A, ()
+    text = str(value).strip().upper()
+    if text in G_CODE_SYSTEMS:
+        return text, ()
+    return SYSTEM_A, (
+        f"machine.gCodeSystem: {value!r} is not a G code system (A, B or C); system A is used",
+    )
 
 
 def _choice(value: Any, choices: tuple[str, ...], default: str) -> str:

@@ -18,7 +18,9 @@ from ..analysis import RULES, analyse, log_failure
 from ..config import (
     BY_PROGRAM,
     CONTROLLERS,
+    G_CODE_SYSTEMS,
     NOT_SET,
+    SYSTEM_A,
     Config,
     CustomCallSetting,
     read_custom_calls,
@@ -85,6 +87,7 @@ def _config(args: argparse.Namespace) -> Config:
         time_limit=args.time_limit,
         custom_calls=_custom_calls(args.custom_call or ()),
         programs_on_control=tuple(r for ranges in args.on_control or () for r in ranges),
+        g_code_system=args.g_code_system,
     )
 
 
@@ -271,6 +274,16 @@ def _add_machine_options(parser: argparse.ArgumentParser) -> None:
         metavar="CODE=PROGRAM",
         help="a code the control's parameters make call a program, e.g. M165=9022, G100=9010, "
         "T=9000 (repeatable)",
+    )
+    parser.add_argument(
+        "--g-code-system",
+        type=str.upper,
+        choices=G_CODE_SYSTEMS,
+        default=SYSTEM_A,
+        metavar="{A,B,C}",
+        help="the lathe's G code system (parameters GSB, GSC): in B and C, G90/G91 are absolute "
+        "and incremental, G77/G78/G79 (C: G20/G21/G24) the turning, threading and facing "
+        "cycles, G92 the coordinate system setting; default A",
     )
     parser.add_argument(
         "--on-control",

@@ -7,8 +7,10 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
+from ..config import SYSTEM_A
 from ..evaluator.machine import K_ASSIGN, K_IFGOTO, K_IFTHEN, K_NC, K_OTHER, K_WHILE, Activation
 from ..evaluator.values import MacroAlarm, Unknown, Value
+from ..program.g_code_systems import ABSOLUTE, INCREMENTAL, system_a_code
 from ..program.knowledge import modal_group
 from ..syntax.tree import Print
 from .answers import MESSAGE_FILTER, PROGRAM_STOP_FILTER
@@ -101,8 +103,14 @@ class RunRecord:
                 f"{code} {what}" + (f": {text}" if text else ""),
             )
         lathe = act.machine.lathe
+        system = act.machine.config.g_code_system if lathe else SYSTEM_A
         for g in g_codes:
-            group = modal_group(g, lathe)
+            # A system B or C lathe's code shown as written, in the group of its function.
+            a = system_a_code(g, system)
+            if a is None and g in (ABSOLUTE, INCREMENTAL):
+                group: str | None = "03"
+            else:
+                group = None if a is None else modal_group(a, lathe)
             if group is not None:
                 self.groups[group] = g
         if tool is not None:

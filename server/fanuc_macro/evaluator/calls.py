@@ -63,6 +63,8 @@ class CallsPart(MachineBase):
             p = float(int(p) % 10000)
         elif isinstance(l_value, float):
             repeat = int(l_value)
+        if p is None and isinstance(values.get("Q"), float):
+            return self._internal_call(act, values["Q"], repeat)
         callee = self._find(act, cl, p, "M98")
         if callee is None or repeat <= 0:
             if repeat > 0:
@@ -71,6 +73,51 @@ class CallsPart(MachineBase):
             return act
         # M98 opens no new local level: the callee shares the caller's locals.
         return self._enter(act, callee, act.locals, False, self._line + 1, repeat)
+
+    def _internal_call(self, act: Activation, q: Value, repeat: int) -> Activation:
+        """``M98 Q<n>`` without P: a subprogram call of the block N<n> of the program running
+        (FANUC Series 0i-F / 30i, "Subprogram call": the sequence number in the program;
+        unverified against the manual's text, seen in a 0i-MF shop's programs). M99 returns to
+        the block after the call. A Q the program has no N for is MB405's, said from the text."""
+        target = None
+        if isinstance(q, float) and q == int(q):
+            target = self._internal_entry(act.ctx, int(q))
+        if target is None or repeat <= 0:
+            if repeat > 0:
+                self._call_unknown(act, shares_locals=True)
+            act.pc = self._line + 1
+            return act
+        new = self._enter(act, act.ctx, act.locals, False, self._line + 1, repeat)
+        new.pc = target
+        return new
+
+    def _internal_entry(self, ctx: ProgramContext, seq: int) -> int | None:
+        """The line an ``M98 Q<seq>`` of ``ctx``'s program enters (its N<seq> from the head)."""
+        return ctx.program.label_line(seq)
+
+    def _restart_line(self, act: Activation) -> int:
+        """Where a repeated subprogram starts again: its head, or the N<q> an internal call
+        ``M98 Q<q> L<k>`` entered (read again from the calling block)."""
+        caller = act.caller
+        if caller is not None and caller.ctx is act.ctx and act.return_pc > 0:
+            cl = act.ctx.lines[act.return_pc - 1]
+            q: Value = None
+            has_p = False
+            if cl.constant is not None:
+                q, has_p = cl.constant.values.get("Q"), "P" in cl.constant.values
+            for w in cl.words:
+                if w.address == "Q" and q is None:
+                    try:
+                        q = w.evaluate(caller)
+                    except MacroAlarm:
+                        break
+                elif w.address == "P":
+                    has_p = True
+            if not has_p and isinstance(q, float) and q == int(q):
+                target = self._internal_entry(act.ctx, int(q))
+                if target is not None:
+                    return target
+        return act.ctx.program.first_line
 
     def _custom_setting(self, act: Activation, cl: CompiledLine) -> CustomCallSetting | None:
         """The custom code an NC line calls with, as the settings set up; None inside a program
@@ -241,7 +288,7 @@ class CallsPart(MachineBase):
     def _return(self, act: Activation, p: Value, line: int) -> Activation:
         if act.repeats_left > 0:
             act.repeats_left -= 1
-            act.pc = act.ctx.program.first_line
+            act.pc = self._restart_line(act)
             if act.arguments is not None:
                 act.locals[:] = act.arguments
             return act

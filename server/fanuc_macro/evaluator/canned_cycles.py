@@ -14,7 +14,14 @@ from ..syntax.marks import constant_value
 from .compile_lines import K_EMPTY, K_NC, K_OTHER, CompiledLine, CompiledWord
 from .cycles import g76_depths
 from .facts import Motion
-from .machine_base import MAX_MOTIONS, Activation, G76Parameters, MachineBase, StopRun
+from .machine_base import (
+    MAX_MOTIONS,
+    Activation,
+    G76Parameters,
+    MachineBase,
+    StopRun,
+    system_a_block,
+)
 from .toolpath import ProfileBlock
 from .values import MacroAlarm, Unknown, Value
 
@@ -86,12 +93,18 @@ class CyclesPart(MachineBase):
         run (no motion, no modal change)."""
         line = self._line
         blocks: list[ProfileBlock] = []
+        translate = self.other_g_code_system and self.lathe
+        incremental = self.modal.incremental  # a profile's own G90/G91 hold in it only
         for n in range(first, last + 1):
             pcl = self._profile_line(act, n)
             if pcl.kind != K_NC:
                 continue
             try:
                 values, g_codes, order = self._words_of(act, pcl)
+                if translate:
+                    values, g_codes, incremental = system_a_block(
+                        values, g_codes, self.config.g_code_system, incremental
+                    )
                 if order is not None:
                     self._check_addresses(act, pcl, order)
             except MacroAlarm as alarm:

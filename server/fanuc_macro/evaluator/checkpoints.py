@@ -65,6 +65,7 @@ class ModalState:
     inch: bool
     g76: object  # G76Parameters: frozen
     cycle: tuple[float | None, float | None]  # G90/G92/G94's end Z and R in force
+    incremental: bool  # G91 of a lathe in G code system B or C
 
 
 @dataclass(frozen=True, slots=True, eq=False, repr=False)
@@ -161,6 +162,7 @@ def _same_modal(a: ModalState, b: ModalState) -> bool:
         and a.inch == b.inch
         and a.g76 == b.g76
         and a.cycle == b.cycle
+        and a.incremental == b.incremental
         and a.position_line == b.position_line
         and same_value(a.feed, b.feed)
         and same_value(a.speed, b.speed)

@@ -243,6 +243,14 @@ class Motion:
     run: int = 0  # which execution of its program: every call is a new one
     cycle_pass: int = 0  # G76: the pass number within its cycle (0: not a G76 pass)
     finishing: bool = False  # G76: a finishing pass at the full thread height
+    # The code as a lathe program of G code system B or C writes it ("G78" for code "G92");
+    # empty when it is ``code``.
+    written: str = ""
+
+    @property
+    def shown(self) -> str:
+        """The code as the program writes it: what a message names."""
+        return self.written or self.code
 
 
 @dataclass(slots=True, eq=False, repr=False)

@@ -264,6 +264,7 @@ def _state(state: MachineState, line: Renumber, chunks: dict[int, Keys]) -> Mach
         m.inch,
         m.g76,
         m.cycle,
+        m.incremental,
     )
     return MachineState(
         state.run,

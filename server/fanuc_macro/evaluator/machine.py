@@ -218,6 +218,7 @@ class Machine(MotionPart):
             m.inch,
             m.g76,
             m.cycle,
+            m.incremental,
         )
         if self._seen_since:
             self._seen_chunks = (*self._seen_chunks, frozenset(self._seen_since))
@@ -269,6 +270,7 @@ class Machine(MotionPart):
             ms.inch,
             ms.g76,
             ms.cycle,
+            ms.incremental,
         )
         caller: Activation | None = None
         for level in state.levels:

@@ -13,7 +13,8 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Protocol
 
 from ..cancel import CancelToken
-from ..config import Config
+from ..config import SYSTEM_A, Config
+from ..program.g_code_systems import INCREMENTAL, translated
 from ..program.index import Program
 from ..program.variables import classify
 from ..syntax.tree import Compare, Document, Expr, Statement, Var
@@ -209,6 +210,8 @@ class Modal:
     # G90/G92/G94: the end Z and the taper R in force for a block that repeats the cycle
     # with X alone (0i-TF "Canned cycle for lathe"), as the toolpath draws it.
     cycle: tuple[float | None, float | None] = (None, None)
+    # G91 of a lathe in G code system B or C: X and Z are distances, as system A's U and W.
+    incremental: bool = False
 
 
 @dataclass(frozen=True)
@@ -224,6 +227,28 @@ class G76Parameters:
     min_depth: float = 0.0  # dmin, radius, mm
     finishing_allowance: float = 0.0  # d, radius, mm
     line: int | None = None  # the block that set them
+
+
+# A system B/C lathe's G codes whose X and Z are not a position to move to, whether in G90 or
+# G91 (system A reads them as X and Z too): a dwell's time, data, a setting, machine
+# coordinates, a call's arguments.
+KEEPS_X_AND_Z = frozenset({4.0, 10.0, 50.0, 50.3, 52.0, 53.0, 65.0, 66.0, 66.1})
+
+
+def system_a_block(
+    values: dict[str, Value], g_codes: Sequence[float], system: str, incremental: bool
+) -> tuple[dict[str, Value], Sequence[float], bool]:
+    """A block of a system B or C lathe program as system A reads it: its G codes translated
+    (program.g_code_systems), in G91 its X and Z as U and W; and whether G91 is in force
+    after it. ``values`` is not changed (a constant block's are shared)."""
+    g_codes, mode = translated(g_codes, system)
+    if mode is not None:
+        incremental = mode == INCREMENTAL
+    if incremental and KEEPS_X_AND_Z.isdisjoint(g_codes):
+        moved = {a: d for a, d in (("X", "U"), ("Z", "W")) if a in values and d not in values}
+        if moved:
+            values = {moved.get(a, a): v for a, v in values.items()}
+    return values, g_codes, incremental
 
 
 class MachineBase:
@@ -286,6 +311,8 @@ class MachineBase:
         # programs (program.machine_kind); any other runs as the configured one.
         self._program_lathe = {(uri, line): lathe for uri, line, lathe in config.program_machines}
         self.config_lathe = config.is_lathe
+        # A lathe's G code system B or C: its blocks are translated to system A's codes.
+        self.other_g_code_system = config.g_code_system != SYSTEM_A
         self._set_lathe(config.is_lathe)
         # The message of a move without F, by motion code: the same for every block of a run.
         self._no_feed: dict[float, str] = {}

@@ -12,6 +12,7 @@ from array import array
 from collections.abc import Mapping, Sequence
 from types import MappingProxyType
 
+from ..program.g_code_systems import written
 from .calls import CallsPart
 from .canned_cycles import PROFILE_CYCLES, CyclesPart
 from .compile_lines import AXES, K_NC, CompiledLine, CompiledWord, recorded_words
@@ -23,6 +24,7 @@ from .machine_base import (
     Activation,
     ProgramContext,
     StopRun,
+    system_a_block,
 )
 from .toolpath import NOT_MOVES, ProfileBlock
 from .values import AlarmKind, MacroAlarm, Unknown, Value
@@ -58,6 +60,8 @@ class MotionPart(CyclesPart, CallsPart):
             values, g_codes, m_codes = const.values, const.g_codes, const.m_codes
         else:
             values, g_codes, m_codes, order = self._evaluated_words(act, cl)
+        if self.other_g_code_system and self.lathe:
+            values, g_codes = self._as_system_a(values, g_codes)
         call_kind = self._modal_codes(g_codes) if g_codes else None
         quiet = const is not None and const.quiet  # no word of it can get a finding
         if call_kind is not None:
@@ -120,6 +124,16 @@ class MotionPart(CyclesPart, CallsPart):
             if w.address not in values:
                 values[w.address] = v
         return values, g_codes, m_codes, order
+
+    def _as_system_a(
+        self, values: dict[str, Value], g_codes: Sequence[float]
+    ) -> tuple[dict[str, Value], Sequence[float]]:
+        """A block of a system B or C lathe program as system A reads it; G90/G91 set."""
+        modal = self.modal
+        values, g_codes, modal.incremental = system_a_block(
+            values, g_codes, self.config.g_code_system, modal.incremental
+        )
+        return values, g_codes
 
     def _modal_codes(self, g_codes: Sequence[float]) -> str | None:
         """Set the modal state the block's G codes set; the call it makes ("G65", "G66")."""
@@ -303,10 +317,11 @@ class MotionPart(CyclesPart, CallsPart):
         ctx = act.ctx
         where = modal.position_line.get("X")
         speed = modal.speed
+        name = G_NAMES.get(code) or _g_name(code)
         motion = Motion(
             ctx.name,
             self._line,
-            G_NAMES.get(code) or _g_name(code),
+            name,
             words,
             ctx.uri,
             x,
@@ -319,6 +334,8 @@ class MotionPart(CyclesPart, CallsPart):
             "" if where is None else where[0],
             act.serial,
         )
+        if self.other_g_code_system and lathe:
+            motion.written = written(name, self.config.g_code_system)
         facts = self.facts
         if code in THREADING_CODES and act.serial not in facts.run_values:
             self._remember_run(act)
@@ -351,14 +368,15 @@ class MotionPart(CyclesPart, CallsPart):
         added, shared with an equal earlier motion's. A cut at F 0 raises the control's alarm;
         a cut with no F commanded is reported."""
         const = cl.constant
-        words = const.words if const is not None else recorded_words(values)
+        same = const is not None and values is const.values  # not renamed (_as_system_a)
+        words = const.words if same and const is not None else recorded_words(values)
         feed = self.modal.feed
         if "F" not in words and isinstance(feed, float) and code and code not in RAPID_ONE_SHOTS:
             words = {**words, "F": feed}
         if lathe_cycle:
             words = self._taper_in_force(values, words)
         if words.get("F") == 0.0 and (code in FEED_MOTIONS or (self.lathe and code in LATHE_FED)):
-            _feed_zero(code)
+            _feed_zero(code, self._shown(code))
         if const is None or words is not const.words:
             words = self._shared_words(words)
         if feed is None and code in FEED_MOTIONS:
@@ -417,6 +435,13 @@ class MotionPart(CyclesPart, CallsPart):
             return {**words, "R": taper}  # a repeat of a taper cycle: the cone in force
         return words
 
+    def _shown(self, code: float) -> str:
+        """A motion code as the program writes it (a system B or C lathe's own number)."""
+        name = _g_name(code)
+        if self.other_g_code_system and self.lathe:
+            return written(name, self.config.g_code_system)
+        return name
+
     def _no_feed_message(self, code: float) -> str:
         """What a cut without F is told: one string for the many blocks that give it (a CAM
         file: every block)."""
@@ -450,12 +475,12 @@ class MotionPart(CyclesPart, CallsPart):
             runs[act.serial] = RunValues(tuple(act.locals), dict(self.store))
 
 
-def _feed_zero(code: float) -> None:
+def _feed_zero(code: float, shown: str) -> None:
     """PS0011 FEED ZERO (COMMAND), 0i-TF/0i-MF alarm lists: the control stops here. (For a
-    threading lead of 0 the alarm number is unverified.)"""
+    threading lead of 0 the alarm number is unverified.) ``shown``: the code as written."""
     if code in THREADING_CODES:
-        raise MacroAlarm("PS0011", AlarmKind.LEAD_ZERO, f"{_g_name(code)} runs with the lead F = 0")
-    raise MacroAlarm("PS0011", AlarmKind.FEED_ZERO, f"{_g_name(code)} runs with the feed F = 0")
+        raise MacroAlarm("PS0011", AlarmKind.LEAD_ZERO, f"{shown} runs with the lead F = 0")
+    raise MacroAlarm("PS0011", AlarmKind.FEED_ZERO, f"{shown} runs with the feed F = 0")
 
 
 def _g_name(code: float) -> str:

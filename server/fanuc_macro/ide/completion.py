@@ -140,7 +140,7 @@ def completion(
         return CompletionList(_unique(items))
     code_prefix = _CODE_PREFIX.fullmatch(word)
     lathe = config.is_lathe
-    codes = knowledge.completion_codes(lathe)
+    codes = knowledge.completion_codes(lathe, config.g_code_system)
     if code_prefix is not None:
         letter = code_prefix.group(1).upper()
         for name, title in codes:
@@ -151,7 +151,7 @@ def completion(
                     CompletionKind.CODE,
                     title,
                     name,
-                    knowledge.code_markdown(letter, value, lathe) or "",
+                    knowledge.code_markdown(letter, value, lathe, config.g_code_system) or "",
                     sort="0",
                 )
         if letter == "M":

@@ -300,6 +300,7 @@ def hover_word(view: View, block: Block, hit: Hit) -> str | None:
     call = block_call(view, program, block.line)
     value = constant_value(word.value)
     lathe = view.config.is_lathe
+    system = view.config.g_code_system
     if (
         call is not None
         and call.program is not None
@@ -313,12 +314,14 @@ def hover_word(view: View, block: Block, hit: Hit) -> str | None:
                 "machine.customCalls, as the control's parameter sets it up)\n\n---\n\n"
             )
         elif word.span == call.span and value is not None:
-            head = (knowledge.code_markdown(word.address, value, lathe) or "") + "\n\n---\n\n"
+            head = (
+                knowledge.code_markdown(word.address, value, lathe, system) or ""
+            ) + "\n\n---\n\n"
         diagnosed = _diagnosed(view, block.line, word.span)
         return head + hover_program(view, call.program, block.line, diagnosed)
     thread = _thread_hover(view, block.line)
     if word.address in ("G", "M") and value is not None:
-        code_text = knowledge.code_markdown(word.address, value, lathe)
+        code_text = knowledge.code_markdown(word.address, value, lathe, system)
         return "\n\n---\n\n".join(t for t in (code_text, thread) if t) or None
     parts: list[str] = []
     if call is not None and any(arg is word for arg in call.arguments):

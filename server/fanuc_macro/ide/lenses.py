@@ -94,7 +94,7 @@ def _runs_lens(view: View, program: Program, header: int, where: Range) -> CodeL
         cut_threads = True
         parts.append(
             f"{name}: {cuts} cut{'' if cuts == 1 else 's'} at {depths} "
-            f"depth{'' if depths == 1 else 's'} ({job.code}{feed})"
+            f"depth{'' if depths == 1 else 's'} ({job.shown}{feed})"
         )
     if not parts:
         return None

@@ -158,7 +158,7 @@ def trace(
         record: TraceMotion = {
             "program": m.program,
             "line": m.line + 1,
-            "code": m.code,
+            "code": m.shown,  # as the program writes it (G code system B, C)
             "words": m.words,
         }
         if m.uri != uri:
@@ -181,7 +181,7 @@ def trace(
             record["start"] = here
             record["end"] = here
         motions.append(record)
-    codes = Counter(m.code for m in facts.motions)
+    codes = Counter(m.shown for m in facts.motions)
     findings: list[TraceFinding] = [
         {"line": f.line + 1, "kind": f.kind, "message": f.message}
         for df in facts.by_uri.values()

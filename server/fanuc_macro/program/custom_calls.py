@@ -9,12 +9,14 @@ and the editor's answers ask here, with the settings.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
 
 from ..config import CustomCallSetting
+from ..line_maps import LineMap
 from ..syntax.marks import constant_value
-from ..syntax.tree import IfNc, Mixed, NcStatement, Statement, Word
+from ..syntax.tree import Document, IfNc, Mixed, NcStatement, ParsedLine, PlainNc, Statement, Word
 from .index import Call
+from .knowledge import M_CODES
 
 
 def calling_word(
@@ -73,3 +75,60 @@ def called_by_code(number: int | None, settings: Sequence[CustomCallSetting]) ->
     codes as plain codes, so that a call does not call itself (unverified: shared reference
     macro-b.md 5.4, background knowledge)."""
     return number is not None and any(s.program == number for s in settings)
+
+
+# The words a macro call's arguments use that a block of an M code alone never takes.
+_ARGUMENT_LETTERS = frozenset("ABCDEIJKQRUVW")
+
+
+def _m_call_candidate(parsed: ParsedLine) -> tuple[float, int, int] | None:
+    """An M code (not a standard one) with P and an argument word, no G code: the M code and
+    its word's columns."""
+    statement = parsed.statement
+    if type(statement) is PlainNc:
+        codes = statement.codes
+        if not any(a == "M" for a, _ in codes) or any(a == "G" for a, _ in codes):
+            return None
+    if not isinstance(statement, NcStatement | PlainNc):
+        return None
+    m_word: Word | None = None
+    has_p = has_argument = False
+    for word in statement.words:
+        address = word.address
+        if address == "G":
+            return None
+        if address == "M":
+            value = constant_value(word.value)
+            if m_word is not None or value is None or f"M{value:02g}" in M_CODES:
+                return None
+            if value in (97.0, 98.0, 99.0):
+                return None
+            m_word = word
+        elif address == "P":
+            has_p = True
+        elif address in _ARGUMENT_LETTERS:
+            has_argument = True
+    if m_word is None or not (has_p and has_argument):
+        return None
+    value = constant_value(m_word.value)
+    assert value is not None
+    return value, m_word.span.start, m_word.span.end
+
+
+# Blocks that look like a macro call through an M code (the rules' MB409): few, and kept from
+# edit to edit.
+m_call_candidates: LineMap[tuple[float, int, int]] = LineMap(_m_call_candidate)
+
+
+def unset_m_calls(
+    doc: Document, settings: Sequence[CustomCallSetting]
+) -> Iterator[tuple[int, float, int, int]]:
+    """The blocks that read as a macro call through an M code the settings do not set up:
+    line, M code, the M word's columns. Their other words are the macro's arguments, not NC
+    words to check."""
+    found = m_call_candidates(doc)
+    for line, (value, start, end) in zip(found.lines, found.values, strict=True):
+        statement = doc.blocks[line].parsed.statement
+        if isinstance(statement, NcStatement | PlainNc) and calling_word(statement, settings):
+            continue
+        yield line, value, start, end

@@ -13,6 +13,8 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from types import MappingProxyType
 
+from .g_code_systems import ABSOLUTE, INCREMENTAL, system_a_code, written
+
 # ---- G and M codes ---------------------------------------------------------------------------
 
 
@@ -439,8 +441,13 @@ def modal_group(value: float, lathe: bool) -> str | None:
     return str(first)
 
 
-def code_markdown(letter: str, value: float, lathe: bool) -> str | None:
-    """Hover text of a G or M code under the configured machine type."""
+def code_markdown(letter: str, value: float, lathe: bool, system: str = "A") -> str | None:
+    """Hover text of a G or M code under the configured machine type (a lathe's G codes in
+    G code ``system``: see program.g_code_systems)."""
+    if lathe and system != "A" and letter.upper() == "G":
+        text = _other_system_markdown(value, system)
+        if text is not None:
+            return text
     name = code_name(letter, value)
     info = code_info(letter, value)
     machine = "lathe" if lathe else "mill"
@@ -472,14 +479,51 @@ def code_markdown(letter: str, value: float, lathe: bool) -> str | None:
     return "\n\n".join(parts)
 
 
-def completion_codes(lathe: bool) -> list[tuple[str, str]]:
-    """(code, title) of the G and M codes that mean something on this machine type."""
+def _other_system_markdown(value: float, system: str) -> str | None:
+    """Hover text of a G code whose function in G code ``system`` (B, C) is not system A's
+    G``value``; None for a code the same in both."""
+    name = code_name("G", value)
+    if value in (ABSOLUTE, INCREMENTAL):
+        mill = G_CODES[name].mill
+        assert mill is not None
+        return (
+            f"**{name}** — {mill.title} *(modal, group 03; lathe, G code system {system})*"
+            f"\n\n{mill.text}"
+        )
+    a = system_a_code(value, system)
+    if a == value:
+        return None
+    if a is None:
+        return f"**{name}** — no meaning on a lathe of G code system {system}"
+    info = code_info("G", a)
+    meaning = info.lathe if info is not None else None
+    if meaning is None:
+        return None
+    head = (
+        f"**{name}** — {meaning.title} *(G code system {system}; system A's {code_name('G', a)})*"
+    )
+    return head + (f"\n\n{meaning.text}" if meaning.text else "")
+
+
+def completion_codes(lathe: bool, system: str = "A") -> list[tuple[str, str]]:
+    """(code, title) of the G and M codes that mean something on this machine type (a lathe's
+    G codes named as G code ``system`` names them)."""
     out: list[tuple[str, str]] = []
+    other_system = lathe and system != "A"
     for info in (*G_CODES.values(), *M_CODES.values()):
         meaning = info.for_machine(lathe)
-        if meaning is not None:
-            out.append((info.code, meaning.title))
-    return out
+        if meaning is None:
+            continue
+        out.append((info.code, meaning.title))
+    if not other_system:
+        return out
+    # Each function under the number the system gives it: system A's G92 is B's G78.
+    named = {written(code, system): title for code, title in out}
+    for value in (ABSOLUTE, INCREMENTAL):
+        mill = G_CODES[code_name("G", value)].mill
+        assert mill is not None
+        named[code_name("G", value)] = mill.title
+    return sorted(named.items(), key=lambda item: (item[0][0] != "G", item[0]))
 
 
 # ---- macro functions -------------------------------------------------------------------------

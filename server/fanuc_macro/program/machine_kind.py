@@ -11,11 +11,13 @@ blocks show, from marks only one machine's programs have:
 - a mill's: ``M06`` tool change, ``G43``/``G44`` with ``H`` (tool length compensation),
   ``G91``, a ``Y`` move, the drilling cycles a system A lathe does not have (``G81``,
   ``G82``, ``G86``; ``G73`` with ``Z``), ``G90`` with no axis or with a move code (on a lathe
-  it is a cycle that needs its X and Z), ``G41``/``G42`` with ``D``;
+  it is a cycle that needs its X and Z), ``G41``/``G42`` with ``D``; with lathes of G code
+  system B or C (setting machine.gCodeSystem), ``G90`` and ``G91`` are no mill's marks;
 - a lathe's: ``G96`` constant surface speed, ``G50`` with words (spindle clamp, coordinate
   system), ``U``/``W`` words, ``G70``-``G72`` and ``G73`` with ``P`` and ``Q``, the
   two-block ``G76``'s first block (no axis), ``G32``, ``G92`` with ``F``, a four-digit ``T``
-  (tool and offset, ``T0101``).
+  (tool and offset, ``T0101``), ``G77``-``G79`` with an axis (the cycles of G code systems B
+  and C; no G code of a mill).
 
 Sources: FANUC Series 0i-F Plus Operator's Manual, common to lathe and machining centre
 (B-64694EN), "G code list" of the lathe (system A) and of the machining centre; "Tool length
@@ -29,7 +31,7 @@ from __future__ import annotations
 import re
 from dataclasses import dataclass, replace
 
-from ..config import Config
+from ..config import SYSTEM_A, Config
 from ..database import Derived
 from ..line_maps import LineMap
 from ..syntax.marks import constant_value
@@ -47,6 +49,10 @@ _NOT_AXES_M = frozenset({98.0, 99.0})
 _MOVES = frozenset({0.0, 1.0, 2.0, 3.0})
 # Kinds of marks one machine must have more than the other when both show.
 MARGIN = 2
+# A mill's marks in G code system A, which a lathe of system B or C has too.
+G91_MARK = "G91 (incremental programming)"
+G90_MARK = "G90 without a turning cycle's X and Z (absolute programming)"
+_SYSTEM_A_ONLY = frozenset({G91_MARK, G90_MARK})
 
 
 @dataclass(frozen=True, slots=True)
@@ -147,13 +153,13 @@ def _line_marks(parsed: ParsedLine) -> tuple[tuple[str, str], ...] | None:
     if not g.isdisjoint({43.0, 44.0}) and "H" in letters:
         marks.append((MILL, "G43/G44 H (tool length compensation)"))
     if 91.0 in g:
-        marks.append((MILL, "G91 (incremental programming)"))
+        marks.append((MILL, G91_MARK))
     if "Y" in letters:
         marks.append((MILL, "a Y axis word"))
     if not g.isdisjoint({81.0, 82.0, 86.0}) or (73.0 in g and "Z" in letters):
         marks.append((MILL, "a drilling cycle a lathe does not have (G81, G82, G86, G73 Z)"))
     if 90.0 in g and (not g.isdisjoint(_MOVES) or letters.isdisjoint("XZUW")):
-        marks.append((MILL, "G90 without a turning cycle's X and Z (absolute programming)"))
+        marks.append((MILL, G90_MARK))
     if not g.isdisjoint({41.0, 42.0}) and "D" in letters:
         marks.append((MILL, "G41/G42 D (cutter compensation with an offset number)"))
     if 96.0 in g:
@@ -168,6 +174,8 @@ def _line_marks(parsed: ParsedLine) -> tuple[tuple[str, str], ...] | None:
         marks.append((LATHE, "G76's first block (threading cycle parameters)"))
     if 32.0 in g:
         marks.append((LATHE, "G32 (threading)"))
+    if not g.isdisjoint({77.0, 78.0, 79.0}) and not letters.isdisjoint("XZUW"):
+        marks.append((LATHE, "G77, G78 or G79 with X or Z (a lathe cycle of G code system B or C)"))
     if 92.0 in g and "F" in letters:
         marks.append((LATHE, "G92 with F (threading cycle)"))
     if 6.0 not in m and four_digit_t:
@@ -178,7 +186,7 @@ def _line_marks(parsed: ParsedLine) -> tuple[tuple[str, str], ...] | None:
 # The G codes that are marks, or make a block's words marks (U of G71 is the lathe's anyway).
 _MARK_G = frozenset(
     {32.0, 41.0, 42.0, 43.0, 44.0, 50.0, 70.0, 71.0, 72.0, 73.0, 76.0, 81.0, 82.0, 86.0, 90.0}
-    | {91.0, 92.0, 96.0}
+    | {77.0, 78.0, 79.0, 91.0, 92.0, 96.0}
 )
 _Y = ((MILL, "a Y axis word"),)
 _UW = ((LATHE, "a U or W word (incremental X or Z)"),)
@@ -225,9 +233,12 @@ def readings_differ(doc: Document) -> bool:
     return len(_reads_differ_at(doc)) > 0
 
 
-def guess_machine(doc: Document, first: int = 0, end: int | None = None) -> MachineGuess:
+def guess_machine(
+    doc: Document, first: int = 0, end: int | None = None, system: str = SYSTEM_A
+) -> MachineGuess:
     """The machine ``doc``'s blocks (lines ``first`` to ``end``, exclusive) show: the first
-    mark of each kind, and the verdict."""
+    mark of each kind, and the verdict. With lathes of G code ``system`` B or C, G90 and G91
+    are no mill's marks."""
     seen: dict[tuple[str, str], int] = {}
     found = _marks_of(doc)
     at = found.between(first, len(doc.blocks) if end is None else end)
@@ -237,6 +248,8 @@ def guess_machine(doc: Document, first: int = 0, end: int | None = None) -> Mach
     for on_line in dict.fromkeys(values):
         line = lines[values.index(on_line)]
         for mark in on_line:
+            if system != SYSTEM_A and mark[1] in _SYSTEM_A_ONLY:
+                continue
             if mark not in seen or line < seen[mark]:
                 seen[mark] = line
     marks = tuple(
@@ -265,7 +278,15 @@ def mill_reading(config: Config) -> Config:
 
 
 def machine_text(config: Config) -> str:
-    """Which machine an analysis read the document as, and why: a sentence."""
+    """Which machine an analysis read the document as, and why: a sentence (and the lathe's
+    G code system when it is not A)."""
+    text = _machine_text(config)
+    if config.g_code_system != SYSTEM_A and (config.is_lathe or not config.machine_known):
+        text += f" A lathe's G codes are read in G code system {config.g_code_system}."
+    return text
+
+
+def _machine_text(config: Config) -> str:
     if config.machine_note and not config.machine_known:
         return (
             f"Machine: {config.machine_note}. Read as a lathe (0i-TF), with only the verdicts "
@@ -285,7 +306,8 @@ def _by_program(
     The file's features (hover, completion) read it as its first program's machine."""
     if index is None or len(index.programs) < 2 or len({m.machine for m in guess.marks}) < 2:
         return None
-    each = [(p, guess_machine(doc, p.first_line, p.end_line)) for p in index.programs]
+    system = config.g_code_system
+    each = [(p, guess_machine(doc, p.first_line, p.end_line, system)) for p in index.programs]
     if any(g.kind is None and g.marks for _, g in each):
         return None  # a program of both machines' marks: a mill-turn program
     decided = [(p, g) for p, g in each if g.kind is not None]
@@ -305,8 +327,10 @@ def _by_program(
 
 # The whole document's guess, kept while the document is the same version: the analysis and
 # the workspace's cache of facts both ask for it.
-_document_guess: Derived[Document, MachineGuess] = Derived(
-    "machine_kind.document_guess", lambda doc: (doc,), lambda doc: (guess_machine(doc), True)
+_document_guess: Derived[tuple[Document, str], MachineGuess] = Derived(
+    "machine_kind.document_guess",
+    lambda arg: arg,
+    lambda arg: (guess_machine(arg[0], system=arg[1]), True),
 )
 
 
@@ -317,7 +341,7 @@ def machine_config(config: Config, doc: Document, index: ProgramIndex | None = N
     depend on the machine when they show neither; any other ``config`` as it is."""
     if not config.machine_by_program:
         return config
-    guess = _document_guess(doc.uri, doc)
+    guess = _document_guess(doc.uri, (doc, config.g_code_system))
     each = _by_program(config, doc, index, guess)
     if each is not None:
         return each

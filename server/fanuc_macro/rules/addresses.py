@@ -18,6 +18,7 @@ from ..diagnostics import (
     make,
 )
 from ..evaluator.facts import AddressNotInteger, AddressOutOfRange, FeedZero
+from ..program.custom_calls import unset_m_calls
 from ..syntax.marks import constant_value
 from ..syntax.tree import Assign, Var, Word
 from .context import RuleContext
@@ -72,7 +73,9 @@ number written as a constant, so that the word then gets a whole value.
     not_reported="""
 Addresses that take a decimal point (`X`, `Y`, `Z`, `F`, `R`...), a
 `G` code with one decimal (`G66.1`, `G54.1`), a vacant variable (the word is omitted) and values
-the analysis cannot compute.
+the analysis cannot compute. Nor the words of a block that reads as a macro call through an M
+code the settings do not set up (MB409: `M165 P9814 D1.415`): they are the macro's arguments
+(`D` a diameter, not an offset number).
 """,
 )
 
@@ -109,7 +112,8 @@ the formula or the setting of the machine's maximum speed.
     not_reported="""
 A spindle speed of any size while the machine's maximum is not
 set; values the analysis cannot compute (an argument of a macro nobody calls); the speed a
-`G96` constant surface speed turns into at a diameter (the control clamps it with `G50 S`).
+`G96` constant surface speed turns into at a diameter (the control clamps it with `G50 S`), and
+the words of a block that reads as a macro call through an M code (MB409): its arguments.
 """,
 )
 
@@ -117,7 +121,16 @@ set; values the analysis cannot compute (an argument of a macro nobody calls); t
 def check(ctx: RuleContext) -> Iterator[Diagnostic]:
     yield from _feed_not_set(ctx)
     yield from _feed_zero(ctx)
+    # A block that reads as a macro call through an M code not set up (MB409): its words are
+    # the macro's arguments (D a diameter, not an offset number), which no NC rule applies to.
+    arguments = {
+        line: (start, end)
+        for line, _, start, end in unset_m_calls(ctx.doc, ctx.config.custom_calls)
+    }
     for f in ctx.findings(AddressNotInteger, AddressOutOfRange):
+        code_at = arguments.get(f.line)
+        if code_at is not None and f.column != code_at[0]:
+            continue
         rule = MB601 if isinstance(f, AddressNotInteger) else MB602
         message = f.message
         related: list[Related] = []

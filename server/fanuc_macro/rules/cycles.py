@@ -89,7 +89,7 @@ def _report(ctx: RuleContext, m: Motion, message: str, related: list[Related]) -
     """At the block that put the tool at the start point (the line to fix), else the cycle."""
     line = m.line
     if m.start_line is not None and m.start_uri == ctx.doc.uri:
-        related = [Related(m.line, 0, 0, f"the {m.code} that starts there"), *related]
+        related = [Related(m.line, 0, 0, f"the {m.shown} that starts there"), *related]
         line = m.start_line
     return make(MB813, message, line, 0, width(ctx, line), related=related)
 
@@ -126,7 +126,7 @@ def _thread_start(ctx: RuleContext, thread: Thread) -> Iterator[Diagnostic]:
     yield _report(
         ctx,
         m,
-        f"{m.code} starts at X{mm(start)}, but the thread is cut from the {side} "
+        f"{m.shown} starts at X{mm(start)}, but the thread is cut from the {side} "
         f"({thread.job.side_reason or 'its designation'}): the start point must lie beyond "
         f"{where}; from X{mm(start)} the cycle retracts into the thread after each pass "
         f"and the return in Z crosses it",
@@ -200,7 +200,7 @@ def _series_start(ctx: RuleContext, series: _Series) -> Iterator[Diagnostic]:
             yield _report(
                 ctx,
                 m,
-                f"{m.code} starts at {axis}{mm(start)}, on the material's side of its first "
+                f"{m.shown} starts at {axis}{mm(start)}, on the material's side of its first "
                 f"pass {axis}{mm(first)}: the {what} passes go towards {axis}"
                 f"{'-' if towards_minus else '+'}, so the start point must lie beyond the "
                 f"first pass; from there the cycle returns through the part",

@@ -20,10 +20,9 @@ from ..diagnostics import (
 )
 from ..line_maps import LineMap
 from ..per_line import PerLine
-from ..program.custom_calls import calling_word
+from ..program.custom_calls import unset_m_calls
 from ..program.index import Call as IndexCall
 from ..program.index import Program
-from ..program.knowledge import M_CODES
 from ..program.variables import FORBIDDEN_ARGUMENTS
 from ..program.vendor_cycles import describe, known_cycle
 from ..syntax.marks import constant_value
@@ -199,7 +198,9 @@ MB405_DOC = RuleDoc(
     "MB405",
     reports="""
 An `L` repeat count outside 1–9999 on `M98`/`G65` (`L0`, `L10000`, also the
-leading digits of `M98 P<rrrr><pppp>`), or a call without `P`.
+leading digits of `M98 P<rrrr><pppp>`), or a call without `P`. An `M98 Q<n>` without `P`
+calls the block `N<n>` of its own program (FANUC 0i-F / 30i, "Subprogram call"; unverified
+against the manual's text): it is reported when the program has no `N<n>`.
 """,
     why="""
 The control rejects the block with an alarm, and without `P`
@@ -220,9 +221,27 @@ instead of `L0`.
 """,
     not_reported="""
 A repeat count computed at run time (`L#2`) or not written (one
-run; a `G66` without `L` calls the macro after each move).
+run; a `G66` without `L` calls the macro after each move). An `M98 Q<n>` whose program has
+`N<n>`: the evaluator runs that block as a subprogram, up to its `M99`.
 """,
 )
+
+
+def _internal_call(program: Program, call: IndexCall, q_word: Word) -> Iterator[Diagnostic]:
+    """``M98 Q<n>`` without P calls the block N<n> of its own program (FANUC 0i-F / 30i; see
+    evaluator.calls): MB405 when the program has no N<n> (a computed Q is not known here)."""
+    q = constant_value(q_word.value)
+    if q is None or (q == int(q) and program.label_line(int(q)) is not None):
+        return
+    number = f"{q:g}"
+    yield make(
+        MB405,
+        f"M98 Q{number} calls N{number} of {program.display_name}, which has none (alarm "
+        "PS0078 SEQUENCE NUMBER NOT FOUND)",
+        call.line,
+        q_word.span.start,
+        q_word.span.end,
+    )
 
 
 def check(ctx: RuleContext) -> Iterator[Diagnostic]:
@@ -241,6 +260,10 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
             if call.program_span is None:
                 if call.kind == "M98" and any(w.address == "H" for w in words):
                     continue  # Citizen's M98 H<n>: MB002 says so
+                q_word = next((w for w in words if w.address == "Q"), None)
+                if call.kind == "M98" and q_word is not None:
+                    yield from _internal_call(program, call, q_word)
+                    continue
                 yield make(
                     MB405,
                     f"{call.kind} without P: no program to call",
@@ -424,48 +447,6 @@ def _missing_programs(
         )
 
 
-# The words a macro call's arguments use that a block of an M code alone never takes.
-_ARGUMENT_LETTERS = frozenset("ABCDEIJKQRUVW")
-
-
-def _m_call_candidate(parsed: ParsedLine) -> tuple[float, int, int] | None:
-    """An M code (not a standard one) with P and an argument word, no G code: the M code and
-    its word's columns."""
-    statement = parsed.statement
-    if type(statement) is PlainNc:
-        codes = statement.codes
-        if not any(a == "M" for a, _ in codes) or any(a == "G" for a, _ in codes):
-            return None
-    if not isinstance(statement, NcStatement | PlainNc):
-        return None
-    m_word: Word | None = None
-    has_p = has_argument = False
-    for word in statement.words:
-        address = word.address
-        if address == "G":
-            return None
-        if address == "M":
-            value = constant_value(word.value)
-            if m_word is not None or value is None or f"M{value:02g}" in M_CODES:
-                return None
-            if value in (97.0, 98.0, 99.0):
-                return None
-            m_word = word
-        elif address == "P":
-            has_p = True
-        elif address in _ARGUMENT_LETTERS:
-            has_argument = True
-    if m_word is None or not (has_p and has_argument):
-        return None
-    value = constant_value(m_word.value)
-    assert value is not None
-    return value, m_word.span.start, m_word.span.end
-
-
-# Blocks that look like a macro call through an M code: few, and kept from edit to edit.
-_m_call_candidates: LineMap[tuple[float, int, int]] = LineMap(_m_call_candidate)
-
-
 MB409_DOC = RuleDoc(
     "MB409",
     reports="""
@@ -475,8 +456,9 @@ an argument word that a plain M block never takes (A-E, I-K, Q, R, U-W):
 register the M code that calls O9020-O9029) on the machine it was written for.
 """,
     why="""
-Without the setting, the block is read as a plain M block: its words are checked as NC words
-(`D takes a whole number`) and the program it calls is not run.
+Without the setting, the program the block calls is not run: nothing in it is checked, and its
+arguments are not known to it. The block's words are not checked as NC words either (`D1.415` is
+an argument, not an offset number).
 """,
     example="""
 ```nc
@@ -498,12 +480,7 @@ M block with only P (`M98`-like codes of other controls are MB002's).
 
 def _m_calls_not_set_up(ctx: RuleContext) -> Iterator[Diagnostic]:
     """MB409: the candidates whose M code the settings do not set up as a call."""
-    found = _m_call_candidates(ctx.doc)
-    settings = ctx.config.custom_calls
-    for line, (value, start, end) in zip(found.lines, found.values, strict=True):
-        statement = ctx.doc.blocks[line].parsed.statement
-        if isinstance(statement, NcStatement | PlainNc) and calling_word(statement, settings):
-            continue
+    for line, value, start, end in unset_m_calls(ctx.doc, ctx.config.custom_calls):
         code = f"M{value:g}"
         yield make(
             MB409,

@@ -151,7 +151,7 @@ def _mixed_feed(ctx: RuleContext, thread: Thread) -> Iterator[Diagnostic]:
     for m in others:
         yield make(
             MB812,
-            f"this {m.code} cuts with F{m.words['F']:g}, the other {count} passes of the same "
+            f"this {m.shown} cuts with F{m.words['F']:g}, the other {count} passes of the same "
             f"thread with F{usual:g}: it cuts another helix across the thread's flanks",
             m.line,
             0,
@@ -242,7 +242,7 @@ def _lead(ctx: RuleContext, thread: Thread) -> Iterator[Diagnostic]:
         hint = ""
     yield make(
         MB810,
-        f"{m.code} cuts with F{lead:g}, but {thread.name} has {starts}: its lead, the F to "
+        f"{m.shown} cuts with F{lead:g}, but {thread.name} has {starts}: its lead, the F to "
         f"cut with, is {want:g}{hint}; thread known from {thread.known_from()}",
         m.line,
         0,

@@ -369,7 +369,7 @@ def _rounding_cause(
     x_expr = word(ctx.doc, m.line, "X")
     if facts is None or program is None or x_expr is None:
         return "", None, []
-    here = Related(m.line, 0, 0, f"the {m.code} pass it repeats or skips")
+    here = Related(m.line, 0, 0, f"the {m.shown} pass it repeats or skips")
     for line, call in _roundings_feeding(ctx, facts, program, m.line, x_expr):
         text = expr_text(call)
         seen = facts.roundings.get(line)

@@ -54,7 +54,7 @@ def width(ctx: RuleContext, line: int) -> int:
 def pass_name(thread: Thread, index: int, m: Motion) -> str:
     """``G92 pass 12`` (a G76's own pass number: ``G76 pass 3``)."""
     number = m.cycle_pass or index + 1
-    return f"{m.code} pass {number}"
+    return f"{m.shown} pass {number}"
 
 
 def thread_related(thread: Thread) -> list[Related]:
@@ -200,7 +200,7 @@ def _root_checks(ctx: RuleContext, thread: Thread) -> Iterator[Diagnostic]:
     if depth > full + EPS:
         yield make(
             MB802,
-            f"first {first.code} pass at X{mm(first.x)} is {depth:.3f} mm deep (radius), more "
+            f"first {first.shown} pass at X{mm(first.x)} is {depth:.3f} mm deep (radius), more "
             f"than the whole height {full:.3f} of {thread.name} (crest X{mm(crest)}, root "
             f"X{mm(root)})",
             first.line,

@@ -457,7 +457,7 @@ def _describe_cuts(job: ThreadJob) -> str:
         where = f" X{_mm(xs[0])} to X{_mm(xs[-1])}"
     else:
         where = f" at X{_mm(xs[0])}" if xs else ""
-    return f"the cuts ({job.code}{feed}, {passes}{where})"
+    return f"the cuts ({job.shown}{feed}, {passes}{where})"
 
 
 def identify(
@@ -677,7 +677,7 @@ def _unsupported(
     taper = job.taper
     if taper is not None and job.is_cycle:
         thread.unsupported = (
-            f"a taper thread ({taper.code} R{taper.words['R']:g} at line {taper.line + 1}): the "
+            f"a taper thread ({taper.shown} R{taper.words['R']:g} at line {taper.line + 1}): the "
             "root and radius checks are for parallel ISO metric threads"
         )
         return
@@ -717,18 +717,18 @@ def describe(thread: Thread) -> str:
     side = {True: "internal", False: "external", None: "side not known"}[thread.internal]
     if thread.unsupported is not None:
         return (
-            f"**Thread** cut by {job.code} in {job.program}: {thread.unsupported}. Only the "
+            f"**Thread** cut by {job.shown} in {job.program}: {thread.unsupported}. Only the "
             "passes among themselves are checked (order, depth per pass, feed, start point)."
         )
     if thread.lead_conflict:
         return (
-            f"**Thread {thread.name}** cut by {job.code} in {job.program}: its lead is "
+            f"**Thread {thread.name}** cut by {job.shown} in {job.program}: its lead is "
             f"{thread.lead:g}, but the cuts use F{job.lead:g} (MB810); the root and radius "
             f"checks wait until the two agree. Known from {thread.known_from()}."
         )
     if not thread.identified:
         return (
-            f"**Thread** cut by {job.code} in {job.program}: not identified, {thread.missing}. "
+            f"**Thread** cut by {job.shown} in {job.program}: not identified, {thread.missing}. "
             "The root, nose-radius and lead checks need it; the passes are still checked among "
             "themselves (order, depth per pass, feed, start point). A comment such as "
             "(M50x3-5g6g) names the thread."

@@ -102,6 +102,13 @@ class ThreadJob:
         )
 
     @property
+    def shown(self) -> str:
+        """``code`` as the program writes it (a system B or C lathe's own number): what a
+        message names."""
+        code = self.code
+        return next((m.shown for m in self.passes if m.code == code), code)
+
+    @property
     def lead(self) -> float | None:
         """The F of most passes: the lead the thread is cut with."""
         return self.remember("lead", self._lead, ("F",))
