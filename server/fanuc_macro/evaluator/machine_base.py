@@ -402,11 +402,13 @@ class MachineBase:
         cl: CompiledLine,
         order: list[tuple[str, Value, CompiledWord]],
         calls: bool = False,
+        d_is_data: bool = False,
     ) -> None:
         # ``calls``: P is a program or sequence number (M98, M99, G65: a whole number); with
-        # G04 it is a dwell.
+        # G04 it is a dwell. ``d_is_data``: D is a cycle's depth, not an offset number; whether
+        # FANUC takes a decimal point there is unverified, so it is not checked.
         for address, v, w in order:
-            if isinstance(v, Unknown) or v is None:
+            if isinstance(v, Unknown) or v is None or (d_is_data and address == "D"):
                 continue
             if (address in INTEGER_ADDRESSES or (address == "P" and calls)) and v != int(v):
                 message = f"{address} gets {fmt(v)}: {address} takes a whole number"

@@ -34,6 +34,9 @@ LATHE_CYCLES = frozenset({90.0, 92.0, 94.0})  # G-code system A: modal canned cy
 ONE_SHOT_CYCLES = frozenset({70.0, 71.0, 72.0, 73.0, 74.0, 75.0, 76.0})  # group 00: no repeat
 FEED_MOTIONS = frozenset({1.0, 2.0, 3.0})  # cutting at the modal F (G32, cycles: F the lead)
 LEFT_UNKNOWN = frozenset({28.0, 30.0, 53.0})
+# A lathe's multiple repetitive cycles (system A), whose D is a depth or a relief in the FS10/11
+# program format (one block: G71 P Q U W D F) and on a Haas lathe, not an offset number.
+REPETITIVE_CYCLES = frozenset({71.0, 72.0, 73.0, 74.0, 75.0, 76.0})
 MAX_SHARED_WORDS = 4096  # distinct motion words a run looks up to share (Machine._words)
 THREADING_CODES = frozenset({32.0, 33.0, 34.0, 76.0, 92.0})
 # The lathe's moves that cut at F besides G01-G03: threads (F the lead), turning and facing.
@@ -70,7 +73,13 @@ class MotionPart(CyclesPart, CallsPart):
             if order is None:
                 assert const is not None
                 order = const.order
-            self._check_addresses(act, cl, order, 98.0 in m_codes or 99.0 in m_codes)
+            self._check_addresses(
+                act,
+                cl,
+                order,
+                98.0 in m_codes or 99.0 in m_codes,
+                self.lathe and not REPETITIVE_CYCLES.isdisjoint(g_codes),
+            )
         modal = self.modal
         if "F" in values:
             modal.feed = values["F"]

@@ -75,7 +75,10 @@ Addresses that take a decimal point (`X`, `Y`, `Z`, `F`, `R`...), a
 `G` code with one decimal (`G66.1`, `G54.1`), a vacant variable (the word is omitted) and values
 the analysis cannot compute. Nor the words of a block that reads as a macro call through an M
 code the settings do not set up (MB409: `M165 P9814 D1.415`): they are the macro's arguments
-(`D` a diameter, not an offset number).
+(`D` a diameter, not an offset number). Nor a lathe's `D` in a block of a multiple repetitive
+cycle (`G71`-`G76`: the one-block form of the FS10/11 program format, a Haas lathe's
+`G71 P Q U W D F`), a depth of cut or a relief, not an offset number: whether FANUC takes a
+decimal point there is unverified.
 """,
 )
 

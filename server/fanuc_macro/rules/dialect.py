@@ -4,6 +4,7 @@ in blocks FANUC's grammar reads."""
 
 from __future__ import annotations
 
+import re
 from collections.abc import Iterable, Iterator
 from types import MappingProxyType
 
@@ -113,7 +114,10 @@ that control's program: one MB002 on its first line (past a tape mark and empty 
 the control and the line of the mark, and counts the blocks FANUC rejects. The editor lists
 each of them as a related place, with what FANUC rejects in it, instead of one diagnostic a
 block, syntax errors, comment or end-of-block warnings (a `;` comment of Siemens or LinuxCNC, a
-`(` of a Syntec expression). A block `ELSE` in a Siemens file is Siemens', not Haas's. A FANUC
+`(` of a Syntec expression). A block `ELSE` in a Siemens file is Siemens', not Haas's. At least 5
+blocks in one control's forms read the same way, and so do at least 5 blocks with a comment
+after `;` (`G0 Z10.0 ; Retract`: LinuxCNC, Mach3, Fagor and proLIGHT start comments with `;`,
+where FANUC ends the block and reads the words as the next one). A FANUC
 program with a few foreign blocks (no such mark) keeps one MB002 a block. A file without such a
 mark most of whose blocks (at least 5, and half of them or more; three in four with an O
 program number, which says the file is meant for FANUC) FANUC rejects is read the same way, as
@@ -377,14 +381,64 @@ def _named_dialect(finding: LineFinding) -> str | None:
     return _NAMED.get(name)
 
 
+# Controls whose comments run from ';' to the end of the line (LinuxCNC, Mach3, Fagor, Light
+# Machines' proLIGHT): on FANUC ';' ends the block, and words after it are the next block's.
+SEMICOLON_COMMENTS = "a control whose comments follow ';' (LinuxCNC, Mach3, Fagor, proLIGHT)"
+# Macro B's words of three letters or more: after ';' they are a FANUC block, not a comment.
+_MACRO_WORDS = frozenset(
+    [
+        "GOTO",
+        "WHILE",
+        "THEN",
+        "END",
+        "AND",
+        "XOR",
+        "MOD",
+        "SIN",
+        "COS",
+        "TAN",
+        "ASIN",
+        "ACOS",
+        "ATAN",
+        "SQRT",
+        "ABS",
+        "BIN",
+        "BCD",
+        "ROUND",
+        "FIX",
+        "FUP",
+        "EXP",
+        "POW",
+        "ADP",
+        "DPRNT",
+        "BPRNT",
+        "POPEN",
+        "PCLOS",
+        "SETVN",
+    ]
+)
+_WORD = re.compile(r"[A-Za-z]{3,}")
+
+
+def _comment_after_semicolon(parsed: ParsedLine, findings: tuple[LineFinding, ...]) -> bool:
+    """Whether a block FANUC rejects for its text after ';' (MB005) has prose there: a word
+    that is no Macro B keyword ("; Retract", "; Units: Metric")."""
+    if not any(f.code == "MB005" for f in findings):
+        return False
+    after = parsed.text.partition(";")[2]
+    return any(w.upper() not in _MACRO_WORDS for w in _WORD.findall(after))
+
+
 def dialect_of_blocks(
     per_block: list[tuple[int, ParsedLine, tuple[LineFinding, ...]]],
 ) -> dialects.FileDialect | None:
     """Another control's program from its blocks: at least :data:`MIN_DIALECT_BLOCKS` in the
-    forms of one control (the line rules name it)."""
+    forms of one control (the line rules name it), or with a comment after ';'."""
     counts: dict[str, list[int]] = {}
-    for line, _, findings in per_block:
+    for line, parsed, findings in per_block:
         names = {n for n in map(_named_dialect, findings) if n is not None}
+        if _comment_after_semicolon(parsed, findings):
+            names.add(SEMICOLON_COMMENTS)
         for name in names:
             counts.setdefault(name, []).append(line)
     if not counts:

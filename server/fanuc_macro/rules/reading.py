@@ -369,7 +369,8 @@ A comment whose text goes on over the next lines without its `(` (after an MB004
 control reads the first of them as a block and stops there with an alarm, so that line gets
 one MB001 that says so and names the lines after it, which are not reported one by one. A line
 of Macro B words only (`IF`, `GOTO`, `SIN`, ...) or an empty line ends the run: it is reported
-as itself.
+as itself. Lines of dots alone (`.....`), which an excerpt of a program puts for the blocks it
+leaves out: the first gets one MB001 that says so and names the others.
 """,
 )
 
@@ -771,6 +772,47 @@ def fold_runaway_comments(blocks: list[LineFindings]) -> list[LineFindings]:
         if run:
             out.append(_first_of_run(line, run))
     return out
+
+
+# A line of dots alone (a comment after them): what an excerpt of a program puts for the
+# blocks it leaves out.
+_ELISION = re.compile(r"\s*(\.{3,}|\u2026+)\s*(\([^()]*\)\s*)?")
+
+
+def fold_elisions(blocks: list[LineFindings]) -> list[LineFindings]:
+    """Lines of dots alone (``.....``), an excerpt's mark for blocks left out: the control
+    rejects the first and stops there with an alarm. It keeps one MB001 that says so and names
+    the others, whose own MB001 is not given (their other findings are)."""
+    dots = [
+        n
+        for n, (_, parsed, findings) in enumerate(blocks)
+        if any(f.code == "MB001" for f in findings) and _ELISION.fullmatch(parsed.text)
+    ]
+    if not dots:
+        return blocks
+    out = list(blocks)
+    others = [blocks[n][0] + 1 for n in dots[1:]]
+    shown = ", ".join(map(str, others[:8])) + (
+        f" and {len(others) - 8} more" if len(others) > 8 else ""
+    )
+    rest = (
+        f"; {len(others)} more such line{'s' if len(others) > 1 else ''} ({shown}) not "
+        "reported one by one"
+        if others
+        else ""
+    )
+    line, parsed, findings = blocks[dots[0]]
+    start = len(parsed.text) - len(parsed.text.lstrip())
+    message = (
+        "a line of dots, which an excerpt puts for blocks it leaves out: the control rejects "
+        f"it and stops with an alarm here{rest}"
+    )
+    first = LineFinding("MB001", message, start, len(parsed.text.rstrip()))
+    out[dots[0]] = (line, parsed, (first, *(f for f in findings if f.code != "MB001")))
+    for n in dots[1:]:
+        line, parsed, findings = blocks[n]
+        out[n] = (line, parsed, tuple(f for f in findings if f.code != "MB001"))
+    return [b for b in out if b[2]]
 
 
 def _first_of_run(opened: int, run: list[LineFindings]) -> LineFindings:
