@@ -109,7 +109,8 @@ that no dialect here has is named "not FANUC (dialect not recognised)": C-style 
 
 A file that carries a mark only another control's programs have (Syntec's `%@MACRO` header,
 Siemens' `PROC` or `DEF` or R parameters, LinuxCNC's O-word subroutine, DDCS's `IF` without
-brackets, Okuma's `VC1=` or `GOTO NLOOP` or `CALL O...`, a wire EDM's `H1=` register) is read as
+brackets, Okuma's `VC1=` or `GOTO NLOOP` or `CALL O...`, a wire EDM's `H1=` register, Philips'
+`%PM` header) is read as
 that control's program: one MB002 on its first line (past a tape mark and empty lines) names
 the control and the line of the mark, and counts the blocks FANUC rejects. The editor lists
 each of them as a related place, with what FANUC rejects in it, instead of one diagnostic a

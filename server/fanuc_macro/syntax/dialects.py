@@ -27,6 +27,7 @@ LINUXCNC = "LinuxCNC"
 DDCS = "DDCS"
 OKUMA = "Okuma OSP"
 WIRE_EDM = "wire EDM"
+PHILIPS = "Philips (CNC 432 / System 3000)"
 MITSUBISHI = "Mitsubishi/Citizen"
 # A form FANUC rejects that no dialect this checker knows has (C comparisons, 'Q1=12'): said so,
 # rather than pinned on a control it may not come from.
@@ -273,10 +274,13 @@ _FILE_MARKS: tuple[tuple[re.Pattern[str], str, str], ...] = (
     (re.compile(r"\bGOTO\s*N[A-Z]", re.I), OKUMA, "GOTO to a sequence name"),
     (re.compile(r"^\s*(N\w+\s+)?CALL\s+O\w+", re.I), OKUMA, "CALL of a subprogram"),
     (re.compile(r"^\s*(N\d+\s*)?[EH]\d+\s*=", re.I), WIRE_EDM, "register setting"),
+    # Philips CNC 432 / System 3000 files begin with "%PM", the program number an N9xxx block
+    # after it (Philips CNC 432 programming manual; unverified beyond the files seen).
+    (re.compile(r"^\s*%\s*PM\b", re.I), PHILIPS, "'%PM' header"),
 )
 # Strongest first: a Syntec file may hold R words, a LinuxCNC file comparisons.
 _FILE_MARK_ORDER: Mapping[str, int] = MappingProxyType(
-    {SYNTEC: 0, SIEMENS: 1, LINUXCNC: 2, DDCS: 3, OKUMA: 4, WIRE_EDM: 5}
+    {SYNTEC: 0, SIEMENS: 1, LINUXCNC: 2, DDCS: 3, OKUMA: 4, WIRE_EDM: 5, PHILIPS: 6}
 )
 
 
