@@ -38,6 +38,7 @@ MARKS = [
     ("G96 S180 M03", LATHE, "G96"),
     ("G50 S2500", LATHE, "G50"),
     ("G01 U-2. W-1. F0.2", LATHE, "U or W"),
+    ("G77 X46. Z-30. F0.25", LATHE, "G77, G78 or G79"),
     ("G71 P10 Q20 F0.25", LATHE, "multiple repetitive"),
     ("G73 P10 Q20 F0.25", LATHE, "multiple repetitive"),
     ("G76 P020060 Q100 R0.05", LATHE, "G76's first block"),
@@ -291,3 +292,25 @@ def test_both_readings_of_an_unknown_machine_are_kept_between_edits() -> None:
     assert [(d.code, d.line) for d in again.diagnostics] == [
         (d.code, d.line) for d in first.diagnostics
     ]
+
+
+# A subprogram whose own blocks show no machine (arithmetic and moves in X and Z alone).
+ARC_MACRO = "O9001 (ARC MOVES)\n#3=#1*2.\nG01 X#3 Z#2 F100.\nM99\n"
+
+
+def test_a_subprogram_of_no_machine_of_its_own_runs_as_its_callers(tmp_path: Path) -> None:
+    (tmp_path / "o9001.nc").write_text(ARC_MACRO)
+    (tmp_path / "o2001.nc").write_text(
+        "O2001\nT1 M06\nG90 G54 G00 X0 Y0\nG43 H1 Z50.\nG65 P9001 A5. B-2.\nM30\n"
+    )
+    said = run(tmp_path, "check", "--verbose", "o9001.nc", "o2001.nc")
+    assert (
+        "o9001.nc: Machine: a mill (0i-F read as 0i-MF), as the programs that call it show "
+        "(O2001); its own codes show neither machine."
+    ) in said.stderr
+    # A lathe's program calls it too: the callers disagree, the machine stays not known.
+    (tmp_path / "o3001.nc").write_text("O3001\nT0101\nG96 S180 M03\nG65 P9001 A5. B-2.\nM30\n")
+    both = run(tmp_path, "check", "--verbose", "o9001.nc", "o2001.nc", "o3001.nc")
+    assert "o9001.nc: Machine: not known" in both.stderr
+    alone = run(tmp_path, "check", "--verbose", "o9001.nc")
+    assert "o9001.nc: Machine: not known" in alone.stderr

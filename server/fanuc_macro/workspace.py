@@ -14,7 +14,7 @@ from .config import Config
 from .database import Database
 from .evaluator import Facts
 from .program.index import Call, ProgramIndex, build_index, index_after_edit
-from .program.machine_kind import machine_config, mill_reading
+from .program.machine_kind import callers_machine, machine_config, mill_reading
 from .program_files import PROGRAM_SUFFIXES as PROGRAM_SUFFIXES  # for the server, the debugger
 from .program_files import is_program_file as is_program_file
 from .syntax.diff import line_diff
@@ -241,6 +241,20 @@ class Workspace:
         keys = [u for u in indexes if u != uri] if needed is None else needed
         return [(u, *indexes[u]) for u in keys]
 
+    def _callers(self, uri: str) -> list[tuple[Document, ProgramIndex]]:
+        """The other documents with a call of a program of ``uri`` (by number), in order."""
+        entry = self._entries[uri]
+        numbers = {p.number for p in entry.index.programs if p.number is not None}
+        if not numbers:
+            return []
+        found: list[tuple[Document, ProgramIndex]] = []
+        for key, (doc, index) in self._indexes.items():
+            if key != uri and any(
+                call.program in numbers for program in index.programs for call in program.calls
+            ):
+                found.append((doc, index))
+        return found
+
     def _custom_called(self) -> frozenset[int]:
         """The programs the settings' custom calls run (``M165`` -> O9022): any block of any
         document may call them, and the index holds none of those calls."""
@@ -286,6 +300,8 @@ class Workspace:
         # The machine the document's codes show (controller 0i-F): a run of another machine's
         # reading is neither kept nor resumed.
         config = machine_config(self.config, entry.doc, entry.index)
+        if not config.machine_known:
+            config = callers_machine(config, self._callers(uri)) or config
         facts, previous = _kept_facts(self._facts.get(uri), config, runs)
         mill_facts, mill_previous = _kept_facts(
             self._mill_facts.get(uri), mill_reading(config), runs

@@ -29,6 +29,7 @@ neither (a macro of arithmetic alone).
 from __future__ import annotations
 
 import re
+from collections.abc import Sequence
 from dataclasses import dataclass, replace
 
 from ..config import SYSTEM_A, Config
@@ -363,3 +364,29 @@ __all__ = (
     "machine_text",
     "readings_differ",
 )
+
+
+def callers_machine(
+    config: Config, callers: Sequence[tuple[Document, ProgramIndex]]
+) -> Config | None:
+    """``config`` (a document whose own codes show no machine) as the machine of the
+    documents whose programs call it, when they show one and the same: a subprogram runs on
+    its caller's machine. None when there is none, or they differ."""
+    if config.machine_known or not config.machine_note or not callers:
+        return None
+    kinds: dict[str, list[str]] = {}
+    for doc, index in callers:
+        guess = _document_guess(doc.uri, (doc, config.g_code_system))
+        if guess.kind is not None:
+            names = [p.display_name for p in index.programs]
+            kinds.setdefault(guess.kind, []).extend(names[:1])
+    if len(kinds) != 1:
+        return None
+    kind, names = next(iter(kinds.items()))
+    controller = "0i-TF" if kind == LATHE else "0i-MF"
+    shown = ", ".join(names[:3]) + (f" and {len(names) - 3} more" if len(names) > 3 else "")
+    note = (
+        f"a {kind} (0i-F read as {controller}), as the programs that call it show ({shown}); "
+        "its own codes show neither machine"
+    )
+    return replace(config, controller=controller, machine_note=note, machine_known=True)
