@@ -470,14 +470,19 @@ def _written_with_decimal_point(expr: Expr) -> bool:
     return isinstance(expr, Num) and expr.has_decimal_point
 
 
-def recorded_words(values: dict[str, Value]) -> dict[str, float]:
+def recorded_words(values: dict[str, Value], inch: bool = False) -> dict[str, float]:
     """A block's words as its motion records them: no G, M or N, numbers at the least input
-    increment."""
+    increment (IS-B: 0.001 mm, 0.0001 inch in G20); F as it is (a lead of 0.0769 inch, a
+    feed of 0.0035 inch per revolution: F has its own increments)."""
     words: dict[str, float] = {}
+    places = 4 if inch else 3
     for address, v in values.items():
         if address in ("G", "M", "N") or not isinstance(v, float):
             continue
-        rounded = round(v, 3)  # the least input increment (IS-B)
+        if address == "F":
+            words[address] = v
+            continue
+        rounded = round(v, places)
         words[address] = v if rounded == v else rounded  # the same value, no second float
     return words
 

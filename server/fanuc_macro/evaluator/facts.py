@@ -246,6 +246,7 @@ class Motion:
     # The code as a lathe program of G code system B or C writes it ("G78" for code "G92");
     # empty when it is ``code``.
     written: str = ""
+    inch: bool = False  # G20 in force: its lengths are inches (a message says so)
 
     @property
     def shown(self) -> str:

@@ -345,6 +345,8 @@ class MotionPart(CyclesPart, CallsPart):
         )
         if self.other_g_code_system and lathe:
             motion.written = written(name, self.config.g_code_system)
+        if modal.inch:
+            motion.inch = True
         facts = self.facts
         if code in THREADING_CODES and act.serial not in facts.run_values:
             self._remember_run(act)
@@ -377,8 +379,10 @@ class MotionPart(CyclesPart, CallsPart):
         added, shared with an equal earlier motion's. A cut at F 0 raises the control's alarm;
         a cut with no F commanded is reported."""
         const = cl.constant
-        same = const is not None and values is const.values  # not renamed (_as_system_a)
-        words = const.words if same and const is not None else recorded_words(values)
+        inch = self.modal.inch
+        # A constant block's words are rounded as in mm; not renamed (_as_system_a).
+        same = const is not None and values is const.values and not inch
+        words = const.words if same and const is not None else recorded_words(values, inch)
         feed = self.modal.feed
         if "F" not in words and isinstance(feed, float) and code and code not in RAPID_ONE_SHOTS:
             words = {**words, "F": feed}

@@ -101,12 +101,14 @@ def fmt(value: Value) -> str:
     return text
 
 
-def fmt_address(value: float) -> str:
-    """An address value rounded to 0.001 (the usual least input increment, IS-B)."""
-    rounded = round(value, 3)
+def fmt_address(value: float, inch: bool = False) -> str:
+    """An address value rounded to the usual least input increment (IS-B): 0.001 mm, or
+    0.0001 inch in G20."""
+    places = 4 if inch else 3
+    rounded = round(value, places)
     if rounded == int(rounded):
         return f"{int(rounded)}."
-    return f"{rounded:.3f}".rstrip("0")
+    return f"{rounded:.{places}f}".rstrip("0")
 
 
 # ---- functions (degrees) ---------------------------------------------------------------------

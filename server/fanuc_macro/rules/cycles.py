@@ -119,16 +119,16 @@ def _thread_start(ctx: RuleContext, thread: Thread) -> Iterator[Diagnostic]:
     assert start is not None
     side = "inside" if internal else "outside"
     where = (
-        f"the {'bore' if internal else 'crest'} of {thread.name}, about X{mm(crest)}"
+        f"the {'bore' if internal else 'crest'} of {thread.name}, about X{mm(crest, m.inch)}"
         if crest is not None
-        else f"its shallowest pass X{mm(shallowest)}"
+        else f"its shallowest pass X{mm(shallowest, m.inch)}"
     )
     yield _report(
         ctx,
         m,
-        f"{m.shown} starts at X{mm(start)}, but the thread is cut from the {side} "
+        f"{m.shown} starts at X{mm(start, m.inch)}, but the thread is cut from the {side} "
         f"({thread.job.side_reason or 'its designation'}): the start point must lie beyond "
-        f"{where}; from X{mm(start)} the cycle retracts into the thread after each pass "
+        f"{where}; from X{mm(start, m.inch)} the cycle retracts into the thread after each pass "
         f"and the return in Z crosses it",
         thread_related(thread),
     )
@@ -200,8 +200,8 @@ def _series_start(ctx: RuleContext, series: _Series) -> Iterator[Diagnostic]:
             yield _report(
                 ctx,
                 m,
-                f"{m.shown} starts at {axis}{mm(start)}, on the material's side of its first "
-                f"pass {axis}{mm(first)}: the {what} passes go towards {axis}"
+                f"{m.shown} starts at {axis}{mm(start, m.inch)}, on the material's side of its "
+                f"first pass {axis}{mm(first, m.inch)}: the {what} passes go towards {axis}"
                 f"{'-' if towards_minus else '+'}, so the start point must lie beyond the "
                 f"first pass; from there the cycle returns through the part",
                 [],

@@ -16,7 +16,7 @@ from ..evaluator.values import fmt
 from ..threads.identify import Thread
 from ..threads.jobs import ThreadJob
 from .context import RuleContext
-from .threading import thread_related, width
+from .threading import in_program_unit, thread_related, width
 
 FAMILY = "threading"
 
@@ -82,17 +82,24 @@ known.
 
 
 def _feed_limit(ctx: RuleContext, job: ThreadJob) -> Iterator[Diagnostic]:
-    limit = ctx.config.max_threading_feed
+    inch = job.passes[0].inch  # G20: the lead, and so the feed, in inches
+    limit = in_program_unit(ctx.config.max_threading_feed, inch)
     m = job.remember(("feed limit", limit), lambda: _too_fast(job.passes, limit), ("rpm", "F"))
     if m is None:
         return
     pitch = m.words["F"]
     assert m.rpm is not None
     feed = m.rpm * pitch
+    unit = "inch/min" if inch else "mm/min"
+    shown = (
+        f"{limit:.1f} inch/min ({fmt(ctx.config.max_threading_feed)} mm/min)"
+        if inch
+        else f"{fmt(limit)} mm/min"
+    )
     yield make(
         MB807,
-        f"S{fmt(m.rpm)} x lead F{fmt(pitch)} = {fmt(feed)} mm/min, above the machine's "
-        f"threading feed limit {fmt(limit)} mm/min",
+        f"S{fmt(m.rpm)} x lead F{fmt(pitch)} = {fmt(feed)} {unit}, above the machine's "
+        f"threading feed limit {shown}",
         m.line,
         0,
         width(ctx, m.line),

@@ -21,7 +21,7 @@ from ..threads.identify import Thread
 from ..threads.linear import expr_text
 from ..threads.module_shape import assignment, word, writes_of
 from .context import RuleContext
-from .threading import EPS, mm, pass_name, width
+from .threading import EPS, distance, in_program_unit, mm, pass_name, width
 
 FAMILY = "threading"
 
@@ -82,15 +82,17 @@ Put the passes in order of growing depth.
     not_reported="""
 The same depth again (a spring pass, or the left and right steps
 of the symmetric module); a return to the first depth, which starts the next start of a
-multi-start thread or cuts the thread again; `G32` single cuts, which fitting-method programs
-move around a profile on purpose.
+multi-start thread or cuts the thread again; the first pass of a `G76`, whose passes the control
+works out itself (a second `G76` over the thread re-chases it); `G32` single cuts, which
+fitting-method programs move around a profile on purpose.
 """,
 )
 
 
 def _growing(ctx: RuleContext, thread: Thread, internal: bool) -> Iterator[Diagnostic]:
-    limit = ctx.config.max_depth_per_pass
     passes = thread.job.passes
+    inch = passes[0].inch  # G20: the passes' lengths, and so the limit, in inches
+    limit = in_program_unit(ctx.config.max_depth_per_pass, inch)
     events = thread.job.remember(
         ("growing", internal, limit),
         lambda: _growing_events(passes, internal, limit),
@@ -105,13 +107,19 @@ def _growing(ctx: RuleContext, thread: Thread, internal: bool) -> Iterator[Diagn
         step = (-1.0 if internal else 1.0) * (x_before - x) / 2.0
         if code == "MB803":
             message = (
-                f"{pass_name(thread, i, m)} at X{mm(m.x)} is {-step:.3f} mm shallower than "
-                f"the pass before (X{mm(previous.x)}): the depth should grow pass after pass"
+                f"{pass_name(thread, i, m)} at X{mm(m.x, inch)} is {distance(-step, inch)} "
+                f"shallower than the pass before (X{mm(previous.x, inch)}): the depth should "
+                "grow pass after pass"
             )
         else:
+            maximum = (
+                f"{limit:.4f} inch ({ctx.config.max_depth_per_pass:g} mm)"
+                if inch
+                else f"{limit:g} mm"
+            )
             message = (
-                f"{pass_name(thread, i, m)} takes {step:.3f} mm (radius) in one pass, above "
-                f"the maximum {limit:g} mm per pass"
+                f"{pass_name(thread, i, m)} takes {distance(step, inch)} (radius) in one pass, "
+                f"above the maximum {maximum} per pass"
             )
         yield make(MB803 if code == MB803.code else MB804, message, m.line, 0, width(ctx, m.line))
 
@@ -120,7 +128,8 @@ MB804_DOC = RuleDoc(
     "MB804",
     reports="""
 A threading cycle pass that takes more depth (radius) than the maximum per
-pass, the setting `fanuc-macro.threading.maxDepthPerPass` (0.5 mm by default).
+pass, the setting `fanuc-macro.threading.maxDepthPerPass` (0.5 mm by default; in a program in
+inches, `G20`, the same length in inches: 0.0197 inch).
 """,
     why="""
 Depth of cut in threading grows the chip area quickly, since
@@ -168,8 +177,10 @@ def _growing_events(
         if previous is not None and before is not None:
             step = sign * (before - x) / 2.0
             # Back to the first depth is the next start of a multi-start thread, or the
-            # whole thread cut again: a new series, not a pass out of order.
-            restart = sign * (top - x) <= EPS
+            # whole thread cut again: a new series, not a pass out of order. So is a G76's
+            # first pass: the control works out each cycle's passes, and a second G76 over
+            # the thread (a re-chase, another insert) starts its own.
+            restart = sign * (top - x) <= EPS or passes[i].cycle_pass == 1
             if step < -EPS and "back" not in reported and not restart:
                 reported.add("back")
                 events.append(("MB803", i, previous))
@@ -225,7 +236,7 @@ def _repeated(ctx: RuleContext, thread: Thread, internal: bool) -> Iterator[Diag
             ctx,
             thread,
             m,
-            f"{pass_name(thread, i, m)} at X{mm(m.x)} (line {m.line + 1}) repeats "
+            f"{pass_name(thread, i, m)} at X{mm(m.x, m.inch)} (line {m.line + 1}) repeats "
             f"{pass_name(thread, i - 1, before)} before the full depth: that depth is cut twice",
             " and one depth of the sequence is never cut; ",
         )
@@ -235,8 +246,9 @@ def _repeated(ctx: RuleContext, thread: Thread, internal: bool) -> Iterator[Diag
         ctx,
         thread,
         m,
-        f"{pass_name(thread, i, m)} at X{mm(m.x)} (line {m.line + 1}) takes twice "
-        f"the program's step of {usual:.3f} mm: X{mm(before.x - sign * 2.0 * usual)} "
+        f"{pass_name(thread, i, m)} at X{mm(m.x, m.inch)} (line {m.line + 1}) takes twice "
+        f"the program's step of {distance(usual, m.inch)}: "
+        f"X{mm(before.x - sign * 2.0 * usual, m.inch)} "
         "is never cut",
         "; ",
     )

@@ -42,9 +42,22 @@ MB809 = RuleInfo("MB809", "deviation-sign", Severity.WARNING,
 EPS = 0.0005  # half the least input increment (IS-B, mm)
 
 
-def mm(value: float) -> str:
-    """A length as the control takes it: to 0.001 mm."""
-    return fmt_address(value)
+def mm(value: float, inch: bool = False) -> str:
+    """A length as the control takes it: to 0.001 mm (0.0001 inch in G20)."""
+    return fmt_address(value, inch)
+
+
+MM_PER_INCH = 25.4
+
+
+def distance(value: float, inch: bool = False) -> str:
+    """A distance in the program's unit, to its least increment: "0.120 mm", "0.0047 inch"."""
+    return f"{value:.4f} inch" if inch else f"{value:.3f} mm"
+
+
+def in_program_unit(millimetres: float, inch: bool) -> float:
+    """A setting in mm (a limit per pass) in the program's unit."""
+    return millimetres / MM_PER_INCH if inch else millimetres
 
 
 def width(ctx: RuleContext, line: int) -> int:
