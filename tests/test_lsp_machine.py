@@ -81,3 +81,32 @@ async def test_a_document_not_open_has_no_machine(client: LanguageClient) -> Non
     assert await run(client, MACHINE) == {
         "error": f"{MACHINE} takes the document's URI as its argument"
     }
+
+
+# A system B lathe's threading cycle started inside the thread (the return in Z crosses it).
+SYSTEM_B_THREAD = (
+    "O1001\nG90 G95 G21\nT0303\nG97 S800 M03\nG00 X26. Z5.\nG78 X29.3 Z-20. F1.5\nX28.8\n"
+    "G00 X100. Z100.\nM30\n"
+)
+
+
+async def test_the_g_code_system_setting_reads_a_lathe_in_system_b(client: LanguageClient) -> None:
+    await start(client, None, {"machine": {"gCodeSystem": "B"}})
+    uri = "untitled:system-b.nc"
+    open_text(client, uri, SYSTEM_B_THREAD)
+    found = await diagnostics(client, uri, lambda d: any(x.code == "MB813" for x in d))
+    message = next(x.message for x in found if x.code == "MB813")
+    assert message.startswith("G78 starts at X26., but the thread is cut from the outside")
+    machine = await run(client, MACHINE, uri)
+    assert machine["kind"] == "lathe"
+    assert machine["text"].endswith("A lathe's G codes are read in G code system B.")
+    hover = await client.text_document_hover_async(
+        types.HoverParams(
+            text_document=types.TextDocumentIdentifier(uri=uri),
+            position=types.Position(line=5, character=1),
+        )
+    )
+    assert hover is not None and isinstance(hover.contents, types.MarkupContent)
+    assert hover.contents.value.startswith(
+        "**G78** — Threading cycle *(G code system B; system A's G92)*"
+    )
