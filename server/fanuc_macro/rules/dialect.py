@@ -11,6 +11,7 @@ from types import MappingProxyType
 from ..diagnostics import Diagnostic, Related, RuleDoc, RuleInfo, Severity, make
 from ..line_maps import LineMap
 from ..per_line import PerLine
+from ..program.knowledge import FUNCTIONS, KEYWORDS
 from ..syntax import dialects
 from ..syntax.marks import constant_value
 from ..syntax.parser import statements_of
@@ -385,39 +386,8 @@ def _named_dialect(finding: LineFinding) -> str | None:
 # Controls whose comments run from ';' to the end of the line (LinuxCNC, Mach3, Fagor, Light
 # Machines' proLIGHT): on FANUC ';' ends the block, and words after it are the next block's.
 SEMICOLON_COMMENTS = "a control whose comments follow ';' (LinuxCNC, Mach3, Fagor, proLIGHT)"
-# Macro B's words of three letters or more: after ';' they are a FANUC block, not a comment.
-_MACRO_WORDS = frozenset(
-    [
-        "GOTO",
-        "WHILE",
-        "THEN",
-        "END",
-        "AND",
-        "XOR",
-        "MOD",
-        "SIN",
-        "COS",
-        "TAN",
-        "ASIN",
-        "ACOS",
-        "ATAN",
-        "SQRT",
-        "ABS",
-        "BIN",
-        "BCD",
-        "ROUND",
-        "FIX",
-        "FUP",
-        "EXP",
-        "POW",
-        "ADP",
-        "DPRNT",
-        "BPRNT",
-        "POPEN",
-        "PCLOS",
-        "SETVN",
-    ]
-)
+# Macro B's words: after ';' they are a FANUC block, not a comment.
+_MACRO_WORDS = frozenset(KEYWORDS) | frozenset(FUNCTIONS)
 _WORD = re.compile(r"[A-Za-z]{3,}")
 
 
