@@ -16,6 +16,7 @@ from ..diagnostics import (
     Severity,
     make,
 )
+from ..line_maps import LineMap
 from ..program.knowledge import FUNCTIONS, KEYWORDS
 from ..syntax.tree import ParsedLine, ProgramStart
 from .context import LineFinding, RuleContext
@@ -54,6 +55,9 @@ MB012 = RuleInfo("MB012", "expression-too-deep", Severity.WARNING,
 MB013 = RuleInfo("MB013", "file-too-large", Severity.INFORMATION,
                  "A document larger than the analysis reads: the blocks after the limit are not "
                  "checked.", FAMILY)
+MB014 = RuleInfo("MB014", "after-end-of-record", Severity.WARNING,
+                 "Blocks after the '%' that ends the file's data, which the control never reads "
+                 "in.", FAMILY)
 # fmt: on
 
 
@@ -125,6 +129,113 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
     yield from _no_program_number(ctx)
     if ctx.doc.unread_note is not None and ctx.doc.unread_from is not None:
         yield make(MB013, ctx.doc.unread_note, ctx.doc.unread_from, 0, 0)  # a line unread
+    yield from _after_end_of_record(ctx)
+
+
+MB014_DOC = RuleDoc(
+    "MB014",
+    reports="""
+Blocks after the `%` that ends a file's data, up to the next program's `O` line: once per such
+stretch, at its first block, with the number of blocks and the jumps elsewhere in the file
+(`GOTO`) that land on a sequence number in it. A `%` ends the data when
+program text stands before it; a `%` before any program text starts it.
+""",
+    why="""
+The control reads a file in from the `%` that starts its data to the `%` that ends it (FANUC
+16i/18i-TB operator's manual B-63524EN, input from a memory card; the same for the other
+input paths, unverified): what stands after the end is never loaded. A sub program or a
+label kept there for a jump is not in the control's memory, and the jump stops the program
+with alarm PS0060 SEQUENCE NUMBER NOT FOUND.
+""",
+    example="""
+```nc
+%
+O1000 (DRILL, A RETRY AT THE END)
+#1=0
+IF [#1 EQ 0] GOTO 10
+M30
+%
+N10 G00 X0 Y0
+M30
+```
+""",
+    fix="""
+Move the blocks before the closing `%` (before `M30`, or in a program of their own with an
+`O` number).
+""",
+    not_reported="""
+What follows the closing `%` when it starts with an `O` line: another program, as in files
+that hold several programs each between its own marks, which are loaded one by one. Comments
+and empty lines after the `%`. The checker's run still reads such blocks (so the verdicts of
+the run treat them as loaded).
+""",
+)
+
+
+def _tape_mark(parsed: ParsedLine) -> bool | None:
+    return True if parsed.tape_mark else None
+
+
+# The lines of a '%': few, kept from edit to edit.
+_tape_marks: LineMap[bool] = LineMap(_tape_mark, every_line=True)
+
+
+def _after_end_of_record(ctx: RuleContext) -> Iterator[Diagnostic]:
+    """MB014: the blocks after a closing '%' and before the next O line."""
+    marks = _tape_marks(ctx.doc).lines
+    programs = ctx.index.programs
+    if not marks or not programs:
+        return
+    blocks = ctx.doc.blocks
+    start = next((n for n in range(len(blocks)) if _holds_block(blocks[n].parsed)), None)
+    headers = [p.header_line for p in programs if p.header_line is not None]
+    after = -1  # the stretches found end here: a later mark inside one is no new end
+    for mark in marks:
+        if start is None or mark <= after or mark < start:
+            continue  # an opening '%', or one within a stretch already reported
+        first = next(
+            (n for n in range(mark + 1, len(blocks)) if _holds_block(blocks[n].parsed)), None
+        )
+        if first is None:
+            return
+        if isinstance(blocks[first].parsed.statement, ProgramStart):
+            continue  # another program: a file of programs, each loaded on its own
+        end = next((h for h in headers if h > first), len(blocks))
+        after = end
+        held = [n for n in range(first, end) if _holds_block(blocks[n].parsed)]
+        landing = _jumps_into(ctx, first, end)
+        where = f"line {first + 1}" if len(held) == 1 else f"lines {first + 1}-{held[-1] + 1}"
+        text = (
+            f"{len(held)} block{'s' if len(held) != 1 else ''} after the '%' on line "
+            f"{mark + 1}, which ends the file's data ({where}): the control never reads "
+            f"{'them' if len(held) != 1 else 'it'} in"
+        )
+        if landing:
+            shown = landing[:3] + ([f"{len(landing) - 3} more"] if len(landing) > 3 else [])
+            names = ", ".join(shown[:-1]) + (" and " if len(shown) > 1 else "") + shown[-1]
+            text += (
+                f"; {names} {'jumps' if len(landing) == 1 else 'jump'} to a sequence number "
+                "there, which the control does not find (alarm PS0060)"
+            )
+        yield make(MB014, text, first, 0, len(blocks[first].text.rstrip()))
+
+
+def _holds_block(parsed: ParsedLine) -> bool:
+    return not parsed.tape_mark and (parsed.statement is not None or parsed.seq is not None)
+
+
+def _jumps_into(ctx: RuleContext, first: int, end: int) -> list[str]:
+    """The jumps from outside lines ``first``-``end`` (exclusive) to a label inside: "GOTO 10
+    (line 4)"."""
+    found: list[str] = []
+    for program in ctx.index.programs:
+        for jump in program.jumps:
+            if jump.target is None or first <= jump.line < end:
+                continue
+            target = program.label_line(jump.target, jump.line)
+            if target is not None and first <= target < end:
+                found.append(f"GOTO {jump.target} (line {jump.line + 1})")
+    return found
 
 
 MB007_DOC = RuleDoc(
