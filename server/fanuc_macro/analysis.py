@@ -37,7 +37,8 @@ from .rules.dialect import (
     past_the_stop,
     unrecognised_dialect,
 )
-from .rules.reading import fold_elisions, fold_runaway_comments
+from .rules.expressions import fold_missing_variables
+from .rules.reading import fold_elisions, fold_lowercase, fold_runaway_comments
 from .syntax.parser import BlockParser, default_parser, parse_text, quiet_gc
 from .syntax.tree import Document, ParsedLine, PlainNc
 from .threads.identify import Thread
@@ -218,7 +219,8 @@ def run_checks(
         rejected = [line for line, _, f in per_block if any(x.code in FOLDED_CODES for x in f)]
         foreign = unrecognised_dialect(ctx.doc, rejected)
     if foreign is None:
-        per_block = fold_elisions(fold_runaway_comments(per_block))
+        per_block = fold_lowercase(fold_elisions(fold_runaway_comments(per_block)))
+        per_block = fold_missing_variables(per_block)
     elif blocks:  # another control's file: one MB002 for the blocks FANUC rejects
         first = next((b for b in blocks if b.text.strip() not in ("", "%")), blocks[0])
         per_block, whole_file = fold_foreign_file(per_block, foreign, first.line, first.text)

@@ -181,7 +181,8 @@ MB302_DOC = RuleDoc(
     "MB302",
     reports="""
 A variable number that no FANUC control has: `#34`–`#99`. Locals are
-`#1`–`#33`, commons `#100`–`#199` and `#500`–`#999`, system variables `#1000` and up.
+`#1`–`#33`, commons `#100`–`#199` and `#500`–`#999`, system variables `#1000` and up. Once
+per number, at its first use: the message counts and names the other lines that use it.
 """,
     why="""
 Reading or writing it raises PS0115 VARIABLE NO. OUT OF
@@ -222,6 +223,54 @@ def _no_such_variable(var: Var) -> LineFinding | None:
         var.span.start,
         var.span.end,
     )
+
+
+def fold_missing_variables(
+    blocks: list[tuple[int, ParsedLine, tuple[LineFinding, ...]]],
+) -> list[tuple[int, ParsedLine, tuple[LineFinding, ...]]]:
+    """MB302 once per variable number: the first use keeps it and counts the others (the
+    program stops at the first with PS0115; renumbering the variable fixes them all)."""
+    uses: dict[str, list[int]] = {}  # "#48" -> the indexes in ``blocks`` of its lines
+    for n, (_, _, findings) in enumerate(blocks):
+        for f in findings:
+            if f.code == "MB302":
+                lines = uses.setdefault(f.message.split(" ", 1)[0], [])
+                if not lines or lines[-1] != n:
+                    lines.append(n)
+    repeated = {name: lines for name, lines in uses.items() if len(lines) > 1}
+    if not repeated:
+        return blocks
+    out = list(blocks)
+    for name, lines in repeated.items():
+        others = [blocks[n][0] + 1 for n in lines[1:]]
+        shown = ", ".join(map(str, others[:8])) + (
+            f" and {len(others) - 8} more" if len(others) > 8 else ""
+        )
+        first = lines[0]
+        line, parsed, findings = out[first]
+        kept: list[LineFinding] = []
+        for f in findings:
+            if f.code == "MB302" and f.message.startswith(name + " "):
+                if any(k.code == "MB302" and k.message.startswith(name + " ") for k in kept):
+                    continue  # a second use on the same line
+                f = f._replace(
+                    message=f"{f.message}; {name} is used on {len(others)} more "
+                    f"line{'s' if len(others) > 1 else ''} ({shown}), not reported one by one"
+                )
+            kept.append(f)
+        out[first] = (line, parsed, tuple(kept))
+        for n in lines[1:]:
+            line, parsed, findings = out[n]
+            out[n] = (
+                line,
+                parsed,
+                tuple(
+                    f
+                    for f in findings
+                    if not (f.code == "MB302" and f.message.startswith(name + " "))
+                ),
+            )
+    return [b for b in out if b[2]]
 
 
 def _extended_commons(parsed: ParsedLine) -> tuple[tuple[int, int, int], ...]:

@@ -610,7 +610,8 @@ Lowercase inside comments, which the control shows as it is, and
 lowercase in a file the checker recognises as another control's program (a Siemens or LinuxCNC
 file, whose own convention it is: MB002 names the file's dialect at each block FANUC rejects);
 a line FANUC rejects for another reason (its own diagnostic comes first). Only the first
-lowercase letter of a line is reported.
+lowercase letter of a line is reported, and in a file with lowercase on more than five lines
+(a generator's convention) only the first such line: its message counts and names the others.
 """,
 )
 
@@ -883,6 +884,44 @@ def fold_runaway_comments(blocks: list[LineFindings]) -> list[LineFindings]:
         if run:
             out.append(_first_of_run(line, run))
     return out
+
+
+# Lines with lowercase one by one up to this many; past it, a file written in lowercase (a
+# generator's or an editor's convention) gets one MB006 that names the others.
+LOWERCASE_LINES = 5
+
+
+def fold_lowercase(blocks: list[LineFindings]) -> list[LineFindings]:
+    """More than :data:`LOWERCASE_LINES` lines with lowercase (MB006): the first keeps one
+    MB006 that counts and names the others, whose own MB006 is not given."""
+    cased = [
+        n for n, (_, _, findings) in enumerate(blocks) if any(f.code == "MB006" for f in findings)
+    ]
+    if len(cased) <= LOWERCASE_LINES:
+        return blocks
+    others = [blocks[n][0] + 1 for n in cased[1:]]
+    shown = ", ".join(map(str, others[:8])) + (
+        f" and {len(others) - 8} more" if len(others) > 8 else ""
+    )
+    out = list(blocks)
+    line, parsed, findings = blocks[cased[0]]
+    out[cased[0]] = (
+        line,
+        parsed,
+        tuple(
+            f._replace(
+                message=f"{f.message}; {len(others)} more lines have lowercase (lines "
+                f"{shown}), not reported one by one"
+            )
+            if f.code == "MB006"
+            else f
+            for f in findings
+        ),
+    )
+    for n in cased[1:]:
+        line, parsed, findings = blocks[n]
+        out[n] = (line, parsed, tuple(f for f in findings if f.code != "MB006"))
+    return [b for b in out if b[2]]
 
 
 # A line of dots alone (a comment after them): what an excerpt of a program puts for the

@@ -615,9 +615,22 @@ def check_programs(ctx: RuleContext) -> Iterator[Diagnostic]:
                 )
         if ends or last_stops or last_statement is None:
             continue
+        if _calls_outside(ctx, program, last_statement):
+            continue  # the program it calls last, not in the files, may end the run
         yield _not_ended(
             ctx, program, programs[i + 1] if i + 1 < len(programs) else None, last_statement
         )
+
+
+def _calls_outside(ctx: RuleContext, program: Program, line: int) -> bool:
+    """Whether the block at ``line`` calls a program not in the analysed files (or one whose
+    number is computed): what that program does at its end (M30, M99) is not known."""
+    known = {p.number for p in ctx.index.programs} | set(ctx.workspace_programs or ())
+    return any(
+        call.line == line and (call.program is None or call.program not in known)
+        for call in program.calls
+        if call.kind in ("M98", "G65")
+    )
 
 
 def _stops_here(statement: Statement) -> bool:
@@ -672,7 +685,9 @@ delete an O number that does not start a program of its own.
     not_reported="""
 Text before the first O number (MB010 speaks of it), programs
 that end with `GOTO` or `#3000=n`, and a program that goes on past the part of a big file the
-analysis reads (MB013): its end is in the unread part.
+analysis reads (MB013): its end is in the unread part. Nor a program whose last block calls a
+program that is not in the analysed files (`M98 P9004` of a program kept on the control): what
+that program does at its end (`M30`, `M99`) is not known.
 """,
 )
 
