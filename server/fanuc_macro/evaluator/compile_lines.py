@@ -367,7 +367,7 @@ def _compile_words(nc: NcStatement, words: list[tuple[str, str, float]]) -> Comp
         if address not in values:
             values[address] = v
             if address not in ("G", "M", "N"):
-                if decimals <= 3:
+                if decimals <= 3 or address == "F":  # F as written: see recorded_words
                     motion_words[address] = v
                 else:
                     rounded = round(v, 3)  # the least input increment (IS-B)

@@ -132,6 +132,14 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
     yield from _after_end_of_record(ctx)
 
 
+def _tape_mark(parsed: ParsedLine) -> bool | None:
+    return True if parsed.tape_mark else None
+
+
+# The lines of a '%': few, kept from edit to edit.
+_tape_marks: LineMap[bool] = LineMap(_tape_mark, every_line=True)
+
+
 MB014_DOC = RuleDoc(
     "MB014",
     reports="""
@@ -170,14 +178,6 @@ and empty lines after the `%`. The checker's run still reads such blocks (so the
 the run treat them as loaded).
 """,
 )
-
-
-def _tape_mark(parsed: ParsedLine) -> bool | None:
-    return True if parsed.tape_mark else None
-
-
-# The lines of a '%': few, kept from edit to edit.
-_tape_marks: LineMap[bool] = LineMap(_tape_mark, every_line=True)
 
 
 def _after_end_of_record(ctx: RuleContext) -> Iterator[Diagnostic]:

@@ -227,23 +227,6 @@ run; a `G66` without `L` calls the macro after each move). An `M98 Q<n>` whose p
 )
 
 
-def _internal_call(program: Program, call: IndexCall, q_word: Word) -> Iterator[Diagnostic]:
-    """``M98 Q<n>`` without P calls the block N<n> of its own program (FANUC 0i-F / 30i; see
-    evaluator.calls): MB405 when the program has no N<n> (a computed Q is not known here)."""
-    q = constant_value(q_word.value)
-    if q is None or (q == int(q) and program.label_line(int(q)) is not None):
-        return
-    number = f"{q:g}"
-    yield make(
-        MB405,
-        f"M98 Q{number} calls N{number} of {program.display_name}, which has none (alarm "
-        "PS0078 SEQUENCE NUMBER NOT FOUND)",
-        call.line,
-        q_word.span.start,
-        q_word.span.end,
-    )
-
-
 def check(ctx: RuleContext) -> Iterator[Diagnostic]:
     local_programs = {p.number for p in ctx.index.programs if p.number is not None}
     known = local_programs | set(ctx.workspace_programs or ())
@@ -318,6 +301,23 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
     yield from _missing_programs(ctx, missing)
     yield from _missing_programs(ctx, vendor)
     yield from _m_calls_not_set_up(ctx)
+
+
+def _internal_call(program: Program, call: IndexCall, q_word: Word) -> Iterator[Diagnostic]:
+    """``M98 Q<n>`` without P calls the block N<n> of its own program (FANUC 0i-F / 30i; see
+    evaluator.calls): MB405 when the program has no N<n> (a computed Q is not known here)."""
+    q = constant_value(q_word.value)
+    if q is None or (q == int(q) and program.label_line(int(q)) is not None):
+        return
+    number = f"{q:g}"
+    yield make(
+        MB405,
+        f"M98 Q{number} calls N{number} of {program.display_name}, which has none (alarm "
+        "PS0078 SEQUENCE NUMBER NOT FOUND)",
+        call.line,
+        q_word.span.start,
+        q_word.span.end,
+    )
 
 
 def _decimal_point(line: int, address: str, value: Num) -> Fix:
