@@ -32,12 +32,24 @@ HEADER = (
 )
 
 
+def _plain(data: Any) -> Any:
+    """``data`` with Lark's Token names (str subclasses, which repr() writes as calls) as
+    plain strings: equal to them, and what the module can hold."""
+    if isinstance(data, dict):
+        return {_plain(k): _plain(v) for k, v in data.items()}
+    if isinstance(data, list | tuple):
+        return type(data)(_plain(v) for v in data)
+    if isinstance(data, str) and type(data) is not str:
+        return str(data)
+    return data
+
+
 def module_text() -> str:
     sys.path.insert(0, str(ROOT / "server"))
     from fanuc_macro.syntax.lalr_driver import lalr_tables
     from fanuc_macro.syntax.parser import grammar_crc32, grammar_lark
 
-    tables: dict[str, Any] = lalr_tables(grammar_lark())
+    tables: dict[str, Any] = _plain(lalr_tables(grammar_lark()))
     body = (
         f"GRAMMAR_CRC32 = {grammar_crc32()!r}\n\n\n"
         "def tables() -> dict[str, Any]:\n"

@@ -24,6 +24,13 @@ G76 P010060 Q100 R0.05
 (<--- keyword.other.gcode.fanuc-macro
 (   ^ entity.other.attribute-name.address.fanuc-macro
 (    ^^^^^^ constant.numeric.fanuc-macro
+G01 X51.0,A-45.0 ,R2.
+(<--- keyword.other.gcode.fanuc-macro
+(        ^ punctuation.separator.comma.fanuc-macro
+(         ^ entity.other.attribute-name.address.fanuc-macro
+(          ^^^^^ constant.numeric.fanuc-macro
+(                ^ punctuation.separator.comma.fanuc-macro
+(                 ^ entity.other.attribute-name.address.fanuc-macro
 G12.1
 (<----- keyword.other.gcode.fanuc-macro
 G65P9010A1.B2.

@@ -16,6 +16,7 @@ from ..program.g_code_systems import written
 from .calls import CallsPart
 from .canned_cycles import PROFILE_CYCLES, CyclesPart
 from .compile_lines import AXES, K_NC, CompiledLine, CompiledWord, recorded_words
+from .direct_drawing import missing_coordinate
 from .facts import CutsWithoutFeed, Motion, RunValues
 from .machine_base import (
     LOCAL_COORDINATES,
@@ -320,6 +321,8 @@ class MotionPart(CyclesPart, CallsPart):
             z = self._axis(values, "Z", "W") if lathe else None
         if lathe_cycle or code in LEFT_UNKNOWN:
             x, z = self._cycle_end(values, words, lathe_cycle, x, z)
+        elif lathe and ",A" in values and code in (0.0, 1.0):
+            x, z = self._end_by_angle(values, x, z)
         position = modal.position
         start_x = position.get("X")
         start_z = position.get("Z")
@@ -366,6 +369,30 @@ class MotionPart(CyclesPart, CallsPart):
             if "Y" in values:
                 position["Y"] = None if code in LEFT_UNKNOWN else values["Y"]
         return True
+
+    def _end_by_angle(
+        self, values: dict[str, Value], x: float | None, z: float | None
+    ) -> tuple[float | None, float | None]:
+        """A lathe's ",A" with X (U) or Z (W) alone: the other from the angle (diameter X)."""
+        angle = values[",A"]
+        start_x = self.modal.position.get("X")
+        start_z = self.modal.position.get("Z")
+        has_x = "X" in values or "U" in values
+        has_z = "Z" in values or "W" in values
+        if has_x == has_z:  # both (or neither) given: the angle moves nothing more
+            return x, z
+        found = None  # the other axis moves, to a place not known
+        if (
+            isinstance(angle, float)
+            and isinstance(start_x, float)
+            and isinstance(start_z, float)
+            and (x if has_x else z) is not None
+        ):
+            found = missing_coordinate(
+                (start_z, start_x), z if has_z else None, x if has_x else None, angle, 2.0
+            )
+            found = None if found is None else round(found, 4 if self.modal.inch else 3)
+        return (found, z) if has_z else (x, found)
 
     def _move_words(
         self,

@@ -32,6 +32,7 @@ from types import MappingProxyType
 from typing import Literal
 
 from . import stock_removal
+from .direct_drawing import missing_coordinate
 from .facts import Motion
 from .values import Unknown, Value
 
@@ -688,6 +689,8 @@ def _modal_motion(block: _Block, code: float, values: Mapping[str, Value]) -> No
             _lathe_cycle(block, code, values)
         return
     end, commanded = _targets(block, values)
+    if ",A" in values and code in (0.0, 1.0):
+        _end_by_angle(block, values, end)
     circle = code in (2.0, 3.0) and any(isinstance(values.get(w), float) for w in "IJK")
     if not commanded and not circle:
         return
@@ -703,6 +706,47 @@ def _modal_motion(block: _Block, code: float, values: Mapping[str, Value]) -> No
             block.go("arc", end, {a: modal.q(v) for a, v in centre.items()}, clockwise)
         return
     block.go(LINEAR_KINDS.get(code, "feed"), end)
+
+
+# The axes of the angle ",A": the plane's first (the angle's zero) and second.
+_ANGLE_AXES: Mapping[Plane, tuple[str, str]] = MappingProxyType(
+    {"XY": ("X", "Y"), "XZ": ("Z", "X"), "YZ": ("Y", "Z")}
+)
+
+
+def _end_by_angle(block: _Block, values: Mapping[str, Value], end: Point) -> None:
+    """A move with ",A" and one of its plane's axes: the other axis's end on the line at that
+    angle through the start (a lathe's X a diameter); lost when it cannot be worked out."""
+    modal = block.modal
+    first, second = ("Z", "X") if modal.lathe else _ANGLE_AXES[modal.plane]
+
+    def given(axis: str) -> bool:
+        return axis in values or (modal.lathe and LATHE_INCREMENTAL[axis] in values)
+
+    if given(first) == given(second):
+        return
+    missing = second if given(first) else first
+    angle = values[",A"]
+    here = modal.position
+    found = None
+    if (
+        isinstance(angle, float)
+        and first in here
+        and second in here
+        and (first if given(first) else second) in end
+    ):
+        found = missing_coordinate(
+            (here[first], here[second]),
+            end[first] if given(first) else None,
+            end[second] if given(second) else None,
+            angle,
+            2.0 if modal.lathe and second == "X" else 1.0,
+        )
+    if found is None:
+        if end.pop(missing, None) is not None:
+            block.lost.append(((missing,), "the angle ,A does not give the end of the move"))
+        return
+    end[missing] = modal.q(found)
 
 
 def _lathe_cycle(block: _Block, code: float, values: Mapping[str, Value]) -> None:

@@ -797,6 +797,17 @@ _ADDRESSES: Mapping[str, tuple[str, str]] = MappingProxyType(
         "X": ("X position, a diameter", "X position"),
         "Y": ("Y position", "Y position"),
         "Z": ("Z position", "Z position"),
+        # after a move in G01 (G02, G03): 0i-MF "Optional chamfering and corner R", 0i-TF
+        # "Chamfering and corner R" and "Direct drawing dimension programming"
+        ",A": (
+            "Angle of the line from the +Z axis (direct drawing dimensions)",
+            "Angle of the line in the plane (direct drawing dimensions)",
+        ),
+        ",C": (
+            "Chamfer to the next move: the length cut off the corner",
+            "Chamfer to the next move: the length cut off the corner",
+        ),
+        ",R": ("Corner radius to the next move", "Corner radius to the next move"),
     }
 )
 

@@ -291,6 +291,11 @@ class _ToAst:
         address = _ADDRESSES.get(letter) or letter.upper()
         return Word(address, c[1], _cover(c[0], c[1]), letter.islower())
 
+    def comma_word(self, c: list[Any]) -> Word:
+        # ",C2." is the address ",C": no C axis word, no arc's R (see the grammar)
+        letter = str(c[0])[-1]
+        return Word("," + letter.upper(), c[1], _cover(c[0], c[1]), letter.islower())
+
     def nc_words(self, c: list[Any]) -> NcStatement:
         return NcStatement(tuple(c), _cover(c[0], c[-1]))
 
@@ -905,6 +910,7 @@ _TOKEN_NAMES: Mapping[str, str] = MappingProxyType(
         "NUMBER": "a number",
         "SIGNED_NUMBER": "a number",
         "ADDRESS": "an address letter",
+        "COMMA_ADDRESS": "an address letter",  # ",C" ",R" ",A": said once with the others
         "LSQB": "'['",
         "RSQB": "']'",
         "EQUAL": "'='",
