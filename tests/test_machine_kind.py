@@ -41,6 +41,8 @@ MARKS = [
     ("G77 X46. Z-30. F0.25", LATHE, "G77, G78 or G79"),
     ("G71 P10 Q20 F0.25", LATHE, "multiple repetitive"),
     ("G73 P10 Q20 F0.25", LATHE, "multiple repetitive"),
+    ("G70 P10 Q20", LATHE, "multiple repetitive"),
+    ("G71 U2. R0.5", LATHE, "U or W"),
     ("G76 P020060 Q100 R0.05", LATHE, "G76's first block"),
     ("G32 Z-30. F1.5", LATHE, "G32"),
     ("G92 X19.2 Z-30. F1.5", LATHE, "G92 with F"),
@@ -65,6 +67,8 @@ def test_each_mark_tells_its_machine(block: str, machine: str, why: str) -> None
         "G90 X40. Z-10. F0.2",  # a lathe's turning cycle or a mill's absolute move
         "T1",  # a tool number alone
         "G00 X100. Z100.",
+        "G71",  # metric input on ISO-dialect controls; the lathe's cycle has P and Q
+        "G70 G40",
     ],
 )
 def test_blocks_of_both_machines_are_no_mark(block: str) -> None:

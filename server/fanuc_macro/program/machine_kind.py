@@ -14,7 +14,7 @@ blocks show, from marks only one machine's programs have:
   it is a cycle that needs its X and Z), ``G41``/``G42`` with ``D``; with lathes of G code
   system B or C (setting machine.gCodeSystem), ``G90`` and ``G91`` are no mill's marks;
 - a lathe's: ``G96`` constant surface speed, ``G50`` with words (spindle clamp, coordinate
-  system), ``U``/``W`` words, ``G70``-``G72`` and ``G73`` with ``P`` and ``Q``, the
+  system), ``U``/``W`` words, ``G70``-``G73`` with ``P`` and ``Q``, the
   two-block ``G76``'s first block (no axis), ``G32``, ``G92`` with ``F``, a four-digit ``T``
   (tool and offset, ``T0101``), ``G77``-``G79`` with an axis (the cycles of G code systems B
   and C; no G code of a mill).
@@ -169,7 +169,9 @@ def _line_marks(parsed: ParsedLine) -> tuple[tuple[str, str], ...] | None:
         marks.append((LATHE, "G50 with S, X or Z (spindle clamp, coordinate system)"))
     if not letters.isdisjoint("UW"):
         marks.append((LATHE, "a U or W word (incremental X or Z)"))
-    if not g.isdisjoint({70.0, 71.0, 72.0}) or (73.0 in g and {"P", "Q"} <= letters):
+    # With P and Q only: a bare G70/G71 is inch/metric input on other controls (ISO dialects,
+    # Heidenhain, Fagor); the cycles' first blocks have U or W, marks of their own.
+    if not g.isdisjoint({70.0, 71.0, 72.0, 73.0}) and {"P", "Q"} <= letters:
         marks.append((LATHE, "a multiple repetitive cycle (G70-G73 with P and Q)"))
     if 76.0 in g and letters.isdisjoint("XYZ"):
         marks.append((LATHE, "G76's first block (threading cycle parameters)"))
