@@ -473,9 +473,9 @@ async def test_a_file_without_o_line_is_known_by_its_name(
     await start(client, tmp_path)
     uri = (tmp_path / "main.nc").as_uri()
     open_text(client, uri, (tmp_path / "main.nc").read_text("utf-8"))
-    found = await diagnostics(client, uri, lambda d: "MB403" in codes(d))
-    # O8501 is the file O8501.NC; nothing is named O8502.
-    assert [d.message.split(",")[0] for d in found if d.code == "MB403"] == ["G65 calls O8502"]
+    found = await diagnostics(client, uri, lambda d: "MB410" in codes(d))
+    # O8501 is the file O8501.NC; nothing is named O8502 (a resident program's number: MB410).
+    assert [d.message.split(",")[0] for d in found if d.code == "MB410"] == ["G65 calls O8502"]
     [target] = await definition(client, uri, 1, 5)
     assert target.uri == (tmp_path / "O8501.NC").as_uri() and target.range.start.line == 2
     assert "no O line: the number is the file name's" in await hover(client, uri, 1, 5)
@@ -494,7 +494,7 @@ async def test_a_file_without_o_line_is_known_by_its_name(
             changes=[types.FileEvent(uri=later.as_uri(), type=types.FileChangeType.Created)]
         )
     )
-    await diagnostics(client, uri, lambda d: "MB403" not in codes(d))
+    await diagnostics(client, uri, lambda d: "MB410" not in codes(d))
 
 
 async def test_references_of_a_local(client: LanguageClient) -> None:

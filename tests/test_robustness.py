@@ -304,7 +304,7 @@ FOUND_BY_FUZZING: dict[str, tuple[str, str]] = {
     # name: (program, the code of its verdict)
     "G65 with ten integer words then X#[...]": (
         "O1\nG65P9010A1000B1000C1000D1000E1000F1000H1000I1000J1000K1000X#[#1+1]\nM30\n",
-        "MB403",  # the block reads (fast), and calls a program that is not there
+        "MB410",  # the block reads (fast), and calls a resident program that is not there
     ),
     "X11 22 times then '['": ("O1\n" + "X11" * 22 + "[\nM30\n", "MB001"),
     "a sum of 248 terms": ("O1\n#1=" + "+".join(["1"] * 248) + "\nM30\n", "MB012"),

@@ -70,6 +70,9 @@ MB408 = RuleInfo("MB408", "vendor-cycle-on-control", Severity.HINT,
 MB409 = RuleInfo("MB409", "m-code-call-not-set-up", Severity.HINT,
                  "An M code with P and argument words, as a macro call through a parameter "
                  "takes, that the settings do not set up as a call.", FAMILY)
+MB410 = RuleInfo("MB410", "resident-program-range", Severity.HINT,
+                 "A call of a program numbered O8000-O9999, the ranges the control keeps for "
+                 "its resident programs, that is not in the workspace.", FAMILY)
 # fmt: on
 
 
@@ -79,6 +82,23 @@ MB409 = RuleInfo("MB409", "m-code-call-not-set-up", Severity.HINT,
 # S, T, M, D, H take whole numbers and F is in mm/min (1 mm/min on IS-B), so those are not.
 # E has no axis on a mill and its increment is not settled (a lathe's precise lead): left out.
 SCALED_ARGUMENTS = frozenset("ABCIJKQRUVWXYZ")
+
+# Parameter 3202 #0 NE8 and #4 NE9 forbid editing the programs O8000-O8999 and O9000-O9999
+# (FANUC Series 0i-F Parameter Manual B-64610EN, "Parameters of program"; also the 16i/18i
+# B-63530EN): the ranges machine builders, vendors and shops keep their resident programs in,
+# and the custom G/M/T code calls' targets (O9000-O9029). Unverified against a copy here.
+_RESIDENT_RANGES = ((8000, 8999, "NE8"), (9000, 9999, "NE9"))
+
+
+def resident_range(number: int) -> str | None:
+    """The protected range ``number`` is in, as a message names it; None outside them."""
+    for low, high, bit in _RESIDENT_RANGES:
+        if low <= number <= high:
+            return (
+                f"O{low}-O{high} holds the control's resident programs (parameter 3202 {bit} "
+                "locks their editing)"
+            )
+    return None
 
 
 MB401_DOC = RuleDoc(
@@ -233,6 +253,7 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
     # Calls of a program that is not there, by program: one diagnostic each, at the first call.
     missing: dict[int, list[IndexCall]] = {}
     vendor: dict[int, list[IndexCall]] = {}  # known vendor cycles, MB408's
+    resident: dict[int, list[IndexCall]] = {}  # O8000-O9999, MB410's
     for program in ctx.index.programs:
         for call in program.calls:
             line = call.line
@@ -257,7 +278,14 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
                 continue
             number = call.program
             if number is not None and number not in known and not on_control(ctx.config, number):
-                (vendor if known_cycle(number) else missing).setdefault(number, []).append(call)
+                kept = (
+                    vendor
+                    if known_cycle(number)
+                    else resident
+                    if resident_range(number)
+                    else missing
+                )
+                kept.setdefault(number, []).append(call)
             if call.repeat is not None and not 1 <= call.repeat <= 9999:
                 l_word = next((w for w in words if w.address == "L"), None)
                 at = l_word.span if l_word is not None else span
@@ -300,6 +328,7 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
                     )
     yield from _missing_programs(ctx, missing)
     yield from _missing_programs(ctx, vendor)
+    yield from _missing_programs(ctx, resident)
     yield from _m_calls_not_set_up(ctx)
 
 
@@ -372,7 +401,8 @@ reports where it leads, MB706), Haas `M97` (MB002), and each further call of a p
 reported. Programs the control calls through parameters (custom G and M codes calling
 O9010–O9029, a T code calling O9000, set up in `machine.customCalls`), which the parameter
 says the control has. A program listed in `machine.programsOnControl` (`--on-control`), and
-a vendor's known cycle (MB408 names it). A program in another
+a vendor's known cycle (MB408 names it), and a program numbered O8000-O9999, the ranges of
+resident programs (MB410's hint). A program in another
 file of the workspace, or of the files given together, or a file without an O line named by
 the number. Nothing, in a file read only in part (MB013): the program may be in the unread part.
 """,
@@ -411,6 +441,40 @@ Other numbers not in the workspace are MB403's.
 )
 
 
+MB410_DOC = RuleDoc(
+    "MB410",
+    reports="""
+`M98 P`, `G65 P`, `G66 P` or `G66.1 P` with a constant number in O8000-O8999 or O9000-O9999
+that no file checked with it holds, and that is no vendor's known cycle (MB408's). Each
+program once, at its first call, with the other calls as related places.
+""",
+    why="""
+Those two ranges are the ones the control can protect from editing (parameter 3202, NE8 and
+NE9): machine builders, probe vendors and shops keep their resident programs there (a tool
+change, a pallet change, a probing routine), in the control's memory rather than beside the
+part programs. The call is most likely right, but the analysis cannot follow it, and if the
+program is not in the memory the control stops with PS0076 PROGRAM NOT FOUND.
+""",
+    example="""
+```nc
+O1000 (LATHE PART)
+/2 M98 P8001 (BAR PULL)
+M30
+```
+""",
+    fix="""
+Nothing to fix when the program is on the control: list it in `machine.programsOnControl`
+(`--on-control O8000-O9999`) to silence the hint, or check its copy with the program
+(`fanuc-macro check main.nc resident/`) to have its run followed.
+""",
+    not_reported="""
+A program in the workspace (it is run), one the settings list as kept on the control, a
+vendor's known cycle (MB408), a computed number (`M98 P#1`). Numbers outside the two ranges
+are MB403's warnings.
+""",
+)
+
+
 def _missing_programs(
     ctx: RuleContext, missing: dict[int, list[IndexCall]]
 ) -> Iterator[Diagnostic]:
@@ -427,15 +491,27 @@ def _missing_programs(
             also = line_list([c.line for c in calls[1:]])
             more = f"; it is called {len(calls)} times in all (also at lines {also})"
         cycle = known_cycle(number)
-        message = (
-            f"{first.kind} calls O{number:04d}, which is not in {where} (alarm PS0076 if it "
-            f"is not in the control's memory){more}"
-            if cycle is None
-            else f"{first.kind} calls {describe(cycle)}; a cycle kept on the control, not in "
-            f"{where}: the analysis does not follow it{more}"
-        )
+        protected = resident_range(number)
+        if cycle is not None:
+            code = MB408
+            message = (
+                f"{first.kind} calls {describe(cycle)}; a cycle kept on the control, not in "
+                f"{where}: the analysis does not follow it{more}"
+            )
+        elif protected is not None:
+            code = MB410
+            message = (
+                f"{first.kind} calls O{number:04d}, which is not in {where}: {protected}; "
+                f"the call needs it in the control's memory (alarm PS0076 if not){more}"
+            )
+        else:
+            code = MB403
+            message = (
+                f"{first.kind} calls O{number:04d}, which is not in {where} (alarm PS0076 if "
+                f"it is not in the control's memory){more}"
+            )
         yield make(
-            MB403 if cycle is None else MB408,
+            code,
             message,
             first.line,
             span.start,
