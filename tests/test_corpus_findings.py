@@ -137,6 +137,11 @@ FINDINGS: dict[str, list[tuple[int, str, bool, str]]] = {
         ),
         (20, "MB404", True, SCALED),
         (21, "MB404", True, SCALED),
+        # O3002 (3002.nc) reads Y's #25 for X too (G0X#25Y#25) and never T's #20
+        (20, "MB411", True, "X0. fills #24, which O3002 never names: lost (it moves X to #25)"),
+        (20, "MB411", True, "T200 fills #20, which O3002 never names: the value is lost"),
+        (21, "MB411", True, "X0. fills #24, which O3002 never names: lost (it moves X to #25)"),
+        (21, "MB411", True, "T200 fills #20, which O3002 never names: the value is lost"),
     ],
     "dennisselyaev__gcode__3001.nc": [
         (61, "MB006", True, "'G1X#611f#9': a lowercase address in a FANUC 0i-MD program"),

@@ -329,7 +329,7 @@ def analyse(
                 log_failure(__name__, "evaluation of %s failed", uri)
                 message = internal_error("the evaluator (its rules MB501-MB903 did not run)", err)
                 failed.append(make(MB000, message, 0, 0, 0))
-        ctx = RuleContext(doc, index, config, workspace_programs, facts)
+        ctx = RuleContext(doc, index, config, workspace_programs, facts, other_documents)
         found = failed + run_checks(ctx, [*ALL_CHECKS, *extra_checks], cancel)
         threads: list[Thread] = []
         if facts is not None:

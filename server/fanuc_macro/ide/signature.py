@@ -13,6 +13,7 @@ from dataclasses import dataclass
 from types import MappingProxyType
 
 from ..program import knowledge
+from ..program.arguments import argument_numbers
 from ..program.index import Program
 from ..program.variables import ARGUMENT_VARIABLES, FORBIDDEN_ARGUMENTS
 from ..syntax.lines import cut_comments
@@ -56,27 +57,6 @@ _FUNCTION_PARAMETERS: Mapping[str, tuple[str, ...]] = MappingProxyType(
         "ADP": ("a local #1-#33 given as an argument",),
     }
 )
-
-
-def argument_numbers(letters: list[str]) -> list[int | None]:
-    """The local each argument letter of a call fills, in order: specification I, and for an
-    I, J or K that repeats or comes out of order, specification II (sets of three from #4; the
-    later of two letters filling one local wins: ``I-3. I4. D5.`` gives #4 -3. and #7 5.)."""
-    out: list[int | None] = []
-    ijk_set = -1
-    seen: set[str] = set()
-    for letter in letters:
-        if letter in "IJK":
-            order = "IJK".index(letter)
-            if ijk_set < 0 or letter in seen or any(order < "IJK".index(s) for s in seen):
-                ijk_set += 1
-                seen = set()
-            seen.add(letter)
-            number = 4 + 3 * ijk_set + order
-            out.append(number if number <= 33 else None)
-        else:
-            out.append(ARGUMENT_VARIABLES.get(letter))
-    return out
 
 
 def _top_level_words(code: str, end: int) -> list[tuple[str, int]]:

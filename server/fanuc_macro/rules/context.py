@@ -12,7 +12,7 @@ from ..diagnostics import Diagnostic, Fix
 from ..evaluator.checkpoints import lines_with_other_facts, stretches_of
 from ..evaluator.facts import DocumentFacts, Facts, Finding
 from ..line_maps import Diff, line_diff
-from ..program.index import ProgramIndex
+from ..program.index import Program, ProgramIndex
 from ..syntax.tree import Block, Document, ParsedLine, Statement
 
 if TYPE_CHECKING:
@@ -34,8 +34,21 @@ class RuleContext:
     # Program numbers defined anywhere in the workspace (None: only this file is known).
     workspace_programs: frozenset[int] | None = None
     facts: Facts | None = None  # the evaluator's, when it ran
+    # The workspace's other files, as the evaluator got them: the programs this one calls.
+    other_documents: Sequence[tuple[str, Document, ProgramIndex]] = ()
     # What several rules derive from the same facts, worked out once per analysis.
     memo: dict[str, object] = field(default_factory=dict, compare=False, repr=False)
+
+    def program_numbered(self, number: int) -> tuple[Document, Program] | None:
+        """The program ``number`` and its document: this file's, else another file's."""
+        found = self.index.by_number(number)
+        if found is not None:
+            return self.doc, found
+        for _uri, doc, index in self.other_documents:
+            found = index.by_number(number)
+            if found is not None:
+                return doc, found
+        return None
 
     def doc_facts(self) -> DocumentFacts | None:
         return None if self.facts is None else self.facts.by_uri.get(self.doc.uri)

@@ -20,10 +20,11 @@ from ..diagnostics import (
 )
 from ..line_maps import LineMap
 from ..per_line import PerLine
+from ..program.arguments import LocalsNamed, argument_numbers, locals_named
 from ..program.custom_calls import unset_m_calls
 from ..program.index import Call as IndexCall
 from ..program.index import Program
-from ..program.variables import FORBIDDEN_ARGUMENTS
+from ..program.variables import ARGUMENT_VARIABLES, FORBIDDEN_ARGUMENTS
 from ..program.vendor_cycles import describe, known_cycle
 from ..syntax.marks import constant_value
 from ..syntax.parser import statements_of
@@ -73,6 +74,9 @@ MB409 = RuleInfo("MB409", "m-code-call-not-set-up", Severity.HINT,
 MB410 = RuleInfo("MB410", "resident-program-range", Severity.HINT,
                  "A call of a program numbered O8000-O9999, the ranges the control keeps for "
                  "its resident programs, that is not in the workspace.", FAMILY)
+MB411 = RuleInfo("MB411", "argument-not-used", Severity.WARNING,
+                 "A G65/G66 argument whose local the called program never names: its value is "
+                 "lost.", FAMILY)
 # fmt: on
 
 
@@ -330,6 +334,7 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
     yield from _missing_programs(ctx, vendor)
     yield from _missing_programs(ctx, resident)
     yield from _m_calls_not_set_up(ctx)
+    yield from _arguments_not_used(ctx)
 
 
 def _internal_call(program: Program, call: IndexCall, q_word: Word) -> Iterator[Diagnostic]:
@@ -826,3 +831,97 @@ def _words(ctx: RuleContext, line: int) -> tuple[Word, ...]:
         if isinstance(nc, NcStatement):
             return nc.words
     return ()
+
+
+MB411_DOC = RuleDoc(
+    "MB411",
+    reports="""
+An argument word of a `G65`, `G66` or `G66.1` call (`I5.`, `R20.`) whose local variable (I
+#4, R #18, by argument specification I, or II for repeated I, J, K) the called program never
+names, in any block, on any path, read or set. The called program must be in the files
+checked (this one or the others given with it). The message names the locals the program
+reads before it sets them that the call does not pass: usually the letter meant.
+""",
+    why="""
+A G65 call gives its arguments to the called program's locals and nothing else: an argument
+the program never reads is lost, and the local the programmer meant to fill stays vacant.
+`G65 P9010 I50. H6.` to a bolt circle that reads its radius from `#18` (R) drills six holes
+at the centre: #18 is vacant, and a vacant variable counts as 0.
+""",
+    example="""
+```nc
+O1000 (SIX HOLES ON A 50 MM RADIUS)
+G65 P9010 I50. H6. Z-10. F150.
+M30
+O9010 (BOLT CIRCLE)
+#1=0
+WHILE[#1LT#11]DO1
+G81 X[#18*COS[#1*360/#11]] Y[#18*SIN[#1*360/#11]] Z#26 R2. F#9
+#1=#1+1
+END1
+G80
+M99
+```
+""",
+    fix="""
+Pass the letter the program reads (`R50.` for #18), or read the argument in the program.
+""",
+    not_reported="""
+A program that names a local indirectly (`#[#1+4]`: it may read any of them) or calls a
+subprogram with `M98` (it shares the locals, and may read them there), one that names no local
+at all (a placeholder of a cycle kept on the control, a program of fixed moves), a called
+program not in
+the files checked (MB403, MB408, MB410), a computed program number, `M98` (it passes no
+arguments), and the codes the settings make call a program (their words are checked as
+arguments only by the run).
+""",
+)
+
+
+def _arguments_not_used(ctx: RuleContext) -> Iterator[Diagnostic]:
+    uses: dict[tuple[int, int], LocalsNamed | None] = {}  # (document, first line) -> use
+    for program in ctx.index.programs:
+        for call in program.calls:
+            if call.kind not in _MACRO_CALLS or call.code is not None or call.program is None:
+                continue
+            found = ctx.program_numbered(call.program)
+            if found is None:
+                continue
+            doc, callee = found
+            key = (id(doc), callee.first_line)
+            if key not in uses:
+                uses[key] = locals_named(doc, callee)
+            use = uses[key]
+            if use is None or not use.named:  # no local at all: a placeholder, fixed moves
+                continue
+            words = call.arguments
+            numbers = argument_numbers([w.address for w in words])
+            given = {n for n in numbers if n is not None}
+            wanted = [n for n in use.read_first if n not in given]
+            also = ""
+            if wanted:
+                names = ", ".join(_local_name(n) for n in wanted[:4])
+                more = " and more" if len(wanted) > 4 else ""
+                also = f"; it reads {names}{more}, which this call does not pass"
+            for word, n in zip(words, numbers, strict=True):
+                if n is None or n in use.named:
+                    continue
+                written = ctx.doc.blocks[call.line].text[word.span.start : word.span.end]
+                yield make(
+                    MB411,
+                    f"{written.strip()} gives #{n} to {callee.display_name}, which never uses "
+                    f"#{n}: the value is lost{also}",
+                    call.line,
+                    word.span.start,
+                    word.span.end,
+                )
+
+
+_MACRO_CALLS = frozenset({"G65", "G66", "G66.1"})
+_LETTER_OF = {n: letter for letter, n in ARGUMENT_VARIABLES.items()}
+
+
+def _local_name(n: int) -> str:
+    """``#18 (R)``: a local with the letter that passes it (specification I)."""
+    letter = _LETTER_OF.get(n)
+    return f"#{n} ({letter})" if letter is not None else f"#{n}"

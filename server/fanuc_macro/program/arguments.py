@@ -1,0 +1,92 @@
+"""A macro's arguments: the local each argument letter of a call fills, and the locals a called
+program names at all.
+
+FANUC Custom Macro B (shared reference macro-b.md §5.2): argument specification I gives A #1,
+B #2, C #3, I #4, J #5, K #6, D #7 ... Z #26; specification II gives A, B, C and up to ten sets
+of I, J, K, filling #4-#33 in sets of three. A G65 or G66 call opens a new level of locals
+holding the arguments; M98 opens none, so a subprogram reads and writes its caller's locals.
+"""
+
+from __future__ import annotations
+
+import re
+from typing import NamedTuple
+
+from ..syntax.tree import Document
+from .index import Program
+from .variables import ARGUMENT_VARIABLES
+
+# A variable named by number, with the spaces FANUC allows (``# 4``, ``#04``); ``#[`` is an
+# indirect one, whose number the text does not say.
+_DIRECT = re.compile(r"#\s*0*(\d+)")
+_INDIRECT = re.compile(r"#\s*\[")
+# The variable a block assigns, after its optional block delete and N number.
+_ASSIGNED = re.compile(r"\s*(?:/\d?\s*)?(?:N\s*\d+\s*)?(#\s*0*(\d+))\s*=")
+# Calls that open no level of locals: the called program shares this one's (M98, Haas M97).
+_SHARING_CALLS = frozenset({"M98", "M97"})
+
+
+def argument_numbers(letters: list[str]) -> list[int | None]:
+    """The local each argument letter of a call fills, in order: specification I, and for an
+    I, J or K that repeats or comes out of order, specification II (sets of three from #4; the
+    later of two letters filling one local wins: ``I-3. I4. D5.`` gives #4 -3. and #7 5.)."""
+    out: list[int | None] = []
+    ijk_set = -1
+    seen: set[str] = set()
+    for letter in letters:
+        if letter in "IJK":
+            order = "IJK".index(letter)
+            if ijk_set < 0 or letter in seen or any(order < "IJK".index(s) for s in seen):
+                ijk_set += 1
+                seen = set()
+            seen.add(letter)
+            number = 4 + 3 * ijk_set + order
+            out.append(number if number <= 33 else None)
+        else:
+            out.append(ARGUMENT_VARIABLES.get(letter))
+    return out
+
+
+class LocalsNamed(NamedTuple):
+    """The locals #1-#33 a program names (``named``), and those of them it reads before any
+    block of it sets them, in the order of the lines (``read_first``): what it takes from
+    its call."""
+
+    named: frozenset[int]
+    read_first: tuple[int, ...]
+
+
+def locals_named(doc: Document, program: Program) -> LocalsNamed | None:
+    """The locals #1-#33 that ``program``'s blocks name anywhere outside comments (read or
+    set, on any path, in any block, parsed or not); None when the text cannot say: an indirect
+    variable ``#[...]`` may be any of them, and a subprogram it calls with M98 shares them."""
+    if any(call.kind in _SHARING_CALLS for call in program.calls):
+        return None
+    named: set[int] = set()
+    assigned: set[int] = set()
+    read_first: dict[int, None] = {}  # in the order of the lines
+    for block in doc.blocks[program.first_line : program.end_line]:
+        parsed = block.parsed
+        text = parsed.text
+        if "#" not in text:
+            continue
+        for comment in parsed.comments:  # blanked: a '#' in a comment names nothing
+            start, end = comment.span.start, comment.span.end
+            text = text[:start] + " " * (end - start) + text[end:]
+        if _INDIRECT.search(text):
+            return None
+        target = _ASSIGNED.match(text)
+        at = -1 if target is None else target.start(1)
+        reads = [
+            n
+            for m in _DIRECT.finditer(text)
+            if m.start() != at and 1 <= (n := int(m.group(1))) <= 33
+        ]
+        for n in reads:  # '#1=#1+1' reads #1 before it sets it
+            if n not in assigned:
+                read_first[n] = None
+        named.update(reads)
+        if target is not None and 1 <= (n := int(target.group(2))) <= 33:
+            named.add(n)
+            assigned.add(n)
+    return LocalsNamed(frozenset(named), tuple(read_first))
