@@ -60,3 +60,19 @@ def test_an_argument_the_macro_in_another_file_never_uses(tmp_path: Path) -> Non
     ]
     alone = run(tmp_path, "check", "main.nc")  # the macro not checked with it: nothing said
     assert "MB411" not in alone.stdout
+
+
+def test_m98_words_the_subprogram_in_another_file_reads_as_arguments(tmp_path: Path) -> None:
+    main = "O1000\nG90 G17 G54\nT3 M06\nG43 H3 Z50.\nS1200 M03\n{call}\nG00 Z50.\nM30\n"
+    (tmp_path / "O9010.nc").write_text(BOLT_CIRCLE)
+    (tmp_path / "main.nc").write_text(main.format(call="M98 P9010 R50. H6. Z-10. F150."))
+    result = run(tmp_path, "check", "main.nc", "O9010.nc")
+    rows = [line for line in result.stdout.splitlines() if " MB412 " in line]
+    assert rows == [
+        "main.nc:6:11: MB412 warning R50. H6. Z-10. F150. are no arguments: M98 passes none, "
+        "and O9010 reads #18 (R), #11 (H), #26 (Z), #9 (F) before setting them, vacant here; "
+        "G65 P9010 passes them"
+    ]
+    (tmp_path / "main.nc").write_text(main.format(call="G65 P9010 R50. H6. Z-10. F150."))
+    twin = run(tmp_path, "check", "main.nc", "O9010.nc")
+    assert "MB412" not in twin.stdout and "MB411" not in twin.stdout

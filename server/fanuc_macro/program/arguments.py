@@ -56,11 +56,14 @@ class LocalsNamed(NamedTuple):
     read_first: tuple[int, ...]
 
 
-def locals_named(doc: Document, program: Program) -> LocalsNamed | None:
+def locals_named(
+    doc: Document, program: Program, with_subprograms: bool = True
+) -> LocalsNamed | None:
     """The locals #1-#33 that ``program``'s blocks name anywhere outside comments (read or
     set, on any path, in any block, parsed or not); None when the text cannot say: an indirect
-    variable ``#[...]`` may be any of them, and a subprogram it calls with M98 shares them."""
-    if any(call.kind in _SHARING_CALLS for call in program.calls):
+    variable ``#[...]`` may be any of them, and (``with_subprograms``) a subprogram it calls
+    with M98 shares them."""
+    if with_subprograms and any(call.kind in _SHARING_CALLS for call in program.calls):
         return None
     named: set[int] = set()
     assigned: set[int] = set()

@@ -77,6 +77,9 @@ MB410 = RuleInfo("MB410", "resident-program-range", Severity.HINT,
 MB411 = RuleInfo("MB411", "argument-not-used", Severity.WARNING,
                  "A G65/G66 argument whose local the called program never names: its value is "
                  "lost.", FAMILY)
+MB412 = RuleInfo("MB412", "m98-argument", Severity.WARNING,
+                 "A word of an M98 block that the subprogram reads as an argument: M98 passes "
+                 "none.", FAMILY)
 # fmt: on
 
 
@@ -335,6 +338,7 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
     yield from _missing_programs(ctx, resident)
     yield from _m_calls_not_set_up(ctx)
     yield from _arguments_not_used(ctx)
+    yield from _subprogram_arguments(ctx)
 
 
 def _internal_call(program: Program, call: IndexCall, q_word: Word) -> Iterator[Diagnostic]:
@@ -917,6 +921,94 @@ def _arguments_not_used(ctx: RuleContext) -> Iterator[Diagnostic]:
                 )
 
 
+MB412_DOC = RuleDoc(
+    "MB412",
+    reports="""
+A word of an `M98` block (`R50.`, `H6.`) whose argument local (R #18, H #11) the called
+subprogram reads before it sets it, when the calling program never names that local and takes
+none from a caller of its own (it reads no local before setting it): the word was meant as an
+argument, as `G65` passes one. The subprogram must be in the files checked.
+""",
+    why="""
+`M98` passes no arguments: the subprogram shares its caller's locals, and the block's other
+words are NC words, executed before the call (an `R` or `H` alone does nothing, an `X` moves).
+The subprogram reads the local vacant, as 0, or leaves the word out of its blocks.
+""",
+    example="""
+```nc
+O1000 (SIX HOLES ON A 50 MM RADIUS)
+M98 P9010 R50. H6.
+M30
+O9010 (BOLT CIRCLE)
+#1=0
+WHILE[#1LT#11]DO1
+G81 X[#18*COS[#1*360/#11]] Y[#18*SIN[#1*360/#11]] Z-10. R2. F150.
+#1=#1+1
+END1
+G80
+M99
+```
+""",
+    fix="""
+Call it with `G65 P9010 R50. H6.`, or set the locals before the `M98` (`#18=50.`).
+""",
+    not_reported="""
+Words whose local the subprogram does not read before setting it, or that the calling program
+names (it may set it before the call), a calling program that reads a local before setting it
+(a macro or subprogram whose locals come from its own caller), `P`, `L`, `Q`, `M`, a subprogram
+not in the files checked, and one that names a local indirectly (`#[...]`).
+""",
+)
+
+
+def _subprogram_arguments(ctx: RuleContext) -> Iterator[Diagnostic]:
+    for program in ctx.index.programs:
+        calls = [c for c in program.calls if c.kind == "M98" and c.program is not None]
+        if not calls:
+            continue
+        caller = locals_named(ctx.doc, program, with_subprograms=False)
+        if caller is None or caller.read_first:
+            continue
+        for call in calls:
+            assert call.program is not None
+            found = ctx.program_numbered(call.program)
+            if found is None:
+                continue
+            doc, callee = found
+            use = locals_named(doc, callee, with_subprograms=False)
+            if use is None:
+                continue
+            meant: list[tuple[Word, int]] = []
+            for word in _words(ctx, call.line):
+                n = ARGUMENT_VARIABLES.get(word.address)
+                if (
+                    n is not None
+                    and word.address not in _NOT_M98_ARGUMENTS
+                    and n in use.read_first
+                    and n not in caller.named
+                ):
+                    meant.append((word, n))
+            if not meant:
+                continue
+            text = ctx.doc.blocks[call.line].text
+            words = " ".join(text[w.span.start : w.span.end].strip() for w, _ in meant)
+            locals_ = ", ".join(f"#{n} ({w.address})" for w, n in meant)
+            one = len(meant) == 1
+            yield make(
+                MB412,
+                f"{words} {'is no argument' if one else 'are no arguments'}: M98 passes none, "
+                f"and {callee.display_name} reads {locals_} before setting "
+                f"{'it' if one else 'them'}, vacant here; G65 P{call.program} passes "
+                f"{'it' if one else 'them'}",
+                call.line,
+                meant[0][0].span.start,
+                meant[-1][0].span.end,
+            )
+
+
+# Words of an M98 block that have their own meaning there: the call, its repeat count, a
+# sequence number to call (M98 Q), other M codes.
+_NOT_M98_ARGUMENTS = frozenset("MQ")
 _MACRO_CALLS = frozenset({"G65", "G66", "G66.1"})
 _LETTER_OF = {n: letter for letter, n in ARGUMENT_VARIABLES.items()}
 
