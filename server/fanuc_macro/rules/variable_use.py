@@ -10,8 +10,12 @@ from ..diagnostics import Diagnostic, RuleDoc, RuleInfo, Severity, make
 from ..evaluator.facts import DocumentFacts, Finding, NoSuchVariable, ReadOnlyWrite
 from ..evaluator.machine import compiled
 from ..line_maps import Kept, LineMap
+from ..program.arguments import locals_named
+from ..program.index import Program
 from ..program.variables import ARGUMENT_VARIABLES
-from ..syntax.tree import Assign, IfThen, ParsedLine, Var
+from ..syntax.marks import constant_value
+from ..syntax.parser import statements_of
+from ..syntax.tree import Assign, Compare, Cond, IfGoto, IfThen, Logic, Num, ParsedLine, Var
 from ..syntax.walk import subexpressions, top_expressions
 from .context import RuleContext, Seen
 
@@ -32,6 +36,9 @@ MB903 = RuleInfo("MB903", "indirect-no-such-variable", Severity.ERROR,
 MB904 = RuleInfo("MB904", "arguments-assumed", Severity.HINT,
                  "A program ending with M30 or M02 reads locals before setting them: it is "
                  "analysed as a macro with unknown arguments.", FAMILY)
+MB905 = RuleInfo("MB905", "vacant-compared-with-zero", Severity.WARNING,
+                 "An argument check [#n EQ 0] or [#n NE 0] before an alarm: a vacant #n is "
+                 "not equal to 0, so a missing argument passes it.", FAMILY)
 # fmt: on
 
 
@@ -143,6 +150,7 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
     for f in ctx.findings(NoSuchVariable):
         yield make(MB903, f.message, f.line, f.column, f.end_column)
     yield from _assumed_arguments(ctx, facts)
+    yield from _zero_tests_of_arguments(ctx)
     # Locals that were vacant every time a block read them: few or none in most programs. The
     # run records the reads of the variables a block names (CompiledLine.reads), so only the
     # lines that name a local are asked, not every read of the run.
@@ -330,3 +338,135 @@ def _assumed_arguments(ctx: RuleContext, facts: DocumentFacts) -> Iterator[Diagn
             start,
             end,
         )
+
+
+MB905_DOC = RuleDoc(
+    "MB905",
+    reports="""
+A condition `[#n EQ 0]` or `[#n NE 0]` on a local the program takes from its call (it reads
+the local before any block of it sets it) that decides whether an alarm (`#3000=`) is
+raised: `IF [#7 EQ 0] GOTO 90` with `N90 #3000=1 (D MISSING)`, `IF [#7 EQ 0] THEN #3000=1`,
+or `IF [#7 NE 0] GOTO 10` with the alarm in the next block. The program never compares that
+local with `#0`.
+""",
+    why="""
+On FANUC a vacant variable differs from 0 in `EQ` and `NE` (and only there): with `D` not
+given, `#7` is vacant, `[#7 EQ 0]` is false and `[#7 NE 0]` true, so the check meant to
+stop a call without `D` lets it through, and the macro runs with #7 as 0 in arithmetic and
+its word left out of NC blocks. FANUC Custom Macro B's table of vacant variables in
+conditions (the shared reference macro-b.md §2.3).
+""",
+    example="""
+```nc
+O9050 (POCKET: D TOOL DIAMETER)
+IF [#7 EQ 0] GOTO 90
+G41 D#7 X#24 Y#25 F#9
+M99
+N90 #3000=1 (D MISSING)
+```
+""",
+    fix="""
+Test for a missing argument with `#0`: `IF [#7 EQ #0] GOTO 90`; keep `[#7 EQ 0]` too if a
+zero `D` is also a mistake (`IF [#7 EQ #0] GOTO 90` then `IF [#7 EQ 0] GOTO 90`).
+""",
+    not_reported="""
+A local the program also compares with `#0` anywhere (it checks vacancy), one it sets before
+reading it, a comparison with 0 that no alarm depends on (a zero value may be meant), other
+comparisons (`GT`, `LT`, `GE`, `LE` treat a vacant variable as 0), and programs that name a
+local indirectly.
+""",
+)
+
+
+def _zero_tests_of_arguments(ctx: RuleContext) -> Iterator[Diagnostic]:
+    blocks = ctx.doc.blocks
+    for program in ctx.index.programs:
+        use = locals_named(ctx.doc, program, with_subprograms=False)
+        if use is None or not use.read_first:
+            continue
+        arguments = set(use.read_first)
+        tests: list[tuple[int, Compare, int, IfGoto | IfThen]] = []  # line, test, local
+        checked: set[int] = set()  # the locals compared with #0
+        for line in range(program.first_line, program.end_line):
+            for statement in statements_of(blocks[line].statement):
+                if not isinstance(statement, IfGoto | IfThen):
+                    continue
+                for test in _comparisons(statement.cond):
+                    for side, other in ((test.left, test.right), (test.right, test.left)):
+                        n = _local_number(side)
+                        if n is None:
+                            continue
+                        if isinstance(other, Var) and other.number == 0:
+                            checked.add(n)
+                        elif (
+                            test.op in ("EQ", "NE")
+                            and isinstance(other, Num)
+                            and other.value == 0.0
+                            and n in arguments
+                        ):
+                            tests.append((line, test, n, statement))
+        for line, test, n, statement in tests:
+            if n in checked:
+                continue
+            alarm = _alarm_line(ctx, program, line, test.op, statement)
+            if alarm is None:
+                continue
+            letter = ARGUMENT_LETTER.get(n)
+            missing = f"with no {letter} in the call" if letter is not None else "not given"
+            outcome = "false" if test.op == "EQ" else "true"
+            which = "its alarm" if alarm == line else f"the alarm on line {alarm + 1}"
+            yield make(
+                MB905,
+                f"[#{n} {test.op} 0] is {outcome} for a vacant #{n}: {missing}, the check "
+                f"passes and {which} is not raised (a vacant variable differs from 0 in EQ "
+                f"and NE); [#{n} EQ #0] tests for a missing argument",
+                line,
+                test.span.start,
+                test.span.end,
+            )
+
+
+def _comparisons(cond: Cond) -> Iterator[Compare]:
+    stack: list[Cond] = [cond]
+    while stack:
+        node = stack.pop()
+        if isinstance(node, Logic):
+            stack.append(node.first)
+            stack.extend(c for _, c in node.rest)
+        elif isinstance(node, Compare):
+            yield node
+
+
+def _local_number(expr: object) -> int | None:
+    if isinstance(expr, Var) and expr.number is not None and 1 <= expr.number <= 33:
+        return int(expr.number)
+    return None
+
+
+def _alarm_line(
+    ctx: RuleContext, program: Program, line: int, op: str, statement: IfGoto | IfThen
+) -> int | None:
+    """The line of the #3000 alarm the test decides: the THEN's, the block the GOTO reaches
+    (EQ: the test true means "not given"), or the next block (NE: true goes on); None when no
+    alarm depends on it."""
+    blocks = ctx.doc.blocks
+    if isinstance(statement, IfThen):
+        return line if _raises_alarm(statement.then) else None
+    at: int | None
+    if op == "EQ":
+        target = constant_value(statement.goto.target)
+        if target is None or target != int(target):
+            return None
+        at = program.label_line(int(target), line)
+    else:
+        at = line + 1
+        while at < program.end_line and blocks[at].statement is None:
+            at += 1
+    if at is None or at >= program.end_line:
+        return None
+    return at if any(_raises_alarm(s) for s in statements_of(blocks[at].statement)) else None
+
+
+def _raises_alarm(statement: object) -> bool:
+    """``#3000=...``: the macro alarm (0i-F: alarm 3000 + the value, the comment shown)."""
+    return isinstance(statement, Assign) and statement.target.number == 3000
