@@ -76,3 +76,18 @@ def test_m98_words_the_subprogram_in_another_file_reads_as_arguments(tmp_path: P
     (tmp_path / "main.nc").write_text(main.format(call="G65 P9010 R50. H6. Z-10. F150."))
     twin = run(tmp_path, "check", "main.nc", "O9010.nc")
     assert "MB412" not in twin.stdout and "MB411" not in twin.stdout
+
+
+def test_a_local_always_set_before_it_is_read_takes_nothing_from_the_call() -> None:
+    # #4 is set on each pass before the loop reads it; #5 is set in the loop and read after
+    # it (the loop may run no time); #6 is set in a THEN, which may not happen.
+    text = (
+        "O9030\n#1=0\nWHILE[#1LT#11]DO1\n#4=#18*2\nG00 X#4\n#5=1\n#1=#1+1\nEND1\n"
+        "G00 Y#5\nIF[#1GT1]THEN#6=2\nG00 Z#6\nM99\n"
+    )
+    use = named(text)
+    assert use is not None
+    assert use.used == frozenset({5, 6, 11, 18})
+    # A GOTO may skip any set: every named local may take the call's value.
+    jumping = named("O9031\nIF[#18GT0]GOTO10\n#4=1\nN10 G00 X#4\nM99\n")
+    assert jumping is not None and jumping.used == jumping.named == frozenset({4, 18})

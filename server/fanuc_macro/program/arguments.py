@@ -12,7 +12,8 @@ from __future__ import annotations
 import re
 from typing import NamedTuple
 
-from ..syntax.tree import Document
+from ..syntax.parser import statements_of
+from ..syntax.tree import Document, End, Goto, IfGoto, While
 from .index import Program
 from .variables import ARGUMENT_VARIABLES
 
@@ -48,28 +49,47 @@ def argument_numbers(letters: list[str]) -> list[int | None]:
 
 
 class LocalsNamed(NamedTuple):
-    """The locals #1-#33 a program names (``named``), and those of them it reads before any
-    block of it sets them, in the order of the lines (``read_first``): what it takes from
-    its call."""
+    """What a program does with its locals #1-#33: those it names at all (``named``), those
+    it reads before any block of it sets them, in the order of the lines (``read_first``),
+    and those a value from its call can reach a read of (``used``; every named one when the
+    program jumps, since a GOTO may skip a set)."""
 
     named: frozenset[int]
     read_first: tuple[int, ...]
+    used: frozenset[int]
 
 
 def locals_named(
     doc: Document, program: Program, with_subprograms: bool = True
 ) -> LocalsNamed | None:
-    """The locals #1-#33 that ``program``'s blocks name anywhere outside comments (read or
-    set, on any path, in any block, parsed or not); None when the text cannot say: an indirect
-    variable ``#[...]`` may be any of them, and (``with_subprograms``) a subprogram it calls
-    with M98 shares them."""
+    """What ``program``'s blocks do with the locals, anywhere outside comments (on any path,
+    in any block, parsed or not); None when the text cannot say: an indirect variable
+    ``#[...]`` may be any of them, and (``with_subprograms``) a subprogram it calls with M98
+    shares them.
+
+    Without jumps the blocks run in the order of the lines, loops aside: a read is covered by
+    a set on an earlier line at its own loop level or an outer one (an inner loop may run no
+    time; a set in ``IF [...] THEN`` counts as a read, as if it might not happen)."""
     if with_subprograms and any(call.kind in _SHARING_CALLS for call in program.calls):
         return None
     named: set[int] = set()
     assigned: set[int] = set()
     read_first: dict[int, None] = {}  # in the order of the lines
+    jumps = False
+    loops: list[float] = []  # the DO numbers open at a line, outermost first
+    sets: dict[int, list[tuple[float, ...]]] = {}  # local -> the loop paths of its sets
+    used: set[int] = set()
     for block in doc.blocks[program.first_line : program.end_line]:
         parsed = block.parsed
+        for statement in statements_of(parsed.statement):
+            if isinstance(statement, Goto | IfGoto):
+                jumps = True
+            elif isinstance(statement, End) and statement.loop_id in loops:
+                del loops[loops.index(statement.loop_id) :]
+        path = tuple(loops)
+        for statement in statements_of(parsed.statement):
+            if isinstance(statement, While):
+                loops.append(statement.loop_id)
         text = parsed.text
         if "#" not in text:
             continue
@@ -80,16 +100,18 @@ def locals_named(
             return None
         target = _ASSIGNED.match(text)
         at = -1 if target is None else target.start(1)
-        reads = [
-            n
-            for m in _DIRECT.finditer(text)
-            if m.start() != at and 1 <= (n := int(m.group(1))) <= 33
-        ]
+        numbers = ((m.start(), int(m.group(1))) for m in _DIRECT.finditer(text))
+        reads = [n for start, n in numbers if start != at and 1 <= n <= 33]
         for n in reads:  # '#1=#1+1' reads #1 before it sets it
             if n not in assigned:
                 read_first[n] = None
+            if not any(path[: len(outer)] == outer for outer in sets.get(n, ())):
+                used.add(n)
         named.update(reads)
         if target is not None and 1 <= (n := int(target.group(2))) <= 33:
             named.add(n)
             assigned.add(n)
-    return LocalsNamed(frozenset(named), tuple(read_first))
+            sets.setdefault(n, []).append(path)
+    return LocalsNamed(
+        frozenset(named), tuple(read_first), frozenset(named) if jumps else frozenset(used)
+    )

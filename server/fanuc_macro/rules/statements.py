@@ -842,9 +842,11 @@ MB411_DOC = RuleDoc(
     reports="""
 An argument word of a `G65`, `G66` or `G66.1` call (`I5.`, `R20.`) whose local variable (I
 #4, R #18, by argument specification I, or II for repeated I, J, K) the called program never
-names, in any block, on any path, read or set. The called program must be in the files
-checked (this one or the others given with it). The message names the locals the program
-reads before it sets them that the call does not pass: usually the letter meant.
+names, in any block, or always sets before it reads it (a program without `GOTO`, whose
+blocks run in the order of the lines, sets it on an earlier line outside any loop the read is
+not in). The called program must be in the files checked (this one or the others given with
+it). The message names the locals the program reads before it sets them that the call does
+not pass: usually the letter meant.
 """,
     why="""
 A G65 call gives its arguments to the called program's locals and nothing else: an argument
@@ -908,13 +910,14 @@ def _arguments_not_used(ctx: RuleContext) -> Iterator[Diagnostic]:
                 more = " and more" if len(wanted) > 4 else ""
                 also = f"; it reads {names}{more}, which this call does not pass"
             for word, n in zip(words, numbers, strict=True):
-                if n is None or n in use.named:
+                if n is None or n in use.used:
                     continue
                 written = ctx.doc.blocks[call.line].text[word.span.start : word.span.end]
+                fate = f"sets #{n} before it reads it" if n in use.named else f"never uses #{n}"
                 yield make(
                     MB411,
-                    f"{written.strip()} gives #{n} to {callee.display_name}, which never uses "
-                    f"#{n}: the value is lost{also}",
+                    f"{written.strip()} gives #{n} to {callee.display_name}, which {fate}: the "
+                    f"value is lost{also}",
                     call.line,
                     word.span.start,
                     word.span.end,
