@@ -11,6 +11,7 @@ from typing import Any
 
 import pytest
 
+from cli_runner import check_text as check
 from cli_runner import run
 from fanuc_macro.config import Config
 from fanuc_macro.program import knowledge
@@ -92,14 +93,6 @@ def trace(tmp_path: Path, text: str, *options: str) -> dict[str, Any]:
     assert result.returncode == 0, result.stdout + result.stderr
     answer: dict[str, Any] = json.loads(result.stdout)
     return answer
-
-
-def check(tmp_path: Path, text: str, *options: str) -> list[dict[str, Any]]:
-    (tmp_path / "part.nc").write_text(text)
-    result = run(tmp_path, "check", "--format", "json", *options, "part.nc")
-    assert result.returncode in (0, 1), result.stdout + result.stderr
-    found: list[dict[str, Any]] = json.loads(result.stdout)
-    return found
 
 
 def path_of(answer: dict[str, Any]) -> list[tuple[int, tuple[Any, ...], tuple[Any, ...]]]:
