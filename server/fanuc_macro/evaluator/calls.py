@@ -12,7 +12,7 @@ from ..program.variables import ARGUMENT_VARIABLES
 from ..program.vendor_cycles import known_cycle
 from .compile_lines import CompiledLine, CompiledWord
 from .facts import ProgramNotFound
-from .machine_base import Activation, MachineBase, ProgramContext, StopRun
+from .machine_base import SPINDLE_UNKNOWN, Activation, MachineBase, ProgramContext, StopRun
 from .values import UNKNOWN, AlarmKind, MacroAlarm, Unknown, Value
 
 MAX_MACRO_LEVEL = 5  # G65/G66 levels (0i-D/30i); 16i has 4
@@ -236,6 +236,7 @@ class CallsPart(MachineBase):
         # F, S and where the tool stands are modal: the callee leaves its own.
         modal.feed = UNKNOWN
         modal.speed = UNKNOWN
+        modal.spindle = SPINDLE_UNKNOWN
         modal.position.clear()
         modal.position_line.clear()
         if self.toolpath is not None:

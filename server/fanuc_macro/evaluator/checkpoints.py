@@ -66,6 +66,8 @@ class ModalState:
     g76: object  # G76Parameters: frozen
     cycle: tuple[float | None, float | None]  # G90/G92/G94's end Z and R in force
     incremental: bool  # G91 of a lathe in G code system B or C
+    spindle: str
+    spindle_stop: tuple[str, int, str] | None
 
 
 @dataclass(frozen=True, slots=True, eq=False, repr=False)
@@ -163,6 +165,8 @@ def _same_modal(a: ModalState, b: ModalState) -> bool:
         and a.g76 == b.g76
         and a.cycle == b.cycle
         and a.incremental == b.incremental
+        and a.spindle == b.spindle
+        and a.spindle_stop == b.spindle_stop
         and a.position_line == b.position_line
         and same_value(a.feed, b.feed)
         and same_value(a.speed, b.speed)

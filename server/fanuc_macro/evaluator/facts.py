@@ -317,6 +317,14 @@ class ProgramNotFound(Finding):
 
 
 @dataclass(frozen=True, eq=False, repr=False)
+class CutSpindleStopped(Finding):
+    """The first feed move after the spindle was stopped (M05, M06, M19) or while it was
+    never started, in a run that knows it: the tool feeds into the work without turning."""
+
+    KIND: ClassVar[str] = "feed-spindle-stopped"
+
+
+@dataclass(frozen=True, eq=False, repr=False)
 class AddressFinding(Finding):
     """A word whose value its address cannot take."""
 

@@ -265,6 +265,10 @@ def _state(state: MachineState, line: Renumber, chunks: dict[int, Keys]) -> Mach
         m.g76,
         m.cycle,
         m.incremental,
+        m.spindle,
+        None
+        if m.spindle_stop is None
+        else (m.spindle_stop[0], line(m.spindle_stop[0], m.spindle_stop[1]), m.spindle_stop[2]),
     )
     return MachineState(
         state.run,

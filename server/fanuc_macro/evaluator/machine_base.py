@@ -193,6 +193,23 @@ class Converged(Exception):
         self.done = done
 
 
+# The spindle's state as the run knows it (Modal.spindle).
+SPINDLE_ON = "on"
+SPINDLE_OFF = "off"
+SPINDLE_TOLD = "told"  # stopped, and a cut with it stopped already reported
+SPINDLE_UNKNOWN = "unknown"
+# M codes that stop the spindle: M05; M06, the tool change, which orients and stops it for the
+# changer (what M06 does is the machine builder's: unverified beyond the machining centres
+# whose manuals say so). M19, orientation, stops it too, but for a probe, whose moves feed
+# with the spindle still: it leaves the state not known, as other codes do.
+SPINDLE_STOPS = frozenset({5.0, 6.0})
+SPINDLE_STARTS = frozenset({3.0, 4.0})
+# M codes that leave the spindle as it is: the ends and calls, coolant, overrides' on/off.
+# Any other (M00 and M01 too, which stop the spindle on some machines, and builders' codes
+# such as a live tool's or a sub spindle's) leaves it not known.
+SPINDLE_KEEPS = frozenset({2.0, 30.0, 7.0, 8.0, 9.0, 48.0, 49.0, 98.0, 99.0})
+
+
 @dataclass(eq=False, repr=False)
 class Modal:
     motion: float | None = None  # group 01
@@ -212,6 +229,11 @@ class Modal:
     cycle: tuple[float | None, float | None] = (None, None)
     # G91 of a lathe in G code system B or C: X and Z are distances, as system A's U and W.
     incremental: bool = False
+    # The spindle: SPINDLE_ON, SPINDLE_OFF (stopped, or never started since a main program
+    # began), SPINDLE_TOLD (stopped, and a cut already reported) or SPINDLE_UNKNOWN; and the
+    # block that stopped it (None: the program's start).
+    spindle: str = "unknown"
+    spindle_stop: tuple[str, int, str] | None = None  # uri, line, the M code
 
 
 @dataclass(frozen=True)

@@ -17,11 +17,18 @@ from .calls import CallsPart
 from .canned_cycles import PROFILE_CYCLES, CyclesPart
 from .compile_lines import AXES, K_NC, CompiledLine, CompiledWord, recorded_words
 from .direct_drawing import missing_coordinate
-from .facts import CutsWithoutFeed, Motion, RunValues
+from .facts import CutSpindleStopped, CutsWithoutFeed, Motion, RunValues
 from .machine_base import (
     LOCAL_COORDINATES,
     MAX_MOTIONS,
     RAPID_ONE_SHOTS,
+    SPINDLE_KEEPS,
+    SPINDLE_OFF,
+    SPINDLE_ON,
+    SPINDLE_STARTS,
+    SPINDLE_STOPS,
+    SPINDLE_TOLD,
+    SPINDLE_UNKNOWN,
     Activation,
     ProgramContext,
     StopRun,
@@ -42,6 +49,9 @@ MAX_SHARED_WORDS = 4096  # distinct motion words a run looks up to share (Machin
 THREADING_CODES = frozenset({32.0, 33.0, 34.0, 76.0, 92.0})
 # The lathe's moves that cut at F besides G01-G03: threads (F the lead), turning and facing.
 LATHE_FED = frozenset({32.0, 33.0, 34.0, 76.0, 90.0, 92.0, 94.0})
+# The mill's cycles that cut besides G01-G03, which need the spindle turning: drilling and
+# boring (tapping, G74 and G84, left out: a rigid tap drives the spindle itself).
+MILL_CUTS = frozenset({73.0, 76.0, 81.0, 82.0, 83.0, 85.0, 86.0, 87.0, 88.0, 89.0})
 MAX_REMEMBERED_RUNS = 1000  # executions whose variables are kept when they start a thread
 
 
@@ -86,7 +96,18 @@ class MotionPart(CyclesPart, CallsPart):
             modal.feed = values["F"]
         if "S" in values:
             modal.speed = values["S"]
+        stops: float | None = None  # an M code that stops the spindle, after the block's move
+        for m in m_codes:
+            if m in SPINDLE_STARTS:
+                modal.spindle = SPINDLE_ON  # with the block's move (FANUC: M03 before it)
+            elif m in SPINDLE_STOPS:
+                stops = m
+            elif m not in SPINDLE_KEEPS:
+                modal.spindle = SPINDLE_UNKNOWN
         moved = self._motion(act, cl, values, g_codes, order)
+        if stops is not None:
+            modal.spindle = SPINDLE_OFF
+            modal.spindle_stop = (act.ctx.uri, self._line, f"M{stops:02g}")
         next_pc = self._line + 1
         profile: list[ProfileBlock] | str | None = None
         finishing: tuple[int, int] | None = None
@@ -421,7 +442,53 @@ class MotionPart(CyclesPart, CallsPart):
             words = self._shared_words(words)
         if feed is None and code in FEED_MOTIONS:
             self._cut_without_feed(act.ctx, self._no_feed_message(code))
+        if (
+            self.modal.spindle == SPINDLE_OFF
+            and not self.lathe  # a lathe feeds a bar puller or a part catcher standing still
+            and (code in FEED_MOTIONS or code in MILL_CUTS)
+            and not self._in_air(values)
+        ):
+            self._cut_spindle_stopped(act, code)
         return words
+
+    def _in_air(self, values: dict[str, Value]) -> bool:
+        """A mill's feed move that stays at a positive Z, above the work's zero (where shops
+        set it, on the top face), or a move in Z alone to a positive Z (up, in G91 too): no
+        cut, whatever the spindle does."""
+        z = values.get("Z")
+        here = self.modal.position.get("Z")
+        if z is not None and not isinstance(z, float):
+            return False
+        end = here if z is None else z
+        if not isinstance(end, float) or end < 0.0:
+            return False
+        if z is not None and AXES.isdisjoint(values.keys() - {"Z"}):
+            return True  # up to a positive Z: a retract
+        return isinstance(here, float) and here >= 0.0
+
+    def _cut_spindle_stopped(self, act: Activation, code: float) -> None:
+        """The first feed move while the spindle stands still: once, until it starts."""
+        modal = self.modal
+        modal.spindle = SPINDLE_TOLD
+        stop = modal.spindle_stop
+        ctx = act.ctx
+        if stop is None:
+            why = f"nothing in {self._entry_name} has started it (M03 or M04) since the start"
+        else:
+            uri, line, m = stop
+            where = f"line {line + 1}" if uri == ctx.uri else f"line {line + 1} of {uri}"
+            why = f"{m} on {where} stopped it, and no M03 or M04 started it again"
+        width = len(ctx.doc.blocks[self._line].text.rstrip())
+        self._finding(
+            ctx,
+            CutSpindleStopped(
+                self._line,
+                0,
+                width,
+                f"{self._shown(code)} feeds with the spindle stopped: {why}",
+                ctx.uri,
+            ),
+        )
 
     def _cycle_end(
         self,
