@@ -11,9 +11,10 @@ from fanuc_macro.config import Config
 from fanuc_macro.ide.lenses import code_lenses
 from fanuc_macro.ide.locate import locals_read_before_set
 from fanuc_macro.ide.semantic import SemanticToken, semantic_tokens
-from fanuc_macro.ide.signature import argument_numbers, function_signature, signature_help
+from fanuc_macro.ide.signature import function_signature, signature_help
 from fanuc_macro.ide.token_legend import TOKEN_MODIFIERS, TOKEN_TYPES, TokenModifier, TokenType
 from fanuc_macro.ide.view import View
+from fanuc_macro.program.arguments import argument_numbers
 from fanuc_macro.program.variables import ARGUMENT_VARIABLES
 from fanuc_macro.workspace import Workspace
 

@@ -231,7 +231,6 @@ __all__ = (
     "LETTER_ORDER",
     "Parameter",
     "Signature",
-    "argument_numbers",
     "call_signature",
     "function_signature",
     "signature_help",
