@@ -51,7 +51,6 @@ FINDINGS: dict[str, list[tuple[int, str, bool, str]]] = {
     ],
     "NCVC-CAM__Scripts__NC.Code.Checker1.4__errors__2_syntax_errors__sampleNC(multiple-O-codes).ncd": [
         (14, "MB407", True, NO_END),
-        (15, "MB611", True, "O0202, a program of its own, feeds to Z-5. with no M03 before it"),
     ],
     "NCVC-CAM__Scripts__NC.Code.Checker1.4__errors__2_syntax_errors__sampleNC(no-O-code).ncd": [
         (4, "MB010", True, NO_O),
@@ -67,9 +66,6 @@ FINDINGS: dict[str, list[tuple[int, str, bool, str]]] = {
     ],
     "NCVC-CAM__Scripts__NC.Code.Checker1.4__errors__4_macro_errors__sampleNC(DO-without-END).ncd": [
         (17, "MB404", True, SCALED),
-    ],
-    "NCVC-CAM__Scripts__NC.Code.Checker1.4__errors__4_macro_errors__G66_multi_modal__sanpleNC(G66-multiple-modal-call-error).ncd": [
-        (5, "MB611", True, "G01 X0 F100 at Z-10. in a program with no M03 anywhere"),
     ],
     "NCVC-CAM__Scripts__NC.Code.Checker1.4__errors__4_macro_errors__sampleNC(G66-without-G67).ncd": [
         (17, "MB406", True, "the sample's mistake: G66 P1001 and no G67 before M30"),

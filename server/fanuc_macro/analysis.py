@@ -30,6 +30,7 @@ from .program.machine_kind import machine_config, mill_reading, readings_differ
 from .rules import ALL_CHECKS, FAMILIES, LINE_CHECKS, LineFinding, declared, plain_line_quiet
 from .rules.context import RuleContext
 from .rules.dialect import (
+    FANUC_RECORD_CODES,
     FOLDED_CODES,
     dialect_of_blocks,
     fold_foreign_file,
@@ -236,7 +237,12 @@ def run_checks(
         if cancel is not None:
             cancel.reached(RULE_CHECKS, done, len(rules))
         try:
-            found.extend(d for d in rule(ctx) if not past_the_stop(d, stop_line))
+            found.extend(
+                d
+                for d in rule(ctx)
+                if not past_the_stop(d, stop_line)
+                and (foreign is None or d.code not in FANUC_RECORD_CODES)
+            )
         except Exception as err:  # a bug in one rule must not hide the others
             log_failure(__name__, "rule %s failed on %s", rule_name(rule), ctx.doc.uri)
             message = internal_error(f"rule {rule_name(rule)}", err)

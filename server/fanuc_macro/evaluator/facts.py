@@ -318,8 +318,8 @@ class ProgramNotFound(Finding):
 
 @dataclass(frozen=True, eq=False, repr=False)
 class CutSpindleStopped(Finding):
-    """The first feed move after the spindle was stopped (M05, M06, M19) or while it was
-    never started, in a run that knows it: the tool feeds into the work without turning."""
+    """The first feed move after the run stopped the spindle (M05, M06): the tool feeds into
+    the work without turning."""
 
     KIND: ClassVar[str] = "feed-spindle-stopped"
 

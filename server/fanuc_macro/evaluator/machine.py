@@ -42,7 +42,6 @@ from .machine_base import (
     BLOCK_END_FIRST,
     BLOCK_END_LAST,
     MAX_MOTIONS,
-    SPINDLE_OFF,
     Activation,
     Converged,
     G76Parameters,
@@ -104,10 +103,6 @@ class Machine(MotionPart):
         read_first = locals_read_first(entry) if entry.is_main else ()
         if self.record is not None and entry.is_main:
             self.record.read_first[(entry.uri, entry.program.first_line)] = read_first
-        if entry.is_main and not read_first:
-            # A main program begins after power-on, a reset or the M30 of another: the
-            # spindle stands still until it starts it.
-            self.modal.spindle = SPINDLE_OFF
         if not entry.is_main or read_first:
             self.modal.feed = Unknown(frozenset())  # the caller's F, which a lone run cannot know
             # A macro analysed alone: its arguments are unknown, not vacant.

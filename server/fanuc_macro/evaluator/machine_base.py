@@ -229,9 +229,9 @@ class Modal:
     cycle: tuple[float | None, float | None] = (None, None)
     # G91 of a lathe in G code system B or C: X and Z are distances, as system A's U and W.
     incremental: bool = False
-    # The spindle: SPINDLE_ON, SPINDLE_OFF (stopped, or never started since a main program
-    # began), SPINDLE_TOLD (stopped, and a cut already reported) or SPINDLE_UNKNOWN; and the
-    # block that stopped it (None: the program's start).
+    # The spindle: SPINDLE_ON, SPINDLE_OFF (stopped by a block of the run), SPINDLE_TOLD
+    # (stopped, and a feed move already reported) or SPINDLE_UNKNOWN (at a run's start: a
+    # program may be run with the spindle turning); and the block that stopped it.
     spindle: str = "unknown"
     spindle_stop: tuple[str, int, str] | None = None  # uri, line, the M code
 

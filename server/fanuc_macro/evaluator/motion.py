@@ -471,13 +471,11 @@ class MotionPart(CyclesPart, CallsPart):
         modal = self.modal
         modal.spindle = SPINDLE_TOLD
         stop = modal.spindle_stop
+        assert stop is not None  # SPINDLE_OFF is set with the block that stopped it
         ctx = act.ctx
-        if stop is None:
-            why = f"nothing in {self._entry_name} has started it (M03 or M04) since the start"
-        else:
-            uri, line, m = stop
-            where = f"line {line + 1}" if uri == ctx.uri else f"line {line + 1} of {uri}"
-            why = f"{m} on {where} stopped it, and no M03 or M04 started it again"
+        uri, line, m = stop
+        where = f"line {line + 1}" if uri == ctx.uri else f"line {line + 1} of {uri}"
+        why = f"{m} on {where} stopped it, and no M03 or M04 started it again"
         width = len(ctx.doc.blocks[self._line].text.rstrip())
         self._finding(
             ctx,

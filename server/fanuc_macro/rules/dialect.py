@@ -111,7 +111,7 @@ that no dialect here has is named "not FANUC (dialect not recognised)": C-style 
 A file that carries a mark only another control's programs have (Syntec's `%@MACRO` header,
 Siemens' `PROC` or `DEF` or R parameters, LinuxCNC's O-word subroutine, DDCS's `IF` without
 brackets, Okuma's `VC1=` or `GOTO NLOOP` or `CALL O...`, a wire EDM's `H1=` register, Philips'
-`%PM` header) is read as
+`%PM` header, CNC Simulator Pro's `$Mill` directives) is read as
 that control's program: one MB002 on its first line (past a tape mark and empty lines) names
 the control and the line of the mark, and counts the blocks FANUC rejects. The editor lists
 each of them as a related place, with what FANUC rejects in it, instead of one diagnostic a
@@ -432,6 +432,10 @@ def foreign_dialect(doc: Document) -> dialects.FileDialect | None:
 FOLDED_CODES = frozenset({"MB001", "MB002", "MB003", "MB004", "MB005", "MB008"})
 # FANUC's conventions of writing that another control's program need not follow (lower case).
 FANUC_STYLE_CODES = frozenset({"MB006"})
+# How a FANUC control reads a file in (MB014: the '%' that ends its data), said of FANUC
+# programs only: another control's file has its own marks ('%2000' heads a CNC Simulator
+# program), and FANUC runs none of it anyway.
+FANUC_RECORD_CODES = frozenset({"MB014"})
 
 
 def in_foreign_file(

@@ -24,11 +24,10 @@ MB611_DOC = RuleDoc(
     "MB611",
     reports="""
 On a mill, the first feed move (`G01`, `G02`, `G03`, a drilling or boring cycle) after the
-spindle was stopped, by `M05` or by the tool change `M06`, with no `M03` or `M04` since; or,
-in a main program (one that ends with `M30` or `M02` and takes no arguments), the first one
-before any `M03` or `M04`. A move in the air is left: one that stays at a positive Z (above
-the work's zero, where shops set it on the top face) or goes up to one in Z alone. Once
-until the spindle starts again; the message names the block that stopped it.
+spindle was stopped, by `M05` or by the tool change `M06`, with no `M03` or `M04` since. A
+move in the air is left: one that stays at a positive Z (above the work's zero, where shops
+set it on the top face) or goes up to one in Z alone. Once until the spindle starts again;
+the message names the block that stopped it.
 """,
     why="""
 The control feeds the axes whether the spindle turns or not: the tool is pushed into the
@@ -50,13 +49,13 @@ M30
 Start the spindle before the cut: `S1200 M03` after the tool change, or after the `M05`.
 """,
     not_reported="""
-Lathes (a bar puller, a part catcher or a tailstock feeds with the spindle still), `M19`
-orientation (a probe's moves follow it, with the spindle still), a program run from a caller
-the analysis does not have (its spindle is not known), the state after a call the analysis
-cannot follow or an M code it does not know (`M00`, `M01`, a live tool's or a sub spindle's
-code may start or stop a spindle), tapping cycles (`G74`, `G84`: a rigid tap drives the
-spindle itself), rapid moves, moves in the air, and every feed move after the first until
-the spindle starts.
+A feed move before any spindle code of the run (the program may be started with the spindle
+turning, or be an excerpt), lathes (a bar puller, a part catcher or a tailstock feeds with the
+spindle still), `M19` orientation (a probe's moves follow it, with the spindle still), the
+state after a call the analysis cannot follow or an M code it does not know (`M00`, `M01`, a
+live tool's or a sub spindle's code may start or stop a spindle), tapping cycles (`G74`,
+`G84`: a rigid tap drives the spindle itself), rapid moves, moves in the air, and every feed
+move after the first until the spindle starts.
 """,
 )
 

@@ -174,7 +174,8 @@ Move the blocks before the closing `%` (before `M30`, or in a program of their o
     not_reported="""
 What follows the closing `%` when it starts with an `O` line: another program, as in files
 that hold several programs each between its own marks, which are loaded one by one. Comments
-and empty lines after the `%`. The checker's run still reads such blocks (so the verdicts of
+and empty lines after the `%`. A file read as another control's program (MB002), whose own
+marks may use `%` otherwise. The checker's run still reads such blocks (so the verdicts of
 the run treat them as loaded).
 """,
 )

@@ -29,6 +29,7 @@ OKUMA = "Okuma OSP"
 WIRE_EDM = "wire EDM"
 PHILIPS = "Philips (CNC 432 / System 3000)"
 MITSUBISHI = "Mitsubishi/Citizen"
+CNC_SIMULATOR = "CNC Simulator Pro"
 # A form FANUC rejects that no dialect this checker knows has (C comparisons, 'Q1=12'): said so,
 # rather than pinned on a control it may not come from.
 NOT_FANUC = "not FANUC (dialect not recognised)"
@@ -277,10 +278,15 @@ _FILE_MARKS: tuple[tuple[re.Pattern[str], str, str], ...] = (
     # Philips CNC 432 / System 3000 files begin with "%PM", the program number an N9xxx block
     # after it (Philips CNC 432 programming manual; unverified beyond the files seen).
     (re.compile(r"^\s*%\s*PM\b", re.I), PHILIPS, "'%PM' header"),
+    # CNC Simulator Pro's directives, a '$' word at the start of a line ('$Mill', '$AddRegPart
+    # 1', '$UseMaterial "Wood"'); not Siemens' '$' system variables, which are read in
+    # expressions or assigned (unverified beyond the simulator's files seen).
+    (re.compile(r"^\s*\$[A-Za-z]+\b(?!\s*[\[=.])"), CNC_SIMULATOR, "'$' directive"),
 )
 # Strongest first: a Syntec file may hold R words, a LinuxCNC file comparisons.
 _FILE_MARK_ORDER: Mapping[str, int] = MappingProxyType(
     {SYNTEC: 0, SIEMENS: 1, LINUXCNC: 2, DDCS: 3, OKUMA: 4, WIRE_EDM: 5, PHILIPS: 6}
+    | {CNC_SIMULATOR: 7}
 )
 
 
