@@ -3,12 +3,12 @@ analysed runs did with it."""
 
 from __future__ import annotations
 
-from collections.abc import Mapping, Sequence
-from types import MappingProxyType
+from collections.abc import Sequence
 
 from ..config import on_control
 from ..evaluator.facts import ValueSummary
 from ..program import knowledge
+from ..program.arguments import ARGUMENT_LETTER
 from ..program.index import Program
 from ..program.machine_kind import machine_text
 from ..program.meanings import table_meaning
@@ -25,10 +25,6 @@ from .locate import Hit, assignments_in, goto_target, number_of
 from .navigation import block_call
 from .values import Precision, code, inch_at, substituted, times, variable_kind
 from .view import View, comment_of, first_comment
-
-ARGUMENT_LETTER: Mapping[int, str] = MappingProxyType(
-    {n: letter for letter, n in ARGUMENT_VARIABLES.items()}
-)
 
 
 def find_assignment(

@@ -10,6 +10,8 @@ holding the arguments; M98 opens none, so a subprogram reads and writes its call
 from __future__ import annotations
 
 import re
+from collections.abc import Mapping
+from types import MappingProxyType
 from typing import NamedTuple
 
 from ..syntax.parser import statements_of
@@ -23,6 +25,10 @@ _DIRECT = re.compile(r"#\s*0*(\d+)")
 _INDIRECT = re.compile(r"#\s*\[")
 # The variable a block assigns, after its optional block delete and N number.
 _ASSIGNED = re.compile(r"\s*(?:/\d?\s*)?(?:N\s*\d+\s*)?(#\s*0*(\d+))\s*=")
+# The letter that passes each local #1-#26 (specification I); #27-#33 only specification II's.
+ARGUMENT_LETTER: Mapping[int, str] = MappingProxyType(
+    {n: letter for letter, n in ARGUMENT_VARIABLES.items()}
+)
 # Calls that open no level of locals: the called program shares this one's (M98, Haas M97).
 _SHARING_CALLS = frozenset({"M98", "M97"})
 

@@ -20,7 +20,7 @@ from ..diagnostics import (
 )
 from ..line_maps import LineMap
 from ..per_line import PerLine
-from ..program.arguments import LocalsNamed, argument_numbers, locals_named
+from ..program.arguments import ARGUMENT_LETTER, LocalsNamed, argument_numbers, locals_named
 from ..program.custom_calls import unset_m_calls
 from ..program.index import Call as IndexCall
 from ..program.index import Program
@@ -1013,10 +1013,9 @@ def _subprogram_arguments(ctx: RuleContext) -> Iterator[Diagnostic]:
 # sequence number to call (M98 Q), other M codes.
 _NOT_M98_ARGUMENTS = frozenset("MQ")
 _MACRO_CALLS = frozenset({"G65", "G66", "G66.1"})
-_LETTER_OF = {n: letter for letter, n in ARGUMENT_VARIABLES.items()}
 
 
 def _local_name(n: int) -> str:
     """``#18 (R)``: a local with the letter that passes it (specification I)."""
-    letter = _LETTER_OF.get(n)
+    letter = ARGUMENT_LETTER.get(n)
     return f"#{n} ({letter})" if letter is not None else f"#{n}"

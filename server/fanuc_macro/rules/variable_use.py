@@ -4,15 +4,13 @@ from __future__ import annotations
 
 from bisect import bisect_left
 from collections.abc import Iterable, Iterator
-from types import MappingProxyType
 
 from ..diagnostics import Diagnostic, RuleDoc, RuleInfo, Severity, make
 from ..evaluator.facts import DocumentFacts, Finding, NoSuchVariable, ReadOnlyWrite
 from ..evaluator.machine import compiled
 from ..line_maps import Kept, LineMap
-from ..program.arguments import locals_named
+from ..program.arguments import ARGUMENT_LETTER, locals_named
 from ..program.index import Program
-from ..program.variables import ARGUMENT_VARIABLES
 from ..syntax.marks import constant_value
 from ..syntax.parser import statements_of
 from ..syntax.tree import Assign, Compare, Cond, IfGoto, IfThen, Logic, Num, ParsedLine, Var
@@ -40,9 +38,6 @@ MB905 = RuleInfo("MB905", "vacant-compared-with-zero", Severity.WARNING,
                  "An argument check [#n EQ 0] or [#n NE 0] before an alarm: a vacant #n is "
                  "not equal to 0, so a missing argument passes it.", FAMILY)
 # fmt: on
-
-
-ARGUMENT_LETTER = MappingProxyType({n: letter for letter, n in ARGUMENT_VARIABLES.items()})
 
 
 MB901_DOC = RuleDoc(
