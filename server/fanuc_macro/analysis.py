@@ -39,7 +39,12 @@ from .rules.dialect import (
     unrecognised_dialect,
 )
 from .rules.expressions import fold_missing_variables
-from .rules.reading import fold_elisions, fold_lowercase, fold_runaway_comments
+from .rules.reading import (
+    fold_elisions,
+    fold_long_numbers,
+    fold_lowercase,
+    fold_runaway_comments,
+)
 from .syntax.parser import BlockParser, default_parser, parse_text, quiet_gc
 from .syntax.tree import Document, ParsedLine, PlainNc
 from .threads.identify import Thread
@@ -221,6 +226,7 @@ def run_checks(
         foreign = unrecognised_dialect(ctx.doc, rejected)
     if foreign is None:
         per_block = fold_lowercase(fold_elisions(fold_runaway_comments(per_block)))
+        per_block = fold_long_numbers(per_block)
         per_block = fold_missing_variables(per_block)
     elif blocks:  # another control's file: one MB002 for the blocks FANUC rejects
         first = next((b for b in blocks if b.text.strip() not in ("", "%")), blocks[0])

@@ -237,6 +237,7 @@ class CallsPart(MachineBase):
         modal.feed = UNKNOWN
         modal.speed = UNKNOWN
         modal.spindle = SPINDLE_UNKNOWN
+        modal.z_at_top = False
         modal.position.clear()
         modal.position_line.clear()
         if self.toolpath is not None:

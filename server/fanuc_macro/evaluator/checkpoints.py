@@ -68,6 +68,7 @@ class ModalState:
     incremental: bool  # G91 of a lathe in G code system B or C
     spindle: str
     spindle_stop: tuple[str, int, str] | None
+    z_at_top: bool
 
 
 @dataclass(frozen=True, slots=True, eq=False, repr=False)
@@ -167,6 +168,7 @@ def _same_modal(a: ModalState, b: ModalState) -> bool:
         and a.incremental == b.incremental
         and a.spindle == b.spindle
         and a.spindle_stop == b.spindle_stop
+        and a.z_at_top == b.z_at_top
         and a.position_line == b.position_line
         and same_value(a.feed, b.feed)
         and same_value(a.speed, b.speed)

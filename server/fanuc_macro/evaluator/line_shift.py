@@ -269,6 +269,7 @@ def _state(state: MachineState, line: Renumber, chunks: dict[int, Keys]) -> Mach
         None
         if m.spindle_stop is None
         else (m.spindle_stop[0], line(m.spindle_stop[0], m.spindle_stop[1]), m.spindle_stop[2]),
+        m.z_at_top,
     )
     return MachineState(
         state.run,

@@ -221,6 +221,7 @@ class Machine(MotionPart):
             m.incremental,
             m.spindle,
             m.spindle_stop,
+            m.z_at_top,
         )
         if self._seen_since:
             self._seen_chunks = (*self._seen_chunks, frozenset(self._seen_since))
@@ -275,6 +276,7 @@ class Machine(MotionPart):
             ms.incremental,
             ms.spindle,
             ms.spindle_stop,
+            ms.z_at_top,
         )
         caller: Activation | None = None
         for level in state.levels:

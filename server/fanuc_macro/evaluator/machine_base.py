@@ -234,6 +234,9 @@ class Modal:
     # program may be run with the spindle turning); and the block that stopped it.
     spindle: str = "unknown"
     spindle_stop: tuple[str, int, str] | None = None  # uri, line, the M code
+    # Z went to the reference point (G28, G30) or to machine zero (G53 Z0): on a mill, the top
+    # of its travel, away from the work, until a block moves Z again.
+    z_at_top: bool = False
 
 
 @dataclass(frozen=True)

@@ -389,6 +389,8 @@ class MotionPart(CyclesPart, CallsPart):
                 modal.position_line["Z"] = here
             if "Y" in values:
                 position["Y"] = None if code in LEFT_UNKNOWN else values["Y"]
+        if "Z" in values and not lathe:
+            modal.z_at_top = code in (28.0, 30.0) or (code == 53.0 and values["Z"] == 0.0)
         return True
 
     def _end_by_angle(
@@ -453,10 +455,12 @@ class MotionPart(CyclesPart, CallsPart):
 
     def _in_air(self, values: dict[str, Value]) -> bool:
         """A mill's feed move that stays at a positive Z, above the work's zero (where shops
-        set it, on the top face), or a move in Z alone to a positive Z (up, in G91 too): no
-        cut, whatever the spindle does."""
+        set it, on the top face), or with Z at the top of its travel, or a move in Z alone to a
+        positive Z (up, in G91 too): no cut, whatever the spindle does."""
         z = values.get("Z")
         here = self.modal.position.get("Z")
+        if z is None and self.modal.z_at_top:
+            return True  # Z at the top of its travel (G28, G30, G53 Z0)
         if z is not None and not isinstance(z, float):
             return False
         end = here if z is None else z

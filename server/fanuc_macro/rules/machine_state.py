@@ -26,7 +26,8 @@ MB611_DOC = RuleDoc(
 On a mill, the first feed move (`G01`, `G02`, `G03`, a drilling or boring cycle) after the
 spindle was stopped, by `M05` or by the tool change `M06`, with no `M03` or `M04` since. A
 move in the air is left: one that stays at a positive Z (above the work's zero, where shops
-set it on the top face) or goes up to one in Z alone. Once until the spindle starts again;
+set it on the top face), one with Z at the top of its travel after a reference return (`G28`,
+`G30`) or `G53 Z0`, or one up to a positive Z in Z alone. Once until the spindle starts again;
 the message names the block that stopped it.
 """,
     why="""

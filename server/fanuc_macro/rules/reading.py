@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import re
-from collections.abc import Iterable, Iterator
+from collections.abc import Callable, Iterable, Iterator
 from types import MappingProxyType
 
 from ..diagnostics import (
@@ -18,6 +18,7 @@ from ..diagnostics import (
 )
 from ..line_maps import LineMap
 from ..program.knowledge import FUNCTIONS, KEYWORDS
+from ..syntax.parser import MAX_DIGITS
 from ..syntax.tree import ParsedLine, ProgramStart
 from .context import LineFinding, RuleContext
 
@@ -482,7 +483,9 @@ control reads the first of them as a block and stops there with an alarm, so tha
 one MB001 that says so and names the lines after it, which are not reported one by one. A line
 of Macro B words only (`IF`, `GOTO`, `SIN`, ...) or an empty line ends the run: it is reported
 as itself. Lines of dots alone (`.....`), which an excerpt of a program puts for the blocks it
-leaves out: the first gets one MB001 that says so and names the others.
+leaves out: the first gets one MB001 that says so and names the others. Numbers of more than
+12 digits (`X10.64426623359`, CAM output for a control that takes them; FANUC's PS0003 TOO
+MANY DIGITS) on more than five lines: the first gets one MB001 that counts and names the others.
 """,
 )
 
@@ -895,33 +898,55 @@ LOWERCASE_LINES = 5
 def fold_lowercase(blocks: list[LineFindings]) -> list[LineFindings]:
     """More than :data:`LOWERCASE_LINES` lines with lowercase (MB006): the first keeps one
     MB006 that counts and names the others, whose own MB006 is not given."""
-    cased = [
-        n for n, (_, _, findings) in enumerate(blocks) if any(f.code == "MB006" for f in findings)
-    ]
-    if len(cased) <= LOWERCASE_LINES:
+    return _fold_repeated(blocks, lambda f: f.code == "MB006", "have lowercase", LOWERCASE_LINES)
+
+
+# A number of more digits than any FANUC takes (the parser's MAX_DIGITS): CAM output for a
+# control that takes them writes it in every block.
+_LONG_NUMBER = f"has more than {MAX_DIGITS} digits"
+
+
+def fold_long_numbers(blocks: list[LineFindings]) -> list[LineFindings]:
+    """More than :data:`LOWERCASE_LINES` lines with a number of too many digits (MB001, the
+    control's PS0003 TOO MANY DIGITS): one MB001 on the first, naming the others."""
+    return _fold_repeated(
+        blocks,
+        lambda f: f.code == "MB001" and _LONG_NUMBER in f.message,
+        f"have numbers of more than {MAX_DIGITS} digits (written for a control that takes them)",
+        LOWERCASE_LINES,
+    )
+
+
+def _fold_repeated(
+    blocks: list[LineFindings], match: Callable[[LineFinding], bool], what: str, most: int
+) -> list[LineFindings]:
+    """One mistake on more than ``most`` lines: the first line's finding counts and names the
+    others, whose own is not given (they "``what``")."""
+    hit = [n for n, (_, _, findings) in enumerate(blocks) if any(match(f) for f in findings)]
+    if len(hit) <= most:
         return blocks
-    others = [blocks[n][0] + 1 for n in cased[1:]]
+    others = [blocks[n][0] + 1 for n in hit[1:]]
     shown = ", ".join(map(str, others[:8])) + (
         f" and {len(others) - 8} more" if len(others) > 8 else ""
     )
     out = list(blocks)
-    line, parsed, findings = blocks[cased[0]]
-    out[cased[0]] = (
+    line, parsed, findings = blocks[hit[0]]
+    out[hit[0]] = (
         line,
         parsed,
         tuple(
             f._replace(
-                message=f"{f.message}; {len(others)} more lines have lowercase (lines "
-                f"{shown}), not reported one by one"
+                message=f"{f.message}; {len(others)} more lines {what} (lines {shown}), not "
+                "reported one by one"
             )
-            if f.code == "MB006"
+            if match(f)
             else f
             for f in findings
         ),
     )
-    for n in cased[1:]:
+    for n in hit[1:]:
         line, parsed, findings = blocks[n]
-        out[n] = (line, parsed, tuple(f for f in findings if f.code != "MB006"))
+        out[n] = (line, parsed, tuple(f for f in findings if not match(f)))
     return [b for b in out if b[2]]
 
 
