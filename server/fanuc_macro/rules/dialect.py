@@ -125,8 +125,9 @@ mark most of whose blocks (at least 5, and half of them or more; three in four w
 program number, which says the file is meant for FANUC) FANUC rejects is read the same way, as
 the program of another control whose dialect is not recognised (Heidenhain's `BEGIN PGM`,
 Okuma's named variables, an editor's template): a FANUC program with mistakes has a few such
-blocks among many. In a file read as another control's, the verdicts of the run (MB501-MB999)
-past its first block FANUC rejects are not reported: FANUC stops there with an alarm, and the
+blocks among many. In a file read as another control's, FANUC's map of variable numbers
+(MB302-MB304: that control numbers its own) and its end of record (MB014) are not applied, and
+the verdicts of the run (MB501-MB999) past its first block FANUC rejects are not reported: FANUC stops there with an alarm, and the
 run without the blocks it cannot read (their F, their variables) is of no control.
 """,
     why="""
@@ -430,8 +431,10 @@ def foreign_dialect(doc: Document) -> dialects.FileDialect | None:
 # What a block of another control's program gives when FANUC cannot read it: these findings
 # of one block become one MB002 naming the file's dialect.
 FOLDED_CODES = frozenset({"MB001", "MB002", "MB003", "MB004", "MB005", "MB008"})
-# FANUC's conventions of writing that another control's program need not follow (lower case).
-FANUC_STYLE_CODES = frozenset({"MB006"})
+# FANUC's conventions of writing that another control's program need not follow (lower case),
+# and FANUC's map of variable numbers (MB302-MB304): another control numbers its own
+# (EdingCNC's #4337 is a setting, not a FANUC system variable).
+FANUC_STYLE_CODES = frozenset({"MB006", "MB302", "MB303", "MB304"})
 # How a FANUC control reads a file in (MB014: the '%' that ends its data), said of FANUC
 # programs only: another control's file has its own marks ('%2000' heads a CNC Simulator
 # program), and FANUC runs none of it anyway.
