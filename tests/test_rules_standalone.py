@@ -83,11 +83,12 @@ def test_a_file_of_another_dialect_folds_its_rejected_blocks_in_the_dialect_rule
     findings = (
         LineFinding("MB006", "lower case", 0, 1),
         LineFinding("MB001", "syntax", 2, 5),
-        LineFinding("MB302", "kept", 6, 7),
+        LineFinding("MB301", "kept", 6, 7),
+        LineFinding("MB302", "FANUC's variable numbers: not applied", 10, 11),
         LineFinding("MB003", "comment", 8, 9),
     )
     folded = in_foreign_file(findings, parsed, foreign)
-    assert [(f.code, f.start, f.end) for f in folded] == [("MB302", 6, 7), ("MB002", 2, 5)]
+    assert [(f.code, f.start, f.end) for f in folded] == [("MB301", 6, 7), ("MB002", 2, 5)]
     assert folded[1].message.startswith("Haas")
 
 

@@ -126,9 +126,10 @@ program number, which says the file is meant for FANUC) FANUC rejects is read th
 the program of another control whose dialect is not recognised (Heidenhain's `BEGIN PGM`,
 Okuma's named variables, an editor's template): a FANUC program with mistakes has a few such
 blocks among many. In a file read as another control's, FANUC's map of variable numbers
-(MB302-MB304: that control numbers its own) and its end of record (MB014) are not applied, and
-the verdicts of the run (MB501-MB999) past its first block FANUC rejects are not reported: FANUC stops there with an alarm, and the
-run without the blocks it cannot read (their F, their variables) is of no control.
+(MB302-MB304: that control numbers its own) and its end of record (MB014) are not applied,
+and the verdicts of the run (MB501-MB999) past its first block FANUC rejects are not
+reported: FANUC stops there with an alarm, and the run without the blocks it cannot read
+(their F, their variables) is of no control.
 """,
     why="""
 A FANUC control raises an alarm on the block: PS0125 for an
