@@ -8,7 +8,7 @@ from collections.abc import Sequence
 from ..config import on_control
 from ..evaluator.facts import ValueSummary
 from ..program import knowledge
-from ..program.arguments import ARGUMENT_LETTER
+from ..program.arguments import ARGUMENT_LETTER, local_name
 from ..program.index import Program
 from ..program.machine_kind import machine_text
 from ..program.meanings import table_meaning
@@ -237,10 +237,7 @@ def hover_program(view: View, number: int, line: int | None = None, diagnosed: b
             parts.append(f"Entered {times(runs.runs[header])} in the analysed runs.")
         assumed = runs.assumed_arguments.get(program.first_line) if runs is not None else None
         if assumed:
-            names = ", ".join(
-                f"#{n} ({ARGUMENT_LETTER[n]})" if n in ARGUMENT_LETTER else f"#{n}"
-                for n, _ in assumed
-            )
+            names = ", ".join(local_name(n) for n, _ in assumed)
             parts.append(
                 f"Analysed as a macro with unknown arguments: it ends with M30 or M02 but "
                 f"reads {names} before setting them."

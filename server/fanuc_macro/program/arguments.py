@@ -29,6 +29,14 @@ _ASSIGNED = re.compile(r"\s*(?:/\d?\s*)?(?:N\s*\d+\s*)?(#\s*0*(\d+))\s*=")
 ARGUMENT_LETTER: Mapping[int, str] = MappingProxyType(
     {n: letter for letter, n in ARGUMENT_VARIABLES.items()}
 )
+
+
+def local_name(n: int) -> str:
+    """``#18 (R)``: a local with the letter that passes it (specification I); ``#28``."""
+    letter = ARGUMENT_LETTER.get(n)
+    return f"#{n} ({letter})" if letter is not None else f"#{n}"
+
+
 # Calls that open no level of locals: the called program shares this one's (M98, Haas M97).
 _SHARING_CALLS = frozenset({"M98", "M97"})
 

@@ -12,6 +12,7 @@ from ..diagnostics import Diagnostic, Fix
 from ..evaluator.checkpoints import lines_with_other_facts, stretches_of
 from ..evaluator.facts import DocumentFacts, Facts, Finding
 from ..line_maps import Diff, line_diff
+from ..program.arguments import LocalsNamed, locals_named
 from ..program.index import Program, ProgramIndex
 from ..syntax.tree import Block, Document, ParsedLine, Statement
 
@@ -49,6 +50,16 @@ class RuleContext:
             if found is not None:
                 return doc, found
         return None
+
+    def locals_named(
+        self, doc: Document, program: Program, with_subprograms: bool = True
+    ) -> LocalsNamed | None:
+        """:func:`fanuc_macro.program.arguments.locals_named`, once per program in an analysis
+        (the call rules and the argument checks ask of the same programs)."""
+        key = f"locals {id(doc)} {program.first_line} {with_subprograms}"
+        if key not in self.memo:
+            self.memo[key] = locals_named(doc, program, with_subprograms)
+        return cast("LocalsNamed | None", self.memo[key])
 
     def doc_facts(self) -> DocumentFacts | None:
         return None if self.facts is None else self.facts.by_uri.get(self.doc.uri)

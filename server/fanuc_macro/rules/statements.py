@@ -20,7 +20,7 @@ from ..diagnostics import (
 )
 from ..line_maps import LineMap
 from ..per_line import PerLine
-from ..program.arguments import ARGUMENT_LETTER, LocalsNamed, argument_numbers, locals_named
+from ..program.arguments import argument_numbers, local_name
 from ..program.custom_calls import unset_m_calls
 from ..program.index import Call as IndexCall
 from ..program.index import Program
@@ -885,7 +885,6 @@ arguments only by the run).
 
 
 def _arguments_not_used(ctx: RuleContext) -> Iterator[Diagnostic]:
-    uses: dict[tuple[int, int], LocalsNamed | None] = {}  # (document, first line) -> use
     for program in ctx.index.programs:
         for call in program.calls:
             if call.kind not in _MACRO_CALLS or call.code is not None or call.program is None:
@@ -894,10 +893,7 @@ def _arguments_not_used(ctx: RuleContext) -> Iterator[Diagnostic]:
             if found is None:
                 continue
             doc, callee = found
-            key = (id(doc), callee.first_line)
-            if key not in uses:
-                uses[key] = locals_named(doc, callee)
-            use = uses[key]
+            use = ctx.locals_named(doc, callee)
             if use is None or not use.named:  # no local at all: a placeholder, fixed moves
                 continue
             words = call.arguments
@@ -906,7 +902,7 @@ def _arguments_not_used(ctx: RuleContext) -> Iterator[Diagnostic]:
             wanted = [n for n in use.read_first if n not in given]
             also = ""
             if wanted:
-                names = ", ".join(_local_name(n) for n in wanted[:4])
+                names = ", ".join(local_name(n) for n in wanted[:4])
                 more = " and more" if len(wanted) > 4 else ""
                 also = f"; it reads {names}{more}, which this call does not pass"
             for word, n in zip(words, numbers, strict=True):
@@ -969,28 +965,26 @@ def _subprogram_arguments(ctx: RuleContext) -> Iterator[Diagnostic]:
         calls = [c for c in program.calls if c.kind == "M98" and c.program is not None]
         if not calls:
             continue
-        caller = locals_named(ctx.doc, program, with_subprograms=False)
-        if caller is None or caller.read_first:
-            continue
         for call in calls:
             assert call.program is not None
             found = ctx.program_numbered(call.program)
             if found is None:
                 continue
             doc, callee = found
-            use = locals_named(doc, callee, with_subprograms=False)
+            use = ctx.locals_named(doc, callee, with_subprograms=False)
             if use is None:
                 continue
             meant: list[tuple[Word, int]] = []
             for word in _words(ctx, call.line):
                 n = ARGUMENT_VARIABLES.get(word.address)
-                if (
-                    n is not None
-                    and word.address not in _NOT_M98_ARGUMENTS
-                    and n in use.read_first
-                    and n not in caller.named
-                ):
+                if n is not None and word.address not in _NOT_M98_ARGUMENTS and n in use.read_first:
                     meant.append((word, n))
+            if not meant:
+                continue  # most calls: P and L alone; the caller's locals need not be read
+            caller = ctx.locals_named(ctx.doc, program, with_subprograms=False)
+            if caller is None or caller.read_first:
+                continue
+            meant = [(w, n) for w, n in meant if n not in caller.named]
             if not meant:
                 continue
             text = ctx.doc.blocks[call.line].text
@@ -1013,9 +1007,3 @@ def _subprogram_arguments(ctx: RuleContext) -> Iterator[Diagnostic]:
 # sequence number to call (M98 Q), other M codes.
 _NOT_M98_ARGUMENTS = frozenset("MQ")
 _MACRO_CALLS = frozenset({"G65", "G66", "G66.1"})
-
-
-def _local_name(n: int) -> str:
-    """``#18 (R)``: a local with the letter that passes it (specification I)."""
-    letter = ARGUMENT_LETTER.get(n)
-    return f"#{n} ({letter})" if letter is not None else f"#{n}"

@@ -9,7 +9,7 @@ from ..diagnostics import Diagnostic, RuleDoc, RuleInfo, Severity, make
 from ..evaluator.facts import DocumentFacts, Finding, NoSuchVariable, ReadOnlyWrite
 from ..evaluator.machine import compiled
 from ..line_maps import Kept, LineMap
-from ..program.arguments import ARGUMENT_LETTER, locals_named
+from ..program.arguments import ARGUMENT_LETTER, local_name
 from ..program.index import Program
 from ..syntax.marks import constant_value
 from ..syntax.parser import statements_of
@@ -314,10 +314,7 @@ def _assumed_arguments(ctx: RuleContext, facts: DocumentFacts) -> Iterator[Diagn
         read_first = facts.assumed_arguments.get(program.first_line)
         if not read_first:
             continue
-        names = [
-            f"#{n} ({ARGUMENT_LETTER[n]})" if n in ARGUMENT_LETTER else f"#{n}"
-            for n, _line in read_first
-        ]
+        names = [local_name(n) for n, _line in read_first]
         shown = ", ".join(names[:8]) + (f" and {len(names) - 8} more" if len(names) > 8 else "")
         one = len(names) == 1
         number, line = read_first[0]
@@ -375,50 +372,69 @@ local indirectly.
 
 def _zero_tests_of_arguments(ctx: RuleContext) -> Iterator[Diagnostic]:
     blocks = ctx.doc.blocks
+    found = _conditions_on_locals(ctx.doc)
     for program in ctx.index.programs:
-        use = locals_named(ctx.doc, program, with_subprograms=False)
+        on_lines = found.within(program.first_line, program.end_line)
+        if not any(tests for _, (tests, _checked) in on_lines):
+            continue  # most programs: no comparison of a local with 0, nothing to read
+        use = ctx.locals_named(ctx.doc, program, with_subprograms=False)
         if use is None or not use.read_first:
             continue
-        arguments = set(use.read_first)
-        tests: list[tuple[int, Compare, int, IfGoto | IfThen]] = []  # line, test, local
-        checked: set[int] = set()  # the locals compared with #0
-        for line in range(program.first_line, program.end_line):
-            for statement in statements_of(blocks[line].statement):
-                if not isinstance(statement, IfGoto | IfThen):
+        checked = {n for _, (_tests, numbers) in on_lines for n in numbers}
+        for line, (tests, _checked) in on_lines:
+            for n, op, start, end in tests:
+                if n in checked or n not in use.read_first:
                     continue
-                for test in _comparisons(statement.cond):
-                    for side, other in ((test.left, test.right), (test.right, test.left)):
-                        n = _local_number(side)
-                        if n is None:
-                            continue
-                        if isinstance(other, Var) and other.number == 0:
-                            checked.add(n)
-                        elif (
-                            test.op in ("EQ", "NE")
-                            and isinstance(other, Num)
-                            and other.value == 0.0
-                            and n in arguments
-                        ):
-                            tests.append((line, test, n, statement))
-        for line, test, n, statement in tests:
-            if n in checked:
-                continue
-            alarm = _alarm_line(ctx, program, line, test.op, statement)
-            if alarm is None:
-                continue
-            letter = ARGUMENT_LETTER.get(n)
-            missing = f"with no {letter} in the call" if letter is not None else "not given"
-            outcome = "false" if test.op == "EQ" else "true"
-            which = "its alarm" if alarm == line else f"the alarm on line {alarm + 1}"
-            yield make(
-                MB905,
-                f"[#{n} {test.op} 0] is {outcome} for a vacant #{n}: {missing}, the check "
-                f"passes and {which} is not raised (a vacant variable differs from 0 in EQ "
-                f"and NE); [#{n} EQ #0] tests for a missing argument",
-                line,
-                test.span.start,
-                test.span.end,
-            )
+                statement = next(
+                    s
+                    for s in statements_of(blocks[line].statement)
+                    if isinstance(s, IfGoto | IfThen)
+                )
+                alarm = _alarm_line(ctx, program, line, op, statement)
+                if alarm is None:
+                    continue
+                letter = ARGUMENT_LETTER.get(n)
+                missing = f"with no {letter} in the call" if letter is not None else "not given"
+                outcome = "false" if op == "EQ" else "true"
+                which = "its alarm" if alarm == line else f"the alarm on line {alarm + 1}"
+                yield make(
+                    MB905,
+                    f"[#{n} {op} 0] is {outcome} for a vacant #{n}: {missing}, the check "
+                    f"passes and {which} is not raised (a vacant variable differs from 0 in EQ "
+                    f"and NE); [#{n} EQ #0] tests for a missing argument",
+                    line,
+                    start,
+                    end,
+                )
+
+
+# A condition's comparisons of a local: with 0 by EQ or NE (local, op, span), and with #0.
+_LocalConditions = tuple[tuple[tuple[int, str, int, int], ...], frozenset[int]]
+
+
+def _local_conditions(parsed: ParsedLine) -> _LocalConditions | None:
+    """What an IF block compares its locals with: 0 (EQ, NE), or #0 (a vacancy check)."""
+    if parsed.statement is None or "#" not in parsed.text:
+        return None
+    tests: list[tuple[int, str, int, int]] = []
+    checked: set[int] = set()
+    for statement in statements_of(parsed.statement):
+        if not isinstance(statement, IfGoto | IfThen):
+            continue
+        for test in _comparisons(statement.cond):
+            for side, other in ((test.left, test.right), (test.right, test.left)):
+                n = _local_number(side)
+                if n is None:
+                    continue
+                if isinstance(other, Var) and other.number == 0:
+                    checked.add(n)
+                elif test.op in ("EQ", "NE") and isinstance(other, Num) and other.value == 0.0:
+                    tests.append((n, test.op, test.span.start, test.span.end))
+    return (tuple(tests), frozenset(checked)) if tests or checked else None
+
+
+# The IF blocks that compare locals, kept from one analysis of a document to the next.
+_conditions_on_locals: LineMap[_LocalConditions] = LineMap(_local_conditions)
 
 
 def _comparisons(cond: Cond) -> Iterator[Compare]:
