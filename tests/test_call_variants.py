@@ -10,13 +10,11 @@ must be the listed ones, the mistake at its line and what truly follows from it.
 
 from __future__ import annotations
 
-from functools import cache
 from pathlib import Path
 
 import pytest
 
-from fanuc_macro.analysis import Analysis, analyse
-from fanuc_macro.diagnostics import Severity
+from variant_checks import errors_and_warnings
 
 VARIANTS_DIR = Path(__file__).resolve().parent / "fixtures" / "call_variants"
 
@@ -41,18 +39,8 @@ VARIANTS: dict[str, tuple[str, tuple[int, str], set[tuple[int, str]]]] = {
 CLEAN = ["bolt_circle_clean.nc", "ellipse_clean.nc", "pocket_clean.nc", "groove_clean.nc"]
 
 
-@cache
-def analysed(name: str) -> Analysis:
-    path = VARIANTS_DIR / name
-    return analyse(path.read_text("utf-8"), path.as_uri())
-
-
 def serious(name: str) -> set[tuple[int, str]]:
-    return {
-        (d.line + 1, d.code)
-        for d in analysed(name).diagnostics
-        if d.severity in (Severity.ERROR, Severity.WARNING)
-    }
+    return errors_and_warnings(VARIANTS_DIR / name)
 
 
 @pytest.mark.parametrize("name", sorted(VARIANTS))

@@ -105,6 +105,9 @@ FINDINGS: dict[str, list[tuple[int, str, bool, str]]] = {
         (2, "MB010", True, NO_O),
         (3, "MB404", True, SCALED),
         (3, "MB404", True, SCALED),
+        # NCVC's macro expansion reads on past the '%'; a FANUC control stops there, and O10,
+        # which no '%' closes, is never loaded: the G65 on line 3 finds no program.
+        (9, "MB014", True, "O10 after the closing '%': a control does not load it"),
     ],
     "RomanBoreyko__r_cod2__cnc__(SHABLON 3)__RAZNOE__O00030.nc": [
         (13, "MB408", True, VENDOR),

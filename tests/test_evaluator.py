@@ -379,7 +379,10 @@ def test_g76_on_a_mill_is_fine_boring_not_a_thread() -> None:
 
     text = "O1\nG00 X0. Y0. Z5.\nG76 X10. Y10. Z-20. R2. Q0.5 P1000 F100.\nG80\nM30\n"
     mill = analyse(text, "m.nc", config=Config(controller="0i-MF"))
-    assert mill.facts is not None and not [m for m in mill.facts.motions if m.code == "G76"]
+    assert mill.facts is not None
+    # The block is a hole of the boring cycle, recorded as such: no threading pass.
+    [boring] = [m for m in mill.facts.motions if m.code == "G76"]
+    assert boring.drilling and boring.line == 2 and boring.words["Q"] == 0.5
     assert not mill.threads
 
 

@@ -47,3 +47,48 @@ async def test_an_m98_with_arguments_and_a_feed_without_the_spindle(client: Lang
         )
     )
     await diagnostics(client, uri, lambda d: not {"MB412", "MB611", "MB411"} & codes(d))
+
+
+CONTOUR = """O5000 (BOSS)
+G90 G17 G21 G40 G54
+T1 M06
+G43 H1 Z50.
+S1000 M03
+G00 X-40. Y0.
+Z2.
+G01 Z-2. F150.
+G41 D1
+G03 X-20. Y20. R20.
+G02 X20. Y20. I10. J-20.
+G01 Y-10.
+G40 G00 X-40.
+G00 Z50.
+M30
+"""
+
+
+async def test_arc_and_compensation_verdicts_follow_the_edits(client: LanguageClient) -> None:
+    """A compensation started on an arc and an arc whose centre puts the end off the circle;
+    then a line typed above them and the centre put right: the arc's verdict goes, the other
+    moves down with its line and names the G41's new line."""
+    await start(client, None)
+    uri = "untitled:boss.nc"
+    open_text(client, uri, CONTOUR)
+    found = await diagnostics(client, uri, lambda d: {"MB631", "MB622"} <= codes(d))
+    start_up = next(d for d in found if d.code == "MB631")
+    assert start_up.range.start.line == 9 and "G41 from line 9" in start_up.message
+    arc = next(d for d in found if d.code == "MB622")
+    assert arc.range.start.line == 10 and "PS0020" in arc.message
+    assert arc.severity == types.DiagnosticSeverity.Error
+    fixed = CONTOUR.replace("O5000 (BOSS)\n", "O5000 (BOSS)\n(OP10)\n").replace(
+        "I10. J-20.", "I20. J-20."
+    )
+    client.text_document_did_change(
+        types.DidChangeTextDocumentParams(
+            text_document=types.VersionedTextDocumentIdentifier(uri=uri, version=2),
+            content_changes=[types.TextDocumentContentChangeWholeDocument(text=fixed)],
+        )
+    )
+    found = await diagnostics(client, uri, lambda d: "MB622" not in codes(d))
+    [start_up] = [d for d in found if d.code == "MB631"]
+    assert start_up.range.start.line == 10 and "G41 from line 10" in start_up.message

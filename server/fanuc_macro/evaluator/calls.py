@@ -238,6 +238,7 @@ class CallsPart(MachineBase):
         modal.speed = UNKNOWN
         modal.spindle = SPINDLE_UNKNOWN
         modal.z_at_top = False
+        modal.setup = modal.setup.after_unknown_call()
         modal.position.clear()
         modal.position_line.clear()
         if self.toolpath is not None:
@@ -291,6 +292,7 @@ class CallsPart(MachineBase):
         if act.repeats_left > 0:
             act.repeats_left -= 1
             act.pc = self._restart_line(act)
+            act.loops_turning.clear()
             if act.arguments is not None:
                 act.locals[:] = act.arguments
             return act

@@ -7,13 +7,15 @@ sets modal parameters, its cutting block expands into passes (:func:`.cycles.g76
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Sequence
+from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import replace
+from itertools import pairwise
+from types import MappingProxyType
 
 from ..syntax.marks import constant_value
 from .compile_lines import K_EMPTY, K_NC, K_OTHER, CompiledLine, CompiledWord
 from .cycles import g76_depths
-from .facts import Motion
+from .facts import Motion, ProfileFault, ThreadCycleFault
 from .machine_base import (
     MAX_MOTIONS,
     Activation,
@@ -23,8 +25,25 @@ from .machine_base import (
     system_a_block,
 )
 from .toolpath import ProfileBlock
-from .values import MacroAlarm, Unknown, Value
+from .values import MacroAlarm, Unknown, Value, fmt
 
+# The alarm the control stops with, by what is wrong with a G70-G73's profile (0i-F alarm
+# list): P or Q missing, a P or Q naming no block, a first block that is not G00 or G01, a
+# G71/G72 profile that turns back (which number for which axis is unverified).
+PROFILE_ALARMS: Mapping[str, str] = MappingProxyType(
+    {
+        "p-q": "PS0061",
+        "label": "PS0063",
+        "first": "PS0065",
+        "monotone": "PS0064 or PS0329, unverified which",
+    }
+)
+# The tool angles G76's P(a) takes, the last two digits of its first block's P (0i-TF
+# "Multiple threading cycle (G76)").
+G76_TOOL_ANGLES = frozenset({80.0, 60.0, 55.0, 30.0, 29.0, 0.0})
+# How far a profile's end points may step back along an axis and still count as one way: the
+# rounding of computed coordinates, far below the least increment.
+MONOTONE_EPS = 1e-6
 # The lathe's cycles that name a profile N(ns)..N(nf) by P and Q: G71-G73 read it, G70 runs it.
 PROFILE_CYCLES = frozenset({70.0, 71.0, 72.0, 73.0})
 # What a block of the profile may not hold for the evaluator to follow it: calls, returns, ends,
@@ -57,10 +76,14 @@ class CyclesPart(MachineBase):
             return "its P or Q is not known", line + 1, None
         first = self._label(ctx, int(p), line)
         if first is None:
-            return f"no N{int(p)} (its P) in {ctx.name}", line + 1, None
+            why = f"no N{int(p)} (its P) in {ctx.name}"
+            self._profile_fault(act, code, why, "label")
+            return why, line + 1, None
         last = self._label(ctx, int(q), first - 1)
         if last is None or last < first:
-            return f"no N{int(q)} (its Q) after N{int(p)} in {ctx.name}", line + 1, None
+            why = f"no N{int(q)} (its Q) after N{int(p)} in {ctx.name}"
+            self._profile_fault(act, code, why, "label")
+            return why, line + 1, None
         lines = ctx.lines
         for n in range(first, last + 1):
             if not _plain_profile_line(lines[n]):
@@ -75,7 +98,72 @@ class CyclesPart(MachineBase):
         self._profile_budget(act, last + 1 - first)
         if code == 70.0:
             return [], line + 1, (first, last)
-        return self._read_profile(act, first, last), last + 1, None
+        blocks = self._read_profile(act, first, last)
+        self._check_first_block(act, code, blocks)
+        if code in (71.0, 72.0):
+            self._check_monotone(act, code, blocks, first)
+        return blocks, last + 1, None
+
+    def _check_first_block(self, act: Activation, code: float, blocks: list[ProfileBlock]) -> None:
+        """A G71-G73 profile's first block moves at G00 or G01 (0i-TF "Multiple repetitive
+        cycle"): one that commands an arc, or leaves G02/G03 in force, cannot start it."""
+        if not blocks:
+            return
+        g_codes = blocks[0][1]
+        motion = next((g for g in g_codes if g in (0.0, 1.0, 2.0, 3.0)), self.modal.motion)
+        if motion in (2.0, 3.0):
+            self._profile_fault(
+                act,
+                code,
+                f"its first block moves by {self._shown(motion)}, and a profile must begin "
+                "with G00 or G01",
+                "first",
+            )
+
+    def _profile_fault(self, act: Activation, code: float, why: str, fault: str) -> None:
+        """A G70-G73 the control stops at, for its profile: ``why``."""
+        alarm = PROFILE_ALARMS[fault]
+        self._block_finding(
+            act,
+            ProfileFault,
+            f"{self._shown(code)}'s profile: {why}; the control stops ({alarm})",
+            fault=fault,
+        )
+
+    def _check_monotone(
+        self, act: Activation, code: float, blocks: list[ProfileBlock], first: int
+    ) -> None:
+        """A G71 or G72 profile must go one way in the axis its passes step along (G71: Z,
+        G72: X), and in type I (the first block moves in one axis only) in the other too
+        (0i-TF "Stock removal in turning (G71)", "... in facing (G72)"): judged on the
+        blocks' end points, as far as the run knows them."""
+        if not blocks:
+            return
+        facing = code == 72.0
+        head = blocks[0][0]
+        type_two = any(a in head for a in (("X", "U") if facing else ("Z", "W")))
+        axes: tuple[str, ...] = ("X",) if facing else ("Z",)
+        if not type_two:
+            axes = ("X", "Z")
+        ends = _profile_ends(blocks, self.modal.position, self.modal.motion)
+        if ends is None:
+            return
+        for axis in axes:
+            steps = [b[axis] - a[axis] for a, b in pairwise(ends)]
+            up = [i for i, s in enumerate(steps) if s > MONOTONE_EPS]
+            down = [i for i, s in enumerate(steps) if s < -MONOTONE_EPS]
+            if up and down:
+                turn = max(up[0], down[0]) + 1  # the block whose end goes back
+                kind = "type I " if not type_two else ""
+                self._profile_fault(
+                    act,
+                    code,
+                    f"{axis} goes {'up' if up[0] < down[0] else 'down'} and then back, at "
+                    f"{axis}{fmt(ends[turn][axis])}: a {kind}{self._shown(code)} profile must "
+                    f"keep going one way in {axis}",
+                    "monotone",
+                )
+                return
 
     def _profile_budget(self, act: Activation, blocks: int) -> None:
         """The profiles' blocks run within the G70-G73 block that names them, which the step
@@ -168,7 +256,10 @@ class CyclesPart(MachineBase):
         return next((w for a, _v, w in order if a == address), None)
 
     def _g76_parameters(
-        self, values: dict[str, Value], order: list[tuple[str, Value, CompiledWord]]
+        self,
+        act: Activation,
+        values: dict[str, Value],
+        order: list[tuple[str, Value, CompiledWord]],
     ) -> None:
         old = self.modal.g76
         m, chamfer, angle = old.finishing_passes, old.chamfer, old.tool_angle
@@ -176,6 +267,14 @@ class CyclesPart(MachineBase):
         if isinstance(p, float):  # P mmrraa: finishing passes, chamfer, tool angle
             digits = round(p)
             m, chamfer, angle = digits // 10000, float(digits // 100 % 100), float(digits % 100)
+            if angle not in G76_TOOL_ANGLES:
+                self._block_finding(
+                    act,
+                    ThreadCycleFault,
+                    f"G76 P{digits:06d} gives the tool angle {angle:g}°, which the cycle does not "
+                    "take (80, 60, 55, 30, 29 or 0): the control stops (PS0315)",
+                    fault="angle",
+                )
         q = self._least_increments(values.get("Q"), self._word(order, "Q"))
         r = self._least_increments(values.get("R"), self._word(order, "R"))
         self.modal.g76 = G76Parameters(
@@ -244,3 +343,38 @@ def _plain_profile_line(cl: CompiledLine) -> bool:
                 (g_list if w.address == "G" else m_list).append(round(v, 1))
         g_codes, m_codes = g_list, m_list
     return NOT_IN_PROFILE_G.isdisjoint(g_codes) and NOT_IN_PROFILE_M.isdisjoint(m_codes)
+
+
+def _profile_ends(
+    blocks: Sequence[ProfileBlock], position: Mapping[str, Value], motion: float | None
+) -> list[dict[str, float]] | None:
+    """Where the profile's cut goes: the end of its first block (the approach, where the
+    shape begins) and of each cutting block after it (X a diameter), from where the cycle
+    starts. A rapid block after the first is left out: the retract some programs end the
+    profile with, which a Haas lathe takes (whether a FANUC does is unverified). None when a
+    value is not known."""
+    x, z = position.get("X"), position.get("Z")
+    if type(x) is not float or type(z) is not float:
+        return None
+    ends: list[dict[str, float]] = []
+    for i, (values, g_codes) in enumerate(blocks):
+        for g in g_codes:
+            if g in (0.0, 1.0, 2.0, 3.0):
+                motion = g
+        moved = False
+        for absolute, incremental in (("X", "U"), ("Z", "W")):
+            word = values.get(absolute)
+            step = values.get(incremental)
+            if word is None and step is None:
+                continue
+            value = word if word is not None else step
+            if type(value) is not float:
+                return None
+            moved = True
+            if absolute == "X":
+                x = value if word is not None else x + value
+            else:
+                z = value if word is not None else z + value
+        if moved and (i == 0 or motion != 0.0):
+            ends.append({"X": x, "Z": z})
+    return ends

@@ -28,6 +28,7 @@ from ..program.index import Loop
 from ..syntax.diff import Diff, common_prefix, common_suffix, line_diff
 from ..syntax.tree import Document
 from .facts import DocumentFacts, Facts, same_value
+from .machine_setup import Setup
 
 if TYPE_CHECKING:
     from .machine import CompiledLine
@@ -50,6 +51,7 @@ class LevelState:
     serial: int
     arguments: tuple[Value, ...] | None
     undecided_loops: frozenset[int]
+    loops_turning: frozenset[int]
     modal_depth: int | None
 
 
@@ -69,6 +71,8 @@ class ModalState:
     spindle: str
     spindle_stop: tuple[str, int, str] | None
     z_at_top: bool
+    setup: Setup  # frozen
+    drilling: tuple[float, float | None] | None
 
 
 @dataclass(frozen=True, slots=True, eq=False, repr=False)
@@ -152,6 +156,7 @@ def _same_level(a: LevelState, b: LevelState) -> bool:
         and a.repeats_left == b.repeats_left
         and a.serial == b.serial
         and a.undecided_loops == b.undecided_loops
+        and a.loops_turning == b.loops_turning
         and a.modal_depth == b.modal_depth
         and same_value(a.locals, b.locals)
         and same_value(a.arguments, b.arguments)
@@ -169,6 +174,8 @@ def _same_modal(a: ModalState, b: ModalState) -> bool:
         and a.spindle == b.spindle
         and a.spindle_stop == b.spindle_stop
         and a.z_at_top == b.z_at_top
+        and a.setup == b.setup
+        and a.drilling == b.drilling
         and a.position_line == b.position_line
         and same_value(a.feed, b.feed)
         and same_value(a.speed, b.speed)

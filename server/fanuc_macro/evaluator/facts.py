@@ -247,6 +247,8 @@ class Motion:
     # empty when it is ``code``.
     written: str = ""
     inch: bool = False  # G20 in force: its lengths are inches (a message says so)
+    # A mill's canned drilling cycle (its G76 is fine boring, not a thread).
+    drilling: bool = False
 
     @property
     def shown(self) -> str:
@@ -322,6 +324,103 @@ class CutSpindleStopped(Finding):
     the work without turning."""
 
     KIND: ClassVar[str] = "feed-spindle-stopped"
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class LoopNoTurn(Finding):
+    """A WHILE entered again that runs no turn, its counter a common variable the loop sets:
+    a second call of a macro whose counter was not set back."""
+
+    KIND: ClassVar[str] = "loop-no-turn"
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class FeedUnit(Finding):
+    """A cut at a feed whose size belongs to the other feed mode: per minute set, a feed per
+    revolution's value written (or the other way)."""
+
+    KIND: ClassVar[str] = "feed-unit"
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class SpeedNotClamped(Finding):
+    """A lathe's feed move in G96 to a diameter where the surface speed asks for more than
+    the machine's maximum (the centre: any), with no G50 S clamp set in the run."""
+
+    KIND: ClassVar[str] = "speed-not-clamped"
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class LengthOffsetOtherTool(Finding):
+    """G43/G44 with an H that is not the tool in the spindle, where the run's earlier tools
+    had their H equal to their T."""
+
+    KIND: ClassVar[str] = "length-offset-other-tool"
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class ToolWithoutLengthOffset(Finding):
+    """A cut after a tool change with no tool length offset called, where an earlier tool of
+    the run had one."""
+
+    KIND: ClassVar[str] = "tool-without-length-offset"
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class SkipReadBeforeG31(Finding):
+    """A read of the skip position (#5061 and on) before any G31 of the run."""
+
+    KIND: ClassVar[str] = "skip-before-g31"
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class ArcFault(Finding):
+    """A G02/G03 the control cannot cut: an R shorter than half the chord, an end point off
+    the circle the I J K centre gives (PS0020), neither R nor I J K (PS0022)."""
+
+    KIND: ClassVar[str] = "arc-fault"
+
+    fault: str = field(kw_only=True)  # "radius", "centre" or "no-centre"
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class DrillingFault(Finding):
+    """A mill's drilling cycle the control stops: a peck cycle without its Q (PS0045), a
+    reference return while a cycle is in force (PS0044)."""
+
+    KIND: ClassVar[str] = "drilling-fault"
+
+    fault: str = field(kw_only=True)  # "peck" or "return"
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class ProfileFault(Finding):
+    """A lathe's G70-G73 the control stops at for its profile: P or Q names no block
+    (PS0063), a G71/G72 profile that does not keep going one way (PS0064, PS0329)."""
+
+    KIND: ClassVar[str] = "profile-fault"
+
+    fault: str = field(kw_only=True)  # "label" or "monotone"
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class ThreadCycleFault(Finding):
+    """A lathe's G76 the control stops at for its data: a tool angle it does not take
+    (PS0315)."""
+
+    KIND: ClassVar[str] = "thread-cycle-fault"
+
+    fault: str = field(kw_only=True)  # "angle"
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class CompensationFault(Finding):
+    """Radius compensation started or cancelled on an arc (PS0034), the plane changed while
+    it is on (PS0037), or left on at the end of the program or at a reference return."""
+
+    KIND: ClassVar[str] = "compensation-fault"
+
+    fault: str = field(kw_only=True)  # "arc", "plane" or "left-on"
 
 
 @dataclass(frozen=True, eq=False, repr=False)

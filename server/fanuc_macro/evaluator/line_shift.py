@@ -10,6 +10,7 @@ nor met; a stretch that ran one counts as a changed stretch.
 
 from __future__ import annotations
 
+import re
 from array import array
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, replace
@@ -248,6 +249,7 @@ def _state(state: MachineState, line: Renumber, chunks: dict[int, Keys]) -> Mach
             lv.serial,
             lv.arguments,
             frozenset(line(lv.ctx[0], n) for n in lv.undecided_loops),
+            frozenset(line(lv.ctx[0], n) for n in lv.loops_turning),
             lv.modal_depth,
         )
         for i, lv in enumerate(state.levels)
@@ -270,6 +272,8 @@ def _state(state: MachineState, line: Renumber, chunks: dict[int, Keys]) -> Mach
         if m.spindle_stop is None
         else (m.spindle_stop[0], line(m.spindle_stop[0], m.spindle_stop[1]), m.spindle_stop[2]),
         m.z_at_top,
+        m.setup.shifted(line),
+        m.drilling,
     )
     return MachineState(
         state.run,
@@ -335,10 +339,33 @@ def _cuts(cuts: CutsWithoutFeed, shift: LineShift) -> CutsWithoutFeed | None:
 def _finding(f: Finding, maybe: MaybeRenumber) -> Finding:
     line = maybe(f.uri, f.line)
     related = maybe(f.uri, f.related_line)
-    if line == f.line and related == f.related_line:
+    message = _message(f, maybe) if "line " in f.message else f.message
+    if line == f.line and related == f.related_line and message is f.message:
         return f
     # A finding of the edit's lines: it belongs to a stretch that runs again, and is replaced.
-    return replace(f, line=f.line if line is None else line, related_line=related)
+    return replace(f, line=f.line if line is None else line, related_line=related, message=message)
+
+
+# A block of the finding's own document that its message names ("M06 on line 5"): one of
+# another document is named with it ("line 5 of file:///o9010.nc") and left as it is.
+_LINE_NAMED = re.compile(r"\bline (\d+)\b(?! of )")
+
+
+def _message(f: Finding, maybe: MaybeRenumber) -> str:
+    """The finding's message with the lines it names in the new numbers (the same string
+    when none moves)."""
+    moved = False
+
+    def renumbered(m: re.Match[str]) -> str:
+        nonlocal moved
+        n = maybe(f.uri, int(m.group(1)) - 1)
+        if n is None or n + 1 == int(m.group(1)):
+            return m.group(0)
+        moved = True
+        return f"line {n + 1}"
+
+    text = _LINE_NAMED.sub(renumbered, f.message)
+    return text if moved else f.message
 
 
 _MOTION_FIELDS: tuple[str, ...] = Motion.__slots__

@@ -37,7 +37,7 @@ from .compile_lines import (
     CompiledLine,
     compiled,
 )
-from .facts import DocumentFacts, Facts, ValueSummary
+from .facts import DocumentFacts, Facts, LoopNoTurn, ValueSummary
 from .machine_base import (
     BLOCK_END_FIRST,
     BLOCK_END_LAST,
@@ -105,6 +105,8 @@ class Machine(MotionPart):
             self.record.read_first[(entry.uri, entry.program.first_line)] = read_first
         if not entry.is_main or read_first:
             self.modal.feed = Unknown(frozenset())  # the caller's F, which a lone run cannot know
+            # and its setup: compensation, the clamp, a G31 may all be the caller's.
+            self.modal.setup = self.modal.setup.after_unknown_call()
             # A macro analysed alone: its arguments are unknown, not vacant.
             for n in range(1, 34):
                 locals_[n] = self.unknown_of(n)
@@ -199,6 +201,7 @@ class Machine(MotionPart):
                 a.serial,
                 a.arguments,
                 frozenset(a.undecided_loops),
+                frozenset(a.loops_turning),
                 a.modal_depth,
             )
             for i, a in enumerate(chain)
@@ -222,6 +225,8 @@ class Machine(MotionPart):
             m.spindle,
             m.spindle_stop,
             m.z_at_top,
+            m.setup,
+            m.drilling,
         )
         if self._seen_since:
             self._seen_chunks = (*self._seen_chunks, frozenset(self._seen_since))
@@ -277,6 +282,8 @@ class Machine(MotionPart):
             ms.spindle,
             ms.spindle_stop,
             ms.z_at_top,
+            ms.setup,
+            ms.drilling,
         )
         caller: Activation | None = None
         for level in state.levels:
@@ -295,6 +302,7 @@ class Machine(MotionPart):
             a.repeats_left = level.repeats_left
             a.pc = level.pc
             a.undecided_loops = set(level.undecided_loops)
+            a.loops_turning = set(level.loops_turning)
             a.arguments = level.arguments
             a.serial = level.serial
             a.modal_depth = level.modal_depth
@@ -603,8 +611,12 @@ class Machine(MotionPart):
         if result is True:
             jc.taken += 1
             jc.guessed += self.speculative
+            act.loops_turning.add(pc)
             return pc + 1
         if result is False:
+            if pc not in act.loops_turning and jc.taken >= 2 and not self.speculative:
+                self._no_turn(act, cl, pc, end)  # entered again, and runs no turn
+            act.loops_turning.discard(pc)
             jc.not_taken += 1
             jc.guessed += self.speculative
         else:
@@ -617,6 +629,34 @@ class Machine(MotionPart):
         if end is None:
             raise StopRun("no END")
         return end + 1
+
+    def _no_turn(self, act: Activation, cl: CompiledLine, pc: int, end: int | None) -> None:
+        """A WHILE that ran turns before in the run and now runs none, its condition on a
+        common variable the loop counts with: where the loop's earlier turns left it."""
+        if end is None:
+            return
+        lines = act.ctx.lines
+        counted = {lines[n].target_number for n in range(pc + 1, end)} & set(cl.reads)
+        counters = sorted(n for n in counted if n is not None and n > 33)
+        if len(counters) != 1:
+            return
+        n = counters[0]
+        value = self.store.get(n)
+        if type(value) is not float:
+            return
+        caller = act.caller
+        entry = (
+            ""
+            if caller is None
+            else f" (the call on {self._where(act, (caller.ctx.uri, act.return_pc - 1))})"
+        )
+        self._block_finding(
+            act,
+            LoopNoTurn,
+            f"this entry of the loop{entry} runs no turn: its counter #{n} is {fmt(value)}, and "
+            "the loop counts it on from where it stands; set it to its start value before the "
+            "WHILE",
+        )
 
 
 _PROGRAM_ENDS = (("M", 2.0), ("M", 30.0))

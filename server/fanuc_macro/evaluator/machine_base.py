@@ -8,13 +8,13 @@ from it, so the block loop finds every method on one class.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Protocol
 
 from ..cancel import CancelToken
 from ..config import SYSTEM_A, Config
-from ..program.g_code_systems import INCREMENTAL, translated
+from ..program.g_code_systems import INCREMENTAL, translated, written
 from ..program.index import Program
 from ..program.variables import classify
 from ..syntax.tree import Compare, Document, Expr, Statement, Var
@@ -33,8 +33,10 @@ from .facts import (
     LongLoop,
     PollingLoop,
     Rounding,
+    SkipReadBeforeG31,
     ValueSummary,
 )
+from .machine_setup import Setup
 from .toolpath import NOT_MOVES
 from .values import AlarmKind, MacroAlarm, Unknown, Value, fmt
 
@@ -43,6 +45,9 @@ if TYPE_CHECKING:
 
 # The block end position #5001-#5008 (workpiece coordinates, axis = number - 5000).
 BLOCK_END_FIRST, BLOCK_END_LAST = 5001, 5008
+# The skip position, #5061-#5080: where the skip signal came on in the last G31, per axis
+# (0i-MF Custom Macro, "System variables for position information").
+SKIP_FIRST, SKIP_LAST = 5061, 5080
 # One-shot moves at rapid, whatever the modal motion: recorded under their own code. G27 goes to
 # its words; G28 and G30 pass through them to the reference point, and G53 goes to them in
 # machine coordinates, neither of which is known in work coordinates (0i-TF "Reference
@@ -76,6 +81,7 @@ class Activation:
         "caller",
         "ctx",
         "locals",
+        "loops_turning",
         "machine",
         "macro_level",
         "modal_depth",
@@ -107,6 +113,9 @@ class Activation:
         self.repeats_left = repeats_left
         self.pc = ctx.program.first_line
         self.undecided_loops: set[int] = set()
+        # The WHILE lines whose condition held at their last test: a turn under way, so that
+        # a test that fails is the loop's exit, not an entry that runs no turn.
+        self.loops_turning: set[int] = set()
         self.arguments: tuple[Value, ...] | None = None
         machine.runs += 1
         self.serial = machine.runs  # tells one call of a program from the next
@@ -116,6 +125,8 @@ class Activation:
 
     def read_global(self, number: int) -> Value:
         machine = self.machine
+        if SKIP_FIRST <= number <= SKIP_LAST:
+            machine._skip_read(self, number)
         if BLOCK_END_FIRST <= number <= BLOCK_END_LAST and machine.toolpath is not None:
             # Where the last NC block sent the axis, when the run follows the tool (see
             # run.tracks_positions); the other position variables stay unknown.
@@ -163,6 +174,11 @@ class Activation:
         # Unknown, not read_global: an indirect read of a position is not one the run is
         # known to need when it chooses to follow the tool (run.tracks_positions).
         return self.machine.unknown_of(n) if v is self else v  # type: ignore[return-value]
+
+
+def g_name(code: float) -> str:
+    """A G code's name: G01, G02, G12.1."""
+    return f"G{int(code):02d}" if code == int(code) else f"G{code:g}"
 
 
 class StopRun(Exception):
@@ -237,6 +253,13 @@ class Modal:
     # Z went to the reference point (G28, G30) or to machine zero (G53 Z0): on a mill, the top
     # of its travel, away from the work, until a block moves Z again.
     z_at_top: bool = False
+    # The plane, radius compensation, the speed clamp, the tool and its offset, the skip.
+    setup: Setup = field(default_factory=Setup)
+    # A mill's canned drilling cycle in force (G73, G74, G76, G81-G89: group 09), which a block
+    # with an axis word runs instead of the motion of group 01; None after G80 or a code of
+    # group 01 (0i-MF "Canned cycle for drilling"); and its Q, the depth of a peck, which stays
+    # in force with the cycle's other data (None: not given; NaN: not known).
+    drilling: tuple[float, float | None] | None = None
 
 
 @dataclass(frozen=True)
@@ -379,6 +402,37 @@ class MachineBase:
         seen.add(key)
         self._seen_since.append(key)
         ctx.facts.reported.append(finding)
+
+    def _block_finding(
+        self, act: Activation, kind: Callable[..., Finding], message: str, **kw: str
+    ) -> None:
+        """A finding of ``kind`` on the whole of the block being run."""
+        ctx = act.ctx
+        width = len(ctx.doc.blocks[self._line].text.rstrip())
+        self._finding(ctx, kind(self._line, 0, width, message, ctx.uri, **kw))
+
+    def _where(self, act: Activation, at: tuple[str, int]) -> str:
+        """A block as a message names it: its line, and its document if not ``act``'s."""
+        uri, line = at
+        return f"line {line + 1}" if uri == act.ctx.uri else f"line {line + 1} of {uri}"
+
+    def _shown(self, code: float) -> str:
+        """A motion code as the program writes it (a system B or C lathe's own number)."""
+        name = g_name(code)
+        if self.other_g_code_system and self.lathe:
+            return written(name, self.config.g_code_system)
+        return name
+
+    def _skip_read(self, act: Activation, number: int) -> None:
+        """A read of the skip position before any G31 of the run: it holds the last skip's
+        result on the machine, from another program or none."""
+        if self.modal.setup.skipped is False:
+            self._block_finding(
+                act,
+                SkipReadBeforeG31,
+                f"#{number} (the skip position) is read before any G31 of this run: it holds "
+                "where an earlier program's skip stopped, not this program's measurement",
+            )
 
     @staticmethod
     def _mark_incomplete(act: Activation | None) -> None:

@@ -10,6 +10,7 @@ import math
 import sys
 from array import array
 from collections.abc import Mapping, Sequence
+from dataclasses import replace
 from types import MappingProxyType
 
 from ..program.g_code_systems import written
@@ -17,7 +18,7 @@ from .calls import CallsPart
 from .canned_cycles import PROFILE_CYCLES, CyclesPart
 from .compile_lines import AXES, K_NC, CompiledLine, CompiledWord, recorded_words
 from .direct_drawing import missing_coordinate
-from .facts import CutSpindleStopped, CutsWithoutFeed, Motion, RunValues
+from .facts import CutsWithoutFeed, DrillingFault, Motion, RunValues
 from .machine_base import (
     LOCAL_COORDINATES,
     MAX_MOTIONS,
@@ -32,8 +33,10 @@ from .machine_base import (
     Activation,
     ProgramContext,
     StopRun,
+    g_name,
     system_a_block,
 )
+from .setup_verdicts import ARCS, TURNING_CYCLES, SetupPart
 from .toolpath import NOT_MOVES, ProfileBlock
 from .values import AlarmKind, MacroAlarm, Unknown, Value
 
@@ -52,10 +55,14 @@ LATHE_FED = frozenset({32.0, 33.0, 34.0, 76.0, 90.0, 92.0, 94.0})
 # The mill's cycles that cut besides G01-G03, which need the spindle turning: drilling and
 # boring (tapping, G74 and G84, left out: a rigid tap drives the spindle itself).
 MILL_CUTS = frozenset({73.0, 76.0, 81.0, 82.0, 83.0, 85.0, 86.0, 87.0, 88.0, 89.0})
+# The mill's canned drilling cycles (group 09), tapping with them: a block with an axis word
+# drills a hole at its X Y while one is in force.
+DRILLING_CYCLES = MILL_CUTS | {74.0, 84.0}
+PECK_CYCLES = frozenset({73.0, 83.0})  # high-speed and deep hole peck drilling: Q each peck
 MAX_REMEMBERED_RUNS = 1000  # executions whose variables are kept when they start a thread
 
 
-class MotionPart(CyclesPart, CallsPart):
+class MotionPart(CyclesPart, CallsPart, SetupPart):
     """The machine's NC blocks and moves."""
 
     def _nc(self, act: Activation, cl: CompiledLine) -> Activation:
@@ -94,6 +101,12 @@ class MotionPart(CyclesPart, CallsPart):
         modal = self.modal
         if "F" in values:
             modal.feed = values["F"]
+            lead = self.lathe and (
+                not THREADING_CODES.isdisjoint(g_codes)
+                or (modal.motion in THREADING_CODES and MOTION_GROUP.isdisjoint(g_codes))
+            )
+            if lead != modal.setup.lead_feed:
+                modal.setup = replace(modal.setup, lead_feed=lead)
         if "S" in values:
             modal.speed = values["S"]
         stops: float | None = None  # an M code that stops the spindle, after the block's move
@@ -104,7 +117,8 @@ class MotionPart(CyclesPart, CallsPart):
                 stops = m
             elif m not in SPINDLE_KEEPS:
                 modal.spindle = SPINDLE_UNKNOWN
-        moved = self._motion(act, cl, values, g_codes, order)
+        cancels = self._setup_codes(act, values, g_codes, m_codes) if g_codes or m_codes else False
+        moved = self._motion(act, cl, values, g_codes, order, cancels)
         if stops is not None:
             modal.spindle = SPINDLE_OFF
             modal.spindle_stop = (act.ctx.uri, self._line, f"M{stops:02g}")
@@ -128,6 +142,7 @@ class MotionPart(CyclesPart, CallsPart):
             if m == 99.0:
                 return self._return(act, values.get("P"), self._line)
             if m in (2.0, 30.0):
+                self._setup_end(act, m)
                 raise StopRun("end of program")
         act.pc = next_pc
         if moved and modal.modal_calls:
@@ -173,8 +188,14 @@ class MotionPart(CyclesPart, CallsPart):
         for g in g_codes:
             if g in MOTION_GROUP or (self.lathe and g in LATHE_CYCLES):
                 modal.motion = g
+                modal.drilling = None  # a code of group 01 ends a drilling cycle
                 if g not in LATHE_CYCLES:
                     modal.cycle = (None, None)
+            elif not self.lathe and g in DRILLING_CYCLES:
+                q = None if modal.drilling is None else modal.drilling[1]
+                modal.drilling = (g, q)
+            elif g == 80.0:
+                modal.drilling = None
             elif g == 65.0:
                 call_kind = "G65"
             elif g in (66.0, 66.1):
@@ -185,6 +206,8 @@ class MotionPart(CyclesPart, CallsPart):
                 modal.constant_surface_speed = True
             elif g == 97.0:
                 modal.constant_surface_speed = False
+            elif g in (90.0, 91.0) and not self.lathe:
+                modal.incremental = g == 91.0  # a mill's G91: the axis words are distances
             elif g == 20.0:
                 modal.inch = True
             elif g == 21.0:
@@ -310,6 +333,7 @@ class MotionPart(CyclesPart, CallsPart):
         values: dict[str, Value],
         g_codes: Sequence[float],
         order: list[tuple[str, Value, CompiledWord]] | None,  # None: the constant block's
+        cancels: bool = False,  # the block's G40 cancels radius compensation that was on
     ) -> bool:
         """The move a block commands, if any (True): its motion record, where the tool goes."""
         lathe = self.lathe
@@ -321,36 +345,49 @@ class MotionPart(CyclesPart, CallsPart):
         ):
             code = self._cycle_or_own_code(act, values, g_codes, has_axis)
         else:
-            code = self.modal.motion if has_axis else None
+            code = self._modal_move() if has_axis else None
         if code is None:
             return False
-        if code == 76.0:
+        if not lathe and self.modal.drilling is not None and code == self.modal.drilling[0]:
+            self._drill(act, values, code)
+        if code == 76.0 and lathe:
             order = const.order if order is None and const is not None else order
             assert order is not None
             if not any(a in values for a in "XUZW"):
-                self._g76_parameters(values, order)  # G76's first block sets, it does not cut
+                self._g76_parameters(act, values, order)  # G76's first block sets, no cut
                 return False
         modal = self.modal
         lathe_cycle = lathe and code in LATHE_CYCLES
         words = self._move_words(act, cl, values, code, lathe_cycle)
-        # An axis's absolute word (most blocks) is where it goes, without _axis.
-        x = values.get("X")
-        if type(x) is not float:
-            x = self._axis(values, "X", "U")
-        z = values.get("Z")
-        if type(z) is not float:
-            z = self._axis(values, "Z", "W") if lathe else None
+        y: Value = None
+        if lathe:
+            # An axis's absolute word (most blocks) is where it goes, without _axis.
+            x = values.get("X")
+            if type(x) is not float:
+                x = self._axis(values, "X", "U")
+            z = values.get("Z")
+            if type(z) is not float:
+                z = self._axis(values, "Z", "W")
+        else:
+            x, y, z = self._mill_end(values)
+            if code in DRILLING_CYCLES:
+                z = None  # back at the initial level (G98) or the R point (G99): not kept
         if lathe_cycle or code in LEFT_UNKNOWN:
             x, z = self._cycle_end(values, words, lathe_cycle, x, z)
         elif lathe and ",A" in values and code in (0.0, 1.0):
             x, z = self._end_by_angle(values, x, z)
         position = modal.position
+        arc = code in ARCS
+        start = dict(position) if arc else None
+        cuts = code in FEED_MOTIONS or (code in TURNING_CYCLES if lathe else code in MILL_CUTS)
+        if cuts and (lathe or not self._in_air(values)):
+            self._setup_cut(act, code, x if isinstance(x, float) else None)
         start_x = position.get("X")
         start_z = position.get("Z")
         ctx = act.ctx
         where = modal.position_line.get("X")
         speed = modal.speed
-        name = G_NAMES.get(code) or _g_name(code)
+        name = G_NAMES.get(code) or g_name(code)
         motion = Motion(
             ctx.name,
             self._line,
@@ -371,15 +408,18 @@ class MotionPart(CyclesPart, CallsPart):
             motion.written = written(name, self.config.g_code_system)
         if modal.inch:
             motion.inch = True
+        if not lathe and code in DRILLING_CYCLES:
+            motion.drilling = True
         facts = self.facts
-        if code in THREADING_CODES and act.serial not in facts.run_values:
+        if lathe and code in THREADING_CODES and act.serial not in facts.run_values:
             self._remember_run(act)
-        if code == 76.0:
+        if code == 76.0 and lathe:
             assert order is not None
             self._g76_passes(motion, values, order)
         elif len(facts.motions) < MAX_MOTIONS:
             facts.motions.append(motion)
-        if code not in LATHE_CYCLES and code not in ONE_SHOT_CYCLES:  # cycles end where they began
+        if not lathe or (code not in LATHE_CYCLES and code not in ONE_SHOT_CYCLES):
+            # (a lathe's cycles end where they began)
             here = (ctx.uri, self._line)
             if x is not None or "X" in values or "U" in values:
                 position["X"] = x
@@ -388,10 +428,30 @@ class MotionPart(CyclesPart, CallsPart):
                 position["Z"] = z
                 modal.position_line["Z"] = here
             if "Y" in values:
-                position["Y"] = None if code in LEFT_UNKNOWN else values["Y"]
+                position["Y"] = None if code in LEFT_UNKNOWN else y
         if "Z" in values and not lathe:
             modal.z_at_top = code in (28.0, 30.0) or (code == 53.0 and values["Z"] == 0.0)
+        self._setup_move(act, values, code, cancels, start, dict(position) if arc else None)
         return True
+
+    def _mill_end(self, values: dict[str, Value]) -> tuple[float | None, Value, float | None]:
+        """Where a mill's block sends X, Y and Z: the word, or in G91 where the axis is plus
+        the word; where the axis is without one; None where not known."""
+        position = self.modal.position
+        incremental = self.modal.incremental
+        out: list[float | None] = []
+        for axis in ("X", "Y", "Z"):
+            word = values.get(axis)
+            here = position.get(axis)
+            if word is None:
+                out.append(here if type(here) is float else None)
+            elif type(word) is not float:
+                out.append(None)
+            elif incremental:
+                out.append(here + word if type(here) is float else None)
+            else:
+                out.append(word)
+        return out[0], out[1], out[2]
 
     def _end_by_angle(
         self, values: dict[str, Value], x: float | None, z: float | None
@@ -442,7 +502,7 @@ class MotionPart(CyclesPart, CallsPart):
             _feed_zero(code, self._shown(code))
         if const is None or words is not const.words:
             words = self._shared_words(words)
-        if feed is None and code in FEED_MOTIONS:
+        if feed is None and (code in FEED_MOTIONS or (not self.lathe and code in DRILLING_CYCLES)):
             self._cut_without_feed(act.ctx, self._no_feed_message(code))
         if (
             self.modal.spindle == SPINDLE_OFF
@@ -476,19 +536,20 @@ class MotionPart(CyclesPart, CallsPart):
         modal.spindle = SPINDLE_TOLD
         stop = modal.spindle_stop
         assert stop is not None  # SPINDLE_OFF is set with the block that stopped it
-        ctx = act.ctx
         uri, line, m = stop
-        where = f"line {line + 1}" if uri == ctx.uri else f"line {line + 1} of {uri}"
-        why = f"{m} on {where} stopped it, and no M03 or M04 started it again"
-        width = len(ctx.doc.blocks[self._line].text.rstrip())
-        self._finding(
-            ctx,
-            CutSpindleStopped(
-                self._line,
-                0,
-                width,
-                f"{self._shown(code)} feeds with the spindle stopped: {why}",
+        why = f"{m} on {self._where(act, (uri, line))} stopped it"
+        ctx = act.ctx
+        # Told when the tool is known to be a cutting one: at the next spindle start, tool
+        # change or end of the program; not if a G31 comes first (a probe feeds standing still).
+        modal.setup = replace(
+            modal.setup,
+            pending_cut=(
                 ctx.uri,
+                ctx.program.first_line,
+                self._line,
+                len(ctx.doc.blocks[self._line].text.rstrip()),
+                f"{self._shown(code)} feeds with the spindle stopped: {why}, and no M03 or M04 "
+                "started it again",
             ),
         )
 
@@ -523,17 +584,62 @@ class MotionPart(CyclesPart, CallsPart):
         # drilling and boring cycles (G76 fine boring), which the analysis does not run.
         if self.lathe and not ONE_SHOT_CYCLES.isdisjoint(g_codes):
             code = next(g for g in g_codes if g in ONE_SHOT_CYCLES)
-            if code in PROFILE_CYCLES and "P" in values and "Q" in values:
-                self._profile_code = code
+            if code in PROFILE_CYCLES:
+                has_p, has_q = "P" in values, "Q" in values
+                if has_p and has_q:
+                    self._profile_code = code
+                elif has_p or has_q or code == 70.0:  # G71-G73's first block has neither
+                    given = "P alone" if has_p else "Q alone" if has_q else "neither P nor Q"
+                    self._profile_fault(
+                        act, code, f"it gives {given}, and the cycle needs both", "p-q"
+                    )
             return code
         if has_axis and not self._own_codes.isdisjoint(g_codes):
             own = next(g for g in g_codes if g in self._own_codes)
             if own in RAPID_ONE_SHOTS:
+                drilling = self.modal.drilling
+                if drilling is not None and not self.lathe and own != 53.0 and 80.0 not in g_codes:
+                    self._block_finding(
+                        act,
+                        DrillingFault,
+                        f"{self._shown(own)} returns to the reference position while the "
+                        f"drilling cycle {self._shown(drilling[0])} is in force: the control "
+                        "stops (PS0044); cancel the cycle with G80 first",
+                        fault="return",
+                    )
                 return own
             if own not in NOT_MOVES:  # no move: a dwell, a setting
                 self._coordinates_set(act, values, own)
             return None
-        return self.modal.motion if has_axis else None
+        return self._modal_move() if has_axis else None
+
+    def _modal_move(self) -> float | None:
+        """What a block with an axis word and no code of its own runs: a mill's drilling cycle
+        in force, else the motion of group 01."""
+        drilling = self.modal.drilling
+        if drilling is not None and not self.lathe:
+            return drilling[0]
+        return self.modal.motion
+
+    def _drill(self, act: Activation, values: dict[str, Value], code: float) -> None:
+        """A hole of a drilling cycle: its Q kept in force; a peck cycle's Q checked."""
+        modal = self.modal
+        assert modal.drilling is not None
+        q: float | None = modal.drilling[1]
+        if "Q" in values:
+            word = values["Q"]
+            q = word if type(word) is float else math.nan
+            modal.drilling = (code, q)
+        if code in PECK_CYCLES and (q is None or q == 0.0):
+            given = "no Q" if q is None else "Q0"
+            self._block_finding(
+                act,
+                DrillingFault,
+                f"{self._shown(code)} drills with {given}: a peck cycle needs the depth of each "
+                "peck; the control stops (PS0045)",
+                fault="peck",
+            )
+            modal.drilling = (code, math.nan)  # the control stops at the first: once
 
     def _taper_in_force(
         self, values: dict[str, Value], words: dict[str, float]
@@ -543,13 +649,6 @@ class MotionPart(CyclesPart, CallsPart):
         if "R" not in words and isinstance(taper, float) and taper != 0.0:
             return {**words, "R": taper}  # a repeat of a taper cycle: the cone in force
         return words
-
-    def _shown(self, code: float) -> str:
-        """A motion code as the program writes it (a system B or C lathe's own number)."""
-        name = _g_name(code)
-        if self.other_g_code_system and self.lathe:
-            return written(name, self.config.g_code_system)
-        return name
 
     def _no_feed_message(self, code: float) -> str:
         """What a cut without F is told: one string for the many blocks that give it (a CAM
@@ -592,11 +691,7 @@ def _feed_zero(code: float, shown: str) -> None:
     raise MacroAlarm("PS0011", AlarmKind.FEED_ZERO, f"{shown} runs with the feed F = 0")
 
 
-def _g_name(code: float) -> str:
-    return f"G{int(code):02d}" if code == int(code) else f"G{code:g}"
-
-
 # The names of the G codes a motion records, G00-G99.9 (others are named when met).
 G_NAMES: Mapping[float, str] = MappingProxyType(
-    {round(n / 10, 1): _g_name(round(n / 10, 1)) for n in range(1000)}
+    {round(n / 10, 1): g_name(round(n / 10, 1)) for n in range(1000)}
 )

@@ -15,7 +15,7 @@ from types import MappingProxyType
 from typing import NamedTuple
 
 from ..syntax.parser import statements_of
-from ..syntax.tree import Document, End, Goto, IfGoto, While
+from ..syntax.tree import Document, End, Goto, IfGoto, ParsedLine, While
 from .index import Program
 from .variables import ARGUMENT_VARIABLES
 
@@ -104,28 +104,65 @@ def locals_named(
         for statement in statements_of(parsed.statement):
             if isinstance(statement, While):
                 loops.append(statement.loop_id)
-        text = parsed.text
-        if "#" not in text:
+        if "#" not in parsed.text:
             continue
-        for comment in parsed.comments:  # blanked: a '#' in a comment names nothing
-            start, end = comment.span.start, comment.span.end
-            text = text[:start] + " " * (end - start) + text[end:]
-        if _INDIRECT.search(text):
+        use = _line_use(parsed, 0)
+        if use is None:
             return None
-        target = _ASSIGNED.match(text)
-        at = -1 if target is None else target.start(1)
-        numbers = ((m.start(), int(m.group(1))) for m in _DIRECT.finditer(text))
-        reads = [n for start, n in numbers if start != at and 1 <= n <= 33]
+        reads = use.reads
         for n in reads:  # '#1=#1+1' reads #1 before it sets it
             if n not in assigned:
                 read_first[n] = None
             if not any(path[: len(outer)] == outer for outer in sets.get(n, ())):
                 used.add(n)
         named.update(reads)
-        if target is not None and 1 <= (n := int(target.group(2))) <= 33:
-            named.add(n)
-            assigned.add(n)
-            sets.setdefault(n, []).append(path)
+        target = use.sets
+        if target is not None:
+            named.add(target)
+            assigned.add(target)
+            sets.setdefault(target, []).append(path)
     return LocalsNamed(
         frozenset(named), tuple(read_first), frozenset(named) if jumps else frozenset(used)
     )
+
+
+class LocalUse(NamedTuple):
+    """A line's use of the locals #1-#33: the one it sets (None: none) and those it reads."""
+
+    line: int
+    sets: int | None
+    reads: tuple[int, ...]  # in the order of the text ('#1=#1+1' reads #1 before it sets it)
+
+
+def _line_use(parsed: ParsedLine, line: int) -> LocalUse | None:
+    """The locals a line sets and reads, outside comments; None when it names one
+    indirectly (``#[...]``: it may be any)."""
+    text = parsed.text
+    for comment in parsed.comments:  # blanked: a '#' in a comment names nothing
+        start, end = comment.span.start, comment.span.end
+        text = text[:start] + " " * (end - start) + text[end:]
+    if _INDIRECT.search(text):
+        return None
+    target = _ASSIGNED.match(text)
+    at = -1 if target is None else target.start(1)
+    reads = tuple(
+        n for m in _DIRECT.finditer(text) if m.start() != at and 1 <= (n := int(m.group(1))) <= 33
+    )
+    sets = None if target is None else int(target.group(2))
+    return LocalUse(line, sets if sets is not None and 1 <= sets <= 33 else None, reads)
+
+
+def local_uses(doc: Document, program: Program) -> list[LocalUse] | None:
+    """The lines of ``program`` that name a local, in order; None when an indirect variable
+    ``#[...]`` may be any of them."""
+    uses: list[LocalUse] = []
+    for line in range(program.first_line, program.end_line):
+        parsed = doc.blocks[line].parsed
+        if "#" not in parsed.text:
+            continue
+        use = _line_use(parsed, line)
+        if use is None:
+            return None
+        if use.reads or use.sets is not None:
+            uses.append(use)
+    return uses

@@ -17,7 +17,7 @@ from ..diagnostics import (
     line_list,
     make,
 )
-from ..evaluator.facts import AddressNotInteger, AddressOutOfRange, FeedZero
+from ..evaluator.facts import AddressNotInteger, AddressOutOfRange, FeedUnit, FeedZero
 from ..program.custom_calls import unset_m_calls
 from ..syntax.marks import constant_value
 from ..syntax.tree import Assign, Var, Word
@@ -40,6 +40,9 @@ MB603 = RuleInfo("MB603", "feed-not-set", Severity.WARNING,
 MB604 = RuleInfo("MB604", "feed-zero", Severity.ERROR,
                  "A cut or a thread runs with F0: the control stops with PS0011 FEED ZERO.",
                  FAMILY)
+MB605 = RuleInfo("MB605", "feed-unit", Severity.WARNING,
+                 "A cut at a feed whose size belongs to the other feed mode (per minute or per "
+                 "revolution).", FAMILY)
 # fmt: on
 
 
@@ -124,6 +127,7 @@ the words of a block that reads as a macro call through an M code (MB409): its a
 def check(ctx: RuleContext) -> Iterator[Diagnostic]:
     yield from _feed_not_set(ctx)
     yield from _feed_zero(ctx)
+    yield from feed_unit(ctx)
     # A block that reads as a macro call through an M code not set up (MB409): its words are
     # the macro's arguments (D a diameter, not an offset number), which no NC rule applies to.
     arguments = {
@@ -158,10 +162,11 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
 MB603_DOC = RuleDoc(
     "MB603",
     reports="""
-A cutting move (`G01`, `G02`, `G03`) that the evaluator runs before any `F`
-has been commanded since the main program started: once per program, at the first such cut,
-with the number of cuts after it that run without F too (and their lines). A macro analysed
-on its own gets its caller's feed, so it is not reported there.
+A cutting move (`G01`, `G02`, `G03`; on a mill a hole of a drilling, boring or tapping cycle)
+that the evaluator runs before any `F` has been commanded since the main program started:
+once per program, at the first such cut, with the number of cuts after it that run without F
+too (and their lines). A macro analysed on its own gets its caller's feed, so it is not
+reported there.
 """,
     why="""
 F is modal. With none given, the move runs at the feed an
@@ -183,8 +188,8 @@ M30
 Give F in the first cutting block (`G01 Z-2. F100.`), or before it.
 """,
     not_reported="""
-Rapid moves (`G00`), threading and canned cycles, whose F is the
-lead or is given in the cycle block, cutting moves after a call of a program outside the
+Rapid moves (`G00`), a lathe's threading and canned cycles, whose F is the lead or is given
+in the cycle block, cutting moves after a call of a program outside the
 analysed files, which may have commanded F, and each later cut without F as a warning of its
 own.
 """,
@@ -387,3 +392,47 @@ def _named_assignments(ctx: RuleContext, address: str) -> list[int]:
                 lines.append(block.line)
         found = ctx.memo[key] = lines
     return cast("list[int]", found)
+
+
+MB605_DOC = RuleDoc(
+    "MB605",
+    reports="""
+A cutting move (`G01`-`G03`; a lathe's turning, facing and roughing cycles, G90, G94 and
+G71-G73; a mill's drilling cycles)
+whose F, in the feed mode the run set (a lathe's `G98` per minute and `G99` per revolution, a
+mill's `G94` and `G95`), has the other mode's size: per minute below 1 mm/min (0.04 inch/min),
+per revolution above 5 mm (0.2 inch). Once per mode set; the message names the block that set
+it.
+""",
+    why="""
+The control takes F in the mode in force. F0.25 in G98 is a quarter of a millimetre a minute:
+the tool stands in the cut, rubbing, and the cycle never ends; F150 in G99 is 150 mm a
+revolution, a crash at the first turn. It comes from a safety block copied from another
+machine's program, or a feed written for the other mode.
+""",
+    example="""
+```nc
+O8000 (TURN)
+G21 G40 G98
+T0101
+G97 S800 M03
+G00 X42. Z2.
+G01 Z-30. F0.25
+M30
+```
+""",
+    fix="""
+Set the mode the feeds are written for (`G99` for F0.25 per revolution), or write the feed in
+the mode set (`F200.` per minute).
+""",
+    not_reported="""
+Feeds in a mode the run did not set (the control's power-on mode is a parameter's), threading
+(its F is the lead) and the moves after it that run at the lead, rapid moves, feeds between
+the two limits, and each later cut until the mode is set again.
+""",
+)
+
+
+def feed_unit(ctx: RuleContext) -> Iterator[Diagnostic]:
+    for f in ctx.findings(FeedUnit):
+        yield make(MB605, f.message, f.line, f.column, f.end_column)

@@ -15,7 +15,7 @@ from collections.abc import Iterator
 from dataclasses import dataclass, field
 
 from ..diagnostics import Diagnostic, Related, RuleDoc, RuleInfo, Severity, make
-from ..evaluator.facts import Motion
+from ..evaluator.facts import Motion, ThreadCycleFault
 from ..threads.identify import Thread
 from ..threads.jobs import motion_positions
 from ..threads.module_shape import D1_FACTOR
@@ -30,6 +30,8 @@ FAMILY = "cycles"
 # fmt: off
 MB813 = RuleInfo("MB813", "cycle-start-side", Severity.ERROR,
                  "A lathe cycle (G90, G92, G76, G94) starts on the wrong side of its cut.", FAMILY)
+MB815 = RuleInfo("MB815", "g76-tool-angle", Severity.ERROR,
+                 "G76's first block gives a tool angle the cycle does not take.", FAMILY)
 # fmt: on
 
 
@@ -40,6 +42,47 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
     if ctx.facts is not None:
         for series in _series(ctx.facts.motions, ctx.doc.uri):
             yield from _series_start(ctx, series)
+    yield from g76_tool_angle(ctx)
+
+
+MB815_DOC = RuleDoc(
+    "MB815",
+    reports="""
+The first block of a lathe's two-block `G76`, `G76 P(m)(r)(a) Q R`, whose last two digits of P,
+the tool's angle a, are not one of 80, 60, 55, 30, 29 and 0. The message gives the angle.
+""",
+    why="""
+The cycle feeds in along the flank of the tool's angle, and takes only the angles of the usual
+thread forms (0i-TF "Multiple threading cycle (G76)"): with another the control stops with
+alarm PS0315 "ILLEGAL NOSE ANGLE COMMAND IS IN THE THREAD CUTTING CYCLE" (0i-F alarm list). A
+P with its digits out of place (`P10060` for `P010060`, or a chamfer and an angle swapped)
+gives one.
+""",
+    example="""
+```nc
+O8100
+T0303
+G97 S800 M03
+G00 X26. Z5.
+G76 P010065 Q100 R0.05
+G76 X21.4 Z-30. P1300 Q400 F2.
+M30
+```
+""",
+    fix="""
+Give the angle of the insert in the last two digits: `P010060` for a 60° metric thread.
+""",
+    not_reported="""
+A P the analysis cannot compute, the one-block G76 of the Series 10/11 format (its angle is
+A), and the angle of the tool itself (the program cannot say which insert is mounted).
+""",
+)
+
+
+def g76_tool_angle(ctx: RuleContext) -> Iterator[Diagnostic]:
+    for f in ctx.findings(ThreadCycleFault):
+        if f.fault == "angle":
+            yield make(MB815, f.message, f.line, f.column, f.end_column)
 
 
 MB813_DOC = RuleDoc(

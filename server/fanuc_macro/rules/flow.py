@@ -26,6 +26,7 @@ from ..evaluator.facts import (
     Finding,
     GotoAlarm,
     LongLoop,
+    LoopNoTurn,
     NestingAlarm,
     PollingLoop,
     ProgramNotFound,
@@ -34,6 +35,7 @@ from ..evaluator.facts import (
 from ..evaluator.machine import compiled
 from ..line_maps import Kept, LineMap
 from ..per_line import PerLine
+from ..program.counters import commons_tested, loop_counters, start_values
 from ..program.index import Program
 from ..syntax.marks import constant_value
 from ..syntax.tree import (
@@ -84,6 +86,9 @@ MB709 = RuleInfo("MB709", "restart-point", Severity.HINT,
 MB710 = RuleInfo("MB710", "dead-after-end", Severity.INFORMATION,
                  "Blocks after the M30 or M02 of a main program that no jump and no sequence "
                  "number search can reach.", FAMILY, DEAD_CODE)
+MB711 = RuleInfo("MB711", "loop-runs-no-turn", Severity.WARNING,
+                 "A WHILE loop entered again runs no turn: its counter, a common variable, "
+                 "was not set back.", FAMILY)
 # fmt: on
 
 
@@ -312,11 +317,97 @@ def check(ctx: RuleContext) -> list[Diagnostic]:
             found.append(make(MB704, f.message, f.line, f.column, f.end_column))
     for f in ctx.findings(NestingAlarm):
         found.append(make(MB705, f.message, f.line, f.column, f.end_column))
+    found.extend(loop_runs_no_turn(ctx))
     for f in ctx.findings(ProgramNotFound):
         if not _constant_call(ctx, f.line):
             found.append(make(MB706, f.message, f.line, f.column, f.end_column))
     found.extend(_programs(ctx, facts))
     return found
+
+
+MB711_DOC = RuleDoc(
+    "MB711",
+    reports="""
+A `WHILE` loop that counts its turns in a common variable (`#100`-`#199`, `#500`-`#999`): its
+condition reads it and its body adds to it from itself (`#100 = #100 + 1`). Reported at the
+WHILE when the loop ran two turns or more earlier in the run and, entered again, runs none
+(with the counter's value, on the paths the analysis is sure of); and when no block of the
+files checked sets the counter to a start value at all (the loop works only the first time
+after power-off, for #500 and up only once).
+""",
+    why="""
+Common variables keep their values from one call to the next (and `#500` and up through power
+off). A macro that counts its turns in one and does not set it to its start before the loop
+works the first time; the second call finds the counter at its end and cuts nothing: a row of
+holes or a pocket missing from the part, with no alarm.
+""",
+    example="""
+```nc
+O1000
+#100 = 0
+G65 P2000
+G65 P2000
+M30
+O2000
+WHILE [#100 LT 4] DO1
+#100 = #100 + 1
+END1
+M99
+```
+""",
+    fix="""
+Set the counter to its start right before the loop (`#100 = 0`), or count in a local (`#1`),
+which each G65 call starts vacant.
+""",
+    not_reported="""
+Loops whose counter is a local, or whose condition reads several variables the body sets, a
+loop that ran fewer than two turns before, entries after a condition the analysis could not
+decide, a counter some block sets to a start value (wherever it stands), files with an
+assignment to an indirect variable (`#[...] =`, it may be the counter), and loops no run
+reached.
+""",
+)
+
+
+def loop_runs_no_turn(ctx: RuleContext) -> Iterator[Diagnostic]:
+    for f in ctx.findings(LoopNoTurn):
+        yield make(MB711, f.message, f.line, f.column, f.end_column)
+    yield from _counters_never_started(ctx)
+
+
+def _counters_never_started(ctx: RuleContext) -> Iterator[Diagnostic]:
+    """MB711 from the text: a loop the run reached whose counter no block of the files
+    checked sets to a start value."""
+    facts = ctx.doc_facts()
+    if facts is None:
+        return
+    tests = dict(_while_commons(ctx.doc))
+    if not tests:
+        return  # most documents: no WHILE tests a common variable
+    docs = [ctx.doc, *(doc for _uri, doc, _index in ctx.other_documents)]
+    for program in ctx.index.programs:
+        for loop in program.loops:
+            tested = tests.get(loop.do_line)
+            if tested is None or not facts.runs.get(loop.do_line) or loop.end_line is None:
+                continue
+            for n, update in sorted(loop_counters(ctx.doc, loop, tested).items()):
+                if next(start_values(docs, n), None) is not None:
+                    continue
+                span = ctx.doc.blocks[loop.do_line].text.rstrip()
+                yield make(
+                    MB711,
+                    f"the loop counts its turns in #{n} (line {update + 1} adds to it), and no "
+                    f"block sets #{n} to a start value: a common variable keeps its value from "
+                    "the last run or call, so the loop goes on from there, and runs no turn "
+                    "once it is past its end",
+                    loop.do_line,
+                    0,
+                    len(span),
+                )
+
+
+# The WHILE blocks that test common variables, kept from one analysis of a document to the next.
+_while_commons: LineMap[frozenset[int]] = LineMap(commons_tested)
 
 
 # ---- What the programs' runs say, kept from one analysis to the next -------------------------

@@ -146,7 +146,8 @@ MB014_DOC = RuleDoc(
     reports="""
 Blocks after the `%` that ends a file's data, up to the next program's `O` line: once per such
 stretch, at its first block, with the number of blocks and the jumps elsewhere in the file
-(`GOTO`) that land on a sequence number in it. A `%` ends the data when
+(`GOTO`) that land on a sequence number in it; and programs after the file's last `%`, which
+no mark closes, with a call of them from the programs before it. A `%` ends the data when
 program text stands before it; a `%` before any program text starts it.
 """,
     why="""
@@ -173,11 +174,12 @@ Move the blocks before the closing `%` (before `M30`, or in a program of their o
 `O` number).
 """,
     not_reported="""
-What follows the closing `%` when it starts with an `O` line: another program, as in files
-that hold several programs each between its own marks, which are loaded one by one. Comments
-and empty lines after the `%`. A file read as another control's program (MB002), whose own
-marks may use `%` otherwise. The checker's run still reads such blocks (so the verdicts of
-the run treat them as loaded).
+What follows the closing `%` when it starts with an `O` line and a later `%` closes it:
+another program, as in files that hold several programs each between its own marks, which
+are loaded one by one (programs after the file's last `%` are reported, with a call of
+them). Comments and empty lines after the `%`. A file read as another control's program
+(MB002), whose own marks may use `%` otherwise. The checker's run still reads such blocks (so
+the verdicts of the run treat them as loaded).
 """,
 )
 
@@ -201,7 +203,11 @@ def _after_end_of_record(ctx: RuleContext) -> Iterator[Diagnostic]:
         if first is None:
             return
         if isinstance(blocks[first].parsed.statement, ProgramStart):
-            continue  # another program: a file of programs, each loaded on its own
+            if mark != marks[-1]:
+                continue  # another program between its own marks: loaded on its own
+            # Programs after the last '%', which no mark closes: never read in.
+            yield from _programs_not_loaded(ctx, mark, first)
+            return
         end = next((h for h in headers if h > first), len(blocks))
         after = end
         held = [n for n in range(first, end) if _holds_block(blocks[n].parsed)]
@@ -220,6 +226,35 @@ def _after_end_of_record(ctx: RuleContext) -> Iterator[Diagnostic]:
                 "there, which the control does not find (alarm PS0060)"
             )
         yield make(MB014, text, first, 0, len(blocks[first].text.rstrip()))
+
+
+def _programs_not_loaded(ctx: RuleContext, mark: int, first: int) -> Iterator[Diagnostic]:
+    """MB014 for programs after a file's last '%' (no mark closes them): the control reads
+    up to that '%' and never loads them; a call from the programs before it finds nothing."""
+    after = [p for p in ctx.index.programs if p.first_line >= first]
+    numbers = {p.number: p for p in after if p.number is not None}
+    calls = [
+        (call, numbers[call.program])
+        for p in ctx.index.programs
+        if p.first_line < mark
+        for call in p.calls
+        if call.program in numbers
+    ]
+    names = ", ".join(p.display_name for p in after)
+    text = (
+        f"{names} {'stands' if len(after) == 1 else 'stand'} after the '%' on line {mark + 1}, "
+        "which ends the file's data, and no '%' closes "
+        f"{'it' if len(after) == 1 else 'them'}: the control never reads "
+        f"{'it' if len(after) == 1 else 'them'} in"
+    )
+    if calls:
+        call, callee = calls[0]
+        text += (
+            f"; {call.kind} P{callee.number} on line {call.line + 1} calls "
+            f"{callee.display_name}, which the control does not find (alarm PS0078)"
+        )
+    blocks = ctx.doc.blocks
+    yield make(MB014, text, first, 0, len(blocks[first].text.rstrip()))
 
 
 def _holds_block(parsed: ParsedLine) -> bool:

@@ -20,7 +20,13 @@ from ..diagnostics import (
 )
 from ..line_maps import LineMap
 from ..per_line import PerLine
-from ..program.arguments import argument_numbers, local_name
+from ..program.arguments import (
+    LocalsNamed,
+    LocalUse,
+    argument_numbers,
+    local_name,
+    local_uses,
+)
 from ..program.custom_calls import unset_m_calls
 from ..program.index import Call as IndexCall
 from ..program.index import Program
@@ -30,6 +36,7 @@ from ..syntax.marks import constant_value
 from ..syntax.parser import statements_of
 from ..syntax.tree import (
     Assign,
+    Document,
     Goto,
     IfNc,
     Mixed,
@@ -80,6 +87,9 @@ MB411 = RuleInfo("MB411", "argument-not-used", Severity.WARNING,
 MB412 = RuleInfo("MB412", "m98-argument", Severity.WARNING,
                  "A word of an M98 block that the subprogram reads as an argument: M98 passes "
                  "none.", FAMILY)
+MB413 = RuleInfo("MB413", "m98-sets-callers-local", Severity.WARNING,
+                 "A subprogram called by M98 sets a local its caller counts with across the "
+                 "call: they share #1-#33.", FAMILY)
 # fmt: on
 
 
@@ -339,6 +349,7 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
     yield from _m_calls_not_set_up(ctx)
     yield from _arguments_not_used(ctx)
     yield from _subprogram_arguments(ctx)
+    yield from _subprogram_sets_callers_local(ctx)
 
 
 def _internal_call(program: Program, call: IndexCall, q_word: Word) -> Iterator[Diagnostic]:
@@ -920,6 +931,24 @@ def _arguments_not_used(ctx: RuleContext) -> Iterator[Diagnostic]:
                 )
 
 
+def _m98_calls(
+    ctx: RuleContext,
+) -> Iterator[tuple[Program, IndexCall, Document, Program, LocalsNamed]]:
+    """Each M98 with a constant P whose subprogram is in the files checked and names its
+    locals directly: the caller, the call, the subprogram's document, it and its locals."""
+    for program in ctx.index.programs:
+        for call in program.calls:
+            if call.kind != "M98" or call.program is None:
+                continue
+            found = ctx.program_numbered(call.program)
+            if found is None:
+                continue
+            doc, callee = found
+            use = ctx.locals_named(doc, callee, with_subprograms=False)
+            if use is not None:
+                yield program, call, doc, callee, use
+
+
 MB412_DOC = RuleDoc(
     "MB412",
     reports="""
@@ -961,46 +990,125 @@ not in the files checked, and one that names a local indirectly (`#[...]`).
 
 
 def _subprogram_arguments(ctx: RuleContext) -> Iterator[Diagnostic]:
-    for program in ctx.index.programs:
-        calls = [c for c in program.calls if c.kind == "M98" and c.program is not None]
-        if not calls:
+    for program, call, _doc, callee, use in _m98_calls(ctx):
+        meant: list[tuple[Word, int]] = []
+        for word in _words(ctx, call.line):
+            n = ARGUMENT_VARIABLES.get(word.address)
+            if n is not None and word.address not in _NOT_M98_ARGUMENTS and n in use.read_first:
+                meant.append((word, n))
+        if not meant:
+            continue  # most calls: P and L alone; the caller's locals need not be read
+        caller = ctx.locals_named(ctx.doc, program, with_subprograms=False)
+        if caller is None or caller.read_first:
             continue
-        for call in calls:
-            assert call.program is not None
-            found = ctx.program_numbered(call.program)
-            if found is None:
-                continue
-            doc, callee = found
-            use = ctx.locals_named(doc, callee, with_subprograms=False)
-            if use is None:
-                continue
-            meant: list[tuple[Word, int]] = []
-            for word in _words(ctx, call.line):
-                n = ARGUMENT_VARIABLES.get(word.address)
-                if n is not None and word.address not in _NOT_M98_ARGUMENTS and n in use.read_first:
-                    meant.append((word, n))
-            if not meant:
-                continue  # most calls: P and L alone; the caller's locals need not be read
-            caller = ctx.locals_named(ctx.doc, program, with_subprograms=False)
-            if caller is None or caller.read_first:
-                continue
-            meant = [(w, n) for w, n in meant if n not in caller.named]
-            if not meant:
-                continue
-            text = ctx.doc.blocks[call.line].text
-            words = " ".join(text[w.span.start : w.span.end].strip() for w, _ in meant)
-            locals_ = ", ".join(f"#{n} ({w.address})" for w, n in meant)
-            one = len(meant) == 1
+        meant = [(w, n) for w, n in meant if n not in caller.named]
+        if not meant:
+            continue
+        text = ctx.doc.blocks[call.line].text
+        words = " ".join(text[w.span.start : w.span.end].strip() for w, _ in meant)
+        locals_ = ", ".join(f"#{n} ({w.address})" for w, n in meant)
+        one = len(meant) == 1
+        yield make(
+            MB412,
+            f"{words} {'is no argument' if one else 'are no arguments'}: M98 passes none, "
+            f"and {callee.display_name} reads {locals_} before setting "
+            f"{'it' if one else 'them'}, vacant here; G65 P{call.program} passes "
+            f"{'it' if one else 'them'}",
+            call.line,
+            meant[0][0].span.start,
+            meant[-1][0].span.end,
+        )
+
+
+MB413_DOC = RuleDoc(
+    "MB413",
+    reports="""
+An `M98 P...` call whose subprogram sets a local (`#1`-`#33`) before reading it, where the
+calling program set that local before the call and, after the call, counts with it: updates it
+from itself (`#1 = #1 + 1`) on a later line, or tests it in the `WHILE` of a loop around the
+call. The message names the local, the subprogram's line that sets it and the caller's line
+that counts with it.
+""",
+    why="""
+M98 opens no local level: the subprogram's `#1`-`#33` are its caller's (0i-F Custom Macro,
+"Local variables"; G65 opens a new level). A subprogram that uses `#1` for its own counter
+overwrites the caller's row counter: the caller's loop ends early, runs again from another
+value, or never ends.
+""",
+    example="""
+```nc
+O1000
+#1 = 0
+WHILE [#1 LT 3] DO1
+M98 P2000
+#1 = #1 + 1
+END1
+M30
+O2000
+#1 = 0
+WHILE [#1 LT 4] DO1
+#1 = #1 + 1
+END1
+M99
+```
+""",
+    fix="""
+Give the subprogram locals the caller does not use (or common variables), or call it with
+`G65 P2000`, which gives it locals of its own.
+""",
+    not_reported="""
+A local the subprogram reads before setting (a value it takes from its caller, or gives back),
+a local the caller only reads after the call (a value the subprogram returns), subprograms not
+in the files checked or called by a computed P, and programs that name a local indirectly
+(`#[...]`).
+""",
+)
+
+
+def _subprogram_sets_callers_local(ctx: RuleContext) -> Iterator[Diagnostic]:
+    caller_uses: dict[int, list[LocalUse] | None] = {}
+    for program, call, doc, callee, named in _m98_calls(ctx):
+        own = named.named - set(named.read_first)  # set before any read of it
+        if not own:
+            continue
+        if program.first_line not in caller_uses:
+            caller_uses[program.first_line] = local_uses(ctx.doc, program)
+        uses, callee_uses = caller_uses[program.first_line], local_uses(doc, callee)
+        if uses is None or callee_uses is None:
+            continue
+        counted = _counted_across(program, uses, call.line)
+        for n in sorted(own & counted.keys()):
+            sets = next(u.line for u in callee_uses if u.sets == n)
+            where = "" if doc is ctx.doc else " of its file"
             yield make(
-                MB412,
-                f"{words} {'is no argument' if one else 'are no arguments'}: M98 passes none, "
-                f"and {callee.display_name} reads {locals_} before setting "
-                f"{'it' if one else 'them'}, vacant here; G65 P{call.program} passes "
-                f"{'it' if one else 'them'}",
+                MB413,
+                f"M98 P{call.program} shares this program's locals, and "
+                f"{callee.display_name} sets #{n} on line {sets + 1}{where}, which this "
+                f"program counts with on line {counted[n] + 1}: after the call #{n} holds "
+                f"{callee.display_name}'s value; G65 gives the subprogram locals of its own",
                 call.line,
-                meant[0][0].span.start,
-                meant[-1][0].span.end,
+                call.span.start,
+                call.span.end,
             )
+
+
+def _counted_across(program: Program, uses: list[LocalUse], line: int) -> dict[int, int]:
+    """The locals a program sets before ``line`` and counts with after it: updates from
+    themselves on a later line, or tests in the WHILE of a loop around it; by the line."""
+    before = {u.sets for u in uses if u.line < line and u.sets is not None}
+    counted: dict[int, int] = {}
+    around = {
+        loop.do_line
+        for loop in program.loops
+        if loop.end_line is not None and loop.do_line < line < loop.end_line
+    }
+    for u in uses:
+        if u.line > line and u.sets is not None and u.sets in u.reads and u.sets in before:
+            counted.setdefault(u.sets, u.line)
+        elif u.line in around:
+            for n in sorted(set(u.reads) & before):
+                counted.setdefault(n, u.line)
+    return counted
 
 
 # Words of an M98 block that have their own meaning there: the call, its repeat count, a

@@ -464,7 +464,11 @@ def _patched(
 def _positions(
     motions: Sequence[Motion], uri: str, codes: frozenset[str], start: int, end: int
 ) -> list[int]:
-    return [i for i in range(start, end) if (m := motions[i]).code in codes and m.uri == uri]
+    return [
+        i
+        for i in range(start, end)
+        if (m := motions[i]).code in codes and m.uri == uri and not m.drilling
+    ]
 
 
 def _same_cut(new: Sequence[Motion], i: int, old: Sequence[Motion], j: int) -> bool:

@@ -1,0 +1,343 @@
+"""The verdicts on the machine's setup as blocks change and use it (:mod:`.machine_setup`):
+radius compensation started or cancelled on an arc, the plane changed under it, left on; an
+arc the control cannot cut; G96 near the centre with no clamp; a length offset of another
+tool, or none; the skip position read before a G31.
+
+:class:`SetupPart` is one of the machine's parts (see :mod:`.machine_base`): :mod:`.motion`
+calls ``_setup_codes`` before a block's move, ``_setup_move`` with it and ``_setup_end`` at
+the end of the program.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping, Sequence
+from dataclasses import replace
+
+from .facts import (
+    ArcFault,
+    CompensationFault,
+    CutSpindleStopped,
+    FeedUnit,
+    LengthOffsetOtherTool,
+    SpeedNotClamped,
+    ToolWithoutLengthOffset,
+)
+from .machine_base import Activation, MachineBase
+from .machine_setup import (
+    PLANES,
+    Setup,
+    arc_fault,
+    feed_unit_fault,
+    moves_in_plane,
+    speed_at,
+)
+from .toolpath import Plane
+from .values import Value, fmt
+
+ARCS = frozenset({2.0, 3.0})
+# What shows that a tool that fed with the spindle stopped is a cutter, not a probe: the
+# spindle started at last (M03, M04), the next tool change (M06), the end (M02, M30).
+CONFIRM_CUT = frozenset({3.0, 4.0, 6.0, 2.0, 30.0})
+# The feed modes: per minute, per revolution (a lathe's G-code system A; a mill's). A lathe's
+# G94 is its facing cycle, a mill's G98/G99 the drilling cycles' return levels.
+FEED_MODES_LATHE = frozenset({98.0, 99.0})
+FEED_MODES_MILL = frozenset({94.0, 95.0})
+PER_REVOLUTION = frozenset({99.0, 95.0})
+REFERENCE_RETURNS = frozenset({28.0, 30.0})
+# The lathe's feed moves that turn at G96's surface speed besides G01-G03: the turning and
+# facing cycles, and the roughing cycles (at the F of their block, from their start point);
+# threads run in G97 as a rule, and their X is the root.
+TURNING_CYCLES = frozenset({90.0, 94.0, 71.0, 72.0, 73.0})
+
+
+def whole(v: float) -> str:
+    """A tool or offset number as programs write it: T2, H12 (a fraction kept as written)."""
+    return f"{v:g}" if v.is_integer() else fmt(v)
+
+
+class SetupPart(MachineBase):
+    """What the blocks do to the machine's setup, and the verdicts on it."""
+
+    def _told_cut(self, cut: tuple[str, int, int, int, str]) -> None:
+        """MB611's finding, once the tool that fed standing still is known to be a cutter."""
+        uri, program, line, width, message = cut
+        ctx = self.contexts.get((uri, program))
+        if ctx is not None:
+            self._finding(ctx, CutSpindleStopped(line, 0, width, message, uri))
+
+    def _place(self, act: Activation) -> tuple[str, int]:
+        return (act.ctx.uri, self._line)
+
+    def _setup_codes(
+        self,
+        act: Activation,
+        values: Mapping[str, Value],
+        g_codes: Sequence[float],
+        m_codes: Sequence[float],
+    ) -> bool:
+        """The setup the block's codes change, before its move; whether the block cancels
+        radius compensation (G40) while it was on, for ``_setup_move``."""
+        modal = self.modal
+        setup = before = modal.setup
+        cancels = False
+        here = self._place(act)
+        for g in g_codes:
+            plane = PLANES.get(g)
+            if plane is not None and not self.lathe:
+                if plane != setup.plane and setup.compensation in (41.0, 42.0):
+                    self._block_finding(
+                        act,
+                        CompensationFault,
+                        f"G{g:g} changes the plane while G{setup.compensation:g} from "
+                        f"{self._where(act, setup.compensation_at or here)} is on: "
+                        "the control stops (PS0037); cancel it with G40 first",
+                        fault="plane",
+                    )
+                setup = replace(setup, plane=plane)
+            elif g == 40.0:
+                cancels = setup.compensation in (41.0, 42.0) and setup.compensation_started
+                setup = replace(
+                    setup, compensation=40.0, compensation_started=False, left_on_told=False
+                )
+            elif g in (41.0, 42.0):
+                pending, d = setup.pending_offset, values.get("D")
+                if pending is not None and d == pending[5] and setup.tool == pending[5]:
+                    where = self._where(act, here)
+                    self._told_offset(
+                        pending,
+                        f"; the radius offset D{whole(pending[5])} on {where} is the tool's number",
+                    )
+                    setup = replace(setup, pending_offset=None)
+                if setup.compensation == 40.0 or setup.compensation is None:
+                    setup = replace(
+                        setup,
+                        compensation=g,
+                        compensation_at=here,
+                        compensation_started=setup.compensation is None,
+                    )
+                else:
+                    setup = replace(setup, compensation=g)
+            elif g == 31.0:
+                if setup.compensation in (41.0, 42.0):
+                    self._block_finding(
+                        act,
+                        CompensationFault,
+                        f"G31 skips while radius compensation G{setup.compensation:g} is on: the "
+                        "control stops (PS0035); cancel it with G40 before the probing move",
+                        fault="skip",
+                    )
+                setup = replace(setup, skipped=True)
+            elif g in (FEED_MODES_LATHE if self.lathe else FEED_MODES_MILL):
+                setup = replace(setup, feed_mode=(g, here[0], here[1]), feed_told=False)
+            elif g == 50.0 and self.lathe and "S" in values:
+                setup = replace(setup, clamped=True, unclamped_told=False)
+            elif g in (43.0, 44.0) and not self.lathe:
+                setup = self._length_offset(act, setup, g, values.get("H"))
+            elif g == 49.0 and not self.lathe:
+                setup = replace(setup, length_offset=None)
+        if setup.pending_cut is not None and (31.0 in g_codes or 19.0 in m_codes):
+            setup = replace(setup, pending_cut=None)  # a probe's move: it feeds standing still
+        elif setup.pending_cut is not None and not CONFIRM_CUT.isdisjoint(m_codes):
+            self._told_cut(setup.pending_cut)
+            setup = replace(setup, pending_cut=None)
+        if not self.lathe:
+            tool = values.get("T")
+            if tool is not None:
+                setup = replace(setup, selected=tool if type(tool) is float else None)
+            if 6.0 in m_codes:
+                setup = replace(
+                    setup,
+                    tool=setup.selected,
+                    tool_at=here,
+                    length_offset=None,
+                    length_told=False,
+                )
+        if setup is not before:
+            modal.setup = setup
+        return cancels
+
+    def _length_offset(self, act: Activation, setup: Setup, g: float, h: Value) -> Setup:
+        """G43/G44 H: the offset called, checked against the tool in the spindle."""
+        if type(h) is not float:
+            return replace(setup, length_offset=math.nan, offset_used=True)
+        tool, loaded = setup.tool, setup.tool_at
+        if tool is not None and h != 0.0 and loaded is not None:
+            pending = setup.pending_offset
+            if pending is not None:  # an earlier tool's H, not its number: this one decides
+                if h == tool:
+                    self._told_offset(pending, "; the next tool takes the offset of its number")
+                setup = replace(setup, pending_offset=None)
+            message = (
+                f"G{g:g} H{whole(h)} applies offset {whole(h)} to tool {whole(tool)}, "
+                f"loaded on {self._where(act, loaded)}"
+            )
+            if h == tool:
+                setup = replace(setup, offset_by_tool=True)
+            elif setup.offset_by_tool:
+                self._block_finding(
+                    act,
+                    LengthOffsetOtherTool,
+                    f"{message}: the earlier tools of this run took the offset of their number",
+                )
+            else:
+                ctx = act.ctx
+                width = len(ctx.doc.blocks[self._line].text.rstrip())
+                setup = replace(
+                    setup,
+                    pending_offset=(
+                        ctx.uri,
+                        ctx.program.first_line,
+                        self._line,
+                        width,
+                        message,
+                        tool,
+                    ),
+                )
+        return replace(setup, length_offset=h, offset_used=True)
+
+    def _told_offset(self, pending: tuple[str, int, int, int, str, float], why: str) -> None:
+        """MB613's finding on an earlier block, now that the program shows that it numbers
+        the offsets by the tools."""
+        uri, program, line, width, message, _tool = pending
+        ctx = self.contexts.get((uri, program))
+        if ctx is not None:
+            self._finding(ctx, LengthOffsetOtherTool(line, 0, width, message + why, uri))
+
+    def _setup_move(
+        self,
+        act: Activation,
+        values: Mapping[str, Value],
+        code: float,
+        cancels: bool,
+        start: Mapping[str, Value] | None,
+        end: Mapping[str, Value] | None,
+    ) -> None:
+        """The verdicts on a block's move: compensation started or cancelled on an arc, left
+        on at a reference return; the arc's geometry (``start`` and ``end``: where the tool
+        was and goes, given for arcs)."""
+        modal = self.modal
+        setup = modal.setup
+        plane: Plane = "XZ" if self.lathe else setup.plane
+        arc = code in ARCS
+        if arc and start is not None and end is not None:
+            fault = arc_fault(start, end, values, plane, self.lathe, modal.inch)
+            if fault is not None:
+                kind, why = fault
+                alarm = "PS0022" if kind == "no-centre" else "PS0020"
+                self._block_finding(
+                    act,
+                    ArcFault,
+                    f"{self._shown(code)} cannot be cut: {why}; the control stops ({alarm})",
+                    fault=kind,
+                )
+        if cancels and arc and moves_in_plane(values, plane, self.lathe):
+            self._block_finding(
+                act,
+                CompensationFault,
+                f"G40 cancels radius compensation in a {self._shown(code)} block: the control "
+                "stops (PS0034); cancel it on a G00 or G01 move",
+                fault="arc",
+            )
+        if (
+            setup.compensation in (41.0, 42.0)
+            and not setup.compensation_started
+            and moves_in_plane(values, plane, self.lathe)
+        ):
+            if arc:
+                at = setup.compensation_at or self._place(act)
+                self._block_finding(
+                    act,
+                    CompensationFault,
+                    f"G{setup.compensation:g} from {self._where(act, at)} starts radius "
+                    f"compensation on this {self._shown(code)}: the control stops (PS0034); "
+                    "start it on a G00 or G01 move",
+                    fault="arc",
+                )
+            modal.setup = setup = replace(setup, compensation_started=True)
+        if code in REFERENCE_RETURNS:
+            self._left_on(act, f"at the reference return {self._shown(code)}")
+
+    def _setup_end(self, act: Activation, m: float) -> None:
+        """M02 or M30: radius compensation still on."""
+        self._left_on(act, f"at M{m:02g}, the end of the program")
+
+    def _left_on(self, act: Activation, where: str) -> None:
+        setup = self.modal.setup
+        if setup.compensation not in (41.0, 42.0) or setup.left_on_told:
+            return
+        at = setup.compensation_at
+        since = "" if at is None else f" from {self._where(act, at)}"
+        self._block_finding(
+            act,
+            CompensationFault,
+            f"radius compensation G{setup.compensation:g}{since} is still on {where}: "
+            "the moves to it are offset; cancel it with G40 on the retract",
+            fault="left-on",
+        )
+        self.modal.setup = replace(setup, left_on_told=True)
+
+    def _setup_cut(self, act: Activation, code: float, x: float | None) -> None:
+        """A feed move: on a mill, the first after a tool change with no length offset; on a
+        lathe in G96, one to a diameter the spindle cannot reach unclamped."""
+        modal = self.modal
+        setup = modal.setup
+        mode, feed = setup.feed_mode, modal.feed
+        if mode is not None and not setup.feed_told and not setup.lead_feed and type(feed) is float:
+            why = feed_unit_fault(feed, mode[0] in PER_REVOLUTION, modal.inch)
+            if why is not None:
+                self._block_finding(
+                    act,
+                    FeedUnit,
+                    f"{self._shown(code)} cuts at F{fmt(feed)} in G{mode[0]:g} (from "
+                    f"{self._where(act, (mode[1], mode[2]))}): {why}",
+                )
+                modal.setup = setup = replace(setup, feed_told=True)
+        if not self.lathe:
+            if (
+                setup.tool_at is not None
+                and setup.length_offset is None
+                and setup.offset_used
+                and not setup.length_told
+            ):
+                tool = "" if setup.tool is None else f" (tool {whole(setup.tool)})"
+                self._block_finding(
+                    act,
+                    ToolWithoutLengthOffset,
+                    f"{self._shown(code)} cuts with no tool length offset since the tool "
+                    f"change on {self._where(act, setup.tool_at)}{tool}: the earlier tools "
+                    "of this run called theirs with G43 H",
+                )
+                modal.setup = replace(setup, length_told=True)
+            return
+        surface = modal.speed
+        if (
+            not modal.constant_surface_speed
+            or setup.clamped is not False
+            or setup.unclamped_told
+            or x is None
+            or type(surface) is not float
+            or surface <= 0.0
+        ):
+            return
+        limit = self.config.max_spindle_speed
+        needed = speed_at(surface, x, modal.inch)
+        if needed <= limit and not (math.isinf(needed) and math.isinf(limit)):
+            return
+        asked = (
+            "a speed without limit at the centre"
+            if math.isinf(needed)
+            else f"{fmt(round(needed))} rpm"
+        )
+        top = (
+            "the machine's maximum"
+            if math.isinf(limit)
+            else f"the machine's maximum, {fmt(limit)} rpm"
+        )
+        self._block_finding(
+            act,
+            SpeedNotClamped,
+            f"{self._shown(code)} to X{fmt(x)} in G96 S{fmt(surface)} asks for {asked}, and "
+            f"no G50 S clamps the spindle in this run: it speeds up to {top}",
+        )
+        modal.setup = replace(setup, unclamped_told=True)

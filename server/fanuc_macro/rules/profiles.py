@@ -1,0 +1,209 @@
+"""MB65x: the profile a lathe's G70-G73 names by P and Q, as the run reads it."""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+
+from ..diagnostics import Diagnostic, RuleDoc, RuleInfo, Severity, make
+from ..evaluator.facts import ProfileFault
+from .context import RuleContext
+
+FAMILY = "profiles"
+
+# The family's rules, by code: what diagnostics.make gives each diagnostic (its name,
+# severity and tags). Each rule's documentation, MBxxx_DOC, is beside the function that
+# finds it; docs/rules.md is generated from them (python3 scripts/rules_doc.py).
+# fmt: off
+MB651 = RuleInfo("MB651", "profile-label-missing", Severity.ERROR,
+                 "A G70-G73 whose P or Q names no block of the program (Q: none after P).",
+                 FAMILY)
+MB652 = RuleInfo("MB652", "profile-not-monotone", Severity.ERROR,
+                 "A G71 or G72 profile that does not keep going one way.", FAMILY)
+MB653 = RuleInfo("MB653", "profile-p-q-missing", Severity.ERROR,
+                 "A G70-G73 that gives P without Q or Q without P (a G70 neither).", FAMILY)
+MB654 = RuleInfo("MB654", "profile-first-move", Severity.ERROR,
+                 "A G71-G73 profile whose first block moves by G02 or G03.", FAMILY)
+# fmt: on
+
+
+MB651_DOC = RuleDoc(
+    "MB651",
+    reports="""
+A lathe's `G70`, `G71`, `G72` or `G73` with `P` and `Q` where the program holds no block
+`N` with P's number, or none with Q's number after it. The message names the number.
+""",
+    why="""
+P and Q name the first and the last block of the finishing profile. Without them the control
+stops at the cycle with alarm PS0063 "THE BLOCK OF A SPECIFIED SEQUENCE NUMBER IS NOT FOUND"
+(0i-F alarm list): usually a G70 copied from another program, or a profile renumbered after the
+cycle was written.
+""",
+    example="""
+```nc
+O7000
+T0101
+G00 X62. Z2.
+G71 U2. R0.5
+G71 P100 Q200 U0.4 W0.1 F0.25
+N100 G00 X20.
+G01 Z-30. F0.1
+N200 X62.
+G70 P100 Q210
+M30
+```
+""",
+    fix="""
+Give P and Q the N numbers of the profile's first and last blocks (`G70 P100 Q200`).
+""",
+    not_reported="""
+A P or Q the analysis cannot compute, cycles in a program run through a call it cannot
+follow, mills (their G73 is a drilling cycle), and a `G71`/`G72` first block with no P (it
+sets the depth of cut and the escape).
+""",
+)
+
+
+def profile_label_missing(ctx: RuleContext) -> Iterator[Diagnostic]:
+    for f in ctx.findings(ProfileFault):
+        if f.fault == "label":
+            yield make(MB651, f.message, f.line, f.column, f.end_column)
+
+
+MB652_DOC = RuleDoc(
+    "MB652",
+    reports="""
+A `G71` whose profile's end points go back in Z, or in type I (its first block moves in X
+only) go back in X; a `G72` likewise with X and Z exchanged. The message names the axis and
+where the profile turns back. Judged on the end points of the profile's first block and of its
+cutting blocks (G01-G03), from the cycle's start point.
+""",
+    why="""
+The roughing cycle cuts in layers along one axis and can only follow a profile that keeps
+going one way (type II allows pockets in the other axis). Otherwise the control stops at the
+cycle with alarm PS0064 or PS0329 "THE FINISHING SHAPE IS NOT A MONOTONOUS CHANGE" (0i-TF
+"Stock removal in turning (G71)"; which number for which axis is unverified): a groove or an
+undercut in the profile, or a diameter typed wrong.
+""",
+    example="""
+```nc
+O7100
+T0101
+G00 X62. Z2.
+G71 U2. R0.5
+G71 P100 Q200 U0.4 W0.1 F0.25
+N100 G00 X20.
+G01 Z-10. F0.1
+X30. Z-15.
+X26. Z-25.
+N200 X62.
+G70 P100 Q200
+M30
+```
+""",
+    fix="""
+Rough the profile without the groove and cut the groove with its own tool, or write the
+profile as type II (the first block `G00 X20. Z2.` names Z too) where it goes back in X.
+""",
+    not_reported="""
+An arc that bulges past its end points (only the ends are judged), a rapid block after the
+first (a retract at the profile's end, which a Haas lathe takes), profiles with a value the
+analysis cannot compute, G73 (it follows any shape), G70, and profiles the analysis does not
+follow (a call, a jump or an assignment in them).
+""",
+)
+
+
+def profile_not_monotone(ctx: RuleContext) -> Iterator[Diagnostic]:
+    for f in ctx.findings(ProfileFault):
+        if f.fault == "monotone":
+            yield make(MB652, f.message, f.line, f.column, f.end_column)
+
+
+MB653_DOC = RuleDoc(
+    "MB653",
+    reports="""
+A lathe's `G70`, `G71`, `G72` or `G73` block with `P` but no `Q`, or `Q` but no `P`; a `G70`
+with neither. (The first block of G71-G73, which sets the depth of cut and the escape, has
+neither.)
+""",
+    why="""
+The cycle needs both ends of its profile: without one the control stops with alarm PS0061
+"P OR Q COMMAND IS NOT IN THE MULTIPLE REPETITIVE CYCLES BLOCK" (0i-F alarm list).
+""",
+    example="""
+```nc
+O7200
+T0101
+G00 X62. Z2.
+G71 U2. R0.5
+G71 P100 Q200 U0.4 W0.1 F0.25
+N100 G00 X20.
+G01 Z-30. F0.1
+N200 X62.
+G70 P100
+M30
+```
+""",
+    fix="""
+Give both: `G70 P100 Q200`.
+""",
+    not_reported="""
+Mills (their G73 is a drilling cycle), the one-block G71/G72 of the Series 10/11 format when
+it gives both, and a P or Q given by a variable the analysis cannot compute (still given).
+""",
+)
+
+
+def profile_p_q_missing(ctx: RuleContext) -> Iterator[Diagnostic]:
+    for f in ctx.findings(ProfileFault):
+        if f.fault == "p-q":
+            yield make(MB653, f.message, f.line, f.column, f.end_column)
+
+
+MB654_DOC = RuleDoc(
+    "MB654",
+    reports="""
+A `G71`, `G72` or `G73` whose profile's first block (N with P's number) commands `G02` or
+`G03`, or commands no motion while G02 or G03 is in force.
+""",
+    why="""
+The first block of the profile is the approach from the cycle's start point, which the control
+takes at G00 or G01: with an arc there it stops with alarm PS0065 "G00/G01 IS NOT IN THE FIRST
+BLOCK OF SHAPE PROGRAM" (0i-F alarm list). A profile that begins with a radius needs a straight
+approach block before it.
+""",
+    example="""
+```nc
+O7300
+T0101
+G00 X62. Z2.
+G71 U2. R0.5
+G71 P100 Q200 U0.4 W0.1 F0.25
+N100 G03 X20. Z-10. R10.
+G01 Z-30. F0.1
+N200 X62.
+M30
+```
+""",
+    fix="""
+Begin the profile with its approach, `N100 G00 X0.`, and cut the radius in the next block.
+""",
+    not_reported="""
+A first block with no motion code while G00 or G01 is in force (taken as that motion; whether
+the control wants it written is unverified), G70 (it runs the profile, checked at the roughing
+cycle), and profiles the analysis does not follow.
+""",
+)
+
+
+def profile_first_move(ctx: RuleContext) -> Iterator[Diagnostic]:
+    for f in ctx.findings(ProfileFault):
+        if f.fault == "first":
+            yield make(MB654, f.message, f.line, f.column, f.end_column)
+
+
+def check(ctx: RuleContext) -> Iterator[Diagnostic]:
+    yield from profile_label_missing(ctx)
+    yield from profile_not_monotone(ctx)
+    yield from profile_p_q_missing(ctx)
+    yield from profile_first_move(ctx)
