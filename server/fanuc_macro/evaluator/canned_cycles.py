@@ -33,6 +33,8 @@ from .values import MacroAlarm, Unknown, Value, fmt
 PROFILE_ALARMS: Mapping[str, str] = MappingProxyType(
     {
         "p-q": "PS0061",
+        "depth": "PS0062",
+        "divisions": "PS0321",
         "label": "PS0063",
         "first": "PS0065",
         "monotone": "PS0064 or PS0329, unverified which",
@@ -41,6 +43,8 @@ PROFILE_ALARMS: Mapping[str, str] = MappingProxyType(
 # The tool angles G76's P(a) takes, the last two digits of its first block's P (0i-TF
 # "Multiple threading cycle (G76)").
 G76_TOOL_ANGLES = frozenset({80.0, 60.0, 55.0, 30.0, 29.0, 0.0})
+# The faults of a cycle's own data, not of its profile.
+CYCLE_DATA = frozenset({"depth", "divisions"})
 # How far a profile's end points may step back along an axis and still count as one way: the
 # rounding of computed coordinates, far below the least increment.
 MONOTONE_EPS = 1e-6
@@ -123,10 +127,11 @@ class CyclesPart(MachineBase):
     def _profile_fault(self, act: Activation, code: float, why: str, fault: str) -> None:
         """A G70-G73 the control stops at, for its profile: ``why``."""
         alarm = PROFILE_ALARMS[fault]
+        what = f"{self._shown(code)}'s profile" if fault not in CYCLE_DATA else self._shown(code)
         self._block_finding(
             act,
             ProfileFault,
-            f"{self._shown(code)}'s profile: {why}; the control stops ({alarm})",
+            f"{what}: {why}; the control stops ({alarm})",
             fault=fault,
         )
 
@@ -287,14 +292,19 @@ class CyclesPart(MachineBase):
         )
 
     def _g76_passes(
-        self, cut: Motion, values: dict[str, Value], order: list[tuple[str, Value, CompiledWord]]
+        self,
+        act: Activation,
+        cut: Motion,
+        values: dict[str, Value],
+        order: list[tuple[str, Value, CompiledWord]],
     ) -> None:
         """The passes of G76's cutting block ``G76 X Z R(i) P(k) Q(Δd) F(L)``: X is the root,
         k the thread height and Δd the first depth, both radius values in least increments."""
         motions = self.facts.motions
         height = self._least_increments(values.get("P"), self._word(order, "P"))
         first = self._least_increments(values.get("Q"), self._word(order, "Q"))
-        if cut.x is None or cut.start_x is None or height is None or first is None:
+        refused = self._check_g76_depths(act, height, first)
+        if cut.x is None or cut.start_x is None or height is None or first is None or refused:
             if len(motions) < MAX_MOTIONS:
                 motions.append(cut)  # what the control would cut cannot be known: one record
             return
@@ -317,6 +327,55 @@ class CyclesPart(MachineBase):
                     finishing=finishing,
                 )
             )
+
+    def _cycle_data(
+        self, act: Activation, code: float, values: dict[str, Value], depth: str
+    ) -> None:
+        """The data of G71/G72 (the depth of cut, ``depth``: U or W in their first block, D in
+        the one-block form) and G73 (the number of divisions R in its first block): a depth of
+        0 (PS0062) or fewer than one division (PS0321) stops the control (0i-TF "Multiple
+        repetitive cycle")."""
+        if code in (71.0, 72.0):
+            d = values.get(depth)
+            if d == 0.0:
+                self._profile_fault(
+                    act, code, f"its depth of cut {depth} is 0, and the cycle cuts nothing", "depth"
+                )
+        elif code == 73.0 and "P" not in values:
+            r = values.get("R")
+            if type(r) is float and r < 1.0:
+                self._profile_fault(
+                    act,
+                    code,
+                    f"its number of divisions R is {fmt(r)}, and the pattern needs one at least",
+                    "divisions",
+                )
+
+    def _check_g76_depths(self, act: Activation, height: float | None, first: float | None) -> bool:
+        """G76's thread height k and first depth Δd must be above 0 (PS0317), and the least
+        depth of its first block no more than k (PS0316) (0i-TF "Multiple threading cycle
+        (G76)", the alarms of the cycle). Whether the control refuses the cycle."""
+        unit = "inch" if self.modal.inch else "mm"
+        why = None
+        if height is not None and height <= 0.0:
+            why = f"its thread height P is {fmt(height)} {unit}", "PS0317"
+        elif first is not None and first <= 0.0:
+            why = f"its first depth of cut Q is {fmt(first)} {unit}", "PS0317"
+        elif height is not None and self.modal.g76.min_depth > height:
+            least = self.modal.g76.min_depth
+            why = (
+                f"the least depth of cut {fmt(least)} {unit} of its first block is more than "
+                f"the thread height {fmt(height)} {unit}",
+                "PS0316",
+            )
+        if why is not None:
+            self._block_finding(
+                act,
+                ThreadCycleFault,
+                f"G76 cannot cut: {why[0]}; the control stops ({why[1]})",
+                fault="depths",
+            )
+        return why is not None
 
 
 def _plain_profile_line(cl: CompiledLine) -> bool:

@@ -415,7 +415,7 @@ class MotionPart(CyclesPart, CallsPart, SetupPart):
             self._remember_run(act)
         if code == 76.0 and lathe:
             assert order is not None
-            self._g76_passes(motion, values, order)
+            self._g76_passes(act, motion, values, order)
         elif len(facts.motions) < MAX_MOTIONS:
             facts.motions.append(motion)
         if not lathe or (code not in LATHE_CYCLES and code not in ONE_SHOT_CYCLES):
@@ -588,7 +588,10 @@ class MotionPart(CyclesPart, CallsPart, SetupPart):
                 has_p, has_q = "P" in values, "Q" in values
                 if has_p and has_q:
                     self._profile_code = code
-                elif has_p or has_q or code == 70.0:  # G71-G73's first block has neither
+                    self._cycle_data(act, code, values, "D")  # one block (Series 10/11 format)
+                elif not (has_p or has_q) and code != 70.0:
+                    self._cycle_data(act, code, values, "W" if code == 72.0 else "U")
+                else:
                     given = "P alone" if has_p else "Q alone" if has_q else "neither P nor Q"
                     self._profile_fault(
                         act, code, f"it gives {given}, and the cycle needs both", "p-q"

@@ -32,6 +32,9 @@ MB813 = RuleInfo("MB813", "cycle-start-side", Severity.ERROR,
                  "A lathe cycle (G90, G92, G76, G94) starts on the wrong side of its cut.", FAMILY)
 MB815 = RuleInfo("MB815", "g76-tool-angle", Severity.ERROR,
                  "G76's first block gives a tool angle the cycle does not take.", FAMILY)
+MB816 = RuleInfo("MB816", "g76-depths", Severity.ERROR,
+                 "A G76 whose thread height or first depth is not above 0, or whose least depth "
+                 "is more than the thread height.", FAMILY)
 # fmt: on
 
 
@@ -43,6 +46,7 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
         for series in _series(ctx.facts.motions, ctx.doc.uri):
             yield from _series_start(ctx, series)
     yield from g76_tool_angle(ctx)
+    yield from g76_depths(ctx)
 
 
 MB815_DOC = RuleDoc(
@@ -258,3 +262,46 @@ def _cut(m: Motion, axis: str) -> float | None:
 
 def _start(m: Motion, axis: str) -> float | None:
     return m.start_x if axis == "X" else m.start_z
+
+
+MB816_DOC = RuleDoc(
+    "MB816",
+    reports="""
+A lathe's two-block `G76` whose cutting block gives a thread height `P(k)` or a first depth
+`Q(Δd)` of 0 or less, or whose first block's least depth of cut `Q(Δdmin)` is more than the
+thread height. The message gives the values, in the program's unit.
+""",
+    why="""
+The cycle divides the thread height into passes from the first depth: with no height or no
+first depth there is nothing to divide, and a least depth past the height leaves no pass. The
+control stops with alarm PS0317 "ILLEGAL THREAD COMMAND IS IN THE THREAD CUTTING CYCLE" or
+PS0316 "ILLEGAL CUTTING AMOUNT IS IN THE THREAD CUTTING CYCLE" (0i-F alarm list). A height or a
+depth given with a decimal point, in millimetres where the cycle takes least increments, gives
+the last (`Q0.1` for `Q100`).
+""",
+    example="""
+```nc
+O8200
+T0303
+G97 S800 M03
+G00 X26. Z5.
+G76 P010060 Q1500 R0.05
+G76 X21.546 Z-30. P1227 Q400 F2.
+M30
+```
+""",
+    fix="""
+Give k and Δd in least increments without a decimal point (`P1227 Q400` for 1.227 and
+0.4 mm), and a least depth below the height (`Q100`).
+""",
+    not_reported="""
+Values the analysis cannot compute, the one-block G76 of the Series 10/11 format, and a G76
+whose first block the run did not meet (its least depth is parameter 5140's).
+""",
+)
+
+
+def g76_depths(ctx: RuleContext) -> Iterator[Diagnostic]:
+    for f in ctx.findings(ThreadCycleFault):
+        if f.fault == "depths":
+            yield make(MB816, f.message, f.line, f.column, f.end_column)

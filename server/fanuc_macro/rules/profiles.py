@@ -23,6 +23,9 @@ MB653 = RuleInfo("MB653", "profile-p-q-missing", Severity.ERROR,
                  "A G70-G73 that gives P without Q or Q without P (a G70 neither).", FAMILY)
 MB654 = RuleInfo("MB654", "profile-first-move", Severity.ERROR,
                  "A G71-G73 profile whose first block moves by G02 or G03.", FAMILY)
+MB655 = RuleInfo("MB655", "roughing-cycle-data", Severity.ERROR,
+                 "A G71/G72 with a depth of cut of 0, or a G73 with fewer than one division.",
+                 FAMILY)
 # fmt: on
 
 
@@ -202,7 +205,50 @@ def profile_first_move(ctx: RuleContext) -> Iterator[Diagnostic]:
             yield make(MB654, f.message, f.line, f.column, f.end_column)
 
 
+MB655_DOC = RuleDoc(
+    "MB655",
+    reports="""
+The first block of a lathe's `G71` (`U`, the depth of cut) or `G72` (`W`) that gives 0, the
+one-block form's `D` of 0, and the first block of `G73` whose number of divisions `R` is below
+1. The message gives the value.
+""",
+    why="""
+A roughing cycle with no depth of cut makes no pass, and a pattern with no division none
+either: the control stops with alarm PS0062 "THE CUTTING AMOUNT IS ILLEGAL IN THE ROUGH CUTTING
+CYCLE" or PS0321 "ILLEGAL REPEATED TIME IS IN THE PATTERN REPEATING CYCLE" (0i-F alarm list).
+A depth computed from a variable that is vacant or 0 gives the first.
+""",
+    example="""
+```nc
+O7400
+T0101
+G00 X62. Z2.
+G71 U0 R0.5
+G71 P100 Q200 U0.4 W0.1 F0.25
+N100 G00 X20.
+G01 Z-30. F0.1
+N200 X62.
+M30
+```
+""",
+    fix="""
+Give the depth of each pass (`G71 U2. R0.5`), or the number of passes of G73 (`R3`).
+""",
+    not_reported="""
+A negative depth (whether the control takes its size or stops is unverified), a depth left to
+parameter 5132 (no U in the block), values the analysis cannot compute, and mills.
+""",
+)
+
+
+def roughing_cycle_data(ctx: RuleContext) -> Iterator[Diagnostic]:
+    for f in ctx.findings(ProfileFault):
+        if f.fault in ("depth", "divisions"):
+            yield make(MB655, f.message, f.line, f.column, f.end_column)
+
+
 def check(ctx: RuleContext) -> Iterator[Diagnostic]:
+    yield from roughing_cycle_data(ctx)
     yield from profile_label_missing(ctx)
     yield from profile_not_monotone(ctx)
     yield from profile_p_q_missing(ctx)
