@@ -414,6 +414,16 @@ class ThreadCycleFault(Finding):
 
 
 @dataclass(frozen=True, eq=False, repr=False)
+class BlockFault(Finding):
+    """A block the control refuses for what its words say together: G30 with a P other than
+    2-4 (PS0046), a lathe's T in a G50, G10 or G04 block (PS0245)."""
+
+    KIND: ClassVar[str] = "block-fault"
+
+    fault: str = field(kw_only=True)  # "g30-p" or "t-code"
+
+
+@dataclass(frozen=True, eq=False, repr=False)
 class CompensationFault(Finding):
     """Radius compensation started or cancelled on an arc (PS0034), the plane changed while
     it is on (PS0037), or left on at the end of the program or at a reference return."""

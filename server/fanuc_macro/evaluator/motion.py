@@ -18,7 +18,7 @@ from .calls import CallsPart
 from .canned_cycles import PROFILE_CYCLES, CyclesPart
 from .compile_lines import AXES, K_NC, CompiledLine, CompiledWord, recorded_words
 from .direct_drawing import missing_coordinate
-from .facts import CutsWithoutFeed, DrillingFault, Motion, RunValues
+from .facts import BlockFault, CutsWithoutFeed, DrillingFault, Motion, RunValues
 from .machine_base import (
     LOCAL_COORDINATES,
     MAX_MOTIONS,
@@ -36,7 +36,7 @@ from .machine_base import (
     g_name,
     system_a_block,
 )
-from .setup_verdicts import ARCS, TURNING_CYCLES, SetupPart
+from .setup_verdicts import ARCS, TURNING_CYCLES, SetupPart, whole
 from .toolpath import NOT_MOVES, ProfileBlock
 from .values import AlarmKind, MacroAlarm, Unknown, Value
 
@@ -58,7 +58,10 @@ MILL_CUTS = frozenset({73.0, 76.0, 81.0, 82.0, 83.0, 85.0, 86.0, 87.0, 88.0, 89.
 # The mill's canned drilling cycles (group 09), tapping with them: a block with an axis word
 # drills a hole at its X Y while one is in force.
 DRILLING_CYCLES = MILL_CUTS | {74.0, 84.0}
-PECK_CYCLES = frozenset({73.0, 83.0})  # high-speed and deep hole peck drilling: Q each peck
+PECK_CYCLES = frozenset({73.0, 83.0})
+# A lathe's blocks that take no T code: G50 (coordinate system, spindle clamp), G10 (data
+# setting), G04 (dwell) (0i-F alarm list, PS0245).
+T_REFUSED = frozenset({50.0, 10.0, 4.0})  # high-speed and deep hole peck drilling: Q each peck
 MAX_REMEMBERED_RUNS = 1000  # executions whose variables are kept when they start a thread
 
 
@@ -84,6 +87,15 @@ class MotionPart(CyclesPart, CallsPart, SetupPart):
         if self.other_g_code_system and self.lathe:
             values, g_codes = self._as_system_a(values, g_codes)
         call_kind = self._modal_codes(g_codes) if g_codes else None
+        if self.lathe and "T" in values and not T_REFUSED.isdisjoint(g_codes):
+            refused = next(g for g in g_codes if g in T_REFUSED)
+            self._block_finding(
+                act,
+                BlockFault,
+                f"a T code in a G{refused:02g} block: the control stops (PS0245); give the "
+                "tool in a block of its own",
+                fault="t-code",
+            )
         quiet = const is not None and const.quiet  # no word of it can get a finding
         if call_kind is not None:
             return self._call_block(act, cl, order, call_kind, quiet)
@@ -599,6 +611,15 @@ class MotionPart(CyclesPart, CallsPart, SetupPart):
             return code
         if has_axis and not self._own_codes.isdisjoint(g_codes):
             own = next(g for g in g_codes if g in self._own_codes)
+            p = values.get("P")
+            if own == 30.0 and type(p) is float and p not in (2.0, 3.0, 4.0):
+                self._block_finding(
+                    act,
+                    BlockFault,
+                    f"G30 P{whole(p)}: the second, third or fourth reference position is P2, P3 "
+                    "or P4; the control stops (PS0046)",
+                    fault="g30-p",
+                )
             if own in RAPID_ONE_SHOTS:
                 drilling = self.modal.drilling
                 if drilling is not None and not self.lathe and own != 53.0 and 80.0 not in g_codes:

@@ -17,7 +17,13 @@ from ..diagnostics import (
     line_list,
     make,
 )
-from ..evaluator.facts import AddressNotInteger, AddressOutOfRange, FeedUnit, FeedZero
+from ..evaluator.facts import (
+    AddressNotInteger,
+    AddressOutOfRange,
+    BlockFault,
+    FeedUnit,
+    FeedZero,
+)
 from ..program.custom_calls import unset_m_calls
 from ..syntax.marks import constant_value
 from ..syntax.tree import Assign, Var, Word
@@ -43,6 +49,10 @@ MB604 = RuleInfo("MB604", "feed-zero", Severity.ERROR,
 MB605 = RuleInfo("MB605", "feed-unit", Severity.WARNING,
                  "A cut at a feed whose size belongs to the other feed mode (per minute or per "
                  "revolution).", FAMILY)
+MB606 = RuleInfo("MB606", "g30-p", Severity.ERROR,
+                 "G30 with a P other than 2, 3 or 4.", FAMILY)
+MB607 = RuleInfo("MB607", "t-code-in-block", Severity.ERROR,
+                 "A lathe's T code in a G50, G10 or G04 block.", FAMILY)
 # fmt: on
 
 
@@ -128,6 +138,8 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
     yield from _feed_not_set(ctx)
     yield from _feed_zero(ctx)
     yield from feed_unit(ctx)
+    yield from g30_p(ctx)
+    yield from t_code_in_block(ctx)
     # A block that reads as a macro call through an M code not set up (MB409): its words are
     # the macro's arguments (D a diameter, not an offset number), which no NC rule applies to.
     arguments = {
@@ -436,3 +448,72 @@ the two limits, and each later cut until the mode is set again.
 def feed_unit(ctx: RuleContext) -> Iterator[Diagnostic]:
     for f in ctx.findings(FeedUnit):
         yield make(MB605, f.message, f.line, f.column, f.end_column)
+
+
+MB606_DOC = RuleDoc(
+    "MB606",
+    reports="""
+A `G30` block (a return to the second, third or fourth reference position) whose `P` is not 2,
+3 or 4, as the run computes it. The message gives P.
+""",
+    why="""
+P says which reference position G30 goes to (P2, the second, when it is left out); the control
+stops with alarm PS0046 "ILLEGAL REFERENCE RETURN COMMAND" (0i-F alarm list) for any other.
+`G30 P1` for the first reference position, which is G28's, is the usual slip.
+""",
+    example="""
+```nc
+O3400
+G91 G30 P1 Z0.
+M30
+```
+""",
+    fix="""
+Return to the first reference position with `G28`, or give the position meant: `G30 P2 Z0.`.
+""",
+    not_reported="""
+A G30 without P (the second position), P3 and P4 on a machine without the option (the
+builder's), and a P the analysis cannot compute.
+""",
+)
+
+
+def g30_p(ctx: RuleContext) -> Iterator[Diagnostic]:
+    for f in ctx.findings(BlockFault):
+        if f.fault == "g30-p":
+            yield make(MB606, f.message, f.line, f.column, f.end_column)
+
+
+MB607_DOC = RuleDoc(
+    "MB607",
+    reports="""
+On a lathe, a `T` word in a block with `G50` (the coordinate system or the spindle speed clamp),
+`G10` (data setting) or `G04` (dwell).
+""",
+    why="""
+The tool change and its offset cannot run with these: the control stops with alarm PS0245
+"T-CODE NOT ALLOWED IN THIS BLOCK" (0i-F alarm list). A clamp and the next tool written on one
+line (`G50 S2000 T0202`) gives it.
+""",
+    example="""
+```nc
+O2100
+G50 S2000 T0101
+G96 S180 M03
+M30
+```
+""",
+    fix="""
+Give the tool in a block of its own: `T0101`, then `G50 S2000`.
+""",
+    not_reported="""
+Mills (their T selects the tool for the next M06). A lathe in G code system B or C writes G50
+as G92: its blocks are read as system A's, and reported alike.
+""",
+)
+
+
+def t_code_in_block(ctx: RuleContext) -> Iterator[Diagnostic]:
+    for f in ctx.findings(BlockFault):
+        if f.fault == "t-code":
+            yield make(MB607, f.message, f.line, f.column, f.end_column)
