@@ -414,6 +414,14 @@ class ThreadCycleFault(Finding):
 
 
 @dataclass(frozen=True, eq=False, repr=False)
+class CornerRefused(Finding):
+    """A chamfer or corner R (",C", ",R") on a thread (PS0050) or on the block that starts
+    or cancels radius compensation (PS0039)."""
+
+    KIND: ClassVar[str] = "corner-refused"
+
+
+@dataclass(frozen=True, eq=False, repr=False)
 class BlockFault(Finding):
     """A block the control refuses for what its words say together: G30 with a P other than
     2-4 (PS0046), a lathe's T in a G50, G10 or G04 block (PS0245)."""

@@ -17,6 +17,7 @@ from dataclasses import replace
 from .facts import (
     ArcFault,
     CompensationFault,
+    CornerRefused,
     CutSpindleStopped,
     FeedUnit,
     LengthOffsetOtherTool,
@@ -36,6 +37,7 @@ from .toolpath import Plane
 from .values import Value, fmt
 
 ARCS = frozenset({2.0, 3.0})
+THREADS = frozenset({32.0, 33.0, 34.0, 76.0, 92.0})  # a lathe's threading moves (system A)
 # What shows that a tool that fed with the spindle stopped is a cutter, not a probe: the
 # spindle started at last (M03, M04), the next tool change (M06), the end (M02, M30).
 CONFIRM_CUT = frozenset({3.0, 4.0, 6.0, 2.0, 30.0})
@@ -231,6 +233,8 @@ class SetupPart(MachineBase):
                     f"{self._shown(code)} cannot be cut: {why}; the control stops ({alarm})",
                     fault=kind,
                 )
+        if ",C" in values or ",R" in values:
+            self._corner_refused(act, values, code, cancels)
         if cancels and arc and moves_in_plane(values, plane, self.lathe):
             self._block_finding(
                 act,
@@ -257,6 +261,36 @@ class SetupPart(MachineBase):
             modal.setup = setup = replace(setup, compensation_started=True)
         if code in REFERENCE_RETURNS:
             self._left_on(act, f"at the reference return {self._shown(code)}")
+
+    def _corner_refused(
+        self, act: Activation, values: Mapping[str, Value], code: float, cancels: bool
+    ) -> None:
+        """A chamfer or corner R (``,C``, ``,R``) where the control takes none: on a thread
+        (PS0050), or on the block that starts or cancels radius compensation (PS0039) (0i-F
+        alarm list; 0i-MF "Optional chamfering and corner R")."""
+        setup = self.modal.setup
+        plane: Plane = "XZ" if self.lathe else setup.plane
+        corner = ",C" if ",C" in values else ",R"
+        what = "a chamfer" if corner == ",C" else "a corner R"
+        if self.lathe and code in THREADS:
+            why, alarm, fix = f"{self._shown(code)} cuts a thread", "PS0050", "a move of its own"
+        elif cancels:
+            why, alarm, fix = "G40 cancels radius compensation in it", "PS0039", "the block before"
+        elif (
+            setup.compensation in (41.0, 42.0)
+            and not setup.compensation_started
+            and moves_in_plane(values, plane, self.lathe)
+        ):
+            why = f"it starts radius compensation G{setup.compensation:g}"
+            alarm, fix = "PS0039", "the next block"
+        else:
+            return
+        self._block_finding(
+            act,
+            CornerRefused,
+            f"{what} ({corner}) on this block, and {why}: the control stops ({alarm}); put the "
+            f"corner on {fix}",
+        )
 
     def _setup_end(self, act: Activation, m: float) -> None:
         """M02 or M30: radius compensation still on."""

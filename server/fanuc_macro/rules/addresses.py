@@ -21,6 +21,7 @@ from ..evaluator.facts import (
     AddressNotInteger,
     AddressOutOfRange,
     BlockFault,
+    CornerRefused,
     FeedUnit,
     FeedZero,
 )
@@ -53,6 +54,9 @@ MB606 = RuleInfo("MB606", "g30-p", Severity.ERROR,
                  "G30 with a P other than 2, 3 or 4.", FAMILY)
 MB607 = RuleInfo("MB607", "t-code-in-block", Severity.ERROR,
                  "A lathe's T code in a G50, G10 or G04 block.", FAMILY)
+MB608 = RuleInfo("MB608", "corner-refused", Severity.ERROR,
+                 "A chamfer or corner R (,C ,R) on a thread, or on the block that starts or "
+                 "cancels radius compensation.", FAMILY)
 # fmt: on
 
 
@@ -140,6 +144,7 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
     yield from feed_unit(ctx)
     yield from g30_p(ctx)
     yield from t_code_in_block(ctx)
+    yield from corner_refused(ctx)
     # A block that reads as a macro call through an M code not set up (MB409): its words are
     # the macro's arguments (D a diameter, not an offset number), which no NC rule applies to.
     arguments = {
@@ -517,3 +522,44 @@ def t_code_in_block(ctx: RuleContext) -> Iterator[Diagnostic]:
     for f in ctx.findings(BlockFault):
         if f.fault == "t-code":
             yield make(MB607, f.message, f.line, f.column, f.end_column)
+
+
+MB608_DOC = RuleDoc(
+    "MB608",
+    reports="""
+A chamfer (`,C`) or a corner R (`,R`) written on a lathe's threading block (`G32`, `G92`,
+`G76`, ...), or on the block that starts radius compensation (the first move in the plane after
+`G41`/`G42`) or cancels it (`G40` while it was on). The message says which.
+""",
+    why="""
+The control rounds or bevels the corner between two moves it knows; it cannot do it on a
+thread, nor where the offset path begins or ends. It stops with alarm PS0050 "CHF/CNR NOT
+ALLOWED IN THRD BLK" or PS0039 "CHF/CNR NOT ALLOWED IN G41,G42" (0i-F alarm list; 0i-MF
+"Optional chamfering and corner R").
+""",
+    example="""
+```nc
+O5400
+G90 G17 G54 G00 X-20. Y0.
+S1000 M03
+G01 Z-2. F200.
+G41 D1 G01 X0. Y0. ,R5.
+Y40.
+G40 G01 X-20.
+M30
+```
+""",
+    fix="""
+Move the corner to a block after the start-up (`Y40. ,R5.`), or write it as its own move.
+""",
+    not_reported="""
+A lathe's chamfer and corner R without the comma (`C`, `R`, `I`, `K` of G01 in the older
+format), corners on blocks in the middle of compensation, and compensation whose state a call
+the analysis cannot follow may have changed.
+""",
+)
+
+
+def corner_refused(ctx: RuleContext) -> Iterator[Diagnostic]:
+    for f in ctx.findings(CornerRefused):
+        yield make(MB608, f.message, f.line, f.column, f.end_column)
