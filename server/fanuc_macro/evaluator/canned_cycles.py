@@ -38,6 +38,8 @@ PROFILE_ALARMS: Mapping[str, str] = MappingProxyType(
         "label": "PS0063",
         "first": "PS0065",
         "monotone": "PS0064 or PS0329, unverified which",
+        "start": "PS0322",
+        "last": "PS0069",
     }
 )
 # The tool angles G76's P(a) takes, the last two digits of its first block's P (0i-TF
@@ -104,6 +106,7 @@ class CyclesPart(MachineBase):
             return [], line + 1, (first, last)
         blocks = self._read_profile(act, first, last)
         self._check_first_block(act, code, blocks)
+        self._last_block_corner(act, code, blocks)
         if code in (71.0, 72.0):
             self._check_monotone(act, code, blocks, first)
         return blocks, last + 1, None
@@ -153,6 +156,8 @@ class CyclesPart(MachineBase):
         ends = _profile_ends(blocks, self.modal.position, self.modal.motion)
         if ends is None:
             return
+        if self._beyond_start(act, code, ends):
+            return
         for axis in axes:
             steps = [b[axis] - a[axis] for a, b in pairwise(ends)]
             up = [i for i, s in enumerate(steps) if s > MONOTONE_EPS]
@@ -169,6 +174,39 @@ class CyclesPart(MachineBase):
                     "monotone",
                 )
                 return
+
+    def _beyond_start(self, act: Activation, code: float, ends: list[dict[str, float]]) -> bool:
+        """A G71 (G72) profile that goes past the cycle's start point in X (Z), on the side
+        of the stock: the passes would start inside it (PS0322); whether it was reported."""
+        axis = "Z" if code == 72.0 else "X"
+        start = self.modal.position.get(axis)
+        if type(start) is not float or not ends or ends[0][axis] == start:
+            return False
+        inward = ends[0][axis] < start  # an outside profile lies below the start (G71)
+        past = [e[axis] for e in ends if (e[axis] > start if inward else e[axis] < start)]
+        beyond = max(past) if inward and past else min(past) if past else None
+        if beyond is None or abs(beyond - start) <= MONOTONE_EPS:
+            return False
+        self._profile_fault(
+            act,
+            code,
+            f"it goes to {axis}{fmt(beyond)}, past the cycle's start point {axis}{fmt(start)}: "
+            "the start point must stand outside the whole profile",
+            "start",
+        )
+        return True
+
+    def _last_block_corner(self, act: Activation, code: float, blocks: list[ProfileBlock]) -> None:
+        """A profile's last block may not end in a chamfer or corner R: there is no move
+        after it to make the corner with (PS0069)."""
+        if blocks and (",C" in blocks[-1][0] or ",R" in blocks[-1][0]):
+            self._profile_fault(
+                act,
+                code,
+                "its last block ends in a chamfer or corner R (,C ,R), with no move of the "
+                "profile after it",
+                "last",
+            )
 
     def _profile_budget(self, act: Activation, blocks: int) -> None:
         """The profiles' blocks run within the G70-G73 block that names them, which the step

@@ -26,6 +26,11 @@ MB654 = RuleInfo("MB654", "profile-first-move", Severity.ERROR,
 MB655 = RuleInfo("MB655", "roughing-cycle-data", Severity.ERROR,
                  "A G71/G72 with a depth of cut of 0, or a G73 with fewer than one division.",
                  FAMILY)
+MB656 = RuleInfo("MB656", "profile-past-start", Severity.ERROR,
+                 "A G71/G72 profile that goes past the cycle's start point on the stock's side.",
+                 FAMILY)
+MB657 = RuleInfo("MB657", "profile-last-corner", Severity.ERROR,
+                 "A G71-G73 profile whose last block ends in a chamfer or corner R.", FAMILY)
 # fmt: on
 
 
@@ -247,7 +252,93 @@ def roughing_cycle_data(ctx: RuleContext) -> Iterator[Diagnostic]:
             yield make(MB655, f.message, f.line, f.column, f.end_column)
 
 
+MB656_DOC = RuleDoc(
+    "MB656",
+    reports="""
+A `G71` whose profile goes past the cycle's start point in X on the side of the stock (above
+it for an outside profile, below it for a bore), or a `G72` likewise in Z. Judged on the end
+points of the profile's first block and its cutting blocks; the message gives the farthest
+one and the start point.
+""",
+    why="""
+The roughing passes run from the start point towards the profile: a profile beyond it lies
+in the stock the passes come from. The control stops with alarm PS0322 "FINISHING SHAPE WHICH
+OVER OF STARTING POINT" (0i-F alarm list). It comes from a start point set to the finished
+diameter rather than the blank's, or a profile copied from a larger part.
+""",
+    example="""
+```nc
+O7500
+T0101
+G00 X40. Z2.
+G71 U2. R0.5
+G71 P100 Q200 U0.4 W0.1 F0.25
+N100 G00 X20.
+G01 Z-20. F0.1
+X50. Z-30.
+N200 Z-40.
+M30
+```
+""",
+    fix="""
+Start the cycle outside the blank (`G00 X62. Z2.` for a 60 mm bar), or correct the profile.
+""",
+    not_reported="""
+G73 (its pattern starts from the escape), rapid blocks after the first, a profile whose first
+block ends at the start point's X (no side to judge), values the analysis cannot compute.
+""",
+)
+
+
+def profile_past_start(ctx: RuleContext) -> Iterator[Diagnostic]:
+    for f in ctx.findings(ProfileFault):
+        if f.fault == "start":
+            yield make(MB656, f.message, f.line, f.column, f.end_column)
+
+
+MB657_DOC = RuleDoc(
+    "MB657",
+    reports="""
+A `G71`, `G72` or `G73` whose profile's last block (N with Q's number) carries a chamfer or a
+corner R (`,C`, `,R`).
+""",
+    why="""
+A chamfer or a corner joins a block to the next: the profile's last block has none in the
+profile, and the control stops with alarm PS0069 "LAST BLOCK OF SHAPE PROGRAM IS AN ILLEGAL
+COMMAND" (0i-F alarm list).
+""",
+    example="""
+```nc
+O7600
+T0101
+G00 X62. Z2.
+G71 U2. R0.5
+G71 P100 Q200 U0.4 W0.1 F0.25
+N100 G00 X20.
+G01 Z-30. F0.1
+N200 X62. ,C1.
+M30
+```
+""",
+    fix="""
+Move the corner into the profile (on the block before), or end the profile with a plain move.
+""",
+    not_reported="""
+G70 (it runs the profile; the roughing cycle before it is reported), the older lathe format
+without the comma, and profiles the analysis does not follow.
+""",
+)
+
+
+def profile_last_corner(ctx: RuleContext) -> Iterator[Diagnostic]:
+    for f in ctx.findings(ProfileFault):
+        if f.fault == "last":
+            yield make(MB657, f.message, f.line, f.column, f.end_column)
+
+
 def check(ctx: RuleContext) -> Iterator[Diagnostic]:
+    yield from profile_past_start(ctx)
+    yield from profile_last_corner(ctx)
     yield from roughing_cycle_data(ctx)
     yield from profile_label_missing(ctx)
     yield from profile_not_monotone(ctx)
