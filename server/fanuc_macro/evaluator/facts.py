@@ -385,12 +385,13 @@ class ArcFault(Finding):
 
 @dataclass(frozen=True, eq=False, repr=False)
 class DrillingFault(Finding):
-    """A mill's drilling cycle the control stops: a peck cycle without its Q (PS0045), a
-    reference return while a cycle is in force (PS0044)."""
+    """A drilling cycle the control stops: a peck cycle without its Q (PS0045), a reference
+    return while a cycle is in force (PS0044), a move between M29 and the tapping cycle
+    (PS0204)."""
 
     KIND: ClassVar[str] = "drilling-fault"
 
-    fault: str = field(kw_only=True)  # "peck" or "return"
+    fault: str = field(kw_only=True)  # "peck", "return" or "rigid"
 
 
 @dataclass(frozen=True, eq=False, repr=False)

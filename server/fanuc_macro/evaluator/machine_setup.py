@@ -73,6 +73,8 @@ class Setup:
     # A feed move with the spindle stopped, told once the tool is known to cut (MB611): its
     # document, program, line, width and message.
     pending_cut: tuple[str, int, int, int, str] | None = None
+    # The M29 block of rigid tapping, until its tapping cycle (G84, G74) runs.
+    rigid_at: Place | None = None
     # A G31 ran in this run, so the skip position #5061 and on holds its result (None: not
     # known, after a call the analysis cannot follow).
     skipped: bool | None = False
@@ -80,11 +82,19 @@ class Setup:
     def shifted(self, line: Callable[[str, int], int]) -> Setup:
         """The setup with its blocks' lines renumbered (an edit added or removed lines)."""
         at, tool_at, cut = self.compensation_at, self.tool_at, self.pending_cut
-        mode, offset = self.feed_mode, self.pending_offset
-        if at is None and tool_at is None and cut is None and mode is None and offset is None:
+        mode, offset, rigid = self.feed_mode, self.pending_offset, self.rigid_at
+        if (
+            at is None
+            and tool_at is None
+            and cut is None
+            and mode is None
+            and offset is None
+            and rigid is None
+        ):
             return self
         return replace(
             self,
+            rigid_at=None if rigid is None else (rigid[0], line(*rigid)),
             pending_offset=None
             if offset is None
             else (

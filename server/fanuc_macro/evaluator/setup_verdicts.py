@@ -19,6 +19,7 @@ from .facts import (
     CompensationFault,
     CornerRefused,
     CutSpindleStopped,
+    DrillingFault,
     FeedUnit,
     LengthOffsetOtherTool,
     SpeedNotClamped,
@@ -37,6 +38,11 @@ from .toolpath import Plane
 from .values import Value, fmt
 
 ARCS = frozenset({2.0, 3.0})
+# Rigid tapping: M29 (parameter 5210 may set another code; taken as M29) and the tapping
+# cycles that must follow it (0i-MF/0i-TF "Rigid tapping").
+RIGID_TAPPING_M = 29.0
+TAPPING_MILL = frozenset({74.0, 84.0})
+TAPPING_LATHE = frozenset({84.0, 88.0})
 THREADS = frozenset({32.0, 33.0, 34.0, 76.0, 92.0})  # a lathe's threading moves (system A)
 # What shows that a tool that fed with the spindle stopped is a cutter, not a probe: the
 # spindle started at last (M03, M04), the next tool change (M06), the end (M02, M30).
@@ -143,6 +149,8 @@ class SetupPart(MachineBase):
         elif setup.pending_cut is not None and not CONFIRM_CUT.isdisjoint(m_codes):
             self._told_cut(setup.pending_cut)
             setup = replace(setup, pending_cut=None)
+        if RIGID_TAPPING_M in m_codes:
+            setup = replace(setup, rigid_at=here)
         if not self.lathe:
             tool = values.get("T")
             if tool is not None:
@@ -235,6 +243,19 @@ class SetupPart(MachineBase):
                 )
         if ",C" in values or ",R" in values:
             self._corner_refused(act, values, code, cancels)
+        rigid = setup.rigid_at
+        if rigid is not None and rigid[1] != self._line:
+            tapping = TAPPING_LATHE if self.lathe else TAPPING_MILL
+            if code not in tapping:
+                self._block_finding(
+                    act,
+                    DrillingFault,
+                    f"{self._shown(code)} moves an axis after M29 on {self._where(act, rigid)} "
+                    "and before the tapping cycle: the control stops (PS0204); give the tapping "
+                    "cycle right after M29, the hole's X Y with it",
+                    fault="rigid",
+                )
+            modal.setup = setup = replace(setup, rigid_at=None)
         if cancels and arc and moves_in_plane(values, plane, self.lathe):
             self._block_finding(
                 act,

@@ -1,4 +1,4 @@
-"""MB64x: a mill's canned drilling cycles as the run carries them from block to block."""
+"""MB64x: canned drilling and tapping cycles as the run carries them from block to block."""
 
 from __future__ import annotations
 
@@ -18,6 +18,8 @@ MB641 = RuleInfo("MB641", "peck-without-q", Severity.ERROR,
                  "A G73 or G83 peck drilling cycle drills with no Q, or Q0.", FAMILY)
 MB642 = RuleInfo("MB642", "return-in-drilling-cycle", Severity.ERROR,
                  "G27, G28 or G30 while a drilling cycle is in force, before G80.", FAMILY)
+MB643 = RuleInfo("MB643", "move-before-rigid-tap", Severity.ERROR,
+                 "An axis moves between M29 and its rigid tapping cycle.", FAMILY)
 # fmt: on
 
 
@@ -99,6 +101,48 @@ def return_in_drilling_cycle(ctx: RuleContext) -> Iterator[Diagnostic]:
             yield make(MB642, f.message, f.line, f.column, f.end_column)
 
 
+MB643_DOC = RuleDoc(
+    "MB643",
+    reports="""
+A block that moves an axis after `M29` (rigid tapping) and before the tapping cycle it
+prepares (`G84`, on a mill also `G74`; on a lathe `G84`, `G88`). The message names the M29
+block.
+""",
+    why="""
+M29 couples the spindle to the feed axis for the tapping cycle that follows; a move in between
+is refused with alarm PS0204 "ILLEGAL AXIS OPERATION" (0i-F alarm list; 0i-MF "Rigid
+tapping"). A positioning move slipped between `M29 S...` and `G84`, as with a floating tap
+holder, gives it.
+""",
+    example="""
+```nc
+O6200
+G90 G17 G54 G00 X0. Y0. Z50.
+M29 S500
+G00 X10. Y10.
+G99 G84 Z-15. R5. F625.
+G80
+M30
+```
+""",
+    fix="""
+Position before M29, or give the hole's X Y in the tapping cycle's block:
+`M29 S500` then `G99 G84 X10. Y10. Z-15. R5. F625.`.
+""",
+    not_reported="""
+A rigid tapping M code other than M29 (parameter 5210 sets it), moves after a call the
+analysis cannot follow, and M29 blocks with no tapping cycle after them in the run.
+""",
+)
+
+
+def move_before_rigid_tap(ctx: RuleContext) -> Iterator[Diagnostic]:
+    for f in ctx.findings(DrillingFault):
+        if f.fault == "rigid":
+            yield make(MB643, f.message, f.line, f.column, f.end_column)
+
+
 def check(ctx: RuleContext) -> Iterator[Diagnostic]:
     yield from peck_without_q(ctx)
     yield from return_in_drilling_cycle(ctx)
+    yield from move_before_rigid_tap(ctx)
