@@ -654,7 +654,8 @@ class MotionPart(CyclesPart, CallsPart, SetupPart):
             word = values["Q"]
             q = word if type(word) is float else math.nan
             modal.drilling = (code, q)
-        if code in PECK_CYCLES and (q is None or q == 0.0):
+        haas_pecks = "I" in values or "J" in values  # a Haas G83: pecks by I J K, no Q
+        if code in PECK_CYCLES and (q is None or q == 0.0) and not haas_pecks:
             given = "no Q" if q is None else "Q0"
             self._block_finding(
                 act,

@@ -51,7 +51,8 @@ Give the depth of each peck, `G83 Z-25. R2. Q3. F100.`, or drill in one go with 
 """,
     not_reported="""
 Lathes (their G83 is a face drilling cycle with other data), a Q the analysis cannot compute,
-and cycles the run enters through a call it cannot follow.
+a block with I or J (a Haas control's pecks by I, J and K, with no Q; K alone is FANUC's
+repeat count), and cycles the run enters through a call it cannot follow.
 """,
 )
 
