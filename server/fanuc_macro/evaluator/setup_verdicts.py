@@ -38,6 +38,10 @@ from .toolpath import Plane
 from .values import Value, fmt
 
 ARCS = frozenset({2.0, 3.0})
+# How far from the tool's number a length offset may stand and still be taken for a slip when
+# only the tool's D shows the numbering: shops that keep lengths in a second bank of the
+# offset table (H21 for T1, where H and D share it) number them 20 or more away.
+OTHER_BANK = 10.0
 # Rigid tapping: M29 (parameter 5210 may set another code; taken as M29) and the tapping
 # cycles that must follow it (0i-MF/0i-TF "Rigid tapping").
 RIGID_TAPPING_M = 29.0
@@ -110,7 +114,13 @@ class SetupPart(MachineBase):
                 )
             elif g in (41.0, 42.0):
                 pending, d = setup.pending_offset, values.get("D")
-                if pending is not None and d == pending[5] and setup.tool == pending[5]:
+                if (
+                    pending is not None
+                    and d == pending[5]
+                    and setup.tool == pending[5]
+                    and setup.length_offset is not None
+                    and abs(setup.length_offset - pending[5]) < OTHER_BANK
+                ):
                     where = self._where(act, here)
                     self._told_offset(
                         pending,

@@ -162,9 +162,10 @@ Call the offset of the tool in the spindle: `G43 H2` after `T2 M06`.
 """,
     not_reported="""
 Lathes, programs whose tools take offsets by another numbering (`T1 ... H21`, no H or D equal to
-its tool), a tool whose H differs and that nothing later shows the numbering of, H0 (no
-offset), an H or a T the analysis cannot compute, a tool change through a call the analysis
-cannot follow.
+its tool), a tool whose H differs and that nothing later shows the numbering of, an H ten or
+more from the tool's number when only its D shows the numbering (a second bank of a shared
+offset table: `T1 ... H21 ... D1`), H0 (no offset), an H or a T the analysis cannot compute,
+a tool change through a call the analysis cannot follow.
 """,
 )
 
