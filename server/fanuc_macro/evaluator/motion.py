@@ -36,7 +36,7 @@ from .machine_base import (
     g_name,
     system_a_block,
 )
-from .setup_verdicts import ARCS, TURNING_CYCLES, SetupPart, whole
+from .setup_verdicts import ARCS, THREADING_CODES, TURNING_CYCLES, SetupPart, whole
 from .toolpath import NOT_MOVES, ProfileBlock
 from .values import AlarmKind, MacroAlarm, Unknown, Value
 
@@ -49,7 +49,6 @@ LEFT_UNKNOWN = frozenset({28.0, 30.0, 53.0})
 # program format (one block: G71 P Q U W D F) and on a Haas lathe, not an offset number.
 REPETITIVE_CYCLES = frozenset({71.0, 72.0, 73.0, 74.0, 75.0, 76.0})
 MAX_SHARED_WORDS = 4096  # distinct motion words a run looks up to share (Machine._words)
-THREADING_CODES = frozenset({32.0, 33.0, 34.0, 76.0, 92.0})
 # The lathe's moves that cut at F besides G01-G03: threads (F the lead), turning and facing.
 LATHE_FED = frozenset({32.0, 33.0, 34.0, 76.0, 90.0, 92.0, 94.0})
 # The mill's cycles that cut besides G01-G03, which need the spindle turning: drilling and
@@ -58,10 +57,10 @@ MILL_CUTS = frozenset({73.0, 76.0, 81.0, 82.0, 83.0, 85.0, 86.0, 87.0, 88.0, 89.
 # The mill's canned drilling cycles (group 09), tapping with them: a block with an axis word
 # drills a hole at its X Y while one is in force.
 DRILLING_CYCLES = MILL_CUTS | {74.0, 84.0}
-PECK_CYCLES = frozenset({73.0, 83.0})
+PECK_CYCLES = frozenset({73.0, 83.0})  # high-speed and deep hole peck drilling: Q each peck
 # A lathe's blocks that take no T code: G50 (coordinate system, spindle clamp), G10 (data
 # setting), G04 (dwell) (0i-F alarm list, PS0245).
-T_REFUSED = frozenset({50.0, 10.0, 4.0})  # high-speed and deep hole peck drilling: Q each peck
+T_REFUSED = frozenset({50.0, 10.0, 4.0})
 MAX_REMEMBERED_RUNS = 1000  # executions whose variables are kept when they start a thread
 
 

@@ -47,7 +47,8 @@ OTHER_BANK = 10.0
 RIGID_TAPPING_M = 29.0
 TAPPING_MILL = frozenset({74.0, 84.0})
 TAPPING_LATHE = frozenset({84.0, 88.0})
-THREADS = frozenset({32.0, 33.0, 34.0, 76.0, 92.0})  # a lathe's threading moves (system A)
+# A lathe's threading moves (G-code system A): their F is the lead.
+THREADING_CODES = frozenset({32.0, 33.0, 34.0, 76.0, 92.0})
 # What shows that a tool that fed with the spindle stopped is a cutter, not a probe: the
 # spindle started at last (M03, M04), the next tool change (M06), the end (M02, M30).
 CONFIRM_CUT = frozenset({3.0, 4.0, 6.0, 2.0, 30.0})
@@ -303,7 +304,7 @@ class SetupPart(MachineBase):
         plane: Plane = "XZ" if self.lathe else setup.plane
         corner = ",C" if ",C" in values else ",R"
         what = "a chamfer" if corner == ",C" else "a corner R"
-        if self.lathe and code in THREADS:
+        if self.lathe and code in THREADING_CODES:
             why, alarm, fix = f"{self._shown(code)} cuts a thread", "PS0050", "a move of its own"
         elif cancels:
             why, alarm, fix = "G40 cancels radius compensation in it", "PS0039", "the block before"
