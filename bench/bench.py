@@ -235,10 +235,18 @@ def bench_resume(size: int) -> None:
 
 def bench_threads() -> None:
     """The threading rules' share of an analysis: finding the threads and checking them."""
-    from fanuc_macro.rules import cycles, thread_lead, thread_passes, thread_tool, threading
+    from fanuc_macro.rules import (
+        cycles,
+        thread_cut,
+        thread_lead,
+        thread_passes,
+        thread_taper,
+        thread_tool,
+        threading,
+    )
     from fanuc_macro.rules.context import RuleContext
 
-    checks = (threading, thread_passes, thread_tool, thread_lead, cycles)
+    checks = (threading, thread_passes, thread_tool, thread_lead, thread_cut, thread_taper, cycles)
     for name, text in (
         ("seed O4009/O3331", (ROOT / "tests/fixtures/seeds/o4009_external_m50x3.nc").read_text()),
         ("20,000 generated blocks", generate(20000)),

@@ -618,6 +618,7 @@ def test_threading_verdicts_through_the_command_line(tmp_path: Path) -> None:
         ("o3331_height_typo.nc", 22, "MB808"),
         ("o3331_height_typo.nc", 42, "MB801"),
         ("g92_fix_step.nc", 9, "MB814"),
+        ("g92_fix_step.nc", 11, "MB817"),
     }
 
 

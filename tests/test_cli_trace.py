@@ -56,7 +56,8 @@ def test_a_dwell_before_a_threading_cycle_leaves_its_start_point(tmp_path: Path)
     X0.5, which would put the start point inside the thread (MB813)."""
     program = (
         "%\nO1118 (M24X3)\nG97 S450 M03\nT0101\nG00 X26. Z5.\nG04 X0.5\n"
-        "G92 X23.5 Z-35. F3.\nX23.1\nX22.7\nX22.4\nG00 X100. Z100.\nM30\n%\n"
+        "G92 X23.5 Z-35. F3.\nX23.1\nX22.7\nX22.3\nX21.9\nX21.5\nX21.1\nX20.8\nX20.5\n"
+        "X20.3\nX20.15\nX20.15\nG00 X100. Z100.\nM30\n%\n"
     )
     (tmp_path / "thread.nc").write_text(program)
     result = run(tmp_path, "check", "--format", "json", "thread.nc")

@@ -31,6 +31,7 @@ NO_O = "the file's first program has no O number, and its name gives none"
 NO_END = "the program has no M30, M02 or M99 before its end"
 RESIDENT = "O8000-O9999, the control's resident programs: in no file of the corpus, on the control"
 VENDOR = "a Renishaw cycle (program/vendor_cycles.py), kept on the control: named, not missing"
+FOREIGN = "the file is that control's program, by the mark named: said once, as information"
 
 # file -> (1-based line, code, true?, why)
 FINDINGS: dict[str, list[tuple[int, str, bool, str]]] = {
@@ -40,10 +41,12 @@ FINDINGS: dict[str, list[tuple[int, str, bool, str]]] = {
         (58, "MB003", True, "a second '(' inside the comment; its last ')' is program text"),
     ],
     "Just-Jools__LNC-Probe-macros__Documentation__Syntec documentation__OP510 Probe Macros 07-07-2023__O8000": [
+        (1, "MB002", True, FOREIGN),
         (8, "MB408", True, VENDOR),
         (9, "MB408", True, VENDOR),
     ],
     "Just-Jools__LNC-Probe-macros__Documentation__Syntec documentation__OP510 Probe Macros 07-07-2023__O9811": [
+        (1, "MB002", True, FOREIGN),
         (221, "MB410", True, RESIDENT),
     ],
     "NCVC-CAM__Scripts__NC.Code.Checker1.4__errors__1_grammar_errors__sampleNC(percent-not-alone).ncd": [
@@ -128,6 +131,7 @@ FINDINGS: dict[str, list[tuple[int, str, bool, str]]] = {
     # A Haas program (5 blocks in Haas's forms): the run's verdicts past its first Haas block
     # (line 41) are not given, FANUC stopping there.
     "appliedengdesign__vscode-gcode-syntax__samplenc__sample-colors.nc": [
+        (2, "MB002", True, FOREIGN),
         (90, "MB303", True, "#234 and #452 exist only with the extended common variable option"),
         (122, "MB403", True, MISSING),
     ],
@@ -161,6 +165,7 @@ FINDINGS: dict[str, list[tuple[int, str, bool, str]]] = {
         (11, "MB403", True, MISSING),
     ],
     "jpaullee__renishaw_macros__09000__O09023_RENISHAW_Storm.nc": [
+        (2, "MB002", True, FOREIGN),
         (49, "MB408", True, VENDOR),
         (99, "MB408", True, VENDOR),
         (142, "MB410", True, RESIDENT),
@@ -180,6 +185,7 @@ FINDINGS: dict[str, list[tuple[int, str, bool, str]]] = {
         (472, "MB408", True, VENDOR),
     ],
     "jpaullee__renishaw_macros__09000__O09724_RENISHAW_Storm.nc": [
+        (2, "MB002", True, FOREIGN),
         (6, "MB410", True, RESIDENT),
     ],
     "jpaullee__renishaw_macros__09000__O09810_RENISHAW_Storm.nc": [
@@ -210,6 +216,51 @@ FINDINGS: dict[str, list[tuple[int, str, bool, str]]] = {
     "versabuilt__Gcode__r2c__generic__Macros Enabled__01000.nc": [
         (8, "MB010", True, NO_O),
         (29, "MB403", True, MISSING),
+    ],
+    "Just-Jools__LNC-Probe-macros__Documentation__Syntec documentation__OP510 Probe Macros 07-07-2023__O9726": [
+        (1, "MB002", True, FOREIGN),
+    ],
+    "Just-Jools__LNC-Probe-macros__Documentation__Syntec documentation__OP510 Probe Macros 07-07-2023__O9810": [
+        (1, "MB002", True, FOREIGN),
+    ],
+    "NadjImre__NC-Programi-za-FB422__CMA.DIR__MS140.SPF": [
+        (1, "MB002", True, FOREIGN),
+    ],
+    "NadjImre__NC-Programi-za-FB422__CMA.DIR__SH150.SPF": [
+        (1, "MB002", True, FOREIGN),
+    ],
+    "NadjImre__NC-Programi-za-FB422__CMA.DIR___PROBE_MEASURING.SPF": [
+        (1, "MB002", True, FOREIGN),
+    ],
+    "fchabot-dxf__DDCS-Expert-skill__ddcs-expert__references__example-macros__Table_leveling.nc": [
+        (1, "MB002", True, FOREIGN),
+    ],
+    "fchabot-dxf__DDCS-Expert-skill__ddcs-expert__references__example-macros__macro_Thread_milling.nc": [
+        (1, "MB002", True, FOREIGN),
+    ],
+    "footpetaljones__PP-Probing-Macros__probe_circular_bore.nc": [
+        (1, "MB002", True, FOREIGN),
+    ],
+    "footpetaljones__PP-Probing-Macros__probe_xy_corner.nc": [
+        (1, "MB002", True, FOREIGN),
+    ],
+    "linuxcnc-probe-screen__probe-screen-ng__psng__macros___psng_probe.ngc": [
+        (1, "MB002", True, FOREIGN),
+    ],
+    "linuxcnc-probe-screen__probe-screen-ng__psng__macros__psng_manual_change.ngc": [
+        (1, "MB002", True, FOREIGN),
+    ],
+    "madsenmj__vscode-gcode-syntax-citizen__samplenc__sample-citizen-linter.cnc": [
+        (1, "MB002", True, FOREIGN),
+    ],
+    "madsenmj__vscode-gcode-syntax-citizen__samplenc__sample-citizen.cnc": [
+        (1, "MB002", True, FOREIGN),
+    ],
+    "ozturkf__AluFDM__G__Rohr.nc": [
+        (2, "MB002", True, FOREIGN),
+    ],
+    "versabuilt__Gcode__VSC Gcode__haas__ngc__9002.nc": [
+        (2, "MB002", True, FOREIGN),
     ],
 }
 

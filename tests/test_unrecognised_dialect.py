@@ -124,4 +124,4 @@ def test_the_command_line_says_it_once(tmp_path: Path) -> None:
     lines = done.stdout.splitlines()
     assert [line.split(": ")[0] for line in lines] == ["part.h:1:1", "lathe.nc:2:1"]
     assert "MB002 error not a FANUC program: 12 of its 12 blocks" in lines[0]
-    assert "MB002 error a program written for Okuma OSP" in lines[1]
+    assert "MB002 information a program written for Okuma OSP" in lines[1]

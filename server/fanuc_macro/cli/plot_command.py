@@ -31,7 +31,12 @@ def cmd_plot(args: argparse.Namespace) -> int:
         )
         title = f"O{args.entry:04d}" if args.entry is not None else Path(args.file).name
         drawing = backplot(
-            toolpath, args.plane, pass_maps(threads), title=title, main_uri=uri, stop=stop
+            toolpath,
+            args.plane,
+            pass_maps(threads, workspace.index(uri)),
+            title=title,
+            main_uri=uri,
+            stop=stop,
         )
     except NothingToPlot as err:
         sys.stderr.write(f"fanuc-macro: {args.file}: {err}\n")

@@ -38,7 +38,6 @@ PROFILE_ALARMS: Mapping[str, str] = MappingProxyType(
         "label": "PS0063",
         "first": "PS0065",
         "monotone": "PS0064 or PS0329, unverified which",
-        "start": "PS0322",
         "last": "PS0069",
     }
 )
@@ -156,7 +155,7 @@ class CyclesPart(MachineBase):
         ends = _profile_ends(blocks, self.modal.position, self.modal.motion)
         if ends is None:
             return
-        if self._beyond_start(act, code, ends):
+        if self._beyond_start(act, code, ends, blocks):
             return
         for axis in axes:
             steps = [b[axis] - a[axis] for a, b in pairwise(ends)]
@@ -175,26 +174,64 @@ class CyclesPart(MachineBase):
                 )
                 return
 
-    def _beyond_start(self, act: Activation, code: float, ends: list[dict[str, float]]) -> bool:
-        """A G71 (G72) profile that goes past the cycle's start point in X (Z), on the side
-        of the stock: the passes would start inside it (PS0322); whether it was reported."""
+    def _beyond_start(
+        self, act: Activation, code: float, ends: list[dict[str, float]], blocks: list[ProfileBlock]
+    ) -> bool:
+        """A G71 (G72) profile whose cutting blocks go past the cycle's start point in X (Z), on
+        the side of the stock, by more than the cycle's depth of cut: the passes start at the
+        start point, so they do not rough what lies beyond it, and G70 takes it in one cut.
+        With the finishing-shape check (parameter 5104#2 FCK) the control refuses the cycle
+        (PS0322); production programs run with the profile's last block, the move that leaves
+        it, past the start point, so the check is off by default (unverified against a
+        manual). Whether it was reported."""
         axis = "Z" if code == 72.0 else "X"
         start = self.modal.position.get(axis)
         if type(start) is not float or not ends or ends[0][axis] == start:
             return False
         inward = ends[0][axis] < start  # an outside profile lies below the start (G71)
-        past = [e[axis] for e in ends if (e[axis] > start if inward else e[axis] < start)]
-        beyond = max(past) if inward and past else min(past) if past else None
-        if beyond is None or abs(beyond - start) <= MONOTONE_EPS:
+        judged: list[dict[str, float]] | None = ends
+        if len(blocks) > 1 and _departure(blocks[-1][0], code):
+            # The move that leaves the profile is not part of the shape.
+            judged = _profile_ends(blocks[:-1], self.modal.position, self.modal.motion)
+        if not judged:
             return False
-        self._profile_fault(
+        past = [e[axis] for e in judged if (e[axis] > start if inward else e[axis] < start)]
+        beyond = max(past) if inward and past else min(past) if past else None
+        if beyond is None:
+            return False
+        excess = abs(beyond - start) / (2.0 if axis == "X" else 1.0)
+        depth = self._depth_of_cut(act, code)
+        if excess <= max(depth or 0.0, MONOTONE_EPS):
+            return False
+        unit = "inch" if self.modal.inch else "mm"
+        cut = f"more than its depth of cut {fmt(depth)} {unit}" if depth else "stock"
+        self._block_finding(
             act,
-            code,
-            f"it goes to {axis}{fmt(beyond)}, past the cycle's start point {axis}{fmt(start)}: "
-            "the start point must stand outside the whole profile",
-            "start",
+            ProfileFault,
+            f"{self._shown(code)}'s profile: it goes to {axis}{fmt(beyond)}, "
+            f"{fmt(round(excess, 4))} {unit} past the cycle's "
+            f"start point {axis}{fmt(start)}: the roughing passes start there and leave what "
+            f"lies beyond, {cut}, to one cut of the finishing pass (with the finishing-shape "
+            "check on, parameter 5104#2, the control stops: PS0322)",
+            fault="start",
         )
         return True
+
+    def _depth_of_cut(self, act: Activation, code: float) -> float | None:
+        """Δd of the cycle's first block (``G71 U(Δd) R(e)``, ``G72 W(Δd) R(e)``), when it is
+        one of the few blocks before this one and a constant; radius."""
+        lines = act.ctx.lines
+        address = "W" if code == 72.0 else "U"
+        for n in range(self._line - 1, max(self._line - 4, -1), -1):
+            const = lines[n].constant
+            if const is None or code not in const.g_codes:
+                continue
+            values = const.values
+            if "P" in values or "Q" in values:
+                return None
+            depth = values.get(address)
+            return depth if isinstance(depth, float) and depth > 0.0 else None
+        return None
 
     def _last_block_corner(self, act: Activation, code: float, blocks: list[ProfileBlock]) -> None:
         """A profile's last block may not end in a chamfer or corner R: there is no move
@@ -363,6 +400,7 @@ class CyclesPart(MachineBase):
                     x=x,
                     cycle_pass=n,
                     finishing=finishing,
+                    tool_angle=params.tool_angle,
                 )
             )
 
@@ -414,6 +452,14 @@ class CyclesPart(MachineBase):
                 fault="depths",
             )
         return why is not None
+
+
+def _departure(words: Mapping[str, Value], code: float) -> bool:
+    """Whether a profile block moves along the cycle's depth axis alone (X for G71, Z for
+    G72): the move that leaves the finished profile."""
+    depth_axis = ("Z", "W") if code == 72.0 else ("X", "U")
+    other = ("X", "U") if code == 72.0 else ("Z", "W")
+    return any(a in words for a in depth_axis) and not any(a in words for a in other)
 
 
 def _plain_profile_line(cl: CompiledLine) -> bool:

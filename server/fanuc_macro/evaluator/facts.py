@@ -249,6 +249,12 @@ class Motion:
     inch: bool = False  # G20 in force: its lengths are inches (a message says so)
     # A mill's canned drilling cycle (its G76 is fine boring, not a thread).
     drilling: bool = False
+    # G96 in force: its surface speed S (m/min, ft/min in G20); the spindle speed then follows X.
+    surface_speed: float | None = None
+    # And the G50 S clamp on the speed then (rpm): inf without one, None when not known.
+    speed_clamp: float | None = None
+    # G76: the tool angle a of its first block, along whose flank the passes step.
+    tool_angle: float | None = None
 
     @property
     def shown(self) -> str:

@@ -44,6 +44,7 @@ class Setup:
     left_on_told: bool = False  # compensation left on already reported (until G40)
     # A lathe's maximum spindle speed clamp (G50 S) set in this run; None: not known.
     clamped: bool | None = False
+    clamp_speed: float | None = None  # its S (rpm), when the run knows it
     # G96 near the centre already reported in this run (once until a clamp).
     unclamped_told: bool = False
     # The tool the last T word selected, which the next M06 loads (a mill's); None: none.

@@ -419,6 +419,10 @@ class MotionPart(CyclesPart, CallsPart, SetupPart):
             motion.written = written(name, self.config.g_code_system)
         if modal.inch:
             motion.inch = True
+        if modal.constant_surface_speed and isinstance(speed, float):
+            motion.surface_speed = speed
+            setup = modal.setup
+            motion.speed_clamp = math.inf if setup.clamped is False else setup.clamp_speed
         if not lathe and code in DRILLING_CYCLES:
             motion.drilling = True
         facts = self.facts

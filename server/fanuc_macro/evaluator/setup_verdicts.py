@@ -150,7 +150,13 @@ class SetupPart(MachineBase):
             elif g in (FEED_MODES_LATHE if self.lathe else FEED_MODES_MILL):
                 setup = replace(setup, feed_mode=(g, here[0], here[1]), feed_told=False)
             elif g == 50.0 and self.lathe and "S" in values:
-                setup = replace(setup, clamped=True, unclamped_told=False)
+                clamp = values.get("S")
+                setup = replace(
+                    setup,
+                    clamped=True,
+                    clamp_speed=clamp if isinstance(clamp, float) else None,
+                    unclamped_told=False,
+                )
             elif g in (43.0, 44.0) and not self.lathe:
                 setup = self._length_offset(act, setup, g, values.get("H"))
             elif g == 49.0 and not self.lathe:

@@ -18,6 +18,7 @@ from ..syntax.lines import cut_comments
 from ..syntax.marks import constant_value
 from ..syntax.parser import statements_of
 from ..syntax.tree import Assign, Block, Num, ProgramStart, Span, Word
+from ..threads.cross_section import NO_CHAIN, describe_cut, thread_chains
 from ..threads.identify import describe as describe_thread
 from ..threads.identify import module_meanings
 from .data import Hover, Range
@@ -352,9 +353,16 @@ def hover_word(view: View, block: Block, hit: Hit) -> str | None:
 
 def _thread_hover(view: View, line: int) -> str | None:
     """What is known of the thread a threading pass at ``line`` cuts."""
+    threads = view.analysis.threads
+    chains = thread_chains(threads, view.index)
     texts = [
-        describe_thread(t)
-        for t in view.analysis.threads
+        "\n".join(
+            filter(
+                None,
+                (describe_thread(t), describe_cut(t, chains.get(id(t), NO_CHAIN).before)),
+            )
+        )
+        for t in threads
         if t.job.uri == view.key and any(m.line == line for m in t.job.passes)
     ]
     return "\n\n".join(dict.fromkeys(texts)) or None

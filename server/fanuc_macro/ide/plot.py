@@ -12,8 +12,9 @@ start before the run's first absolute position of an axis (where the tool stands
 begins is not known: normal, and not a line for each axis or block).
 
 For a threading program a second view follows: the pass map of each thread (the depth of every
-pass, and the infeed diagram: where the tool's tip is in the groove at each pass), of the first
-``MAX_PASS_MAPS`` threads, the others counted.
+pass, and the infeed diagram: where the tool's tip is in the groove at each pass, and for an
+identified thread the groove the passes cut, its cross-section, with the class's pitch-diameter
+limits), of the first ``MAX_PASS_MAPS`` threads, the others counted.
 
 Every drawn element carries ``data-line`` (the 1-based line of its block) and ``data-kind`` (a
 move's kind, or what a pass map's element shows), so that a viewer can link it to the source; the
@@ -33,18 +34,20 @@ from __future__ import annotations
 import math
 import unicodedata
 from bisect import bisect_right
-from collections.abc import Callable, Iterable, Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from types import MappingProxyType
 from typing import NamedTuple
 from xml.sax.saxutils import escape, quoteattr
 
 from ..config import Config
+from ..evaluator.facts import Motion
 from ..evaluator.toolpath import MAX_MOVES, UNKNOWN_START, LostTrack, Move, Plane, Toolpath
 from ..evaluator.values import fmt_address
 from ..program.index import ProgramIndex
 from ..syntax.parser import quiet_gc
 from ..syntax.tree import Document
+from ..threads.cross_section import NO_CHAIN, class_limits, thread_chains, thread_cuts
 from ..threads.identify import Thread
 from .trace import run_with_toolpath
 
@@ -87,6 +90,8 @@ STYLE = (
     ".pass{fill:#d2411f;stroke:none}"
     ".tool{fill:none;stroke:#d2411f;stroke-width:0.8;opacity:0.6}"
     ".profile{fill:#f3e9e4;stroke:#555;stroke-width:1}"
+    ".cut{fill:none;stroke:#1d4e89;stroke-width:1.4}"
+    ".band{stroke:#1d4e89;stroke-width:0.8;stroke-dasharray:4 3}"
     ".bar{fill:#f0b8a6;stroke:#a33;stroke-width:0.6}.thin{stroke:none}"
     ".cap{fill:#c2452a;stroke:none}"
 )
@@ -194,6 +199,12 @@ class PassMap:
     passes: tuple[PassMark, ...]
     major: float | None = None  # the nominal diameter, when the thread is identified
     pitch: float | None = None
+    # The cross-section the passes cut (threads/cross_section.py): (offset along the lead
+    # from the deepest pass, radius) over one lead, the deepest pass's index, and the class's
+    # pitch diameters (least, greatest).
+    cut: tuple[tuple[float, float], ...] = ()
+    cut_pass: int | None = None
+    band: tuple[float, float] | None = None
 
 
 @dataclass(frozen=True, slots=True)
@@ -284,17 +295,54 @@ def _start_text(count: int, axes: Sequence[str], moves: bool = True) -> str:
     )
 
 
-def pass_maps(threads: Iterable[Thread]) -> list[PassMap]:
-    """A pass map for every thread of an analysis whose passes have a known diameter."""
+def pass_maps(threads: Sequence[Thread], index: ProgramIndex | None = None) -> list[PassMap]:
+    """A pass map for every thread of an analysis whose passes have a known diameter, with
+    the cross-section of an identified thread's cut (``index``: the document's programs, for
+    the jobs that cut one thread from a program and one it calls)."""
     maps = []
+    chains = thread_chains(threads, index)
     for thread in threads:
         job = thread.job
-        marks = tuple(PassMark(p.line, p.x, p.start_z) for p in job.passes if p.x is not None)
+        kept = [p for p in job.passes if p.x is not None]
+        marks = tuple(PassMark(p.line, p.x, p.start_z) for p in kept if p.x is not None)
         if not marks:
             continue
         internal = thread.internal if thread.internal is not None else bool(job.internal)
-        maps.append(PassMap(thread.name, job.program, internal, marks, thread.major, thread.pitch))
+        cut, cut_pass, band = _cut_of(thread, chains.get(id(thread), NO_CHAIN).before, kept)
+        maps.append(
+            PassMap(
+                thread.name,
+                job.program,
+                internal,
+                marks,
+                thread.major,
+                thread.pitch,
+                cut,
+                cut_pass,
+                band,
+            )
+        )
     return maps
+
+
+def _cut_of(
+    thread: Thread, before: Sequence[Motion], kept: list[Motion]
+) -> tuple[tuple[tuple[float, float], ...], int | None, tuple[float, float] | None]:
+    """The cut's profile about the deepest pass, that pass's place among the drawn passes,
+    and the class's pitch diameters."""
+    cuts = thread_cuts(thread, before)
+    if not cuts:
+        return (), None, None
+    cut = cuts[0]
+    deepest = (max if cut.internal else min)(cut.cuts, key=lambda c: c.tip, default=None)
+    if deepest is None:
+        return (), None, None
+    lead = cut.lead
+    around = sorted(
+        (((u - deepest.place + lead / 2.0) % lead) - lead / 2.0, h) for u, h in cut.profile
+    )
+    index = next((k for k, m in enumerate(kept) if m is thread.job.passes[deepest.index]), None)
+    return tuple(around), index, class_limits(thread)
 
 
 # ---- geometry ------------------------------------------------------------------------------
@@ -1381,6 +1429,31 @@ def _infeed_marks(out: list[str], pass_map: PassMap, panels: _PassPanels) -> int
             f'<polygon class="profile" data-kind="profile" points="{_num(px(-w))},{_num(py(0))}'
             f' {_num(px(0))},{_num(py(basic))} {_num(px(w))},{_num(py(0))}"/>'
         )
+    reference = pass_map.major
+    if pass_map.cut and pass_map.cut_pass is not None and reference is not None:
+        # The cross-section the passes cut, about the deepest pass's place; the class's
+        # pitch diameters as dashed lines across the groove.
+        sign = 1.0 if pass_map.internal else -1.0
+        centre = panels.offsets[pass_map.cut_pass]
+        top = deepest * 1.1
+
+        def depth_of(radius: float) -> float:
+            return min(max(sign * (radius - reference / 2.0), 0.0), top)
+
+        points = " ".join(
+            f"{_num(px(centre + u))},{_num(py(depth_of(h)))}" for u, h in pass_map.cut
+        )
+        line = pass_map.passes[pass_map.cut_pass].line + 1  # the deepest pass's block
+        out.append(
+            f'<polyline class="cut" data-kind="cut-profile" data-line="{line}" points="{points}"/>'
+        )
+        for diameter in pass_map.band or ():
+            y = _num(py(depth_of(diameter / 2.0)))
+            out.append(
+                f'<line class="band" data-kind="pitch-limit" data-line="{line}" data-diameter="'
+                f'{fmt_address(round(diameter, 3))}" x1="{_num(px(centre - pass_map.cut[-1][0]))}"'
+                f' y1="{y}" x2="{_num(px(centre + pass_map.cut[-1][0]))}" y2="{y}"/>'
+            )
     places: dict[tuple[str, str], None] = {}
     for mark, depth, offset in zip(pass_map.passes, panels.depths, panels.offsets, strict=True):
         # The tool's 60-degree tip at this pass, its point where the pass cuts.
@@ -1463,6 +1536,12 @@ def _pass_map_captions(
         f"{groove}; down: depth ({units}, radius, from {measured}); across: Z about the middle"
         " of the passes' starts"
     )
+    if pass_map.cut and pass_map.cut_pass is not None and pass_map.major is not None:
+        which = "D2" if pass_map.internal else "d2"
+        infeed += (
+            f"; blue: the groove the passes cut, over one lead about the deepest pass"
+            f" (the cross-section), dashed: the class's {which} limits"
+        )
     chart = (
         f"Depth of each pass ({units}, radius, from {measured}): {_count(count, 'bar')};"
         f" darker: how much deeper it cuts than the passes before (at most {_tick(largest)})"

@@ -15,6 +15,8 @@ from ..evaluator.values import Value, fmt, fmt_address
 from ..program.index import ProgramIndex
 from ..program.machine_kind import machine_config
 from ..syntax.tree import Document
+from ..threads.cross_section import NO_CHAIN, cut_summary, thread_chains
+from ..threads.identify import identify
 
 # The trace is sent to the editor and written by ``trace --format json`` as it is: TypedDicts,
 # built in the order their keys are written. A key a record may lack is in a ``total=False``
@@ -94,6 +96,49 @@ class ReadInPart(_ReadInPartRequired, total=False):
     path: str
 
 
+class TraceLargestPass(TypedDict):
+    line: int
+    index: int  # 1-based, among the thread's passes
+    area: float  # mm² (in² in G20)
+
+
+class TraceThreadCut(TypedDict):
+    """The cross-section the passes cut (:mod:`fanuc_macro.threads.cross_section`): one value
+    per nose radius taken (two, the ends of ISO 965-1's range, when it is not given)."""
+
+    pitch_diameter: list[float]
+    root_diameter: list[float]
+    crest_diameter: float
+    nose_radius: list[float]
+    nose_radius_known: bool
+    limits: list[float] | None  # the class's pitch diameters, least and greatest
+    verdict: str  # "within", "tight" (too shallow), "loose" (past the class), "" (no class)
+    area: float
+    largest_pass: TraceLargestPass
+    passes_in_air: int
+
+
+class _TraceThreadRequired(TypedDict):
+    program: str
+    line: int  # the first pass's
+    code: str
+    passes: int
+    lead: float | None
+    side: str  # "external", "internal" or "not known"
+    thread: str  # its designation, or "the thread"
+    identified: bool
+    known_from: str
+
+
+class TraceThread(_TraceThreadRequired, total=False):
+    """One thread the run cut; ``cut`` for an identified ISO metric thread, ``why_not`` for
+    one that is not."""
+
+    path: str
+    cut: TraceThreadCut
+    why_not: str
+
+
 class TraceSummary(TypedDict):
     motions: int
     by_code: dict[str, int]
@@ -102,6 +147,7 @@ class TraceSummary(TypedDict):
     stop_message: str | None
     findings: list[TraceFinding]
     read_in_part: list[ReadInPart]
+    threads: list[TraceThread]
 
 
 class Trace(TypedDict):
@@ -204,8 +250,60 @@ def trace(
             "stop_message": facts.stop_message(),
             "findings": findings,
             "read_in_part": _read_in_part(uri, doc, others),
+            "threads": _threads(uri, doc, index, facts),
         },
     }
+
+
+def _threads(uri: str, doc: Document, index: ProgramIndex, facts: Facts) -> list[TraceThread]:
+    doc_facts = facts.by_uri.get(uri)
+    if doc_facts is None:
+        return []
+    found: list[TraceThread] = []
+    threads = identify(doc, index, doc_facts, facts.motions, facts.run_values)
+    chains = thread_chains(threads, index)
+    for thread in threads:
+        job = thread.job
+        record: TraceThread = {
+            "program": job.program,
+            "line": job.passes[0].line + 1,
+            "code": job.shown,
+            "passes": len(job.passes),
+            "lead": job.lead,
+            "side": {True: "internal", False: "external", None: "not known"}[thread.internal],
+            "thread": thread.name,
+            "identified": thread.identified,
+            "known_from": thread.known_from(),
+        }
+        if job.uri != uri:
+            record["path"] = job.uri
+        why = thread.unsupported or thread.missing
+        if why:
+            record["why_not"] = why
+        summary = cut_summary(thread, chains.get(id(thread), NO_CHAIN).before)
+        if summary is not None:
+            record["cut"] = {
+                "pitch_diameter": _rounded(summary.pitch_diameter),
+                "root_diameter": _rounded(summary.root_diameter),
+                "crest_diameter": round(summary.crest_diameter, 4),
+                "nose_radius": _rounded(summary.nose_radius),
+                "nose_radius_known": summary.nose_radius_known,
+                "limits": None if summary.limits is None else _rounded(summary.limits),
+                "verdict": summary.verdict,
+                "area": round(summary.area, 4),
+                "largest_pass": {
+                    "line": summary.largest_pass.line + 1,
+                    "index": summary.largest_index + 1,
+                    "area": round(summary.largest_area, 4),
+                },
+                "passes_in_air": summary.in_the_air,
+            }
+        found.append(record)
+    return found
+
+
+def _rounded(values: Sequence[float]) -> list[float]:
+    return [round(v, 4) for v in values]
 
 
 def _read_in_part(

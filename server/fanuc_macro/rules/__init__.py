@@ -32,8 +32,10 @@ from . import (
     profiles,
     reading,
     statements,
+    thread_cut,
     thread_lead,
     thread_passes,
+    thread_taper,
     thread_tool,
     threading,
     variable_use,
@@ -78,6 +80,8 @@ ALL_CHECKS: tuple[Check, ...] = (
     thread_passes.check,
     thread_tool.check,
     thread_lead.check,
+    thread_cut.check,
+    thread_taper.check,
     cycles.check,
 )
 
@@ -103,6 +107,8 @@ FAMILIES: tuple[ModuleType, ...] = (
     thread_passes,
     thread_tool,
     thread_lead,
+    thread_cut,
+    thread_taper,
     cycles,
 )
 

@@ -113,11 +113,14 @@ Siemens' `PROC` or `DEF` or R parameters, LinuxCNC's O-word subroutine, DDCS's `
 brackets, Okuma's `VC1=` or `GOTO NLOOP` or `CALL O...`, a wire EDM's `H1=` register, Philips'
 `%PM` header, CNC Simulator Pro's `$Mill` directives) is read as
 that control's program: one MB002 on its first line (past a tape mark and empty lines) names
-the control and the line of the mark, and counts the blocks FANUC rejects. The editor lists
+the control and the line of the mark, and counts the blocks FANUC rejects; it is information,
+a statement about the file (right, perhaps, for its control), not an error (an error for a
+dialect not recognised: the file may be a broken FANUC program). The editor lists
 each of them as a related place, with what FANUC rejects in it, instead of one diagnostic a
 block, syntax errors, comment or end-of-block warnings (a `;` comment of Siemens or LinuxCNC, a
 `(` of a Syntec expression). A block `ELSE` in a Siemens file is Siemens', not Haas's. At least 5
-blocks in one control's forms read the same way, and so do at least 5 blocks with a comment
+blocks in one control's forms read the same way (two of Haas's local subroutine calls
+`M97 P<n>`: a program built on them is Haas's), and so do at least 5 blocks with a comment
 after `;` (`G0 Z10.0 ; Retract`: LinuxCNC, Mach3, Fagor and proLIGHT start comments with `;`,
 where FANUC ends the block and reads the words as the next one). A FANUC
 program with a few foreign blocks (no such mark) keeps one MB002 a block. A file without such a
@@ -376,6 +379,10 @@ _NAMED = MappingProxyType(
 # a stray form or two keeps one MB002 a block (the corpus: at most 3 in a FANUC-looking file;
 # a Haas NGC program, 9; a Citizen lathe's, 34).
 MIN_DIALECT_BLOCKS = 5
+# Haas's local subroutine calls (M97 P<n>): a program built on them is Haas's from two on, its
+# flow jumping to N numbers FANUC would take for M codes of the machine builder.
+HAAS_LOCAL_CALL = "Haas: M97 "
+MIN_LOCAL_CALLS = 2
 
 
 def _named_dialect(finding: LineFinding) -> str | None:
@@ -408,15 +415,22 @@ def dialect_of_blocks(
     """Another control's program from its blocks: at least :data:`MIN_DIALECT_BLOCKS` in the
     forms of one control (the line rules name it), or with a comment after ';'."""
     counts: dict[str, list[int]] = {}
+    local_calls: list[int] = []
     for line, parsed, findings in per_block:
         names = {n for n in map(_named_dialect, findings) if n is not None}
         if _comment_after_semicolon(parsed, findings):
             names.add(SEMICOLON_COMMENTS)
         for name in names:
             counts.setdefault(name, []).append(line)
+        if any(f.code == "MB002" and f.message.startswith(HAAS_LOCAL_CALL) for f in findings):
+            local_calls.append(line)
     if not counts:
         return None
     name, lines = max(counts.items(), key=lambda item: (len(item[1]), -item[1][0]))
+    if len(local_calls) >= MIN_LOCAL_CALLS and name == "Haas":
+        return dialects.FileDialect(
+            name, f"{len(local_calls)} local subroutine calls M97 P<n>, the first", local_calls[0]
+        )
     if len(lines) < MIN_DIALECT_BLOCKS:
         return None
     return dialects.FileDialect(name, f"{len(lines)} blocks in its forms, the first", lines[0])
@@ -516,7 +530,12 @@ def fold_foreign_file(
             f"({where}), not reported one by one"
         )
     end = len(first_text.rstrip())
-    return kept_blocks, make(MB002, message, first_line, 0, end, related=rejected)
+    # Of a control named by its marks, a statement about the file, not a mistake in it: it
+    # may be right for that control. Of one not recognised, the file may be FANUC's, broken.
+    severity = Severity.ERROR if foreign.name == UNRECOGNISED else Severity.INFORMATION
+    return kept_blocks, make(
+        MB002, message, first_line, 0, end, related=rejected, severity=severity
+    )
 
 
 # The codes of the verdicts of a run (the evaluator's rules), as strings compare.

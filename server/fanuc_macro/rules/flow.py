@@ -624,8 +624,12 @@ def _fresh_flow(
 
 
 def _local_calls(program: Program) -> frozenset[int]:
-    """The N numbers a Haas M97 of the program calls."""
-    return frozenset(c.program for c in program.calls if c.kind == "M97" and c.program is not None)
+    """The N numbers the program enters other than by a run's path: a Haas M97 calls them, or a
+    conditional GOTO jumps to them (for other values than this run's: MB701 says the
+    condition was decided)."""
+    calls = {c.program for c in program.calls if c.kind == "M97" and c.program is not None}
+    jumps = {j.target for j in program.jumps if j.conditional and j.target is not None}
+    return frozenset(calls | jumps)
 
 
 def _first_writes_now(
@@ -1015,7 +1019,9 @@ correct the jump before them.
     not_reported="""
 Blocks without an N number of their own before them (MB702, or
 MB710 after the end), blocks skipped by a conditional jump whose condition is always true
-(MB701 and MB702), an N number a Haas `M97` calls, and the programs MB702 leaves out (runs
+(MB701 and MB702), an N number a Haas `M97` calls or a conditional `GOTO` of the program jumps
+to (it runs for other values than the run's: MB701 says the condition was decided), and the
+programs MB702 leaves out (runs
 stopped early or undecided, blocks that do not parse and may change which blocks run).
 """,
 )

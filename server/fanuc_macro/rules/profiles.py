@@ -26,7 +26,7 @@ MB654 = RuleInfo("MB654", "profile-first-move", Severity.ERROR,
 MB655 = RuleInfo("MB655", "roughing-cycle-data", Severity.ERROR,
                  "A G71/G72 with a depth of cut of 0, or a G73 with fewer than one division.",
                  FAMILY)
-MB656 = RuleInfo("MB656", "profile-past-start", Severity.ERROR,
+MB656 = RuleInfo("MB656", "profile-past-start", Severity.WARNING,
                  "A G71/G72 profile that goes past the cycle's start point on the stock's side.",
                  FAMILY)
 MB657 = RuleInfo("MB657", "profile-last-corner", Severity.ERROR,
@@ -256,15 +256,19 @@ MB656_DOC = RuleDoc(
     "MB656",
     reports="""
 A `G71` whose profile goes past the cycle's start point in X on the side of the stock (above
-it for an outside profile, below it for a bore), or a `G72` likewise in Z. Judged on the end
-points of the profile's first block and its cutting blocks; the message gives the farthest
-one and the start point.
+it for an outside profile, below it for a bore), or a `G72` likewise in Z, by more than the
+cycle's depth of cut Δd (its first block's U or W, when constant). Judged on the end points of
+the profile's first block and its cutting blocks; the message gives the farthest one, by how
+much, and the start point.
 """,
     why="""
-The roughing passes run from the start point towards the profile: a profile beyond it lies
-in the stock the passes come from. The control stops with alarm PS0322 "FINISHING SHAPE WHICH
-OVER OF STARTING POINT" (0i-F alarm list). It comes from a start point set to the finished
-diameter rather than the blank's, or a profile copied from a larger part.
+The roughing passes run from the start point towards the profile: what lies beyond it is not
+roughed, and the finishing pass (G70) takes it in one cut, deeper than any roughing pass. It
+comes from a start point set to the finished diameter rather than the blank's, or a profile
+copied from a larger part. With the finishing-shape check on (parameter 5104#2 FCK) the
+control refuses the cycle with alarm PS0322 "FINISHING SHAPE WHICH OVER OF STARTING POINT"
+(0i-F alarm list); production programs run with the check off (unverified against a manual
+which is the default).
 """,
     example="""
 ```nc
@@ -284,8 +288,11 @@ M30
 Start the cycle outside the blank (`G00 X62. Z2.` for a 60 mm bar), or correct the profile.
 """,
     not_reported="""
-G73 (its pattern starts from the escape), rapid blocks after the first, a profile whose first
-block ends at the start point's X (no side to judge), values the analysis cannot compute.
+G73 (its pattern starts from the escape), rapid blocks after the first, the profile's last
+block when it moves in the depth axis alone (the move that leaves the profile, usually past
+the start point), a profile past the start point by no more than the depth of cut, a profile
+whose first block ends at the start point's X (no side to judge), values the analysis cannot
+compute.
 """,
 )
 

@@ -347,17 +347,7 @@ starts whose shift is not one pitch but any other whole part of the lead.
 
 def _starts(ctx: RuleContext, thread: Thread) -> Iterator[Diagnostic]:
     lead = thread.job.lead
-    if thread.starts < 2 or lead is None or thread.pitch is None:
-        return
-    if abs(lead - thread.pitch * thread.starts) > 1e-6:
-        return  # cut with another lead: MB810 says so
-    job, starts = thread.job, thread.starts
-    cut = job.remember(
-        ("starts cut", lead, starts),
-        lambda: _cut_starts(job.passes, lead, starts),
-        ("x", "start_z", "Q", "code"),
-    )
-    if cut:
+    if not starts_missing(thread) or lead is None or thread.pitch is None:
         return
     first = thread.job.passes[0]
     yield make(
@@ -371,4 +361,19 @@ def _starts(ctx: RuleContext, thread: Thread) -> Iterator[Diagnostic]:
         0,
         width(ctx, first.line),
         related=thread_related(thread),
+    )
+
+
+def starts_missing(thread: Thread) -> bool:
+    """Whether a thread of several starts, cut with its lead, has only one of them cut."""
+    lead = thread.job.lead
+    if thread.starts < 2 or lead is None or thread.pitch is None:
+        return False
+    if abs(lead - thread.pitch * thread.starts) > 1e-6:
+        return False  # cut with another lead: MB810 says so
+    job, starts = thread.job, thread.starts
+    return not job.remember(
+        ("starts cut", lead, starts),
+        lambda: _cut_starts(job.passes, lead, starts),
+        ("x", "start_z", "Q", "code"),
     )

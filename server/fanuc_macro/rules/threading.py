@@ -16,6 +16,7 @@ from ..diagnostics import Diagnostic, Related, RuleDoc, RuleInfo, Severity, make
 from ..evaluator.facts import Motion
 from ..evaluator.values import fmt_address
 from ..program.papers import DENG_MOLYBDENUM
+from ..threads.cross_section import pitch_verdict
 from ..threads.geometry import SIN60
 from ..threads.identify import Thread
 from ..threads.module_shape import D1_FACTOR, writes_in_document
@@ -223,6 +224,29 @@ def _root_checks(ctx: RuleContext, thread: Thread) -> Iterator[Diagnostic]:
         )
 
 
+def root_passed(thread: Thread) -> bool:
+    """Whether a pass of the thread goes past its root (what MB801 reports)."""
+    root = thread.root_x()
+    if root is None:
+        return False
+    sign = -1.0 if thread.internal else 1.0
+    passes = thread.job.passes
+    return (
+        thread.job.remember(
+            ("past root", sign, root), lambda: _past_root(passes, sign, root), ("x",)
+        )
+        is not None
+    )
+
+
+def formula_blamed(ctx: RuleContext, thread: Thread) -> bool:
+    """Whether MB808 or MB809 names a thread module's formula or input as the cause of the
+    thread's depth."""
+    return any(True for _ in _deviation_sign(ctx, thread)) or any(
+        True for _ in _height_check(ctx, thread)
+    )
+
+
 def _past_root(passes: list[Motion], sign: float, root: float) -> int | None:
     """The first pass past the root."""
     for i, m in enumerate(passes):
@@ -252,8 +276,10 @@ A thread module's own thread height (the variable its last pass is cut
 to: `#4` of `X[#100-2.*#4]`) that differs from the height the standard and Deng Ronggang's
 formula give for the identified thread, 7H/8 − r + es/2 + Td2/4 outside or 6H/8 − r + EI/2 +
 TD2/4 inside (es and Td2 of the class, r the program's nose radius), by more than a quarter of
-Td2: enough to put the pitch diameter outside the class. The message gives the expected
-height, the difference, the pitch diameter that results, and the term of the formula that
+Td2, when the passes the module runs cut a pitch diameter outside the class (MB817's verdict,
+from the cross-section of the cut): the formula is reported as the cause of a cut out of its
+class, never alone. The message gives the expected
+height, the difference, the pitch diameter the passes cut, and the term of the formula that
 differs (`#103 is taken ×2 where the formula has es/2`), or the input that is not the class's
 (`#104 = 0.7 where M50x3-5g6g's Td2 is 0.17`); it stands at the formula, or at that input.
 """,
@@ -288,7 +314,9 @@ Correct the term the message names (here `#103/2.`), or the input.
 """,
     not_reported="""
 A height within a quarter of Td2 of the standard's: that is the
-tuning Deng Ronggang's paper leaves to `#103` (coarse) and `#104` (fine). Heights of hand-written
+tuning Deng Ronggang's paper leaves to `#103` (coarse) and `#104` (fine). A height whose passes
+still cut a pitch diameter within the class (a height variable that is not the one the last
+pass is cut to). Heights of hand-written
 pass lists (only MB801 checks their depth), and threads whose class is not known.
 """,
 )
@@ -306,6 +334,10 @@ def _height_check(ctx: RuleContext, thread: Thread) -> Iterator[Diagnostic]:
     # Within a quarter of the pitch-diameter tolerance the pitch diameter stays in its band:
     # that much is the tuning the paper leaves to #103 / #104.
     if abs(difference) <= c.tolerance / 4.0 + EPS:
+        return
+    # The formula is a cause only of a cut out of its class.
+    verdict = pitch_verdict(thread)
+    if verdict is None or not verdict.side:
         return
     k = "6H/8" if thread.internal else "7H/8"
     r = thread.nose_radius
@@ -329,12 +361,9 @@ def _height_check(ctx: RuleContext, thread: Thread) -> Iterator[Diagnostic]:
                 line = writes[-1]
     how = "deeper" if difference > 0 else "shallower"
     formula = f"{k} − r + EI/2 + TD2/4" if thread.internal else f"{k} − r + es/2 + Td2/4"
-    band = thread.pitch_band()
-    effect = ""
-    if band is not None:
-        middle = (band[0] + band[1]) / 2.0
-        cut = middle + 2.0 * difference if thread.internal else middle - 2.0 * difference
-        effect = f"; the pitch diameter comes out {cut:.3f}, outside {band[0]:.3f}–{band[1]:.3f}"
+    low, high = verdict.limits
+    cut = verdict.least if (verdict.side == "tight") != bool(thread.internal) else verdict.greatest
+    effect = f"; the passes cut a pitch diameter of {cut:.3f}, outside {low:.3f}–{high:.3f}"
     yield make(
         MB808,
         f"thread height #{module.height_var} = {module.height:.4f} (radius) is "

@@ -312,13 +312,15 @@ def _undecided(
 
 
 def _fits(des: ThreadDesignation, job: ThreadJob, internal: bool) -> bool:
-    """Whether the passes lie where this size's thread is cut."""
+    """Whether the passes lie where this size's thread is cut: the deepest one within its
+    profile, give or take, and the first ones no further off than 2P (radius) in the air
+    (a G76 whose height P was given as a diameter starts that far out)."""
     low, high = job.x_range
     d, p = des.nominal_diameter, des.pitch
     if internal:
         minor = d - D1_FACTOR * p
-        return low >= minor - 1.0 - 0.5 * p and high <= d + 2.0 * p
-    return high <= d + 0.2 and low >= d - 4.0 * p
+        return minor - 1.0 - 0.5 * p <= high <= d + 2.0 * p and low >= minor - 4.0 * p
+    return d - 4.0 * p <= low <= d + 0.2 and high <= d + 4.0 * p
 
 
 def _choose_designation(

@@ -177,10 +177,13 @@ _LEAVES = frozenset({Motion, float, int, str, bool, type(None)})
 def _swapped(value: object, passes: dict[int, Motion]) -> object:
     """``value`` with the motions in ``passes`` (by id) replaced; _UNSWAPPABLE when it holds
     something this does not look into. A list or tuple of leaves without such a motion is
-    ``value`` itself (what was worked out is not changed afterwards)."""
+    ``value`` itself (what was worked out is not changed afterwards), and so is a value whose
+    class says it holds no motion (``HOLDS_NO_MOTION``: passes by their index)."""
     if isinstance(value, Motion):
         return passes.get(id(value), value)
     if value is None or isinstance(value, bool | int | float | str):
+        return value
+    if getattr(type(value), "HOLDS_NO_MOTION", False):
         return value
     if isinstance(value, tuple | list):
         kinds = set(map(type, value))  # in C: most results are long lists of one kind
