@@ -16,7 +16,7 @@ from pytest_lsp import LanguageClient
 
 from fanuc_macro.analysis import analyse
 from fanuc_macro.evaluator.facts import Motion
-from fanuc_macro.rules import threading
+from fanuc_macro.rules import thread_cut, threading
 from fanuc_macro.threads.cross_section import ToolShape, cut_cross_section
 from test_lsp import client, codes, diagnostics, hover, open_text, start
 
@@ -182,18 +182,8 @@ def test_a_clamp_that_holds_every_pass_at_one_speed_is_no_g96_thread() -> None:
     assert "MB820" in {d.code for d in analyse(unclamped, "unclamped.nc").diagnostics}
 
 
-SHALLOW = """O1120 (M20X2.5-6G)
-G97 S500 M03
-G00 X22. Z5.
-G92 X19.3 Z-30. F2.5
-X18.7
-X18.2
-X17.8
-X17.5
-X17.3
-G00 X100. Z100.
-M30
-"""
+# MB817's example: an M20x2.5-6g cut to X17.3, too shallow for its class.
+SHALLOW = re.search(r"```nc\n(.*?)```", thread_cut.MB817_DOC.example, re.S).group(1)  # type: ignore[union-attr]
 
 
 async def test_the_editor_shows_the_cut_and_withdraws_the_verdict_when_mended(

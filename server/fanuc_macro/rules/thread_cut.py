@@ -11,6 +11,7 @@ from __future__ import annotations
 import math
 import re
 from collections.abc import Iterator
+from functools import partial
 
 from ..diagnostics import Diagnostic, RuleDoc, RuleInfo, Severity, make
 from ..evaluator.facts import Motion
@@ -460,19 +461,10 @@ analysed alone, after a call the analysis cannot follow), a mill's threading.
 
 def _under_g96(ctx: RuleContext, thread: Thread) -> Iterator[Diagnostic]:
     job = thread.job
-    passes = job.remember(
-        "under G96",
-        lambda: [
-            m
-            for m in job.passes
-            if m.surface_speed is not None and m.speed_clamp is not None and m.x
-        ],
-        ("surface_speed", "speed_clamp", "x"),
+    passes, speeds = job.remember(
+        "under G96", partial(_g96_passes, job.passes), ("surface_speed", "speed_clamp", "x")
     )
-    if (
-        len({round(_rpm(m)) for m in passes[:1] + passes[-1:]}) < 2
-        and len({round(_rpm(m)) for m in passes}) < 2
-    ):
+    if speeds < 2:
         return  # one diameter, or the clamp holds every pass at one speed
     first = passes[0]
     deepest = thread.job.deepest(bool(thread.internal)) if thread.internal is not None else None
@@ -494,6 +486,12 @@ def _under_g96(ctx: RuleContext, thread: Thread) -> Iterator[Diagnostic]:
         width(ctx, first.line),
         related=thread_related(thread),
     )
+
+
+def _g96_passes(passes: list[Motion]) -> tuple[list[Motion], int]:
+    """The passes cut under G96 with their clamp known, and how many speeds they run at."""
+    found = [m for m in passes if m.surface_speed is not None and m.speed_clamp is not None and m.x]
+    return found, len({round(_rpm(m)) for m in found})
 
 
 def _rpm(m: Motion) -> float:

@@ -8,10 +8,10 @@ thread and from the axis side of an internal one, so the material left is bounde
 of the axial place ``u``: an external thread keeps the radii ``r <= h(u)``, an internal one
 ``r >= h(u)``. That function is kept exactly, as a polyline over one lead: the lower (external)
 or upper (internal) envelope of the blank and the tools' profiles, each profile a polyline too
-(its nose arc in :data:`NOSE_SEGMENTS` chords, within 0.4 % of the radius of the arc). A pass
+(its nose arc in :data:`NOSE_SEGMENTS` chords, within 0.1 % of its radius). A pass
 changes the polyline only where its profile goes below it, and what it removes there is the
 area between the two. Plain Python, as the editor's bundled server has no numpy or shapely:
-the polyline is exact where a raster of the lead is not, about 55 µs a pass, and 30 times
+the polyline is exact where a raster of the lead is not, 55-80 µs a pass, and 26-30 times
 faster than shapely's polygons of the same cut (``bench/bench_cross_section.py``; a numpy
 raster of 4,096 samples a lead ran 2-3 times faster than the polyline but placed the passes
 to a sample and needs numpy).
