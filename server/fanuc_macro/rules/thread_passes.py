@@ -1,9 +1,9 @@
-"""MB803, MB804, MB814: the sequence of a thread's passes, pass after pass.
+"""MB803, MB804, MB814, MB822: the sequence of a thread's passes, pass after pass.
 
-Cycles only (``G92``, ``G76``): the single ``G32`` cuts of a fitting-method program move
-around a profile on purpose. Two passes at the same X from different start points (the left
-and right steps of the symmetric module, a flank infeed) are not a repeat; the same pass again
-at the full depth is a spring pass.
+Cycles only (``G92``, ``G76``), but for MB822: the single ``G32`` cuts of a fitting-method
+program move around a profile on purpose, always the same way along Z. Two passes at the same
+X from different start points (the left and right steps of the symmetric module, a flank
+infeed) are not a repeat; the same pass again at the full depth is a spring pass.
 """
 
 from __future__ import annotations
@@ -36,12 +36,17 @@ MB804 = RuleInfo("MB804", "thread-pass-too-deep", Severity.WARNING,
 MB814 = RuleInfo("MB814", "thread-pass-repeated", Severity.WARNING,
                  "A threading pass repeats the previous pass's X, or one of the program's own "
                  "sequence of depths is never cut.", FAMILY)
+MB822 = RuleInfo("MB822", "thread-pass-reversed", Severity.ERROR,
+                 "A threading move runs back along the thread, inside it, against the other "
+                 "passes' direction.", FAMILY)
 # fmt: on
 
 
 def check(ctx: RuleContext) -> Iterator[Diagnostic]:
     for thread in ctx.threads():
         job = thread.job
+        if not job.is_cycle and len(job.passes) >= 2:
+            yield from _reversed(ctx, thread)
         if not job.is_cycle or len(job.passes) < 2:
             continue
         internal = thread.internal if thread.internal is not None else job.internal
@@ -425,3 +430,88 @@ def _roundings_feeding(
                             if assign is not None:
                                 following.append((write, assign.value))
         frontier = following
+
+
+MB822_DOC = RuleDoc(
+    "MB822",
+    reports="""
+A single threading move (`G32`) that runs along Z the other way than the
+thread's other passes, at an X inside the groove they cut (below the shallowest of them on an
+external thread, above it on an internal one), over their stretch of Z. Once per thread, at
+the move; the message gives its X and Z and the other passes' direction.
+""",
+    why="""
+`G32` is modal: a block of Z alone after a threading pass is one more threading move. Fed
+back along the thread with the spindle turning the same way, the tool follows a helix of the
+other hand and cuts across the flanks just cut: the thread is ruined and the insert, loaded on
+its back, often breaks. It is nearly always a retract (`G00 X…`) left out before the return to
+the start.
+""",
+    example="""
+```nc
+O1125 (M16X1.5-6G)
+G97 S700 M03
+G00 X20. Z5.
+X15.4
+G32 Z-22. F1.5
+G00 X20.
+Z5.
+X14.9
+G32 Z-22.
+Z5.
+X14.5
+G32 Z-22.
+G00 X20.
+Z5.
+M30
+```
+""",
+    fix="""
+Put the retract back before the return (`G00 X20.` before `Z5.`).
+""",
+    not_reported="""
+Cycles (`G92`, `G76`: the control retracts and returns itself), a move outside the groove (a
+return above the thread at the threading feed is slow, not a cut), a thread all of whose passes
+run one way, whichever it is (a left-hand thread cut towards +Z).
+""",
+)
+
+
+def _reversed(ctx: RuleContext, thread: Thread) -> Iterator[Diagnostic]:
+    passes = [
+        m
+        for m in thread.job.passes
+        if m.z is not None and m.start_z is not None and m.x is not None and m.z != m.start_z
+    ]
+    ways = Counter(m.z > m.start_z for m in passes if m.z is not None and m.start_z is not None)
+    if len(ways) < 2:
+        return
+    (forward, count), (_back, fewer) = ways.most_common(2)
+    if count == fewer:
+        return  # no way the thread is cut
+    along = [m for m in passes if ((m.z or 0.0) > (m.start_z or 0.0)) == forward]
+    xs = [m.x for m in along if m.x is not None]
+    zs = [z for m in along for z in (m.z, m.start_z) if z is not None]
+    internal = thread.internal if thread.internal is not None else thread.job.internal
+    if not xs or not zs or internal is None:
+        return
+    low, high = min(zs), max(zs)
+    for m in passes:
+        assert m.x is not None and m.z is not None and m.start_z is not None
+        if (m.z > m.start_z) == forward:
+            continue
+        inside = m.x > min(xs) if internal else m.x < max(xs)
+        overlap = min(high, max(m.z, m.start_z)) - max(low, min(m.z, m.start_z))
+        if not inside or overlap <= 0.0:
+            continue
+        way = "+Z" if forward else "−Z"
+        yield make(
+            MB822,
+            f"{m.shown} runs from Z{mm(m.start_z)} to Z{mm(m.z)} at X{mm(m.x)}, inside the "
+            f"thread the other {count} passes cut towards {way}: fed back along it, the tool "
+            "cuts across the flanks (a retract before the return left out?)",
+            m.line,
+            0,
+            width(ctx, m.line),
+        )
+        return
