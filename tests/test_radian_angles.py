@@ -29,6 +29,7 @@ RADIANS: dict[str, list[int]] = {
     "down_bound_with_pi.nc": [10, 10],  # from 3.14159 down by 3.14159/36.
     "pi_in_bound.nc": [7, 7],  # WHILE[#1LE[3.14159/2.]] in steps of 0.1
     "bound_in_variable.nc": [9, 9],  # WHILE[#1LE#5] with #5=1.5708, the step in #6
+    "step_in_variable.nc": [8, 8],  # 0.2618 to 2.88 in steps of #6=0.0873 (5° in radians)
 }
 DEGREES = [
     "deg_fine_half_degree.nc",  # 0° to 10° in steps of 0.5°
@@ -41,6 +42,7 @@ DEGREES = [
     "deg_tenth_degree.nc",  # 0° to 2.8° in steps of 0.1°: could be radians, left alone
     "deg_sweep_under_half.nc",  # 0° to 0.45° in steps of 0.05°
     "deg_arc_18_to_162.nc",  # O5 in degrees
+    "deg_step_in_variable.nc",  # 0.5° to 6° in steps of #6=0.5°
 ]
 
 

@@ -1,10 +1,11 @@
 """Threading mistakes judged from the cut: realistic lathe programs, each with one mistake, and
 their correct twins left quiet.
 
-``tests/fixtures/thread_cut_variants/`` holds 12 correct programs (hand-typed G92 lists, G92
+``tests/fixtures/thread_cut_variants/`` holds 15 correct programs (hand-typed G92 lists, G92
 in a WHILE loop, two-block G76, G32 with manual retracts, internal threads, a subprogram run
-twice by M98, NPT, ISO 7-1 R and Rc taper threads, a two-start thread and a round thread) and
-33 variants of one mistake each, written without reading the rules and without a comment that
+twice by M98, NPT, ISO 7-1 R and Rc taper threads, an NPT on a bar turned elsewhere, a thread
+with no designation at all, a two-start thread and a round thread) and 41 variants of one
+mistake each, written without reading the rules and without a comment that
 names the mistake; ``catalogue.toml`` says what each mistake is, the line a programmer would
 fix and what the machine or the part would show. Every variant is listed here: caught at that
 line, caught at another line (where its effect shows: said why), or missed (why the checker
@@ -46,6 +47,16 @@ CAUGHT: dict[str, set[tuple[int, str]]] = {
     "rc_3q_r_sign.nc": {(17, "MB821")},
     "rc_3q_r_as_diameter.nc": {(17, "MB821")},
     "twostart_m30_f_pitch.nc": {(8, "MB810")},
+    "r_half_g76_p_as_diameter.nc": {(31, "MB818")},
+    "npt_3q_bar_r_sign.nc": {(9, "MB823")},
+    "npt_3q_bar_no_r.nc": {(9, "MB823")},
+    "npt_3q_bar_r_diameter.nc": {(9, "MB823")},
+    "rc_1_g76_q_deep.nc": {(24, "MB819")},
+    "rc_1_g76_r_omitted.nc": {(24, "MB823")},
+    "g92_plain_air.nc": {(20, "MB818")},
+    # The pass that plunges: too deep for the insert (MB804), most of the profile at once
+    # (MB819), and the pass after it is shallower (MB803).
+    "g92_plain_jump.nc": {(22, "MB804"), (22, "MB819"), (23, "MB803")},
 }
 
 # variant -> (its errors and warnings, why they stand at another line than the catalogue's)
@@ -81,6 +92,16 @@ ELSEWHERE: dict[str, tuple[set[tuple[int, str]], str]] = {
         "within its class: a pass deeper than the last is seen as the passes after it going "
         "back and repeating",
     ),
+    "round_thread_side_layer_deep.nc": (
+        {(15, "MB824")},
+        "the loop's bound that makes the shifted layers too deep: said at the layer's G92, "
+        "the line after it, with how far it reaches past the profile",
+    ),
+    "round_thread_radians.nc": (
+        {(31, "MB504"), (32, "MB504")},
+        "the angles typed in radians: said where COS and SIN read them, with the step held "
+        "in #3 (0.1396) that decides it",
+    ),
     "g92_while_m24_clamp_wrong_var.nc": (
         {(25, "MB803")},
         "within its class by 0.004 mm: seen as the spring pass going back from the deeper one",
@@ -95,12 +116,9 @@ MISSED: dict[str, str] = {
     "thread's end is not judged against the turned profile yet",
     "int_sub_m48_second_run_past_root.nc": "the deeper run stays inside 6H: only the intent "
     "says the final X was the root",
-    "r_half_g76_p_as_diameter.nc": "an ISO 7-1 taper thread of 55° is not simulated: its "
-    "cross-section needs the taper and the Whitworth form",
-    "r_half_g76_dmin_large.nc": "an ISO 7-1 taper thread of 55° is not simulated, so neither "
-    "are its passes' areas",
-    "round_thread_radians.nc": "the angles' step is a variable (#3=0.1396): MB504 decides "
-    "radians from a step typed in the loop, a bound of a turn or a π",
+    "r_half_g76_dmin_large.nc": "the heaviest of its 5 passes removes 41% of the profile (0.434 "
+    "of 1.047 mm²): a heavy schedule, but no pass takes most of it, and what the insert can "
+    "take is not in the program",
 }
 
 

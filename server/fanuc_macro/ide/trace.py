@@ -116,6 +116,8 @@ class TraceThreadCut(TypedDict):
     area: float
     largest_pass: TraceLargestPass
     passes_in_air: int
+    blank: float  # the diameter the passes cut into (a taper thread's: where its cone is read)
+    blank_from: str  # the turned surface's line, or the designation
 
 
 class _TraceThreadRequired(TypedDict):
@@ -297,6 +299,8 @@ def _threads(uri: str, doc: Document, index: ProgramIndex, facts: Facts) -> list
                     "area": round(summary.largest_area, 4),
                 },
                 "passes_in_air": summary.in_the_air,
+                "blank": round(summary.blank, 4),
+                "blank_from": summary.blank_from,
             }
         found.append(record)
     return found

@@ -32,6 +32,7 @@ from . import (
     profiles,
     reading,
     statements,
+    thread_arc,
     thread_cut,
     thread_lead,
     thread_passes,
@@ -82,6 +83,7 @@ ALL_CHECKS: tuple[Check, ...] = (
     thread_lead.check,
     thread_cut.check,
     thread_taper.check,
+    thread_arc.check,
     cycles.check,
 )
 
@@ -109,6 +111,7 @@ FAMILIES: tuple[ModuleType, ...] = (
     thread_lead,
     thread_cut,
     thread_taper,
+    thread_arc,
     cycles,
 )
 

@@ -9,7 +9,8 @@ run, and decides by the sweep and the step, not by what the values are in degree
 
 * the sweep: every value within ±2π and a sweep of 0.5 or more (under 0.5 a sweep is as
   likely a degree program's fine steps over a fraction of a degree);
-* the step: the increment of the loop (``#16=#16+0.1396``), or the sweep over the count of
+* the step: the increment of the loop (``#16=#16+0.1396``, or ``#16=#16+#3`` with #3 of one
+  value whenever the loop steps), or the sweep over the count of
   values, under 0.8: a radian step, which would be a sub-degree step of a sweep under 7° if
   the values were degrees;
 * and one sign of radians that a degree program does not give, since a degree program can
@@ -132,6 +133,8 @@ class _AngleLine(NamedTuple):
     # (variable, the variable it is compared with): '#1LE#2'
     variable_bounds: tuple[tuple[int, int], ...] = ()
     pi_bounds: frozenset[int] = frozenset()  # compared with an expression holding a π
+    # (variable, the variable it is stepped by, +1 or -1) of each '#n=#n+#k' / '#n=#n-#k'
+    variable_increments: tuple[tuple[int, int, float], ...] = ()
 
 
 def _strip(expr: Expr) -> Expr:
@@ -170,6 +173,18 @@ def _increment(target: int, value: Expr) -> float | None:
     return None
 
 
+def _variable_increment(target: int, value: Expr) -> tuple[int, float] | None:
+    """(k, +1) of '#n=#n+#k' or '#n=#k+#n', (k, -1) of '#n=#n-#k', else None."""
+    value = _strip(value)
+    if not isinstance(value, Binary) or value.op not in ("+", "-"):
+        return None
+    if _direct(value.left) == target and (k := _direct(value.right)) is not None:
+        return k, (1.0 if value.op == "+" else -1.0)
+    if value.op == "+" and _direct(value.right) == target and (k := _direct(value.left)):
+        return k, 1.0
+    return None
+
+
 def _compares(cond: Cond) -> Iterator[Compare]:
     stack: list[Cond] = [cond]
     while stack:
@@ -183,6 +198,7 @@ def _compares(cond: Cond) -> Iterator[Compare]:
 
 def _line_angles(parsed: ParsedLine) -> _AngleLine | None:
     increments: list[tuple[int, float]] = []
+    by_variable: list[tuple[int, int, float]] = []
     inverse: set[int] = set()
     number_bounds: list[tuple[int, float]] = []
     variable_bounds: list[tuple[int, int]] = []
@@ -193,6 +209,8 @@ def _line_angles(parsed: ParsedLine) -> _AngleLine | None:
             step = _increment(target, assign.value)
             if step is not None:
                 increments.append((target, step))
+            elif (stepped := _variable_increment(target, assign.value)) is not None:
+                by_variable.append((target, *stepped))
             if any(
                 isinstance(node, Call) and node.name in INVERSE
                 for node in subexpressions(assign.value)
@@ -212,7 +230,7 @@ def _line_angles(parsed: ParsedLine) -> _AngleLine | None:
                         variable_bounds.append((n, m))
                     elif _pi_like(other):
                         pi_bounds.add(n)
-    if not (increments or inverse or number_bounds or variable_bounds or pi_bounds):
+    if not (increments or by_variable or inverse or number_bounds or variable_bounds or pi_bounds):
         return None
     return _AngleLine(
         tuple(increments),
@@ -220,6 +238,7 @@ def _line_angles(parsed: ParsedLine) -> _AngleLine | None:
         tuple(number_bounds),
         tuple(variable_bounds),
         frozenset(pi_bounds),
+        tuple(by_variable),
     )
 
 
@@ -314,6 +333,12 @@ def _program_angles(
             continue
         for n, step in said.increments:
             increments.setdefault(n, set()).add(step)
+        # A step held in a variable that has one value whenever the line runs (#3=0.1396
+        # set before the loop) is the step as typed there.
+        for n, k, sign in said.variable_increments:
+            summary = reads.get((at, k))
+            if summary is not None and summary.constant and isinstance(summary.first, float):
+                increments.setdefault(n, set()).add(sign * summary.first)
         inverse.update(said.inverse)
         for n in said.pi_bounds:
             turns.setdefault(n, "the loop's bound is written with π")
@@ -345,7 +370,8 @@ MB504_DOC = RuleDoc(
     reports="""
 `SIN`, `COS` or `TAN` of one variable whose values over the run are an angle stepped in
 radians, decided by the sweep and the step: all values within ±2π, a sweep of 0.5 or more,
-steps under 0.8 (the loop's increment, else the sweep over the count of values: as degrees,
+steps under 0.8 (the loop's increment, a number or a variable of one value, else the sweep
+over the count of values: as degrees,
 sub-degree steps over a sweep under 7° that moves the tool almost nowhere), and one sign of
 radians a degree program does not give: the step typed as a radian conversion (three decimals
 or more and no fraction of a degree: `0.1396`, `0.0873`, not `0.5`, `0.25` or `0.125`), the

@@ -23,7 +23,7 @@ from ..threads.cross_section import (
     NO_CHAIN,
     CrossSection,
     PitchVerdict,
-    blank_diameter,
+    blank_source,
     pitch_verdict,
     thread_chains,
     thread_cuts,
@@ -259,9 +259,11 @@ MB818_DOC = RuleDoc(
     "MB818",
     reports="""
 Two or more threading passes, before the first one that touches the
-material, that lie wholly outside the blank: beyond the thread's major diameter (external) or
-inside its basic minor diameter D1 (internal), so that they cut nothing on any part of the
-thread's size. For G76 the cause is its thread height P: the cycle starts its passes that far
+material, that lie wholly outside the blank: the surface the program turned (or bored) for
+the thread before it, read along the thread (for a taper thread, along its cone); else, for
+an identified ISO metric thread, beyond its major diameter (external) or inside its basic
+minor diameter D1 (internal), so that they cut nothing on any part of the thread's size.
+For G76 the cause is its thread height P: the cycle starts its passes that far
 above the root it is given.
 """,
     why="""
@@ -288,7 +290,8 @@ the pass list at the crest.
     not_reported="""
 A single pass outside the blank (a touch pass), passes at the
 final depth that remove nothing (spring passes, MB814 reports repeated rough passes), threads
-not identified (their blank is not known).
+whose blank is not known (nothing turned for them in the run, no ISO metric designation), X
+given on the far side of the axis.
 """,
 )
 
@@ -300,10 +303,13 @@ def _in_the_air(ctx: RuleContext, thread: Thread, cuts: list[CrossSection]) -> I
         return
     passes = thread.job.passes
     first, last = passes[air[0].index], passes[air[-1].index]
-    blank = blank_diameter(thread)
-    assert first.x is not None and last.x is not None and blank is not None
-    internal = bool(thread.internal)
-    outside = abs(first.x - blank) / 2.0
+    cut = cuts[0]
+    blank = cut.blank
+    assert first.x is not None and last.x is not None
+    internal = cut.internal
+    # The passes' X where the blank is read (a taper thread's in the frame of its cone).
+    x_first, x_last = 2.0 * air[0].tip, 2.0 * air[-1].tip
+    outside = abs(x_first - blank) / 2.0
     where = "inside the bore" if internal else "outside the blank"
     cause = ""
     if first.code == "G76":
@@ -311,17 +317,22 @@ def _in_the_air(ctx: RuleContext, thread: Thread, cuts: list[CrossSection]) -> I
             f"; G76's thread height P starts the cycle {outside:.3f} mm (radius) {where}: "
             "P is more than the thread's height"
         )
-    source = (
-        f"basic minor diameter D1 of {thread.name}"
-        if internal
-        else f"{thread.name}'s major diameter"
-    )
+    surface = thread.surface
+    if surface is not None and x_first != first.x:
+        at = f" at Z{mm(surface.z)}"
+        passes_text = f"X{mm(x_first)} to X{mm(x_last)}{at}"
+        source = f"the cone turned at line {surface.line + 1}"
+    else:
+        at = ""
+        passes_text = (
+            f"{pass_name(thread, air[0].index, first)} at X{mm(first.x)} to "
+            f"{pass_name(thread, air[-1].index, last)} at X{mm(last.x)}"
+        )
+        source = blank_source(thread)
     yield make(
         MB818,
-        f"the first {len(air)} of {len(cuts[0].cuts)} passes "
-        f"({pass_name(thread, air[0].index, first)} at X{mm(first.x)} to "
-        f"{pass_name(thread, air[-1].index, last)} at X{mm(last.x)}) are {where} "
-        f"X{mm(blank)} ({source}) and cut nothing{cause}",
+        f"the first {len(air)} of {len(cut.cuts)} passes ({passes_text}) are {where} "
+        f"X{mm(blank)}{at} ({source}) and cut nothing{cause}",
         depth_line(first),
         0,
         width(ctx, depth_line(first)),
@@ -334,7 +345,9 @@ MB819_DOC = RuleDoc(
     reports="""
 A threading pass that removes more than half of the area the whole job
 removes from the thread's profile, in a job of two passes or more: the passes' tool profiles
-are taken out of the blank in order, and each pass's share is what it alone removed. For G76
+are taken out of the blank in order (the blank as MB818 reads it; the tool a V of the
+thread's angle: 60°, G76's tool angle for a thread not identified, 55° for ISO 7-1), and each
+pass's share is what it alone removed. For G76
 the usual cause is a first depth Q at or past the thread's height, or a finishing allowance R
 as large as the thread.
 """,
@@ -361,7 +374,8 @@ decreasing depths in a pass list, each pass about the same area).
     not_reported="""
 A thread cut in a single pass (a fine pitch may be cut so), passes
 that remove up to half the profile, a pass lighter than the tool's V 0.25 mm deep (0.036 mm²:
-a fine thread is often cut in two or three passes), threads not identified.
+a fine thread is often cut in two or three passes), threads whose blank is not known (as
+MB818), arc threads cut by the fitting method.
 """,
 )
 
@@ -382,7 +396,7 @@ def _pass_area(ctx: RuleContext, thread: Thread, cuts: list[CrossSection]) -> It
         return
     m = thread.job.passes[index]
     light = in_program_unit(LIGHT_DEPTH, m.inch)
-    if area <= light * light * math.tan(math.radians(METRIC_ANGLE / 2.0)):
+    if area <= light * light * math.tan(math.radians(cuts[0].tool.included_angle / 2.0)):
         return
     assert m.x is not None
     before = sum(c.area for c in cuts[0].cuts if c.index < index) / max(total, 1e-12)

@@ -110,6 +110,16 @@ def _growing(ctx: RuleContext, thread: Thread, internal: bool) -> Iterator[Diagn
         assert m.x is not None and previous.x is not None
         assert x is not None and x_before is not None
         step = (-1.0 if internal else 1.0) * (x_before - x) / 2.0
+        surface = thread.surface
+        if code == MB804.code and surface is not None:
+            # Where the program turned the thread's blank, a pass after passes in the air
+            # takes only what lies below it.
+            x, x_before = surface.frame_x(m), surface.frame_x(previous)
+            assert x is not None and x_before is not None
+            top = max(x_before, surface.blank) if internal else min(x_before, surface.blank)
+            step = (-1.0 if internal else 1.0) * (top - x) / 2.0
+            if step <= limit + EPS:
+                continue
         if code == "MB803":
             message = (
                 f"{pass_name(thread, i, m)} at X{mm(m.x, inch)} is {distance(-step, inch)} "
@@ -134,7 +144,9 @@ MB804_DOC = RuleDoc(
     reports="""
 A threading cycle pass that takes more depth (radius) than the maximum per
 pass, the setting `fanuc-macro.threading.maxDepthPerPass` (0.5 mm by default; in a program in
-inches, `G20`, the same length in inches: 0.0197 inch).
+inches, `G20`, the same length in inches: 0.0197 inch). The depth is from the pass before, or
+where the program turned the thread's blank and the pass before lies outside it, from the
+blank.
 """,
     why="""
 Depth of cut in threading grows the chip area quickly, since
@@ -158,8 +170,9 @@ Split the depth over more passes (decreasing depths with a constant chip area
 are the usual rule), or raise the setting if the insert and the material allow it.
 """,
     not_reported="""
-The first pass (measured from the crest, it is MB802's), and
-`G32` single cuts.
+The first pass (measured from the crest, it is MB802's),
+`G32` single cuts, and a pass after passes in the air that takes no more than the maximum
+below the turned blank (MB818 reports the passes in the air).
 """,
 )
 

@@ -9,13 +9,15 @@ which end of the part is free.
 from __future__ import annotations
 
 from collections.abc import Iterator, Sequence
-from dataclasses import dataclass
 
 from ..diagnostics import Diagnostic, Related, RuleDoc, RuleInfo, Severity, make
 from ..evaluator.facts import Motion
 from ..evaluator.values import fmt
 from ..threads.identify import Thread
+from ..threads.pipe import PipeThread
+from ..threads.surface import Line, cone_line, motion_key, thread_line
 from .context import RuleContext
+from .thread_cut import depth_line
 from .threading import mm, thread_related, width
 
 FAMILY = "threading"
@@ -27,10 +29,11 @@ FAMILY = "threading"
 MB821 = RuleInfo("MB821", "thread-taper-cone", Severity.ERROR,
                  "A taper thread's taper runs the other way than, or differs from, the cone "
                  "turned for it.", FAMILY)
+MB823 = RuleInfo("MB823", "thread-taper-designation", Severity.ERROR,
+                 "A taper pipe thread (ISO 7-1, NPT) cut parallel, with another taper than "
+                 "1:16, or with its diameter growing towards the pipe's end.", FAMILY)
 # fmt: on
 
-# Moves that turn a cone: a feed move, or a turning cycle with its taper R.
-CONE_CODES = frozenset({"G01", "G90"})
 # How much of the thread's length the cone must cover, and how near the deepest pass its
 # diameter must be, in pitches (a thread's whole height is about 0.65 of the pitch, radius: 1.3
 # pitches on the diameter): a move further off is a move in the air, not the surface the
@@ -43,27 +46,6 @@ SLOPE_RATIO = 3.0
 SAME_TAPER = 1.5
 
 
-@dataclass(frozen=True, slots=True)
-class _Line:
-    """A straight cut in the ZX plane: diameter x0 at z0 to x1 at z1."""
-
-    z0: float
-    x0: float
-    z1: float
-    x1: float
-
-    @property
-    def slope(self) -> float:
-        return (self.x1 - self.x0) / (self.z1 - self.z0)
-
-    def x_at(self, z: float) -> float:
-        return self.x0 + self.slope * (z - self.z0)
-
-    @property
-    def span(self) -> tuple[float, float]:
-        return min(self.z0, self.z1), max(self.z0, self.z1)
-
-
 def check(ctx: RuleContext) -> Iterator[Diagnostic]:
     facts = ctx.facts
     if facts is None:
@@ -71,36 +53,22 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
     motions = facts.motions
     for thread in ctx.threads():
         finding = _against_cone(ctx, thread, motions)
+        if finding is None and thread.pipe is not None:
+            finding = _against_designation(ctx, thread, thread.pipe)
         if finding is not None:
             yield finding
 
 
-def _thread_line(m: Motion) -> _Line | None:
-    """The cut of a taper pass, from where it starts to where it ends."""
-    if m.x is None or m.z is None or m.start_z is None or m.z == m.start_z:
-        return None
-    if m.code in ("G92", "G76"):
-        r = m.words.get("R")
-        if not r:
-            return None
-        # The cycle cuts from X + 2R at its start Z to X at its end Z (0i-TF "Threading cycle").
-        return _Line(m.start_z, m.x + 2.0 * r, m.z, m.x)
-    if m.code in ("G32", "G33") and m.start_x is not None and m.start_x != m.x:
-        return _Line(m.start_z, m.start_x, m.z, m.x)
-    return None
+def _thread_line(m: Motion) -> Line | None:
+    """A taper pass's cut, or None for a parallel one."""
+    line = thread_line(m)
+    return line if line is not None and line.x0 != line.x1 else None
 
 
-def _cone_line(m: Motion) -> _Line | None:
-    if m.code not in CONE_CODES or m.x is None or m.z is None:
-        return None
-    if m.start_x is None or m.start_z is None or m.z == m.start_z:
-        return None
-    if m.code == "G90":
-        r = m.words.get("R")
-        return _Line(m.start_z, m.x + 2.0 * r, m.z, m.x) if r else None
-    if m.x == m.start_x:
-        return None
-    return _Line(m.start_z, m.start_x, m.z, m.x)
+def _cone_line(m: Motion) -> Line | None:
+    """A turned cone, or None for a cylinder or another move."""
+    line = cone_line(m)
+    return line if line is not None and line.x0 != line.x1 else None
 
 
 MB821_DOC = RuleDoc(
@@ -168,8 +136,9 @@ def _against_cone(ctx: RuleContext, thread: Thread, motions: Sequence[Motion]) -
     cut = (min if inward else max)(tapered, key=lambda t: t[0].x or 0.0)[1]
     pitch = thread.pitch or thread.job.lead or 1.0
     low, high = cut.span
+    first_key = motion_key(first)
     for m in motions:
-        if m is first:
+        if m.code == first.code and motion_key(m) == first_key:
             break  # only what was turned before the thread
         if m.uri != first.uri or m.run != first.run:
             continue
@@ -220,3 +189,114 @@ def _per_length(slope: float) -> str:
     """A taper as the diameter's change per unit of Z towards -Z."""
     grows = -slope
     return f"diameter {'+' if grows > 0 else '−'}{abs(grows):.4f} per unit towards −Z"
+
+
+MB823_DOC = RuleDoc(
+    "MB823",
+    reports="""
+A thread whose comments name a taper pipe thread that fits its passes (the
+pitch of ISO 7-1's R, Rc, Rp, or of NPT, and a diameter near its size) when the passes do not
+cut the designation's taper: a taper thread (R, Rc, NPT: 1:16 on the diameter) cut parallel,
+the parallel Rp cut tapered, a taper more than one and a half times or less than two thirds
+of 1:16 (R given as a diameter, or halved), or, for passes that cut towards −Z, a diameter
+that shrinks towards −Z on an external thread or grows on an internal one (the pipe's end,
+the small end, is the part's free end, towards +Z). Said when no cone turned for the thread
+says it (MB821).
+""",
+    why="""
+A taper pipe thread seals on its taper: the mating part screws on until the
+flanks meet at the gauge plane. Cut parallel or with another taper, the flanks touch along a
+line and leak; cut the wrong way round, the fitting does not go on past the first turns.
+""",
+    example="""
+```nc
+O1125 (NIPPLE NPT 3/4)
+G97 S500 M03
+G00 X30. Z5.
+G92 X25.5 Z-20. R0.78 F1.814
+X25. R0.78
+X24.6 R0.78
+X24.3 R0.78
+X24.1 R0.78
+G00 X100. Z100.
+M30
+```
+""",
+    fix="""
+Give R the thread's taper with the sign that makes the start of the cut the
+small end: here `R-0.78` (1/32 of the 25 mm from Z5 to Z-20 on the radius).
+""",
+    not_reported="""
+Threads whose comments name no taper pipe thread, or one whose pitch or
+size does not fit the passes; the direction of a thread cut towards +Z (the free end is not
+known then); a taper within a factor of one and a half of 1:16 (the gauge plane's place is
+not judged).
+""",
+)
+
+
+def _against_designation(ctx: RuleContext, thread: Thread, pipe: PipeThread) -> Diagnostic | None:
+    passes = [m for m in thread.job.passes if m.x is not None and thread_line(m) is not None]
+    if not passes:
+        return None
+    internal = thread.internal if thread.internal is not None else thread.job.internal
+    # The deepest pass, of the tapered ones if any: the X and R the program gives the thread.
+    tapering = [p for p in passes if _thread_line(p) is not None] or passes
+    m = (max if internal else min)(tapering, key=lambda p: p.x or 0.0)
+    line = thread_line(m)
+    assert line is not None and m.start_z is not None and m.z is not None and m.x is not None
+    slope = line.slope
+    towards_minus = m.start_z > m.z
+    # The slope the designation asks for: the small end towards +Z, the free end (external:
+    # the diameter grows towards -Z, dx/dz < 0; internal the other way).
+    wanted = pipe.taper * (1.0 if internal else -1.0)
+    cut = (
+        f"the thread's deepest pass ({m.shown}, line {m.line + 1}) runs from X{mm(line.x0)} "
+        f"at Z{mm(line.z0)} to X{mm(line.x1)} at Z{mm(line.z1)}"
+    )
+    word = m.words.get("R")
+    r_text = f" R{fmt(word)}" if word is not None else ""
+    expected_r = wanted * (m.start_z - m.z) / 2.0
+    if pipe.taper == 0.0:
+        if slope == 0.0:
+            return None
+        verdict = (
+            f"{pipe.name} is a parallel thread, but{r_text} tapers it {_ratio(slope)} on the "
+            "diameter"
+        )
+    elif slope == 0.0:
+        verdict = (
+            f"{pipe.name} tapers 1:16 on the diameter, but the passes are parallel: the taper R "
+            f"is missing (R{fmt(round(expected_r, 3))} over this cut)"
+        )
+    elif not 1.0 / SAME_TAPER <= abs(slope / wanted) <= SAME_TAPER:
+        verdict = (
+            f"a taper of {_ratio(slope)} on the diameter, {abs(slope / wanted):.2g} times "
+            f"{pipe.name}'s 1:16"
+        )
+        if word is not None:
+            verdict += f" (R is a radius: R{fmt(round(expected_r, 3))} over this cut)"
+    elif towards_minus and slope * wanted < 0.0:
+        side = "an internal" if internal else "an external"
+        verdict = (
+            f"its diameter {'grows' if slope < 0.0 else 'shrinks'} towards −Z, but {pipe.name} "
+            f"is {side} taper whose small end is the pipe's end, at +Z"
+        )
+        if word is not None:
+            verdict += f": R's sign is wrong (R{fmt(round(expected_r, 3))})"
+    else:
+        return None
+    # Said at the first pass that gives the taper (or would): where R is first written.
+    where = depth_line(tapering[0])
+    return make(
+        MB823,
+        f"{cut}: {verdict}",
+        where,
+        0,
+        width(ctx, where),
+        related=thread_related(thread),
+    )
+
+
+def _ratio(slope: float) -> str:
+    return f"1:{1.0 / abs(slope):.3g}" if slope else "none"

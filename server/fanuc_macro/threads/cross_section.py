@@ -39,10 +39,14 @@ from ..program.index import ProgramIndex
 from .geometry import nose_radius_range
 from .identify import Thread
 from .module_shape import D1_FACTOR
+from .surface import TurnedSurface
+from .surface import tapered as cuts_a_cone
 
 # The nose arc's chords: the arc from the tip to the flank (60° of it for a 60° tool) in
 # pieces of 5°, whose sagitta is 0.1 % of the radius.
 NOSE_SEGMENTS = 12
+# The flank's rise per unit of offset of a round insert's edge past its half circle.
+VERTICAL = 1e9
 # A pass removing less than this share of the thread's whole area removes nothing (the
 # rounding of an edge that touches the profile).
 NOTHING = 1e-6
@@ -60,7 +64,8 @@ class ToolShape:
         nose arc's chord ends, and the flank's rise per unit of offset beyond the last."""
         half = math.radians(self.included_angle / 2.0)
         r = self.nose_radius
-        slope = 1.0 / math.tan(half)
+        # A round insert (no angle) rises straight up past its nose's half circle.
+        slope = 1.0 / math.tan(half) if half > 0.0 else VERTICAL
         if r <= 0.0:
             return ((0.0, 0.0),), slope
         top = math.pi / 2.0 - half  # the arc from the tip to where the flank is its tangent
@@ -158,7 +163,9 @@ class CrossSection:
         return found
 
 
-def pass_place(m: Motion, lead: float, root_x: float | None) -> float | None:
+def pass_place(
+    m: Motion, lead: float, root_x: float | None, x: float | None = None
+) -> float | None:
     """Where along the lead a pass cuts: its start angle Q (0.001°, G32 and G92), else its
     start Z; a G76 pass is shifted along the flank by its depth above the cycle's last pass
     (``tan(a/2)`` per unit of depth, its tool angle a)."""
@@ -169,8 +176,9 @@ def pass_place(m: Motion, lead: float, root_x: float | None) -> float | None:
         place = m.start_z
     else:
         return None
-    if m.code == "G76" and m.tool_angle and root_x is not None and m.x is not None:
-        place += abs(m.x - root_x) / 2.0 * math.tan(math.radians(m.tool_angle / 2.0))
+    x = m.x if x is None else x
+    if m.code == "G76" and m.tool_angle and root_x is not None and x is not None:
+        place += abs(x - root_x) / 2.0 * math.tan(math.radians(m.tool_angle / 2.0))
     return place % lead
 
 
@@ -181,10 +189,12 @@ def cut_cross_section(
     blank: float,
     tool: ToolShape,
     before: Sequence[Motion] = (),
+    frame: TurnedSurface | None = None,
 ) -> CrossSection | None:
     """The cross-section ``passes`` cut in a blank of diameter ``blank``, after the passes
     ``before`` (an earlier job on the same thread: what they removed is not the job's); None
-    when no pass has an X, or the lead is not a length."""
+    when no pass has an X, or the lead is not a length. ``frame``: a taper thread's turned
+    cone, in whose frame each pass's X is read (at the cone's place)."""
     if not lead > 0.0 or not math.isfinite(lead):
         return None
     # A G76 record that is no pass of its cycle stands for a cycle whose passes are not known
@@ -192,7 +202,8 @@ def cut_cross_section(
     cutting = [(i, m) for i, m in enumerate(passes) if _cuts(m)]
     if not cutting:
         return None
-    xs = [m.x for _i, m in cutting if m.x is not None]
+    at = {id(m): (m.x if frame is None else frame.frame_x(m)) for m in [*before, *passes]}
+    xs = [x for _i, m in cutting if (x := at[id(m)]) is not None]
     root_x = max(xs) if internal else min(xs)
     # An internal thread is the external one mirrored: values are -r, and the tool's edge
     # rises away from the axis as an external tool's rises towards it.
@@ -202,15 +213,16 @@ def cut_cross_section(
     first_place: float | None = None
     earlier = [(-1, m) for m in before if _cuts(m)]
     for i, m in [*earlier, *cutting]:
-        assert m.x is not None
-        place = pass_place(m, lead, root_x)
+        x = at[id(m)]
+        assert x is not None
+        place = pass_place(m, lead, root_x, x)
         if place is None:
             place = first_place if first_place is not None else 0.0
         if first_place is None:
             first_place = place
-        removed = profile.cut(place, sign * m.x / 2.0)
+        removed = profile.cut(place, sign * x / 2.0)
         if i >= 0:
-            cuts.append(PassCut(i, removed, place, m.x / 2.0))
+            cuts.append(PassCut(i, removed, place, x / 2.0))
     values = profile.values
     lowest, highest = min(values), max(values)
     pitch = 2.0 * sign * profile.half_measure()
@@ -252,14 +264,7 @@ class _Profile:
 
     def _rise(self, offset: float) -> float:
         """The tool's edge above its tip at an axial ``offset`` from its centre line."""
-        offset = abs(offset)
-        edge = self.edge
-        last_offset, last_rise = edge[-1]
-        if offset >= last_offset:
-            return last_rise + (offset - last_offset) * self.slope
-        k = bisect_right(edge, (offset, math.inf))
-        (u0, r0), (u1, r1) = edge[k - 1], edge[k]
-        return r0 + (r1 - r0) * (offset - u0) / (u1 - u0)
+        return _edge_rise(self.edge, self.slope, offset)
 
     def _reach(self, height: float) -> float:
         """How far from its centre line the edge stays below ``height`` above the tip."""
@@ -385,6 +390,41 @@ class _Profile:
         return (lo + hi) / 2.0
 
 
+def _edge_rise(edge: tuple[tuple[float, float], ...], slope: float, offset: float) -> float:
+    """A tool's edge (:meth:`ToolShape.edge`) above its tip at an axial ``offset``."""
+    offset = abs(offset)
+    last_offset, last_rise = edge[-1]
+    if offset >= last_offset:
+        return last_rise + (offset - last_offset) * slope
+    k = bisect_right(edge, (offset, math.inf))
+    (u0, r0), (u1, r1) = edge[k - 1], edge[k]
+    return r0 + (r1 - r0) * (offset - u0) / (u1 - u0)
+
+
+def penetration(cut: CrossSection, place: float, tip: float) -> float:
+    """How far (radius) a pass of ``cut``'s tool, its tip at radius ``tip`` and its centre line
+    at ``place`` along the lead, reaches past the profile ``cut`` left: 0 within it."""
+    edge, slope = cut.tool.edge()
+    sign = -1.0 if cut.internal else 1.0
+    lead = cut.lead
+    us = [u for u, _h in cut.profile]
+    hs = [sign * h for _u, h in cut.profile]  # as an external thread's: material below
+    low = sign * tip
+    # The profile's vertices and the nose's chord ends: between them both are straight.
+    places = set(us)
+    for offset, _rise in edge:
+        places.update(((place + offset) % lead, (place - offset) % lead))
+    worst = 0.0
+    for u in places:
+        apart = abs(u - place) % lead
+        apart = min(apart, lead - apart)
+        k = min(max(bisect_right(us, u), 1), len(us) - 1)
+        u0, u1 = us[k - 1], us[k]
+        h = hs[k] if u1 == u0 else hs[k - 1] + (hs[k] - hs[k - 1]) * (u - u0) / (u1 - u0)
+        worst = max(worst, h - (low + _edge_rise(edge, slope, apart)))
+    return worst
+
+
 def _positive_part(d0: float, d1: float, width: float) -> float:
     """The area of max(d, 0) over a piece where d goes linearly from d0 to d1."""
     if d0 >= 0.0 and d1 >= 0.0:
@@ -422,31 +462,35 @@ def _cut_seen(
     tool: ToolShape,
     before: Sequence[Motion],
     prints: list[tuple[object, ...]],
+    frame: TurnedSurface | None = None,
 ) -> CrossSection | None:
     """:func:`cut_cross_section`, or the cut of passes of the same values made lately;
     ``prints``: the passes' and ``before``'s fingerprints, once they are taken (one for the
     cuts of every nose radius)."""
     if not prints:
         prints += [_fingerprint(before), _fingerprint(passes)]
-    key = (lead, internal, blank, tool, *prints)
+    key = (lead, internal, blank, tool, frame, *prints)
     table = current_database().table(_CUTS)
     if key in table:
         return table[key]
-    found = table[key] = cut_cross_section(passes, lead, internal, blank, tool, before)
+    found = table[key] = cut_cross_section(passes, lead, internal, blank, tool, before, frame)
     while len(table) > CUTS_KEPT:
         del table[next(iter(table))]
     return found
 
 
 def _fingerprint(passes: Sequence[Motion]) -> tuple[object, ...]:
+    words = [(m.words.get("Q"), m.words.get("R")) for m in passes]
     return tuple(
-        (m.x, m.start_z, m.words.get("Q"), m.code, m.cycle_pass, m.tool_angle) for m in passes
+        (m.x, m.start_x, m.start_z, q, r, m.code, m.cycle_pass, m.tool_angle)
+        for m, (q, r) in zip(passes, words, strict=True)
     )
 
 
 # What of a pass its cut depends on: its X, where it starts along the lead (Z, or the start
-# angle Q), its lead F, and for G76 which pass of the cycle it is and the cycle's tool angle.
-CUT_READS = ("x", "start_z", "Q", "F", "code", "cycle_pass", "tool_angle")
+# angle Q), its lead F, and for G76 which pass of the cycle it is and the cycle's tool angle;
+# for a taper thread its taper (R, or the X it starts at).
+CUT_READS = ("x", "start_x", "start_z", "Q", "R", "F", "code", "cycle_pass", "tool_angle")
 
 # ISO 68-1's included angle of the metric profile, the only one the identified threads have.
 METRIC_ANGLE = 60.0
@@ -461,36 +505,84 @@ def blank_diameter(thread: Thread) -> float | None:
     return thread.major - D1_FACTOR * thread.pitch if thread.internal else thread.major
 
 
+def blank_source(thread: Thread) -> str:
+    """Where the blank of :func:`thread_cuts` comes from, for a message."""
+    surface = thread.surface
+    if surface is not None:
+        if thread.job.taper is not None:
+            return f"the cone turned at line {surface.line + 1}, at Z{surface.z:.4g}"
+        what = "bore" if thread.internal or thread.job.internal else "diameter"
+        return f"the {what} turned at line {surface.line + 1}"
+    if thread.internal:
+        return f"basic minor diameter D1 of {thread.name}"
+    return f"{thread.name}'s major diameter"
+
+
 def thread_cuts(thread: Thread, before: Sequence[Motion] = ()) -> list[CrossSection]:
-    """The cross-section of an identified ISO metric thread's job: with the tool's nose radius
-    when the program gives it, else one with each end of ISO 965-1's range for the side
-    (0.125P-0.144P outside, 0-0.072P inside), so that a verdict that holds for both holds for
-    any tool that may cut the thread. ``before``: the passes of earlier jobs on the same
-    thread (:func:`earlier_passes`), cut first; a job without them keeps its cut with it."""
+    """The cross-section of a thread job, for each nose radius the tool may have: the
+    program's, else each end of ISO 965-1's range for the side (0.125P-0.144P outside,
+    0-0.072P inside), so that a verdict that holds for both holds for any tool that may cut
+    the thread; a taper pipe thread's tool has its standard's root round. The blank is the
+    surface the program turned for the thread where it did (:mod:`.surface`), else the
+    identified ISO metric thread's designation (:func:`blank_diameter`); a thread with
+    neither is not cut. ``before``: the passes of earlier jobs on the same thread
+    (:func:`thread_chains`), cut first; a job without them keeps its cut with it."""
     job = thread.job
     lead = job.lead
-    blank = blank_diameter(thread)
-    if not thread.identified or lead is None or blank is None or job.taper is not None:
+    pitch = thread.cut_pitch
+    surface = thread.surface
+    tapered = job.remember(
+        "tapered",
+        lambda: any(cuts_a_cone(m) for m in job.passes),
+        ("x", "z", "start_x", "start_z", "R", "code"),
+    )
+    if lead is None or pitch is None or thread.lead_conflict or (tapered and surface is None):
         return []
-    assert thread.pitch is not None
-    internal = bool(thread.internal)
-    if thread.nose_radius is not None and thread.nose_radius >= 0.0:
-        radii = [thread.nose_radius]
+    if surface is not None:
+        blank: float | None = surface.blank
+    elif thread.identified:
+        blank = blank_diameter(thread)
     else:
-        radii = list(dict.fromkeys(nose_radius_range(thread.pitch, internal=internal)))
+        blank = None
+    internal = thread.internal if thread.internal is not None else job.internal
+    if blank is None or internal is None:
+        return []
+    frame = surface if tapered else None
+    pipe = thread.pipe
+    if pipe is not None:
+        angle, radii = pipe.angle, [pipe.nose_round * pitch]
+    else:
+        angle = _tool_angle(thread)
+        if thread.nose_radius is not None and thread.nose_radius >= 0.0:
+            radii = [thread.nose_radius]
+        else:
+            radii = list(dict.fromkeys(nose_radius_range(pitch, internal=internal)))
     found: list[CrossSection] = []
     prints: list[tuple[object, ...]] = []
     for r in radii:
-        tool = ToolShape(METRIC_ANGLE, r)
-        make = partial(_cut_seen, job.passes, lead, internal, blank, tool, before, prints)
+        tool = ToolShape(angle, r)
+        make = partial(_cut_seen, job.passes, lead, internal, blank, tool, before, prints, frame)
         cut = (
             make()
             if before
-            else job.remember(("cross-section", internal, blank, tool), make, CUT_READS)
+            else job.remember(("cross-section", internal, blank, tool, frame), make, CUT_READS)
         )
         if cut is not None:
             found.append(cut)
     return found
+
+
+def _tool_angle(thread: Thread) -> float:
+    """The tool's included angle: ISO 68-1's for an identified metric thread, else G76's
+    tool angle a where the cycle gives one (the insert's angle the passes step along), else
+    the 60° of the metric and Unified forms (an assumption for a thread whose form is not
+    known: unverified)."""
+    if thread.identified:
+        return METRIC_ANGLE
+    for m in thread.job.passes:
+        if m.code == "G76" and m.tool_angle:
+            return m.tool_angle
+    return METRIC_ANGLE
 
 
 # Half the least input increment (IS-B, mm): differences below it are the control's rounding.
@@ -525,6 +617,8 @@ def class_limits(thread: Thread) -> tuple[float, float] | None:
 
 
 def pitch_verdict(thread: Thread, before: Sequence[Motion] = ()) -> PitchVerdict | None:
+    if not thread.identified:
+        return None
     cuts = thread_cuts(thread, before)
     limits = class_limits(thread)
     if not cuts or limits is None:
@@ -567,6 +661,8 @@ class CutSummary:
     largest_index: int
     largest_area: float
     in_the_air: int
+    blank: float  # the diameter the passes cut into (a taper's: where its cone is read)
+    blank_from: str  # where it is known from
 
 
 def cut_summary(thread: Thread, before: Sequence[Motion] = ()) -> CutSummary | None:
@@ -592,6 +688,8 @@ def cut_summary(thread: Thread, before: Sequence[Motion] = ()) -> CutSummary | N
         largest.index,
         largest.area,
         min(len(c.in_the_air()) for c in cuts),
+        first.blank,
+        blank_source(thread),
     )
 
 
@@ -619,7 +717,8 @@ def describe_cut(thread: Thread, before: Sequence[Motion] = ()) -> str | None:
         state = {"within": "within", "tight": "too shallow for", "loose": "past"}[summary.verdict]
         lines[0] += f", {state} {low:.3f}–{high:.3f}"
     lines.append(
-        f"- root {_values(summary.root_diameter)}, crest {summary.crest_diameter:.3f}; "
+        f"- blank {summary.blank:.3f} ({summary.blank_from}); "
+        f"root {_values(summary.root_diameter)}, crest {summary.crest_diameter:.3f}; "
         f"{summary.area:.3f} mm² removed, the most by line {summary.largest_pass.line + 1} "
         f"({summary.largest_area:.3f} mm²)"
     )

@@ -43,6 +43,10 @@ from .geometry import SIN60
 from .iso965 import PitchClass, loosest_pitch_class, pitch_classes
 from .jobs import ThreadJob, thread_jobs
 from .module_shape import D1_FACTOR, ModuleShape, fitting_radii, module_shape, written_value
+from .pipe import PipeThread, pipe_threads
+from .surface import SurfaceWanted, TurnedSurface, turned_surfaces
+
+INCH = 25.4
 
 _NUM = r"\d+(?:[.,]\d+)?"
 # A metric designation needs a pitch or a class: "M30" or "M8" alone is an M code.
@@ -75,11 +79,13 @@ class LineThreadWords:
     designations: tuple[tuple[str, str], ...]  # (as written, normalised)
     other_forms: tuple[str, ...]
     starts: int | None
+    pipes: tuple[PipeThread, ...] = ()
 
 
 def _line_words(parsed: ParsedLine) -> LineThreadWords:
     found: list[tuple[str, str]] = []
     others: list[str] = []
+    pipes: list[PipeThread] = []
     starts: int | None = None
     for comment in parsed.comments:
         text = comment.text
@@ -105,10 +111,11 @@ def _line_words(parsed: ParsedLine) -> LineThreadWords:
         for pattern, what in _OTHER_FORMS:
             if pattern.search(text):
                 others.append(what)
+        pipes.extend(pipe_threads(text))
         s = _STARTS.search(text)
         if s is not None:
             starts = int(s["n"]) if s["n"] else _CHINESE_STARTS[s["cn"]]
-    return LineThreadWords(tuple(found), tuple(others), starts)
+    return LineThreadWords(tuple(found), tuple(others), starts, tuple(pipes))
 
 
 # Thread designations and other thread words in a line's comments, per distinct line.
@@ -148,6 +155,21 @@ class Thread:
     evidence: list[Evidence] = field(default_factory=list)
     unsupported: str | None = None
     missing: str | None = None
+    # A taper pipe thread (ISO 7-1, NPT) the comments name that fits the passes, and its line.
+    pipe: PipeThread | None = None
+    pipe_line: int | None = None
+    # The surface the program turned for the thread before cutting it, where it did.
+    surface: TurnedSurface | None = None
+
+    @property
+    def cut_pitch(self) -> float | None:
+        """The pitch the passes are cut to: the designation's, or the lead over the starts."""
+        if self.pitch is not None:
+            return self.pitch
+        if self.pipe is not None:
+            return self.pipe.pitch / (INCH if self.job.passes[0].inch else 1.0)
+        lead = self.job.lead
+        return None if lead is None else lead / max(self.starts, 1)
 
     @property
     def identified(self) -> bool:
@@ -180,6 +202,8 @@ class Thread:
     def name(self) -> str:
         if self.designation is not None:
             return self.designation.canonical()
+        if self.pipe is not None:
+            return self.pipe.text
         if self.major is None or self.pitch is None:
             return "the thread"
         return f"M{self.major:g}x{self.pitch:g}"
@@ -266,7 +290,7 @@ def _thread_line(parsed: ParsedLine) -> LineThreadWords | None:
     # Not through the per-line cache: the map keeps what it finds and looks at a line again
     # only when it changed, so an entry per commented line would only hold memory.
     words = _line_words(parsed)
-    if words.designations or words.other_forms or words.starts is not None:
+    if words.designations or words.other_forms or words.pipes or words.starts is not None:
         return words
     return None
 
@@ -354,6 +378,8 @@ class _ProgramWords:
     starts: tuple[int, int] | None  # (number of starts, line), in the program or else the file
     other_form: tuple[str, int] | None  # (a thread form not checked, line)
     fitting: bool  # an arc thread by the fitting method
+    # Taper pipe threads the comments name (the program's first, then the file's), with line.
+    pipes: tuple[tuple[PipeThread, int], ...] = ()
 
 
 def _program_words(
@@ -366,19 +392,23 @@ def _program_words(
     starts: tuple[int, int] | None = None
     file_starts: tuple[int, int] | None = None
     other: tuple[str, int] | None = None
+    pipes: list[tuple[PipeThread, int]] = []
+    file_pipes: list[tuple[PipeThread, int]] = []
     for line, words in lines:
         if words.starts is not None and file_starts is None:
             file_starts = (words.starts, line)
+        file_pipes += [(p, line) for p in words.pipes]
         if not program.contains(line):
             continue
         if starts is None and words.starts is not None:
             starts = (words.starts, line)
         if other is None and words.other_forms:
             other = (words.other_forms[0], line)
+        pipes += [(p, line) for p in words.pipes]
     fitting = fitting_radii(doc, facts, program) is not None or any(
         f == program.first_line and m.role == "groove_radius" for (f, _v), m in roles.items()
     )
-    return _ProgramWords(starts or file_starts, other, fitting)
+    return _ProgramWords(starts or file_starts, other, fitting, (*pipes, *file_pipes))
 
 
 def _input_roles(thread: Thread, shape: ModuleShape) -> dict[str, int]:
@@ -482,6 +512,8 @@ def identify(
     runs = runs or {}
     words: dict[int, _ProgramWords] = {}
     threads: list[Thread] = []
+    # The threads whose turned surface is looked for, all in one walk over the motions.
+    surfaces: list[tuple[Thread, SurfaceWanted]] = []
     for job in jobs:
         program = index.program_at(job.program_line)
         if program is None:
@@ -489,9 +521,20 @@ def identify(
         if program.first_line not in words:
             words[program.first_line] = _program_words(doc, facts, program, roles, lines)
         run = runs.get(job.run)
-        threads.append(
-            _identify(doc, index, facts, job, found, roles, run, words[program.first_line])
-        )
+        thread = _identify(doc, index, facts, job, found, roles, run, words[program.first_line])
+        pitch = thread.cut_pitch
+        # Arc threads (the fitting method) are cut by a round tool; threads of another
+        # form than the ones the cut knows are not cut.
+        cut_known = thread.unsupported is None or thread.pipe is not None or job.taper is not None
+        internal = thread.internal if thread.internal is not None else job.internal
+        fitting = words[program.first_line].fitting
+        if cut_known and pitch is not None and internal is not None and job.xs and not fitting:
+            surfaces.append((thread, SurfaceWanted(job.passes, internal, pitch)))
+        threads.append(thread)
+    if surfaces:
+        surfaces_found = turned_surfaces([w for _t, w in surfaces], motions)
+        for (thread, _w), surface in zip(surfaces, surfaces_found, strict=True):
+            thread.surface = surface
     return threads
 
 
@@ -516,9 +559,43 @@ def _identify(
     pitch_is_lead = _read_assignment_comments(thread, roles, facts) or pitch_is_lead
     _read_starts(thread, words, pitch_is_lead)
     _read_tolerance_class(thread)
+    if thread.designation is None:
+        _read_pipe(thread, words)
     undecided = _undecided(found, job) if chosen is None and thread.internal is None else None
     _unsupported(job, thread, words, undecided)
     return thread
+
+
+# How far the deepest pass may lie from a pipe thread's tabulated diameter, in pitches (its
+# height is 0.64-0.8P on a side; along a taper of 1:16 the diameter changes 1/16 of the length).
+PIPE_NEAR_PITCHES = 4.0
+
+
+def _read_pipe(thread: Thread, words: _ProgramWords) -> None:
+    """The taper pipe thread the comments name whose pitch is the cut's lead and whose
+    diameter is nearest the passes'."""
+    job = thread.job
+    lead, xs = job.lead, job.xs
+    if lead is None or not xs or not words.pipes:
+        return
+    scale = INCH if job.passes[0].inch else 1.0
+    lead_mm = lead * scale
+    best: tuple[float, PipeThread, int] | None = None
+    for pipe, line in words.pipes:
+        if abs(lead_mm - pipe.pitch) > 0.01 * pipe.pitch:
+            continue
+        internal = thread.internal if thread.internal is not None else job.internal
+        if pipe.internal is not None and internal is not None and pipe.internal != internal:
+            continue
+        deepest = (max(xs) if internal else min(xs)) * scale
+        off = abs(deepest - pipe.diameter)
+        if off <= PIPE_NEAR_PITCHES * pipe.pitch and (best is None or off < best[0]):
+            best = (off, pipe, line)
+    if best is not None:
+        _off, thread.pipe, thread.pipe_line = best
+        if thread.internal is None and best[1].internal is not None:
+            thread.internal = best[1].internal
+        thread.evidence.append(Evidence(f"{best[1].name} in the comments", best[2]))
 
 
 def _read_designation(
