@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import functools
-from collections.abc import Callable, Iterable, Mapping
+from collections.abc import Callable, Iterable, Mapping, Sequence
 from collections.abc import Set as AbstractSet
 from dataclasses import dataclass, replace
 from typing import Concatenate, ParamSpec, TypeVar
@@ -93,8 +93,13 @@ class Workspace:
         config: Config | None = None,
         parser: BlockParser | None = None,
         db: Database | None = None,  # the language server makes it before the workspace
+        keep_runs: bool = True,
     ) -> None:
+        """``keep_runs``: keep each analysis's run to reuse or resume after an edit (an
+        editor's); a command that analyses each document once (``check``) does not, so that
+        its memory does not grow with the files."""
         self.config = config or Config()
+        self.keep_runs = keep_runs
         self.db = db or Database()
         with self.db.active():
             self.parser = parser or default_parser()
@@ -107,6 +112,8 @@ class Workspace:
         # Every document's (document, index): replaced on each change, never changed, so that
         # another thread (the language server's requests) may read the one it got.
         self._indexes: dict[str, tuple[Document, ProgramIndex]] = {}
+        # The program graph of an indexes snapshot (the snapshot itself, to tell it).
+        self._graph: tuple[dict[str, tuple[Document, ProgramIndex]], ProgramGraph] | None = None
 
     def _reindexed(self, uri: str) -> None:
         indexes = dict(self._indexes)
@@ -217,6 +224,32 @@ class Workspace:
         replace and never change, so any thread may read it."""
         return self._indexes
 
+    def has(self, uri: str) -> bool:
+        return uri in self._entries
+
+    def document_links(self, uri: str) -> DocumentLinks:
+        """What of ``uri`` the program graph reads (:func:`document_links`)."""
+        entry = self._entries[uri]
+        return document_links(entry.doc, entry.index)
+
+    def order_as(self, uris: Sequence[str]) -> None:
+        """Puts the documents in the order of ``uris`` (those it has; the others after)."""
+        entries = {u: self._entries[u] for u in uris if u in self._entries}
+        entries.update(self._entries)
+        self._entries = entries
+        indexes = {u: self._indexes[u] for u in entries if u in self._indexes}
+        self._indexes = indexes
+
+    def graph(self) -> ProgramGraph:
+        """The :func:`program_graph` of the current indexes, built once for them."""
+        indexes = self._indexes
+        kept = self._graph
+        if kept is not None and kept[0] is indexes:
+            return kept[1]
+        graph = program_graph(indexes)
+        self._graph = (indexes, graph)
+        return graph
+
     def links(self, uri: str) -> frozenset[tuple[str, int | None]]:
         """What ties ``uri`` to other documents: see :func:`program_links`."""
         entry = self._entries.get(uri)
@@ -226,10 +259,11 @@ class Workspace:
         """Those of ``of`` (but ``uris``) whose analysis reads one of ``uris``
         (:func:`related_documents`)."""
         readers: list[str] = []
+        indexes, graph = self._indexes, self.graph()
         for key in of:
-            if key in uris or key not in self._indexes:
+            if key in uris or key not in indexes:
                 continue
-            needed = related_documents(key, self._indexes, self._custom_called())
+            needed = related_documents(key, indexes, self._custom_called(), graph)
             if needed is None or not uris.isdisjoint(needed):
                 readers.append(key)
         return readers
@@ -237,23 +271,18 @@ class Workspace:
     def others(self, uri: str) -> list[OtherDocument]:
         """The other documents an analysis of ``uri`` needs: see :func:`related_documents`."""
         indexes = self._indexes
-        needed = related_documents(uri, indexes, self._custom_called())
+        needed = related_documents(uri, indexes, self._custom_called(), self.graph())
         keys = [u for u in indexes if u != uri] if needed is None else needed
         return [(u, *indexes[u]) for u in keys]
 
     def _callers(self, uri: str) -> list[tuple[Document, ProgramIndex]]:
         """The other documents with a call of a program of ``uri`` (by number), in order."""
-        entry = self._entries[uri]
-        numbers = {p.number for p in entry.index.programs if p.number is not None}
-        if not numbers:
-            return []
-        found: list[tuple[Document, ProgramIndex]] = []
-        for key, (doc, index) in self._indexes.items():
-            if key != uri and any(
-                call.program in numbers for program in index.programs for call in program.calls
-            ):
-                found.append((doc, index))
-        return found
+        indexes, graph = self._indexes, self.graph()
+        keys: set[str] = set()
+        for number in graph.defines.get(uri, frozenset()):
+            keys |= graph.direct_callers.get(number, set())
+        keys.discard(uri)
+        return [indexes[k] for k in sorted(keys, key=graph.order.__getitem__)]
 
     def _custom_called(self) -> frozenset[int]:
         """The programs the settings' custom calls run (``M165`` -> O9022): any block of any
@@ -321,9 +350,9 @@ class Workspace:
             mill_facts=mill_facts,
             mill_previous=mill_previous,
         )
-        if analysis.facts is not None:
+        if analysis.facts is not None and self.keep_runs:
             self._facts[uri] = (config, runs, analysis.facts)
-        if analysis.mill_facts is not None:
+        if analysis.mill_facts is not None and self.keep_runs:
             self._mill_facts[uri] = (mill_reading(config), runs, analysis.mill_facts)
         return analysis
 
@@ -373,10 +402,91 @@ def program_links(doc: Document, index: ProgramIndex) -> frozenset[tuple[str, in
     return frozenset(links)
 
 
+@dataclass(frozen=True, eq=False, repr=False)
+class ProgramGraph:
+    """Which documents define and call which program numbers, built once for a snapshot of
+    the workspace's indexes (:meth:`Workspace.indexes`): :func:`related_documents` then
+    follows a document's calls without looking at every other document, so that an archive
+    of thousands of files, many with the same O number, is not read the square of times."""
+
+    order: dict[str, int]  # the documents, by their place in workspace order
+    definers: dict[int, list[str]]  # number -> the documents defining it, in order
+    defines: dict[str, frozenset[int]]  # document -> the numbers it defines
+    # document -> the numbers its calls reach (not M97's); None: one is computed at run time
+    calls: dict[str, frozenset[int] | None]
+    callers: dict[int, set[str]]  # number -> the documents with a call that may reach it
+    direct_callers: dict[int, set[str]]  # number -> the documents calling it as written
+
+
+@dataclass(frozen=True, slots=True)
+class DocumentLinks:
+    """What of one document the program graph reads: the numbers it defines, those its calls
+    reach (not M97's; None when one is computed at run time), those any of its calls may reach
+    (an M97's too: it counts as a caller) and those its calls write."""
+
+    defines: tuple[int, ...]
+    reaches: tuple[int, ...] | None
+    may_reach: tuple[int, ...]
+    written: tuple[int, ...]
+
+
+def document_links(doc: Document, index: ProgramIndex) -> DocumentLinks:
+    defines: list[int] = []
+    reaches: set[int] | None = set()
+    may_reach: set[int] = set()
+    written: set[int] = set()
+    for program in index.programs:
+        if program.number is not None:
+            defines.append(program.number)
+        for call in program.calls:
+            found = _called_numbers(doc, call)
+            may_reach.update(found or ())
+            if call.program is not None:
+                written.add(call.program)
+            if call.kind == "M97" or reaches is None:
+                continue  # Haas local call: a sequence number, not a program
+            if found is None:
+                reaches = None
+            else:
+                reaches.update(found)
+    return DocumentLinks(
+        tuple(defines),
+        None if reaches is None else tuple(sorted(reaches)),
+        tuple(sorted(may_reach)),
+        tuple(sorted(written)),
+    )
+
+
+def program_graph(indexes: Mapping[str, tuple[Document, ProgramIndex]]) -> ProgramGraph:
+    return graph_of_links({k: document_links(doc, index) for k, (doc, index) in indexes.items()})
+
+
+def graph_of_links(links: Mapping[str, DocumentLinks]) -> ProgramGraph:
+    """The program graph of documents by their links, in the mapping's order."""
+    order: dict[str, int] = {}
+    definers: dict[int, list[str]] = {}
+    defines: dict[str, frozenset[int]] = {}
+    calls: dict[str, frozenset[int] | None] = {}
+    callers: dict[int, set[str]] = {}
+    direct: dict[int, set[str]] = {}
+    for k, link in links.items():
+        order[k] = len(order)
+        for number in link.defines:
+            definers.setdefault(number, []).append(k)
+        for number in link.may_reach:
+            callers.setdefault(number, set()).add(k)
+        for number in link.written:
+            direct.setdefault(number, set()).add(k)
+        defines[k] = frozenset(link.defines)
+        calls[k] = None if link.reaches is None else frozenset(link.reaches)
+    return ProgramGraph(order, definers, defines, calls, callers, direct)
+
+
 def related_documents(
     key: str,
     indexes: Mapping[str, tuple[Document, ProgramIndex]],
     custom_called: frozenset[int] = frozenset(),
+    graph: ProgramGraph | None = None,
 ) -> list[str] | None:
     """The documents the evaluator needs to analyse ``key``, in workspace order; None when all
     of them may be (a call whose program is computed, ``M98 P#1``).
@@ -385,44 +495,46 @@ def related_documents(
     a program of ``key`` (they decide which of its programs are entry points), and those
     defining the programs of ``custom_called``, which a code set up as a call runs. The others are
     never run: handing them over only makes the evaluator compile them, which with a scanned
-    workspace of a few thousand files costs seconds per keystroke.
+    workspace of a few thousand files costs seconds per keystroke. ``graph``: the indexes'
+    :func:`program_graph`, when the caller keeps it.
     """
     if key not in indexes:
         return None
-    order = [key, *(k for k in indexes if k != key)]
-    owner: dict[int, str] = {}  # the first definition wins, as in the evaluator
-    callers: dict[int, set[str]] = {}
-    for k in order:
-        doc, index = indexes[k]
-        for program in index.programs:
-            if program.number is not None:
-                owner.setdefault(program.number, k)
-            for call in program.calls:
-                for number in _called_numbers(doc, call) or ():
-                    callers.setdefault(number, set()).add(k)
+    return related_in_graph(key, graph or program_graph(indexes), custom_called)
+
+
+def related_in_graph(
+    key: str, graph: ProgramGraph, custom_called: frozenset[int] = frozenset()
+) -> list[str] | None:
+    """:func:`related_documents` of a document of ``graph``."""
+    own = graph.defines.get(key, frozenset())
+    definers = graph.definers
+
+    def owner(number: int) -> str | None:
+        # The first definition wins, the analysed document's first, as in the evaluator.
+        if number in own:
+            return key
+        found = definers.get(number)
+        return found[0] if found else None
+
     needed = {key}
     todo = [key]
     # A code the settings set up as a call may stand in any block: its program is needed.
     for number in sorted(custom_called):
-        target = owner.get(number)
+        target = owner(number)
         if target is not None and target not in needed:
             needed.add(target)
             todo.append(target)
     while todo:
-        doc, index = indexes[todo.pop()]
-        for program in index.programs:
-            for call in program.calls:
-                if call.kind == "M97":
-                    continue  # Haas local call: a sequence number, not a program
-                numbers = _called_numbers(doc, call)
-                if numbers is None:
-                    return None
-                for number in numbers:
-                    target = owner.get(number)
-                    if target is not None and target not in needed:
-                        needed.add(target)
-                        todo.append(target)
-    for program in indexes[key][1].programs:
-        if program.number is not None:
-            needed |= callers.get(program.number, set())
-    return [k for k in order[1:] if k in needed]
+        numbers = graph.calls.get(todo.pop(), frozenset())
+        if numbers is None:
+            return None
+        for number in numbers:
+            target = owner(number)
+            if target is not None and target not in needed:
+                needed.add(target)
+                todo.append(target)
+    for number in own:
+        needed |= graph.callers.get(number, set())
+    needed.discard(key)
+    return sorted(needed, key=graph.order.__getitem__)

@@ -575,6 +575,22 @@ def _add_check_command(
     check.add_argument(
         "--quiet", "-q", action="store_true", help="no summary line on standard error"
     )
+    check.add_argument(
+        "--jobs",
+        "-j",
+        type=_count,
+        metavar="N",
+        help="check the files in N processes (default: one per core; 1: in this one); the "
+        "output is the same in any case",
+    )
+    check.add_argument(
+        "--no-cache",
+        action="store_true",
+        help="analyse every file again: by default the findings of a file whose text, "
+        "settings and related files did not change are taken from the last run's (kept under "
+        "the user's cache directory; FANUC_MACRO_CHECK_CACHE=0 turns it off, another value "
+        "names the directory)",
+    )
     _add_stdin_filename_option(check)
     _add_rule_options(check)
     _add_machine_options(check)

@@ -8,15 +8,21 @@ without programs or a file that cannot be read is told on standard error and mak
 from __future__ import annotations
 
 import argparse
+import os
 import sys
 from collections import Counter
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
 
 from ..config import Config
 from ..diagnostics import Diagnostic, Severity
 from ..ide import machine_text
 from ..program_files import Found, find_programs
-from ..workspace import Workspace
+from ..workspace import DocumentLinks, Workspace, graph_of_links, related_in_graph
+
+if TYPE_CHECKING:
+    from .check_cache import CheckCache
 from .streams import STDIN, read_stdin, writes_unicode
 
 EXIT_OK = 0
@@ -112,45 +118,41 @@ def cmd_check(args: argparse.Namespace, config: Config) -> int:
         err.write(f"fanuc-macro: no programs found in {folder}\n")
     usage_problem = bool(found.missing or found.empty)
 
-    workspace = Workspace(config)
-    keys: list[str] = []
+    datas: list[tuple[str, bytes]] = []
     if STDIN in paths:
-        key = stdin_name or STDIN
-        workspace.add_bytes(key, read_stdin())
-        keys.append(key)
+        datas.append((stdin_name or STDIN, read_stdin()))
     for path in found.programs:
         key = str(path)
-        if key in keys:  # the text on standard input stands for the file of its name
+        if any(k == key for k, _ in datas):  # standard input stands for the file of its name
             continue
         try:
-            data = path.read_bytes()
+            datas.append((key, path.read_bytes()))
         except OSError as error:
             err.write(f"fanuc-macro: cannot read {path}: {error.strerror or error}\n")
             usage_problem = True
-            continue
-        workspace.add_bytes(key, data)
-        keys.append(key)
 
-    programs = workspace.program_numbers()
     records: list[dict[str, object]] = []
     counts: Counter[Severity] = Counter()
     internal_error = False
     out = sys.stdout
-    for key in keys:
-        analysis = workspace.analyse(key, workspace_programs=programs)
-        stopped = analysis.facts.stop_message() if analysis.facts is not None else None
-        if stopped is not None:  # the safety net: not a finding of the program's
-            err.write(f"{key}: {stopped}\n")
-        if args.verbose and analysis.config is not None:
-            err.write(f"{key}: {machine_text(analysis.config)}\n")
-        for d in analysis.diagnostics:
-            counts[d.severity] += 1
-            internal_error |= d.code == INTERNAL_ERROR
-            if args.format == "json":
-                records.append(as_json(key, d))
+    as_json_records = args.format == "json"
+    for checked in _check_files(datas, config, args):
+        if checked.stopped is not None:  # the safety net: not a finding of the program's
+            err.write(f"{checked.key}: {checked.stopped}\n")
+        if args.verbose and checked.machine is not None:
+            err.write(f"{checked.key}: {checked.machine}\n")
+        for finding in checked.findings:
+            severity = Severity(finding["severity"])
+            counts[severity] += 1
+            internal_error |= finding["code"] == INTERNAL_ERROR
+            if as_json_records:
+                records.append({"path": checked.key, **finding})
             else:
-                out.write(format_text(key, d) + "\n")
-    if args.format == "json":
+                out.write(
+                    f"{checked.key}:{finding['line']}:{finding['column']}: {finding['code']} "
+                    f"{severity.value} {finding['message']}\n"
+                )
+    if as_json_records:
         import json
 
         json.dump(records, out, ensure_ascii=not writes_unicode(out), indent=1)
@@ -158,10 +160,160 @@ def cmd_check(args: argparse.Namespace, config: Config) -> int:
     out.flush()  # the findings before the summary, when both go to one terminal
     if not args.quiet:
         not_programs = [str(p) for p in found.not_programs]
-        err.write(summary_line(len(keys), not_programs, counts) + "\n")
+        err.write(summary_line(len(datas), not_programs, counts) + "\n")
     return exit_status(
         counts, Severity(args.fail_on), args.max_warnings, usage_problem, internal_error
     )
+
+
+@dataclass(frozen=True, slots=True)
+class _Checked:
+    """One file's check: the safety net's stop, the machine it was read as, and its findings
+    as :func:`as_json` gives them but for the path (the form they are kept in between runs)."""
+
+    key: str
+    stopped: str | None
+    machine: str | None
+    findings: list[dict[str, Any]]
+
+    @property
+    def keepable(self) -> bool:
+        """Whether another run would find the same: not stopped by the clock, not failed."""
+        return self.stopped is None and all(f["code"] != INTERNAL_ERROR for f in self.findings)
+
+    def kept(self) -> list[object]:
+        return [self.stopped, self.machine, self.findings]
+
+    @classmethod
+    def from_kept(cls, key: str, value: list[Any]) -> _Checked:
+        stopped, machine, findings = value
+        return cls(key, stopped, machine, findings)
+
+
+# Fewer files than this are checked in one process and without the cache: starting other
+# processes, or reading and writing the cache, costs more than it saves.
+PARALLEL_FROM = 8
+
+
+def _check_files(
+    datas: list[tuple[str, bytes]], config: Config, args: argparse.Namespace
+) -> Iterator[_Checked]:
+    """Each file's check, in the order of ``datas``: from the cache of earlier runs
+    (:mod:`.check_cache`) where nothing it depends on changed, else analysed."""
+    workspace = Workspace(config, keep_runs=False)
+    cache = None
+    if len(datas) >= PARALLEL_FROM and not args.no_cache:
+        from .check_cache import CheckCache
+
+        cache = CheckCache.open(config)
+    if cache is None:
+        for key, data in datas:
+            workspace.add_bytes(key, data)
+        keys = [key for key, _ in datas]
+        yield from _checked(workspace, keys, workspace.program_numbers(), args)
+        return
+    try:
+        yield from _check_with_cache(workspace, datas, config, args, cache)
+    finally:
+        cache.close()
+
+
+def _check_with_cache(
+    workspace: Workspace,
+    datas: list[tuple[str, bytes]],
+    config: Config,
+    args: argparse.Namespace,
+    cache: CheckCache,
+) -> Iterator[_Checked]:
+    from .check_cache import all_digest, digest, numbers_digest
+
+    digests = {key: digest(data) for key, data in datas}
+    links: dict[str, DocumentLinks] = {}
+    for key, data in datas:
+        found = cache.links(digests[key])
+        if found is None:
+            workspace.add_bytes(key, data)
+            found = workspace.document_links(key)
+            cache.keep_links(digests[key], found)
+        links[key] = found
+    graph = graph_of_links(links)
+    programs = frozenset(n for link in links.values() for n in link.defines)
+    programs_digest, every = numbers_digest(programs), all_digest(digests)
+    custom = frozenset(c.program for c in config.custom_calls)
+    done: dict[str, _Checked] = {}
+    todo: dict[str, str] = {}  # key -> the key of its result in the cache
+    needed: set[str] = set()
+    for key, _data in datas:
+        related = related_in_graph(key, graph, custom)
+        pairs = None if related is None else [(r, digests[r]) for r in related]
+        result_key = cache.result_key(key, digests[key], pairs, every, programs_digest)
+        kept = cache.result(result_key)
+        if kept is not None:
+            done[key] = _Checked.from_kept(key, kept)
+            continue
+        todo[key] = result_key
+        needed.add(key)
+        needed.update(links if related is None else related)
+    # The analyses read their related files: those not read yet are, and the workspace is put
+    # in the files' order (which decides the first definition of a number).
+    for key, data in datas:
+        if key in needed and not workspace.has(key):
+            workspace.add_bytes(key, data)
+    workspace.order_as([key for key, _ in datas])
+    for checked in _checked(workspace, list(todo), programs, args):
+        done[checked.key] = checked
+        if checked.keepable:
+            cache.keep_result(todo[checked.key], checked.kept())
+    cache.save()
+    for key, _data in datas:
+        yield done[key]
+
+
+# The workspace the processes of a parallel check analyse their files in: set before they
+# are forked, so that each inherits the files read and indexed once.
+_FORKED: tuple[Workspace, frozenset[int]] | None = None
+
+
+def _checked(
+    workspace: Workspace, keys: list[str], programs: frozenset[int], args: argparse.Namespace
+) -> Iterator[_Checked]:
+    """Each file's check, in the order of ``keys``: in ``--jobs`` processes forked from this
+    one where the platform forks (each analysis is the same in any process, so the output is
+    too), else here."""
+    global _FORKED
+    jobs = min(args.jobs or os.cpu_count() or 1, len(keys))
+    if jobs >= 2 and len(keys) >= PARALLEL_FROM:
+        import multiprocessing as mp  # a check of a few files starts without it
+    if jobs < 2 or len(keys) < PARALLEL_FROM or "fork" not in mp.get_all_start_methods():
+        for key in keys:
+            yield _check_one(workspace, key, programs)
+        return
+    workspace.graph()  # built once, before the processes share it
+    _FORKED = (workspace, programs)
+    try:
+        with mp.get_context("fork").Pool(jobs) as pool:
+            # Small chunks: the files' analyses differ a hundredfold in time.
+            yield from pool.imap(_check_forked, keys, chunksize=max(1, len(keys) // (jobs * 16)))
+    finally:
+        _FORKED = None
+
+
+def _check_forked(key: str) -> _Checked:
+    assert _FORKED is not None
+    workspace, programs = _FORKED
+    return _check_one(workspace, key, programs)
+
+
+def _check_one(workspace: Workspace, key: str, programs: frozenset[int]) -> _Checked:
+    analysis = workspace.analyse(key, workspace_programs=programs)
+    stopped = analysis.facts.stop_message() if analysis.facts is not None else None
+    machine = machine_text(analysis.config) if analysis.config is not None else None
+    findings: list[dict[str, Any]] = []
+    for d in analysis.diagnostics:
+        record = as_json(key, d)
+        del record["path"]
+        findings.append(record)
+    return _Checked(key, stopped, machine, findings)
 
 
 __all__ = ("as_json", "cmd_check", "exit_status", "format_text", "summary_line")
