@@ -1,7 +1,9 @@
 """``fanuc-macro check`` of a shop's archive: the shared corpus copied into many job folders
 (each copy keeps its O numbers, as an archive keeps the same O number in many folders), checked
-in one process and in one per core; wall time and the peak memory of all the processes
-together (their resident sets, polled every 20 ms; Linux).
+in one process, in one per core, and with the findings kept between runs (a first run and a
+second with nothing changed); wall time and the peak memory of all the processes together
+(their proportional sets, which count a page the processes share once; polled every 20 ms;
+Linux).
 
     PYTHONPATH=server python3 bench/bench_archive.py [--copies 20] [--other ROOT]
 
@@ -36,7 +38,7 @@ def build_archive(target: Path, copies: int) -> int:
 
 
 def _tree_rss(pid: int) -> int:
-    """The resident set of ``pid`` and its descendants, in KiB."""
+    """The memory of ``pid`` and its descendants, in KiB (:func:`_pss`)."""
     total = 0
     children: dict[int, list[int]] = {}
     for entry in os.listdir("/proc"):
@@ -52,25 +54,39 @@ def _tree_rss(pid: int) -> int:
     while todo:
         p = todo.pop()
         todo.extend(children.get(p, []))
-        try:
-            with open(f"/proc/{p}/status") as status:
-                for line in status:
-                    if line.startswith("VmRSS:"):
-                        total += int(line.split()[1])
-        except OSError:
-            continue
+        total += _pss(p)
     return total
 
 
-def run_check(server: Path, archive: Path, jobs: int) -> tuple[float, float]:
-    """(seconds, peak MiB) of one check of the archive."""
+def _pss(pid: int) -> int:
+    """A process's proportional set (KiB): the pages it shares with the processes forked from
+    it counted once among them, not once in each; its resident set where the kernel does not
+    say."""
+    for name, field in ((f"/proc/{pid}/smaps_rollup", "Pss:"), (f"/proc/{pid}/status", "VmRSS:")):
+        try:
+            with open(name) as status:
+                for line in status:
+                    if line.startswith(field):
+                        return int(line.split()[1])
+        except OSError:
+            continue
+    return 0
+
+
+def run_check(
+    server: Path, archive: Path, options: list[str], cache: Path | None = None
+) -> tuple[float, float]:
+    """(seconds, peak MiB) of one check of the archive; ``cache``: the folder of the findings
+    kept between runs (None: no cache)."""
     env = {**os.environ, "PYTHONPATH": str(server)}
+    env["FANUC_MACRO_CHECK_CACHE"] = str(cache) if cache is not None else "0"
     command = [sys.executable, "-m", "fanuc_macro.cli", "check", "-q", "--format", "json"]
-    if jobs:
-        command += ["--jobs", str(jobs)]
     start = time.perf_counter()
     process = subprocess.Popen(
-        [*command, str(archive)], env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL
+        [*command, *options, str(archive)],
+        env=env,
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.DEVNULL,
     )
     peak = 0
     while process.poll() is None:
@@ -87,17 +103,22 @@ def main() -> None:
     servers = [("this", ROOT / "server")]
     if args.other is not None:
         servers.append(("other", args.other.resolve() / "server"))
+    cores = os.cpu_count() or 1
     with tempfile.TemporaryDirectory() as tmp:
         archive = Path(tmp) / "archive"
         count = build_archive(archive, args.copies)
-        print(f"{count} files in {args.copies} job folders, {os.cpu_count()} cores")
-        for name, server in servers:
-            # --jobs 1 is the one-process check; "other" may not know --jobs: 0 = leave it out
-            for jobs in (1, os.cpu_count() or 1):
-                if name == "other" and jobs != 1:
-                    continue
-                seconds, mib = run_check(server, archive, 0 if name == "other" else jobs)
-                print(f"{name:5s} jobs {jobs}: {seconds:7.1f} s, peak {mib:7.0f} MiB")
+        print(f"{count} files in {args.copies} job folders, {cores} cores")
+        runs: list[tuple[str, Path, list[str], Path | None]] = [
+            ("one process", ROOT / "server", ["--jobs", "1"], None),
+            (f"{cores} processes", ROOT / "server", ["--jobs", str(cores)], None),
+            (f"{cores} processes, cache empty", ROOT / "server", [], Path(tmp) / "cache"),
+            (f"{cores} processes, cache kept", ROOT / "server", [], Path(tmp) / "cache"),
+        ]
+        if args.other is not None:  # before --jobs and the cache: one process
+            runs.insert(1, ("other checkout", args.other.resolve() / "server", [], None))
+        for name, server, options, cache in runs:
+            seconds, mib = run_check(server, archive, options, cache)
+            print(f"{name:30s} {seconds:7.1f} s, peak {mib:6.0f} MiB (all processes)")
 
 
 if __name__ == "__main__":

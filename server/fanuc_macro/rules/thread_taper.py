@@ -16,6 +16,7 @@ from ..evaluator.values import fmt
 from ..threads.identify import Thread
 from ..threads.pipe import PipeThread
 from ..threads.surface import Line, cone_line, motion_key, thread_line
+from ..threads.surface import tapered as cuts_a_cone
 from .context import RuleContext
 from .thread_cut import depth_line
 from .threading import mm, thread_related, width
@@ -121,9 +122,11 @@ positioning move in the air) or much steeper or flatter than it, straight thread
 def _against_cone(ctx: RuleContext, thread: Thread, motions: Sequence[Motion]) -> Diagnostic | None:
     passes = thread.job.passes
     job = thread.job
+    if job.is_cycle and job.taper is None:
+        return None  # a cycle's passes taper by R only
     tapered_at = job.remember(
         "taper lines",
-        lambda: tuple(k for k, m in enumerate(passes) if _thread_line(m) is not None),
+        lambda: tuple(k for k, m in enumerate(passes) if cuts_a_cone(m)),
         ("x", "z", "start_x", "start_z", "R", "code"),
     )
     if not tapered_at:

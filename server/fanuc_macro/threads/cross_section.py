@@ -480,10 +480,18 @@ def _cut_seen(
 
 
 def _fingerprint(passes: Sequence[Motion]) -> tuple[object, ...]:
-    words = [(m.words.get("Q"), m.words.get("R")) for m in passes]
     return tuple(
-        (m.x, m.start_x, m.start_z, q, r, m.code, m.cycle_pass, m.tool_angle)
-        for m, (q, r) in zip(passes, words, strict=True)
+        (
+            m.x,
+            m.start_x,
+            m.start_z,
+            m.words.get("Q"),
+            m.words.get("R"),
+            m.code,
+            m.cycle_pass,
+            m.tool_angle,
+        )
+        for m in passes
     )
 
 
@@ -531,10 +539,14 @@ def thread_cuts(thread: Thread, before: Sequence[Motion] = ()) -> list[CrossSect
     lead = job.lead
     pitch = thread.cut_pitch
     surface = thread.surface
-    tapered = job.remember(
-        "tapered",
-        lambda: any(cuts_a_cone(m) for m in job.passes),
-        ("x", "z", "start_x", "start_z", "R", "code"),
+    # A cycle's passes are tapered by its R (the job's ``taper``); G32's by their X.
+    tapered = job.taper is not None or (
+        not job.is_cycle
+        and job.remember(
+            "tapered",
+            lambda: any(cuts_a_cone(m) for m in job.passes),
+            ("x", "z", "start_x", "start_z", "R", "code"),
+        )
     )
     if lead is None or pitch is None or thread.lead_conflict or (tapered and surface is None):
         return []

@@ -529,7 +529,8 @@ def identify(
         internal = thread.internal if thread.internal is not None else job.internal
         fitting = words[program.first_line].fitting
         if cut_known and pitch is not None and internal is not None and job.xs and not fitting:
-            surfaces.append((thread, SurfaceWanted(job.passes, internal, pitch)))
+            wanted = SurfaceWanted(job.passes, internal, pitch, job.x_range[0])
+            surfaces.append((thread, wanted))
         threads.append(thread)
     if surfaces:
         surfaces_found = turned_surfaces([w for _t, w in surfaces], motions)

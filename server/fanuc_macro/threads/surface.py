@@ -80,9 +80,14 @@ def thread_line(m: Motion) -> Line | None:
 
 
 def tapered(m: Motion) -> bool:
-    """Whether a threading pass cuts a cone (a cycle's R, a G32 whose X changes)."""
-    line = thread_line(m)
-    return line is not None and line.x0 != line.x1
+    """Whether a threading pass cuts a cone (a cycle's R, a G32 whose X changes along Z):
+    :func:`thread_line`'s ends differ, without making the line (every pass of a job is asked
+    on every analysis)."""
+    if m.x is None or m.z is None or m.start_z is None or m.z == m.start_z:
+        return False
+    if m.code in ("G92", "G76"):
+        return bool(m.words.get("R"))
+    return m.code in ("G32", "G33") and m.start_x is not None and m.start_x != m.x
 
 
 def cone_line(m: Motion) -> Line | None:
@@ -124,6 +129,7 @@ class SurfaceWanted:
     passes: Sequence[Motion]
     internal: bool
     pitch: float
+    least_x: float  # the passes' least X: below 0, X is given on the far side of the axis
 
 
 # The codes a thread's first pass has.
@@ -146,7 +152,7 @@ def turned_surfaces(
     found: list[TurnedSurface | None] = [None] * len(wanted)
     waiting: dict[tuple[object, ...], list[int]] = {}
     for k, w in enumerate(wanted):
-        if w.passes and w.pitch > 0.0 and not any(m.x is not None and m.x < 0.0 for m in w.passes):
+        if w.passes and w.pitch > 0.0 and w.least_x >= 0.0:
             # (X given on the far side of the axis is not the diameter this reads.)
             waiting.setdefault(motion_key(w.passes[0]), []).append(k)
     # The turning moves seen so far, by document and execution.
@@ -174,12 +180,15 @@ def _surface(
     internal: bool,
     pitch: float,
 ) -> TurnedSurface | None:
-    lines = [(m, line) for m in passes if m.x is not None and (line := thread_line(m))]
-    if not lines or not turned:
+    if not turned:
         return None
-    deepest_pass, deepest = (max if internal else min)(lines, key=lambda t: t[0].x or 0.0)
-    if deepest_pass.x is None:
+    cutting = [m for m in passes if m.x is not None and m.z is not None and m.z != m.start_z]
+    if not cutting:
         return None
+    deepest_line = thread_line((max if internal else min)(cutting, key=lambda m: m.x or 0.0))
+    if deepest_line is None:
+        return None
+    deepest = deepest_line
     low, high = deepest.span
     moves = [(n, c) for n, c in turned if c.span[1] >= low and c.span[0] <= high]
     if not moves:
