@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import functools
+import threading
 from collections.abc import Callable, Iterable, Mapping, Sequence
 from collections.abc import Set as AbstractSet
 from dataclasses import dataclass, replace
@@ -112,8 +113,10 @@ class Workspace:
         # Every document's (document, index): replaced on each change, never changed, so that
         # another thread (the language server's requests) may read the one it got.
         self._indexes: dict[str, tuple[Document, ProgramIndex]] = {}
-        # The program graph of an indexes snapshot (the snapshot itself, to tell it).
-        self._graph: tuple[dict[str, tuple[Document, ProgramIndex]], ProgramGraph] | None = None
+        # The program graph of the current indexes, dropped when they change (it holds no
+        # document: a closed one is freed with its snapshot).
+        self._graph: ProgramGraph | None = None
+        self._graph_lock = threading.Lock()
 
     def _reindexed(self, uri: str) -> None:
         indexes = dict(self._indexes)
@@ -122,7 +125,9 @@ class Workspace:
             indexes.pop(uri, None)
         else:
             indexes[uri] = (entry.doc, entry.index)
-        self._indexes = indexes
+        with self._graph_lock:
+            self._indexes = indexes
+            self._graph = None
 
     def _next_execution(self) -> int:
         self._executions += 1
@@ -238,17 +243,17 @@ class Workspace:
         entries.update(self._entries)
         self._entries = entries
         indexes = {u: self._indexes[u] for u in entries if u in self._indexes}
-        self._indexes = indexes
+        with self._graph_lock:
+            self._indexes = indexes
+            self._graph = None
 
     def graph(self) -> ProgramGraph:
         """The :func:`program_graph` of the current indexes, built once for them."""
-        indexes = self._indexes
-        kept = self._graph
-        if kept is not None and kept[0] is indexes:
-            return kept[1]
-        graph = program_graph(indexes)
-        self._graph = (indexes, graph)
-        return graph
+        with self._graph_lock:  # a request's thread may ask while an edit replaces them
+            graph = self._graph
+            if graph is None:
+                graph = self._graph = program_graph(self._indexes)
+            return graph
 
     def links(self, uri: str) -> frozenset[tuple[str, int | None]]:
         """What ties ``uri`` to other documents: see :func:`program_links`."""
