@@ -229,3 +229,38 @@ def test_the_plot_draws_the_cut_and_the_class_limits(tmp_path: Path) -> None:
     assert drawing.count('data-kind="cut-profile"') == 1
     assert 'data-diameter="47.833"' in drawing and 'data-diameter="48.003"' in drawing
     assert "blue: the groove the passes cut" in drawing
+
+
+PLAIN = ROOT / "tests" / "fixtures" / "thread_cut_variants" / "g92_plain_clean.nc"
+
+
+def test_the_trace_says_the_blank_the_program_turned() -> None:
+    (thread,) = _trace_threads(PLAIN)
+    assert thread["identified"] is False  # no designation: cut on what was turned
+    cut = thread["cut"]
+    assert isinstance(cut, dict)
+    assert cut["blank"] == 23.8 and cut["blank_from"] == "the diameter turned at line 13"
+    assert cut["crest_diameter"] == 23.8 and cut["passes_in_air"] == 0
+
+
+async def test_the_editor_shows_the_turned_blank_and_the_passes_in_the_air(
+    client: LanguageClient,
+) -> None:
+    await start(client, None)
+    uri = "untitled:plain.nc"
+    text = PLAIN.read_text("utf-8")
+    open_text(client, uri, text)
+    await diagnostics(client, uri, lambda d: True)
+    shown = await hover(client, uri, 19, 1)  # the first G92 pass
+    assert "blank 23.800 (the diameter turned at line 13)" in shown
+    air = text.replace("G92 X23.3 Z-32. F2.\n", "G92 X26. Z-32. F2.\nX25.2\nX24.4\nX23.3\n")
+    client.text_document_did_change(
+        types.DidChangeTextDocumentParams(
+            text_document=types.VersionedTextDocumentIdentifier(uri=uri, version=2),
+            content_changes=[types.TextDocumentContentChangeWholeDocument(text=air)],
+        )
+    )
+    found = await diagnostics(client, uri, lambda d: "MB818" in codes(d))
+    (verdict,) = [d for d in found if d.code == "MB818"]
+    assert verdict.range.start.line == 19
+    assert "outside the blank X23.8 (the diameter turned at line 13)" in verdict.message
