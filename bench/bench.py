@@ -29,6 +29,7 @@ sys.path.insert(0, str(ROOT / "server"))
 
 from fanuc_macro.analysis import analyse  # noqa: E402
 from fanuc_macro.evaluator import Facts, evaluate  # noqa: E402
+from fanuc_macro.evaluator.machine import CHECKPOINT_EVERY  # noqa: E402
 from fanuc_macro.program.index import ProgramIndex, build_index  # noqa: E402
 from fanuc_macro.syntax.parser import BlockParser, parse_text  # noqa: E402
 from fanuc_macro.syntax.tree import Document  # noqa: E402
@@ -211,6 +212,7 @@ def bench_resume(size: int) -> None:
             times.append(seconds)
             assert facts.record is not None and facts is not previous
             executed = facts.record.executed
+            resumed_within_bound(f"an edit at {where:.0%}", executed)
             previous = facts
         print(
             f"evaluator, {size:,} blocks ({first.steps:,} run), edit at {where:.0%} of the "
@@ -230,6 +232,21 @@ def bench_resume(size: int) -> None:
         print(
             f"evaluator, {size:,} blocks, {what} at 50%: resumed median "
             f"{statistics.median(times) * 1000:.1f} ms (ran {facts.record.executed:,} blocks)"
+        )
+        resumed_within_bound(what, facts.record.executed)
+
+
+# A one-line edit re-runs at most the stretch it is in and the next few, whatever the size of
+# the program: more means the resumed run no longer meets the earlier one.
+RESUME_BOUND = 4 * CHECKPOINT_EVERY
+
+
+def resumed_within_bound(what: str, executed: int) -> None:
+    """Stop the bench, loudly, when a resumed run re-ran far more blocks than it should."""
+    if executed > RESUME_BOUND:
+        sys.exit(
+            f"FAILED: after {what} the resumed run re-ran {executed:,} blocks, over the "
+            f"{RESUME_BOUND:,} an edit may cost: it did not meet the earlier run"
         )
 
 

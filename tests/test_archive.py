@@ -10,6 +10,10 @@ import subprocess
 import sys
 from pathlib import Path
 
+import pytest
+
+from fanuc_macro import cli
+from fanuc_macro.cli import check_command
 from fanuc_macro.config import Config
 from fanuc_macro.workspace import Workspace, program_graph, related_documents
 
@@ -76,3 +80,30 @@ def test_check_in_processes_prints_what_one_process_prints() -> None:
     assert one.stdout == two.stdout
     assert one.stderr == two.stderr
     assert len(one.stdout) > 100_000  # the rule fixtures' findings, each file's in order
+
+
+def test_files_dropped_between_files_leave_each_check_as_it_was(
+    monkeypatch: pytest.MonkeyPatch, tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """A process of a parallel check keeps few files read, the ones each file needs loaded
+    again: with room for 3, the findings are those of one workspace holding every file."""
+    for k in range(3):  # the same O numbers in three job folders, the calls between them
+        folder = tmp_path / f"job{k}"
+        folder.mkdir()
+        for fixture in sorted(RULE_FIXTURES.glob("MB4*.nc")):
+            (folder / fixture.name).write_bytes(fixture.read_bytes())
+        # O1000 sets the divisor of the main programs: 0 in the first folder, which the
+        # archive's order makes the one called (a division by zero), 2 in the others.
+        (folder / "O1000.nc").write_text(f"%\nO1000 (SUB)\n#100={2 * k}\nM99\n%\n")
+        main = f"%\nO{3000 + k}\nM98 P1000\n#1=1/#100\nG00 X#1\nM30\n%\n"
+        (folder / f"O{3000 + k}.nc").write_text(main)
+    whole = cli.main(["check", "--format", "json", "--no-cache", "--jobs", "1", str(tmp_path)])
+    held = capsys.readouterr()
+    monkeypatch.setattr(check_command, "FILES_KEPT", 3)
+    monkeypatch.setenv("FANUC_MACRO_CHECK_CACHE", str(tmp_path / "cache"))
+    few = cli.main(["check", "--format", "json", "--jobs", "1", str(tmp_path)])
+    dropped = capsys.readouterr()
+    assert whole == few == 1
+    assert held.out == dropped.out and held.err == dropped.err
+    assert held.out.count('"code"') > 50
+    assert held.out.count("O3000.nc") == held.out.count("O3001.nc") > 0  # O1000 was read

@@ -340,6 +340,33 @@ def test_a_new_line_late_in_a_long_program_runs_few_blocks() -> None:
         assert_same(resumed, evaluate_text(source, BlockParser(), config))
 
 
+def test_a_line_removed_from_a_program_of_few_distinct_lines_meets_the_earlier_run() -> None:
+    """Most lines alike (a posted pattern repeated): boundary lines are dense, and a resumed
+    run whose count of blocks the edit moved still meets the earlier run soon after it."""
+    config = Config()
+    parser = BlockParser()
+    pattern = [
+        "G00 X[#100+{a}.] Z{b}.",
+        "G92 X[#100-0.{b}] W-[#102+#101] F#101",
+        "G01 W[{c}.*0.1]",
+        "#{v}=#101*{a}.+SQRT[{b}.] (STEP {k})",
+    ]
+    body = [
+        line.format(a=k % 5 + 1, b=k % 9 + 1, c=k % 3, v=k % 30 + 1, k=k)
+        for k in range(3000)
+        for line in pattern
+    ]
+    lines = ["O1000", "#100=40.", "#101=2.", "#102=30.", *body, "M30"]
+    first = evaluate_text("\n".join(lines), parser, config)
+    assert first.record is not None
+    removed = next(i for i in range(len(lines) // 2, len(lines)) if "SQRT" in lines[i])
+    edited = "\n".join([*lines[:removed], *lines[removed + 1 :]])
+    resumed = evaluate_text(edited, parser, config, first)
+    assert resumed.record is not None and resumed.record.converged_at is not None
+    assert resumed.record.executed <= 4 * machine.CHECKPOINT_EVERY
+    assert_same(resumed, evaluate_text(edited, BlockParser(), config))
+
+
 def cam_with_calls(blocks: int, seed: int) -> str:
     """CAM output without F, cut by a main program, a loop and a subprogram called more than
     once: the cuts without F repeat across stretches of the run, between other findings."""

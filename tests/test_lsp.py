@@ -989,15 +989,16 @@ async def test_a_10_mb_document_and_a_1_mb_line_get_their_verdicts(
     assert "Value assigned: **1.907**" in await hover(client, seed, 21, 1)
     started = time.monotonic()
     rows = [f"G01 X{i % 97}.5 Z-{i % 89}. F0.2" for i in range(500_000)]
-    open_text(client, "untitled:ten.nc", "O1000\n" + "\n".join(rows) + "\nM30\n")
+    open_text(client, "untitled:ten.nc", "O1000\n" + "\n".join(rows) + "\nGOTO 9\nM30\n")
     open_text(client, "untitled:line.nc", "O1000\n" + "X1.5Y2.5" * 131_072 + "\nM30\n")
     # An analysed document answers while the big ones are read (no regex holds the GIL).
     assert "Value assigned: **1.907**" in await hover(client, seed, 21, 1)
-    found = await diagnostics(client, "untitled:ten.nc", lambda d: "MB013" in codes(d))
-    (verdict,) = [d for d in found if d.code == "MB013"]
-    assert "analysed the first 25000 blocks of 500002" in verdict.message
+    # Read whole: the GOTO to no N9 in its last lines is reported, and nothing else.
+    found = await diagnostics(client, "untitled:ten.nc", lambda d: "MB101" in codes(d), 120.0)
+    assert codes(found) == {"MB101"} and found[0].range.start.line == 500_001
     found = await diagnostics(client, "untitled:line.nc", lambda d: "MB011" in codes(d))
-    assert time.monotonic() - started < 30.0  # a few seconds; it was no answer in 200 s
+    # 10-20 s beside the other tests on a 2-core VM; it was no answer in 200 s.
+    assert time.monotonic() - started < 90.0
 
 
 # A client that shows progress (window/workDoneProgress); the server shows it from the first

@@ -46,10 +46,12 @@ class Config:
     # The extended common variables #200-#499 (an option on 0i-F / 30i) are on the machine.
     extended_commons: bool = False
     # What the analysis reads of a document: the rest gets a diagnostic (MB011, MB013), not an
-    # analysis. About 2 s for a typical program on a 2-core EPYC VM, whatever its size.
+    # analysis. By default any realistic file is read whole: hand-written programs of any size
+    # and posted files past a million blocks (about 30 characters a block); the step budget,
+    # cancellation and progress bound the work. Lower them for a machine short of memory.
     max_line_length: int = MAX_LINE_LENGTH  # characters of one block
-    max_blocks: int = 25_000
-    max_file_size: int = 600_000  # characters (bytes, for ASCII program text)
+    max_blocks: int = 2_000_000
+    max_file_size: int = 64_000_000  # characters (bytes, for ASCII program text)
     # Hovers show values at the least input increment (0.001 mm, 0.0001 inch); with this set,
     # in full (the 8 digits the control keeps). No verdict depends on it.
     hover_full_precision: bool = False

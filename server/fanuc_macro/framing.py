@@ -93,12 +93,13 @@ class Reader:
             if not self._fill():
                 self._buf.clear()
                 return None
+        # Read from the match before the buffer moves: its groups are slices of the buffer.
+        length = int(header.group(1))
+        start = header.end() - header.start()
         before = bytes(self._buf[: header.start()])
         del self._buf[: header.start()]
         if skipped or not _OTHER_HEADERS.fullmatch(before):
             raise WireError(f"skipped {skipped + len(before.strip()):,} bytes that are no message")
-        length = int(header.group(1))
-        start = header.end() - header.start()
         if length > MAX_BODY:
             self._drop(start, length)
             return None  # the end of the stream inside it

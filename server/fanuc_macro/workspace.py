@@ -237,6 +237,16 @@ class Workspace:
         entry = self._entries[uri]
         return document_links(entry.doc, entry.index)
 
+    @_in_database
+    def links_of(self, uri: str, data: bytes) -> DocumentLinks:
+        """:meth:`document_links` of the file ``uri`` of bytes ``data``, read as
+        :meth:`add_bytes` reads it, without keeping it: how an archive's files are tied is
+        known without holding them all (the parser keeps their lines within the caches'
+        budget)."""
+        keep_caches_within_budget(self.parser)
+        doc = parse_text(decode_bytes(data).text, uri, self.parser, limits=self.config.read_limits)
+        return document_links(doc, build_index(doc))
+
     def order_as(self, uris: Sequence[str]) -> None:
         """Puts the documents in the order of ``uris`` (those it has; the others after)."""
         entries = {u: self._entries[u] for u in uris if u in self._entries}

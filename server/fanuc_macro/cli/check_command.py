@@ -193,6 +193,21 @@ class _Checked:
 # Fewer files than this are checked in one process and without the cache: starting other
 # processes, or reading and writing the cache, costs more than it saves.
 PARALLEL_FROM = 8
+TASKS_PER_PROCESS = 1  # chunks of files a forked process checks before a new one takes over
+# Files a process of a parallel check keeps read between its files: past it, those the next
+# file does not need are dropped (a shop's archive does not fit in each process).
+FILES_KEPT = 64
+
+
+def _jobs(args: argparse.Namespace, files: int) -> int:
+    """Processes for a check of ``files`` files: 1 unless there are enough files to share and
+    the platform forks (each process inherits what the first read)."""
+    jobs = min(args.jobs or os.cpu_count() or 1, files)
+    if jobs < 2 or files < PARALLEL_FROM:
+        return 1
+    import multiprocessing as mp  # a check of a few files starts without it
+
+    return jobs if "fork" in mp.get_all_start_methods() else 1
 
 
 def _check_files(
@@ -201,107 +216,163 @@ def _check_files(
     """Each file's check, in the order of ``datas``: from the cache of earlier runs
     (:mod:`.check_cache`) where nothing it depends on changed, else analysed."""
     workspace = Workspace(config, keep_runs=False)
+    jobs = _jobs(args, len(datas))
     cache = None
     if len(datas) >= PARALLEL_FROM and not args.no_cache:
         from .check_cache import CheckCache
 
         cache = CheckCache.open(config)
-    if cache is None:
+    if cache is None and jobs < 2:
         for key, data in datas:
             workspace.add_bytes(key, data)
-        keys = [key for key, _ in datas]
-        yield from _checked(workspace, keys, workspace.program_numbers(), args)
+        programs = workspace.program_numbers()
+        for key, _data in datas:
+            yield _check_one(workspace, key, programs)
         return
     try:
-        yield from _check_with_cache(workspace, datas, config, args, cache)
+        yield from _check_archive(workspace, datas, config, jobs, cache)
     finally:
-        cache.close()
+        if cache is not None:
+            cache.close()
 
 
-def _check_with_cache(
+@dataclass(frozen=True)
+class _Archive:
+    """What a check of many files knows before it analyses one: their bytes, their order, how
+    they are tied (the program graph of their links) and the program numbers they define."""
+
+    datas: dict[str, bytes]
+    order: dict[str, int]
+    related: dict[str, list[str] | None]  # each file's related files (None: every file)
+    programs: frozenset[int]
+
+    def needed(self, key: str) -> list[str]:
+        """The files an analysis of ``key`` reads: itself and its related files."""
+        related = self.related[key]
+        return list(self.datas) if related is None else [key, *related]
+
+
+def _check_archive(
     workspace: Workspace,
     datas: list[tuple[str, bytes]],
     config: Config,
-    args: argparse.Namespace,
-    cache: CheckCache,
+    jobs: int,
+    cache: CheckCache | None,
 ) -> Iterator[_Checked]:
-    from .check_cache import all_digest, digest, numbers_digest
+    """:func:`_check_files` of many files: the files tied together from their links (kept in
+    ``cache`` between runs, else read and dropped), then each file analysed with the files it
+    needs (the kept result where nothing it depends on changed)."""
+    digests: dict[str, str] = {}
+    if cache is not None:
+        from .check_cache import digest
 
-    digests = {key: digest(data) for key, data in datas}
+        digests = {key: digest(data) for key, data in datas}
     links: dict[str, DocumentLinks] = {}
     for key, data in datas:
-        found = cache.links(digests[key])
+        found = cache.links(digests[key]) if cache is not None else None
         if found is None:
-            workspace.add_bytes(key, data)
-            found = workspace.document_links(key)
-            cache.keep_links(digests[key], found)
+            found = workspace.links_of(key, data)
+            if cache is not None:
+                cache.keep_links(digests[key], found)
         links[key] = found
     graph = graph_of_links(links)
-    programs = frozenset(n for link in links.values() for n in link.defines)
-    programs_digest, every = numbers_digest(programs), all_digest(digests)
     custom = frozenset(c.program for c in config.custom_calls)
+    archive = _Archive(
+        dict(datas),
+        {key: n for n, (key, _data) in enumerate(datas)},
+        {key: related_in_graph(key, graph, custom) for key, _data in datas},
+        frozenset(n for link in links.values() for n in link.defines),
+    )
     done: dict[str, _Checked] = {}
     todo: dict[str, str] = {}  # key -> the key of its result in the cache
-    needed: set[str] = set()
-    for key, _data in datas:
-        related = related_in_graph(key, graph, custom)
-        pairs = None if related is None else [(r, digests[r]) for r in related]
-        result_key = cache.result_key(key, digests[key], pairs, every, programs_digest)
-        kept = cache.result(result_key)
-        if kept is not None:
-            done[key] = _Checked.from_kept(key, kept)
-            continue
-        todo[key] = result_key
-        needed.add(key)
-        needed.update(links if related is None else related)
-    # The analyses read their related files: those not read yet are, and the workspace is put
-    # in the files' order (which decides the first definition of a number).
-    for key, data in datas:
-        if key in needed and not workspace.has(key):
-            workspace.add_bytes(key, data)
-    workspace.order_as([key for key, _ in datas])
-    for checked in _checked(workspace, list(todo), programs, args):
+    if cache is None:
+        todo = {key: key for key, _data in datas}
+    else:
+        from .check_cache import all_digest, numbers_digest
+
+        programs_digest, every = numbers_digest(archive.programs), all_digest(digests)
+        for key, _data in datas:
+            related = archive.related[key]
+            pairs = None if related is None else [(r, digests[r]) for r in related]
+            result_key = cache.result_key(key, digests[key], pairs, every, programs_digest)
+            kept = cache.result(result_key)
+            if kept is not None:
+                done[key] = _Checked.from_kept(key, kept)
+            else:
+                todo[key] = result_key
+    for checked in _analysed(workspace, archive, list(todo), jobs):
         done[checked.key] = checked
-        if checked.keepable:
+        if cache is not None and checked.keepable:
             cache.keep_result(todo[checked.key], checked.kept())
-    cache.save()
+    if cache is not None:
+        cache.save()
     for key, _data in datas:
         yield done[key]
 
 
-# The workspace the processes of a parallel check analyse their files in: set before they
-# are forked, so that each inherits the files read and indexed once.
-_FORKED: tuple[Workspace, frozenset[int]] | None = None
+# What the processes of a parallel check work from: set before they are forked, so that each
+# inherits it (the files' bytes, the caches of the lines read for the links).
+_FORKED: tuple[Workspace, _Archive] | None = None
 
 
-def _checked(
-    workspace: Workspace, keys: list[str], programs: frozenset[int], args: argparse.Namespace
+def _analysed(
+    workspace: Workspace, archive: _Archive, keys: list[str], jobs: int
 ) -> Iterator[_Checked]:
-    """Each file's check, in the order of ``keys``: in ``--jobs`` processes forked from this
-    one where the platform forks (each analysis is the same in any process, so the output is
-    too), else here."""
+    """Each of ``keys`` checked with the files it needs: in ``jobs`` processes forked from this
+    one (each analysis is the same in any process, so the output is too)."""
     global _FORKED
-    jobs = min(args.jobs or os.cpu_count() or 1, len(keys))
-    if jobs >= 2 and len(keys) >= PARALLEL_FROM:
-        import multiprocessing as mp  # a check of a few files starts without it
-    if jobs < 2 or len(keys) < PARALLEL_FROM or "fork" not in mp.get_all_start_methods():
-        for key in keys:
-            yield _check_one(workspace, key, programs)
+    # A file with a call whose program is not known before the run needs every file: those
+    # are checked last, here, once the processes have ended (one process holding the whole
+    # archive, not each).
+    whole = [key for key in keys if archive.related[key] is None]
+    keys = [key for key in keys if archive.related[key] is not None]
+    if jobs < 2 or len(keys) < PARALLEL_FROM:
+        for key in [*keys, *whole]:
+            yield _check_in(workspace, archive, key)
         return
-    workspace.graph()  # built once, before the processes share it
-    _FORKED = (workspace, programs)
+    import multiprocessing as mp
+
+    _FORKED = (workspace, archive)
     try:
-        with mp.get_context("fork").Pool(jobs) as pool:
+        # Each process is replaced after a few chunks: what it copied of the parent's pages
+        # (an object read is an object written, its reference count) and its own caches go
+        # with it.
+        context = mp.get_context("fork")
+        with context.Pool(min(jobs, len(keys)), maxtasksperchild=TASKS_PER_PROCESS) as pool:
             # Small chunks: the files' analyses differ a hundredfold in time.
-            yield from pool.imap(_check_forked, keys, chunksize=max(1, len(keys) // (jobs * 16)))
+            chunk = max(1, len(keys) // (jobs * 16))
+            yield from pool.imap(_check_forked, keys, chunksize=chunk)
     finally:
         _FORKED = None
+    for key in whole:
+        yield _check_in(workspace, archive, key)
 
 
 def _check_forked(key: str) -> _Checked:
     assert _FORKED is not None
-    workspace, programs = _FORKED
-    return _check_one(workspace, key, programs)
+    workspace, archive = _FORKED
+    return _check_in(workspace, archive, key)
+
+
+def _check_in(workspace: Workspace, archive: _Archive, key: str) -> _Checked:
+    """``key`` checked in ``workspace`` once it holds the files the analysis reads, in the
+    archive's order (which decides the first definition of a number); the files it held
+    for earlier ones stay while they are few (a called program is often called again)."""
+    needed = archive.needed(key)
+    held = workspace.uris()
+    if len(held) + len(needed) > FILES_KEPT:
+        keep = set(needed)
+        for uri in held:
+            if uri not in keep:
+                workspace.remove(uri)
+    added = False
+    for uri in needed:
+        if not workspace.has(uri):
+            workspace.add_bytes(uri, archive.datas[uri])
+            added = True
+    if added:
+        workspace.order_as(sorted(workspace.uris(), key=archive.order.__getitem__))
+    return _check_one(workspace, key, archive.programs)
 
 
 def _check_one(workspace: Workspace, key: str, programs: frozenset[int]) -> _Checked:

@@ -2,8 +2,10 @@
 
 When each program of the evaluation begins, and then at the first block of a boundary line
 once ``CHECKPOINT_EVERY`` blocks have run since the last checkpoint (boundary lines are chosen by
-their text, so the checkpoints fall on the same blocks in runs that executed more or fewer
-blocks before them), the machine records its state (the call stack with each level's locals
+their text, so the checkpoints mostly fall on the same blocks in runs that executed more or
+fewer blocks before them; a resumed run also takes one at each boundary line where the
+earlier run has a checkpoint it may meet, so that the two meet even where the count puts
+their own checkpoints apart), the machine records its state (the call stack with each level's locals
 and place, the variables the run set, the modal state, what it has found so far) and begins
 a new stretch of facts. After an edit the evaluation resumes from the checkpoint before the
 first stretch that ran a changed line, with the new program, and stops as soon as its state
@@ -242,6 +244,11 @@ class Resumption:
     start: int  # the checkpoint to resume from
     # Checkpoints the new run may meet, by their meeting key: the indexes, earliest first.
     convergeable: dict[tuple[object, ...], list[int]]
+    # Where those are (the running program and its next line): a resumed run looks for the
+    # earlier run there too, not only where its own count of blocks puts a checkpoint. An edit
+    # that adds or removes blocks moves that count, and where boundary lines are dense (a
+    # program of few distinct lines) the two runs' checkpoints could stay apart for good.
+    meet_at: frozenset[tuple[CtxKey, int]] = frozenset()
 
 
 def changed_lines(
@@ -353,7 +360,13 @@ def plan(
         c = old.checkpoints[i]
         if c.run > last_budget and i not in old.unusable and not _returns_into(c, changed):
             convergeable.setdefault(c.meeting_key(), []).append(i)
-    return Resumption(previous, old, start, convergeable)
+    meet_at = frozenset(
+        (old.checkpoints[i].levels[-1].ctx, old.checkpoints[i].levels[-1].pc)
+        for indexes in convergeable.values()
+        for i in indexes
+        if old.checkpoints[i].levels
+    )
+    return Resumption(previous, old, start, convergeable, meet_at)
 
 
 def _returns_into(state: MachineState, changed: dict[str, set[int]]) -> bool:

@@ -323,8 +323,12 @@ class Machine(MotionPart):
         # CHECKPOINT_EVERY blocks have run since the last one: chosen by the text, not by the
         # count, so that a run with more or fewer blocks before (an edit added or removed
         # some) takes its checkpoints at the same blocks as the earlier run after the edit.
-        wanted = False  # a checkpoint is due at the next boundary line
         recording = self.record is not None
+        # A resumed run also checks at each boundary line where the earlier run has a
+        # checkpoint it may meet (see Resumption.meet_at).
+        meet_at = self.resumption.meet_at if recording and self.resumption is not None else None
+        looking = bool(meet_at)
+        wanted = looking  # a checkpoint is due at the next boundary line
         next_due = self._checkpointed + CHECKPOINT_EVERY + 1 if recording else budget + 1
         next_event = min(next_check, next_due)
         stepper = self.stepper
@@ -342,11 +346,16 @@ class Machine(MotionPart):
             self._steps = steps
             if steps >= next_event:
                 next_check, next_due, wanted = self._event(act, cl, next_check, next_due, wanted)
+                wanted = wanted or looking
                 next_event = min(next_check, next_due)
             elif wanted and cl.boundary:
-                wanted = False
-                next_due = self._checkpoint_here(act)
-                next_event = min(next_check, next_due)
+                if not looking or steps - 1 - self._checkpointed >= CHECKPOINT_EVERY:
+                    wanted = looking
+                    next_due = self._checkpoint_here(act)
+                    next_event = min(next_check, next_due)
+                elif meet_at is not None and ((ctx.uri, ctx.program.first_line), pc) in meet_at:
+                    next_due = self._checkpoint_here(act)
+                    next_event = min(next_check, next_due)
             if stepper is not None:
                 stepper.before(act, pc)
             facts = ctx.facts

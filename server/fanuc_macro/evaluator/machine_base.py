@@ -73,6 +73,15 @@ class ProgramContext:
         self.name = self.program.display_name
 
 
+def run_budget(step_budget: int, contexts: Sequence[ProgramContext]) -> int:
+    """Blocks one run may execute: the ``step_budget`` setting, or for documents of more than
+    half as many blocks (a posted file read whole), every block once and half the setting
+    again for what runs more than once, so that a long program is not taken for an endless
+    loop. Counted from the documents, so the same input has the same budget on any machine."""
+    documents = {id(c.doc): len(c.doc.blocks) for c in contexts}
+    return max(step_budget, sum(documents.values()) + step_budget // 2)
+
+
 class Activation:
     """One running program: its place, its locals and how it returns."""
 
@@ -350,7 +359,7 @@ class MachineBase:
         self._steps = 0
         self.speculative = False
         self.deadline = 0.0
-        self.budget = config.step_budget
+        self.budget = run_budget(config.step_budget, contexts)
         self.runs = 0  # activations so far: each gets its number
         self.modal = Modal()
         self.value_range = config.value_range

@@ -218,7 +218,9 @@ _LineKey = tuple[int, frozenset[int], tuple[tuple[Span, TokenType], ...]]
 LINE_TOKENS: TableKey[_LineKey, tuple[object, tuple[SemanticToken, ...]]] = TableKey(
     "ide.semantic.line_tokens", cache=True
 )
-MAX_LINE_TOKENS = 65_536  # more than the lines a document is read to (max_blocks 25,000)
+# Enough for the lines of the programs one edits by hand; a posted file bigger than this has its
+# tokens worked out again on each request (its lines are mostly plain words: cheap to redo).
+MAX_LINE_TOKENS = 65_536
 
 
 def line_tokens(

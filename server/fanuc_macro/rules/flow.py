@@ -269,7 +269,8 @@ MB708_DOC = RuleDoc(
     "MB708",
     reports="""
 A loop still running when the evaluator's step budget (300,000 blocks
-per entry program) ran out, whose test gets nearer its bound every turn
+per entry program; for documents of more than 150,000 blocks, every block once and 150,000
+more) ran out, whose test gets nearer its bound every turn
 (`WHILE [#1 LT 1000000]` with `#1` growing): a long loop rather than an endless one (MB703).
 Blocks after it are not analysed, and their values are not known.
 """,

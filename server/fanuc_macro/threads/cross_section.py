@@ -249,7 +249,7 @@ class _Profile:
     ``values`` at ``places`` from 0 to the lead (the last place the lead, its value the first's),
     below which the material is. A tool cuts what lies above its edge."""
 
-    __slots__ = ("corners", "edge", "lead", "places", "slope", "values")
+    __slots__ = ("corners", "edge", "lead", "places", "slope", "top", "values")
 
     def __init__(
         self, lead: float, top: float, edge: tuple[tuple[float, float], ...], slope: float
@@ -257,14 +257,11 @@ class _Profile:
         self.lead = lead
         self.places = [0.0, lead]
         self.values = [top, top]
+        self.top: float | None = top  # max(values), None when a cut has changed them since
         self.edge = edge
         self.slope = slope
         # The nose's chord ends either side of the centre line, left to right.
         self.corners = [(-u, r) for u, r in reversed(edge[1:])] + list(edge)
-
-    def _rise(self, offset: float) -> float:
-        """The tool's edge above its tip at an axial ``offset`` from its centre line."""
-        return _edge_rise(self.edge, self.slope, offset)
 
     def _reach(self, height: float) -> float:
         """How far from its centre line the edge stays below ``height`` above the tip."""
@@ -279,9 +276,12 @@ class _Profile:
     def cut(self, place: float, tip: float) -> float:
         """Takes a pass whose tip is at ``tip`` and centre line at ``place``; the area it
         removes."""
-        top = max(self.values)
-        if tip >= top:
+        top = self.top
+        if top is None:
+            top = self.top = max(self.values)
+        if tip >= top:  # most passes of a long job, once the profile is below them
             return 0.0
+        self.top = None
         lead = self.lead
         reach = min(self._reach(top - tip), lead / 2.0)
         start, end = place - reach, place + reach
@@ -329,24 +329,40 @@ class _Profile:
             offset = u - centre if u >= centre else centre - u
             if offset >= last_offset:
                 new.append(tip + last_rise + (offset - last_offset) * slope)
-            else:
-                new.append(tip + self._rise(offset))
+            else:  # _edge_rise, inline: this loop runs for every vertex of every pass
+                e = bisect_right(edge, (offset, math.inf))
+                (e0, r0), (e1, r1) = edge[e - 1], edge[e]
+                new.append(tip + (r0 + (r1 - r0) * (offset - e0) / (e1 - e0)))
         out_u: list[float] = []
         out_v: list[float] = []
         area = 0.0
         d0 = 0.0
+        u0 = 0.0
+        # The area of the positive part of old - new over each piece, and _append, inline.
         for k, u in enumerate(points):
-            d1 = old[k] - new[k]
+            v_old = old[k]
+            d1 = v_old - new[k]
             if k:
-                u0 = points[k - 1]
                 if (d0 > 0.0) != (d1 > 0.0) and d0 != d1:
                     t = d0 / (d0 - d1)
                     cross = u0 + (u - u0) * t
                     if u0 < cross < u:
-                        _append(out_u, out_v, cross, old[k - 1] + (old[k] - old[k - 1]) * t)
-                area += _positive_part(d0, d1, u - u0)
-            _append(out_u, out_v, u, old[k] if d1 <= 0.0 else new[k])
-            d0 = d1
+                        _append(out_u, out_v, cross, old[k - 1] + (v_old - old[k - 1]) * t)
+                if d0 >= 0.0 and d1 >= 0.0:
+                    area += (d0 + d1) / 2.0 * (u - u0)
+                elif d0 > 0.0 or d1 > 0.0:
+                    positive, negative = (d0, d1) if d0 > 0.0 else (d1, d0)
+                    area += positive * positive / (positive - negative) / 2.0 * (u - u0)
+            v = v_old if d1 <= 0.0 else new[k]
+            if len(out_u) >= 2:
+                p0, q0, p1, q1 = out_u[-2], out_v[-2], out_u[-1], out_v[-1]
+                if u > p0 and abs(q0 + (v - q0) * (p1 - p0) / (u - p0) - q1) <= 1e-12:
+                    out_u[-1], out_v[-1] = u, v
+                    d0, u0 = d1, u
+                    continue
+            out_u.append(u)
+            out_v.append(v)
+            d0, u0 = d1, u
         # Splice: the old vertices strictly inside (a, b) give way to the new ones; a and b
         # themselves are vertices from now on.
         left = lo - 1 if places[lo - 1] == a else lo
@@ -423,16 +439,6 @@ def penetration(cut: CrossSection, place: float, tip: float) -> float:
         h = hs[k] if u1 == u0 else hs[k - 1] + (hs[k] - hs[k - 1]) * (u - u0) / (u1 - u0)
         worst = max(worst, h - (low + _edge_rise(edge, slope, apart)))
     return worst
-
-
-def _positive_part(d0: float, d1: float, width: float) -> float:
-    """The area of max(d, 0) over a piece where d goes linearly from d0 to d1."""
-    if d0 >= 0.0 and d1 >= 0.0:
-        return (d0 + d1) / 2.0 * width
-    if d0 <= 0.0 and d1 <= 0.0:
-        return 0.0
-    positive, negative = (d0, d1) if d0 > 0.0 else (d1, d0)
-    return positive * positive / (positive - negative) / 2.0 * width
 
 
 def _append(us: list[float], vs: list[float], u: float, v: float) -> None:
