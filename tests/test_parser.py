@@ -819,6 +819,16 @@ def test_numbers_too_large_for_a_float_never_raise(text: str) -> None:
     assert GRAMMAR.parse_line(text).text == text
 
 
+@pytest.mark.parametrize(
+    "text",
+    ["C-99999999999999", "X+1.555555555555 Y1", "X - 99999999999999", "X[1] Y-9999999999999"],
+)
+def test_a_number_too_long_is_named_without_its_sign_as_the_grammar_names_it(text: str) -> None:
+    got = BlockParser().parse_line(text).problem
+    assert got is not None and got == GRAMMAR.parse_line(text).problem
+    assert "the number 9" in got.message or "the number 1" in got.message
+
+
 # ---- the fast path gives what the grammar gives -----------------------------------------------
 
 

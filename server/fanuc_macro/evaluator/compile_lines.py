@@ -12,6 +12,7 @@ import re
 import zlib
 from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass, field
+from operator import itemgetter
 from types import MappingProxyType
 
 from ..database import TableKey, current
@@ -75,6 +76,18 @@ class CompiledLine:
     ends_program: bool = False  # M02/M30: the program is a main program
     # One line in eight, by its text: where the run may take a checkpoint (see Machine._loop).
     boundary: bool = False
+    # How the run reads ``reads`` for the facts when they are locals: the one local's number,
+    # or a function of the locals that gives their values in a tuple (0, None: otherwise).
+    read_local: int = field(default=0, compare=False)
+    read_locals: Callable[[list[Value]], tuple[Value, ...]] | None = field(
+        default=None, compare=False
+    )
+    local_target: int = field(default=0, compare=False)  # target_number when it is #1-#33
+    # An assignment to a local that reads variables: the run keeps each value it writes in
+    # the list of its reads, after them (see MachineBase._read_buffer).
+    writes_after_reads: bool = field(default=False, compare=False)
+    # A WHILE that reads variables: the run keeps whether its test held in that list too.
+    turns_after_reads: bool = field(default=False, compare=False)
 
 
 @dataclass(slots=True)
@@ -144,6 +157,8 @@ def _compile_assign(kind: int, assign: Assign, text: str | None) -> CompiledLine
     compiled = CompiledLine(kind, value=_compile_word(assign.value, False, text), node=assign)
     if target.number is not None:
         compiled.target_number = int(target.number) if target.number == int(target.number) else -1
+        if 1 <= compiled.target_number <= 33:
+            compiled.local_target = compiled.target_number
     else:
         assert target.index is not None
         compiled.target = compile_expr(target.index)
@@ -166,6 +181,7 @@ def compile_statement(statement: Statement | None, text: str | None = None) -> C
         first = compile_statement(statement.nc, text)
         first.second = compile_statement(statement.macro, text)
         first.reads = reads
+        _set_local_reads(first)
         return first
     if isinstance(statement, Assign):
         c = _compile_assign(K_ASSIGN, statement, text)
@@ -197,8 +213,20 @@ def compile_statement(statement: Statement | None, text: str | None = None) -> C
     else:
         c = CompiledLine(K_OTHER, node=statement)
     c.reads = reads
+    _set_local_reads(c)
     c.ends_program = _ends_program(statement)
     return c
+
+
+def _set_local_reads(c: CompiledLine) -> None:
+    reads = c.reads
+    c.writes_after_reads = c.kind == K_ASSIGN and bool(reads) and c.local_target > 0
+    c.turns_after_reads = c.kind == K_WHILE and bool(reads)
+    if reads and all(1 <= n <= 33 for n in reads):
+        if len(reads) == 1:
+            c.read_local = reads[0]
+        else:
+            c.read_locals = itemgetter(*reads)
 
 
 def _folded(_: object) -> Value:

@@ -6,7 +6,6 @@ is what makes a few hundred thousand macro statements a second possible in Pytho
 
 from __future__ import annotations
 
-import operator
 from collections.abc import Callable, Mapping
 from itertools import islice
 from types import MappingProxyType
@@ -205,7 +204,12 @@ def _compile_node(node: Expr, in_address: bool, children: list[_Compiled]) -> _C
     elif isinstance(node, Binary):
         right = children[1][1]
         evaluator = _compile_binary(
-            node, evaluators[0], evaluators[1], right if type(right) is _float else None
+            node,
+            evaluators[0],
+            evaluators[1],
+            right if type(right) is _float else None,
+            _local_number(node.left),
+            _local_number(node.right),
         )
     else:
         assert isinstance(node, Call)
@@ -332,44 +336,94 @@ def _slow_binary(expr: Binary, a: Value, b: Value) -> Value:
     raise _overflow(expr, x, y)
 
 
-# The operations that hold a number on their right in their closure (a division by zero
-# takes the general way, which raises the control's alarm).
-_NUMBER_OPS: Mapping[str, Callable[[float, float], float]] = MappingProxyType(
-    {"+": operator.add, "-": operator.sub, "*": operator.mul, "/": operator.truediv}
-)
+def _local_number(expr: Expr) -> int:
+    """``n`` when ``expr`` reads local #n directly, else 0: an operation reads such an operand
+    itself, without the call of a reader."""
+    if type(expr) is Var and expr.number is not None:
+        n = int(expr.number)
+        if n == expr.number and 1 <= n <= 33:
+            return n
+    return 0
 
 
-def _with_number(
-    expr: Binary, left: Evaluator, fn: Callable[[float, float], float], c: float
-) -> Evaluator:
-    def with_number(f: Frame) -> Value:
-        a = left(f)
+def _with_number(expr: Binary, left: Evaluator, c: float, n: int) -> Evaluator:
+    """``left op c`` for a number ``c`` (not 0 for "/"), ``left`` local #n when ``n``: the
+    closure holds the number, and the operation on other values is shared. One closure per
+    operator, written out: the operator as a parameter would cost a call or a test on every
+    run of the block, the loop's hottest path."""
+    op = expr.op
+    if op == "+":
+
+        def add_number(f: Frame) -> Value:
+            a = f.locals[n] if n else left(f)
+            if a.__class__ is _float:
+                result = a + c
+                if -_LARGEST <= result <= _LARGEST:
+                    return result
+                raise _overflow(expr, a, c)
+            return _slow_binary(expr, a, c)
+
+        return add_number
+    if op == "-":
+
+        def sub_number(f: Frame) -> Value:
+            a = f.locals[n] if n else left(f)
+            if a.__class__ is _float:
+                result = a - c
+                if -_LARGEST <= result <= _LARGEST:
+                    return result
+                raise _overflow(expr, a, c)
+            return _slow_binary(expr, a, c)
+
+        return sub_number
+    if op == "*":
+
+        def mul_number(f: Frame) -> Value:
+            a = f.locals[n] if n else left(f)
+            if a.__class__ is _float:
+                result = a * c
+                if -_LARGEST <= result <= _LARGEST:
+                    return result
+                raise _overflow(expr, a, c)
+            return _slow_binary(expr, a, c)
+
+        return mul_number
+
+    def div_number(f: Frame) -> Value:
+        a = f.locals[n] if n else left(f)
         if a.__class__ is _float:
-            result = fn(a, c)
+            result = a / c
             if -_LARGEST <= result <= _LARGEST:
                 return result
             raise _overflow(expr, a, c)
         return _slow_binary(expr, a, c)
 
-    return with_number
+    return div_number
 
 
 def _compile_binary(
-    expr: Binary, left: Evaluator, right: Evaluator, constant_right: float | None
+    expr: Binary,
+    left: Evaluator,
+    right: Evaluator,
+    constant_right: float | None,
+    ln: int = 0,
+    rn: int = 0,
 ) -> Evaluator:
     """``constant_right``: the right operand's value when it is a number (``#100+3.``): the
-    closure holds it, and needs no closure of the number. A closure holds only what it reads
-    (the operands, the node); the operation on other values is shared."""
+    closure holds it, and needs no closure of the number. ``ln``, ``rn``: the local an
+    operand reads directly (0: none), which the closure reads itself. A closure holds only
+    what it reads (the operands, the node); the operation on other values is shared."""
     op = expr.op
     # Each operation checks its result: an overflow is the control's alarm where it happens,
-    # with its operands, and no inf or NaN reaches the rest of the analysis.
+    # with its operands, and no inf or NaN reaches the rest of the analysis. A division by
+    # zero takes the general way, which raises the control's alarm.
     if constant_right is not None and op in _NUMBER_OPS and (op != "/" or constant_right):
-        return _with_number(expr, left, _NUMBER_OPS[op], constant_right)
+        return _with_number(expr, left, constant_right, ln)
     if op == "+":
 
         def add(f: Frame) -> Value:
-            a = left(f)
-            b = right(f)
+            a = f.locals[ln] if ln else left(f)
+            b = f.locals[rn] if rn else right(f)
             if a.__class__ is _float and b.__class__ is _float:
                 result = a + b
                 if -_LARGEST <= result <= _LARGEST:
@@ -381,8 +435,8 @@ def _compile_binary(
     if op == "-":
 
         def sub(f: Frame) -> Value:
-            a = left(f)
-            b = right(f)
+            a = f.locals[ln] if ln else left(f)
+            b = f.locals[rn] if rn else right(f)
             if a.__class__ is _float and b.__class__ is _float:
                 result = a - b
                 if -_LARGEST <= result <= _LARGEST:
@@ -394,8 +448,8 @@ def _compile_binary(
     if op == "*":
 
         def mul(f: Frame) -> Value:
-            a = left(f)
-            b = right(f)
+            a = f.locals[ln] if ln else left(f)
+            b = f.locals[rn] if rn else right(f)
             if a.__class__ is _float and b.__class__ is _float:
                 result = a * b
                 if -_LARGEST <= result <= _LARGEST:
@@ -407,8 +461,8 @@ def _compile_binary(
     if op == "/":
 
         def div(f: Frame) -> Value:
-            a = left(f)
-            b = right(f)
+            a = f.locals[ln] if ln else left(f)
+            b = f.locals[rn] if rn else right(f)
             if a.__class__ is _float and b.__class__ is _float and b:
                 result = a / b
                 if -_LARGEST <= result <= _LARGEST:
@@ -422,6 +476,9 @@ def _compile_binary(
         return _slow_binary(expr, left(f), right(f))
 
     return other
+
+
+_NUMBER_OPS = frozenset({"+", "-", "*", "/"})  # those _with_number makes
 
 
 def _near_integer(x: float) -> bool:
@@ -541,21 +598,22 @@ def compile_cond(cond: Cond) -> CondEvaluator:
     return done[0]
 
 
+def _compared(op: str, a: Value, b: Value) -> bool | Unknown:
+    """A comparison of what is not two numbers (vacant, unknown)."""
+    result = compare(op, a, b)
+    if result is None:
+        return merge_unknown(a, b)
+    return result
+
+
 def _compile_simple_cond(cond: Compare | BareCond) -> CondEvaluator:
     if isinstance(cond, Compare):
         left = compile_expr(cond.left)
-        right = compile_expr(cond.right)
-        op = cond.op
-
-        def cmp(f: Frame) -> bool | Unknown | None:
-            a = left(f)
-            b = right(f)
-            result = compare(op, a, b)
-            if result is None:
-                return merge_unknown(a, b)
-            return result
-
-        return cmp
+        ln = _local_number(cond.left)
+        number = cond.right.value if type(cond.right) is Num else None
+        if type(number) is _float:
+            return _compare_number(cond.op, left, ln, number)
+        return _compare(cond.op, left, ln, compile_expr(cond.right), _local_number(cond.right))
     value = compile_expr(cond.value)
 
     def bare(f: Frame) -> bool | Unknown | None:
@@ -565,6 +623,63 @@ def _compile_simple_cond(cond: Compare | BareCond) -> CondEvaluator:
         return v is not None and v != 0.0
 
     return bare
+
+
+def _compare_number(op: str, left: Evaluator, n: int, c: float) -> CondEvaluator:
+    """``left op c`` for a number ``c``, ``left`` local #n when ``n``: numbers compared in
+    the closure, each operator its own (the rest as ``compare`` has it)."""
+    if op == "LT":
+
+        def lt(f: Frame) -> bool | Unknown | None:
+            a = f.locals[n] if n else left(f)
+            return a < c if a.__class__ is _float else _compared(op, a, c)
+
+        return lt
+    if op == "LE":
+
+        def le(f: Frame) -> bool | Unknown | None:
+            a = f.locals[n] if n else left(f)
+            return a <= c if a.__class__ is _float else _compared(op, a, c)
+
+        return le
+    if op == "GT":
+
+        def gt(f: Frame) -> bool | Unknown | None:
+            a = f.locals[n] if n else left(f)
+            return a > c if a.__class__ is _float else _compared(op, a, c)
+
+        return gt
+    if op == "GE":
+
+        def ge(f: Frame) -> bool | Unknown | None:
+            a = f.locals[n] if n else left(f)
+            return a >= c if a.__class__ is _float else _compared(op, a, c)
+
+        return ge
+    if op == "EQ":
+
+        def eq(f: Frame) -> bool | Unknown | None:
+            a = f.locals[n] if n else left(f)
+            return a == c if a.__class__ is _float else _compared(op, a, c)
+
+        return eq
+
+    def ne(f: Frame) -> bool | Unknown | None:
+        a = f.locals[n] if n else left(f)
+        return a != c if a.__class__ is _float else _compared(op, a, c)
+
+    return ne
+
+
+def _compare(op: str, left: Evaluator, ln: int, right: Evaluator, rn: int) -> CondEvaluator:
+    """``left op right``, an operand local #n when its ``ln`` or ``rn`` is n."""
+
+    def cmp(f: Frame) -> bool | Unknown | None:
+        a = f.locals[ln] if ln else left(f)
+        b = f.locals[rn] if rn else right(f)
+        return _compared(op, a, b)
+
+    return cmp
 
 
 def _logic(first: CondEvaluator, rest: list[tuple[str, CondEvaluator]]) -> CondEvaluator:

@@ -10,7 +10,7 @@ from array import array
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field, replace
 from types import MappingProxyType
-from typing import TYPE_CHECKING, ClassVar, TypeVar
+from typing import TYPE_CHECKING, ClassVar, TypeVar, cast
 
 from .values import AlarmKind, Unknown, Value, fmt
 
@@ -115,6 +115,44 @@ class ValueSummary:
             return
         more = self._more = _Spread(1, first, self.minimum, self.maximum, self.vacant, self.unknown)
         more.add(value)
+
+    def add_all(self, values: list[Value]) -> None:
+        """``add`` of each value, in order: the run keeps a block's values of a stretch in a
+        list and adds them at once, numbers compared in C."""
+        if len(values) > 1:
+            numbers = cast("list[float]", values)
+            try:
+                total = sum(numbers)
+            except TypeError:  # a vacant or an unknown among them: one by one
+                total = math.nan
+            if total == total:  # numbers, no NaN (which add leaves out, and sorting misplaces)
+                # A stable sort of floats compares in C, several times faster than min and
+                # max: its first is min's (the earliest of equal ones, as ``add`` keeps);
+                # its last is the latest of equal ones, which differ for 0.0 and -0.0 only.
+                ordered = sorted(numbers)
+                low, high = ordered[0], ordered[-1]
+                if high == 0.0:
+                    high = max(numbers)
+                more = self._more
+                if more is None:
+                    first = self._first
+                    if isinstance(first, _Nothing):
+                        self._first = values[0]
+                        self._more = _Spread(len(values), values[-1], low, high, 0, None)
+                        return
+                    more = self._more = _Spread(
+                        1, first, self.minimum, self.maximum, self.vacant, self.unknown
+                    )
+                more.count += len(values)
+                more.last = values[-1]
+                if low < more.minimum:
+                    more.minimum = low
+                if high > more.maximum:
+                    more.maximum = high
+                return
+        add = self.add
+        for value in values:
+            add(value)
 
     @property
     def count(self) -> int:

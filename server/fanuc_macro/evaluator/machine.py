@@ -22,7 +22,7 @@ from ..line_maps import LineMap
 from ..program.index import ProgramIndex
 from ..program.variables import classify
 from ..syntax.tree import Document, ParsedLine, PlainNc
-from .checkpoints import LevelState, MachineState, ModalState
+from .checkpoints import CtxKey, LevelState, MachineState, ModalState
 from .compile_lines import (
     K_ASSIGN,
     K_EMPTY,
@@ -37,14 +37,17 @@ from .compile_lines import (
     CompiledLine,
     compiled,
 )
-from .facts import DocumentFacts, Facts, LoopNoTurn, ValueSummary
+from .facts import DocumentFacts, Facts, LoopNoTurn
 from .machine_base import (
     BLOCK_END_FIRST,
     BLOCK_END_LAST,
     MAX_MOTIONS,
     Activation,
+    Appendable,
+    Buffers,
     Converged,
     G76Parameters,
+    Lists,
     Modal,
     ProgramContext,
     Stepper,
@@ -143,6 +146,7 @@ class Machine(MotionPart):
         except StopRun as stop:
             return stop.reason
         finally:
+            self._flush_values()
             self.steps = self._steps
         return "end"
 
@@ -151,6 +155,7 @@ class Machine(MotionPart):
         resumed run, stop when the state is the earlier run's (see :mod:`.checkpoints`)."""
         if self.record is None:
             return
+        self._flush_values()  # the stretch's facts are complete at its checkpoint
         state = self.capture(act, done)
         resumption = self.resumption
         if resumption is not None:
@@ -174,6 +179,8 @@ class Machine(MotionPart):
     def _begin_segment(self, state: MachineState) -> None:
         record = self.record
         assert record is not None
+        self._flush_values()
+        self._buffers_of.clear()  # those of the stretch that ends
         self._checkpointed = state.done
         self._cuts_seen = {}
         record.checkpoints.append(state)
@@ -313,8 +320,9 @@ class Machine(MotionPart):
         self.use_machine_of(contexts[state.levels[0].ctx])
         return caller
 
-    def _loop(self, act: Activation, done: int = 0) -> None:
-        steps = self._steps = done
+    def _loop_start(self, done: int) -> tuple[int, int, frozenset[tuple[CtxKey, int]] | None]:
+        """When the loop of :meth:`_loop` first looks at the budgets (``next_check``) and
+        takes a checkpoint (``next_due``), and where a resumed run may meet the earlier one."""
         budget = self.budget
         # Block budget + 1: the budget's last block still runs, and the run stops before the
         # next, at the same block on any machine.
@@ -327,79 +335,162 @@ class Machine(MotionPart):
         # A resumed run also checks at each boundary line where the earlier run has a
         # checkpoint it may meet (see Resumption.meet_at).
         meet_at = self.resumption.meet_at if recording and self.resumption is not None else None
-        looking = bool(meet_at)
-        wanted = looking  # a checkpoint is due at the next boundary line
         next_due = self._checkpointed + CHECKPOINT_EVERY + 1 if recording else budget + 1
+        return next_check, next_due, meet_at
+
+    def _events(
+        self,
+        act: Activation,
+        cl: CompiledLine,
+        steps: int,
+        next_check: int,
+        next_due: int,
+        wanted: bool,
+        meet_at: frozenset[tuple[CtxKey, int]] | None,
+    ) -> tuple[int, int, int, bool]:
+        """Before block ``steps`` of :meth:`_loop`: the look at the budgets (:meth:`_event`)
+        or the checkpoint due at this boundary line; the next of each and the first of them,
+        and whether a checkpoint is wanted at the next boundary line."""
+        self._steps = steps
+        looking = bool(meet_at)
+        if steps >= min(next_check, next_due):
+            next_check, next_due, wanted = self._event(act, cl, next_check, next_due, wanted)
+            wanted = wanted or looking
+        elif not looking or steps - 1 - self._checkpointed >= CHECKPOINT_EVERY:
+            wanted = looking
+            next_due = self._checkpoint_here(act)
+        elif meet_at is not None and ((act.ctx.uri, act.ctx.program.first_line), act.pc) in meet_at:
+            next_due = self._checkpoint_here(act)
+        return next_check, next_due, min(next_check, next_due), wanted
+
+    def _loop(self, act: Activation, done: int = 0) -> None:
+        steps = self._steps = done
+        next_check, next_due, meet_at = self._loop_start(done)
+        wanted = bool(meet_at)  # a checkpoint is due at the next boundary line
         next_event = min(next_check, next_due)
         stepper = self.stepper
         custom_calls = self.config.custom_calls  # codes the parameters make call (often none)
+        smallest, largest = self.value_range
+        # ``self._steps`` is set where something else reads it (an event, the debugger, a stop);
+        # what the loop reads of the program and of the facts, when either changes.
         while True:
+            running = act
             ctx = act.ctx
-            pc = act.pc
-            if pc >= ctx.program.end_line:
-                act = self._past_end(act)
-                continue
-            cl = ctx.lines[pc]
-            kind = cl.kind
-            self._line = pc  # the block being executed, for the facts and findings
-            steps += 1
-            self._steps = steps
-            if steps >= next_event:
-                next_check, next_due, wanted = self._event(act, cl, next_check, next_due, wanted)
-                wanted = wanted or looking
-                next_event = min(next_check, next_due)
-            elif wanted and cl.boundary:
-                if not looking or steps - 1 - self._checkpointed >= CHECKPOINT_EVERY:
-                    wanted = looking
-                    next_due = self._checkpoint_here(act)
-                    next_event = min(next_check, next_due)
-                elif meet_at is not None and ((ctx.uri, ctx.program.first_line), pc) in meet_at:
-                    next_due = self._checkpoint_here(act)
-                    next_event = min(next_check, next_due)
-            if stepper is not None:
-                stepper.before(act, pc)
+            lines = ctx.lines
+            end_line = ctx.program.end_line
+            loop_do = ctx.loop_do
+            locals_ = act.locals
             facts = ctx.facts
-            runs = facts.runs
-            runs[pc] = runs.get(pc, 0) + 1
-            if cl.reads:
-                self._record_reads(act, cl, facts)
-            try:
-                if kind == K_NC:  # most blocks: first
-                    if custom_calls and (call := self._custom_setting(act, cl)) is not None:
-                        act = self._custom_call(act, cl, call)
+            runs, buffers, read_buffers = self._recording(facts)
+            while True:
+                pc = act.pc
+                if pc >= end_line:
+                    act = self._past_end(act, steps)
+                    break
+                cl = lines[pc]
+                self._line = pc  # the block being executed, for the facts and findings
+                steps += 1
+                if steps >= next_event or (wanted and cl.boundary):
+                    next_check, next_due, next_event, wanted = self._events(
+                        act, cl, steps, next_check, next_due, wanted, meet_at
+                    )
+                    if ctx.facts is not facts:  # a checkpoint began a stretch of facts
+                        facts = ctx.facts
+                        runs, buffers, read_buffers = self._recording(facts)
+                if stepper is not None:
+                    self._steps = steps
+                    stepper.before(act, pc)
+                try:
+                    if cl.reads:  # the list of its reads counts its runs
+                        kept = read_buffers.get(pc)
+                        if kept is None:  # its first or second run in the stretch
+                            found: Appendable = self._first_reads(buffers, facts, pc, cl, act)
+                        else:
+                            n = cl.read_local
+                            if n:
+                                kept.append(locals_[n])
+                            elif (getter := cl.read_locals) is not None:
+                                kept += getter(locals_)
+                            else:
+                                self._read_into(act, cl, kept)
+                            found = kept  # takes its write or turn
                     else:
-                        act = self._nc(act, cl)
-                    if cl.second is not None and act.ctx is ctx and act.pc == pc + 1:
-                        act.pc = pc
-                        self._run_second(act, cl.second, facts)
-                elif kind in (K_EMPTY, K_OTHER):
-                    act.pc = pc + 1
-                elif kind == K_ASSIGN:
-                    self._assign(act, cl, facts)
-                    act.pc = pc + 1
-                elif kind == K_IFGOTO:
-                    act.pc = self._if_goto(act, cl, facts)
-                elif kind == K_GOTO:
-                    act.pc = self._goto(act, cl)
-                elif kind == K_IFTHEN:
-                    self._if_then(act, cl, facts)
-                    act.pc = pc + 1
-                elif kind == K_WHILE:
-                    act.pc = self._while(act, cl, facts)
-                elif kind == K_END:
-                    do_line = ctx.loop_do.get(pc)
-                    act.pc = pc + 1 if do_line is None else do_line
-                elif kind == K_HEADER:
-                    act.pc = pc + 1
-            except MacroAlarm as alarm:
-                self._stop_at_alarm(act, cl, alarm)
-            except StopRun as stop:
-                if stop.reason != "end of program":
-                    self._mark_incomplete(act)
-                raise
+                        runs[pc] = runs.get(pc, 0) + 1
+                    kind = cl.kind
+                    if kind == K_ASSIGN:
+                        value = cl.value(act)  # type: ignore[misc]
+                        n = cl.local_target
+                        # A number to a local, within the control's range and not below its
+                        # smallest magnitude: the rest in _store.
+                        if (
+                            n
+                            and value.__class__ is float
+                            and (smallest <= value <= largest or -largest <= value <= -smallest)
+                        ):
+                            locals_[n] = value
+                        else:
+                            stored = self._store(act, cl, value)
+                            if stored is None:
+                                act.pc = pc + 1
+                                continue
+                            n, value = stored
+                        if cl.writes_after_reads:
+                            found.append(value)  # with its reads
+                        else:
+                            self._write(buffers, facts, pc, n, value)
+                        act.pc = pc + 1
+                    elif kind == K_WHILE:
+                        result = True if cl.cond is None else cl.cond(act)
+                        if result is True and not self.speculative:
+                            if cl.turns_after_reads:
+                                found.append(True)  # counted with its reads
+                            else:
+                                facts.jump_count(pc).taken += 1
+                            act.loops_turning.add(pc)
+                            act.pc = pc + 1
+                        else:
+                            if cl.turns_after_reads:
+                                found.append(None)  # counted by _while
+                            act.pc = self._while(act, cl, facts, result)
+                    elif kind == K_END:
+                        do_line = loop_do.get(pc)
+                        act.pc = pc + 1 if do_line is None else do_line
+                    elif kind == K_NC:  # after the macro statements, which cost less
+                        if custom_calls and (call := self._custom_setting(act, cl)) is not None:
+                            act = self._custom_call(act, cl, call)
+                        else:
+                            act = self._nc(act, cl)
+                        if cl.second is not None and act.ctx is ctx and act.pc == pc + 1:
+                            act.pc = pc
+                            self._run_second(act, cl.second, facts)
+                        if act is not running:  # a call or a return
+                            break
+                    elif kind == K_IFGOTO:
+                        act.pc = self._if_goto(act, cl, facts)
+                    elif kind in (K_EMPTY, K_OTHER, K_HEADER):
+                        act.pc = pc + 1
+                    elif kind == K_GOTO:
+                        act.pc = self._goto(act, cl)
+                    elif kind == K_IFTHEN:
+                        act.pc = self._if_then(act, cl, facts)
+                except BaseException as stop:
+                    self._steps = steps
+                    if isinstance(stop, MacroAlarm):
+                        self._stop_at_alarm(act, cl, stop)
+                    if isinstance(stop, StopRun) and stop.reason != "end of program":
+                        self._mark_incomplete(act)
+                    raise
 
-    def _past_end(self, act: Activation) -> Activation:
-        """The run is past the last line of its program: it returns, as after M99."""
+    def _recording(self, facts: DocumentFacts) -> tuple[dict[int, int], Buffers, Lists]:
+        """What the block loop records into, of ``facts``: the runs, the lists of values read
+        and written, those of the values read."""
+        buffers = self._buffers(facts)
+        return facts.runs, buffers, buffers[0]
+
+    def _past_end(self, act: Activation, steps: int) -> Activation:
+        """The run is past the last line of its program, ``steps`` blocks done: it returns,
+        as after M99."""
+        self._steps = steps
         ctx = act.ctx
         unread = ctx.doc.unread_from
         if unread is not None and ctx.program.end_line >= unread:
@@ -431,6 +522,8 @@ class Machine(MotionPart):
             if self.cancel is not None:
                 self.cancel.reached(RUNNING, steps - 1, budget)
             next_check = min(steps + CHECK_EVERY, budget + 1)
+            if self.record is None:
+                self._flush_values()  # no checkpoints (a debugger's run): keep the lists short
         if self.record is not None:
             since = steps - 1 - self._checkpointed
             # No boundary line in four intervals (a loop without one): take it here.
@@ -468,7 +561,7 @@ class Machine(MotionPart):
         assert cl.cond is not None
         pc = self._line
         result = cl.cond(act)
-        jc = facts.jump_count(pc)
+        jc = facts.jumps.get(pc) or facts.jump_count(pc)
         if result is True:
             jc.taken += 1
             jc.guessed += self.speculative
@@ -488,8 +581,8 @@ class Machine(MotionPart):
         seen.add(pc)
         return pc + 1
 
-    def _if_then(self, act: Activation, cl: CompiledLine, facts: DocumentFacts) -> None:
-        """``IF [c] THEN #n = ...``."""
+    def _if_then(self, act: Activation, cl: CompiledLine, facts: DocumentFacts) -> int:
+        """``IF [c] THEN #n = ...``; the line to run next."""
         assert cl.cond is not None
         result = cl.cond(act)
         jc = facts.jump_count(self._line)
@@ -504,6 +597,7 @@ class Machine(MotionPart):
             jc.undecided += 1
             self.speculative = True
             self._assign(act, cl, facts, unknown=result)
+        return self._line + 1
 
     def _run_second(self, act: Activation, cl: CompiledLine, facts: DocumentFacts) -> None:
         if cl.kind == K_ASSIGN:
@@ -522,7 +616,16 @@ class Machine(MotionPart):
         unknown: Unknown | None = None,
     ) -> None:
         assert cl.value is not None
-        value = cl.value(act)
+        stored = self._store(act, cl, cl.value(act), unknown)
+        if stored is None:
+            return
+        self._write(self._buffers(facts), facts, self._line, stored[0], stored[1])
+
+    def _store(
+        self, act: Activation, cl: CompiledLine, value: Value, unknown: Unknown | None = None
+    ) -> tuple[int, Value] | None:
+        """Assign ``value`` to the line's target; the variable and the value written, or None
+        when nothing is recorded (an unknown index, a Haas variable)."""
         if value.__class__ is float:
             smallest, largest = self.value_range
             if not -largest <= value <= largest:  # NaN fails both comparisons
@@ -545,7 +648,7 @@ class Machine(MotionPart):
             assert cl.target is not None
             index = cl.target(act)
             if isinstance(index, Unknown):
-                return
+                return None
             n = 0 if index is None else round(index)
             kind = classify(n)
             if kind.kind == "none":
@@ -563,7 +666,7 @@ class Machine(MotionPart):
                     float(n),
                 )
         if n < 0:
-            return  # #30001.116 and the like: not FANUC, reported by MB002
+            return None  # #30001.116 and the like: not FANUC, reported by MB002
         if 1 <= n <= 33:
             act.locals[n] = value
         elif n == 0:
@@ -582,10 +685,7 @@ class Machine(MotionPart):
                 )
             if not _volatile(n):
                 self.store[n] = value
-        write = facts.writes.get(self._line)
-        if write is None:
-            write = facts.writes[self._line] = (n, ValueSummary())
-        write[1].add(value)
+        return n, value
 
     def _goto(self, act: Activation, cl: CompiledLine) -> int:
         assert cl.target is not None
@@ -612,10 +712,12 @@ class Machine(MotionPart):
             )
         return line
 
-    def _while(self, act: Activation, cl: CompiledLine, facts: DocumentFacts) -> int:
+    def _while(
+        self, act: Activation, cl: CompiledLine, facts: DocumentFacts, result: object
+    ) -> int:
+        """The line after a WHILE whose condition gave ``result``."""
         pc = self._line
         end = act.ctx.loop_end.get(pc)
-        result: object = True if cl.cond is None else cl.cond(act)
         jc = facts.jump_count(pc)
         if result is True:
             jc.taken += 1
@@ -623,7 +725,11 @@ class Machine(MotionPart):
             act.loops_turning.add(pc)
             return pc + 1
         if result is False:
-            if pc not in act.loops_turning and jc.taken >= 2 and not self.speculative:
+            if (
+                pc not in act.loops_turning
+                and not self.speculative
+                and jc.taken + self._turns_kept(facts, cl, pc) >= 2
+            ):
                 self._no_turn(act, cl, pc, end)  # entered again, and runs no turn
             act.loops_turning.discard(pc)
             jc.not_taken += 1
@@ -638,6 +744,14 @@ class Machine(MotionPart):
         if end is None:
             raise StopRun("no END")
         return end + 1
+
+    def _turns_kept(self, facts: DocumentFacts, cl: CompiledLine, line: int) -> int:
+        """The turns of a WHILE in its list of reads, not yet counted in its jumps."""
+        found = self._buffers(facts)[0].get(line)
+        if found is None or not cl.turns_after_reads:
+            return 0
+        count = len(cl.reads)
+        return found[count :: count + 1].count(True)
 
     def _no_turn(self, act: Activation, cl: CompiledLine, pc: int, end: int | None) -> None:
         """A WHILE that ran turns before in the run and now runs none, its condition on a

@@ -30,6 +30,7 @@ from .facts import (
     EndlessLoop,
     Facts,
     Finding,
+    JumpCount,
     LongLoop,
     PollingLoop,
     Rounding,
@@ -55,6 +56,19 @@ SKIP_FIRST, SKIP_LAST = 5061, 5080
 RAPID_ONE_SHOTS = frozenset({27.0, 28.0, 30.0, 53.0})
 LOCAL_COORDINATES = 52.0  # G52: where the tool is in work coordinates changes, not known here
 MAX_MOTIONS = 200_000  # motion records kept per analysis
+# A stretch's lists of values read and written, by line (see MachineBase._buffers).
+Lists = dict[int, list[object]]
+Buffers = tuple[Lists, Lists]
+# A list of a block's values and their summaries; the runs counted by its length, the line, and
+# the writes or the jumps of the facts when the list holds the block's writes or turns too.
+Unsummed = tuple[
+    tuple["ValueSummary", ...],
+    list[object],
+    dict[int, int] | None,
+    int,
+    "dict[int, tuple[int, ValueSummary]] | None",
+    "dict[int, JumpCount] | None",
+]
 
 
 @dataclass(eq=False, repr=False)
@@ -308,6 +322,41 @@ def system_a_block(
     return values, g_codes, incremental
 
 
+class Appendable(Protocol):
+    """What takes the value a block writes or its WHILE's test: a list or a ``RecordNow``."""
+
+    def append(self, value: object, /) -> None: ...
+
+
+@dataclass(frozen=True, slots=True)
+class _Nowhere:
+    """What takes the write or turn of a block that has none to record."""
+
+    def append(self, value: object, /) -> None:
+        pass
+
+
+_NOWHERE = _Nowhere()
+
+
+class RecordNow:
+    """What takes the write of a block's first run in a stretch of facts, or its WHILE's
+    turn, where later runs' go to its list: the facts themselves."""
+
+    __slots__ = ("facts", "line", "number")
+
+    def __init__(self, facts: DocumentFacts, line: int, number: int | None) -> None:
+        self.facts = facts
+        self.line = line
+        self.number = number  # the variable written; None: a WHILE
+
+    def append(self, value: object, /) -> None:
+        if self.number is not None:
+            MachineBase._write_now(self.facts, self.line, self.number, value)  # type: ignore[arg-type]
+        elif value is True:  # a turn; None: counted by Machine._while
+            self.facts.jump_count(self.line).taken += 1
+
+
 class MachineBase:
     """The state of a run and what its parts report through."""
 
@@ -386,6 +435,9 @@ class MachineBase:
         self._profile_code: float | None = None
         self._profile_blocks = 0  # blocks of profiles read or run in this run
         self._line = 0  # the block being executed, for the facts and findings
+        # Values read and written not yet in their summaries (see _buffers).
+        self._buffers_of: dict[DocumentFacts, Buffers] = {}
+        self._unsummed: list[Unsummed] = []
 
     def unknown_of(self, number: int) -> Unknown:
         u = self._unknowns.get(number)
@@ -464,9 +516,163 @@ class MachineBase:
                 out[n] = self.unknown_of(n) if v is act else v  # type: ignore[assignment]
         return out
 
-    def _record_reads(self, act: Activation, cl: CompiledLine, facts: DocumentFacts) -> None:
+    # What a block runs again in a stretch of facts (a loop's blocks) is kept in lists, one
+    # per block, and added to the summaries at once when the stretch ends, when the run stops
+    # and before anything reads them (``_flush_values``): a list's append costs a tenth of a
+    # summary's ``add``. A block's first run in the stretch is recorded at once, as before,
+    # which makes the facts' keys in their order; later runs go to the lists: the values read
+    # and then written (``writes_after_reads``) or the WHILE's test (``turns_after_reads``),
+    # the list's length counting the runs of a block that reads variables.
+
+    def _buffers(self, facts: DocumentFacts) -> Buffers:
+        """The lists of the values read and written, by line, of ``facts`` (the block loop
+        keeps those of the facts it is recording)."""
+        found = self._buffers_of.get(facts)
+        if found is None:
+            found = self._buffers_of[facts] = ({}, {})
+        return found
+
+    def _first_reads(
+        self, buffers: Buffers, facts: DocumentFacts, line: int, cl: CompiledLine, act: Activation
+    ) -> Appendable:
+        """The run of a block that reads variables and has no list yet: its first in the
+        stretch, recorded at once with its reads, or a later one, which begins its list. What
+        takes this run's write or turn (see _buffers): the list, or a ``RecordNow``."""
+        runs = facts.runs
+        if line in runs:
+            found = self._read_buffer(buffers[0], facts, line, cl)
+            self._read_into(act, cl, found)
+            return found
+        runs[line] = 1
+        self._add_reads(act, cl, facts, line)
+        if cl.writes_after_reads:
+            return RecordNow(facts, line, cl.local_target)
+        if cl.turns_after_reads:
+            return RecordNow(facts, line, None)
+        return _NOWHERE
+
+    def _write(
+        self, buffers: Buffers, facts: DocumentFacts, line: int, number: int, value: Value
+    ) -> None:
+        """A write of ``value`` to #``number`` at ``line`` not kept with its reads: to its
+        list, or if none yet, at once (its first in the stretch) or to a new list."""
+        found = buffers[1].get(line)
+        if found is not None:
+            found.append(value)
+        elif line in facts.writes:
+            self._write_buffer(buffers[1], facts, line, number).append(value)
+        else:
+            self._write_now(facts, line, number, value)
+
+    @staticmethod
+    def _write_now(facts: DocumentFacts, line: int, number: int, value: Value) -> None:
+        write = facts.writes.get(line)
+        if write is None:
+            write = facts.writes[line] = (number, ValueSummary())
+        write[1].add(value)
+
+    def _read_buffer(
+        self, buffers: dict[int, list[object]], facts: DocumentFacts, line: int, cl: CompiledLine
+    ) -> list[object]:
+        """The list of the values ``cl`` reads at ``line``, each run's in the order of
+        ``cl.reads``, and then the value it writes (``cl.writes_after_reads``) or whether its
+        test held (``cl.turns_after_reads``: True, None when counted in the jumps already),
+        with their summaries; the runs it counts are added to ``facts.runs`` with them."""
+        runs = facts.runs
         reads = facts.reads
-        line = self._line
+        summaries: list[ValueSummary] = []
+        for n in cl.reads:
+            key = (line, n)
+            summary = reads.get(key)
+            if summary is None:
+                summary = reads[key] = ValueSummary()
+            summaries.append(summary)
+        writes = None
+        if cl.writes_after_reads:
+            writes = facts.writes
+            write = writes.get(line)
+            if write is None:
+                write = writes[line] = (cl.local_target, ValueSummary())
+            summaries.append(write[1])
+        jumps = None
+        if cl.turns_after_reads:
+            jumps = facts.jumps
+            if line not in jumps:
+                jumps[line] = JumpCount()
+        found = buffers[line] = []
+        self._unsummed.append((tuple(summaries), found, runs, line, writes, jumps))
+        return found
+
+    def _write_buffer(
+        self, buffers: dict[int, list[object]], facts: DocumentFacts, line: int, number: int
+    ) -> list[object]:
+        """The list of the values written at ``line``, with its summary."""
+        write = facts.writes.get(line)
+        if write is None:
+            write = facts.writes[line] = (number, ValueSummary())
+        found = buffers[line] = []
+        self._unsummed.append(((write[1],), found, None, line, None, None))
+        return found
+
+    def _flush_values(self) -> None:
+        """Add the values kept in lists to their summaries."""
+        unsummed = self._unsummed
+        if not unsummed:
+            return
+        for summaries, values, runs, line, write_facts, jumps in unsummed:
+            count = len(summaries)
+            stride = count if jumps is None else count + 1
+            size = len(values)
+            if size <= stride:  # one run: most blocks of a stretch
+                if runs is not None:
+                    runs[line] += 1
+                for summary, value in zip(summaries, values, strict=False):
+                    summary.add(value)  # type: ignore[arg-type]
+            else:
+                if runs is not None:
+                    # Each run's values; the last one's write or test is missing when an
+                    # alarm stopped the run in its block.
+                    runs[line] += (size + stride - 1) // stride
+                if stride == 1:
+                    summaries[0].add_all(values)  # type: ignore[arg-type]
+                else:
+                    for i, summary in enumerate(summaries):
+                        summary.add_all(values[i::stride])  # type: ignore[arg-type]
+            # What a list made for a run that an alarm stopped before its write or test goes
+            # (no summary or count of the facts is ever empty).
+            if write_facts is not None and not summaries[-1].count:
+                del write_facts[line]
+            if jumps is not None:
+                jc = jumps[line]
+                jc.taken += values[count::stride].count(True)
+                if not (jc.taken or jc.not_taken or jc.undecided):
+                    del jumps[line]
+        unsummed.clear()
+        for reads, writes in self._buffers_of.values():
+            reads.clear()
+            writes.clear()
+
+    def _read_into(self, act: Activation, cl: CompiledLine, found: list[object]) -> None:
+        """What the block's direct variables hold, added to ``found`` in order."""
+        locals_ = act.locals
+        store = self.store
+        for n in cl.reads:
+            if n <= 33:
+                found.append(locals_[n])
+            else:
+                v = store.get(n, act)
+                found.append(act.read_global(n) if v is act else v)
+
+    def _record_reads(self, act: Activation, cl: CompiledLine, facts: DocumentFacts) -> None:
+        """The reads of a block counted in ``facts.runs`` already (a profile's), after those
+        kept in lists."""
+        self._flush_values()
+        self._add_reads(act, cl, facts, self._line)
+
+    def _add_reads(
+        self, act: Activation, cl: CompiledLine, facts: DocumentFacts, line: int
+    ) -> None:
+        reads = facts.reads
         locals_ = act.locals
         store = self.store
         for n in cl.reads:
@@ -565,6 +771,7 @@ class MachineBase:
         return message
 
     def _budget_spent(self, act: Activation) -> None:
+        self._flush_values()  # the verdict reads the summaries
         ctx = act.ctx
         facts = self._document_so_far(ctx)
         program = ctx.program

@@ -29,6 +29,7 @@ from ..database import TableKey, current
 from ..lazy_regex import LazyPattern
 from . import dialects, grammar_tables
 from .diff import Diff
+from .fast_statements import fast_statement
 from .lalr_driver import (
     TABLES_FORMAT,
     TableParser,
@@ -385,6 +386,8 @@ def _fast_value(text: str, start: int) -> Expr:
             return Unary("-", var, shared_span(start, end))
         return var
     compact = text.replace(" ", "").replace("\t", "")
+    if len(body) > MAX_DIGITS:
+        _to_float(body)  # the grammar reads the sign apart: a number too long is named without it
     return Num(_to_float(compact), compact, shared_span(start, end))
 
 
@@ -537,7 +540,7 @@ def _fast_parse(
                     continue
             if len(number) > MAX_DIGITS:
                 try:
-                    _to_float(number)
+                    _to_float(number.lstrip("+-"))  # named without its sign, as the grammar does
                 except ValueError as err:
                     unreadable = unreadable or err
                     continue
@@ -576,6 +579,10 @@ def _fast_parse(
     )
 
 
+# The statements that hold NC words: only a word calls (``mentions_call``).
+_WITH_WORDS = frozenset((NcStatement, PlainNc, Mixed, IfNc))
+
+
 def _line(
     text: str,
     cut: LineCode,
@@ -597,28 +604,17 @@ def _line(
                 seq_span = shared_span(head.start("n"), head.end("seq"))
             if head.group("var") is not None and int(head.group("var")) > 0:
                 failed_assignment = int(head.group("var"))
-    has_call = mentions_call(statement)
+    has_call = type(statement) in _WITH_WORDS and mentions_call(statement)
     indexed = (
         seq is not None
         or cut.tape_mark
         or has_call
         or (statement is not None and type(statement) in INDEXED_STATEMENTS)
     )
-    return ParsedLine(
-        text,
-        cut.tape_mark,
-        skip,
-        seq,
-        seq_span,
-        statement,
-        cut.comments,
-        problem,
-        cut.notes,
-        has_lower,
-        has_call,
-        indexed,
-        failed_assignment,
-    )
+    return quick_line(
+        text, cut.tape_mark, skip, seq, seq_span, statement, cut.comments, problem, cut.notes,
+        has_lower, has_call, indexed, failed_assignment,
+    )  # fmt: skip
 
 
 # The start of a block: block skip, N number, and an assignment '#n=' (or Syntec's '#n:='),
@@ -770,12 +766,15 @@ class BlockParser:
         if cached is not None:
             return cached
         parsed = self._parse_uncached(text)
+        size = len(text)
         with self._lock:
-            if text not in self._cache:
-                self._cached_chars += len(text)
-            self._cache[text] = parsed
-            self._longest_cached = max(self._longest_cached, len(text))
-            if len(self._cache) > self._sweep_at:
+            cache = self._cache
+            if text not in cache:
+                self._cached_chars += size
+            cache[text] = parsed
+            if size > self._longest_cached:
+                self._longest_cached = size
+            if len(cache) > self._sweep_at:
                 self._evict()
         return parsed
 
@@ -804,6 +803,8 @@ class BlockParser:
     def _parse_uncached(self, text: str) -> ParsedLine:
         if (
             self.use_fast_path
+            and "[" not in text  # no plain block has a bracket or an assignment
+            and "=" not in text
             and "(" not in text
             and ";" not in text
             and "%" not in text
@@ -825,7 +826,7 @@ class BlockParser:
         # ASCII blanks only: a line of U+3000 or U+00A0 is no empty block to FANUC. A line of
         # DOS's end-of-file mark (Ctrl-Z, 0x1A, after the closing % of an old file) is none
         # either: the sending program stops at it, and the control never reads it.
-        if not code.strip(_BLANKS_OR_EOF):
+        if code[:1] in _BLANKS_OR_EOF and not code.strip(_BLANKS_OR_EOF):
             return _line(text, cut, None, None, None, None, None, False)
         has_lower = code != code.upper()
         # A line with a comment: lines of the same code share what it parses to.
@@ -850,18 +851,45 @@ class BlockParser:
         self, code: str, text: str, cut: LineCode, has_lower: bool
     ) -> ParsedLine | _ParsedCode:
         """What a line's code parses to, or the whole line where the code has a problem."""
-        plain = _plain_block(code) if self.use_fast_path else None
-        if plain is not None:
-            # A block of plain words without a call: indexed for its N number or a tape mark.
-            plain_skip, plain_seq, plain_seq_span, plain_nc = plain
-            return (True, plain_skip, plain_seq, plain_seq_span, plain_nc, False)
-        try:
-            fast = _fast_parse(code) if self.use_fast_path else None
-        except ValueError as err:  # a number too long to be one
-            problem = SyntaxProblem(f"cannot read a number: {err}", Span(0, len(text.rstrip())))
-            return _line(text, cut, None, None, None, None, problem, has_lower)
-        if fast is not None:
-            return (True, *fast)
+        read: tuple[int | None, int | None, Span | None, Statement | None] | None = None
+        if self.use_fast_path:
+            # No plain block has a bracket or an assignment: those go to the macro reader.
+            if "[" not in code and "=" not in code:
+                plain = _plain_block(code)
+                if plain is not None:
+                    # Plain words without a call: indexed for an N number or a tape mark.
+                    plain_skip, plain_seq, plain_seq_span, plain_nc = plain
+                    return (True, plain_skip, plain_seq, plain_seq_span, plain_nc, False)
+                try:
+                    fast = _fast_parse(code)
+                except ValueError as err:  # a number too long to be one
+                    problem = SyntaxProblem(
+                        f"cannot read a number: {err}", Span(0, len(text.rstrip()))
+                    )
+                    return _line(text, cut, None, None, None, None, problem, has_lower)
+                if fast is not None:
+                    return (True, *fast)
+            if not has_lower:
+                read = fast_statement(code)
+        if read is None:
+            grammar = self._grammar_parse(code, text, cut, has_lower)
+            if isinstance(grammar, ParsedLine):
+                return grammar
+            read = grammar
+        skip, seq, seq_span, statement = read
+        # A block nests at most as deep as it has characters: most need no measuring.
+        if statement is not None and len(code) > MAX_EXPRESSION_DEPTH:
+            depth = expression_depth(statement)
+            if depth > MAX_EXPRESSION_DEPTH:
+                note = _too_deep(statement, depth)
+                deep = LineCode(cut.code, cut.comments, cut.tape_mark, (*cut.notes, note))
+                return _line(text, deep, skip, seq, seq_span, None, None, has_lower)
+        return (False, skip, seq, seq_span, statement, False)
+
+    def _grammar_parse(
+        self, code: str, text: str, cut: LineCode, has_lower: bool
+    ) -> ParsedLine | tuple[int | None, int | None, Span | None, Statement | None]:
+        """A line's code read by the grammar's tables, or the whole line where it is rejected."""
         try:
             # The transformer's start() makes the result a list, not a tree.
             items = cast("list[Any]", self._table.parse(code))
@@ -884,14 +912,7 @@ class BlockParser:
                     seq_span = item[2]
             else:
                 statement = item
-        # A block nests at most as deep as it has characters: most need no measuring.
-        if statement is not None and len(code) > MAX_EXPRESSION_DEPTH:
-            depth = expression_depth(statement)
-            if depth > MAX_EXPRESSION_DEPTH:
-                note = _too_deep(statement, depth)
-                deep = LineCode(cut.code, cut.comments, cut.tape_mark, (*cut.notes, note))
-                return _line(text, deep, skip, seq, seq_span, None, None, has_lower)
-        return (False, skip, seq, seq_span, statement, False)
+        return skip, seq, seq_span, statement
 
     def parse_lines(
         self, lines: Iterable[str], max_line_length: int = MAX_LINE_LENGTH
