@@ -309,3 +309,28 @@ def test_a_workspace_keeps_what_it_derives_in_its_database_and_frees_a_removed_d
         assert lines_with_findings.looked == 0
     one.remove(uri)
     assert _per_document_entries(one.db, uri) == []
+
+
+def test_removing_many_documents_at_once_equals_removing_them_one_by_one() -> None:
+    from fanuc_macro.workspace import Workspace
+
+    texts = {
+        "file:///main.nc": "O1000\n#1=2.\nM98 P2000\nG01 X#100 F0.2\nM30\n",
+        "file:///sub.nc": "O2000\n#100=#1*3.\nM99\n",
+        "file:///other.nc": "O3000\n#2=1./0.\nM30\n",
+        "file:///spare.nc": "O4000\nG00 X1.\nM30\n",
+    }
+    one, many = Workspace(), Workspace()
+    for workspace in (one, many):
+        for uri, text in texts.items():
+            workspace.add_text(uri, text)
+            workspace.analyse(uri)
+    for uri in ("file:///other.nc", "file:///spare.nc"):
+        one.remove(uri)
+    many.remove_all(uri for uri in ("file:///other.nc", "file:///spare.nc"))
+    assert sorted(many.uris()) == sorted(one.uris()) == ["file:///main.nc", "file:///sub.nc"]
+    for uri in ("file:///other.nc", "file:///spare.nc"):
+        assert _per_document_entries(many.db, uri) == []
+    assert set(many.indexes()) == set(one.indexes())
+    first, second = one.analyse("file:///main.nc"), many.analyse("file:///main.nc")
+    assert first.diagnostics == second.diagnostics

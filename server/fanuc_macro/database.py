@@ -17,7 +17,7 @@ module-level mutable state: the context variable and the default database.
 from __future__ import annotations
 
 import threading
-from collections.abc import Callable, Iterator, Sized
+from collections.abc import Callable, Collection, Iterator, Sized
 from contextlib import contextmanager
 from contextvars import ContextVar
 from dataclasses import dataclass, field
@@ -100,11 +100,16 @@ class Database:
             _active.reset(token)
 
     def close_document(self, uri: str) -> None:
-        """Free what every per-document table holds for ``uri``, and the shared caches, which
-        may hold its lines (:meth:`drop_caches`)."""
+        """Free what every per-document table holds for ``uri`` (see :meth:`close_documents`)."""
+        self.close_documents([uri])
+
+    def close_documents(self, uris: Collection[str]) -> None:
+        """Free what every per-document table holds for each of ``uris``, and the shared
+        caches, which may hold their lines (:meth:`drop_caches`): once, however many go."""
         for key, table in list(self._tables.items()):
             if key.per_document:
-                table.pop(uri, None)
+                for uri in uris:
+                    table.pop(uri, None)
         self.drop_caches()
 
     def drop_caches(self) -> None:

@@ -198,15 +198,23 @@ class Workspace:
         return reread
 
     def remove(self, uri: str) -> None:
-        """Forget ``uri``, and what the database derived from it: its tables' entries, and the
-        shared caches and parsed lines, which may hold its lines (the other documents keep
-        their own)."""
-        self._entries.pop(uri, None)
-        self._facts.pop(uri, None)
-        self._mill_facts.pop(uri, None)
-        self.db.close_document(uri)
+        """Forget ``uri`` (see :meth:`remove_all`)."""
+        self.remove_all([uri])
+
+    def remove_all(self, uris: Iterable[str]) -> None:
+        """Forget each of ``uris``, and what the database derived from them: their tables'
+        entries, and the shared caches and parsed lines, which may hold their lines (the
+        other documents keep their own). The caches are dropped once, however many go."""
+        gone = set(uris)
+        for uri in gone:
+            self._entries.pop(uri, None)
+            self._facts.pop(uri, None)
+            self._mill_facts.pop(uri, None)
+        self.db.close_documents(gone)
         self.parser.clear_cache()
-        self._reindexed(uri)
+        with self._graph_lock:
+            self._indexes = {u: i for u, i in self._indexes.items() if u not in gone}
+            self._graph = None
 
     def not_text(self, uri: str) -> str | None:
         """Why the file ``uri`` was not read, when its bytes are not a program text (the

@@ -362,9 +362,7 @@ def _check_in(workspace: Workspace, archive: _Archive, key: str) -> _Checked:
     held = workspace.uris()
     if len(held) + len(needed) > FILES_KEPT:
         keep = set(needed)
-        for uri in held:
-            if uri not in keep:
-                workspace.remove(uri)
+        workspace.remove_all(uri for uri in held if uri not in keep)
     added = False
     for uri in needed:
         if not workspace.has(uri):
