@@ -26,7 +26,7 @@ EVALUATOR = PROGRAM | {"evaluator"}
 THREADS = EVALUATOR | {"threads"}
 RULES = THREADS | {"rules"}
 ANALYSIS = RULES | {"analysis"}
-WORKSPACE = ANALYSIS | {"workspace", "rules_doc"}
+WORKSPACE = ANALYSIS | {"workspace", "rules_doc", "config_file"}
 GENERATORS = WORKSPACE | {"generators"}
 IDE = GENERATORS | {"ide"}
 FRONT_END = {
@@ -36,6 +36,7 @@ FRONT_END = {
     "workspace",
     "analysis",
     "config",
+    "config_file",
     "diagnostics",
     "cancel",
     "database",
@@ -65,6 +66,7 @@ ALLOWED: dict[str, set[str]] = {
     "analysis": RULES,
     "workspace": ANALYSIS,
     "rules_doc": ANALYSIS,
+    "config_file": ANALYSIS,
     "generators": WORKSPACE,
     "ide": GENERATORS,
     "debugger": IDE,

@@ -850,7 +850,7 @@ def test_every_option_and_argument_of_every_command_has_a_help_text(tmp_path: Pa
     [commands] = [a for a in parser._actions if isinstance(a, argparse._SubParsersAction)]
     assert set(commands.choices) == {
         "check", "trace", "plot", "hover", "definition", "thread", "arc-thread", "drum-groove",
-        "format"
+        "format", "config"
     }  # fmt: skip
     for name, command in commands.choices.items():
         for action in command._actions:

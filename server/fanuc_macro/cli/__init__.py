@@ -16,14 +16,10 @@ from pathlib import Path
 from .. import __version__
 from ..analysis import RULES, analyse, log_failure
 from ..config import (
-    BY_PROGRAM,
     CONTROLLERS,
     G_CODE_SYSTEMS,
     NOT_SET,
-    SYSTEM_A,
     Config,
-    CustomCallSetting,
-    read_custom_calls,
     read_program_ranges,
 )
 from ..diagnostics import REPORT_INTERNAL_ERROR, Severity
@@ -73,31 +69,23 @@ def one_program_file(command: str, raw: str) -> Path:
     return path
 
 
-def _config(args: argparse.Namespace) -> Config:
-    return Config(
-        controller=args.controller,
-        disabled=frozenset[str]().union(*(args.disable or ())),
-        max_spindle_speed=args.max_spindle_speed,
-        max_threading_feed=args.max_threading_feed,
-        extended_commons=args.extended_commons,
-        max_line_length=args.max_line_length,
-        max_blocks=args.max_blocks,
-        max_file_size=args.max_file_size,
-        step_budget=args.step_budget,
-        time_limit=args.time_limit,
-        custom_calls=_custom_calls(args.custom_call or ()),
-        programs_on_control=tuple(r for ranges in args.on_control or () for r in ranges),
-        g_code_system=args.g_code_system,
-    )
+def _config(args: argparse.Namespace, path: str | None) -> Config:
+    """The settings of the program at ``path`` (a file or folder; - or None: standard input,
+    named by --stdin-filename, else the current folder): the configuration file nearest it
+    under the options given here."""
+    from .configuration import ConfigResolver, config_or_exit
+
+    resolver = getattr(args, "resolver", None)
+    if resolver is None:
+        resolver = args.resolver = ConfigResolver(args)
+    return config_or_exit(resolver, _anchor(args, path))
 
 
-def _custom_calls(given: Sequence[tuple[str, str]]) -> tuple[CustomCallSetting, ...]:
-    """``--custom-call`` read as the editor's machine.customCalls; what cannot be read is said
-    on stderr, and the rest is used."""
-    calls, problems = read_custom_calls(dict(given))
-    for problem in problems:
-        print(f"fanuc-macro: {problem}", file=sys.stderr)
-    return calls
+def _anchor(args: argparse.Namespace, path: str | None) -> Path | None:
+    if path is None or path == STDIN:
+        name = getattr(args, "stdin_filename", None)
+        return Path(name) if name else None
+    return Path(path)
 
 
 def _custom_call_option(text: str) -> tuple[str, str]:
@@ -200,35 +188,30 @@ def _add_analysis_options(parser: argparse.ArgumentParser) -> None:
     parser.add_argument(
         "--max-line-length",
         type=_whole,
-        default=default.max_line_length,
         metavar="CHARS",
         help=f"a longer block is not analysed (MB011; default {default.max_line_length})",
     )
     parser.add_argument(
         "--max-blocks",
         type=_whole,
-        default=default.max_blocks,
         metavar="N",
         help=f"blocks of a file the analysis reads (MB013; default {default.max_blocks:,})",
     )
     parser.add_argument(
         "--max-file-size",
         type=_whole,
-        default=default.max_file_size,
         metavar="CHARS",
         help=f"characters of a file the analysis reads (MB013; default {default.max_file_size:,})",
     )
     parser.add_argument(
         "--step-budget",
         type=_whole,
-        default=default.step_budget,
         metavar="BLOCKS",
         help=f"blocks one run of a program may execute (default {default.step_budget:,})",
     )
     parser.add_argument(
         "--time-limit",
         type=_positive,
-        default=default.time_limit,
         metavar="SECONDS",
         help=f"the safety net of a slow or busy machine (default {default.time_limit:g} s)",
     )
@@ -250,14 +233,12 @@ def _add_machine_options(parser: argparse.ArgumentParser) -> None:
     parser.add_argument(
         "--max-spindle-speed",
         type=_positive,
-        default=NOT_SET,
         metavar="RPM",
         help="the machine's maximum spindle speed (MB602); not checked when not given",
     )
     parser.add_argument(
         "--max-threading-feed",
         type=_positive,
-        default=NOT_SET,
         metavar="MM_PER_MIN",
         help="the machine's largest feed while threading, S x lead (MB807); not checked when "
         "not given",
@@ -265,6 +246,7 @@ def _add_machine_options(parser: argparse.ArgumentParser) -> None:
     parser.add_argument(
         "--extended-commons",
         action="store_true",
+        default=None,
         help="the machine has the extended common variables #200-#499 (no MB303)",
     )
     parser.add_argument(
@@ -279,7 +261,6 @@ def _add_machine_options(parser: argparse.ArgumentParser) -> None:
         "--g-code-system",
         type=str.upper,
         choices=G_CODE_SYSTEMS,
-        default=SYSTEM_A,
         metavar="{A,B,C}",
         help="the lathe's G code system (parameters GSB, GSC): in B and C, G90/G91 are absolute "
         "and incremental, G77/G78/G79 (C: G20/G21/G24) the turning, threading and facing "
@@ -298,7 +279,7 @@ def _add_machine_options(parser: argparse.ArgumentParser) -> None:
 def cmd_check(args: argparse.Namespace) -> int:
     from .check_command import cmd_check as check
 
-    return check(args, _config(args))
+    return check(args)
 
 
 def read_one(command: str, workspace: Workspace, raw: str, stdin_name: str | None = None) -> str:
@@ -342,7 +323,7 @@ def _traced_workspace(args: argparse.Namespace) -> tuple[Config, Workspace, str]
     """The file of ``trace`` or ``plot`` and the ``--with`` files it calls, read; its URI."""
     if args.command == "plot" and args.file == STDIN and not getattr(args, "output", None):
         raise UsageError("fanuc-macro: plot of standard input: say where the SVG goes (-o)")
-    config = _config(args)
+    config = _config(args, args.file)
     workspace = Workspace(config)
     uri = read_one(args.command, workspace, args.file, args.stdin_filename)
     read_with_files(workspace, args.with_files, uri)
@@ -385,13 +366,13 @@ def cmd_trace(args: argparse.Namespace) -> int:
 def cmd_hover(args: argparse.Namespace) -> int:
     from .ide_commands import cmd_hover as hover
 
-    return hover(args, _config(args))
+    return hover(args, _config(args, args.file))
 
 
 def cmd_definition(args: argparse.Namespace) -> int:
     from .ide_commands import cmd_definition as definition
 
-    return definition(args, _config(args))
+    return definition(args, _config(args, args.file))
 
 
 def _add_place_command(
@@ -432,7 +413,6 @@ def _add_rule_options(parser: argparse.ArgumentParser) -> None:
         "--controller",
         type=_controller,
         choices=CONTROLLERS,
-        default=BY_PROGRAM,
         help="the control the programs are for, in any case; the default, 0i-F, reads each "
         "file as a lathe (0i-TF) or a mill (0i-MF) as its codes show",
     )
@@ -444,6 +424,28 @@ def _add_rule_options(parser: argparse.ArgumentParser) -> None:
         help="comma-separated rules to skip, by code or name in any case, e.g. "
         "MB006,tape-mark-not-alone (docs/rules.md lists them); may be repeated",
     )
+    _add_config_options(parser)
+
+
+def _add_config_options(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument(
+        "--config",
+        metavar="PATH",
+        help="the configuration file to use (default: the fanuc-macro.toml, or pyproject.toml "
+        "with [tool.fanuc-macro], nearest each file, looking up from its folder); the options "
+        "given here win over it",
+    )
+    parser.add_argument(
+        "--isolated",
+        action="store_true",
+        help="read no configuration file: the options given here and the defaults only",
+    )
+
+
+def cmd_config(args: argparse.Namespace) -> int:
+    from .configuration import print_config
+
+    return print_config(args, _anchor(args, args.path))
 
 
 def _add_with_option(parser: argparse.ArgumentParser) -> None:
@@ -630,6 +632,27 @@ def build_parser() -> argparse.ArgumentParser:
     _add_place_command(
         sub, logs, "definition", "where what is there is defined (PATH:LINE:COLUMN)"
     ).set_defaults(func=cmd_definition)
+
+    config = sub.add_parser(
+        "config",
+        help="print the settings a program is checked with, and where each value comes from",
+    )
+    config.add_argument(
+        "path",
+        nargs="?",
+        metavar="PATH",
+        help="a program file or folder (default: the current folder)",
+    )
+    config.add_argument(
+        "--format",
+        choices=("text", "json", "schema"),
+        default="text",
+        help="text (default), JSON, or the configuration file's JSON Schema",
+    )
+    _add_rule_options(config)
+    _add_machine_options(config)
+    _add_analysis_options(config)
+    config.set_defaults(func=cmd_config)
 
     add_thread_command(sub)
     add_generator_commands(sub)

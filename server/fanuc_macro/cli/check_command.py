@@ -13,9 +13,11 @@ import sys
 from collections import Counter
 from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
+from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from ..config import Config
+from ..config_file import ConfigFileError
 from ..diagnostics import Diagnostic, Severity
 from ..ide import machine_text
 from ..program_files import Found, find_programs
@@ -23,6 +25,7 @@ from ..workspace import DocumentLinks, Workspace, graph_of_links, related_in_gra
 
 if TYPE_CHECKING:
     from .check_cache import CheckCache
+from .configuration import ConfigResolver
 from .streams import STDIN, read_stdin, writes_unicode
 
 EXIT_OK = 0
@@ -101,7 +104,7 @@ def _found(paths: Sequence[str], exclude: Sequence[str]) -> Found:
     return find_programs([p for p in paths if p != STDIN], exclude)
 
 
-def cmd_check(args: argparse.Namespace, config: Config) -> int:
+def cmd_check(args: argparse.Namespace) -> int:
     err = sys.stderr
     paths: list[str] = args.paths
     stdin_name: str | None = args.stdin_filename
@@ -136,7 +139,13 @@ def cmd_check(args: argparse.Namespace, config: Config) -> int:
     internal_error = False
     out = sys.stdout
     as_json_records = args.format == "json"
-    for checked in _check_files(datas, config, args):
+    resolver = ConfigResolver(args)
+    try:
+        groups = _by_configuration(datas, resolver)
+    except ConfigFileError as error:
+        err.write(f"fanuc-macro: {error}\n")
+        return EXIT_USAGE
+    for checked in _checked_in_order(datas, groups, args):
         if checked.stopped is not None:  # the safety net: not a finding of the program's
             err.write(f"{checked.key}: {checked.stopped}\n")
         if args.verbose and checked.machine is not None:
@@ -164,6 +173,40 @@ def cmd_check(args: argparse.Namespace, config: Config) -> int:
     return exit_status(
         counts, Severity(args.fail_on), args.max_warnings, usage_problem, internal_error
     )
+
+
+def _by_configuration(
+    datas: list[tuple[str, bytes]], resolver: ConfigResolver
+) -> list[tuple[Config, frozenset[str]]]:
+    """The files grouped by the configuration file they are checked with (the one nearest
+    each), in the order of their first file. Standard input is where --stdin-filename says."""
+    groups: dict[Path | None, list[str]] = {}
+    for key, _data in datas:
+        path = None if key == STDIN else Path(key)
+        groups.setdefault(resolver.file_for(path), []).append(key)
+    return [
+        (resolver.for_path(None if keys[0] == STDIN else Path(keys[0])).config, frozenset(keys))
+        for keys in groups.values()
+    ]
+
+
+def _checked_in_order(
+    datas: list[tuple[str, bytes]],
+    groups: list[tuple[Config, frozenset[str]]],
+    args: argparse.Namespace,
+) -> Iterator[_Checked]:
+    """Each file's check in the order of ``datas``: one group at a time when the files have
+    several configurations (every file read by each, as a called program; checked by its
+    own), so that a file's findings do not depend on the others' settings."""
+    if len(groups) == 1:
+        yield from _check_files(datas, groups[0][0], args)
+        return
+    found: dict[str, _Checked] = {}
+    for config, keys in groups:
+        for checked in _check_files(datas, config, args, keys):
+            found[checked.key] = checked
+    for key, _data in datas:
+        yield found[key]
 
 
 @dataclass(frozen=True, slots=True)
@@ -211,10 +254,14 @@ def _jobs(args: argparse.Namespace, files: int) -> int:
 
 
 def _check_files(
-    datas: list[tuple[str, bytes]], config: Config, args: argparse.Namespace
+    datas: list[tuple[str, bytes]],
+    config: Config,
+    args: argparse.Namespace,
+    only: frozenset[str] | None = None,
 ) -> Iterator[_Checked]:
-    """Each file's check, in the order of ``datas``: from the cache of earlier runs
-    (:mod:`.check_cache`) where nothing it depends on changed, else analysed."""
+    """Each file's check (of those in ``only``, when given), in the order of ``datas``: from
+    the cache of earlier runs (:mod:`.check_cache`) where nothing it depends on changed, else
+    analysed."""
     workspace = Workspace(config, keep_runs=False)
     jobs = _jobs(args, len(datas))
     cache = None
@@ -227,10 +274,11 @@ def _check_files(
             workspace.add_bytes(key, data)
         programs = workspace.program_numbers()
         for key, _data in datas:
-            yield _check_one(workspace, key, programs)
+            if only is None or key in only:
+                yield _check_one(workspace, key, programs)
         return
     try:
-        yield from _check_archive(workspace, datas, config, jobs, cache)
+        yield from _check_archive(workspace, datas, config, jobs, cache, only)
     finally:
         if cache is not None:
             cache.close()
@@ -258,6 +306,7 @@ def _check_archive(
     config: Config,
     jobs: int,
     cache: CheckCache | None,
+    only: frozenset[str] | None = None,
 ) -> Iterator[_Checked]:
     """:func:`_check_files` of many files: the files tied together from their links (kept in
     ``cache`` between runs, else read and dropped), then each file analysed with the files it
@@ -285,13 +334,14 @@ def _check_archive(
     )
     done: dict[str, _Checked] = {}
     todo: dict[str, str] = {}  # key -> the key of its result in the cache
+    checked_keys = [key for key, _data in datas if only is None or key in only]
     if cache is None:
-        todo = {key: key for key, _data in datas}
+        todo = {key: key for key in checked_keys}
     else:
         from .check_cache import all_digest, numbers_digest
 
         programs_digest, every = numbers_digest(archive.programs), all_digest(digests)
-        for key, _data in datas:
+        for key in checked_keys:
             related = archive.related[key]
             pairs = None if related is None else [(r, digests[r]) for r in related]
             result_key = cache.result_key(key, digests[key], pairs, every, programs_digest)
@@ -306,7 +356,7 @@ def _check_archive(
             cache.keep_result(todo[checked.key], checked.kept())
     if cache is not None:
         cache.save()
-    for key, _data in datas:
+    for key in checked_keys:
         yield done[key]
 
 
