@@ -153,7 +153,7 @@ def test_every_editor_setting_of_the_analysis_has_a_key_of_the_file() -> None:
     editor_only = {"server.path", "trace.server", "language", "analysis.debounceMs",
                    "analysis.progressDelayMs"}  # fmt: skip
     settings = {name.removeprefix("fanuc-macro.") for name in properties} - editor_only
-    assert settings == {k.setting for k in KEYS}
+    assert settings == {k.setting for k in KEYS if k.editor}
 
 
 def test_check_reads_the_nearest_file_and_the_command_line_wins(tmp_path: Path) -> None:
@@ -207,3 +207,40 @@ def test_a_bad_file_ends_the_run_with_its_message_and_no_traceback(tmp_path: Pat
             result.stderr
         )
         assert "Traceback" not in result.stderr
+
+
+def test_select_extend_select_and_per_file_ignores_from_the_file(tmp_path: Path) -> None:
+    # MB602 (spindle over the limit) in both files; MB403 (M98 of a missing program) in both.
+    program = "O1000\nG97 S5000 M03\nM98 P2000\nM30\n"
+    write(tmp_path / "probe" / "o1000.nc", program)
+    write(tmp_path / "o1001.nc", program.replace("O1000", "O1001"))
+    write(
+        tmp_path / "fanuc-macro.toml",
+        "[machine]\nmax-spindle-speed = 3000\n[rules]\nselect = ['MB6']\n"
+        "extend-select = ['call-target-missing']\n"
+        "per-file-ignores = { 'probe/*.nc' = ['MB602'] }\n",
+    )
+    found = json.loads(run(tmp_path, "check", "--format", "json", ".").stdout)
+    assert sorted((f["path"], f["code"]) for f in found) == [
+        ("o1001.nc", "MB403"),
+        ("o1001.nc", "MB602"),
+        (str(Path("probe") / "o1000.nc"), "MB403"),
+    ]
+    # The command line: --select replaces the file's choice (its extend-select too), --ignore
+    # adds to its ignore, --severity changes a rule's severity.
+    result = run(
+        tmp_path, "check", "--format", "json", "--select", "MB602", "--severity",
+        "MB602=hint", "o1001.nc",
+    )  # fmt: skip
+    assert [(f["code"], f["severity"]) for f in json.loads(result.stdout)] == [("MB602", "hint")]
+    result = run(tmp_path, "check", "--format", "json", "--ignore", "MB403,MB602", "o1001.nc")
+    assert json.loads(result.stdout) == []
+
+
+def test_a_bad_rule_option_is_a_usage_error_naming_the_nearest_rule(tmp_path: Path) -> None:
+    write(tmp_path / "o1000.nc", SPINDLE)
+    result = run(tmp_path, "check", "--select", "MB60Z", "o1000.nc")
+    assert result.returncode == 2
+    assert "'MB60Z' is not a rule's code or name, a prefix of codes or ALL" in result.stderr
+    result = run(tmp_path, "check", "--severity", "MB602=loud", "o1000.nc")
+    assert result.returncode == 2 and "not RULE=LEVEL" in result.stderr

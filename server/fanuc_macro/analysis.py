@@ -11,7 +11,7 @@ from dataclasses import dataclass, field, replace
 from operator import attrgetter
 
 from .cancel import RULE_CHECKS, CancelToken, raise_if_cancelled
-from .config import Config
+from .config import Config, ignored_in
 from .database import current
 from .diagnostics import (
     REPORT_INTERNAL_ERROR,
@@ -165,13 +165,17 @@ suppressions: LineMap[frozenset[str]] = LineMap(_suppressed_on)
 def _apply_settings(diags: Iterable[Diagnostic], doc: Document, config: Config) -> list[Diagnostic]:
     """Drop disabled and suppressed diagnostics; apply configured severities."""
     suppressed = dict(suppressions(doc))
+    disabled = config.disabled | ignored_in(config, doc.uri)
+    selected = config.selected
     out: list[Diagnostic]
-    if not suppressed and not config.disabled and not config.severities:
+    if not suppressed and not disabled and not config.severities and selected is None:
         out = list(diags)  # nothing to drop or change: tens of thousands in a dense program
     else:
         out = []
         for d in diags:
-            if d.code in config.disabled:
+            if d.code in disabled:
+                continue
+            if selected is not None and d.code != MB000.code and not d.code.startswith(selected):
                 continue
             codes = suppressed.get(d.line)
             if codes is not None and ("*" in codes or d.code in codes):

@@ -2,8 +2,11 @@
 
 from __future__ import annotations
 
+import fnmatch
 import math
+import os
 from dataclasses import dataclass, field
+from pathlib import PurePath
 from typing import Any
 
 from .diagnostics import Severity
@@ -31,6 +34,12 @@ class Config:
     max_threading_feed: float = NOT_SET  # mm/min: S x lead must stay under it
     max_depth_per_pass: float = 0.5  # mm, radius, for a threading pass
     disabled: frozenset[str] = frozenset()
+    # The rules reported, as code prefixes ("MB6": MB600-MB699; "MB": all), None: all. What
+    # ``disabled`` names is dropped all the same (select, then ignore, as ruff reads them).
+    selected: tuple[str, ...] | None = None
+    # Rules dropped in some files only: each (folder, glob, codes); a glob without "/" is a
+    # file name anywhere below the folder, one with "/" a path from it.
+    per_file_ignores: tuple[tuple[str, str, frozenset[str]], ...] = ()
     severities: dict[str, Severity] = field(default_factory=dict)
     # Blocks the evaluator may execute from one entry program: the bound every verdict on an
     # unfinished run (MB703, MB707, MB708) comes from, so the same input gives the same result
@@ -127,6 +136,8 @@ class Config:
         on_control, range_problems = read_program_ranges(machine.get("programsOnControl"))
         system, system_problems = read_g_code_system(machine.get("gCodeSystem"))
         return cls(
+            selected=_selected(rules),
+            per_file_ignores=_per_file_ignores(rules.get("perFileIgnores")),
             controller=controller if controller in CONTROLLERS else BY_PROGRAM,
             max_spindle_speed=_number(machine.get("maxSpindleSpeed"), default.max_spindle_speed),
             max_threading_feed=_number(machine.get("maxThreadingFeed"), default.max_threading_feed),
@@ -148,6 +159,59 @@ class Config:
             programs_on_control=on_control,
             setting_problems=(*call_problems, *range_problems, *system_problems),
         )
+
+
+def _selected(rules: dict[str, Any]) -> tuple[str, ...] | None:
+    """``rules.select`` and ``rules.extendSelect`` (codes or prefixes, "ALL") as prefixes;
+    None when every rule is reported."""
+    select = rules.get("select")
+    extend = rules.get("extendSelect") or ()
+    if not isinstance(select, list) and not extend:
+        return None
+    chosen = [str(c).upper() for c in (select if isinstance(select, list) else ["ALL"])]
+    chosen += [str(c).upper() for c in extend]
+    if "ALL" in chosen:
+        return None
+    return tuple(sorted(set(chosen)))
+
+
+def _per_file_ignores(value: Any) -> tuple[tuple[str, str, frozenset[str]], ...]:
+    """``rules.perFileIgnores``: ``[[folder, glob, [codes]], ...]`` as the configuration file
+    gives them (the folder: the file's own)."""
+    if not isinstance(value, list):
+        return ()
+    found: list[tuple[str, str, frozenset[str]]] = []
+    for item in value:
+        if isinstance(item, list | tuple) and len(item) == 3 and isinstance(item[2], list):
+            found.append((str(item[0]), str(item[1]), frozenset(str(c).upper() for c in item[2])))
+    return tuple(found)
+
+
+def ignored_in(config: Config, uri: str) -> frozenset[str]:
+    """The codes ``config.per_file_ignores`` drops in the file ``uri`` (a path or a file:
+    URI)."""
+    if not config.per_file_ignores:
+        return frozenset()
+    path = _path_of(uri)
+    codes: set[str] = set()
+    for folder, glob, named in config.per_file_ignores:
+        try:
+            relative = path.relative_to(folder)
+        except ValueError:
+            continue
+        target = relative.name if "/" not in glob else relative.as_posix()
+        if fnmatch.fnmatchcase(target, glob):
+            codes |= named
+    return frozenset(codes)
+
+
+def _path_of(uri: str) -> PurePath:
+    if uri.startswith("file:"):
+        from urllib.parse import unquote, urlparse
+
+        parsed = urlparse(uri)
+        return PurePath(os.path.abspath(unquote(parsed.path)))
+    return PurePath(os.path.abspath(uri))
 
 
 def _number(value: Any, default: float) -> float:

@@ -43,6 +43,7 @@ class Key:
     kind: str  # "string", "number", "integer", "boolean", "strings", "table", "programs"
     description: str
     choices: tuple[str, ...] = ()
+    editor: bool = True  # an editor setting stands for it (package.json)
 
     @property
     def dotted(self) -> str:
@@ -73,8 +74,16 @@ def _keys() -> tuple[Key, ...]:
             "The lathe's G code system (parameters GSB, GSC).", G_CODE_SYSTEMS),
         Key("threading", "max-depth-per-pass", "threading.maxDepthPerPass", "number",
             "The deepest threading pass, mm of radius."),
+        Key("rules", "select", "rules.select", "strings",
+            "The rules reported, by code, name or prefix of codes (MB6) or ALL (the default).",
+            editor=False),
+        Key("rules", "extend-select", "rules.extendSelect", "strings",
+            "Rules reported besides those of select.", editor=False),
         Key("rules", "ignore", "rules.disabled", "strings",
             "Rules not reported, by code or name (MB403, call-target-missing)."),
+        Key("rules", "per-file-ignores", "rules.perFileIgnores", "table",
+            'Rules not reported in some files: { "probe/*.nc" = ["MB601"] } (a glob without '
+            "/ is a file name anywhere below this file's folder).", editor=False),
         Key("rules", "severity", "rules.severity", "table",
             'Severity by rule: { MB403 = "information" } (error, warning, information, hint).'),
         Key("analysis", "step-budget", "analysis.stepBudget", "integer",
@@ -114,7 +123,10 @@ def default_of(dotted: str) -> Any:
         "machine.programs-on-control": [],
         "machine.g-code-system": config.g_code_system,
         "threading.max-depth-per-pass": config.max_depth_per_pass,
+        "rules.select": ["ALL"],
+        "rules.extend-select": [],
         "rules.ignore": sorted(config.disabled),
+        "rules.per-file-ignores": {},
         "rules.severity": {},
         "analysis.step-budget": config.step_budget,
         "analysis.time-limit": config.time_limit,
@@ -254,7 +266,7 @@ def _values(path: Path, table: dict[str, Any], text: str) -> Iterator[tuple[Key,
                 )
             problem = _type_problem(key, value)
             if not problem and key.section == "rules":
-                value, problem = _rules_value(key, value)
+                value, problem = _rules_value(key, value, path.parent)
             if problem:
                 raise ConfigFileError(f"{path}:{line}: {key.dotted}: {problem}")
             yield key, value, line
@@ -307,22 +319,58 @@ def rule_code(text: str) -> str | None:
     return next((c for c, info in RULES.items() if info.name == name), None)
 
 
-def _rules_value(key: Key, value: Any) -> tuple[Any, str]:
-    """The rules named in ``value`` as codes (a list, or the keys of a table), or why not."""
+def rule_selector(text: str) -> str | None:
+    """``text`` as select reads it: "ALL", a rule's code or name, or a prefix of codes
+    ("MB6"); None when it names no rule."""
+    from .analysis import RULES
+
+    code = rule_code(text)
+    if code is not None:
+        return code
+    prefix = text.strip().upper()
+    if prefix == "ALL" or (len(prefix) > 2 and any(c.startswith(prefix) for c in RULES)):
+        return prefix
+    return None
+
+
+def _rules_value(key: Key, value: Any, folder: Path) -> tuple[Any, str]:
+    """A value of [rules] with its rules as codes (``select`` keeps prefixes; a per-file
+    ignore takes the file's folder), or why it cannot be read."""
     from .diagnostics import Severity
 
-    names = list(value) if isinstance(value, list | dict) else []
+    if key.name in ("select", "extend-select"):
+        found = [rule_selector(v) for v in value]
+        bad = [v for v, f in zip(value, found, strict=True) if f is None]
+        if bad:
+            return value, f"{bad[0]!r} is not a rule's code or name, a prefix of codes or ALL"
+        return found, ""
+    if key.name == "severity":
+        levels = [s.value for s in Severity]
+        for level in value.values():
+            if level not in levels:
+                return value, f"{level!r} is not a severity ({', '.join(levels)})"
+        codes, problem = _codes(list(value))
+        return dict(zip(codes, value.values(), strict=True)), problem
+    if key.name == "per-file-ignores":
+        found_rules: list[list[Any]] = []
+        for glob, names in value.items():
+            if not isinstance(names, list):
+                return value, f"{glob!r}: {names!r} is not a list of rules"
+            codes, problem = _codes(names)
+            if problem:
+                return value, f"{glob!r}: {problem}"
+            found_rules.append([str(folder), glob, codes])
+        return found_rules, ""
+    return _codes(value)
+
+
+def _codes(names: list[Any]) -> tuple[list[str], str]:
+    """The codes of the rules ``names`` names, or why not (the first name of no rule)."""
     codes = [rule_code(str(n)) for n in names]
-    unknown = [str(n) for n, c in zip(names, codes, strict=True) if c is None]
-    if unknown:
-        return value, f"{unknown[0]!r} is not a rule's code or name (docs/rules.md lists them)"
-    if isinstance(value, list):
-        return [c for c in codes if c is not None], ""
-    levels = [s.value for s in Severity]
-    for level in value.values():
-        if level not in levels:
-            return value, f"{level!r} is not a severity ({', '.join(levels)})"
-    return {c: level for c, level in zip(codes, value.values(), strict=True)}, ""
+    for name, code in zip(names, codes, strict=True):
+        if code is None:
+            return [], f"{name!r} is not a rule's code or name (docs/rules.md lists them)"
+    return [c for c in codes if c is not None], ""
 
 
 def setting_of(dotted: str) -> str:

@@ -129,6 +129,35 @@ def _rule_codes(text: str) -> frozenset[str]:
     return frozenset(codes)
 
 
+def _rule_selectors(text: str) -> tuple[str, ...]:
+    """``--select``, ``--extend-select``: comma-separated rule codes, names, prefixes of codes
+    (MB6) or ALL."""
+    from ..config_file import rule_selector
+
+    found: list[str] = []
+    for item in (c.strip() for c in text.split(",") if c.strip()):
+        selector = rule_selector(item)
+        if selector is None:
+            raise argparse.ArgumentTypeError(
+                f"{item!r} is not a rule's code or name, a prefix of codes or ALL: the nearest "
+                f"known rule is {_nearest_rule(item.upper())}"
+            )
+        found.append(selector)
+    return tuple(found)
+
+
+def _severity_option(text: str) -> tuple[str, str]:
+    """``--severity CODE=LEVEL``: a rule by code or name and its severity."""
+    code, sep, level = text.partition("=")
+    levels = [s.value for s in Severity]
+    if not sep or level.strip().lower() not in levels:
+        raise argparse.ArgumentTypeError(f"not RULE=LEVEL with LEVEL one of {levels}: {text!r}")
+    rules = _rule_codes(code)
+    if len(rules) != 1:
+        raise argparse.ArgumentTypeError(f"one rule before '=': {text!r}")
+    return next(iter(rules)), level.strip().lower()
+
+
 def _edit_distance(a: str, b: str) -> int:
     row = list(range(len(b) + 1))
     for i, ca in enumerate(a, 1):
@@ -417,12 +446,37 @@ def _add_rule_options(parser: argparse.ArgumentParser) -> None:
         "file as a lathe (0i-TF) or a mill (0i-MF) as its codes show",
     )
     parser.add_argument(
+        "--ignore",
         "--disable",
+        dest="disable",
         type=_rule_codes,
         action="append",
         metavar="RULES",
         help="comma-separated rules to skip, by code or name in any case, e.g. "
         "MB006,tape-mark-not-alone (docs/rules.md lists them); may be repeated",
+    )
+    parser.add_argument(
+        "--select",
+        type=_rule_selectors,
+        action="append",
+        metavar="RULES",
+        help="report only these rules: codes, names, prefixes of codes (MB6) or ALL, "
+        "comma-separated; replaces the configuration file's select",
+    )
+    parser.add_argument(
+        "--extend-select",
+        type=_rule_selectors,
+        action="append",
+        metavar="RULES",
+        help="report these rules too, besides those selected",
+    )
+    parser.add_argument(
+        "--severity",
+        type=_severity_option,
+        action="append",
+        metavar="RULE=LEVEL",
+        help="report a rule at another severity: error, warning, information or hint, e.g. "
+        "MB403=information (repeatable)",
     )
     _add_config_options(parser)
 

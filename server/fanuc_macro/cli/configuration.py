@@ -98,6 +98,7 @@ def _resolve(loaded: FileSettings, args: argparse.Namespace) -> Resolved:
         rules = settings.setdefault("rules", {})
         rules["disabled"] = sorted({*rules.get("disabled", ()), *disabled})
         origins["rules.ignore"] = _joined(origins.get("rules.ignore"), "--disable")
+    _rule_options(settings, origins, args)
     calls = getattr(args, "custom_call", None)
     if calls:
         machine = settings.setdefault("machine", {})
@@ -116,6 +117,28 @@ def _resolve(loaded: FileSettings, args: argparse.Namespace) -> Resolved:
     for key in KEYS:
         origins.setdefault(key.dotted, DEFAULT)
     return Resolved(Config.from_settings(settings), settings, origins, tuple(loaded.files))
+
+
+def _rule_options(
+    settings: dict[str, Any], origins: dict[str, str], args: argparse.Namespace
+) -> None:
+    """--select (replaces the file's), --extend-select and --severity (add to it)."""
+    rules = settings.setdefault("rules", {})
+    select = getattr(args, "select", None)
+    if select:  # replaces the file's choice whole, its extend-select too (as ruff's)
+        rules["select"] = [c for group in select for c in group]
+        rules.pop("extendSelect", None)
+        origins["rules.select"] = origins["rules.extend-select"] = "--select"
+    extend = getattr(args, "extend_select", None)
+    if extend:
+        rules["extendSelect"] = [*rules.get("extendSelect", ()), *(c for g in extend for c in g)]
+        origins["rules.extend-select"] = _joined(
+            origins.get("rules.extend-select"), "--extend-select"
+        )
+    severity = getattr(args, "severity", None)
+    if severity:
+        rules["severity"] = {**rules.get("severity", {}), **dict(severity)}
+        origins["rules.severity"] = _joined(origins.get("rules.severity"), "--severity")
 
 
 def _joined(before: str | None, option: str) -> str:
