@@ -37,6 +37,7 @@ FRONT_END = {
     "analysis",
     "config",
     "config_file",
+    "rules_doc",
     "diagnostics",
     "cancel",
     "database",

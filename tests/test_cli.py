@@ -355,7 +355,7 @@ def test_an_unknown_code_to_disable_is_a_usage_error_naming_the_nearest(tmp_path
         assert (result.returncode, result.stdout) == (2, ""), result.stdout
         assert result.stderr.startswith("usage: fanuc-macro check")
         last = result.stderr.splitlines()[-1]
-        assert last == f"fanuc-macro check: error: argument --disable: {told}"
+        assert last == f"fanuc-macro check: error: argument --ignore/--disable: {told}"
     for command in (["trace", "prog.nc"], ["hover", "prog.nc", "1", "1"]):
         result = run(tmp_path, *command, "--disable", "NOPE")
         assert result.returncode == 2 and "unknown rule code 'NOPE'" in result.stderr
@@ -850,7 +850,7 @@ def test_every_option_and_argument_of_every_command_has_a_help_text(tmp_path: Pa
     [commands] = [a for a in parser._actions if isinstance(a, argparse._SubParsersAction)]
     assert set(commands.choices) == {
         "check", "trace", "plot", "hover", "definition", "thread", "arc-thread", "drum-groove",
-        "format", "config"
+        "format", "config", "rule"
     }  # fmt: skip
     for name, command in commands.choices.items():
         for action in command._actions:

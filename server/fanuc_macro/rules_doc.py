@@ -29,6 +29,16 @@ PARTS: tuple[tuple[str, str], ...] = (
 )
 
 
+RULES_URL = "https://github.com/fanuc-macro/fanuc-macro/blob/main/docs/rules.md"
+
+
+def rule_url(code: str) -> str:
+    """The section of docs/rules.md: headings are ``MBxxx name``, anchors ``mbxxx-name``."""
+    info = RULES.get(code)
+    anchor = code.lower() if info is None else f"{code.lower()}-{info.name}"
+    return f"{RULES_URL}#{anchor}"
+
+
 def part_texts(doc: RuleDoc) -> dict[str, str]:
     """Each part of a rule's documentation, without the blank lines around it."""
     return {name: str(getattr(doc, name)).strip("\n") for name, _label in PARTS}

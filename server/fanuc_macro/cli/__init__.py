@@ -496,6 +496,23 @@ def _add_config_options(parser: argparse.ArgumentParser) -> None:
     )
 
 
+def cmd_rule(args: argparse.Namespace) -> int:
+    """``fanuc-macro rule MB601``: the rule's documentation, as docs/rules.md has it."""
+    from ..analysis import RULE_DOCS
+    from ..rules_doc import rule_url, section
+
+    code = _rule_code(args.rule)
+    if code not in RULES:
+        raise UsageError(
+            f"fanuc-macro: unknown rule {args.rule!r}: the nearest known one is "
+            f"{_nearest_rule(code)}"
+        )
+    out = sys.stdout
+    out.write(section(RULES[code], RULE_DOCS[code]).rstrip("\n") + "\n")
+    out.write(f"\n{rule_url(code)}\n")
+    return EXIT_OK
+
+
 def cmd_config(args: argparse.Namespace) -> int:
     from .configuration import print_config
 
@@ -605,8 +622,25 @@ def _add_check_command(
         help="program files (- for standard input), or folders whose programs are checked "
         "together (which files: below)",
     )
-    _add_format_option(
-        check, "one line PATH:LINE:COLUMN: CODE severity message each (default), or a JSON list"
+    check.add_argument(
+        "--format",
+        choices=("text", "json", "sarif", "github", "junit"),
+        default="text",
+        help="text: one line PATH:LINE:COLUMN: CODE severity message each (default); json: a "
+        "list; sarif: SARIF 2.1.0 for code scanning; github: GitHub Actions annotations; "
+        "junit: JUnit XML, a test case per file",
+    )
+    check.add_argument(
+        "--statistics",
+        action="store_true",
+        help="a count of the findings of each rule, the most first, instead of the findings "
+        "(beside the other forms, on standard error)",
+    )
+    check.add_argument(
+        "--color",
+        choices=("auto", "always", "never"),
+        default="auto",
+        help="colour the text form: auto (default) on a terminal unless NO_COLOR is set",
     )
     check.add_argument(
         "--exclude",
@@ -686,6 +720,10 @@ def build_parser() -> argparse.ArgumentParser:
     _add_place_command(
         sub, logs, "definition", "where what is there is defined (PATH:LINE:COLUMN)"
     ).set_defaults(func=cmd_definition)
+
+    rule = sub.add_parser("rule", help="print a rule's documentation (what, why, example, fix)")
+    rule.add_argument("rule", metavar="RULE", help="its code or name, e.g. MB601")
+    rule.set_defaults(func=cmd_rule)
 
     config = sub.add_parser(
         "config",

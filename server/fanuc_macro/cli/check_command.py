@@ -14,7 +14,7 @@ from collections import Counter
 from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, TextIO
 
 from ..config import Config
 from ..config_file import ConfigFileError
@@ -26,6 +26,7 @@ from ..workspace import DocumentLinks, Workspace, graph_of_links, related_in_gra
 if TYPE_CHECKING:
     from .check_cache import CheckCache
 from .configuration import ConfigResolver
+from .reports import github, junit, sarif, statistics, text_line, use_colour
 from .streams import STDIN, read_stdin, writes_unicode
 
 EXIT_OK = 0
@@ -134,11 +135,13 @@ def cmd_check(args: argparse.Namespace) -> int:
             err.write(f"fanuc-macro: cannot read {path}: {error.strerror or error}\n")
             usage_problem = True
 
-    records: list[dict[str, object]] = []
+    records: list[dict[str, Any]] = []
     counts: Counter[Severity] = Counter()
     internal_error = False
     out = sys.stdout
-    as_json_records = args.format == "json"
+    # Every form but the text one, and --statistics, needs the findings of every file first.
+    as_records = args.format != "text" or args.statistics
+    colour = use_colour(args.color, out)
     resolver = ConfigResolver(args)
     try:
         groups = _by_configuration(datas, resolver)
@@ -154,18 +157,11 @@ def cmd_check(args: argparse.Namespace) -> int:
             severity = Severity(finding["severity"])
             counts[severity] += 1
             internal_error |= finding["code"] == INTERNAL_ERROR
-            if as_json_records:
+            if as_records:
                 records.append({"path": checked.key, **finding})
             else:
-                out.write(
-                    f"{checked.key}:{finding['line']}:{finding['column']}: {finding['code']} "
-                    f"{severity.value} {finding['message']}\n"
-                )
-    if as_json_records:
-        import json
-
-        json.dump(records, out, ensure_ascii=not writes_unicode(out), indent=1)
-        out.write("\n")
+                out.write(text_line(checked.key, finding, colour))
+    _write_records(args, records, [key for key, _data in datas], out, colour)
     out.flush()  # the findings before the summary, when both go to one terminal
     if not args.quiet:
         not_programs = [str(p) for p in found.not_programs]
@@ -207,6 +203,34 @@ def _checked_in_order(
             found[checked.key] = checked
     for key, _data in datas:
         yield found[key]
+
+
+def _write_records(
+    args: argparse.Namespace,
+    records: list[dict[str, Any]],
+    checked: list[str],
+    out: TextIO,
+    colour: bool,
+) -> None:
+    """The findings in the form --format asks for, then the --statistics table."""
+    import json
+
+    form = args.format
+    if form == "json":
+        json.dump(records, out, ensure_ascii=not writes_unicode(out), indent=1)
+        out.write("\n")
+    elif form == "sarif":
+        json.dump(sarif(records), out, ensure_ascii=not writes_unicode(out), indent=1)
+        out.write("\n")
+    elif form == "github":
+        github(records, out)
+    elif form == "junit":
+        out.write(junit(checked, records))
+    elif not args.statistics:
+        for record in records:
+            out.write(text_line(record["path"], record, colour))
+    if args.statistics:
+        statistics(records, out if form == "text" else sys.stderr)
 
 
 @dataclass(frozen=True, slots=True)

@@ -22,7 +22,6 @@ from ..diagnostics import Diagnostic, Severity, Tag
 
 LINE_BREAK = re.compile(r"\r\n|\r|\n")
 SOURCE = "fanuc-macro"
-RULES_URL = "https://github.com/fanuc-macro/fanuc-macro/blob/main/docs/rules.md"
 
 UTF8 = types.PositionEncodingKind.Utf8.value
 UTF16 = types.PositionEncodingKind.Utf16.value
@@ -162,13 +161,11 @@ TAG = MappingProxyType(
 
 
 def rule_url(code: str) -> str:
-    """The section of docs/rules.md: headings are ``MBxxx name``, anchors ``mbxxx-name``."""
+    """The section of docs/rules.md that documents ``code``."""
     # Imported here: the server answers initialize before it loads the analysis.
-    from ..analysis import RULES
+    from ..rules_doc import rule_url as url
 
-    info = RULES.get(code)
-    anchor = code.lower() if info is None else f"{code.lower()}-{info.name}"
-    return f"{RULES_URL}#{anchor}"
+    return url(code)
 
 
 def _json_safe(data: dict[str, object]) -> dict[str, object]:
