@@ -301,6 +301,33 @@ def test_a_run_past_the_budget_ends_with_a_message(dap: DapClient) -> None:
     assert "step budget of 5,000 blocks" in text
 
 
+def test_the_configuration_file_beside_the_program_is_read(dap: DapClient, tmp_path: Path) -> None:
+    if not WHILE_LOOP.exists():
+        pytest.skip("the corpus is not beside the repository")
+    program = tmp_path / "loop.nc"
+    program.write_bytes(WHILE_LOOP.read_bytes())
+    config = tmp_path / "fanuc-macro.toml"
+    config.write_text("[analysis]\nstep-budget = 4000\n", encoding="utf-8")
+    dap.start({"program": str(program)})
+    assert dap.event("exited")["body"]["exitCode"] == 1
+    dap.event("terminated")
+    assert "step budget of 4,000 blocks" in dap.output_text()
+
+
+def test_a_bad_configuration_file_fails_the_launch_with_its_message(
+    dap: DapClient, tmp_path: Path
+) -> None:
+    program = tmp_path / "o1000.nc"
+    program.write_text("O1000\nG00 X1.\nM30\n", encoding="utf-8")
+    (tmp_path / "fanuc-macro.toml").write_text("[analysis]\nstep-budget = 'x'\n", "utf-8")
+    dap.ok("initialize", {"adapterID": "fanuc-macro"})
+    answer = dap.request("launch", {"program": str(program)})
+    assert not answer["success"]
+    assert (
+        "fanuc-macro.toml:2: analysis.step-budget: 'x' is not a whole number" in (answer["message"])
+    )
+
+
 def test_bad_requests_get_clear_answers(dap: DapClient) -> None:
     dap.ok("initialize", {"adapterID": "fanuc-macro"})
     missing = dap.request("launch", {"program": str(DEBUG / "nothing.nc")})

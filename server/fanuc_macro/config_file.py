@@ -373,6 +373,24 @@ def _codes(names: list[Any]) -> tuple[list[str], str]:
     return [c for c in codes if c is not None], ""
 
 
+def merged(low: dict[str, Any], high: dict[str, Any]) -> dict[str, Any]:
+    """Settings objects merged: each value of ``high`` replaces ``low``'s (tables merged key by
+    key), so a file's value wins over the editor's and the editor's stays where the file says
+    nothing."""
+    out = dict(low)
+    for key, value in high.items():
+        below = out.get(key)
+        if isinstance(value, dict) and isinstance(below, dict) and key not in _WHOLE_TABLES:
+            out[key] = merged(below, value)
+        else:
+            out[key] = value
+    return out
+
+
+# Settings whose table is one value (a file's custom calls replace the editor's whole).
+_WHOLE_TABLES = frozenset({"customCalls", "severity", "perFileIgnores"})
+
+
 def setting_of(dotted: str) -> str:
     """The editor setting (below ``fanuc-macro.``) the file's key ``dotted`` stands for."""
     return KEYS_BY_NAME[dotted].setting

@@ -194,7 +194,7 @@ class Adapter(Listener):
     def launch(self, args: dict[str, Any]) -> None:
         if self.session is not None:
             raise DebugError("a program is launched already")
-        launch = read_launch(args, Config())
+        launch = read_launch(args, _file_config(args.get("program")))
         self.session = session = Session(launch, self)
         for key, asked in self._early_breakpoints.items():
             session.set_breakpoints(key, asked)
@@ -458,3 +458,18 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--version", action="version", version=f"fanuc-macro-dap {__version__}")
     parser.parse_args(argv)
     return serve(sys.stdin.buffer, sys.stdout.buffer)
+
+
+def _file_config(program: object) -> Config:
+    """The settings of the configuration file nearest the launched program (fanuc-macro.toml,
+    as the command line and the language server read it); the launch's own values win."""
+    from ..config_file import ConfigFileError, find_config_file, load_config_file
+
+    if not isinstance(program, str) or not program.strip():
+        return Config()  # read_launch says what is wrong with it
+    path = Path(program).expanduser()
+    try:
+        found = find_config_file(path) if path.is_file() else None
+        return Config.from_settings(load_config_file(found).settings if found else None)
+    except ConfigFileError as error:
+        raise DebugError(f"launch: {error}") from None

@@ -23,7 +23,7 @@ import traceback
 from collections.abc import Callable, Iterable, Mapping, Sequence
 from contextlib import AbstractContextManager
 from dataclasses import dataclass, field
-from pathlib import PurePosixPath
+from pathlib import Path, PurePosixPath
 from types import MappingProxyType
 from typing import TYPE_CHECKING, Any, TypeVar
 from urllib.parse import unquote, urlparse
@@ -107,9 +107,15 @@ class Engine:
         publish: Callable[[OpenDocument, Result], None],
         log_message: Callable[[str, types.MessageType], None],
         codec: Codec | None = None,
+        show_message: Callable[[str, types.MessageType], None] | None = None,
     ) -> None:
         self.publish = publish
         self.log_message = log_message
+        self.show_message = show_message or log_message
+        # The editor's settings as last sent, and the configuration file's, which win.
+        self._editor_settings: dict[str, Any] | None = None
+        self._file_settings: dict[str, Any] = {}
+        self.config_files: tuple[Path, ...] = ()
         # The workspace's: every handler runs inside it (:meth:`active`), the analyses too.
         self.database = Database()
         self.codec = codec or Codec()
@@ -226,6 +232,37 @@ class Engine:
         self.generation += 1
 
     def configure(self, settings: dict[str, Any] | None) -> None:
+        """The editor's settings, under the configuration file's (:meth:`read_config_file`)."""
+        self._editor_settings = settings
+        if self._file_settings:
+            from ..config_file import merged
+
+            settings = merged(settings or {}, self._file_settings)
+        self._configure(settings)
+
+    def read_config_file(self, folder: Path | None) -> None:
+        """Read the configuration file nearest ``folder`` (the first workspace folder), again
+        when it changed; its values win over the editor's settings. A file that cannot be
+        used is told to the user, and the editor's settings are used alone."""
+        from ..config_file import ConfigFileError, find_config_file, load_config_file
+
+        found: dict[str, Any] = {}
+        files: tuple[Path, ...] = ()
+        try:
+            path = find_config_file(folder) if folder is not None else None
+            if path is not None:
+                loaded = load_config_file(path)
+                found, files = loaded.settings, tuple(loaded.files)
+        except ConfigFileError as error:
+            log.warning("%s", error)
+            self.log_message(f"fanuc-macro: {error}", types.MessageType.Error)
+            self.show_message(f"fanuc-macro: {error}", types.MessageType.Error)
+        self.config_files = files
+        if found != self._file_settings:
+            self._file_settings = found
+            self.configure(self._editor_settings)
+
+    def _configure(self, settings: dict[str, Any] | None) -> None:
         config = Config.from_settings(settings)
         for problem in config.setting_problems:  # the rest of the settings are used
             log.warning("%s", problem)

@@ -58,7 +58,7 @@ class FanucMacroLanguageServer(LanguageServer):
             text_document_sync_kind=types.TextDocumentSyncKind.Incremental,
             protocol_cls=AnsweringProtocol,
         )
-        self.engine = Engine(self.publish_result, self.log_to_client)
+        self.engine = Engine(self.publish_result, self.log_to_client, None, self.show_to_client)
         self.completion_support = CompletionSupport()
         self.sent_tokens = SentTokens()  # for semantic token deltas
         self.markdown_hover = True
@@ -73,6 +73,12 @@ class FanucMacroLanguageServer(LanguageServer):
             self.window_log_message(types.LogMessageParams(type=kind, message=message))
         except Exception:  # no client yet, or the connection is gone
             log.debug("cannot send a log message", exc_info=True)
+
+    def show_to_client(self, message: str, kind: types.MessageType) -> None:
+        try:
+            self.window_show_message(types.ShowMessageParams(type=kind, message=message))
+        except Exception:  # no client yet, or the connection is gone
+            log.debug("cannot send a message", exc_info=True)
 
     def publish_result(self, doc: OpenDocument, result: Result) -> None:
         self.text_document_publish_diagnostics(

@@ -12,6 +12,7 @@ from lsprotocol import types
 from ...code_cache import save_code_cache
 from ..client import CompletionSupport
 from ..convert import Codec
+from ..folders import path_of
 from ..progress import ClientProgress
 from . import Route
 
@@ -22,6 +23,8 @@ log = logging.getLogger(__name__)
 
 SETTINGS_SECTION = "fanuc-macro"
 PROGRAM_GLOB = "**/*.{nc,NC,mac,MAC,tap,TAP,cnc,CNC,eia,EIA}"
+CONFIG_GLOB = "**/{fanuc-macro.toml,pyproject.toml}"
+CONFIG_NAMES = ("fanuc-macro.toml", "pyproject.toml")
 
 
 def _contributes_snippets(options: Any) -> bool:
@@ -88,12 +91,16 @@ async def initialized(ls: FanucMacroLanguageServer, params: types.InitializedPar
     if not folders and ls.workspace.root_uri:
         folders = [ls.workspace.root_uri]
     engine.add_folders(folders)
+    engine.read_config_file(path_of(folders[0]) if folders else None)
     if ls.watch_files:
         registration = types.Registration(
             id="fanuc-macro-watch",
             method=types.WORKSPACE_DID_CHANGE_WATCHED_FILES,
             register_options=types.DidChangeWatchedFilesRegistrationOptions(
-                watchers=[types.FileSystemWatcher(glob_pattern=PROGRAM_GLOB)]
+                watchers=[
+                    types.FileSystemWatcher(glob_pattern=PROGRAM_GLOB),
+                    types.FileSystemWatcher(glob_pattern=CONFIG_GLOB),
+                ]
             ),
         )
         try:
@@ -163,7 +170,10 @@ def did_change_workspace_folders(
 def did_change_watched_files(
     ls: FanucMacroLanguageServer, params: types.DidChangeWatchedFilesParams
 ) -> None:
-    ls.engine.files_changed(params.changes)
+    if any(c.uri.endswith(CONFIG_NAMES) for c in params.changes):
+        folders = [f.uri for f in ls.workspace.folders.values()] or [ls.workspace.root_uri or ""]
+        ls.engine.read_config_file(path_of(folders[0]) if folders[0] else None)
+    ls.engine.files_changed([c for c in params.changes if not c.uri.endswith(CONFIG_NAMES)])
 
 
 ROUTES = (

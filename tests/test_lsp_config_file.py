@@ -1,0 +1,65 @@
+"""The configuration file through the language server: a real server over stdio (pytest-lsp)
+reads the fanuc-macro.toml of its workspace folder, whose values win over the editor's
+settings, reads it again when it changes, and tells a bad one to the user."""
+
+from __future__ import annotations
+
+import asyncio
+from pathlib import Path
+
+from lsprotocol import types
+from pytest_lsp import LanguageClient
+
+from test_lsp import client, codes, diagnostics, open_text, start
+
+__all__ = ["client"]  # the fixture, imported for the tests here
+
+SPINDLE = "O1000\nG97 S5000 M03\nG00 X10. Z2.\nM30\n"
+
+
+async def test_the_file_wins_over_the_editor_and_is_read_again_when_it_changes(
+    client: LanguageClient, tmp_path: Path
+) -> None:
+    config = tmp_path / "fanuc-macro.toml"
+    config.write_text("[machine]\nmax-spindle-speed = 3000\n", encoding="utf-8")
+    program = tmp_path / "o1000.nc"
+    program.write_text(SPINDLE, encoding="utf-8")
+    # The editor says 9000 rpm and MB602 an error: the file's 3000 wins, the severity stays.
+    editor = {"machine": {"maxSpindleSpeed": 9000}, "rules": {"severity": {"MB602": "error"}}}
+    await start(client, tmp_path, editor)
+    uri = program.as_uri()
+    open_text(client, uri, SPINDLE)
+    found = await diagnostics(client, uri, lambda d: "MB602" in codes(d))
+    spindle = next(d for d in found if d.code == "MB602")
+    assert "3000" in spindle.message
+    assert spindle.severity == types.DiagnosticSeverity.Error
+    config.write_text("[machine]\nmax-spindle-speed = 6000\n", encoding="utf-8")
+    client.workspace_did_change_watched_files(
+        types.DidChangeWatchedFilesParams(
+            changes=[types.FileEvent(uri=config.as_uri(), type=types.FileChangeType.Changed)]
+        )
+    )
+    await diagnostics(client, uri, lambda d: "MB602" not in codes(d))
+
+
+async def test_a_bad_file_is_shown_to_the_user_and_the_editor_settings_serve(
+    client: LanguageClient, tmp_path: Path
+) -> None:
+    (tmp_path / "fanuc-macro.toml").write_text(
+        "[machine]\nmax-spindle-speed = 'fast'\n", encoding="utf-8"
+    )
+    program = tmp_path / "o1000.nc"
+    program.write_text(SPINDLE, encoding="utf-8")
+    await start(client, tmp_path, {"machine": {"maxSpindleSpeed": 3000}})
+    uri = program.as_uri()
+    open_text(client, uri, SPINDLE)
+    found = await diagnostics(client, uri, lambda d: "MB602" in codes(d))
+    assert "3000" in next(d for d in found if d.code == "MB602").message
+    for _ in range(100):
+        if client.messages:
+            break
+        await asyncio.sleep(0.05)
+    shown = [m.message for m in client.messages]
+    assert any(
+        "fanuc-macro.toml:2: machine.max-spindle-speed: 'fast' is not a number" in m for m in shown
+    ), shown
