@@ -48,6 +48,26 @@ def test_an_invalid_request_gets_invalid_request(
     assert "capabilities" in lsp.answer(100)["result"]
 
 
+def test_a_cancel_request_is_taken_as_one_and_no_error_is_shown(lsp: RawClient) -> None:
+    # Its params {"id": 7} look like a request without "jsonrpc" once read on their own.
+    lsp.send(INITIALIZE)
+    assert "capabilities" in lsp.answer(100)["result"]
+    lsp.send({"jsonrpc": "2.0", "method": "initialized", "params": {}})
+    lsp.send({"jsonrpc": "2.0", "method": "$/cancelRequest", "params": {"id": 7}})
+    lsp.send({"jsonrpc": "2.0", "id": 8, "method": "workspace/symbol", "params": {"query": "O"}})
+    seen: list[dict[str, Any]] = []
+    while True:
+        message = lsp.messages.get(timeout=30)
+        assert message is not None
+        seen.append(message)
+        if message.get("id") == 8 and "method" not in message:
+            break
+    assert "result" in seen[-1], seen[-1]
+    shown = [m for m in seen if m.get("method") == "window/showMessage"]
+    assert shown == [], shown
+    assert not [m for m in seen if m.get("id") == 7], seen
+
+
 @pytest.mark.parametrize(
     "bad",
     [

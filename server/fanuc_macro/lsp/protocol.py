@@ -39,10 +39,16 @@ class AnsweringProtocol(LanguageServerProtocol):
     of 2**31), and the client waits for ever: here it gets the JSON-RPC error InvalidParams."""
 
     def structure_message(self, data: dict[str, Any]) -> Any:
+        # pygls calls this for every object of the JSON (json.loads' object_hook), the
+        # innermost first: an object without "jsonrpc" may be a message's params (the
+        # {"id": 7} of $/cancelRequest), so it stays a dict, and handle_message judges what
+        # reaches it as a message.
+        if "jsonrpc" not in data:
+            return data
         wrong = _invalid_request(data)
         if wrong is not None:
-            # pygls drops these (no "jsonrpc") or reads them as responses (no "method"):
-            # a client that sent one would wait for ever. The id is all that is needed.
+            # pygls reads these as responses (no "method"): a client that sent one would
+            # wait for ever. The id is all that is needed.
             return _Unreadable(wrong[0], "", JsonRpcInvalidRequest(wrong[1]))
         try:
             return super().structure_message(data)
@@ -58,6 +64,12 @@ class AnsweringProtocol(LanguageServerProtocol):
             return _Unreadable(msg_id, method, JsonRpcInvalidParams(message))
 
     def handle_message(self, message: Any) -> None:
+        if isinstance(message, dict):  # a message without "jsonrpc"
+            wrong = _invalid_request(message)
+            if wrong is None:
+                log.warning("a message without jsonrpc, dropped: %.200r", message)
+                return
+            message = _Unreadable(wrong[0], "", JsonRpcInvalidRequest(wrong[1]))
         if isinstance(message, _Unreadable):
             log.warning("%s (request %r)", message.error, message.id)
             self._send_response(message.id, None, message.error.to_response_error())
