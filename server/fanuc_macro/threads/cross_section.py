@@ -249,7 +249,7 @@ class _Profile:
     ``values`` at ``places`` from 0 to the lead (the last place the lead, its value the first's),
     below which the material is. A tool cuts what lies above its edge."""
 
-    __slots__ = ("corners", "edge", "lead", "places", "slope", "top", "values")
+    __slots__ = ("corners", "dirty", "edge", "lead", "nose", "places", "slope", "top", "values")
 
     def __init__(
         self, lead: float, top: float, edge: tuple[tuple[float, float], ...], slope: float
@@ -262,6 +262,13 @@ class _Profile:
         self.slope = slope
         # The nose's chord ends either side of the centre line, left to right.
         self.corners = [(-u, r) for u, r in reversed(edge[1:])] + list(edge)
+        # The places of the vertices whose neighbours may lie on a line through them (not
+        # looked at since a neighbour changed): the others keep their place when a pass's
+        # window goes over them and the edge stays above.
+        self.dirty: set[float] = set()
+        # The nose's radius, from its last chord end (u, h): u² + (r - h)² = r².
+        u, h = edge[-1]
+        self.nose = (u * u + h * h) / (2.0 * h) if h > 0.0 else 0.0
 
     def _reach(self, height: float) -> float:
         """How far from its centre line the edge stays below ``height`` above the tip."""
@@ -281,7 +288,6 @@ class _Profile:
             top = self.top = max(self.values)
         if tip >= top:  # most passes of a long job, once the profile is below them
             return 0.0
-        self.top = None
         lead = self.lead
         reach = min(self._reach(top - tip), lead / 2.0)
         start, end = place - reach, place + reach
@@ -295,81 +301,195 @@ class _Profile:
         for a, b, shift in pieces:
             if b > a:
                 removed += self._cut_between(a, b, place + shift, tip)
-        self.values[-1] = self.values[0] = min(self.values[0], self.values[-1])
+        first, last = self.values[0], self.values[-1]
+        if self.top is not None and max(first, last) >= self.top:
+            self.top = None
+        self.values[-1] = self.values[0] = min(first, last)
+        if len(self.places) > 2:
+            self.dirty.update((self.places[1], self.places[-2]))
         return removed
 
     def _cut_between(self, a: float, b: float, centre: float, tip: float) -> float:
-        """The pass's edge (centre line at ``centre``) taken out over [a, b]; the area."""
+        """The pass's edge (centre line at ``centre``) taken out over [a, b]; the area.
+
+        The old profile at a, its vertices inside (a, b), and at b, with the edge's nose
+        corners inside (a, b) merged in, are walked in order: each keeps its old value or takes
+        the edge's, with the crossings between, and a vertex on the line through its neighbours
+        is dropped. The edge goes below the profile at few of them (the window is as wide as
+        the profile's highest point allows), so the stretches where it cannot, of vertices
+        whose neighbours were found not to line up when they were made (``dirty`` holds those
+        that were not), are copied as they are: what the walk would do with them."""
         places, values = self.places, self.values
         lo = bisect_right(places, a)
         hi = bisect_left(places, b)
-        # The old profile at a, its vertices inside (a, b), and at b; the edge's nose corners
-        # inside (a, b) merged in, the old profile's value there from the segment they lie on.
-        old_u = [a, *places[lo:hi], b]
-        old_v = [self._at(a, lo), *values[lo:hi], self._at(b, hi)]
-        edge = self.edge
-        last_offset, last_rise = edge[-1]
-        slope = self.slope
-        points: list[float] = []
-        old: list[float] = []
-        new: list[float] = []
-        corners = [(centre + u, tip + r) for u, r in self.corners if a < centre + u < b]
-        k = 0
-        count = len(corners)
-        for j, u in enumerate(old_u):
-            while k < count and corners[k][0] < u:
-                cu, cv = corners[k]
-                u0, v0 = old_u[j - 1], old_v[j - 1]
-                points.append(cu)
-                old.append(v0 + (old_v[j] - v0) * (cu - u0) / (u - u0))
-                new.append(cv)
-                k += 1
-            points.append(u)
-            old.append(old_v[j])
-            offset = u - centre if u >= centre else centre - u
-            if offset >= last_offset:
-                new.append(tip + last_rise + (offset - last_offset) * slope)
-            else:  # _edge_rise, inline: this loop runs for every vertex of every pass
-                e = bisect_right(edge, (offset, math.inf))
-                (e0, r0), (e1, r1) = edge[e - 1], edge[e]
-                new.append(tip + (r0 + (r1 - r0) * (offset - e0) / (e1 - e0)))
+        pu, pv, corners = self._window(a, b, lo, hi, centre, tip)
+        full = self._walked(pu, pv, corners, a, b, centre, tip)
+        new_at = self._edge_at
         out_u: list[float] = []
         out_v: list[float] = []
+        replaced: list[int] = []
         area = 0.0
         d0 = 0.0
         u0 = 0.0
-        # The area of the positive part of old - new over each piece, and _append, inline.
-        for k, u in enumerate(points):
-            v_old = old[k]
-            d1 = v_old - new[k]
+        plain = 0  # trailing vertices of out that are the window's old ones, appended in turn
+        n = len(pu)
+        f = 0
+        k = 0
+        while k < n:
+            if plain >= 2 and full[f] > k:
+                # The last of the window is always walked, so full[f] ends the stretch.
+                end = full[f]
+                out_u += pu[k:end]
+                out_v += pv[k:end]
+                u0 = pu[end - 1]
+                d0 = pv[end - 1] - new_at(u0, centre, tip)
+                k = end
+                continue
+            u = pu[k]
+            v_old = pv[k]
+            corner = corners.get(k)
+            new = new_at(u, centre, tip) if corner is None else corner
+            d1 = v_old - new
+            crossed = False
             if k:
                 if (d0 > 0.0) != (d1 > 0.0) and d0 != d1:
                     t = d0 / (d0 - d1)
                     cross = u0 + (u - u0) * t
                     if u0 < cross < u:
-                        _append(out_u, out_v, cross, old[k - 1] + (v_old - old[k - 1]) * t)
+                        _append(out_u, out_v, cross, pv[k - 1] + (v_old - pv[k - 1]) * t, replaced)
+                        crossed = True
                 if d0 >= 0.0 and d1 >= 0.0:
                     area += (d0 + d1) / 2.0 * (u - u0)
                 elif d0 > 0.0 or d1 > 0.0:
                     positive, negative = (d0, d1) if d0 > 0.0 else (d1, d0)
                     area += positive * positive / (positive - negative) / 2.0 * (u - u0)
-            v = v_old if d1 <= 0.0 else new[k]
-            if len(out_u) >= 2:
-                p0, q0, p1, q1 = out_u[-2], out_v[-2], out_u[-1], out_v[-1]
-                if u > p0 and abs(q0 + (v - q0) * (p1 - p0) / (u - p0) - q1) <= 1e-12:
-                    out_u[-1], out_v[-1] = u, v
-                    d0, u0 = d1, u
-                    continue
-            out_u.append(u)
-            out_v.append(v)
+            appended = _append(out_u, out_v, u, v_old if d1 <= 0.0 else new, replaced)
+            if corner is not None or d1 > 0.0 or k == 0:
+                plain = 0
+            else:
+                plain = plain + 1 if appended and not crossed else 1
             d0, u0 = d1, u
+            k += 1
+            if full[f] < k:
+                f += 1
         # Splice: the old vertices strictly inside (a, b) give way to the new ones; a and b
         # themselves are vertices from now on.
         left = lo - 1 if places[lo - 1] == a else lo
         right = hi + 1 if hi < len(places) and places[hi] == b else hi
+        # The highest point: where it was when the window did not hold it, else found again.
+        top = self.top
+        if top is not None:
+            top = max(top, *out_v) if max(values[left:right], default=top - 1.0) < top else None
+        self.top = top
         places[left:right] = out_u
         values[left:right] = out_v
+        # Every vertex inside was walked or copied with its neighbours: those whose right
+        # neighbour took a dropped vertex's place, a, b and their outer neighbours were not.
+        dirty = self.dirty
+        dirty.difference_update(out_u[1:-1])
+        dirty.update([out_u[p - 1] for p in replaced], (out_u[0], out_u[-1]))
+        if left >= 1:
+            dirty.add(places[left - 1])
+        after = left + len(out_u)
+        if after < len(places):
+            dirty.add(places[after])
         return area
+
+    def _window(
+        self, a: float, b: float, lo: int, hi: int, centre: float, tip: float
+    ) -> tuple[list[float], list[float], dict[int, float]]:
+        """The old profile at a, its vertices in (a, b) and at b, with the nose corners inside
+        (a, b) merged in (their old value from the segment they lie on): places, old values,
+        and the corners' edge values by their position."""
+        old_u = [a, *self.places[lo:hi], b]
+        old_v = [self._at(a, lo), *self.values[lo:hi], self._at(b, hi)]
+        pu: list[float] = []
+        pv: list[float] = []
+        corners: dict[int, float] = {}
+        start = 0
+        for cu_offset, rise in self.corners:
+            cu = centre + cu_offset
+            if not a < cu < b:
+                continue
+            j = bisect_right(old_u, cu, start)  # the first old vertex past the corner
+            pu += old_u[start:j]
+            pv += old_v[start:j]
+            u0, v0 = old_u[j - 1], old_v[j - 1]
+            corners[len(pu)] = tip + rise
+            pu.append(cu)
+            pv.append(v0 + (old_v[j] - v0) * (cu - u0) / (old_u[j] - u0))
+            start = j
+        pu += old_u[start:]
+        pv += old_v[start:]
+        return pu, pv, corners
+
+    def _walked(
+        self,
+        pu: list[float],
+        pv: list[float],
+        corners: dict[int, float],
+        a: float,
+        b: float,
+        centre: float,
+        tip: float,
+    ) -> list[int]:
+        """The positions of the window the walk must take one by one: the ends, the corners,
+        the vertices the edge may go below (and the two after each, whose neighbours may
+        change), and those after a vertex whose neighbours are not known to be out of line."""
+        n = len(pu)
+        marks = {0, 1, 2, n - 1}
+        for c in corners:
+            marks.update((c, c + 1, c + 2))
+        hot = self._hot(pu, pv, a, b, centre, tip)
+        for p in hot:
+            marks.update((p, p + 1, p + 2))
+        dirty = self.dirty.intersection(pu) if self.dirty else ()
+        for u in dirty:
+            p = bisect_left(pu, u)
+            while p < n and pu[p] == u:
+                marks.add(p + 1)
+                p += 1
+        return sorted(m for m in marks if m < n)
+
+    def _hot(
+        self, pu: list[float], pv: list[float], a: float, b: float, centre: float, tip: float
+    ) -> list[int]:
+        """The positions of the window where the edge may go below the profile. The nose's
+        chords lie above its arc, and the flank is straight: a vertex at or below those, with
+        a margin far above their rounding, keeps its value."""
+        last_offset, last_rise = self.edge[-1]
+        slope = self.slope
+        r = self.nose
+        rr = r * r
+        reach = abs(a - centre) + abs(b - centre)
+        margin = 1e-9 * (abs(tip) + last_offset * slope + reach * slope + 1.0) + 1e-7 * r
+        if not math.isfinite(margin + centre):
+            return list(range(len(pu)))
+        low = tip - margin
+        sqrt = math.sqrt
+        hot: list[int] = []
+        for p, (u, v) in enumerate(zip(pu, pv, strict=True)):
+            h = v - low
+            if h <= 0.0:
+                continue
+            o = u - centre if u >= centre else centre - u
+            if o < last_offset:
+                if h > r - sqrt(rr - o * o):
+                    hot.append(p)
+            elif h > last_rise + (o - last_offset) * slope:
+                hot.append(p)
+        return hot
+
+    def _edge_at(self, u: float, centre: float, tip: float) -> float:
+        """The pass's edge at ``u`` (:func:`_edge_rise` above ``tip``, as the walk takes it)."""
+        edge = self.edge
+        last_offset, last_rise = edge[-1]
+        offset = u - centre if u >= centre else centre - u
+        if offset >= last_offset:
+            return tip + last_rise + (offset - last_offset) * self.slope
+        e = bisect_right(edge, (offset, math.inf))
+        (e0, r0), (e1, r1) = edge[e - 1], edge[e]
+        return tip + (r0 + (r1 - r0) * (offset - e0) / (e1 - e0))
 
     def _at(self, u: float, k: int) -> float:
         """The profile at ``u``, on the segment that ends at vertex ``k`` (the first past u)."""
@@ -441,16 +561,19 @@ def penetration(cut: CrossSection, place: float, tip: float) -> float:
     return worst
 
 
-def _append(us: list[float], vs: list[float], u: float, v: float) -> None:
+def _append(us: list[float], vs: list[float], u: float, v: float, replaced: list[int]) -> bool:
     """Appends a vertex, first dropping the last one when it lies on the line from the one
-    before it to this (the old profile's vertices an edge passed below)."""
+    before it to this (the old profile's vertices an edge passed below): whether it was
+    appended, else its position is put in ``replaced``."""
     if len(us) >= 2:
         u0, v0, u1, v1 = us[-2], vs[-2], us[-1], vs[-1]
         if u > u0 and abs(v0 + (v - v0) * (u1 - u0) / (u - u0) - v1) <= 1e-12:
             us[-1], vs[-1] = u, v
-            return
+            replaced.append(len(us) - 1)
+            return False
     us.append(u)
     vs.append(v)
+    return True
 
 
 # The cuts made lately, by what they were made of: an edit undone (a bracket typed again)
