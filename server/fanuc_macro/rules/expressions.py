@@ -137,8 +137,10 @@ offsets), system variables whose protection the checker does not know, and indir
 
 
 def _check_line(whole: Statement | None, text: str) -> Iterator[LineFinding]:
+    # Each level of nesting opens with a "[" of its own: a line of few has none too deep.
+    deep = text.count("[") > MAX_BRACKET_NESTING
     for statement in statements_of(whole):
-        for expr in top_expressions(statement):
+        for expr in top_expressions(statement) if deep else ():
             depth = bracket_depth(expr)
             if depth > MAX_BRACKET_NESTING:
                 yield LineFinding(

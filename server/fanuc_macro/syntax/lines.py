@@ -317,6 +317,10 @@ def _balanced_closes(line: str) -> dict[int, int]:
     return closes
 
 
+# Where code gives way to a comment, an end of block or a tape mark.
+_CUT_AT = re.compile(r"[(;%]")
+
+
 def cut_comments(line: str) -> LineCode:
     """Separate comments, EOB and tape marks from code, keeping columns."""
     if "(" not in line and ";" not in line and "%" not in line and ")" not in line:
@@ -329,6 +333,11 @@ def cut_comments(line: str) -> LineCode:
     n = len(line)
     balanced_closes: dict[int, int] | None = None  # worked out when a comment holds a '('
     while i < n:
+        # The code between is kept as it is: on to the next character that ends it.
+        found = _CUT_AT.search(line, i)
+        if found is None:
+            break
+        i = found.start()
         ch = line[i]
         if ch == "(":
             close = line.find(")", i + 1)
@@ -341,8 +350,7 @@ def cut_comments(line: str) -> LineCode:
                         shared_span(i, n),
                     )
                 )
-                for k in range(i, n):
-                    chars[k] = " "
+                chars[i:n] = " " * (n - i)
                 break
             end = close
             if line.find("(", i + 1, close) >= 0:
@@ -364,8 +372,7 @@ def cut_comments(line: str) -> LineCode:
                         )
                     )
             comments.append(Comment(line[i + 1 : end], shared_span(i, end + 1)))
-            for k in range(i, end + 1):
-                chars[k] = " "
+            chars[i : end + 1] = " " * (end + 1 - i)
             i = end + 1
             continue
         if ch == ";":
@@ -391,8 +398,7 @@ def cut_comments(line: str) -> LineCode:
                     shared_span(i + 1, tail_end),
                 )
             )
-            for k in range(i + 1, tail_end):
-                chars[k] = " "
+            chars[i + 1 : tail_end] = " " * (tail_end - i - 1)
             i = tail_end
             continue
         elif ch == "%":

@@ -81,17 +81,20 @@ def subexpressions(expr: Expr) -> Iterator[Expr]:
     while stack:
         node = stack.pop()
         yield node
-        if isinstance(node, Binary):
-            stack.append(node.right)
-            stack.append(node.left)
-        elif isinstance(node, (Unary,)):
-            stack.append(node.operand)
-        elif isinstance(node, Bracket):
-            stack.append(node.inner)
-        elif isinstance(node, Call):
-            stack.extend(reversed(node.args))
-        elif isinstance(node, Var) and node.index is not None:
-            stack.append(node.index)
+        # The expression classes have no subclasses: their type says which they are.
+        kind = type(node)
+        if kind is Binary:
+            stack.append(node.right)  # type: ignore[union-attr]
+            stack.append(node.left)  # type: ignore[union-attr]
+        elif kind is Var:
+            if node.index is not None:  # type: ignore[union-attr]
+                stack.append(node.index)  # type: ignore[union-attr]
+        elif kind is Unary:
+            stack.append(node.operand)  # type: ignore[union-attr]
+        elif kind is Bracket:
+            stack.append(node.inner)  # type: ignore[union-attr]
+        elif kind is Call:
+            stack.extend(reversed(node.args))  # type: ignore[union-attr]
 
 
 def plain_variables(statement: NcStatement) -> list[Var] | None:
@@ -125,10 +128,33 @@ def variables(statement: Statement) -> Iterator[Var]:
 
 
 def _variables(statement: Statement) -> Iterator[Var]:
+    # subexpressions' walk, keeping only the variables (run for most lines by several rules).
+    found: list[Var] = []
     for top in top_expressions(statement):
-        for node in subexpressions(top):
-            if isinstance(node, Var):
-                yield node
+        kind = type(top)
+        if kind is Num:
+            continue
+        if kind is Var and top.index is None:  # type: ignore[union-attr]
+            found.append(top)  # type: ignore[arg-type]
+            continue
+        stack: list[Expr] = [top]
+        while stack:
+            node = stack.pop()
+            kind = type(node)
+            if kind is Binary:
+                stack.append(node.right)  # type: ignore[union-attr]
+                stack.append(node.left)  # type: ignore[union-attr]
+            elif kind is Var:
+                found.append(node)  # type: ignore[arg-type]
+                if node.index is not None:  # type: ignore[union-attr]
+                    stack.append(node.index)  # type: ignore[union-attr]
+            elif kind is Unary:
+                stack.append(node.operand)  # type: ignore[union-attr]
+            elif kind is Bracket:
+                stack.append(node.inner)  # type: ignore[union-attr]
+            elif kind is Call:
+                stack.extend(reversed(node.args))  # type: ignore[union-attr]
+    return iter(found)
 
 
 def bracket_depth(expr: Expr) -> int:

@@ -47,6 +47,8 @@ from .surface import tapered as cuts_a_cone
 NOSE_SEGMENTS = 12
 # The flank's rise per unit of offset of a round insert's edge past its half circle.
 VERTICAL = 1e9
+# The vertices of a pass's window looked at together for where its edge may go below them.
+HOT_RUN = 16
 # A pass removing less than this share of the thread's whole area removes nothing (the
 # rounding of an edge that touches the profile).
 NOTHING = 1e-6
@@ -267,8 +269,10 @@ class _Profile:
         # window goes over them and the edge stays above.
         self.dirty: set[float] = set()
         # The nose's radius, from its last chord end (u, h): u² + (r - h)² = r².
+        # At least the last chord end's offset, so that the arc is defined out to it (a
+        # larger radius's arc is flatter: still below the chords).
         u, h = edge[-1]
-        self.nose = (u * u + h * h) / (2.0 * h) if h > 0.0 else 0.0
+        self.nose = max((u * u + h * h) / (2.0 * h), u) if h > 0.0 else 0.0
 
     def _reach(self, height: float) -> float:
         """How far from its centre line the edge stays below ``height`` above the tip."""
@@ -323,7 +327,7 @@ class _Profile:
         lo = bisect_right(places, a)
         hi = bisect_left(places, b)
         pu, pv, corners = self._window(a, b, lo, hi, centre, tip)
-        full = self._walked(pu, pv, corners, a, b, centre, tip)
+        full, near = self._walked(pu, pv, corners, a, b, centre, tip)
         new_at = self._edge_at
         out_u: list[float] = []
         out_v: list[float] = []
@@ -342,13 +346,19 @@ class _Profile:
                 out_u += pu[k:end]
                 out_v += pv[k:end]
                 u0 = pu[end - 1]
-                d0 = pv[end - 1] - new_at(u0, centre, tip)
+                d0 = pv[end - 1] - new_at(u0, centre, tip) if end - 1 in near else -1.0
                 k = end
                 continue
             u = pu[k]
             v_old = pv[k]
             corner = corners.get(k)
-            new = new_at(u, centre, tip) if corner is None else corner
+            if corner is not None:
+                new = corner
+            elif k in near:
+                new = new_at(u, centre, tip)
+            else:
+                # The edge is above the vertex and its neighbours: no crossing, no area.
+                new = math.inf
             d1 = v_old - new
             crossed = False
             if k:
@@ -432,16 +442,19 @@ class _Profile:
         b: float,
         centre: float,
         tip: float,
-    ) -> list[int]:
+    ) -> tuple[list[int], set[int]]:
         """The positions of the window the walk must take one by one: the ends, the corners,
         the vertices the edge may go below (and the two after each, whose neighbours may
-        change), and those after a vertex whose neighbours are not known to be out of line."""
+        change), and those after a vertex whose neighbours are not known to be out of line;
+        and those next to where the edge may go below, whose edge value the walk needs."""
         n = len(pu)
         marks = {0, 1, 2, n - 1}
         for c in corners:
             marks.update((c, c + 1, c + 2))
         hot = self._hot(pu, pv, a, b, centre, tip)
+        near: set[int] = set()
         for p in hot:
+            near.update((p - 1, p, p + 1))
             marks.update((p, p + 1, p + 2))
         dirty = self.dirty.intersection(pu) if self.dirty else ()
         for u in dirty:
@@ -449,7 +462,7 @@ class _Profile:
             while p < n and pu[p] == u:
                 marks.add(p + 1)
                 p += 1
-        return sorted(m for m in marks if m < n)
+        return sorted(m for m in marks if m < n), near
 
     def _hot(
         self, pu: list[float], pv: list[float], a: float, b: float, centre: float, tip: float
@@ -466,18 +479,30 @@ class _Profile:
         if not math.isfinite(margin + centre):
             return list(range(len(pu)))
         low = tip - margin
-        sqrt = math.sqrt
+
+        def below(o: float) -> float:  # the edge's least rise above ``low`` at offset o
+            if o < last_offset:
+                return r - math.sqrt(rr - o * o)
+            return last_rise + (o - last_offset) * slope
+
         hot: list[int] = []
-        for p, (u, v) in enumerate(zip(pu, pv, strict=True)):
-            h = v - low
+        n = len(pu)
+        # By runs of vertices: a run whose highest is below the edge where it comes nearest
+        # the centre line is passed over whole.
+        for i in range(0, n, HOT_RUN):
+            j = min(i + HOT_RUN, n)
+            h = max(pv[i:j]) - low
             if h <= 0.0:
                 continue
-            o = u - centre if u >= centre else centre - u
-            if o < last_offset:
-                if h > r - sqrt(rr - o * o):
+            first, last = pu[i], pu[j - 1]
+            o = first - centre if first >= centre else (centre - last if last < centre else 0.0)
+            if h <= below(o):
+                continue
+            for p in range(i, j):
+                u = pu[p]
+                h = pv[p] - low
+                if h > 0.0 and h > below(u - centre if u >= centre else centre - u):
                     hot.append(p)
-            elif h > last_rise + (o - last_offset) * slope:
-                hot.append(p)
         return hot
 
     def _edge_at(self, u: float, centre: float, tip: float) -> float:
