@@ -6,6 +6,7 @@ memory of ``fanuc-macro check`` of each, in a new process.
     python bench/bench_open.py                 # both files, best of 3
     python bench/bench_open.py --cam 1000000   # a posted file of a million blocks too
     python bench/bench_open.py --profile macro # where the macro program's open goes (cProfile)
+    python bench/bench_open.py --cpu           # the process's CPU time: for a loaded machine
 
 Targets (issue 31): the macro program's open within 40 times the floor, the CAM file's within
 15 times, its ``check`` in at most 250 MB. The figures are ratios to the floor so that two
@@ -46,14 +47,17 @@ from fanuc_macro.syntax.parser import BlockParser, parse_text  # noqa: E402
 TOKEN = re.compile(r"\([^)]*\)|#\d+|[A-Z]+|[-+]?(?:\d+\.?\d*|\.\d+)|\S")
 
 TARGETS = {"macro": 40.0, "cam": 15.0}
+# The clock of the floor and the stages: wall time, or with --cpu the process's CPU time (on
+# a machine shared with other jobs, what the process itself spent).
+CLOCK: list[Callable[[], float]] = [time.perf_counter]
 CHECK_MEMORY_TARGET_MB = 250
 
 
 def floor(text: str) -> float:
-    started = time.perf_counter()
+    started = CLOCK[0]()
     for _ in TOKEN.finditer(text):
         pass
-    return time.perf_counter() - started
+    return CLOCK[0]() - started
 
 
 def open_stages(data: bytes) -> dict[str, float]:
@@ -68,9 +72,9 @@ def _open_stages(data: bytes) -> dict[str, float]:
     times: dict[str, float] = {}
 
     def stage(name: str, fn: Callable[[], object]) -> object:
-        started = time.perf_counter()
+        started = CLOCK[0]()
         value = fn()
-        times[name] = time.perf_counter() - started
+        times[name] = CLOCK[0]() - started
         return value
 
     decoded = stage("decode", lambda: decode_bytes(data))
@@ -168,7 +172,10 @@ def main() -> None:
     parser.add_argument("--cam", type=int, default=200_000, help="blocks of the CAM file")
     parser.add_argument("--macro", type=int, default=20_000, help="blocks of the macro program")
     parser.add_argument("--profile", choices=("macro", "cam"))
+    parser.add_argument("--cpu", action="store_true", help="CPU time instead of wall time")
     args = parser.parse_args()
+    if args.cpu:
+        CLOCK[0] = time.process_time
     macro = program(args.macro, distinct=True)
     cam = cam_program(args.cam)
     if args.profile:

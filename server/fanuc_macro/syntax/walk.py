@@ -81,20 +81,17 @@ def subexpressions(expr: Expr) -> Iterator[Expr]:
     while stack:
         node = stack.pop()
         yield node
-        # The expression classes have no subclasses: their type says which they are.
-        kind = type(node)
-        if kind is Binary:
-            stack.append(node.right)  # type: ignore[union-attr]
-            stack.append(node.left)  # type: ignore[union-attr]
-        elif kind is Var:
-            if node.index is not None:  # type: ignore[union-attr]
-                stack.append(node.index)  # type: ignore[union-attr]
-        elif kind is Unary:
-            stack.append(node.operand)  # type: ignore[union-attr]
-        elif kind is Bracket:
-            stack.append(node.inner)  # type: ignore[union-attr]
-        elif kind is Call:
-            stack.extend(reversed(node.args))  # type: ignore[union-attr]
+        if isinstance(node, Binary):
+            stack.append(node.right)
+            stack.append(node.left)
+        elif isinstance(node, (Unary,)):
+            stack.append(node.operand)
+        elif isinstance(node, Bracket):
+            stack.append(node.inner)
+        elif isinstance(node, Call):
+            stack.extend(reversed(node.args))
+        elif isinstance(node, Var) and node.index is not None:
+            stack.append(node.index)
 
 
 def plain_variables(statement: NcStatement) -> list[Var] | None:
