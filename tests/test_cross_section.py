@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import json
 import math
+import random
 import re
 import subprocess
 import sys
@@ -264,3 +265,36 @@ async def test_the_editor_shows_the_turned_blank_and_the_passes_in_the_air(
     (verdict,) = [d for d in found if d.code == "MB818"]
     assert verdict.range.start.line == 19
     assert "outside the blank X23.8 (the diameter turned at line 13)" in verdict.message
+
+
+def _random_cuts(seed: int) -> list[tuple[list[str], list[str], list[str]]]:
+    """Many passes at scattered places and depths on profiles of several tools: each profile's
+    vertices and the passes' areas, exactly (as hex)."""
+    from fanuc_macro.threads.cross_section import _Profile
+
+    rng = random.Random(seed)
+    found = []
+    for lead, angle, radius in [(3.0, 60.0, 0.375), (1.5, 55.0, 0.0), (2.0, 0.0, 0.3)]:
+        profile = _Profile(lead, 25.0, *ToolShape(angle, radius).edge())
+        areas = []
+        for k in range(150):
+            place = rng.random() * lead if k % 3 else (k * 0.37 * lead) % lead
+            areas.append(profile.cut(place, 25.0 - 0.6 * lead * rng.random() ** 0.5).hex())
+        found.append((areas, [u.hex() for u in profile.places], [v.hex() for v in profile.values]))
+    return found
+
+
+@pytest.mark.parametrize("seed", [1, 2])
+def test_the_walk_that_copies_untouched_stretches_cuts_what_the_whole_walk_cuts(
+    seed: int, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    from fanuc_macro.threads import cross_section
+
+    quick = _random_cuts(seed)
+
+    # Every position walked one by one and its edge value worked out: the plain walk.
+    def everything(self: object, pu: list[float], *_: object) -> tuple[list[int], set[int]]:
+        return list(range(len(pu))), set(range(-1, len(pu) + 1))
+
+    monkeypatch.setattr(cross_section._Profile, "_walked", everything)
+    assert quick == _random_cuts(seed)

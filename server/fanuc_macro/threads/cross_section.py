@@ -30,6 +30,7 @@ from bisect import bisect_left, bisect_right
 from collections.abc import Sequence
 from dataclasses import dataclass
 from functools import partial
+from itertools import compress
 from typing import ClassVar
 
 from ..database import TableKey
@@ -373,7 +374,18 @@ class _Profile:
                 elif d0 > 0.0 or d1 > 0.0:
                     positive, negative = (d0, d1) if d0 > 0.0 else (d1, d0)
                     area += positive * positive / (positive - negative) / 2.0 * (u - u0)
-            appended = _append(out_u, out_v, u, v_old if d1 <= 0.0 else new, replaced)
+            v = v_old if d1 <= 0.0 else new
+            # _append, inline: this runs for every vertex walked.
+            appended = True
+            if len(out_u) >= 2:
+                p0, q0, p1, q1 = out_u[-2], out_v[-2], out_u[-1], out_v[-1]
+                if u > p0 and abs(q0 + (v - q0) * (p1 - p0) / (u - p0) - q1) <= 1e-12:
+                    out_u[-1], out_v[-1] = u, v
+                    replaced.append(len(out_u) - 1)
+                    appended = False
+            if appended:
+                out_u.append(u)
+                out_v.append(v)
             if corner is not None or d1 > 0.0 or k == 0:
                 plain = 0
             else:
@@ -448,21 +460,23 @@ class _Profile:
         change), and those after a vertex whose neighbours are not known to be out of line;
         and those next to where the edge may go below, whose edge value the walk needs."""
         n = len(pu)
-        marks = {0, 1, 2, n - 1}
+        marks = bytearray(n + 2)  # two past the end: the marks after the last are dropped
+        marks[0:3] = b"\x01\x01\x01"
+        marks[n - 1] = 1
         for c in corners:
-            marks.update((c, c + 1, c + 2))
+            marks[c] = marks[c + 1] = marks[c + 2] = 1
         hot = self._hot(pu, pv, a, b, centre, tip)
         near: set[int] = set()
         for p in hot:
             near.update((p - 1, p, p + 1))
-            marks.update((p, p + 1, p + 2))
+            marks[p] = marks[p + 1] = marks[p + 2] = 1
         dirty = self.dirty.intersection(pu) if self.dirty else ()
         for u in dirty:
             p = bisect_left(pu, u)
             while p < n and pu[p] == u:
-                marks.add(p + 1)
+                marks[p + 1] = 1
                 p += 1
-        return sorted(m for m in marks if m < n), near
+        return list(compress(range(n), marks)), near
 
     def _hot(
         self, pu: list[float], pv: list[float], a: float, b: float, centre: float, tip: float
