@@ -4,6 +4,7 @@ not the start. Noted at each write to standard output, in a real server process.
 
 from __future__ import annotations
 
+import gc
 import io
 import json
 import os
@@ -30,15 +31,17 @@ ANALYSIS = (
 # The server's start as `python -m fanuc_macro.lsp.server` makes it (on the C allocator, as
 # after its start again), with a standard output that notes the modules loaded at each write.
 START = """
-import json, sys
+import gc, json, sys
 sys.orig_argv = [sys.executable, "-m", "fanuc_macro.lsp.server"]
 writes = []
+collecting = []
 
 class Noting:
     def __init__(self, stream):
         self.stream = stream
     def write(self, data):
         writes.append([data.decode(), sorted(sys.modules)])
+        collecting.append(gc.isenabled())
         return self.stream.write(data)
     def flush(self):
         self.stream.flush()
@@ -55,7 +58,7 @@ sys.stdout = Text(open(sys.argv[1], "wb"))
 import fanuc_macro.lsp.server
 status = fanuc_macro.lsp.server.main([])
 with open(sys.argv[2], "w") as file:
-    json.dump({"status": status, "writes": writes}, file)
+    json.dump({"status": status, "writes": writes, "collecting": collecting}, file)
 """
 
 
@@ -87,9 +90,12 @@ def _bodies(output: bytes) -> list[dict[str, Any]]:
     return found
 
 
-def _start(tmp_path: Path, session: bytes) -> tuple[list[tuple[str, set[str]]], bytes, str]:
-    """The writes of a server's session (each with the modules then loaded), all it wrote,
-    and its log."""
+Write = tuple[str, set[str], bool]  # what was written, the modules loaded, the collector on
+
+
+def _start(tmp_path: Path, session: bytes) -> tuple[list[Write], bytes, str]:
+    """The writes of a server's session (each with the modules then loaded and whether the
+    cyclic collector was on), all it wrote, and its log."""
     out, result = tmp_path / "out.bin", tmp_path / "result.json"
     env = {
         **os.environ,
@@ -106,7 +112,10 @@ def _start(tmp_path: Path, session: bytes) -> tuple[list[tuple[str, set[str]]], 
     assert done.returncode == 0, done.stderr.decode()
     report = json.loads(result.read_text())
     assert report["status"] == 0
-    writes = [(data, set(modules)) for data, modules in report["writes"]]
+    writes = [
+        (data, set(modules), on)
+        for (data, modules), on in zip(report["writes"], report["collecting"], strict=True)
+    ]
     return writes, out.read_bytes(), done.stderr.decode()
 
 
@@ -116,7 +125,34 @@ def _loaded(modules: set[str], names: tuple[str, ...]) -> set[str]:
 
 def test_initialize_is_answered_before_the_analysis_loads(tmp_path: Path) -> None:
     writes, output, _ = _start(tmp_path, _session())
-    answer, loaded = writes[0]
+    answer, loaded, _ = writes[0]
     assert '"id": 1' in answer and '"capabilities"' in answer
     assert "pygls" in loaded and not _loaded(loaded, ANALYSIS)
     assert [m.get("id") for m in _bodies(output)] == [1, 2]
+
+
+def test_the_collector_rests_until_initialize_is_answered(tmp_path: Path) -> None:
+    # The start's objects all live on: the collector is paused while they are made, and back
+    # once initialize is answered, for the whole session after it.
+    writes, _, _ = _start(tmp_path, _session())
+    assert [on for _, _, on in writes] == [False, True]
+
+
+def test_the_collector_resumes_for_a_client_that_does_not_initialize(tmp_path: Path) -> None:
+    session = b"".join(
+        _framed(m)
+        for m in (
+            {"jsonrpc": "2.0", "method": "$/setTrace", "params": {"value": "off"}},
+            {"jsonrpc": "2.0", "id": 2, "method": "shutdown"},
+            {"jsonrpc": "2.0", "method": "exit"},
+        )
+    )
+    writes, _, _ = _start(tmp_path, session)
+    assert [on for _, _, on in writes] == [True]
+
+
+def test_the_collector_runs_in_other_processes() -> None:
+    # Importing the server's modules (the tests, the command line) pauses nothing.
+    import fanuc_macro.lsp.server  # noqa: F401
+
+    assert gc.isenabled()

@@ -18,6 +18,8 @@ from pygls.exceptions import JsonRpcException, JsonRpcInvalidParams, JsonRpcInva
 from pygls.protocol import LanguageServerProtocol
 from pygls.protocol.language_server import lsp_method
 
+from . import resume_the_collector
+
 log = logging.getLogger(__name__)
 
 
@@ -75,6 +77,10 @@ class AnsweringProtocol(LanguageServerProtocol):
             self._send_response(message.id, None, message.error.to_response_error())
             return
         super().handle_message(message)
+        if getattr(message, "method", None) != types.INITIALIZE:
+            # The initialize handler resumes it; a client that sends something else first
+            # must not leave the server without it.
+            resume_the_collector()
 
     def _check_handler_result(self, future: Future[Any]) -> None:
         # pygls files the future of a notification whose handler is a generator (did_open,

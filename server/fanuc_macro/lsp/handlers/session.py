@@ -10,6 +10,7 @@ from typing import TYPE_CHECKING, Any
 from lsprotocol import types
 
 from ...code_cache import save_code_cache
+from .. import resume_the_collector
 from ..client import CompletionSupport
 from ..convert import Codec
 from ..folders import path_of
@@ -55,8 +56,10 @@ def _capability(root: Any, path: str) -> Any:
 
 
 def initialize(ls: FanucMacroLanguageServer, params: types.InitializeParams) -> None:
+    loop = asyncio.get_running_loop()
+    loop.call_soon(resume_the_collector)  # once the answer is written: pygls writes it first
     engine = ls.engine
-    engine.bind_loop(asyncio.get_running_loop())
+    engine.bind_loop(loop)
     engine.codec = Codec(ls.workspace.position_encoding)
     engine.client_locale = params.locale
     caps = params.capabilities
