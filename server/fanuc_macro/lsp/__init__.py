@@ -13,8 +13,6 @@ import gc
 import os
 import sys
 
-from ..code_cache import install_code_cache
-
 
 def _started_as_server(argv: list[str]) -> bool:
     """Whether the command line runs the language server: ``fanuc-macro-ls`` or
@@ -72,5 +70,8 @@ _collector_paused = False
 run_on_the_c_allocator()
 pause_the_collector()
 
-# Before server.py imports lsprotocol: its attrs classes are built from cached code.
+# Imported in the process started again only (it loads pathlib and re). Before server.py
+# imports lsprotocol: its attrs classes are built from cached code.
+from ..code_cache import install_code_cache  # noqa: E402
+
 install_code_cache("server")
