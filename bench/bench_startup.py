@@ -8,7 +8,8 @@ language server's answer to ``initialize``, each in a new process, as a user mee
 The instructions a start executes (valgrind's callgrind, one run of each, the hash seed fixed)
 are the same from one run to the next, on a loaded machine too: a comparison of two trees
 that wall-clock times, which vary two- to threefold beside other jobs, cannot give. They count
-the server's whole session, to its exit: the loads after its answer too. Valgrind follows no
+the server's whole session, to its exit: the loads after its answer too; a last figure counts
+its start to its answer to ``initialize`` alone (its first write ends it). Valgrind follows no
 ``exec``, so the server runs there with ``PYTHONMALLOC=malloc`` and does not start again.
 
 The interpreter runs with its bytecode cached, as in an installed package: a temporary
@@ -219,6 +220,29 @@ def time_server(env: dict[str, str], uncached: dict[str, str], runs: range) -> N
     print(f"target (at most {TARGET_RATIO:g}x): {met}")
 
 
+# The server as `python -m fanuc_macro.lsp.server` starts it, ended by its first write: the
+# instructions to the answer to initialize, without what follows it (the analysis's preload,
+# the collector's resumption, shutdown).
+TO_THE_ANSWER = """
+import os, sys
+sys.orig_argv = [sys.executable, "-m", "fanuc_macro.lsp.server"]
+
+class Ending:
+    def write(self, data):
+        os.write(1, data)
+        os._exit(0)
+    def flush(self):
+        pass
+
+class Text:
+    buffer = Ending()
+
+sys.stdout = Text()
+import fanuc_macro.lsp.server
+fanuc_macro.lsp.server.main([])
+"""
+
+
 def count_instructions(env: dict[str, str], uncached: dict[str, str], check: list[str]) -> None:
     # Valgrind follows no exec: the server runs on the C allocator from its start, so it does
     # not start again (one interpreter start less than it takes, about python -c pass).
@@ -234,6 +258,12 @@ def count_instructions(env: dict[str, str], uncached: dict[str, str], check: lis
             server,
             initialize_messages(),
             (no_exec, no_exec_uncached),
+        ),
+        (
+            "language server (PYTHONMALLOC=malloc): start to the answer to initialize",
+            [sys.executable, "-c", TO_THE_ANSWER],
+            initialize_messages(),
+            (no_exec,),
         ),
     ):
         for run_env in envs:
