@@ -66,6 +66,10 @@ class AnsweringProtocol(LanguageServerProtocol):
             return _Unreadable(msg_id, method, JsonRpcInvalidParams(message))
 
     def handle_message(self, message: Any) -> None:
+        if getattr(message, "method", None) != types.INITIALIZE:
+            # The initialize handler resumes it once answered; a client that sends something
+            # else first must not leave the server without it.
+            resume_the_collector()
         if isinstance(message, dict):  # a message without "jsonrpc"
             wrong = _invalid_request(message)
             if wrong is None:
@@ -77,10 +81,6 @@ class AnsweringProtocol(LanguageServerProtocol):
             self._send_response(message.id, None, message.error.to_response_error())
             return
         super().handle_message(message)
-        if getattr(message, "method", None) != types.INITIALIZE:
-            # The initialize handler resumes it; a client that sends something else first
-            # must not leave the server without it.
-            resume_the_collector()
 
     def _check_handler_result(self, future: Future[Any]) -> None:
         # pygls files the future of a notification whose handler is a generator (did_open,
