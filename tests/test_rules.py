@@ -286,6 +286,26 @@ def test_suppression_comment_before_the_code_of_the_line() -> None:
     assert "MB301" not in codes_of(text)
 
 
+def test_ignore_file_hides_the_codes_it_names_in_the_whole_file() -> None:
+    text = "O1000 (fanuc-macro: ignore-file MB101)\nGOTO 5\nGOTO 6\nM99 P7\nM30\n"
+    found = analyse(text).diagnostics
+    assert not pairs(found, "MB101")
+    everything = "O1000\nGOTO 5\n(fanuc-macro: ignore-file)\nGOTO 6\nM30\n"
+    assert analyse(everything).diagnostics == []
+    # "ignore-file MB301" is not an "ignore" of every code of its line
+    assert "MB101" in codes_of("O1000\nGOTO 5 (fanuc-macro: ignore-file MB301)\nM30\n")
+
+
+def test_ignore_start_and_end_hide_the_lines_between_them() -> None:
+    text = (
+        "O1000\nGOTO 5\n(fanuc-macro: ignore-start MB101)\nGOTO 6\nGOTO 7\n"
+        "(fanuc-macro: ignore-end MB101)\nGOTO 8\nM30\n"
+    )
+    assert {line for line, _code in pairs(analyse(text).diagnostics, "MB101")} == {1, 6}
+    unclosed = "O1000\nGOTO 5\n(fanuc-macro: ignore-start)\nGOTO 6\nGOTO 7\nM30\n"
+    assert {line for line, _code in pairs(analyse(unclosed).diagnostics, "MB101")} == {1}
+
+
 def test_other_comment_does_not_suppress() -> None:
     text = f"O1000\n{DEEP} (IGNORE MB301)\nM30\n"
     assert "MB301" in codes_of(text)

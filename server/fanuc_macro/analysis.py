@@ -14,14 +14,17 @@ from .cancel import RULE_CHECKS, CancelToken, raise_if_cancelled
 from .config import Config, ignored_in
 from .database import current
 from .diagnostics import (
+    FILE,
+    LINE,
     REPORT_INTERNAL_ERROR,
+    START,
     Diagnostic,
     Related,
     RuleDoc,
     RuleInfo,
     Severity,
     make,
-    suppressed_codes,
+    suppression_in,
 )
 from .evaluator import Facts, evaluate
 from .line_maps import LineMap
@@ -144,31 +147,74 @@ class Analysis:
     mill_facts: Facts | None = None
 
 
-def _suppressed_on(parsed: ParsedLine) -> frozenset[str] | None:
-    """The codes a line's comments suppress ("*": all), None when they suppress none."""
-    codes: set[str] = set()
-    found = False
+Suppression = tuple[tuple[str, frozenset[str]], ...]  # (where it acts, codes; none: all)
+
+
+def _suppressed_on(parsed: ParsedLine) -> Suppression | None:
+    """The suppression comments of a line (diagnostics.suppression_in), None when none."""
+    found: list[tuple[str, frozenset[str]]] = []
     for comment in parsed.comments:
         if "ignore" not in comment.text.lower():
             continue
-        named = suppressed_codes(comment.text)
-        if named is not None:
-            found = True
-            codes.update(named or {"*"})
-    return frozenset(codes) if found else None
+        mark = suppression_in(comment.text)
+        if mark is not None:
+            found.append(mark)
+    return tuple(found) or None
 
 
 # The lines whose comments suppress diagnostics: few, and kept from edit to edit.
-suppressions: LineMap[frozenset[str]] = LineMap(_suppressed_on)
+suppressions: LineMap[Suppression] = LineMap(_suppressed_on)
+
+
+@dataclass(frozen=True)
+class _Hidden:
+    """What a document's suppression comments hide: codes on a line, in the whole file, and
+    from an ``ignore-start`` line to its ``ignore-end`` ("*": every code)."""
+
+    lines: dict[int, frozenset[str]]
+    file: frozenset[str]
+    ranges: tuple[tuple[int, int, frozenset[str]], ...]  # first and last line, codes
+
+    @classmethod
+    def of(cls, marks: dict[int, Suppression]) -> _Hidden:
+        lines: dict[int, frozenset[str]] = {}
+        file: set[str] = set()
+        ranges: list[tuple[int, int, frozenset[str]]] = []
+        open_from: dict[str, int] = {}  # code ("*": all) -> the line of its ignore-start
+        for line in sorted(marks):
+            for where, codes in marks[line]:
+                named = codes or frozenset({"*"})
+                if where == LINE:
+                    lines[line] = lines.get(line, frozenset()) | named
+                elif where == FILE:
+                    file |= named
+                elif where == START:
+                    for code in named:
+                        open_from.setdefault(code, line)
+                else:  # END: the ranges of its codes end here (all of them, with none)
+                    for code in [c for c in open_from if not codes or c in codes]:
+                        ranges.append((open_from.pop(code), line, frozenset({code})))
+        ranges.extend((first, 1 << 62, frozenset({code})) for code, first in open_from.items())
+        return cls(lines, frozenset(file), tuple(ranges))
+
+    def hides(self, line: int, code: str) -> bool:
+        for codes in (self.file, self.lines.get(line, frozenset())):
+            if "*" in codes or code in codes:
+                return True
+        return any(
+            first <= line <= last and ("*" in codes or code in codes)
+            for first, last, codes in self.ranges
+        )
 
 
 def _apply_settings(diags: Iterable[Diagnostic], doc: Document, config: Config) -> list[Diagnostic]:
     """Drop disabled and suppressed diagnostics; apply configured severities."""
-    suppressed = dict(suppressions(doc))
+    marks = dict(suppressions(doc))
+    hidden = _Hidden.of(marks) if marks else None
     disabled = config.disabled | ignored_in(config, doc.uri)
     selected = config.selected
     out: list[Diagnostic]
-    if not suppressed and not disabled and not config.severities and selected is None:
+    if hidden is None and not disabled and not config.severities and selected is None:
         out = list(diags)  # nothing to drop or change: tens of thousands in a dense program
     else:
         out = []
@@ -177,8 +223,7 @@ def _apply_settings(diags: Iterable[Diagnostic], doc: Document, config: Config) 
                 continue
             if selected is not None and d.code != MB000.code and not d.code.startswith(selected):
                 continue
-            codes = suppressed.get(d.line)
-            if codes is not None and ("*" in codes or d.code in codes):
+            if hidden is not None and hidden.hides(d.line, d.code):
                 continue
             severity = config.severities.get(d.code)
             out.append(d.with_severity(severity) if severity else d)

@@ -166,12 +166,27 @@ REPORT_INTERNAL_ERROR = (
 )
 
 
-_SUPPRESS = re.compile(r"fanuc-macro\s*:\s*ignore\b\s*((?:MB\d+[\s,]*)*)", re.I)
+_SUPPRESS = re.compile(
+    r"fanuc-macro\s*:\s*ignore(?:-(file|start|end))?(?![\w-])\s*((?:MB\d+[\s,]*)*)", re.I
+)
+# Where a suppression comment acts: its line, the whole file, or the lines from an
+# ``ignore-start`` to the next ``ignore-end`` (both included).
+LINE, FILE, START, END = "line", "file", "start", "end"
+
+
+def suppression_in(comment_text: str) -> tuple[str, frozenset[str]] | None:
+    """Where ``(fanuc-macro: ignore MB301)``, ``ignore-file``, ``ignore-start`` or
+    ``ignore-end`` acts and the codes it names (none: every code); None for another comment."""
+    m = _SUPPRESS.search(comment_text)
+    if m is None:
+        return None
+    codes = frozenset(c.upper() for c in re.findall(r"MB\d+", m.group(2), re.I))
+    return (m.group(1) or LINE).lower(), codes
 
 
 def suppressed_codes(comment_text: str) -> set[str] | None:
     """Codes named by ``(fanuc-macro: ignore MB301 MB302)``; an empty set means every code."""
-    m = _SUPPRESS.search(comment_text)
-    if m is None:
+    found = suppression_in(comment_text)
+    if found is None or found[0] != LINE:
         return None
-    return {c.upper() for c in re.findall(r"MB\d+", m.group(1), re.I)}
+    return set(found[1])
