@@ -65,6 +65,10 @@ class Fix:
     title: str
     edits: tuple[FixEdit, ...]
     preferred: bool = False
+    # Whether ``check --fix`` applies it without --unsafe-fixes: it mends only the mistake and
+    # changes nothing the control does otherwise (a comment closed). A fix that changes what
+    # the program does (a value, a jump, a loop) is the programmer's choice.
+    safe: bool = False
 
     def on_line(self, line: int) -> Fix:
         """The fix of a line rule's finding (its edits on line 0) for the block on ``line``."""
@@ -72,7 +76,7 @@ class Fix:
             FixEdit(e.line + line, e.column, e.end_line + line, e.end_column, e.text)
             for e in self.edits
         )
-        return Fix(self.title, edits, self.preferred)
+        return Fix(self.title, edits, self.preferred, self.safe)
 
 
 @dataclass(frozen=True, slots=True)

@@ -631,6 +631,24 @@ def _add_check_command(
         "junit: JUnit XML, a test case per file",
     )
     check.add_argument(
+        "--fix",
+        action="store_true",
+        help="apply the fixes the rules mark safe (they mend only the mistake, e.g. close a "
+        "comment) to the files, then check them as fixed",
+    )
+    check.add_argument(
+        "--unsafe-fixes",
+        action="store_true",
+        help="with --fix or --diff, the other fixes too (they change what the program does, "
+        "as the message suggests)",
+    )
+    check.add_argument(
+        "--diff",
+        action="store_true",
+        help="print the changes --fix would make, as diff -u, and write nothing; exit status "
+        "1 when there is one",
+    )
+    check.add_argument(
         "--statistics",
         action="store_true",
         help="a count of the findings of each rule, the most first, instead of the findings "

@@ -26,6 +26,7 @@ from ..workspace import DocumentLinks, Workspace, graph_of_links, related_in_gra
 if TYPE_CHECKING:
     from .check_cache import CheckCache
 from .configuration import ConfigResolver
+from .fix_command import Fixed, fix_file, unified_diff
 from .reports import github, junit, sarif, statistics, text_line, use_colour
 from .streams import STDIN, read_stdin, writes_unicode
 
@@ -148,6 +149,14 @@ def cmd_check(args: argparse.Namespace) -> int:
     except ConfigFileError as error:
         err.write(f"fanuc-macro: {error}\n")
         return EXIT_USAGE
+    if args.fix or args.diff:
+        if STDIN in paths:
+            err.write("fanuc-macro: --fix and --diff take files, not standard input\n")
+            return EXIT_USAGE
+        fixed = _fixed(datas, groups, args.unsafe_fixes)
+        if args.diff:
+            return _show_diff(datas, fixed)
+        datas = _write_fixed(datas, fixed, err)
     for checked in _checked_in_order(datas, groups, args):
         if checked.stopped is not None:  # the safety net: not a finding of the program's
             err.write(f"{checked.key}: {checked.stopped}\n")
@@ -184,6 +193,58 @@ def _by_configuration(
         (resolver.for_path(None if keys[0] == STDIN else Path(keys[0])).config, frozenset(keys))
         for keys in groups.values()
     ]
+
+
+def _fixed(
+    datas: list[tuple[str, bytes]],
+    groups: list[tuple[Config, frozenset[str]]],
+    unsafe: bool,
+) -> dict[str, Fixed]:
+    """Each file's fixes, worked out in a workspace of every file (its called programs decide
+    what a rule finds) with its own configuration."""
+    found: dict[str, Fixed] = {}
+    for config, keys in groups:
+        workspace = Workspace(config, keep_runs=False)
+        for key, data in datas:
+            workspace.add_bytes(key, data)
+        for key, data in datas:
+            if key in keys:
+                found[key] = fix_file(workspace, key, data, unsafe)
+    return found
+
+
+def _show_diff(datas: list[tuple[str, bytes]], fixed: dict[str, Fixed]) -> int:
+    """--diff: each change as ``diff -u`` shows it; exit status 1 when there is one."""
+    changed = 0
+    for key, data in datas:
+        after = fixed[key].data
+        if after is not None:
+            sys.stdout.write(unified_diff(key, data, after))
+            changed += 1
+    sys.stderr.write(f"fanuc-macro: {_plural(changed, 'file')} would be changed\n")
+    return 1 if changed else 0
+
+
+def _write_fixed(
+    datas: list[tuple[str, bytes]], fixed: dict[str, Fixed], err: TextIO
+) -> list[tuple[str, bytes]]:
+    """--fix: the changed files written; the texts to check, as fixed."""
+    out: list[tuple[str, bytes]] = []
+    applied = files = 0
+    for key, data in datas:
+        result = fixed[key]
+        if result.refused:
+            err.write(f"fanuc-macro: {key}: not fixed: {result.refused}\n")
+        if result.data is not None:
+            Path(key).write_bytes(result.data)
+            applied += result.applied
+            files += 1
+            data = result.data
+        out.append((key, data))
+    err.write(
+        f"fanuc-macro: {_plural(applied, 'fix', 'fixes')} applied in {_plural(files, 'file')}\n"
+    )
+    return out
 
 
 def _checked_in_order(

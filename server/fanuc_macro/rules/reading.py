@@ -794,6 +794,7 @@ def _close_comment(text: str) -> Fix:
         "Close the comment with ')' at the end of the line",
         (FixEdit.insert(0, len(text.rstrip()), ")"),),
         preferred=True,
+        safe=True,  # the control reads the comment to the line's end already
     )
 
 
@@ -810,6 +811,7 @@ def _unnest_comment(text: str, start: int, end: int) -> tuple[Fix, ...]:
             "Remove the parentheses nested in the comment",
             (FixEdit(0, start, 0, end, f"({flat})"),),
             preferred=True,
+            safe=True,  # comment text only: what was meant as comment becomes one
         ),
     )
 
