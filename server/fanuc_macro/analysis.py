@@ -14,17 +14,13 @@ from .cancel import RULE_CHECKS, CancelToken, raise_if_cancelled
 from .config import Config, ignored_in
 from .database import current
 from .diagnostics import (
-    FILE,
-    LINE,
     REPORT_INTERNAL_ERROR,
-    START,
     Diagnostic,
     Related,
     RuleDoc,
     RuleInfo,
     Severity,
     make,
-    suppression_in,
 )
 from .evaluator import Facts, evaluate
 from .line_maps import LineMap
@@ -48,6 +44,7 @@ from .rules.reading import (
     fold_lowercase,
     fold_runaway_comments,
 )
+from .rules.suppression import Hidden, Marks, marks_of
 from .syntax.parser import BlockParser, default_parser, parse_text, quiet_gc
 from .syntax.tree import Document, ParsedLine, PlainNc
 from .threads.identify import Thread
@@ -147,88 +144,45 @@ class Analysis:
     mill_facts: Facts | None = None
 
 
-Suppression = tuple[tuple[str, frozenset[str]], ...]  # (where it acts, codes; none: all)
-
-
-def _suppressed_on(parsed: ParsedLine) -> Suppression | None:
-    """The suppression comments of a line (diagnostics.suppression_in), None when none."""
-    found: list[tuple[str, frozenset[str]]] = []
-    for comment in parsed.comments:
-        if "ignore" not in comment.text.lower():
-            continue
-        mark = suppression_in(comment.text)
-        if mark is not None:
-            found.append(mark)
-    return tuple(found) or None
-
-
 # The lines whose comments suppress diagnostics: few, and kept from edit to edit.
-suppressions: LineMap[Suppression] = LineMap(_suppressed_on)
+suppressions: LineMap[Marks] = LineMap(marks_of)
 
 
-@dataclass(frozen=True)
-class _Hidden:
-    """What a document's suppression comments hide: codes on a line, in the whole file, and
-    from an ``ignore-start`` line to its ``ignore-end`` ("*": every code)."""
-
-    lines: dict[int, frozenset[str]]
-    file: frozenset[str]
-    ranges: tuple[tuple[int, int, frozenset[str]], ...]  # first and last line, codes
-
-    @classmethod
-    def of(cls, marks: dict[int, Suppression]) -> _Hidden:
-        lines: dict[int, frozenset[str]] = {}
-        file: set[str] = set()
-        ranges: list[tuple[int, int, frozenset[str]]] = []
-        open_from: dict[str, int] = {}  # code ("*": all) -> the line of its ignore-start
-        for line in sorted(marks):
-            for where, codes in marks[line]:
-                named = codes or frozenset({"*"})
-                if where == LINE:
-                    lines[line] = lines.get(line, frozenset()) | named
-                elif where == FILE:
-                    file |= named
-                elif where == START:
-                    for code in named:
-                        open_from.setdefault(code, line)
-                else:  # END: the ranges of its codes end here (all of them, with none)
-                    for code in [c for c in open_from if not codes or c in codes]:
-                        ranges.append((open_from.pop(code), line, frozenset({code})))
-        ranges.extend((first, 1 << 62, frozenset({code})) for code, first in open_from.items())
-        return cls(lines, frozenset(file), tuple(ranges))
-
-    def hides(self, line: int, code: str) -> bool:
-        for codes in (self.file, self.lines.get(line, frozenset())):
-            if "*" in codes or code in codes:
-                return True
-        return any(
-            first <= line <= last and ("*" in codes or code in codes)
-            for first, last, codes in self.ranges
-        )
-
-
-def _apply_settings(diags: Iterable[Diagnostic], doc: Document, config: Config) -> list[Diagnostic]:
-    """Drop disabled and suppressed diagnostics; apply configured severities."""
+def _apply_settings(
+    diags: Iterable[Diagnostic], doc: Document, config: Config, whole: bool = False
+) -> list[Diagnostic]:
+    """Drop disabled and suppressed diagnostics; apply configured severities. ``whole``: every
+    rule ran on a whole run, so a suppression comment that hid nothing is told (MB015)."""
     marks = dict(suppressions(doc))
-    hidden = _Hidden.of(marks) if marks else None
+    hidden = Hidden(marks) if marks else None
     disabled = config.disabled | ignored_in(config, doc.uri)
     selected = config.selected
     out: list[Diagnostic]
     if hidden is None and not disabled and not config.severities and selected is None:
         out = list(diags)  # nothing to drop or change: tens of thousands in a dense program
     else:
+        found = list(diags)
+        if hidden is not None:
+            visible = [d for d in found if not hidden.hides(d.line, d.code)]
+            if whole:
+                judged = frozenset(c for c in RULES if _reported(c, disabled, selected))
+                visible += hidden.unused(judged)
+            found = visible
         out = []
-        for d in diags:
-            if d.code in disabled:
-                continue
-            if selected is not None and d.code != MB000.code and not d.code.startswith(selected):
-                continue
-            if hidden is not None and hidden.hides(d.line, d.code):
+        for d in found:
+            if not _reported(d.code, disabled, selected):
                 continue
             severity = config.severities.get(d.code)
             out.append(d.with_severity(severity) if severity else d)
     out.sort(key=_position)
     return out
+
+
+def _reported(code: str, disabled: frozenset[str], selected: tuple[str, ...] | None) -> bool:
+    """Whether the settings report ``code`` (MB000, the analyser's own failure, always)."""
+    if code in disabled:
+        return False
+    return selected is None or code == MB000.code or code.startswith(selected)
 
 
 _position = attrgetter("line", "column", "code")  # a diagnostic's place in the list, in C
@@ -398,7 +352,8 @@ def analyse(
                 threads = ctx.threads()
             except Exception:  # reported as MB000 by the rules that asked for them
                 log_failure(__name__, "thread identification of %s failed", uri)
-        diagnostics = _apply_settings(found, doc, config)
+        whole = facts is not None and facts.stopped is None and not failed
+        diagnostics = _apply_settings(found, doc, config, whole)
         kept_mill: Facts | None = None
         if not config.machine_known and readings_differ(doc):
             # Neither machine shown: only what a lathe's and a mill's reading both find.

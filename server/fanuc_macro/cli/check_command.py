@@ -19,14 +19,13 @@ from typing import TYPE_CHECKING, Any, TextIO
 from ..config import Config
 from ..config_file import ConfigFileError
 from ..diagnostics import Diagnostic, Severity
-from ..ide import machine_text
+from ..ide import Fixed, fix_file, machine_text, unified_diff
 from ..program_files import Found, find_programs
 from ..workspace import DocumentLinks, Workspace, graph_of_links, related_in_graph
 
 if TYPE_CHECKING:
     from .check_cache import CheckCache
 from .configuration import ConfigResolver
-from .fix_command import Fixed, fix_file, unified_diff
 from .reports import github, junit, sarif, statistics, text_line, use_colour
 from .streams import STDIN, read_stdin, writes_unicode
 

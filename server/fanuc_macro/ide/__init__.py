@@ -15,7 +15,8 @@ loads only what it uses.
   :mod:`.token_legend`), :mod:`.signature`, :mod:`.lenses`: the features;
 - :mod:`.trace`, :mod:`.toolpath_view`, :mod:`.plot`: the motions a program executes;
   :mod:`.trace_view`: the trace view's text;
-- :mod:`.formatting`, :mod:`.renumber`: blocks and labels rewritten;
+- :mod:`.formatting`, :mod:`.renumber`: blocks and labels rewritten; :mod:`.fixing`: the
+  rules' quick fixes applied to a file;
 - :mod:`.number_uses`, :mod:`.rename`, :mod:`.highlight`, :mod:`.calls`, :mod:`.ranges`,
   :mod:`.workspace_symbols`: navigation by number, ranges and symbols;
 - :mod:`.messages`: the server's words in other languages; :mod:`.controllers`: the controllers
@@ -54,6 +55,9 @@ if TYPE_CHECKING:
     from .data import Symbol as Symbol
     from .data import SymbolKind as SymbolKind
     from .data import TextEdit as TextEdit
+    from .fixing import Fixed as Fixed
+    from .fixing import fix_file as fix_file
+    from .fixing import unified_diff as unified_diff
     from .formatting import CannotFormat as CannotFormat
     from .formatting import FormatOptions as FormatOptions
     from .formatting import format_document as format_document
@@ -121,6 +125,9 @@ PUBLIC: MappingProxyType[str, str] = MappingProxyType(
         "Symbol": "data",
         "SymbolKind": "data",
         "TextEdit": "data",
+        "Fixed": "fixing",
+        "fix_file": "fixing",
+        "unified_diff": "fixing",
         "CannotFormat": "formatting",
         "FormatOptions": "formatting",
         "format_document": "formatting",

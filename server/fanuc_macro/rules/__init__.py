@@ -32,6 +32,7 @@ from . import (
     profiles,
     reading,
     statements,
+    suppression,
     thread_arc,
     thread_cut,
     thread_lead,
@@ -113,6 +114,7 @@ FAMILIES: tuple[ModuleType, ...] = (
     thread_taper,
     thread_arc,
     cycles,
+    suppression,
 )
 
 D = TypeVar("D", RuleInfo, RuleDoc)

@@ -1,5 +1,5 @@
-"""``check --fix``, ``--diff`` and ``--unsafe-fixes``: the quick fixes the rules work out
-(the editor's code actions), applied to the files. A fix a rule marks safe changes nothing of
+"""The quick fixes the rules work out (the editor's code actions) applied to a file's text,
+for ``check --fix``, ``--diff`` and ``--unsafe-fixes``. A fix a rule marks safe changes nothing of
 what the control does but the mistake (a comment closed); the others change the program as the
 message suggests, and are applied only when asked. The files are analysed again after each
 round of fixes, and checked as fixed."""
