@@ -95,7 +95,9 @@ class ConstantWords:
     """What an NC block of constant words evaluates to, worked out once at compile time.
     Most blocks of a long program are such; nothing here is mutated by a run."""
 
-    values: dict[str, Value]
+    # The words by address, first of each; None when they are ``codes`` then ``words`` (a plain
+    # block "G01 X.. Y..": the run makes them, kept for no block, see ``values``).
+    kept_values: dict[str, Value] | None
     g_codes: tuple[float, ...]
     m_codes: tuple[float, ...]
     nc: NcStatement
@@ -107,6 +109,17 @@ class ConstantWords:
     # maximum), whatever the settings: the run need not look at them.
     quiet: bool = False
     _order: list[tuple[str, Value, CompiledWord]] | None = field(default=None, compare=False)
+    # The G and M words by address (shared by every block of the same codes), when
+    # ``kept_values`` is None.
+    codes: Mapping[str, float] | None = field(default=None, compare=False)
+
+    @property
+    def values(self) -> dict[str, Value]:
+        """The words by address, in the order of the block (first of each address)."""
+        kept = self.kept_values
+        if kept is not None:
+            return kept
+        return {**self.codes, **self.words}  # type: ignore[dict-item]  # codes set then
 
     @property
     def order(self) -> list[tuple[str, Value, CompiledWord]]:
@@ -317,14 +330,17 @@ def _compile_plain_code(nc: PlainNc) -> CompiledLine:
     codes = current().table(CODES_COMPILED).get(written)
     if codes is None:
         codes = _compile_codes(written)
-    g_codes, m_codes, quiet, ends_program = codes
+    g_codes, m_codes, quiet, ends_program, by_address = codes
     motion_words = values
+    kept: dict[str, float] | None = values
     if written:  # G or M words (the words hold no N): the motion's are the others
         motion_words = values.copy()  # in the same order
         if g_codes:
             del motion_words["G"]
         if m_codes:
             del motion_words["M"]
+        if _codes_first(values, written):
+            kept = None  # the run makes them from the codes and the motion's words
     if quiet and not _CHECKED_ADDRESSES.isdisjoint(values):
         for address in _CHECKED_ADDRESSES.intersection(values):
             v = values[address]
@@ -332,7 +348,7 @@ def _compile_plain_code(nc: PlainNc) -> CompiledLine:
                 quiet = False
                 break
     constant = ConstantWords(
-        values,  # type: ignore[arg-type]  # of floats only
+        kept,  # type: ignore[arg-type]  # of floats only
         g_codes,
         m_codes,
         nc,
@@ -340,15 +356,32 @@ def _compile_plain_code(nc: PlainNc) -> CompiledLine:
         motion_words,
         not AXES.isdisjoint(values),
         quiet,
+        None,
+        by_address,
     )
     # CompiledLine(K_NC, nc=nc, node=nc, constant=constant, ends_program=ends_program), its
     # arguments by position (faster by a third).
     return CompiledLine(K_NC, (), None, None, None, None, (), nc, nc, None, constant, ends_program)
 
 
+def _codes_first(values: dict[str, float], written: tuple[tuple[str, float], ...]) -> bool:
+    """The block's words are its G and M words, as the parser read them, then the others."""
+    at = 0
+    for address in values:
+        if at == len(written):
+            return True
+        code = written[at][1]
+        v = values[address]
+        if address != written[at][0] or v != code or (v == 0.0 and str(v) != str(code)):
+            return False
+        at += 1
+    return True
+
+
 # What a plain block's G and M codes (shared by the parser) compile to: the G codes at their
-# least increment, the M codes, whether the G codes need no rounding, whether M02/M30 ends.
-CompiledCodes = tuple[tuple[float, ...], tuple[float, ...], bool, bool]
+# least increment, the M codes, whether the G codes need no rounding, whether M02/M30 ends,
+# the codes by address.
+CompiledCodes = tuple[tuple[float, ...], tuple[float, ...], bool, bool, Mapping[str, float]]
 CODES_COMPILED: TableKey[tuple[tuple[str, float], ...], CompiledCodes] = TableKey(
     "evaluator.codes_compiled", cache=True
 )
@@ -370,6 +403,7 @@ def _compile_codes(codes: tuple[tuple[str, float], ...]) -> CompiledCodes:
         _shared_codes(m_codes) if m_codes else (),
         quiet,
         2.0 in m_codes or 30.0 in m_codes,
+        dict(codes),
     )
     compiled_codes = current().table(CODES_COMPILED)
     if len(compiled_codes) >= MAX_SHARED_CODES:

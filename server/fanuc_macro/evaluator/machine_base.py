@@ -20,7 +20,14 @@ from ..program.variables import classify
 from ..syntax.tree import Compare, Document, Expr, Statement, Var
 from ..syntax.walk import subexpressions
 from .checkpoints import CtxKey, Resumption, RunRecord
-from .compile_lines import INTEGER_ADDRESSES, K_IFGOTO, K_WHILE, CompiledLine, CompiledWord
+from .compile_lines import (
+    INTEGER_ADDRESSES,
+    K_IFGOTO,
+    K_WHILE,
+    CompiledLine,
+    CompiledWord,
+    ConstantWords,
+)
 from .compiler import constant_of
 from .facts import (
     ALARM_FINDINGS,
@@ -426,6 +433,10 @@ class MachineBase:
         # content: most blocks of a long program move to one of few places, and the motions
         # that go alike share one dict (nothing changes a motion's words once recorded).
         self._words: dict[tuple[object, ...], dict[str, float]] = {}
+        # The words of the constant block being run, when made from its motion's words (a
+        # plain block keeps no dict of them): _move_words takes its motion's words as they are.
+        self._values_of: ConstantWords | None = None
+        self._const_values: dict[str, Value] | None = None
         # The toolpath's recorder, when one is asked for (see evaluate) or the programs read
         # the block end position: None costs a run one test per NC block.
         self.toolpath: Recorder | None = None

@@ -81,6 +81,8 @@ class MotionPart(CyclesPart, CallsPart, SetupPart):
         order: list[tuple[str, Value, CompiledWord]] | None = None
         if const is not None:
             values, g_codes, m_codes = const.values, const.g_codes, const.m_codes
+            self._values_of = const  # values made from it (see _move_words)
+            self._const_values = values
         else:
             values, g_codes, m_codes, order = self._evaluated_words(act, cl)
         if self.other_g_code_system and self.lathe:
@@ -506,7 +508,14 @@ class MotionPart(CyclesPart, CallsPart, SetupPart):
         const = cl.constant
         inch = self.modal.inch
         # A constant block's words are rounded as in mm; not renamed (_as_system_a).
-        same = const is not None and values is const.values and not inch
+        same = (
+            const is not None
+            and not inch
+            and (
+                values is const.kept_values
+                or (values is self._const_values and const is self._values_of)
+            )
+        )
         words = const.words if same and const is not None else recorded_words(values, inch)
         feed = self.modal.feed
         if "F" not in words and isinstance(feed, float) and code and code not in RAPID_ONE_SHOTS:
