@@ -377,15 +377,9 @@ def _compile_plain_code(nc: PlainNc) -> CompiledLine:
 
 def _codes_first(values: dict[str, float], written: tuple[tuple[str, float], ...]) -> bool:
     """The block's words are its G and M words, as the parser read them, then the others."""
-    at = 0
-    for address in values:
-        if at == len(written):
-            return True
-        code = written[at][1]
-        v = values[address]
-        if address != written[at][0] or v != code or (v == 0.0 and str(v) != str(code)):
+    for (address, v), (letter, code) in zip(values.items(), written, strict=False):
+        if address != letter or v != code or (v == 0.0 and str(v) != str(code)):
             return False
-        at += 1
     return True
 
 
