@@ -60,8 +60,37 @@ class CompiledWord:
     decimal_point: bool = False  # written as a number with a decimal point (``Q0.4``)
 
 
-@dataclass(slots=True)
 class CompiledLine:
+    """What the machine runs of a line: a ``FullLine``, or for most lines of a long program (a
+    plain NC block of constant words) a ``PlainLine``, which holds only what differs."""
+
+    __slots__ = ()
+    kind: int
+    reads: tuple[int, ...]  # direct variables the block reads (for the facts)
+    target: Evaluator | None  # assignment target index (indirect) or GOTO target
+    target_number: int | None  # direct assignment target
+    value: Evaluator | None
+    cond: CondEvaluator | None
+    words: tuple[CompiledWord, ...]
+    nc: NcStatement | None
+    node: Statement | None
+    second: CompiledLine | None  # the macro part of a mixed block
+    constant: ConstantWords | None  # an NC block whose words are all constants
+    ends_program: bool  # M02/M30: the program is a main program
+    # One line in eight, by its text: where the run may take a checkpoint (see Machine._loop).
+    boundary: bool
+    # How the run reads ``reads`` for the facts when they are locals (see FullLine).
+    read_local: int
+    read_locals: Callable[[list[Value]], tuple[Value, ...]] | None
+    local_target: int
+    writes_after_reads: bool
+    turns_after_reads: bool
+
+
+@dataclass(slots=True)
+class FullLine(CompiledLine):
+    """A compiled line of any statement."""
+
     kind: int
     reads: tuple[int, ...] = ()  # direct variables the block reads (for the facts)
     target: Evaluator | None = None  # assignment target index (indirect) or GOTO target
@@ -88,6 +117,63 @@ class CompiledLine:
     writes_after_reads: bool = field(default=False, compare=False)
     # A WHILE that reads variables: the run keeps whether its test held in that list too.
     turns_after_reads: bool = field(default=False, compare=False)
+
+
+class PlainLine(CompiledLine):
+    """A plain NC block of constant words (most lines of CAM output): the parts a
+    ``FullLine`` of it holds, the same for every such block, are the class's."""
+
+    __slots__ = ("boundary", "constant", "ends_program", "nc", "node")
+    kind = K_NC
+    reads = ()
+    target = None
+    target_number = None
+    value = None
+    cond = None
+    words = ()
+    second = None
+    read_local = 0
+    read_locals = None
+    local_target = 0
+    writes_after_reads = False
+    turns_after_reads = False
+
+    def __init__(self, nc: NcStatement, constant: ConstantWords, ends_program: bool) -> None:
+        self.nc = self.node = nc
+        self.constant = constant
+        self.ends_program = ends_program
+        self.boundary = False
+
+    def __eq__(self, other: object) -> bool:
+        return isinstance(other, CompiledLine) and _line_compared(self) == _line_compared(other)
+
+    __hash__ = None  # type: ignore[assignment]  # mutable, as a FullLine
+
+    def full(self) -> FullLine:
+        """The same line as a ``FullLine`` (to which a macro statement can be added)."""
+        line = FullLine(K_NC, nc=self.nc, node=self.node, constant=self.constant)
+        line.ends_program = self.ends_program
+        line.boundary = self.boundary
+        return line
+
+
+def _line_compared(line: CompiledLine) -> tuple[object, ...]:
+    """What FullLine's equality compares."""
+    return (
+        line.kind,
+        line.reads,
+        line.target,
+        line.target_number,
+        line.value,
+        line.cond,
+        line.words,
+        line.nc,
+        line.node,
+        line.second,
+        line.constant,
+        line.ends_program,
+        line.boundary,
+    )
 
 
 @dataclass(slots=True, eq=False)
@@ -173,9 +259,9 @@ def _direct_reads(statement: Statement) -> tuple[int, ...]:
     return tuple(numbers)
 
 
-def _compile_assign(kind: int, assign: Assign, text: str | None) -> CompiledLine:
+def _compile_assign(kind: int, assign: Assign, text: str | None) -> FullLine:
     target = assign.target
-    compiled = CompiledLine(kind, value=_compile_word(assign.value, False, text), node=assign)
+    compiled = FullLine(kind, value=_compile_word(assign.value, False, text), node=assign)
     if target.number is not None:
         compiled.target_number = int(target.number) if target.number == int(target.number) else -1
         if 1 <= compiled.target_number <= 33:
@@ -190,7 +276,7 @@ def compile_statement(statement: Statement | None, text: str | None = None) -> C
     """The closures of one statement; they do not depend on where the line stands. With the
     line's ``text``, expressions are shared with other lines' (see ``_compile_word``)."""
     if statement is None:
-        return CompiledLine(K_EMPTY)
+        return FullLine(K_EMPTY)
     if type(statement) is PlainNc:
         return _compile_plain_code(statement)
     if type(statement) is NcStatement:
@@ -199,7 +285,9 @@ def compile_statement(statement: Statement | None, text: str | None = None) -> C
             return plain
     reads = _direct_reads(statement)
     if isinstance(statement, Mixed):
-        first = compile_statement(statement.nc, text)
+        nc_part = compile_statement(statement.nc, text)
+        first = nc_part.full() if isinstance(nc_part, PlainLine) else nc_part
+        assert isinstance(first, FullLine)
         first.second = compile_statement(statement.macro, text)
         first.reads = reads
         _set_local_reads(first)
@@ -211,9 +299,9 @@ def compile_statement(statement: Statement | None, text: str | None = None) -> C
         c.cond = compile_cond(statement.cond)
         c.node = statement
     elif isinstance(statement, Goto):
-        c = CompiledLine(K_GOTO, target=compile_expr(statement.target), node=statement)
+        c = FullLine(K_GOTO, target=compile_expr(statement.target), node=statement)
     elif isinstance(statement, IfGoto):
-        c = CompiledLine(
+        c = FullLine(
             K_IFGOTO,
             target=compile_expr(statement.goto.target),
             cond=compile_cond(statement.cond),
@@ -221,25 +309,25 @@ def compile_statement(statement: Statement | None, text: str | None = None) -> C
         )
     elif isinstance(statement, While):
         cond = compile_cond(statement.cond) if statement.cond is not None else None
-        c = CompiledLine(K_WHILE, cond=cond, node=statement)
+        c = FullLine(K_WHILE, cond=cond, node=statement)
     elif isinstance(statement, End):
-        c = CompiledLine(K_END, node=statement)
+        c = FullLine(K_END, node=statement)
     elif isinstance(statement, NcStatement):
         c = _compile_nc(statement, text)
     elif isinstance(statement, IfNc):
         c = _compile_nc(statement.words, text)
         c.cond = compile_cond(statement.cond)
     elif isinstance(statement, ProgramStart):
-        c = CompiledLine(K_HEADER, node=statement)
+        c = FullLine(K_HEADER, node=statement)
     else:
-        c = CompiledLine(K_OTHER, node=statement)
+        c = FullLine(K_OTHER, node=statement)
     c.reads = reads
     _set_local_reads(c)
     c.ends_program = _ends_program(statement)
     return c
 
 
-def _set_local_reads(c: CompiledLine) -> None:
+def _set_local_reads(c: FullLine) -> None:
     reads = c.reads
     c.writes_after_reads = c.kind == K_ASSIGN and bool(reads) and c.local_target > 0
     c.turns_after_reads = c.kind == K_WHILE and bool(reads)
@@ -254,7 +342,7 @@ def _folded(_: object) -> Value:
     raise AssertionError("a block of constant words is run from its ConstantWords")
 
 
-def _compile_nc(nc: NcStatement, text: str | None = None) -> CompiledLine:
+def _compile_nc(nc: NcStatement, text: str | None = None) -> FullLine:
     constants = [constant_of(w.value, w.address in LENGTH_ADDRESSES) for w in nc.words]
     folded = all(c is not None for c in constants)
     if not folded:
@@ -268,9 +356,9 @@ def _compile_nc(nc: NcStatement, text: str | None = None) -> CompiledLine:
             )
             for w in nc.words
         )
-        return CompiledLine(K_NC, words=words, nc=nc, node=nc)
+        return FullLine(K_NC, words=words, nc=nc, node=nc)
     # A block of constant words is run from its ConstantWords: its words need no closures.
-    compiled = CompiledLine(K_NC, nc=nc, node=nc)
+    compiled = FullLine(K_NC, nc=nc, node=nc)
     values: dict[str, Value] = {}
     pairs = [(w.address, c) for w, c in zip(nc.words, constants, strict=True)]
     for a, c in pairs:
@@ -287,7 +375,7 @@ def _compile_nc(nc: NcStatement, text: str | None = None) -> CompiledLine:
     return compiled
 
 
-def _compile_plain_nc(nc: NcStatement) -> CompiledLine | None:
+def _compile_plain_nc(nc: NcStatement) -> FullLine | None:
     """``_compile_nc`` of a block whose words are all numbers (the fast parse's blocks, most of
     a program), in one pass over its words; None for any other block. The result is the one
     ``compile_statement`` gives: no variable read, a ConstantWords, M02/M30 an end."""
@@ -370,9 +458,7 @@ def _compile_plain_code(nc: PlainNc) -> CompiledLine:
         None,
         by_address,
     )
-    # CompiledLine(K_NC, nc=nc, node=nc, constant=constant, ends_program=ends_program), its
-    # arguments by position (faster by a third).
-    return CompiledLine(K_NC, (), None, None, None, None, (), nc, nc, None, constant, ends_program)
+    return PlainLine(nc, constant, ends_program)
 
 
 def _codes_first(values: dict[str, float], written: tuple[tuple[str, float], ...]) -> bool:
@@ -445,7 +531,7 @@ def _compile_codes(codes: tuple[tuple[str, float], ...]) -> CompiledCodes:
     return found
 
 
-def _compile_words(nc: NcStatement, words: list[tuple[str, str, float]]) -> CompiledLine:
+def _compile_words(nc: NcStatement, words: list[tuple[str, str, float]]) -> FullLine:
     """``_compile_plain_nc`` of the words' addresses, number texts and values, in order."""
     values: dict[str, Value] = {}
     g_codes: list[float] = []
@@ -482,7 +568,7 @@ def _compile_words(nc: NcStatement, words: list[tuple[str, str, float]]) -> Comp
         # No G, M or N, nothing rounded ("X1.5 Y2.", a modal CAM block): the same words, in
         # the same order. Neither dict is changed after this.
         motion_words = values  # type: ignore[assignment]
-    compiled = CompiledLine(K_NC, nc=nc, node=nc)
+    compiled = FullLine(K_NC, nc=nc, node=nc)
     compiled.constant = ConstantWords(
         values,
         _shared_codes(g_codes) if g_codes else (),
@@ -594,13 +680,12 @@ def compile_line(parsed: ParsedLine) -> CompiledLine:
     comments only) and so their compiled line, boundary included: a line is a boundary by the
     text of its statement."""
     statement = parsed.statement
+    line: CompiledLine
     if statement is None:
         if parsed.failed_assignment is not None:
-            line = CompiledLine(
-                K_ASSIGN, target_number=parsed.failed_assignment, value=_unknown_value
-            )
+            line = FullLine(K_ASSIGN, target_number=parsed.failed_assignment, value=_unknown_value)
         else:
-            line = CompiledLine(K_EMPTY)
+            line = FullLine(K_EMPTY)
         line.boundary = _is_boundary(parsed.text)
         return line
     by_statement = current().table(COMPILED_BY_STATEMENT)
@@ -611,7 +696,7 @@ def compile_line(parsed: ParsedLine) -> CompiledLine:
         line = _compile_plain_code(statement)
     else:
         line = compile_statement(statement, parsed.text)
-    line.boundary = _is_boundary(_statement_text(parsed, statement))
+    line.boundary = _is_boundary(_statement_text(parsed, statement))  # type: ignore[misc]  # a FullLine or a PlainLine
     kept(by_statement, id(statement), (statement, line), _COMPILED_BY_STATEMENT_LIMIT)
     return line
 

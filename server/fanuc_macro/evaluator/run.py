@@ -17,7 +17,7 @@ from ..syntax.diff import line_diff
 from ..syntax.parser import quiet_gc
 from ..syntax.tree import Document
 from .checkpoints import ProgramShape, Resumption, RunRecord, changed_in, changed_lines, plan
-from .compile_lines import K_EMPTY, CompiledLine
+from .compile_lines import K_EMPTY, FullLine
 from .facts import Facts, both_ways
 from .line_shift import line_shifts, renumbered
 from .machine import (
@@ -223,7 +223,7 @@ def _skip_block_delete(
     """The switch on: every '/' block of the compiled lines runs as an empty one (its
     checkpoints where the switch-off run has them)."""
     # What a '/' block is with the switch on: nothing, a boundary line where its text is one.
-    skipped = (CompiledLine(K_EMPTY), CompiledLine(K_EMPTY, boundary=True))
+    skipped = (FullLine(K_EMPTY), FullLine(K_EMPTY, boundary=True))
     done: set[int] = set()
     by_uri = {uri: doc for uri, doc, _ in docs}
     for ctx in every:
