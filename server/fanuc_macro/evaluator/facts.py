@@ -262,42 +262,157 @@ class ValueSummary:
         return text
 
 
-@dataclass(slots=True)
+@dataclass(init=False)
 class Motion:
+    """A move the run records: one a block, most of a long program's. The fields few motions
+    set (a lathe's threads, G20, G96, drilling) are held together, and only when set."""
+
+    __slots__ = (
+        "_rare",
+        "code",
+        "line",
+        "program",
+        "program_line",
+        "rpm",
+        "run",
+        "start_line",
+        "start_uri",
+        "start_x",
+        "start_z",
+        "uri",
+        "words",
+        "x",
+        "z",
+    )
     program: str
     line: int
     code: str
     words: dict[str, float]
-    uri: str = ""
-    x: float | None = None  # the diameter the move or cut reaches (G32 Z-only: where it is)
-    rpm: float | None = None  # spindle speed in G97 (None in G96 or unknown)
-    program_line: int = 0  # first line of the program the motion belongs to
-    z: float | None = None  # the Z the move or cut ends at
+    uri: str
+    x: float | None  # the diameter the move or cut reaches (G32 Z-only: where it is)
+    rpm: float | None  # spindle speed in G97 (None in G96 or unknown)
+    program_line: int  # first line of the program the motion belongs to
+    z: float | None  # the Z the move or cut ends at
     # Where the tool stood before the block: a cycle's start point, to which it returns.
-    start_x: float | None = None
-    start_z: float | None = None
-    start_line: int | None = None  # the block that put the tool at start_x
-    start_uri: str = ""
-    run: int = 0  # which execution of its program: every call is a new one
-    cycle_pass: int = 0  # G76: the pass number within its cycle (0: not a G76 pass)
-    finishing: bool = False  # G76: a finishing pass at the full thread height
+    start_x: float | None
+    start_z: float | None
+    start_line: int | None  # the block that put the tool at start_x
+    start_uri: str
+    run: int  # which execution of its program: every call is a new one
+    cycle_pass: int  # G76: the pass number within its cycle (0: not a G76 pass)
+    finishing: bool  # G76: a finishing pass at the full thread height
     # The code as a lathe program of G code system B or C writes it ("G78" for code "G92");
     # empty when it is ``code``.
-    written: str = ""
-    inch: bool = False  # G20 in force: its lengths are inches (a message says so)
+    written: str
+    inch: bool  # G20 in force: its lengths are inches (a message says so)
     # A mill's canned drilling cycle (its G76 is fine boring, not a thread).
-    drilling: bool = False
+    drilling: bool
     # G96 in force: its surface speed S (m/min, ft/min in G20); the spindle speed then follows X.
-    surface_speed: float | None = None
+    surface_speed: float | None
     # And the G50 S clamp on the speed then (rpm): inf without one, None when not known.
-    speed_clamp: float | None = None
+    speed_clamp: float | None
     # G76: the tool angle a of its first block, along whose flank the passes step.
-    tool_angle: float | None = None
+    tool_angle: float | None
+
+    def __init__(
+        self,
+        program: str,
+        line: int,
+        code: str,
+        words: dict[str, float],
+        uri: str = "",
+        x: float | None = None,
+        rpm: float | None = None,
+        program_line: int = 0,
+        z: float | None = None,
+        start_x: float | None = None,
+        start_z: float | None = None,
+        start_line: int | None = None,
+        start_uri: str = "",
+        run: int = 0,
+        cycle_pass: int = 0,
+        finishing: bool = False,
+        written: str = "",
+        inch: bool = False,
+        drilling: bool = False,
+        surface_speed: float | None = None,
+        speed_clamp: float | None = None,
+        tool_angle: float | None = None,
+    ) -> None:
+        self.program = program
+        self.line = line
+        self.code = code
+        self.words = words
+        self.uri = uri
+        self.x = x
+        self.rpm = rpm
+        self.program_line = program_line
+        self.z = z
+        self.start_x = start_x
+        self.start_z = start_z
+        self.start_line = start_line
+        self.start_uri = start_uri
+        self.run = run
+        self._rare: dict[str, object] | None = None
+        if (
+            cycle_pass
+            or finishing
+            or written
+            or inch
+            or drilling
+            or surface_speed is not None
+            or speed_clamp is not None
+            or tool_angle is not None
+        ):
+            values = (cycle_pass, finishing, written, inch, drilling)
+            rare = (*values, surface_speed, speed_clamp, tool_angle)
+            for name, value in zip(_RARE, rare, strict=True):
+                setattr(self, name, value)
 
     @property
     def shown(self) -> str:
         """The code as the program writes it: what a message names."""
         return self.written or self.code
+
+
+# The fields few motions set, and their values when not set.
+_RARE_DEFAULTS: Mapping[str, object] = MappingProxyType(
+    {
+        "cycle_pass": 0,
+        "finishing": False,
+        "written": "",
+        "inch": False,
+        "drilling": False,
+        "surface_speed": None,
+        "speed_clamp": None,
+        "tool_angle": None,
+    }
+)
+_RARE = tuple(_RARE_DEFAULTS)
+
+
+def _rare_field(name: str, default: object) -> property:
+    def get(motion: Motion) -> object:
+        rare = motion._rare
+        return default if rare is None else rare.get(name, default)
+
+    def set_(motion: Motion, value: object) -> None:
+        rare = motion._rare
+        if rare is None:
+            if value is default:
+                return
+            rare = motion._rare = {}
+        rare[name] = value
+
+    return property(get, set_)
+
+
+def _add_rare_fields() -> None:
+    for name, default in _RARE_DEFAULTS.items():
+        setattr(Motion, name, _rare_field(name, default))
+
+
+_add_rare_fields()
 
 
 @dataclass(slots=True, eq=False, repr=False)

@@ -13,7 +13,7 @@ from __future__ import annotations
 import re
 from array import array
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, fields, replace
 from operator import attrgetter
 
 from ..syntax.tree import Document
@@ -368,7 +368,7 @@ def _message(f: Finding, maybe: MaybeRenumber) -> str:
     return text if moved else f.message
 
 
-_MOTION_FIELDS: tuple[str, ...] = Motion.__slots__
+_MOTION_FIELDS: tuple[str, ...] = tuple(f.name for f in fields(Motion))
 
 
 def _motion(m: Motion, shifts: dict[str, LineShift], maybe: MaybeRenumber) -> Motion:

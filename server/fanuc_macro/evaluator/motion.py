@@ -401,6 +401,11 @@ class MotionPart(CyclesPart, CallsPart, SetupPart):
         where = modal.position_line.get("X")
         speed = modal.speed
         name = G_NAMES.get(code) or g_name(code)
+        surface_speed = speed if modal.constant_surface_speed and isinstance(speed, float) else None
+        clamp = None  # the G50 S clamp, in G96
+        if surface_speed is not None:
+            setup = modal.setup
+            clamp = math.inf if setup.clamped is False else setup.clamp_speed
         motion = Motion(
             ctx.name,
             self._line,
@@ -416,17 +421,14 @@ class MotionPart(CyclesPart, CallsPart, SetupPart):
             None if where is None else where[1],
             "" if where is None else where[0],
             act.serial,
+            written=written(name, self.config.g_code_system)
+            if self.other_g_code_system and lathe
+            else "",
+            inch=bool(modal.inch),
+            drilling=not lathe and code in DRILLING_CYCLES,
+            surface_speed=surface_speed,
+            speed_clamp=clamp,
         )
-        if self.other_g_code_system and lathe:
-            motion.written = written(name, self.config.g_code_system)
-        if modal.inch:
-            motion.inch = True
-        if modal.constant_surface_speed and isinstance(speed, float):
-            motion.surface_speed = speed
-            setup = modal.setup
-            motion.speed_clamp = math.inf if setup.clamped is False else setup.clamp_speed
-        if not lathe and code in DRILLING_CYCLES:
-            motion.drilling = True
         facts = self.facts
         if lathe and code in THREADING_CODES and act.serial not in facts.run_values:
             self._remember_run(act)
