@@ -119,11 +119,89 @@ class FullLine(CompiledLine):
     turns_after_reads: bool = field(default=False, compare=False)
 
 
-class PlainLine(CompiledLine):
-    """A plain NC block of constant words (most lines of CAM output): the parts a
-    ``FullLine`` of it holds, the same for every such block, are the class's."""
+class ConstantWords:
+    """What an NC block of constant words evaluates to, worked out once at compile time: a
+    ``FullWords``, or the block's ``PlainLine`` itself. Nothing here is mutated by a run."""
 
-    __slots__ = ("boundary", "constant", "ends_program", "nc", "node")
+    __slots__ = ()
+    # The words by address, first of each; None when they are ``codes`` then the motion's
+    # words (a plain block "G01 X.. Y..": the run makes them, kept for no block).
+    kept_values: dict[str, Value] | None
+    g_codes: tuple[float, ...]
+    m_codes: tuple[float, ...]
+    nc: NcStatement | None
+    # The words' values, in the order of the block; None when each is its Num's value.
+    constants: tuple[float, ...] | None
+    motion_words: dict[str, float]  # the motion record's words
+    has_axis: bool
+    # No word can get an address finding (MB5xx: whole numbers, G codes, signs, the spindle's
+    # maximum), whatever the settings: the run need not look at them.
+    quiet: bool
+    _order: list[tuple[str, Value, CompiledWord]] | None
+    # The G and M words by address (shared by every block of the same codes), when
+    # ``kept_values`` is None.
+    codes: Mapping[str, float] | None
+
+    @property
+    def values(self) -> dict[str, Value]:
+        """The words by address, in the order of the block (first of each address)."""
+        kept = self.kept_values
+        if kept is not None:
+            return kept
+        return {**self.codes, **self.motion_words}  # type: ignore[dict-item]  # codes set then
+
+    def __eq__(self, other: object) -> bool:
+        # The words by address, however they are held.
+        return isinstance(other, ConstantWords) and _compared(self) == _compared(other)
+
+    __hash__ = None  # type: ignore[assignment]  # mutable
+
+    @property
+    def order(self) -> list[tuple[str, Value, CompiledWord]]:
+        """Each word: its address, value and compiled word. Made when a run first asks (a
+        block with a call, a G76, a word to check): most blocks never need it."""
+        order = self._order
+        if order is None:
+            assert self.nc is not None
+            words = self.nc.words
+            constants = self.constants
+            values = [w.value.value for w in words] if constants is None else constants  # type: ignore[union-attr]
+            order = [
+                (
+                    w.address,
+                    v,
+                    _folded_word(
+                        w.address, w.span.start, w.span.end, _written_with_decimal_point(w.value)
+                    ),
+                )
+                for w, v in zip(words, values, strict=True)
+            ]
+            self._order = order  # type: ignore[misc]  # a slot of each subclass
+        return order
+
+
+@dataclass(slots=True, eq=False)
+class FullWords(ConstantWords):
+    """The constant words of any NC block."""
+
+    kept_values: dict[str, Value] | None
+    g_codes: tuple[float, ...]
+    m_codes: tuple[float, ...]
+    nc: NcStatement | None
+    constants: tuple[float, ...] | None
+    motion_words: dict[str, float]
+    has_axis: bool
+    quiet: bool = False
+    _order: list[tuple[str, Value, CompiledWord]] | None = None
+    codes: Mapping[str, float] | None = None
+
+
+class PlainLine(CompiledLine, ConstantWords):
+    """A plain NC block of constant words (most lines of CAM output), its own constant words:
+    the parts a ``FullLine`` and ``FullWords`` of it hold that are the same for every such
+    block are the class's, its codes' are shared with every block of the same codes."""
+
+    __slots__ = ("_codes", "_order", "boundary", "has_axis", "motion_words", "nc", "quiet")
     kind = K_NC
     reads = ()
     target = None
@@ -137,28 +215,82 @@ class PlainLine(CompiledLine):
     local_target = 0
     writes_after_reads = False
     turns_after_reads = False
+    kept_values = None
+    constants = None
 
-    def __init__(self, nc: NcStatement, constant: ConstantWords, ends_program: bool) -> None:
-        self.nc = self.node = nc
-        self.constant = constant
-        self.ends_program = ends_program
+    def __init__(
+        self,
+        nc: NcStatement,
+        codes: CompiledCodes,
+        motion_words: dict[str, float],
+        has_axis: bool,
+        quiet: bool,
+    ) -> None:
+        self.nc = nc
+        self._codes = codes
+        self.motion_words = motion_words
+        self.has_axis = has_axis
+        self.quiet = quiet
+        self._order = None
         self.boundary = False
+
+    @property
+    def node(self) -> Statement | None:  # type: ignore[override]  # the line's own
+        return self.nc
+
+    @property
+    def constant(self) -> ConstantWords:  # type: ignore[override]  # the line's own
+        return self
+
+    @property
+    def g_codes(self) -> tuple[float, ...]:  # type: ignore[override]  # its codes'
+        return self._codes[0]
+
+    @property
+    def m_codes(self) -> tuple[float, ...]:  # type: ignore[override]  # its codes'
+        return self._codes[1]
+
+    @property
+    def ends_program(self) -> bool:  # type: ignore[override]  # its codes'
+        return self._codes[3]
+
+    @property
+    def codes(self) -> Mapping[str, float] | None:  # type: ignore[override]  # its codes'
+        return self._codes[4]
+
+    @property
+    def values(self) -> dict[str, Value]:
+        """The words by address, in the order of the block."""
+        codes = self._codes[4]
+        return {**codes, **self.motion_words} if codes else self.motion_words  # type: ignore[return-value]
 
     def __eq__(self, other: object) -> bool:
         return isinstance(other, CompiledLine) and _line_compared(self) == _line_compared(other)
 
-    __hash__ = None  # type: ignore[assignment]  # mutable, as a FullLine
+    __hash__ = None  # mutable, as a FullLine
 
     def full(self) -> FullLine:
         """The same line as a ``FullLine`` (to which a macro statement can be added)."""
-        line = FullLine(K_NC, nc=self.nc, node=self.node, constant=self.constant)
-        line.ends_program = self.ends_program
+        line = FullLine(K_NC, nc=self.nc, node=self.nc, ends_program=self.ends_program)
+        line.constant = FullWords(
+            self.kept_values,
+            self.g_codes,
+            self.m_codes,
+            self.nc,
+            None,
+            self.motion_words,
+            self.has_axis,
+            self.quiet,
+            None,
+            self.codes,
+        )
         line.boundary = self.boundary
         return line
 
 
 def _line_compared(line: CompiledLine) -> tuple[object, ...]:
-    """What FullLine's equality compares."""
+    """What FullLine's equality compares (the constant words by their own)."""
+    constant = line.constant
     return (
         line.kind,
         line.reads,
@@ -170,71 +302,14 @@ def _line_compared(line: CompiledLine) -> tuple[object, ...]:
         line.nc,
         line.node,
         line.second,
-        line.constant,
+        None if constant is None else _compared(constant),
         line.ends_program,
         line.boundary,
     )
 
 
-@dataclass(slots=True, eq=False)
-class ConstantWords:
-    """What an NC block of constant words evaluates to, worked out once at compile time.
-    Most blocks of a long program are such; nothing here is mutated by a run."""
-
-    # The words by address, first of each; None when they are ``codes`` then ``words`` (a plain
-    # block "G01 X.. Y..": the run makes them, kept for no block, see ``values``).
-    kept_values: dict[str, Value] | None
-    g_codes: tuple[float, ...]
-    m_codes: tuple[float, ...]
-    nc: NcStatement
-    # The words' values, in the order of the block; None when each is its Num's value.
-    constants: tuple[float, ...] | None
-    words: dict[str, float]  # the motion record's words
-    has_axis: bool
-    # No word can get an address finding (MB5xx: whole numbers, G codes, signs, the spindle's
-    # maximum), whatever the settings: the run need not look at them.
-    quiet: bool = False
-    _order: list[tuple[str, Value, CompiledWord]] | None = field(default=None, compare=False)
-    # The G and M words by address (shared by every block of the same codes), when
-    # ``kept_values`` is None.
-    codes: Mapping[str, float] | None = field(default=None, compare=False)
-
-    @property
-    def values(self) -> dict[str, Value]:
-        """The words by address, in the order of the block (first of each address)."""
-        kept = self.kept_values
-        if kept is not None:
-            return kept
-        return {**self.codes, **self.words}  # type: ignore[dict-item]  # codes set then
-
-    def __eq__(self, other: object) -> bool:
-        # The words by address, however they are held.
-        return type(other) is ConstantWords and _compared(self) == _compared(other)
-
-    @property
-    def order(self) -> list[tuple[str, Value, CompiledWord]]:
-        """Each word: its address, value and compiled word. Made when a run first asks (a
-        block with a call, a G76, a word to check): most blocks never need it."""
-        order = self._order
-        if order is None:
-            words = self.nc.words
-            constants = self.constants
-            values = [w.value.value for w in words] if constants is None else constants  # type: ignore[union-attr]
-            order = self._order = [
-                (
-                    w.address,
-                    v,
-                    _folded_word(
-                        w.address, w.span.start, w.span.end, _written_with_decimal_point(w.value)
-                    ),
-                )
-                for w, v in zip(words, values, strict=True)
-            ]
-        return order
-
-
 def _compared(c: ConstantWords) -> tuple[object, ...]:
-    return (c.values, c.g_codes, c.m_codes, c.nc, c.constants, c.words, c.has_axis, c.quiet)
+    return (c.values, c.g_codes, c.m_codes, c.nc, c.constants, c.motion_words, c.has_axis, c.quiet)
 
 
 def _direct_reads(statement: Statement) -> tuple[int, ...]:
@@ -363,7 +438,7 @@ def _compile_nc(nc: NcStatement, text: str | None = None) -> FullLine:
     pairs = [(w.address, c) for w, c in zip(nc.words, constants, strict=True)]
     for a, c in pairs:
         values.setdefault(a, c)
-    compiled.constant = ConstantWords(
+    compiled.constant = FullWords(
         values,
         _shared_codes(round(v, 1) for a, v in pairs if a == "G" and isinstance(v, float)),
         _shared_codes(v for a, v in pairs if a == "M" and isinstance(v, float)),
@@ -426,7 +501,7 @@ def _compile_plain_code(nc: PlainNc) -> CompiledLine:
     codes = current().table(CODES_COMPILED).get(written)
     if codes is None:
         codes = _compile_codes(written)
-    g_codes, m_codes, quiet, ends_program, by_address = codes
+    g_codes, m_codes, quiet, ends_program, _ = codes
     motion_words = values
     kept: dict[str, float] | None = values
     if written:  # G or M words (the words hold no N): the motion's are the others
@@ -446,19 +521,20 @@ def _compile_plain_code(nc: PlainNc) -> CompiledLine:
             if address == "S" or v < 0 or (address in _WHOLE_ADDRESSES and v != int(v)):
                 quiet = False
                 break
-    constant = ConstantWords(
-        kept,  # type: ignore[arg-type]  # of floats only
-        g_codes,
-        m_codes,
-        nc,
-        None,
-        motion_words,
-        not AXES.isdisjoint(values),
-        quiet,
-        None,
-        by_address,
-    )
-    return PlainLine(nc, constant, ends_program)
+    if kept is not None and kept is not motion_words:  # G or M words after others
+        line = FullLine(K_NC, nc=nc, node=nc, ends_program=ends_program)
+        line.constant = FullWords(
+            kept,  # type: ignore[arg-type]  # of floats only
+            g_codes,
+            m_codes,
+            nc,
+            None,
+            motion_words,
+            not AXES.isdisjoint(values),
+            quiet,
+        )
+        return line
+    return PlainLine(nc, codes, motion_words, not AXES.isdisjoint(values), quiet)
 
 
 def _codes_first(values: dict[str, float], written: tuple[tuple[str, float], ...]) -> bool:
@@ -569,7 +645,7 @@ def _compile_words(nc: NcStatement, words: list[tuple[str, str, float]]) -> Full
         # the same order. Neither dict is changed after this.
         motion_words = values  # type: ignore[assignment]
     compiled = FullLine(K_NC, nc=nc, node=nc)
-    compiled.constant = ConstantWords(
+    compiled.constant = FullWords(
         values,
         _shared_codes(g_codes) if g_codes else (),
         _shared_codes(m_codes) if m_codes else (),

@@ -518,7 +518,7 @@ class MotionPart(CyclesPart, CallsPart, SetupPart):
                 or (values is self._const_values and const is self._values_of)
             )
         )
-        words = const.words if same and const is not None else recorded_words(values, inch)
+        words = const.motion_words if same and const is not None else recorded_words(values, inch)
         feed = self.modal.feed
         if "F" not in words and isinstance(feed, float) and code and code not in RAPID_ONE_SHOTS:
             words = {**words, "F": feed}
@@ -526,7 +526,7 @@ class MotionPart(CyclesPart, CallsPart, SetupPart):
             words = self._taper_in_force(values, words)
         if words.get("F") == 0.0 and (code in FEED_MOTIONS or (self.lathe and code in LATHE_FED)):
             _feed_zero(code, self._shown(code))
-        if const is None or words is not const.words:
+        if const is None or words is not const.motion_words:
             words = self._shared_words(words)
         if feed is None and (code in FEED_MOTIONS or (not self.lathe and code in DRILLING_CYCLES)):
             self._cut_without_feed(act.ctx, self._no_feed_message(code))
