@@ -136,6 +136,11 @@ class MotionPart(CyclesPart, CallsPart, SetupPart):
             modal.spindle = SPINDLE_OFF
             modal.spindle_stop = (act.ctx.uri, self._line, f"M{stops:02g}")
         next_pc = self._line + 1
+        blocks = act.ctx.doc.blocks
+        if next_pc < len(blocks):
+            # The block's own number (an int object the document holds already): the run keeps
+            # the line of every block it runs, in its counts and motions.
+            next_pc = blocks[next_pc].line
         profile: list[ProfileBlock] | str | None = None
         finishing: tuple[int, int] | None = None
         if self._profile_code is not None:
