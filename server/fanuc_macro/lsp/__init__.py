@@ -50,23 +50,19 @@ def pause_the_collector() -> None:
     garbage cycle: the collector ran 120 times over the growing heap, for nothing. Nothing is
     frozen out of later collections (``gc.freeze``): the collection at the resumption scans
     what the start made once, and frees what it finds."""
-    global _collector_paused
     if gc.isenabled() and _started_as_server(getattr(sys, "orig_argv", [])):
         gc.disable()
-        _collector_paused = True
 
 
 def resume_the_collector() -> None:
-    """The collector back on, after one full collection, if :func:`pause_the_collector` paused
-    it: what the start made is then in the oldest generation, as if collected as it grew."""
-    global _collector_paused
-    if _collector_paused:
-        _collector_paused = False
+    """The collector back on, after one full collection, if it is paused: what the start made
+    is then in the oldest generation, as if collected as it grew. Called once a server
+    (``AnsweringProtocol.resume_collector``), before anything else could pause it."""
+    if not gc.isenabled():
         gc.collect()
         gc.enable()
 
 
-_collector_paused = False
 run_on_the_c_allocator()
 pause_the_collector()
 

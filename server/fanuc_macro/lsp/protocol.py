@@ -65,11 +65,19 @@ class AnsweringProtocol(LanguageServerProtocol):
             message = f"invalid parameters of {method}" + (f": {detail}" if detail else "")
             return _Unreadable(msg_id, method, JsonRpcInvalidParams(message))
 
+    _collector_resumed = False  # the instance's once resume_collector ran
+
+    def resume_collector(self) -> None:
+        """The collector back on (lsp/__init__.py paused it for the start), once."""
+        if not self._collector_resumed:
+            self._collector_resumed = True
+            resume_the_collector()
+
     def handle_message(self, message: Any) -> None:
-        if getattr(message, "method", None) != types.INITIALIZE:
+        if not self._collector_resumed and getattr(message, "method", None) != types.INITIALIZE:
             # The initialize handler resumes it once answered; a client that sends something
             # else first must not leave the server without it.
-            resume_the_collector()
+            self.resume_collector()
         if isinstance(message, dict):  # a message without "jsonrpc"
             wrong = _invalid_request(message)
             if wrong is None:

@@ -5,16 +5,16 @@ from __future__ import annotations
 
 import asyncio
 import logging
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, cast
 
 from lsprotocol import types
 
 from ...code_cache import save_code_cache
-from .. import resume_the_collector
 from ..client import CompletionSupport
 from ..convert import Codec
 from ..folders import path_of
 from ..progress import ClientProgress
+from ..protocol import AnsweringProtocol
 from . import Route
 
 if TYPE_CHECKING:
@@ -57,7 +57,8 @@ def _capability(root: Any, path: str) -> Any:
 
 def initialize(ls: FanucMacroLanguageServer, params: types.InitializeParams) -> None:
     loop = asyncio.get_running_loop()
-    loop.call_soon(resume_the_collector)  # once the answer is written: pygls writes it first
+    # Once the answer is written: pygls writes it first.
+    loop.call_soon(cast(AnsweringProtocol, ls.protocol).resume_collector)
     engine = ls.engine
     engine.bind_loop(loop)
     engine.codec = Codec(ls.workspace.position_encoding)
