@@ -170,6 +170,15 @@ class FileSettings:
     files: list[Path] = field(default_factory=list)
 
 
+def shown(path: Path) -> str:
+    """A file as a message names it: from the current folder when it is below it (as the user
+    typed the paths), else whole."""
+    try:
+        return path.relative_to(Path.cwd()).as_posix()
+    except ValueError:
+        return str(path)
+
+
 def find_config_file(start: Path) -> Path | None:
     """The configuration file nearest ``start`` (a file or a folder), looking up each
     folder to the root: ``fanuc-macro.toml``, else a ``pyproject.toml`` that has a
@@ -202,10 +211,10 @@ def load_config_file(path: Path) -> FileSettings:
     tables: list[tuple[Path, dict[str, Any], str]] = []
     while current is not None:
         if current in chain:
-            loop = " -> ".join(str(p) for p in (*chain, current))
-            raise ConfigFileError(f"{chain[-1]}: extend makes a loop: {loop}")
+            loop = " -> ".join(shown(p) for p in (*chain, current))
+            raise ConfigFileError(f"{shown(chain[-1])}: extend makes a loop: {loop}")
         if len(chain) >= _MAX_EXTENDS:
-            raise ConfigFileError(f"{path}: extend goes past {_MAX_EXTENDS} files")
+            raise ConfigFileError(f"{shown(path)}: extend goes past {_MAX_EXTENDS} files")
         chain.append(current)
         text, table = _read_table(current)
         tables.append((current, table, text))
@@ -214,16 +223,16 @@ def load_config_file(path: Path) -> FileSettings:
             current = None
         elif not isinstance(extend, str):
             line = _line_of(text, (), "extend", current.name == PYPROJECT)
-            raise ConfigFileError(f"{current}:{line}: extend: {extend!r} is not a path")
+            raise ConfigFileError(f"{shown(current)}:{line}: extend: {extend!r} is not a path")
         else:
             current = (current.parent / Path(extend).expanduser()).resolve()
             if not current.is_file():
-                raise ConfigFileError(f"{chain[-1]}: extend: no such file: {current}")
+                raise ConfigFileError(f"{shown(chain[-1])}: extend: no such file: {shown(current)}")
     found = FileSettings(files=chain)
     for file, table, text in reversed(tables):  # the farthest first: the nearer overwrites
         for key, value, line in _values(file, table, text):
             put_setting(found.settings, key.setting, value)
-            found.origins[key.dotted] = Origin(f"{file}:{line}" if line else str(file))
+            found.origins[key.dotted] = Origin(f"{shown(file)}:{line}" if line else shown(file))
     return found
 
 
@@ -231,13 +240,13 @@ def _read_table(path: Path) -> tuple[str, dict[str, Any]]:
     try:
         text = path.read_text(encoding="utf-8")
     except OSError as e:
-        raise ConfigFileError(f"{path}: cannot be read: {e.strerror or e}") from None
+        raise ConfigFileError(f"{shown(path)}: cannot be read: {e.strerror or e}") from None
     except UnicodeDecodeError:
-        raise ConfigFileError(f"{path}: is not UTF-8 text (TOML files are)") from None
+        raise ConfigFileError(f"{shown(path)}: is not UTF-8 text (TOML files are)") from None
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as e:
-        raise ConfigFileError(f"{path}: not TOML: {e}") from None
+        raise ConfigFileError(f"{shown(path)}: not TOML: {e}") from None
     if path.name == PYPROJECT:
         tool = data.get("tool")
         inner = tool.get(TOOL_TABLE[1]) if isinstance(tool, dict) else None
@@ -255,20 +264,22 @@ def _values(path: Path, table: dict[str, Any], text: str) -> Iterator[tuple[Key,
         if section not in SECTIONS or not isinstance(body, dict):
             line = _line_of(text, (), section, nested)
             known = ", ".join(f"[{s}]" for s in SECTIONS)
-            raise ConfigFileError(f"{path}:{line}: {section!r} is not a table of it ({known})")
+            raise ConfigFileError(
+                f"{shown(path)}:{line}: {section!r} is not a table of it ({known})"
+            )
         for name, value in body.items():
             line = _line_of(text, (section,), name, nested)
             key = KEYS_BY_NAME.get(f"{section}.{name}")
             if key is None:
                 names = ", ".join(k.name for k in KEYS if k.section == section)
                 raise ConfigFileError(
-                    f"{path}:{line}: {section}.{name} is not a key of [{section}] ({names})"
+                    f"{shown(path)}:{line}: {section}.{name} is not a key of [{section}] ({names})"
                 )
             problem = _type_problem(key, value)
             if not problem and key.section == "rules":
                 value, problem = _rules_value(key, value, path.parent)
             if problem:
-                raise ConfigFileError(f"{path}:{line}: {key.dotted}: {problem}")
+                raise ConfigFileError(f"{shown(path)}:{line}: {key.dotted}: {problem}")
             yield key, value, line
 
 

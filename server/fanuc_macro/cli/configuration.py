@@ -23,6 +23,7 @@ from ..config_file import (
     load_config_file,
     put_setting,
     setting_of,
+    shown,
 )
 
 DEFAULT = "default"
@@ -176,12 +177,14 @@ def print_config(args: argparse.Namespace, anchor: Path | None) -> int:
     except ConfigFileError as error:
         return _usage(str(error))
     values = {key.dotted: _value(resolved, key) for key in KEYS}
+    origins = resolved.origins
+    shown_files = [shown(f) for f in resolved.files]
     if args.format == "json":
         json.dump(
             {
-                "files": [str(f) for f in resolved.files],
+                "files": shown_files,
                 "settings": {
-                    dotted: {"value": value, "from": resolved.origins[dotted]}
+                    dotted: {"value": value, "from": origins[dotted]}
                     for dotted, value in values.items()
                 },
             },
@@ -190,14 +193,13 @@ def print_config(args: argparse.Namespace, anchor: Path | None) -> int:
         )
         out.write("\n")
         return 0
-    files = [str(f) for f in resolved.files]
-    out.write(f"# configuration files: {', '.join(files) if files else 'none'}\n")
+    out.write(f"# configuration files: {', '.join(shown_files) if shown_files else 'none'}\n")
     section = ""
     for key in KEYS:
         if key.section != section:
             section = key.section
             out.write(f"[{section}]\n")
-        origin = resolved.origins[key.dotted]
+        origin = origins[key.dotted]
         if values[key.dotted] is None:  # no TOML value says "not set"
             out.write(f"# {key.name}: not set, not checked  # {origin}\n")
         else:
@@ -210,6 +212,8 @@ def _value(resolved: Resolved, key: Key) -> Any:
     node: Any = resolved.settings
     for part in key.setting.split("."):
         node = node.get(part) if isinstance(node, dict) else None
+    if node is not None and key.dotted == "rules.per-file-ignores":
+        return {glob: codes for _folder, glob, codes in node}  # the folder: the file's own
     if node is not None:
         return node
     return default_of(key.dotted)
