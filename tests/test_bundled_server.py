@@ -46,6 +46,7 @@ PURE_DISTRIBUTIONS = {
     "lark",
     "lsprotocol",
     "pygls",
+    "tomli",
     "typing-extensions",
 }
 pytestmark = pytest.mark.skipif(shutil.which("node") is None, reason="node is not installed")

@@ -53,9 +53,10 @@ const EXCLUDED = ['numpy'];
 /**
  * Requirements of the dependencies on the oldest Python only, added by hand: pip evaluates the
  * markers of requirements for the Python running it, not for --python-version. cattrs needs
- * exceptiongroup on Python 3.10 (`exceptiongroup>=1.1.1; python_version < "3.11"`).
+ * exceptiongroup on Python 3.10 (`exceptiongroup>=1.1.1; python_version < "3.11"`), and the
+ * server tomli to read fanuc-macro.toml there (`tomli>=2.0; python_version < '3.11'`).
  */
-const OLDEST_PYTHON_NEEDS = ['exceptiongroup>=1.1.1'];
+const OLDEST_PYTHON_NEEDS = ['exceptiongroup>=1.1.1', 'tomli>=2.0'];
 /** Oldest Python the bundle is for: pip picks wheels that work there and on every later 3.x. */
 const MIN_PYTHON = '3.10';
 
