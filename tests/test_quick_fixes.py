@@ -104,7 +104,10 @@ def test_mb004_closes_the_comment_before_the_trailing_blanks() -> None:
     found = only(text, "MB004")
     assert found.fixes == (
         Fix(
-            "Close the comment with ')' at the end of the line", (FixEdit.insert(1, 18, ")"),), True
+            "Close the comment with ')' at the end of the line",
+            (FixEdit.insert(1, 18, ")"),),
+            preferred=True,
+            safe=True,  # check --fix applies it: the control reads the comment to the end
         ),
     )
     assert apply(text, found.fixes[0]).split("\n")[1] == "G00 X100. (RETRACT)  \t"
@@ -117,7 +120,8 @@ def test_mb003_takes_the_nested_parentheses_out_of_the_comment() -> None:
         Fix(
             "Remove the parentheses nested in the comment",
             (FixEdit(1, 8, 1, 33, "(TOOL T0101 BORING BAR)"),),
-            True,
+            preferred=True,
+            safe=True,
         ),
     )
 

@@ -147,25 +147,6 @@ def _unused_scope(scope: _Scope, judged: frozenset[str] | None) -> Iterator[Diag
     yield _unused(line, mark, told, remove)
 
 
-def _unused(line: int, mark: Mark, told: str, remove: bool) -> Diagnostic:
-    kind = "ignore" if mark.where == LINE else f"ignore-{mark.where}"
-    codes = " ".join(sorted(mark.codes))
-    comment = f"(fanuc-macro: {kind}{' ' + codes if codes else ''})"
-    fixes = (
-        (
-            Fix(
-                "Remove the suppression comment",
-                (FixEdit(line, mark.column, line, mark.end_column, ""),),
-                True,
-                True,
-            ),
-        )
-        if remove
-        else ()
-    )
-    return make(MB015, f"{comment} {told}", line, mark.column, mark.end_column, fixes=fixes)
-
-
 MB015_DOC = RuleDoc(
     "MB015",
     reports="""
@@ -198,3 +179,22 @@ failed), nor codes whose rules are turned off or not selected: whether they woul
 something is not known. A comment of another tool is not one of these.
 """,
 )
+
+
+def _unused(line: int, mark: Mark, told: str, remove: bool) -> Diagnostic:
+    kind = "ignore" if mark.where == LINE else f"ignore-{mark.where}"
+    codes = " ".join(sorted(mark.codes))
+    comment = f"(fanuc-macro: {kind}{' ' + codes if codes else ''})"
+    fixes = (
+        (
+            Fix(
+                "Remove the suppression comment",
+                (FixEdit(line, mark.column, line, mark.end_column, ""),),
+                True,
+                True,
+            ),
+        )
+        if remove
+        else ()
+    )
+    return make(MB015, f"{comment} {told}", line, mark.column, mark.end_column, fixes=fixes)
