@@ -244,3 +244,16 @@ def test_a_bad_rule_option_is_a_usage_error_naming_the_nearest_rule(tmp_path: Pa
     assert "'MB60Z' is not a rule's code or name, a prefix of codes or ALL" in result.stderr
     result = run(tmp_path, "check", "--severity", "MB602=loud", "o1000.nc")
     assert result.returncode == 2 and "not RULE=LEVEL" in result.stderr
+
+
+def test_the_files_table_excludes_and_adds_extensions_to_the_walk(tmp_path: Path) -> None:
+    write(tmp_path / "fanuc-macro.toml", "[files]\nexclude = ['old']\nextensions = ['pgm']\n")
+    write(tmp_path / "old" / "o1000.nc", SPINDLE)
+    write(tmp_path / "jobs" / "o2000.pgm", SPINDLE.replace("O1000", "O2000"))
+    write(tmp_path / "jobs" / "o3000.nc", SPINDLE.replace("O1000", "O3000"))
+    result = run(tmp_path, "check", "--format", "json", "--max-spindle-speed", "3000", ".")
+    paths = sorted({f["path"] for f in json.loads(result.stdout)})
+    assert paths == [str(Path("jobs") / "o2000.pgm"), str(Path("jobs") / "o3000.nc")]
+    assert "2 files checked" in result.stderr
+    isolated = run(tmp_path, "check", "--isolated", "--format", "json", ".")
+    assert "2 files checked" in isolated.stderr  # old/o1000.nc and jobs/o3000.nc, no .pgm

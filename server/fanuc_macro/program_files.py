@@ -18,6 +18,7 @@ import fnmatch
 import os
 import re
 from collections.abc import Iterable, Sequence
+from collections.abc import Set as AbstractSet
 from dataclasses import dataclass, field
 from pathlib import Path, PurePosixPath
 
@@ -161,13 +162,13 @@ def is_sniffed(path: Path) -> bool:
     return suffix in SNIFFED_SUFFIXES or not suffix
 
 
-def is_program_file(path: Path) -> bool:
+def is_program_file(path: Path, extensions: AbstractSet[str] = frozenset()) -> bool:
     """Whether a file met in a folder is a program: by its extension
-    (:data:`PROGRAM_SUFFIXES`), by a name that is a program number ('O09010', as a control's
-    memory card holds them), or, for the extensions of :data:`SNIFFED_SUFFIXES` and none, by
-    its content (:func:`looks_like_program`)."""
+    (:data:`PROGRAM_SUFFIXES`, and ``extensions``, a shop's own: ".pgm"), by a name that is a
+    program number ('O09010', as a control's memory card holds them), or, for the extensions
+    of :data:`SNIFFED_SUFFIXES` and none, by its content (:func:`looks_like_program`)."""
     suffix = extension(path)
-    if suffix in PROGRAM_SUFFIXES:
+    if suffix in PROGRAM_SUFFIXES or suffix in extensions:
         return True
     if not suffix and _NUMBER_NAME.fullmatch(path.name):
         return True
@@ -226,9 +227,14 @@ class Found:
     empty: list[str] = field(default_factory=list)  # folders given without a program
 
 
-def walk_folder(folder: Path, exclude: Sequence[str] = (), found: Found | None = None) -> Found:
+def walk_folder(
+    folder: Path,
+    exclude: Sequence[str] = (),
+    found: Found | None = None,
+    extensions: AbstractSet[str] = frozenset(),
+) -> Found:
     """The programs under ``folder`` in path order, hidden files and tools' folders skipped,
-    and the text files that are not programs."""
+    and the text files that are not programs (``extensions``: see :func:`is_program_file`)."""
     found = found if found is not None else Found()
     programs: list[Path] = []
     not_programs: list[Path] = []
@@ -244,7 +250,7 @@ def walk_folder(folder: Path, exclude: Sequence[str] = (), found: Found | None =
             path = here / name
             if name.startswith(".") or not path.is_file():
                 continue
-            if is_program_file(path):
+            if is_program_file(path, extensions):
                 programs.append(path)
             elif is_sniffed(path):
                 not_programs.append(path)
@@ -253,7 +259,9 @@ def walk_folder(folder: Path, exclude: Sequence[str] = (), found: Found | None =
     return found
 
 
-def find_programs(paths: Iterable[str], exclude: Sequence[str] = ()) -> Found:
+def find_programs(
+    paths: Iterable[str], exclude: Sequence[str] = (), extensions: AbstractSet[str] = frozenset()
+) -> Found:
     """The programs of the paths given, in order: a file as given, whatever it is; a folder's
     programs (:func:`walk_folder`). A path that is not there, or a folder without programs, is
     noted and the others still walked."""
@@ -262,7 +270,7 @@ def find_programs(paths: Iterable[str], exclude: Sequence[str] = ()) -> Found:
         path = Path(raw)
         if path.is_dir():
             before = len(found.programs)
-            walk_folder(path, exclude, found)
+            walk_folder(path, exclude, found, extensions)
             if len(found.programs) == before:
                 found.empty.append(raw)
         elif path.is_file():

@@ -101,8 +101,26 @@ def exit_status(
     return EXIT_OK
 
 
-def _found(paths: Sequence[str], exclude: Sequence[str]) -> Found:
-    return find_programs([p for p in paths if p != STDIN], exclude)
+def _found(paths: Sequence[str], exclude: Sequence[str], resolver: ConfigResolver) -> Found:
+    """The programs of the paths given; each folder walked with the ``[files]`` of the
+    configuration file nearest it (what it excludes besides --exclude, its own extensions)."""
+    found = Found()
+    for raw in paths:
+        if raw == STDIN:
+            continue
+        files = resolver.for_path(Path(raw)).settings.get("files", {})
+        extensions = frozenset(_suffix(e) for e in files.get("extensions", ()))
+        one = find_programs([raw], [*exclude, *files.get("exclude", ())], extensions)
+        found.programs.extend(one.programs)
+        found.not_programs.extend(one.not_programs)
+        found.missing.extend(one.missing)
+        found.empty.extend(one.empty)
+    return found
+
+
+def _suffix(text: str) -> str:
+    """An extension as a file's is compared: ".pgm" for "pgm", ".PGM" or "*.pgm"."""
+    return "." + text.strip().lstrip("*").lstrip(".").lower()
 
 
 def cmd_check(args: argparse.Namespace) -> int:
@@ -115,7 +133,12 @@ def cmd_check(args: argparse.Namespace) -> int:
     if stdin_name is not None and STDIN not in paths:
         err.write("fanuc-macro: --stdin-filename names standard input: give - among the paths\n")
         return EXIT_USAGE
-    found = _found(paths, args.exclude or ())
+    resolver = ConfigResolver(args)
+    try:
+        found = _found(paths, args.exclude or (), resolver)
+    except ConfigFileError as error:
+        err.write(f"fanuc-macro: {error}\n")
+        return EXIT_USAGE
     for raw in found.missing:
         err.write(f"fanuc-macro: no such file or directory: {raw}\n")
     for folder in found.empty:
@@ -142,7 +165,6 @@ def cmd_check(args: argparse.Namespace) -> int:
     # Every form but the text one, and --statistics, needs the findings of every file first.
     as_records = args.format != "text" or args.statistics
     colour = use_colour(args.color, out)
-    resolver = ConfigResolver(args)
     try:
         groups = _by_configuration(datas, resolver)
     except ConfigFileError as error:
