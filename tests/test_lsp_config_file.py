@@ -63,3 +63,34 @@ async def test_a_bad_file_is_shown_to_the_user_and_the_editor_settings_serve(
     assert any(
         "fanuc-macro.toml:2: machine.max-spindle-speed: 'fast' is not a number" in m for m in shown
     ), shown
+
+
+async def test_each_document_takes_the_file_nearest_it(
+    client: LanguageClient, tmp_path: Path
+) -> None:
+    (tmp_path / "fanuc-macro.toml").write_text(
+        "[machine]\nmax-spindle-speed = 8000\n", encoding="utf-8"
+    )
+    lathe_config = tmp_path / "lathe" / "fanuc-macro.toml"
+    lathe_config.parent.mkdir()
+    lathe_config.write_text(
+        "extend = '../fanuc-macro.toml'\n[machine]\nmax-spindle-speed = 3000\n", encoding="utf-8"
+    )
+    (tmp_path / "mill").mkdir()
+    lathe, mill = tmp_path / "lathe" / "o1000.nc", tmp_path / "mill" / "o2000.nc"
+    lathe.write_text(SPINDLE, encoding="utf-8")
+    mill_text = SPINDLE.replace("O1000", "O2000").replace("S5000", "S7000")
+    mill.write_text(mill_text, encoding="utf-8")
+    await start(client, tmp_path)
+    open_text(client, lathe.as_uri(), SPINDLE)
+    open_text(client, mill.as_uri(), mill_text)
+    found = await diagnostics(client, lathe.as_uri(), lambda d: "MB602" in codes(d))
+    assert "3000" in next(d for d in found if d.code == "MB602").message
+    assert "MB602" not in codes(await diagnostics(client, mill.as_uri()))
+    lathe_config.write_text("[machine]\nmax-spindle-speed = 6000\n", encoding="utf-8")
+    client.workspace_did_change_watched_files(
+        types.DidChangeWatchedFilesParams(
+            changes=[types.FileEvent(uri=lathe_config.as_uri(), type=types.FileChangeType.Changed)]
+        )
+    )
+    await diagnostics(client, lathe.as_uri(), lambda d: "MB602" not in codes(d))

@@ -1,10 +1,10 @@
 // The rules' documentation shipped with the extension (docs/rules.md in the .vsix). The server
 // links each diagnostic's code to that page's section on the project's web site
-// (codeDescription.href, lsp/convert.py); the client turns such a link into a command that opens
+// (codeDescription.href, rules_doc.py); the client turns such a link into a command that opens
 // the shipped page at the section, so the link works offline and for the version installed.
 // Pure logic, no `vscode` import.
 
-/** The page the server's codeDescription links point to (RULES_URL in lsp/convert.py). */
+/** The page the server's codeDescription links point to (RULES_URL in rules_doc.py). */
 export const RULES_URL = 'https://github.com/fanuc-macro/fanuc-macro/blob/main/docs/rules.md';
 
 /** The page in the extension's folder. */

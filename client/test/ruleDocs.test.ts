@@ -9,9 +9,10 @@ const rulesDoc = readFileSync(join(root, 'docs', 'rules.md'), 'utf8');
 
 describe('rule documentation links', () => {
   it('point at the page the server links to', () => {
-    // The server's RULES_URL (lsp/convert.py): the client recognises exactly that page.
-    const convert = readFileSync(join(root, 'server', 'fanuc_macro', 'lsp', 'convert.py'), 'utf8');
-    assert.match(convert, new RegExp(`^RULES_URL = "${RULES_URL.replace(/[.]/g, '\\.')}"$`, 'm'));
+    // The server's RULES_URL (rules_doc.py, which the language server and the SARIF output
+    // link through): the client recognises exactly that page.
+    const rulesDocPy = readFileSync(join(root, 'server', 'fanuc_macro', 'rules_doc.py'), 'utf8');
+    assert.match(rulesDocPy, new RegExp(`^RULES_URL = "${RULES_URL.replace(/[.]/g, '\\.')}"$`, 'm'));
     assert.equal(ruleAnchorOf(`${RULES_URL}#mb601-m-not-integer`), 'mb601-m-not-integer');
     assert.equal(ruleAnchorOf(RULES_URL), '');
     assert.equal(ruleAnchorOf('https://example.com/docs/rules.md#mb601'), undefined);

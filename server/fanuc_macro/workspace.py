@@ -337,9 +337,13 @@ class Workspace:
         workspace_programs: frozenset[int] | None = None,
         cancel: CancelToken | None = None,
         others: list[tuple[str, Document, ProgramIndex]] | None = None,
+        config: Config | None = None,
     ) -> Analysis:
         """Analyse ``uri`` with the programs of the workspace it calls (``others``, when the
-        caller has them already from :meth:`others`).
+        caller has them already from :meth:`others`), with the workspace's settings or
+        ``config`` (a document's own: the configuration file nearest it). Its facts are kept
+        with the settings they were found with, so a document always analysed with its own
+        reuses them.
 
         The evaluator's facts are kept while no document it ran changed what it does: typing in
         a comment re-runs the rules (comments name parameters and suppress diagnostics), not
@@ -351,7 +355,7 @@ class Workspace:
         runs = ((uri, entry.execution), *((u, self._entries[u].execution) for u, _, _ in others))
         # The machine the document's codes show (controller 0i-F): a run of another machine's
         # reading is neither kept nor resumed.
-        config = machine_config(self.config, entry.doc, entry.index)
+        config = machine_config(config or self.config, entry.doc, entry.index)
         if not config.machine_known:
             config = callers_machine(config, self._callers(uri)) or config
         facts, previous = _kept_facts(self._facts.get(uri), config, runs)

@@ -194,7 +194,7 @@ async def _on_document(
     if uri is None:
         return {"error": f"{command} takes the document's URI as its argument"}
     key = key_of(uri)
-    config = engine.config
+    config = engine.config_for(key)
 
     def job() -> AnswerT | CommandRefusal:
         if not engine.load(key):
@@ -485,7 +485,9 @@ async def run_machine(engine: Engine, args: tuple[Any, ...]) -> MachineAnswer | 
         return {"error": f"{uri} is not open"}
     if result.analysis is None:
         return {"error": f"{uri} has no analysis: {result.error or 'it failed'}"}
-    return _machine_json(document_machine(View(result.key, result.analysis, engine.config)))
+    return _machine_json(
+        document_machine(View(result.key, result.analysis, engine.config_for(result.key)))
+    )
 
 
 async def run_variable_at(engine: Engine, args: tuple[Any, ...]) -> VariableSpan | CommandRefusal:

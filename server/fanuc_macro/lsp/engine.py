@@ -116,6 +116,10 @@ class Engine:
         self._editor_settings: dict[str, Any] | None = None
         self._file_settings: dict[str, Any] = {}
         self.config_files: tuple[Path, ...] = ()
+        # The settings of documents below a configuration file other than the first folder's,
+        # by that file.
+        self._own_configs: dict[Path, Config] = {}
+        self._nearest: dict[Path, Path | None] = {}  # a document's folder: its nearest file
         # The workspace's: every handler runs inside it (:meth:`active`), the analyses too.
         self.database = Database()
         self.codec = codec or Codec()
@@ -234,6 +238,7 @@ class Engine:
     def configure(self, settings: dict[str, Any] | None) -> None:
         """The editor's settings, under the configuration file's (:meth:`read_config_file`)."""
         self._editor_settings = settings
+        self._own_configs = {}  # they hold the editor's settings too
         if self._file_settings:
             from ..config_file import merged
 
@@ -258,9 +263,40 @@ class Engine:
             self.log_message(f"fanuc-macro: {error}", types.MessageType.Error)
             self.show_message(f"fanuc-macro: {error}", types.MessageType.Error)
         self.config_files = files
+        had_own = bool(self._own_configs)
+        self._own_configs, self._nearest = {}, {}  # read again when a document asks
+        if had_own and found == self._file_settings:  # a subfolder's file changed
+            self.scheduler.submit(self._new_generation, then=lambda _: self.schedule_all(0.0))
         if found != self._file_settings:
             self._file_settings = found
             self.configure(self._editor_settings)
+
+    def config_for(self, key: str) -> Config:
+        """The settings of the document ``key``: the editor's under the configuration file
+        nearest it, when that is another than the first folder's (a subfolder with its own
+        fanuc-macro.toml); else the workspace's. A file that cannot be used is told once, and
+        the workspace's settings serve."""
+        from ..config_file import ConfigFileError, find_config_file, load_config_file, merged
+
+        path = path_of(key) if key.startswith("file:") else None
+        if path is None:
+            return self.config
+        folder = path.parent
+        if folder not in self._nearest:
+            self._nearest[folder] = find_config_file(folder)
+        nearest = self._nearest[folder]
+        if nearest is None or nearest in self.config_files[:1]:
+            return self.config
+        found = self._own_configs.get(nearest)
+        if found is None:
+            try:
+                settings = merged(self._editor_settings or {}, load_config_file(nearest).settings)
+                found = Config.from_settings(settings)
+            except ConfigFileError as error:
+                self.show_message(f"fanuc-macro: {error}", types.MessageType.Error)
+                found = self.config
+            self._own_configs[nearest] = found
+        return found
 
     def _configure(self, settings: dict[str, Any] | None) -> None:
         config = Config.from_settings(settings)
@@ -469,7 +505,7 @@ class Engine:
         others: list[OtherDocument] | None = None,
     ) -> Analysis:
         """The package's analysis of ``key``, given only the documents it can reach."""
-        return self._ws.analyse(key, cancel=cancel, others=others)
+        return self._ws.analyse(key, cancel=cancel, others=others, config=self.config_for(key))
 
     def _progress_of(self, key: str) -> AnalysisProgress | None:
         """Worker thread: what reports the progress of an analysis, if the client shows it."""

@@ -122,7 +122,7 @@ class FanucMacroLanguageServer(LanguageServer):
             uri=self.engine.client_uri(result.key),
             analysis=result.analysis,  # type: ignore[arg-type]
             lines=result.lines,
-            config=self.engine.config,
+            config=self.engine.config_for(result.key),
             workspace=self.engine.indexes,
             client_uri=self.engine.client_uri,
             markdown=self.markdown_hover,

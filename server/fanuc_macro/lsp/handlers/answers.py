@@ -101,7 +101,8 @@ async def completion(
     from ..features import completion
 
     doc, line_text, column, view = at.doc, at.line_text, at.column, at.view
-    support, config, codec = ls.completion_support, ls.engine.config, ls.engine.codec
+    support, codec = ls.completion_support, ls.engine.codec
+    config = ls.engine.config_for(doc.key)
     line, line_count, eol = params.position.line, len(doc.lines()), _end_of_line(doc.text)
     return await ls.compute(
         "completion",
