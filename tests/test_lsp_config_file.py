@@ -5,6 +5,7 @@ settings, reads it again when it changes, and tells a bad one to the user."""
 from __future__ import annotations
 
 import asyncio
+from collections.abc import Sequence
 from pathlib import Path
 
 from lsprotocol import types
@@ -94,3 +95,27 @@ async def test_each_document_takes_the_file_nearest_it(
         )
     )
     await diagnostics(client, lathe.as_uri(), lambda d: "MB602" not in codes(d))
+
+
+async def test_the_folder_scan_reads_the_files_table(
+    client: LanguageClient, tmp_path: Path
+) -> None:
+    (tmp_path / "fanuc-macro.toml").write_text(
+        "[files]\nexclude = ['old']\nextensions = ['pgm']\n", encoding="utf-8"
+    )
+    (tmp_path / "subs").mkdir()
+    (tmp_path / "subs" / "o2000.pgm").write_text("O2000\nG00 X1.\nM99\n", encoding="utf-8")
+    (tmp_path / "old").mkdir()
+    (tmp_path / "old" / "o3000.nc").write_text("O3000\nG00 X1.\nM99\n", encoding="utf-8")
+    main = tmp_path / "o1000.nc"
+    text = "O1000\nM98 P2000\nM98 P3000\nM30\n"
+    main.write_text(text, encoding="utf-8")
+    await start(client, tmp_path)
+    open_text(client, main.as_uri(), text)
+
+    def missing_only_o3000(now: Sequence[types.Diagnostic]) -> bool:
+        return {d.range.start.line for d in now if d.code == "MB403"} == {2}
+
+    found = await diagnostics(client, main.as_uri(), missing_only_o3000)
+    # O2000 is read from its .pgm file; O3000's folder is excluded: its call is missing.
+    assert [d.range.start.line for d in found if d.code == "MB403"] == [2]

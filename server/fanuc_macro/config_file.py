@@ -410,6 +410,17 @@ def merged(low: dict[str, Any], high: dict[str, Any]) -> dict[str, Any]:
 _WHOLE_TABLES = frozenset({"customCalls", "severity", "perFileIgnores"})
 
 
+def files_of(settings: dict[str, Any]) -> tuple[tuple[str, ...], frozenset[str]]:
+    """A settings object's ``[files]``: what a walk of folders skips (as ``--exclude``), and
+    a shop's own extensions of program files, each as a file's is compared (".pgm" for
+    "pgm", ".PGM" or "*.pgm")."""
+    files = settings.get("files", {})
+    extensions = frozenset(
+        "." + str(e).strip().lstrip("*").lstrip(".").lower() for e in files.get("extensions", ())
+    )
+    return tuple(files.get("exclude", ())), extensions
+
+
 def setting_of(dotted: str) -> str:
     """The editor setting (below ``fanuc-macro.``) the file's key ``dotted`` stands for."""
     return KEYS_BY_NAME[dotted].setting

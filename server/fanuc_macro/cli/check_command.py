@@ -17,7 +17,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any, TextIO
 
 from ..config import Config
-from ..config_file import ConfigFileError
+from ..config_file import ConfigFileError, files_of
 from ..diagnostics import Diagnostic, Severity
 from ..ide import Fixed, fix_file, machine_text, unified_diff
 from ..program_files import Found, find_programs
@@ -108,19 +108,13 @@ def _found(paths: Sequence[str], exclude: Sequence[str], resolver: ConfigResolve
     for raw in paths:
         if raw == STDIN:
             continue
-        files = resolver.for_path(Path(raw)).settings.get("files", {})
-        extensions = frozenset(_suffix(e) for e in files.get("extensions", ()))
-        one = find_programs([raw], [*exclude, *files.get("exclude", ())], extensions)
+        own_exclude, extensions = files_of(resolver.for_path(Path(raw)).settings)
+        one = find_programs([raw], [*exclude, *own_exclude], extensions)
         found.programs.extend(one.programs)
         found.not_programs.extend(one.not_programs)
         found.missing.extend(one.missing)
         found.empty.extend(one.empty)
     return found
-
-
-def _suffix(text: str) -> str:
-    """An extension as a file's is compared: ".pgm" for "pgm", ".PGM" or "*.pgm"."""
-    return "." + text.strip().lstrip("*").lstrip(".").lower()
 
 
 def cmd_check(args: argparse.Namespace) -> int:

@@ -6,8 +6,9 @@ from __future__ import annotations
 
 import asyncio
 import os
-from collections.abc import Iterable, Sequence
-from pathlib import Path
+from collections.abc import Callable, Iterable, Sequence
+from collections.abc import Set as AbstractSet
+from pathlib import Path, PurePosixPath
 from typing import TYPE_CHECKING
 
 from lsprotocol import types
@@ -66,7 +67,7 @@ class Folders:
 
         def walk() -> list[Path]:
             try:
-                files = list(program_files(paths, budget))
+                files = list(program_files(paths, budget, files_settings))
             except Exception as err:  # an unreadable folder: scan nothing there
                 self.engine.report(f"fanuc-macro: cannot list {paths}: {err!r}", err)
                 return []
@@ -167,22 +168,52 @@ def read_program(path: Path) -> bytes | None:
         return None
 
 
-def program_files(folders: Sequence[Path], limit: int) -> Iterable[Path]:
+def files_settings(folder: Path) -> tuple[tuple[str, ...], frozenset[str]]:
+    """The ``[files]`` of the configuration file nearest ``folder``: what a walk of it skips
+    (as ``check --exclude``) and a shop's own program extensions. A file that cannot be used
+    gives none (the engine tells it when it reads the settings)."""
+    from ..config_file import ConfigFileError, files_of, find_config_file, load_config_file
+
+    try:
+        found = find_config_file(folder)
+        return files_of(load_config_file(found).settings if found else {})
+    except ConfigFileError:
+        return (), frozenset()
+
+
+def program_files(
+    folders: Sequence[Path],
+    limit: int,
+    settings_of: Callable[[Path], tuple[tuple[str, ...], frozenset[str]]] | None = None,
+) -> Iterable[Path]:
     """Program files under ``folders``, hidden and tool folders skipped as ``check`` skips
-    them (``program_files.is_tool_folder``), at most ``limit``."""
-    from ..program_files import is_tool_folder
+    them (``program_files.is_tool_folder``), and what ``settings_of`` a folder excludes,
+    at most ``limit``."""
+    from ..program_files import excluded, is_tool_folder
 
     count = 0
     seen: set[Path] = set()
     for folder in folders:
+        exclude, extensions = settings_of(folder) if settings_of else ((), frozenset[str]())
         for root, dirs, files in os.walk(folder):
-            dirs[:] = sorted(d for d in dirs if not is_tool_folder(Path(root, d)))
+            here = Path(root)
+            base = PurePosixPath(here.relative_to(folder).as_posix())
+            shown = PurePosixPath(here.as_posix())
+            dirs[:] = sorted(
+                d
+                for d in dirs
+                if not is_tool_folder(here / d) and not excluded(base / d, shown / d, exclude)
+            )
             for name in sorted(files):
                 path = Path(root, name)
                 if name.startswith(".") or path in seen:
                     continue
+                if exclude and excluded(base / name, shown / name, exclude):
+                    continue
                 try:
-                    if path.stat().st_size > SCAN_MAX_BYTES or not is_program_file(path):
+                    if path.stat().st_size > SCAN_MAX_BYTES or not is_program_file(
+                        path, extensions
+                    ):
                         continue
                 except OSError:
                     continue
@@ -193,10 +224,10 @@ def program_files(folders: Sequence[Path], limit: int) -> Iterable[Path]:
                     return
 
 
-def is_program_file(path: Path) -> bool:
+def is_program_file(path: Path, extensions: AbstractSet[str] = frozenset()) -> bool:
     from ..workspace import is_program_file as is_program
 
-    return is_program(path)
+    return is_program(path, extensions)
 
 
 __all__ = ("Folders", "is_program_file", "path_of", "program_files", "read_program")
