@@ -314,6 +314,22 @@ def test_the_configuration_file_beside_the_program_is_read(dap: DapClient, tmp_p
     assert "step budget of 4,000 blocks" in dap.output_text()
 
 
+def test_the_launch_reads_the_machine_from_the_configuration_file(
+    dap: DapClient, tmp_path: Path
+) -> None:
+    # G99 is the lathe's feed per revolution (group 05) and the mill's return to R (group 10).
+    program = tmp_path / "o1000.nc"
+    program.write_text("O1000\nG99\nG00 X1.\nM30\n", encoding="utf-8")
+    (tmp_path / "fanuc-macro.toml").write_text("[machine]\ncontroller = '0i-MF'\n", "utf-8")
+    dap.start({"program": str(program)}, {str(program): [{"line": 3}]})
+    dap.stopped()
+    scopes = dap.ok("scopes", {"frameId": 1})["scopes"]
+    modal = next(s for s in scopes if s["name"].startswith("Modal state"))
+    found = dap.ok("variables", {"variablesReference": modal["variablesReference"]})
+    shown = {v["name"]: v["value"] for v in found["variables"]}
+    assert shown.get("G group 10") == "G99" and "G group 05" not in shown, shown
+
+
 def test_a_bad_configuration_file_fails_the_launch_with_its_message(
     dap: DapClient, tmp_path: Path
 ) -> None:
