@@ -38,7 +38,14 @@ from ..syntax.tree import (
     While,
 )
 from ..syntax.walk import subexpressions, top_expressions
-from .compiler import CondEvaluator, Evaluator, compile_cond, compile_expr, constant_of, kept
+from .compiler import (
+    CondEvaluator,
+    Evaluator,
+    compile_cond,
+    compile_expr,
+    compile_with_constant,
+    kept,
+)
 from .values import UNKNOWN, Value
 
 # Block kinds of the compiled program.
@@ -418,18 +425,28 @@ def _folded(_: object) -> Value:
 
 
 def _compile_nc(nc: NcStatement, text: str | None = None) -> FullLine:
-    constants = [constant_of(w.value, w.address in LENGTH_ADDRESSES) for w in nc.words]
+    # Each word's tree is walked once, or not at all when another line shares it: its value
+    # when constant and its closure, kept for when the block is not folded.
+    made = [_shared_word(w.value, w.address in LENGTH_ADDRESSES, text) for w in nc.words]
+    constants = [c for _, c, _ in made]
     folded = all(c is not None for c in constants)
     if not folded:
+        shared = current().table(SHARED_EXPRESSIONS)
+        evaluators = [
+            evaluator
+            if key is None
+            else kept(shared, key, (evaluator, c), MAX_SHARED_EXPRESSIONS)[0]
+            for evaluator, c, key in made
+        ]
         words = tuple(
             CompiledWord(
                 w.address,
-                _compile_word(w.value, w.address in LENGTH_ADDRESSES, text),
+                evaluator,
                 w.span.start,
                 w.span.end,
                 _written_with_decimal_point(w.value),
             )
-            for w in nc.words
+            for w, evaluator in zip(nc.words, evaluators, strict=True)
         )
         return FullLine(K_NC, words=words, nc=nc, node=nc)
     # A block of constant words is run from its ConstantWords: its words need no closures.
@@ -698,9 +715,10 @@ def _shared_codes(codes: Iterable[float]) -> tuple[float, ...]:
 
 
 # Compiled expressions by their place and text in a line: the same text at the same column
-# compiles to the same closures (spans included, which alarms report), so lines that repeat an
-# expression (X[#100+2.] in every pass) share them. Emptied when it reaches its bound.
-SHARED_EXPRESSIONS: TableKey[tuple[int, int, str, bool], Evaluator] = TableKey(
+# compiles to the same closures (spans included, which alarms report) and constant, so lines
+# that repeat an expression (X[#100+2.] in every pass) share them. Emptied when it reaches its
+# bound.
+SHARED_EXPRESSIONS: TableKey[tuple[int, int, str, bool], tuple[Evaluator, float | None]] = TableKey(
     "evaluator.shared_expressions", cache=True
 )
 MAX_SHARED_EXPRESSIONS = 100_000
@@ -709,16 +727,26 @@ MAX_SHARED_EXPRESSIONS = 100_000
 def _compile_word(expr: Expr, in_address: bool, text: str | None) -> Evaluator:
     """``compile_expr``, shared between lines with the same expression at the same place when
     the line's ``text`` is given."""
+    evaluator, constant, key = _shared_word(expr, in_address, text)
+    if key is not None:
+        shared = current().table(SHARED_EXPRESSIONS)
+        evaluator = kept(shared, key, (evaluator, constant), MAX_SHARED_EXPRESSIONS)[0]
+    return evaluator
+
+
+def _shared_word(
+    expr: Expr, in_address: bool, text: str | None
+) -> tuple[Evaluator, float | None, tuple[int, int, str, bool] | None]:
+    """The closure and constant value of ``expr``, another line's when shared; with the key to
+    share them under when they were compiled here (None: found, or not to share)."""
     if text is None or isinstance(expr, Num):
-        return compile_expr(expr, in_address)
+        return (*compile_with_constant(expr, in_address), None)
     span = expr.span
     key = (span.start, span.end, text[span.start : span.end], in_address)
-    shared = current().table(SHARED_EXPRESSIONS)
-    evaluator = shared.get(key)
-    if evaluator is None:
-        made = compile_expr(expr, in_address)
-        evaluator = kept(shared, key, made, MAX_SHARED_EXPRESSIONS)
-    return evaluator
+    found = current().table(SHARED_EXPRESSIONS).get(key)
+    if found is not None:
+        return (*found, None)
+    return (*compile_with_constant(expr, in_address), key)
 
 
 def _written_with_decimal_point(expr: Expr) -> bool:

@@ -142,6 +142,16 @@ def compile_expr(expr: Expr, in_address: bool = False) -> Evaluator:
     return _compile_tree(expr, in_address)[0]
 
 
+def compile_with_constant(expr: Expr, in_address: bool = False) -> tuple[Evaluator, float | None]:
+    """``compile_expr`` and ``constant_of`` of ``expr`` from one walk of its tree."""
+    if isinstance(expr, Num):
+        return _constant(expr.value), expr.value
+    if isinstance(expr, Var) and expr.index is None:
+        return _compile_var(expr, None), None
+    compiled = _compile_tree(expr, in_address)
+    return compiled[0], compiled[1]
+
+
 def _compile_tree(root: Expr, in_address: bool) -> _Compiled:
     """Compile an expression bottom-up with an explicit stack, folding constant parts as it
     goes: each node is compiled once, whatever the depth (recursion failed past a few hundred
