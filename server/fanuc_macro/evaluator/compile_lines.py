@@ -37,7 +37,7 @@ from ..syntax.tree import (
     Var,
     While,
 )
-from ..syntax.walk import subexpressions, top_expressions
+from ..syntax.walk import variables
 from .compiler import (
     CondEvaluator,
     Evaluator,
@@ -326,18 +326,14 @@ def _direct_reads(statement: Statement) -> tuple[int, ...]:
         skip_target = statement.target
     elif isinstance(statement, IfThen):
         skip_target = statement.then.target
-    for top in top_expressions(statement):
-        for node in subexpressions(top):
-            if node is skip_target:
-                continue
-            if (
-                isinstance(node, Var)
-                and node.number is not None
-                and node.number == int(node.number)
-            ):
-                n = int(node.number)
-                if n and n not in numbers:
-                    numbers.append(n)
+    # The variables in the order of subexpressions' walk, without walking what holds none.
+    for var in variables(statement):
+        number = var.number
+        if number is None or var is skip_target:
+            continue
+        n = int(number)
+        if n == number and n and n not in numbers:
+            numbers.append(n)
     return tuple(numbers)
 
 
