@@ -167,65 +167,74 @@ def _compile_tree(root: Expr, in_address: bool) -> _Compiled:
             del done[start:]
             done.append(compiled)
             continue
-        children = _children(node)
+        kind = type(node)
+        # [x] and +x compile to x's closure: no step of their own.
+        while kind is Bracket or (kind is Unary and node.op == "+"):  # type: ignore[union-attr]
+            node = node.inner if kind is Bracket else node.operand  # type: ignore[union-attr]
+            kind = type(node)
+        children = _CHILDREN[kind](node)
         if not children:
             done.append(_compile_leaf(node))
             continue
+        for child in children:
+            if type(child) is not Num and (type(child) is not Var or child.index is not None):
+                break
+        else:  # #100+2., SIN[#1]: compiled at once, without the stack
+            done.append(_compile_node(node, address, [_compile_leaf(c) for c in children]))
+            continue
         todo.append((node, address, len(children)))
         # An index #[...] is a variable number, not the address's value: ROUND in it is plain.
-        child_address = address and not isinstance(node, Var)
+        child_address = address and kind is not Var
         for child in reversed(children):
             todo.append((child, child_address, -1))
     return done[0]
 
 
-def _children(node: Expr) -> tuple[Expr, ...]:
-    if isinstance(node, Binary):
-        return (node.left, node.right)
-    if isinstance(node, Unary):
-        return (node.operand,)
-    if isinstance(node, Bracket):
-        return (node.inner,)
-    if isinstance(node, Call):
-        return node.args
-    if isinstance(node, Var) and node.index is not None:
-        return (node.index,)
-    return ()
-
-
 def _compile_leaf(node: Expr) -> _Compiled:
-    if isinstance(node, Num):
+    if type(node) is Num:
         return _constant(node.value), node.value, True
-    assert isinstance(node, Var)
+    assert type(node) is Var
     return _compile_var(node, None), None, False
 
 
+# A node's children, by its class (type, not isinstance: no class of the tree is subclassed).
+_CHILDREN: Mapping[type, Callable[[Any], tuple[Expr, ...]]] = MappingProxyType(
+    {
+        Num: lambda _: (),
+        Var: lambda n: () if n.index is None else (n.index,),
+        Unary: lambda n: (n.operand,),
+        Binary: lambda n: (n.left, n.right),
+        Bracket: lambda n: (n.inner,),
+        Call: lambda n: n.args,
+    }
+)
+
+
 def _compile_node(node: Expr, in_address: bool, children: list[_Compiled]) -> _Compiled:
-    if isinstance(node, Bracket):
+    kind = type(node)
+    if kind is Bracket:
         return children[0]
-    if isinstance(node, Unary) and node.op == "+":
-        return children[0]
-    if isinstance(node, Var):
-        return _compile_var(node, children[0][0]), None, False
-    evaluators = [c[0] for c in children]
-    evaluator: Evaluator
-    if isinstance(node, Unary):
-        evaluator = _negate(evaluators[0])
-    elif isinstance(node, Binary):
+    if kind is Var:
+        return _compile_var(node, children[0][0]), None, False  # type: ignore[arg-type]
+    if kind is Unary:
+        if node.op == "+":  # type: ignore[union-attr]
+            return children[0]
+        evaluator = _negate(children[0][0])
+    elif kind is Binary:
         right = children[1][1]
         evaluator = _compile_binary(
-            node,
-            evaluators[0],
-            evaluators[1],
+            node,  # type: ignore[arg-type]
+            children[0][0],
+            children[1][0],
             right if type(right) is _float else None,
-            _local_number(node.left),
-            _local_number(node.right),
+            _local_number(node.left),  # type: ignore[union-attr]
+            _local_number(node.right),  # type: ignore[union-attr]
         )
     else:
-        assert isinstance(node, Call)
-        evaluator = _compile_call(node, in_address, evaluators)
+        assert kind is Call
+        evaluator = _compile_call(node, in_address, [c[0] for c in children])  # type: ignore[arg-type]
     foldable = all(c[2] for c in children) and not (
-        isinstance(node, Call) and (node.name in _STATEFUL or (in_address and node.name == "ROUND"))
+        kind is Call and (node.name in _STATEFUL or (in_address and node.name == "ROUND"))  # type: ignore[union-attr]
     )
     if not foldable or any(c[1] is None for c in children):
         return evaluator, None, foldable
