@@ -44,10 +44,15 @@ def _reads_walked(statement: Statement) -> tuple[int, ...]:
 
 def test_direct_reads_as_the_walk_of_every_subexpression() -> None:
     parser = BlockParser()
-    for text in [*LINES, *program_lines()]:
-        statement = parser.parse_line(text).statement
-        if statement is not None:
-            assert _direct_reads(statement) == _reads_walked(statement), text
+    lines = [*LINES, *program_lines()]
+    with Database().active():  # the lines' words shared as in one program
+        for text in [*lines, *lines]:
+            statement = parser.parse_line(text).statement
+            if statement is not None:
+                walked = _reads_walked(statement)
+                assert _direct_reads(statement) == walked, text
+                # An NC block's, from the compile of its words.
+                assert compile_statement(statement, text).reads == walked, text
 
 
 def test_one_walk_gives_the_constant_and_the_closure() -> None:

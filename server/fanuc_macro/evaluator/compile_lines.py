@@ -361,12 +361,14 @@ def compile_statement(statement: Statement | None, text: str | None = None) -> C
         plain = _compile_plain_nc(statement)
         if plain is not None:
             return plain
-    reads = _direct_reads(statement)
+    # An NC block's reads come from the compile of its words (see _compile_nc).
+    reads = None if type(statement) is NcStatement else _direct_reads(statement)
     if isinstance(statement, Mixed):
         nc_part = compile_statement(statement.nc, text)
         first = nc_part.full() if isinstance(nc_part, PlainLine) else nc_part
         assert isinstance(first, FullLine)
         first.second = compile_statement(statement.macro, text)
+        assert reads is not None  # a Mixed is not an NcStatement
         first.reads = reads
         _set_local_reads(first)
         return first
@@ -399,7 +401,8 @@ def compile_statement(statement: Statement | None, text: str | None = None) -> C
         c = FullLine(K_HEADER, node=statement)
     else:
         c = FullLine(K_OTHER, node=statement)
-    c.reads = reads
+    if reads is not None:
+        c.reads = reads
     _set_local_reads(c)
     c.ends_program = _ends_program(statement)
     return c
@@ -424,15 +427,21 @@ def _compile_nc(nc: NcStatement, text: str | None = None) -> FullLine:
     # Each word's tree is walked once, or not at all when another line shares it: its value
     # when constant and its closure, kept for when the block is not folded.
     made = [_shared_word(w.value, w.address in LENGTH_ADDRESSES, text) for w in nc.words]
-    constants = [c for _, c, _ in made]
+    constants = [c for _, c, _, _ in made]
+    numbers: list[int] = []
+    for _, _, found, _ in made:
+        for n in found:
+            if n not in numbers:
+                numbers.append(n)
+    reads = tuple(numbers)
     folded = all(c is not None for c in constants)
     if not folded:
         shared = current().table(SHARED_EXPRESSIONS)
         evaluators = [
             evaluator
             if key is None
-            else kept(shared, key, (evaluator, c), MAX_SHARED_EXPRESSIONS)[0]
-            for evaluator, c, key in made
+            else kept(shared, key, (evaluator, c, found), MAX_SHARED_EXPRESSIONS)[0]
+            for evaluator, c, found, key in made
         ]
         words = tuple(
             CompiledWord(
@@ -444,9 +453,9 @@ def _compile_nc(nc: NcStatement, text: str | None = None) -> FullLine:
             )
             for w, evaluator in zip(nc.words, evaluators, strict=True)
         )
-        return FullLine(K_NC, words=words, nc=nc, node=nc)
+        return FullLine(K_NC, reads=reads, words=words, nc=nc, node=nc)
     # A block of constant words is run from its ConstantWords: its words need no closures.
-    compiled = FullLine(K_NC, nc=nc, node=nc)
+    compiled = FullLine(K_NC, reads=reads, nc=nc, node=nc)
     values: dict[str, Value] = {}
     pairs = [(w.address, c) for w, c in zip(nc.words, constants, strict=True)]
     for a, c in pairs:
@@ -711,10 +720,11 @@ def _shared_codes(codes: Iterable[float]) -> tuple[float, ...]:
 
 
 # Compiled expressions by their place and text in a line: the same text at the same column
-# compiles to the same closures (spans included, which alarms report) and constant, so lines
-# that repeat an expression (X[#100+2.] in every pass) share them. Emptied when it reaches its
-# bound.
-SHARED_EXPRESSIONS: TableKey[tuple[int, int, str, bool], tuple[Evaluator, float | None]] = TableKey(
+# compiles to the same closures (spans included, which alarms report), constant and reads, so
+# lines that repeat an expression (X[#100+2.] in every pass) share them. Emptied when it
+# reaches its bound.
+SharedWord = tuple[Evaluator, float | None, tuple[int, ...]]
+SHARED_EXPRESSIONS: TableKey[tuple[int, int, str, bool], SharedWord] = TableKey(
     "evaluator.shared_expressions", cache=True
 )
 MAX_SHARED_EXPRESSIONS = 100_000
@@ -723,26 +733,36 @@ MAX_SHARED_EXPRESSIONS = 100_000
 def _compile_word(expr: Expr, in_address: bool, text: str | None) -> Evaluator:
     """``compile_expr``, shared between lines with the same expression at the same place when
     the line's ``text`` is given."""
-    evaluator, constant, key = _shared_word(expr, in_address, text)
+    evaluator, constant, numbers, key = _shared_word(expr, in_address, text)
     if key is not None:
         shared = current().table(SHARED_EXPRESSIONS)
-        evaluator = kept(shared, key, (evaluator, constant), MAX_SHARED_EXPRESSIONS)[0]
+        evaluator = kept(shared, key, (evaluator, constant, numbers), MAX_SHARED_EXPRESSIONS)[0]
     return evaluator
 
 
 def _shared_word(
     expr: Expr, in_address: bool, text: str | None
-) -> tuple[Evaluator, float | None, tuple[int, int, str, bool] | None]:
-    """The closure and constant value of ``expr``, another line's when shared; with the key to
-    share them under when they were compiled here (None: found, or not to share)."""
-    if text is None or isinstance(expr, Num):
-        return (*compile_with_constant(expr, in_address), None)
-    span = expr.span
-    key = (span.start, span.end, text[span.start : span.end], in_address)
-    found = current().table(SHARED_EXPRESSIONS).get(key)
-    if found is not None:
-        return (*found, None)
-    return (*compile_with_constant(expr, in_address), key)
+) -> tuple[Evaluator, float | None, tuple[int, ...], tuple[int, int, str, bool] | None]:
+    """The closure, constant value and variables read (as ``_direct_reads``) of ``expr``,
+    another line's when shared; with the key to share them under when they were compiled here
+    (None: found, or not to share)."""
+    key = None
+    if text is not None and type(expr) is not Num:
+        span = expr.span
+        key = (span.start, span.end, text[span.start : span.end], in_address)
+        found = current().table(SHARED_EXPRESSIONS).get(key)
+        if found is not None:
+            return (*found, None)
+    variables: list[Var] = []
+    evaluator, constant = compile_with_constant(expr, in_address, variables)
+    numbers = []
+    for var in variables:
+        number = var.number
+        if number is not None:
+            n = int(number)
+            if n == number and n:
+                numbers.append(n)
+    return evaluator, constant, tuple(numbers), key
 
 
 def _written_with_decimal_point(expr: Expr) -> bool:

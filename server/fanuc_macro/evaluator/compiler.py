@@ -142,20 +142,26 @@ def compile_expr(expr: Expr, in_address: bool = False) -> Evaluator:
     return _compile_tree(expr, in_address)[0]
 
 
-def compile_with_constant(expr: Expr, in_address: bool = False) -> tuple[Evaluator, float | None]:
-    """``compile_expr`` and ``constant_of`` of ``expr`` from one walk of its tree."""
+def compile_with_constant(
+    expr: Expr, in_address: bool = False, variables: list[Var] | None = None
+) -> tuple[Evaluator, float | None]:
+    """``compile_expr`` and ``constant_of`` of ``expr`` from one walk of its tree, which adds
+    its variables to ``variables`` in the order of ``walk.variables``."""
     if isinstance(expr, Num):
         return _constant(expr.value), expr.value
     if isinstance(expr, Var) and expr.index is None:
+        if variables is not None:
+            variables.append(expr)
         return _compile_var(expr, None), None
-    compiled = _compile_tree(expr, in_address)
+    compiled = _compile_tree(expr, in_address, variables)
     return compiled[0], compiled[1]
 
 
-def _compile_tree(root: Expr, in_address: bool) -> _Compiled:
+def _compile_tree(root: Expr, in_address: bool, variables: list[Var] | None = None) -> _Compiled:
     """Compile an expression bottom-up with an explicit stack, folding constant parts as it
     goes: each node is compiled once, whatever the depth (recursion failed past a few hundred
-    levels, and folding at every level made it quadratic)."""
+    levels, and folding at every level made it quadratic). Its variables go to ``variables``,
+    parents before the variables of their indexes, left to right."""
     # (node, in an address, children: -1 before they are compiled, else how many there are)
     todo: list[tuple[Expr, bool, int]] = [(root, in_address, -1)]
     done: list[_Compiled] = []  # the compiled children, left to right, of the nodes under way
@@ -172,6 +178,8 @@ def _compile_tree(root: Expr, in_address: bool) -> _Compiled:
         while kind is Bracket or (kind is Unary and node.op == "+"):  # type: ignore[union-attr]
             node = node.inner if kind is Bracket else node.operand  # type: ignore[union-attr]
             kind = type(node)
+        if kind is Var and variables is not None:
+            variables.append(node)  # type: ignore[arg-type]
         children = _CHILDREN[kind](node)
         if not children:
             done.append(_compile_leaf(node))
@@ -180,6 +188,8 @@ def _compile_tree(root: Expr, in_address: bool) -> _Compiled:
             if type(child) is not Num and (type(child) is not Var or child.index is not None):
                 break
         else:  # #100+2., SIN[#1]: compiled at once, without the stack
+            if variables is not None:
+                variables.extend(c for c in children if type(c) is Var)
             done.append(_compile_node(node, address, [_compile_leaf(c) for c in children]))
             continue
         todo.append((node, address, len(children)))
