@@ -306,6 +306,18 @@ def test_ignore_start_and_end_hide_the_lines_between_them() -> None:
     assert {line for line, _code in pairs(analyse(unclosed).diagnostics, "MB101")} == {1}
 
 
+def test_a_suppression_is_not_judged_when_a_rule_failed() -> None:
+    # The failed rule may have been the one whose finding the comment hides.
+    text = "O1000\n#1=SIN[30.] (fanuc-macro: ignore MB301)\nM30\n"
+    assert "MB015" in {d.code for d in analyse(text).diagnostics}
+
+    def broken(_ctx: object) -> list[Diagnostic]:
+        raise RuntimeError("a rule's bug")
+
+    found = {d.code for d in analyse(text, extra_checks=[broken]).diagnostics}
+    assert "MB000" in found and "MB015" not in found
+
+
 def test_other_comment_does_not_suppress() -> None:
     text = f"O1000\n{DEEP} (IGNORE MB301)\nM30\n"
     assert "MB301" in codes_of(text)

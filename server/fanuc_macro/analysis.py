@@ -352,7 +352,13 @@ def analyse(
                 threads = ctx.threads()
             except Exception:  # reported as MB000 by the rules that asked for them
                 log_failure(__name__, "thread identification of %s failed", uri)
-        whole = facts is not None and facts.stopped is None and not failed
+        # A suppression is judged on a whole run where every rule ran: not when the safety net
+        # stopped the run, nor when a rule or the evaluator failed (MB000).
+        whole = (
+            facts is not None
+            and facts.stopped is None
+            and not any(d.code == MB000.code for d in found)
+        )
         diagnostics = _apply_settings(found, doc, config, whole)
         kept_mill: Facts | None = None
         if not config.machine_known and readings_differ(doc):

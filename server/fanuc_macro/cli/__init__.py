@@ -106,11 +106,9 @@ def _rule_code(text: str) -> str:
     """The code of a rule given by its code or its name, in any case (``mb009``,
     ``Tape-Mark-Not-Alone``, ``tape_mark_not_alone``); the text in upper case when it is
     neither."""
-    code = text.upper()
-    if code in RULES:
-        return code
-    name = text.lower().replace("_", "-")
-    return next((c for c, info in RULES.items() if info.name == name), code)
+    from ..config_file import rule_code
+
+    return rule_code(text) or text.strip().upper()
 
 
 def _rule_codes(text: str) -> frozenset[str]:

@@ -5,6 +5,7 @@ defaults under both."""
 from __future__ import annotations
 
 import argparse
+import copy
 import json
 import sys
 from dataclasses import dataclass
@@ -87,7 +88,7 @@ class ConfigResolver:
 
 
 def _resolve(loaded: FileSettings, args: argparse.Namespace) -> Resolved:
-    settings = _copy(loaded.settings)
+    settings = copy.deepcopy(loaded.settings)  # the options below are put into it
     origins = {dotted: str(origin) for dotted, origin in loaded.origins.items()}
     for attribute, dotted, option in _OPTIONS:
         value = getattr(args, attribute, None)
@@ -144,10 +145,6 @@ def _rule_options(
 
 def _joined(before: str | None, option: str) -> str:
     return option if before is None else f"{before} and {option}"
-
-
-def _copy(settings: dict[str, Any]) -> dict[str, Any]:
-    return {k: _copy(v) if isinstance(v, dict) else v for k, v in settings.items()}
 
 
 def config_or_exit(resolver: ConfigResolver, path: Path | None) -> Config:
