@@ -4,11 +4,16 @@
 from __future__ import annotations
 
 from fanuc_macro.database import Database
-from fanuc_macro.evaluator.compile_lines import FullLine, _direct_reads, compile_statement
+from fanuc_macro.evaluator.compile_lines import (
+    FullLine,
+    _direct_reads,
+    compile_line,
+    compile_statement,
+)
 from fanuc_macro.evaluator.compiler import compile_with_constant, constant_of
-from fanuc_macro.syntax.parser import BlockParser
+from fanuc_macro.syntax.parser import BlockParser, statements_of
 from fanuc_macro.syntax.tree import Assign, IfThen, Statement, Var
-from fanuc_macro.syntax.walk import subexpressions, top_expressions
+from fanuc_macro.syntax.walk import line_variables, subexpressions, top_expressions, variables
 from test_parser import program_lines
 
 LINES = [
@@ -53,6 +58,17 @@ def test_direct_reads_as_the_walk_of_every_subexpression() -> None:
                 assert _direct_reads(statement) == walked, text
                 # An NC block's, from the compile of its words.
                 assert compile_statement(statement, text).reads == walked, text
+                # A line's, from the variables it keeps for the line rules.
+                assert compile_line(parser.parse_line(text)).reads == walked, text
+
+
+def test_a_line_keeps_the_variables_of_each_statement() -> None:
+    parser = BlockParser()
+    for text in [*LINES, *program_lines()]:
+        parsed = parser.parse_line(text)
+        kept = line_variables(parsed)
+        assert kept == tuple(tuple(variables(s)) for s in statements_of(parsed.statement)), text
+        assert line_variables(parsed) is kept  # walked once
 
 
 def test_one_walk_gives_the_constant_and_the_closure() -> None:

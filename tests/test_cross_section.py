@@ -3,6 +3,7 @@ and the verdicts read from it (MB817-MB821) through the CLI and the language ser
 
 from __future__ import annotations
 
+import bisect
 import json
 import math
 import random
@@ -298,3 +299,44 @@ def test_the_walk_that_copies_untouched_stretches_cuts_what_the_whole_walk_cuts(
 
     monkeypatch.setattr(cross_section._Profile, "_walked", everything)
     assert quick == _random_cuts(seed)
+
+
+def _profile_at(places: list[float], values: list[float], u: float) -> float:
+    k = min(max(bisect.bisect_right(places, u), 1), len(places) - 1)
+    u0, u1 = places[k - 1], places[k]
+    if u1 == u0:
+        return values[k]
+    return values[k - 1] + (values[k] - values[k - 1]) * (u - u0) / (u1 - u0)
+
+
+@pytest.mark.parametrize("seed", [3, 4])
+def test_a_window_narrowed_to_the_crest_near_the_pass_cuts_what_the_whole_reach_cuts(
+    seed: int, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """A pass's window reaches as far as its edge may go below the highest the profile comes
+    near it, not its highest anywhere: the same areas and the same profile (to rounding) as
+    windows as wide as the profile's highest point allows."""
+    from fanuc_macro.threads import cross_section
+
+    def cuts() -> list[tuple[list[float], list[float], list[float]]]:
+        rng = random.Random(seed)
+        found = []
+        for lead, angle, radius in [(3.0, 60.0, 0.375), (1.5, 55.0, 0.0), (2.0, 0.0, 0.3)]:
+            profile = cross_section._Profile(lead, 25.0, *ToolShape(angle, radius).edge())
+            areas = []
+            # Deep passes at scattered places first, as a long job's, then shallower ones.
+            for k in range(300):
+                depth = 0.6 * lead * (1.0 - k / 400.0) * rng.random() ** 0.3
+                areas.append(profile.cut(rng.random() * lead, 25.0 - depth))
+            found.append((areas, list(profile.places), list(profile.values)))
+        return found
+
+    narrowed = cuts()
+    monkeypatch.setattr(cross_section._Profile, "_highest_within", lambda *_: math.inf)
+    wide = cuts()
+    for (areas, places, values), (w_areas, w_places, w_values) in zip(narrowed, wide, strict=True):
+        assert areas == pytest.approx(w_areas, rel=1e-9, abs=1e-12)
+        assert sum(1 for a in areas if a == 0.0) > 10  # passes the narrowed window skips
+        for u in sorted({*places, *w_places}):
+            here = _profile_at(places, values, u)
+            assert here == pytest.approx(_profile_at(w_places, w_values, u), abs=1e-9)

@@ -12,6 +12,7 @@ import re
 import zlib
 from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass, field
+from itertools import chain
 from operator import itemgetter
 from types import MappingProxyType
 
@@ -37,7 +38,7 @@ from ..syntax.tree import (
     Var,
     While,
 )
-from ..syntax.walk import variables
+from ..syntax.walk import line_variables, variables
 from .compiler import (
     CondEvaluator,
     Evaluator,
@@ -319,7 +320,9 @@ def _compared(c: ConstantWords) -> tuple[object, ...]:
     return (c.values, c.g_codes, c.m_codes, c.nc, c.constants, c.motion_words, c.has_axis, c.quiet)
 
 
-def _direct_reads(statement: Statement) -> tuple[int, ...]:
+def _direct_reads(statement: Statement, walked: Iterable[Var] | None = None) -> tuple[int, ...]:
+    """The numbers of the variables ``statement`` reads, in the order of the walk of its
+    variables (``walked``: that walk, when the line has it)."""
     numbers: list[int] = []
     skip_target: Var | None = None
     if isinstance(statement, Assign):
@@ -327,7 +330,7 @@ def _direct_reads(statement: Statement) -> tuple[int, ...]:
     elif isinstance(statement, IfThen):
         skip_target = statement.then.target
     # The variables in the order of subexpressions' walk, without walking what holds none.
-    for var in variables(statement):
+    for var in variables(statement) if walked is None else walked:
         number = var.number
         if number is None or var is skip_target:
             continue
@@ -350,9 +353,12 @@ def _compile_assign(kind: int, assign: Assign, text: str | None) -> FullLine:
     return compiled
 
 
-def compile_statement(statement: Statement | None, text: str | None = None) -> CompiledLine:
+def compile_statement(
+    statement: Statement | None, text: str | None = None, walked: Iterable[Var] | None = None
+) -> CompiledLine:
     """The closures of one statement; they do not depend on where the line stands. With the
-    line's ``text``, expressions are shared with other lines' (see ``_compile_word``)."""
+    line's ``text``, expressions are shared with other lines' (see ``_compile_word``);
+    ``walked``: the statement's variables, when the line has them walked."""
     if statement is None:
         return FullLine(K_EMPTY)
     if type(statement) is PlainNc:
@@ -362,7 +368,7 @@ def compile_statement(statement: Statement | None, text: str | None = None) -> C
         if plain is not None:
             return plain
     # An NC block's reads come from the compile of its words (see _compile_nc).
-    reads = None if type(statement) is NcStatement else _direct_reads(statement)
+    reads = None if type(statement) is NcStatement else _direct_reads(statement, walked)
     if isinstance(statement, Mixed):
         nc_part = compile_statement(statement.nc, text)
         first = nc_part.full() if isinstance(nc_part, PlainLine) else nc_part
@@ -815,7 +821,8 @@ def compile_line(parsed: ParsedLine) -> CompiledLine:
     if type(statement) is PlainNc:  # most lines: compile_statement's first case
         line = _compile_plain_code(statement)
     else:
-        line = compile_statement(statement, parsed.text)
+        walked = None if type(statement) is NcStatement else chain(*line_variables(parsed))
+        line = compile_statement(statement, parsed.text, walked)
     line.boundary = _is_boundary(_statement_text(parsed, statement))  # type: ignore[misc]  # a FullLine or a PlainLine
     kept(by_statement, id(statement), (statement, line), _COMPILED_BY_STATEMENT_LIMIT)
     return line

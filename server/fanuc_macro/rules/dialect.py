@@ -31,7 +31,7 @@ from ..syntax.tree import (
     While,
     Word,
 )
-from ..syntax.walk import variables
+from ..syntax.walk import line_variables
 from .context import LineFinding
 
 FAMILY = "dialect"
@@ -174,8 +174,9 @@ def _check_line(parsed: ParsedLine) -> Iterator[LineFinding]:
         yield LineFinding(
             "MB002", f"{problem.dialect}: {problem.message}", problem.span.start, problem.span.end
         )
-    whole = parsed.statement
-    for statement in statements_of(whole):
+    for statement, statement_variables in zip(
+        statements_of(parsed.statement), line_variables(parsed), strict=True
+    ):
         span = statement.span
         if isinstance(statement, IfNc):
             form = "IF [...] THEN <NC words>" if statement.has_then else "IF [...] <NC words>"
@@ -204,7 +205,7 @@ def _check_line(parsed: ParsedLine) -> Iterator[LineFinding]:
                 c.span.start,
                 c.span.end,
             )
-        for var in variables(statement):
+        for var in statement_variables:
             finding = _variable_finding(parsed, var)
             if finding is not None:
                 yield finding

@@ -38,7 +38,7 @@ from ..syntax.tree import (
     Var,
     While,
 )
-from ..syntax.walk import bracket_depth, plain_variables, top_expressions, variables
+from ..syntax.walk import bracket_depth, line_variables, plain_variables, top_expressions
 from .context import LineFinding, RuleContext
 
 FAMILY = "expressions"
@@ -71,7 +71,7 @@ def check_line(parsed: ParsedLine) -> Iterable[LineFinding]:
         plain = plain_variables(whole)
         if plain is not None:  # no brackets, no condition, no target: only the numbers
             return [f for var in plain if (f := _no_such_variable(var)) is not None]
-    return list(_check_line(whole, parsed.text))
+    return list(_check_line(parsed))
 
 
 MB301_DOC = RuleDoc(
@@ -136,10 +136,13 @@ offsets), system variables whose protection the checker does not know, and indir
 )
 
 
-def _check_line(whole: Statement | None, text: str) -> Iterator[LineFinding]:
+def _check_line(parsed: ParsedLine) -> Iterator[LineFinding]:
     # Each level of nesting opens with a "[" of its own: a line of few has none too deep.
+    text, whole = parsed.text, parsed.statement
     deep = text.count("[") > MAX_BRACKET_NESTING
-    for statement in statements_of(whole):
+    for statement, statement_variables in zip(
+        statements_of(whole), line_variables(parsed), strict=True
+    ):
         for expr in top_expressions(statement) if deep else ():
             depth = bracket_depth(expr)
             if depth > MAX_BRACKET_NESTING:
@@ -150,7 +153,7 @@ def _check_line(whole: Statement | None, text: str) -> Iterator[LineFinding]:
                     expr.span.start,
                     expr.span.end,
                 )
-        for var in variables(statement):
+        for var in statement_variables:
             finding = _no_such_variable(var)
             if finding is not None:
                 yield finding
@@ -280,8 +283,8 @@ def _extended_commons(parsed: ParsedLine) -> tuple[tuple[int, int, int], ...]:
     if parsed.statement is None or "#" not in parsed.text:  # no variable
         return ()
     found: list[tuple[int, int, int]] = []
-    for statement in statements_of(parsed.statement):
-        for var in variables(statement):
+    for statement_variables in line_variables(parsed):
+        for var in statement_variables:
             number = var.number
             if number is not None and number == int(number) and 200 <= number <= 499:
                 found.append((int(number), var.span.start, var.span.end))

@@ -391,6 +391,11 @@ class ParsedLine:
     # time it is asked for: a cache of what the line alone decides, held as long as the line
     # (an entry in a cache by text cost a hundred bytes more). Neither compared nor copied.
     compiled: object = field(default=None, init=False, compare=False, repr=False)
+    # The variables of each of its statements (``walk.line_variables``), walked the first time
+    # a rule asks and kept as ``compiled`` is: several line rules and the compiler read them.
+    statement_variables: tuple[tuple[Var, ...], ...] | None = field(
+        default=None, init=False, compare=False, repr=False
+    )
 
     @property
     def is_empty(self) -> bool:
@@ -542,5 +547,6 @@ def quick_line(
     line.failed_assignment = failed_assignment  # type: ignore[attr-defined]
     line.bare = bare  # type: ignore[attr-defined]
     line.compiled = None  # type: ignore[attr-defined]
+    line.statement_variables = None  # type: ignore[attr-defined]
     line.__class__ = ParsedLine  # type: ignore[assignment]
     return line  # type: ignore[return-value]

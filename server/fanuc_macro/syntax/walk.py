@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 
 from .tree import (
     Assign,
@@ -22,6 +22,7 @@ from .tree import (
     Mixed,
     NcStatement,
     Num,
+    ParsedLine,
     PlainNc,
     Statement,
     Unary,
@@ -122,6 +123,27 @@ def variables(statement: Statement) -> Iterator[Var]:
         if plain is not None:
             return iter(plain)
     return _variables(statement)
+
+
+_KEEP_VARIABLES: Callable[[ParsedLine, tuple[tuple[Var, ...], ...]], None] = vars(ParsedLine)[
+    "statement_variables"
+].__set__
+
+
+def line_variables(parsed: ParsedLine) -> tuple[tuple[Var, ...], ...]:
+    """:func:`variables` of each statement of a line (one, or a mixed block's NC words then its
+    macro statement), walked once and kept on the line: every block of its text shares them."""
+    found = parsed.statement_variables
+    if found is None:
+        statement = parsed.statement
+        if statement is None:
+            found = ()
+        elif type(statement) is Mixed:
+            found = (tuple(variables(statement.nc)), tuple(variables(statement.macro)))
+        else:
+            found = (tuple(variables(statement)),)
+        _KEEP_VARIABLES(parsed, found)
+    return found
 
 
 def _variables(statement: Statement) -> Iterator[Var]:

@@ -295,6 +295,13 @@ class _Profile:
             return 0.0
         lead = self.lead
         reach = min(self._reach(top - tip), lead / 2.0)
+        # Narrowed to the highest the profile comes within that reach: on a profile cut by
+        # many passes the crest left far off no longer widens every pass's window.
+        near = self._highest_within(place - reach, place + reach)
+        if tip >= near:
+            return 0.0
+        if near < top:
+            reach = min(self._reach(near - tip), reach)
         start, end = place - reach, place + reach
         if start < 0.0:
             pieces = [(start + lead, lead, lead), (0.0, end, 0.0)]
@@ -313,6 +320,25 @@ class _Profile:
         if len(self.places) > 2:
             self.dirty.update((self.places[1], self.places[-2]))
         return removed
+
+    def _highest_within(self, start: float, end: float) -> float:
+        """At least the profile's highest over [start, end] (a window of at most a lead, its
+        ends possibly past 0 or the lead): the highest of its vertices in it and the two either
+        side, between which its ends lie."""
+        places, values = self.places, self.values
+        lead = self.lead
+        if start < 0.0:
+            spans = [(start + lead, lead), (0.0, end)]
+        elif end > lead:
+            spans = [(start, lead), (0.0, end - lead)]
+        else:
+            spans = [(start, end)]
+        highest = -math.inf
+        for a, b in spans:
+            lo = max(bisect_right(places, a) - 1, 0)
+            hi = bisect_left(places, b) + 1
+            highest = max(highest, max(values[lo:hi]))
+        return highest
 
     def _cut_between(self, a: float, b: float, centre: float, tip: float) -> float:
         """The pass's edge (centre line at ``centre``) taken out over [a, b]; the area.
