@@ -340,3 +340,44 @@ def test_a_window_narrowed_to_the_crest_near_the_pass_cuts_what_the_whole_reach_
         for u in sorted({*places, *w_places}):
             here = _profile_at(places, values, u)
             assert here == pytest.approx(_profile_at(w_places, w_values, u), abs=1e-9)
+
+
+def _half_by_halving(places: list[float], values: list[float], lead: float) -> float:
+    """The pitch line by bisection of the measure below a level: the reference."""
+
+    def below(level: float) -> float:
+        total = 0.0
+        for u0, u1, v0, v1 in zip(places, places[1:], values, values[1:], strict=False):
+            low, high = min(v0, v1), max(v0, v1)
+            if level >= high:
+                total += u1 - u0
+            elif level > low:
+                total += (u1 - u0) * (level - low) / (high - low)
+        return total
+
+    lo, hi = min(values), max(values)
+    for _ in range(60):
+        mid = (lo + hi) / 2.0
+        lo, hi = (mid, hi) if below(mid) < lead / 2.0 else (lo, mid)
+    return (lo + hi) / 2.0
+
+
+@pytest.mark.parametrize("seed", [5, 6, 7])
+def test_the_pitch_line_is_where_the_measure_below_reaches_half_the_lead(seed: int) -> None:
+    from fanuc_macro.threads import cross_section
+
+    rng = random.Random(seed)
+    for lead, angle, radius in [(3.0, 60.0, 0.375), (1.5, 55.0, 0.0), (2.0, 0.0, 0.3)]:
+        profile = cross_section._Profile(lead, 25.0, *ToolShape(angle, radius).edge())
+        for k in range(1, 60):
+            profile.cut(rng.random() * lead, 25.0 - 0.6 * lead * rng.random() ** 0.5)
+            if k % 7 == 0:
+                want = _half_by_halving(profile.places, profile.values, lead)
+                assert profile.half_measure() == pytest.approx(want, abs=1e-9)
+    # A profile of level stretches: the measure jumps at a level, which is the pitch line.
+    steps = cross_section._Profile(2.0, 5.0, *ToolShape(60.0, 0.0).edge())
+    steps.places, steps.values = [0.0, 0.5, 0.5, 2.0], [4.0, 4.0, 5.0, 5.0]
+    assert steps.half_measure() == 5.0
+    steps.values = [4.0, 4.0, 5.0, 5.0]
+    steps.places = [0.0, 1.5, 1.5, 2.0]
+    assert steps.half_measure() == 4.0

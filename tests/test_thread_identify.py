@@ -7,7 +7,7 @@ import pytest
 
 from fanuc_macro.analysis import analyse
 from fanuc_macro.syntax.parser import parse_text
-from fanuc_macro.threads.identify import Thread, describe, thread_words
+from fanuc_macro.threads.identify import LineThreadWords, Thread, describe, thread_words
 
 
 def words(comment: str) -> tuple[tuple[str, ...], tuple[str, ...], int | None]:
@@ -144,3 +144,54 @@ def test_a_module_called_twice_is_two_threads_with_their_own_inputs() -> None:
     assert second.pitch_class is not None and second.pitch_class.name == "6g"
     assert first.module is not None and first.module.height_var == 4
     assert first.nose_radius == pytest.approx(2 / (8 * 0.8660254), abs=1e-6)
+
+
+def test_a_comment_without_a_latin_letter_is_passed_over_as_the_patterns_would() -> None:
+    """The comments of the corpus and random ones (letters that fold to Latin ones in a
+    case-blind match among them) give the same thread words when every pattern is tried."""
+    import random
+    import re
+
+    from fanuc_macro.syntax.parser import BlockParser
+    from fanuc_macro.threads import identify
+    from test_parser import program_lines
+
+    rng = random.Random(7)
+    pieces = ["M", "m", "X", "×", "ſtart", "ſ", "K", "ı", "İ", "线", "双", "Tr", "UNC", "NPT", "R"]
+    pieces += ["Rc", "G", "1/2", "3", "24", ".5", "-", " ", "螺纹", "(", "P", "H", "LH", "6g"]
+    comments = [" ".join(rng.choices(pieces, k=rng.randint(1, 8))) for _ in range(3000)]
+    lines = [*program_lines(), *(f"G00 X1. ({c.replace('(', '')})" for c in comments)]
+    parser = BlockParser()
+    parsed = [p for p in map(parser.parse_line, lines) if p.comments]
+    quick = [identify._line_words(p) for p in parsed]
+    texts = [c.text for p in parsed for c in p.comments]
+    assert sum(1 for t in texts if not identify._MAY_NAME_A_THREAD.search(t)) > 100
+    every_pattern = re.compile("")
+    saved, identify._MAY_NAME_A_THREAD = identify._MAY_NAME_A_THREAD, every_pattern
+    try:
+        slow = [identify._line_words(p) for p in parsed]
+    finally:
+        identify._MAY_NAME_A_THREAD = saved
+    for p, q, s in zip(parsed, quick, slow, strict=True):
+        assert vars_of(q) == vars_of(s), p.text
+
+
+def vars_of(words: LineThreadWords) -> tuple[object, ...]:
+    return (words.designations, words.other_forms, words.starts, words.pipes)
+
+
+def test_a_comment_names_a_role_as_the_word_by_word_search_finds_it() -> None:
+    from fanuc_macro.program.meanings import ROLE_WORDS, role_of_comment
+    from fanuc_macro.syntax.parser import BlockParser
+    from test_parser import program_lines
+
+    def word_by_word(comment: str) -> str | None:
+        upper = comment.upper()
+        return next((r for r, ws in ROLE_WORDS.items() for w in ws if w in upper), None)
+
+    parser = BlockParser()
+    comments = [c.text for p in map(parser.parse_line, program_lines()) for c in p.comments]
+    comments += [f"#1 = {w.lower()} of the thread" for ws in ROLE_WORDS.values() for w in ws]
+    named = [role_of_comment(c) for c in comments]
+    assert named == [word_by_word(c) for c in comments]
+    assert sum(1 for r in named if r is not None) >= sum(len(ws) for ws in ROLE_WORDS.values())

@@ -597,11 +597,11 @@ def _line_ends(parsed: ParsedLine) -> _LineEnds:
         if not isinstance(statement, NcStatement):
             continue
         for word in statement.words:
-            value = constant_value(word.value)
-            if word.address == "M" and value in (2.0, 30.0, 99.0):
-                ends = True
-            elif word.address == "G" and value == 67.0:
-                g67 = True
+            address = word.address
+            if address == "M":
+                ends = ends or constant_value(word.value) in (2.0, 30.0, 99.0)
+            elif address == "G":
+                g67 = g67 or constant_value(word.value) == 67.0
     return _LineEnds(bool(statements), bool(statements) and _stops_here(statements[-1]), ends, g67)
 
 
@@ -618,6 +618,8 @@ def _end_or_g67(parsed: ParsedLine) -> _LineEnds | None:
                 break
         else:
             return None
+    elif type(statement) is not NcStatement and type(statement) is not Mixed:
+        return None  # only NC words end a program or cancel a modal call
     # Not through the per-line cache: the map keeps what it finds and looks again only at the
     # lines that changed (the cache serves the programs' last blocks, below).
     found = _line_ends(parsed)

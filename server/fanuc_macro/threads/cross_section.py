@@ -566,29 +566,40 @@ class _Profile:
         return values[k - 1] + (values[k] - values[k - 1]) * (u - u0) / (u1 - u0)
 
     def half_measure(self) -> float:
-        """The value below which the profile lies over half the lead: the pitch line."""
+        """The value below which the profile lies over half the lead: the pitch line.
+
+        The measure below a level rises linearly between two neighbouring values of the
+        vertices (a sloped segment across them adds its width over its rise) and jumps at a
+        level segment's value by its width: one sweep up the values finds the least level where
+        it reaches half the lead."""
         places, values = self.places, self.values
-        segments = list(zip(places, places[1:], values, values[1:], strict=False))
-
-        def below(level: float) -> float:
-            total = 0.0
-            for u0, u1, v0, v1 in segments:
-                low, high = (v0, v1) if v0 <= v1 else (v1, v0)
-                if level >= high:
-                    total += u1 - u0
-                elif level > low:
-                    total += (u1 - u0) * (level - low) / (high - low)
-            return total
-
-        lo, hi = min(values), max(values)
+        jumps: dict[float, float] = {}
+        rate_changes: dict[float, float] = {}
+        for u0, u1, v0, v1 in zip(places, places[1:], values, values[1:], strict=False):
+            width = u1 - u0
+            if width <= 0.0:
+                continue
+            if v0 == v1:
+                jumps[v0] = jumps.get(v0, 0.0) + width
+                continue
+            low, high = (v0, v1) if v0 < v1 else (v1, v0)
+            rate = width / (high - low)
+            rate_changes[low] = rate_changes.get(low, 0.0) + rate
+            rate_changes[high] = rate_changes.get(high, 0.0) - rate
         half = self.lead / 2.0
-        for _ in range(48):
-            mid = (lo + hi) / 2.0
-            if below(mid) < half:
-                lo = mid
-            else:
-                hi = mid
-        return (lo + hi) / 2.0
+        measure = rate = 0.0
+        level = min(values)
+        for next_level in sorted({*jumps, *rate_changes}):
+            if next_level > level:
+                rising = measure + rate * (next_level - level)
+                if rising >= half and rate > 0.0:
+                    return min(level + (half - measure) / rate, next_level)
+                measure, level = rising, next_level
+            measure += jumps.get(next_level, 0.0)
+            if measure >= half:
+                return next_level
+            rate += rate_changes.get(next_level, 0.0)
+        return level
 
 
 def _edge_rise(edge: tuple[tuple[float, float], ...], slope: float, offset: float) -> float:

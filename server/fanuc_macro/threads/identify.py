@@ -65,6 +65,9 @@ _OTHER_FORMS = (
 )
 _STARTS = re.compile(r"(?<![\w.])(?P<n>[2-6])\s*-?\s*STARTS?\b|(?P<cn>[双两三四])线", re.I)
 _CHINESE_STARTS: Mapping[str, int] = MappingProxyType({"双": 2, "两": 2, "三": 3, "四": 4})
+# What every pattern above and pipe_threads' need: a Latin letter (as the same case-blind
+# matching finds one), or the Chinese starts' 线. A comment of neither names no thread.
+_MAY_NAME_A_THREAD = re.compile(r"[a-z]|线", re.I)
 
 
 @dataclass(frozen=True, eq=False, repr=False)
@@ -89,6 +92,8 @@ def _line_words(parsed: ParsedLine) -> LineThreadWords:
     starts: int | None = None
     for comment in parsed.comments:
         text = comment.text
+        if _MAY_NAME_A_THREAD.search(text) is None:
+            continue
         for m in _DESIGNATION.finditer(text):
             if m["p"] is None and m["ph"] is None and m["cls"] is None:
                 continue
