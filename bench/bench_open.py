@@ -81,12 +81,13 @@ def _open_stages(data: bytes) -> dict[str, float]:
     text = decoded.text  # type: ignore[attr-defined]
     parser = BlockParser()
     doc = stage("parse", lambda: parse_text(text, "bench.nc", parser, limits=config.read_limits))
-    index = stage("index", lambda: build_index(doc))  # type: ignore[arg-type]
-    # The machine the program's codes show (a mill for the CAM file), as analyse reads it.
-    machine = machine_config(config, doc, index)  # type: ignore[arg-type]
-    # As ``analyse`` runs them: the evaluation and the rules in one stretch without the cyclic
-    # collector, whose one collection of what they made, at its end, counts with the rules.
+    # The program index, and the machine the program's codes show (a mill for the CAM file),
+    # as analyse reads it.
+    # As ``Workspace.analyse`` runs them: the machine's reading, the evaluation and the rules
+    # in one stretch without the cyclic collector, whose one collection of what they made, at
+    # its end, counts with the rules.
     with quiet_gc():
+        index, machine = stage("index", lambda: _index_and_machine(doc, config))  # type: ignore[misc]
         facts = stage(
             "evaluate",
             lambda: evaluate([("bench.nc", doc, index)], config=machine),  # type: ignore[list-item]
@@ -104,6 +105,11 @@ def _open_stages(data: bytes) -> dict[str, float]:
     gc.collect(0)  # the collection the first allocation after the stretch would start
     times["rules"] = CLOCK[0]() - rules_started
     return times
+
+
+def _index_and_machine(doc: object, config: Config) -> tuple[object, Config]:
+    index = build_index(doc)  # type: ignore[arg-type]
+    return index, machine_config(config, doc, index)  # type: ignore[arg-type]
 
 
 def check_memory(path: Path) -> tuple[float, float]:

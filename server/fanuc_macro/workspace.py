@@ -20,7 +20,7 @@ from .program_files import PROGRAM_SUFFIXES as PROGRAM_SUFFIXES  # for the serve
 from .program_files import is_program_file as is_program_file
 from .syntax.diff import line_diff
 from .syntax.lines import BINARY, ReadLimits, decode_bytes
-from .syntax.parser import BlockParser, default_parser, parse_text
+from .syntax.parser import BlockParser, default_parser, parse_text, quiet_gc
 from .syntax.tree import Document
 
 
@@ -354,10 +354,12 @@ class Workspace:
         others = self.others(uri) if others is None else others
         runs = ((uri, entry.execution), *((u, self._entries[u].execution) for u, _, _ in others))
         # The machine the document's codes show (controller 0i-F): a run of another machine's
-        # reading is neither kept nor resumed.
-        config = machine_config(config or self.config, entry.doc, entry.index)
-        if not config.machine_known:
-            config = callers_machine(config, self._callers(uri)) or config
+        # reading is neither kept nor resumed. A look at every line, as the analysis's: without
+        # the cyclic collector, which would scan the parsed lines again and again.
+        with quiet_gc():
+            config = machine_config(config or self.config, entry.doc, entry.index)
+            if not config.machine_known:
+                config = callers_machine(config, self._callers(uri)) or config
         facts, previous = _kept_facts(self._facts.get(uri), config, runs)
         mill_facts, mill_previous = _kept_facts(
             self._mill_facts.get(uri), mill_reading(config), runs

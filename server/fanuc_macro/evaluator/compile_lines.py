@@ -772,9 +772,11 @@ def _shared_word(
 
 
 def _written_with_decimal_point(expr: Expr) -> bool:
-    while isinstance(expr, Unary | Bracket):
-        expr = expr.operand if isinstance(expr, Unary) else expr.inner
-    return isinstance(expr, Num) and expr.has_decimal_point
+    kind = type(expr)  # no class of the tree is subclassed
+    while kind is Unary or kind is Bracket:
+        expr = expr.operand if kind is Unary else expr.inner  # type: ignore[union-attr]
+        kind = type(expr)
+    return kind is Num and expr.has_decimal_point  # type: ignore[union-attr]
 
 
 def recorded_words(values: dict[str, Value], inch: bool = False) -> dict[str, float]:

@@ -10,7 +10,7 @@ from __future__ import annotations
 from collections.abc import Iterable, Iterator
 
 from ..syntax.parser import statements_of
-from ..syntax.tree import Assign, Document, ParsedLine, Var, While
+from ..syntax.tree import Assign, Document, Mixed, ParsedLine, Var, While
 from ..syntax.walk import cond_exprs, subexpressions
 from .index import Loop
 from .variables import classify
@@ -31,6 +31,9 @@ def _numbers(exprs: Iterable[object]) -> set[int]:
 def commons_tested(parsed: ParsedLine) -> frozenset[int] | None:
     """The common variables a WHILE block's condition names directly; None for any other
     block, or a WHILE that names none."""
+    kind = type(parsed.statement)
+    if kind is not While and kind is not Mixed:
+        return None  # most blocks, at once
     for statement in statements_of(parsed.statement):
         if isinstance(statement, While) and statement.cond is not None:
             tested = frozenset(

@@ -98,7 +98,9 @@ class MachineGuess:
 
 
 def _words(parsed: ParsedLine) -> list[tuple[str, float | None, str]]:
-    """The NC words of a line: address, constant value (None: computed), text as written."""
+    """The NC words of a line: address, constant value (None: computed), text as written; of a
+    block with brackets, the value of G and M words only and the text of T words only (what
+    the marks read)."""
     found: list[tuple[str, float | None, str]] = []
     if type(parsed.statement) is PlainNc:
         for letter, number in parsed.statement.pairs():
@@ -111,8 +113,14 @@ def _words(parsed: ParsedLine) -> list[tuple[str, float | None, str]]:
     for statement in statements_of(parsed.statement):
         if isinstance(statement, NcStatement):
             for word in statement.words:
-                written = text[word.span.start : word.span.end]
-                found.append((word.address, constant_value(word.value), written[1:].strip()))
+                address = word.address
+                if address == "G" or address == "M":
+                    found.append((address, constant_value(word.value), ""))
+                elif address == "T":
+                    written = text[word.span.start + 1 : word.span.end].strip()
+                    found.append((address, constant_value(word.value), written))
+                else:
+                    found.append((address, None, ""))
     return found
 
 
@@ -138,12 +146,20 @@ def _line_marks(parsed: ParsedLine) -> tuple[tuple[str, str], ...] | None:
         words = _words(parsed)
         if not words:
             return None
-        g = {v for a, v, _ in words if a == "G" and v is not None}
-        m = {v for a, v, _ in words if a == "M" and v is not None}
-        letters = {a for a, _, _ in words}
-        four_digit_t = any(
-            a == "T" and len(w) == 4 and w.isdigit() and w[:2] != "00" for a, _, w in words
-        )
+        g = set()
+        m = set()
+        letters = set()
+        four_digit_t = False
+        for a, v, w in words:  # one loop: most lines have a few words
+            letters.add(a)
+            if v is None:
+                continue
+            if a == "G":
+                g.add(v)
+            elif a == "M":
+                m.add(v)
+            elif a == "T" and len(w) == 4 and w.isdigit() and w[:2] != "00":
+                four_digit_t = True
     if not g.isdisjoint(_NOT_AXES_G) or not m.isdisjoint(_NOT_AXES_M):
         return None  # a call's letters are its arguments; G10's, data; G04's U, a dwell
     if g.isdisjoint(_MARK_G) and 6.0 not in m:  # most blocks: moves, marked by words alone

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from collections.abc import Iterable, Iterator
 from dataclasses import dataclass
+from operator import itemgetter
 
 from ..diagnostics import (
     Diagnostic,
@@ -219,6 +220,8 @@ def _no_such_variable(var: Var) -> LineFinding | None:
     if var.number is None or var.number != int(var.number):
         return None
     number = int(var.number)
+    if 1 <= number <= 33 or 100 <= number <= 199 or 500 <= number <= 999:
+        return None  # the locals and the commons, as classify has them, without the call
     if classify(number).kind != "none":
         return None
     return LineFinding(
@@ -286,9 +289,9 @@ def _extended_commons(parsed: ParsedLine) -> tuple[tuple[int, int, int], ...]:
     for statement_variables in line_variables(parsed):
         for var in statement_variables:
             number = var.number
-            if number is not None and number == int(number) and 200 <= number <= 499:
+            if number is not None and 200 <= number <= 499 and number == int(number):
                 found.append((int(number), var.span.start, var.span.end))
-    return tuple(sorted(found, key=lambda f: f[1]))
+    return tuple(sorted(found, key=itemgetter(1))) if found else ()
 
 
 # The lines that name one, kept from one analysis of a document to the next.

@@ -325,6 +325,22 @@ def cut_comments(line: str) -> LineCode:
     """Separate comments, EOB and tape marks from code, keeping columns."""
     if "(" not in line and ";" not in line and "%" not in line and ")" not in line:
         return LineCode(line, (), False, ())
+    if ";" not in line and "%" not in line:
+        # Most commented lines: one "(" and its ")", the comment cut out at once.
+        i = line.find("(")
+        if i < 0:
+            return LineCode(line, (), False, ())
+        close = line.find(")", i + 1)
+        if close >= 0 and line.find("(", i + 1) < 0:
+            code = line[:i] + " " * (close + 1 - i) + line[close + 1 :]
+            comment = Comment(line[i + 1 : close], shared_span(i, close + 1))
+            return LineCode(code, (comment,), False, ())
+    return _cut_comments(line)
+
+
+def _cut_comments(line: str) -> LineCode:
+    """:func:`cut_comments` of any line: the comments, end-of-block marks and tape marks in
+    turn."""
     chars = list(line)
     comments: list[Comment] = []
     notes: list[LineNote] = []
