@@ -318,3 +318,31 @@ def test_a_subprogram_of_no_machine_of_its_own_runs_as_its_callers(tmp_path: Pat
     assert "o9001.nc: Machine: not known" in both.stderr
     alone = run(tmp_path, "check", "--verbose", "o9001.nc")
     assert "o9001.nc: Machine: not known" in alone.stderr
+
+
+def test_a_plain_block_of_no_marking_code_is_marked_as_the_whole_look_marks_it(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """A block of NC words whose codes mark nothing is read by its words alone: the same marks
+    as the look at its codes, letters and T words, on the corpus and random blocks."""
+    import random
+
+    from fanuc_macro.program import machine_kind
+    from fanuc_macro.syntax.parser import BlockParser
+    from test_parser import program_lines
+
+    rng = random.Random(3)
+    words = ["G0", "G01", "G4", "G91", "G96", "G50", "M6", "M3", "M98", "X1.", "Y2.", "U.5"]
+    words += ["W-1.", "Z3.", "T0101", "T0001", "T12", "T1234", "F.2", "S500", "P1", "Q2", "H1"]
+    lines = [*program_lines(), *(" ".join(rng.sample(words, 4)) for _ in range(4000))]
+    parser = BlockParser()
+    parsed = [parser.parse_line(line) for line in lines]
+    quick = [machine_kind._line_marks(p) for p in parsed]
+
+    class Everything:
+        def isdisjoint(self, _codes: object) -> bool:
+            return False
+
+    monkeypatch.setattr(machine_kind, "_MARKING_CODES", Everything())
+    assert quick == [machine_kind._line_marks(p) for p in parsed]
+    assert sum(1 for q in quick if q) > 1000

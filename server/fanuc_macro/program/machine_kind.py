@@ -30,6 +30,7 @@ from __future__ import annotations
 
 import re
 from collections.abc import Sequence
+from collections.abc import Set as AbstractSet
 from dataclasses import dataclass, replace
 
 from ..config import SYSTEM_A, Config
@@ -128,6 +129,11 @@ _ADDRESSES = frozenset("ABCDEFGHIJKLMNOPQRSTUVWXYZ")
 _FOUR_DIGIT_T = re.compile(r"T(\d{4})(?![\d.])")
 
 
+def _four_digit_t(words_text: str) -> bool:
+    """Whether upper-case NC words hold a T of four digits, a tool and offset number."""
+    return any(t[:2] != "00" for t in _FOUR_DIGIT_T.findall(words_text))
+
+
 def _line_marks(parsed: ParsedLine) -> tuple[tuple[str, str], ...] | None:
     """The machine marks of one line: (machine, what) pairs; None for most lines."""
     statement = parsed.statement
@@ -136,12 +142,13 @@ def _line_marks(parsed: ParsedLine) -> tuple[tuple[str, str], ...] | None:
     if type(statement) is PlainNc:
         # Most blocks (CAM output): the G and M codes the parser read, the letters of the text.
         words_text = statement.text().upper()
+        codes = statement.codes
+        if _MARKING_CODES.isdisjoint(codes):  # nearly all: marked by their words alone
+            return _word_marks(words_text, "T" in words_text and _four_digit_t(words_text))
         letters: frozenset[str] | set[str] = _ADDRESSES.intersection(words_text)
-        g = {v for a, v in statement.codes if a in "Gg"}
-        m = {v for a, v in statement.codes if a in "Mm"}
-        four_digit_t = "T" in letters and any(
-            t[:2] != "00" for t in _FOUR_DIGIT_T.findall(words_text)
-        )
+        g = {v for a, v in codes if a == "G"}
+        m = {v for a, v in codes if a == "M"}
+        four_digit_t = "T" in letters and _four_digit_t(words_text)
     else:
         words = _words(parsed)
         if not words:
@@ -207,15 +214,21 @@ _MARK_G = frozenset(
     {32.0, 41.0, 42.0, 43.0, 44.0, 50.0, 70.0, 71.0, 72.0, 73.0, 76.0, 81.0, 82.0, 86.0, 90.0}
     | {77.0, 78.0, 79.0, 91.0, 92.0, 96.0}
 )
+# The (address, value) codes of a plain block that make its marks more than its words': the
+# codes that mark, and those whose block's letters are no axes.
+_MARKING_CODES = frozenset(
+    [("G", g) for g in _MARK_G | _NOT_AXES_G] + [("M", m) for m in {6.0} | _NOT_AXES_M]
+)
 _Y = ((MILL, "a Y axis word"),)
 _UW = ((LATHE, "a U or W word (incremental X or Z)"),)
 _T = ((LATHE, "a four-digit T (tool and offset number)"),)
 
 
 def _word_marks(
-    letters: frozenset[str] | set[str], four_digit_t: bool
+    letters: AbstractSet[str] | str, four_digit_t: bool
 ) -> tuple[tuple[str, str], ...] | None:
-    """The marks of a block without a G or M code that is one: its Y, U/W and T words."""
+    """The marks of a block without a G or M code that is one: its Y, U/W and T words
+    (``letters``: the block's addresses, or its words' text in upper case)."""
     marks = (
         (_Y if "Y" in letters else ())
         + (_UW if "U" in letters or "W" in letters else ())
