@@ -13,7 +13,13 @@ from fanuc_macro.evaluator.compile_lines import (
 from fanuc_macro.evaluator.compiler import compile_with_constant, constant_of
 from fanuc_macro.syntax.parser import BlockParser, statements_of
 from fanuc_macro.syntax.tree import Assign, IfThen, Statement, Var
-from fanuc_macro.syntax.walk import line_variables, subexpressions, top_expressions, variables
+from fanuc_macro.syntax.walk import (
+    all_line_variables,
+    line_variables,
+    subexpressions,
+    top_expressions,
+    variables,
+)
 from test_parser import program_lines
 
 LINES = [
@@ -66,9 +72,11 @@ def test_a_line_keeps_the_variables_of_each_statement() -> None:
     parser = BlockParser()
     for text in [*LINES, *program_lines()]:
         parsed = parser.parse_line(text)
-        kept = line_variables(parsed)
-        assert kept == tuple(tuple(variables(s)) for s in statements_of(parsed.statement)), text
-        assert line_variables(parsed) is kept  # walked once
+        by_statement = tuple(tuple(variables(s)) for s in statements_of(parsed.statement))
+        assert line_variables(parsed) == by_statement, text
+        kept = all_line_variables(parsed)
+        assert kept == tuple(v for found in by_statement for v in found), text
+        assert all_line_variables(parsed) is kept  # walked once
 
 
 def test_one_walk_gives_the_constant_and_the_closure() -> None:

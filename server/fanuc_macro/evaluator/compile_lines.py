@@ -12,7 +12,6 @@ import re
 import zlib
 from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass, field
-from itertools import chain
 from operator import itemgetter
 from types import MappingProxyType
 
@@ -38,7 +37,7 @@ from ..syntax.tree import (
     Var,
     While,
 )
-from ..syntax.walk import line_variables, variables
+from ..syntax.walk import all_line_variables, variables
 from .compiler import (
     CondEvaluator,
     Evaluator,
@@ -823,7 +822,7 @@ def compile_line(parsed: ParsedLine) -> CompiledLine:
     if type(statement) is PlainNc:  # most lines: compile_statement's first case
         line = _compile_plain_code(statement)
     else:
-        walked = None if type(statement) is NcStatement else chain(*line_variables(parsed))
+        walked = None if type(statement) is NcStatement else all_line_variables(parsed)
         line = compile_statement(statement, parsed.text, walked)
     line.boundary = _is_boundary(_statement_text(parsed, statement))  # type: ignore[misc]  # a FullLine or a PlainLine
     kept(by_statement, id(statement), (statement, line), _COMPILED_BY_STATEMENT_LIMIT)

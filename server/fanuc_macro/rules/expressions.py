@@ -39,7 +39,13 @@ from ..syntax.tree import (
     Var,
     While,
 )
-from ..syntax.walk import bracket_depth, line_variables, plain_variables, top_expressions
+from ..syntax.walk import (
+    all_line_variables,
+    bracket_depth,
+    line_variables,
+    plain_variables,
+    top_expressions,
+)
 from .context import LineFinding, RuleContext
 
 FAMILY = "expressions"
@@ -286,11 +292,10 @@ def _extended_commons(parsed: ParsedLine) -> tuple[tuple[int, int, int], ...]:
     if parsed.statement is None or "#" not in parsed.text:  # no variable
         return ()
     found: list[tuple[int, int, int]] = []
-    for statement_variables in line_variables(parsed):
-        for var in statement_variables:
-            number = var.number
-            if number is not None and 200 <= number <= 499 and number == int(number):
-                found.append((int(number), var.span.start, var.span.end))
+    for var in all_line_variables(parsed):
+        number = var.number
+        if number is not None and 200 <= number <= 499 and number == int(number):
+            found.append((int(number), var.span.start, var.span.end))
     return tuple(sorted(found, key=itemgetter(1))) if found else ()
 
 

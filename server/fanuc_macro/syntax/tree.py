@@ -391,9 +391,9 @@ class ParsedLine:
     # time it is asked for: a cache of what the line alone decides, held as long as the line
     # (an entry in a cache by text cost a hundred bytes more). Neither compared nor copied.
     compiled: object = field(default=None, init=False, compare=False, repr=False)
-    # The variables of each of its statements (``walk.line_variables``), walked the first time
-    # a rule asks and kept as ``compiled`` is: several line rules and the compiler read them.
-    statement_variables: tuple[tuple[Var, ...], ...] | None = field(
+    # The variables of its statements (``walk.all_line_variables``), walked the first time a
+    # rule asks and kept as ``compiled`` is: several line rules and the compiler read them.
+    statement_variables: tuple[Var, ...] | None = field(
         default=None, init=False, compare=False, repr=False
     )
 

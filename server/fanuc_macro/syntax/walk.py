@@ -125,25 +125,38 @@ def variables(statement: Statement) -> Iterator[Var]:
     return _variables(statement)
 
 
-_KEEP_VARIABLES: Callable[[ParsedLine, tuple[tuple[Var, ...], ...]], None] = vars(ParsedLine)[
+_KEEP_VARIABLES: Callable[[ParsedLine, tuple[Var, ...]], None] = vars(ParsedLine)[
     "statement_variables"
 ].__set__
 
 
-def line_variables(parsed: ParsedLine) -> tuple[tuple[Var, ...], ...]:
-    """:func:`variables` of each statement of a line (one, or a mixed block's NC words then its
-    macro statement), walked once and kept on the line: every block of its text shares them."""
+def all_line_variables(parsed: ParsedLine) -> tuple[Var, ...]:
+    """:func:`variables` of a line's statements in turn (one, or a mixed block's NC words then
+    its macro statement), walked once and kept on the line: every block of its text shares
+    them."""
     found = parsed.statement_variables
     if found is None:
         statement = parsed.statement
         if statement is None:
             found = ()
         elif type(statement) is Mixed:
-            found = (tuple(variables(statement.nc)), tuple(variables(statement.macro)))
+            found = (*variables(statement.nc), *variables(statement.macro))
         else:
-            found = (tuple(variables(statement)),)
+            found = tuple(variables(statement))
         _KEEP_VARIABLES(parsed, found)
     return found
+
+
+def line_variables(parsed: ParsedLine) -> tuple[tuple[Var, ...], ...]:
+    """:func:`all_line_variables` by statement (``parser.statements_of``'s order)."""
+    found = all_line_variables(parsed)
+    statement = parsed.statement
+    if statement is None:
+        return ()
+    if type(statement) is Mixed:  # few blocks: its NC words' variables counted again
+        split = sum(1 for _ in variables(statement.nc))
+        return (found[:split], found[split:])
+    return (found,)
 
 
 def _variables(statement: Statement) -> Iterator[Var]:
