@@ -16,6 +16,7 @@ from ..syntax import dialects
 from ..syntax.marks import constant_value
 from ..syntax.parser import statements_of
 from ..syntax.tree import (
+    Assign,
     BareCond,
     BlockIf,
     Document,
@@ -31,7 +32,7 @@ from ..syntax.tree import (
     While,
     Word,
 )
-from ..syntax.walk import line_variables
+from ..syntax.walk import all_line_variables, line_variables
 from .context import LineFinding
 
 FAMILY = "dialect"
@@ -53,6 +54,10 @@ def check_line(parsed: ParsedLine) -> Iterable[LineFinding]:
         found = _plain_nc(parsed, whole)  # most blocks: their words, without the walks
         if found is not None:
             return found
+    if parsed.problem is None and (type(whole) is Assign or type(whole) is NcStatement):
+        # The next most: an assignment, NC words with brackets. As _check_line, at once.
+        found = list(_nc_codes(whole)) if type(whole) is NcStatement else []
+        return found + _haas_variables(parsed, all_line_variables(parsed))
     return list(_check_line(parsed))
 
 
@@ -205,13 +210,19 @@ def _check_line(parsed: ParsedLine) -> Iterator[LineFinding]:
                 c.span.start,
                 c.span.end,
             )
-        for var in statement_variables:
-            number = var.number
-            if number is None or (number < 20000 and number == int(number)):
-                continue  # most variables: no Haas number
-            finding = _variable_finding(parsed, var)
-            if finding is not None:
-                yield finding
+        yield from _haas_variables(parsed, statement_variables)
+
+
+def _haas_variables(parsed: ParsedLine, variables: Iterable[Var]) -> list[LineFinding]:
+    found: list[LineFinding] = []
+    for var in variables:
+        number = var.number
+        if number is None or (number < 20000 and number == int(number)):
+            continue  # most variables: no Haas number
+        finding = _variable_finding(parsed, var)
+        if finding is not None:
+            found.append(finding)
+    return found
 
 
 def _variable_finding(parsed: ParsedLine, var: Var) -> LineFinding | None:
