@@ -366,14 +366,17 @@ def compile_statement(
         plain = _compile_plain_nc(statement)
         if plain is not None:
             return plain
-    # An NC block's reads come from the compile of its words (see _compile_nc).
-    reads = None if type(statement) is NcStatement else _direct_reads(statement, walked)
+        # Its reads come from the compile of its words (see _compile_nc).
+        nc_line = _compile_nc(statement, text)
+        _set_local_reads(nc_line)
+        nc_line.ends_program = _ends_program(statement)
+        return nc_line
+    reads = _direct_reads(statement, walked)
     if isinstance(statement, Mixed):
         nc_part = compile_statement(statement.nc, text)
         first = nc_part.full() if isinstance(nc_part, PlainLine) else nc_part
         assert isinstance(first, FullLine)
         first.second = compile_statement(statement.macro, text)
-        assert reads is not None  # a Mixed is not an NcStatement
         first.reads = reads
         _set_local_reads(first)
         return first
@@ -406,8 +409,7 @@ def compile_statement(
         c = FullLine(K_HEADER, node=statement)
     else:
         c = FullLine(K_OTHER, node=statement)
-    if reads is not None:
-        c.reads = reads
+    c.reads = reads
     _set_local_reads(c)
     c.ends_program = _ends_program(statement)
     return c
@@ -869,6 +871,9 @@ def compiled(parsed: ParsedLine) -> CompiledLine:
 
 def _ends_program(statement: Statement | None) -> bool:
     nc = statement.nc if isinstance(statement, Mixed) else statement
-    return isinstance(nc, NcStatement) and any(
-        w.address == "M" and constant_value(w.value) in (2.0, 30.0) for w in nc.words
-    )
+    if not isinstance(nc, NcStatement):
+        return False
+    for w in nc.words:  # noqa: SIM110  # a loop, not any(): every block of a program asks
+        if w.address == "M" and constant_value(w.value) in (2.0, 30.0):
+            return True
+    return False
