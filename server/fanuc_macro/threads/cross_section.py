@@ -527,6 +527,7 @@ class _Profile:
 
         hot: list[int] = []
         n = len(pu)
+        sqrt = math.sqrt
         # By runs of vertices: a run whose highest is below the edge where it comes nearest
         # the centre line is passed over whole.
         for i in range(0, n, HOT_RUN):
@@ -538,10 +539,16 @@ class _Profile:
             o = first - centre if first >= centre else (centre - last if last < centre else 0.0)
             if h <= below(o):
                 continue
-            for p in range(i, j):
-                u = pu[p]
+            for p in range(i, j):  # below(), inline: this runs for most vertices walked
                 h = pv[p] - low
-                if h > 0.0 and h > below(u - centre if u >= centre else centre - u):
+                if h <= 0.0:
+                    continue
+                u = pu[p]
+                o = u - centre if u >= centre else centre - u
+                if o < last_offset:
+                    if h > r - sqrt(rr - o * o):
+                        hot.append(p)
+                elif h > last_rise + (o - last_offset) * slope:
                     hot.append(p)
         return hot
 
