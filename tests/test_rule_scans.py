@@ -266,8 +266,10 @@ def test_the_plain_words_way_gives_the_general_way_s_findings_on_every_corpus_li
     files += sorted(p for p in corpus.iterdir() if p.suffix not in (".md", ".tsv"))
     parser = default_parser()
     plain = 0
-    # Haas numbers and codes in assignments and bracketed words, which take a way of their own.
+    # Haas numbers and codes, variables no control has and read-only targets in assignments and
+    # bracketed words, which take a way of their own.
     extra = ["#20001=#1", "#5=#1.5+#20002", "G01 X[#30001.5+1.] M97 P1", "G103 X[#1] M98 H2"]
+    extra += ["#0=[#1]", "#3000=1", "#5021=#50+1.", "#50=[#1+#60]", "G01 X[#40+1] Z[#5001]"]
     for lines in [extra, *(split_lines(decode_bytes(f.read_bytes()).text) for f in files)]:
         for line in lines:
             p = parser.parse_line(line)

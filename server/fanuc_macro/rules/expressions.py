@@ -78,6 +78,17 @@ def check_line(parsed: ParsedLine) -> Iterable[LineFinding]:
         plain = plain_variables(whole)
         if plain is not None:  # no brackets, no condition, no target: only the numbers
             return [f for var in plain if (f := _no_such_variable(var)) is not None]
+    if (type(whole) is Assign or type(whole) is NcStatement) and (
+        parsed.text.count("[") <= MAX_BRACKET_NESTING
+    ):
+        # The next most: an assignment, NC words with brackets (no condition). As
+        # _check_line: the variables, then the target, at once.
+        found = [
+            f for var in all_line_variables(parsed) if (f := _no_such_variable(var)) is not None
+        ]
+        if type(whole) is Assign:
+            found.extend(_read_only_target(whole))
+        return found
     return list(_check_line(parsed))
 
 
@@ -175,18 +186,27 @@ def _check_line(parsed: ParsedLine) -> Iterator[LineFinding]:
         if isinstance(statement, IfThen):
             targets.append(statement.then)
         for assign in targets:
-            target = assign.target
-            if target.number is None or target.number != int(target.number):
-                continue
-            kind = classify(int(target.number))
-            if kind.read_only:
-                what = "#0 is always vacant" if target.number == 0 else kind.meaning
-                yield LineFinding(
-                    "MB304",
-                    f"#{int(target.number)} is read-only ({what}); writing it raises alarm PS0116",
-                    target.span.start,
-                    target.span.end,
-                )
+            yield from _read_only_target(assign)
+
+
+def _read_only_target(assign: Assign) -> list[LineFinding]:
+    """MB304 for an assignment to #0 or a read-only system variable."""
+    number = assign.target.number
+    if number is None or number != int(number) or 1 <= number <= 999:
+        return []  # computed, Haas's, or a local or common variable (none is read-only)
+    kind = classify(int(number))
+    if not kind.read_only:
+        return []
+    target = assign.target
+    what = "#0 is always vacant" if number == 0 else kind.meaning
+    return [
+        LineFinding(
+            "MB304",
+            f"#{int(number)} is read-only ({what}); writing it raises alarm PS0116",
+            target.span.start,
+            target.span.end,
+        )
+    ]
 
 
 MB302_DOC = RuleDoc(
