@@ -618,7 +618,17 @@ def _end_or_g67(parsed: ParsedLine) -> _LineEnds | None:
                 break
         else:
             return None
-    elif type(statement) is not NcStatement and type(statement) is not Mixed:
+    elif type(statement) is NcStatement:
+        for word in statement.words:  # as a plain block's codes, from its words' values
+            address = word.address
+            if (address == "M" or address == "G") and (
+                address,
+                constant_value(word.value),
+            ) in _ENDS_AND_G67:
+                break
+        else:
+            return None
+    elif type(statement) is not Mixed:
         return None  # only NC words end a program or cancel a modal call
     # Not through the per-line cache: the map keeps what it finds and looks again only at the
     # lines that changed (the cache serves the programs' last blocks, below).
