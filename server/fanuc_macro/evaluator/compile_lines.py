@@ -433,34 +433,30 @@ def _folded(_: object) -> Value:
 def _compile_nc(nc: NcStatement, text: str | None = None) -> FullLine:
     # Each word's tree is walked once, or not at all when another line shares it: its value
     # when constant and its closure, kept for when the block is not folded.
-    made = [_shared_word(w.value, w.address in LENGTH_ADDRESSES, text) for w in nc.words]
-    constants = [c for _, c, _, _ in made]
+    made = []
+    constants: list[float | None] = []
     numbers: list[int] = []
-    for _, _, found, _ in made:
-        for n in found:
+    for w in nc.words:  # one loop: every block with brackets comes here
+        word = _shared_word(w.value, w.address in LENGTH_ADDRESSES, text)
+        made.append(word)
+        constants.append(word[1])
+        for n in word[2]:
             if n not in numbers:
                 numbers.append(n)
     reads = tuple(numbers)
-    folded = all(c is not None for c in constants)
-    if not folded:
+    if None in constants:
         shared = current().table(SHARED_EXPRESSIONS)
-        evaluators = [
-            evaluator
-            if key is None
-            else kept(shared, key, (evaluator, c, found), MAX_SHARED_EXPRESSIONS)[0]
-            for evaluator, c, found, key in made
-        ]
-        words = tuple(
-            CompiledWord(
-                w.address,
-                evaluator,
-                w.span.start,
-                w.span.end,
-                _written_with_decimal_point(w.value),
+        compiled_words: list[CompiledWord] = []
+        for w, (evaluator, c, found, key) in zip(nc.words, made, strict=True):
+            if key is not None:
+                evaluator = kept(shared, key, (evaluator, c, found), MAX_SHARED_EXPRESSIONS)[0]
+            span = w.span
+            compiled_words.append(
+                CompiledWord(
+                    w.address, evaluator, span.start, span.end, _written_with_decimal_point(w.value)
+                )
             )
-            for w, evaluator in zip(nc.words, evaluators, strict=True)
-        )
-        return FullLine(K_NC, reads=reads, words=words, nc=nc, node=nc)
+        return FullLine(K_NC, reads=reads, words=tuple(compiled_words), nc=nc, node=nc)
     # A block of constant words is run from its ConstantWords: its words need no closures.
     compiled = FullLine(K_NC, reads=reads, nc=nc, node=nc)
     values: dict[str, Value] = {}
