@@ -5,6 +5,7 @@ comments (FANUC 0i-TF / 0i-MF operator's manuals), or the seed papers' (thread-m
 from __future__ import annotations
 
 import math
+from typing import Any
 from pathlib import Path
 
 import pytest
@@ -892,3 +893,84 @@ def test_the_view_joins_moves_that_meet_and_keeps_a_lathes_unknown_y() -> None:
         (30.0, 0.0),
         (30.0, -1.0),
     ]
+
+
+def _view(text: str, config: Config = LATHE) -> dict[str, Any]:
+    from fanuc_macro.ide.toolpath_view import toolpath_view
+
+    doc = parse_text(text, "t.nc")
+    return dict(toolpath_view("t.nc", doc, build_index(doc), config=config))
+
+
+def test_the_views_segments_name_their_block_with_its_code_feed_and_speed() -> None:
+    text = program(
+        "G21 G97 S800 M03",
+        "G00 X40. Z2.",
+        "G01 Z-20. F0.2",
+        "G96 S180",
+        "G02 X50. Z-25. R5.",
+    )
+    data = _view(text)
+    s = unpacked(data)
+    lines = s["line"]
+    motion = s["motion"]
+    # Every segment of a block belongs to that block's motion record.
+    for line in set(lines):
+        assert len({motion[i] for i, n in enumerate(lines) if n == line}) == 1
+    by_line = {lines[i]: motion[i] for i in range(len(lines))}
+    feed_line = line_of(text, "G01 Z-20. F0.2")
+    arc_line = line_of(text, "G02 X50. Z-25. R5.")
+    g01, g02 = by_line[feed_line], by_line[arc_line]
+    assert s["block_code"][g01] == "G01" and s["block_feed"][g01] == 0.2
+    assert s["block_speed"][g01] == 800.0 and s["block_surface"][g01] == 0
+    # G96: the surface speed, said so; the feed stays in force.
+    assert s["block_code"][g02] == "G02" and s["block_feed"][g02] == 0.2
+    assert s["block_speed"][g02] == 180.0 and s["block_surface"][g02] == 1
+    rapid = by_line[line_of(text, "G00 X40. Z2.")]
+    assert math.isnan(s["block_feed"][rapid])
+    assert data["units_stated"] is True and data["units_note"] == ""
+
+
+def test_the_view_says_when_it_assumes_the_unit_and_why() -> None:
+    # No G20/G21 and a path 1.5 across: the sizes of a part in inches.
+    small = _view(program("G00 X1.5 Z0.1", "G01 Z-1.2 F0.004"))
+    assert small["units"] == "mm" and small["units_stated"] is False
+    assert small["units_note"].startswith("assumed mm: the program states neither G20 nor G21")
+    assert "as a part in inches would be" in small["units_note"]
+    # A large part: the unit is still assumed, with no word on inches.
+    large = _view(program("G00 X80. Z2.", "G01 Z-120. F0.2"))
+    assert large["units_stated"] is False and "inches" not in large["units_note"]
+    # A G20 in a comment states nothing; G20 in a block does.
+    assert _view(program("(G20 NOT HERE)", "G00 X1. Z0.1", "G01 Z-1. F0.004"))["units_stated"] is False
+    stated = _view(program("G20", "G00 X1. Z0.1", "G01 Z-1. F0.004"))
+    assert stated["units"] == "inch" and stated["units_stated"] is True
+
+
+def test_the_view_gives_the_stock_the_tool_and_the_threads_cross_section() -> None:
+    from fanuc_macro.ide.toolpath_view import toolpath_view
+
+    file = SEEDS / "o4009_external_m50x3.nc"
+    doc = parse_text(file.read_text("utf-8"), "t.nc")
+    data = toolpath_view("t.nc", doc, build_index(doc), config=LATHE)
+    assert "error" not in data
+    stock = data["stock"]
+    assert stock is not None and stock["diameter"] == 50.0 and stock["front"] == 0.0
+    assert stock["back"] < -50.0 and "M50x3" in stock["source"]
+    tool = data["tool"]
+    assert tool is not None and tool["angle"] == 60.0
+    assert tool["radius"] == pytest.approx(0.433, abs=1e-3) and tool["line"] >= 0
+    (thread,) = data["threads"]
+    assert thread["name"].startswith("M50x3") and not thread["internal"]
+    # The cut over one lead: radii within the blank and under the root's depth.
+    profile = thread["profile"]
+    assert len(profile) > 10
+    assert all(-1.5 - 1e-9 <= u <= 1.5 + 1e-9 for u, _ in profile)
+    assert all(23.0 < r <= 25.0 + 1e-9 for _, r in profile)
+    assert thread["band"] is not None and thread["band"][0] < thread["band"][1] < 50.0
+
+
+def test_a_program_with_no_move_says_why_nothing_is_drawn() -> None:
+    nothing = _view("O1\n#1 = 2\nM30\n")
+    assert nothing["empty"] is True and nothing["error"].startswith("the program makes no move")
+    blank = _view("\n")
+    assert blank["empty"] is True and "holds no blocks" in blank["error"]

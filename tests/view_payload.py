@@ -7,8 +7,10 @@ import base64
 import struct
 from typing import Any
 
-# Each packed field's struct code: uint8, int32, uint16, int32; the points are float64.
-SEGMENT_FIELDS = {"kind": "B", "line": "i", "path": "H", "point": "i"}
+# Each packed field's struct code: uint8, int32, uint16, int32, int32; the points are float64.
+SEGMENT_FIELDS = {"kind": "B", "line": "i", "path": "H", "point": "i", "motion": "i"}
+# Per motion record: uint16 code index, float64 feed and speed, uint8 surface speed or not.
+BLOCK_FIELDS = {"code": "H", "feed": "d", "speed": "d", "surface": "B"}
 
 
 def values(code: str, text: str) -> list[Any]:
@@ -19,9 +21,10 @@ def values(code: str, text: str) -> list[Any]:
 
 
 def unpacked(data: dict[str, Any]) -> dict[str, list[Any]]:
-    """``kind``, ``line``, ``path``, ``point`` per segment and ``points`` (x, y, z each) as lists,
-    and ``start``/``end`` per segment (x, y, z tuples) that they make."""
-    assert data["format"] == 2
+    """``kind``, ``line``, ``path``, ``point``, ``motion`` per segment and ``points`` (x, y, z
+    each) as lists, ``start``/``end`` per segment (x, y, z tuples) that they make, and per
+    motion record ``code`` (the code's text), ``feed``, ``speed`` and ``surface``."""
+    assert data["format"] == 3
     s = data["segments"]
     out: dict[str, list[Any]] = {k: values(code, s[k]) for k, code in SEGMENT_FIELDS.items()}
     assert all(len(out[k]) == data["count"] for k in SEGMENT_FIELDS)
@@ -31,4 +34,11 @@ def unpacked(data: dict[str, Any]) -> dict[str, list[Any]]:
     out["start"] = [tuple(points[3 * p : 3 * p + 3]) for p in out["point"]]
     out["end"] = [tuple(points[3 * p + 3 : 3 * p + 6]) for p in out["point"]]
     assert all(len(e) == 3 for e in out["end"])
+    b = data["blocks"]
+    records = {k: values(code, b[k]) for k, code in BLOCK_FIELDS.items()}
+    assert len({len(v) for v in records.values()}) == 1
+    out["block_code"] = [data["codes"][c] for c in records["code"]]
+    out["block_feed"] = records["feed"]
+    out["block_speed"] = records["speed"]
+    out["block_surface"] = records["surface"]
     return out

@@ -9,26 +9,39 @@ radius, as the SVG backplot draws it), and an unknown coordinate is NaN.
 Segments that meet share their point: segment ``i`` goes from point ``point[i]`` to point
 ``point[i] + 1``, and a move that starts elsewhere than the last one ended adds its start point.
 Positions are float64: float32's 24 bits would not keep 0.0001 inch (nor 0.001 mm beyond 8 m).
+
+Beside the path, what a backplot shows about it: per segment the motion record it belongs to,
+and per record its code, feed F and spindle speed S (the tooltip of a segment); whether the
+program states its unit (G20/G21) or the view assumes one; the stock where the program gives
+it (a lathe's bar: the blank a thread is cut in, or the start of a stock removal cycle); the
+tool's radius where the program gives it (a threading tool's nose radius); and for a threading
+program each thread's simulated cross-section (threads/cross_section.py, as the SVG backplot's
+pass maps draw it).
 """
 
 from __future__ import annotations
 
 import base64
 import math
+import re
 import sys
 from array import array
 from collections.abc import Sequence
 from typing import Any, TypedDict
 
 from ..config import Config
+from ..evaluator.facts import Facts, Motion
 from ..evaluator.toolpath import MOVE_KINDS, Toolpath
 from ..program.index import ProgramIndex
 from ..syntax.parser import quiet_gc
 from ..syntax.tree import Document
-from .plot import NothingToPlot, arc_points, run_toolpath
+from ..threads.cross_section import blank_diameter
+from ..threads.identify import Thread, identify
+from .plot import PassMap, arc_points, pass_maps
+from .trace import run_with_toolpath
 
 # The payload's layout; the client refuses another.
-VIEW_FORMAT = 2
+VIEW_FORMAT = 3
 
 # At most this many segments go to the view (arcs cut into several count each): beyond it
 # the toolpath is cut short and the view says so.
@@ -42,6 +55,19 @@ MAX_VIEW_PATHS = 0xFFFF + 1
 ARC_DECIMALS = 4
 
 
+# The longest a path may be across, with no unit stated, before the view says its sizes look like
+# inches: a part of 12 mm is a small one, of 12 inches an ordinary one.
+INCH_LOOKING_SPAN = 12.0
+
+# A unit word of the program, outside its comments: G20 (inch) or G21 (mm), G020 too.
+_UNIT_WORD = re.compile(r"(?<![A-Z#])G0*2[01](?![0-9.])")
+_COMMENT = re.compile(r"\([^)]*\)")
+
+# The stock removal cycles whose start point is the stock's outside (0i-TF "Multiple
+# repetitive cycle": the tool starts the cycle from the point A, outside the blank).
+STOCK_CYCLES = frozenset({"G71", "G72", "G73"})
+
+
 # The payload goes to the editor as it is: TypedDicts, their keys in the order they are sent.
 
 
@@ -52,6 +78,16 @@ class ViewSegments(TypedDict):
     line: str  # int32, the block's 0-based line
     path: str  # uint16, an index in ``paths``
     point: str  # int32, the index of its start point
+    motion: str  # int32, the index of its motion record in ``blocks`` (-1: none)
+
+
+class ViewBlocks(TypedDict):
+    """Per motion record (a block's execution), packed: what a segment's tooltip says."""
+
+    code: str  # uint16, an index in ``codes``
+    feed: str  # float64, the feed F in force (NaN: not known)
+    speed: str  # float64, the spindle speed S: rpm, or G96's surface speed (NaN: not known)
+    surface: str  # uint8, 1 when ``speed`` is G96's surface speed
 
 
 class ViewLostTrack(TypedDict):
@@ -61,25 +97,67 @@ class ViewLostTrack(TypedDict):
     reason: str
 
 
+class ViewStock(TypedDict):
+    """A lathe's bar, as the program gives it: its diameter from ``front`` to ``back`` (Z)."""
+
+    diameter: float
+    front: float
+    back: float
+    source: str  # where the program gives it, for the status line
+    line: int  # 0-based, of the main document (-1: none)
+
+
+class ViewTool(TypedDict):
+    """The tool as the program gives it: a nose radius (a lathe's insert) or a cutter's."""
+
+    radius: float
+    angle: float  # a lathe insert's included angle, degrees (0: not known)
+    source: str
+    line: int  # 0-based (-1: none)
+
+
+class ViewThread(TypedDict):
+    """A thread's simulated cross-section (threads/cross_section.py) over one lead: (offset
+    along the lead from the deepest pass, radius) pairs, the class's pitch diameters."""
+
+    name: str
+    line: int  # 0-based, the first pass's block
+    internal: bool
+    pitch: float | None
+    major: float | None
+    passes: int
+    profile: list[list[float]]
+    band: list[float] | None  # the pitch diameter's least and greatest (the class)
+
+
 class ToolpathViewData(TypedDict):
     """What the Toolpath view draws (see :func:`view_data`)."""
 
     format: int
     lathe: bool
     units: str  # "mm" or "inch"
+    units_stated: bool  # the program has a G20 or a G21
+    units_note: str  # why the unit is assumed ("" when stated)
     kinds: list[str]
     paths: list[str]
     count: int
     points: str  # float64 x, y, z per point, packed
     segments: ViewSegments
+    codes: list[str]
+    blocks: ViewBlocks
     lost: list[ViewLostTrack]
     truncated: bool
+    stopped: str  # why the run stopped early ("" when it did not)
+    stock: ViewStock | None
+    tool: ViewTool | None
+    threads: list[ViewThread]
 
 
 class NoToolpathView(TypedDict):
     """The program makes no move: the view shows why."""
 
     error: str
+    empty: bool  # True: the program was read and makes no move (not a failure)
 
 
 def packed(values: array[Any]) -> str:
@@ -90,19 +168,41 @@ def packed(values: array[Any]) -> str:
     return base64.b64encode(values).decode("ascii")
 
 
-def view_data(toolpath: Toolpath, main_uri: str) -> ToolpathViewData:
-    """``{"format", "lathe", "units", "kinds", "paths", "count", "points", "segments": {"kind",
-    "line", "path", "point"}, "lost", "truncated"}``: ``points`` holds x, y, z per point
-    (float64); per segment, ``kind`` (uint8) indexes ``kinds``, ``line`` (int32) is 0-based,
-    ``path`` (uint16) indexes ``paths`` (the document first), ``point`` (int32) is its start."""
+class _Packed:
+    """The segments' arrays as they are filled."""
+
+    def __init__(self) -> None:
+        self.kind = array("B")
+        self.line = array("i")
+        self.path = array("H")
+        self.point = array("i")
+        self.motion = array("i")
+        self.points = array("d")
+        assert self.line.itemsize == 4 and self.point.itemsize == 4 and self.path.itemsize == 2
+
+    def segment(self, kind: int, line: int, path: int, point: int, motion: int) -> None:
+        self.kind.append(kind)
+        self.line.append(line)
+        self.path.append(path)
+        self.point.append(point)
+        self.motion.append(motion)
+
+    def segments(self) -> ViewSegments:
+        return {
+            "kind": packed(self.kind),
+            "line": packed(self.line),
+            "path": packed(self.path),
+            "point": packed(self.point),
+            "motion": packed(self.motion),
+        }
+
+
+def _pack(toolpath: Toolpath, main_uri: str) -> tuple[_Packed, dict[str, int], int, bool]:
+    """The moves as segments: the arrays, the files' indexes, the count, cut short or not."""
     kinds = {k: i for i, k in enumerate(MOVE_KINDS)}
     paths = {main_uri: 0}
-    kind = array("B")
-    line = array("i")
-    path = array("H")
-    point = array("i")
-    points = array("d")
-    assert line.itemsize == 4 and point.itemsize == 4 and path.itemsize == 2
+    out = _Packed()
+    points = out.points
     nan = math.nan
     # A lathe's X is a diameter, drawn as a radius (arc_points gives its points so already).
     xs = 0.5 if toolpath.lathe else 1.0
@@ -142,23 +242,101 @@ def view_data(toolpath: Toolpath, main_uri: str) -> ToolpathViewData:
             last += 1
         if arc:
             for p in rest:
-                kind.append(k)
-                line.append(move.line)
-                path.append(where)
-                point.append(last)
+                out.segment(k, move.line, where, last, move.motion)
                 lx, ly, lz = p.get("X", nan), p.get("Y", nan), p.get("Z", nan)
                 points.extend((lx, ly, lz))
                 last += 1
         else:
-            kind.append(k)
-            line.append(move.line)
-            path.append(where)
-            point.append(last)
+            out.segment(k, move.line, where, last, move.motion)
             e = move.end
             lx, ly, lz = e.get("X", nan) * xs, e.get("Y", nan), e.get("Z", nan)
             points.extend((lx, ly, lz))
             last += 1
         count += n
+    return out, paths, count, truncated
+
+
+def _blocks(motions: Sequence[Motion]) -> tuple[list[str], ViewBlocks]:
+    """Each motion record's code (as the program writes it), feed and spindle speed."""
+    codes: dict[str, int] = {}
+    code = array("H")
+    feed = array("d")
+    speed = array("d")
+    surface = array("B")
+    nan = math.nan
+    for m in motions:
+        shown = m.written or m.code
+        c = codes.get(shown)
+        if c is None:
+            c = codes[shown] = min(len(codes), 0xFFFF)
+        code.append(c)
+        f = m.words.get("F")
+        feed.append(nan if f is None else f)
+        css = m.surface_speed
+        rpm = m.rpm
+        speed.append(css if css is not None else rpm if rpm is not None else nan)
+        surface.append(1 if css is not None else 0)
+    blocks: ViewBlocks = {
+        "code": packed(code),
+        "feed": packed(feed),
+        "speed": packed(speed),
+        "surface": packed(surface),
+    }
+    return list(codes), blocks
+
+
+def units_stated(documents: Sequence[Document]) -> bool:
+    """Whether a block of the documents has G20 or G21 (outside its comments)."""
+    for doc in documents:
+        for block in doc.blocks:
+            text = block.parsed.text
+            if "2" not in text or ("G" not in text and "g" not in text):
+                continue
+            if _UNIT_WORD.search(_COMMENT.sub("", text.upper())):
+                return True
+    return False
+
+
+def _largest_span(points: array[float]) -> float:
+    """The path's greatest extent along one axis (0 when no point is known)."""
+    span = 0.0
+    for axis in range(3):
+        known = [v for v in points[axis::3] if v == v]
+        if known:
+            span = max(span, max(known) - min(known))
+    return span
+
+
+def units_note(stated: bool, inch: bool, span: float, lathe: bool) -> str:
+    """Why the unit is the one the view says: "" when the program states it."""
+    if stated:
+        return ""
+    unit = "inch" if inch else "mm"
+    note = f"assumed {unit}: the program states neither G20 nor G21 (the control keeps the unit"
+    note += " it was in, or its setting's at power-on)"
+    # A lathe's X is drawn as a radius: its span is half the diameters'.
+    if not inch and 0.0 < span * (2.0 if lathe else 1.0) <= INCH_LOOKING_SPAN:
+        note += f"; the path is only {span:.4g} across, as a part in inches would be"
+    return note
+
+
+def view_data(
+    toolpath: Toolpath,
+    main_uri: str,
+    facts: Facts | None = None,
+    stated: bool = True,
+    threads: Sequence[Thread] = (),
+    maps: Sequence[PassMap] = (),
+) -> ToolpathViewData:
+    """``{"format", "lathe", "units", "units_stated", "units_note", "kinds", "paths", "count",
+    "points", "segments": {"kind", "line", "path", "point", "motion"}, "codes", "blocks":
+    {"code", "feed", "speed", "surface"}, "lost", "truncated", "stopped", "stock", "tool",
+    "threads"}``: ``points`` holds x, y, z per point (float64); per segment, ``kind`` (uint8)
+    indexes ``kinds``, ``line`` (int32) is 0-based, ``path`` (uint16) indexes ``paths`` (the
+    document first), ``point`` (int32) is its start, ``motion`` (int32) its record in
+    ``blocks``. ``facts``: the run's (its motion records); ``stated``: whether the program
+    has G20/G21; ``threads`` and ``maps``: the threads it cuts and their pass maps."""
+    out, paths, count, truncated = _pack(toolpath, main_uri)
     lost: list[ViewLostTrack] = [
         {
             "line": lost.line,
@@ -168,23 +346,132 @@ def view_data(toolpath: Toolpath, main_uri: str) -> ToolpathViewData:
         }
         for lost in toolpath.lost
     ]
+    codes, blocks = _blocks(facts.motions if facts is not None else ())
+    stopped = ""
+    if facts is not None and facts.stopped == "budget":
+        stopped = "the run stopped when the analysis's step budget ran out"
+    elif facts is not None and facts.stopped == "time":
+        stopped = f"the run stopped after {facts.time_limit:g} s (the analysis's time limit)"
     return {
         "format": VIEW_FORMAT,
         "lathe": toolpath.lathe,
         "units": "inch" if toolpath.inch else "mm",
+        "units_stated": stated,
+        "units_note": units_note(stated, toolpath.inch, _largest_span(out.points), toolpath.lathe),
         "kinds": list(MOVE_KINDS),
         "paths": list(paths),
         "count": count,
-        "points": packed(points),
-        "segments": {
-            "kind": packed(kind),
-            "line": packed(line),
-            "path": packed(path),
-            "point": packed(point),
-        },
+        "points": packed(out.points),
+        "segments": out.segments(),
+        "codes": codes,
+        "blocks": blocks,
         "lost": lost,
         "truncated": truncated,
+        "stopped": stopped,
+        "stock": stock_of(toolpath, facts.motions if facts is not None else (), threads),
+        "tool": tool_of(threads),
+        "threads": [_thread(m, t) for m, t in zip(maps, _mapped(threads), strict=False)],
     }
+
+
+def _mapped(threads: Sequence[Thread]) -> list[Thread]:
+    """The threads ``pass_maps`` makes a map of, in its order: those with a pass of known X."""
+    return [t for t in threads if any(p.x is not None for p in t.job.passes)]
+
+
+def _thread(m: PassMap, thread: Thread) -> ViewThread:
+    return {
+        "name": m.name,
+        "line": thread.job.passes[0].line,
+        "internal": m.internal,
+        "pitch": m.pitch,
+        "major": m.major,
+        "passes": len(m.passes),
+        "profile": [[u, h] for u, h in m.cut],
+        "band": None if m.band is None else [m.band[0], m.band[1]],
+    }
+
+
+def stock_of(
+    toolpath: Toolpath, motions: Sequence[Motion], threads: Sequence[Thread]
+) -> ViewStock | None:
+    """A lathe's bar where the program gives it: the start point of its first stock removal
+    cycle (G71-G73 start outside the blank), else the blank its first external thread is cut
+    in (the diameter turned before it, or its designation's major diameter); along Z, from
+    Z0 (the front of the cuts when they stay in front of it) to the cuts' end. None on a mill,
+    or when neither is."""
+    if not toolpath.lathe:
+        return None
+    cuts = [m for m in toolpath.moves if m.kind != "rapid"]
+    zs = [p["Z"] for m in cuts for p in (m.start, m.end) if "Z" in p]
+    if not zs:
+        return None
+    # The work's zero is its front face where the cuts go behind it (the run-in of a thread
+    # starts in the air before it).
+    back = min(zs)
+    front = 0.0 if back < 0.0 else max(zs)
+    if back >= front:
+        return None
+    for m in motions:
+        if m.code in STOCK_CYCLES and m.start_x is not None and m.start_x > 0.0:
+            return {
+                "diameter": m.start_x,
+                "front": front,
+                "back": back,
+                "source": f"the start point of {m.code} at line {m.line + 1}",
+                "line": m.line,
+            }
+    for thread in threads:
+        if thread.internal:
+            continue
+        surface = thread.surface
+        if surface is not None:
+            diameter: float | None = surface.blank
+            source = f"the diameter turned at line {surface.line + 1}"
+        else:
+            diameter = blank_diameter(thread)
+            source = f"the major diameter of {thread.name}"
+        if diameter is not None and diameter > 0.0:
+            line = thread.job.passes[0].line
+            return {
+                "diameter": diameter,
+                "front": front,
+                "back": back,
+                "source": source,
+                "line": line,
+            }
+    return None
+
+
+def tool_of(threads: Sequence[Thread]) -> ViewTool | None:
+    """The tool's radius where the program gives it: a threading tool's nose radius."""
+    for thread in threads:
+        r = thread.nose_radius
+        if r is not None and r > 0.0:
+            line = thread.nose_line if thread.nose_line is not None else -1
+            where = f" at line {line + 1}" if line >= 0 else ""
+            return {
+                "radius": r,
+                "angle": 60.0 if thread.pipe is None else 55.0,
+                "source": f"the threading tool's nose radius{where}",
+                "line": line,
+            }
+    return None
+
+
+def empty_reason(doc: Document, facts: Facts) -> str:
+    """Why a run draws nothing, in the words the view shows."""
+    if not any(b.parsed.statement is not None for b in doc.blocks):
+        return "the document holds no blocks: nothing to draw"
+    if not facts.motions:
+        return (
+            "the program makes no move: no block of it that runs moves an axis (G00-G03, a"
+            " canned cycle)"
+        )
+    return (
+        "the program makes no move whose place is known: its moves are incremental from a"
+        " place the program never states"
+    )
 
 
 def toolpath_view(
@@ -195,10 +482,16 @@ def toolpath_view(
     config: Config | None = None,
     entry: int | None = None,
 ) -> ToolpathViewData | NoToolpathView:
-    """The view's data for ``uri``'s programs, or ``{"error": ...}`` when it makes no move."""
-    try:
-        toolpath = run_toolpath(uri, doc, index, others, config, entry)
-    except NothingToPlot as err:
-        return {"error": str(err)}
+    """The view's data for ``uri``'s programs, or ``{"error": ..., "empty": true}`` when it
+    makes no move."""
+    facts = run_with_toolpath(uri, doc, index, others, config, entry)
+    toolpath = facts.toolpath
+    if toolpath is None or not toolpath.moves:
+        return {"error": empty_reason(doc, facts), "empty": True}
+    threads: list[Thread] = []
+    doc_facts = facts.by_uri.get(uri)
+    if doc_facts is not None and any(m.kind == "thread" for m in toolpath.moves):
+        threads = identify(doc, index, doc_facts, facts.motions, facts.run_values)
+    stated = units_stated([doc, *(d for _u, d, _i in others)])
     with quiet_gc():  # the arcs' points in lists and no cycles: the collector only rescans
-        return view_data(toolpath, uri)
+        return view_data(toolpath, uri, facts, stated, threads, pass_maps(threads, index))
