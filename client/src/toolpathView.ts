@@ -10,12 +10,20 @@ export const SERVER_COMMAND_TOOLPATH = 'fanuc-macro.toolpath';
 /** How long typing pauses before the view asks for the toolpath again. */
 export const FOLLOW_DELAY_MS = 400;
 /** The layout of the command's answer the view reads (ide/toolpath_view.py VIEW_FORMAT). */
-export const TOOLPATH_FORMAT = 2;
+export const TOOLPATH_FORMAT = 3;
 
 type Execute = (command: string, args: unknown[]) => Promise<unknown>;
 
 interface Reveal {
   type: 'reveal';
+  line: number;
+  path?: string;
+  /** Playback: the editor follows the block without taking the focus. */
+  follow?: boolean;
+}
+
+interface BlockText {
+  type: 'blockText';
   line: number;
   path?: string;
 }
@@ -50,28 +58,60 @@ export function toolpathHtml(scriptUri: string, cspSource: string): string {
 <style nonce="${n}">
   html, body { height: 100%; margin: 0; padding: 0; overflow: hidden; }
   body { display: flex; flex-direction: column; color: var(--vscode-foreground); background: var(--vscode-editor-background); font: 12px var(--vscode-font-family); }
-  #bar { display: flex; gap: 8px; align-items: center; padding: 4px 8px; border-bottom: 1px solid var(--vscode-panel-border); }
-  #info { flex: 1; opacity: 0.85; white-space: nowrap; overflow: hidden; text-overflow: ellipsis; }
+  #bar { display: flex; flex-wrap: wrap; gap: 6px 10px; align-items: center; padding: 4px 8px; border-bottom: 1px solid var(--vscode-panel-border); }
+  .group { display: inline-flex; align-items: center; gap: 4px; }
+  select, button { font: inherit; }
+  select { color: var(--vscode-dropdown-foreground); background: var(--vscode-dropdown-background); border: 1px solid var(--vscode-dropdown-border, transparent); border-radius: 2px; padding: 1px 2px; }
+  button { color: var(--vscode-button-foreground); background: var(--vscode-button-background); border: 1px solid var(--vscode-button-border, transparent); border-radius: 2px; padding: 1px 8px; cursor: pointer; }
+  button:hover { background: var(--vscode-button-hoverBackground); }
+  button.secondary { color: var(--vscode-button-secondaryForeground); background: var(--vscode-button-secondaryBackground); min-width: 26px; }
+  button.secondary:hover { background: var(--vscode-button-secondaryHoverBackground); }
+  button:disabled { opacity: 0.5; cursor: default; }
+  select:focus, button:focus { outline: 1px solid var(--vscode-focusBorder); outline-offset: 1px; }
   .key { display: inline-flex; align-items: center; gap: 4px; }
   .swatch { width: 18px; height: 0; border-top: 2px solid; display: inline-block; }
-  .swatch.rapid { border-top-style: dashed; border-color: #9a9a9a; }
-  .swatch.feed { border-color: #3b82f6; }
-  .swatch.arc { border-color: #22a05a; }
-  .swatch.thread { border-color: #e4572e; }
-  canvas { flex: 1; width: 100%; min-height: 0; cursor: crosshair; display: block; }
+  .swatch.rapid { border-top-style: dashed; border-color: var(--vscode-descriptionForeground, #9a9a9a); }
+  .swatch.feed { border-color: var(--vscode-charts-blue, #3b82f6); }
+  .swatch.arc { border-color: var(--vscode-charts-green, #22a05a); }
+  .swatch.thread { border-color: var(--vscode-charts-red, #e4572e); }
+  #stage { flex: 1; position: relative; min-height: 0; }
+  canvas { position: absolute; inset: 0; width: 100%; height: 100%; cursor: crosshair; display: block; }
+  #readout { position: absolute; white-space: pre; right: 8px; top: 6px; padding: 2px 6px; font-family: var(--vscode-editor-font-family); color: var(--vscode-editor-foreground); background: var(--vscode-editorWidget-background); border: 1px solid var(--vscode-editorWidget-border, transparent); pointer-events: none; }
+  #readout:empty { display: none; }
+  #tooltip { position: absolute; display: none; max-width: min(70%, 480px); padding: 4px 8px; white-space: pre-wrap; overflow-wrap: anywhere; font-family: var(--vscode-editor-font-family); color: var(--vscode-editorHoverWidget-foreground, var(--vscode-foreground)); background: var(--vscode-editorHoverWidget-background); border: 1px solid var(--vscode-editorHoverWidget-border); pointer-events: none; z-index: 2; }
+  #empty { position: absolute; inset: 0; display: none; align-items: center; justify-content: center; text-align: center; padding: 24px; color: var(--vscode-descriptionForeground); }
+  #empty strong { display: block; font-size: 14px; margin-bottom: 6px; color: var(--vscode-foreground); }
+  #status { max-height: 30%; overflow: auto; padding: 4px 8px; border-top: 1px solid var(--vscode-panel-border); color: var(--vscode-descriptionForeground); }
+  #status ul { margin: 2px 0 0 0; padding-left: 18px; }
+  #status li { white-space: normal; overflow-wrap: anywhere; }
+  #summary { color: var(--vscode-foreground); }
 </style>
 </head>
 <body>
 <div id="bar">
-  <label>View <select id="view"><option value="XZ">XZ</option><option value="XY">XY</option><option value="YZ">YZ</option><option value="3D">3D orbit</option></select></label>
-  <button id="fit" title="Show the whole toolpath">Fit</button>
+  <label class="group">View <select id="view" title="The plane drawn, or an orbit in 3D"><option value="XZ">XZ</option><option value="XY">XY</option><option value="YZ">YZ</option><option value="3D">3D orbit</option></select></label>
+  <label class="group" id="xmode-group">X as <select id="xmode" title="A lathe's X labelled as the diameter the program writes, or as the radius drawn"><option value="diameter">diameter</option><option value="radius">radius</option></select></label>
+  <button id="fit" title="Show the whole toolpath, as large as the view allows">Fit</button>
+  <span class="group" title="Playback: the tool runs the program block by block">
+    <button id="start" class="secondary" title="Back to the first block">⇤</button>
+    <button id="back" class="secondary" title="One block back">◀︎</button>
+    <button id="play" class="secondary" title="Play or pause">▶︎</button>
+    <button id="next" class="secondary" title="One block on (single block)">▶︎|</button>
+    <button id="end" class="secondary" title="To the end: the whole path">⇥</button>
+    <select id="speed" title="Playback speed"><option value="1">slow</option><option value="4" selected>normal</option><option value="20">fast</option></select>
+  </span>
   <span class="key"><span class="swatch rapid"></span>rapid</span>
   <span class="key"><span class="swatch feed"></span>feed</span>
   <span class="key"><span class="swatch arc"></span>arc</span>
   <span class="key"><span class="swatch thread"></span>thread</span>
-  <span id="info">Running the program…</span>
 </div>
-<canvas id="toolpath"></canvas>
+<div id="stage">
+  <canvas id="toolpath"></canvas>
+  <div id="readout"></div>
+  <div id="tooltip" role="tooltip"></div>
+  <div id="empty"><div><strong>Nothing to draw</strong><span id="empty-reason"></span></div></div>
+</div>
+<div id="status"><div id="summary">Running the program…</div><ul id="notes"></ul></div>
 <script nonce="${n}" src="${scriptUri}"></script>
 </body>
 </html>`;
@@ -164,8 +204,14 @@ export class ToolpathPanel {
     if (asked !== this.asked) return; // a newer request is on its way
     const error = toolpathError(answer);
     const title = ToolpathPanel.title(this.document).replace(/^Toolpath: /, '');
+    // A program that makes no move is not a failure: the view says why nothing is drawn.
+    const empty = error !== undefined && answer !== null && typeof answer === 'object' && (answer as { empty?: unknown }).empty === true;
     await this.panel.webview.postMessage(
-      error === undefined ? { type: 'data', data: answer, title } : { type: 'error', message: `${title}: ${error}` },
+      error === undefined
+        ? { type: 'data', data: answer, title }
+        : empty
+          ? { type: 'empty', reason: error, title }
+          : { type: 'error', message: `${title}: ${error}` },
     );
     if (this.stoppedLine !== undefined) {
       await this.panel.webview.postMessage({ type: 'cursor', line: this.stoppedLine });
@@ -198,7 +244,22 @@ export class ToolpathPanel {
       void this.refresh();
     } else if (type === 'reveal') {
       void this.reveal(message as Reveal);
+    } else if (type === 'blockText') {
+      void this.blockText(message as BlockText);
     }
+  }
+
+  /** The text of a block, for the tooltip of its segments. */
+  private async blockText(message: BlockText): Promise<void> {
+    if (typeof message.line !== 'number') return;
+    let document = this.document;
+    if (typeof message.path === 'string') {
+      const uri = /^[a-z][a-z0-9+.-]*:/i.test(message.path) ? vscode.Uri.parse(message.path) : vscode.Uri.file(message.path);
+      document = await vscode.workspace.openTextDocument(uri);
+    }
+    if (message.line < 0 || message.line >= document.lineCount) return;
+    const text = document.lineAt(message.line).text;
+    await this.panel.webview.postMessage({ type: 'blockText', line: message.line, path: message.path, text });
   }
 
   private async reveal(message: Reveal): Promise<void> {
@@ -212,7 +273,7 @@ export class ToolpathPanel {
     const visible = vscode.window.visibleTextEditors.find((e) => e.document === document);
     const editor = await vscode.window.showTextDocument(document, {
       viewColumn: visible?.viewColumn ?? vscode.ViewColumn.One,
-      preserveFocus: false,
+      preserveFocus: message.follow === true,
     });
     const position = new vscode.Position(message.line, 0);
     editor.selection = new vscode.Selection(position, position);

@@ -18,43 +18,7 @@ import {
   VIEW_FORMAT,
 } from '../webview/toolpathGeometry';
 import { TOOLPATH_FORMAT, toolpathError, toolpathHtml } from '../src/toolpathView';
-
-/** Base64 of a typed array's bytes, as the server writes it (little-endian, as node's are). */
-function b64(array: Uint8Array | Uint16Array | Int32Array | Float64Array): string {
-  return Buffer.from(array.buffer, array.byteOffset, array.byteLength).toString('base64');
-}
-
-/** The answer of segments given as lists: each segment's start and end x, y, z (null unknown). */
-function packed(
-  base: Omit<ToolpathData, 'count' | 'points' | 'segments'>,
-  kind: number[],
-  line: number[],
-  path: number[],
-  points: (number | null)[],
-  point: number[],
-): ToolpathData {
-  return {
-    ...base,
-    count: kind.length,
-    points: b64(Float64Array.from(points, (v) => v ?? Number.NaN)),
-    segments: {
-      kind: b64(Uint8Array.from(kind)),
-      line: b64(Int32Array.from(line)),
-      path: b64(Uint16Array.from(path)),
-      point: b64(Int32Array.from(point)),
-    },
-  };
-}
-
-const LATHE = {
-  format: VIEW_FORMAT,
-  lathe: true,
-  units: 'mm',
-  kinds: ['rapid', 'feed', 'thread', 'arc'],
-  paths: ['file:///o3331.nc'],
-  lost: [],
-  truncated: false,
-};
+import { LATHE, b64, packed } from './toolpathFixtures';
 
 /** The first G92 pass of O3331 as the server sends it: X as a radius (51 / 2, 49.816 / 2). */
 function g92(): ToolpathData {
@@ -104,7 +68,7 @@ describe('the packed segments', () => {
     assert.throws(() => toSegments({ ...good, format: 1 }), /format 1/);
     assert.equal(TOOLPATH_FORMAT, VIEW_FORMAT);
     const lists = { segments: { kind: [0], line: [1], path: [0], start: [0, 0, 0], end: [1, 0, 0] } };
-    assert.match(toolpathError(lists) ?? '', /format 1, this view reads 2/);
+    assert.match(toolpathError(lists) ?? '', /format 1, this view reads 3/);
   });
 });
 
@@ -133,8 +97,8 @@ describe('transform', () => {
       assert.ok(middle !== null);
       assert.ok(middle[0] >= 0 && middle[0] <= 1000 && middle[1] >= 0 && middle[1] <= 500);
     }
-    // 60 mm of Z fill 90% of the width.
-    assert.ok(Math.abs(t.scale * 60 - 900) < 1e-6);
+    // 60 mm of Z fill 94% of the width.
+    assert.ok(Math.abs(t.scale * 60 - 940) < 1e-6);
   });
   it('keeps the pointer on the same world point when zooming, and pans by pixels', () => {
     const t = { scale: 2, centreH: 0, centreV: 0, width: 100, height: 100 };

@@ -3,18 +3,23 @@
 // view transform, the level of detail and the hit test.
 
 /** The layout of the server's answer this view reads (ide/toolpath_view.py VIEW_FORMAT). */
-export const VIEW_FORMAT = 2;
+export const VIEW_FORMAT = 3;
 
 /**
  * What the server's `fanuc-macro.toolpath` command answers. The arrays are base64 of
  * little-endian typed arrays: `points` float64 x, y, z per point (NaN unknown); per segment
  * `kind` uint8 (indexes `kinds`), `line` int32 (0-based), `path` uint16 (indexes `paths`) and
- * `point` int32, the segment's start point (its end is the next point).
+ * `point` int32, the segment's start point (its end is the next point), `motion` int32, its
+ * motion record (-1 none). Per motion record (`blocks`): `code` uint16 (indexes `codes`), `feed`
+ * and `speed` float64 (NaN not known), `surface` uint8 (1: the speed is G96's surface speed).
  */
 export interface ToolpathData {
   format: number;
   lathe: boolean;
   units: string;
+  /** The program has G20 or G21; else `units_note` says why the unit is assumed. */
+  units_stated: boolean;
+  units_note: string;
   kinds: string[];
   paths: string[];
   count: number;
@@ -24,9 +29,37 @@ export interface ToolpathData {
     line: string;
     path: string;
     point: string;
+    motion: string;
   };
+  codes: string[];
+  blocks: { code: string; feed: string; speed: string; surface: string };
   lost: { line: number; path: number; axes: string[]; reason: string }[];
   truncated: boolean;
+  stopped: string;
+  /** A lathe's bar: its diameter from Z `front` to `back`. */
+  stock: { diameter: number; front: number; back: number; source: string; line: number } | null;
+  tool: { radius: number; angle: number; source: string; line: number } | null;
+  threads: ToolpathThread[];
+}
+
+/** A thread's simulated cross-section over one lead: (offset along the lead, radius) pairs. */
+export interface ToolpathThread {
+  name: string;
+  line: number;
+  internal: boolean;
+  pitch: number | null;
+  major: number | null;
+  passes: number;
+  profile: [number, number][];
+  band: [number, number] | null;
+}
+
+/** Per motion record: what a segment's tooltip says of its block. */
+export interface Blocks {
+  code: Uint16Array;
+  feed: Float64Array;
+  speed: Float64Array;
+  surface: Uint8Array;
 }
 
 export type ViewName = 'XZ' | 'XY' | 'YZ' | '3D';
@@ -39,6 +72,9 @@ export interface Segments {
   path: Uint16Array;
   /** Each segment's start point in `xyz` (an index of points); its end is the next point. */
   point: Int32Array;
+  /** Each segment's motion record (an index of `blocks`; -1 none). */
+  motion: Int32Array;
+  blocks: Blocks;
   /** x, y, z per point. */
   xyz: Float64Array;
 }
@@ -81,8 +117,20 @@ export function toSegments(data: ToolpathData): Segments {
   const path = unpack(s.path, (b) => new Uint16Array(b, 0, length(b, 2)), (v, o) => v.getUint16(o, true), 'paths');
   const point = unpack(s.point, (b) => new Int32Array(b, 0, length(b, 4)), (v, o) => v.getInt32(o, true), 'points');
   const xyz = unpack(data.points, (b) => new Float64Array(b, 0, length(b, 8)), (v, o) => v.getFloat64(o, true), 'positions');
+  const motion = unpack(s.motion, (b) => new Int32Array(b, 0, length(b, 4)), (v, o) => v.getInt32(o, true), 'motions');
+  const b = data.blocks;
+  const blocks: Blocks = {
+    code: unpack(b.code, (x) => new Uint16Array(x, 0, length(x, 2)), (v, o) => v.getUint16(o, true), 'codes'),
+    feed: unpack(b.feed, (x) => new Float64Array(x, 0, length(x, 8)), (v, o) => v.getFloat64(o, true), 'feeds'),
+    speed: unpack(b.speed, (x) => new Float64Array(x, 0, length(x, 8)), (v, o) => v.getFloat64(o, true), 'speeds'),
+    surface: unpack(b.surface, (x) => new Uint8Array(x), (v, o) => v.getUint8(o), 'speeds'),
+  };
+  const records = blocks.code.length;
+  if ([blocks.feed, blocks.speed, blocks.surface].some((a) => a.length !== records)) {
+    throw new Error(`the toolpath's blocks do not match its ${records} motion records`);
+  }
   const count = data.count;
-  if ([kind, line, path, point].some((a) => a.length !== count) || xyz.length % 3 !== 0) {
+  if ([kind, line, path, point, motion].some((a) => a.length !== count) || xyz.length % 3 !== 0) {
     throw new Error(`the toolpath's arrays do not match its ${count} segments`);
   }
   const points = xyz.length / 3;
@@ -90,7 +138,7 @@ export function toSegments(data: ToolpathData): Segments {
     const p = point[i]!;
     if (p < 0 || p + 1 >= points) throw new Error(`the toolpath's segment ${i} has no point ${p}`);
   }
-  return { count, kind, line, path, point, xyz };
+  return { count, kind, line, path, point, motion, blocks, xyz };
 }
 
 /** Where a point of the world goes across (h) and up (v) in a view. */
@@ -143,27 +191,61 @@ export function toWorld(t: Transform, px: number, py: number): [number, number] 
   return [(px - t.width / 2) / t.scale + t.centreH, t.centreV - (py - t.height / 2) / t.scale];
 }
 
-/** The transform that shows every placed segment, with a margin. */
-export function fit(segments: Segments, project: Projection, width: number, height: number): Transform {
+/** Pixels at the screen's edges the fit leaves to the rulers and the insets. */
+export interface Margins {
+  left: number;
+  right: number;
+  top: number;
+  bottom: number;
+}
+
+export interface FitOptions {
+  margins?: Margins;
+  /** Points of the world the fit shows too: the stock's corners, a lathe's centre line. */
+  extra?: [number, number, number][];
+  /** The share of the room inside the margins the drawing fills along its tighter axis. */
+  fill?: number;
+}
+
+/**
+ * The transform that shows every placed segment (and the extra points) as large as the room
+ * inside the margins allows, centred in that room.
+ */
+export function fit(segments: Segments, project: Projection, width: number, height: number, options: FitOptions = {}): Transform {
+  const margins = options.margins ?? { left: 0, right: 0, top: 0, bottom: 0 };
+  const fill = options.fill ?? 0.94;
   let hMin = Infinity;
   let hMax = -Infinity;
   let vMin = Infinity;
   let vMax = -Infinity;
-  const xyz = segments.xyz;
-  for (let o = 0; o < xyz.length; o += 3) {
-    const [h, v] = project(xyz[o]!, xyz[o + 1]!, xyz[o + 2]!);
-    if (Number.isNaN(h) || Number.isNaN(v)) continue;
+  const take = (x: number, y: number, z: number): void => {
+    const [h, v] = project(x, y, z);
+    if (Number.isNaN(h) || Number.isNaN(v)) return;
     if (h < hMin) hMin = h;
     if (h > hMax) hMax = h;
     if (v < vMin) vMin = v;
     if (v > vMax) vMax = v;
-  }
+  };
+  const xyz = segments.xyz;
+  for (let o = 0; o < xyz.length; o += 3) take(xyz[o]!, xyz[o + 1]!, xyz[o + 2]!);
+  for (const [x, y, z] of options.extra ?? []) take(x, y, z);
   if (hMin > hMax) return { scale: 1, centreH: 0, centreV: 0, width, height };
+  const roomH = Math.max(1, width - margins.left - margins.right);
+  const roomV = Math.max(1, height - margins.top - margins.bottom);
   const span = Math.max(hMax - hMin, vMax - vMin) || 1;
   const spanH = Math.max(hMax - hMin, span / 1000);
   const spanV = Math.max(vMax - vMin, span / 1000);
-  const scale = 0.9 * Math.min(width / spanH, height / spanV);
-  return { scale, centreH: (hMin + hMax) / 2, centreV: (vMin + vMax) / 2, width, height };
+  const scale = fill * Math.min(roomH / spanH, roomV / spanV);
+  // The room's centre on the screen is where the drawing's centre goes.
+  const offsetX = (margins.left - margins.right) / 2;
+  const offsetY = (margins.top - margins.bottom) / 2;
+  return {
+    scale,
+    centreH: (hMin + hMax) / 2 - offsetX / scale,
+    centreV: (vMin + vMax) / 2 + offsetY / scale,
+    width,
+    height,
+  };
 }
 
 /** Zoom by `factor` about the screen point (px, py), which stays where it is. */
@@ -191,8 +273,8 @@ export interface PathSink {
 /**
  * Sends the segments of each kind to its sink, in screen pixels, leaving out what would not
  * show: a segment off the screen, and a point less than `minPixels` from the last one drawn
- * (200,000 segments of a CAM file at full view are mostly that). Returns how many pieces were
- * sent, the level of detail's measure.
+ * (200,000 segments of a CAM file at full view are mostly that); only the segments `from` up to
+ * `to` (the playback's part). Returns how many pieces were sent, the level of detail's measure.
  */
 export function trace(
   segments: Segments,
@@ -200,6 +282,8 @@ export function trace(
   t: Transform,
   sinks: PathSink[],
   minPixels = 0.75,
+  from = 0,
+  to = segments.count,
 ): number {
   const xyz = segments.xyz;
   const last = new Float64Array(sinks.length * 2).fill(Number.NaN);
@@ -207,7 +291,7 @@ export function trace(
   let sent = 0;
   const w = t.width;
   const hgt = t.height;
-  for (let i = 0; i < segments.count; i++) {
+  for (let i = Math.max(0, from); i < Math.min(to, segments.count); i++) {
     const kind = segments.kind[i]!;
     const sink = sinks[kind];
     if (sink === undefined) continue;
