@@ -134,8 +134,9 @@ async function checkToolpath() {
       { timeout: STEP_MS },
     );
     const data = await frame.locator('canvas#toolpath').evaluate((c) => ({ ...c.dataset }));
-    const info = await frame.locator('#info').innerText();
+    const info = await frame.locator('#summary').innerText();
     record('toolpath view', Number(data.segments) > 0, `segments ${data.segments}, pieces ${data.pieces}; ${info}`);
+    await checkBackplot(frame);
   } catch (e) {
     record('toolpath view', false, e.message.split('\n')[0]);
     await shot('toolpath.png');
@@ -188,6 +189,256 @@ async function checkToolpath() {
     record('toolpath cursor', false, `${e.message.split('\n')[0]}; data-highlighted ${lit}`);
   }
   await shot('toolpath-cursor.png');
+  await checkStepping(frame);
+}
+
+// The backplot around the path (the seed, a lathe, drawn in XZ): the rulers name Z across and X
+// up with a grid step, the readout says the coordinates under the mouse, a segment's tooltip
+// says its block (line, code, F, S), the fit fills the room, the status area lists every note
+// wrapped, and the controls take the theme's colours.
+async function checkBackplot(frame) {
+  const canvas = frame.locator('canvas#toolpath');
+  try {
+    await frame.waitForFunction(() => document.getElementById('toolpath').dataset.axes === 'Z,X'
+      && Number(document.getElementById('toolpath').dataset.gridStep) > 0);
+    const box = await canvas.boundingBox();
+    await canvas.hover({ position: { x: box.width * 0.5, y: box.height * 0.4 } });
+    await frame.waitForFunction(() => /^Z -?\d+\.\d{3} {2}X Ø-?\d+\.\d{3}$/.test(document.getElementById('toolpath').dataset.readout || ''));
+    const d = await canvas.evaluate((c) => ({ ...c.dataset }));
+    const shown = await frame.locator('#readout').innerText();
+    const fill = await frame.evaluate(() => window.toolpathProbe.fill());
+    const filled = Math.max(...fill);
+    record('toolpath axes', shown === d.readout && filled > 0.9,
+      `axes ${d.axes}, grid step ${d.gridStep}, scale bar ${d.scaleBar}, origin at ${d.origin}; readout "${shown}"; fit fills ${fill.map((f) => f.toFixed(2)).join(' x ')}`);
+  } catch (e) {
+    record('toolpath axes', false, `${e.message.split('\n')[0]}; ${JSON.stringify(await canvas.evaluate((c) => ({ ...c.dataset })).catch(() => ({})))}`);
+  }
+  try {
+    const at = await frame.evaluate((line) => {
+      const p = window.toolpathProbe.segmentOfLine(line);
+      const b = document.getElementById('toolpath').getBoundingClientRect();
+      return { x: p.x - b.left, y: p.y - b.top };
+    }, CLICK_LINE - 1);
+    await canvas.hover({ position: at });
+    await frame.waitForFunction((line) => document.getElementById('toolpath').dataset.tooltipLine === String(line)
+      && /G0\d · /.test(document.getElementById('tooltip').innerText)
+      && document.getElementById('tooltip').innerText.split('\n').length >= 3, CLICK_LINE);
+    const tip = await frame.locator('#tooltip').innerText();
+    record('toolpath tooltip', await frame.locator('#tooltip').isVisible(), tip.replace(/\n/g, ' | '));
+    await shot('toolpath-tooltip.png');
+  } catch (e) {
+    record('toolpath tooltip', false, `${e.message.split('\n')[0]}; ${JSON.stringify(await frame.locator('#tooltip').innerText().catch(() => ''))}`);
+    await shot('toolpath-tooltip.png');
+  }
+  try {
+    const status = await frame.evaluate(() => {
+      const s = document.getElementById('status');
+      return {
+        notes: [...s.querySelectorAll('li')].map((li) => li.innerText),
+        wraps: getComputedStyle(s.querySelector('li') || s).whiteSpace !== 'nowrap',
+        cut: [...s.querySelectorAll('li')].some((li) => li.scrollWidth > li.clientWidth + 1),
+      };
+    });
+    const unit = status.notes.find((n) => n.startsWith('assumed mm')) || '';
+    record('toolpath status', status.notes.length >= 3 && status.wraps && !status.cut && unit !== '',
+      `${status.notes.length} notes, wrapped ${status.wraps}: ${status.notes.slice(0, 4).join(' | ')}`);
+  } catch (e) {
+    record('toolpath status', false, e.message.split('\n')[0]);
+  }
+  try {
+    const themed = await frame.evaluate(() => {
+      const style = (id) => getComputedStyle(document.getElementById(id));
+      const variable = (name) => {
+        const probe = document.createElement('div');
+        probe.style.backgroundColor = `var(${name})`;
+        document.body.append(probe);
+        const value = getComputedStyle(probe).backgroundColor;
+        probe.remove();
+        return value;
+      };
+      return {
+        dark: document.body.classList.contains('vscode-dark'),
+        fit: style('fit').backgroundColor,
+        button: variable('--vscode-button-background'),
+        select: style('view').backgroundColor,
+        dropdown: variable('--vscode-dropdown-background'),
+        next: style('next').backgroundColor,
+        secondary: variable('--vscode-button-secondaryBackground'),
+      };
+    });
+    const ok = themed.fit === themed.button && themed.select === themed.dropdown && themed.next === themed.secondary
+      && themed.fit !== 'rgba(0, 0, 0, 0)' && themed.select !== 'rgb(255, 255, 255)' === themed.dark;
+    record('toolpath themed controls', ok, JSON.stringify(themed));
+  } catch (e) {
+    record('toolpath themed controls', false, e.message.split('\n')[0]);
+  }
+  // In a dark theme the controls and the drawing turn dark with the workbench: VS Code's command
+  // that toggles between the light and the dark theme, twice.
+  const toggle = async (dark) => {
+    await runCommand('Preferences: Toggle between Light/Dark Themes');
+    await frame.waitForFunction((want) => document.body.classList.contains(want ? 'vscode-dark' : 'vscode-light'), dark);
+  };
+  const wasDark = await frame.evaluate(() => document.body.classList.contains('vscode-dark'));
+  try {
+    await toggle(!wasDark);
+    const theme = await frame.evaluate(() => {
+      const luminance = (colour) => {
+        const [r, g, b] = (colour.match(/\d+(\.\d+)?/g) || ['255', '255', '255']).map(Number);
+        return 0.2126 * r + 0.7152 * g + 0.0722 * b;
+      };
+      const style = (id) => getComputedStyle(document.getElementById(id));
+      const page = luminance(getComputedStyle(document.body).backgroundColor) < 128;
+      return { select: style('view').backgroundColor, next: style('next').backgroundColor, page: getComputedStyle(document.body).backgroundColor,
+        selectDark: luminance(style('view').backgroundColor) < 96, nextDark: luminance(style('next').backgroundColor) < 128, pageDark: page };
+    });
+    await frame.waitForFunction(() => Number(document.getElementById('toolpath').dataset.pieces) > 0);
+    await shot(wasDark ? 'toolpath-light.png' : 'toolpath-dark.png');
+    const follows = theme.selectDark === !wasDark && theme.nextDark === !wasDark && theme.pageDark === !wasDark;
+    record('toolpath theme switched', follows, `${wasDark ? 'dark -> light' : 'light -> dark'}: ${JSON.stringify(theme)}`);
+  } catch (e) {
+    record('toolpath theme switched', false, e.message.split('\n')[0]);
+    await shot('toolpath-dark.png');
+    await page.keyboard.press('Escape');
+  }
+  try {
+    if ((await frame.evaluate(() => document.body.classList.contains('vscode-dark'))) !== wasDark) await toggle(wasDark);
+  } catch (e) {
+    record('toolpath theme restored', false, e.message.split('\n')[0]);
+  }
+  await page.mouse.move(5, 5);
+  await editor.click({ position: { x: 200, y: 10 } });
+}
+
+// Playback: back to the start, then one block at a time: the step count goes up, the tool is
+// drawn where the block ends, and the editor's cursor follows the block.
+async function checkStepping(frame) {
+  const canvas = frame.locator('canvas#toolpath');
+  const data = () => canvas.evaluate((c) => ({ ...c.dataset }));
+  try {
+    await frame.locator('#start').click();
+    await frame.waitForFunction(() => document.getElementById('toolpath').dataset.stepIndex === '0');
+    await frame.locator('#next').click();
+    await frame.waitForFunction(() => document.getElementById('toolpath').dataset.stepIndex === '1');
+    const one = await data();
+    await frame.locator('#next').click();
+    await frame.waitForFunction(() => document.getElementById('toolpath').dataset.stepIndex === '2');
+    const two = await data();
+    // The editor's cursor follows the block of the step (its line number marked active).
+    const want = await frame.evaluate(() => window.toolpathProbe.stepLine());
+    await editor.locator('.line-numbers.active-line-number', { hasText: new RegExp(`^${want}$`) }).waitFor();
+    await shot('toolpath-step.png');
+    record('toolpath stepping', one.tool !== '' && one.toolAt !== two.toolAt && Number(two.steps) > 2,
+      `step 1 of ${one.steps}: tool ${one.tool} at ${one.toolAt}; step 2: at ${two.toolAt}, editor's cursor at Ln ${await editorCursorLine()}`);
+    await frame.locator('#end').click();
+    await frame.waitForFunction(() => document.getElementById('toolpath').dataset.stepIndex === document.getElementById('toolpath').dataset.steps);
+  } catch (e) {
+    record('toolpath stepping', false, `${e.message.split('\n')[0]}; ${JSON.stringify(await data().catch(() => ({})))}`);
+    await shot('toolpath-step.png');
+  }
+  try {
+    await frame.locator('#view').selectOption('3D');
+    await frame.waitForFunction(() => document.getElementById('toolpath').dataset.axes === '3D'
+      && Number(document.getElementById('toolpath').dataset.pieces) > 0);
+    await shot('toolpath-3d.png');
+    record('toolpath 3D', true, `pieces ${(await data()).pieces}`);
+    await frame.locator('#view').selectOption('XZ');
+    await frame.waitForFunction(() => document.getElementById('toolpath').dataset.axes === 'Z,X');
+  } catch (e) {
+    record('toolpath 3D', false, e.message.split('\n')[0]);
+  }
+}
+
+/** "Show Toolpath" for the active editor; resolves with the view's frame once `ready` holds. */
+async function showToolpath(ready, arg) {
+  await runCommand('FANUC Macro: Show Toolpath');
+  const frame = await frameWith('canvas#toolpath');
+  await frame.waitForFunction(ready, arg, { timeout: STEP_MS });
+  return frame;
+}
+
+// A threading program shows its thread's simulated cross-section and its stock; an untitled
+// program that makes no move says why nothing is drawn; a mill's helical bore and drilling cycle
+// are drawn in 3D. Then the view is on the seed again, for the debugger's check.
+async function checkToolpathPrograms() {
+  const THREAD_FILE = 'o4009_external_m50x3.nc';
+  await editor.click({ position: { x: 200, y: 10 } });
+  try {
+    await openFile(THREAD_FILE);
+    const frame = await showToolpath(() => Number(document.getElementById('toolpath').dataset.threads) > 0
+      && document.getElementById('toolpath').dataset.stock !== '');
+    const d = await frame.locator('canvas#toolpath').evaluate((c) => ({ ...c.dataset }));
+    record('toolpath thread section', true, `threads ${d.threads}, stock ${d.stock}, tool ${d.tool}, segments ${d.segments}`);
+    await shot('toolpath-thread.png');
+  } catch (e) {
+    record('toolpath thread section', false, e.message.split('\n')[0]);
+    await shot('toolpath-thread.png');
+  }
+  const input = page.locator('.quick-input-widget input');
+  const untitled = async (lines) => {
+    await runCommand('File: New Untitled Text File');
+    await page.locator('.editor-group-container.active .tab.active', { hasText: 'Untitled' }).first().waitFor();
+    await runCommand('Change Language Mode');
+    await page.waitForFunction(
+      () => /language/i.test(document.querySelector('.quick-input-widget input')?.getAttribute('placeholder') || ''),
+      null,
+      { timeout: STEP_MS },
+    );
+    await input.fill('FANUC Macro B');
+    await page.locator('.quick-input-list .monaco-list-row', { hasText: 'FANUC Macro B' }).first().waitFor();
+    await page.keyboard.press('Enter');
+    await waitActiveEditor('Untitled', 'FANUC Macro B');
+    const active = page.locator('.editor-group-container.active .editor-instance .monaco-editor').first();
+    await active.click({ position: { x: 200, y: 10 } });
+    for (const [i, line] of lines.entries()) {
+      await page.keyboard.type(line);
+      await page.keyboard.press('Escape');
+      if (i < lines.length - 1) await page.keyboard.press('Enter');
+    }
+  };
+  const close = async () => {
+    if (await page.locator('.editor-group-container.active .tab.active', { hasText: 'Untitled' }).count()) {
+      await runCommand('View: Revert and Close Editor').catch(() => {});
+    }
+  };
+  try {
+    await untitled(['O7100', '#1=2', 'M30']);
+    const frame = await showToolpath(() => document.getElementById('toolpath').dataset.empty === '1');
+    const said = await frame.locator('#empty').innerText();
+    record('toolpath empty state', await frame.locator('#empty').isVisible() && /no move/.test(said), said.replace(/\n/g, ' | '));
+    await shot('toolpath-empty.png');
+  } catch (e) {
+    record('toolpath empty state', false, e.message.split('\n')[0]);
+    await shot('toolpath-empty.png');
+  }
+  await close();
+  try {
+    await untitled(['O7200', 'G17 G21 G90 G54', 'G43 H1 Z20.', 'G00 X10. Y0', 'Z2.', 'G01 Z0 F300', 'G03 I-10. Z-2.',
+      'G03 I-10. Z-4.', 'G03 I-10.', 'G00 Z20.', 'G81 X0 Y20. Z-10. R2. F100', 'G80', 'M30']);
+    const frame = await showToolpath(() => Number(document.getElementById('toolpath').dataset.segments) > 100);
+    await frame.locator('#view').selectOption('3D');
+    await frame.waitForFunction(() => document.getElementById('toolpath').dataset.axes === '3D');
+    await shot('toolpath-helix-3d.png');
+    await frame.locator('#view').selectOption('XY');
+    await frame.waitForFunction(() => document.getElementById('toolpath').dataset.axes === 'X,Y');
+    const d = await frame.locator('canvas#toolpath').evaluate((c) => ({ ...c.dataset }));
+    await shot('toolpath-helix-xy.png');
+    record('toolpath mill', d.units === 'mm' && d.tool.startsWith('cylinder'), `segments ${d.segments}, units ${d.units}, tool ${d.tool}`);
+  } catch (e) {
+    record('toolpath mill', false, e.message.split('\n')[0]);
+    await shot('toolpath-helix-3d.png');
+  }
+  await close();
+  try {
+    await openFile(FILE);
+    await showToolpath(() => document.getElementById('toolpath').dataset.empty === '0'
+      && Number(document.getElementById('toolpath').dataset.segments) > 0 && document.getElementById('toolpath').dataset.threads === '0'
+      && document.getElementById('toolpath').dataset.axes === 'Z,X');
+  } catch (e) {
+    record('toolpath back on the seed', false, e.message.split('\n')[0]);
+  }
+  // The mouse away from the tabs, whose hover would cover the editor's first line.
+  await page.mouse.move(5, 5);
+  await page.keyboard.press('Escape');
 }
 
 // Navigation in an untitled program typed in (no seed has a WHILE loop), closed unsaved after:
@@ -963,6 +1214,7 @@ try {
   await checkNavigation();
   await checkTokensAndLenses();
   await checkToolpath();
+  await checkToolpathPrograms();
   await checkTrace();
   await checkDebug();
   await checkGenerators();
