@@ -102,7 +102,7 @@ function readColours(): Colours {
   return {
     foreground: themeColour('--vscode-editor-foreground', '#333333'),
     muted: themeColour('--vscode-descriptionForeground', '#808080'),
-    grid: themeColour('--vscode-editorIndentGuide-background1', themeColour('--vscode-editorIndentGuide-background', '#80808040')),
+    grid: themeColour('--vscode-editorLineNumber-foreground', '#808080'),
     axis: themeColour('--vscode-editorLineNumber-activeForeground', '#808080'),
     background: themeColour('--vscode-editor-background', '#ffffff'),
     ruler: themeColour('--vscode-editorGutter-background', themeColour('--vscode-editor-background', '#ffffff')),
@@ -256,7 +256,9 @@ function paintGrid(t: Transform, axes: [Axis, Axis]): void {
   context.strokeStyle = colours.grid;
   context.lineWidth = 1;
   context.setLineDash([]);
+  context.globalAlpha = 0.28;
   context.stroke(grid);
+  context.globalAlpha = 1;
   canvas.dataset.gridStep = String(Number((stepH * axes[0].factor).toPrecision(6)));
   // The origin: the work's zero. On a lathe, the horizontal axis is the spindle's centre line.
   const [ox, oy] = toScreen(t, 0, 0);
@@ -683,8 +685,9 @@ function showEmpty(reason: string, name: string): void {
 window.addEventListener('message', (event: MessageEvent<Incoming>) => {
   const message = event.data;
   if (message.type === 'data') {
-    const first = data === undefined;
     const lathe = message.data.lathe;
+    // Another program, or the same one read on another machine: its own view, fitted.
+    const first = data === undefined || message.title !== title || lathe !== data.lathe;
     let unpacked: Segments;
     try {
       unpacked = toSegments(message.data);
@@ -692,7 +695,7 @@ window.addEventListener('message', (event: MessageEvent<Incoming>) => {
       summary.textContent = `${message.title}: ${err instanceof Error ? err.message : String(err)}`;
       return;
     }
-    const wasAtEnd = segments === undefined || position >= segments.count;
+    const wasAtEnd = first || segments === undefined || position >= segments.count;
     data = message.data;
     segments = unpacked;
     title = message.title;
