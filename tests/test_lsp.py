@@ -811,7 +811,7 @@ async def test_toolpath_command_gives_the_views_segments(client: LanguageClient)
         ),
         WAIT,
     )
-    assert isinstance(result, dict) and result["lathe"] is True and result["format"] == 2
+    assert isinstance(result, dict) and result["lathe"] is True and result["format"] == 3
     segments = unpacked(result)  # base64 of little-endian typed arrays
     thread = result["kinds"].index("thread")
     cuts = [i for i, k in enumerate(segments["kind"]) if k == thread]
@@ -824,6 +824,9 @@ async def test_toolpath_command_gives_the_views_segments(client: LanguageClient)
     assert segments["end"][first][2] == pytest.approx(-54.036)
     # The pass's infeed ends where the thread starts: they share the point.
     assert segments["point"][first] == segments["point"][first - 1] + 1
+    # The pass's block for its tooltip, and the thread's cut for the view's cross-section.
+    assert segments["block_code"][segments["motion"][first]] == "G92"
+    assert result["threads"][0]["name"].startswith("M50x3") and result["threads"][0]["profile"]
     none = await asyncio.wait_for(
         client.workspace_execute_command_async(
             types.ExecuteCommandParams(command="fanuc-macro.toolpath", arguments=[])

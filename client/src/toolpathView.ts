@@ -43,6 +43,20 @@ export function toolpathError(answer: unknown): string | undefined {
   return undefined;
 }
 
+/**
+ * What the page is sent for the server's answer: the data to draw, why nothing is drawn (a
+ * program that makes no move is not a failure), or the error.
+ */
+export function toolpathMessage(
+  answer: unknown,
+  title: string,
+): { type: 'data'; data: unknown; title: string } | { type: 'empty'; reason: string; title: string } | { type: 'error'; message: string } {
+  const error = toolpathError(answer);
+  if (error === undefined) return { type: 'data', data: answer, title };
+  const empty = answer !== null && typeof answer === 'object' && (answer as { empty?: unknown }).empty === true;
+  return empty ? { type: 'empty', reason: error, title } : { type: 'error', message: `${title}: ${error}` };
+}
+
 /** A script nonce of the page's content security policy: 128 random bits. */
 const nonce = (): string => randomBytes(16).toString('hex');
 
@@ -202,17 +216,8 @@ export class ToolpathPanel {
       answer = { error: err instanceof Error ? err.message : String(err) };
     }
     if (asked !== this.asked) return; // a newer request is on its way
-    const error = toolpathError(answer);
     const title = ToolpathPanel.title(this.document).replace(/^Toolpath: /, '');
-    // A program that makes no move is not a failure: the view says why nothing is drawn.
-    const empty = error !== undefined && answer !== null && typeof answer === 'object' && (answer as { empty?: unknown }).empty === true;
-    await this.panel.webview.postMessage(
-      error === undefined
-        ? { type: 'data', data: answer, title }
-        : empty
-          ? { type: 'empty', reason: error, title }
-          : { type: 'error', message: `${title}: ${error}` },
-    );
+    await this.panel.webview.postMessage(toolpathMessage(answer, title));
     if (this.stoppedLine !== undefined) {
       await this.panel.webview.postMessage({ type: 'cursor', line: this.stoppedLine });
       return;

@@ -14,7 +14,7 @@ import {
   viewAxes,
 } from '../webview/backplot';
 import { fit, projection, toScreen, toSegments, trace, type PathSink } from '../webview/toolpathGeometry';
-import { toolpathHtml } from '../src/toolpathView';
+import { toolpathHtml, toolpathMessage } from '../src/toolpathView';
 import { LATHE, packed } from './toolpathFixtures';
 
 class Counter implements PathSink {
@@ -208,6 +208,20 @@ describe('tooltip and status', () => {
     const stated = statusNotes({ ...data, units_stated: true }, s, 'radius');
     assert.equal(stated[0], '4 segments, mm');
     assert.ok(stated.includes('X shown as a radius (the program writes diameters)'));
+  });
+});
+
+describe('the page\'s messages', () => {
+  it('tells a program that makes no move from a failure', () => {
+    const reason = 'the program makes no move: no block of it that runs moves an axis';
+    assert.deepEqual(toolpathMessage({ error: reason, empty: true }, 'o1.nc'), { type: 'empty', reason, title: 'o1.nc' });
+    assert.deepEqual(toolpathMessage({ error: 'fanuc-macro.toolpath failed' }, 'o1.nc'), {
+      type: 'error',
+      message: 'o1.nc: fanuc-macro.toolpath failed',
+    });
+    assert.equal(toolpathMessage(null, 'o1.nc').type, 'error');
+    const data = packed(LATHE, [0], [0], [0], [0, 0, 0, 1, 0, 0], [0]);
+    assert.deepEqual(toolpathMessage(data, 'o1.nc'), { type: 'data', data, title: 'o1.nc' });
   });
 });
 
