@@ -5,8 +5,8 @@ comments (FANUC 0i-TF / 0i-MF operator's manuals), or the seed papers' (thread-m
 from __future__ import annotations
 
 import math
-from typing import Any
 from pathlib import Path
+from typing import Any
 
 import pytest
 from hypothesis import given, settings
@@ -941,7 +941,9 @@ def test_the_view_says_when_it_assumes_the_unit_and_why() -> None:
     large = _view(program("G00 X80. Z2.", "G01 Z-120. F0.2"))
     assert large["units_stated"] is False and "inches" not in large["units_note"]
     # A G20 in a comment states nothing; G20 in a block does.
-    assert _view(program("(G20 NOT HERE)", "G00 X1. Z0.1", "G01 Z-1. F0.004"))["units_stated"] is False
+    assert (
+        _view(program("(G20 NOT HERE)", "G00 X1. Z0.1", "G01 Z-1. F0.004"))["units_stated"] is False
+    )
     stated = _view(program("G20", "G00 X1. Z0.1", "G01 Z-1. F0.004"))
     assert stated["units"] == "inch" and stated["units_stated"] is True
 
@@ -974,3 +976,21 @@ def test_a_program_with_no_move_says_why_nothing_is_drawn() -> None:
     assert nothing["empty"] is True and nothing["error"].startswith("the program makes no move")
     blank = _view("\n")
     assert blank["empty"] is True and "holds no blocks" in blank["error"]
+
+
+def test_the_view_gives_the_first_threads_cut_not_every_one() -> None:
+    from fanuc_macro.generators.drum_groove_generator import build_drum_groove
+    from fanuc_macro.ide.toolpath_view import MAX_VIEW_THREADS
+
+    # Seed 003's drum groove: every chained G32 segment a one-pass thread to the rules.
+    text = build_drum_groove(None, 12.0, layers=2, cuts_per_layer=2).text
+    data = _view(text)
+    names = [t["name"] for t in data["threads"]]
+    assert len(names) == MAX_VIEW_THREADS
+    # In the order the run cut them: the first thread's first pass first.
+    lines = [t["line"] for t in data["threads"]]
+    assert lines[0] == min(
+        unpacked(data)["line"][i]
+        for i, k in enumerate(unpacked(data)["kind"])
+        if data["kinds"][k] == "thread"
+    )

@@ -55,6 +55,11 @@ MAX_VIEW_PATHS = 0xFFFF + 1
 ARC_DECIMALS = 4
 
 
+# The threads whose cross-section the view is given: the first ones the run cuts. Their chains
+# (threads/cross_section.thread_chains) are worked out among these alone: the 11,988 one-pass
+# jobs of seed 003's drum groove took minutes to chain.
+MAX_VIEW_THREADS = 8
+
 # The longest a path may be across, with no unit stated, before the view says its sizes look like
 # inches: a part of 12 mm is a small one, of 12 inches an ordinary one.
 INCH_LOOKING_SPAN = 12.0
@@ -491,7 +496,8 @@ def toolpath_view(
     threads: list[Thread] = []
     doc_facts = facts.by_uri.get(uri)
     if doc_facts is not None and any(m.kind == "thread" for m in toolpath.moves):
-        threads = identify(doc, index, doc_facts, facts.motions, facts.run_values)
+        found = identify(doc, index, doc_facts, facts.motions, facts.run_values)
+        threads = found[:MAX_VIEW_THREADS]
     stated = units_stated([doc, *(d for _u, d, _i in others)])
     with quiet_gc():  # the arcs' points in lists and no cycles: the collector only rescans
         return view_data(toolpath, uri, facts, stated, threads, pass_maps(threads, index))
