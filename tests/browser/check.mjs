@@ -418,10 +418,13 @@ async function checkToolpathPrograms() {
     await frame.locator('#view').selectOption('3D');
     await frame.waitForFunction(() => document.getElementById('toolpath').dataset.axes === '3D');
     await shot('toolpath-helix-3d.png');
-    await frame.locator('#view').selectOption('XY');
-    await frame.waitForFunction(() => document.getElementById('toolpath').dataset.axes === 'X,Y');
+    // Each plane of the mill, its axes named as seen from +Z, -Y and +X.
+    for (const [plane, axes] of [['XZ', 'X,Z'], ['YZ', 'Y,Z'], ['XY', 'X,Y']]) {
+      await frame.locator('#view').selectOption(plane);
+      await frame.waitForFunction((want) => document.getElementById('toolpath').dataset.axes === want, axes);
+      await shot(`toolpath-helix-${plane.toLowerCase()}.png`);
+    }
     const d = await frame.locator('canvas#toolpath').evaluate((c) => ({ ...c.dataset }));
-    await shot('toolpath-helix-xy.png');
     record('toolpath mill', d.units === 'mm' && d.tool.startsWith('cylinder'), `segments ${d.segments}, units ${d.units}, tool ${d.tool}`);
   } catch (e) {
     record('toolpath mill', false, e.message.split('\n')[0]);
