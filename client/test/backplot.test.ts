@@ -3,6 +3,7 @@ import { describe, it } from 'node:test';
 import {
   blockSteps,
   niceStep,
+  positionAtLine,
   readout,
   scaleBar,
   statusNotes,
@@ -141,6 +142,17 @@ describe('playback', () => {
     assert.equal(stepOf(steps, 1), 1);
     assert.equal(stepOf(steps, 2), 1);
     assert.equal(stepOf(steps, 3), 2);
+  });
+  it('goes to the cursor\'s block: its next execution, else its first, not away from a step', () => {
+    // Blocks on lines 3, 4, 5, 4 (a loop runs line 4 twice), one segment each.
+    const p = [0, 0, 0, 1, 0, 0, 2, 0, 0, 3, 0, 0, 4, 0, 0];
+    const s = toSegments(packed({ ...LATHE, lathe: false }, [1, 1, 1, 1], [3, 4, 5, 4], [0, 0, 0, 0], p, [0, 1, 2, 3], [0, 1, 2, 3]));
+    const steps = blockSteps(s);
+    assert.equal(positionAtLine(s, steps, 0, 4), 2); // the first execution of line 4
+    assert.equal(positionAtLine(s, steps, 3, 4), 4); // from after line 5: its second one
+    assert.equal(positionAtLine(s, steps, 4, 5), 3); // none after: the first
+    assert.equal(positionAtLine(s, steps, 2, 4), 2); // the playback's own block: it stays
+    assert.equal(positionAtLine(s, steps, 1, 9), 1); // a line with no move
   });
   it('steps by line and file where a segment has no motion record', () => {
     const p = [0, 0, 0, 1, 0, 0, 2, 0, 0, 3, 0, 0];

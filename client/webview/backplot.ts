@@ -117,6 +117,27 @@ export function stepOf(steps: Int32Array, index: number): number {
   return lo;
 }
 
+/**
+ * Where the playback goes when the editor's cursor moves to `line` (of the view's own file):
+ * past the next execution of that block after `position`, else its first one; `position` as it
+ * is when the block is the one the playback is at (the editor following a step) or has no
+ * segment.
+ */
+export function positionAtLine(segments: Segments, steps: Int32Array, position: number, line: number): number {
+  if (position > 0) {
+    const at = steps[stepOf(steps, position - 1)]!;
+    if (segments.path[at] === 0 && segments.line[at] === line) return position;
+  }
+  let first = -1;
+  for (let k = 0; k < steps.length - 1; k++) {
+    const i = steps[k]!;
+    if (segments.path[i] !== 0 || segments.line[i] !== line) continue;
+    if (i >= position) return steps[k + 1]!;
+    if (first < 0) first = steps[k + 1]!;
+  }
+  return first < 0 ? position : first;
+}
+
 /** A point of the world: x, y, z (a lathe's X as the radius drawn). */
 export type Point3 = [number, number, number];
 

@@ -7,6 +7,7 @@
 import {
   blockSteps,
   niceStep,
+  positionAtLine,
   readout,
   scaleBar,
   statusNotes,
@@ -725,6 +726,11 @@ window.addEventListener('message', (event: MessageEvent<Incoming>) => {
     summary.title = message.message;
   } else if (message.type === 'cursor') {
     cursorLine = message.line;
+    // While the program is played back, the tool goes to the cursor's block.
+    if (segments !== undefined && position < segments.count && !playing) {
+      position = positionAtLine(segments, steps, position, message.line);
+      showStep(false);
+    }
     draw();
   } else if (message.type === 'blockText') {
     blockTexts.set(`${message.path ?? ''}:${message.line}`, message.text);
