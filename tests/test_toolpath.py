@@ -971,6 +971,34 @@ def test_the_view_gives_the_stock_the_tool_and_the_threads_cross_section() -> No
     assert thread["band"] is not None and thread["band"][0] < thread["band"][1] < 50.0
 
 
+def test_the_stock_diameter_setting_gives_the_bar_the_view_draws() -> None:
+    """A shop's bar (fanuc-macro.view.stockDiameter, [view] stock-diameter) over the program's
+    blank; along Z, the cuts' length as without it; a mill draws no bar."""
+    from dataclasses import replace
+
+    from fanuc_macro.ide.toolpath_view import toolpath_view
+
+    file = SEEDS / "o4009_external_m50x3.nc"
+    doc = parse_text(file.read_text("utf-8"), "t.nc")
+    index = build_index(doc)
+    plain = toolpath_view("t.nc", doc, index, config=LATHE)
+    bar = toolpath_view("t.nc", doc, index, config=replace(LATHE, stock_diameter=55.0))
+    assert "error" not in plain and "error" not in bar
+    assert plain["stock"] is not None and bar["stock"] is not None
+    assert bar["stock"]["diameter"] == 55.0 and "stockDiameter" in bar["stock"]["source"]
+    assert (bar["stock"]["front"], bar["stock"]["back"]) == (
+        plain["stock"]["front"],
+        plain["stock"]["back"],
+    )
+    assert Config.from_settings({"view": {"stockDiameter": 42}}).stock_diameter == 42.0
+    assert Config.from_settings({}).stock_diameter == math.inf
+    mill = _view(
+        "O1\nG90 G17 G54\nG00 X0 Y0 Z5.\nG01 Z-1. F100\nX20. Y10.\nM30\n",
+        replace(LATHE, stock_diameter=55.0),
+    )
+    assert mill["lathe"] is False and mill["stock"] is None
+
+
 def test_a_program_with_no_move_says_why_nothing_is_drawn() -> None:
     nothing = _view("O1\n#1 = 2\nM30\n")
     assert nothing["empty"] is True and nothing["error"].startswith("the program makes no move")

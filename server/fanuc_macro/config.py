@@ -64,6 +64,9 @@ class Config:
     # Hovers show values at the least input increment (0.001 mm, 0.0001 inch); with this set,
     # in full (the 8 digits the control keeps). No verdict depends on it.
     hover_full_precision: bool = False
+    # The bar the Toolpath view draws on a lathe, in the program's unit (setting
+    # view.stockDiameter): the program's when not set (a stock removal cycle's start, a blank).
+    stock_diameter: float = NOT_SET
     # Set when the machine was read from the document (controller 0i-F): why it is a lathe or
     # a mill, or why neither could be told; then ``machine_known`` is False, the document is
     # read as a lathe (the 0i-TF) and the verdicts that depend on the machine are not given.
@@ -124,6 +127,7 @@ class Config:
         rules = settings.get("rules") or {}
         analysis = settings.get("analysis") or {}
         hover = settings.get("hover") or {}
+        view = settings.get("view") or {}
         severities: dict[str, Severity] = {}
         for code, value in (rules.get("severity") or {}).items():
             try:
@@ -154,6 +158,7 @@ class Config:
             max_blocks=int(_number(analysis.get("maxBlocks"), default.max_blocks)),
             max_file_size=int(_number(analysis.get("maxFileSize"), default.max_file_size)),
             hover_full_precision=hover.get("fullPrecision") is True,
+            stock_diameter=_number(view.get("stockDiameter"), default.stock_diameter),
             g_code_system=system,
             custom_calls=custom_calls,
             programs_on_control=on_control,

@@ -104,6 +104,9 @@ def _keys() -> tuple[Key, ...]:
             "Characters of a file the analysis reads (MB013)."),
         Key("hover", "full-precision", "hover.fullPrecision", "boolean",
             "Hovers show values in full, not at the least input increment."),
+        Key("view", "stock-diameter", "view.stockDiameter", "number",
+            "The bar's diameter the Toolpath view draws on a lathe, in the program's unit; "
+            "the program's when not set."),
         Key("format", "upper-case", "format.upperCase", "boolean",
             "The formatter writes addresses and keywords in upper case."),
         Key("format", "space-between-words", "format.spaceBetweenWords", "string",

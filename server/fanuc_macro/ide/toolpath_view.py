@@ -103,7 +103,8 @@ class ViewLostTrack(TypedDict):
 
 
 class ViewStock(TypedDict):
-    """A lathe's bar, as the program gives it: its diameter from ``front`` to ``back`` (Z)."""
+    """A lathe's bar, as the settings or the program give it: its diameter from ``front`` to
+    ``back`` (Z)."""
 
     diameter: float
     front: float
@@ -332,6 +333,7 @@ def view_data(
     stated: bool = True,
     threads: Sequence[Thread] = (),
     maps: Sequence[PassMap] = (),
+    stock_diameter: float = math.inf,
 ) -> ToolpathViewData:
     """``{"format", "lathe", "units", "units_stated", "units_note", "kinds", "paths", "count",
     "points", "segments": {"kind", "line", "path", "point", "motion"}, "codes", "blocks":
@@ -340,7 +342,8 @@ def view_data(
     indexes ``kinds``, ``line`` (int32) is 0-based, ``path`` (uint16) indexes ``paths`` (the
     document first), ``point`` (int32) is its start, ``motion`` (int32) its record in
     ``blocks``. ``facts``: the run's (its motion records); ``stated``: whether the program
-    has G20/G21; ``threads`` and ``maps``: the threads it cuts and their pass maps."""
+    has G20/G21; ``threads`` and ``maps``: the threads it cuts and their pass maps;
+    ``stock_diameter``: the bar's diameter the settings give (inf: the program's)."""
     out, paths, count, truncated = _pack(toolpath, main_uri)
     lost: list[ViewLostTrack] = [
         {
@@ -373,7 +376,9 @@ def view_data(
         "lost": lost,
         "truncated": truncated,
         "stopped": stopped,
-        "stock": stock_of(toolpath, facts.motions if facts is not None else (), threads),
+        "stock": stock_of(
+            toolpath, facts.motions if facts is not None else (), threads, stock_diameter
+        ),
         "tool": tool_of(threads),
         "threads": [_thread(m, t) for m, t in zip(maps, _mapped(threads), strict=False)],
     }
@@ -398,13 +403,17 @@ def _thread(m: PassMap, thread: Thread) -> ViewThread:
 
 
 def stock_of(
-    toolpath: Toolpath, motions: Sequence[Motion], threads: Sequence[Thread]
+    toolpath: Toolpath,
+    motions: Sequence[Motion],
+    threads: Sequence[Thread],
+    setting: float = math.inf,
 ) -> ViewStock | None:
-    """A lathe's bar where the program gives it: the start point of its first stock removal
+    """A lathe's bar: the diameter ``setting`` gives (the setting view.stockDiameter, when
+    finite), else where the program gives it: the start point of its first stock removal
     cycle (G71-G73 start outside the blank), else the blank its first external thread is cut
     in (the diameter turned before it, or its designation's major diameter); along Z, from
     Z0 (the front of the cuts when they stay in front of it) to the cuts' end. None on a mill,
-    or when neither is."""
+    or when none is."""
     if not toolpath.lathe:
         return None
     cuts = [m for m in toolpath.moves if m.kind != "rapid"]
@@ -417,6 +426,14 @@ def stock_of(
     front = 0.0 if back < 0.0 else max(zs)
     if back >= front:
         return None
+    if 0.0 < setting < math.inf:
+        return {
+            "diameter": setting,
+            "front": front,
+            "back": back,
+            "source": "the setting fanuc-macro.view.stockDiameter",
+            "line": -1,
+        }
     for m in motions:
         if m.code in STOCK_CYCLES and m.start_x is not None and m.start_x > 0.0:
             return {
@@ -500,4 +517,5 @@ def toolpath_view(
         threads = found[:MAX_VIEW_THREADS]
     stated = units_stated([doc, *(d for _u, d, _i in others)])
     with quiet_gc():  # the arcs' points in lists and no cycles: the collector only rescans
-        return view_data(toolpath, uri, facts, stated, threads, pass_maps(threads, index))
+        stock = config.stock_diameter if config is not None else math.inf
+        return view_data(toolpath, uri, facts, stated, threads, pass_maps(threads, index), stock)
