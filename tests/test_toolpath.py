@@ -999,6 +999,28 @@ def test_the_stock_diameter_setting_gives_the_bar_the_view_draws() -> None:
     assert mill["lathe"] is False and mill["stock"] is None
 
 
+@pytest.mark.parametrize(
+    ("header", "radius"),
+    [
+        ("(T1 D=10. CR=0. - ZMIN=-5. - FLAT END MILL)", 5.0),
+        ("(TOOL - 1 DIA. OFF. - 1 LEN. - 1 DIA. - 12.)", 6.0),
+        ("(T2 Ø8 DRILL)", 4.0),
+        ("(ROUGHING, WIDTH=10)", None),
+    ],
+)
+def test_a_mills_cutter_is_drawn_at_the_diameter_its_tool_list_gives(
+    header: str, radius: float | None
+) -> None:
+    mill = _view(f"O1\n{header}\nG90 G17 G54\nG00 X0 Y0 Z5.\nG01 Z-1. F100\nX20. Y10.\nM30\n")
+    assert mill["lathe"] is False
+    tool = mill["tool"]
+    if radius is None:
+        assert tool is None
+    else:
+        assert tool is not None and tool["radius"] == radius and tool["line"] == 1
+        assert tool["source"] == "the diameter in the comment at line 2"
+
+
 def test_a_program_with_no_move_says_why_nothing_is_drawn() -> None:
     nothing = _view("O1\n#1 = 2\nM30\n")
     assert nothing["empty"] is True and nothing["error"].startswith("the program makes no move")

@@ -334,6 +334,7 @@ def view_data(
     threads: Sequence[Thread] = (),
     maps: Sequence[PassMap] = (),
     stock_diameter: float = math.inf,
+    main_doc: Document | None = None,
 ) -> ToolpathViewData:
     """``{"format", "lathe", "units", "units_stated", "units_note", "kinds", "paths", "count",
     "points", "segments": {"kind", "line", "path", "point", "motion"}, "codes", "blocks":
@@ -343,7 +344,8 @@ def view_data(
     document first), ``point`` (int32) is its start, ``motion`` (int32) its record in
     ``blocks``. ``facts``: the run's (its motion records); ``stated``: whether the program
     has G20/G21; ``threads`` and ``maps``: the threads it cuts and their pass maps;
-    ``stock_diameter``: the bar's diameter the settings give (inf: the program's)."""
+    ``stock_diameter``: the bar's diameter the settings give (inf: the program's);
+    ``main_doc``: the document, whose comments may give a mill's cutter."""
     out, paths, count, truncated = _pack(toolpath, main_uri)
     lost: list[ViewLostTrack] = [
         {
@@ -379,7 +381,7 @@ def view_data(
         "stock": stock_of(
             toolpath, facts.motions if facts is not None else (), threads, stock_diameter
         ),
-        "tool": tool_of(threads),
+        "tool": tool_of(threads) if toolpath.lathe else cutter_of(main_doc),
         "threads": [_thread(m, t) for m, t in zip(maps, _mapped(threads), strict=False)],
     }
 
@@ -481,6 +483,33 @@ def tool_of(threads: Sequence[Thread]) -> ViewTool | None:
     return None
 
 
+# A cutter's diameter as CAM posts write it in the tool list at a program's head: Fusion 360
+# and HSM "(T1 D=10. CR=0. - ZMIN=-5. - FLAT END MILL)", Mastercam "(TOOL - 1 DIA. OFF. - 1
+# LEN. - 1 DIA. - 10.)", or a diameter sign "(T2 Ø8 DRILL)". For the drawing only: no verdict
+# reads it.
+_CUTTER_DIAMETER = re.compile(
+    r"(?:\bD\s*=\s*|\bDIA\.\s*-\s*|[Ø⌀]\s*)(\d+(?:\.\d*)?|\.\d+)", re.IGNORECASE
+)
+
+
+def cutter_of(doc: Document | None) -> ViewTool | None:
+    """A mill's cutter where the program's comments give its diameter (the first tool of its
+    tool list); None when none does."""
+    if doc is None:
+        return None
+    for block in doc.blocks:
+        for comment in block.parsed.comments:
+            found = _CUTTER_DIAMETER.search(comment.text)
+            if found is not None and float(found[1]) > 0.0:
+                return {
+                    "radius": float(found[1]) / 2.0,
+                    "angle": 0.0,
+                    "source": f"the diameter in the comment at line {block.line + 1}",
+                    "line": block.line,
+                }
+    return None
+
+
 def empty_reason(doc: Document, facts: Facts) -> str:
     """Why a run draws nothing, in the words the view shows."""
     if not any(b.parsed.statement is not None for b in doc.blocks):
@@ -518,4 +547,5 @@ def toolpath_view(
     stated = units_stated([doc, *(d for _u, d, _i in others)])
     with quiet_gc():  # the arcs' points in lists and no cycles: the collector only rescans
         stock = config.stock_diameter if config is not None else math.inf
-        return view_data(toolpath, uri, facts, stated, threads, pass_maps(threads, index), stock)
+        maps = pass_maps(threads, index)
+        return view_data(toolpath, uri, facts, stated, threads, maps, stock, doc)
