@@ -115,14 +115,25 @@ def test_code_action_closes_the_loop_and_names_its_problem() -> None:
 
 
 def test_inlay_hints_and_symbols_are_plain_data() -> None:
-    view = view_of(MAIN)
+    text = MAIN.replace("#1=2.5", "#1=5./2.")
+    view = view_of(text)
     (hint,) = inlay_hints(view, 0, 10)
-    assert hint.position == Position(1, len("#1=2.5"))
+    assert hint.position == Position(1, len("#1=5./2."))
     assert hint.label == "= 2.5" and hint.tooltip.startswith("#1 = ")
+    view = view_of(MAIN)
     (program,) = document_symbols(view)
     assert program.kind is SymbolKind.MAIN_PROGRAM and program.name == "O1000"
     assert [child.name for child in program.children] == ["N20"]
     assert program.children[0].kind is SymbolKind.LABEL
+
+
+def test_no_inlay_hint_repeats_a_number_the_line_shows() -> None:
+    text = (
+        "O1000\n#1=2.5\n#2=-2.5\n#3=[10]\n#4=-#1\n#5=#1*2\n"
+        "IF[#1GT0] THEN #6=7.\nIF[#1GT0] THEN #7=#6+1\nM30\n"
+    )
+    hints = {h.position.line: h.label for h in inlay_hints(view_of(text), 0, 20)}
+    assert hints == {4: "= -2.5", 5: "= 5.", 7: "= 8."}
 
 
 def test_the_ide_layer_loads_without_the_protocol() -> None:

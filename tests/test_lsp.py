@@ -557,6 +557,9 @@ async def test_inlay_hints(client: LanguageClient) -> None:
     assert labels[21] == "= 1.907"
     assert labels[35] == "= 2. → 89. ×88"
     assert 0 not in labels and 1 not in labels
+    # #100=50., #7=1., #12=8.0: the line shows the value; every other hint keeps a gap.
+    assert not {5, 24, 28} & set(labels)
+    assert all(h.padding_left for h in result)
 
 
 async def test_completion(client: LanguageClient) -> None:
