@@ -796,7 +796,7 @@ def test_hover_prints_the_editors_hover_text(tmp_path: Path) -> None:
     expected = hover(View("main.nc", analyse(CALLER, "main.nc", config), config), 3, column - 1)
     assert expected is not None
     assert result.stdout == expected.markdown + "\n"
-    assert "**#1**" in result.stdout and "Value here: **2.5**" in result.stdout
+    assert "**#1**" in result.stdout and "**#1** here: **2.5**" in result.stdout
     shown = run(tmp_path, "hover", "main.nc", "4", str(column), "--format", "json")
     assert shown.returncode == 0, shown.stderr
     record = json.loads(shown.stdout)

@@ -170,6 +170,6 @@ def test_a_custom_call_runs_its_program_from_another_file(tmp_path: Path) -> Non
     hovered = run(
         tmp_path, "hover", "--custom-call", "M165=9022", "--with", "O9022.nc", "main.nc", "4", "7"
     )
-    assert "Value here: **2.83**" in hovered.stdout
+    assert "**#100** here: **2.83**" in hovered.stdout
     plain = run(tmp_path, "hover", "--with", "O9022.nc", "main.nc", "4", "7")
-    assert "Value here: **depends on #100**" in plain.stdout
+    assert "**#100** here: **depends on #100**" in plain.stdout

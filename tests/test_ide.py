@@ -47,9 +47,9 @@ def test_hover_is_markdown_and_a_range_in_code_points() -> None:
     found = hover(view, 2, column + 1)
     assert found is not None
     assert found.range == Range(Position(2, column), Position(2, column + 2))
-    assert found.markdown.startswith("**#1** — local variable")
-    assert "set at line 2: `#1=2.5`" in found.markdown
-    assert "Value here: **2.5**" in found.markdown
+    assert found.markdown.startswith("**#1** here: **2.5**\n\n*DIA*")
+    assert "Set at line 2: `#1=2.5`" in found.markdown
+    assert found.markdown.endswith("---\n\nLocal variable of the current macro level.")
     assert hover(view, 2, 0) is not None  # G01
     assert hover(view, 99, 0) is None
 
@@ -152,8 +152,9 @@ def test_the_ide_layer_loads_without_the_protocol() -> None:
 def test_hover_names_the_nearest_assignment_before_else_the_first_after() -> None:
     text = "O1000\nG01 X#5\n#5=1.\n#5=2.\nG01 X#5\n#5=3.\nM30\nO2000\n#5=9.\nM99\n"
     view = view_of(text)
-    for line, where in ((1, "set at line 3: `#5=1.`"), (4, "set at line 4: `#5=2.`")):
+    for line, where in ((1, "Set at line 3: `#5=1.`"), (4, "Set at line 4: `#5=2.`")):
         found = hover(view, line, text.splitlines()[line].index("#5"))
         assert found is not None and where in found.markdown, (line, found)
     own = hover(view, 5, 0)
-    assert own is not None and "set here: `#5=3.`" in own.markdown
+    assert own is not None and own.markdown.startswith("**#5** = **3.**")
+    assert "Set at" not in own.markdown  # the line shows it

@@ -313,12 +313,16 @@ async def test_hover_on_an_assignment_shows_value_and_formula(client: LanguageCl
     # O3331 is called by M98 only: its locals hold no G65 arguments.
     assert "argument" not in text
     # At the control's increment, 0.001 mm, in the value and the formula.
-    assert "Value assigned: **1.907**" in text and "1.906804" not in text
-    assert "[0.875]*SIN[60]*3.-0.433+0.048/2.+0.17/4.\n= 1.907" in text
-    assert "计算外螺纹牙高" in text
-    # The paper by author and title, never the project's file number.
-    assert "Deng Ronggang (邓荣刚), 《宏指令在钼电极加工中的应用》, table 3" in text
-    assert "seed paper" not in text
+    assert "**#4** = **1.907**" in text and "1.906804" not in text
+    assert "= [0.875]*SIN[60]*3.-0.433+0.048/2.+0.17/4.\n```" in text
+    assert "h, thread height, radius — *计算外螺纹牙高*" in text
+    # The paper as a short link to its citation, never the project's file number; its
+    # formula and the variable's kind after the rule.
+    lead, more = text.split("\n\n---\n\n")
+    assert "Deng" not in lead and "[Deng Ronggang, table 3](" in more
+    assert "docs/papers.md#deng-ronggang)" in more
+    assert "7H/8 − r + es/2 + Td2/4" in more and "Local variable" in more
+    assert "seed paper" not in text and "宏指令" not in text
     # Every digit the control keeps, on request.
     client.workspace_did_change_configuration(
         types.DidChangeConfigurationParams(
@@ -330,8 +334,8 @@ async def test_hover_on_an_assignment_shows_value_and_formula(client: LanguageCl
         if "1.906804" in text:
             break
         await asyncio.sleep(0.05)
-    assert "Value assigned: **1.906804**" in text
-    assert "[0.875]*SIN[60]*3.-0.4330127+0.048/2.+0.17/4.\n= 1.906804" in text
+    assert "**#4** = **1.906804**" in text
+    assert "[0.875]*SIN[60]*3.-0.4330127+0.048/2.+0.17/4.\n```" in text
 
 
 async def test_hover_on_a_read_shows_the_values_over_the_passes(client: LanguageClient) -> None:
@@ -918,7 +922,7 @@ async def test_survives_random_bytes_and_a_huge_document(client: LanguageClient)
     text = await hover(client, "untitled:huge.nc", 5, 9)
     assert "X" in text
     uri = open_seed(client, "o4009_external_m50x3.nc")
-    assert "Value assigned: **1.907**" in await hover(client, uri, 21, 1)
+    assert "**#4** = **1.907**" in await hover(client, uri, 21, 1)
 
 
 EDIT_TEXTS = ("", "#1=", "[", "]", "\n", "\r\n", "GOTO10\n", "WHILE[#1LT3]DO1\n", "END1",
@@ -992,13 +996,13 @@ async def test_a_10_mb_document_and_a_1_mb_line_get_their_verdicts(
 ) -> None:
     await start(client, None)
     seed = open_seed(client, "o4009_external_m50x3.nc")
-    assert "Value assigned: **1.907**" in await hover(client, seed, 21, 1)
+    assert "**#4** = **1.907**" in await hover(client, seed, 21, 1)
     started = time.monotonic()
     rows = [f"G01 X{i % 97}.5 Z-{i % 89}. F0.2" for i in range(500_000)]
     open_text(client, "untitled:ten.nc", "O1000\n" + "\n".join(rows) + "\nGOTO 9\nM30\n")
     open_text(client, "untitled:line.nc", "O1000\n" + "X1.5Y2.5" * 131_072 + "\nM30\n")
     # An analysed document answers while the big ones are read (no regex holds the GIL).
-    assert "Value assigned: **1.907**" in await hover(client, seed, 21, 1)
+    assert "**#4** = **1.907**" in await hover(client, seed, 21, 1)
     # Read whole: the GOTO to no N9 in its last lines is reported, and nothing else.
     found = await diagnostics(client, "untitled:ten.nc", lambda d: "MB101" in codes(d), 120.0)
     assert codes(found) == {"MB101"} and found[0].range.start.line == 500_001
@@ -1125,7 +1129,7 @@ async def test_a_crash_is_logged_and_the_server_goes_on(client: LanguageClient) 
     edit(client, uri, 2, [replace(0, 6, 6 + len(FAULT), "FIXED")])
     await diagnostics(client, uri, lambda d: "MB000" not in codes(d))
     other = open_seed(client, "o4009_external_m50x3.nc")
-    assert "Value assigned: **1.907**" in await hover(client, other, 21, 1)
+    assert "**#4** = **1.907**" in await hover(client, other, 21, 1)
 
 
 async def raw_request(client: LanguageClient, method: str, params: dict[str, Any]) -> Any:
@@ -1246,8 +1250,11 @@ def test_knowledge_covers_lathe_and_mill_codes() -> None:
         assert knowledge.code_info("M", float(n)) is not None, n
     lathe = knowledge.code_markdown("G", 92.0, lathe=True) or ""
     mill = knowledge.code_markdown("G", 92.0, lathe=False) or ""
-    assert lathe.startswith("**G92** — Threading cycle") and "On a mill" in lathe
-    assert mill.startswith("**G92** — Workpiece coordinate system") and "On a lathe" in mill
+    assert lathe.startswith("**G92** — Threading cycle") and "On a mill" not in lathe
+    assert mill.startswith("**G92** — Workpiece coordinate system") and "On a lathe" not in mill
+    # A document read both ways (neither machine shows): both meanings.
+    both = knowledge.code_markdown("G", 92.0, lathe=True, machine_known=False) or ""
+    assert both.startswith("**G92** — Threading cycle") and "On a mill" in both
     assert "drilling" in (knowledge.code_markdown("G", 81.0, lathe=False) or "").lower()
     assert knowledge.code_name("G", 66.1) == "G66.1" and knowledge.code_name("M", 3.0) == "M03"
     names = [

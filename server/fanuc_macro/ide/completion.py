@@ -151,7 +151,10 @@ def completion(
                     CompletionKind.CODE,
                     title,
                     name,
-                    knowledge.code_markdown(letter, value, lathe, config.g_code_system) or "",
+                    knowledge.code_markdown(
+                        letter, value, lathe, config.g_code_system, config.machine_known
+                    )
+                    or "",
                     sort="0",
                 )
         if letter == "M":

@@ -11,7 +11,7 @@ from ..program import knowledge
 from ..program.arguments import ARGUMENT_LETTER, local_name
 from ..program.index import Program
 from ..program.machine_kind import machine_text
-from ..program.meanings import table_meaning
+from ..program.meanings import TableMeaning, table_meaning
 from ..program.variables import ARGUMENT_VARIABLES, classify
 from ..program.vendor_cycles import VendorCycle, known_cycle, manual_of
 from ..syntax.lines import cut_comments
@@ -24,7 +24,7 @@ from ..threads.identify import module_meanings
 from .data import Hover, Range
 from .locate import Hit, assignments_in, goto_target, number_of
 from .navigation import block_call
-from .values import Precision, code, inch_at, substituted, times, variable_kind
+from .values import Precision, code, inch_at, substituted, times
 from .view import View, comment_of, first_comment
 
 
@@ -63,7 +63,25 @@ def precision_at(view: View, line: int) -> Precision:
     return Precision(inch_at(view.doc.blocks, line), view.config.hover_full_precision)
 
 
+def with_more(lead: Sequence[str], more: Sequence[str]) -> str:
+    """A hover: what was asked, then the rest after a rule (a plain markdown reader shows the
+    rule as a line too)."""
+    text = "\n\n".join(p for p in lead if p)
+    rest = "\n\n".join(p for p in more if p)
+    return f"{text}\n\n---\n\n{rest}" if rest else text
+
+
+def _source(table: TableMeaning) -> str:
+    """The module and a short link to the paper's citation."""
+    paper = table.table.paper
+    module = table.table.module
+    where = f"[{paper.authors_short}, {table.table.where}]({paper.link})"
+    return f"{module[0].upper()}{module[1:]}: {where}."
+
+
 def hover_variable(view: View, block: Block, hit: Hit) -> str:
+    """The value at this block first, then the variable's meaning in a line, then where it is
+    set; the kind of variable, the module's formula and the paper after the rule."""
     var = hit.var
     assert var is not None
     n = number_of(var)
@@ -74,57 +92,79 @@ def hover_variable(view: View, block: Block, hit: Hit) -> str:
             "computed when the block runs."
         )
     kind = classify(n)
-    head = f"**#{n}** — {variable_kind(n)}"
     program = view.index.program_at(line)
+    tag = ""
     letter = ARGUMENT_LETTER.get(n)
     if letter is not None and program is not None and _takes_arguments(view, program):
-        head += f" · G65 argument **{letter}**"
-    parts = [head]
-    meaning = kind.meaning + ("" if kind.verified else " (unverified)")
-    parts.append(f"*{meaning}*")
+        tag = f" · G65 argument **{letter}**"
+    kind_text = kind.meaning + ("" if kind.verified else " (unverified)")
+    lead: list[str] = []
+    more: list[str] = []
     table = table_meaning(view.index, program.number if program else None, n)
-    if table is None and program is not None:
-        table = _module_meaning(view, program, n)
-    if table is not None:
-        parts.append(table)
-    facts = view.facts
-    precision = precision_at(view, line)
     own = hit.assign
     found = (line, own) if own is not None else find_assignment(view, program, n, line)
-    if found is not None:
+    comment = comment_of(view.doc.blocks[found[0]]) if found is not None else ""
+    meaning: list[str] = []
+    detail = source = ""
+    if table is not None:
+        meaning.append(table.name)
+        detail, source = table.detail, _source(table)
+    elif program is not None and (module := _module_meaning(view, program, n)) is not None:
+        meaning.append(module[0])
+        detail, source = module[1], module[2]
+    if comment:
+        meaning.append(f"*{comment}*")
+    if kind.kind in ("null", "system", "none") or not meaning:
+        meaning.insert(0, kind_text)
+        kind_text = ""
+    if detail:
+        more.append(f"*{detail}*")
+    about = kind_text[:1].upper() + kind_text[1:] + "." if kind_text else ""
+    more.append(" ".join(t for t in (about, source) if t))
+    head, body = _variable_value(view, block, hit, n, found)
+    lead.append(f"**#{n}**{head}{tag}")
+    lead.append(" — ".join(meaning))
+    lead.extend(body)
+    return with_more(lead, more)
+
+
+def _variable_value(
+    view: View, block: Block, hit: Hit, n: int, found: tuple[int, Assign] | None
+) -> tuple[str, list[str]]:
+    """What the head says of the value (`` = **1.907**``, `` here: **2.5**``), and the lines
+    under the meaning: the formula with the values read, where it is set, why no value."""
+    line = block.line
+    facts = view.facts
+    precision = precision_at(view, line)
+    body: list[str] = []
+    own = hit.assign
+    if found is not None and found[0] != line:
         a_line, a_assign = found
-        a_block = view.doc.blocks[a_line]
-        comment = comment_of(a_block)
-        where = "set here" if a_line == line else f"set at line {a_line + 1}"
-        text = f"{where}: {code(a_block.source(a_assign.span))}"
-        if comment:
-            text = f"**{comment}** — {text}"
-        parts.append(text)
+        body.append(
+            f"Set at line {a_line + 1}: {code(view.doc.blocks[a_line].source(a_assign.span))}"
+        )
     if facts is None:
-        parts.append("No values: the evaluator did not run on this document.")
-        return "\n\n".join(parts)
+        body.append("No values: the evaluator did not run on this document.")
+        return "", body
     if own is not None:
         write = facts.writes.get(line)
         if write is not None and write[0] == n:
             written = write[1]
-            parts.append(f"Value assigned: **{precision.summary(written)}**")
             formula = substituted(block, own, facts, precision.show)
             if formula is not None:
-                if written.count == 1 or written.constant:
-                    parts.append(f"```\n= {formula}\n= {precision.show(written.first)}\n```")
-                else:
-                    parts.append(f"```\n= {formula}\n```")
-        elif not facts.runs.get(line):
-            parts.append(_not_run(view, line))
+                body.insert(0, f"```\n= {formula}\n```")
+            return f" = **{precision.summary(written)}**", body
+        if not facts.runs.get(line):
+            body.append(_not_run(view, line))
         else:
-            parts.append("The assignment did not run (its condition was false).")
-        return "\n\n".join(parts)
+            body.append("The assignment did not run (its condition was false).")
+        return "", body
     summary = facts.reads.get((line, n))
     if summary is not None:
-        parts.append(f"Value here: **{precision.summary(summary)}**")
-    elif not facts.runs.get(line):
-        parts.append(_not_run(view, line))
-    return "\n\n".join(parts)
+        return f" here: **{precision.summary(summary)}**", body
+    if not facts.runs.get(line):
+        body.append(_not_run(view, line))
+    return "", body
 
 
 def _takes_arguments(view: View, program: Program) -> bool:
@@ -149,9 +189,10 @@ def _takes_arguments(view: View, program: Program) -> bool:
     return facts is not None and bool(facts.assumed_arguments.get(program.first_line))
 
 
-def _module_meaning(view: View, program: Program, number: int) -> str | None:
+def _module_meaning(view: View, program: Program, number: int) -> tuple[str, str, str] | None:
     """The meaning of ``#number`` in a thread module recognised by its formulas (in the
-    module itself, or in the program whose values it was called with)."""
+    module itself, or in the program whose values it was called with): its name, what the
+    module adds after a colon, and which module it is."""
     for thread in view.analysis.threads:
         if thread.job.uri != view.key or thread.module is None:
             continue
@@ -165,7 +206,8 @@ def _module_meaning(view: View, program: Program, number: int) -> str | None:
             c.program == number_of_module for c in program.calls
         )
         if inside or (caller and number >= 100):  # a caller sets the module's commons
-            return f"{meaning} — thread module {thread.job.program}, recognised by its formulas"
+            name, _, detail = meaning.partition(": ")
+            return name, detail, f"Thread module {thread.job.program}, recognised by its formulas."
     return None
 
 
@@ -295,28 +337,30 @@ def hover_word(view: View, block: Block, hit: Hit) -> str | None:
     value = constant_value(word.value)
     lathe = view.config.is_lathe
     system = view.config.g_code_system
+    known = view.config.machine_known
     if (
         call is not None
         and call.program is not None
         and ((word.address == "P" and call.code is None) or word.span == call.span)
     ):
         head = ""
+        rest: list[str] = []
         if call.code is not None:
             how = "a macro, like G65" if call.kind == "G65" else "a subprogram, like M98"
             head = (
                 f"**{call.code}** — calls O{call.program:04d} as {how} (setting "
-                "machine.customCalls, as the control's parameter sets it up)\n\n---\n\n"
+                "machine.customCalls, as the control's parameter sets it up)"
             )
         elif word.span == call.span and value is not None:
-            head = (
-                knowledge.code_markdown(word.address, value, lathe, system) or ""
-            ) + "\n\n---\n\n"
+            head, *rest = knowledge.code_parts(word.address, value, lathe, system, known)
         diagnosed = _diagnosed(view, block.line, word.span)
-        return head + hover_program(view, call.program, block.line, diagnosed)
+        return with_more((head, hover_program(view, call.program, block.line, diagnosed)), rest)
     thread = _thread_hover(view, block.line)
     if word.address in ("G", "M") and value is not None:
-        code_text = knowledge.code_markdown(word.address, value, lathe, system)
-        return "\n\n---\n\n".join(t for t in (code_text, thread) if t) or None
+        # The code's meaning on this machine in a line, the thread its block cuts, then the
+        # code's form and use.
+        head, *rest = knowledge.code_parts(word.address, value, lathe, system, known)
+        return with_more((head, thread or ""), rest)
     parts: list[str] = []
     if call is not None and any(arg is word for arg in call.arguments):
         target = f"O{call.program:04d}" if call.program is not None else "the macro"

@@ -441,21 +441,33 @@ def modal_group(value: float, lathe: bool) -> str | None:
     return str(first)
 
 
-def code_markdown(letter: str, value: float, lathe: bool, system: str = "A") -> str | None:
+def code_markdown(
+    letter: str, value: float, lathe: bool, system: str = "A", machine_known: bool = True
+) -> str | None:
     """Hover text of a G or M code under the configured machine type (a lathe's G codes in
-    G code ``system``: see program.g_code_systems)."""
+    G code ``system``: see program.g_code_systems): its name and meaning, then what more there
+    is. The other machine's meaning of the code is given only when the machine is not known
+    (``machine_known``: a document that shows neither, read both ways)."""
+    parts = code_parts(letter, value, lathe, system, machine_known)
+    return "\n\n".join(parts) if parts else None
+
+
+def code_parts(
+    letter: str, value: float, lathe: bool, system: str = "A", machine_known: bool = True
+) -> list[str]:
+    """``code_markdown``'s paragraphs: the first is the code's name and meaning in a line."""
     if lathe and system != "A" and letter.upper() == "G":
         text = _other_system_markdown(value, system)
         if text is not None:
-            return text
+            return text.split("\n\n")
     name = code_name(letter, value)
     info = code_info(letter, value)
     machine = "lathe" if lathe else "mill"
     other_name = "mill" if lathe else "lathe"
     if info is None:
         if letter.upper() == "M":
-            return f"**{name}**\n\n{_BUILDER_M}"
-        return f"**{name}**\n\nNot a G code this checker knows (builder option or other control)."
+            return [f"**{name}**", _BUILDER_M]
+        return [f"**{name}**", "Not a G code this checker knows (builder option or other control)."]
     here = info.for_machine(lathe)
     other = info.for_machine(not lathe)
     parts: list[str] = []
@@ -472,11 +484,11 @@ def code_markdown(letter: str, value: float, lathe: bool, system: str = "A") -> 
             if lathe
             else f"**{name}** — no meaning on a {machine}"
         )
-    if not info.same_on_both and other is not None:
+    if not info.same_on_both and other is not None and not (machine_known and here is not None):
         parts.append(
             f"On a {other_name}: {other.title}." + (f" {other.text}" if other.text else "")
         )
-    return "\n\n".join(parts)
+    return parts
 
 
 def _other_system_markdown(value: float, system: str) -> str | None:

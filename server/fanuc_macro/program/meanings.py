@@ -21,7 +21,7 @@ from ..lazy_regex import LazyPattern
 from ..line_maps import LineMap
 from ..syntax.tree import Assign, Document, ParsedLine
 from .index import ProgramIndex
-from .papers import DENG_MOLYBDENUM, REN_ARC_THREAD
+from .papers import DENG_MOLYBDENUM, REN_ARC_THREAD, Paper
 
 # Role -> words that name it in a comment. The first role with a matching word wins, so the
 # more specific come first: "刀尖圆弧半径" (nose radius) holds "圆弧半径" (arc radius).
@@ -58,7 +58,7 @@ _SYMMETRIC_SUB: Mapping[int, str] = MappingProxyType(
     {
         1: "δ2, run-out (slow-down) length = P",
         2: "δ1, run-in (speed-up) length = 2P + P + FIX[L/P]·P − L",
-        3: "r, tool nose radius (theoretical: P/(8·sin60°) external, P/(16·sin60°) internal)",
+        3: "r, tool nose radius: in theory P/(8·sin60°) external, P/(16·sin60°) internal",
         4: "h, thread height, radius: 7H/8 − r + es/2 + Td2/4 (internal 6H/8 − r + EI/2 + TD2/4)",
         5: "ap(max), first depth of cut, radius: coefficient·√h",
         6: "ap(min), minimum depth of cut and finish allowance, radius: coefficient·√ap(max)",
@@ -104,34 +104,80 @@ _ARC_THREAD: Mapping[int, str] = MappingProxyType(
         26: "Z of the overall start and return point",
     }
 )
-_DENG = DENG_MOLYBDENUM.short
-_REN = REN_ARC_THREAD.citation
-PARAMETER_TABLES: Mapping[int, tuple[str, Mapping[int, str]]] = MappingProxyType(
+
+
+@dataclass(frozen=True)
+class ModuleTable:
+    """A known module's parameter table: which module, the paper and where in it."""
+
+    module: str
+    paper: Paper
+    where: str  # "table 3", "section 2.2"
+    meanings: Mapping[int, str]
+
+
+@dataclass(frozen=True)
+class TableMeaning:
+    """What a table says of one variable: its name, then what the table adds after a colon
+    (a formula, a bound), and the table."""
+
+    name: str
+    detail: str
+    table: ModuleTable
+
+
+PARAMETER_TABLES: Mapping[int, ModuleTable] = MappingProxyType(
     {
-        3331: (f"symmetric thread module, external ({_DENG}, table 3)", _SYMMETRIC_SUB),
-        3330: (f"symmetric thread module, internal ({_DENG}, table 3)", _SYMMETRIC_SUB),
-        3: (f"arc thread by the fitting method, roughing layer ({_REN})", _ARC_THREAD),
-        4: (f"arc thread by the fitting method, roughing layer ({_REN})", _ARC_THREAD),
+        3331: ModuleTable(
+            "symmetric thread module, external", DENG_MOLYBDENUM, "table 3", _SYMMETRIC_SUB
+        ),
+        3330: ModuleTable(
+            "symmetric thread module, internal", DENG_MOLYBDENUM, "table 3", _SYMMETRIC_SUB
+        ),
+        3: ModuleTable(
+            "arc thread by the fitting method, roughing layer",
+            REN_ARC_THREAD,
+            "section 2.2",
+            _ARC_THREAD,
+        ),
+        4: ModuleTable(
+            "arc thread by the fitting method, roughing layer",
+            REN_ARC_THREAD,
+            "section 2.2",
+            _ARC_THREAD,
+        ),
     }
 )
-MAIN_TABLE: tuple[str, Mapping[int, str]] = (
-    f"main program of the symmetric thread module ({_DENG}, table 2)",
-    _SYMMETRIC_MAIN,
+MAIN_TABLE = ModuleTable(
+    "main program of the symmetric thread module", DENG_MOLYBDENUM, "table 2", _SYMMETRIC_MAIN
 )
 
 
-def table_meaning(index: ProgramIndex, program_number: int | None, number: int) -> str | None:
+def _meaning(table: ModuleTable, number: int) -> TableMeaning:
+    """The table's text of ``#number`` cut at its first colon outside brackets."""
+    text = table.meanings[number]
+    depth = 0
+    for at, char in enumerate(text):
+        depth += (char in "([") - (char in ")]")
+        if depth == 0 and text.startswith(": ", at):
+            return TableMeaning(text[:at], text[at + 2 :], table)
+    return TableMeaning(text, "", table)
+
+
+def table_meaning(
+    index: ProgramIndex, program_number: int | None, number: int
+) -> TableMeaning | None:
     """What a known module's parameter table says of ``#number`` in that program; for #100-#104,
     in a program that calls the symmetric module (M98 P0013331 / P0013330)."""
     if program_number is not None and program_number in PARAMETER_TABLES:
-        title, table = PARAMETER_TABLES[program_number]
-        if number in table:
-            return f"{table[number]} — {title}"
+        table = PARAMETER_TABLES[program_number]
+        if number in table.meanings:
+            return _meaning(table, number)
     if number in _SYMMETRIC_MAIN:
         program = index.by_number(program_number) if program_number is not None else None
         calls = program.calls if program is not None else ()
         if any(c.program in (3330, 3331) for c in calls):
-            return f"{_SYMMETRIC_MAIN[number]} — {MAIN_TABLE[0]}"
+            return _meaning(MAIN_TABLE, number)
     return None
 
 

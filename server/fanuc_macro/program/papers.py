@@ -8,6 +8,9 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+# The page that cites each paper in full, under a heading of its own (``Paper.anchor``).
+PAPERS_URL = "https://github.com/fanuc-macro/fanuc-macro/blob/main/docs/papers.md"
+
 
 @dataclass(frozen=True)
 class Paper:
@@ -15,12 +18,23 @@ class Paper:
     title: str  # as published
     gloss: str = ""  # the title in English, where it was published in Chinese
     journal: str = ""  # empty: not named in the copy the project has
+    anchor: str = ""  # the heading of docs/papers.md that cites it
+
+    @property
+    def authors_short(self) -> str:
+        """``Deng Ronggang``, ``Ren Guozhu et al.``: a short link's text."""
+        first = self.authors.split(" (")[0].split(",")[0]
+        return first + (" et al." if "," in self.authors else "")
+
+    @property
+    def link(self) -> str:
+        """Where the paper is cited in full."""
+        return f"{PAPERS_URL}#{self.anchor}"
 
     @property
     def by(self) -> str:
         """``Deng Ronggang's paper``: for a message, where the title would be too long."""
-        first = self.authors.split(" (")[0].split(",")[0]
-        return f"{first}{' et al.' if ',' in self.authors else ''}'s paper"
+        return f"{self.authors_short}'s paper"
 
     @property
     def short(self) -> str:
@@ -39,6 +53,7 @@ DENG_MOLYBDENUM = Paper(
     "Deng Ronggang (邓荣刚)",
     "宏指令在钼电极加工中的应用",
     "Macro programs in molybdenum electrode machining",
+    anchor="deng-ronggang",
 )
 # The fitting-method arc thread macros O1-O5. Journal from the copy's DOI
 # 10.3969/j.issn.1000-7008.2021.10.013 (ISSN 1000-7008 is 工具技术; unverified beyond the DOI).
@@ -47,9 +62,11 @@ REN_ARC_THREAD = Paper(
     "基于宏程序的大螺距圆弧螺纹加工方法探讨",
     "Machining large-pitch arc threads with macro programs",
     "工具技术 (Tool Engineering) 2021, no. 10",
+    anchor="ren-guozhu-qi-houjun-wang-zhe",
 )
 # The drum-shaped spiral groove cut as chained taper threads (main program O0010).
 PU_DRUM_GROOVE = Paper(
     "Pu Yanmin",
     "The application of macro program in drum-shaped spiral groove manufacturing",
+    anchor="pu-yanmin",
 )
