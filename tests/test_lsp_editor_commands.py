@@ -126,9 +126,57 @@ async def test_the_forms_open_on_the_generators_defaults(client: LanguageClient)
         "303.246,-160"
     )
     assert (drum["layers"], drum["radial_step"], drum["axial_step"]) == ("9", "0.8", "0.5")
+    # The thread module's length box opens on one nominal diameter, its taper box empty.
+    module = (await run(client, DEFAULTS, "threadModule", "M24x3-6g"))["defaults"]
+    assert module == {"length": "24", "infeed": "symmetric", "taper": ""}
+    assert "length" not in (await run(client, DEFAULTS, "threadModule"))["defaults"]
+    # Enter in each box: the defaults as they are make a module.
+    boxes = [["designation"], ["length"], ["internal"], ["infeed"], ["taper"]]
+    values = ["M24x3-6g", module["length"], False, module["infeed"], module["taper"]]
+    checked = await run(
+        client,
+        CHECK,
+        {"generator": "threadModule", "answers": answers(boxes, values), "complete": True},
+    )
+    assert checked == {
+        "parameters": {
+            "designation": "M24x3-6g",
+            "length": 24.0,
+            "internal": False,
+            "infeed": "symmetric",
+            "taper": 0.0,
+        }
+    }
     assert await run(client, DEFAULTS, "gear") == {
         "error": "no generator gear; the generators are threadModule, arcThread, drumGroove"
     }
+
+
+async def test_the_module_takes_the_numbers_its_document_does_not_have(
+    client: LanguageClient,
+) -> None:
+    await start(client)
+    uri = open_seed(client, "o4009_external_m50x3.nc")  # O4009 and O3331
+    spec = {"designation": "M50x3-5g6g", "length": 50, "internal": False}
+    paper = await run(client, "fanuc-macro.threadModule", spec)
+    assert "note" not in paper and "M98 P0013331 " in paper["text"]
+    into = await run(client, "fanuc-macro.threadModule", {**spec, "uri": uri})
+    text = into["text"]
+    assert "\nO4010 (" in text and "M98 P0013332 " in text and "\nO3332 (" in text
+    assert "O4009" not in text and "O3331" not in text
+    assert into["note"] == (
+        "O4009 and O3331 are in the file already: the main program is O4010 and the "
+        "sub-program is O3332."
+    )
+    other = "untitled:other.nc"
+    client.text_document_did_open(
+        types.DidOpenTextDocumentParams(
+            text_document=types.TextDocumentItem(
+                uri=other, language_id="fanuc-macro", version=1, text="O1000\nM30\n"
+            )
+        )
+    )
+    assert "note" not in await run(client, "fanuc-macro.threadModule", {**spec, "uri": other})
 
 
 async def test_the_answers_are_read_and_checked_by_the_generator(client: LanguageClient) -> None:

@@ -27,7 +27,8 @@ from fanuc_macro.generators.drum_groove_generator import (
     build_drum_groove,
     generate_drum_groove,
 )
-from fanuc_macro.generators.thread_generator import build_module, generate_module
+from fanuc_macro.generators.generated_program import free_numbers, programs_in
+from fanuc_macro.generators.thread_generator import build_module, generate_module, module_numbers
 from fanuc_macro.generators.thread_snippet import module_from_document
 from fanuc_macro.syntax.parser import parse_text
 from fanuc_macro.threads import parse_designation, plan_from_tolerances, tolerances
@@ -520,6 +521,63 @@ def test_cli_thread_harness(capsys: pytest.CaptureFixture[str]) -> None:
     assert "#12=3. " in out
     assert _harness(["thread", "M50x3-5g6g", "--length", "50", "--coefficient", "0.2/3"]) == 0
     assert "#5=[0.2/3.]*SQRT[#4]" in capsys.readouterr().out
+
+
+def test_a_module_takes_the_numbers_its_file_does_not_have() -> None:
+    seed = (SEEDS / "o4009_external_m50x3.nc").read_bytes()
+    assert programs_in(seed) == {4009, 3331}
+    assert programs_in("O1 (A)\nM30\n%\nO0002\nM99\n") == {1, 2}
+    paper = module_numbers("M50x3-5g6g", None, frozenset())
+    assert paper.numbers == (4009, 3331) and paper.note is None
+    moved = module_numbers("M50x3-5g6g", None, programs_in(seed))
+    assert moved.numbers == (4010, 3332)
+    assert moved.note == (
+        "O4009 and O3331 are in the file already: the main program is O4010 and the "
+        "sub-program is O3332."
+    )
+    # The side from the designation, else from internal; one part moved, no two at one number.
+    assert module_numbers("M20x1.5-6H", None, {3330}).numbers == (4010, 3331)
+    assert module_numbers("M20X1.5-6H", True, {4010, 4011}).numbers == (4012, 3330)
+    taken = free_numbers((("main program", 9999), ("macro", 9999)), {9999})
+    assert taken.numbers == (9998, 9997) and taken.note is not None
+    assert taken.note.startswith("O9999 and O9999 are in the file already")
+    with pytest.raises(ValueError, match="every program number"):
+        free_numbers((("main program", 5),), range(1, 10000))
+
+
+def test_cli_thread_into_a_file_takes_free_numbers(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    target = tmp_path / "part.nc"
+    target.write_bytes((SEEDS / "o4009_external_m50x3.nc").read_bytes())
+    assert _harness(["thread", "M50x3-5g6g", "--length", "50", "--into", str(target)]) == 0
+    captured = capsys.readouterr()
+    assert captured.out == generate_module("M50x3-5g6g", 50, main_number=4010, sub_number=3332)
+    assert "\nO4010 (" in captured.out and "M98 P0013332 " in captured.out
+    assert captured.err == (
+        "fanuc-macro thread: O4009 and O3331 are in the file already: the main program is "
+        "O4010 and the sub-program is O3332.\n"
+    )
+    # A number the user gives is kept, or refused when the file has it.
+    assert _harness(["thread", "M50x3-5g6g", "--length", "50", "--into", str(target),
+                     "--sub", "3331"]) == 2  # fmt: skip
+    assert capsys.readouterr().err == f"fanuc-macro thread: {target} has O3331 already\n"
+    assert _harness(["thread", "M50x3-5g6g", "--length", "50", "--into", str(target),
+                     "--main", "100"]) == 0  # fmt: skip
+    captured = capsys.readouterr()
+    assert "\nO0100 (" in captured.out and "M98 P0013332 " in captured.out
+    assert captured.err == (
+        "fanuc-macro thread: O3331 is in the file already: the sub-program is O3332.\n"
+    )
+    # A file without them: the paper's numbers, nothing said.
+    empty = tmp_path / "empty.nc"
+    empty.write_text("O1000\nM30\n")
+    assert _harness(["thread", "M50x3-5g6g", "--length", "50", "--into", str(empty)]) == 0
+    captured = capsys.readouterr()
+    assert captured.out == generate_module("M50x3-5g6g", 50) and captured.err == ""
+    missing = tmp_path / "missing.nc"
+    assert _harness(["thread", "M50x3-5g6g", "--length", "50", "--into", str(missing)]) == 2
+    assert capsys.readouterr().err.startswith(f"fanuc-macro thread: cannot read {missing}: ")
 
 
 def test_cli_thread_bad_designation(capsys: pytest.CaptureFixture[str]) -> None:

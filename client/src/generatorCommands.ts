@@ -8,6 +8,7 @@ import {
   answerOf,
   arcThreadForm,
   boxValue,
+  defaultsArgs,
   drumGrooveForm,
   threadModuleArgs,
   threadModuleForm,
@@ -38,7 +39,7 @@ const check = (call: ServerCall, generator: string, answers: readonly Answer[], 
 
 /** Each step in turn, the answers checked by the server; undefined when one is dismissed. */
 async function askSteps(call: ServerCall, form: GeneratorForm, answers: Answer[], before: number): Promise<Answer[] | undefined> {
-  const defaults = await ask(call, 'fanuc-macro.parameterDefaults', [form.generator], 'defaults');
+  const defaults = await ask(call, 'fanuc-macro.parameterDefaults', defaultsArgs(form), 'defaults');
   const known = 'error' in defaults ? {} : (defaults['defaults'] as Record<string, string>);
   const total = before + form.steps.length;
   for (const [i, step] of form.steps.entries()) {
@@ -76,7 +77,10 @@ async function generate(form: GeneratorForm, call: ServerCall, editor: vscode.Te
   const checked = await check(call, form.generator, answers, true);
   if ('error' in checked) return void vscode.window.showErrorMessage(failed(checked.error as string));
   const parameters = checked['parameters'] as Record<string, unknown>;
-  const args = form.command === SERVER_COMMAND_THREAD_MODULE ? threadModuleArgs(parameters) : parameters;
+  // The editor may have changed while the user answered: the module goes into the active one,
+  // under program numbers that document does not have.
+  const target = vscode.window.activeTextEditor ?? editor;
+  const args = form.command === SERVER_COMMAND_THREAD_MODULE ? threadModuleArgs(parameters, target.document.uri.toString()) : parameters;
   const ran = await vscode.window.withProgress(
     { location: vscode.ProgressLocation.Window, title: vscode.l10n.t('FANUC Macro: writing the {0}', form.title) },
     () => ask(call, form.command, [args], 'text'),
@@ -84,9 +88,7 @@ async function generate(form: GeneratorForm, call: ServerCall, editor: vscode.Te
   if ('error' in ran || typeof ran['text'] !== 'string') {
     return void vscode.window.showErrorMessage(failed('error' in ran ? (ran.error as string) : 'the language server returned no text'));
   }
-  // The editor may have changed while the user answered. A program starts with its own % line:
-  // after a text on the cursor's line, on the next.
-  const target = vscode.window.activeTextEditor ?? editor;
+  // A program starts with its own % line: after a text on the cursor's line, on the next.
   const position = target.selection.active;
   const ownLine = form.command !== SERVER_COMMAND_THREAD_MODULE && position.character > 0;
   if (!(await target.edit((builder) => builder.insert(position, ownLine ? `\n${ran['text']}` : ran['text'] as string)))) {
@@ -95,6 +97,8 @@ async function generate(form: GeneratorForm, call: ServerCall, editor: vscode.Te
       module ? vscode.l10n.t('FANUC Macro: the thread module could not be inserted.') : vscode.l10n.t('FANUC Macro: the generated program could not be inserted.'),
     );
   }
+  // Which free numbers it took, where the document had the paper's.
+  if (typeof ran['note'] === 'string') void vscode.window.showInformationMessage(`FANUC Macro: ${ran['note']}`);
   const said = summaryText(form.command, ran['summary'], vscode.l10n.t);
   if (said !== undefined) vscode.window.setStatusBarMessage(`FANUC Macro: ${said}`, 10000);
 }

@@ -1,8 +1,9 @@
 // The steps of "Insert Symmetric Thread Module...", "Insert Arc Thread Program..." and "Insert
 // Drum Groove Program...": what each box asks and the generator's parameters its answer gives.
 // The server reads and checks every answer (fanuc-macro.readDesignation, .checkParameters),
-// gives the boxes' defaults (.parameterDefaults) and writes the program. Pure: the UI strings go
-// through the translator given.
+// gives the boxes' defaults (.parameterDefaults) and writes the program. Every box opens on its
+// default, a text Enter accepts; a placeholder says what an empty box means. Pure: the UI
+// strings go through the translator given.
 import { english, type Translate } from './serverStatus';
 
 export const SERVER_COMMAND_THREAD_MODULE = 'fanuc-macro.threadModule';
@@ -12,6 +13,7 @@ export const SERVER_COMMAND_ARC_THREAD = 'fanuc-macro.arcThread';
 export interface Step {
   readonly names: readonly string[];
   readonly prompt: string;
+  /** What an empty box means, where it is not the default the box opens on. */
   readonly placeHolder?: string;
   readonly picks?: ReadonlyArray<{ readonly label: string; readonly description: string; readonly value: unknown }>;
 }
@@ -23,6 +25,8 @@ export interface GeneratorForm {
   readonly title: string;
   readonly command: string;
   readonly steps: readonly Step[];
+  /** The thread module's designation: its boxes' defaults follow it (the length). */
+  readonly designation?: string;
 }
 
 /** An answer as the server's checkParameters reads it. */
@@ -56,12 +60,8 @@ export function drumGrooveForm(t: Translate = english): GeneratorForm {
     title: t('Drum Groove Program'),
     command: 'fanuc-macro.drumGroove',
     steps: [
-      box(
-        ['points'],
-        t('Profile points X,Z (X a diameter) apart by semicolons, from the start of the groove; the default is the paper\'s drum'),
-        '298.91,205; 302.104,173; 304.83,140',
-      ),
-      box(['pitch'], t('Pitch (lead) of the groove in mm: the paper\'s is lost (its figure 2), so it has no default'), t('required, for example 40')),
+      box(['points'], t('Profile points X,Z (X a diameter) apart by semicolons, from the start of the groove; the default is the paper\'s drum')),
+      box(['pitch'], t('Pitch (lead) of the groove in mm: the paper\'s is lost (its figure 2), so it has no default'), t('required: no default')),
       box(['layers', 'radial_step'], t('Number of layers and radial step per layer in mm (on the radius)')),
       box(['cuts_per_layer', 'axial_step'], t('Cuts per layer and axial step per cut in mm')),
     ],
@@ -90,7 +90,7 @@ export function threadModuleForm(designation: DesignationReading, t: Translate =
     ],
   };
   const steps: Step[] = [
-    box(['length'], t('Thread length of {0} in mm', designation.text), '40'),
+    box(['length'], t('Thread length of {0} in mm', designation.text)),
     ...(designation.side === 'undecided' ? [side] : []),
     {
       names: ['infeed'],
@@ -104,9 +104,9 @@ export function threadModuleForm(designation: DesignationReading, t: Translate =
         { label: t('Right flank'), description: t('every pass on the +Z flank'), value: 'right' },
       ],
     },
-    box(['taper'], t('Taper as 1:16, or the diameter change per mm; empty for a parallel thread'), '1:16'),
+    box(['taper'], t('Taper as 1:16, or the diameter change per mm; empty for a parallel thread'), t('parallel')),
   ];
-  return { generator: 'threadModule', title: t('Symmetric Thread Module'), command: SERVER_COMMAND_THREAD_MODULE, steps };
+  return { generator: 'threadModule', title: t('Symmetric Thread Module'), command: SERVER_COMMAND_THREAD_MODULE, steps, designation: designation.text };
 }
 
 /** A box's text from the server's defaults: `93.82, 10, 1.2`; '' where there is none. */
@@ -124,11 +124,15 @@ export function answerOf(answer: unknown, needed: string, none: string): Record<
   return isRecord(answer) && answer[needed] !== undefined ? answer : { error: none };
 }
 
-/** The arguments of fanuc-macro.threadModule: the paper's infeed and no taper left out. */
-export function threadModuleArgs(parameters: Record<string, unknown>): Record<string, unknown> {
+/** The arguments of fanuc-macro.threadModule: the paper's infeed and no taper left out; `uri`,
+ * the document it goes into, whose program numbers it must not take. */
+export function threadModuleArgs(parameters: Record<string, unknown>, uri?: string): Record<string, unknown> {
   const { infeed, taper, ...rest } = parameters;
-  return { ...rest, ...(infeed === 'symmetric' ? {} : { infeed }), ...(taper === 0 ? {} : { taper }) };
+  return { ...rest, ...(infeed === 'symmetric' ? {} : { infeed }), ...(taper === 0 ? {} : { taper }), ...(uri === undefined ? {} : { uri }) };
 }
+
+/** The arguments of fanuc-macro.parameterDefaults for a form. */
+export const defaultsArgs = (form: GeneratorForm): unknown[] => (form.designation === undefined ? [form.generator] : [form.generator, form.designation]);
 
 /** What the inserted program does, from the run the server made of it (undefined: not said). */
 export function summaryText(command: string, summary: unknown, t: Translate = english): string | undefined {

@@ -164,10 +164,11 @@ describe('extension', { skip: process.platform === 'win32' }, () => {
     fake.answers.quickPick.push((items) => items[0]);
     serverAnswers.set('fanuc-macro.threadModule', () => ({ text: '#100=50.\nM98 P0013331\n' }));
     await run('fanuc-macro.insertThreadModule');
-    // The paper's module (symmetric, parallel) is asked for without options.
+    // The paper's module (symmetric, parallel) is asked for without options, for the document
+    // it goes into (the server takes program numbers that document does not have).
     assert.deepEqual(generated().pop()?.params, {
       command: 'fanuc-macro.threadModule',
-      arguments: [{ designation: 'M50x3-5g6g', length: 40, internal: false }],
+      arguments: [{ designation: 'M50x3-5g6g', length: 40, internal: false, uri: 'file:///p/O3331.nc' }],
     });
     assert.deepEqual(
       fake.recorded.inputBoxes.map((b) => b.title),
@@ -178,6 +179,28 @@ describe('extension', { skip: process.platform === 'win32' }, () => {
     ]);
   });
 
+  it('opens every box of a command on a value Enter accepts, the taper empty for parallel', async () => {
+    fake.resetRecorded();
+    fake.answers.inputValidation.length = 0;
+    // Enter in each box: the user keeps the text the box opened with.
+    fake.answers.inputBox.push('M24x3-6g', (box) => box.value, (box) => box.value);
+    fake.answers.quickPick.push((items) => items[0]);
+    const note = 'O4009 and O3331 are in the file already: the main program is O4010 and the sub-program is O3332.';
+    serverAnswers.set('fanuc-macro.threadModule', () => ({ text: '#100=24.\nM98 P0013332\n', note }));
+    await run('fanuc-macro.insertThreadModule');
+    const [, length, taper] = fake.recorded.inputBoxes;
+    // The server's default length for M24: one nominal diameter, as the paper's M50 is 50 long.
+    assert.equal(length?.value, '24');
+    assert.deepEqual([taper?.value, taper?.placeHolder], ['', 'parallel']);
+    assert.deepEqual(fake.answers.inputValidation.slice(-2), [undefined, undefined]);
+    assert.deepEqual(generated().pop()?.params.arguments, [
+      { designation: 'M24x3-6g', length: 24, internal: false, uri: 'file:///p/O3331.nc' },
+    ]);
+    // Which program numbers the module took, where the document had the paper's.
+    assert.deepEqual(fake.recorded.informations.at(-1), `FANUC Macro: ${note}`);
+    serverAnswers.set('fanuc-macro.threadModule', () => ({ text: '#100=50.\nM98 P0013331\n' }));
+  });
+
   it('asks external or internal when the designation does not say', async () => {
     fake.resetRecorded();
     fake.answers.inputBox.push('M50x3', '32.5', '');
@@ -185,7 +208,7 @@ describe('extension', { skip: process.platform === 'win32' }, () => {
     fake.answers.quickPick.push((items) => items[0]);
     await run('fanuc-macro.insertThreadModule');
     assert.deepEqual(generated().pop()?.params.arguments, [
-      { designation: 'M50x3', length: 32.5, internal: true },
+      { designation: 'M50x3', length: 32.5, internal: true, uri: 'file:///p/O3331.nc' },
     ]);
   });
 
@@ -200,7 +223,7 @@ describe('extension', { skip: process.platform === 'win32' }, () => {
       placeHolder: 'M50X3-5G6G: the class 5G6G fits an external (5g6g) or an internal (5G6G) thread: which is it?',
     });
     assert.deepEqual(generated().pop()?.params.arguments, [
-      { designation: 'M50X3-5G6G', length: 40, internal: false },
+      { designation: 'M50X3-5G6G', length: 40, internal: false, uri: 'file:///p/O3331.nc' },
     ]);
   });
 
@@ -214,7 +237,7 @@ describe('extension', { skip: process.platform === 'win32' }, () => {
       ['Symmetric Thread Module (3/4)'],
     );
     assert.deepEqual(generated().pop()?.params.arguments, [
-      { designation: 'M50X3-4H5H', length: 40, internal: true },
+      { designation: 'M50X3-4H5H', length: 40, internal: true, uri: 'file:///p/O3331.nc' },
     ]);
   });
 
@@ -238,7 +261,7 @@ describe('extension', { skip: process.platform === 'win32' }, () => {
     fake.answers.quickPick.push((items) => items.find((i) => i.label === 'Left flank'));
     await run('fanuc-macro.insertThreadModule');
     assert.deepEqual(generated().pop()?.params.arguments, [
-      { designation: 'M24xPh4P2-6g-LH', length: 30, internal: false, infeed: 'left', taper: 0.0625 },
+      { designation: 'M24xPh4P2-6g-LH', length: 30, internal: false, infeed: 'left', taper: 0.0625, uri: 'file:///p/O3331.nc' },
     ]);
     assert.equal(fake.answers.inputValidation.at(-1), undefined);
   });

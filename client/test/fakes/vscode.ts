@@ -191,7 +191,8 @@ export const recorded = {
   shownDocuments: [] as Array<{ content: string; options: unknown }>,
   revealed: [] as Array<{ line: number; type: number | undefined }>,
   inserts: [] as Array<{ position: Position; text: string }>,
-  inputBoxes: [] as Array<{ title: string | undefined; value: string | undefined }>,
+  inputBoxes: [] as Array<{ title: string | undefined; value: string | undefined; placeHolder?: string | undefined }>,
+  informations: [] as string[],
   quickPicks: [] as Array<{ title: string | undefined; placeHolder: string | undefined }>,
   statusMessages: [] as string[],
   log: [] as string[],
@@ -200,7 +201,8 @@ export const recorded = {
 /** Scripted answers for the next prompts, consumed in order. */
 export const answers = {
   errorChoice: [] as Array<string | undefined>,
-  inputBox: [] as Array<string | undefined>,
+  /** A text typed, or what the user does with the box as it opened (Enter: `(box) => box.value`). */
+  inputBox: [] as Array<string | undefined | ((box: { value: string | undefined; placeHolder: string | undefined }) => string | undefined)>,
   quickPick: [] as Array<(items: ReadonlyArray<{ label: string }>) => unknown>,
   /** What each answer's validation said: an error's text, `warning: ...`, or undefined. */
   inputValidation: [] as Array<string | undefined>,
@@ -215,6 +217,7 @@ export function resetRecorded(): void {
   recorded.revealed.length = 0;
   recorded.inserts.length = 0;
   recorded.inputBoxes.length = 0;
+  recorded.informations.length = 0;
   recorded.quickPicks.length = 0;
   recorded.statusMessages.length = 0;
   recorded.settingUpdates.length = 0;
@@ -389,9 +392,14 @@ export const window = {
     recorded.warnings.push(message);
     return Promise.resolve(undefined);
   },
+  showInformationMessage(message: string): Promise<undefined> {
+    recorded.informations.push(message);
+    return Promise.resolve(undefined);
+  },
   async showInputBox(options: {
     title?: string;
     value?: string;
+    placeHolder?: string;
     validateInput?: (
       value: string,
     ) =>
@@ -400,8 +408,9 @@ export const window = {
       | undefined
       | PromiseLike<string | { message: string; severity: InputBoxValidationSeverity } | undefined>;
   }): Promise<string | undefined> {
-    recorded.inputBoxes.push({ title: options.title, value: options.value });
-    const answer = answers.inputBox.shift();
+    recorded.inputBoxes.push({ title: options.title, value: options.value, placeHolder: options.placeHolder });
+    const scripted = answers.inputBox.shift();
+    const answer = typeof scripted === 'function' ? scripted({ value: options.value, placeHolder: options.placeHolder }) : scripted;
     if (answer !== undefined && options.validateInput) {
       const said = await options.validateInput(answer);
       answers.inputValidation.push(typeof said === 'object' ? `warning: ${said.message}` : said);

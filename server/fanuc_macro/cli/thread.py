@@ -76,9 +76,43 @@ def _count(text: str) -> int:
     return value
 
 
+def _numbers(args: argparse.Namespace) -> tuple[int | None, int | None, str | None] | str:
+    """(main, sub, what moved) for ``--into FILE``: the numbers the file does not have, as
+    the editor's command takes them; or the refusal of a number given that the file has."""
+    from ..generators import free_numbers, module_numbers, programs_in
+
+    if args.into is None:
+        return args.main, args.sub, None
+    try:
+        with open(args.into, "rb") as file:
+            taken = programs_in(file.read())
+    except OSError as err:
+        return f"cannot read {args.into}: {err.strerror or err}"
+    given = {n for n in (args.main, args.sub) if n is not None}
+    for number in sorted(given & taken):
+        return f"{args.into} has O{number:04d} already"
+    paper = module_numbers(args.designation, args.internal, ())
+    parts = [
+        (part, number)
+        for part, number, chosen in zip(
+            ("main program", "sub-program"), paper.numbers, (args.main, args.sub), strict=True
+        )
+        if chosen is None
+    ]
+    free = free_numbers(parts, taken | given)
+    numbers = iter(free.numbers)
+    main = args.main if args.main is not None else next(numbers)
+    sub = args.sub if args.sub is not None else next(numbers)
+    return main, sub, free.note
+
+
 def cmd_thread(args: argparse.Namespace) -> int:
     from ..generators import SideConflict, SideUndecided, generate_module
 
+    numbers = _numbers(args)
+    if isinstance(numbers, str):
+        return _refuse(numbers)
+    main, sub, note = numbers
     try:
         text = generate_module(
             args.designation,
@@ -86,8 +120,8 @@ def cmd_thread(args: argparse.Namespace) -> int:
             args.internal,
             coefficient=args.coefficient,
             spring_passes=args.spring_passes,
-            main_number=args.main,
-            sub_number=args.sub,
+            main_number=main,
+            sub_number=sub,
             td2_override=args.td2,
             deviation_override=args.deviation,
             infeed=args.infeed,
@@ -101,6 +135,8 @@ def cmd_thread(args: argparse.Namespace) -> int:
         )
     except ValueError as err:
         return _refuse(str(err))
+    if note is not None:
+        sys.stderr.write(f"fanuc-macro thread: {note}\n")
     sys.stdout.write(text)
     return EXIT_OK
 
@@ -177,6 +213,14 @@ def add_thread_command(
         default=None,
         metavar="O3331",
         help="number of the sub-program (default O3331 external, O3330 internal)",
+    )
+    thread.add_argument(
+        "--into",
+        default=None,
+        metavar="FILE",
+        help="the program file the module goes into: where it has the paper's numbers (O4009 "
+        "and O3331, internal O4010 and O3330), the module takes the first free ones after "
+        "them, and standard error says which; a --main or --sub it has is refused",
     )
     thread.add_argument(
         "--td2", type=float, default=None, metavar="MM", help="Td2/TD2 instead of the table's"

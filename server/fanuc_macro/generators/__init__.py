@@ -30,6 +30,9 @@ if TYPE_CHECKING:
     from .editor_forms import form_defaults as form_defaults
     from .editor_forms import read_designation as read_designation
     from .editor_forms import read_taper as read_taper
+    from .generated_program import FreeNumbers as FreeNumbers
+    from .generated_program import free_numbers as free_numbers
+    from .generated_program import programs_in as programs_in
     from .generator_requests import ARC_THREAD_PARAMETERS as ARC_THREAD_PARAMETERS
     from .generator_requests import DRUM_GROOVE_PARAMETERS as DRUM_GROOVE_PARAMETERS
     from .generator_requests import ArcThreadAnswer as ArcThreadAnswer
@@ -43,6 +46,7 @@ if TYPE_CHECKING:
     from .thread_generator import build_module as build_module
     from .thread_generator import default_program_numbers as default_program_numbers
     from .thread_generator import generate_module as generate_module
+    from .thread_generator import module_numbers as module_numbers
     from .thread_module import NoGenerator as NoGenerator
     from .thread_module import SideConflict as SideConflict
     from .thread_module import SideUndecided as SideUndecided
@@ -63,6 +67,9 @@ PUBLIC: MappingProxyType[str, str] = MappingProxyType(
         "DrumGrooveProgram": "drum_groove_generator",
         "build_drum_groove": "drum_groove_generator",
         "generate_drum_groove": "drum_groove_generator",
+        "FreeNumbers": "generated_program",
+        "free_numbers": "generated_program",
+        "programs_in": "generated_program",
         "ARC_THREAD_PARAMETERS": "generator_requests",
         "DRUM_GROOVE_PARAMETERS": "generator_requests",
         "ArcThreadAnswer": "generator_requests",
@@ -76,6 +83,7 @@ PUBLIC: MappingProxyType[str, str] = MappingProxyType(
         "build_module": "thread_generator",
         "default_program_numbers": "thread_generator",
         "generate_module": "thread_generator",
+        "module_numbers": "thread_generator",
         "NoGenerator": "thread_module",
         "SideConflict": "thread_module",
         "SideUndecided": "thread_module",

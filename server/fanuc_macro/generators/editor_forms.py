@@ -332,14 +332,22 @@ def _text(value: Any) -> str:
     return str(value)
 
 
-def form_defaults(generator: str) -> Mapping[str, str] | FormRefusal:
-    """Each parameter's default as a box shows it: ``"93.82"``, ``"108, 103"``, the drum's
-    ``"298.91,205; ..."``; a parameter without one (the drum's pitch) is left out."""
+def form_defaults(
+    generator: str, designation: str | None = None
+) -> Mapping[str, str] | FormRefusal:
+    """Each parameter's default as a box opens with it, a text its Enter accepts: ``"93.82"``,
+    ``"108, 103"``, the drum's ``"298.91,205; ..."``; a parameter without one (the drum's
+    pitch) is left out.  The thread module's length is one nominal diameter of
+    ``designation`` (the paper's M50x3 is 50 long); its taper is empty, a parallel thread."""
     form = _form(generator)
     if form is None:
         return FormRefusal(f"no generator {generator}; the generators are " + ", ".join(GENERATORS))
     if generator == "threadModule":
-        return {"infeed": "symmetric", "taper": ""}
+        module = {"infeed": "symmetric", "taper": ""}
+        reading = read_designation(designation) if designation is not None else None
+        if isinstance(reading, DesignationReading):
+            module["length"] = _text(reading.nominal_diameter)
+        return module
     from .drum_groove_generator import DRUM_PROFILE, build_drum_groove
 
     if generator == "arcThread":

@@ -4,18 +4,28 @@ generated comment states are read from that run, not from the formulas)."""
 
 from __future__ import annotations
 
+from collections.abc import Collection, Sequence
+from dataclasses import dataclass
+from itertools import chain
+
 from ..analysis import Analysis, analyse
+from ..program.index import build_index
+from ..syntax.lines import decode_bytes
+from ..syntax.parser import default_parser, parse_text
 
 __all__ = (
     "GENERATED_URI",
+    "FreeNumbers",
     "Lines",
     "clean_comment",
     "count_of",
     "entered",
     "execute",
+    "free_numbers",
     "mm",
     "num",
     "program_number",
+    "programs_in",
 )
 
 GENERATED_URI = "generated:thread-program.nc"
@@ -92,6 +102,52 @@ def program_number(value: int, what: str) -> int:
     if not 1 <= value <= 9999:
         raise ValueError(f"{what} program number O{value} is outside O0001-O9999")
     return value
+
+
+def programs_in(text: str | bytes) -> frozenset[int]:
+    """The O numbers of the programs ``text`` holds (a file's bytes in any of its encodings):
+    a file a generated program goes into."""
+    if isinstance(text, bytes):
+        text = decode_bytes(text).text
+    doc = parse_text(text, "generated:target.nc", default_parser())
+    return frozenset(p.number for p in build_index(doc).programs if p.number is not None)
+
+
+@dataclass(frozen=True)
+class FreeNumbers:
+    """The numbers a generated program's parts take, in the order asked; ``note`` says which
+    numbers the file had and which the parts take instead (None when none moved)."""
+
+    numbers: tuple[int, ...]
+    note: str | None = None
+
+
+def _free(first: int, taken: Collection[int]) -> int:
+    for number in chain(range(first, 10000), range(first - 1, 0, -1)):
+        if number not in taken:
+            return number
+    raise ValueError("the file has every program number O0001-O9999")
+
+
+def free_numbers(wanted: Sequence[tuple[str, int]], taken: Collection[int]) -> FreeNumbers:
+    """Each (part, number) of ``wanted`` at its number, or when the file has it (``taken``),
+    at the first free number after it (else before it), no two parts at one number.  Only
+    the parts that move are moved: the program's calls are written with the numbers given."""
+    used = set(taken)
+    numbers: list[int] = []
+    for _, number in wanted:
+        got = _free(number, used) if number in used else number
+        used.add(got)
+        numbers.append(got)
+    moved = [
+        (part, old, new) for (part, old), new in zip(wanted, numbers, strict=True) if old != new
+    ]
+    if not moved:
+        return FreeNumbers(tuple(numbers))
+    had = " and ".join(f"O{old:04d}" for _, old, _ in moved)
+    verb = "is" if len(moved) == 1 else "are"
+    takes = " and ".join(f"the {part} is O{new:04d}" for part, _, new in moved)
+    return FreeNumbers(tuple(numbers), f"{had} {verb} in the file already: {takes}.")
 
 
 def execute(text: str) -> Analysis:

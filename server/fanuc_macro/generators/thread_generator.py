@@ -13,7 +13,7 @@ the drum groove have their own generators (``arc_thread_generator``, ``drum_groo
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping
+from collections.abc import Collection, Mapping
 from dataclasses import dataclass
 from types import MappingProxyType
 
@@ -23,10 +23,12 @@ from ..threads.designation import ThreadDesignation, parse_designation
 from ..threads.iso965 import tolerances
 from .generated_program import (
     GENERATED_URI,
+    FreeNumbers,
     Lines,
     count_of,
     entered,
     execute,
+    free_numbers,
     mm,
     num,
     program_number,
@@ -40,6 +42,7 @@ __all__ = (
     "build_module_from_values",
     "default_program_numbers",
     "generate_module",
+    "module_numbers",
 )
 
 # Depth coefficient of the paper: 0.2 for ordinary steel, a third of it for molybdenum.
@@ -114,6 +117,20 @@ class ThreadModule:
 def default_program_numbers(internal: bool) -> tuple[int, int]:
     """(main, sub): the paper's O4010/O3330 internal, O4009/O3331 external."""
     return (4010, 3330) if internal else (4009, 3331)
+
+
+def module_numbers(designation: str, internal: bool | None, taken: Collection[int]) -> FreeNumbers:
+    """(main, sub) for the module of ``designation`` going into a file that has the programs
+    ``taken``: the paper's numbers, or the first free ones after them.  A designation that does
+    not say its side with ``internal`` None gets the external numbers: the generator refuses
+    it anyway."""
+    if internal is None:
+        try:
+            internal = parse_designation("".join(designation.split())).internal
+        except ValueError:
+            internal = False
+    main, sub = default_program_numbers(bool(internal))
+    return free_numbers((("main program", main), ("sub-program", sub)), taken)
 
 
 def _coefficient_text(coefficient: float) -> str:

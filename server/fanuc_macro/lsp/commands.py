@@ -40,9 +40,14 @@ class CommandRefusal(TypedDict):
     error: str
 
 
-@final
-class ThreadModuleText(TypedDict):
+class _ModuleText(TypedDict):
     text: str
+
+
+@final
+class ThreadModuleText(_ModuleText, total=False):
+    # The programs the module takes in the target document when it had the paper's numbers.
+    note: str
 
 
 class _Link(TypedDict):
@@ -229,9 +234,11 @@ class ThreadOptions(TypedDict, total=False):
 
     infeed: str
     taper: float
+    main_number: int
+    sub_number: int
 
 
-ThreadArguments = tuple[str, float, bool | None, ThreadOptions]
+ThreadArguments = tuple[str, float, bool | None, ThreadOptions, str | None]
 
 
 def _thread_arguments(args: tuple[Any, ...]) -> ThreadArguments | str:
@@ -259,19 +266,26 @@ def _thread_arguments(args: tuple[Any, ...]) -> ThreadArguments | str:
         return "the thread length must be a positive number of millimetres"
     if internal is not None and not isinstance(internal, bool):
         return "internal must be true, false or null"
-    return designation.strip(), float(length), internal, options
+    into = spec.get("uri")
+    if into is not None and not isinstance(into, str):
+        return "uri must be the URI of the document the module goes into"
+    return designation.strip(), float(length), internal, options, into
 
 
-async def run_thread_module(args: tuple[Any, ...]) -> ThreadModuleText | CommandRefusal:
-    """``[{designation, length, internal, infeed?, taper?}]`` -> ``{"text": ...}`` or
-    ``{"error": ...}``.  ``internal`` (true, false or null) says the kind of thread when the
+async def run_thread_module(
+    engine: Engine, args: tuple[Any, ...]
+) -> ThreadModuleText | CommandRefusal:
+    """``[{designation, length, internal, infeed?, taper?, uri?}]`` -> ``{"text"[, "note"]}``
+    or ``{"error": ...}``.  ``internal`` (true, false or null) says the kind of thread when the
     designation does not (all capitals with a class both kinds have, or no class): such a
     designation with ``internal`` null, or one whose class contradicts ``internal``, is refused,
-    never guessed."""
+    never guessed.  ``uri``: the open document the module goes into; where it has the paper's
+    program numbers, the module takes free ones, and ``note`` says which."""
     parsed = _thread_arguments(args)
     if isinstance(parsed, str):
         return {"error": parsed}
-    designation, length, internal, options = parsed
+    designation, length, internal, options, into = parsed
+    target = engine.document(into) if into is not None else None
     from ..generators import NoGenerator, SideConflict, SideUndecided, load_generator
 
     try:
@@ -284,7 +298,15 @@ async def run_thread_module(args: tuple[Any, ...]) -> ThreadModuleText | Command
     except Exception as err:
         log.exception("the thread module generator cannot be imported")
         return {"error": f"the thread module generator cannot be loaded: {err}"}
+    note: str | None = None
     try:
+        if target is not None:
+            from ..generators import module_numbers, programs_in
+
+            taken = await asyncio.to_thread(programs_in, target.text)
+            numbers = module_numbers(designation, internal, taken)
+            options["main_number"], options["sub_number"] = numbers.numbers
+            note = numbers.note
         text = await asyncio.to_thread(generate, designation, length, internal, **options)
     except SideUndecided as err:
         return {"error": err.question('with "internal": false (external) or true (internal)')}
@@ -297,7 +319,10 @@ async def run_thread_module(args: tuple[Any, ...]) -> ThreadModuleText | Command
         return {"error": f"the thread module generator failed ({err}); the server's log has more"}
     if not isinstance(text, str):
         return {"error": "the thread module generator returned no text"}
-    return {"text": text}
+    answer: ThreadModuleText = {"text": text}
+    if note is not None:
+        answer["note"] = note
+    return answer
 
 
 async def _generated(
@@ -413,10 +438,12 @@ async def run_check_parameters(
 async def run_parameter_defaults(
     engine: Engine, args: tuple[Any, ...]
 ) -> ParameterDefaults | CommandRefusal:
-    """``[generator]`` -> ``{"defaults": {name: text as a box shows it}}`` or ``{"error"}``."""
+    """``[generator, designation?]`` -> ``{"defaults": {name: text a box opens with}}`` or
+    ``{"error"}``; the thread module's length follows its designation."""
     from ..generators import FormRefusal, form_defaults
 
-    defaults = form_defaults(str(args[0]) if args else "")
+    designation = args[1] if len(args) > 1 and isinstance(args[1], str) else None
+    defaults = form_defaults(str(args[0]) if args else "", designation)
     if isinstance(defaults, FormRefusal):
         return {"error": defaults.message}
     return {"defaults": dict(defaults)}

@@ -42,7 +42,7 @@ async def toolpath(
 async def thread_module(
     ls: FanucMacroLanguageServer, args: tuple[Any, ...]
 ) -> ThreadModuleText | CommandRefusal:
-    return await run_thread_module(args)
+    return await run_thread_module(ls.engine, args)
 
 
 async def arc_thread(
