@@ -284,9 +284,15 @@ async def test_the_trace_view_is_written_by_the_server(client: LanguageClient) -
     uri = open_seed(client, "o2_arc_thread_roughing.nc")
     view = await run(client, TRACE_VIEW, uri, "/seeds/o2_arc_thread_roughing.nc")
     lines = view["text"].split("\n")
-    assert lines[0] == "Trace of /seeds/o2_arc_thread_roughing.nc"
+    # The file's name as the title, its folder under it; no example of a link in the header:
+    # only a row's block is one.
+    assert lines[:2] == ["Trace of o2_arc_thread_roughing.nc", "in /seeds"]
+    assert "line" not in "".join(lines[2:4]) and lines[4] == ""
+    assert lines[5].split() == ["block", "code", "words", "to", "S", "F"]
     at = next(i for i, line in enumerate(lines) if line.startswith("O0003 line 34 "))
-    assert "#5=108. #4=10. #18=1.2 #16=51.249025" in lines[at]
+    # The values the block read under its row; the columns fit beside a program.
+    assert lines[at + 1] == "    #5=108. #4=10. #18=1.2 #16=51.249025"
+    assert max(len(line) for line in lines) <= 64
     row = next(r for r in view["rows"] if r["line"] == at)
     assert row == {
         "line": at,
@@ -354,19 +360,24 @@ def test_the_trace_view_writes_values_at_the_controls_precision() -> None:
     lines = view.text.split("\n")
     assert lines[1] == "2 motion blocks, 1 block executed, positions in mm"
     assert lines[5].split("  ")[0] == "O3331 line 12"
-    assert "G1 X49.816 Z-60. F3." in lines[5]
-    assert "X51. Z5.964 -> X49.816 Z-60." in lines[5]
-    assert lines[5].endswith("#101=<vacant> #102=0.33333333 #103=(depends on #500)")
-    assert "? -> X40." in lines[6]
-    assert lines[7:9] == ["    1 move (G71):", "      arc    X40. -> X42.  centre X41. CW"]
-    assert [(r.line, r.source_line, r.path, r.link) for r in view.rows[1:]] == [
-        (6, 19, "file:///p/O2.nc", (0, 16)),
-        (7, 19, "file:///p/O2.nc", None),
-        (8, 19, "file:///p/O2.nc", None),
-        (11, 13, None, (2, 15)),
+    # The F in force is a column of its own, the S one too (not known here).
+    assert lines[5].split() == [
+        *("O3331", "line", "12", "G1", "G1", "X49.816", "Z-60."),
+        *("X49.816", "Z-60.", "-", "3."),
     ]
-    assert lines[11] == "  O3331 line 14: X after G28"
-    assert lines[13:] == [
+    assert lines[6] == "    #101=<vacant> #102=0.33333333 #103=(depends on #500)"
+    assert lines[7].split()[-3:] == ["X40.", "-", "-"]
+    assert lines[8:10] == ["    1 move (G71):", "      arc    X40. -> X42.  centre X41. CW"]
+    assert [(r.line, r.source_line, r.path, r.link) for r in view.rows] == [
+        (5, 11, None, (0, 13)),
+        (6, 11, None, None),
+        (7, 19, "file:///p/O2.nc", (0, 16)),
+        (8, 19, "file:///p/O2.nc", None),
+        (9, 19, "file:///p/O2.nc", None),
+        (12, 13, None, (2, 15)),
+    ]
+    assert lines[12] == "  O3331 line 14: X after G28"
+    assert lines[14:] == [
         "Summary",
         "  blocks_executed: 1",
         "  by_code: (none)",
@@ -396,3 +407,19 @@ async def test_the_variable_under_the_hover_keeps_its_hash(client: LanguageClien
     assert await run(client, "fanuc-macro.variableAt", "#_UI[2]=1", 1) == {"start": 0, "end": 7}
     refused = await run(client, "fanuc-macro.variableAt", line)
     assert refused == {"error": "fanuc-macro.variableAt takes a line's text and a column"}
+
+
+def test_the_trace_gives_the_spindle_speed_and_feed_in_force() -> None:
+    from fanuc_macro.ide.trace import trace
+    from fanuc_macro.program.index import build_index
+    from fanuc_macro.syntax.parser import default_parser, parse_text
+
+    text = "O1\nT0101\nG97 S400 M3\nG00 X50. Z2.\nG01 Z-10. F0.2\nG96 S150\nG01 X60.\nM30\n"
+    doc = parse_text(text, "t.nc", default_parser())
+    traced = trace("t.nc", doc, build_index(doc))
+    speeds = [(m["line"], m.get("speed"), m.get("surface_speed")) for m in traced["motions"]]
+    assert speeds == [(4, 400.0, None), (5, 400.0, None), (7, None, 150.0)]
+    rows = view_of_trace(traced, "t.nc").text.split("\n")[5:8]
+    assert [row.split("  ")[0] for row in rows] == ["O0001 line 4", "O0001 line 5", "O0001 line 7"]
+    assert [row.split()[-2:] for row in rows] == [["400", "-"], ["400", "0.2"], ["G96", "0.2"]]
+    assert rows[2].split()[-3:] == ["150", "G96", "0.2"]

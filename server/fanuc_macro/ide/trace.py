@@ -47,9 +47,12 @@ class _TraceMotionRequired(TypedDict):
 
 
 class TraceMotion(_TraceMotionRequired, total=False):
-    """One executed motion block; ``path`` when it is in another file than the traced one."""
+    """One executed motion block; ``path`` when it is in another file than the traced one;
+    the spindle speed in force, ``speed`` in G97 (rpm) or ``surface_speed`` in G96."""
 
     path: str
+    speed: float
+    surface_speed: float
     values: dict[str, VariableValue]
     start: Point
     end: Point
@@ -188,7 +191,8 @@ def trace(
     config: Config | None = None,
     entry: int | None = None,
 ) -> Trace:
-    """``{"motions": [{program, line, code, words, start, end[, centre][, moves][, values]}],
+    """``{"motions": [{program, line, code, words[, speed | surface_speed], start, end[, centre]
+    [, moves][, values]}],
     "toolpath": {...}, "summary": {...}}``; lines are 1-based. ``start`` and ``end`` are the
     positions before and after the block (the axes known; a lathe's X a diameter); a canned
     cycle's record lists its ``moves``; ``values`` are what the variables the block reads held
@@ -211,6 +215,10 @@ def trace(
         }
         if m.uri != uri:
             record["path"] = m.uri
+        if m.rpm is not None:
+            record["speed"] = m.rpm
+        elif m.surface_speed is not None:
+            record["surface_speed"] = m.surface_speed
         read = path.values.get(i)
         if read:
             record["values"] = {f"#{n}": _value(v) for n, v in read.items()}

@@ -1,15 +1,18 @@
 """The trace view's text: a header, one row per motion block (where it is, its code and words,
-where the tool goes from and to, the values the block read), a canned cycle's moves under its
-row, where the path is not known, and the summary.  Each row of a block says which line of
-which file it leads to, for the editor's links and Go to Definition.
+where the tool goes, the spindle speed and the feed in force), the values the
+block read under its row, a canned cycle's moves, where the path is not known, and the
+summary.  Each row of a block says which line of which file it leads to, for the editor's
+links and Go to Definition.  The columns fit beside a program (``MAX_COLUMN``), and the
+values wrap under the row (``VALUES_WIDTH``).
 
 Values are written at the control's precision: words and positions to the least increment
 (0.001), macro variables as the control's display shows them (8 significant digits)."""
 
 from __future__ import annotations
 
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
+from textwrap import wrap
 from typing import TYPE_CHECKING, Any
 
 from ..evaluator.values import fmt, fmt_address
@@ -23,7 +26,10 @@ __all__ = ("TraceRow", "TraceView", "view_of_trace")
 INTEGER_ADDRESSES = frozenset("DGHLMNOPST")
 
 # A column is padded to the widest of its cells, up to this many characters.
-MAX_COLUMN = 40
+MAX_COLUMN = 34
+# The values a block read are written under its row, in lines of at most this many characters.
+VALUES_WIDTH = 60
+VALUES_INDENT = "    "
 
 
 @dataclass(frozen=True)
@@ -179,41 +185,96 @@ class _Writer:
             self.rows.append(TraceRow(line, source, path, span, label))
 
 
+def _block(m: Mapping[str, Any]) -> str:
+    program = _program(m.get("program"))
+    line = "" if m.get("line") is None else f"line {m['line']}"
+    return f"{program} {line}".strip() if program else line
+
+
+def _to(m: Mapping[str, Any]) -> str:
+    """Where the block leaves the tool (where it came from is the row above's)."""
+    if "start" not in m and "end" not in m:
+        return ""
+    return _position(m.get("end"))
+
+
+def _spindle(m: Mapping[str, Any]) -> str:
+    """The spindle speed in force: rpm in G97, the surface speed in G96; ``-`` not known."""
+    rpm = m.get("speed")
+    if isinstance(rpm, int | float) and not isinstance(rpm, bool):
+        return _word("S", rpm)
+    surface = m.get("surface_speed")
+    if isinstance(surface, int | float) and not isinstance(surface, bool):
+        return f"{_word('S', surface)} G96"
+    return "-"
+
+
+def _feed(m: Mapping[str, Any]) -> str:
+    """The feed a cut goes at (the block's F, else the one in force); ``-`` for a rapid."""
+    feed = (m.get("words") or {}).get("F")
+    return "-" if feed is None else _word("F", feed)
+
+
+# The row's columns: a title and its cell.  The block's F is its own column, not a word.
+_COLUMNS: tuple[tuple[str, Callable[[Mapping[str, Any]], str]], ...] = (
+    ("block", _block),
+    ("code", lambda m: str(m.get("code") or "")),
+    ("words", lambda m: _words({a: v for a, v in (m.get("words") or {}).items() if a != "F"})),
+    ("to", _to),
+    ("S", _spindle),
+    ("F", _feed),
+)
+
+
 def _motion_rows(writer: _Writer, motions: Sequence[Mapping[str, Any]]) -> None:
-    cells = []
-    for m in motions:
-        program = _program(m.get("program"))
-        line = "" if m.get("line") is None else f"line {m['line']}"
-        has_path = "start" in m or "end" in m
-        cells.append(
-            (
-                f"{program} {line}".strip() if program else line,
-                str(m.get("code") or ""),
-                _words(m.get("words")),
-                f"{_position(m.get('start'))} -> {_position(m.get('end'))}" if has_path else "",
-                _values(m.get("values")),
-            )
-        )
-    titles = ("block", "code", "words", "from -> to", "values read")
-    widths = [min(MAX_COLUMN, max(len(titles[i]), *(len(c[i]) for c in cells))) for i in range(4)]
+    titles = tuple(title for title, _ in _COLUMNS)
+    cells = [tuple(cell(m) for _, cell in _COLUMNS) for m in motions]
+    widths = [
+        min(MAX_COLUMN, max(len(title), *(len(c[i]) for c in cells)))
+        for i, title in enumerate(titles)
+    ]
 
     def row(cell: tuple[str, ...]) -> str:
-        return "  ".join([*(cell[i].ljust(widths[i]) for i in range(4)), cell[4]]).rstrip()
+        return "  ".join(
+            text.ljust(width) for text, width in zip(cell, widths, strict=True)
+        ).rstrip()
 
     writer.out.append(row(titles))
     for m, cell in zip(motions, cells, strict=True):
         at = len(writer.out)
         writer.out.append(row(cell))
+        values = _values(m.get("values"))
+        if values:
+            writer.out.extend(
+                wrap(
+                    values,
+                    VALUES_WIDTH,
+                    initial_indent=VALUES_INDENT,
+                    subsequent_indent=VALUES_INDENT,
+                    break_long_words=False,
+                    break_on_hyphens=False,
+                )
+            )
         if m.get("centre") is not None:
-            writer.out.append(f"    centre {_position(m['centre'])}")
+            writer.out.append(f"{VALUES_INDENT}centre {_position(m['centre'])}")
         moves = m.get("moves") or []
         if moves:
             cycle = f" ({m['cycle']})" if m.get("cycle") else ""
-            writer.out.append(f"    {_plural(len(moves), 'move')}{cycle}:")
+            writer.out.append(f"{VALUES_INDENT}{_plural(len(moves), 'move')}{cycle}:")
         writer.out.extend(f"      {_move(move)}" for move in moves)
         source = _source_line(m.get("line"))
         if source is not None:
             writer.lead(at, source, _path(m), cell[0], link=True)
+
+
+def _wrapped(line: str, width: int = VALUES_WIDTH + len(VALUES_INDENT)) -> list[str]:
+    """A long line of the summary cut at spaces, its further lines indented under it."""
+    if len(line) <= width:
+        return [line]
+    indent = " " * (len(line) - len(line.lstrip()) + len(VALUES_INDENT))
+    return wrap(
+        line, width, subsequent_indent=indent, break_long_words=False, break_on_hyphens=False
+    )
 
 
 def _lost_rows(writer: _Writer, lost: Sequence[Mapping[str, Any]]) -> None:
@@ -223,7 +284,7 @@ def _lost_rows(writer: _Writer, lost: Sequence[Mapping[str, Any]]) -> None:
         block = f"{_program(place.get('program'))} {line}".strip()
         axes = ", ".join(place.get("axes") or [])
         at = len(writer.out)
-        writer.out.append(f"  {block}: {axes} {place.get('reason') or ''}".rstrip())
+        writer.out.extend(_wrapped(f"  {block}: {axes} {place.get('reason') or ''}".rstrip()))
         source = _source_line(place.get("line"))
         if source is not None:
             writer.rows.append(TraceRow(at, source, _path(place), (2, 2 + len(block)), block))
@@ -240,15 +301,18 @@ def view_of_trace(trace: Trace, source: str) -> TraceView:
     executed = summary.get("blocks_executed") if isinstance(summary, Mapping) else None
     units = toolpath.get("units")
     writer = _Writer()
-    writer.out.append(f"Trace of {source}")
+    # The file's name as the title; its folder on a line of its own, the title short.
+    folder, cut, name = source.replace("\\", "/").rpartition("/")
+    hidden = "://" in source or source.startswith("untitled:")
+    writer.out.append(f"Trace of {name if cut and not hidden else source}")
+    if cut and not hidden and folder:
+        writer.out.append(f"in {source[: len(folder)]}")
     writer.out.append(
         _plural(len(motions), "motion block")
         + (f", {_plural(executed, 'block')} executed" if isinstance(executed, int) else "")
         + (f", positions in {units}" if isinstance(units, str) else "")
     )
-    writer.out.append(
-        "Ctrl+click a block (O0001 line 12) to open it in its program, or press F12 on its row."
-    )
+    writer.out.append("Ctrl+click a row's block, or F12 on the row, to open it.")
     writer.out.append("")
     if motions:
         _motion_rows(writer, motions)
@@ -259,5 +323,5 @@ def view_of_trace(trace: Trace, source: str) -> TraceView:
         _lost_rows(writer, lost)
     said = summary_lines(summary)
     if said:
-        writer.out.extend(["", "Summary", *said])
+        writer.out.extend(["", "Summary", *(w for line in said for w in _wrapped(line))])
     return TraceView("\n".join(writer.out) + "\n", tuple(writer.rows))
