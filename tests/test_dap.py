@@ -86,9 +86,14 @@ def test_scopes_show_locals_commons_and_the_modal_state(dap: DapClient) -> None:
     dap.stopped()
     scopes = dap.ok("scopes", {"frameId": 1})["scopes"]
     names = [s["name"] for s in scopes]
-    assert names[0].startswith("Locals #1-#33 (O3331")
-    assert "shared with O4009 (M98)" in names[0]
-    by_name = {s["name"].split(" (")[0]: s["variablesReference"] for s in scopes}
+    # Short titles: O3331, which M98 called, has the locals of O4009.
+    assert names == [
+        "Locals #1-#33 of O4009",
+        "Common variables",
+        "System variables",
+        "Modal state",
+    ]
+    by_name = {s["name"].split(" of ")[0]: s["variablesReference"] for s in scopes}
 
     def variables(scope: str) -> dict[str, str]:
         found = dap.ok("variables", {"variablesReference": by_name[scope]})["variables"]

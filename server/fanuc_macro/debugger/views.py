@@ -77,15 +77,16 @@ class StopView:
         base = frame_id * 10
         commons = _common_numbers(act)
         system = self._system_numbers(act)
-        shared = ""
-        if act.caller is not None and act.macro_level == act.caller.macro_level:
-            shared = f", shared with {act.caller.ctx.name} (M98)"
+        # Short titles, that a narrow Variables view shows whole: the frame names the program
+        # and how it was called; a program M98 called has its caller's locals, which it names.
+        owner = act
+        while owner.caller is not None and owner.macro_level == owner.caller.macro_level:
+            owner = owner.caller
+        locals_ = "Locals #1-#33" + ("" if owner is act else f" of {owner.ctx.name}")
         return [
-            ScopeInfo(
-                f"Locals #1-#33 ({act.ctx.name}, level {act.macro_level}{shared})", base + 1, 33
-            ),
-            ScopeInfo("Common variables (set)", base + 2, len(commons)),
-            ScopeInfo("System variables (read or written)", base + 3, len(system)),
+            ScopeInfo(locals_, base + 1, 33),
+            ScopeInfo("Common variables", base + 2, len(commons)),
+            ScopeInfo("System variables", base + 3, len(system)),
             ScopeInfo("Modal state", base + 4, len(self._modal(act))),
         ]
 
