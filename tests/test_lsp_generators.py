@@ -106,3 +106,45 @@ def test_drum_groove_points_as_lists_or_text() -> None:
     assert drum_groove_request({"pitch": 40, "points": ""}) == drum_groove_request({"pitch": 40})
     bad = drum_groove_request({"pitch": 40, "points": "300,10;310"})
     assert bad == {"error": 'points point 2: "310" is not a point X,Z'}
+
+
+def test_a_program_takes_the_numbers_its_file_does_not_have() -> None:
+    arc = arc_thread_request({}, {2, 3})
+    assert "error" not in arc and arc["note"] == (
+        "O0002 and O0003 are in the file already: the main program is O0004 and the roughing "
+        "macro is O0006."
+    )
+    text = arc["text"]
+    assert "\nO0004 (" in text and "G65 P0006 " in text and "\nO0006 (" in text
+    assert "G65 P0005 " in text and "O0002" not in text and "O0003" not in text
+    assert "note" not in arc_thread_request({}, {1000}) and "note" not in arc_thread_request({})
+    # A number given is the user's: refused when the file has it.
+    assert arc_thread_request({"main_number": 3}, {3}) == {
+        "error": "the file has O0003 already (main_number)"
+    }
+    drum = drum_groove_request({"pitch": 40}, {10, 1})
+    assert "error" not in drum and "\nO0011 (" in drum["text"] and "G65 P0002 " in drum["text"]
+    assert drum["note"] == (
+        "O0010 and O0001 are in the file already: the main program is O0011 and the macro is O0002."
+    )
+
+
+async def test_the_commands_take_the_numbers_the_document_does_not_have(
+    client: LanguageClient,
+) -> None:
+    await start(client, None)
+    uri = "untitled:part.nc"
+    client.text_document_did_open(
+        types.DidOpenTextDocumentParams(
+            text_document=types.TextDocumentItem(
+                uri=uri, language_id="fanuc-macro", version=1, text="O0002\nM30\n%\nO0005\nM99\n"
+            )
+        )
+    )
+    arc = await run(client, ARC, {"uri": uri})
+    assert arc["note"] == (
+        "O0002 and O0005 are in the file already: the main program is O0004 and the finishing "
+        "macro is O0006."
+    )
+    assert "\nO0004 (" in arc["text"] and "G65 P0006 " in arc["text"]
+    assert "note" not in await run(client, ARC, {"uri": "untitled:not-open.nc"})

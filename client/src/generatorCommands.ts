@@ -77,10 +77,11 @@ async function generate(form: GeneratorForm, call: ServerCall, editor: vscode.Te
   const checked = await check(call, form.generator, answers, true);
   if ('error' in checked) return void vscode.window.showErrorMessage(failed(checked.error as string));
   const parameters = checked['parameters'] as Record<string, unknown>;
-  // The editor may have changed while the user answered: the module goes into the active one,
+  // The editor may have changed while the user answered: the program goes into the active one,
   // under program numbers that document does not have.
   const target = vscode.window.activeTextEditor ?? editor;
-  const args = form.command === SERVER_COMMAND_THREAD_MODULE ? threadModuleArgs(parameters, target.document.uri.toString()) : parameters;
+  const uri = target.document.uri.toString();
+  const args = form.command === SERVER_COMMAND_THREAD_MODULE ? threadModuleArgs(parameters, uri) : { ...parameters, uri };
   const ran = await vscode.window.withProgress(
     { location: vscode.ProgressLocation.Window, title: vscode.l10n.t('FANUC Macro: writing the {0}', form.title) },
     () => ask(call, form.command, [args], 'text'),

@@ -342,6 +342,7 @@ describe('extension', { skip: process.platform === 'win32' }, () => {
           cuts_per_layer: 7,
           finishing_diameter: 100,
           finishing_cuts: 19,
+          uri: 'file:///p/O3331.nc',
         },
       ],
     });

@@ -129,24 +129,36 @@ def _free(first: int, taken: Collection[int]) -> int:
     raise ValueError("the file has every program number O0001-O9999")
 
 
+def _listed(items: Sequence[str]) -> str:
+    return items[0] if len(items) == 1 else f"{', '.join(items[:-1])} and {items[-1]}"
+
+
 def free_numbers(wanted: Sequence[tuple[str, int]], taken: Collection[int]) -> FreeNumbers:
-    """Each (part, number) of ``wanted`` at its number, or when the file has it (``taken``),
-    at the first free number after it (else before it), no two parts at one number.  Only
-    the parts that move are moved: the program's calls are written with the numbers given."""
+    """Each (part, number) of ``wanted`` at its number, or when the file has it (``taken``) or
+    an earlier part took it, at the first free number after it (else before it).  The parts the
+    file leaves free keep their numbers; the program's calls are written with the numbers
+    given."""
     used = set(taken)
-    numbers: list[int] = []
+    kept: list[int | None] = []
     for _, number in wanted:
-        got = _free(number, used) if number in used else number
-        used.add(got)
+        free = number not in used
+        kept.append(number if free else None)
+        used.add(number)
+    used = set(taken) | {n for n in kept if n is not None}
+    numbers: list[int] = []
+    for (_, number), got in zip(wanted, kept, strict=True):
+        if got is None:
+            got = _free(number, used)
+            used.add(got)
         numbers.append(got)
     moved = [
         (part, old, new) for (part, old), new in zip(wanted, numbers, strict=True) if old != new
     ]
     if not moved:
         return FreeNumbers(tuple(numbers))
-    had = " and ".join(f"O{old:04d}" for _, old, _ in moved)
+    had = _listed([f"O{old:04d}" for _, old, _ in moved])
     verb = "is" if len(moved) == 1 else "are"
-    takes = " and ".join(f"the {part} is O{new:04d}" for part, _, new in moved)
+    takes = _listed([f"the {part} is O{new:04d}" for part, _, new in moved])
     return FreeNumbers(tuple(numbers), f"{had} {verb} in the file already: {takes}.")
 
 

@@ -3,17 +3,22 @@ parameters, checked and converted into a call of ``build_arc_thread`` or ``build
 and the answer ``{"text", "summary"}`` or ``{"error"}``.
 
 The keys are the generators' keyword names; a key left out takes the generator's default (the
-seed papers' part), except the drum groove's ``pitch``, which the paper does not give.  The
+seed papers' part), except the drum groove's ``pitch``, which the paper does not give.  Given
+the program numbers of the file the program goes into (``taken``), a program number left out
+is the paper's or the first free one after it, and the answer's ``note`` says which.  The
 generators are imported only when a request comes: a start of the server loads neither."""
 
 from __future__ import annotations
 
+import inspect
 import json
 import math
 import re
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Collection, Mapping, Sequence
 from types import MappingProxyType
 from typing import Any, TypedDict, final
+
+from .generated_program import free_numbers
 
 __all__ = (
     "ARC_THREAD_PARAMETERS",
@@ -52,10 +57,14 @@ class ArcThreadSummary(TypedDict):
     g32_cuts: int
 
 
-@final
-class ArcThreadAnswer(TypedDict):
+class _ArcThreadText(TypedDict):
     text: str
     summary: ArcThreadSummary
+
+
+@final
+class ArcThreadAnswer(_ArcThreadText, total=False):
+    note: str  # the program numbers taken instead of the paper's, which the file has
 
 
 class DrumGrooveSummary(TypedDict):
@@ -64,10 +73,14 @@ class DrumGrooveSummary(TypedDict):
     g32_cuts: int
 
 
-@final
-class DrumGrooveAnswer(TypedDict):
+class _DrumGrooveText(TypedDict):
     text: str
     summary: DrumGrooveSummary
+
+
+@final
+class DrumGrooveAnswer(_DrumGrooveText, total=False):
+    note: str  # the program numbers taken instead of the paper's, which the file has
 
 
 class _Refused(ValueError):
@@ -222,17 +235,50 @@ def _read(
     return {key: readers[key](key, value) for key, value in parameters.items()}
 
 
-def arc_thread_request(parameters: Any) -> ArcThreadAnswer | GeneratorRefusal:
-    """``{name: value}`` of ``build_arc_thread``'s keywords -> ``{"text", "summary"}`` or
-    ``{"error"}``."""
+def _free_programs(
+    keywords: GeneratorKeywords,
+    build: Callable[..., object],
+    parts: Sequence[tuple[str, str]],
+    taken: Collection[int] | None,
+) -> str | None:
+    """Puts in ``keywords`` the numbers of the ``parts`` (keyword, what it is) left out: the
+    generator's default, or the first free one after it in a file that has the programs
+    ``taken``; what moved, as a sentence.  A number given that the file has is refused."""
+    if taken is None:
+        return None
+    for key, _ in parts:
+        if key in keywords and keywords[key] in taken:
+            raise _Refused(f"the file has O{keywords[key]:04d} already ({key})")
+    signature = inspect.signature(build).parameters
+    left = [(key, what) for key, what in parts if key not in keywords]
+    given = {keywords[key] for key, _ in parts if key in keywords}
+    free = free_numbers([(what, signature[key].default) for key, what in left], {*taken, *given})
+    keywords.update((key, number) for (key, _), number in zip(left, free.numbers, strict=True))
+    return free.note
+
+
+_ARC_PROGRAMS = (
+    ("main_number", "main program"),
+    ("rough_number", "roughing macro"),
+    ("finishing_number", "finishing macro"),
+)
+_DRUM_PROGRAMS = (("main_number", "main program"), ("macro_number", "macro"))
+
+
+def arc_thread_request(
+    parameters: Any, taken: Collection[int] | None = None
+) -> ArcThreadAnswer | GeneratorRefusal:
+    """``{name: value}`` of ``build_arc_thread``'s keywords -> ``{"text", "summary"[, "note"]}``
+    or ``{"error"}``; ``taken``: the program numbers of the file it goes into."""
     try:
         keywords = _read("arc thread", parameters, ARC_THREAD_PARAMETERS)
         from .arc_thread_generator import build_arc_thread
 
+        note = _free_programs(keywords, build_arc_thread, _ARC_PROGRAMS, taken)
         built = build_arc_thread(**keywords)
     except ValueError as err:  # _Refused, or what the generator cannot cut
         return {"error": str(err)}
-    return {
+    answer: ArcThreadAnswer = {
         "text": built.text,
         "summary": {
             "layer_cuts": list(built.layer_cuts),
@@ -242,6 +288,9 @@ def arc_thread_request(parameters: Any) -> ArcThreadAnswer | GeneratorRefusal:
             "g32_cuts": sum(built.layer_cuts) + built.finishing_cuts,
         },
     }
+    if note is not None:
+        answer["note"] = note
+    return answer
 
 
 DRUM_REQUIRED: Mapping[str, str] = MappingProxyType(
@@ -252,19 +301,23 @@ DRUM_REQUIRED: Mapping[str, str] = MappingProxyType(
 )
 
 
-def drum_groove_request(parameters: Any) -> DrumGrooveAnswer | GeneratorRefusal:
+def drum_groove_request(
+    parameters: Any, taken: Collection[int] | None = None
+) -> DrumGrooveAnswer | GeneratorRefusal:
     """``{name: value}`` of ``build_drum_groove``'s parameters (``pitch`` required, ``points``
-    left out or null: the paper's profile) -> ``{"text", "summary"}`` or ``{"error"}``."""
+    left out or null: the paper's profile) -> ``{"text", "summary"[, "note"]}`` or
+    ``{"error"}``; ``taken``: the program numbers of the file it goes into."""
     try:
         keywords = _read("drum groove", parameters, DRUM_GROOVE_PARAMETERS, DRUM_REQUIRED)
         from .drum_groove_generator import build_drum_groove
 
+        note = _free_programs(keywords, build_drum_groove, _DRUM_PROGRAMS, taken)
         points = keywords.pop("points", None)
         pitch = keywords.pop("pitch")
         built = build_drum_groove(points, pitch, **keywords)
     except ValueError as err:
         return {"error": str(err)}
-    return {
+    answer: DrumGrooveAnswer = {
         "text": built.text,
         "summary": {
             "passes": built.passes,
@@ -272,3 +325,6 @@ def drum_groove_request(parameters: Any) -> DrumGrooveAnswer | GeneratorRefusal:
             "g32_cuts": built.g32_cuts,
         },
     }
+    if note is not None:
+        answer["note"] = note
+    return answer

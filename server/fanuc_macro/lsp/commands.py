@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import asyncio
 import logging
-from collections.abc import Awaitable, Callable, Mapping
+from collections.abc import Awaitable, Callable, Collection, Mapping
 from types import MappingProxyType
 from typing import TYPE_CHECKING, Any, Literal, TypedDict, TypeVar, final
 
@@ -326,36 +326,51 @@ async def run_thread_module(
 
 
 async def _generated(
-    command: str, args: tuple[Any, ...], request: Callable[[Any], AnswerT]
+    engine: Engine,
+    command: str,
+    args: tuple[Any, ...],
+    request: Callable[[Any, Collection[int] | None], AnswerT],
 ) -> AnswerT | CommandRefusal:
-    # A generator runs its program on the evaluator: off the event loop, as the thread module.
+    """The generator's answer to its parameters; ``uri`` among them is the open document the
+    program goes into, whose program numbers it does not take."""
     if len(args) > 1:
         return {"error": f"{command} takes one argument, the object of its parameters"}
+    parameters = args[0] if args else None
+    into = parameters.pop("uri", None) if isinstance(parameters, dict) else None
+    if into is not None and not isinstance(into, str):
+        return {"error": "uri must be the URI of the document the program goes into"}
+    target = engine.document(into) if into is not None else None
+    # A generator runs its program on the evaluator: off the event loop, as the thread module.
     try:
-        return await asyncio.to_thread(request, args[0] if args else None)
+        if target is None:
+            return await asyncio.to_thread(request, parameters, None)
+        from ..generators import programs_in
+
+        taken = await asyncio.to_thread(programs_in, target.text)
+        return await asyncio.to_thread(request, parameters, taken)
     except Exception as err:
         log.exception("%s failed", command)
         return {"error": f"{command} failed: {err!r}"}
 
 
 async def run_arc_thread(
-    args: tuple[Any, ...],
+    engine: Engine, args: tuple[Any, ...]
 ) -> ArcThreadAnswer | GeneratorRefusal | CommandRefusal:
-    """``[{parameter: value}]`` -> ``{"text", "summary"}`` or ``{"error"}``
-    (ide/generator_requests.py)."""
+    """``[{parameter: value[, uri]}]`` -> ``{"text", "summary"[, "note"]}`` or ``{"error"}``
+    (generators/generator_requests.py)."""
     from ..generators import arc_thread_request
 
-    return await _generated(ARC_THREAD, args, arc_thread_request)
+    return await _generated(engine, ARC_THREAD, args, arc_thread_request)
 
 
 async def run_drum_groove(
-    args: tuple[Any, ...],
+    engine: Engine, args: tuple[Any, ...]
 ) -> DrumGrooveAnswer | GeneratorRefusal | CommandRefusal:
-    """``[{parameter: value}]`` (``pitch`` required) -> ``{"text", "summary"}`` or
-    ``{"error"}``."""
+    """``[{parameter: value[, uri]}]`` (``pitch`` required) -> ``{"text", "summary"[,
+    "note"]}`` or ``{"error"}``."""
     from ..generators import drum_groove_request
 
-    return await _generated(DRUM_GROOVE, args, drum_groove_request)
+    return await _generated(engine, DRUM_GROOVE, args, drum_groove_request)
 
 
 # ---- what the editor asks instead of computing it ------------------------------------------

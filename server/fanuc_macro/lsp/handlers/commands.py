@@ -48,13 +48,13 @@ async def thread_module(
 async def arc_thread(
     ls: FanucMacroLanguageServer, args: tuple[Any, ...]
 ) -> ArcThreadAnswer | GeneratorRefusal | CommandRefusal:
-    return await run_arc_thread(args)
+    return await run_arc_thread(ls.engine, args)
 
 
 async def drum_groove(
     ls: FanucMacroLanguageServer, args: tuple[Any, ...]
 ) -> DrumGrooveAnswer | GeneratorRefusal | CommandRefusal:
-    return await run_drum_groove(args)
+    return await run_drum_groove(ls.engine, args)
 
 
 def _editor_command(name: str, run: EditorCommand) -> Command:
