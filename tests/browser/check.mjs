@@ -702,7 +702,7 @@ async function activeEditorText() {
 }
 
 // The trace view: a read-only document of its own language beside the program, one row per
-// motion block with its positions and the values the block read; Ctrl+click on a row's
+// motion block with where the tool goes, S and F, the values the block read under it; Ctrl+click on a row's
 // "O0003 line 34" opens that block, and so does F12 on a row.
 async function checkTrace() {
   await editor.click({ position: { x: 200, y: 10 } });
@@ -711,24 +711,28 @@ async function checkTrace() {
   try {
     await runCommand('FANUC Macro: Show Trace of Current Program');
     await waitActiveEditor(title, 'FANUC Macro Trace');
-    // N26 X[#5 - 2 * [#4 - #18] * SIN[#16]] of the first pass: #16 = 51.249025 (N16-N21).
+    // N26 X[#5 - 2 * [#4 - #18] * SIN[#16]] of the first pass: #16 = 51.249025 (N16-N21),
+    // under the block's row.
     await page.waitForFunction(
-      () => /O0003 line 34 .*#5=108\. #4=10\. #18=1\.2 #16=51\.249025/.test(
+      () => /O0003 line 34 [^\n]*\n +#5=108\. #4=10\. #18=1\.2 #16=51\.249025/.test(
         (document.querySelector('.editor-group-container.active .monaco-editor .view-lines')?.innerText || '')
           .replace(/\u00a0/g, ' ')),
       null,
       { timeout: STEP_MS },
     );
-    const row = (await activeEditorText()).split('\n').find((l) => l.startsWith('O0003 line 34'));
+    const lines = (await activeEditorText()).split('\n');
+    const at = lines.findIndex((l) => l.startsWith('O0003 line 34'));
+    const row = lines[at];
     const readOnly = await page.locator('.editor-group-container.active .monaco-editor textarea')
       .first().getAttribute('aria-readonly').catch(() => null);
-    record('trace view', true, `${title}: ${row?.replace(/ +/g, ' ')}${readOnly ? `; aria-readonly ${readOnly}` : ''}`);
+    record('trace view', true, `${title}: ${row?.replace(/ +/g, ' ')} / ${lines[at + 1]?.trim()}${readOnly ? `; aria-readonly ${readOnly}` : ''}`);
   } catch (e) {
     record('trace view', false, `${e.message.split('\n')[0]}; ${JSON.stringify((await activeEditorText()).slice(0, 300))}`);
     await shot('trace.png');
     return;
   }
   await shot('trace.png');
+  await checkTraceLayout();
 
   // F12 (Go to Definition) on a row of the trace opens its block: the first G32 (line 35).
   try {
@@ -769,6 +773,66 @@ async function checkTrace() {
     record('trace link', false, `${e.message.split('\n')[0]}; status bar Ln ${await statusLine()}`);
     await shot('trace-link.png');
   }
+}
+
+// The trace view's header is not program text: its title and the hint under it have none of
+// the colours a row's G code and addresses have (the hint's "F12" is no F word). Its columns,
+// S and F among them, fit beside the program, and the values a block read are under its row.
+// The 1400-pixel window is narrower than a programmer's screen: the side bar is closed for
+// this check, as the two editors then share what a 1920-pixel screen gives them with it open.
+async function checkTraceLayout() {
+  const sidebar = page.locator('.part.sidebar');
+  try {
+    if (await sidebar.isVisible()) {
+      await runCommand('View: Close Primary Side Bar');
+      await sidebar.waitFor({ state: 'hidden' });
+    }
+    // The trace editor takes the room the side bar left.
+    await page.waitForFunction(
+      () => (document.querySelector('.editor-group-container.active .monaco-editor .editor-scrollable')?.getBoundingClientRect().width || 0) > 480,
+      null,
+      { timeout: STEP_MS },
+    );
+    const seen = await page.evaluate(() => {
+      const view = document.querySelector('.editor-group-container.active .monaco-editor');
+      const lines = [...(view?.querySelectorAll('.view-line') || [])];
+      const text = (l) => l.innerText.replace(/\u00a0/g, ' ');
+      const colours = (line, test) => [...line.querySelectorAll('span span')]
+        .filter((s) => test(s.textContent.replace(/\u00a0/g, ' ')))
+        .map((s) => getComputedStyle(s).color);
+      const title = lines.find((l) => text(l).startsWith('Trace of'));
+      const hint = lines.find((l) => text(l).includes('F12'));
+      const columns = lines.find((l) => /^block\s+code\s+words/.test(text(l)));
+      const row = lines.find((l) => /^O0003 line 3\d\s/.test(text(l)));
+      // The text's width (each line's span is as wide as its text) and the room for it: the
+      // scrollable part of the editor, without its gutter and minimap.
+      const room = view?.querySelector('.editor-scrollable');
+      return {
+        title: title ? colours(title, (t) => t.trim() !== '') : [],
+        hint: hint ? colours(hint, (t) => t.trim() !== '') : [],
+        columns: columns ? text(columns).trim().split(/\s+/) : [],
+        code: row ? colours(row, (t) => /^G\d+$/.test(t.trim())) : [],
+        address: row ? colours(row, (t) => /^[XZ]$/.test(t.trim())) : [],
+        width: Math.max(0, ...lines.map((l) => l.firstElementChild?.getBoundingClientRect().width || 0)),
+        room: room ? room.getBoundingClientRect().width : 0,
+      };
+    });
+    const program = new Set([...seen.code, ...seen.address]);
+    if (seen.title.length === 0 || seen.code.length === 0 || seen.address.length === 0) {
+      throw new Error(`no title, G code or address tokens on screen: ${JSON.stringify(seen)}`);
+    }
+    const coloured = [...seen.title, ...seen.hint].filter((c) => program.has(c));
+    if (coloured.length > 0) throw new Error(`the header has a program text's colour ${coloured[0]}: ${JSON.stringify(seen)}`);
+    if (seen.columns.join(' ') !== 'block code words to S F') throw new Error(`columns ${seen.columns.join(' ')}`);
+    if (seen.width === 0 || seen.width > seen.room + 1) throw new Error(`the rows are ${seen.width}px wide beside ${seen.room}px of editor`);
+    record('trace layout', true,
+      `header ${seen.title[0]} / ${seen.hint[0]}, program text ${[...program].join(' ')}; columns ${seen.columns.join(' ')}; ${Math.round(seen.width)} of ${Math.round(seen.room)} px`);
+    await shot('trace-layout.png');
+  } catch (e) {
+    record('trace layout', false, e.message.split('\n')[0]);
+    await shot('trace-layout.png');
+  }
+  if (!(await sidebar.isVisible())) await runCommand('View: Toggle Primary Side Bar Visibility').catch(() => {});
 }
 
 // The debugger: a breakpoint toggled on O3's G32 (line 35, reached in the first pass of the
@@ -865,6 +929,7 @@ async function checkGenerators() {
   await page.keyboard.press('Escape');
   await runCommand('View: Revert and Close Editor').catch(() => {});
   await checkThreadModuleOptions();
+  await checkThreadModuleDefaults();
 }
 
 // "Insert Symmetric Thread Module..." with its options: a two-start left-hand designation,
@@ -911,6 +976,66 @@ async function checkThreadModuleOptions() {
       `${e.message.split('\n')[0]}; ${JSON.stringify((await activeEditorText()).slice(0, 300))}`);
   }
   await shot('thread-module.png');
+  await page.keyboard.press('Escape');
+  await runCommand('View: Revert and Close Editor').catch(() => {});
+}
+
+// "Insert Symmetric Thread Module..." answered with Enter in every box after the designation:
+// the length box opens on one nominal diameter (24 for M24x3), the taper box empty with the
+// placeholder "parallel". Inserted twice into the same program: the second module takes the
+// numbers the program does not have yet (O4010 and O3332, its M98 too), and a notification says
+// which.
+async function checkThreadModuleDefaults() {
+  const quick = page.locator('.quick-input-widget');
+  const input = quick.locator('input').first();
+  const title = (step) => quick.locator('.quick-input-title', { hasText: `Symmetric Thread Module (${step}/4)` });
+  const seen = [];
+  const insert = async () => {
+    await runCommand('FANUC Macro: Insert Symmetric Thread Module');
+    await title(1).waitFor();
+    await input.fill('M24x3-6g');
+    await page.keyboard.press('Enter');
+    await title(2).waitFor();
+    await page.waitForFunction(() => document.querySelector('.quick-input-widget input')?.value !== 'M24x3-6g', null, { timeout: STEP_MS });
+    seen.push(`length ${JSON.stringify(await input.inputValue())}`);
+    await page.keyboard.press('Enter');
+    await title(3).waitFor();
+    await quick.locator('.monaco-list-row', { hasText: 'Symmetric' }).first().waitFor();
+    await page.keyboard.press('Enter');
+    await title(4).waitFor();
+    seen.push(`taper ${JSON.stringify(await input.inputValue())} (${await input.getAttribute('placeholder')})`);
+    await page.keyboard.press('Enter');
+  };
+  const moduleText = async (want) => {
+    const until = Date.now() + STEP_MS;
+    let text = '';
+    while (!want.every((w) => text.includes(w))) {
+      if (Date.now() > until) throw new Error(`no ${want.join(', ')} in the editor`);
+      await page.waitForTimeout(500);
+      await page.keyboard.press('Control+Home');
+      text = await activeEditorText();
+    }
+    return text;
+  };
+  try {
+    await runCommand('FANUC Macro: Open Walkthrough Sample Program');
+    await waitActiveEditor('Untitled', 'FANUC Macro B');
+    await insert();
+    if (seen[0] !== 'length "24"' || seen[1] !== 'taper "" (parallel)') throw new Error(`the boxes opened on ${seen.join(', ')}`);
+    await moduleText(['O4009 (MAIN - EXTERNAL THREAD M24x3-6g L=24)', 'M98 P0013331']);
+    await page.keyboard.press('Control+Home');
+    await insert();
+    const text = await moduleText(['O4010 (MAIN - EXTERNAL THREAD M24x3-6g L=24)', 'M98 P0013332']);
+    const subs = text.split('\n').filter((l) => /^O333[12] /.test(l)).length;
+    const toast = page.locator('.notifications-toasts', { hasText: 'in the file already' }).first();
+    await toast.waitFor({ timeout: STEP_MS });
+    const said = (await toast.innerText()).split('\n').find((l) => l.includes('in the file already'));
+    record('thread module defaults', true, `${seen.slice(0, 2).join(', ')}; the second module O4010 / M98 P0013332${subs ? ` (${subs} sub-program lines on screen)` : ''}; ${said}`);
+  } catch (e) {
+    record('thread module defaults', false,
+      `${e.message.split('\n')[0]}; ${seen.join(', ')}; ${JSON.stringify((await activeEditorText()).slice(0, 300))}`);
+  }
+  await shot('thread-module-defaults.png');
   await page.keyboard.press('Escape');
   await runCommand('View: Revert and Close Editor').catch(() => {});
 }
@@ -1196,15 +1321,25 @@ try {
     const box = await cursor.boundingBox();
     await page.mouse.move(box.x - 3, box.y + box.height / 2);
     await page.mouse.move(box.x - 2, box.y + box.height / 2);
+    // The value first: `#1 = 93.82`, then its meaning in a line.
     await page.waitForFunction(
       () => [...document.querySelectorAll('.monaco-hover')].some((h) =>
-        h.offsetParent !== null && /#1/.test(h.innerText) && /Value[^\n]*93\.82/.test(h.innerText)),
+        h.offsetParent !== null && /^#1 = 93\.82\b/.test(h.innerText.replace(/\u00a0/g, ' ').trim())),
       null,
       { timeout: STEP_MS },
     );
     const text = await page.evaluate(() => [...document.querySelectorAll('.monaco-hover')]
       .filter((h) => h.offsetParent !== null).map((h) => h.innerText).join('\n'));
-    record('hover', true, text.split('\n').filter(Boolean).slice(0, 4).join(' | '));
+    // It fits in 12 lines of the editor's font, with no scroll bar of its own.
+    const fit = await page.evaluate(() => {
+      const hover = [...document.querySelectorAll('.monaco-hover')].find((h) => h.offsetParent !== null);
+      const line = document.querySelector('.monaco-editor .view-line')?.getBoundingClientRect().height || 19;
+      const contents = hover?.querySelector('.monaco-hover-content') || hover;
+      const height = contents?.getBoundingClientRect().height || 0;
+      return { lines: height / line, scrolls: (contents?.scrollHeight || 0) > (contents?.clientHeight || 0) + 1 };
+    });
+    if (fit.lines > 12 || fit.scrolls) throw new Error(`the hover takes ${fit.lines.toFixed(1)} lines${fit.scrolls ? ' and scrolls' : ''}`);
+    record('hover', true, `${fit.lines.toFixed(1)} lines: ${text.split('\n').filter(Boolean).slice(0, 4).join(' | ')}`);
   } catch (e) {
     const text = await page.evaluate(() => [...document.querySelectorAll('.monaco-hover')]
       .map((h) => h.innerText).join('\n')).catch(() => '');
