@@ -519,6 +519,7 @@ def test_trace_json_gives_every_executed_cut(tmp_path: Path) -> None:
         "line": 32,
         "code": "G92",
         "words": {"X": 49.816, "W": -60.0, "R": 0.0, "F": 3.0},
+        "speed": 400.0,  # G97 S400: the spindle speed in force
         "start": {"X": 51.0, "Z": 5.964},
         "end": {"X": 51.0, "Z": 5.964},
         "moves": [
