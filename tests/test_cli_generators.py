@@ -17,6 +17,7 @@ from pathlib import Path
 
 import pytest
 
+from cli_runner import run as run_cli
 from fanuc_macro.analysis import analyse
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -341,3 +342,27 @@ def test_usage_problems_exit_2(runs: Runs, args: tuple[str, ...]) -> None:
     done = runs.generated[("usage", *args)]
     assert done.returncode == 2 and done.stdout == ""
     assert USAGE[args] in done.stderr
+
+
+def test_into_a_file_the_programs_take_the_numbers_it_does_not_have(tmp_path: Path) -> None:
+    part = tmp_path / "part.nc"
+    part.write_text("O0002\nM30\n%\nO0003\nM99\n%\nO0010\nM30\n", encoding="utf-8")
+    arc = run_cli(tmp_path, "arc-thread", "--into", str(part))
+    assert arc.returncode == 0, arc.stderr
+    assert arc.stdout.startswith("%\nO0004 (") and "G65 P0006 " in arc.stdout
+    assert "\nO0006 (" in arc.stdout and "\nO0005 (" in arc.stdout
+    assert arc.stderr == (
+        "fanuc-macro arc-thread: O0002 and O0003 are in the file already: the main program is "
+        "O0004 and the roughing macro is O0006.\n"
+    )
+    drum = run_cli(tmp_path, "drum-groove", "--pitch", "40", "--into", str(part))
+    assert drum.returncode == 0, drum.stderr
+    assert "\nO0011 (" in drum.stdout and "G65 P0001 " in drum.stdout
+    assert drum.stderr.startswith(
+        "fanuc-macro drum-groove: O0010 is in the file already: the main program is O0011.\n"
+    )
+    refused = run_cli(tmp_path, "arc-thread", "--into", str(part), "--rough", "3")
+    assert refused.returncode == 2
+    assert refused.stderr == "fanuc-macro arc-thread: the file has O0003 already\n"
+    # Without --into, the paper's numbers, whatever a file has.
+    assert run_cli(tmp_path, "arc-thread").stdout.startswith("%\nO0002 (")

@@ -119,9 +119,7 @@ def test_a_program_takes_the_numbers_its_file_does_not_have() -> None:
     assert "G65 P0005 " in text and "O0002" not in text and "O0003" not in text
     assert "note" not in arc_thread_request({}, {1000}) and "note" not in arc_thread_request({})
     # A number given is the user's: refused when the file has it.
-    assert arc_thread_request({"main_number": 3}, {3}) == {
-        "error": "the file has O0003 already (main_number)"
-    }
+    assert arc_thread_request({"main_number": 3}, {3}) == {"error": "the file has O0003 already"}
     drum = drum_groove_request({"pitch": 40}, {10, 1})
     assert "error" not in drum and "\nO0011 (" in drum["text"] and "G65 P0002 " in drum["text"]
     assert drum["note"] == (

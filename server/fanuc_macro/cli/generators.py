@@ -74,12 +74,40 @@ def _refusal(command: str, err: Exception) -> int:
     return EXIT_USAGE
 
 
+def _program_numbers(
+    args: argparse.Namespace,
+    build: Callable[..., object],
+    parts: Sequence[tuple[str, str]],
+    options: Sequence[str],
+) -> tuple[dict[str, int], str | None]:
+    """The program numbers given, and with ``--into FILE`` the others: the paper's, or the first
+    free ones after them where the file has them; what moved, for standard error."""
+    from ..generators import free_programs, programs_in
+
+    numbers = {
+        key: getattr(args, option)
+        for (key, _), option in zip(parts, options, strict=True)
+        if getattr(args, option) is not None
+    }
+    if args.into is None:
+        return numbers, None
+    try:
+        with open(args.into, "rb") as file:
+            taken = programs_in(file.read())
+    except OSError as err:
+        raise Refused(f"--into {args.into}: cannot read it ({err.strerror or err})") from None
+    return numbers, free_programs(numbers, build, parts, taken)
+
+
 def cmd_arc_thread(args: argparse.Namespace) -> int:
     # Imported here: ``check`` starts without the generators (tests/test_startup.py).
-    from ..generators import build_arc_thread
+    from ..generators import ARC_PROGRAMS, build_arc_thread
 
     lead = args.lead if args.lead is not None else args.pitch
     try:
+        numbers, note = _program_numbers(
+            args, build_arc_thread, ARC_PROGRAMS, ("main", "rough", "finishing")
+        )
         program = build_arc_thread(
             outer_diameter=args.outer_diameter,
             groove_radius=args.groove_radius,
@@ -100,12 +128,12 @@ def cmd_arc_thread(args: argparse.Namespace) -> int:
             retract_x=args.retract_x,
             start_x=args.start_x,
             start_z=args.start_z,
-            main_number=args.main,
-            rough_number=args.rough,
-            finishing_number=args.finishing,
+            **numbers,
         )
     except (ValueError, RuntimeError) as err:  # RuntimeError: the run of the program failed
         return _refusal("arc-thread", err)
+    if note is not None:
+        sys.stderr.write(f"fanuc-macro arc-thread: {note}\n")
     sys.stdout.write(program.text)
     return EXIT_OK
 
@@ -137,9 +165,10 @@ def _parse_points(
 
 
 def cmd_drum_groove(args: argparse.Namespace) -> int:
-    from ..generators import DRUM_PROFILE, build_drum_groove
+    from ..generators import DRUM_PROFILE, DRUM_PROGRAMS, build_drum_groove
 
     try:
+        numbers, note = _program_numbers(args, build_drum_groove, DRUM_PROGRAMS, ("main", "macro"))
         if args.points_file is not None:
             path = Path(args.points_file)
             try:
@@ -163,11 +192,12 @@ def cmd_drum_groove(args: argparse.Namespace) -> int:
             clearance=args.clearance,
             spindle_speed=args.speed,
             tool=args.tool,
-            main_number=args.main,
-            macro_number=args.macro,
+            **numbers,
         )
     except (Refused, ValueError, RuntimeError) as err:
         return _refusal("drum-groove", err)
+    if note is not None:
+        sys.stderr.write(f"fanuc-macro drum-groove: {note}\n")
     sys.stdout.write(program.text)
     crown = program.crown
     if crown is not None:
@@ -208,6 +238,16 @@ def _option(
         default=default,
         metavar=metavar,
         help=f"{text} (default {_shown(default) if shown is None else shown})",
+    )
+
+
+def _into(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument(
+        "--into",
+        metavar="FILE",
+        help="the program file the program goes into: a program number it has is not taken (the "
+        "first free one after it is, and standard error says which); a number given that it has "
+        "is refused",
     )
 
 
@@ -271,9 +311,10 @@ def _add_arc_thread(subparsers: argparse._SubParsersAction[argparse.ArgumentPars
     _option(arc, "--retract-x", _number, 140.0, "X", "X the tool retracts to after each cut")
     _option(arc, "--start-x", _number, 150.0, "X", "start point X, where each macro begins")
     _option(arc, "--start-z", _number, 100.0, "Z", "start point Z")
-    _option(arc, "--main", _program, 2, "O0002", "main program number", shown="O0002")
-    _option(arc, "--rough", _program, 3, "O0003", "roughing macro number", shown="O0003")
-    _option(arc, "--finishing", _program, 5, "O0005", "finishing macro number", shown="O0005")
+    _option(arc, "--main", _program, None, "O0002", "main program number", shown="O0002")
+    _option(arc, "--rough", _program, None, "O0003", "roughing macro number", shown="O0003")
+    _option(arc, "--finishing", _program, None, "O0005", "finishing macro number", shown="O0005")
+    _into(arc)
     arc.set_defaults(func=cmd_arc_thread)
 
 
@@ -324,8 +365,9 @@ def _add_drum_groove(subparsers: argparse._SubParsersAction[argparse.ArgumentPar
     _option(drum, "--clearance", _number, 10.0, "MM", "retract above the largest diameter")
     _option(drum, "--speed", _speed, 80, "S", "spindle speed, rpm")
     _option(drum, "--tool", _count, 1, "T", "tool and offset number")
-    _option(drum, "--main", _program, 10, "O0010", "main program number", shown="O0010")
-    _option(drum, "--macro", _program, 1, "O0001", "macro number", shown="O0001")
+    _option(drum, "--main", _program, None, "O0010", "main program number", shown="O0010")
+    _option(drum, "--macro", _program, None, "O0001", "macro number", shown="O0001")
+    _into(drum)
     drum.set_defaults(func=cmd_drum_groove)
 
 

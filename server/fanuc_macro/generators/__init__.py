@@ -32,9 +32,12 @@ if TYPE_CHECKING:
     from .editor_forms import read_taper as read_taper
     from .generated_program import FreeNumbers as FreeNumbers
     from .generated_program import free_numbers as free_numbers
+    from .generated_program import free_programs as free_programs
     from .generated_program import programs_in as programs_in
+    from .generator_requests import ARC_PROGRAMS as ARC_PROGRAMS
     from .generator_requests import ARC_THREAD_PARAMETERS as ARC_THREAD_PARAMETERS
     from .generator_requests import DRUM_GROOVE_PARAMETERS as DRUM_GROOVE_PARAMETERS
+    from .generator_requests import DRUM_PROGRAMS as DRUM_PROGRAMS
     from .generator_requests import ArcThreadAnswer as ArcThreadAnswer
     from .generator_requests import DrumGrooveAnswer as DrumGrooveAnswer
     from .generator_requests import GeneratorRefusal as GeneratorRefusal
@@ -69,8 +72,11 @@ PUBLIC: MappingProxyType[str, str] = MappingProxyType(
         "generate_drum_groove": "drum_groove_generator",
         "FreeNumbers": "generated_program",
         "free_numbers": "generated_program",
+        "free_programs": "generated_program",
         "programs_in": "generated_program",
+        "ARC_PROGRAMS": "generator_requests",
         "ARC_THREAD_PARAMETERS": "generator_requests",
+        "DRUM_PROGRAMS": "generator_requests",
         "DRUM_GROOVE_PARAMETERS": "generator_requests",
         "ArcThreadAnswer": "generator_requests",
         "DrumGrooveAnswer": "generator_requests",

@@ -4,7 +4,8 @@ generated comment states are read from that run, not from the formulas)."""
 
 from __future__ import annotations
 
-from collections.abc import Collection, Sequence
+import inspect
+from collections.abc import Callable, Collection, Sequence
 from dataclasses import dataclass
 from itertools import chain
 
@@ -22,6 +23,7 @@ __all__ = (
     "entered",
     "execute",
     "free_numbers",
+    "free_programs",
     "mm",
     "num",
     "program_number",
@@ -160,6 +162,27 @@ def free_numbers(wanted: Sequence[tuple[str, int]], taken: Collection[int]) -> F
     verb = "is" if len(moved) == 1 else "are"
     takes = _listed([f"the {part} is O{new:04d}" for part, _, new in moved])
     return FreeNumbers(tuple(numbers), f"{had} {verb} in the file already: {takes}.")
+
+
+def free_programs(
+    numbers: dict[str, int],
+    build: Callable[..., object],
+    parts: Sequence[tuple[str, str]],
+    taken: Collection[int],
+) -> str | None:
+    """Puts in ``numbers`` the program numbers of the ``parts`` (``build``'s keyword, what the
+    program is) it lacks: ``build``'s default, or the first free one after it in a file that
+    has the programs ``taken``; says what moved.  A number given that the file has is refused
+    (ValueError)."""
+    for key, _ in parts:
+        if key in numbers and numbers[key] in taken:
+            raise ValueError(f"the file has O{numbers[key]:04d} already")
+    defaults = inspect.signature(build).parameters
+    left = [(key, what) for key, what in parts if key not in numbers]
+    given = {numbers[key] for key, _ in parts if key in numbers}
+    free = free_numbers([(what, defaults[key].default) for key, what in left], {*taken, *given})
+    numbers.update((key, number) for (key, _), number in zip(left, free.numbers, strict=True))
+    return free.note
 
 
 def execute(text: str) -> Analysis:

@@ -10,7 +10,6 @@ generators are imported only when a request comes: a start of the server loads n
 
 from __future__ import annotations
 
-import inspect
 import json
 import math
 import re
@@ -18,11 +17,13 @@ from collections.abc import Callable, Collection, Mapping, Sequence
 from types import MappingProxyType
 from typing import Any, TypedDict, final
 
-from .generated_program import free_numbers
+from .generated_program import free_programs
 
 __all__ = (
+    "ARC_PROGRAMS",
     "ARC_THREAD_PARAMETERS",
     "DRUM_GROOVE_PARAMETERS",
+    "DRUM_PROGRAMS",
     "ArcThreadAnswer",
     "ArcThreadSummary",
     "DrumGrooveAnswer",
@@ -235,34 +236,30 @@ def _read(
     return {key: readers[key](key, value) for key, value in parameters.items()}
 
 
-def _free_programs(
+ARC_PROGRAMS = (
+    ("main_number", "main program"),
+    ("rough_number", "roughing macro"),
+    ("finishing_number", "finishing macro"),
+)
+DRUM_PROGRAMS = (("main_number", "main program"), ("macro_number", "macro"))
+
+
+def _numbers(
     keywords: GeneratorKeywords,
     build: Callable[..., object],
     parts: Sequence[tuple[str, str]],
     taken: Collection[int] | None,
 ) -> str | None:
-    """Puts in ``keywords`` the numbers of the ``parts`` (keyword, what it is) left out: the
-    generator's default, or the first free one after it in a file that has the programs
-    ``taken``; what moved, as a sentence.  A number given that the file has is refused."""
+    """The program numbers left out, free in the target file (``taken``; None: no file)."""
     if taken is None:
         return None
-    for key, _ in parts:
-        if key in keywords and keywords[key] in taken:
-            raise _Refused(f"the file has O{keywords[key]:04d} already ({key})")
-    signature = inspect.signature(build).parameters
-    left = [(key, what) for key, what in parts if key not in keywords]
-    given = {keywords[key] for key, _ in parts if key in keywords}
-    free = free_numbers([(what, signature[key].default) for key, what in left], {*taken, *given})
-    keywords.update((key, number) for (key, _), number in zip(left, free.numbers, strict=True))
-    return free.note
-
-
-_ARC_PROGRAMS = (
-    ("main_number", "main program"),
-    ("rough_number", "roughing macro"),
-    ("finishing_number", "finishing macro"),
-)
-_DRUM_PROGRAMS = (("main_number", "main program"), ("macro_number", "macro"))
+    numbers = {key: keywords[key] for key, _ in parts if key in keywords}
+    try:
+        note = free_programs(numbers, build, parts, taken)
+    except ValueError as err:
+        raise _Refused(str(err)) from None
+    keywords.update(numbers)
+    return note
 
 
 def arc_thread_request(
@@ -274,7 +271,7 @@ def arc_thread_request(
         keywords = _read("arc thread", parameters, ARC_THREAD_PARAMETERS)
         from .arc_thread_generator import build_arc_thread
 
-        note = _free_programs(keywords, build_arc_thread, _ARC_PROGRAMS, taken)
+        note = _numbers(keywords, build_arc_thread, ARC_PROGRAMS, taken)
         built = build_arc_thread(**keywords)
     except ValueError as err:  # _Refused, or what the generator cannot cut
         return {"error": str(err)}
@@ -311,7 +308,7 @@ def drum_groove_request(
         keywords = _read("drum groove", parameters, DRUM_GROOVE_PARAMETERS, DRUM_REQUIRED)
         from .drum_groove_generator import build_drum_groove
 
-        note = _free_programs(keywords, build_drum_groove, _DRUM_PROGRAMS, taken)
+        note = _numbers(keywords, build_drum_groove, DRUM_PROGRAMS, taken)
         points = keywords.pop("points", None)
         pitch = keywords.pop("pitch")
         built = build_drum_groove(points, pitch, **keywords)
