@@ -61,3 +61,18 @@ def test_stretches_of_two_evaluations_are_never_taken_for_one_another() -> None:
     assert len(a) > 1 and all(isinstance(s, Stretch) for s in a + b)
     assert not any(x == y for x in a for y in b)
     assert len(set(map(id, a))) == len(a)
+
+
+def test_a_lathes_g50_s_clamps_the_speed_and_leaves_the_surface_speed_in_force() -> None:
+    """G50 S2000 after G96 S180 is the clamp on the spindle speed: the cuts after it run at
+    180 m/min, clamped at 2000 rpm, not at a surface speed of 2000."""
+    text = (
+        "O1\nG00 X60. Z2.\nG96 S180 M03\nG50 S2000\nG01 X50. F0.2\nZ-20.\nG97 S800\nG01 X40.\nM30\n"
+    )
+    doc = parse_text(text, "t.nc")
+    facts = evaluate([("t.nc", doc, build_index(doc))], config=Config(controller="0i-TF"))
+    by_line = {m.line: m for m in facts.motions}
+    for line in (4, 5):
+        assert (by_line[line].surface_speed, by_line[line].speed_clamp) == (180.0, 2000.0)
+        assert by_line[line].rpm is None
+    assert by_line[7].rpm == 800.0 and by_line[7].surface_speed is None

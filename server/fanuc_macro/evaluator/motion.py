@@ -120,7 +120,9 @@ class MotionPart(CyclesPart, CallsPart, SetupPart):
             )
             if lead != modal.setup.lead_feed:
                 modal.setup = replace(modal.setup, lead_feed=lead)
-        if "S" in values:
+        if "S" in values and not (self.lathe and 50.0 in g_codes):
+            # A lathe's G50 S is the clamp on the speed (_setup_codes), not a speed to run at
+            # (0i-TF operator's manual, "Clamp of maximum spindle speed").
             modal.speed = values["S"]
         stops: float | None = None  # an M code that stops the spindle, after the block's move
         for m in m_codes:
