@@ -392,6 +392,7 @@ function paintTool(project: Projection, t: Transform, s: Segments, d: ToolpathDa
   const at = toolPoint(s);
   if (at === undefined) {
     canvas.dataset.tool = '';
+    canvas.dataset.toolPosition = String(position);
     return;
   }
   // Without a radius the program gives, a nominal 6 pixels: a marker, not a size.
@@ -419,6 +420,8 @@ function paintTool(project: Projection, t: Transform, s: Segments, d: ToolpathDa
   context.fill();
   canvas.dataset.tool = `${d.lathe ? 'insert' : 'cylinder'} r${Number(radius.toPrecision(4))}`;
   canvas.dataset.toolAt = `${px.toFixed(0)},${py.toFixed(0)}`;
+  // The playback's position this drawing shows: the frame comes after the step that asked it.
+  canvas.dataset.toolPosition = String(position);
 }
 
 /** The rulers at the left and bottom edges: the labels of the grid's lines, the axes' titles. */

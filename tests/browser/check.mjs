@@ -317,11 +317,18 @@ async function checkStepping(frame) {
   try {
     await frame.locator('#start').click();
     await frame.waitForFunction(() => document.getElementById('toolpath').dataset.stepIndex === '0');
+    // A step sets its index at once and draws the tool in the next frame: both are waited for.
+    const drawn = () => frame.waitForFunction(() => {
+      const c = document.getElementById('toolpath').dataset;
+      return c.toolPosition === c.position;
+    });
     await frame.locator('#next').click();
     await frame.waitForFunction(() => document.getElementById('toolpath').dataset.stepIndex === '1');
+    await drawn();
     const one = await data();
     await frame.locator('#next').click();
     await frame.waitForFunction(() => document.getElementById('toolpath').dataset.stepIndex === '2');
+    await drawn();
     const two = await data();
     // The editor's cursor follows the block of the step (its line number marked active).
     const want = await frame.evaluate(() => window.toolpathProbe.stepLine());

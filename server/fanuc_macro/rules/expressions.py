@@ -121,39 +121,6 @@ expression brackets (whether the control counts them is unverified).
 )
 
 
-MB304_DOC = RuleDoc(
-    "MB304",
-    reports="""
-An assignment to `#0` (always vacant) or to a read-only system variable:
-date and time (`#3011`, `#3012`), modal information (`#4001`–), positions (`#5001`–`#5120`),
-and others. Writable system variables (`#3000`, `#3001`, `#3004`, `#3901`, work offsets, tool
-offsets) are not reported.
-""",
-    why="""
-The control raises PS0116 WRITE PROTECTED VARIABLE and stops
-at the block. Writing `#5021` was probably meant to move the axis or to set an offset; neither
-happens.
-""",
-    example="""
-```nc
-O9050 (RESTORE STATE)
-#4001=1
-#0=1
-M99
-```
-""",
-    fix="""
-Restore modal state with a G code (`G#10` after `#10=#4001`), move with a motion
-block, set work offsets through `#5221`– and tool offsets through `#2001`– or `#10001`–.
-""",
-    not_reported="""
-The writable system variables (`#3000`, `#3001`, `#3004`, `#3901`,
-offsets), system variables whose protection the checker does not know, and indirect assignments
-`#[...] = `, whose target is known only at run time (MB902).
-""",
-)
-
-
 def _check_line(parsed: ParsedLine) -> Iterator[LineFinding]:
     # Each level of nesting opens with a "[" of its own: a line of few has none too deep.
     text, whole = parsed.text, parsed.statement
@@ -187,6 +154,39 @@ def _check_line(parsed: ParsedLine) -> Iterator[LineFinding]:
             targets.append(statement.then)
         for assign in targets:
             yield from _read_only_target(assign)
+
+
+MB304_DOC = RuleDoc(
+    "MB304",
+    reports="""
+An assignment to `#0` (always vacant) or to a read-only system variable:
+date and time (`#3011`, `#3012`), modal information (`#4001`–), positions (`#5001`–`#5120`),
+and others. Writable system variables (`#3000`, `#3001`, `#3004`, `#3901`, work offsets, tool
+offsets) are not reported.
+""",
+    why="""
+The control raises PS0116 WRITE PROTECTED VARIABLE and stops
+at the block. Writing `#5021` was probably meant to move the axis or to set an offset; neither
+happens.
+""",
+    example="""
+```nc
+O9050 (RESTORE STATE)
+#4001=1
+#0=1
+M99
+```
+""",
+    fix="""
+Restore modal state with a G code (`G#10` after `#10=#4001`), move with a motion
+block, set work offsets through `#5221`– and tool offsets through `#2001`– or `#10001`–.
+""",
+    not_reported="""
+The writable system variables (`#3000`, `#3001`, `#3004`, `#3901`,
+offsets), system variables whose protection the checker does not know, and indirect assignments
+`#[...] = `, whose target is known only at run time (MB902).
+""",
+)
 
 
 def _read_only_target(assign: Assign) -> list[LineFinding]:
