@@ -113,3 +113,15 @@ def test_a_called_file_read_in_part_is_named(tmp_path: Path) -> None:
         "read_in_part"
     ]
     assert (part["path"], part["last_line_read"]) == ("long.nc", 10)
+
+
+def test_a_g50_clamp_leaves_the_surface_speed_the_trace_shows(tmp_path: Path) -> None:
+    """A lathe's G50 S under G96 clamps the spindle speed: the cuts after it keep the surface
+    speed G96 gave."""
+    (tmp_path / "css.nc").write_text(
+        "O1\nG00 X60. Z2.\nG96 S180 M03\nG50 S2000\nG01 X50. F0.2\nZ-20.\nM30\n"
+    )
+    motions = trace_json(tmp_path, "css.nc")["motions"]
+    cuts = [m for m in motions if m["code"] == "G01"]
+    assert len(cuts) == 2
+    assert all(m.get("surface_speed") == 180.0 and "speed" not in m for m in cuts)

@@ -843,6 +843,36 @@ async def test_toolpath_command_gives_the_views_segments(client: LanguageClient)
     assert "error" in none
 
 
+async def test_toolpath_command_draws_the_bar_the_settings_give_and_a_mills_cutter(
+    client: LanguageClient,
+) -> None:
+    await start(client, options={"view": {"stockDiameter": 56}})
+    uri = open_seed(client, "o4009_external_m50x3.nc")
+    lathe = await asyncio.wait_for(
+        client.workspace_execute_command_async(
+            types.ExecuteCommandParams(command="fanuc-macro.toolpath", arguments=[uri])
+        ),
+        WAIT,
+    )
+    assert isinstance(lathe, dict) and lathe["stock"]["diameter"] == 56.0
+    assert "stockDiameter" in lathe["stock"]["source"]
+    mill_uri = "untitled:mill.nc"
+    open_text(
+        client,
+        mill_uri,
+        "O1\n(T1 D=10. CR=0. - FLAT END MILL)\nG90 G17 G54\nG00 X0 Y0 Z5.\nG01 Z-1. F100\n"
+        "X20. Y10.\nM30\n",
+    )
+    mill = await asyncio.wait_for(
+        client.workspace_execute_command_async(
+            types.ExecuteCommandParams(command="fanuc-macro.toolpath", arguments=[mill_uri])
+        ),
+        WAIT,
+    )
+    assert isinstance(mill, dict) and mill["lathe"] is False and mill["stock"] is None
+    assert mill["tool"]["radius"] == 5.0 and mill["tool"]["line"] == 1
+
+
 async def test_thread_module_command(client: LanguageClient) -> None:
     await start(client, None)
 
