@@ -18,7 +18,7 @@ import pytest
 ROOT = Path(__file__).resolve().parents[1]
 PACKAGE = ROOT / "server" / "fanuc_macro"
 
-BASE = {"cancel", "database", "diagnostics", "lazy_regex", "program_files"}
+BASE = {"cancel", "database", "diagnostics", "translation", "lazy_regex", "program_files"}
 SYNTAX = BASE | {"syntax", "line_maps", "per_line"}
 CONFIG = SYNTAX | {"config"}
 PROGRAM = CONFIG | {"program"}
@@ -39,6 +39,7 @@ FRONT_END = {
     "config_file",
     "rules_doc",
     "diagnostics",
+    "translation",
     "cancel",
     "database",
     "code_cache",
@@ -53,13 +54,14 @@ ALLOWED: dict[str, set[str]] = {
     "database": {"cancel"},
     "code_cache": {"__version__"},
     "diagnostics": set(),
+    "translation": set(),
     "framing": set(),
     "lazy_regex": set(),
     "program_files": set(),
-    "syntax": {"cancel", "database", "diagnostics", "lazy_regex"},
+    "syntax": {"cancel", "database", "diagnostics", "translation", "lazy_regex"},
     "per_line": {"database", "syntax"},
     "line_maps": {"cancel", "database", "syntax"},
-    "config": {"database", "diagnostics", "syntax"},
+    "config": {"database", "diagnostics", "translation", "syntax"},
     "program": CONFIG,
     "evaluator": PROGRAM,
     "threads": EVALUATOR,

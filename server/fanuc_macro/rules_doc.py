@@ -44,6 +44,40 @@ def part_texts(doc: RuleDoc) -> dict[str, str]:
     return {name: str(getattr(doc, name)).strip("\n") for name, _label in PARTS}
 
 
+def intro_paragraphs(intro: str) -> list[str]:
+    """The intro's paragraphs: blocks between blank lines, a fenced code block whole."""
+    paragraphs: list[str] = []
+    current: list[str] = []
+    fenced = False
+    for line in intro.splitlines():
+        if line.startswith("```"):
+            fenced = not fenced
+        if not line.strip() and not fenced:
+            if current:
+                paragraphs.append("\n".join(current))
+            current = []
+        else:
+            current.append(line)
+    if current:
+        paragraphs.append("\n".join(current))
+    return paragraphs
+
+
+def translatable_texts(intro: str) -> list[tuple[str, str]]:
+    """The texts of docs/rules.md a translation says, each with where it comes from: the
+    intro's paragraphs and headings, the labels, then each rule's parts and severity note.
+    Headings of rules (their anchors) and code blocks are not among them."""
+    texts = [(p, "rules-intro") for p in intro_paragraphs(intro) if not p.startswith("```")]
+    texts += [(label, "rules_doc") for _name, label in PARTS]
+    texts.append(("Severity:", "rules_doc"))
+    for code in sorted(RULE_DOCS):
+        doc = RULE_DOCS[code]
+        texts += [(text, code) for text in part_texts(doc).values()]
+        if doc.severity_note:
+            texts.append((doc.severity_note, code))
+    return texts
+
+
 def missing_docs() -> list[str]:
     """The registered codes without documentation, and the documented codes not registered."""
     return sorted(set(RULES) ^ set(RULE_DOCS))

@@ -36,7 +36,7 @@ FILE_NAME = "check-results.sqlite3"
 # Seconds a run waits for another run's write to the cache before doing without.
 BUSY_TIMEOUT = 5.0
 # The package's files whose change makes another tool (its sources and data).
-TOOL_SUFFIXES = (".py", ".json", ".lark", ".txt")
+TOOL_SUFFIXES = (".py", ".json", ".lark", ".txt", ".po")
 
 
 def digest(data: bytes) -> str:
