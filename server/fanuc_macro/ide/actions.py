@@ -5,6 +5,7 @@ from __future__ import annotations
 import re
 from collections.abc import Iterable
 
+from ..translation import tr
 from .data import ActionKind, CodeAction, DocumentEdit, Position, Problem, Range, TextEdit
 from .view import View
 
@@ -55,7 +56,7 @@ def suppress(view: View, line: int, code: str) -> CodeAction:
         position = Position(line, len(text))
         new = f" (fanuc-macro: ignore {code})"
     return CodeAction(
-        title=f"Suppress {code} on this line",
+        title=tr("Suppress {code} on this line", code=code),
         kind=ActionKind.QUICK_FIX,
         edits=_edit(view, Range.at(position), new),
     )

@@ -12,6 +12,7 @@ from ..database import TableKey
 from ..program import knowledge
 from ..program.variables import classify
 from ..syntax.lines import cut_comments
+from ..translation import tr
 from .data import CompletionItem, CompletionKind, CompletionList, Range
 from .locate import number_of, uses
 from .thread_completion import thread_insertions, trigger_for
@@ -199,10 +200,12 @@ def _thread_items(
         return []
     return [
         CompletionItem(
-            label=f"thread module {found.title}",
+            label=tr("thread module {title}", title=found.title),
             kind=CompletionKind.SNIPPET,
-            detail="symmetric thread module (G92, left-right): the call here, the sub-program "
-            "after this program",
+            detail=tr(
+                "symmetric thread module (G92, left-right): the call here, the sub-program "
+                "after this program"
+            ),
             documentation=found.preview,
             insert_text=found.at_cursor,
             filter_text=trigger,

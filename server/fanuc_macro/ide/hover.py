@@ -21,6 +21,7 @@ from ..syntax.tree import Assign, Block, Num, ProgramStart, Span, Word
 from ..threads.cross_section import NO_CHAIN, describe_cut, thread_chains
 from ..threads.identify import describe as describe_thread
 from ..threads.identify import module_meanings
+from ..translation import Text, joined, tr
 from .data import Hover, Range
 from .locate import Hit, assignments_in, goto_target, number_of
 from .navigation import block_call
@@ -66,9 +67,9 @@ def precision_at(view: View, line: int) -> Precision:
 def with_more(lead: Sequence[str], more: Sequence[str]) -> str:
     """A hover: what was asked, then the rest after a rule (a plain markdown reader shows the
     rule as a line too)."""
-    text = "\n\n".join(p for p in lead if p)
-    rest = "\n\n".join(p for p in more if p)
-    return f"{text}\n\n---\n\n{rest}" if rest else text
+    text = joined("\n\n", (p for p in lead if p))
+    rest = joined("\n\n", (p for p in more if p))
+    return joined("\n\n---\n\n", (text, rest)) if rest else text
 
 
 def _source(table: TableMeaning) -> str:
@@ -87,17 +88,19 @@ def hover_variable(view: View, block: Block, hit: Hit) -> str:
     n = number_of(var)
     line = block.line
     if n is None:
-        return (
-            f"**{block.source(var.span).strip()}** — indirect variable: its number is "
-            "computed when the block runs."
+        return tr(
+            "**{variable_text}** — indirect variable: its number is computed when the block runs.",
+            variable_text=block.source(var.span).strip(),
         )
     kind = classify(n)
     program = view.index.program_at(line)
     tag = ""
     letter = ARGUMENT_LETTER.get(n)
     if letter is not None and program is not None and _takes_arguments(view, program):
-        tag = f" · G65 argument **{letter}**"
-    kind_text = kind.meaning + ("" if kind.verified else " (unverified)")
+        tag = tr(" · G65 argument **{letter}**", letter=letter)
+    kind_text = (
+        kind.meaning if kind.verified else tr("{meaning} (unverified)", meaning=kind.meaning)
+    )
     lead: list[str] = []
     more: list[str] = []
     table = table_meaning(view.index, program.number if program else None, n)
@@ -119,13 +122,29 @@ def hover_variable(view: View, block: Block, hit: Hit) -> str:
         kind_text = ""
     if detail:
         more.append(f"*{detail}*")
-    about = kind_text[:1].upper() + kind_text[1:] + "." if kind_text else ""
-    more.append(" ".join(t for t in (about, source) if t))
+    about = tr("{kind}.", kind=_capital(kind_text)) if kind_text else ""
+    more.append(joined(" ", (t for t in (about, source) if t)))
     head, body = _variable_value(view, block, hit, n, found)
-    lead.append(f"**#{n}**{head}{tag}")
-    lead.append(" — ".join(meaning))
+    lead.append(tr("**#{number}**{value}{argument}", number=n, value=head, argument=tag))
+    lead.append(joined(" — ", meaning))
     lead.extend(body)
     return with_more(lead, more)
+
+
+def _capital(text: str) -> str:
+    """``text`` with a capital first letter (a translated text's template and parameters
+    kept: its English is said capitalised the same way)."""
+    capital = text[:1].upper() + text[1:]
+    if not isinstance(text, Text):
+        return capital
+    made = str.__new__(Text, capital)
+    made.template, made.params, made.plural, made.number = (
+        text.template,
+        text.params,
+        text.plural,
+        text.number,
+    )
+    return made
 
 
 def _variable_value(
@@ -141,10 +160,14 @@ def _variable_value(
     if found is not None and found[0] != line:
         a_line, a_assign = found
         body.append(
-            f"Set at line {a_line + 1}: {code(view.doc.blocks[a_line].source(a_assign.span))}"
+            tr(
+                "Set at line {line}: {program_text}",
+                line=a_line + 1,
+                program_text=code(view.doc.blocks[a_line].source(a_assign.span)),
+            )
         )
     if facts is None:
-        body.append("No values: the evaluator did not run on this document.")
+        body.append(tr("No values: the evaluator did not run on this document."))
         return "", body
     if own is not None:
         write = facts.writes.get(line)
@@ -153,15 +176,15 @@ def _variable_value(
             formula = substituted(block, own, facts, precision.show)
             if formula is not None:
                 body.insert(0, f"```\n= {formula}\n```")
-            return f" = **{precision.summary(written)}**", body
+            return tr(" = **{value}**", value=precision.summary(written)), body
         if not facts.runs.get(line):
             body.append(_not_run(view, line))
         else:
-            body.append("The assignment did not run (its condition was false).")
+            body.append(tr("The assignment did not run (its condition was false)."))
         return "", body
     summary = facts.reads.get((line, n))
     if summary is not None:
-        return f" here: **{precision.summary(summary)}**", body
+        return tr(" here: **{value}**", value=precision.summary(summary)), body
     if not facts.runs.get(line):
         body.append(_not_run(view, line))
     return "", body
@@ -207,7 +230,10 @@ def _module_meaning(view: View, program: Program, number: int) -> tuple[str, str
         )
         if inside or (caller and number >= 100):  # a caller sets the module's commons
             name, _, detail = meaning.partition(": ")
-            return name, detail, f"Thread module {thread.job.program}, recognised by its formulas."
+            module_text = tr(
+                "Thread module {program}, recognised by its formulas.", program=thread.job.program
+            )
+            return name, detail, module_text
     return None
 
 
@@ -219,8 +245,8 @@ def _not_run(view: View, line: int) -> str:
         and facts is not None
         and program.first_line in (facts.analysed_programs)
     ):
-        return "This block never ran in the analysed runs."
-    return "The analysis did not run this program."
+        return tr("This block never ran in the analysed runs.")
+    return tr("The analysis did not run this program.")
 
 
 def _file_name(key: str) -> str:
@@ -235,23 +261,32 @@ def hover_program(view: View, number: int, line: int | None = None, diagnosed: b
     if cycle is not None:
         return _cycle_text(cycle)
     if entry is None and on_control(view.config, number):
-        return f"**O{number:04d}** — kept on the control (setting machine.programsOnControl)."
+        return tr(
+            "**O{number:04d}** — kept on the control (setting machine.programsOnControl).",
+            number=number,
+        )
     if entry is None:
         if diagnosed:
-            return f"**O{number:04d}** — not in the workspace."
-        return (
-            f"**O{number:04d}** — not in the workspace: a call to it stops with alarm "
-            "PS0076 (PROGRAM NOT FOUND)."
+            return tr("**O{number:04d}** — not in the workspace.", number=number)
+        return tr(
+            "**O{number:04d}** — not in the workspace: a call to it stops with alarm "
+            "PS0076 (PROGRAM NOT FOUND).",
+            number=number,
         )
     key, doc, program = entry
     comment = first_comment(doc, program)
     header = program.header_line if program.header_line is not None else program.first_line
-    where = f"line {header + 1}" if key == view.key else f"{_file_name(key)}, line {header + 1}"
-    parts = [f"**{program.display_name}**" + (f" — {comment}" if comment else ""), where]
-    kind = "subprogram (ends with M99)" if program.returns else "main program"
-    parts[-1] += f" · {kind}"
+    where = (
+        tr("line {line}", line=header + 1)
+        if key == view.key
+        else tr("{file}, line {line}", file=_file_name(key), line=header + 1)
+    )
+    title = f"**{program.display_name}**"
+    parts = [tr("{title} — {comment}", title=title, comment=comment) if comment else title, where]
+    kind = tr("subprogram (ends with M99)") if program.returns else tr("main program")
+    parts[-1] = tr("{where} · {kind}", where=parts[-1], kind=kind)
     if program.named_by_file is not None:
-        parts[-1] += " · no O line: the number is the file name's"
+        parts[-1] = tr("{where} · no O line: the number is the file name's", where=parts[-1])
     if key == view.key and line == header:
         parts.append(machine_text(view.config))
     callers: list[str] = []
@@ -260,52 +295,74 @@ def hover_program(view: View, number: int, line: int | None = None, diagnosed: b
             for call in c_program.calls:
                 if call.program == number and (c_key != view.key or call.line != line):
                     place = (
-                        f"line {call.line + 1}"
+                        tr("line {line}", line=call.line + 1)
                         if c_key == view.key
                         else (f"{_file_name(c_key)}:{call.line + 1}")
                     )
-                    callers.append(f"{call.kind} in {c_program.display_name} ({place})")
+                    callers.append(
+                        tr(
+                            "{call} in {program} ({place})",
+                            call=call.kind,
+                            program=c_program.display_name,
+                            place=place,
+                        )
+                    )
     if callers:
-        shown = ", ".join(callers[:5]) + (
-            f" and {len(callers) - 5} more" if len(callers) > 5 else ""
-        )
-        parts.append(f"Called by {shown}.")
+        shown = joined(", ", callers[:5])
+        if len(callers) > 5:
+            shown = tr("{callers} and {more} more", callers=shown, more=len(callers) - 5)
+        parts.append(tr("Called by {callers}.", callers=shown))
     codes = [c.code for c in view.config.custom_calls if c.program == number]
     if codes:  # the blocks of such a code are not in the index: the code is named
-        parts.append(f"Called by every {codes[0]} block (setting machine.customCalls).")
+        parts.append(
+            tr("Called by every {code} block (setting machine.customCalls).", code=codes[0])
+        )
     facts = view.analysis.facts
     if facts is not None:
         runs = facts.by_uri.get(key)
         if runs is not None and header in runs.runs:
-            parts.append(f"Entered {times(runs.runs[header])} in the analysed runs.")
+            parts.append(
+                tr("Entered {times} in the analysed runs.", times=times(runs.runs[header]))
+            )
         assumed = runs.assumed_arguments.get(program.first_line) if runs is not None else None
         if assumed:
             names = ", ".join(local_name(n) for n, _ in assumed)
             parts.append(
-                f"Analysed as a macro with unknown arguments: it ends with M30 or M02 but "
-                f"reads {names} before setting them."
+                tr(
+                    "Analysed as a macro with unknown arguments: it ends with M30 or M02 but "
+                    "reads {names} before setting them.",
+                    names=names,
+                )
             )
         stopped = facts.stop_message()
         if stopped is not None:
-            parts.append(stopped[0].upper() + stopped[1:] + ".")
-    return "\n\n".join(parts)
+            parts.append(tr("{stop}.", stop=_capital(stopped)))
+    return joined("\n\n", parts)
 
 
 def _cycle_text(cycle: VendorCycle) -> str:
     """A vendor's cycle kept on the control: its name, its arguments, the manual."""
-    parts = [
-        f"**O{cycle.number}** — {cycle.package}: {cycle.name}. A cycle kept on the control, "
-        "not in the workspace: the analysis does not follow it."
+    parts: list[str] = [
+        tr(
+            "**O{number}** — {package}: {name}. A cycle kept on the control, not in the "
+            "workspace: the analysis does not follow it.",
+            number=cycle.number,
+            package=cycle.package,
+            name=cycle.name,
+        )
     ]
     if cycle.arguments:
-        parts.append(
-            "Arguments: " + "; ".join(f"**{letter}** {what}" for letter, what in cycle.arguments)
-        )
+        shown = joined("; ", (f"**{letter}** {what}" for letter, what in cycle.arguments))
+        parts.append(tr("Arguments: {arguments}", arguments=shown))
     parts.append(
-        f"Source: {manual_of(cycle)}; the meanings are not checked against its pages "
-        f"(the cycle is named by: {cycle.verified})."
+        tr(
+            "Source: {manual}; the meanings are not checked against its pages (the cycle is "
+            "named by: {named_by}).",
+            manual=manual_of(cycle),
+            named_by=cycle.verified,
+        )
     )
-    return "\n\n".join(parts)
+    return joined("\n\n", parts)
 
 
 def _argument_variable(arguments: Sequence[Word], word: Word) -> int | None:
@@ -346,10 +403,13 @@ def hover_word(view: View, block: Block, hit: Hit) -> str | None:
         head = ""
         rest: list[str] = []
         if call.code is not None:
-            how = "a macro, like G65" if call.kind == "G65" else "a subprogram, like M98"
-            head = (
-                f"**{call.code}** — calls O{call.program:04d} as {how} (setting "
-                "machine.customCalls, as the control's parameter sets it up)"
+            how = tr("a macro, like G65") if call.kind == "G65" else tr("a subprogram, like M98")
+            head = tr(
+                "**{code}** — calls O{program:04d} as {how} (setting machine.customCalls, as "
+                "the control's parameter sets it up)",
+                code=call.code,
+                program=call.program,
+                how=how,
             )
         elif word.span == call.span and value is not None:
             head, *rest = knowledge.code_parts(word.address, value, lathe, system, known)
@@ -363,18 +423,34 @@ def hover_word(view: View, block: Block, hit: Hit) -> str | None:
         return with_more((head, thread or ""), rest)
     parts: list[str] = []
     if call is not None and any(arg is word for arg in call.arguments):
-        target = f"O{call.program:04d}" if call.program is not None else "the macro"
+        target = f"O{call.program:04d}" if call.program is not None else tr("the macro")
         number = _argument_variable(call.arguments, word)
         kind = call.code or call.kind
         if number is None:
-            article = "an" if kind[0] in "MS" else "a"  # an M165, a G65
-            return f"**{word.address}** cannot be {article} {kind} argument"
-        text = f"{kind} argument **{word.address}** → **#{number}** in {target}"
+            if kind[0] in "MS":  # an M165, a G65
+                return tr(
+                    "**{address}** cannot be an {kind} argument", address=word.address, kind=kind
+                )
+            return tr("**{address}** cannot be a {kind} argument", address=word.address, kind=kind)
+        text = tr(
+            "{kind} argument **{address}** → **#{number}** in {target}",
+            kind=kind,
+            address=word.address,
+            number=number,
+            target=target,
+        )
         cycle = known_cycle(call.program)
         if cycle is None or view.program_entry(cycle.number) is not None:
             return text
         meaning = dict(cycle.arguments).get(word.address)
-        return text if meaning is None else f"{text}: {meaning} ({manual_of(cycle)})"
+        if meaning is None:
+            return text
+        return tr(
+            "{argument}: {meaning} ({manual})",
+            argument=text,
+            meaning=meaning,
+            manual=manual_of(cycle),
+        )
     address = knowledge.address_markdown(word.address, lathe)
     if address is not None:
         parts.append(address)
@@ -389,10 +465,10 @@ def hover_word(view: View, block: Block, hit: Hit) -> str | None:
                         summary.add(got)
         if summary.count:
             shown = summary.describe(precision_at(view, block.line).show)
-            parts.append(f"Value in the motions: **{shown}**")
+            parts.append(tr("Value in the motions: **{value}**", value=shown))
     if thread is not None:
         parts.append(thread)
-    return "\n\n".join(parts) or None
+    return joined("\n\n", parts) or None
 
 
 def _thread_hover(view: View, line: int) -> str | None:
@@ -400,16 +476,17 @@ def _thread_hover(view: View, line: int) -> str | None:
     threads = view.analysis.threads
     chains = thread_chains(threads, view.index)
     texts = [
-        "\n".join(
+        joined(
+            "\n",
             filter(
                 None,
                 (describe_thread(t), describe_cut(t, chains.get(id(t), NO_CHAIN).before)),
-            )
+            ),
         )
         for t in threads
         if t.job.uri == view.key and any(m.line == line for m in t.job.passes)
     ]
-    return "\n\n".join(dict.fromkeys(texts)) or None
+    return joined("\n\n", dict.fromkeys(texts)) or None
 
 
 def hover_label(view: View, block: Block) -> str:
@@ -417,39 +494,51 @@ def hover_label(view: View, block: Block) -> str:
     program = view.index.program_at(block.line)
     if seq is None or program is None:
         return ""
-    parts = [f"**N{seq}** — sequence number in {program.display_name}"]
+    parts: list[str] = [
+        tr("**N{seq}** — sequence number in {program}", seq=seq, program=program.display_name)
+    ]
     facts = view.facts
     jumps = [j for j in program.jumps if j.target == seq]
     for jump in jumps[:8]:
-        text = f"{code(view.doc.blocks[jump.line].source(jump.span))} at line {jump.line + 1}"
+        text = tr(
+            "{program_text} at line {line}",
+            program_text=code(view.doc.blocks[jump.line].source(jump.span)),
+            line=jump.line + 1,
+        )
         reaches = program.label_line(seq, jump.line) == block.line
         if facts is not None:
             if jump.conditional:
                 jc = facts.jumps.get(jump.line)
                 if jc is not None:
                     total = jc.taken + jc.not_taken + jc.undecided
-                    text += f": taken {jc.taken} of {total}"
+                    text = tr(
+                        "{jump}: taken {taken} of {total}", jump=text, taken=jc.taken, total=total
+                    )
                 else:
-                    text += ": never reached"
+                    text = tr("{jump}: never reached", jump=text)
             else:
-                text += f": taken {facts.runs.get(jump.line, 0)}"
+                text = tr("{jump}: taken {taken}", jump=text, taken=facts.runs.get(jump.line, 0))
         if not reaches:
-            text += f" (reaches the other N{seq})"
-        parts.append("- " + text)
+            text = tr("{jump} (reaches the other N{seq})", jump=text, seq=seq)
+        parts.append(tr("- {jump}", jump=text))
     if not jumps:
-        parts.append("No GOTO jumps here.")
+        parts.append(tr("No GOTO jumps here."))
     elif len(jumps) > 8:
-        parts.append(f"- and {len(jumps) - 8} more")
+        parts.append(tr("- and {more} more", more=len(jumps) - 8))
     duplicates = program.labels.get(seq, [])
     if len(duplicates) > 1:
         where = ", ".join(str(ln + 1) for ln in duplicates)
         parts.append(
-            f"N{seq} appears on lines {where}: GOTO searches forward from the jump, "
-            "then from the program head."
+            tr(
+                "N{seq} appears on lines {lines}: GOTO searches forward from the jump, then "
+                "from the program head.",
+                seq=seq,
+                lines=where,
+            )
         )
     if facts is not None and block.line in facts.runs:
-        parts.append(f"The block ran {times(facts.runs[block.line])}.")
-    return "\n\n".join(parts)
+        parts.append(tr("The block ran {times}.", times=times(facts.runs[block.line])))
+    return joined("\n\n", parts)
 
 
 def hover_goto(view: View, block: Block, hit: Hit) -> str | None:
@@ -458,33 +547,55 @@ def hover_goto(view: View, block: Block, hit: Hit) -> str | None:
     program = view.index.program_at(block.line)
     if target is None or program is None:
         return knowledge.keyword_markdown("GOTO")
-    parts = [f"**GOTO {target}**"]
+    parts: list[str] = [f"**GOTO {target}**"]
     line = program.label_line(target, block.line)
     if line is None:
         # The editor shows the diagnostic that says so (MB101) above the hover: say it only
         # where no diagnostic does (the rule disabled or suppressed).
         if not _diagnosed(view, block.line, hit.span):
             parts.append(
-                f"No N{target} in {program.display_name}: the jump stops with alarm "
-                "PS0128 (ILLEGAL MACRO SEQUENCE NUMBER)."
+                tr(
+                    "No N{target} in {program}: the jump stops with alarm PS0128 (ILLEGAL "
+                    "MACRO SEQUENCE NUMBER).",
+                    target=target,
+                    program=program.display_name,
+                )
             )
     else:
         target_block = view.doc.blocks[line]
+        comment = comment_of(target_block)
+        shown = code(cut_comments(target_block.text).code)
         parts.append(
-            f"→ line {line + 1}: {code(cut_comments(target_block.text).code)}"
-            + (f" ({comment_of(target_block)})" if comment_of(target_block) else "")
+            tr(
+                "→ line {line}: {program_text} ({comment})",
+                line=line + 1,
+                program_text=shown,
+                comment=comment,
+            )
+            if comment
+            else tr("→ line {line}: {program_text}", line=line + 1, program_text=shown)
         )
     facts = view.facts
     if facts is not None:
         jc = facts.jumps.get(block.line)
         if jc is not None:
-            text = f"Taken {times(jc.taken)}, not taken {times(jc.not_taken)}"
+            taken, not_taken = times(jc.taken), times(jc.not_taken)
             if jc.undecided:
-                text += f", undecided {times(jc.undecided)}"
-            parts.append(text + ".")
+                parts.append(
+                    tr(
+                        "Taken {taken}, not taken {not_taken}, undecided {undecided}.",
+                        taken=taken,
+                        not_taken=not_taken,
+                        undecided=times(jc.undecided),
+                    )
+                )
+            else:
+                parts.append(
+                    tr("Taken {taken}, not taken {not_taken}.", taken=taken, not_taken=not_taken)
+                )
         elif block.line in facts.runs:
-            parts.append(f"Taken {times(facts.runs[block.line])}.")
-    return "\n\n".join(parts)
+            parts.append(tr("Taken {times}.", times=times(facts.runs[block.line])))
+    return joined("\n\n", parts)
 
 
 def _diagnosed(view: View, line: int, span: Span) -> bool:
@@ -507,18 +618,33 @@ def hover_loop(view: View, block: Block, hit: Hit) -> str | None:
     )
     n = f"{hit.loop_id:g}" if hit.loop_id is not None else "?"
     if loop is None:
-        return f"**DO{n} / END{n}** — unpaired (see the diagnostics)"
-    end = "no END" if loop.end_line is None else f"END{n} at line {loop.end_line + 1}"
-    parts = [f"**WHILE … DO{n}** at line {loop.do_line + 1}, {end} — nesting level {loop.depth}"]
+        return tr("**DO{n} / END{n}** — unpaired (see the diagnostics)", n=n)
+    end = (
+        tr("no END")
+        if loop.end_line is None
+        else tr("END{n} at line {line}", n=n, line=loop.end_line + 1)
+    )
+    parts: list[str] = [
+        tr(
+            "**WHILE … DO{n}** at line {line}, {end} — nesting level {depth}",
+            n=n,
+            line=loop.do_line + 1,
+            end=end,
+            depth=loop.depth,
+        )
+    ]
     facts = view.facts
     if facts is not None:
         jc = facts.jumps.get(loop.do_line)
         if jc is not None:
             parts.append(
-                f"The body ran {times(jc.taken)}; the condition ended the loop "
-                f"{times(jc.not_taken)}."
+                tr(
+                    "The body ran {taken}; the condition ended the loop {ended}.",
+                    taken=times(jc.taken),
+                    ended=times(jc.not_taken),
+                )
             )
-    return "\n\n".join(parts)
+    return joined("\n\n", parts)
 
 
 def hover(view: View, line: int, column: int) -> Hover | None:

@@ -8,6 +8,7 @@ from collections import Counter
 from dataclasses import dataclass
 
 from ..program.index import Program
+from ..translation import joined, tr, tr_n
 from .data import Location, Range
 from .values import times
 from .view import View
@@ -19,7 +20,7 @@ MAX_PLACES = 10  # calls listed in the tooltip
 @dataclass(frozen=True)
 class CodeLens:
     range: Range  # the program's O word
-    title: str
+    title: str  # a Text, said in the user's language at the protocol's boundary
     tooltip: str = ""  # what the title sums up, in more words
     references: tuple[Location, ...] = ()  # the places the title counts, when it counts any
 
@@ -51,19 +52,27 @@ def _callers_lens(
     if not callers:
         if not program.returns:
             return None  # a main program: nobody is expected to call it
-        return CodeLens(where, "no caller in the workspace")
+        return CodeLens(where, tr("no caller in the workspace"))
     counts = Counter(name for _, name, _ in callers)
     named = [f"{name} · {count}×" for name, count in counts.most_common(MAX_CALLERS)]
     rest = len(counts) - len(named)
-    title = "called from " + ", ".join(named) + (f" and {rest} more" if rest else "")
+    title = (
+        tr("called from {callers} and {more} more", callers=", ".join(named), more=rest)
+        if rest
+        else tr("called from {callers}", callers=", ".join(named))
+    )
     references = tuple(view.location(key, line) for key, _, line in callers)
     places = [
-        f"{name}, line {line + 1}" + ("" if key == view.key else f" ({_file_name(key)})")
+        tr("{program}, line {line}", program=name, line=line + 1)
+        if key == view.key
+        else tr(
+            "{program}, line {line} ({file})", program=name, line=line + 1, file=_file_name(key)
+        )
         for key, name, line in callers
     ]
     more = len(places) - MAX_PLACES
-    tooltip = "\n".join(places[:MAX_PLACES]) + (f"\nand {more} more" if more > 0 else "")
-    return CodeLens(where, title, tooltip, references)
+    shown = places[:MAX_PLACES] + ([tr("and {more} more", more=more)] if more > 0 else [])
+    return CodeLens(where, title, joined("\n", shown), references)
 
 
 def _file_name(key: str) -> str:
@@ -79,7 +88,7 @@ def _runs_lens(view: View, program: Program, header: int, where: Range) -> CodeL
     cut_threads = False
     entered = facts.runs.get(header)
     if entered:
-        parts.append(f"entered {times(entered)}")
+        parts.append(tr("entered {times}", times=times(entered)))
     for thread in view.analysis.threads:
         job = thread.job
         if job.uri != view.key or job.program_line != program.first_line or not job.passes:
@@ -90,18 +99,25 @@ def _runs_lens(view: View, program: Program, header: int, where: Range) -> CodeL
         depths = len(set(job.xs))
         lead = job.lead
         feed = f" F{lead:g}" if lead is not None else ""
-        name = thread.name if thread.identified else "thread"
+        name = thread.name if thread.identified else tr("thread")
         cut_threads = True
         parts.append(
-            f"{name}: {cuts} cut{'' if cuts == 1 else 's'} at {depths} "
-            f"depth{'' if depths == 1 else 's'} ({job.shown}{feed})"
+            tr(
+                "{thread}: {cuts} at {depths} ({program_text})",
+                thread=name,
+                cuts=tr_n("{count} cut", "{count} cuts", cuts),
+                depths=tr_n("{count} depth", "{count} depths", depths),
+                program_text=f"{job.shown}{feed}",
+            )
         )
     if not parts:
         return None
-    tooltip = "What the analysed runs did"
-    if cut_threads:
-        tooltip += ": a cut is one threading motion, a depth an X the cuts reach"
-    return CodeLens(where, " · ".join(parts), tooltip)
+    tooltip = (
+        tr("What the analysed runs did: a cut is one threading motion, a depth an X the cuts reach")
+        if cut_threads
+        else tr("What the analysed runs did")
+    )
+    return CodeLens(where, joined(" · ", parts), tooltip)
 
 
 def code_lenses(view: View) -> list[CodeLens]:

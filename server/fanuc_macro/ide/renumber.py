@@ -20,6 +20,7 @@ from ..program.index import Program
 from ..syntax.marks import constant_value
 from ..syntax.parser import statements_of
 from ..syntax.tree import Goto, IfGoto, IfNc, NcStatement, Num, Span
+from ..translation import tr
 from .data import ActionKind, CodeAction, DocumentEdit, Range, TextEdit
 from .view import View
 
@@ -56,8 +57,18 @@ def _caller(view: View, program: Program) -> str | None:
         for other in index.programs:
             call = next((c for c in other.calls if c.program == program.number), None)
             if call is not None:
-                where = "" if key == view.key else f" of {key.rsplit('/', 1)[-1]}"
-                return f"{other.display_name} calls it on line {call.line + 1}{where}"
+                if key == view.key:
+                    return tr(
+                        "{program} calls it on line {line}",
+                        program=other.display_name,
+                        line=call.line + 1,
+                    )
+                return tr(
+                    "{program} calls it on line {line} of {file}",
+                    program=other.display_name,
+                    line=call.line + 1,
+                    file=key.rsplit("/", 1)[-1],
+                )
     return None
 
 
@@ -79,8 +90,12 @@ def _returns_into(view: View, program: Program) -> None:
             statements = statements_of(doc.blocks[line].parsed.statement)
             if any(isinstance(s, NcStatement) and _m99_p(s) for s in statements):
                 raise _Refused(
-                    f"{callee.display_name}, which it calls, returns to one of its N numbers "
-                    f"(M99 P on line {line + 1})"
+                    tr(
+                        "{program}, which it calls, returns to one of its N numbers (M99 P on "
+                        "line {line})",
+                        program=callee.display_name,
+                        line=line + 1,
+                    )
                 )
 
 
@@ -93,19 +108,25 @@ def _references(view: View, program: Program) -> list[_Reference]:
     for line in range(program.first_line, min(program.end_line, len(blocks))):
         parsed = blocks[line].parsed
         if parsed.problem is not None:
-            raise _Refused(f"line {line + 1} has a syntax error")
+            raise _Refused(tr("line {line} has a syntax error", line=line + 1))
         for statement in statements_of(parsed.statement):
             nc = statement.words if isinstance(statement, IfNc) else statement
             if isinstance(statement, Goto | IfGoto):
                 goto = statement if isinstance(statement, Goto) else statement.goto
                 value = constant_value(goto.target)
                 if not isinstance(goto.target, Num) or value is None or value != int(value):
-                    raise _Refused(f"the jump on line {line + 1} is computed")
+                    raise _Refused(tr("the jump on line {line} is computed", line=line + 1))
                 found.append(_Reference(line, goto.target.span, int(value), f"GOTO {value:g}"))
             elif isinstance(nc, NcStatement):
                 if caller is not None and _m99_p(nc):
                     # A subprogram's M99 P returns to an N number of the program that called it.
-                    raise _Refused(f"M99 P on line {line + 1} returns to its caller ({caller})")
+                    raise _Refused(
+                        tr(
+                            "M99 P on line {line} returns to its caller ({caller})",
+                            line=line + 1,
+                            caller=caller,
+                        )
+                    )
                 found.extend(_word_references(view, line, nc))
     return found
 
@@ -123,7 +144,9 @@ def _word_references(view: View, line: int, nc: NcStatement) -> list[_Reference]
             continue
         value = constant_value(word.value)
         if not isinstance(word.value, Num) or value is None or value != int(value):
-            raise _Refused(f"the {word.address} on line {line + 1} is computed")
+            raise _Refused(
+                tr("the {address} on line {line} is computed", address=word.address, line=line + 1)
+            )
         found.append(_Reference(line, word.value.span, int(value), f"{word.address}{value:g}"))
     return found
 
@@ -132,7 +155,14 @@ def _renumbered(view: View, program: Program, step: int) -> list[TextEdit]:
     references = _references(view, program)
     labelled = sorted(line for lines in program.labels.values() for line in lines)
     if len(labelled) * step > MAX_SEQUENCE_NUMBER:
-        raise _Refused(f"{len(labelled)} labels in steps of {step} go past N{MAX_SEQUENCE_NUMBER}")
+        raise _Refused(
+            tr(
+                "{count} labels in steps of {step} go past N{largest}",
+                count=len(labelled),
+                step=step,
+                largest=MAX_SEQUENCE_NUMBER,
+            )
+        )
     new_of_line = {line: (k + 1) * step for k, line in enumerate(labelled)}
     blocks = view.doc.blocks
     edits: list[TextEdit] = []
@@ -140,12 +170,20 @@ def _renumbered(view: View, program: Program, step: int) -> list[TextEdit]:
         lines = program.labels.get(reference.target)
         if not lines:
             raise _Refused(
-                f"{reference.what} on line {reference.line + 1} names no N{reference.target} "
-                "of this program"
+                tr(
+                    "{reference} on line {line} names no N{target} of this program",
+                    reference=reference.what,
+                    line=reference.line + 1,
+                    target=reference.target,
+                )
             )
         if len(lines) > 1:
             raise _Refused(
-                f"N{reference.target} is on lines {', '.join(str(n + 1) for n in lines)}"
+                tr(
+                    "N{target} is on lines {lines}",
+                    target=reference.target,
+                    lines=", ".join(str(n + 1) for n in lines),
+                )
             )
         span = reference.span
         target = str(new_of_line[lines[0]])
@@ -159,7 +197,7 @@ def _renumbered(view: View, program: Program, step: int) -> list[TextEdit]:
             continue
         digits = _DIGITS.search(parsed.text, seq_span.start, seq_span.end)
         if digits is None:
-            raise _Refused(f"the N number on line {line + 1} is not plain digits")
+            raise _Refused(tr("the N number on line {line} is not plain digits", line=line + 1))
         edits.append(TextEdit(Range.of(line, digits.start(), line, digits.end()), str(new)))
     return sorted(edits, key=lambda e: e.range.start)
 
@@ -173,17 +211,20 @@ def renumber_labels(view: View, line: int, step: int = DEFAULT_STEP) -> CodeActi
         program = next((p for p in view.index.programs if p.first_line > line), None)
     if program is None or not program.labels:
         return None
-    title = f"{TITLE} of {program.display_name} (step {step})"
+    title = tr(
+        "Renumber N labels of {program} (step {step})", program=program.display_name, step=step
+    )
     try:
         if step < 1:
-            raise _Refused(f"the step {step} is not a positive whole number")
+            raise _Refused(tr("the step {step} is not a positive whole number", step=step))
         edits = _renumbered(view, program, step)
     except _Refused as refused:
+        reason: str = refused.args[0]
         return CodeAction(
-            title=f"{title}: not possible, {refused}",
+            title=tr("{title}: not possible, {reason}", title=title, reason=reason),
             kind=ActionKind.SOURCE_RENUMBER,
             edits=(),
-            disabled=str(refused),
+            disabled=reason,
         )
     if not edits:
         return None

@@ -18,6 +18,7 @@ from ..program.index import Program
 from ..program.variables import ARGUMENT_VARIABLES, FORBIDDEN_ARGUMENTS
 from ..syntax.lines import cut_comments
 from ..syntax.tree import Document
+from ..translation import tr
 from .locate import locals_read_before_set
 from .view import View, comment_of, first_comment
 
@@ -47,14 +48,14 @@ _PROGRAM = re.compile(r"P\s*(\d+)", re.I)
 # What each parameter of a function is, where its name alone does not say.
 _FUNCTION_PARAMETERS: Mapping[str, tuple[str, ...]] = MappingProxyType(
     {
-        "SIN": ("an angle in degrees",),
-        "COS": ("an angle in degrees",),
-        "TAN": ("an angle in degrees",),
-        "ASIN": ("a value from -1 to 1",),
-        "ACOS": ("a value from -1 to 1",),
-        "ATAN": ("the ordinate (the sine side)", "the abscissa (the cosine side)"),
-        "POW": ("the base", "the exponent"),
-        "ADP": ("a local #1-#33 given as an argument",),
+        "SIN": (tr("an angle in degrees"),),
+        "COS": (tr("an angle in degrees"),),
+        "TAN": (tr("an angle in degrees"),),
+        "ASIN": (tr("a value from -1 to 1"),),
+        "ACOS": (tr("a value from -1 to 1"),),
+        "ATAN": (tr("the ordinate (the sine side)"), tr("the abscissa (the cosine side)")),
+        "POW": (tr("the base"), tr("the exponent")),
+        "ADP": (tr("a local #1-#33 given as an argument"),),
     }
 )
 
@@ -94,15 +95,25 @@ class _Callee:
 
 def _argument_documentation(letter: str, number: int | None, callee: _Callee | None) -> str:
     if number is None:
-        return f"**{letter}** fills no local: past #33"
+        return tr("**{letter}** fills no local: past #33", letter=letter)
     head = f"**{letter}** → **#{number}**"
     if callee is None:
         return head
     if number not in callee.reads:
-        return f"{head} — unused: {callee.name} does not read #{number} before it sets it"
-    head += f" — read by {callee.name} at line {callee.reads[number] + 1}"
+        return tr(
+            "{argument} — unused: {program} does not read #{number} before it sets it",
+            argument=head,
+            program=callee.name,
+            number=number,
+        )
+    read = tr(
+        "{argument} — read by {program} at line {line}",
+        argument=head,
+        program=callee.name,
+        line=callee.reads[number] + 1,
+    )
     comment = callee.comments.get(number)
-    return f"{head}\n\n({comment})" if comment else head
+    return tr("{argument}\n\n({comment})", argument=read, comment=comment) if comment else read
 
 
 def call_signature(view: View | None, line_text: str, column: int) -> Signature | None:
@@ -153,11 +164,14 @@ def call_signature(view: View | None, line_text: str, column: int) -> Signature 
     if entry is not None:
         _, doc, called = entry
         comment = first_comment(doc, called)
-        documentation = f"**{called.display_name}**" + (f" — {comment}" if comment else "")
+        title = f"**{called.display_name}**"
+        documentation = (
+            tr("{title} — {comment}", title=title, comment=comment) if comment else title
+        )
     elif number is not None:
-        documentation = f"O{number:04d} is not in the workspace."
+        documentation = tr("O{number:04d} is not in the workspace.", number=number)
     else:
-        documentation = "The program to call: P<number>."
+        documentation = tr("The program to call: P<number>.")
     return Signature(label, documentation, tuple(parameters), active)
 
 

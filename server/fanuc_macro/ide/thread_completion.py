@@ -15,6 +15,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
+from ..translation import tr
 from .data import Position, Range, TextEdit
 from .view import View
 
@@ -118,20 +119,36 @@ def _insertion(
     sub_lines = module.sub_program_lines()
     position, at_end = _insertion_point(view, program.first_line, program.end_line)
     sub_text = eol + eol.join(sub_lines) if at_end else eol.join(sub_lines) + eol
-    side = "internal" if inputs.internal else "external"
+    side = tr("internal") if inputs.internal else tr("external")
     thread = (
         inputs.designation.canonical()
         if inputs.designation is not None
         else f"M{inputs.diameter:g}x{inputs.pitch:g}"
     )
-    title = (
-        f"{thread} {side}, O{sub:04d}: {module.rough_passes} passes, {module.g92_cuts} G92 "
-        f"cuts, final X{module.final_x:.3f}"
+    title = tr(
+        "{thread} {side}, O{sub:04d}: {passes} passes, {cuts} G92 cuts, final X{final_x:.3f}",
+        thread=thread,
+        side=side,
+        sub=sub,
+        passes=module.rough_passes,
+        cuts=module.g92_cuts,
+        final_x=module.final_x,
     )
-    where = program.display_name if program.number is not None else "the program"
+    where = program.display_name if program.number is not None else tr("the program")
+    after = tr(
+        "After {program}:\n```\n{program_text}\n```",
+        program=where,
+        program_text="\n".join(sub_lines),
+    )
     preview = (
-        f"At the cursor:\n```\n{chr(10).join(at_cursor)}\n```\n\n" if at_cursor else ""
-    ) + f"After {where}:\n```\n{chr(10).join(sub_lines)}\n```"
+        tr(
+            "At the cursor:\n```\n{program_text}\n```\n\n{after}",
+            program_text="\n".join(at_cursor),
+            after=after,
+        )
+        if at_cursor
+        else after
+    )
     return ThreadInsertion(
         at_cursor=cursor_text,
         sub_program=TextEdit(Range(position, position), sub_text),

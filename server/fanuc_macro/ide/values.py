@@ -14,6 +14,7 @@ from ..program.variables import classify
 from ..syntax.lines import cut_comments
 from ..syntax.tree import Assign, Binary, Block, Bracket, Expr, Num, Span, Unary, Var
 from ..syntax.walk import subexpressions
+from ..translation import tr
 from .locate import number_of
 
 
@@ -190,18 +191,18 @@ def code(text: str) -> str:
 
 
 def times(n: int) -> str:
-    return "once" if n == 1 else f"{n} times"
+    return tr("once") if n == 1 else tr("{count} times", count=n)
 
 
 def variable_kind(number: int) -> str:
     kind = classify(number)
     label = {
-        "null": "null variable",
-        "local": "local variable",
-        "common": "common variable",
-        "retained": "common variable (retained)",
-        "extended-common": "common variable (extended range)",
-        "system": "system variable",
-        "none": "not a FANUC variable",
+        "null": tr("null variable"),
+        "local": tr("local variable"),
+        "common": tr("common variable"),
+        "retained": tr("common variable (retained)"),
+        "extended-common": tr("common variable (extended range)"),
+        "system": tr("system variable"),
+        "none": tr("not a FANUC variable"),
     }.get(kind.kind, kind.kind)
     return label

@@ -18,6 +18,7 @@ from ..analysis import Analysis
 from ..config import Config
 from ..ide import Indexed
 from ..ide import View as IdeView
+from ..translation import render
 from .client import CompletionSupport
 from .convert import Codec, Lines
 
@@ -35,6 +36,7 @@ class View:
     workspace: Mapping[str, Indexed] = field(default_factory=dict)
     client_uri: Callable[[str], str] = lambda key: key
     markdown: bool = True
+    locale: str = "en"  # the language of the words the features answer with
 
     @cached_property
     def ide(self) -> IdeView:
@@ -123,6 +125,7 @@ def _completion_item(
     codec: Codec,
     support: CompletionSupport,
     lines: Lines | None,
+    locale: str = "en",
 ) -> types.CompletionItem:
     edit: types.TextEdit | None = None
     if item.replace is not None:
@@ -137,10 +140,10 @@ def _completion_item(
             new_text=item.insert_text,
         )
     return types.CompletionItem(
-        label=item.label,
+        label=render(item.label, locale),
         kind=COMPLETION_KIND[item.kind],
-        detail=item.detail or None,
-        documentation=_documentation(item.documentation, support),
+        detail=render(item.detail, locale) or None,
+        documentation=_documentation(render(item.documentation, locale), support),
         sort_text=item.sort_text or None,
         filter_text=item.filter_text or None,
         text_edit=edit,
@@ -166,7 +169,7 @@ def hover(view: View, at: types.Position) -> types.Hover | None:
         return None
     kind = types.MarkupKind.Markdown if view.markdown else types.MarkupKind.PlainText
     return types.Hover(
-        contents=types.MarkupContent(kind=kind, value=found.markdown),
+        contents=types.MarkupContent(kind=kind, value=render(found.markdown, view.locale)),
         range=lsp_range(view.lines, found.range),
     )
 
@@ -175,9 +178,9 @@ def inlay_hints(view: View, first: int, last: int) -> list[types.InlayHint]:
     return [
         types.InlayHint(
             position=position(view.lines, hint.position),
-            label=hint.label,
+            label=render(hint.label, view.locale),
             padding_left=True,
-            tooltip=hint.tooltip,
+            tooltip=render(hint.tooltip, view.locale),
         )
         for hint in ide.inlay_hints(view.ide, first, last)
     ]
@@ -218,6 +221,7 @@ def completion(
     view: View | None = None,
     line_count: int | None = None,
     eol: str = "\n",
+    locale: str = "en",
 ) -> types.CompletionList:
     """Completion at ``column`` (code points) of ``line_text``, the open document's newest text
     of ``line_count`` lines: ``view``, the newest analysis there is, may be of an older one;
@@ -238,7 +242,7 @@ def completion(
     return types.CompletionList(
         is_incomplete=found.incomplete,
         items=[
-            _completion_item(item, line_text, codec, support, lines)
+            _completion_item(item, line_text, codec, support, lines, locale)
             for item in found.items
             if lines is not None or not item.additional_edits
         ],
@@ -266,7 +270,7 @@ def code_actions(
             ]
         out.append(
             types.CodeAction(
-                title=action.title,
+                title=render(action.title, view.locale),
                 kind=ACTION_KIND[action.kind],
                 # Each fix names the problem it was asked for: the client's diagnostic.
                 diagnostics=[asked[id(p)][1] for p in action.fixes] or None,

@@ -90,18 +90,21 @@ def renumber_action(view: View, line: int, step: int) -> types.CodeAction | None
     action = renumber_labels(view.ide, line, step)
     if action is None:
         return None
+    from ..translation import render
+
+    title = render(action.title, view.locale)
     if action.disabled:
         return types.CodeAction(
-            title=action.title,
+            title=title,
             kind=RENUMBER_KIND,
-            disabled=types.CodeActionDisabled(reason=action.disabled),
+            disabled=types.CodeActionDisabled(reason=render(action.disabled, view.locale)),
         )
     changes = {
         view.uri_of(edit.key): _converted(edit.edits, view.lines_of(edit.key))
         for edit in action.edits
     }
     return types.CodeAction(
-        title=action.title, kind=RENUMBER_KIND, edit=types.WorkspaceEdit(changes=changes)
+        title=title, kind=RENUMBER_KIND, edit=types.WorkspaceEdit(changes=changes)
     )
 
 

@@ -12,6 +12,7 @@ from lsprotocol import types
 
 from .. import ide
 from ..ide import TOKEN_MODIFIERS, TOKEN_TYPES
+from ..translation import render
 from .convert import Codec
 from .features import View, locations, lsp_range
 
@@ -72,7 +73,7 @@ def _markdown(text: str) -> types.MarkupContent | None:
 
 
 def signature_help(
-    line_text: str, column: int, codec: Codec, view: View | None
+    line_text: str, column: int, codec: Codec, view: View | None, locale: str = "en"
 ) -> types.SignatureHelp | None:
     """Signature help at ``column`` (code points) of ``line_text``, the open document's newest
     text; ``view``, the newest analysis there is, may be of an older one."""
@@ -83,7 +84,7 @@ def signature_help(
     parameters = [
         types.ParameterInformation(
             label=(codec.to_client(label, p.start), codec.to_client(label, p.end)),
-            documentation=_markdown(p.documentation),
+            documentation=_markdown(render(p.documentation, locale)),
         )
         for p in found.parameters
     ]
@@ -93,7 +94,7 @@ def signature_help(
         signatures=[
             types.SignatureInformation(
                 label=label,
-                documentation=_markdown(found.documentation),
+                documentation=_markdown(render(found.documentation, locale)),
                 parameters=parameters,
                 active_parameter=active,
             )
@@ -112,7 +113,11 @@ def code_lenses(view: View) -> list[types.CodeLens]:
         out.append(
             types.CodeLens(
                 range=lsp_range(view.lines, lens.range),
-                command=types.Command(title=lens.title, command="", tooltip=lens.tooltip or None),
+                command=types.Command(
+                    title=render(lens.title, view.locale),
+                    command="",
+                    tooltip=render(lens.tooltip, view.locale) or None,
+                ),
                 data={"references": [[p.uri, p.range.start.line] for p in places]}
                 if places
                 else None,

@@ -126,6 +126,7 @@ class FanucMacroLanguageServer(LanguageServer):
             workspace=self.engine.indexes,
             client_uri=self.engine.client_uri,
             markdown=self.markdown_hover,
+            locale=self.engine.catalogue.locale,
         )
 
     async def answer(self, uri: str, what: str, fn: Callable[[View], T]) -> T | None:

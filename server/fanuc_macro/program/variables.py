@@ -10,6 +10,8 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from types import MappingProxyType
 
+from ..translation import tr
+
 
 @dataclass(frozen=True, slots=True)
 class VariableKind:
@@ -21,73 +23,101 @@ class VariableKind:
 
 # (first, last, meaning, read_only, verified)
 _SYSTEM_RANGES: tuple[tuple[int, int, str, bool, bool], ...] = (
-    (1000, 1015, "interface input signal UI000-UI015 (bit, from the PMC)", True, False),
-    (1032, 1032, "interface input signals UI000-UI031 (word)", True, False),
-    (1100, 1115, "interface output signal UO000-UO015 (bit, to the PMC)", False, False),
-    (1132, 1133, "interface output signals (word)", False, False),
-    (2001, 2200, "tool offset (wear; lathe: X wear; mill memory C: H wear)", False, False),
-    (2201, 2400, "tool offset (mill memory C: H geometry; lathe: nose radius wear)", False, False),
-    (2401, 2499, "lathe Y offsets (wear/geometry)", False, False),
-    (2501, 2501, "lathe workpiece shift X", False, False),
-    (2601, 2601, "lathe workpiece shift Z", False, False),
-    (2701, 2999, "lathe tool geometry offsets (X, Z, nose radius)", False, False),
-    (3000, 3000, "macro alarm: #3000=n (MESSAGE) stops with alarm 3000+n", False, True),
-    (3001, 3001, "millisecond clock", False, True),
-    (3002, 3002, "hour clock", False, False),
-    (3003, 3003, "single-block suppression and FIN wait (bits 0 and 1)", False, False),
-    (3004, 3004, "feed hold / override / exact-stop suppression (bits 0-2)", False, True),
-    (3005, 3005, "settings", False, False),
-    (3006, 3006, "stop with message: #3006=1 (MESSAGE)", False, True),
-    (3007, 3007, "mirror image status", True, False),
-    (3011, 3011, "date YYYYMMDD", True, True),
-    (3012, 3012, "time HHMMSS", True, True),
-    (3901, 3901, "parts machined", False, True),
-    (3902, 3902, "parts required", False, True),
-    (4000, 4000, "main program number", True, True),
-    (4001, 4030, "modal G code of group (number - 4000), block being pre-read", True, True),
-    (4102, 4130, "modal value of address B D E F H M N O S T P (#4102 B ... #4120 T)", True, True),
-    (4201, 4430, "modal information of the executing block (30i)", True, False),
-    (5001, 5020, "block end position, workpiece coordinates (axis = number - 5000)", True, True),
-    (5021, 5040, "current machine position (stops buffering)", True, True),
-    (5041, 5060, "current workpiece position", True, True),
-    (5061, 5080, "skip (G31) position", True, True),
-    (5081, 5100, "tool length offset in effect", True, True),
-    (5101, 5120, "servo position deviation", True, True),
-    (5201, 5220, "external workpiece zero offset (EXT)", False, True),
-    (5221, 5240, "G54 work offset (axis = number - 5220)", False, True),
-    (5241, 5260, "G55 work offset", False, True),
-    (5261, 5280, "G56 work offset", False, True),
-    (5281, 5300, "G57 work offset", False, True),
-    (5301, 5320, "G58 work offset", False, True),
-    (5321, 5340, "G59 work offset", False, True),
-    (7001, 7948, "G54.1 P1-P48 additional work offsets", False, True),
-    (10001, 19999, "tool offsets (full range) and G54.1 P1-P300 (option)", False, False),
+    (1000, 1015, tr("interface input signal UI000-UI015 (bit, from the PMC)"), True, False),
+    (1032, 1032, tr("interface input signals UI000-UI031 (word)"), True, False),
+    (1100, 1115, tr("interface output signal UO000-UO015 (bit, to the PMC)"), False, False),
+    (1132, 1133, tr("interface output signals (word)"), False, False),
+    (2001, 2200, tr("tool offset (wear; lathe: X wear; mill memory C: H wear)"), False, False),
+    (
+        2201,
+        2400,
+        tr("tool offset (mill memory C: H geometry; lathe: nose radius wear)"),
+        False,
+        False,
+    ),
+    (2401, 2499, tr("lathe Y offsets (wear/geometry)"), False, False),
+    (2501, 2501, tr("lathe workpiece shift X"), False, False),
+    (2601, 2601, tr("lathe workpiece shift Z"), False, False),
+    (2701, 2999, tr("lathe tool geometry offsets (X, Z, nose radius)"), False, False),
+    (3000, 3000, tr("macro alarm: #3000=n (MESSAGE) stops with alarm 3000+n"), False, True),
+    (3001, 3001, tr("millisecond clock"), False, True),
+    (3002, 3002, tr("hour clock"), False, False),
+    (3003, 3003, tr("single-block suppression and FIN wait (bits 0 and 1)"), False, False),
+    (3004, 3004, tr("feed hold / override / exact-stop suppression (bits 0-2)"), False, True),
+    (3005, 3005, tr("settings"), False, False),
+    (3006, 3006, tr("stop with message: #3006=1 (MESSAGE)"), False, True),
+    (3007, 3007, tr("mirror image status"), True, False),
+    (3011, 3011, tr("date YYYYMMDD"), True, True),
+    (3012, 3012, tr("time HHMMSS"), True, True),
+    (3901, 3901, tr("parts machined"), False, True),
+    (3902, 3902, tr("parts required"), False, True),
+    (4000, 4000, tr("main program number"), True, True),
+    (4001, 4030, tr("modal G code of group (number - 4000), block being pre-read"), True, True),
+    (
+        4102,
+        4130,
+        tr("modal value of address B D E F H M N O S T P (#4102 B ... #4120 T)"),
+        True,
+        True,
+    ),
+    (4201, 4430, tr("modal information of the executing block (30i)"), True, False),
+    (
+        5001,
+        5020,
+        tr("block end position, workpiece coordinates (axis = number - 5000)"),
+        True,
+        True,
+    ),
+    (5021, 5040, tr("current machine position (stops buffering)"), True, True),
+    (5041, 5060, tr("current workpiece position"), True, True),
+    (5061, 5080, tr("skip (G31) position"), True, True),
+    (5081, 5100, tr("tool length offset in effect"), True, True),
+    (5101, 5120, tr("servo position deviation"), True, True),
+    (5201, 5220, tr("external workpiece zero offset (EXT)"), False, True),
+    (5221, 5240, tr("G54 work offset (axis = number - 5220)"), False, True),
+    (5241, 5260, tr("G55 work offset"), False, True),
+    (5261, 5280, tr("G56 work offset"), False, True),
+    (5281, 5300, tr("G57 work offset"), False, True),
+    (5301, 5320, tr("G58 work offset"), False, True),
+    (5321, 5340, tr("G59 work offset"), False, True),
+    (7001, 7948, tr("G54.1 P1-P48 additional work offsets"), False, True),
+    (10001, 19999, tr("tool offsets (full range) and G54.1 P1-P300 (option)"), False, False),
 )
 
 LOCAL_LAST = 33
 
 
+# The kinds of the ranges outside the system variables, made once.
+_NULL = VariableKind("null", tr("always vacant (<vacant>); read-only"), read_only=True)
+_LOCAL = VariableKind("local", tr("local variable of the current macro level"))
+_COMMON = VariableKind("common", tr("common variable, cleared at power-off"))
+_RETAINED = VariableKind("retained", tr("common variable, kept through power-off"))
+_EXTENDED = VariableKind(
+    "extended-common",
+    tr("common variable of the extended range (an option on 0i-F / 30i)"),
+    verified=False,
+)
+_SYSTEM = VariableKind("system", tr("system variable"), verified=False)
+_NONE = VariableKind("none", tr("no such variable on a FANUC control (alarm PS0115)"))
+
+
 def classify(number: int) -> VariableKind:
     if number == 0:
-        return VariableKind("null", "always vacant (<vacant>); read-only", read_only=True)
+        return _NULL
     if 1 <= number <= LOCAL_LAST:
-        return VariableKind("local", "local variable of the current macro level")
+        return _LOCAL
     if 100 <= number <= 199:
-        return VariableKind("common", "common variable, cleared at power-off")
+        return _COMMON
     if 500 <= number <= 999:
-        return VariableKind("retained", "common variable, kept through power-off")
+        return _RETAINED
     if 200 <= number <= 499:
-        return VariableKind(
-            "extended-common",
-            "common variable of the extended range (an option on 0i-F / 30i)",
-            verified=False,
-        )
+        return _EXTENDED
     for first, last, meaning, read_only, verified in _SYSTEM_RANGES:
         if first <= number <= last:
             return VariableKind("system", meaning, read_only, verified)
     if number >= 1000:
-        return VariableKind("system", "system variable", verified=False)
-    return VariableKind("none", "no such variable on a FANUC control (alarm PS0115)")
+        return _SYSTEM
+    return _NONE
 
 
 def exists(number: int) -> bool:

@@ -104,9 +104,12 @@ async def completion(
     support, codec = ls.completion_support, ls.engine.codec
     config = ls.engine.config_for(doc.key)
     line, line_count, eol = params.position.line, len(doc.lines()), _end_of_line(doc.text)
+    locale = ls.engine.catalogue.locale
     return await ls.compute(
         "completion",
-        lambda: completion(line_text, line, column, codec, config, support, view, line_count, eol),
+        lambda: completion(
+            line_text, line, column, codec, config, support, view, line_count, eol, locale
+        ),
     )
 
 

@@ -96,9 +96,9 @@ async def signature_help(
         return None
     from ..presentation import signature_help
 
-    codec = ls.engine.codec
+    codec, locale = ls.engine.codec, ls.engine.catalogue.locale
     return await ls.compute(
-        "signature help", lambda: signature_help(at.line_text, at.column, codec, at.view)
+        "signature help", lambda: signature_help(at.line_text, at.column, codec, at.view, locale)
     )
 
 
