@@ -39,11 +39,14 @@ from ..line_maps import LineMap
 from ..syntax.marks import constant_value
 from ..syntax.parser import statements_of
 from ..syntax.tree import Document, NcStatement, ParsedLine, PlainNc
+from ..translation import tr, tr_n
 from .index import ProgramIndex
 from .knowledge import G_CODES
 
 LATHE = "lathe"
 MILL = "mill"
+# The machines in a sentence, in the user's language.
+_MACHINE_WORD = {LATHE: tr("lathe"), MILL: tr("mill")}
 
 # Words that make a block a call or a setting whose letters are arguments or data, not axes.
 _NOT_AXES_G = frozenset({4.0, 10.0, 65.0, 66.0, 66.1})
@@ -52,8 +55,8 @@ _MOVES = frozenset({0.0, 1.0, 2.0, 3.0})
 # Kinds of marks one machine must have more than the other when both show.
 MARGIN = 2
 # A mill's marks in G code system A, which a lathe of system B or C has too.
-G91_MARK = "G91 (incremental programming)"
-G90_MARK = "G90 without a turning cycle's X and Z (absolute programming)"
+G91_MARK = tr("G91 (incremental programming)")
+G90_MARK = tr("G90 without a turning cycle's X and Z (absolute programming)")
 _SYSTEM_A_ONLY = frozenset({G91_MARK, G90_MARK})
 
 
@@ -78,22 +81,35 @@ class MachineGuess:
     def reason(self) -> str:
         """Why, in a sentence's tail: "G43 H (tool length compensation) on line 12"."""
         if not self.marks:
-            return "no code of the program is a lathe's or a mill's alone"
+            return tr("no code of the program is a lathe's or a mill's alone")
         lathe = [m for m in self.marks if m.machine == LATHE]
         mill = [m for m in self.marks if m.machine == MILL]
         if self.kind is None:
-            return (
-                f"it has marks of both: {lathe[0].what} on line {lathe[0].line + 1} (a lathe's) "
-                f"and {mill[0].what} on line {mill[0].line + 1} (a mill's)"
+            return tr(
+                "it has marks of both: {lathe_mark} on line {lathe_line} (a lathe's) and "
+                "{mill_mark} on line {mill_line} (a mill's)",
+                lathe_mark=lathe[0].what,
+                lathe_line=lathe[0].line + 1,
+                mill_mark=mill[0].what,
+                mill_line=mill[0].line + 1,
             )
         own, other = (lathe, mill) if self.kind == LATHE else (mill, lathe)
-        text = f"{own[0].what} on line {own[0].line + 1}"
+        text = tr("{mark} on line {line}", mark=own[0].what, line=own[0].line + 1)
         if len(own) > 1:
-            text += f" and {len(own) - 1} more kind{'s' if len(own) > 2 else ''} of mark"
+            text = tr_n(
+                "{marks} and {count} more kind of mark",
+                "{marks} and {count} more kinds of mark",
+                len(own) - 1,
+                marks=text,
+            )
         if other:
-            text += (
-                f"; a {other[0].machine}'s mark, {other[0].what} on line "
-                f"{other[0].line + 1}, is taken for an option of the machine"
+            text = tr(
+                "{marks}; a {machine}'s mark, {mark} on line {line}, is taken for an option of "
+                "the machine",
+                marks=text,
+                machine=_MACHINE_WORD[other[0].machine],
+                mark=other[0].what,
+                line=other[0].line + 1,
             )
         return text
 
@@ -173,39 +189,41 @@ def _line_marks(parsed: ParsedLine) -> tuple[tuple[str, str], ...] | None:
         return _word_marks(letters, four_digit_t)
     marks: list[tuple[str, str]] = []
     if 6.0 in m:
-        marks.append((MILL, "M06 (tool change)"))
+        marks.append((MILL, tr("M06 (tool change)")))
     if not g.isdisjoint({43.0, 44.0}) and "H" in letters:
-        marks.append((MILL, "G43/G44 H (tool length compensation)"))
+        marks.append((MILL, tr("G43/G44 H (tool length compensation)")))
     if 91.0 in g:
         marks.append((MILL, G91_MARK))
     if "Y" in letters:
-        marks.append((MILL, "a Y axis word"))
+        marks.append((MILL, tr("a Y axis word")))
     if not g.isdisjoint({81.0, 82.0, 86.0}) or (73.0 in g and "Z" in letters):
-        marks.append((MILL, "a drilling cycle a lathe does not have (G81, G82, G86, G73 Z)"))
+        marks.append((MILL, tr("a drilling cycle a lathe does not have (G81, G82, G86, G73 Z)")))
     if 90.0 in g and (not g.isdisjoint(_MOVES) or letters.isdisjoint("XZUW")):
         marks.append((MILL, G90_MARK))
     if not g.isdisjoint({41.0, 42.0}) and "D" in letters:
-        marks.append((MILL, "G41/G42 D (cutter compensation with an offset number)"))
+        marks.append((MILL, tr("G41/G42 D (cutter compensation with an offset number)")))
     if 96.0 in g:
-        marks.append((LATHE, "G96 (constant surface speed)"))
+        marks.append((LATHE, tr("G96 (constant surface speed)")))
     if 50.0 in g and not letters.isdisjoint("SXZ"):
-        marks.append((LATHE, "G50 with S, X or Z (spindle clamp, coordinate system)"))
+        marks.append((LATHE, tr("G50 with S, X or Z (spindle clamp, coordinate system)")))
     if not letters.isdisjoint("UW"):
-        marks.append((LATHE, "a U or W word (incremental X or Z)"))
+        marks.append((LATHE, tr("a U or W word (incremental X or Z)")))
     # With P and Q only: a bare G70/G71 is inch/metric input on other controls (ISO dialects,
     # Heidenhain, Fagor); the cycles' first blocks have U or W, marks of their own.
     if not g.isdisjoint({70.0, 71.0, 72.0, 73.0}) and {"P", "Q"} <= letters:
-        marks.append((LATHE, "a multiple repetitive cycle (G70-G73 with P and Q)"))
+        marks.append((LATHE, tr("a multiple repetitive cycle (G70-G73 with P and Q)")))
     if 76.0 in g and letters.isdisjoint("XYZ"):
-        marks.append((LATHE, "G76's first block (threading cycle parameters)"))
+        marks.append((LATHE, tr("G76's first block (threading cycle parameters)")))
     if 32.0 in g:
-        marks.append((LATHE, "G32 (threading)"))
+        marks.append((LATHE, tr("G32 (threading)")))
     if not g.isdisjoint({77.0, 78.0, 79.0}) and not letters.isdisjoint("XZUW"):
-        marks.append((LATHE, "G77, G78 or G79 with X or Z (a lathe cycle of G code system B or C)"))
+        marks.append(
+            (LATHE, tr("G77, G78 or G79 with X or Z (a lathe cycle of G code system B or C)"))
+        )
     if 92.0 in g and "F" in letters:
-        marks.append((LATHE, "G92 with F (threading cycle)"))
+        marks.append((LATHE, tr("G92 with F (threading cycle)")))
     if 6.0 not in m and four_digit_t:
-        marks.append((LATHE, "a four-digit T (tool and offset number)"))
+        marks.append((LATHE, tr("a four-digit T (tool and offset number)")))
     return tuple(marks) or None
 
 
@@ -219,9 +237,9 @@ _MARK_G = frozenset(
 _MARKING_CODES = frozenset(
     [("G", g) for g in _MARK_G | _NOT_AXES_G] + [("M", m) for m in {6.0} | _NOT_AXES_M]
 )
-_Y = ((MILL, "a Y axis word"),)
-_UW = ((LATHE, "a U or W word (incremental X or Z)"),)
-_T = ((LATHE, "a four-digit T (tool and offset number)"),)
+_Y = ((MILL, tr("a Y axis word")),)
+_UW = ((LATHE, tr("a U or W word (incremental X or Z)")),)
+_T = ((LATHE, tr("a four-digit T (tool and offset number)")),)
 
 
 def _word_marks(
@@ -314,20 +332,32 @@ def machine_text(config: Config) -> str:
     G code system when it is not A)."""
     text = _machine_text(config)
     if config.g_code_system != SYSTEM_A and (config.is_lathe or not config.machine_known):
-        text += f" A lathe's G codes are read in G code system {config.g_code_system}."
+        return tr(
+            "{machine} A lathe's G codes are read in G code system {system}.",
+            machine=text,
+            system=config.g_code_system,
+        )
     return text
 
 
 def _machine_text(config: Config) -> str:
     if config.machine_note and not config.machine_known:
-        return (
-            f"Machine: {config.machine_note}. Read as a lathe (0i-TF), with only the verdicts "
-            "a mill's reading gives too; set fanuc-macro.controller (--controller) to say which."
+        return tr(
+            "Machine: {note}. Read as a lathe (0i-TF), with only the verdicts a mill's reading "
+            "gives too; set fanuc-macro.controller (--controller) to say which.",
+            note=config.machine_note,
         )
     if config.machine_note:
-        return f"Machine: {config.machine_note}."
-    machine = "a lathe" if config.is_lathe else "a mill"
-    return f"Machine: {machine}, as the controller setting {config.controller} says."
+        return tr("Machine: {note}.", note=config.machine_note)
+    if config.is_lathe:
+        return tr(
+            "Machine: a lathe, as the controller setting {controller} says.",
+            controller=config.controller,
+        )
+    return tr(
+        "Machine: a mill, as the controller setting {controller} says.",
+        controller=config.controller,
+    )
 
 
 def _by_program(
@@ -349,9 +379,11 @@ def _by_program(
     mill = [p.display_name for p, g in decided if g.kind == MILL]
     first = decided[0][1]
     controller = "0i-TF" if first.kind == LATHE else "0i-MF"
-    note = (
-        f"a lathe for {', '.join(lathe)} and a mill for {', '.join(mill)} (0i-F read as a "
-        f"0i-TF or a 0i-MF for each program), from their codes"
+    note = tr(
+        "a lathe for {lathe_programs} and a mill for {mill_programs} (0i-F read as a 0i-TF or "
+        "a 0i-MF for each program), from their codes",
+        lathe_programs=", ".join(lathe),
+        mill_programs=", ".join(mill),
     )
     machines = tuple((doc.uri, p.first_line, g.kind == LATHE) for p, g in decided)
     return replace(config, controller=controller, machine_note=note, program_machines=machines)
@@ -378,10 +410,15 @@ def machine_config(config: Config, doc: Document, index: ProgramIndex | None = N
     if each is not None:
         return each
     if guess.kind is None:
-        note = f"not known, {guess.reason}"
+        note = tr("not known, {reason}", reason=guess.reason)
         return replace(config, controller="0i-TF", machine_note=note, machine_known=False)
     controller = "0i-TF" if guess.kind == LATHE else "0i-MF"
-    note = f"a {guess.kind} (0i-F read as {controller}), from its codes: {guess.reason}"
+    note = tr(
+        "a {machine} (0i-F read as {controller}), from its codes: {reason}",
+        machine=_MACHINE_WORD[guess.kind],
+        controller=controller,
+        reason=guess.reason,
+    )
     return replace(config, controller=controller, machine_note=note)
 
 
@@ -415,9 +452,14 @@ def callers_machine(
         return None
     kind, names = next(iter(kinds.items()))
     controller = "0i-TF" if kind == LATHE else "0i-MF"
-    shown = ", ".join(names[:3]) + (f" and {len(names) - 3} more" if len(names) > 3 else "")
-    note = (
-        f"a {kind} (0i-F read as {controller}), as the programs that call it show ({shown}); "
-        "its own codes show neither machine"
+    shown = ", ".join(names[:3])
+    if len(names) > 3:
+        shown = tr("{programs} and {more} more", programs=shown, more=len(names) - 3)
+    note = tr(
+        "a {machine} (0i-F read as {controller}), as the programs that call it show "
+        "({programs}); its own codes show neither machine",
+        machine=_MACHINE_WORD[kind],
+        controller=controller,
+        programs=shown,
     )
     return replace(config, controller=controller, machine_note=note, machine_known=True)
