@@ -78,8 +78,27 @@ describe('translations', () => {
       assert.ok(ignore.split('\n').includes(shipped), shipped);
     }
     const manifest = readFileSync(join(root, 'package.json'), 'utf8');
-    for (const m of manifest.matchAll(/"markdown": "([^"]+)"/g)) {
-      assert.ok(readFileSync(join(root, m[1] ?? ''), 'utf8').length > 0, m[1]);
+    // A walkthrough step's page is named by a %key%: each language's file of its own.
+    for (const nls of ['package.nls.json', ...LOCALES.map((l) => `package.nls.${l}.json`)]) {
+      const said = json(nls);
+      for (const m of manifest.matchAll(/"markdown": "([^"]+)"/g)) {
+        const named = m[1] ?? '';
+        const path = named.startsWith('%') ? String(said[named.slice(1, -1)]) : named;
+        assert.ok(readFileSync(join(root, path), 'utf8').length > 0, `${nls}: ${path}`);
+      }
+    }
+  });
+
+  it('has the pages of the walkthrough in Chinese', () => {
+    const english = json('package.nls.json');
+    const chinese = json('package.nls.zh-cn.json');
+    const media = Object.keys(english).filter((k) => k.startsWith('walkthrough.') && k.endsWith('.media'));
+    assert.equal(media.length, 5);
+    for (const key of media) {
+      // VS Code's own name for a page's translation (<page>.nls.<locale>.md), named by the key too.
+      assert.equal(chinese[key], String(english[key]).replace(/\.md$/, '.nls.zh-cn.md'), key);
+      const page = readFileSync(join(root, String(chinese[key])), 'utf8');
+      assert.match(page, /^# \S*[\u4e00-\u9fff]/u, key);
     }
   });
 });
