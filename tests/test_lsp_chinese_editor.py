@@ -10,6 +10,7 @@ from lsprotocol import types
 from pytest_lsp import LanguageClient
 
 from test_lsp import CAPABILITIES, SEEDS, WAIT, client, diagnostics, edit, open_text
+from test_lsp_editor_commands import run
 from test_translation_fixtures import english_in
 
 __all__ = ["client"]
@@ -28,6 +29,7 @@ N10 M30
 O2000
 #3=#1+1
 M[#3/2]
+G00 X#3 Z1.
 M99
 %
 """
@@ -151,3 +153,14 @@ async def test_the_editors_words_are_said_in_chinese(client: LanguageClient) -> 
     assert details["#1"] == "局部变量" and details["#5221"] is not None
     assert "G54 工件坐标系偏移" in details["#5221"]
     assert not english(*details.values())
+
+    # The trace view: its header, its columns and its summary's words.
+    view = await run(client, "fanuc-macro.traceView", uri, "/programs/chinese.nc")
+    lines = view["text"].split("\n")
+    assert lines[:2] == ["chinese.nc 的轨迹", "位于 /programs"]
+    assert lines[5].split() == ["程序段", "代码", "字", "到", "S", "F"]
+    assert any(line.startswith("O2000 第 16 行  G00") for line in lines)  # "#" typed above
+    # The summary's keys (its values are the findings' own words).
+    keys = [line.split(":")[0] for line in lines[lines.index("摘要") :]]
+    assert "  已执行程序段" in keys
+    assert not english(*lines[:6], *keys)

@@ -17,6 +17,7 @@ from ..program.machine_kind import machine_config
 from ..syntax.tree import Document
 from ..threads.cross_section import NO_CHAIN, cut_summary, thread_chains
 from ..threads.identify import identify
+from ..translation import tr
 
 # The trace is sent to the editor and written by ``trace --format json`` as it is: TypedDicts,
 # built in the order their keys are written. A key a record may lack is in a ``total=False``
@@ -280,7 +281,9 @@ def _threads(uri: str, doc: Document, index: ProgramIndex, facts: Facts) -> list
             "code": job.shown,
             "passes": len(job.passes),
             "lead": job.lead,
-            "side": {True: "internal", False: "external", None: "not known"}[thread.internal],
+            "side": {True: tr("internal"), False: tr("external"), None: tr("not known")}[
+                thread.internal
+            ],
             "thread": thread.name,
             "identified": thread.identified,
             "known_from": thread.known_from(),

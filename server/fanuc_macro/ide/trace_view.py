@@ -10,12 +10,14 @@ Values are written at the control's precision: words and positions to the least 
 
 from __future__ import annotations
 
+import unicodedata
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from textwrap import wrap
 from typing import TYPE_CHECKING, Any
 
 from ..evaluator.values import fmt, fmt_address
+from ..translation import Text, joined, render, tr, tr_n
 
 if TYPE_CHECKING:
     from .trace import Trace
@@ -100,7 +102,9 @@ def _values(values: Mapping[str, Any] | None) -> str:
     )
 
 
-def _scalar(value: Any) -> str:
+def _scalar(value: Any, locale: str = "en") -> str:
+    if isinstance(value, Text):
+        return render(value, locale)
     if value is None:
         return "-"
     if isinstance(value, bool):
@@ -116,29 +120,72 @@ def _is_scalar(value: Any) -> bool:
     return not isinstance(value, Mapping | list | tuple)
 
 
-def summary_lines(summary: Any, indent: str = "  ") -> list[str]:
-    """Indented ``key: value`` lines, nested objects indented further."""
+def summary_lines(summary: Any, indent: str = "  ", locale: str = "en") -> list[str]:
+    """Indented ``key: value`` lines, nested objects indented further; in ``locale`` the
+    keys the summary is known to have are said in words, the translated values too."""
     if not isinstance(summary, Mapping):
-        return [] if summary is None else [f"{indent}{_scalar(summary)}"]
+        return [] if summary is None else [f"{indent}{_scalar(summary, locale)}"]
     lines: list[str] = []
     for key, value in summary.items():
+        if locale != "en" and key in SUMMARY_KEYS:
+            key = render(SUMMARY_KEYS[key], locale)
         if isinstance(value, Mapping | list | tuple) and not value:
-            lines.append(f"{indent}{key}: (none)")
+            none = render(tr("(none)"), locale)
+            lines.append(f"{indent}{key}: {none}")
         elif isinstance(value, Mapping):
             lines.append(f"{indent}{key}:")
-            lines.extend(summary_lines(value, f"{indent}  "))
+            lines.extend(summary_lines(value, f"{indent}  ", locale))
         elif isinstance(value, list | tuple) and all(_is_scalar(v) for v in value):
-            lines.append(f"{indent}{key}: {', '.join(_scalar(v) for v in value)}")
+            lines.append(f"{indent}{key}: {', '.join(_scalar(v, locale) for v in value)}")
         elif isinstance(value, list | tuple):
             lines.append(f"{indent}{key}:")
             for item in value:
-                nested = summary_lines(item, f"{indent}    ")
+                nested = summary_lines(item, f"{indent}    ", locale)
                 if nested:
                     nested[0] = f"{indent}  - {nested[0].lstrip()}"
                 lines.extend(nested)
         else:
-            lines.append(f"{indent}{key}: {_scalar(value)}")
+            lines.append(f"{indent}{key}: {_scalar(value, locale)}")
     return lines
+
+
+# The summary's keys (``trace --format json`` writes them as they are) in words, for a user
+# who reads another language than English.
+SUMMARY_KEYS: Mapping[str, str] = {
+    "motions": tr("motions"),
+    "by_code": tr("by code"),
+    "blocks_executed": tr("blocks executed"),
+    "stopped": tr("stopped"),
+    "stop_message": tr("why it stopped"),
+    "findings": tr("findings"),
+    "read_in_part": tr("files read in part"),
+    "threads": tr("threads"),
+    "line": tr("line"),
+    "kind": tr("kind"),
+    "message": tr("message"),
+    "last_line_read": tr("last line read"),
+    "program": tr("program"),
+    "code": tr("code"),
+    "passes": tr("passes"),
+    "lead": tr("lead"),
+    "side": tr("side"),
+    "thread": tr("thread"),
+    "identified": tr("identified"),
+    "known_from": tr("known from"),
+    "pitch_diameter": tr("pitch diameter"),
+    "root_diameter": tr("root diameter"),
+    "crest_diameter": tr("crest diameter"),
+    "nose_radius": tr("nose radius"),
+    "nose_radius_known": tr("nose radius known"),
+    "limits": tr("limits"),
+    "verdict": tr("verdict"),
+    "area": tr("area"),
+    "largest_pass": tr("largest pass"),
+    "index": tr("index"),
+    "passes_in_air": tr("passes in the air"),
+    "blank": tr("blank"),
+    "blank_from": tr("blank from"),
+}
 
 
 def _source_line(line: Any) -> int | None:
@@ -157,26 +204,35 @@ def _path(record: Mapping[str, Any]) -> str | None:
     return path if isinstance(path, str) and path else None
 
 
-def _move(move: Mapping[str, Any]) -> str:
+def _move(move: Mapping[str, Any], locale: str = "en") -> str:
     kind = str(move.get("kind") or "move")
     text = f"{kind:<6} {_position(move.get('start'))} -> {_position(move.get('end'))}"
     if move.get("centre") is not None:
         clockwise = move.get("clockwise")
         turn = " CW" if clockwise is True else " CCW" if clockwise is False else ""
-        text += f"  centre {_position(move.get('centre'))}{turn}"
+        centre = render(tr("centre {position}", position=_position(move.get("centre"))), locale)
+        text += f"  {centre}{turn}"
     return text
 
 
-def _plural(count: int, word: str) -> str:
-    return f"{count} {word}{'' if count == 1 else 's'}"
+def display_width(text: str) -> int:
+    """The columns ``text`` takes in a monospaced editor: a wide (Chinese) character two."""
+    if text.isascii():
+        return len(text)
+    return sum(2 if unicodedata.east_asian_width(c) in "WF" else 1 for c in text)
 
 
 class _Writer:
-    """The view's lines and the rows that lead to blocks, in the order of the text."""
+    """The view's lines and the rows that lead to blocks, in the order of the text, in the
+    language of ``locale``."""
 
-    def __init__(self) -> None:
+    def __init__(self, locale: str = "en") -> None:
         self.out: list[str] = []
         self.rows: list[TraceRow] = []
+        self.locale = locale
+
+    def say(self, text: str) -> str:
+        return render(text, self.locale)
 
     def lead(self, at: int, source: int, path: str | None, label: str, link: bool) -> None:
         """The lines from ``at`` on lead to the block; the first one links to it if ``link``."""
@@ -185,9 +241,9 @@ class _Writer:
             self.rows.append(TraceRow(line, source, path, span, label))
 
 
-def _block(m: Mapping[str, Any]) -> str:
+def _block(m: Mapping[str, Any], locale: str = "en") -> str:
     program = _program(m.get("program"))
-    line = "" if m.get("line") is None else f"line {m['line']}"
+    line = "" if m.get("line") is None else render(tr("line {line}", line=m["line"]), locale)
     return f"{program} {line}".strip() if program else line
 
 
@@ -217,26 +273,28 @@ def _feed(m: Mapping[str, Any]) -> str:
 
 # The row's columns: a title and its cell.  The block's F is its own column, not a word.
 _COLUMNS: tuple[tuple[str, Callable[[Mapping[str, Any]], str]], ...] = (
-    ("block", _block),
-    ("code", lambda m: str(m.get("code") or "")),
-    ("words", lambda m: _words({a: v for a, v in (m.get("words") or {}).items() if a != "F"})),
-    ("to", _to),
+    (tr("block"), _block),
+    (tr("code"), lambda m: str(m.get("code") or "")),
+    (tr("words"), lambda m: _words({a: v for a, v in (m.get("words") or {}).items() if a != "F"})),
+    (tr("to"), _to),
     ("S", _spindle),
     ("F", _feed),
 )
 
 
 def _motion_rows(writer: _Writer, motions: Sequence[Mapping[str, Any]]) -> None:
-    titles = tuple(title for title, _ in _COLUMNS)
-    cells = [tuple(cell(m) for _, cell in _COLUMNS) for m in motions]
+    say, locale = writer.say, writer.locale
+    titles = tuple(say(title) for title, _ in _COLUMNS)
+    cells = [(_block(m, locale), *(cell(m) for _, cell in _COLUMNS[1:])) for m in motions]
     widths = [
-        min(MAX_COLUMN, max(len(title), *(len(c[i]) for c in cells)))
+        min(MAX_COLUMN, max(display_width(title), *(display_width(c[i]) for c in cells)))
         for i, title in enumerate(titles)
     ]
 
     def row(cell: tuple[str, ...]) -> str:
         return "  ".join(
-            text.ljust(width) for text, width in zip(cell, widths, strict=True)
+            text + " " * (size - display_width(text))
+            for text, size in zip(cell, widths, strict=True)
         ).rstrip()
 
     writer.out.append(row(titles))
@@ -256,12 +314,16 @@ def _motion_rows(writer: _Writer, motions: Sequence[Mapping[str, Any]]) -> None:
                 )
             )
         if m.get("centre") is not None:
-            writer.out.append(f"{VALUES_INDENT}centre {_position(m['centre'])}")
+            centre = say(tr("centre {position}", position=_position(m["centre"])))
+            writer.out.append(f"{VALUES_INDENT}{centre}")
         moves = m.get("moves") or []
         if moves:
-            cycle = f" ({m['cycle']})" if m.get("cycle") else ""
-            writer.out.append(f"{VALUES_INDENT}{_plural(len(moves), 'move')}{cycle}:")
-        writer.out.extend(f"      {_move(move)}" for move in moves)
+            count = tr_n("{count} move", "{count} moves", len(moves))
+            if m.get("cycle"):
+                count = tr("{moves} ({cycle})", moves=count, cycle=m["cycle"])
+            said = say(tr("{moves}:", moves=count))
+            writer.out.append(f"{VALUES_INDENT}{said}")
+        writer.out.extend(f"      {_move(move, locale)}" for move in moves)
         source = _source_line(m.get("line"))
         if source is not None:
             writer.lead(at, source, _path(m), cell[0], link=True)
@@ -278,19 +340,24 @@ def _wrapped(line: str, width: int = VALUES_WIDTH + len(VALUES_INDENT)) -> list[
 
 
 def _lost_rows(writer: _Writer, lost: Sequence[Mapping[str, Any]]) -> None:
-    writer.out.extend(["", "Where the path is not known"])
+    writer.out.extend(["", writer.say(tr("Where the path is not known"))])
     for place in lost:
-        line = f"line {place['line']}" if isinstance(place.get("line"), int) else ""
+        line = (
+            writer.say(tr("line {line}", line=place["line"]))
+            if isinstance(place.get("line"), int)
+            else ""
+        )
         block = f"{_program(place.get('program'))} {line}".strip()
         axes = ", ".join(place.get("axes") or [])
         at = len(writer.out)
-        writer.out.extend(_wrapped(f"  {block}: {axes} {place.get('reason') or ''}".rstrip()))
+        reason = writer.say(place.get("reason") or "")
+        writer.out.extend(_wrapped(f"  {block}: {axes} {reason}".rstrip()))
         source = _source_line(place.get("line"))
         if source is not None:
             writer.rows.append(TraceRow(at, source, _path(place), (2, 2 + len(block)), block))
 
 
-def view_of_trace(trace: Trace, source: str) -> TraceView:
+def view_of_trace(trace: Trace, source: str, locale: str = "en") -> TraceView:
     """The view of ``trace`` (what :func:`~fanuc_macro.ide.trace.trace` answers) for the
     program ``source`` (a file's path, or an untitled document's URI).  The rows read its
     records as JSON, a key left out or of another type skipped, so a trace read back from a
@@ -300,28 +367,31 @@ def view_of_trace(trace: Trace, source: str) -> TraceView:
     summary = trace.get("summary")
     executed = summary.get("blocks_executed") if isinstance(summary, Mapping) else None
     units = toolpath.get("units")
-    writer = _Writer()
+    writer = _Writer(locale)
+    say = writer.say
     # The file's name as the title; its folder on a line of its own, the title short.
     folder, cut, name = source.replace("\\", "/").rpartition("/")
     hidden = "://" in source or source.startswith("untitled:")
-    writer.out.append(f"Trace of {name if cut and not hidden else source}")
+    writer.out.append(say(tr("Trace of {name}", name=name if cut and not hidden else source)))
     if cut and not hidden and folder:
-        writer.out.append(f"in {source[: len(folder)]}")
-    writer.out.append(
-        _plural(len(motions), "motion block")
-        + (f", {_plural(executed, 'block')} executed" if isinstance(executed, int) else "")
-        + (f", positions in {units}" if isinstance(units, str) else "")
-    )
-    writer.out.append("Ctrl+click a row's block, or F12 on the row, to open it.")
+        writer.out.append(say(tr("in {folder}", folder=source[: len(folder)])))
+    counts = [tr_n("{count} motion block", "{count} motion blocks", len(motions))]
+    if isinstance(executed, int):
+        counts.append(tr_n("{count} block executed", "{count} blocks executed", executed))
+    if isinstance(units, str):
+        counts.append(tr("positions in {units}", units=units))
+    writer.out.append(say(joined(", ", counts)))
+    writer.out.append(say(tr("Ctrl+click a row's block, or F12 on the row, to open it.")))
     writer.out.append("")
     if motions:
         _motion_rows(writer, motions)
     else:
-        writer.out.append("(no motion)")
+        writer.out.append(say(tr("(no motion)")))
     lost = toolpath.get("lost") or []
     if lost:
         _lost_rows(writer, lost)
-    said = summary_lines(summary)
+    said = summary_lines(summary, locale=locale)
     if said:
-        writer.out.extend(["", "Summary", *(w for line in said for w in _wrapped(line))])
+        heading = say(tr("Summary"))
+        writer.out.extend(["", heading, *(w for line in said for w in _wrapped(line))])
     return TraceView("\n".join(writer.out) + "\n", tuple(writer.rows))

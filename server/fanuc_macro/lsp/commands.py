@@ -482,12 +482,13 @@ async def run_trace_view(engine: Engine, args: tuple[Any, ...]) -> TraceViewAnsw
     the trace view of that document, headed with ``source`` (its path as the editor shows
     it; the URI when left out), or ``{"error"}``."""
     source = args[1] if len(args) > 1 and isinstance(args[1], str) else _uri_argument(args)
+    locale = engine.catalogue.locale
 
     def load() -> Answer[TraceViewAnswer]:
         from ..ide import trace, view_of_trace
 
         def answer(*document: Any) -> TraceViewAnswer:
-            return _trace_view_json(view_of_trace(trace(*document), source or ""))
+            return _trace_view_json(view_of_trace(trace(*document), source or "", locale))
 
         return answer
 
