@@ -164,3 +164,8 @@ async def test_the_editors_words_are_said_in_chinese(client: LanguageClient) -> 
     keys = [line.split(":")[0] for line in lines[lines.index("摘要") :]]
     assert "  已执行程序段" in keys
     assert not english(*lines[:6], *keys)
+
+    # The Toolpath view's notes: why the unit is assumed.
+    toolpath = await run(client, "fanuc-macro.toolpath", uri)
+    assert toolpath["units_note"].startswith("假定为 mm：")
+    assert not english(toolpath["units_note"])

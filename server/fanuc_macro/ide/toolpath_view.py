@@ -37,6 +37,7 @@ from ..syntax.parser import quiet_gc
 from ..syntax.tree import Document
 from ..threads.cross_section import blank_diameter
 from ..threads.identify import Thread, identify
+from ..translation import tr
 from .plot import PassMap, arc_points, pass_maps
 from .trace import run_with_toolpath
 
@@ -318,11 +319,18 @@ def units_note(stated: bool, inch: bool, span: float, lathe: bool) -> str:
     if stated:
         return ""
     unit = "inch" if inch else "mm"
-    note = f"assumed {unit}: the program states neither G20 nor G21 (the control keeps the unit"
-    note += " it was in, or its setting's at power-on)"
+    note = tr(
+        "assumed {unit}: the program states neither G20 nor G21 (the control keeps the unit it "
+        "was in, or its setting's at power-on)",
+        unit=unit,
+    )
     # A lathe's X is drawn as a radius: its span is half the diameters'.
     if not inch and 0.0 < span * (2.0 if lathe else 1.0) <= INCH_LOOKING_SPAN:
-        note += f"; the path is only {span:.4g} across, as a part in inches would be"
+        return tr(
+            "{note}; the path is only {span:.4g} across, as a part in inches would be",
+            note=note,
+            span=span,
+        )
     return note
 
 
@@ -359,9 +367,12 @@ def view_data(
     codes, blocks = _blocks(facts.motions if facts is not None else ())
     stopped = ""
     if facts is not None and facts.stopped == "budget":
-        stopped = "the run stopped when the analysis's step budget ran out"
+        stopped = tr("the run stopped when the analysis's step budget ran out")
     elif facts is not None and facts.stopped == "time":
-        stopped = f"the run stopped after {facts.time_limit:g} s (the analysis's time limit)"
+        stopped = tr(
+            "the run stopped after {seconds:g} s (the analysis's time limit)",
+            seconds=facts.time_limit,
+        )
     return {
         "format": VIEW_FORMAT,
         "lathe": toolpath.lathe,
@@ -433,7 +444,7 @@ def stock_of(
             "diameter": setting,
             "front": front,
             "back": back,
-            "source": "the setting fanuc-macro.view.stockDiameter",
+            "source": tr("the setting fanuc-macro.view.stockDiameter"),
             "line": -1,
         }
     for m in motions:
@@ -442,7 +453,9 @@ def stock_of(
                 "diameter": m.start_x,
                 "front": front,
                 "back": back,
-                "source": f"the start point of {m.code} at line {m.line + 1}",
+                "source": tr(
+                    "the start point of {code} at line {line}", code=m.code, line=m.line + 1
+                ),
                 "line": m.line,
             }
     for thread in threads:
@@ -451,10 +464,10 @@ def stock_of(
         surface = thread.surface
         if surface is not None:
             diameter: float | None = surface.blank
-            source = f"the diameter turned at line {surface.line + 1}"
+            source = tr("the diameter turned at line {line}", line=surface.line + 1)
         else:
             diameter = blank_diameter(thread)
-            source = f"the major diameter of {thread.name}"
+            source = tr("the major diameter of {thread}", thread=thread.name)
         if diameter is not None and diameter > 0.0:
             line = thread.job.passes[0].line
             return {
@@ -473,11 +486,15 @@ def tool_of(threads: Sequence[Thread]) -> ViewTool | None:
         r = thread.nose_radius
         if r is not None and r > 0.0:
             line = thread.nose_line if thread.nose_line is not None else -1
-            where = f" at line {line + 1}" if line >= 0 else ""
+            source = (
+                tr("the threading tool's nose radius at line {line}", line=line + 1)
+                if line >= 0
+                else tr("the threading tool's nose radius")
+            )
             return {
                 "radius": r,
                 "angle": 60.0 if thread.pipe is None else 55.0,
-                "source": f"the threading tool's nose radius{where}",
+                "source": source,
                 "line": line,
             }
     return None
@@ -504,7 +521,7 @@ def cutter_of(doc: Document | None) -> ViewTool | None:
                 return {
                     "radius": float(found[1]) / 2.0,
                     "angle": 0.0,
-                    "source": f"the diameter in the comment at line {block.line + 1}",
+                    "source": tr("the diameter in the comment at line {line}", line=block.line + 1),
                     "line": block.line,
                 }
     return None
@@ -513,15 +530,15 @@ def cutter_of(doc: Document | None) -> ViewTool | None:
 def empty_reason(doc: Document, facts: Facts) -> str:
     """Why a run draws nothing, in the words the view shows."""
     if not any(b.parsed.statement is not None for b in doc.blocks):
-        return "the document holds no blocks: nothing to draw"
+        return tr("the document holds no blocks: nothing to draw")
     if not facts.motions:
-        return (
-            "the program makes no move: no block of it that runs moves an axis (G00-G03, a"
-            " canned cycle)"
+        return tr(
+            "the program makes no move: no block of it that runs moves an axis (G00-G03, a "
+            "canned cycle)"
         )
-    return (
-        "the program makes no move whose place is known: its moves are incremental from a"
-        " place the program never states"
+    return tr(
+        "the program makes no move whose place is known: its moves are incremental from a "
+        "place the program never states"
     )
 
 

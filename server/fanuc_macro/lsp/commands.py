@@ -13,7 +13,7 @@ import asyncio
 import logging
 from collections.abc import Awaitable, Callable, Collection, Mapping
 from types import MappingProxyType
-from typing import TYPE_CHECKING, Any, Literal, TypedDict, TypeVar, final
+from typing import TYPE_CHECKING, Any, Literal, TypedDict, TypeVar, cast, final
 
 from .engine import Engine, key_of
 
@@ -225,8 +225,35 @@ async def run_trace(engine: Engine, args: tuple[Any, ...]) -> Trace | CommandRef
 async def run_toolpath(
     engine: Engine, args: tuple[Any, ...]
 ) -> ToolpathViewData | NoToolpathView | CommandRefusal:
-    """``[uri]`` -> the Toolpath view's data of that document (ide/toolpath_view.py)."""
-    return await _on_document(engine, TOOLPATH, args, _toolpath_view)
+    """``[uri]`` -> the Toolpath view's data of that document (ide/toolpath_view.py), its
+    words in the editor's language."""
+    answer = await _on_document(engine, TOOLPATH, args, _toolpath_view)
+    return _toolpath_said(answer, engine.catalogue.locale)
+
+
+def _toolpath_said(answer: AnswerT, locale: str) -> AnswerT:
+    """The Toolpath view's texts (why nothing is drawn, the unit's note, why the run
+    stopped, where the stock and the tool come from, why the path is lost) in ``locale``."""
+    if locale == "en":
+        return answer
+    from ..translation import render
+
+    said: dict[str, Any] = dict(answer)
+    for key in ("error", "units_note", "stopped"):
+        if isinstance(said.get(key), str):
+            said[key] = render(said[key], locale)
+    for key in ("stock", "tool"):
+        part = said.get(key)
+        if isinstance(part, dict) and isinstance(part.get("source"), str):
+            said[key] = {**part, "source": render(part["source"], locale)}
+    if isinstance(said.get("lost"), list):
+        said["lost"] = [
+            {**lost, "reason": render(lost["reason"], locale)}
+            if isinstance(lost, dict) and isinstance(lost.get("reason"), str)
+            else lost
+            for lost in said["lost"]
+        ]
+    return cast(AnswerT, said)
 
 
 class ThreadOptions(TypedDict, total=False):
