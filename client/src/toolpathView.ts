@@ -50,17 +50,53 @@ export function toolpathError(answer: unknown): string | undefined {
 export function toolpathMessage(
   answer: unknown,
   title: string,
-): { type: 'data'; data: unknown; title: string } | { type: 'empty'; reason: string; title: string } | { type: 'error'; message: string } {
+  words: Record<string, string> = {},
+):
+  | { type: 'data'; data: unknown; title: string; words: Record<string, string> }
+  | { type: 'empty'; reason: string; title: string; words: Record<string, string> }
+  | { type: 'error'; message: string } {
   const error = toolpathError(answer);
-  if (error === undefined) return { type: 'data', data: answer, title };
+  if (error === undefined) return { type: 'data', data: answer, title, words };
   const empty = answer !== null && typeof answer === 'object' && (answer as { empty?: unknown }).empty === true;
-  return empty ? { type: 'empty', reason: error, title } : { type: 'error', message: `${title}: ${error}` };
+  return empty ? { type: 'empty', reason: error, title, words } : { type: 'error', message: `${title}: ${error}` };
 }
+
+/**
+ * The page's words of its notes and tooltips (client/webview/backplot.ts `ENGLISH_WORDS`, the
+ * same keys) in the user's language: templates whose {0}, {1} the page fills.
+ */
+export function toolpathWords(): Record<string, string> {
+  const t = vscode.l10n.t;
+  return {
+    notKnown: t('not known'),
+    line: t('line {0} ({1})', '{0}', '{1}'),
+    rapid: t('rapid'),
+    feedNotKnown: t('F not known'),
+    speedNotKnown: t('S not known'),
+    assumed: t('assumed {0}', '{0}'),
+    segments: t('{0} segments, {1}', '{0}', '{1}'),
+    xShown: t('X shown as a {0} (the program writes diameters)', '{0}'),
+    diameter: t('diameter'),
+    radius: t('radius'),
+    stock: t('stock: Ø{0} from {1}', '{0}', '{1}'),
+    noStockLathe: t('stock: not given by the program (no stock removal cycle, no thread blank)'),
+    noStock: t('stock: not given by the program'),
+    tool: t('tool: radius {0}, {1}', '{0}', '{1}'),
+    noTool: t('tool: its radius is not given by the program: drawn at a nominal size'),
+    cutShort: t('cut short: the program makes more moves than the view keeps'),
+    unknownAxes: t('{0} unknown: ', '{0}'),
+    lost: t('line {0}: {1}{2}', '{0}', '{1}', '{2}'),
+    nothingToDraw: t('{0}: nothing to draw', '{0}'),
+  };
+}
+
+/** The page's fixed labels, in English unless the extension says them (`vscode.l10n.t`). */
+type Say = (text: string) => string;
 
 /** A script nonce of the page's content security policy: 128 random bits. */
 const nonce = (): string => randomBytes(16).toString('hex');
 
-export function toolpathHtml(scriptUri: string, cspSource: string): string {
+export function toolpathHtml(scriptUri: string, cspSource: string, t: Say = (text) => text): string {
   const n = nonce();
   return `<!DOCTYPE html>
 <html lang="en">
@@ -68,7 +104,7 @@ export function toolpathHtml(scriptUri: string, cspSource: string): string {
 <meta charset="UTF-8">
 <meta http-equiv="Content-Security-Policy" content="default-src 'none'; style-src 'nonce-${n}'; script-src 'nonce-${n}' ${cspSource};">
 <meta name="viewport" content="width=device-width, initial-scale=1.0">
-<title>Toolpath</title>
+<title>${t('Toolpath')}</title>
 <style nonce="${n}">
   html, body { height: 100%; margin: 0; padding: 0; overflow: hidden; }
   body { display: flex; flex-direction: column; color: var(--vscode-foreground); background: var(--vscode-editor-background); font: 12px var(--vscode-font-family); }
@@ -103,29 +139,29 @@ export function toolpathHtml(scriptUri: string, cspSource: string): string {
 </head>
 <body>
 <div id="bar">
-  <label class="group">View <select id="view" title="The plane drawn, or an orbit in 3D"><option value="XZ">XZ</option><option value="XY">XY</option><option value="YZ">YZ</option><option value="3D">3D orbit</option></select></label>
-  <label class="group" id="xmode-group">X as <select id="xmode" title="A lathe's X labelled as the diameter the program writes, or as the radius drawn"><option value="diameter">diameter</option><option value="radius">radius</option></select></label>
-  <button id="fit" title="Show the whole toolpath, as large as the view allows">Fit</button>
-  <span class="group" title="Playback: the tool runs the program block by block">
-    <button id="start" class="secondary" title="Back to the first block">⇤</button>
-    <button id="back" class="secondary" title="One block back">◀︎</button>
-    <button id="play" class="secondary" title="Play or pause">▶︎</button>
-    <button id="next" class="secondary" title="One block on (single block)">▶︎|</button>
-    <button id="end" class="secondary" title="To the end: the whole path">⇥</button>
-    <select id="speed" title="Playback speed"><option value="1">slow</option><option value="4" selected>normal</option><option value="20">fast</option></select>
+  <label class="group">${t('View')} <select id="view" title="${t('The plane drawn, or an orbit in 3D')}"><option value="XZ">XZ</option><option value="XY">XY</option><option value="YZ">YZ</option><option value="3D">${t('3D orbit')}</option></select></label>
+  <label class="group" id="xmode-group">${t('X as')} <select id="xmode" title="${t('A lathe\'s X labelled as the diameter the program writes, or as the radius drawn')}"><option value="diameter">${t('diameter')}</option><option value="radius">${t('radius')}</option></select></label>
+  <button id="fit" title="${t('Show the whole toolpath, as large as the view allows')}">${t('Fit')}</button>
+  <span class="group" title="${t('Playback: the tool runs the program block by block')}">
+    <button id="start" class="secondary" title="${t('Back to the first block')}">⇤</button>
+    <button id="back" class="secondary" title="${t('One block back')}">◀︎</button>
+    <button id="play" class="secondary" title="${t('Play or pause')}">▶︎</button>
+    <button id="next" class="secondary" title="${t('One block on (single block)')}">▶︎|</button>
+    <button id="end" class="secondary" title="${t('To the end: the whole path')}">⇥</button>
+    <select id="speed" title="${t('Playback speed')}"><option value="1">${t('slow')}</option><option value="4" selected>${t('normal')}</option><option value="20">${t('fast')}</option></select>
   </span>
-  <span class="key"><span class="swatch rapid"></span>rapid</span>
-  <span class="key"><span class="swatch feed"></span>feed</span>
-  <span class="key"><span class="swatch arc"></span>arc</span>
-  <span class="key"><span class="swatch thread"></span>thread</span>
+  <span class="key"><span class="swatch rapid"></span>${t('rapid')}</span>
+  <span class="key"><span class="swatch feed"></span>${t('feed')}</span>
+  <span class="key"><span class="swatch arc"></span>${t('arc')}</span>
+  <span class="key"><span class="swatch thread"></span>${t('thread')}</span>
 </div>
 <div id="stage">
   <canvas id="toolpath"></canvas>
   <div id="readout"></div>
   <div id="tooltip" role="tooltip"></div>
-  <div id="empty"><div><strong>Nothing to draw</strong><span id="empty-reason"></span></div></div>
+  <div id="empty"><div><strong>${t('Nothing to draw')}</strong><span id="empty-reason"></span></div></div>
 </div>
-<div id="status"><div id="summary">Running the program…</div><ul id="notes"></ul></div>
+<div id="status"><div id="summary">${t('Running the program…')}</div><ul id="notes"></ul></div>
 <script nonce="${n}" src="${scriptUri}"></script>
 </body>
 </html>`;
@@ -187,14 +223,17 @@ export class ToolpathPanel {
       { enableScripts: true, localResourceRoots: [webviewRoot], retainContextWhenHidden: true },
     );
     const script = panel.webview.asWebviewUri(vscode.Uri.joinPath(webviewRoot, 'toolpath.js'));
-    panel.webview.html = toolpathHtml(script.toString(), panel.webview.cspSource);
+    panel.webview.html = toolpathHtml(script.toString(), panel.webview.cspSource, (text) => vscode.l10n.t(text));
     ToolpathPanel.current = new ToolpathPanel(panel, document, execute);
     return ToolpathPanel.current;
   }
 
   private static title(document: vscode.TextDocument): string {
-    const name = document.uri.path.split('/').pop() ?? 'program';
-    return `Toolpath: ${name}`;
+    return vscode.l10n.t('Toolpath: {0}', ToolpathPanel.name(document));
+  }
+
+  private static name(document: vscode.TextDocument): string {
+    return document.uri.path.split('/').pop() ?? 'program';
   }
 
   private followSoon(): void {
@@ -216,8 +255,8 @@ export class ToolpathPanel {
       answer = { error: err instanceof Error ? err.message : String(err) };
     }
     if (asked !== this.asked) return; // a newer request is on its way
-    const title = ToolpathPanel.title(this.document).replace(/^Toolpath: /, '');
-    await this.panel.webview.postMessage(toolpathMessage(answer, title));
+    const title = ToolpathPanel.name(this.document);
+    await this.panel.webview.postMessage(toolpathMessage(answer, title, toolpathWords()));
     if (this.stoppedLine !== undefined) {
       await this.panel.webview.postMessage({ type: 'cursor', line: this.stoppedLine });
       return;

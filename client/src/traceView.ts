@@ -104,7 +104,7 @@ export class TraceDocuments
   provideTextDocumentContent(uri: vscode.Uri): string {
     return (
       this.shown.get(uri.toString())?.view.text ??
-      'This trace is closed: run "FANUC Macro: Show Trace of Current Program" on the program again.\n'
+      vscode.l10n.t('This trace is closed: run "FANUC Macro: Show Trace of Current Program" on the program again.') + '\n'
     );
   }
 
@@ -129,7 +129,7 @@ export class TraceDocuments
         new vscode.Range(row.line, row.link.start, row.line, row.link.end),
         file.with({ fragment: `L${row.sourceLine + 1}` }),
       );
-      link.tooltip = `Open ${row.label}`;
+      link.tooltip = vscode.l10n.t('Open {0}', row.label);
       links.push(link);
     }
     return links;

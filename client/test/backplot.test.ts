@@ -13,9 +13,12 @@ import {
   toolOutline,
   tooltipLines,
   viewAxes,
+  wordsOf,
+  say,
+  ENGLISH_WORDS,
 } from '../webview/backplot';
 import { fit, projection, toScreen, toSegments, trace, type PathSink } from '../webview/toolpathGeometry';
-import { toolpathHtml, toolpathMessage } from '../src/toolpathView';
+import { toolpathHtml, toolpathMessage, toolpathWords } from '../src/toolpathView';
 import { LATHE, packed } from './toolpathFixtures';
 
 class Counter implements PathSink {
@@ -226,14 +229,27 @@ describe('tooltip and status', () => {
 describe('the page\'s messages', () => {
   it('tells a program that makes no move from a failure', () => {
     const reason = 'the program makes no move: no block of it that runs moves an axis';
-    assert.deepEqual(toolpathMessage({ error: reason, empty: true }, 'o1.nc'), { type: 'empty', reason, title: 'o1.nc' });
+    assert.deepEqual(toolpathMessage({ error: reason, empty: true }, 'o1.nc'), { type: 'empty', reason, title: 'o1.nc', words: {} });
     assert.deepEqual(toolpathMessage({ error: 'fanuc-macro.toolpath failed' }, 'o1.nc'), {
       type: 'error',
       message: 'o1.nc: fanuc-macro.toolpath failed',
     });
     assert.equal(toolpathMessage(null, 'o1.nc').type, 'error');
     const data = packed(LATHE, [0], [0], [0], [0, 0, 0, 1, 0, 0], [0]);
-    assert.deepEqual(toolpathMessage(data, 'o1.nc'), { type: 'data', data, title: 'o1.nc' });
+    assert.deepEqual(toolpathMessage(data, 'o1.nc'), { type: 'data', data, title: 'o1.nc', words: {} });
+  });
+
+  it('says the notes and the labels in the words the extension sends', () => {
+    // Without a bundle (the test's vscode.l10n), the extension's words are the page's English.
+    assert.deepEqual(toolpathWords(), ENGLISH_WORDS);
+    const chinese = wordsOf({ segments: '{0} 段，{1}', xShown: 'X 按{0}显示（程序写的是直径）', radius: '半径', extra: 1 });
+    const data = packed(LATHE, [0], [0], [0], [0, 0, 0, 0, 0, 0], [0]);
+    const notes = statusNotes({ ...data, units_stated: true }, threeBlocks(), 'radius', chinese);
+    assert.equal(notes[0], '4 段，mm');
+    assert.equal(notes[1], 'X 按半径显示（程序写的是直径）');
+    assert.equal(say('line {0}: {1}{2}', 3, 'X ', '?'), 'line 3: X ?');
+    const html = toolpathHtml('https://webview/toolpath.js', 'https://webview', (text) => (text === 'Fit' ? '适应' : text));
+    assert.match(html, /<button id="fit" [^>]*>适应<\/button>/);
   });
 });
 

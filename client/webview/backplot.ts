@@ -177,17 +177,69 @@ export function toolOutline(lathe: boolean, at: Point3, radius: number, angle: n
   return [bottom, top, ...sides];
 }
 
-function number(value: number, digits: number): string {
-  return Number.isFinite(value) ? String(Number(value.toFixed(digits))) : 'not known';
+/**
+ * The words the view says, as templates whose {0}, {1} the values fill: English here; the
+ * extension sends them in the user's language (client/src/toolpathView.ts `toolpathWords`).
+ */
+export const ENGLISH_WORDS = {
+  notKnown: 'not known',
+  line: 'line {0} ({1})',
+  rapid: 'rapid',
+  feedNotKnown: 'F not known',
+  speedNotKnown: 'S not known',
+  assumed: 'assumed {0}',
+  segments: '{0} segments, {1}',
+  xShown: 'X shown as a {0} (the program writes diameters)',
+  diameter: 'diameter',
+  radius: 'radius',
+  stock: 'stock: Ø{0} from {1}',
+  noStockLathe: 'stock: not given by the program (no stock removal cycle, no thread blank)',
+  noStock: 'stock: not given by the program',
+  tool: 'tool: radius {0}, {1}',
+  noTool: 'tool: its radius is not given by the program: drawn at a nominal size',
+  cutShort: 'cut short: the program makes more moves than the view keeps',
+  unknownAxes: '{0} unknown: ',
+  lost: 'line {0}: {1}{2}',
+  nothingToDraw: '{0}: nothing to draw',
+};
+export type Words = typeof ENGLISH_WORDS;
+
+/** `template` with its {0}, {1}... filled by `values` (one left out stays as it is). */
+export function say(template: string, ...values: Array<string | number>): string {
+  return template.replace(/\{(\d+)\}/g, (found, index: string) => {
+    const value = values[Number(index)];
+    return value === undefined ? found : String(value);
+  });
+}
+
+/** The words a message gives, English for any it lacks. */
+export function wordsOf(given: unknown): Words {
+  const words = { ...ENGLISH_WORDS };
+  if (given === null || typeof given !== 'object') return words;
+  for (const key of Object.keys(words) as Array<keyof Words>) {
+    const text = (given as Record<string, unknown>)[key];
+    if (typeof text === 'string') words[key] = text;
+  }
+  return words;
+}
+
+function number(value: number, digits: number, words: Words = ENGLISH_WORDS): string {
+  return Number.isFinite(value) ? String(Number(value.toFixed(digits))) : words.notKnown;
 }
 
 /** What a segment's tooltip says: its file and line, the block's code, F and S, and the block. */
-export function tooltipLines(segments: Segments, data: ToolpathData, index: number, text?: string): string[] {
+export function tooltipLines(
+  segments: Segments,
+  data: ToolpathData,
+  index: number,
+  text?: string,
+  words: Words = ENGLISH_WORDS,
+): string[] {
   const line = segments.line[index]!;
   const path = segments.path[index]!;
   const file = path === 0 ? '' : `${(data.paths[path] ?? '').split('/').pop()}: `;
   const kind = data.kinds[segments.kind[index]!] ?? 'move';
-  const out = [`${file}line ${line + 1} (${kind})`];
+  const out = [`${file}${say(words.line, line + 1, kind)}`];
   if (text !== undefined && text.trim() !== '') out.push(text.trim().slice(0, 120));
   const record = segments.motion[index]!;
   const blocks = segments.blocks;
@@ -197,33 +249,33 @@ export function tooltipLines(segments: Segments, data: ToolpathData, index: numb
     const feed = blocks.feed[record]!;
     const speed = blocks.speed[record]!;
     const surface = blocks.surface[record] === 1;
-    const f = Number.isFinite(feed) ? `F${number(feed, 4)}` : 'F not known';
+    const f = Number.isFinite(feed) ? `F${number(feed, 4, words)}` : words.feedNotKnown;
     const s = Number.isFinite(speed)
       ? surface
-        ? `S${number(speed, 1)} ${inch ? 'ft' : 'm'}/min (G96)`
-        : `S${number(speed, 1)} rpm`
-      : 'S not known';
-    out.push(`${code} · ${kind === 'rapid' ? 'rapid' : f} · ${s}`);
+        ? `S${number(speed, 1, words)} ${inch ? 'ft' : 'm'}/min (G96)`
+        : `S${number(speed, 1, words)} rpm`
+      : words.speedNotKnown;
+    out.push(`${code} · ${kind === 'rapid' ? words.rapid : f} · ${s}`);
   }
   return out;
 }
 
 /** The status area's notes: what is drawn, in which unit and why, and every caveat. */
-export function statusNotes(data: ToolpathData, segments: Segments, xMode: XMode): string[] {
-  const units = data.units_stated ? data.units : `assumed ${data.units}`;
-  const notes = [`${segments.count.toLocaleString('en')} segments, ${units}`];
-  if (data.lathe) notes.push(`X shown as a ${xMode} (the program writes diameters)`);
+export function statusNotes(data: ToolpathData, segments: Segments, xMode: XMode, words: Words = ENGLISH_WORDS): string[] {
+  const units = data.units_stated ? data.units : say(words.assumed, data.units);
+  const notes = [say(words.segments, segments.count.toLocaleString('en'), units)];
+  if (data.lathe) notes.push(say(words.xShown, words[xMode]));
   if (!data.units_stated && data.units_note) notes.push(data.units_note);
-  if (data.stock !== null) notes.push(`stock: Ø${number(data.stock.diameter, 3)} from ${data.stock.source}`);
-  else notes.push(data.lathe ? 'stock: not given by the program (no stock removal cycle, no thread blank)' : 'stock: not given by the program');
-  if (data.tool !== null) notes.push(`tool: radius ${number(data.tool.radius, 4)}, ${data.tool.source}`);
-  else notes.push('tool: its radius is not given by the program: drawn at a nominal size');
-  if (data.truncated) notes.push('cut short: the program makes more moves than the view keeps');
+  if (data.stock !== null) notes.push(say(words.stock, number(data.stock.diameter, 3, words), data.stock.source));
+  else notes.push(data.lathe ? words.noStockLathe : words.noStock);
+  if (data.tool !== null) notes.push(say(words.tool, number(data.tool.radius, 4, words), data.tool.source));
+  else notes.push(words.noTool);
+  if (data.truncated) notes.push(words.cutShort);
   if (data.stopped) notes.push(data.stopped);
   for (const lost of data.lost) {
     const file = lost.path === 0 ? '' : `${(data.paths[lost.path] ?? '').split('/').pop()}: `;
-    const axes = lost.axes.length > 0 ? `${lost.axes.join(', ')} unknown: ` : '';
-    notes.push(`${file}line ${lost.line + 1}: ${axes}${lost.reason}`);
+    const axes = lost.axes.length > 0 ? say(words.unknownAxes, lost.axes.join(', ')) : '';
+    notes.push(`${file}${say(words.lost, lost.line + 1, axes, lost.reason)}`);
   }
   return notes;
 }

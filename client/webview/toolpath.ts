@@ -17,6 +17,9 @@ import {
   toolOutline,
   tooltipLines,
   viewAxes,
+  wordsOf,
+  say,
+  type Words,
   type Axis,
   type Point3,
   type XMode,
@@ -48,8 +51,8 @@ interface VsCodeApi {
 declare function acquireVsCodeApi(): VsCodeApi;
 
 type Incoming =
-  | { type: 'data'; data: ToolpathData; title: string }
-  | { type: 'empty'; reason: string; title: string }
+  | { type: 'data'; data: ToolpathData; title: string; words?: Partial<Words> }
+  | { type: 'empty'; reason: string; title: string; words?: Partial<Words> }
   | { type: 'error'; message: string }
   | { type: 'cursor'; line: number }
   | { type: 'blockText'; line: number; path?: string; text: string };
@@ -145,6 +148,8 @@ let position = 0;
 let playing = false;
 let carried = 0;
 let title = '';
+/** The words of the notes and tooltips, in the language the extension sends. */
+let words: Words = wordsOf(undefined);
 const blockTexts = new Map<string, string>();
 let hovered = -1;
 
@@ -592,7 +597,7 @@ function paintThread(t: Transform): void {
 
 function showNotes(): void {
   if (data === undefined || segments === undefined) return;
-  const notes = statusNotes(data, segments, xMode);
+  const notes = statusNotes(data, segments, xMode, words);
   summary.textContent = `${title}: ${notes[0]}`;
   notesList.replaceChildren(
     ...notes.slice(1).map((note) => {
@@ -677,8 +682,8 @@ function showEmpty(reason: string, name: string): void {
   transform = undefined;
   playing = false;
   emptyBox.style.display = 'flex';
-  emptyReason.textContent = reason.charAt(0).toUpperCase() + reason.slice(1) + '.';
-  summary.textContent = `${name}: nothing to draw`;
+  emptyReason.textContent = reason.charAt(0).toUpperCase() + reason.slice(1) + (/[\u3000-\u9fff]$/u.test(reason) ? '。' : '.');
+  summary.textContent = say(words.nothingToDraw, name);
   summary.title = reason;
   notesList.replaceChildren();
   canvas.dataset.empty = '1';
@@ -688,6 +693,7 @@ function showEmpty(reason: string, name: string): void {
 
 window.addEventListener('message', (event: MessageEvent<Incoming>) => {
   const message = event.data;
+  if (message.type === 'data' || message.type === 'empty') words = wordsOf(message.words);
   if (message.type === 'data') {
     const lathe = message.data.lathe;
     // Another program, or the same one read on another machine: its own view, fitted.
@@ -751,7 +757,7 @@ function showTooltip(index: number): void {
   if (text === undefined) {
     vscode.postMessage(path === 0 ? { type: 'blockText', line: segments.line[index] } : { type: 'blockText', line: segments.line[index], path: data.paths[path] });
   }
-  tooltipBox.textContent = tooltipLines(segments, data, index, text).join('\n');
+  tooltipBox.textContent = tooltipLines(segments, data, index, text, words).join('\n');
   tooltipBox.style.display = 'block';
   const stage = canvas.getBoundingClientRect();
   const [x, y] = tooltipAt;
