@@ -158,13 +158,12 @@ async function findServer(): Promise<
 
 async function showServerNotFound(failures: readonly string[]): Promise<void> {
   const tried = failures.map((f) => `• ${f}`).join('\n');
-  const message =
-    'FANUC Macro: the language server fanuc-macro-ls was not found, so only highlighting and snippets work. ' +
-    'Install it with "pip install fanuc-macro" (in the Python environment VS Code uses), ' +
-    `or set "${SERVER_PATH_SETTING}" to the fanuc-macro-ls executable or to a Python interpreter that has the package. ` +
-    `The server bundled with the extension needs no installation, only Python ${BUNDLED_MIN_PYTHON} or later ` +
-    '(python3 on PATH, or the interpreter selected in the Python extension). ' +
-    `Tried: ${failures.join('; ')}.`;
+  const message = vscode.l10n.t(
+    'FANUC Macro: the language server fanuc-macro-ls was not found, so only highlighting and snippets work. Install it with "pip install fanuc-macro" (in the Python environment VS Code uses), or set "{0}" to the fanuc-macro-ls executable or to a Python interpreter that has the package. The server bundled with the extension needs no installation, only Python {1} or later (python3 on PATH, or the interpreter selected in the Python extension). Tried: {2}.',
+    SERVER_PATH_SETTING,
+    BUNDLED_MIN_PYTHON,
+    failures.join('; '),
+  );
   log(`Language server not found. Tried:\n${tried}`);
   const openSetting = vscode.l10n.t('Open Setting');
   const showLog = vscode.l10n.t('Show Log');
@@ -317,7 +316,7 @@ async function showTrace(): Promise<void> {
   }
   const view = traceViewOf(answer);
   if ('error' in view) {
-    void vscode.window.showErrorMessage(`FANUC Macro: trace failed: ${view.error}`);
+    void vscode.window.showErrorMessage(vscode.l10n.t('FANUC Macro: trace failed: {0}', view.error));
     return;
   }
   await (traces ??= new TraceDocuments()).show(document.uri, view);
