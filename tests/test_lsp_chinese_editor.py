@@ -78,7 +78,9 @@ async def test_the_editors_words_are_said_in_chinese(client: LanguageClient) -> 
     assert "顺序号" in label
     jump = await hover(client, uri, 9, 1)
     assert "→ 第 11 行" in jump
-    assert not english(variable, loop, label, jump)
+    keyword = await hover(client, uri, 4, 1)
+    assert keyword.startswith("**WHILE** — 循环")
+    assert not english(variable, loop, label, jump, keyword)
 
     lenses = await asyncio.wait_for(
         client.text_document_code_lens_async(types.CodeLensParams(text_document=ident)), WAIT

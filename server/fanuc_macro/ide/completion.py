@@ -165,7 +165,7 @@ def completion(
         add(
             info.name,
             CompletionKind.FUNCTION,
-            f"{info.signature} — {info.title}",
+            tr("{signature} — {title}", signature=info.signature, title=info.title),
             info.snippet if snippets_supported else f"{info.name}[]",
             knowledge.function_markdown(info.name) or "",
             sort="1",

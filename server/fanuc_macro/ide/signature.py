@@ -227,7 +227,9 @@ def _function(name: str, active: int) -> Signature:
             note = notes[at] if at < len(notes) else ""
             parameters.append(Parameter(offset, offset + len(part), note))
             offset += len(part) + 1
-    documentation = f"{info.title}" + (f"\n\n{info.text}" if info.text else "")
+    documentation = (
+        tr("{title}\n\n{text}", title=info.title, text=info.text) if info.text else info.title
+    )
     shown = active if active < len(parameters) else None
     return Signature(label, documentation, tuple(parameters), shown)
 

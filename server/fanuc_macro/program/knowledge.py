@@ -13,6 +13,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from types import MappingProxyType
 
+from ..translation import tr
 from .g_code_systems import ABSOLUTE, INCREMENTAL, system_a_code, written
 
 # ---- G and M codes ---------------------------------------------------------------------------
@@ -550,121 +551,143 @@ class FunctionInfo:
     snippet: str  # LSP snippet syntax
 
 
-_DEG = "Angles are in degrees."
 _FUNCTIONS: tuple[FunctionInfo, ...] = (
-    FunctionInfo("SIN", "SIN[a]", "Sine", f"{_DEG} `SIN[30]` = 0.5.", "SIN[$1]"),
-    FunctionInfo("COS", "COS[a]", "Cosine", f"{_DEG} `COS[60]` = 0.5.", "COS[$1]"),
+    FunctionInfo(
+        "SIN", "SIN[a]", tr("Sine"), tr("Angles are in degrees. `SIN[30]` = 0.5."), "SIN[$1]"
+    ),
+    FunctionInfo(
+        "COS", "COS[a]", tr("Cosine"), tr("Angles are in degrees. `COS[60]` = 0.5."), "COS[$1]"
+    ),
     FunctionInfo(
         "TAN",
         "TAN[a]",
-        "Tangent",
-        f"{_DEG} Computed as SIN/COS, so `TAN[90]` stops with alarm PS0112 ZERO DIVIDE.",
+        tr("Tangent"),
+        tr(
+            "Angles are in degrees. Computed as SIN/COS, so `TAN[90]` stops with alarm PS0112 "
+            "ZERO DIVIDE."
+        ),
         "TAN[$1]",
     ),
     FunctionInfo(
         "ASIN",
         "ASIN[x]",
-        "Arcsine",
-        "Result in degrees, -90 to 90 (a parameter can give 270 to 90). An argument "
-        "outside -1..1 stops with alarm PS0119 ARGUMENT VALUE OUT OF RANGE.",
+        tr("Arcsine"),
+        tr(
+            "Result in degrees, -90 to 90 (a parameter can give 270 to 90). An argument "
+            "outside -1..1 stops with alarm PS0119 ARGUMENT VALUE OUT OF RANGE."
+        ),
         "ASIN[$1]",
     ),
     FunctionInfo(
         "ACOS",
         "ACOS[x]",
-        "Arccosine",
-        "Result in degrees, 0 to 180. An argument outside -1..1 stops with alarm PS0119.",
+        tr("Arccosine"),
+        tr("Result in degrees, 0 to 180. An argument outside -1..1 stops with alarm PS0119."),
         "ACOS[$1]",
     ),
     FunctionInfo(
         "ATAN",
         "ATAN[a]/[b]",
-        "Arctangent",
-        "`ATAN[a]/[b]` is the angle of the point (b, a): the signs choose the "
-        "quadrant, it is *not* a division. The result is 0 to 360 degrees by default "
-        "(parameter NAT, 6004#0, gives -180 to 180; unverified). `ATAN[a,b]` and the "
-        "one-argument `ATAN[x]` exist on 30i-class controls only; 16i has the slash "
-        "form only. `ATAN[0]/[0]` has no angle.",
+        tr("Arctangent"),
+        tr(
+            "`ATAN[a]/[b]` is the angle of the point (b, a): the signs choose the "
+            "quadrant, it is *not* a division. The result is 0 to 360 degrees by default "
+            "(parameter NAT, 6004#0, gives -180 to 180; unverified). `ATAN[a,b]` and the "
+            "one-argument `ATAN[x]` exist on 30i-class controls only; 16i has the slash "
+            "form only. `ATAN[0]/[0]` has no angle."
+        ),
         "ATAN[$1]/[$2]",
     ),
     FunctionInfo(
         "SQRT",
         "SQRT[x]",
-        "Square root",
-        "A negative argument stops with alarm PS0119 ARGUMENT VALUE OUT OF RANGE; a "
-        "vacant one counts as 0.",
+        tr("Square root"),
+        tr(
+            "A negative argument stops with alarm PS0119 ARGUMENT VALUE OUT OF RANGE; a "
+            "vacant one counts as 0."
+        ),
         "SQRT[$1]",
     ),
-    FunctionInfo("ABS", "ABS[x]", "Absolute value", "", "ABS[$1]"),
+    FunctionInfo("ABS", "ABS[x]", tr("Absolute value"), "", "ABS[$1]"),
     FunctionInfo(
         "ROUND",
         "ROUND[x]",
-        "Round",
-        "In a macro statement: to the nearest integer, halves away from zero "
-        "(`ROUND[-1.5]` = -2). Inside an NC address (`X[ROUND[#1]]`) it rounds to the "
-        "address's least input increment instead.",
+        tr("Round"),
+        tr(
+            "In a macro statement: to the nearest integer, halves away from zero "
+            "(`ROUND[-1.5]` = -2). Inside an NC address (`X[ROUND[#1]]`) it rounds to the "
+            "address's least input increment instead."
+        ),
         "ROUND[$1]",
     ),
     FunctionInfo(
         "FIX",
         "FIX[x]",
-        "Truncate",
-        "Drops the fraction, towards zero: `FIX[1.7]` = 1, `FIX[-1.2]` = -1. Values "
-        "computed as 2.9999999 become 2: add a small epsilon when the exact value is "
-        "an integer.",
+        tr("Truncate"),
+        tr(
+            "Drops the fraction, towards zero: `FIX[1.7]` = 1, `FIX[-1.2]` = -1. Values "
+            "computed as 2.9999999 become 2: add a small epsilon when the exact value is "
+            "an integer."
+        ),
         "FIX[$1]",
     ),
     FunctionInfo(
         "FUP",
         "FUP[x]",
-        "Round up",
-        "Raises any fraction to the next integer away from zero: `FUP[1.2]` = 2, "
-        "`FUP[-1.2]` = -2; integers stay.",
+        tr("Round up"),
+        tr(
+            "Raises any fraction to the next integer away from zero: `FUP[1.2]` = 2, "
+            "`FUP[-1.2]` = -2; integers stay."
+        ),
         "FUP[$1]",
     ),
     FunctionInfo(
         "LN",
         "LN[x]",
-        "Natural logarithm",
-        "An argument of 0 or less stops with alarm PS0119.",
+        tr("Natural logarithm"),
+        tr("An argument of 0 or less stops with alarm PS0119."),
         "LN[$1]",
     ),
     FunctionInfo(
         "EXP",
         "EXP[x]",
-        "Exponential (e^x)",
-        "A result too large stops with alarm PS0111 OVERFLOW.",
+        tr("Exponential (e^x)"),
+        tr("A result too large stops with alarm PS0111 OVERFLOW."),
         "EXP[$1]",
     ),
     FunctionInfo(
         "POW",
         "POW[a,b]",
-        "Power (a^b)",
-        "30i-B class controls only (unverified for 0i-F). No real result (negative "
-        "base with a fractional exponent) stops with alarm PS0119.",
+        tr("Power (a^b)"),
+        tr(
+            "30i-B class controls only (unverified for 0i-F). No real result (negative "
+            "base with a fractional exponent) stops with alarm PS0119."
+        ),
         "POW[$1,$2]",
     ),
     FunctionInfo(
         "ADP",
         "ADP[#n]",
-        "Add decimal point",
-        "Rescales an argument (#1-#33) that was passed without a decimal point, so "
-        "that `X10` means 10. rather than 10 least increments. Exact behaviour is "
-        "unverified.",
+        tr("Add decimal point"),
+        tr(
+            "Rescales an argument (#1-#33) that was passed without a decimal point, so "
+            "that `X10` means 10. rather than 10 least increments. Exact behaviour is "
+            "unverified."
+        ),
         "ADP[$1]",
     ),
     FunctionInfo(
         "BIN",
         "BIN[x]",
-        "BCD to binary",
-        "For PMC signals. A negative argument or a digit above 9 stops with alarm PS0119.",
+        tr("BCD to binary"),
+        tr("For PMC signals. A negative argument or a digit above 9 stops with alarm PS0119."),
         "BIN[$1]",
     ),
     FunctionInfo(
         "BCD",
         "BCD[x]",
-        "Binary to BCD",
-        "For PMC signals. A negative argument stops with alarm PS0119.",
+        tr("Binary to BCD"),
+        tr("For PMC signals. A negative argument stops with alarm PS0119."),
         "BCD[$1]",
     ),
 )
@@ -675,13 +698,19 @@ def function_markdown(name: str) -> str | None:
     info = FUNCTIONS.get(name.upper())
     if info is None:
         return None
-    text = f"**{info.signature}** — {info.title}"
-    return f"{text}\n\n{info.text}" if info.text else text
+    if info.text:
+        return tr(
+            "**{signature}** — {title}\n\n{text}",
+            signature=info.signature,
+            title=info.title,
+            text=info.text,
+        )
+    return tr("**{signature}** — {title}", signature=info.signature, title=info.title)
 
 
 # ---- keywords and operators ------------------------------------------------------------------
 
-_VACANT_NOTE = (
+_VACANT_NOTE = tr(
     "A vacant variable counts as 0 in GT/GE/LT/LE but differs from 0 in EQ/NE "
     "(`#1 EQ #0` is true only when #1 is vacant)."
 )
@@ -689,71 +718,92 @@ _VACANT_NOTE = (
 KEYWORDS: Mapping[str, tuple[str, str]] = MappingProxyType(
     {
         "IF": (
-            "Conditional",
-            "`IF [cond] GOTO n` jumps when the condition is true; `IF [cond] "
-            "THEN <one macro statement>` runs one assignment. An NC statement after THEN is not "
-            "FANUC (Haas).",
+            tr("Conditional"),
+            tr(
+                "`IF [cond] GOTO n` jumps when the condition is true; `IF [cond] "
+                "THEN <one macro statement>` runs one assignment. An NC statement after THEN is "
+                "not FANUC (Haas)."
+            ),
         ),
-        "THEN": ("Conditional statement", "`IF [cond] THEN #1=...`: exactly one macro statement."),
+        "THEN": (
+            tr("Conditional statement"),
+            tr("`IF [cond] THEN #1=...`: exactly one macro statement."),
+        ),
         "GOTO": (
-            "Branch",
-            "`GOTO n` jumps to the block Nn of the same program. The control "
-            "searches forward from here, then from the program head, so backward jumps are "
-            "slower. n may be an expression (`GOTO#10`); a missing or out-of-range n stops "
-            "with alarm PS0128 (ILLEGAL MACRO SEQUENCE NUMBER).",
+            tr("Branch"),
+            tr(
+                "`GOTO n` jumps to the block Nn of the same program. The control "
+                "searches forward from here, then from the program head, so backward jumps are "
+                "slower. n may be an expression (`GOTO#10`); a missing or out-of-range n stops "
+                "with alarm PS0128 (ILLEGAL MACRO SEQUENCE NUMBER)."
+            ),
         ),
         "WHILE": (
-            "Loop",
-            "`WHILE [cond] DOm` ... `ENDm` repeats the blocks while the condition is "
-            "true; m is 1, 2 or 3, loops nest at most three deep and must not cross. Jumping "
-            "out of a loop is allowed, into one is not.",
+            tr("Loop"),
+            tr(
+                "`WHILE [cond] DOm` ... `ENDm` repeats the blocks while the condition is "
+                "true; m is 1, 2 or 3, loops nest at most three deep and must not cross. Jumping "
+                "out of a loop is allowed, into one is not."
+            ),
         ),
-        "WH": ("Loop (abbreviation of WHILE)", "Accepted on input by FANUC controls."),
+        "WH": (tr("Loop (abbreviation of WHILE)"), tr("Accepted on input by FANUC controls.")),
         "DO": (
-            "Loop start",
-            "`DOm` without WHILE loops forever. m is 1-3 (alarm PS0126 "
-            "otherwise); a DO without its END stops with alarm PS0124.",
+            tr("Loop start"),
+            tr(
+                "`DOm` without WHILE loops forever. m is 1-3 (alarm PS0126 "
+                "otherwise); a DO without its END stops with alarm PS0124."
+            ),
         ),
         "END": (
-            "Loop end",
-            "`ENDm` goes back to the WHILE of the same number; the number must "
-            "match the open DO (alarm PS0126).",
+            tr("Loop end"),
+            tr(
+                "`ENDm` goes back to the WHILE of the same number; the number must "
+                "match the open DO (alarm PS0126)."
+            ),
         ),
-        "EQ": ("Equal", _VACANT_NOTE),
-        "NE": ("Not equal", _VACANT_NOTE),
-        "GT": ("Greater than", _VACANT_NOTE),
-        "GE": ("Greater than or equal", _VACANT_NOTE),
-        "LT": ("Less than", _VACANT_NOTE),
-        "LE": ("Less than or equal", _VACANT_NOTE),
+        "EQ": (tr("Equal"), _VACANT_NOTE),
+        "NE": (tr("Not equal"), _VACANT_NOTE),
+        "GT": (tr("Greater than"), _VACANT_NOTE),
+        "GE": (tr("Greater than or equal"), _VACANT_NOTE),
+        "LT": (tr("Less than"), _VACANT_NOTE),
+        "LE": (tr("Less than or equal"), _VACANT_NOTE),
         "AND": (
-            "And",
-            "Between conditions in IF/WHILE: logical (`[[c1] AND [c2]]`, compound "
-            "conditions need a recent control). In an expression: bitwise on the integer "
-            "values, with the priority of `*`.",
+            tr("And"),
+            tr(
+                "Between conditions in IF/WHILE: logical (`[[c1] AND [c2]]`, compound "
+                "conditions need a recent control). In an expression: bitwise on the integer "
+                "values, with the priority of `*`."
+            ),
         ),
         "OR": (
-            "Or",
-            "Logical between conditions; bitwise on integers in an expression, with the "
-            "priority of `+`.",
+            tr("Or"),
+            tr(
+                "Logical between conditions; bitwise on integers in an expression, with the "
+                "priority of `+`."
+            ),
         ),
         "XOR": (
-            "Exclusive or",
-            "Logical between conditions; bitwise on integers in an expression.",
+            tr("Exclusive or"),
+            tr("Logical between conditions; bitwise on integers in an expression."),
         ),
         "MOD": (
-            "Remainder",
-            "`a MOD b` on the integer parts (30i / 0i-F; not on 16i). `MOD 0` stops with alarm "
-            "PS0112.",
+            tr("Remainder"),
+            tr(
+                "`a MOD b` on the integer parts (30i / 0i-F; not on 16i). `MOD 0` stops with alarm "
+                "PS0112."
+            ),
         ),
         "DPRNT": (
-            "Print data",
-            "`DPRNT[text#100[53]]` sends text and variables (3 integer and 5 "
-            "decimal digits here) to the output device; `*` prints a space. Open the device "
-            "with POPEN first.",
+            tr("Print data"),
+            tr(
+                "`DPRNT[text#100[53]]` sends text and variables (3 integer and 5 "
+                "decimal digits here) to the output device; `*` prints a space. Open the device "
+                "with POPEN first."
+            ),
         ),
-        "BPRNT": ("Print binary data", "Like DPRNT with variables in binary."),
-        "POPEN": ("Open output device", "Before DPRNT/BPRNT."),
-        "PCLOS": ("Close output device", "After DPRNT/BPRNT."),
+        "BPRNT": (tr("Print binary data"), tr("Like DPRNT with variables in binary.")),
+        "POPEN": (tr("Open output device"), tr("Before DPRNT/BPRNT.")),
+        "PCLOS": (tr("Close output device"), tr("After DPRNT/BPRNT.")),
     }
 )
 
@@ -763,7 +813,7 @@ def keyword_markdown(word: str) -> str | None:
     if entry is None:
         return None
     title, text = entry
-    return f"**{word.upper()}** — {title}\n\n{text}"
+    return tr("**{keyword}** — {title}\n\n{text}", keyword=word.upper(), title=title, text=text)
 
 
 # ---- addresses -------------------------------------------------------------------------------
@@ -771,55 +821,67 @@ def keyword_markdown(word: str) -> str | None:
 # letter: (lathe, mill); one text when the same.
 _ADDRESSES: Mapping[str, tuple[str, str]] = MappingProxyType(
     {
-        "A": ("A axis (rotary about X) or chamfer angle", "A axis (rotary about X)"),
-        "B": ("B axis or second auxiliary function", "B axis (rotary about Y)"),
-        "C": ("C axis (spindle as an axis) or chamfer size", "C axis (rotary about Z)"),
-        "D": ("Depth in some cycles", "Cutter radius offset number (G41/G42)"),
-        "E": ("Thread lead, precise", "Thread lead, precise"),
+        "A": (tr("A axis (rotary about X) or chamfer angle"), tr("A axis (rotary about X)")),
+        "B": (tr("B axis or second auxiliary function"), tr("B axis (rotary about Y)")),
+        "C": (tr("C axis (spindle as an axis) or chamfer size"), tr("C axis (rotary about Z)")),
+        "D": (tr("Depth in some cycles"), tr("Cutter radius offset number (G41/G42)")),
+        "E": (tr("Thread lead, precise"), tr("Thread lead, precise")),
         "F": (
-            "Feed (mm/rev in G99, mm/min in G98); the lead in threading",
-            "Feed (mm/min in G94, mm/rev in G95)",
+            tr("Feed (mm/rev in G99, mm/min in G98); the lead in threading"),
+            tr("Feed (mm/min in G94, mm/rev in G95)"),
         ),
-        "G": ("Preparatory function", "Preparatory function"),
-        "H": ("Incremental C axis (some machines)", "Tool length offset number (G43/G44)"),
+        "G": (tr("Preparatory function"), tr("Preparatory function")),
+        "H": (tr("Incremental C axis (some machines)"), tr("Tool length offset number (G43/G44)")),
         "I": (
-            "Arc centre X offset (radius) / cycle parameter",
-            "Arc centre X offset / cycle parameter",
+            tr("Arc centre X offset (radius) / cycle parameter"),
+            tr("Arc centre X offset / cycle parameter"),
         ),
-        "J": ("Arc centre Y offset", "Arc centre Y offset"),
+        "J": (tr("Arc centre Y offset"), tr("Arc centre Y offset")),
         "K": (
-            "Arc centre Z offset / cycle parameter",
-            "Arc centre Z offset / repeat count of drilling cycles",
+            tr("Arc centre Z offset / cycle parameter"),
+            tr("Arc centre Z offset / repeat count of drilling cycles"),
         ),
-        "L": ("Repeat count (M98, G65)", "Repeat count (M98, G65)"),
-        "M": ("Miscellaneous function", "Miscellaneous function"),
-        "N": ("Sequence number (GOTO target)", "Sequence number (GOTO target)"),
-        "O": ("Program number", "Program number"),
+        "L": (tr("Repeat count (M98, G65)"), tr("Repeat count (M98, G65)")),
+        "M": (tr("Miscellaneous function"), tr("Miscellaneous function")),
+        "N": (tr("Sequence number (GOTO target)"), tr("Sequence number (GOTO target)")),
+        "O": (tr("Program number"), tr("Program number")),
         "P": (
-            "Program number (M98, G65), dwell in ms (G04), first block of a cycle shape",
-            "Program number (M98, G65), dwell in ms (G04, G82)",
+            tr("Program number (M98, G65), dwell in ms (G04), first block of a cycle shape"),
+            tr("Program number (M98, G65), dwell in ms (G04, G82)"),
         ),
-        "Q": ("Last block of a cycle shape / cycle depth", "Peck depth (G73, G83) / shift (G76)"),
-        "R": ("Arc radius, taper of a cycle, retract", "Arc radius, R point of a drilling cycle"),
-        "S": ("Spindle speed (rpm in G97, m/min in G96); maximum speed with G50", "Spindle speed"),
-        "T": ("Tool and offset: T0101 = tool 1, offset 1; T0100 cancels the offset", "Tool number"),
-        "U": ("Incremental X (diameter)", "U axis"),
-        "V": ("Incremental Y", "V axis"),
-        "W": ("Incremental Z", "W axis"),
-        "X": ("X position, a diameter", "X position"),
-        "Y": ("Y position", "Y position"),
-        "Z": ("Z position", "Z position"),
+        "Q": (
+            tr("Last block of a cycle shape / cycle depth"),
+            tr("Peck depth (G73, G83) / shift (G76)"),
+        ),
+        "R": (
+            tr("Arc radius, taper of a cycle, retract"),
+            tr("Arc radius, R point of a drilling cycle"),
+        ),
+        "S": (
+            tr("Spindle speed (rpm in G97, m/min in G96); maximum speed with G50"),
+            tr("Spindle speed"),
+        ),
+        "T": (
+            tr("Tool and offset: T0101 = tool 1, offset 1; T0100 cancels the offset"),
+            tr("Tool number"),
+        ),
+        "U": (tr("Incremental X (diameter)"), tr("U axis")),
+        "V": (tr("Incremental Y"), tr("V axis")),
+        "W": (tr("Incremental Z"), tr("W axis")),
+        "X": (tr("X position, a diameter"), tr("X position")),
+        "Y": (tr("Y position"), tr("Y position")),
+        "Z": (tr("Z position"), tr("Z position")),
         # after a move in G01 (G02, G03): 0i-MF "Optional chamfering and corner R", 0i-TF
         # "Chamfering and corner R" and "Direct drawing dimension programming"
         ",A": (
-            "Angle of the line from the +Z axis (direct drawing dimensions)",
-            "Angle of the line in the plane (direct drawing dimensions)",
+            tr("Angle of the line from the +Z axis (direct drawing dimensions)"),
+            tr("Angle of the line in the plane (direct drawing dimensions)"),
         ),
         ",C": (
-            "Chamfer to the next move: the length cut off the corner",
-            "Chamfer to the next move: the length cut off the corner",
+            tr("Chamfer to the next move: the length cut off the corner"),
+            tr("Chamfer to the next move: the length cut off the corner"),
         ),
-        ",R": ("Corner radius to the next move", "Corner radius to the next move"),
+        ",R": (tr("Corner radius to the next move"), tr("Corner radius to the next move")),
     }
 )
 
@@ -828,7 +890,9 @@ def address_markdown(letter: str, lathe: bool) -> str | None:
     entry = _ADDRESSES.get(letter.upper())
     if entry is None:
         return None
-    return f"**{letter.upper()}** — {entry[0] if lathe else entry[1]}"
+    return tr(
+        "**{address}** — {meaning}", address=letter.upper(), meaning=entry[0] if lathe else entry[1]
+    )
 
 
 # ---- system variables worth offering in completion -------------------------------------------
