@@ -78,6 +78,9 @@ async def test_the_editors_words_are_said_in_chinese(client: LanguageClient) -> 
     assert "顺序号" in label
     jump = await hover(client, uri, 9, 1)
     assert "→ 第 11 行" in jump
+    # A G code: its name and group (what it does in more words is not translated yet).
+    rapid = await hover(client, uri, 14, 1)
+    assert rapid.startswith("**G00** — 快速定位 *（模态，01 组）*")
     keyword = await hover(client, uri, 4, 1)
     assert keyword.startswith("**WHILE** — 循环")
     assert not english(variable, loop, label, jump, keyword)

@@ -13,7 +13,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from types import MappingProxyType
 
-from ..translation import tr
+from ..translation import joined, tr
 from .g_code_systems import ABSOLUTE, INCREMENTAL, system_a_code, written
 
 # ---- G and M codes ---------------------------------------------------------------------------
@@ -47,347 +47,349 @@ def _both(title: str, text: str = "", modal: str = "") -> tuple[Meaning, Meaning
 
 _G: tuple[tuple[str, Meaning | None, Meaning | None], ...] = (
     ("G00", *_both(
-        "Rapid positioning",
+        tr("Rapid positioning"),
         "Moves to the end point at rapid traverse. Depending on a parameter the axes move "
         "independently, so the path need not be a straight line: keep clear of the part.",
-        "modal, group 01")),
+        tr("modal, group 01"))),
     ("G01", *_both(
-        "Linear interpolation",
+        tr("Linear interpolation"),
         "Straight move at the feed F. On a lathe F is usually per revolution (G99), on a mill "
         "per minute (G94).",
-        "modal, group 01")),
+        tr("modal, group 01"))),
     ("G02", *_both(
-        "Circular interpolation, clockwise",
+        tr("Circular interpolation, clockwise"),
         "Arc to the end point, with the radius R or the centre offsets I/J/K from the start "
         "point. On a lathe X is a diameter and I/K are radius values; the direction is as seen "
         "from the +Y side of the ZX plane, so it depends on where the turret is.",
-        "modal, group 01")),
+        tr("modal, group 01"))),
     ("G03", *_both(
-        "Circular interpolation, counter-clockwise",
+        tr("Circular interpolation, counter-clockwise"),
         "Arc to the end point, with R or I/J/K as for G02.",
-        "modal, group 01")),
+        tr("modal, group 01"))),
     ("G04", *_both(
-        "Dwell",
+        tr("Dwell"),
         "Waits before the next block: `G04 X1.5` (or `U1.5` on a lathe) waits 1.5 s; "
         "`G04 P1500` waits 1500 ms; P takes no decimal point.",
-        "one-shot")),
+        tr("one-shot"))),
     ("G05.1", *_both(
-        "AI contour control / look-ahead",
+        tr("AI contour control / look-ahead"),
         "`G05.1 Q1` switches AI (advanced preview) contour control on, `G05.1 Q0` off. Programs "
         "switch it off before they poll variables so that macro statements are not executed "
         "blocks ahead of the motion.",
-        "modal")),
+        tr("modal"))),
     ("G07.1", *_both(
-        "Cylindrical interpolation",
-        "Programs a rotary axis as a distance on the cylinder's surface (option).", "modal")),
+        tr("Cylindrical interpolation"),
+        "Programs a rotary axis as a distance on the cylinder's surface (option).", tr("modal"))),
     ("G09", *_both(
-        "Exact stop", "Decelerates and checks the in-position at the end of this block only.",
-        "one-shot")),
+        tr("Exact stop"), "Decelerates and checks the in-position at the end of this block only.",
+        tr("one-shot"))),
     ("G10", *_both(
-        "Programmable data input",
+        tr("Programmable data input"),
         "Writes offsets or parameters from the program, e.g. `G10 L2 P1 X.. Z..` sets the G54 "
         "work offset. The macro system variables (#2001..., #5221...) do the same from "
         "expressions.",
-        "one-shot")),
-    ("G11", *_both("Programmable data input cancel", "", "modal")),
+        tr("one-shot"))),
+    ("G11", *_both(tr("Programmable data input cancel"), "", tr("modal"))),
     ("G12.1", Meaning(
-        "Polar coordinate interpolation",
+        tr("Polar coordinate interpolation"),
         "Lathe with a C axis and live tools: X and C are programmed as a Cartesian plane (option).",
-        "modal"), None),
-    ("G13.1", Meaning("Polar coordinate interpolation cancel", "", "modal"), None),
-    ("G17", *_both("XY plane", "Plane for arcs and cutter compensation (mill default).",
-                   "modal, group 02 (mill) / 16 (lathe)")),
-    ("G18", *_both("ZX plane", "Plane for arcs and nose radius compensation (lathe default).",
-                   "modal, group 02 (mill) / 16 (lathe)")),
-    ("G19", *_both("YZ plane", "", "modal, group 02 (mill) / 16 (lathe)")),
+        tr("modal")), None),
+    ("G13.1", Meaning(tr("Polar coordinate interpolation cancel"), "", tr("modal")), None),
+    ("G17", *_both(tr("XY plane"), "Plane for arcs and cutter compensation (mill default).",
+                   tr("modal, group 02 (mill) / 16 (lathe)"))),
+    ("G18", *_both(tr("ZX plane"), "Plane for arcs and nose radius compensation (lathe default).",
+                   tr("modal, group 02 (mill) / 16 (lathe)"))),
+    ("G19", *_both(tr("YZ plane"), "", tr("modal, group 02 (mill) / 16 (lathe)"))),
     ("G20", *_both(
-        "Inch input",
+        tr("Inch input"),
         "Values are inches. Program it alone at the head of the program, before the work "
         "coordinate system is set; mixing units in one program is a classic crash.",
-        "modal, group 06")),
-    ("G21", *_both("Metric input", "Values are millimetres. See G20.", "modal, group 06")),
-    ("G27", *_both("Reference position return check", "", "one-shot")),
+        tr("modal, group 06"))),
+    ("G21", *_both(tr("Metric input"), "Values are millimetres. See G20.", tr("modal, group 06"))),
+    ("G27", *_both(tr("Reference position return check"), "", tr("one-shot"))),
     ("G28", *_both(
-        "Return to reference position",
+        tr("Return to reference position"),
         "Moves through the intermediate point given in the block to the machine reference "
         "position. Lathe: `G28 U0 W0` (incremental zero: straight home); mill: `G91 G28 Z0`.",
-        "one-shot")),
+        tr("one-shot"))),
     ("G30", *_both(
-        "Return to 2nd/3rd/4th reference position",
-        "`G30 P2 ...` (P2 to P4) via the intermediate point, like G28.", "one-shot")),
+        tr("Return to 2nd/3rd/4th reference position"),
+        "`G30 P2 ...` (P2 to P4) via the intermediate point, like G28.", tr("one-shot"))),
     ("G31", *_both(
-        "Skip function",
+        tr("Skip function"),
         "Linear move that stops when the skip signal (probe) comes on; the position where it "
         "stopped is in #5061 and up.",
-        "one-shot")),
+        tr("one-shot"))),
     ("G32",
      Meaning(
-         "Thread cutting (constant lead)",
+         tr("Thread cutting (constant lead)"),
          "One threading pass along the programmed path at the lead F; the spindle encoder "
          "synchronises the start. Each pass, with its infeed and retract, is programmed "
          "separately (G92 and G76 do it as cycles). Feed hold and override are not effective.",
-         "modal, group 01"),
+         tr("modal, group 01")),
      None),
     ("G33",
-     Meaning("Thread cutting (G code systems B/C)", "System A uses G32.", "modal, group 01"),
-     Meaning("Thread cutting", "Constant-lead thread cutting along Z.", "modal, group 01")),
-    ("G34", Meaning("Variable lead thread cutting", "K is the lead change per revolution.",
-                    "modal, group 01"), None),
+     Meaning(tr("Thread cutting (G code systems B/C)"), "System A uses G32.",
+             tr("modal, group 01")),
+     Meaning(tr("Thread cutting"), "Constant-lead thread cutting along Z.", tr("modal, group 01"))),
+    ("G34", Meaning(tr("Variable lead thread cutting"), "K is the lead change per revolution.",
+                    tr("modal, group 01")), None),
     ("G40",
-     Meaning("Tool nose radius compensation cancel",
-             "Cancel with a move, not on an arc.", "modal, group 07"),
-     Meaning("Cutter radius compensation cancel",
-             "Cancel with a move, not on an arc.", "modal, group 07")),
+     Meaning(tr("Tool nose radius compensation cancel"),
+             "Cancel with a move, not on an arc.", tr("modal, group 07")),
+     Meaning(tr("Cutter radius compensation cancel"),
+             "Cancel with a move, not on an arc.", tr("modal, group 07"))),
     ("G41",
-     Meaning("Tool nose radius compensation, left",
+     Meaning(tr("Tool nose radius compensation, left"),
              "The tool is on the left of the path, looking in the direction of motion; the "
              "nose radius and imaginary tip number come from the tool's offset (T).",
-             "modal, group 07"),
-     Meaning("Cutter radius compensation, left",
+             tr("modal, group 07")),
+     Meaning(tr("Cutter radius compensation, left"),
              "The cutter is on the left of the path (climb milling with a right-hand cutter); "
-             "the radius is offset D.", "modal, group 07")),
+             "the radius is offset D.", tr("modal, group 07"))),
     ("G42",
-     Meaning("Tool nose radius compensation, right", "See G41.", "modal, group 07"),
-     Meaning("Cutter radius compensation, right",
+     Meaning(tr("Tool nose radius compensation, right"), "See G41.", tr("modal, group 07")),
+     Meaning(tr("Cutter radius compensation, right"),
              "The cutter is on the right of the path (conventional milling); radius from D.",
-             "modal, group 07")),
-    ("G43", None, Meaning("Tool length compensation +",
-                          "Adds the length offset H to Z: `G43 H01 Z..`.", "modal, group 08")),
-    ("G44", None, Meaning("Tool length compensation -", "", "modal, group 08")),
-    ("G49", None, Meaning("Tool length compensation cancel", "", "modal, group 08")),
+             tr("modal, group 07"))),
+    ("G43", None, Meaning(tr("Tool length compensation +"),
+                          "Adds the length offset H to Z: `G43 H01 Z..`.", tr("modal, group 08"))),
+    ("G44", None, Meaning(tr("Tool length compensation -"), "", tr("modal, group 08"))),
+    ("G49", None, Meaning(tr("Tool length compensation cancel"), "", tr("modal, group 08"))),
     ("G50",
-     Meaning("Coordinate system setting / maximum spindle speed",
+     Meaning(tr("Coordinate system setting / maximum spindle speed"),
              "`G50 X.. Z..` makes the current position these coordinates (prefer G54-G59 "
              "work offsets). `G50 S2000` clamps the spindle speed under constant surface speed "
              "(G96): always set it before G96, or small diameters can over-speed the chuck.",
-             "one-shot"),
-     Meaning("Scaling cancel", "", "modal, group 11")),
-    ("G51", None, Meaning("Scaling", "Scales the programmed path about a centre (option).",
-                          "modal, group 11")),
-    ("G52", *_both("Local coordinate system",
+             tr("one-shot")),
+     Meaning(tr("Scaling cancel"), "", tr("modal, group 11"))),
+    ("G51", None, Meaning(tr("Scaling"), "Scales the programmed path about a centre (option).",
+                          tr("modal, group 11"))),
+    ("G52", *_both(tr("Local coordinate system"),
                    "Shifts the work coordinate system by the given values until `G52` with "
-                   "zeros.", "one-shot")),
-    ("G53", *_both("Machine coordinate system",
+                   "zeros.", tr("one-shot"))),
+    ("G53", *_both(tr("Machine coordinate system"),
                    "Moves to machine coordinates in this block only (absolute, rapid); "
-                   "it stops look-ahead.", "one-shot")),
+                   "it stops look-ahead.", tr("one-shot"))),
     *[
         (f"G{54 + k}", *_both(
             f"Work coordinate system {k + 1}",
             f"Selects work offset {k + 1}; its values are #{5221 + 20 * k}-"
             f"#{5240 + 20 * k} (axis = number - {5220 + 20 * k}).",
-            "modal, group 14"))
+            tr("modal, group 14")))
         for k in range(6)
     ],
-    ("G54.1", *_both("Additional work coordinate systems",
+    ("G54.1", *_both(tr("Additional work coordinate systems"),
                      "`G54.1 P1`..`P48` (#7001 and up), P1-P300 as an option.",
-                     "modal, group 14")),
-    ("G61", *_both("Exact stop mode", "", "modal, group 15")),
-    ("G62", *_both("Automatic corner override", "", "modal, group 15")),
-    ("G63", *_both("Tapping mode", "", "modal, group 15")),
-    ("G64", *_both("Cutting mode", "Blocks blend without an exact stop.", "modal, group 15")),
+                     tr("modal, group 14"))),
+    ("G61", *_both(tr("Exact stop mode"), "", tr("modal, group 15"))),
+    ("G62", *_both(tr("Automatic corner override"), "", tr("modal, group 15"))),
+    ("G63", *_both(tr("Tapping mode"), "", tr("modal, group 15"))),
+    ("G64", *_both(tr("Cutting mode"), "Blocks blend without an exact stop.",
+                   tr("modal, group 15"))),
     ("G65", *_both(
-        "Macro call",
+        tr("Macro call"),
         "`G65 P<program> [L<repeat>] <arguments>` runs the macro once (or L times) with a new "
         "set of locals #1-#33: the argument letters fill them (specification I: A #1, B #2, "
         "C #3, I #4, J #5, K #6, D #7, E #8, F #9, H #11, M #13, Q #17, R #18, S #19, T #20, "
         "U #21, V #22, W #23, X #24, Y #25, Z #26), all other locals start vacant. G, L, N, O "
         "and P cannot be arguments. Write arguments with a decimal point: `X10` may arrive as "
         "0.01 on an IS-B machine.",
-        "one-shot, group 00")),
+        tr("one-shot, group 00"))),
     ("G66", *_both(
-        "Modal macro call (after each move)",
+        tr("Modal macro call (after each move)"),
         "`G66 P<program> <arguments>` calls the macro after every following block that moves "
         "an axis, until G67.",
-        "modal, group 12")),
+        tr("modal, group 12"))),
     ("G66.1", *_both(
-        "Modal macro call (every block)",
+        tr("Modal macro call (every block)"),
         "`G66.1 P<program> <arguments>` calls the macro for every following block, whose words "
         "become the arguments (G too), until G67.",
-        "modal, group 12")),
-    ("G67", *_both("Modal macro call cancel", "Ends G66 / G66.1.", "modal, group 12")),
+        tr("modal, group 12"))),
+    ("G67", *_both(tr("Modal macro call cancel"), "Ends G66 / G66.1.", tr("modal, group 12"))),
     ("G68",
-     Meaning("Mirror image for double turrets / balance cut",
-             "Option- and builder-dependent on lathes.", "modal"),
-     Meaning("Coordinate rotation", "`G68 X.. Y.. R<angle>` rotates the program about a "
-             "centre.", "modal, group 16")),
+     Meaning(tr("Mirror image for double turrets / balance cut"),
+             "Option- and builder-dependent on lathes.", tr("modal")),
+     Meaning(tr("Coordinate rotation"), "`G68 X.. Y.. R<angle>` rotates the program about a "
+             "centre.", tr("modal, group 16"))),
     ("G69",
-     Meaning("Mirror image for double turrets cancel", "", "modal"),
-     Meaning("Coordinate rotation cancel", "", "modal, group 16")),
+     Meaning(tr("Mirror image for double turrets cancel"), "", tr("modal")),
+     Meaning(tr("Coordinate rotation cancel"), "", tr("modal, group 16"))),
     ("G70",
-     Meaning("Finishing cycle",
+     Meaning(tr("Finishing cycle"),
              "`G70 P<ns> Q<nf>` runs the finishing shape (blocks Nns to Nnf) described for a "
              "G71/G72/G73 roughing cycle, with the F, S, T of that shape.",
-             "one-shot, group 00"),
+             tr("one-shot, group 00")),
      None),
     ("G71",
-     Meaning("Stock removal in turning (rough OD/ID)",
+     Meaning(tr("Stock removal in turning (rough OD/ID)"),
              "`G71 U<depth> R<retract>` then `G71 P<ns> Q<nf> U<X allowance> W<Z allowance> "
              "F..`: roughs the shape Nns..Nnf in passes along Z, leaving the allowances for "
              "G70. The shape must be monotonic in X (type I).",
-             "one-shot, group 00"),
+             tr("one-shot, group 00")),
      None),
     ("G72",
-     Meaning("Stock removal in facing",
+     Meaning(tr("Stock removal in facing"),
              "`G72 W<depth> R<retract>` then `G72 P<ns> Q<nf> U.. W.. F..`: like G71 but the "
              "passes run along X.",
-             "one-shot, group 00"),
+             tr("one-shot, group 00")),
      None),
     ("G73",
-     Meaning("Pattern repeating cycle",
+     Meaning(tr("Pattern repeating cycle"),
              "`G73 U<X relief> W<Z relief> R<passes>` then `G73 P<ns> Q<nf> U.. W.. F..`: "
              "repeats the shape offset inwards, for forged or cast blanks.",
-             "one-shot, group 00"),
-     Meaning("High-speed peck drilling cycle",
+             tr("one-shot, group 00")),
+     Meaning(tr("High-speed peck drilling cycle"),
              "Pecks of Q with a small retract (parameter) instead of a full return.",
-             "modal, group 09")),
+             tr("modal, group 09"))),
     ("G74",
-     Meaning("End face peck drilling / face grooving cycle",
+     Meaning(tr("End face peck drilling / face grooving cycle"),
              "`G74 R<retract>` then `G74 X(U).. Z(W).. P<X step> Q<Z peck> F..` (P and Q in "
              "least increments, no decimal point).",
-             "one-shot, group 00"),
-     Meaning("Left-hand tapping cycle",
-             "Counter tapping: spindle CCW in, reverses at the bottom.", "modal, group 09")),
+             tr("one-shot, group 00")),
+     Meaning(tr("Left-hand tapping cycle"),
+             "Counter tapping: spindle CCW in, reverses at the bottom.", tr("modal, group 09"))),
     ("G75",
-     Meaning("Outer/inner diameter grooving cycle",
+     Meaning(tr("Outer/inner diameter grooving cycle"),
              "`G75 R<retract>` then `G75 X(U).. Z(W).. P<X peck> Q<Z step> F..`.",
-             "one-shot, group 00"),
+             tr("one-shot, group 00")),
      None),
     ("G76",
-     Meaning("Multiple threading cycle",
+     Meaning(tr("Multiple threading cycle"),
              "`G76 P<m><r><a> Q<min depth> R<finish allowance>` then `G76 X(U).. Z(W).. "
              "R<taper> P<thread height> Q<first depth> F<lead>`: m finishing passes, r chamfer, "
              "a tool angle; depths in least increments (no decimal point). Each pass cuts "
              "equal area, with flank infeed.",
-             "one-shot, group 00"),
-     Meaning("Fine boring cycle",
+             tr("one-shot, group 00")),
+     Meaning(tr("Fine boring cycle"),
              "Bores, orients the spindle at the bottom, shifts by Q away from the wall and "
              "retracts at rapid.",
-             "modal, group 09")),
-    ("G80", *_both("Canned cycle cancel", "Cancels the drilling cycles (G81-G89 / G83-G89 on "
-                   "lathes).", "modal, group 09")),
-    ("G81", None, Meaning("Drilling cycle, spot drilling",
+             tr("modal, group 09"))),
+    ("G80", *_both(tr("Canned cycle cancel"), "Cancels the drilling cycles (G81-G89 / G83-G89 on "
+                   "lathes).", tr("modal, group 09"))),
+    ("G81", None, Meaning(tr("Drilling cycle, spot drilling"),
                           "Feed to Z, rapid out to the R point (G99) or initial level (G98).",
-                          "modal, group 09")),
-    ("G82", None, Meaning("Drilling cycle with dwell (counterboring)",
-                          "Like G81 with a dwell P at the bottom.", "modal, group 09")),
+                          tr("modal, group 09"))),
+    ("G82", None, Meaning(tr("Drilling cycle with dwell (counterboring)"),
+                          "Like G81 with a dwell P at the bottom.", tr("modal, group 09"))),
     ("G83",
-     Meaning("Face drilling cycle", "Live-tool drilling along Z (C-axis lathes).",
-             "modal, group 10"),
-     Meaning("Peck drilling cycle", "Pecks of Q, retracting to the R point after each.",
-             "modal, group 09")),
+     Meaning(tr("Face drilling cycle"), "Live-tool drilling along Z (C-axis lathes).",
+             tr("modal, group 10")),
+     Meaning(tr("Peck drilling cycle"), "Pecks of Q, retracting to the R point after each.",
+             tr("modal, group 09"))),
     ("G84",
-     Meaning("Face tapping cycle", "Live-tool tapping along Z.", "modal, group 10"),
-     Meaning("Tapping cycle",
+     Meaning(tr("Face tapping cycle"), "Live-tool tapping along Z.", tr("modal, group 10")),
+     Meaning(tr("Tapping cycle"),
              "Spindle CW in, reverses at the bottom. In G94 F = pitch x S; with M29 it is "
              "rigid tapping.",
-             "modal, group 09")),
+             tr("modal, group 09"))),
     ("G85",
-     Meaning("Face boring cycle", "", "modal, group 10"),
-     Meaning("Boring cycle", "Feed in, feed out.", "modal, group 09")),
-    ("G86", None, Meaning("Boring cycle", "Feed in, spindle stop at the bottom, rapid out "
-                          "(leaves a line).", "modal, group 09")),
+     Meaning(tr("Face boring cycle"), "", tr("modal, group 10")),
+     Meaning(tr("Boring cycle"), "Feed in, feed out.", tr("modal, group 09"))),
+    ("G86", None, Meaning(tr("Boring cycle"), "Feed in, spindle stop at the bottom, rapid out "
+                          "(leaves a line).", tr("modal, group 09"))),
     ("G87",
-     Meaning("Side drilling cycle", "Live-tool drilling along X.", "modal, group 10"),
-     Meaning("Back boring cycle", "", "modal, group 09")),
+     Meaning(tr("Side drilling cycle"), "Live-tool drilling along X.", tr("modal, group 10")),
+     Meaning(tr("Back boring cycle"), "", tr("modal, group 09"))),
     ("G88",
-     Meaning("Side tapping cycle", "", "modal, group 10"),
-     Meaning("Boring cycle", "Dwell and spindle stop at the bottom, then manual retract.",
-             "modal, group 09")),
+     Meaning(tr("Side tapping cycle"), "", tr("modal, group 10")),
+     Meaning(tr("Boring cycle"), "Dwell and spindle stop at the bottom, then manual retract.",
+             tr("modal, group 09"))),
     ("G89",
-     Meaning("Side boring cycle", "", "modal, group 10"),
-     Meaning("Boring cycle", "Dwell at the bottom, feed out.", "modal, group 09")),
+     Meaning(tr("Side boring cycle"), "", tr("modal, group 10")),
+     Meaning(tr("Boring cycle"), "Dwell at the bottom, feed out.", tr("modal, group 09"))),
     ("G90",
-     Meaning("Outer/inner diameter cutting cycle",
+     Meaning(tr("Outer/inner diameter cutting cycle"),
              "`G90 X(U).. Z(W).. [R<taper>] F..`: one roughing pass (rapid in, feed along Z, "
              "feed out, rapid back). Modal: the next blocks with only X repeat it at new "
              "depths. On a lathe (system A) there is no G90/G91 absolute/incremental: X/Z are "
              "absolute, U/W incremental.",
-             "modal, group 01"),
-     Meaning("Absolute programming", "Coordinates are positions in the work system.",
-             "modal, group 03")),
+             tr("modal, group 01")),
+     Meaning(tr("Absolute programming"), "Coordinates are positions in the work system.",
+             tr("modal, group 03"))),
     ("G91",
      None,
-     Meaning("Incremental programming", "Coordinates are distances from the current "
-             "position.", "modal, group 03")),
+     Meaning(tr("Incremental programming"), "Coordinates are distances from the current "
+             "position.", tr("modal, group 03"))),
     ("G92",
-     Meaning("Threading cycle",
+     Meaning(tr("Threading cycle"),
              "`G92 X(U).. Z(W).. [R<taper>] F<lead>`: one threading pass from the start point "
              "(rapid in to X, thread along Z, rapid out, rapid back). Modal: blocks with only X "
              "repeat it at new depths. Approach distance must allow the spindle to "
              "synchronise; S x lead is limited by the machine's threading feed.",
-             "modal, group 01"),
-     Meaning("Workpiece coordinate system setting",
+             tr("modal, group 01")),
+     Meaning(tr("Workpiece coordinate system setting"),
              "`G92 X.. Y.. Z..` declares the current position to have these coordinates (a "
              "G54-G59 offset is safer).",
-             "one-shot, group 00")),
-    ("G93", None, Meaning("Inverse time feed", "F is the reciprocal of the block's time in "
-                          "minutes (for rotary axes).", "modal, group 05")),
+             tr("one-shot, group 00"))),
+    ("G93", None, Meaning(tr("Inverse time feed"), "F is the reciprocal of the block's time in "
+                          "minutes (for rotary axes).", tr("modal, group 05"))),
     ("G94",
-     Meaning("End face turning cycle",
-             "`G94 X(U).. Z(W).. [R..] F..`: one facing pass along X.", "modal, group 01"),
-     Meaning("Feed per minute", "F is mm/min (inch/min).", "modal, group 05")),
-    ("G95", None, Meaning("Feed per revolution", "F is mm/rev.", "modal, group 05")),
+     Meaning(tr("End face turning cycle"),
+             "`G94 X(U).. Z(W).. [R..] F..`: one facing pass along X.", tr("modal, group 01")),
+     Meaning(tr("Feed per minute"), "F is mm/min (inch/min).", tr("modal, group 05"))),
+    ("G95", None, Meaning(tr("Feed per revolution"), "F is mm/rev.", tr("modal, group 05"))),
     ("G96", *_both(
-        "Constant surface speed",
+        tr("Constant surface speed"),
         "S is the cutting speed in m/min (ft/min): the spindle speeds up as the diameter gets "
         "smaller. Clamp it first (`G50 S..` on lathes). Threading uses G97.",
-        "modal, group 02 (lathe) / 13 (mill)")),
-    ("G97", *_both("Constant surface speed cancel", "S is spindle speed in rpm.",
-                   "modal, group 02 (lathe) / 13 (mill)")),
+        tr("modal, group 02 (lathe) / 13 (mill)"))),
+    ("G97", *_both(tr("Constant surface speed cancel"), "S is spindle speed in rpm.",
+                   tr("modal, group 02 (lathe) / 13 (mill)"))),
     ("G98",
-     Meaning("Feed per minute", "F is mm/min (system A lathe).", "modal, group 05"),
-     Meaning("Canned cycle: return to initial level", "", "modal, group 10")),
+     Meaning(tr("Feed per minute"), "F is mm/min (system A lathe).", tr("modal, group 05")),
+     Meaning(tr("Canned cycle: return to initial level"), "", tr("modal, group 10"))),
     ("G99",
-     Meaning("Feed per revolution", "F is mm/rev: the lathe's power-on default; for threading "
-             "F is the lead.", "modal, group 05"),
-     Meaning("Canned cycle: return to R point level", "", "modal, group 10")),
+     Meaning(tr("Feed per revolution"), "F is mm/rev: the lathe's power-on default; for threading "
+             "F is the lead.", tr("modal, group 05")),
+     Meaning(tr("Canned cycle: return to R point level"), "", tr("modal, group 10"))),
 )  # fmt: skip
 
 _M: tuple[tuple[str, str, str], ...] = (
     (
         "M00",
-        "Program stop",
+        tr("Program stop"),
         "Stops after the block; cycle start resumes. Stops look-ahead, so macro statements after "
         "it wait for it.",
     ),
-    ("M01", "Optional stop", "Like M00 when the optional stop switch is on."),
-    ("M02", "End of program", "Ends and resets the program (locals become vacant)."),
-    ("M03", "Spindle on clockwise (forward)", "Speed from S."),
-    ("M04", "Spindle on counter-clockwise (reverse)", "Speed from S."),
-    ("M05", "Spindle stop", ""),
-    ("M06", "Tool change", "Mill ATC; the sequence is the machine builder's."),
-    ("M07", "Mist coolant on", "Builder-defined."),
-    ("M08", "Coolant on", ""),
-    ("M09", "Coolant off", ""),
-    ("M19", "Spindle orientation", "Builder-defined."),
+    ("M01", tr("Optional stop"), "Like M00 when the optional stop switch is on."),
+    ("M02", tr("End of program"), "Ends and resets the program (locals become vacant)."),
+    ("M03", tr("Spindle on clockwise (forward)"), "Speed from S."),
+    ("M04", tr("Spindle on counter-clockwise (reverse)"), "Speed from S."),
+    ("M05", tr("Spindle stop"), ""),
+    ("M06", tr("Tool change"), "Mill ATC; the sequence is the machine builder's."),
+    ("M07", tr("Mist coolant on"), "Builder-defined."),
+    ("M08", tr("Coolant on"), ""),
+    ("M09", tr("Coolant off"), ""),
+    ("M19", tr("Spindle orientation"), "Builder-defined."),
     (
         "M29",
-        "Rigid tapping",
+        tr("Rigid tapping"),
         "Before G84: the spindle follows the Z axis (parameter-dependent M code).",
     ),
     (
         "M30",
-        "End of program and rewind",
+        tr("End of program and rewind"),
         "Ends, resets and returns to the program head; locals become vacant; parts count #3901 "
         "goes up.",
     ),
-    ("M96", "Interrupt-type macro enable", "Option; parameter-dependent M code."),
+    ("M96", tr("Interrupt-type macro enable"), "Option; parameter-dependent M code."),
     (
         "M97",
-        "Interrupt-type macro disable (FANUC) / local subprogram call (Haas)",
+        tr("Interrupt-type macro disable (FANUC) / local subprogram call (Haas)"),
         "On Haas `M97 P<n>` calls the block Nn of the same program; FANUC controls have no such "
         "call.",
     ),
     (
         "M98",
-        "Subprogram call",
+        tr("Subprogram call"),
         "`M98 P<program> [L<repeat>]`, or on 4-digit controls `M98 P<rrrr><pppp>`: M98 "
         "P0013331 runs O3331 once, P50010 runs O0010 five times. No arguments and no new local "
         "level: the subprogram shares the caller's #1-#33.",
     ),
     (
         "M99",
-        "End of subprogram (return)",
+        tr("End of subprogram (return)"),
         "Returns to the block after the call; `M99 P<n>` returns to Nn of the caller instead. In a "
         "main program M99 restarts it from the head (an endless repetition).",
     ),
@@ -400,7 +402,7 @@ M_CODES: Mapping[str, CodeInfo] = MappingProxyType(
     {code: CodeInfo(code, m, m) for code, m in ((c, Meaning(t, x)) for c, t, x in _M)}
 )
 
-_BUILDER_M = (
+_BUILDER_M = tr(
     "Not a standard FANUC code: M codes other than M00-M02, M30, M98 and M99 are defined by "
     "the machine builder (or call macros O9020-O9029 by parameter)."
 )
@@ -450,7 +452,7 @@ def code_markdown(
     is. The other machine's meaning of the code is given only when the machine is not known
     (``machine_known``: a document that shows neither, read both ways)."""
     parts = code_parts(letter, value, lathe, system, machine_known)
-    return "\n\n".join(parts) if parts else None
+    return joined("\n\n", parts) if parts else None
 
 
 def code_parts(
@@ -458,64 +460,84 @@ def code_parts(
 ) -> list[str]:
     """``code_markdown``'s paragraphs: the first is the code's name and meaning in a line."""
     if lathe and system != "A" and letter.upper() == "G":
-        text = _other_system_markdown(value, system)
-        if text is not None:
-            return text.split("\n\n")
+        said = _other_system_parts(value, system)
+        if said is not None:
+            return said
     name = code_name(letter, value)
     info = code_info(letter, value)
-    machine = "lathe" if lathe else "mill"
-    other_name = "mill" if lathe else "lathe"
     if info is None:
         if letter.upper() == "M":
             return [f"**{name}**", _BUILDER_M]
-        return [f"**{name}**", "Not a G code this checker knows (builder option or other control)."]
+        return [
+            f"**{name}**",
+            tr("Not a G code this checker knows (builder option or other control)."),
+        ]
     here = info.for_machine(lathe)
     other = info.for_machine(not lathe)
     parts: list[str] = []
     if here is not None:
-        head = f"**{name}** — {here.title}"
+        head = tr("**{code}** — {title}", code=name, title=here.title)
         if here.modal:
-            head += f" *({here.modal})*"
+            head = tr("{head} *({modal})*", head=head, modal=here.modal)
         parts.append(head)
         if here.text:
             parts.append(here.text)
     else:
         parts.append(
-            f"**{name}** — no meaning on a {machine} (G code system A)"
+            tr("**{code}** — no meaning on a lathe (G code system A)", code=name)
             if lathe
-            else f"**{name}** — no meaning on a {machine}"
+            else tr("**{code}** — no meaning on a mill", code=name)
         )
     if not info.same_on_both and other is not None and not (machine_known and here is not None):
+        if lathe:
+            said_other = tr("On a mill: {title}.", title=other.title)
+        else:
+            said_other = tr("On a lathe: {title}.", title=other.title)
         parts.append(
-            f"On a {other_name}: {other.title}." + (f" {other.text}" if other.text else "")
+            tr("{meaning} {text}", meaning=said_other, text=other.text)
+            if other.text
+            else said_other
         )
     return parts
 
 
-def _other_system_markdown(value: float, system: str) -> str | None:
-    """Hover text of a G code whose function in G code ``system`` (B, C) is not system A's
-    G``value``; None for a code the same in both."""
+def _other_system_parts(value: float, system: str) -> list[str] | None:
+    """The hover's paragraphs of a G code whose function in G code ``system`` (B, C) is not
+    system A's G``value``; None for a code the same in both."""
     name = code_name("G", value)
     if value in (ABSOLUTE, INCREMENTAL):
         mill = G_CODES[name].mill
         assert mill is not None
-        return (
-            f"**{name}** — {mill.title} *(modal, group 03; lathe, G code system {system})*"
-            f"\n\n{mill.text}"
+        head = tr(
+            "**{code}** — {title} *(modal, group 03; lathe, G code system {system})*",
+            code=name,
+            title=mill.title,
+            system=system,
         )
+        return [head, mill.text]
     a = system_a_code(value, system)
     if a == value:
         return None
     if a is None:
-        return f"**{name}** — no meaning on a lathe of G code system {system}"
+        return [
+            tr(
+                "**{code}** — no meaning on a lathe of G code system {system}",
+                code=name,
+                system=system,
+            )
+        ]
     info = code_info("G", a)
     meaning = info.lathe if info is not None else None
     if meaning is None:
         return None
-    head = (
-        f"**{name}** — {meaning.title} *(G code system {system}; system A's {code_name('G', a)})*"
+    head = tr(
+        "**{code}** — {title} *(G code system {system}; system A's {code_a})*",
+        code=name,
+        title=meaning.title,
+        system=system,
+        code_a=code_name("G", a),
     )
-    return head + (f"\n\n{meaning.text}" if meaning.text else "")
+    return [head, meaning.text] if meaning.text else [head]
 
 
 def completion_codes(lathe: bool, system: str = "A") -> list[tuple[str, str]]:
