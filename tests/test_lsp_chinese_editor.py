@@ -78,12 +78,14 @@ async def test_the_editors_words_are_said_in_chinese(client: LanguageClient) -> 
     assert "顺序号" in label
     jump = await hover(client, uri, 9, 1)
     assert "→ 第 11 行" in jump
-    # A G code: its name and group (what it does in more words is not translated yet).
+    # A G code: its name, its group and what it does.
     rapid = await hover(client, uri, 14, 1)
-    assert rapid.startswith("**G00** — 快速定位 *（模态，01 组）*")
+    assert rapid.startswith(
+        "**G00** — 快速定位 *（模态，01 组）*\n\n---\n\n以快速移动速度移到终点。"
+    )
     keyword = await hover(client, uri, 4, 1)
     assert keyword.startswith("**WHILE** — 循环")
-    assert not english(variable, loop, label, jump, keyword)
+    assert not english(variable, loop, label, jump, keyword, rapid)
 
     lenses = await asyncio.wait_for(
         client.text_document_code_lens_async(types.CodeLensParams(text_document=ident)), WAIT

@@ -48,129 +48,136 @@ def _both(title: str, text: str = "", modal: str = "") -> tuple[Meaning, Meaning
 _G: tuple[tuple[str, Meaning | None, Meaning | None], ...] = (
     ("G00", *_both(
         tr("Rapid positioning"),
-        "Moves to the end point at rapid traverse. Depending on a parameter the axes move "
-        "independently, so the path need not be a straight line: keep clear of the part.",
+        tr("Moves to the end point at rapid traverse. Depending on a parameter the axes move "
+        "independently, so the path need not be a straight line: keep clear of the part."),
         tr("modal, group 01"))),
     ("G01", *_both(
         tr("Linear interpolation"),
-        "Straight move at the feed F. On a lathe F is usually per revolution (G99), on a mill "
-        "per minute (G94).",
+        tr("Straight move at the feed F. On a lathe F is usually per revolution (G99), on a mill "
+        "per minute (G94)."),
         tr("modal, group 01"))),
     ("G02", *_both(
         tr("Circular interpolation, clockwise"),
-        "Arc to the end point, with the radius R or the centre offsets I/J/K from the start "
+        tr("Arc to the end point, with the radius R or the centre offsets I/J/K from the start "
         "point. On a lathe X is a diameter and I/K are radius values; the direction is as seen "
-        "from the +Y side of the ZX plane, so it depends on where the turret is.",
+        "from the +Y side of the ZX plane, so it depends on where the turret is."),
         tr("modal, group 01"))),
     ("G03", *_both(
         tr("Circular interpolation, counter-clockwise"),
-        "Arc to the end point, with R or I/J/K as for G02.",
+        tr("Arc to the end point, with R or I/J/K as for G02."),
         tr("modal, group 01"))),
     ("G04", *_both(
         tr("Dwell"),
-        "Waits before the next block: `G04 X1.5` (or `U1.5` on a lathe) waits 1.5 s; "
-        "`G04 P1500` waits 1500 ms; P takes no decimal point.",
+        tr("Waits before the next block: `G04 X1.5` (or `U1.5` on a lathe) waits 1.5 s; "
+        "`G04 P1500` waits 1500 ms; P takes no decimal point."),
         tr("one-shot"))),
     ("G05.1", *_both(
         tr("AI contour control / look-ahead"),
-        "`G05.1 Q1` switches AI (advanced preview) contour control on, `G05.1 Q0` off. Programs "
+        tr("`G05.1 Q1` switches AI (advanced preview) contour control on, `G05.1 Q0` off. Programs "
         "switch it off before they poll variables so that macro statements are not executed "
-        "blocks ahead of the motion.",
+        "blocks ahead of the motion."),
         tr("modal"))),
     ("G07.1", *_both(
         tr("Cylindrical interpolation"),
-        "Programs a rotary axis as a distance on the cylinder's surface (option).", tr("modal"))),
+        tr("Programs a rotary axis as a distance on the cylinder's surface (option)."),
+        tr("modal"))),
     ("G09", *_both(
-        tr("Exact stop"), "Decelerates and checks the in-position at the end of this block only.",
+        tr("Exact stop"), tr("Decelerates and checks the in-position at the end of this block "
+           "only."),
         tr("one-shot"))),
     ("G10", *_both(
         tr("Programmable data input"),
-        "Writes offsets or parameters from the program, e.g. `G10 L2 P1 X.. Z..` sets the G54 "
+        tr("Writes offsets or parameters from the program, e.g. `G10 L2 P1 X.. Z..` sets the G54 "
         "work offset. The macro system variables (#2001..., #5221...) do the same from "
-        "expressions.",
+        "expressions."),
         tr("one-shot"))),
     ("G11", *_both(tr("Programmable data input cancel"), "", tr("modal"))),
     ("G12.1", Meaning(
         tr("Polar coordinate interpolation"),
-        "Lathe with a C axis and live tools: X and C are programmed as a Cartesian plane (option).",
+        tr("Lathe with a C axis and live tools: X and C are programmed as a Cartesian plane "
+           "(option)."),
         tr("modal")), None),
     ("G13.1", Meaning(tr("Polar coordinate interpolation cancel"), "", tr("modal")), None),
-    ("G17", *_both(tr("XY plane"), "Plane for arcs and cutter compensation (mill default).",
+    ("G17", *_both(tr("XY plane"), tr("Plane for arcs and cutter compensation (mill default)."),
                    tr("modal, group 02 (mill) / 16 (lathe)"))),
-    ("G18", *_both(tr("ZX plane"), "Plane for arcs and nose radius compensation (lathe default).",
+    ("G18", *_both(tr("ZX plane"), tr("Plane for arcs and nose radius compensation (lathe "
+     "default)."),
                    tr("modal, group 02 (mill) / 16 (lathe)"))),
     ("G19", *_both(tr("YZ plane"), "", tr("modal, group 02 (mill) / 16 (lathe)"))),
     ("G20", *_both(
         tr("Inch input"),
-        "Values are inches. Program it alone at the head of the program, before the work "
-        "coordinate system is set; mixing units in one program is a classic crash.",
+        tr("Values are inches. Program it alone at the head of the program, before the work "
+        "coordinate system is set; mixing units in one program is a classic crash."),
         tr("modal, group 06"))),
-    ("G21", *_both(tr("Metric input"), "Values are millimetres. See G20.", tr("modal, group 06"))),
+    ("G21", *_both(tr("Metric input"), tr("Values are millimetres. See G20."), tr("modal, "
+     "group 06"))),
     ("G27", *_both(tr("Reference position return check"), "", tr("one-shot"))),
     ("G28", *_both(
         tr("Return to reference position"),
-        "Moves through the intermediate point given in the block to the machine reference "
-        "position. Lathe: `G28 U0 W0` (incremental zero: straight home); mill: `G91 G28 Z0`.",
+        tr("Moves through the intermediate point given in the block to the machine reference "
+        "position. Lathe: `G28 U0 W0` (incremental zero: straight home); mill: `G91 G28 Z0`."),
         tr("one-shot"))),
     ("G30", *_both(
         tr("Return to 2nd/3rd/4th reference position"),
-        "`G30 P2 ...` (P2 to P4) via the intermediate point, like G28.", tr("one-shot"))),
+        tr("`G30 P2 ...` (P2 to P4) via the intermediate point, like G28."), tr("one-shot"))),
     ("G31", *_both(
         tr("Skip function"),
-        "Linear move that stops when the skip signal (probe) comes on; the position where it "
-        "stopped is in #5061 and up.",
+        tr("Linear move that stops when the skip signal (probe) comes on; the position where it "
+        "stopped is in #5061 and up."),
         tr("one-shot"))),
     ("G32",
      Meaning(
          tr("Thread cutting (constant lead)"),
-         "One threading pass along the programmed path at the lead F; the spindle encoder "
+         tr("One threading pass along the programmed path at the lead F; the spindle encoder "
          "synchronises the start. Each pass, with its infeed and retract, is programmed "
-         "separately (G92 and G76 do it as cycles). Feed hold and override are not effective.",
+         "separately (G92 and G76 do it as cycles). Feed hold and override are not effective."),
          tr("modal, group 01")),
      None),
     ("G33",
-     Meaning(tr("Thread cutting (G code systems B/C)"), "System A uses G32.",
+     Meaning(tr("Thread cutting (G code systems B/C)"), tr("System A uses G32."),
              tr("modal, group 01")),
-     Meaning(tr("Thread cutting"), "Constant-lead thread cutting along Z.", tr("modal, group 01"))),
-    ("G34", Meaning(tr("Variable lead thread cutting"), "K is the lead change per revolution.",
+     Meaning(tr("Thread cutting"), tr("Constant-lead thread cutting along Z."), tr("modal, "
+                "group 01"))),
+    ("G34", Meaning(tr("Variable lead thread cutting"), tr("K is the lead change per revolution."),
                     tr("modal, group 01")), None),
     ("G40",
      Meaning(tr("Tool nose radius compensation cancel"),
-             "Cancel with a move, not on an arc.", tr("modal, group 07")),
+             tr("Cancel with a move, not on an arc."), tr("modal, group 07")),
      Meaning(tr("Cutter radius compensation cancel"),
-             "Cancel with a move, not on an arc.", tr("modal, group 07"))),
+             tr("Cancel with a move, not on an arc."), tr("modal, group 07"))),
     ("G41",
      Meaning(tr("Tool nose radius compensation, left"),
-             "The tool is on the left of the path, looking in the direction of motion; the "
-             "nose radius and imaginary tip number come from the tool's offset (T).",
+             tr("The tool is on the left of the path, looking in the direction of motion; the "
+             "nose radius and imaginary tip number come from the tool's offset (T)."),
              tr("modal, group 07")),
      Meaning(tr("Cutter radius compensation, left"),
-             "The cutter is on the left of the path (climb milling with a right-hand cutter); "
-             "the radius is offset D.", tr("modal, group 07"))),
+             tr("The cutter is on the left of the path (climb milling with a right-hand cutter); "
+             "the radius is offset D."), tr("modal, group 07"))),
     ("G42",
-     Meaning(tr("Tool nose radius compensation, right"), "See G41.", tr("modal, group 07")),
+     Meaning(tr("Tool nose radius compensation, right"), tr("See G41."), tr("modal, group 07")),
      Meaning(tr("Cutter radius compensation, right"),
-             "The cutter is on the right of the path (conventional milling); radius from D.",
+             tr("The cutter is on the right of the path (conventional milling); radius from D."),
              tr("modal, group 07"))),
     ("G43", None, Meaning(tr("Tool length compensation +"),
-                          "Adds the length offset H to Z: `G43 H01 Z..`.", tr("modal, group 08"))),
+                          tr("Adds the length offset H to Z: `G43 H01 Z..`."), tr("modal, "
+                             "group 08"))),
     ("G44", None, Meaning(tr("Tool length compensation -"), "", tr("modal, group 08"))),
     ("G49", None, Meaning(tr("Tool length compensation cancel"), "", tr("modal, group 08"))),
     ("G50",
      Meaning(tr("Coordinate system setting / maximum spindle speed"),
-             "`G50 X.. Z..` makes the current position these coordinates (prefer G54-G59 "
+             tr("`G50 X.. Z..` makes the current position these coordinates (prefer G54-G59 "
              "work offsets). `G50 S2000` clamps the spindle speed under constant surface speed "
-             "(G96): always set it before G96, or small diameters can over-speed the chuck.",
+             "(G96): always set it before G96, or small diameters can over-speed the chuck."),
              tr("one-shot")),
      Meaning(tr("Scaling cancel"), "", tr("modal, group 11"))),
-    ("G51", None, Meaning(tr("Scaling"), "Scales the programmed path about a centre (option).",
+    ("G51", None, Meaning(tr("Scaling"), tr("Scales the programmed path about a centre (option)."),
                           tr("modal, group 11"))),
     ("G52", *_both(tr("Local coordinate system"),
-                   "Shifts the work coordinate system by the given values until `G52` with "
-                   "zeros.", tr("one-shot"))),
+                   tr("Shifts the work coordinate system by the given values until `G52` with "
+                   "zeros."), tr("one-shot"))),
     ("G53", *_both(tr("Machine coordinate system"),
-                   "Moves to machine coordinates in this block only (absolute, rapid); "
-                   "it stops look-ahead.", tr("one-shot"))),
+                   tr("Moves to machine coordinates in this block only (absolute, rapid); "
+                   "it stops look-ahead."), tr("one-shot"))),
     *[
         (f"G{54 + k}", *_both(
             f"Work coordinate system {k + 1}",
@@ -180,168 +187,171 @@ _G: tuple[tuple[str, Meaning | None, Meaning | None], ...] = (
         for k in range(6)
     ],
     ("G54.1", *_both(tr("Additional work coordinate systems"),
-                     "`G54.1 P1`..`P48` (#7001 and up), P1-P300 as an option.",
+                     tr("`G54.1 P1`..`P48` (#7001 and up), P1-P300 as an option."),
                      tr("modal, group 14"))),
     ("G61", *_both(tr("Exact stop mode"), "", tr("modal, group 15"))),
     ("G62", *_both(tr("Automatic corner override"), "", tr("modal, group 15"))),
     ("G63", *_both(tr("Tapping mode"), "", tr("modal, group 15"))),
-    ("G64", *_both(tr("Cutting mode"), "Blocks blend without an exact stop.",
+    ("G64", *_both(tr("Cutting mode"), tr("Blocks blend without an exact stop."),
                    tr("modal, group 15"))),
     ("G65", *_both(
         tr("Macro call"),
-        "`G65 P<program> [L<repeat>] <arguments>` runs the macro once (or L times) with a new "
+        tr("`G65 P<program> [L<repeat>] <arguments>` runs the macro once (or L times) with a new "
         "set of locals #1-#33: the argument letters fill them (specification I: A #1, B #2, "
         "C #3, I #4, J #5, K #6, D #7, E #8, F #9, H #11, M #13, Q #17, R #18, S #19, T #20, "
         "U #21, V #22, W #23, X #24, Y #25, Z #26), all other locals start vacant. G, L, N, O "
         "and P cannot be arguments. Write arguments with a decimal point: `X10` may arrive as "
-        "0.01 on an IS-B machine.",
+        "0.01 on an IS-B machine."),
         tr("one-shot, group 00"))),
     ("G66", *_both(
         tr("Modal macro call (after each move)"),
-        "`G66 P<program> <arguments>` calls the macro after every following block that moves "
-        "an axis, until G67.",
+        tr("`G66 P<program> <arguments>` calls the macro after every following block that moves "
+        "an axis, until G67."),
         tr("modal, group 12"))),
     ("G66.1", *_both(
         tr("Modal macro call (every block)"),
-        "`G66.1 P<program> <arguments>` calls the macro for every following block, whose words "
-        "become the arguments (G too), until G67.",
+        tr("`G66.1 P<program> <arguments>` calls the macro for every following block, whose words "
+        "become the arguments (G too), until G67."),
         tr("modal, group 12"))),
-    ("G67", *_both(tr("Modal macro call cancel"), "Ends G66 / G66.1.", tr("modal, group 12"))),
+    ("G67", *_both(tr("Modal macro call cancel"), tr("Ends G66 / G66.1."), tr("modal, group 12"))),
     ("G68",
      Meaning(tr("Mirror image for double turrets / balance cut"),
-             "Option- and builder-dependent on lathes.", tr("modal")),
-     Meaning(tr("Coordinate rotation"), "`G68 X.. Y.. R<angle>` rotates the program about a "
-             "centre.", tr("modal, group 16"))),
+             tr("Option- and builder-dependent on lathes."), tr("modal")),
+     Meaning(tr("Coordinate rotation"), tr("`G68 X.. Y.. R<angle>` rotates the program about a "
+             "centre."), tr("modal, group 16"))),
     ("G69",
      Meaning(tr("Mirror image for double turrets cancel"), "", tr("modal")),
      Meaning(tr("Coordinate rotation cancel"), "", tr("modal, group 16"))),
     ("G70",
      Meaning(tr("Finishing cycle"),
-             "`G70 P<ns> Q<nf>` runs the finishing shape (blocks Nns to Nnf) described for a "
-             "G71/G72/G73 roughing cycle, with the F, S, T of that shape.",
+             tr("`G70 P<ns> Q<nf>` runs the finishing shape (blocks Nns to Nnf) described for a "
+             "G71/G72/G73 roughing cycle, with the F, S, T of that shape."),
              tr("one-shot, group 00")),
      None),
     ("G71",
      Meaning(tr("Stock removal in turning (rough OD/ID)"),
-             "`G71 U<depth> R<retract>` then `G71 P<ns> Q<nf> U<X allowance> W<Z allowance> "
+             tr("`G71 U<depth> R<retract>` then `G71 P<ns> Q<nf> U<X allowance> W<Z allowance> "
              "F..`: roughs the shape Nns..Nnf in passes along Z, leaving the allowances for "
-             "G70. The shape must be monotonic in X (type I).",
+             "G70. The shape must be monotonic in X (type I)."),
              tr("one-shot, group 00")),
      None),
     ("G72",
      Meaning(tr("Stock removal in facing"),
-             "`G72 W<depth> R<retract>` then `G72 P<ns> Q<nf> U.. W.. F..`: like G71 but the "
-             "passes run along X.",
+             tr("`G72 W<depth> R<retract>` then `G72 P<ns> Q<nf> U.. W.. F..`: like G71 but the "
+             "passes run along X."),
              tr("one-shot, group 00")),
      None),
     ("G73",
      Meaning(tr("Pattern repeating cycle"),
-             "`G73 U<X relief> W<Z relief> R<passes>` then `G73 P<ns> Q<nf> U.. W.. F..`: "
-             "repeats the shape offset inwards, for forged or cast blanks.",
+             tr("`G73 U<X relief> W<Z relief> R<passes>` then `G73 P<ns> Q<nf> U.. W.. F..`: "
+             "repeats the shape offset inwards, for forged or cast blanks."),
              tr("one-shot, group 00")),
      Meaning(tr("High-speed peck drilling cycle"),
-             "Pecks of Q with a small retract (parameter) instead of a full return.",
+             tr("Pecks of Q with a small retract (parameter) instead of a full return."),
              tr("modal, group 09"))),
     ("G74",
      Meaning(tr("End face peck drilling / face grooving cycle"),
-             "`G74 R<retract>` then `G74 X(U).. Z(W).. P<X step> Q<Z peck> F..` (P and Q in "
-             "least increments, no decimal point).",
+             tr("`G74 R<retract>` then `G74 X(U).. Z(W).. P<X step> Q<Z peck> F..` (P and Q in "
+             "least increments, no decimal point)."),
              tr("one-shot, group 00")),
      Meaning(tr("Left-hand tapping cycle"),
-             "Counter tapping: spindle CCW in, reverses at the bottom.", tr("modal, group 09"))),
+             tr("Counter tapping: spindle CCW in, reverses at the bottom."), tr("modal, group "
+                "09"))),
     ("G75",
      Meaning(tr("Outer/inner diameter grooving cycle"),
-             "`G75 R<retract>` then `G75 X(U).. Z(W).. P<X peck> Q<Z step> F..`.",
+             tr("`G75 R<retract>` then `G75 X(U).. Z(W).. P<X peck> Q<Z step> F..`."),
              tr("one-shot, group 00")),
      None),
     ("G76",
      Meaning(tr("Multiple threading cycle"),
-             "`G76 P<m><r><a> Q<min depth> R<finish allowance>` then `G76 X(U).. Z(W).. "
+             tr("`G76 P<m><r><a> Q<min depth> R<finish allowance>` then `G76 X(U).. Z(W).. "
              "R<taper> P<thread height> Q<first depth> F<lead>`: m finishing passes, r chamfer, "
              "a tool angle; depths in least increments (no decimal point). Each pass cuts "
-             "equal area, with flank infeed.",
+             "equal area, with flank infeed."),
              tr("one-shot, group 00")),
      Meaning(tr("Fine boring cycle"),
-             "Bores, orients the spindle at the bottom, shifts by Q away from the wall and "
-             "retracts at rapid.",
+             tr("Bores, orients the spindle at the bottom, shifts by Q away from the wall and "
+             "retracts at rapid."),
              tr("modal, group 09"))),
-    ("G80", *_both(tr("Canned cycle cancel"), "Cancels the drilling cycles (G81-G89 / G83-G89 on "
-                   "lathes).", tr("modal, group 09"))),
+    ("G80", *_both(tr("Canned cycle cancel"), tr("Cancels the drilling cycles (G81-G89 / "
+     "G83-G89 on "
+                   "lathes)."), tr("modal, group 09"))),
     ("G81", None, Meaning(tr("Drilling cycle, spot drilling"),
-                          "Feed to Z, rapid out to the R point (G99) or initial level (G98).",
+                          tr("Feed to Z, rapid out to the R point (G99) or initial level (G98)."),
                           tr("modal, group 09"))),
     ("G82", None, Meaning(tr("Drilling cycle with dwell (counterboring)"),
-                          "Like G81 with a dwell P at the bottom.", tr("modal, group 09"))),
+                          tr("Like G81 with a dwell P at the bottom."), tr("modal, group 09"))),
     ("G83",
-     Meaning(tr("Face drilling cycle"), "Live-tool drilling along Z (C-axis lathes).",
+     Meaning(tr("Face drilling cycle"), tr("Live-tool drilling along Z (C-axis lathes)."),
              tr("modal, group 10")),
-     Meaning(tr("Peck drilling cycle"), "Pecks of Q, retracting to the R point after each.",
+     Meaning(tr("Peck drilling cycle"), tr("Pecks of Q, retracting to the R point after each."),
              tr("modal, group 09"))),
     ("G84",
-     Meaning(tr("Face tapping cycle"), "Live-tool tapping along Z.", tr("modal, group 10")),
+     Meaning(tr("Face tapping cycle"), tr("Live-tool tapping along Z."), tr("modal, group 10")),
      Meaning(tr("Tapping cycle"),
-             "Spindle CW in, reverses at the bottom. In G94 F = pitch x S; with M29 it is "
-             "rigid tapping.",
+             tr("Spindle CW in, reverses at the bottom. In G94 F = pitch x S; with M29 it is "
+             "rigid tapping."),
              tr("modal, group 09"))),
     ("G85",
      Meaning(tr("Face boring cycle"), "", tr("modal, group 10")),
-     Meaning(tr("Boring cycle"), "Feed in, feed out.", tr("modal, group 09"))),
-    ("G86", None, Meaning(tr("Boring cycle"), "Feed in, spindle stop at the bottom, rapid out "
-                          "(leaves a line).", tr("modal, group 09"))),
+     Meaning(tr("Boring cycle"), tr("Feed in, feed out."), tr("modal, group 09"))),
+    ("G86", None, Meaning(tr("Boring cycle"), tr("Feed in, spindle stop at the bottom, rapid out "
+                          "(leaves a line)."), tr("modal, group 09"))),
     ("G87",
-     Meaning(tr("Side drilling cycle"), "Live-tool drilling along X.", tr("modal, group 10")),
+     Meaning(tr("Side drilling cycle"), tr("Live-tool drilling along X."), tr("modal, group 10")),
      Meaning(tr("Back boring cycle"), "", tr("modal, group 09"))),
     ("G88",
      Meaning(tr("Side tapping cycle"), "", tr("modal, group 10")),
-     Meaning(tr("Boring cycle"), "Dwell and spindle stop at the bottom, then manual retract.",
+     Meaning(tr("Boring cycle"), tr("Dwell and spindle stop at the bottom, then manual retract."),
              tr("modal, group 09"))),
     ("G89",
      Meaning(tr("Side boring cycle"), "", tr("modal, group 10")),
-     Meaning(tr("Boring cycle"), "Dwell at the bottom, feed out.", tr("modal, group 09"))),
+     Meaning(tr("Boring cycle"), tr("Dwell at the bottom, feed out."), tr("modal, group 09"))),
     ("G90",
      Meaning(tr("Outer/inner diameter cutting cycle"),
-             "`G90 X(U).. Z(W).. [R<taper>] F..`: one roughing pass (rapid in, feed along Z, "
+             tr("`G90 X(U).. Z(W).. [R<taper>] F..`: one roughing pass (rapid in, feed along Z, "
              "feed out, rapid back). Modal: the next blocks with only X repeat it at new "
              "depths. On a lathe (system A) there is no G90/G91 absolute/incremental: X/Z are "
-             "absolute, U/W incremental.",
+             "absolute, U/W incremental."),
              tr("modal, group 01")),
-     Meaning(tr("Absolute programming"), "Coordinates are positions in the work system.",
+     Meaning(tr("Absolute programming"), tr("Coordinates are positions in the work system."),
              tr("modal, group 03"))),
     ("G91",
      None,
-     Meaning(tr("Incremental programming"), "Coordinates are distances from the current "
-             "position.", tr("modal, group 03"))),
+     Meaning(tr("Incremental programming"), tr("Coordinates are distances from the current "
+             "position."), tr("modal, group 03"))),
     ("G92",
      Meaning(tr("Threading cycle"),
-             "`G92 X(U).. Z(W).. [R<taper>] F<lead>`: one threading pass from the start point "
+             tr("`G92 X(U).. Z(W).. [R<taper>] F<lead>`: one threading pass from the start point "
              "(rapid in to X, thread along Z, rapid out, rapid back). Modal: blocks with only X "
              "repeat it at new depths. Approach distance must allow the spindle to "
-             "synchronise; S x lead is limited by the machine's threading feed.",
+             "synchronise; S x lead is limited by the machine's threading feed."),
              tr("modal, group 01")),
      Meaning(tr("Workpiece coordinate system setting"),
-             "`G92 X.. Y.. Z..` declares the current position to have these coordinates (a "
-             "G54-G59 offset is safer).",
+             tr("`G92 X.. Y.. Z..` declares the current position to have these coordinates (a "
+             "G54-G59 offset is safer)."),
              tr("one-shot, group 00"))),
-    ("G93", None, Meaning(tr("Inverse time feed"), "F is the reciprocal of the block's time in "
-                          "minutes (for rotary axes).", tr("modal, group 05"))),
+    ("G93", None, Meaning(tr("Inverse time feed"), tr("F is the reciprocal of the block's time in "
+                          "minutes (for rotary axes)."), tr("modal, group 05"))),
     ("G94",
      Meaning(tr("End face turning cycle"),
-             "`G94 X(U).. Z(W).. [R..] F..`: one facing pass along X.", tr("modal, group 01")),
-     Meaning(tr("Feed per minute"), "F is mm/min (inch/min).", tr("modal, group 05"))),
-    ("G95", None, Meaning(tr("Feed per revolution"), "F is mm/rev.", tr("modal, group 05"))),
+             tr("`G94 X(U).. Z(W).. [R..] F..`: one facing pass along X."), tr("modal, group 01")),
+     Meaning(tr("Feed per minute"), tr("F is mm/min (inch/min)."), tr("modal, group 05"))),
+    ("G95", None, Meaning(tr("Feed per revolution"), tr("F is mm/rev."), tr("modal, group 05"))),
     ("G96", *_both(
         tr("Constant surface speed"),
-        "S is the cutting speed in m/min (ft/min): the spindle speeds up as the diameter gets "
-        "smaller. Clamp it first (`G50 S..` on lathes). Threading uses G97.",
+        tr("S is the cutting speed in m/min (ft/min): the spindle speeds up as the diameter gets "
+        "smaller. Clamp it first (`G50 S..` on lathes). Threading uses G97."),
         tr("modal, group 02 (lathe) / 13 (mill)"))),
-    ("G97", *_both(tr("Constant surface speed cancel"), "S is spindle speed in rpm.",
+    ("G97", *_both(tr("Constant surface speed cancel"), tr("S is spindle speed in rpm."),
                    tr("modal, group 02 (lathe) / 13 (mill)"))),
     ("G98",
-     Meaning(tr("Feed per minute"), "F is mm/min (system A lathe).", tr("modal, group 05")),
+     Meaning(tr("Feed per minute"), tr("F is mm/min (system A lathe)."), tr("modal, group 05")),
      Meaning(tr("Canned cycle: return to initial level"), "", tr("modal, group 10"))),
     ("G99",
-     Meaning(tr("Feed per revolution"), "F is mm/rev: the lathe's power-on default; for threading "
-             "F is the lead.", tr("modal, group 05")),
+     Meaning(tr("Feed per revolution"), tr("F is mm/rev: the lathe's power-on default; for "
+                "threading "
+             "F is the lead."), tr("modal, group 05")),
      Meaning(tr("Canned cycle: return to R point level"), "", tr("modal, group 10"))),
 )  # fmt: skip
 
@@ -349,49 +359,61 @@ _M: tuple[tuple[str, str, str], ...] = (
     (
         "M00",
         tr("Program stop"),
-        "Stops after the block; cycle start resumes. Stops look-ahead, so macro statements after "
-        "it wait for it.",
+        tr(
+            "Stops after the block; cycle start resumes. Stops look-ahead, so macro statements "
+            "after "
+            "it wait for it."
+        ),
     ),
-    ("M01", tr("Optional stop"), "Like M00 when the optional stop switch is on."),
-    ("M02", tr("End of program"), "Ends and resets the program (locals become vacant)."),
-    ("M03", tr("Spindle on clockwise (forward)"), "Speed from S."),
-    ("M04", tr("Spindle on counter-clockwise (reverse)"), "Speed from S."),
+    ("M01", tr("Optional stop"), tr("Like M00 when the optional stop switch is on.")),
+    ("M02", tr("End of program"), tr("Ends and resets the program (locals become vacant).")),
+    ("M03", tr("Spindle on clockwise (forward)"), tr("Speed from S.")),
+    ("M04", tr("Spindle on counter-clockwise (reverse)"), tr("Speed from S.")),
     ("M05", tr("Spindle stop"), ""),
-    ("M06", tr("Tool change"), "Mill ATC; the sequence is the machine builder's."),
-    ("M07", tr("Mist coolant on"), "Builder-defined."),
+    ("M06", tr("Tool change"), tr("Mill ATC; the sequence is the machine builder's.")),
+    ("M07", tr("Mist coolant on"), tr("Builder-defined.")),
     ("M08", tr("Coolant on"), ""),
     ("M09", tr("Coolant off"), ""),
-    ("M19", tr("Spindle orientation"), "Builder-defined."),
+    ("M19", tr("Spindle orientation"), tr("Builder-defined.")),
     (
         "M29",
         tr("Rigid tapping"),
-        "Before G84: the spindle follows the Z axis (parameter-dependent M code).",
+        tr("Before G84: the spindle follows the Z axis (parameter-dependent M code)."),
     ),
     (
         "M30",
         tr("End of program and rewind"),
-        "Ends, resets and returns to the program head; locals become vacant; parts count #3901 "
-        "goes up.",
+        tr(
+            "Ends, resets and returns to the program head; locals become vacant; parts count #3901 "
+            "goes up."
+        ),
     ),
-    ("M96", tr("Interrupt-type macro enable"), "Option; parameter-dependent M code."),
+    ("M96", tr("Interrupt-type macro enable"), tr("Option; parameter-dependent M code.")),
     (
         "M97",
         tr("Interrupt-type macro disable (FANUC) / local subprogram call (Haas)"),
-        "On Haas `M97 P<n>` calls the block Nn of the same program; FANUC controls have no such "
-        "call.",
+        tr(
+            "On Haas `M97 P<n>` calls the block Nn of the same program; FANUC controls have no "
+            "such call."
+        ),
     ),
     (
         "M98",
         tr("Subprogram call"),
-        "`M98 P<program> [L<repeat>]`, or on 4-digit controls `M98 P<rrrr><pppp>`: M98 "
-        "P0013331 runs O3331 once, P50010 runs O0010 five times. No arguments and no new local "
-        "level: the subprogram shares the caller's #1-#33.",
+        tr(
+            "`M98 P<program> [L<repeat>]`, or on 4-digit controls `M98 P<rrrr><pppp>`: M98 "
+            "P0013331 runs O3331 once, P50010 runs O0010 five times. No arguments and no new local "
+            "level: the subprogram shares the caller's #1-#33."
+        ),
     ),
     (
         "M99",
         tr("End of subprogram (return)"),
-        "Returns to the block after the call; `M99 P<n>` returns to Nn of the caller instead. In a "
-        "main program M99 restarts it from the head (an endless repetition).",
+        tr(
+            "Returns to the block after the call; `M99 P<n>` returns to Nn of the caller "
+            "instead. In a "
+            "main program M99 restarts it from the head (an endless repetition)."
+        ),
     ),
 )
 
