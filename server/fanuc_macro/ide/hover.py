@@ -76,8 +76,13 @@ def _source(table: TableMeaning) -> str:
     """The module and a short link to the paper's citation."""
     paper = table.table.paper
     module = table.table.module
-    where = f"[{paper.authors_short}, {table.table.where}]({paper.link})"
-    return f"{module[0].upper()}{module[1:]}: {where}."
+    where = tr(
+        "[{authors}, {where}]({link})",
+        authors=paper.authors_short,
+        where=table.table.where,
+        link=paper.link,
+    )
+    return tr("{module}: {where}.", module=_capital(module), where=where)
 
 
 def hover_variable(view: View, block: Block, hit: Hit) -> str:
@@ -121,7 +126,7 @@ def hover_variable(view: View, block: Block, hit: Hit) -> str:
         meaning.insert(0, kind_text)
         kind_text = ""
     if detail:
-        more.append(f"*{detail}*")
+        more.append(tr("*{detail}*", detail=detail))
     about = tr("{kind}.", kind=_capital(kind_text)) if kind_text else ""
     more.append(joined(" ", (t for t in (about, source) if t)))
     head, body = _variable_value(view, block, hit, n, found)

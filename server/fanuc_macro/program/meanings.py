@@ -20,6 +20,7 @@ from types import MappingProxyType
 from ..lazy_regex import LazyPattern
 from ..line_maps import LineMap
 from ..syntax.tree import Assign, Document, ParsedLine
+from ..translation import tr
 from .index import ProgramIndex
 from .papers import DENG_MOLYBDENUM, REN_ARC_THREAD, Paper
 
@@ -54,54 +55,66 @@ KNOWN_MODULES: Mapping[int, Mapping[int, str]] = MappingProxyType(
 )
 _NO_ROLES: Mapping[int, str] = MappingProxyType({})
 # The seed papers' parameter tables (paper 000, tables 2 and 3; paper 002, section 2.2).
-_SYMMETRIC_SUB: Mapping[int, str] = MappingProxyType(
+_SYMMETRIC_SUB: Mapping[int, tuple[str, str]] = MappingProxyType(
     {
-        1: "δ2, run-out (slow-down) length = P",
-        2: "δ1, run-in (speed-up) length = 2P + P + FIX[L/P]·P − L",
-        3: "r, tool nose radius: in theory P/(8·sin60°) external, P/(16·sin60°) internal",
-        4: "h, thread height, radius: 7H/8 − r + es/2 + Td2/4 (internal 6H/8 − r + EI/2 + TD2/4)",
-        5: "ap(max), first depth of cut, radius: coefficient·√h",
-        6: "ap(min), minimum depth of cut and finish allowance, radius: coefficient·√ap(max)",
-        7: "n, rough pass counter",
-        8: "ap(n), depth of pass n, radius: ap(max)·(√n − √(n−1))",
-        9: "Σap(n), total depth after pass n, radius",
-        10: "u, side offset of the pass: (h + r − ap(min) − Σap(n))·tan30° − r·tan30°",
-        11: "D1, minor diameter of the internal thread: D − 2·(5/8)·sin60°·P",
-        12: "n', spring (idle) passes at full depth",
+        1: (tr("δ2, run-out (slow-down) length = P"), ""),
+        2: (tr("δ1, run-in (speed-up) length = 2P + P + FIX[L/P]·P − L"), ""),
+        3: (
+            tr("r, tool nose radius"),
+            tr("in theory P/(8·sin60°) external, P/(16·sin60°) internal"),
+        ),
+        4: (
+            tr("h, thread height, radius"),
+            tr("7H/8 − r + es/2 + Td2/4 (internal 6H/8 − r + EI/2 + TD2/4)"),
+        ),
+        5: (tr("ap(max), first depth of cut, radius"), tr("coefficient·√h")),
+        6: (
+            tr("ap(min), minimum depth of cut and finish allowance, radius"),
+            tr("coefficient·√ap(max)"),
+        ),
+        7: (tr("n, rough pass counter"), ""),
+        8: (tr("ap(n), depth of pass n, radius"), tr("ap(max)·(√n − √(n−1))")),
+        9: (tr("Σap(n), total depth after pass n, radius"), ""),
+        10: (tr("u, side offset of the pass"), tr("(h + r − ap(min) − Σap(n))·tan30° − r·tan30°")),
+        11: (tr("D1, minor diameter of the internal thread"), tr("D − 2·(5/8)·sin60°·P")),
+        12: (tr("n', spring (idle) passes at full depth"), ""),
     }
 )
-_SYMMETRIC_MAIN: Mapping[int, str] = MappingProxyType(
+_SYMMETRIC_MAIN: Mapping[int, tuple[str, str]] = MappingProxyType(
     {
-        100: "d / D, nominal diameter of the thread",
-        101: "P, pitch (at most 2/3 of the insert width)",
-        102: "L, thread length, cut from right to left",
-        103: "es / EI, fundamental deviation, entered as a magnitude (GB/T 197 = ISO 965-1)",
-        104: "Td2 / TD2, pitch-diameter tolerance (GB/T 197 = ISO 965-1)",
+        100: (tr("d / D, nominal diameter of the thread"), ""),
+        101: (tr("P, pitch (at most 2/3 of the insert width)"), ""),
+        102: (tr("L, thread length, cut from right to left"), ""),
+        103: (
+            tr("es / EI, fundamental deviation, entered as a magnitude (GB/T 197 = ISO 965-1)"),
+            "",
+        ),
+        104: (tr("Td2 / TD2, pitch-diameter tolerance (GB/T 197 = ISO 965-1)"), ""),
     }
 )
-_ARC_THREAD: Mapping[int, str] = MappingProxyType(
+_ARC_THREAD: Mapping[int, tuple[str, str]] = MappingProxyType(
     {
-        1: "thread outer diameter",
-        2: "thread length including the run-out δ2",
-        3: "pitch (lead)",
-        4: "R, radius of the arc groove of this layer",
-        5: "diameter of the groove's centre for this layer",
-        6: "δ1, run-in length (Z of the groove centre)",
-        7: "number of cuts per layer",
-        10: "right edge angle of the sector: ASIN[((#5 − #1)/2)/#4]",
-        11: "tangency correction: ASIN[#18/(#4 − #18)]",
-        12: "Δα, angle between two cuts",
-        13: "M code of the spindle direction (3 for this left-hand thread)",
-        14: "angle of the tool centre tangent to the right edge",
-        15: "angle of the last cut (left edge of the sector)",
-        16: "α, angle of the tool centre of this cut",
-        18: "r, tool nose radius",
-        19: "spindle speed of this layer",
-        20: "tool number",
-        21: "tool offset number",
-        22: "X of the start and retract point of each cut",
-        24: "X of the overall start and return point",
-        26: "Z of the overall start and return point",
+        1: (tr("thread outer diameter"), ""),
+        2: (tr("thread length including the run-out δ2"), ""),
+        3: (tr("pitch (lead)"), ""),
+        4: (tr("R, radius of the arc groove of this layer"), ""),
+        5: (tr("diameter of the groove's centre for this layer"), ""),
+        6: (tr("δ1, run-in length (Z of the groove centre)"), ""),
+        7: (tr("number of cuts per layer"), ""),
+        10: (tr("right edge angle of the sector"), tr("ASIN[((#5 − #1)/2)/#4]")),
+        11: (tr("tangency correction"), tr("ASIN[#18/(#4 − #18)]")),
+        12: (tr("Δα, angle between two cuts"), ""),
+        13: (tr("M code of the spindle direction (3 for this left-hand thread)"), ""),
+        14: (tr("angle of the tool centre tangent to the right edge"), ""),
+        15: (tr("angle of the last cut (left edge of the sector)"), ""),
+        16: (tr("α, angle of the tool centre of this cut"), ""),
+        18: (tr("r, tool nose radius"), ""),
+        19: (tr("spindle speed of this layer"), ""),
+        20: (tr("tool number"), ""),
+        21: (tr("tool offset number"), ""),
+        22: (tr("X of the start and retract point of each cut"), ""),
+        24: (tr("X of the overall start and return point"), ""),
+        26: (tr("Z of the overall start and return point"), ""),
     }
 )
 
@@ -113,7 +126,7 @@ class ModuleTable:
     module: str
     paper: Paper
     where: str  # "table 3", "section 2.2"
-    meanings: Mapping[int, str]
+    meanings: Mapping[int, tuple[str, str]]  # variable -> its name, what the table adds
 
 
 @dataclass(frozen=True)
@@ -129,39 +142,37 @@ class TableMeaning:
 PARAMETER_TABLES: Mapping[int, ModuleTable] = MappingProxyType(
     {
         3331: ModuleTable(
-            "symmetric thread module, external", DENG_MOLYBDENUM, "table 3", _SYMMETRIC_SUB
+            tr("symmetric thread module, external"), DENG_MOLYBDENUM, tr("table 3"), _SYMMETRIC_SUB
         ),
         3330: ModuleTable(
-            "symmetric thread module, internal", DENG_MOLYBDENUM, "table 3", _SYMMETRIC_SUB
+            tr("symmetric thread module, internal"), DENG_MOLYBDENUM, tr("table 3"), _SYMMETRIC_SUB
         ),
         3: ModuleTable(
-            "arc thread by the fitting method, roughing layer",
+            tr("arc thread by the fitting method, roughing layer"),
             REN_ARC_THREAD,
-            "section 2.2",
+            tr("section 2.2"),
             _ARC_THREAD,
         ),
         4: ModuleTable(
-            "arc thread by the fitting method, roughing layer",
+            tr("arc thread by the fitting method, roughing layer"),
             REN_ARC_THREAD,
-            "section 2.2",
+            tr("section 2.2"),
             _ARC_THREAD,
         ),
     }
 )
 MAIN_TABLE = ModuleTable(
-    "main program of the symmetric thread module", DENG_MOLYBDENUM, "table 2", _SYMMETRIC_MAIN
+    tr("main program of the symmetric thread module"),
+    DENG_MOLYBDENUM,
+    tr("table 2"),
+    _SYMMETRIC_MAIN,
 )
 
 
 def _meaning(table: ModuleTable, number: int) -> TableMeaning:
-    """The table's text of ``#number`` cut at its first colon outside brackets."""
-    text = table.meanings[number]
-    depth = 0
-    for at, char in enumerate(text):
-        depth += (char in "([") - (char in ")]")
-        if depth == 0 and text.startswith(": ", at):
-            return TableMeaning(text[:at], text[at + 2 :], table)
-    return TableMeaning(text, "", table)
+    """The table's text of ``#number``: its name, and what the table adds (a formula)."""
+    name, detail = table.meanings[number]
+    return TableMeaning(name, detail, table)
 
 
 def table_meaning(
