@@ -357,7 +357,13 @@ def _cycle_text(cycle: VendorCycle) -> str:
         )
     ]
     if cycle.arguments:
-        shown = joined("; ", (f"**{letter}** {what}" for letter, what in cycle.arguments))
+        shown = joined(
+            "; ",
+            (
+                tr("**{letter}** {meaning}", letter=letter, meaning=what)
+                for letter, what in cycle.arguments
+            ),
+        )
         parts.append(tr("Arguments: {arguments}", arguments=shown))
     parts.append(
         tr(
