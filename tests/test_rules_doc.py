@@ -152,7 +152,6 @@ NOT_YET_IN_CHINESE: list[str] = [
     "MB503",
     "MB504",
     "MB601",
-    "MB602",
     "MB603",
     "MB604",
     "MB605",
