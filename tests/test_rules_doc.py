@@ -197,7 +197,6 @@ NOT_YET_IN_CHINESE: list[str] = [
     "MB804",
     "MB805",
     "MB806",
-    "MB807",
     "MB808",
     "MB809",
     "MB810",
