@@ -14,6 +14,8 @@ the English page's.
 
 from __future__ import annotations
 
+import re
+
 from .analysis import RULE_DOCS, RULES
 from .diagnostics import RuleDoc, RuleInfo
 from .translation import FALLBACK, translate
@@ -125,7 +127,12 @@ def untranslated_parts(code: str, locale: str = "zh-cn") -> list[str]:
     texts = part_texts(doc)
     if doc.severity_note:
         texts["severity_note"] = doc.severity_note
-    return [name for name, text in texts.items() if said(text, locale) == text]
+    # A part that is only a code block is the same in every language.
+    return [
+        name
+        for name, text in texts.items()
+        if said(text, locale) == text and re.sub(r"```.*?```", "", text, flags=re.S).strip()
+    ]
 
 
 def section(info: RuleInfo, doc: RuleDoc, locale: str = "en") -> str:
