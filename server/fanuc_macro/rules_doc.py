@@ -17,7 +17,7 @@ from __future__ import annotations
 import re
 
 from .analysis import RULE_DOCS, RULES
-from .diagnostics import RuleDoc, RuleInfo
+from .diagnostics import RuleDoc, RuleInfo, Severity
 from .translation import FALLBACK, translate
 
 GENERATED = """\
@@ -102,6 +102,7 @@ def translatable_texts(intro: str) -> list[tuple[str, str]]:
     texts = [(p, "rules-intro") for p in intro_paragraphs(intro) if not p.startswith("```")]
     texts += [(label, "rules_doc") for _name, label in PARTS]
     texts.append(("Severity:", "rules_doc"))
+    texts += [(severity.value, "rules_doc") for severity in Severity]
     for code in sorted(RULE_DOCS):
         doc = RULE_DOCS[code]
         texts += [(text, code) for text in part_texts(doc).values()]
@@ -136,7 +137,7 @@ def untranslated_parts(code: str, locale: str = "zh-cn") -> list[str]:
 
 
 def section(info: RuleInfo, doc: RuleDoc, locale: str = "en") -> str:
-    severity = info.severity.value
+    severity = said(info.severity.value, locale)
     if doc.severity_note:
         note = said(doc.severity_note, locale)
         severity += f"; {note}" if note == doc.severity_note else f"；{note}"
