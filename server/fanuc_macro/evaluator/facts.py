@@ -12,6 +12,7 @@ from dataclasses import dataclass, field, replace
 from types import MappingProxyType
 from typing import TYPE_CHECKING, ClassVar, TypeVar, cast
 
+from ..translation import tr
 from .values import AlarmKind, Unknown, Value, fmt
 
 if TYPE_CHECKING:
@@ -886,11 +887,12 @@ class Facts:
         """What a user is told when the safety net stopped the analysis (None otherwise)."""
         if self.stopped != "time":
             return None
-        return (
-            f"analysis stopped after {self.time_limit:g} s, before its step budget (the "
+        return tr(
+            "analysis stopped after {seconds:g} s, before its step budget (the "
             "machine running the analysis is slow or busy): the runs are incomplete, so no "
             "verdict that needs a whole run is given (endless or long loop, blocks never "
-            "executed, conditions always true or false)"
+            "executed, conditions always true or false)",
+            seconds=self.time_limit,
         )
 
     def document(self, uri: str) -> DocumentFacts:
@@ -1062,14 +1064,22 @@ def _findings_both_ways(a: list[Finding], b: list[Finding]) -> list[Finding]:
             matched[key] = matched.get(key, 0) + 1
             out.append(f)
         else:
-            out.append(replace(f, message=f.message + SWITCH_OFF))
+            out.append(
+                replace(
+                    f, message=tr("{message} (with the block-delete switch off)", message=f.message)
+                )
+            )
     for f in b:
         key = _place(f)
         taken = matched.get(key, 0)
         if taken:
             matched[key] = taken - 1
         else:
-            out.append(replace(f, message=f.message + SWITCH_ON))
+            out.append(
+                replace(
+                    f, message=tr("{message} (with the block-delete switch on)", message=f.message)
+                )
+            )
     return out
 
 
@@ -1090,9 +1100,24 @@ def _cuts_both_ways(
         if both:
             out.append(replace(cuts, lines=both))
         if only:
-            out.append(replace(cuts, lines=only, message=cuts.message + SWITCH_OFF))
+            out.append(
+                replace(
+                    cuts,
+                    lines=only,
+                    message=tr(
+                        "{message} (with the block-delete switch off)", message=cuts.message
+                    ),
+                )
+            )
     for cuts in b:
         only = array("i", [line for line in cuts.lines if line not in in_a])
         if only:
-            out.append(replace(cuts, lines=only, message=cuts.message + SWITCH_ON, after=findings))
+            out.append(
+                replace(
+                    cuts,
+                    lines=only,
+                    message=tr("{message} (with the block-delete switch on)", message=cuts.message),
+                    after=findings,
+                )
+            )
     return out
