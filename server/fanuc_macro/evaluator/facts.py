@@ -249,18 +249,26 @@ class ValueSummary:
         """``1.907`` or ``0.092 → 1.887 (88 values, min 0.092, max 1.887)``, each value as
         ``show`` writes it (the control's display by default)."""
         if self.count == 0:
-            return "never evaluated"
+            return tr("never evaluated")
         if self.count == 1 or (self.constant and self.unknown is None):
             return show(self.first)
         if not self.numeric:
             return show(self.last)
-        text = (
-            f"{show(self.first)} → {show(self.last)} ({self.count} times, min "
-            f"{show(self.minimum)}, max {show(self.maximum)})"
-        )
+        said = {
+            "first": show(self.first),
+            "last": show(self.last),
+            "count": self.count,
+            "minimum": show(self.minimum),
+            "maximum": show(self.maximum),
+        }
         if self.vacant:
-            text += f", vacant {self.vacant} times"
-        return text
+            return tr(
+                "{first} → {last} ({count} times, min {minimum}, max {maximum}), vacant "
+                "{vacant} times",
+                vacant=self.vacant,
+                **said,
+            )
+        return tr("{first} → {last} ({count} times, min {minimum}, max {maximum})", **said)
 
 
 @dataclass(init=False)

@@ -25,10 +25,10 @@ class Unknown:
 
     def describe(self) -> str:
         if not self.deps:
-            return "unknown"
+            return tr("unknown")
         names = ", ".join(f"#{n}" for n in sorted(self.deps)[:6])
         more = "..." if len(self.deps) > 6 else ""
-        return f"depends on {names}{more}"
+        return tr("depends on {variables}{more}", variables=names, more=more)
 
 
 Value = float | Unknown | None
