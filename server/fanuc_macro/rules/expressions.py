@@ -46,7 +46,7 @@ from ..syntax.walk import (
     plain_variables,
     top_expressions,
 )
-from ..translation import joined, tr, tr_n
+from ..translation import tr, tr_n
 from .context import LineFinding, RuleContext
 
 FAMILY = "expressions"
@@ -305,20 +305,18 @@ def fold_missing_variables(
                 if any(k.code == "MB302" and k.message.startswith(name + " ") for k in kept):
                     continue  # a second use on the same line
                 f = f._replace(
-                    message=joined(
-                        "; ",
-                        [
-                            f.message,
-                            tr_n(
-                                "{variable} is used on {count} more line ({lines}), not "
-                                "reported one by one",
-                                "{variable} is used on {count} more lines ({lines}), not "
-                                "reported one by one",
-                                len(others),
-                                variable=name,
-                                lines=shown,
-                            ),
-                        ],
+                    message=tr(
+                        "{message}; {more}",
+                        message=f.message,
+                        more=tr_n(
+                            "{variable} is used on {count} more line ({lines}), not "
+                            "reported one by one",
+                            "{variable} is used on {count} more lines ({lines}), not "
+                            "reported one by one",
+                            len(others),
+                            variable=name,
+                            lines=shown,
+                        ),
                     )
                 )
             kept.append(f)

@@ -229,9 +229,9 @@ def _after_end_of_record(ctx: RuleContext) -> Iterator[Diagnostic]:
         )
         if landing:
             text = tr(
-                "{message}; {jumps}",
+                "{message}; {more}",
                 message=text,
-                jumps=tr_n(
+                more=tr_n(
                     "{jumps} jumps to a sequence number there, which the control does not find "
                     "(alarm PS0060)",
                     "{jumps} jump to a sequence number there, which the control does not find "
@@ -1043,7 +1043,9 @@ def _fold_repeated(
         line,
         parsed,
         tuple(
-            f._replace(message=joined("; ", [f.message, what(len(others), shown)]))
+            f._replace(
+                message=tr("{message}; {more}", message=f.message, more=what(len(others), shown))
+            )
             if match(f)
             else f
             for f in findings

@@ -48,7 +48,7 @@ from ..syntax.tree import (
     Var,
     Word,
 )
-from ..translation import Text, joined, tr, tr_n
+from ..translation import Text, tr, tr_n
 from .context import LineFinding, RuleContext
 
 FAMILY = "statements"
@@ -1006,7 +1006,7 @@ def _arguments_not_used(ctx: RuleContext) -> Iterator[Diagnostic]:
                 )
                 yield make(
                     MB411,
-                    lost if also is None else joined("; ", [lost, also]),
+                    lost if also is None else tr("{message}; {more}", message=lost, more=also),
                     call.line,
                     word.span.start,
                     word.span.end,
