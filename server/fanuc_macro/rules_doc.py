@@ -15,6 +15,8 @@ the English page's.
 from __future__ import annotations
 
 import re
+from collections.abc import Mapping
+from types import MappingProxyType
 
 from .analysis import RULE_DOCS, RULES
 from .diagnostics import RuleDoc, RuleInfo, Severity
@@ -48,7 +50,7 @@ PARTS: tuple[tuple[str, str], ...] = (
 RULES_URL = "https://github.com/fanuc-macro/fanuc-macro/blob/main/docs/rules.md"
 # The pages in other languages, by locale; a locale falls back as its messages do (zh-tw to
 # zh-cn), then to the English page.
-PAGES = {"zh-cn": "rules.zh-cn.md"}
+PAGES: Mapping[str, str] = MappingProxyType({"zh-cn": "rules.zh-cn.md"})
 DOMAIN = "rules_doc"
 
 

@@ -1074,47 +1074,50 @@ _LETTERS = LazyPattern(r"[A-Z]+", re.I)
 _CONDITION = LazyPattern(r"^\s*(N\d+\s*)?(IF|WHILE|WH)\s*\[", re.I)
 
 
-def _typing_mistake(
-    code: str, col: int, found: str, expected: tuple[str, ...]
-) -> tuple[str, Span | None] | None:
-    """What FANUC rejects in blocks typed wrong: a full-width letter, a decimal comma, a number
-    without its address, an expression outside brackets, an unclosed '['."""
+def _non_ascii_mistake(code: str, col: int) -> tuple[str, Span | None] | None:
+    """A character FANUC does not read: a full-width letter, any other non-ASCII."""
     ch = code[col : col + 1]
-    if ch and ord(ch) > 127:
-        plain = unicodedata.normalize("NFKC", ch)
-        if plain != ch and plain.isascii():
-            name = unicodedata.name(ch, "")
-            described = (
-                tr("full-width {char_text}", char_text=repr(ch))
-                if name.startswith("FULLWIDTH") or not name
-                else tr("{name_text} {char_text}", name_text=name.lower(), char_text=repr(ch))
-            )
-            return (
-                tr(
-                    "{character} (U+{code:04X}) at column {column}: FANUC reads ASCII program "
-                    "text only; write {plain_text}",
-                    character=described,
-                    code=ord(ch),
-                    column=col + 1,
-                    plain_text=repr(plain),
-                ),
-                Span(col, col + 1),
-            )
+    if not ch or ord(ch) <= 127:
+        return None
+    plain = unicodedata.normalize("NFKC", ch)
+    if plain != ch and plain.isascii():
+        name = unicodedata.name(ch, "")
+        described = (
+            tr("full-width {char_text}", char_text=repr(ch))
+            if name.startswith("FULLWIDTH") or not name
+            else tr("{name_text} {char_text}", name_text=name.lower(), char_text=repr(ch))
+        )
         return (
             tr(
-                "{char_text} (U+{code:04X}) at column {column}: FANUC reads ASCII program text "
-                "only",
-                char_text=repr(ch),
+                "{character} (U+{code:04X}) at column {column}: FANUC reads ASCII program "
+                "text only; write {plain_text}",
+                character=described,
                 code=ord(ch),
                 column=col + 1,
+                plain_text=repr(plain),
             ),
             Span(col, col + 1),
         )
+    return (
+        tr(
+            "{char_text} (U+{code:04X}) at column {column}: FANUC reads ASCII program text only",
+            char_text=repr(ch),
+            code=ord(ch),
+            column=col + 1,
+        ),
+        Span(col, col + 1),
+    )
+
+
+def _bracket_mistake(
+    code: str, col: int, found: str, expected: tuple[str, ...]
+) -> tuple[bool, tuple[str, Span | None] | None]:
+    """A bracket left open or closing nothing, or a comparison written as another language
+    does: (whether the block's mistake is decided here, the mistake)."""
     depth, open_col = _depth_before(code, len(code) if found == "end of block" else col)
-    before = code[:col].rstrip()
     if found == "end of block" or found.upper() in ("DO", "GOTO", "THEN"):
         if depth > 0 and open_col is not None:
-            return (
+            return True, (
                 tr(
                     "'[' at column {column} is not closed before the end of the block",
                     column=open_col + 1,
@@ -1129,7 +1132,7 @@ def _typing_mistake(
             )
         if found == "end of block" and "'='" in expected and re.fullmatch(r"\s*#\s*\d+\s*", code):
             written = code.strip()
-            return (
+            return True, (
                 tr(
                     "a variable alone is no block: {variable}=<value> assigns it, and an address "
                     "letter before it (X{variable}) makes it a word",
@@ -1137,14 +1140,14 @@ def _typing_mistake(
                 ),
                 None,
             )
-        return None
+        return True, None
     if found == "]" and depth <= 0:
-        return tr("']' at column {column} closes no '['", column=col + 1), None
+        return True, (tr("']' at column {column} closes no '['", column=col + 1), None)
     if depth > 0:
         if _CONDITION.match(code):
             if found == "=":
                 if "<>" in code:
-                    return (
+                    return True, (
                         tr(
                             "'=' at column {column} is no comparison on FANUC: write EQ (and "
                             "'<>' for NE)",
@@ -1152,21 +1155,73 @@ def _typing_mistake(
                         ),
                         None,
                     )
-                return (
+                return True, (
                     tr(
                         "'=' at column {column} is no comparison on FANUC: write EQ", column=col + 1
                     ),
                     None,
                 )
             if found == "<" and code[col : col + 2] == "<>":
-                return (
+                return True, (
                     tr(
                         "'<>' at column {column} is no comparison on FANUC: write NE",
                         column=col + 1,
                     ),
                     None,
                 )
-        return None
+        return True, None
+    return False, None
+
+
+def _number_without_address(
+    code: str, col: int, found: str, before: str
+) -> tuple[str, Span | None]:
+    """A number typed where a word begins: the letter O as the digit 0, a G left out."""
+    at_head = _BLOCK_HEAD.fullmatch(before) is not None
+    if at_head and found.startswith("0") and len(found) >= 2:
+        if not code[col + len(found) :].strip():
+            return (
+                tr(
+                    "{number_text} at column {column} has no address letter: the letter O "
+                    "typed as the digit 0? A program number is written O{digits}",
+                    number_text=repr(found),
+                    column=col + 1,
+                    digits=found[1:],
+                ),
+                None,
+            )
+        return (
+            tr(
+                "{number_text} at column {column} has no address letter (G{digits} meant, "
+                "or the letter O typed as the digit 0?)",
+                number_text=repr(found),
+                column=col + 1,
+                digits=found,
+            ),
+            None,
+        )
+    return (
+        tr(
+            "the number {number_text} at column {column} has no address letter",
+            number_text=repr(found),
+            column=col + 1,
+        ),
+        None,
+    )
+
+
+def _typing_mistake(
+    code: str, col: int, found: str, expected: tuple[str, ...]
+) -> tuple[str, Span | None] | None:
+    """What FANUC rejects in blocks typed wrong: a full-width letter, a decimal comma, a number
+    without its address, an expression outside brackets, an unclosed '['."""
+    mistake = _non_ascii_mistake(code, col)
+    if mistake is not None:
+        return mistake
+    decided, mistake = _bracket_mistake(code, col, found, expected)
+    if decided:
+        return mistake
+    before = code[:col].rstrip()
     if found == "," and before[-1:].isdigit():
         word = _WORD_BEFORE.search(code[:col])
         value = word.group(2).replace(" ", "") if word else before.split()[-1]
@@ -1236,37 +1291,7 @@ def _typing_mistake(
             None,
         )
     if _NUMBER_TEXT.fullmatch(found) and found.strip("."):
-        at_head = _BLOCK_HEAD.fullmatch(before) is not None
-        if at_head and found.startswith("0") and len(found) >= 2:
-            if not code[col + len(found) :].strip():
-                return (
-                    tr(
-                        "{number_text} at column {column} has no address letter: the letter O "
-                        "typed as the digit 0? A program number is written O{digits}",
-                        number_text=repr(found),
-                        column=col + 1,
-                        digits=found[1:],
-                    ),
-                    None,
-                )
-            return (
-                tr(
-                    "{number_text} at column {column} has no address letter (G{digits} meant, "
-                    "or the letter O typed as the digit 0?)",
-                    number_text=repr(found),
-                    column=col + 1,
-                    digits=found,
-                ),
-                None,
-            )
-        return (
-            tr(
-                "the number {number_text} at column {column} has no address letter",
-                number_text=repr(found),
-                column=col + 1,
-            ),
-            None,
-        )
+        return _number_without_address(code, col, found, before)
     if found[:1].isalpha() and _ADDRESS_BEFORE.search(code[:col]):
         address = _ADDRESS_BEFORE.search(code[:col])
         assert address is not None
