@@ -90,8 +90,11 @@ LONG = "\n".join(["O1000", "G00 X40. Z5.", *(f"G01 Z-{i}. F0.2" for i in range(1
 def test_a_file_read_in_part_is_said_so_with_the_setting(tmp_path: Path) -> None:
     (tmp_path / "long.nc").write_text(LONG + "\n")
     text = run(tmp_path, "trace", "--max-blocks", "10", "long.nc").stdout
-    assert text.splitlines()[-2:] == [
+    assert text.splitlines()[-3:] == [
         "9 motions (G00 1, G01 8); 10 blocks executed",
+        # F0.2 per revolution (a lathe's G99 at power on) with no S: counted, not timed; the
+        # G00 starts where the run began, not known.
+        "cycle time 0.0 s; 8 moves not timed (F or speed not known)",
         "read only up to line 10: analysed the first 10 blocks of 32: the document has 32 "
         "blocks, more than the 10 the analysis reads (setting "
         "fanuc-macro.analysis.maxBlocks, --max-blocks); the blocks from line 11 on are not "

@@ -322,6 +322,10 @@ class Motion:
     speed_clamp: float | None
     # G76: the tool angle a of its first block, along whose flank the passes step.
     tool_angle: float | None
+    # The feed mode's G code in force when the run set another than the machine's power-on
+    # one (a lathe's G98 per minute, a mill's G95 per revolution: see POWER_ON_FEED_MODE);
+    # None: the power-on mode. What the cycle time divides the F by.
+    feed_mode: float | None
 
     def __init__(
         self,
@@ -347,6 +351,7 @@ class Motion:
         surface_speed: float | None = None,
         speed_clamp: float | None = None,
         tool_angle: float | None = None,
+        feed_mode: float | None = None,
     ) -> None:
         self.program = program
         self.line = line
@@ -372,9 +377,10 @@ class Motion:
             or surface_speed is not None
             or speed_clamp is not None
             or tool_angle is not None
+            or feed_mode is not None
         ):
             values = (cycle_pass, finishing, written, inch, drilling)
-            rare = (*values, surface_speed, speed_clamp, tool_angle)
+            rare = (*values, surface_speed, speed_clamp, tool_angle, feed_mode)
             for name, value in zip(_RARE, rare, strict=True):
                 setattr(self, name, value)
 
@@ -395,9 +401,14 @@ _RARE_DEFAULTS: Mapping[str, object] = MappingProxyType(
         "surface_speed": None,
         "speed_clamp": None,
         "tool_angle": None,
+        "feed_mode": None,
     }
 )
 _RARE = tuple(_RARE_DEFAULTS)
+# The feed mode a machine is in at power on, by lathe or not: a lathe in G99 (feed per
+# revolution), a mill in G94 (per minute). FANUC 0i-TF/0i-MF Operator's Manual, "Feed
+# functions"; a parameter may choose the other (the lathe's FPM, unverified which number).
+POWER_ON_FEED_MODE: Mapping[bool, float] = MappingProxyType({True: 99.0, False: 94.0})
 
 
 def _rare_field(name: str, default: object) -> property:

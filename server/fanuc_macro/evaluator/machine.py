@@ -126,7 +126,11 @@ class Machine(MotionPart):
         act = Activation(self, entry, locals_, 0, None, 0, 0)
         entry.facts.analysed_programs.add(entry.program.first_line)
         if self.toolpath is not None:
-            self.toolpath.begin_run(len(self.facts.motions), self.lathe)
+            self.toolpath.begin_run(
+                len(self.facts.motions),
+                self.lathe,
+                (entry.uri, entry.program.first_line, entry.name),
+            )
         self._steps = 0
         self._profile_blocks = 0
         self._checkpoint(act, 0)

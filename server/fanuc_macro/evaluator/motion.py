@@ -18,7 +18,14 @@ from .calls import CallsPart
 from .canned_cycles import PROFILE_CYCLES, CyclesPart
 from .compile_lines import AXES, K_NC, CompiledLine, CompiledWord, recorded_words
 from .direct_drawing import missing_coordinate
-from .facts import BlockFault, CutsWithoutFeed, DrillingFault, Motion, RunValues
+from .facts import (
+    POWER_ON_FEED_MODE,
+    BlockFault,
+    CutsWithoutFeed,
+    DrillingFault,
+    Motion,
+    RunValues,
+)
 from .machine_base import (
     LOCAL_COORDINATES,
     MAX_MOTIONS,
@@ -154,6 +161,9 @@ class MotionPart(CyclesPart, CallsPart, SetupPart):
             self.toolpath.block(
                 ctx.name, ctx.uri, self._line, values, g_codes, self.facts.motions, profile, read
             )
+            if g_codes or m_codes or "T" in values:
+                where = (ctx.name, ctx.uri, self._line, ctx.program.first_line)
+                self.toolpath.timed(where, values, g_codes, m_codes, len(self.facts.motions))
         if finishing is not None:
             self._run_profile(act, *finishing)
         for m in m_codes:
@@ -410,9 +420,11 @@ class MotionPart(CyclesPart, CallsPart, SetupPart):
         name = G_NAMES.get(code) or g_name(code)
         surface_speed = speed if modal.constant_surface_speed and isinstance(speed, float) else None
         clamp = None  # the G50 S clamp, in G96
+        setup = modal.setup
         if surface_speed is not None:
-            setup = modal.setup
             clamp = math.inf if setup.clamped is False else setup.clamp_speed
+        mode = setup.feed_mode  # recorded only when not the power-on mode
+        feed_mode = None if mode is None or mode[0] == POWER_ON_FEED_MODE[lathe] else mode[0]
         motion = Motion(
             ctx.name,
             self._line,
@@ -435,6 +447,7 @@ class MotionPart(CyclesPart, CallsPart, SetupPart):
             drilling=not lathe and code in DRILLING_CYCLES,
             surface_speed=surface_speed,
             speed_clamp=clamp,
+            feed_mode=feed_mode,
         )
         facts = self.facts
         if lathe and code in THREADING_CODES and act.serial not in facts.run_values:

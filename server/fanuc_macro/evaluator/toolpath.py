@@ -83,6 +83,52 @@ class LostTrack:
     at: int = -1
 
 
+TimedKind = Literal["dwell", "tool change", "M code"]
+
+
+@dataclass(frozen=True, slots=True)
+class TimedEvent:
+    """A block that takes the machine time without moving the tool: a G04 dwell, a tool
+    change (a lathe's T of another tool, a mill's M06), an M code the settings time
+    (``Config.m_code_seconds``). The cycle time (:mod:`.cycle_time`) gives each its seconds."""
+
+    kind: TimedKind
+    line: int
+    program: str
+    uri: str
+    program_line: int  # first line of the program the block belongs to
+    moves: int  # the moves of the path before it
+    motions: int  # the motion records of the run when it ran (its block's own included)
+    seconds: float = 0.0  # a dwell's time (the others' are the settings')
+    code: float = 0.0  # the M code, or the tool a change loads
+
+
+@dataclass(frozen=True, slots=True)
+class RunStart:
+    """Where a run (an entry program) begins in the toolpath: its program, and the moves,
+    timed events and motion records before it."""
+
+    uri: str
+    program_line: int
+    program: str
+    moves: int
+    events: int
+    motions: int
+
+
+def dwell_seconds(values: Mapping[str, Value]) -> float | None:
+    """A G04's time: X or U in seconds, P in milliseconds (FANUC 0i-TF/0i-MF Operator's
+    Manual, "Dwell (G04)": P takes no decimal point, its unit is 0.001 s). None when the block
+    gives no known time. X without a decimal point is read as the evaluator reads it (a
+    control in pocket calculator mode; otherwise in the least input increment, unverified);
+    a dwell in revolutions (G95 with the parameter DWL set) is not read."""
+    for address, scale in (("X", 1.0), ("U", 1.0), ("P", 0.001)):
+        value = values.get(address)
+        if value is not None:
+            return value * scale if type(value) is float and value >= 0.0 else None
+    return None
+
+
 # The reason of the note on the axes placed for the first time: before it, the tool stood
 # where the run began, which the program does not say.
 UNKNOWN_START = (
@@ -109,6 +155,10 @@ class Toolpath:
     # Where each run (an entry program) begins: the index of its first move and of its first
     # ``lost``. Where the tool stands is not known again at each.
     runs: list[tuple[int, int]] = field(default_factory=list)
+    # Each run's program and first move, event and motion record, in the order of ``runs``.
+    starts: list[RunStart] = field(default_factory=list)
+    # The blocks that take time without a move, in the order they ran (see TimedEvent).
+    events: list[TimedEvent] = field(default_factory=list)
 
     def axes(self) -> tuple[str, ...]:
         """The axes any move places, in X, Y, Z order."""
@@ -895,26 +945,92 @@ class Recorder:
     follows where the tool is (for ``#5001``-``#5003``, see :meth:`block_end`): no move is
     kept."""
 
-    __slots__ = ("_finishing", "_seen", "_unplaced", "keep", "modal", "toolpath")
+    __slots__ = (
+        "_finishing",
+        "_seen",
+        "_tool",
+        "_unplaced",
+        "keep",
+        "modal",
+        "timed_codes",
+        "toolpath",
+    )
 
-    def __init__(self, lathe: bool, keep: bool = True) -> None:
+    def __init__(
+        self, lathe: bool, keep: bool = True, timed_codes: frozenset[float] = frozenset()
+    ) -> None:
         self.toolpath = Toolpath(lathe=lathe)
         self.modal = PathModal(lathe)
         self.keep = keep
+        self.timed_codes = timed_codes  # the M codes whose blocks are timed events
+        self._tool: float | None = None  # a lathe's tool the last T selected, in this run
         self._seen = 0  # motion records before the block
         self._unplaced: set[str] = set(self.modal.axes)
         # A G70 under way: its start point, its motion record, line, program and document.
         self._finishing: tuple[Point, int, int, str, str] | None = None
 
-    def begin_run(self, motions: int, lathe: bool | None = None) -> None:
-        """A new run (an entry program, on a lathe or a mill): where the machine stands is
-        not known again."""
+    def begin_run(
+        self, motions: int, lathe: bool | None = None, entry: tuple[str, int, str] = ("", -1, "")
+    ) -> None:
+        """A new run (an entry program, on a lathe or a mill; ``entry``: its document, first
+        line and name): where the machine stands and its tool are not known again."""
         self.modal = PathModal(self.modal.lathe if lathe is None else lathe)
         self._unplaced = set(self.modal.axes)
+        self._tool = None
         path = self.toolpath
         path.runs.append((len(path.moves), len(path.lost)))
+        path.starts.append(RunStart(*entry, len(path.moves), len(path.events), motions))
         self._seen = motions
         self._finishing = None
+
+    def timed(
+        self,
+        where: tuple[str, str, int, int],
+        values: Mapping[str, Value],
+        g_codes: Sequence[float],
+        m_codes: Sequence[float],
+        motions: int,
+    ) -> None:
+        """The timed events of the block just run (``where``: its program, document, line and
+        program's first line): a G04's dwell, a tool change, the M codes of ``timed_codes``.
+        A lathe's T changes the tool when it selects another than the run's last T (the tool
+        of a four-digit Txxyy is xx, 0i-TF "Tool function"; the first T of a run counts, the
+        turret's place before it not being known); a mill's M06 changes it."""
+        if not self.keep:
+            return
+        program, uri, line, program_line = where
+        events = self.toolpath.events
+        at = len(self.toolpath.moves)
+        if 4.0 in g_codes:
+            seconds = dwell_seconds(values)
+            if seconds is not None:
+                events.append(
+                    TimedEvent("dwell", line, program, uri, program_line, at, motions, seconds)
+                )
+        if self.modal.lathe:
+            t = values.get("T")
+            if type(t) is float and t > 0.0:
+                tool = t // 100.0 if t >= 100.0 else t
+                if tool and tool != self._tool:
+                    self._tool = tool
+                    events.append(
+                        TimedEvent(
+                            "tool change", line, program, uri, program_line, at, motions, 0.0, tool
+                        )
+                    )
+        for m in m_codes:
+            if m == 6.0 and not self.modal.lathe:
+                t = values.get("T")
+                tool = t if type(t) is float else 0.0
+                events.append(
+                    TimedEvent(
+                        "tool change", line, program, uri, program_line, at, motions, 0.0, tool
+                    )
+                )
+            if m in self.timed_codes:
+                events.append(
+                    TimedEvent("M code", line, program, uri, program_line, at, motions, 0.0, m)
+                )
 
     def block_end(self, axis: int) -> float | None:
         """Where the last block sent axis number ``axis`` (1 for #5001): the programmed

@@ -21,6 +21,7 @@ from ..syntax.tree import Assign, Block, Num, ProgramStart, Span, Word
 from ..threads.cross_section import NO_CHAIN, describe_cut, thread_chains
 from ..threads.identify import describe as describe_thread
 from ..threads.identify import module_meanings
+from .cycle_times import MODEL_NOTE, program_time
 from .data import Hover, Range
 from .locate import Hit, assignments_in, goto_target, number_of
 from .navigation import block_call
@@ -254,6 +255,11 @@ def hover_program(view: View, number: int, line: int | None = None, diagnosed: b
         parts[-1] += " · no O line: the number is the file name's"
     if key == view.key and line == header:
         parts.append(machine_text(view.config))
+        timed = program_time(view, program)
+        if timed is not None:
+            title, lines = timed
+            more = f" ({lines.replace(chr(10), ', ')})" if lines else ""
+            parts.append(f"{title[0].upper()}{title[1:]}{more}. {MODEL_NOTE}")
     callers: list[str] = []
     for c_key, (_, c_index) in {**view.workspace, view.key: (view.doc, view.index)}.items():
         for c_program in c_index.programs:
