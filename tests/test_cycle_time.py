@@ -289,3 +289,31 @@ def test_a_run_for_the_cycle_time_is_a_full_one_whatever_came_before() -> None:
     assert found is not None
     # 2 s tool change + 15 s cut + 0.8 s dwell + 1 s M08.
     assert parts(found) == {"cutting": 15.0, "dwell": 0.8, "tool change": 2.0, "M codes": 1.0}
+
+
+def test_the_settings_come_from_the_configuration_file(tmp_path: Path) -> None:
+    from fanuc_macro.config_file import load_config_file
+
+    file = tmp_path / "fanuc-macro.toml"
+    file.write_text(
+        "[cycle-time]\nrapid-rate-x = 10000\nrapid-rate-z = 12000\n"
+        "tool-change-seconds = 4.5\nm-code-seconds = { M08 = 0.5, M10 = 1.5 }\n",
+        encoding="utf-8",
+    )
+    config = Config.from_settings(load_config_file(file).settings)
+    assert (config.rapid_rate_x, config.rapid_rate_y, config.rapid_rate_z) == (
+        10_000.0,
+        RAPID_Y,
+        12_000.0,
+    )
+    assert config.tool_change_seconds == 4.5
+    assert config.m_code_seconds == ((8.0, 0.5), (10.0, 1.5))
+
+
+def test_m_code_seconds_that_cannot_be_read_are_said() -> None:
+    config = Config.from_settings({"cycleTime": {"mCodeSeconds": {"X8": 1, "M09": "long"}}})
+    assert config.m_code_seconds == ()
+    assert config.setting_problems == (
+        "cycleTime.mCodeSeconds: 'X8' is not an M code (M08, 8)",
+        "cycleTime.mCodeSeconds: 'M09': 'long' is not a number of seconds",
+    )

@@ -373,8 +373,3 @@ def minutes_seconds(seconds: float) -> str:
     minutes, rest = divmod(tenths, 600)
     text = f"{rest / 10.0:.1f} s"
     return f"{minutes} min {text}" if minutes else text
-
-
-def per_program(cycle: CycleTime, uri: str, program_line: int) -> float:
-    """The seconds spent in the own blocks of the program at ``program_line`` of ``uri``."""
-    return cycle.in_program.get((uri, program_line), 0.0)
