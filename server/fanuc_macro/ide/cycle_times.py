@@ -13,7 +13,7 @@ from .view import View
 
 # Blocks the analysis's runs executed past which the editor does not run the programs again
 # for their time: the run with the toolpath costs about what the analysis's own did.
-MAX_TIMED_BLOCKS = 100_000
+MAX_TIMED_BLOCKS = 50_000
 
 
 def _inputs(view: View) -> tuple[object, ...]:
