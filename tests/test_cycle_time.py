@@ -159,6 +159,23 @@ def test_a_thread_at_the_lead_times_the_speed() -> None:
     assert parts(cycle) == {"threading": 1.92}
 
 
+def test_a_turning_cycle_g90_is_its_four_legs() -> None:
+    # G90 X40. Z-30. F0.2 from X50. Z2. at S500 (100 mm/min): rapid in X 5 mm of radius
+    # (0.015 s), cut 32 mm along Z (19.2 s), feed out 5 mm in X (3 s), rapid back 32 mm in Z
+    # (32 / 24000 min = 0.08 s).
+    cycle = timed(program("G97 S500 M03", "G00 X50. Z2.", "G90 X40. Z-30. F0.2"))
+    assert parts(cycle) == {"cutting": 22.2, "rapid": 0.095}
+
+
+def test_a_threading_cycle_g92_and_its_returns() -> None:
+    # G92 X28. Z-20. F1.5 from X32. Z3. at S600: rapid in 2 mm of radius (0.006 s), thread 23
+    # mm at 1.5 x 600 = 900 mm/min (23 / 900 min = 1.5333 s), rapid out (0.006 s), rapid back
+    # 23 mm in Z (0.0575 s); the repeat X27.6 the same but 2.2 mm of radius each way.
+    cycle = timed(program("G97 S600 M03", "G00 X32. Z3.", "G92 X28. Z-20. F1.5", "X27.6"))
+    assert cycle.total.threading == pytest.approx(2 * 23 / 900 * 60)
+    assert cycle.total.rapid == pytest.approx((2 * 2 + 2 * 2.2) / RAPID_X * 60 + 2 * 23 / 400)
+
+
 def test_an_arc_is_timed_along_its_length() -> None:
     # G02 X20. Y0 R10. from X0 Y0: half a circle of radius 10, 10π mm at 100 mm/min.
     cycle = timed(program("G90 G00 X0 Y0 Z0", "G02 X20. Y0 R10. F100."), MILL)
