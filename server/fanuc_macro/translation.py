@@ -169,9 +169,7 @@ def _plural_index(locale: str, domain: str) -> Callable[[int], int]:
     return _read(locale, domain)[1]
 
 
-def _read(
-    locale: str, domain: str
-) -> tuple[Mapping[str, tuple[str, ...]], Callable[[int], int]]:
+def _read(locale: str, domain: str) -> tuple[Mapping[str, tuple[str, ...]], Callable[[int], int]]:
     table = database.current().table(_CATALOGUES)
     found = table.get((locale, domain))
     if found is None:

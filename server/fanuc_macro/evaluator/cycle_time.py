@@ -34,6 +34,7 @@ from dataclasses import dataclass, field
 from types import MappingProxyType
 
 from ..config import Config
+from ..translation import tr
 from .facts import POWER_ON_FEED_MODE, Facts, Motion
 from .toolpath import PLANE_AXES, Move, TimedEvent, Toolpath
 
@@ -44,6 +45,17 @@ PER_REVOLUTION = frozenset({99.0, 95.0})
 ARC_PIECES = 32
 # The parts of a cycle time, in the order a breakdown is shown.
 PARTS = ("cutting", "threading", "rapid", "dwell", "tool change", "M codes")
+# Each part as a user reads it.
+PART_NAMES: Mapping[str, str] = MappingProxyType(
+    {
+        "cutting": tr("cutting"),
+        "threading": tr("threading"),
+        "rapid": tr("rapid"),
+        "dwell": tr("dwell"),
+        "tool change": tr("tool change"),
+        "M codes": tr("M codes"),
+    }
+)
 
 
 @dataclass(slots=True)
@@ -371,5 +383,6 @@ def minutes_seconds(seconds: float) -> str:
     """``6 min 12.4 s``, ``12.4 s`` under a minute: to 0.1 s."""
     tenths = round(seconds * 10.0)
     minutes, rest = divmod(tenths, 600)
-    text = f"{rest / 10.0:.1f} s"
-    return f"{minutes} min {text}" if minutes else text
+    if minutes:
+        return tr("{minutes} min {seconds:.1f} s", minutes=minutes, seconds=rest / 10.0)
+    return tr("{seconds:.1f} s", seconds=rest / 10.0)

@@ -6,8 +6,9 @@ runs), kept with the analysis it follows, and left out for a run longer than
 from __future__ import annotations
 
 from ..database import Derived
-from ..evaluator.cycle_time import PARTS, CycleTime, cycle_time, minutes_seconds
+from ..evaluator.cycle_time import PART_NAMES, PARTS, CycleTime, cycle_time, minutes_seconds
 from ..program.index import Program
+from ..translation import joined, tr, tr_n
 from .trace import run_with_toolpath
 from .view import View
 
@@ -48,24 +49,28 @@ def program_time(view: View, program: Program) -> tuple[str, str] | None:
     run = timed.run_of(view.key, program.first_line)
     if run is not None:
         parts = run.breakdown.parts()
-        title = f"cycle time {minutes_seconds(run.seconds)}"
-        extra = []
+        title = tr("cycle time {time}", time=minutes_seconds(run.seconds))
+        extra: list[str] = []
         if run.tool_changes:
-            extra.append(f"{run.tool_changes} tool change{'' if run.tool_changes == 1 else 's'}")
+            extra.append(tr_n("{count} tool change", "{count} tool changes", run.tool_changes))
         if run.untimed:
-            extra.append(f"{run.untimed} move{'' if run.untimed == 1 else 's'} not timed")
+            extra.append(tr_n("{count} move not timed", "{count} moves not timed", run.untimed))
     else:
         seconds = timed.in_program.get((view.key, program.first_line), 0.0)
         if seconds <= 0.0:
             return None
-        title = f"{minutes_seconds(seconds)} in its own blocks"
+        title = tr("{time} in its own blocks", time=minutes_seconds(seconds))
         parts, extra = {}, []
-    lines = [f"{part}: {minutes_seconds(parts[part])}" for part in PARTS if parts.get(part)]
+    lines: list[str] = [
+        tr("{part}: {time}", part=PART_NAMES[part], time=minutes_seconds(parts[part]))
+        for part in PARTS
+        if parts.get(part)
+    ]
     lines += extra
-    return title, "\n".join(lines)
+    return title, joined("\n", lines)
 
 
-MODEL_NOTE = (
+MODEL_NOTE = tr(
     "Feeds at F (per minute, or per revolution at the spindle speed), threads at the lead "
     "times the speed, rapids at each axis's rate (settings cycleTime.*); no acceleration, "
     "look-ahead, overrides or spindle ramp-up."
