@@ -19,6 +19,7 @@ from ..program.index import Program
 from ..program.variables import classify
 from ..syntax.tree import Compare, Document, Expr, Statement, Var
 from ..syntax.walk import subexpressions
+from ..translation import tr
 from .checkpoints import CtxKey, Resumption, RunRecord
 from .compile_lines import (
     INTEGER_ADDRESSES,
@@ -486,7 +487,9 @@ class MachineBase:
     def _where(self, act: Activation, at: tuple[str, int]) -> str:
         """A block as a message names it: its line, and its document if not ``act``'s."""
         uri, line = at
-        return f"line {line + 1}" if uri == act.ctx.uri else f"line {line + 1} of {uri}"
+        if uri == act.ctx.uri:
+            return tr("line {line}", line=line + 1)
+        return tr("line {line} of {uri_text}", line=line + 1, uri_text=uri)
 
     def _shown(self, code: float) -> str:
         """A motion code as the program writes it (a system B or C lathe's own number)."""
@@ -502,8 +505,12 @@ class MachineBase:
             self._block_finding(
                 act,
                 SkipReadBeforeG31,
-                f"#{number} (the skip position) is read before any G31 of this run: it holds "
-                "where an earlier program's skip stopped, not this program's measurement",
+                tr(
+                    "#{number} (the skip position) is read before any G31 of this run: it "
+                    "holds where an earlier program's skip stopped, not this program's "
+                    "measurement",
+                    number=number,
+                ),
             )
 
     @staticmethod
@@ -716,7 +723,11 @@ class MachineBase:
             if isinstance(v, Unknown) or v is None or (d_is_data and address == "D"):
                 continue
             if (address in INTEGER_ADDRESSES or (address == "P" and calls)) and v != int(v):
-                message = f"{address} gets {fmt(v)}: {address} takes a whole number"
+                message = tr(
+                    "{address} gets {value}: {address} takes a whole number",
+                    address=address,
+                    value=fmt(v),
+                )
                 self._finding(
                     act.ctx,
                     AddressNotInteger(
@@ -724,7 +735,7 @@ class MachineBase:
                     ),
                 )
             elif address == "G" and round(v, 1) != v:
-                message = f"G gets {fmt(v)}: not a G code"
+                message = tr("G gets {value}: not a G code", value=fmt(v))
                 self._finding(
                     act.ctx,
                     AddressNotInteger(
@@ -732,7 +743,11 @@ class MachineBase:
                     ),
                 )
             elif address in ("S", "T", "M", "H", "D", "F") and v < 0:
-                message = f"{address} gets {fmt(v)}: {address} cannot be negative"
+                message = tr(
+                    "{address} gets {value}: {address} cannot be negative",
+                    address=address,
+                    value=fmt(v),
+                )
                 self._finding(
                     act.ctx,
                     AddressOutOfRange(
@@ -740,9 +755,10 @@ class MachineBase:
                     ),
                 )
             elif address == "S" and v > self.config.max_spindle_speed:
-                message = (
-                    f"S gets {fmt(v)} rpm, above the machine's maximum "
-                    f"{fmt(self.config.max_spindle_speed)} rpm"
+                message = tr(
+                    "S gets {speed} rpm, above the machine's maximum {maximum} rpm",
+                    speed=fmt(v),
+                    maximum=fmt(self.config.max_spindle_speed),
                 )
                 self._finding(
                     act.ctx,
@@ -757,13 +773,13 @@ class MachineBase:
         node = alarm.node
         span = getattr(node, "span", None) or getattr(cl.node, "span", None)
         start, end = (span.start, span.end) if span is not None else (0, len(block.text))
-        detail = ""
+        expression: str | None = None
+        shown: list[str] = []
         if node is not None:
             args = getattr(node, "args", None) or (getattr(node, "right", None),)
             arg = args[0]
             if arg is not None:
-                detail = f" = {block.source(arg.span).strip()}"
-                shown: list[str] = []
+                expression = block.source(arg.span).strip()
                 for sub in subexpressions(arg):
                     if isinstance(sub, Var) and sub.number is not None:
                         n = int(sub.number)
@@ -771,9 +787,27 @@ class MachineBase:
                         text = f"#{n}={fmt(v)}"
                         if text not in shown:
                             shown.append(text)
-                if shown:
-                    detail += " with " + ", ".join(shown)
-        message = f"{alarm.message}{detail} (alarm {alarm.alarm}) in {ctx.name}"
+        said: dict[str, object] = {
+            "alarm_message": alarm.message,
+            "number": alarm.alarm,
+            "program": ctx.name,
+        }
+        if expression is None:
+            message = tr("{alarm_message} (alarm {number}) in {program}", **said)
+        elif not shown:
+            message = tr(
+                "{alarm_message} = {expression_text} (alarm {number}) in {program}",
+                expression_text=expression,
+                **said,
+            )
+        else:
+            message = tr(
+                "{alarm_message} = {expression_text} with {values_text} (alarm {number}) in "
+                "{program}",
+                expression_text=expression,
+                values_text=", ".join(shown),
+                **said,
+            )
         found = ALARM_FINDINGS[alarm.kind]
         self._finding(
             ctx,
