@@ -19,7 +19,7 @@ from ..program.index import Program
 from ..program.variables import classify
 from ..syntax.tree import Compare, Document, Expr, Statement, Var
 from ..syntax.walk import subexpressions
-from ..translation import tr
+from ..translation import joined, tr
 from .checkpoints import CtxKey, Resumption, RunRecord
 from .compile_lines import (
     INTEGER_ADDRESSES,
@@ -198,7 +198,10 @@ class Activation:
             raise MacroAlarm(
                 "PS0115",
                 AlarmKind.NO_SUCH_VARIABLE,
-                f"#[...] refers to #{n}, which does not exist (VARIABLE NO. OUT OF RANGE)",
+                tr(
+                    "#[...] refers to #{number}, which does not exist (VARIABLE NO. OUT OF RANGE)",
+                    number=n,
+                ),
                 float(n),
             )
         v = self.store.get(n, self)
@@ -841,17 +844,20 @@ class MachineBase:
             head = min(heads, default=act.pc)
         read = {n for ln in tests for n in ctx.lines[ln].reads}
         written = {ctx.lines[ln].target_number for ln in hot}
-        budget = f"the step budget ({self.budget:,} blocks)"
+        budget = tr("the step budget ({blocks:,} blocks)", blocks=self.budget)
         runs = facts.runs.get(head, 0)
         width = len(ctx.doc.blocks[head].text)
         if read and all(n >= 100 for n in read) and not read & written:
             # Nothing in the loop changes what it tests: it waits for the PMC, a FOCAS client
             # or another path to write a common or system variable.
             names = ", ".join(f"#{n}" for n in sorted(read))
-            message = (
-                f"loop waits for {names} to be changed from outside the program (PMC, "
-                f"FOCAS, another path): nothing in it writes {names}; the analysis "
-                f"stopped after {runs} turns ({budget})"
+            message = tr(
+                "loop waits for {names} to be changed from outside the program (PMC, FOCAS, "
+                "another path): nothing in it writes {names}; the analysis stopped after {runs} "
+                "turns ({budget})",
+                names=names,
+                runs=runs,
+                budget=budget,
             )
             self._finding(ctx, PollingLoop(head, 0, width, message, ctx.uri))
             return
@@ -860,22 +866,37 @@ class MachineBase:
         approaching = _approaching(cl.node, facts, head)
         if not still and approaching:
             # The test's variables move towards its bound: a long loop, not an endless one.
-            message = (
-                f"loop still running after {runs} turns when {budget} ran out: it "
-                "gets nearer its end every turn, so it is long rather than endless; "
-                "values after it are not analysed"
+            message = tr(
+                "loop still running after {runs} turns when {budget} ran out: it gets nearer "
+                "its end every turn, so it is long rather than endless; values after it are not "
+                "analysed",
+                runs=runs,
+                budget=budget,
             )
             self._finding(ctx, LongLoop(head, 0, width, message, ctx.uri))
             return
         moving = [n for n in cl.reads if n not in still]
         if still:
-            why = ", ".join(f"#{n} stays {fmt(facts.reads[(head, n)].first)}" for n in still)
+            why = joined(
+                ", ",
+                (
+                    tr("#{number} stays {value}", number=n, value=fmt(facts.reads[(head, n)].first))
+                    for n in still
+                ),
+            )
         elif moving:
-            names = ", ".join(f"#{n}" for n in moving)
-            why = f"the condition stays true, {names} moving away from its bound"
+            why = tr(
+                "the condition stays true, {names} moving away from its bound",
+                names=", ".join(f"#{n}" for n in moving),
+            )
         else:
-            why = "nothing in the condition changes"
-        message = f"loop never ends: the block ran {runs} times before {budget} ran out; {why}"
+            why = tr("nothing in the condition changes")
+        message = tr(
+            "loop never ends: the block ran {runs} times before {budget} ran out; {why}",
+            runs=runs,
+            budget=budget,
+            why=why,
+        )
         self._finding(ctx, EndlessLoop(head, 0, width, message, ctx.uri))
 
 
