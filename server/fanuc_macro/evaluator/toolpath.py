@@ -633,6 +633,53 @@ def _profile_cycle(
         block.go(kind, end, centre, clockwise, cycle=name)
 
 
+def _profile_contour(
+    block: _Block, name: str, scratch: PathModal, profile: Sequence[ProfileBlock]
+) -> tuple[str, list[stock_removal.Segment]] | None:
+    """How a G70-G73 profile is approached (``rapid``, ``feed``) and its contour from A' to B;
+    None, with the block's note why, when it cannot be drawn."""
+    approach: str | None = None
+    contour: list[stock_removal.Segment] = []
+    for n, (words, codes) in enumerate(profile):
+        refused = next((g for g in codes if g in NOT_IN_PROFILE), None)
+        if refused is not None:
+            block.note(
+                tr(
+                    "{code}'s profile commands G{refused:g}, which a profile may not hold "
+                    "(the control stops with an alarm): its passes are not drawn",
+                    code=name,
+                    refused=refused,
+                )
+            )
+            return None
+        steps, lost = block_steps(scratch, words, codes)
+        if any(axes for axes, _ in lost) or "X" not in scratch.position:
+            block.note(
+                tr("{code}'s profile goes where the analysis cannot follow: not drawn", code=name)
+            )
+            return None
+        for kind, s, e, centre, clockwise, _record, _cycle in steps:
+            if n == 0:
+                approach = kind
+            else:
+                contour.append((kind, s, e, centre, clockwise))
+        if n == 0 and approach is None:
+            approach = "rapid" if scratch.motion == 0.0 else "feed"
+    if approach not in ("rapid", "feed"):
+        block.note(
+            tr(
+                "{code}'s profile does not begin with G00 or G01 (the control stops with an "
+                "alarm): its passes are not drawn",
+                code=name,
+            )
+        )
+        return None
+    if not contour:
+        block.note(tr("{code}'s profile makes no move after its first block: not drawn", code=name))
+        return None
+    return approach, contour
+
+
 def _profile_legs(
     block: _Block, code: float, values: Mapping[str, Value], profile: Sequence[ProfileBlock]
 ) -> list[stock_removal.Leg]:
@@ -657,45 +704,10 @@ def _profile_legs(
         allowance.append(v or 0.0)
     # The profile, from the start point: the ns block's move to A', then A' to B.
     scratch = PathModal(modal.lathe, dict(start), True, modal.plane, modal.inch, modal.motion)
-    approach: str | None = None
-    contour: list[stock_removal.Segment] = []
-    for n, (words, codes) in enumerate(profile):
-        refused = next((g for g in codes if g in NOT_IN_PROFILE), None)
-        if refused is not None:
-            block.note(
-                tr(
-                    "{code}'s profile commands G{refused:g}, which a profile may not hold "
-                    "(the control stops with an alarm): its passes are not drawn",
-                    code=name,
-                    refused=refused,
-                )
-            )
-            return []
-        steps, lost = block_steps(scratch, words, codes)
-        if any(axes for axes, _ in lost) or "X" not in scratch.position:
-            block.note(
-                tr("{code}'s profile goes where the analysis cannot follow: not drawn", code=name)
-            )
-            return []
-        for kind, s, e, centre, clockwise, _record, _cycle in steps:
-            if n == 0:
-                approach = kind
-            else:
-                contour.append((kind, s, e, centre, clockwise))
-        if n == 0 and approach is None:
-            approach = "rapid" if scratch.motion == 0.0 else "feed"
-    if approach not in ("rapid", "feed"):
-        block.note(
-            tr(
-                "{code}'s profile does not begin with G00 or G01 (the control stops with an "
-                "alarm): its passes are not drawn",
-                code=name,
-            )
-        )
+    read = _profile_contour(block, name, scratch, profile)
+    if read is None:
         return []
-    if not contour:
-        block.note(tr("{code}'s profile makes no move after its first block: not drawn", code=name))
-        return []
+    approach, contour = read
     if code == 73.0:
         escape_x, escape_z, divisions = modal.pattern
         if escape_x is None or escape_z is None or divisions is None:
