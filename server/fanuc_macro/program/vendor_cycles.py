@@ -34,6 +34,8 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from types import MappingProxyType
 
+from ..translation import tr
+
 
 @dataclass(frozen=True, slots=True)
 class VendorCycle:
@@ -53,27 +55,27 @@ _MANUAL_TS = "Renishaw tool setting software (manual number unverified)"
 # The letters most measuring cycles of Inspection Plus share: [CPS], but E and U ([IP],
 # unverified).
 _RESULT = (
-    ("Q", "overtravel past the expected surface"),
-    ("S", "work offset to update (54-59 for G54-G59, 154.01- for G54.1 P1-)"),
-    ("T", "tool offset to update (length for Z, else diameter)"),
-    ("H", "tolerance of the size: out of it, the cycle stops with a message"),
-    ("M", "tolerance of the position: out of it, the cycle stops with a message"),
-    ("B", "tolerance of the angle"),
-    ("F", "feedback: the fraction of the error put in the tool offset"),
-    ("V", "null band: an error below it leaves the tool offset as it is"),
-    ("W", "print the results (1; 2 starts a new component)"),
-    ("E", "experience value: an adjustment added to the result"),
-    ("U", "upper tolerance: out of it, the tool offset is not updated"),
+    ("Q", tr("overtravel past the expected surface")),
+    ("S", tr("work offset to update (54-59 for G54-G59, 154.01- for G54.1 P1-)")),
+    ("T", tr("tool offset to update (length for Z, else diameter)")),
+    ("H", tr("tolerance of the size: out of it, the cycle stops with a message")),
+    ("M", tr("tolerance of the position: out of it, the cycle stops with a message")),
+    ("B", tr("tolerance of the angle")),
+    ("F", tr("feedback: the fraction of the error put in the tool offset")),
+    ("V", tr("null band: an error below it leaves the tool offset as it is")),
+    ("W", tr("print the results (1; 2 starts a new component)")),
+    ("E", tr("experience value: an adjustment added to the result")),
+    ("U", tr("upper tolerance: out of it, the tool offset is not updated")),
 )
-_POSITION = "the surface's expected position"
-_BOSS_DEPTH = "the depth to measure a boss at (absent: a bore)"
-_CLEARANCE = "radial clearance (negative: an internal boss or web)"
+_POSITION = tr("the surface's expected position")
+_BOSS_DEPTH = tr("the depth to measure a boss at (absent: a bore)")
+_CLEARANCE = tr("radial clearance (negative: an internal boss or web)")
 # O9815 and O9816 take the same words.
 _CORNER = (
-    ("X", "the corner's expected position"),
-    ("Y", "the corner's expected position"),
-    ("I", "distance of the touches along X from the corner"),
-    ("J", "distance of the touches along Y from the corner"),
+    ("X", tr("the corner's expected position")),
+    ("Y", tr("the corner's expected position")),
+    ("I", tr("distance of the touches along X from the corner")),
+    ("J", tr("distance of the touches along Y from the corner")),
     *_RESULT,
 )
 
@@ -81,46 +83,46 @@ _CYCLES = (
     VendorCycle(
         9801,
         INSPECTION_PLUS,
-        "calibrate the probe's length",
-        (("Z", "the reference surface"), ("T", "the probe's tool offset")),
+        tr("calibrate the probe's length"),
+        (("Z", tr("the reference surface")), ("T", tr("the probe's tool offset"))),
         "unverified",
     ),
     VendorCycle(
         9802,
         INSPECTION_PLUS,
-        "calibrate the stylus's X/Y offset in a bore",
-        (("D", "the bore's diameter"),),
+        tr("calibrate the stylus's X/Y offset in a bore"),
+        (("D", tr("the bore's diameter")),),
         "CORPUS",
     ),
     VendorCycle(
         9803,
         INSPECTION_PLUS,
-        "calibrate the stylus ball's radius in a ring gauge",
-        (("D", "the ring gauge's diameter"),),
+        tr("calibrate the stylus ball's radius in a ring gauge"),
+        (("D", tr("the ring gauge's diameter")),),
         "CORPUS",
     ),
     VendorCycle(
         9810,
         INSPECTION_PLUS,
-        "protected positioning: a move that stops when the probe touches",
-        (("X", "target"), ("Y", "target"), ("Z", "target"), ("F", "feed")),
+        tr("protected positioning: a move that stops when the probe touches"),
+        (("X", tr("target")), ("Y", tr("target")), ("Z", tr("target")), ("F", tr("feed"))),
         "CORPUS, CPS",
     ),
     VendorCycle(
         9811,
         INSPECTION_PLUS,
-        "single surface measurement in X, Y or Z",
+        tr("single surface measurement in X, Y or Z"),
         (("X", _POSITION), ("Y", _POSITION), ("Z", _POSITION), *_RESULT),
         "ZAP, CORPUS, CPS",
     ),
     VendorCycle(
         9812,
         INSPECTION_PLUS,
-        "web or pocket measurement",
+        tr("web or pocket measurement"),
         (
-            ("X", "the width, measured in X"),
-            ("Y", "the width, measured in Y"),
-            ("Z", "the depth to measure a web at (absent: a pocket)"),
+            ("X", tr("the width, measured in X")),
+            ("Y", tr("the width, measured in Y")),
+            ("Z", tr("the depth to measure a web at (absent: a pocket)")),
             ("R", _CLEARANCE),
             *_RESULT,
         ),
@@ -129,36 +131,36 @@ _CYCLES = (
     VendorCycle(
         9814,
         INSPECTION_PLUS,
-        "bore or boss measurement",
-        (("D", "the nominal diameter"), ("Z", _BOSS_DEPTH), ("R", _CLEARANCE), *_RESULT),
+        tr("bore or boss measurement"),
+        (("D", tr("the nominal diameter")), ("Z", _BOSS_DEPTH), ("R", _CLEARANCE), *_RESULT),
         "ZAP, CORPUS, CPS",
     ),
     VendorCycle(
         9815,
         INSPECTION_PLUS,
-        "internal corner find",
+        tr("internal corner find"),
         _CORNER,
         "ZAP, CORPUS, CPS",
     ),
     VendorCycle(
         9816,
         INSPECTION_PLUS,
-        "external corner find",
+        tr("external corner find"),
         _CORNER,
         "ZAP, CORPUS, CPS",
     ),
     VendorCycle(
         9819,
         INSPECTION_PLUS,
-        "bores or bosses on a pitch circle (PCD)",
+        tr("bores or bosses on a pitch circle (PCD)"),
         (
-            ("A", "angle of the first feature"),
-            ("B", "number of features"),
-            ("C", "the pitch circle's diameter"),
-            ("D", "the features' diameter"),
-            ("K", "the depth to measure bores at"),
-            ("Z", "the depth to measure bosses at"),
-            ("R", "radial clearance"),
+            ("A", tr("angle of the first feature")),
+            ("B", tr("number of features")),
+            ("C", tr("the pitch circle's diameter")),
+            ("D", tr("the features' diameter")),
+            ("K", tr("the depth to measure bores at")),
+            ("Z", tr("the depth to measure bosses at")),
+            ("R", tr("radial clearance")),
             *_RESULT,
         ),
         "ZAP, CPS",
@@ -166,17 +168,17 @@ _CYCLES = (
     VendorCycle(
         9820,
         INSPECTION_PLUS,
-        "stock allowance",
+        tr("stock allowance"),
         (("X", _POSITION), ("Y", _POSITION), ("Z", _POSITION), *_RESULT),
         "ZAP (arguments unverified)",
     ),
     VendorCycle(
         9821,
         INSPECTION_PLUS,
-        "angled single surface measurement",
+        tr("angled single surface measurement"),
         (
-            ("A", "the surface normal's angle"),
-            ("D", "the distance to the surface"),
+            ("A", tr("the surface normal's angle")),
+            ("D", tr("the distance to the surface")),
             ("X", _POSITION),
             ("Y", _POSITION),
             *_RESULT,
@@ -186,36 +188,36 @@ _CYCLES = (
     VendorCycle(
         9823,
         INSPECTION_PLUS,
-        "bore or boss measured at three points (a partial circle)",
+        tr("bore or boss measured at three points (a partial circle)"),
         (
-            ("A", "angle of the first point"),
-            ("B", "angle of the second point"),
-            ("C", "angle of the third point"),
-            ("D", "the nominal diameter"),
+            ("A", tr("angle of the first point")),
+            ("B", tr("angle of the second point")),
+            ("C", tr("angle of the third point")),
+            ("D", tr("the nominal diameter")),
             ("Z", _BOSS_DEPTH),
             ("R", _CLEARANCE),
             *_RESULT,
         ),
         "CPS",
     ),
-    VendorCycle(9832, INSPECTION_PLUS, "switch the spindle probe on", (), "CORPUS"),
-    VendorCycle(9833, INSPECTION_PLUS, "switch the spindle probe off", (), "CORPUS"),
+    VendorCycle(9832, INSPECTION_PLUS, tr("switch the spindle probe on"), (), "CORPUS"),
+    VendorCycle(9833, INSPECTION_PLUS, tr("switch the spindle probe off"), (), "CORPUS"),
     VendorCycle(
         9834,
         INSPECTION_PLUS,
-        "feature to feature: the distance between the last two features measured",
+        tr("feature to feature: the distance between the last two features measured"),
         (),
         "unverified (called after O9814 in CORPUS)",
     ),
     VendorCycle(
         9843,
         INSPECTION_PLUS,
-        "angle of a surface, measured in X or Y",
+        tr("angle of a surface, measured in X or Y"),
         (
-            ("X", "the surface's expected position, measured in X"),
-            ("Y", "the surface's expected position, measured in Y"),
-            ("D", "distance between the two touches"),
-            ("A", "the surface's nominal angle"),
+            ("X", tr("the surface's expected position, measured in X")),
+            ("Y", tr("the surface's expected position, measured in Y")),
+            ("D", tr("distance between the two touches")),
+            ("A", tr("the surface's nominal angle")),
             *_RESULT,
         ),
         "CPS",
@@ -223,31 +225,31 @@ _CYCLES = (
     VendorCycle(
         9851,
         TOOL_SETTING,
-        "measure a tool's length (T) or diameter (K)",
-        (("T", "the tool offset to set"), ("K", "the calibration or measuring mode")),
+        tr("measure a tool's length (T) or diameter (K)"),
+        (("T", tr("the tool offset to set")), ("K", tr("the calibration or measuring mode"))),
         "unverified (called with T or K in CORPUS)",
     ),
     VendorCycle(
         9852,
         TOOL_SETTING,
-        "calibrate the tool setter",
-        (("S", "the calibration tool's diameter"), ("K", "the mode")),
+        tr("calibrate the tool setter"),
+        (("S", tr("the calibration tool's diameter")), ("K", tr("the mode"))),
         "unverified (called with S and K in CORPUS)",
     ),
     VendorCycle(
         9853,
         TOOL_SETTING,
-        "tool setting cycle (its function unverified)",
-        (("B", "the mode"), ("T", "the tool offset"), ("D", "the diameter offset")),
+        tr("tool setting cycle (its function unverified)"),
+        (("B", tr("the mode")), ("T", tr("the tool offset")), ("D", tr("the diameter offset"))),
         "unverified (called with B, T and D in CORPUS)",
     ),
-    VendorCycle(9855, TOOL_SETTING, "switch the tool setter on", (), "CORPUS, IMD"),
-    VendorCycle(9856, TOOL_SETTING, "switch the tool setter off", (), "CORPUS, IMD"),
+    VendorCycle(9855, TOOL_SETTING, tr("switch the tool setter on"), (), "CORPUS, IMD"),
+    VendorCycle(9856, TOOL_SETTING, tr("switch the tool setter off"), (), "CORPUS, IMD"),
     VendorCycle(
         9858,
         TOOL_SETTING,
-        "broken tool detection",
-        (("T", "the tool to check"), ("H", "the tolerance")),
+        tr("broken tool detection"),
+        (("T", tr("the tool to check")), ("H", tr("the tolerance"))),
         "IMD (arguments unverified)",
     ),
 )
@@ -266,4 +268,10 @@ def manual_of(cycle: VendorCycle) -> str:
 
 def describe(cycle: VendorCycle) -> str:
     """One line naming a cycle: ``O9814, Renishaw Inspection Plus: bore or boss measurement``."""
-    return f"O{cycle.number}, {cycle.package}: {cycle.name}"
+    # The package is a product's name, the same in every language.
+    return tr(
+        "O{number}, {product_text}: {name}",
+        number=cycle.number,
+        product_text=cycle.package,
+        name=cycle.name,
+    )
