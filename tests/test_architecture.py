@@ -54,7 +54,7 @@ ALLOWED: dict[str, set[str]] = {
     "database": {"cancel"},
     "code_cache": {"__version__"},
     "diagnostics": set(),
-    "translation": set(),
+    "translation": {"database"},
     "framing": set(),
     "lazy_regex": set(),
     "program_files": set(),

@@ -41,6 +41,7 @@ VERSION_LINE = f"fanuc-macro-ls {fanuc_macro.__version__}"
 WAIT = 60.0
 PURE_DISTRIBUTIONS = {
     "attrs",
+    "babel",
     "cattrs",
     "exceptiongroup",
     "lark",

@@ -510,7 +510,7 @@ def test_trace_json_gives_every_executed_cut(tmp_path: Path) -> None:
     assert done.returncode == 0, done.stderr
     result = json.loads(done.stdout)
     motions = result["motions"]
-    assert set(motions[0]) == {"program", "line", "code", "words", "start", "end"}
+    assert set(motions[0]) == {"program", "line", "code", "words", "start", "end", "clock"}
     cuts = [m for m in motions if m["code"] == "G92"]
     assert len(cuts) == 186  # 2 x 88 rough passes + 2 finishing + 8 spring passes
     assert set(cuts[0].pop("values")) == {"#100", "#9", "#2", "#102", "#1", "#101"}
@@ -520,6 +520,9 @@ def test_trace_json_gives_every_executed_cut(tmp_path: Path) -> None:
         "code": "G92",
         "words": {"X": 49.816, "W": -60.0, "R": 0.0, "F": 3.0},
         "speed": 400.0,  # G97 S400: the spindle speed in force
+        # The cycle time when it begins (tests/test_cycle_time.py): T0101's 2 s, G01 X51.
+        # W7. at F0.5 x S400 (sqrt(53) mm at 200 mm/min), G01 W-1.036 at 200 mm/min.
+        "clock": 4.495,
         "start": {"X": 51.0, "Z": 5.964},
         "end": {"X": 51.0, "Z": 5.964},
         "moves": [
@@ -584,7 +587,8 @@ def test_trace_text_and_entry(tmp_path: Path) -> None:
     assert done.returncode == 0, done.stderr
     lines = done.stdout.splitlines()
     assert sum(1 for ln in lines if ln.startswith("O") and " G32 " in ln) == 19
-    assert lines[-1].startswith("78 motions (G00 59, G32 19)")
+    assert lines[-2].startswith("78 motions (G00 59, G32 19)")
+    assert lines[-1].startswith("cycle time ")
     first_cut = next(ln for ln in lines if " G32 " in ln)
     assert "[X94.561 Z58.369 -> X94.561 Z-113.]" in first_cut
     sub = run(tmp_path, "trace", str(SEEDS / "o4009_external_m50x3.nc"), "--entry", "O3331")

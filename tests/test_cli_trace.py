@@ -90,8 +90,11 @@ LONG = "\n".join(["O1000", "G00 X40. Z5.", *(f"G01 Z-{i}. F0.2" for i in range(1
 def test_a_file_read_in_part_is_said_so_with_the_setting(tmp_path: Path) -> None:
     (tmp_path / "long.nc").write_text(LONG + "\n")
     text = run(tmp_path, "trace", "--max-blocks", "10", "long.nc").stdout
-    assert text.splitlines()[-2:] == [
+    assert text.splitlines()[-3:] == [
         "9 motions (G00 1, G01 8); 10 blocks executed",
+        # F0.2 per revolution (a lathe's G99 at power on) with no S: counted, not timed; the
+        # G00 starts where the run began, not known.
+        "cycle time 0.0 s; 8 moves not timed (F or speed not known)",
         "read only up to line 10: analysed the first 10 blocks of 32: the document has 32 "
         "blocks, more than the 10 the analysis reads (setting "
         "fanuc-macro.analysis.maxBlocks, --max-blocks); the blocks from line 11 on are not "
@@ -125,3 +128,32 @@ def test_a_g50_clamp_leaves_the_surface_speed_the_trace_shows(tmp_path: Path) ->
     cuts = [m for m in motions if m["code"] == "G01"]
     assert len(cuts) == 2
     assert all(m.get("surface_speed") == 180.0 and "speed" not in m for m in cuts)
+
+
+def test_the_cycle_time_of_the_seed_module(tmp_path: Path) -> None:
+    """O4009's 186 G92 cuts at F3 S400 (tests/test_cycle_time.py works the figures out by
+    hand): 558 s of threading among 601.274 s, in the summary and at each motion."""
+    seed = ROOT / "tests" / "fixtures" / "seeds" / "o4009_external_m50x3.nc"
+    answer = trace_json(tmp_path, str(seed))
+    timed = answer["summary"]["cycle_time"]
+    parts = {"cutting": 11.409, "threading": 558.0, "rapid": 29.865, "dwell": 0.0}
+    parts |= {"tool change": 2.0, "M codes": 0.0}
+    assert (timed["seconds"], timed["text"], timed["parts"]) == (601.274, "10 min 1.3 s", parts)
+    [run_time] = timed["runs"]
+    assert (run_time["program"], run_time["line"], run_time["tool_changes"]) == ("O4009", 2, 1)
+    clocks = [m["clock"] for m in answer["motions"]]
+    # The first motion after the tool change (2 s); the clock never goes back.
+    assert clocks[0] == 2.0 and clocks == sorted(clocks) and clocks[-1] < 601.274
+    text = run(tmp_path, "trace", str(seed)).stdout.splitlines()
+    assert text[-1] == (
+        "cycle time 10 min 1.3 s (cutting 11.4 s, threading 9 min 18.0 s, rapid 29.9 s, "
+        "tool change 2.0 s)"
+    )
+
+
+def test_a_dwell_takes_its_time_in_the_trace(tmp_path: Path) -> None:
+    # NOT_MOVES dwells 0.5 + 1 + 0.5 s; its G01s at F0.2 per revolution with no S are not
+    # timed; the G28 U0. goes to the reference point, whose place is not known.
+    (tmp_path / "dwell.nc").write_text(NOT_MOVES)
+    timed = trace_json(tmp_path, "dwell.nc")["summary"]["cycle_time"]
+    assert (timed["parts"]["dwell"], timed["untimed_moves"]) == (2.0, 2)

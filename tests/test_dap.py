@@ -109,6 +109,10 @@ def test_scopes_show_locals_commons_and_the_modal_state(dap: DapClient) -> None:
     assert modal["S"] == "400." and modal["T"] == "101." and modal["unit"] == "mm (G21)"
     assert modal["F"] == "0.5"
     assert modal["G group 05"] == "G99"  # feed per revolution
+    # The cycle time before the first G92: the tool change T0101 (2 s), the G01 X51. W7. at
+    # F0.5 x S400 = 200 mm/min (sqrt(2² + 7²) mm: 2.184 s) and the G01 W-1.036 of the first
+    # pass's offset (0.311 s): 4.495 s.
+    assert modal["cycle time so far"] == "4.5 s"
 
 
 def test_step_into_over_and_out_of_the_m98(dap: DapClient) -> None:

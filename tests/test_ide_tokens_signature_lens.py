@@ -275,14 +275,19 @@ def test_the_thread_subprogram_lens_counts_its_cuts_and_depths() -> None:
     lenses = code_lenses(view)
     titles = [lens.title for lens in lenses]
     assert titles[0] == "entered once"
-    assert titles[1] == "called from O4009 · 1×"
-    thread = titles[2]
+    # The main program's cycle time (tests/test_cycle_time.py works it out by hand).
+    assert titles[1] == "cycle time 10 min 1.3 s"
+    assert titles[2] == "called from O4009 · 1×"
+    thread = titles[3]
     assert thread.startswith("entered once · M50x3-5g6g: ")
     (job,) = [t.job for t in view.analysis.threads]
     cuts, depths = len(job.passes), len(set(job.xs))
     assert cuts > depths > 1  # two cuts per depth (shifted flanks), spring passes
     assert thread.endswith(f": {cuts} cuts at {depths} depths (G92 F3)")
-    assert lenses[2].tooltip.endswith("a cut is one threading motion, a depth an X the cuts reach")
+    assert lenses[3].tooltip.endswith("a cut is one threading motion, a depth an X the cuts reach")
+    # The subprogram, called only: the time of its own blocks (all but O4009's two rapids'
+    # and one tool change's).
+    assert titles[4] == "9 min 59.0 s in its own blocks"
 
 
 def test_callers_in_other_files_are_named_with_their_file() -> None:
@@ -292,7 +297,7 @@ def test_callers_in_other_files_are_named_with_their_file() -> None:
     workspace["other.nc"] = (other.doc, other.index)
     key = "o4009_external_m50x3.nc"
     view = View(key, views[key].analysis, Config(), workspace)
-    lens = code_lenses(view)[1]
+    lens = code_lenses(view)[2]
     assert lens.title == "called from O0007 · 2×, O4009 · 1×"  # the most calls first
     # The calls by document: this one's without its name.
     assert lens.tooltip == "O4009, line 11\nO0007, line 2 (other.nc)\nO0007, line 3 (other.nc)"

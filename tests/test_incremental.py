@@ -468,6 +468,38 @@ def test_lathe_cycles_resume_and_equal_full(turns: int) -> None:
     resume_through_random_edits(lines, rng, parser, config, previous, 12)
 
 
+def feed_modes_program(turns: int) -> str:
+    """Cuts in G98 (per minute) and G99 (per revolution) by turns: the motions of G98 record
+    their feed mode (a lathe's power-on mode is G99), which the cycle time reads."""
+    return "\n".join(
+        [
+            "%",
+            "O1000 (FEED MODES)",
+            "G97 S800 M03",
+            "#1=0",
+            f"WHILE[#1LT{turns}]DO1",
+            "G00 X[40.+#1] Z2.",
+            "G98 G01 Z-20. F150.",
+            "G99 G01 Z-40. F0.2",
+            "G04 P[100*#1]",
+            "#1=#1+1",
+            "END1",
+            "M30",
+            "%",
+        ]
+    )
+
+
+def test_feed_modes_resume_and_equal_full() -> None:
+    rng = random.Random(33)
+    config = Config(step_budget=3000)
+    parser = BlockParser()
+    lines = feed_modes_program(40).splitlines()
+    previous = evaluate_text("\n".join(lines), parser, config)
+    assert {m.feed_mode for m in previous.motions} == {None, 98.0}
+    resume_through_random_edits(lines, rng, parser, config, previous, 12)
+
+
 # A document with no program (empty, or bytes that are not a text) leaves no compiled lines in
 # the record: the next version, its first keystroke, is analysed as from scratch.
 NO_PROGRAM_EDITS = [("", "G"), ("", "1"), ("", "%"), ("", "X\n"), ("X", ""), ("G", "")]

@@ -165,7 +165,7 @@ async def test_the_editors_words_are_said_in_chinese(client: LanguageClient) -> 
     view = await run(client, "fanuc-macro.traceView", uri, "/programs/chinese.nc")
     lines = view["text"].split("\n")
     assert lines[:2] == ["chinese.nc 的轨迹", "位于 /programs"]
-    assert lines[5].split() == ["程序段", "代码", "字", "到", "S", "F"]
+    assert lines[5].split() == ["程序段", "代码", "字", "到", "S", "F", "时间"]
     assert any(line.startswith("O2000 第 16 行  G00") for line in lines)  # "#" typed above
     # The summary's keys (its values are the findings' own words).
     keys = [line.split(":")[0] for line in lines[lines.index("摘要") :]]

@@ -288,11 +288,12 @@ async def test_the_trace_view_is_written_by_the_server(client: LanguageClient) -
     # only a row's block is one.
     assert lines[:2] == ["Trace of o2_arc_thread_roughing.nc", "in /seeds"]
     assert "line" not in "".join(lines[2:4]) and lines[4] == ""
-    assert lines[5].split() == ["block", "code", "words", "to", "S", "F"]
+    assert lines[5].split() == ["block", "code", "words", "to", "S", "F", "time"]
     at = next(i for i, line in enumerate(lines) if line.startswith("O0003 line 34 "))
-    # The values the block read under its row; the columns fit beside a program.
+    # The values the block read under its row; the columns fit beside a program (the cycle
+    # time's column, "0:27.9", takes 8 of its 68 characters).
     assert lines[at + 1] == "    #5=108. #4=10. #18=1.2 #16=51.249025"
-    assert max(len(line) for line in lines) <= 64
+    assert max(len(line) for line in lines) <= 68
     row = next(r for r in view["rows"] if r["line"] == at)
     assert row == {
         "line": at,
@@ -360,13 +361,14 @@ def test_the_trace_view_writes_values_at_the_controls_precision() -> None:
     lines = view.text.split("\n")
     assert lines[1] == "2 motion blocks, 1 block executed, positions in mm"
     assert lines[5].split("  ")[0] == "O3331 line 12"
-    # The F in force is a column of its own, the S one too (not known here).
+    # The F in force is a column of its own, the S one too (not known here), and the cycle
+    # time when the block begins (none in this trace).
     assert lines[5].split() == [
         *("O3331", "line", "12", "G1", "G1", "X49.816", "Z-60."),
-        *("X49.816", "Z-60.", "-", "3."),
+        *("X49.816", "Z-60.", "-", "3.", "-"),
     ]
     assert lines[6] == "    #101=<vacant> #102=0.33333333 #103=(depends on #500)"
-    assert lines[7].split()[-3:] == ["X40.", "-", "-"]
+    assert lines[7].split()[-4:] == ["X40.", "-", "-", "-"]
     assert lines[8:10] == ["    1 move (G71):", "      arc    X40. -> X42.  centre X41. CW"]
     assert [(r.line, r.source_line, r.path, r.link) for r in view.rows] == [
         (5, 11, None, (0, 13)),
@@ -421,5 +423,8 @@ def test_the_trace_gives_the_spindle_speed_and_feed_in_force() -> None:
     assert speeds == [(4, 400.0, None), (5, 400.0, None), (7, None, 150.0)]
     rows = view_of_trace(traced, "t.nc").text.split("\n")[5:8]
     assert [row.split("  ")[0] for row in rows] == ["O0001 line 4", "O0001 line 5", "O0001 line 7"]
-    assert [row.split()[-2:] for row in rows] == [["400", "-"], ["400", "0.2"], ["G96", "0.2"]]
-    assert rows[2].split()[-3:] == ["150", "G96", "0.2"]
+    assert [row.split()[-3:-1] for row in rows] == [["400", "-"], ["400", "0.2"], ["G96", "0.2"]]
+    assert rows[2].split()[-4:-1] == ["150", "G96", "0.2"]
+    # The cycle time when each begins: after T0101's 2 s; the G01 Z-10. from Z2. at F0.2 x
+    # S400 = 80 mm/min takes 12 / 80 min = 9 s.
+    assert [row.split()[-1] for row in rows] == ["0:02.0", "0:02.0", "0:11.0"]

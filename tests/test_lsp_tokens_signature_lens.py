@@ -237,16 +237,38 @@ async def test_code_lenses_over_the_o_lines_of_a_seed(client: LanguageClient) ->
         (lens.range.start.line, lens.command.title if lens.command else None) for lens in lenses
     ]
     assert shown[0] == (1, "entered once")
-    assert shown[1] == (17, "called from O4009 · 1×")
-    line, title = shown[2]
+    # The cycle time of the main program's run (worked out by hand in test_cycle_time.py),
+    # its parts in the tooltip.
+    assert shown[1] == (1, "cycle time 10 min 1.3 s")
+    assert lenses[1].command is not None and lenses[1].command.tooltip is not None
+    assert lenses[1].command.tooltip.startswith(
+        "cutting: 11.4 s\nthreading: 9 min 18.0 s\nrapid: 29.9 s\ntool change: 2.0 s\n"
+        "1 tool change\n\n"
+    )
+    assert shown[2] == (17, "called from O4009 · 1×")
+    line, title = shown[3]
     assert line == 17 and title is not None
     assert title.startswith("entered once · M50x3-5g6g: 186 cuts at ") and title.endswith(
         "(G92 F3)"
     )
-    assert lenses[1].data == {"references": [[uri, 10]]}  # the M98 P0013331 line
-    assert lenses[1].command is not None and lenses[1].command.tooltip == "O4009, line 11"
-    assert lenses[1].command.command == ""  # a title to read: VS Code shows it as text
+    assert shown[4] == (17, "9 min 59.0 s in its own blocks")
+    assert lenses[2].data == {"references": [[uri, 10]]}  # the M98 P0013331 line
+    assert lenses[2].command is not None and lenses[2].command.tooltip == "O4009, line 11"
+    assert lenses[2].command.command == ""  # a title to read: VS Code shows it as text
     assert lenses[0].range.end.character == len("O4009")
+    hover = await asyncio.wait_for(
+        client.text_document_hover_async(
+            types.HoverParams(
+                text_document=types.TextDocumentIdentifier(uri=uri),
+                position=types.Position(line=1, character=2),
+            )
+        ),
+        WAIT,
+    )
+    assert hover is not None and isinstance(hover.contents, types.MarkupContent)
+    assert "Cycle time 10 min 1.3 s (cutting: 11.4 s, threading: 9 min 18.0 s" in (
+        hover.contents.value
+    )
 
 
 async def test_the_lenses_are_fetched_again_after_each_analysis(client: LanguageClient) -> None:

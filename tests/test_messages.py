@@ -68,14 +68,15 @@ async def test_the_server_speaks_the_clients_locale(client: LanguageClient) -> N
     )
     uri = open_seed(client, "o2_arc_thread_roughing.nc")
     found = await diagnostics(client, uri, lambda d: any(x.code == "MB601" for x in d))
-    first, english = mb601(found).split("\n", 1)
-    assert first == "M、S、T、P、L、H、D 或 G 地址的值不是整数。"
-    assert "93.82" in english  # the value that caused it, as the rule says it
+    chinese = mb601(found)
+    # The rule's own words in Chinese, with the value that caused it.
+    assert "只能取整数" in chinese and "93.82" in chinese and "\n" not in chinese
     # The setting overrides the client's locale, and the diagnostics are published again.
     client.workspace_did_change_configuration(
         types.DidChangeConfigurationParams(
             settings={"fanuc-macro": {"language": "en", "analysis": {"debounceMs": 20}}}
         )
     )
-    found = await diagnostics(client, uri, lambda d: "\n" not in mb601(d))
-    assert mb601(found) == english
+    found = await diagnostics(client, uri, lambda d: mb601(d) != chinese)
+    english = mb601(found)
+    assert "takes a whole number" in english and "93.82" in english

@@ -410,6 +410,8 @@ def test_the_legend_names_every_kind_of_move_drawn_and_every_mark(tmp_path: Path
         ("start", "start"),
         ("end", "end"),
         ("direction", "direction of travel"),
+        # The run's cycle time last (tests/test_cycle_time.py works it out by hand).
+        ("cycle-time", "cycle time 10 min 1.3 s"),
     ]
     # Each kind's sample is styled as its moves are: the rapid's line dashed like the rapids.
     samples = {g.get("data-legend"): g[0] for g in _with(root, "data-legend")}

@@ -103,8 +103,9 @@ def glossary() -> list[tuple[str, str, str]]:
 
 
 def glossary_terms_missing(message_id: str, translation: str, column: int) -> list[str]:
-    """The glossary's terms the English has and the translation does not say."""
-    english = message_id
+    """The glossary's terms the English has and the translation does not say (a parameter's
+    name is not English the user reads)."""
+    english = re.sub(r"\{[^{}]*\}", " ", message_id)
     missing = []
     for row in glossary():
         pattern = re.compile(rf"(?<![\w-]){re.escape(row[0])}s?(?![\w-])", re.I)
@@ -121,6 +122,7 @@ def test_the_glossary_has_the_papers_terms() -> None:
         assert terms[english] == chinese
     assert glossary_terms_missing("the pitch diameter", "中径", 1) == []
     assert glossary_terms_missing("the pitch", "中径", 1) == ["pitch"]
+    assert glossary_terms_missing("with {tool} at {lead}", "以 {tool}", 1) == []
 
 
 def test_the_translations_say_the_glossarys_terms() -> None:

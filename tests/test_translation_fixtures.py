@@ -45,9 +45,14 @@ def english_of(diagnostic: Diagnostic) -> list[str]:
 def test_english_is_found() -> None:
     from fanuc_macro.translation import tr
 
-    assert list(english_in("GOTO 10 jumps out")) == ["GOTO 10 jumps out"]
+    assert list(english_in("GOTO 10 jumps out of the loop")) == ["GOTO 10 jumps out of the loop"]
     assert list(english_in("G92 X20.0 Z-30.0 F2.0")) == []
-    made = tr("no N{label} in {program}: {why}", label=10, program="O1", why="it was deleted")
+    made = tr(
+        "no label {label} in the program {program}: {why}",
+        label=10,
+        program="O1",
+        why="it was deleted",
+    )
     assert list(english_in(made)) == [made.template, "it was deleted"]
     assert list(english_in(tr("{block}", block="(ROUGH THE THREAD)"))) == []
 

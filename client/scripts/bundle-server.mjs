@@ -11,7 +11,7 @@
 // is configured for).
 //
 // OUTPUT_DIR (default: bundled/python at the repository root) receives
-//   - those pure-Python dependencies (lark, pygls, lsprotocol and what they need);
+//   - those pure-Python dependencies (lark, pygls, lsprotocol, babel and what they need);
 //   - a copy of server/fanuc_macro with the symlinks of its data/ folder
 //     replaced by the files they point to, without __pycache__;
 //   - fanuc-macro-bundle.json, which lists what was bundled.
@@ -98,7 +98,9 @@ function projectDependencies(text) {
   const table = /^\[project\]\s*$([\s\S]*?)(?=^\[|(?![\s\S]))/m.exec(text);
   const list = table && /^dependencies\s*=\s*\[([\s\S]*?)\]/m.exec(table[1]);
   if (!list) fail('pyproject.toml has no [project] dependencies list');
-  return [...list[1].matchAll(/"([^"]+)"|'([^']+)'/g)].map((m) => m[1] ?? m[2]);
+  // A comment's words are not requirements (an apostrophe in one would open a string).
+  const items = list[1].replace(/#.*$/gm, '');
+  return [...items.matchAll(/"([^"]+)"|'([^']+)'/g)].map((m) => m[1] ?? m[2]);
 }
 
 function requirementName(requirement) {

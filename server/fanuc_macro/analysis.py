@@ -48,6 +48,7 @@ from .rules.suppression import Hidden, Marks, marks_of
 from .syntax.parser import BlockParser, default_parser, parse_text, quiet_gc
 from .syntax.tree import Document, ParsedLine, PlainNc
 from .threads.identify import Thread
+from .translation import tr
 
 
 def log_failure(logger: str, message: str, *args: object) -> None:
@@ -124,8 +125,18 @@ def rule_name(check: Callable[..., object]) -> str:
 
 
 def internal_error(what: str, err: BaseException) -> str:
-    """The message of an MB000."""
-    return f"internal error in {what}: {err!r}; {REPORT_INTERNAL_ERROR}"
+    """The message of an MB000: ``what`` failed (:func:`failed_rule`, or the evaluator)."""
+    return tr(
+        "internal error in {what}: {error_text}; {report}",
+        what=what,
+        error_text=repr(err),
+        report=REPORT_INTERNAL_ERROR,
+    )
+
+
+def failed_rule(check: Callable[..., object]) -> str:
+    """``rule rules.jumps.check (MB101-MB104)``, as an MB000 names a rule that failed."""
+    return tr("rule {rule_text}", rule_text=rule_name(check))
 
 
 ExtraChecks = Callable[[RuleContext], Iterable[Diagnostic]]
@@ -196,9 +207,7 @@ def _line_findings(parsed: ParsedLine) -> tuple[LineFinding, ...]:
             found.extend(check(parsed))
         except Exception as err:  # a bug in one rule must not hide the others
             log_failure(__name__, "line rule %s failed on %r", rule_name(check), parsed.text[:200])
-            found.append(
-                LineFinding("MB000", internal_error(f"rule {rule_name(check)}", err), 0, 0)
-            )
+            found.append(LineFinding("MB000", internal_error(failed_rule(check), err), 0, 0))
     return tuple(found)
 
 
@@ -254,7 +263,7 @@ def run_checks(
             )
         except Exception as err:  # a bug in one rule must not hide the others
             log_failure(__name__, "rule %s failed on %s", rule_name(rule), ctx.doc.uri)
-            message = internal_error(f"rule {rule_name(rule)}", err)
+            message = internal_error(failed_rule(rule), err)
             found.append(make(MB000, message, 0, 0, 0))
     return found
 
@@ -344,7 +353,9 @@ def analyse(
                 )
             except Exception as err:  # the structural rules still report
                 log_failure(__name__, "evaluation of %s failed", uri)
-                message = internal_error("the evaluator (its rules MB501-MB903 did not run)", err)
+                message = internal_error(
+                    tr("the evaluator (its rules MB501-MB903 did not run)"), err
+                )
                 failed.append(make(MB000, message, 0, 0, 0))
         ctx = RuleContext(doc, index, config, workspace_programs, facts, other_documents)
         found = failed + run_checks(ctx, [*ALL_CHECKS, *extra_checks], cancel)

@@ -67,6 +67,18 @@ class Config:
     # The bar the Toolpath view draws on a lathe, in the program's unit (setting
     # view.stockDiameter): the program's when not set (a stock removal cycle's start, a blank).
     stock_diameter: float = NOT_SET
+    # The cycle time's machine (evaluator/cycle_time.py): each axis's rapid traverse rate in
+    # mm/min (parameter 1420 on the control; the machine builder's). The defaults are a
+    # small lathe's or machining centre's usual figures, not any one machine's (unverified).
+    rapid_rate_x: float = 20_000.0
+    rapid_rate_y: float = 20_000.0
+    rapid_rate_z: float = 24_000.0
+    # Seconds a tool change takes (a lathe's T, a mill's M06): a turret's index or a changer's
+    # swap, chip to chip; 2 s is a usual figure, not any one machine's (unverified).
+    tool_change_seconds: float = 2.0
+    # Seconds the M codes the machine waits for take (a door, a bar feeder, a chuck):
+    # ((code, seconds), ...), sorted by code; no M code takes time unless it is named here.
+    m_code_seconds: tuple[tuple[float, float], ...] = ()
     # Set when the machine was read from the document (controller 0i-F): why it is a lathe or
     # a mill, or why neither could be told; then ``machine_known`` is False, the document is
     # read as a lathe (the 0i-TF) and the verdicts that depend on the machine are not given.
@@ -128,6 +140,7 @@ class Config:
         analysis = settings.get("analysis") or {}
         hover = settings.get("hover") or {}
         view = settings.get("view") or {}
+        cycle = settings.get("cycleTime") or {}
         severities: dict[str, Severity] = {}
         for code, value in (rules.get("severity") or {}).items():
             try:
@@ -139,6 +152,7 @@ class Config:
         custom_calls, call_problems = read_custom_calls(machine.get("customCalls"))
         on_control, range_problems = read_program_ranges(machine.get("programsOnControl"))
         system, system_problems = read_g_code_system(machine.get("gCodeSystem"))
+        m_seconds, m_problems = read_m_code_seconds(cycle.get("mCodeSeconds"))
         return cls(
             selected=_selected(rules),
             per_file_ignores=_per_file_ignores(rules.get("perFileIgnores")),
@@ -159,10 +173,17 @@ class Config:
             max_file_size=int(_number(analysis.get("maxFileSize"), default.max_file_size)),
             hover_full_precision=hover.get("fullPrecision") is True,
             stock_diameter=_number(view.get("stockDiameter"), default.stock_diameter),
+            rapid_rate_x=_number(cycle.get("rapidRateX"), default.rapid_rate_x),
+            rapid_rate_y=_number(cycle.get("rapidRateY"), default.rapid_rate_y),
+            rapid_rate_z=_number(cycle.get("rapidRateZ"), default.rapid_rate_z),
+            tool_change_seconds=_number(
+                cycle.get("toolChangeSeconds"), default.tool_change_seconds
+            ),
+            m_code_seconds=m_seconds,
             g_code_system=system,
             custom_calls=custom_calls,
             programs_on_control=on_control,
-            setting_problems=(*call_problems, *range_problems, *system_problems),
+            setting_problems=(*call_problems, *range_problems, *system_problems, *m_problems),
         )
 
 
@@ -223,6 +244,27 @@ def _number(value: Any, default: float) -> float:
     if isinstance(value, bool) or not isinstance(value, int | float) or value <= 0:
         return default
     return float(value)
+
+
+def read_m_code_seconds(value: Any) -> tuple[tuple[tuple[float, float], ...], tuple[str, ...]]:
+    """``cycleTime.mCodeSeconds`` (``{"M08": 0.5, "M10": 1.5}``, the M optional): each code
+    with its seconds, sorted by code, and a sentence for each entry that cannot be read."""
+    if value is None:
+        return (), ()
+    if not isinstance(value, dict):
+        return (), (f"cycleTime.mCodeSeconds: {value!r} is not an object of M code: seconds",)
+    found: dict[float, float] = {}
+    problems: list[str] = []
+    for code, seconds in value.items():
+        digits = str(code).strip().upper().removeprefix("M")
+        what = f"cycleTime.mCodeSeconds: {code!r}"
+        if not digits.isdigit():
+            problems.append(f"{what} is not an M code (M08, 8)")
+        elif isinstance(seconds, bool) or not isinstance(seconds, int | float) or seconds < 0:
+            problems.append(f"{what}: {seconds!r} is not a number of seconds")
+        else:
+            found[float(int(digits))] = float(seconds)
+    return tuple(sorted(found.items())), tuple(problems)
 
 
 # How the formatter spaces what it may: "keep" what is written, "always" one space, "never" none.

@@ -107,6 +107,16 @@ def _keys() -> tuple[Key, ...]:
         Key("view", "stock-diameter", "view.stockDiameter", "number",
             "The bar's diameter the Toolpath view draws on a lathe, in the program's unit; "
             "the program's when not set."),
+        Key("cycle-time", "rapid-rate-x", "cycleTime.rapidRateX", "number",
+            "The X axis's rapid traverse rate for the cycle time, mm/min (along the radius)."),
+        Key("cycle-time", "rapid-rate-y", "cycleTime.rapidRateY", "number",
+            "The Y axis's rapid traverse rate for the cycle time, mm/min."),
+        Key("cycle-time", "rapid-rate-z", "cycleTime.rapidRateZ", "number",
+            "The Z axis's rapid traverse rate for the cycle time, mm/min."),
+        Key("cycle-time", "tool-change-seconds", "cycleTime.toolChangeSeconds", "number",
+            "Seconds a tool change takes (a lathe's T, a mill's M06) in the cycle time."),
+        Key("cycle-time", "m-code-seconds", "cycleTime.mCodeSeconds", "table",
+            "Seconds the machine waits for M codes, in the cycle time: { M08 = 0.5 }."),
         Key("format", "upper-case", "format.upperCase", "boolean",
             "The formatter writes addresses and keywords in upper case."),
         Key("format", "space-between-words", "format.spaceBetweenWords", "string",
@@ -145,6 +155,11 @@ def default_of(dotted: str) -> Any:
         "analysis.max-blocks": config.max_blocks,
         "analysis.max-file-size": config.max_file_size,
         "hover.full-precision": config.hover_full_precision,
+        "cycle-time.rapid-rate-x": config.rapid_rate_x,
+        "cycle-time.rapid-rate-y": config.rapid_rate_y,
+        "cycle-time.rapid-rate-z": config.rapid_rate_z,
+        "cycle-time.tool-change-seconds": config.tool_change_seconds,
+        "cycle-time.m-code-seconds": {},
         "format.upper-case": fmt.upper_case,
         "format.space-between-words": fmt.space_between_words,
         "format.spaces-around-assignment": fmt.spaces_around_assignment,
@@ -410,7 +425,7 @@ def merged(low: dict[str, Any], high: dict[str, Any]) -> dict[str, Any]:
 
 
 # Settings whose table is one value (a file's custom calls replace the editor's whole).
-_WHOLE_TABLES = frozenset({"customCalls", "severity", "perFileIgnores"})
+_WHOLE_TABLES = frozenset({"customCalls", "severity", "perFileIgnores", "mCodeSeconds"})
 
 
 def files_of(settings: dict[str, Any]) -> tuple[tuple[str, ...], frozenset[str]]:

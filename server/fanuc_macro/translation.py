@@ -17,13 +17,14 @@ English, message by message.
 
 from __future__ import annotations
 
-import functools
 import gettext
-import string
 from collections.abc import Callable, Iterable, Mapping
 from importlib import resources
 from types import MappingProxyType
 from typing import Any
+
+from . import database
+from .database import TableKey
 
 # The locales with catalogues, and the order a locale falls back through them.
 LOCALES = ("en", "zh-cn", "zh-tw", "ja")
@@ -150,35 +151,41 @@ def _fill(template: str, params: Mapping[str, object], said: tuple[str, str] | N
         k: (render(v, *said) if said is not None and isinstance(v, Text) else v)
         for k, v in params.items()
     }
-    return _FORMATTER.vformat(template, (), values)
+    return template.format_map(values)
 
 
-_FORMATTER = string.Formatter()
+# The catalogues read, by (locale, domain): each's translations (message id -> its forms, one
+# or a plural's in their order) and its plural rule. Read once per database, on first use.
+_CATALOGUES: TableKey[
+    tuple[str, str], tuple[Mapping[str, tuple[str, ...]], Callable[[int], int]]
+] = TableKey("translation.catalogues")
 
 
-@functools.cache
 def _catalogue(locale: str, domain: str) -> Mapping[str, tuple[str, ...]]:
-    """A locale's translations: message id -> its forms (one; a plural's, in its order)."""
-    directory = DIRECTORY.get(locale)
-    if directory is None:
-        return MappingProxyType({})
-    source = resources.files("fanuc_macro") / "data" / "locale" / directory / "LC_MESSAGES"
-    try:
-        text = (source / f"{domain}.po").read_text("utf-8")
-    except OSError:
-        return MappingProxyType({})
-    return MappingProxyType(read_po_text(text)[0])
+    return _read(locale, domain)[0]
 
 
-@functools.cache
 def _plural_index(locale: str, domain: str) -> Callable[[int], int]:
-    directory = DIRECTORY.get(locale)
-    source = resources.files("fanuc_macro") / "data" / "locale" / str(directory) / "LC_MESSAGES"
-    try:
-        expression = read_po_text((source / f"{domain}.po").read_text("utf-8"))[1]
-    except OSError:
+    return _read(locale, domain)[1]
+
+
+def _read(locale: str, domain: str) -> tuple[Mapping[str, tuple[str, ...]], Callable[[int], int]]:
+    table = database.current().table(_CATALOGUES)
+    found = table.get((locale, domain))
+    if found is None:
+        entries: dict[str, tuple[str, ...]] = {}
         expression = "0"
-    return gettext.c2py(expression)
+        directory = DIRECTORY.get(locale)
+        if directory is not None:
+            source = resources.files("fanuc_macro") / "data" / "locale" / directory
+            try:
+                text = (source / "LC_MESSAGES" / f"{domain}.po").read_text("utf-8")
+            except OSError:
+                text = ""
+            if text:
+                entries, expression = read_po_text(text)
+        found = table[(locale, domain)] = (MappingProxyType(entries), gettext.c2py(expression))
+    return found
 
 
 def read_po_text(text: str) -> tuple[dict[str, tuple[str, ...]], str]:

@@ -378,6 +378,9 @@ def cmd_trace(args: argparse.Namespace) -> int:
     out.write(
         f"{summary['motions']} motions ({by_code}); {summary['blocks_executed']} blocks executed\n"
     )
+    from ..ide import cycle_time_text
+
+    out.write(cycle_time_text(summary) + "\n")
     if summary["stopped"]:
         out.write(f"stopped early: {summary.get('stop_message') or summary['stopped']}\n")
     for part in summary["read_in_part"]:

@@ -20,7 +20,7 @@ def cmd_plot(args: argparse.Namespace) -> int:
     doc = workspace.document(uri)
     assert doc is not None
     try:
-        toolpath, stop = run_plot(
+        toolpath, stop, timed = run_plot(
             uri, doc, workspace.index(uri), workspace.others(uri), config, args.entry
         )
         # The pass maps of the threads the rules see in the file.
@@ -37,6 +37,7 @@ def cmd_plot(args: argparse.Namespace) -> int:
             title=title,
             main_uri=uri,
             stop=stop,
+            timed=timed,
         )
     except NothingToPlot as err:
         sys.stderr.write(f"fanuc-macro: {args.file}: {err}\n")

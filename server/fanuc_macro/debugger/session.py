@@ -17,6 +17,7 @@ from pathlib import Path
 from ..evaluator.facts import AlarmFinding, Facts
 from ..evaluator.machine import K_ASSIGN, Activation, Machine, ProgramContext, build_contexts
 from ..evaluator.run import entry_programs
+from ..evaluator.toolpath import Recorder
 from ..evaluator.values import Value
 from ..ide import Precision
 from ..program.machine_kind import machine_config
@@ -169,6 +170,10 @@ class Session:
                 self.launch.config, entry.doc, None if indexed is None else indexed[1]
             )
             machine = Machine(programs, config, facts, every)
+            # The moves and timed blocks, for the cycle time a stop shows.
+            timed = frozenset(code for code, _ in config.m_code_seconds)
+            recorder = machine.toolpath = Recorder(config.is_lathe, timed_codes=timed)
+            facts.toolpath = recorder.toolpath
             machine.stepper = self
             self._machine = machine
             self._record.clear()

@@ -8,6 +8,7 @@ from collections.abc import Callable, Sequence
 from types import MappingProxyType
 
 from ..evaluator.compiler import Evaluator
+from ..evaluator.cycle_time import cycle_time, minutes_seconds
 from ..evaluator.machine import Activation
 from ..evaluator.values import MacroAlarm, Value
 from ..program.knowledge import code_name
@@ -155,6 +156,11 @@ class StopView:
             speed += " m/min (G96)"
         out.append(VariableInfo("S", speed, kind="modal", read_only=True))
         out.append(VariableInfo("T", show(self.record.tool), kind="modal", read_only=True))
+        machine = act.machine
+        timed = cycle_time(machine.facts, machine.config)  # what ran before the stopped block
+        if timed is not None:
+            elapsed = minutes_seconds(timed.total.total)
+            out.append(VariableInfo("cycle time so far", elapsed, kind="modal", read_only=True))
         for axis in sorted(modal.position):
             out.append(VariableInfo(axis, show(modal.position[axis]), kind="modal", read_only=True))
         for callee, _args, _repeat in modal.modal_calls:

@@ -10,6 +10,7 @@ from ..config import CustomCallSetting, on_control
 from ..program.custom_calls import called_by_code, calling_word
 from ..program.variables import ARGUMENT_VARIABLES
 from ..program.vendor_cycles import known_cycle
+from ..translation import tr
 from .compile_lines import CompiledLine, CompiledWord
 from .facts import ProgramNotFound
 from .machine_base import SPINDLE_UNKNOWN, Activation, MachineBase, ProgramContext, StopRun
@@ -38,9 +39,11 @@ class CallsPart(MachineBase):
         if ctx is None and not (
             quiet or on_control(self.config, int(number)) or known_cycle(int(number))
         ):
-            message = (
-                f"{what} calls O{int(number):04d}, which the analysis does not "
-                "have; the call is skipped"
+            message = tr(
+                "{call} calls O{program:04d}, which the analysis does not "
+                "have; the call is skipped",
+                call=what,
+                program=int(number),
             )
             width = len(act.ctx.doc.blocks[self._line].text)
             self._finding(
@@ -247,7 +250,7 @@ class CallsPart(MachineBase):
                 self._line,
                 ctx.name,
                 ctx.uri,
-                "a call the analysis cannot follow moves the tool where it does not know",
+                tr("a call the analysis cannot follow moves the tool where it does not know"),
             )
 
     def _enter(
@@ -271,14 +274,20 @@ class CallsPart(MachineBase):
                 raise MacroAlarm(
                     "PS0077",
                     AlarmKind.NESTING,
-                    f"macro call nesting deeper than "
-                    f"{MAX_MACRO_LEVEL} levels (TOO MANY SUB,MACRO NESTING)",
+                    tr(
+                        "macro call nesting deeper than "
+                        "{levels} levels (TOO MANY SUB,MACRO NESTING)",
+                        levels=MAX_MACRO_LEVEL,
+                    ),
                 )
         if depth > MAX_NESTING:
             raise MacroAlarm(
                 "PS0077",
                 AlarmKind.NESTING,
-                f"call nesting deeper than {MAX_NESTING} (TOO MANY SUB,MACRO NESTING)",
+                tr(
+                    "call nesting deeper than {levels} (TOO MANY SUB,MACRO NESTING)",
+                    levels=MAX_NESTING,
+                ),
             )
         callee.facts.analysed_programs.add(callee.program.first_line)
         locals_list = list(locals_) if new_level else locals_
@@ -307,7 +316,11 @@ class CallsPart(MachineBase):
                 raise MacroAlarm(
                     "PS0078",
                     AlarmKind.RETURN_MISSING,
-                    f"M99 P{int(p)}: no N{int(p)} in {caller.ctx.name} (SEQUENCE NUMBER NOT FOUND)",
+                    tr(
+                        "M99 P{label}: no N{label} in {program} (SEQUENCE NUMBER NOT FOUND)",
+                        label=int(p),
+                        program=caller.ctx.name,
+                    ),
                     p,
                 )
             caller.pc = target

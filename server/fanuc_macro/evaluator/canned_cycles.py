@@ -13,6 +13,7 @@ from itertools import pairwise
 from types import MappingProxyType
 
 from ..syntax.marks import constant_value
+from ..translation import tr
 from .compile_lines import K_EMPTY, K_NC, K_OTHER, CompiledLine, CompiledWord
 from .cycles import g76_depths
 from .facts import Motion, ProfileFault, ThreadCycleFault
@@ -24,6 +25,7 @@ from .machine_base import (
     StopRun,
     system_a_block,
 )
+from .machine_setup import unit_of
 from .toolpath import ProfileBlock
 from .values import MacroAlarm, Unknown, Value, fmt
 
@@ -37,7 +39,7 @@ PROFILE_ALARMS: Mapping[str, str] = MappingProxyType(
         "divisions": "PS0321",
         "label": "PS0063",
         "first": "PS0065",
-        "monotone": "PS0064 or PS0329, unverified which",
+        "monotone": tr("PS0064 or PS0329, unverified which"),
         "last": "PS0069",
     }
 )
@@ -78,28 +80,38 @@ class CyclesPart(MachineBase):
         ctx = act.ctx
         p, q = values.get("P"), values.get("Q")
         if not isinstance(p, float) or not isinstance(q, float):
-            return "its P or Q is not known", line + 1, None
+            return tr("its P or Q is not known"), line + 1, None
         first = self._label(ctx, int(p), line)
         if first is None:
-            why = f"no N{int(p)} (its P) in {ctx.name}"
+            why = tr("no N{label} (its P) in {program}", label=int(p), program=ctx.name)
             self._profile_fault(act, code, why, "label")
             return why, line + 1, None
         last = self._label(ctx, int(q), first - 1)
         if last is None or last < first:
-            why = f"no N{int(q)} (its Q) after N{int(p)} in {ctx.name}"
+            why = tr(
+                "no N{label} (its Q) after N{first} in {program}",
+                label=int(q),
+                first=int(p),
+                program=ctx.name,
+            )
             self._profile_fault(act, code, why, "label")
             return why, line + 1, None
         lines = ctx.lines
         for n in range(first, last + 1):
             if not _plain_profile_line(lines[n]):
                 return (
-                    f"the profile N{int(p)}-N{int(q)} holds a block the analysis does not "
-                    f"follow in a profile (line {n + 1})",
+                    tr(
+                        "the profile N{first}-N{last} holds a block the analysis does not "
+                        "follow in a profile (line {line})",
+                        first=int(p),
+                        last=int(q),
+                        line=n + 1,
+                    ),
                     line + 1,
                     None,
                 )
         if self.modal.modal_calls:
-            return "a G66 modal call is in force", line + 1, None
+            return tr("a G66 modal call is in force"), line + 1, None
         self._profile_budget(act, last + 1 - first)
         if code == 70.0:
             return [], line + 1, (first, last)
@@ -121,21 +133,31 @@ class CyclesPart(MachineBase):
             self._profile_fault(
                 act,
                 code,
-                f"its first block moves by {self._shown(motion)}, and a profile must begin "
-                "with G00 or G01",
+                tr(
+                    "its first block moves by {code}, and a profile must begin with G00 or G01",
+                    code=self._shown(motion),
+                ),
                 "first",
             )
 
     def _profile_fault(self, act: Activation, code: float, why: str, fault: str) -> None:
         """A G70-G73 the control stops at, for its profile: ``why``."""
         alarm = PROFILE_ALARMS[fault]
-        what = f"{self._shown(code)}'s profile" if fault not in CYCLE_DATA else self._shown(code)
-        self._block_finding(
-            act,
-            ProfileFault,
-            f"{what}: {why}; the control stops ({alarm})",
-            fault=fault,
-        )
+        if fault in CYCLE_DATA:
+            message = tr(
+                "{code}: {why}; the control stops ({alarm})",
+                code=self._shown(code),
+                why=why,
+                alarm=alarm,
+            )
+        else:
+            message = tr(
+                "{code}'s profile: {why}; the control stops ({alarm})",
+                code=self._shown(code),
+                why=why,
+                alarm=alarm,
+            )
+        self._block_finding(act, ProfileFault, message, fault=fault)
 
     def _check_monotone(
         self, act: Activation, code: float, blocks: list[ProfileBlock], first: int
@@ -163,15 +185,36 @@ class CyclesPart(MachineBase):
             down = [i for i, s in enumerate(steps) if s < -MONOTONE_EPS]
             if up and down:
                 turn = max(up[0], down[0]) + 1  # the block whose end goes back
-                kind = "type I " if not type_two else ""
-                self._profile_fault(
-                    act,
-                    code,
-                    f"{axis} goes {'up' if up[0] < down[0] else 'down'} and then back, at "
-                    f"{axis}{fmt(ends[turn][axis])}: a {kind}{self._shown(code)} profile must "
-                    f"keep going one way in {axis}",
-                    "monotone",
-                )
+                said = {"axis": axis, "at": fmt(ends[turn][axis]), "code": self._shown(code)}
+                if up[0] < down[0]:
+                    why = (
+                        tr(
+                            "{axis} goes up and then back, at {axis}{at}: a {code} profile "
+                            "must keep going one way in {axis}",
+                            **said,
+                        )
+                        if type_two
+                        else tr(
+                            "{axis} goes up and then back, at {axis}{at}: a type I {code} "
+                            "profile must keep going one way in {axis}",
+                            **said,
+                        )
+                    )
+                else:
+                    why = (
+                        tr(
+                            "{axis} goes down and then back, at {axis}{at}: a {code} profile "
+                            "must keep going one way in {axis}",
+                            **said,
+                        )
+                        if type_two
+                        else tr(
+                            "{axis} goes down and then back, at {axis}{at}: a type I {code} "
+                            "profile must keep going one way in {axis}",
+                            **said,
+                        )
+                    )
+                self._profile_fault(act, code, why, "monotone")
                 return
 
     def _beyond_start(
@@ -203,16 +246,28 @@ class CyclesPart(MachineBase):
         depth = self._depth_of_cut(act, code)
         if excess <= max(depth or 0.0, MONOTONE_EPS):
             return False
-        unit = "inch" if self.modal.inch else "mm"
-        cut = f"more than its depth of cut {fmt(depth)} {unit}" if depth else "stock"
+        unit = unit_of(self.modal.inch)
+        cut = (
+            tr("more than its depth of cut {depth} {unit}", depth=fmt(depth), unit=unit)
+            if depth
+            else tr("stock")
+        )
         self._block_finding(
             act,
             ProfileFault,
-            f"{self._shown(code)}'s profile: it goes to {axis}{fmt(beyond)}, "
-            f"{fmt(round(excess, 4))} {unit} past the cycle's "
-            f"start point {axis}{fmt(start)}: the roughing passes start there and leave what "
-            f"lies beyond, {cut}, to one cut of the finishing pass (with the finishing-shape "
-            "check on, parameter 5104#2, the control stops: PS0322)",
+            tr(
+                "{code}'s profile: it goes to {axis}{beyond}, {excess} {unit} past the cycle's "
+                "start point {axis}{start}: the roughing passes start there and leave what "
+                "lies beyond, {cut}, to one cut of the finishing pass (with the finishing-shape "
+                "check on, parameter 5104#2, the control stops: PS0322)",
+                code=self._shown(code),
+                axis=axis,
+                beyond=fmt(beyond),
+                excess=fmt(round(excess, 4)),
+                unit=unit,
+                start=fmt(start),
+                cut=cut,
+            ),
             fault="start",
         )
         return True
@@ -240,8 +295,10 @@ class CyclesPart(MachineBase):
             self._profile_fault(
                 act,
                 code,
-                "its last block ends in a chamfer or corner R (,C ,R), with no move of the "
-                "profile after it",
+                tr(
+                    "its last block ends in a chamfer or corner R (,C ,R), with no move of the "
+                    "profile after it"
+                ),
                 "last",
             )
 
@@ -351,8 +408,12 @@ class CyclesPart(MachineBase):
                 self._block_finding(
                     act,
                     ThreadCycleFault,
-                    f"G76 P{digits:06d} gives the tool angle {angle:g}°, which the cycle does not "
-                    "take (80, 60, 55, 30, 29 or 0): the control stops (PS0315)",
+                    tr(
+                        "G76 P{digits:06d} gives the tool angle {angle:g}°, which the cycle "
+                        "does not take (80, 60, 55, 30, 29 or 0): the control stops (PS0315)",
+                        digits=digits,
+                        angle=angle,
+                    ),
                     fault="angle",
                 )
         q = self._least_increments(values.get("Q"), self._word(order, "Q"))
@@ -415,7 +476,12 @@ class CyclesPart(MachineBase):
             d = values.get(depth)
             if d == 0.0:
                 self._profile_fault(
-                    act, code, f"its depth of cut {depth} is 0, and the cycle cuts nothing", "depth"
+                    act,
+                    code,
+                    tr(
+                        "its depth of cut {address} is 0, and the cycle cuts nothing", address=depth
+                    ),
+                    "depth",
                 )
         elif code == 73.0 and "P" not in values:
             r = values.get("R")
@@ -423,7 +489,11 @@ class CyclesPart(MachineBase):
                 self._profile_fault(
                     act,
                     code,
-                    f"its number of divisions R is {fmt(r)}, and the pattern needs one at least",
+                    tr(
+                        "its number of divisions R is {divisions}, and the pattern needs one at "
+                        "least",
+                        divisions=fmt(r),
+                    ),
                     "divisions",
                 )
 
@@ -431,24 +501,42 @@ class CyclesPart(MachineBase):
         """G76's thread height k and first depth Δd must be above 0 (PS0317), and the least
         depth of its first block no more than k (PS0316) (0i-TF "Multiple threading cycle
         (G76)", the alarms of the cycle). Whether the control refuses the cycle."""
-        unit = "inch" if self.modal.inch else "mm"
-        why = None
+        why: tuple[str, str] | None = None
         if height is not None and height <= 0.0:
-            why = f"its thread height P is {fmt(height)} {unit}", "PS0317"
+            why = (
+                tr(
+                    "its thread height P is {height} {unit}",
+                    height=fmt(height),
+                    unit=unit_of(self.modal.inch),
+                ),
+                "PS0317",
+            )
         elif first is not None and first <= 0.0:
-            why = f"its first depth of cut Q is {fmt(first)} {unit}", "PS0317"
+            why = (
+                tr(
+                    "its first depth of cut Q is {depth} {unit}",
+                    depth=fmt(first),
+                    unit=unit_of(self.modal.inch),
+                ),
+                "PS0317",
+            )
         elif height is not None and self.modal.g76.min_depth > height:
             least = self.modal.g76.min_depth
             why = (
-                f"the least depth of cut {fmt(least)} {unit} of its first block is more than "
-                f"the thread height {fmt(height)} {unit}",
+                tr(
+                    "the least depth of cut {least} {unit} of its first block is more than the "
+                    "thread height {height} {unit}",
+                    least=fmt(least),
+                    height=fmt(height),
+                    unit=unit_of(self.modal.inch),
+                ),
                 "PS0316",
             )
         if why is not None:
             self._block_finding(
                 act,
                 ThreadCycleFault,
-                f"G76 cannot cut: {why[0]}; the control stops ({why[1]})",
+                tr("G76 cannot cut: {why}; the control stops ({alarm})", why=why[0], alarm=why[1]),
                 fault="depths",
             )
         return why is not None

@@ -25,6 +25,7 @@ from ..syntax.tree import (
     Unary,
     Var,
 )
+from ..translation import tr
 from .values import (
     ONE_ARG,
     TWO_ARG,
@@ -340,8 +341,13 @@ def _overflow(expr: Binary, a: float, b: float) -> MacroAlarm:
     alarm = MacroAlarm(
         "PS0111",
         AlarmKind.OVERFLOW,
-        f"{fmt(a)} {expr.op} {fmt(b)} overflows: the result is beyond any value a control "
-        "holds (CALCULATED DATA OVERFLOW)",
+        tr(
+            "{left} {operator} {right} overflows: the result is beyond any value a control "
+            "holds (CALCULATED DATA OVERFLOW)",
+            left=fmt(a),
+            operator=expr.op,
+            right=fmt(b),
+        ),
         a,
     )
     alarm.node = expr
@@ -636,7 +642,11 @@ def _function_overflow(expr: Call, *args: float) -> MacroAlarm:
     alarm = MacroAlarm(
         "PS0111",
         AlarmKind.OVERFLOW,
-        f"{expr.name}[{shown}] overflows (CALCULATED DATA OVERFLOW)",
+        tr(
+            "{function}[{arguments}] overflows (CALCULATED DATA OVERFLOW)",
+            function=expr.name,
+            arguments=shown,
+        ),
         args[0],
     )
     alarm.node = expr

@@ -12,6 +12,7 @@ from dataclasses import dataclass, field, replace
 from types import MappingProxyType
 from typing import TYPE_CHECKING, ClassVar, TypeVar, cast
 
+from ..translation import tr
 from .values import AlarmKind, Unknown, Value, fmt
 
 if TYPE_CHECKING:
@@ -248,18 +249,26 @@ class ValueSummary:
         """``1.907`` or ``0.092 → 1.887 (88 values, min 0.092, max 1.887)``, each value as
         ``show`` writes it (the control's display by default)."""
         if self.count == 0:
-            return "never evaluated"
+            return tr("never evaluated")
         if self.count == 1 or (self.constant and self.unknown is None):
             return show(self.first)
         if not self.numeric:
             return show(self.last)
-        text = (
-            f"{show(self.first)} → {show(self.last)} ({self.count} times, min "
-            f"{show(self.minimum)}, max {show(self.maximum)})"
-        )
+        said = {
+            "first": show(self.first),
+            "last": show(self.last),
+            "count": self.count,
+            "minimum": show(self.minimum),
+            "maximum": show(self.maximum),
+        }
         if self.vacant:
-            text += f", vacant {self.vacant} times"
-        return text
+            return tr(
+                "{first} → {last} ({count} times, min {minimum}, max {maximum}), vacant "
+                "{vacant} times",
+                vacant=self.vacant,
+                **said,
+            )
+        return tr("{first} → {last} ({count} times, min {minimum}, max {maximum})", **said)
 
 
 @dataclass(init=False)
@@ -313,6 +322,10 @@ class Motion:
     speed_clamp: float | None
     # G76: the tool angle a of its first block, along whose flank the passes step.
     tool_angle: float | None
+    # The feed mode's G code in force when the run set another than the machine's power-on
+    # one (a lathe's G98 per minute, a mill's G95 per revolution: see POWER_ON_FEED_MODE);
+    # None: the power-on mode. What the cycle time divides the F by.
+    feed_mode: float | None
 
     def __init__(
         self,
@@ -338,6 +351,7 @@ class Motion:
         surface_speed: float | None = None,
         speed_clamp: float | None = None,
         tool_angle: float | None = None,
+        feed_mode: float | None = None,
     ) -> None:
         self.program = program
         self.line = line
@@ -363,9 +377,10 @@ class Motion:
             or surface_speed is not None
             or speed_clamp is not None
             or tool_angle is not None
+            or feed_mode is not None
         ):
             values = (cycle_pass, finishing, written, inch, drilling)
-            rare = (*values, surface_speed, speed_clamp, tool_angle)
+            rare = (*values, surface_speed, speed_clamp, tool_angle, feed_mode)
             for name, value in zip(_RARE, rare, strict=True):
                 setattr(self, name, value)
 
@@ -386,9 +401,14 @@ _RARE_DEFAULTS: Mapping[str, object] = MappingProxyType(
         "surface_speed": None,
         "speed_clamp": None,
         "tool_angle": None,
+        "feed_mode": None,
     }
 )
 _RARE = tuple(_RARE_DEFAULTS)
+# The feed mode a machine is in at power on, by lathe or not: a lathe in G99 (feed per
+# revolution), a mill in G94 (per minute). FANUC 0i-TF/0i-MF Operator's Manual, "Feed
+# functions"; a parameter may choose the other (the lathe's FPM, unverified which number).
+POWER_ON_FEED_MODE: Mapping[bool, float] = MappingProxyType({True: 99.0, False: 94.0})
 
 
 def _rare_field(name: str, default: object) -> property:
@@ -886,11 +906,12 @@ class Facts:
         """What a user is told when the safety net stopped the analysis (None otherwise)."""
         if self.stopped != "time":
             return None
-        return (
-            f"analysis stopped after {self.time_limit:g} s, before its step budget (the "
+        return tr(
+            "analysis stopped after {seconds:g} s, before its step budget (the "
             "machine running the analysis is slow or busy): the runs are incomplete, so no "
             "verdict that needs a whole run is given (endless or long loop, blocks never "
-            "executed, conditions always true or false)"
+            "executed, conditions always true or false)",
+            seconds=self.time_limit,
         )
 
     def document(self, uri: str) -> DocumentFacts:
@@ -1062,14 +1083,22 @@ def _findings_both_ways(a: list[Finding], b: list[Finding]) -> list[Finding]:
             matched[key] = matched.get(key, 0) + 1
             out.append(f)
         else:
-            out.append(replace(f, message=f.message + SWITCH_OFF))
+            out.append(
+                replace(
+                    f, message=tr("{message} (with the block-delete switch off)", message=f.message)
+                )
+            )
     for f in b:
         key = _place(f)
         taken = matched.get(key, 0)
         if taken:
             matched[key] = taken - 1
         else:
-            out.append(replace(f, message=f.message + SWITCH_ON))
+            out.append(
+                replace(
+                    f, message=tr("{message} (with the block-delete switch on)", message=f.message)
+                )
+            )
     return out
 
 
@@ -1090,9 +1119,24 @@ def _cuts_both_ways(
         if both:
             out.append(replace(cuts, lines=both))
         if only:
-            out.append(replace(cuts, lines=only, message=cuts.message + SWITCH_OFF))
+            out.append(
+                replace(
+                    cuts,
+                    lines=only,
+                    message=tr(
+                        "{message} (with the block-delete switch off)", message=cuts.message
+                    ),
+                )
+            )
     for cuts in b:
         only = array("i", [line for line in cuts.lines if line not in in_a])
         if only:
-            out.append(replace(cuts, lines=only, message=cuts.message + SWITCH_ON, after=findings))
+            out.append(
+                replace(
+                    cuts,
+                    lines=only,
+                    message=tr("{message} (with the block-delete switch on)", message=cuts.message),
+                    after=findings,
+                )
+            )
     return out

@@ -17,6 +17,7 @@ from dataclasses import dataclass, fields, replace
 from operator import attrgetter
 
 from ..syntax.tree import Document
+from ..translation import Text
 from .checkpoints import LevelState, MachineState, ModalState, ProgramShape, RunRecord
 from .facts import CutsWithoutFeed, DocumentFacts, Facts, Finding, Motion
 
@@ -351,9 +352,13 @@ def _finding(f: Finding, maybe: MaybeRenumber) -> Finding:
 _LINE_NAMED = re.compile(r"\bline (\d+)\b(?! of )")
 
 
+# The same in a translatable message's template: the field that holds the line's number.
+_LINE_FIELD = re.compile(r"\bline \{(\w+)\}(?! of )")
+
+
 def _message(f: Finding, maybe: MaybeRenumber) -> str:
     """The finding's message with the lines it names in the new numbers (the same string
-    when none moves)."""
+    when none moves). A :class:`Text` stays one: the numbers in its parameters move."""
     moved = False
 
     def renumbered(m: re.Match[str]) -> str:
@@ -364,6 +369,35 @@ def _message(f: Finding, maybe: MaybeRenumber) -> str:
         moved = True
         return f"line {n + 1}"
 
+    def number(line: object) -> object:
+        nonlocal moved
+        if type(line) is not int:
+            return line
+        n = maybe(f.uri, line - 1)
+        if n is None or n + 1 == line:
+            return line
+        moved = True
+        return n + 1
+
+    def text_renumbered(text: Text) -> Text:
+        lines = set(_LINE_FIELD.findall(text.template))
+        params = {
+            name: (
+                number(value)
+                if name in lines
+                else text_renumbered(value)
+                if isinstance(value, Text)
+                else _LINE_NAMED.sub(renumbered, value)
+                if isinstance(value, str) and "line " in value
+                else value
+            )
+            for name, value in text.params.items()
+        }
+        return Text(text.template, params, text.plural, text.number)
+
+    if isinstance(f.message, Text):
+        said = text_renumbered(f.message)
+        return said if moved else f.message
     text = _LINE_NAMED.sub(renumbered, f.message)
     return text if moved else f.message
 

@@ -22,6 +22,7 @@ from ..line_maps import LineMap
 from ..program.index import ProgramIndex
 from ..program.variables import classify
 from ..syntax.tree import Document, ParsedLine, PlainNc
+from ..translation import tr
 from .checkpoints import CtxKey, LevelState, MachineState, ModalState
 from .compile_lines import (
     K_ASSIGN,
@@ -126,7 +127,11 @@ class Machine(MotionPart):
         act = Activation(self, entry, locals_, 0, None, 0, 0)
         entry.facts.analysed_programs.add(entry.program.first_line)
         if self.toolpath is not None:
-            self.toolpath.begin_run(len(self.facts.motions), self.lathe)
+            self.toolpath.begin_run(
+                len(self.facts.motions),
+                self.lathe,
+                (entry.uri, entry.program.first_line, entry.name),
+            )
         self._steps = 0
         self._profile_blocks = 0
         self._checkpoint(act, 0)
@@ -632,8 +637,12 @@ class Machine(MotionPart):
                 raise MacroAlarm(
                     "PS0111",
                     AlarmKind.OVERFLOW,
-                    f"the result {fmt(value)} is beyond the control's range "
-                    f"±{largest:.3g} (CALCULATED DATA OVERFLOW)",
+                    tr(
+                        "the result {value} is beyond the control's range ±{largest:.3g} "
+                        "(CALCULATED DATA OVERFLOW)",
+                        value=fmt(value),
+                        largest=largest,
+                    ),
                 )
             if -smallest < value < smallest:
                 value = 0.0  # below the smallest magnitude the control holds (unverified)
@@ -655,14 +664,22 @@ class Machine(MotionPart):
                 raise MacroAlarm(
                     "PS0115",
                     AlarmKind.NO_SUCH_VARIABLE,
-                    f"#[...] = ... writes #{n}, which does not exist (VARIABLE NO. OUT OF RANGE)",
+                    tr(
+                        "#[...] = ... writes #{number}, which does not exist (VARIABLE NO. OUT "
+                        "OF RANGE)",
+                        number=n,
+                    ),
                     float(n),
                 )
             if kind.read_only:
                 raise MacroAlarm(
                     "PS0116",
                     AlarmKind.WRITE_READ_ONLY,
-                    f"#[...] = ... writes #{n}, which is read-only ({kind.meaning})",
+                    tr(
+                        "#[...] = ... writes #{number}, which is read-only ({meaning})",
+                        number=n,
+                        meaning=kind.meaning,
+                    ),
                     float(n),
                 )
         if n < 0:
@@ -670,7 +687,7 @@ class Machine(MotionPart):
         if 1 <= n <= 33:
             act.locals[n] = value
         elif n == 0:
-            raise MacroAlarm("PS0116", AlarmKind.WRITE_READ_ONLY, "#0 is read-only", 0.0)
+            raise MacroAlarm("PS0116", AlarmKind.WRITE_READ_ONLY, tr("#0 is read-only"), 0.0)
         else:
             if n == 3000 and self.speculative:
                 # Reached through a condition the analysis could not decide (an argument
@@ -680,7 +697,11 @@ class Machine(MotionPart):
                 raise MacroAlarm(
                     "3000",
                     AlarmKind.MACRO_ALARM,
-                    f"#3000 = {fmt(value)}: the program raises macro alarm {3000 + int(value)}",
+                    tr(
+                        "#3000 = {value}: the program raises macro alarm {alarm}",
+                        value=fmt(value),
+                        alarm=3000 + int(value),
+                    ),
                     value,
                 )
             if not _volatile(n):
@@ -697,8 +718,10 @@ class Machine(MotionPart):
             raise MacroAlarm(
                 "PS0128",
                 AlarmKind.GOTO_TARGET,
-                f"GOTO {fmt(target)}: not a sequence number 1-99999 (ILLEGAL MACRO "
-                "SEQUENCE NUMBER)",
+                tr(
+                    "GOTO {target}: not a sequence number 1-99999 (ILLEGAL MACRO SEQUENCE NUMBER)",
+                    target=fmt(target),
+                ),
                 target if target is not None else 0.0,
             )
         line = self._label(ctx, int(target), self._line)
@@ -706,8 +729,11 @@ class Machine(MotionPart):
             raise MacroAlarm(
                 "PS0128",
                 AlarmKind.GOTO_MISSING,
-                f"GOTO {int(target)}: no N{int(target)} in {ctx.name} (ILLEGAL MACRO "
-                "SEQUENCE NUMBER)",
+                tr(
+                    "GOTO {target}: no N{target} in {program} (ILLEGAL MACRO SEQUENCE NUMBER)",
+                    target=int(target),
+                    program=ctx.name,
+                ),
                 target,
             )
         return line
@@ -768,18 +794,24 @@ class Machine(MotionPart):
         if type(value) is not float:
             return
         caller = act.caller
-        entry = (
-            ""
-            if caller is None
-            else f" (the call on {self._where(act, (caller.ctx.uri, act.return_pc - 1))})"
-        )
-        self._block_finding(
-            act,
-            LoopNoTurn,
-            f"this entry of the loop{entry} runs no turn: its counter #{n} is {fmt(value)}, and "
-            "the loop counts it on from where it stands; set it to its start value before the "
-            "WHILE",
-        )
+        if caller is None:
+            message = tr(
+                "this entry of the loop runs no turn: its counter #{number} is {value}, and the "
+                "loop counts it on from where it stands; set it to its start value before the "
+                "WHILE",
+                number=n,
+                value=fmt(value),
+            )
+        else:
+            message = tr(
+                "this entry of the loop (the call on {where}) runs no turn: its counter "
+                "#{number} is {value}, and the loop counts it on from where it stands; set it "
+                "to its start value before the WHILE",
+                where=self._where(act, (caller.ctx.uri, act.return_pc - 1)),
+                number=n,
+                value=fmt(value),
+            )
+        self._block_finding(act, LoopNoTurn, message)
 
 
 _PROGRAM_ENDS = (("M", 2.0), ("M", 30.0))

@@ -19,6 +19,7 @@ from ..program.index import Program
 from ..program.variables import classify
 from ..syntax.tree import Compare, Document, Expr, Statement, Var
 from ..syntax.walk import subexpressions
+from ..translation import joined, tr
 from .checkpoints import CtxKey, Resumption, RunRecord
 from .compile_lines import (
     INTEGER_ADDRESSES,
@@ -197,7 +198,10 @@ class Activation:
             raise MacroAlarm(
                 "PS0115",
                 AlarmKind.NO_SUCH_VARIABLE,
-                f"#[...] refers to #{n}, which does not exist (VARIABLE NO. OUT OF RANGE)",
+                tr(
+                    "#[...] refers to #{number}, which does not exist (VARIABLE NO. OUT OF RANGE)",
+                    number=n,
+                ),
                 float(n),
             )
         v = self.store.get(n, self)
@@ -486,7 +490,9 @@ class MachineBase:
     def _where(self, act: Activation, at: tuple[str, int]) -> str:
         """A block as a message names it: its line, and its document if not ``act``'s."""
         uri, line = at
-        return f"line {line + 1}" if uri == act.ctx.uri else f"line {line + 1} of {uri}"
+        if uri == act.ctx.uri:
+            return tr("line {line}", line=line + 1)
+        return tr("line {line} of {uri_text}", line=line + 1, uri_text=uri)
 
     def _shown(self, code: float) -> str:
         """A motion code as the program writes it (a system B or C lathe's own number)."""
@@ -502,8 +508,12 @@ class MachineBase:
             self._block_finding(
                 act,
                 SkipReadBeforeG31,
-                f"#{number} (the skip position) is read before any G31 of this run: it holds "
-                "where an earlier program's skip stopped, not this program's measurement",
+                tr(
+                    "#{number} (the skip position) is read before any G31 of this run: it "
+                    "holds where an earlier program's skip stopped, not this program's "
+                    "measurement",
+                    number=number,
+                ),
             )
 
     @staticmethod
@@ -716,7 +726,11 @@ class MachineBase:
             if isinstance(v, Unknown) or v is None or (d_is_data and address == "D"):
                 continue
             if (address in INTEGER_ADDRESSES or (address == "P" and calls)) and v != int(v):
-                message = f"{address} gets {fmt(v)}: {address} takes a whole number"
+                message = tr(
+                    "{address} gets {value}: {address} takes a whole number",
+                    address=address,
+                    value=fmt(v),
+                )
                 self._finding(
                     act.ctx,
                     AddressNotInteger(
@@ -724,7 +738,7 @@ class MachineBase:
                     ),
                 )
             elif address == "G" and round(v, 1) != v:
-                message = f"G gets {fmt(v)}: not a G code"
+                message = tr("G gets {value}: not a G code", value=fmt(v))
                 self._finding(
                     act.ctx,
                     AddressNotInteger(
@@ -732,7 +746,11 @@ class MachineBase:
                     ),
                 )
             elif address in ("S", "T", "M", "H", "D", "F") and v < 0:
-                message = f"{address} gets {fmt(v)}: {address} cannot be negative"
+                message = tr(
+                    "{address} gets {value}: {address} cannot be negative",
+                    address=address,
+                    value=fmt(v),
+                )
                 self._finding(
                     act.ctx,
                     AddressOutOfRange(
@@ -740,9 +758,10 @@ class MachineBase:
                     ),
                 )
             elif address == "S" and v > self.config.max_spindle_speed:
-                message = (
-                    f"S gets {fmt(v)} rpm, above the machine's maximum "
-                    f"{fmt(self.config.max_spindle_speed)} rpm"
+                message = tr(
+                    "S gets {speed} rpm, above the machine's maximum {maximum} rpm",
+                    speed=fmt(v),
+                    maximum=fmt(self.config.max_spindle_speed),
                 )
                 self._finding(
                     act.ctx,
@@ -757,13 +776,13 @@ class MachineBase:
         node = alarm.node
         span = getattr(node, "span", None) or getattr(cl.node, "span", None)
         start, end = (span.start, span.end) if span is not None else (0, len(block.text))
-        detail = ""
+        expression: str | None = None
+        shown: list[str] = []
         if node is not None:
             args = getattr(node, "args", None) or (getattr(node, "right", None),)
             arg = args[0]
             if arg is not None:
-                detail = f" = {block.source(arg.span).strip()}"
-                shown: list[str] = []
+                expression = block.source(arg.span).strip()
                 for sub in subexpressions(arg):
                     if isinstance(sub, Var) and sub.number is not None:
                         n = int(sub.number)
@@ -771,9 +790,27 @@ class MachineBase:
                         text = f"#{n}={fmt(v)}"
                         if text not in shown:
                             shown.append(text)
-                if shown:
-                    detail += " with " + ", ".join(shown)
-        message = f"{alarm.message}{detail} (alarm {alarm.alarm}) in {ctx.name}"
+        said: dict[str, object] = {
+            "alarm_message": alarm.message,
+            "number": alarm.alarm,
+            "program": ctx.name,
+        }
+        if expression is None:
+            message = tr("{alarm_message} (alarm {number}) in {program}", **said)
+        elif not shown:
+            message = tr(
+                "{alarm_message} = {expression_text} (alarm {number}) in {program}",
+                expression_text=expression,
+                **said,
+            )
+        else:
+            message = tr(
+                "{alarm_message} = {expression_text} with {values_text} (alarm {number}) in "
+                "{program}",
+                expression_text=expression,
+                values_text=", ".join(shown),
+                **said,
+            )
         found = ALARM_FINDINGS[alarm.kind]
         self._finding(
             ctx,
@@ -807,17 +844,20 @@ class MachineBase:
             head = min(heads, default=act.pc)
         read = {n for ln in tests for n in ctx.lines[ln].reads}
         written = {ctx.lines[ln].target_number for ln in hot}
-        budget = f"the step budget ({self.budget:,} blocks)"
+        budget = tr("the step budget ({blocks:,} blocks)", blocks=self.budget)
         runs = facts.runs.get(head, 0)
         width = len(ctx.doc.blocks[head].text)
         if read and all(n >= 100 for n in read) and not read & written:
             # Nothing in the loop changes what it tests: it waits for the PMC, a FOCAS client
             # or another path to write a common or system variable.
             names = ", ".join(f"#{n}" for n in sorted(read))
-            message = (
-                f"loop waits for {names} to be changed from outside the program (PMC, "
-                f"FOCAS, another path): nothing in it writes {names}; the analysis "
-                f"stopped after {runs} turns ({budget})"
+            message = tr(
+                "loop waits for {names} to be changed from outside the program (PMC, FOCAS, "
+                "another path): nothing in it writes {names}; the analysis stopped after {runs} "
+                "turns ({budget})",
+                names=names,
+                runs=runs,
+                budget=budget,
             )
             self._finding(ctx, PollingLoop(head, 0, width, message, ctx.uri))
             return
@@ -826,22 +866,37 @@ class MachineBase:
         approaching = _approaching(cl.node, facts, head)
         if not still and approaching:
             # The test's variables move towards its bound: a long loop, not an endless one.
-            message = (
-                f"loop still running after {runs} turns when {budget} ran out: it "
-                "gets nearer its end every turn, so it is long rather than endless; "
-                "values after it are not analysed"
+            message = tr(
+                "loop still running after {runs} turns when {budget} ran out: it gets nearer "
+                "its end every turn, so it is long rather than endless; values after it are not "
+                "analysed",
+                runs=runs,
+                budget=budget,
             )
             self._finding(ctx, LongLoop(head, 0, width, message, ctx.uri))
             return
         moving = [n for n in cl.reads if n not in still]
         if still:
-            why = ", ".join(f"#{n} stays {fmt(facts.reads[(head, n)].first)}" for n in still)
+            why = joined(
+                ", ",
+                (
+                    tr("#{number} stays {value}", number=n, value=fmt(facts.reads[(head, n)].first))
+                    for n in still
+                ),
+            )
         elif moving:
-            names = ", ".join(f"#{n}" for n in moving)
-            why = f"the condition stays true, {names} moving away from its bound"
+            why = tr(
+                "the condition stays true, {names} moving away from its bound",
+                names=", ".join(f"#{n}" for n in moving),
+            )
         else:
-            why = "nothing in the condition changes"
-        message = f"loop never ends: the block ran {runs} times before {budget} ran out; {why}"
+            why = tr("nothing in the condition changes")
+        message = tr(
+            "loop never ends: the block ran {runs} times before {budget} ran out; {why}",
+            runs=runs,
+            budget=budget,
+            why=why,
+        )
         self._finding(ctx, EndlessLoop(head, 0, width, message, ctx.uri))
 
 

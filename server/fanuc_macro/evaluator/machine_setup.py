@@ -14,6 +14,7 @@ from collections.abc import Callable, Mapping
 from dataclasses import dataclass, replace
 from types import MappingProxyType
 
+from ..translation import tr
 from .toolpath import PLANE_AXES, Plane
 from .values import Value, fmt
 
@@ -151,7 +152,6 @@ def arc_fault(
     scale = 0.5 if lathe and v_axis == "X" else 1.0
     sv, ev = sv * scale, ev * scale
     tolerance = ARC_TOLERANCE_INCH if inch else ARC_TOLERANCE_MM
-    unit = "inch" if inch else "mm"
     radius = values.get("R")
     if "R" in values:
         if type(radius) is not float or radius == 0.0:
@@ -161,15 +161,26 @@ def arc_fault(
             return None
         return (
             "radius",
-            f"R{fmt(radius)} is shorter than half the distance to the end point, "
-            f"{fmt(round(half, 4))} {unit}: no arc of that radius reaches it",
+            tr(
+                "R{radius} is shorter than half the distance to the end point, {half} {unit}: "
+                "no arc of that radius reaches it",
+                radius=fmt(radius),
+                half=fmt(round(half, 4)),
+                unit=unit_of(inch),
+            ),
         )
     u_off, v_off = values.get(u_word), values.get(v_word)
     if u_off is None and v_off is None:
         if eu == su and ev == sv:
             return None  # no move in the plane (a block of G02 words off it)
         words = " ".join(sorted((u_word, v_word)))
-        return ("no-centre", f"it gives neither R nor {words}, and the end point is elsewhere")
+        return (
+            "no-centre",
+            tr(
+                "it gives neither R nor {words}, and the end point is elsewhere",
+                words=words,
+            ),
+        )
     if (u_off is not None and type(u_off) is not float) or (
         v_off is not None and type(v_off) is not float
     ):
@@ -182,10 +193,18 @@ def arc_fault(
         return None
     centre = f"{u_axis}{fmt(round(cu, 4))} {v_axis}{fmt(round(cv / scale, 4))}"
     given = " ".join(sorted((u_word, v_word)))
+    unit = unit_of(inch)
     return (
         "centre",
-        f"the end point is {fmt(round(r_end, 4))} {unit} from the centre ({centre}) "
-        f"that {given} give, the start {fmt(round(r_start, 4))} {unit}",
+        tr(
+            "the end point is {end} {unit} from the centre ({centre}) that {words} give, the "
+            "start {start} {unit}",
+            end=fmt(round(r_end, 4)),
+            unit=unit,
+            centre=centre,
+            words=given,
+            start=fmt(round(r_start, 4)),
+        ),
     )
 
 
@@ -208,12 +227,24 @@ LARGEST_PER_REV: Mapping[bool, float] = MappingProxyType({False: 5.0, True: 0.2}
 
 def feed_unit_fault(feed: float, per_rev: bool, inch: bool) -> str | None:
     """Why a cutting feed looks like the other mode's value, or None."""
-    unit = "inch" if inch else "mm"
     if per_rev and feed > LARGEST_PER_REV[inch]:
-        return f"{fmt(feed)} {unit} per revolution, a feed per minute's size"
+        return tr(
+            "{feed} {unit} per revolution, a feed per minute's size",
+            feed=fmt(feed),
+            unit=unit_of(inch),
+        )
     if not per_rev and 0.0 < feed < SLOWEST_PER_MINUTE[inch]:
-        return f"{fmt(feed)} {unit} per minute, a feed per revolution's size"
+        return tr(
+            "{feed} {unit} per minute, a feed per revolution's size",
+            feed=fmt(feed),
+            unit=unit_of(inch),
+        )
     return None
+
+
+def unit_of(inch: bool) -> str:
+    """The unit of lengths as a message says it: mm, or inch in G20."""
+    return tr("inch") if inch else "mm"
 
 
 def speed_at(surface_speed: float, diameter: float, inch: bool) -> float:

@@ -7,18 +7,25 @@
 from __future__ import annotations
 
 import math
-import sys
 from array import array
 from collections.abc import Mapping, Sequence
 from dataclasses import replace
 from types import MappingProxyType
 
 from ..program.g_code_systems import written
+from ..translation import tr
 from .calls import CallsPart
 from .canned_cycles import PROFILE_CYCLES, CyclesPart
 from .compile_lines import AXES, K_NC, CompiledLine, CompiledWord, recorded_words
 from .direct_drawing import missing_coordinate
-from .facts import BlockFault, CutsWithoutFeed, DrillingFault, Motion, RunValues
+from .facts import (
+    POWER_ON_FEED_MODE,
+    BlockFault,
+    CutsWithoutFeed,
+    DrillingFault,
+    Motion,
+    RunValues,
+)
 from .machine_base import (
     LOCAL_COORDINATES,
     MAX_MOTIONS,
@@ -93,8 +100,11 @@ class MotionPart(CyclesPart, CallsPart, SetupPart):
             self._block_finding(
                 act,
                 BlockFault,
-                f"a T code in a G{refused:02g} block: the control stops (PS0245); give the "
-                "tool in a block of its own",
+                tr(
+                    "a T code in a G{code:02g} block: the control stops (PS0245); give the "
+                    "tool in a block of its own",
+                    code=refused,
+                ),
                 fault="t-code",
             )
         quiet = const is not None and const.quiet  # no word of it can get a finding
@@ -154,6 +164,9 @@ class MotionPart(CyclesPart, CallsPart, SetupPart):
             self.toolpath.block(
                 ctx.name, ctx.uri, self._line, values, g_codes, self.facts.motions, profile, read
             )
+            if g_codes or m_codes or "T" in values:
+                where = (ctx.name, ctx.uri, self._line, ctx.program.first_line)
+                self.toolpath.timed(where, values, g_codes, m_codes, len(self.facts.motions))
         if finishing is not None:
             self._run_profile(act, *finishing)
         for m in m_codes:
@@ -410,9 +423,11 @@ class MotionPart(CyclesPart, CallsPart, SetupPart):
         name = G_NAMES.get(code) or g_name(code)
         surface_speed = speed if modal.constant_surface_speed and isinstance(speed, float) else None
         clamp = None  # the G50 S clamp, in G96
+        setup = modal.setup
         if surface_speed is not None:
-            setup = modal.setup
             clamp = math.inf if setup.clamped is False else setup.clamp_speed
+        mode = setup.feed_mode  # recorded only when not the power-on mode
+        feed_mode = None if mode is None or mode[0] == POWER_ON_FEED_MODE[lathe] else mode[0]
         motion = Motion(
             ctx.name,
             self._line,
@@ -435,6 +450,7 @@ class MotionPart(CyclesPart, CallsPart, SetupPart):
             drilling=not lathe and code in DRILLING_CYCLES,
             surface_speed=surface_speed,
             speed_clamp=clamp,
+            feed_mode=feed_mode,
         )
         facts = self.facts
         if lathe and code in THREADING_CODES and act.serial not in facts.run_values:
@@ -570,7 +586,7 @@ class MotionPart(CyclesPart, CallsPart, SetupPart):
         stop = modal.spindle_stop
         assert stop is not None  # SPINDLE_OFF is set with the block that stopped it
         uri, line, m = stop
-        why = f"{m} on {self._where(act, (uri, line))} stopped it"
+        where = self._where(act, (uri, line))
         ctx = act.ctx
         # Told when the tool is known to be a cutting one: at the next spindle start, tool
         # change or end of the program; not if a G31 comes first (a probe feeds standing still).
@@ -581,8 +597,13 @@ class MotionPart(CyclesPart, CallsPart, SetupPart):
                 ctx.program.first_line,
                 self._line,
                 len(ctx.doc.blocks[self._line].text.rstrip()),
-                f"{self._shown(code)} feeds with the spindle stopped: {why}, and no M03 or M04 "
-                "started it again",
+                tr(
+                    "{code} feeds with the spindle stopped: {stop} on {where} stopped it, and "
+                    "no M03 or M04 started it again",
+                    code=self._shown(code),
+                    stop=m,
+                    where=where,
+                ),
             ),
         )
 
@@ -625,10 +646,14 @@ class MotionPart(CyclesPart, CallsPart, SetupPart):
                 elif not (has_p or has_q) and code != 70.0:
                     self._cycle_data(act, code, values, "W" if code == 72.0 else "U")
                 else:
-                    given = "P alone" if has_p else "Q alone" if has_q else "neither P nor Q"
-                    self._profile_fault(
-                        act, code, f"it gives {given}, and the cycle needs both", "p-q"
+                    why = (
+                        tr("it gives P alone, and the cycle needs both")
+                        if has_p
+                        else tr("it gives Q alone, and the cycle needs both")
+                        if has_q
+                        else tr("it gives neither P nor Q, and the cycle needs both")
                     )
+                    self._profile_fault(act, code, why, "p-q")
             return code
         if has_axis and not self._own_codes.isdisjoint(g_codes):
             own = next(g for g in g_codes if g in self._own_codes)
@@ -637,8 +662,11 @@ class MotionPart(CyclesPart, CallsPart, SetupPart):
                 self._block_finding(
                     act,
                     BlockFault,
-                    f"G30 P{whole(p)}: the second, third or fourth reference position is P2, P3 "
-                    "or P4; the control stops (PS0046)",
+                    tr(
+                        "G30 P{p}: the second, third or fourth reference position is P2, P3 or "
+                        "P4; the control stops (PS0046)",
+                        p=whole(p),
+                    ),
                     fault="g30-p",
                 )
             if own in RAPID_ONE_SHOTS:
@@ -647,9 +675,13 @@ class MotionPart(CyclesPart, CallsPart, SetupPart):
                     self._block_finding(
                         act,
                         DrillingFault,
-                        f"{self._shown(own)} returns to the reference position while the "
-                        f"drilling cycle {self._shown(drilling[0])} is in force: the control "
-                        "stops (PS0044); cancel the cycle with G80 first",
+                        tr(
+                            "{code} returns to the reference position while the drilling cycle "
+                            "{cycle} is in force: the control stops (PS0044); cancel the cycle "
+                            "with G80 first",
+                            code=self._shown(own),
+                            cycle=self._shown(drilling[0]),
+                        ),
                         fault="return",
                     )
                 return own
@@ -677,14 +709,20 @@ class MotionPart(CyclesPart, CallsPart, SetupPart):
             modal.drilling = (code, q)
         haas_pecks = "I" in values or "J" in values  # a Haas G83: pecks by I J K, no Q
         if code in PECK_CYCLES and (q is None or q == 0.0) and not haas_pecks:
-            given = "no Q" if q is None else "Q0"
-            self._block_finding(
-                act,
-                DrillingFault,
-                f"{self._shown(code)} drills with {given}: a peck cycle needs the depth of each "
-                "peck; the control stops (PS0045)",
-                fault="peck",
+            message = (
+                tr(
+                    "{code} drills with no Q: a peck cycle needs the depth of each peck; the "
+                    "control stops (PS0045)",
+                    code=self._shown(code),
+                )
+                if q is None
+                else tr(
+                    "{code} drills with Q0: a peck cycle needs the depth of each peck; the "
+                    "control stops (PS0045)",
+                    code=self._shown(code),
+                )
             )
+            self._block_finding(act, DrillingFault, message, fault="peck")
             modal.drilling = (code, math.nan)  # the control stops at the first: once
 
     def _taper_in_force(
@@ -701,8 +739,10 @@ class MotionPart(CyclesPart, CallsPart, SetupPart):
         file: every block)."""
         message = self._no_feed.get(code)
         if message is None:
-            message = self._no_feed[code] = sys.intern(
-                f"G{code:02g} cuts with no F commanded before it since {self._entry_name} started"
+            message = self._no_feed[code] = tr(
+                "G{code:02g} cuts with no F commanded before it since {program} started",
+                code=code,
+                program=self._entry_name,
             )
         return message
 
@@ -733,8 +773,12 @@ def _feed_zero(code: float, shown: str) -> None:
     """PS0011 FEED ZERO (COMMAND), 0i-TF/0i-MF alarm lists: the control stops here. (For a
     threading lead of 0 the alarm number is unverified.) ``shown``: the code as written."""
     if code in THREADING_CODES:
-        raise MacroAlarm("PS0011", AlarmKind.LEAD_ZERO, f"{shown} runs with the lead F = 0")
-    raise MacroAlarm("PS0011", AlarmKind.FEED_ZERO, f"{shown} runs with the feed F = 0")
+        raise MacroAlarm(
+            "PS0011", AlarmKind.LEAD_ZERO, tr("{code} runs with the lead F = 0", code=shown)
+        )
+    raise MacroAlarm(
+        "PS0011", AlarmKind.FEED_ZERO, tr("{code} runs with the feed F = 0", code=shown)
+    )
 
 
 # The names of the G codes a motion records, G00-G99.9 (others are named when met).

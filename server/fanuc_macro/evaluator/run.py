@@ -267,7 +267,8 @@ def _evaluate_way(
         entries = entry_programs(every, only_uri)
     machine = Machine(programs, config, facts, every, cancel)
     if toolpath:
-        recorder = machine.toolpath = Recorder(config.is_lathe)
+        timed = frozenset(code for code, _ in config.m_code_seconds)
+        recorder = machine.toolpath = Recorder(config.is_lathe, timed_codes=timed)
         facts.toolpath = recorder.toolpath
     elif follow:
         machine.toolpath = Recorder(config.is_lathe, keep=False)

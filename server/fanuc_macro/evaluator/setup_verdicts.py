@@ -14,6 +14,7 @@ import math
 from collections.abc import Mapping, Sequence
 from dataclasses import replace
 
+from ..translation import tr
 from .facts import (
     ArcFault,
     CompensationFault,
@@ -102,9 +103,13 @@ class SetupPart(MachineBase):
                     self._block_finding(
                         act,
                         CompensationFault,
-                        f"G{g:g} changes the plane while G{setup.compensation:g} from "
-                        f"{self._where(act, setup.compensation_at or here)} is on: "
-                        "the control stops (PS0037); cancel it with G40 first",
+                        tr(
+                            "G{plane:g} changes the plane while G{compensation:g} from {where} "
+                            "is on: the control stops (PS0037); cancel it with G40 first",
+                            plane=g,
+                            compensation=setup.compensation,
+                            where=self._where(act, setup.compensation_at or here),
+                        ),
                         fault="plane",
                     )
                 setup = replace(setup, plane=plane)
@@ -125,7 +130,12 @@ class SetupPart(MachineBase):
                     where = self._where(act, here)
                     self._told_offset(
                         pending,
-                        f"; the radius offset D{whole(pending[5])} on {where} is the tool's number",
+                        tr(
+                            "{offset}; the radius offset D{number} on {where} is the tool's number",
+                            offset=pending[4],
+                            number=whole(pending[5]),
+                            where=where,
+                        ),
                     )
                     setup = replace(setup, pending_offset=None)
                 if setup.compensation == 40.0 or setup.compensation is None:
@@ -142,8 +152,11 @@ class SetupPart(MachineBase):
                     self._block_finding(
                         act,
                         CompensationFault,
-                        f"G31 skips while radius compensation G{setup.compensation:g} is on: the "
-                        "control stops (PS0035); cancel it with G40 before the probing move",
+                        tr(
+                            "G31 skips while radius compensation G{compensation:g} is on: the "
+                            "control stops (PS0035); cancel it with G40 before the probing move",
+                            compensation=setup.compensation,
+                        ),
                         fault="skip",
                     )
                 setup = replace(setup, skipped=True)
@@ -193,11 +206,20 @@ class SetupPart(MachineBase):
             pending = setup.pending_offset
             if pending is not None:  # an earlier tool's H, not its number: this one decides
                 if h == tool:
-                    self._told_offset(pending, "; the next tool takes the offset of its number")
+                    self._told_offset(
+                        pending,
+                        tr(
+                            "{offset}; the next tool takes the offset of its number",
+                            offset=pending[4],
+                        ),
+                    )
                 setup = replace(setup, pending_offset=None)
-            message = (
-                f"G{g:g} H{whole(h)} applies offset {whole(h)} to tool {whole(tool)}, "
-                f"loaded on {self._where(act, loaded)}"
+            message = tr(
+                "G{code:g} H{offset} applies offset {offset} to tool {tool}, loaded on {where}",
+                code=g,
+                offset=whole(h),
+                tool=whole(tool),
+                where=self._where(act, loaded),
             )
             if h == tool:
                 setup = replace(setup, offset_by_tool=True)
@@ -205,7 +227,10 @@ class SetupPart(MachineBase):
                 self._block_finding(
                     act,
                     LengthOffsetOtherTool,
-                    f"{message}: the earlier tools of this run took the offset of their number",
+                    tr(
+                        "{offset}: the earlier tools of this run took the offset of their number",
+                        offset=message,
+                    ),
                 )
             else:
                 ctx = act.ctx
@@ -223,13 +248,13 @@ class SetupPart(MachineBase):
                 )
         return replace(setup, length_offset=h, offset_used=True)
 
-    def _told_offset(self, pending: tuple[str, int, int, int, str, float], why: str) -> None:
+    def _told_offset(self, pending: tuple[str, int, int, int, str, float], message: str) -> None:
         """MB613's finding on an earlier block, now that the program shows that it numbers
-        the offsets by the tools."""
-        uri, program, line, width, message, _tool = pending
+        the offsets by the tools: ``message``, the pending one's with the reason."""
+        uri, program, line, width, _offset, _tool = pending
         ctx = self.contexts.get((uri, program))
         if ctx is not None:
-            self._finding(ctx, LengthOffsetOtherTool(line, 0, width, message + why, uri))
+            self._finding(ctx, LengthOffsetOtherTool(line, 0, width, message, uri))
 
     def _setup_move(
         self,
@@ -255,7 +280,12 @@ class SetupPart(MachineBase):
                 self._block_finding(
                     act,
                     ArcFault,
-                    f"{self._shown(code)} cannot be cut: {why}; the control stops ({alarm})",
+                    tr(
+                        "{code} cannot be cut: {why}; the control stops ({alarm})",
+                        code=self._shown(code),
+                        why=why,
+                        alarm=alarm,
+                    ),
                     fault=kind,
                 )
         if ",C" in values or ",R" in values:
@@ -267,9 +297,13 @@ class SetupPart(MachineBase):
                 self._block_finding(
                     act,
                     DrillingFault,
-                    f"{self._shown(code)} moves an axis after M29 on {self._where(act, rigid)} "
-                    "and before the tapping cycle: the control stops (PS0204); give the tapping "
-                    "cycle right after M29, the hole's X Y with it",
+                    tr(
+                        "{code} moves an axis after M29 on {where} and before the tapping "
+                        "cycle: the control stops (PS0204); give the tapping cycle right after "
+                        "M29, the hole's X Y with it",
+                        code=self._shown(code),
+                        where=self._where(act, rigid),
+                    ),
                     fault="rigid",
                 )
             modal.setup = setup = replace(setup, rigid_at=None)
@@ -277,8 +311,11 @@ class SetupPart(MachineBase):
             self._block_finding(
                 act,
                 CompensationFault,
-                f"G40 cancels radius compensation in a {self._shown(code)} block: the control "
-                "stops (PS0034); cancel it on a G00 or G01 move",
+                tr(
+                    "G40 cancels radius compensation in a {code} block: the control stops "
+                    "(PS0034); cancel it on a G00 or G01 move",
+                    code=self._shown(code),
+                ),
                 fault="arc",
             )
         if (
@@ -291,14 +328,18 @@ class SetupPart(MachineBase):
                 self._block_finding(
                     act,
                     CompensationFault,
-                    f"G{setup.compensation:g} from {self._where(act, at)} starts radius "
-                    f"compensation on this {self._shown(code)}: the control stops (PS0034); "
-                    "start it on a G00 or G01 move",
+                    tr(
+                        "G{compensation:g} from {where} starts radius compensation on this "
+                        "{code}: the control stops (PS0034); start it on a G00 or G01 move",
+                        compensation=setup.compensation,
+                        where=self._where(act, at),
+                        code=self._shown(code),
+                    ),
                     fault="arc",
                 )
             modal.setup = setup = replace(setup, compensation_started=True)
         if code in REFERENCE_RETURNS:
-            self._left_on(act, f"at the reference return {self._shown(code)}")
+            self._left_on(act, tr("at the reference return {code}", code=self._shown(code)))
 
     def _corner_refused(
         self, act: Activation, values: Mapping[str, Value], code: float, cancels: bool
@@ -309,44 +350,63 @@ class SetupPart(MachineBase):
         setup = self.modal.setup
         plane: Plane = "XZ" if self.lathe else setup.plane
         corner = ",C" if ",C" in values else ",R"
-        what = "a chamfer" if corner == ",C" else "a corner R"
+        what = tr("a chamfer") if corner == ",C" else tr("a corner R")
         if self.lathe and code in THREADING_CODES:
-            why, alarm, fix = f"{self._shown(code)} cuts a thread", "PS0050", "a move of its own"
+            message = tr(
+                "{what} ({corner}) on this block, and {code} cuts a thread: the control stops "
+                "(PS0050); put the corner on a move of its own",
+                what=what,
+                corner=corner,
+                code=self._shown(code),
+            )
         elif cancels:
-            why, alarm, fix = "G40 cancels radius compensation in it", "PS0039", "the block before"
+            message = tr(
+                "{what} ({corner}) on this block, and G40 cancels radius compensation in it: "
+                "the control stops (PS0039); put the corner on the block before",
+                what=what,
+                corner=corner,
+            )
         elif (
             setup.compensation in (41.0, 42.0)
             and not setup.compensation_started
             and moves_in_plane(values, plane, self.lathe)
         ):
-            why = f"it starts radius compensation G{setup.compensation:g}"
-            alarm, fix = "PS0039", "the next block"
+            message = tr(
+                "{what} ({corner}) on this block, and it starts radius compensation "
+                "G{compensation:g}: the control stops (PS0039); put the corner on the next block",
+                what=what,
+                corner=corner,
+                compensation=setup.compensation,
+            )
         else:
             return
-        self._block_finding(
-            act,
-            CornerRefused,
-            f"{what} ({corner}) on this block, and {why}: the control stops ({alarm}); put the "
-            f"corner on {fix}",
-        )
+        self._block_finding(act, CornerRefused, message)
 
     def _setup_end(self, act: Activation, m: float) -> None:
         """M02 or M30: radius compensation still on."""
-        self._left_on(act, f"at M{m:02g}, the end of the program")
+        self._left_on(act, tr("at M{code:02g}, the end of the program", code=m))
 
     def _left_on(self, act: Activation, where: str) -> None:
         setup = self.modal.setup
         if setup.compensation not in (41.0, 42.0) or setup.left_on_told:
             return
         at = setup.compensation_at
-        since = "" if at is None else f" from {self._where(act, at)}"
-        self._block_finding(
-            act,
-            CompensationFault,
-            f"radius compensation G{setup.compensation:g}{since} is still on {where}: "
-            "the moves to it are offset; cancel it with G40 on the retract",
-            fault="left-on",
-        )
+        if at is None:
+            message = tr(
+                "radius compensation G{compensation:g} is still on {where}: the moves to it "
+                "are offset; cancel it with G40 on the retract",
+                compensation=setup.compensation,
+                where=where,
+            )
+        else:
+            message = tr(
+                "radius compensation G{compensation:g} from {since} is still on {where}: the "
+                "moves to it are offset; cancel it with G40 on the retract",
+                compensation=setup.compensation,
+                since=self._where(act, at),
+                where=where,
+            )
+        self._block_finding(act, CompensationFault, message, fault="left-on")
         self.modal.setup = replace(setup, left_on_told=True)
 
     def _setup_cut(self, act: Activation, code: float, x: float | None) -> None:
@@ -361,8 +421,14 @@ class SetupPart(MachineBase):
                 self._block_finding(
                     act,
                     FeedUnit,
-                    f"{self._shown(code)} cuts at F{fmt(feed)} in G{mode[0]:g} (from "
-                    f"{self._where(act, (mode[1], mode[2]))}): {why}",
+                    tr(
+                        "{code} cuts at F{feed} in G{mode:g} (from {where}): {why}",
+                        code=self._shown(code),
+                        feed=fmt(feed),
+                        mode=mode[0],
+                        where=self._where(act, (mode[1], mode[2])),
+                        why=why,
+                    ),
                 )
                 modal.setup = setup = replace(setup, feed_told=True)
         if not self.lathe:
@@ -372,14 +438,24 @@ class SetupPart(MachineBase):
                 and setup.offset_used
                 and not setup.length_told
             ):
-                tool = "" if setup.tool is None else f" (tool {whole(setup.tool)})"
-                self._block_finding(
-                    act,
-                    ToolWithoutLengthOffset,
-                    f"{self._shown(code)} cuts with no tool length offset since the tool "
-                    f"change on {self._where(act, setup.tool_at)}{tool}: the earlier tools "
-                    "of this run called theirs with G43 H",
-                )
+                where = self._where(act, setup.tool_at)
+                if setup.tool is None:
+                    message = tr(
+                        "{code} cuts with no tool length offset since the tool change on "
+                        "{where}: the earlier tools of this run called theirs with G43 H",
+                        code=self._shown(code),
+                        where=where,
+                    )
+                else:
+                    message = tr(
+                        "{code} cuts with no tool length offset since the tool change on "
+                        "{where} (tool {tool}): the earlier tools of this run called theirs "
+                        "with G43 H",
+                        code=self._shown(code),
+                        where=where,
+                        tool=whole(setup.tool),
+                    )
+                self._block_finding(act, ToolWithoutLengthOffset, message)
                 modal.setup = replace(setup, length_told=True)
             return
         surface = modal.speed
@@ -397,19 +473,26 @@ class SetupPart(MachineBase):
         if needed <= limit and not (math.isinf(needed) and math.isinf(limit)):
             return
         asked = (
-            "a speed without limit at the centre"
+            tr("a speed without limit at the centre")
             if math.isinf(needed)
             else f"{fmt(round(needed))} rpm"
         )
         top = (
-            "the machine's maximum"
+            tr("the machine's maximum")
             if math.isinf(limit)
-            else f"the machine's maximum, {fmt(limit)} rpm"
+            else tr("the machine's maximum, {maximum} rpm", maximum=fmt(limit))
         )
         self._block_finding(
             act,
             SpeedNotClamped,
-            f"{self._shown(code)} to X{fmt(x)} in G96 S{fmt(surface)} asks for {asked}, and "
-            f"no G50 S clamps the spindle in this run: it speeds up to {top}",
+            tr(
+                "{code} to X{x} in G96 S{surface} asks for {asked}, and no G50 S clamps the "
+                "spindle in this run: it speeds up to {top}",
+                code=self._shown(code),
+                x=fmt(x),
+                surface=fmt(surface),
+                asked=asked,
+                top=top,
+            ),
         )
         modal.setup = replace(setup, unclamped_told=True)

@@ -31,6 +31,7 @@ from dataclasses import dataclass, field
 from types import MappingProxyType
 from typing import Literal
 
+from ..translation import tr
 from . import stock_removal
 from .direct_drawing import missing_coordinate
 from .facts import Motion
@@ -83,12 +84,60 @@ class LostTrack:
     at: int = -1
 
 
+TimedKind = Literal["dwell", "tool change", "M code"]
+
+
+@dataclass(frozen=True, slots=True)
+class TimedEvent:
+    """A block that takes the machine time without moving the tool: a G04 dwell, a tool
+    change (a lathe's T of another tool, a mill's M06), an M code the settings time
+    (``Config.m_code_seconds``). The cycle time (:mod:`.cycle_time`) gives each its seconds."""
+
+    kind: TimedKind
+    line: int
+    program: str
+    uri: str
+    program_line: int  # first line of the program the block belongs to
+    moves: int  # the moves of the path before it
+    motions: int  # the motion records of the run when it ran (its block's own included)
+    seconds: float = 0.0  # a dwell's time (the others' are the settings')
+    code: float = 0.0  # the M code, or the tool a change loads
+
+
+@dataclass(frozen=True, slots=True)
+class RunStart:
+    """Where a run (an entry program) begins in the toolpath: its program, and the moves,
+    timed events and motion records before it."""
+
+    uri: str
+    program_line: int
+    program: str
+    moves: int
+    events: int
+    motions: int
+
+
+def dwell_seconds(values: Mapping[str, Value]) -> float | None:
+    """A G04's time: X or U in seconds, P in milliseconds (FANUC 0i-TF/0i-MF Operator's
+    Manual, "Dwell (G04)": P takes no decimal point, its unit is 0.001 s). None when the block
+    gives no known time. X without a decimal point is read as the evaluator reads it (a
+    control in pocket calculator mode; otherwise in the least input increment, unverified);
+    a dwell in revolutions (G95 with the parameter DWL set) is not read."""
+    for address, scale in (("X", 1.0), ("U", 1.0), ("P", 0.001)):
+        value = values.get(address)
+        if value is not None:
+            return value * scale if type(value) is float and value >= 0.0 else None
+    return None
+
+
 # The reason of the note on the axes placed for the first time: before it, the tool stood
 # where the run began, which the program does not say.
-UNKNOWN_START = (
+UNKNOWN_START = tr(
     "where the tool stands when the run begins is not known: the path starts at the first "
     "absolute position of each axis"
 )
+# The reason of the note on the axes an axis word whose value is not known moves.
+UNKNOWN_WORD = tr("the value of the axis word is not known")
 
 
 @dataclass(slots=True)
@@ -109,6 +158,10 @@ class Toolpath:
     # Where each run (an entry program) begins: the index of its first move and of its first
     # ``lost``. Where the tool stands is not known again at each.
     runs: list[tuple[int, int]] = field(default_factory=list)
+    # Each run's program and first move, event and motion record, in the order of ``runs``.
+    starts: list[RunStart] = field(default_factory=list)
+    # The blocks that take time without a move, in the order they ran (see TimedEvent).
+    events: list[TimedEvent] = field(default_factory=list)
 
     def axes(self) -> tuple[str, ...]:
         """The axes any move places, in X, Y, Z order."""
@@ -306,7 +359,7 @@ def _targets(
     if unknown:
         gone = tuple(a for a in unknown if a in here)
         if gone:
-            block.lost.append((gone, "the value of the axis word is not known"))
+            block.lost.append((gone, UNKNOWN_WORD))
     return end, commanded
 
 
@@ -442,7 +495,9 @@ def block_steps(
             modal.drilling = g
         elif g in WORK_OFFSETS:
             if modal.work_offset is not None and modal.work_offset != g:
-                block.lose(modal.axes, f"G{g:g} selects another work coordinate system")
+                block.lose(
+                    modal.axes, tr("G{code:g} selects another work coordinate system", code=g)
+                )
             modal.work_offset = g
         elif (
             g in NOT_MOVES
@@ -483,15 +538,23 @@ def _one_shot(
         ]
         block.lose(
             named,
-            f"G{code:g} returns to the {'' if code == 28.0 else 'second '}reference point, "
-            "whose work coordinates are not known",
+            tr(
+                "G{code:g} returns to the reference point, whose work coordinates are not known",
+                code=code,
+            )
+            if code == 28.0
+            else tr(
+                "G{code:g} returns to the second reference point, whose work coordinates are "
+                "not known",
+                code=code,
+            ),
         )
     elif code == 52.0:
         named = [a for a in modal.axes if a in values]
-        block.lose(named, "G52 sets a local coordinate system (not followed)")
+        block.lose(named, tr("G52 sets a local coordinate system (not followed)"))
     elif code == 53.0:
         named = [a for a in modal.axes if a in values]
-        block.lose(named, "G53 moves in machine coordinates; the work offset is not known")
+        block.lose(named, tr("G53 moves in machine coordinates; the work offset is not known"))
     elif code == 50.0:
         # Coordinate system setting (lathe G50, mill G92): the tool's position becomes the
         # words' values, without a move (0i-TF "Setting a workpiece coordinate system").
@@ -516,8 +579,11 @@ def _one_shot(
         _profile_cycle(block, code, values, profile)
     elif code in NOT_EXPANDED and _has_axis(modal, values):
         block.note(
-            f"G{code:g}'s passes are not drawn; the tool is back at the cycle's start point "
-            "after it"
+            tr(
+                "G{code:g}'s passes are not drawn; the tool is back at the cycle's start point "
+                "after it",
+                code=code,
+            )
         )
     # NOT_MOVES (a G04 dwell, whose X is seconds; a G10) make no move.
 
@@ -553,8 +619,11 @@ def _profile_cycle(
         _cycle_data(modal, code, values)
         return
     if isinstance(profile, str):
-        what = "the finishing pass is" if code == 70.0 else "its passes are"
-        block.note(f"{name}: {profile}: {what} not drawn")
+        block.note(
+            tr("{code}: {why}: the finishing pass is not drawn", code=name, why=profile)
+            if code == 70.0
+            else tr("{code}: {why}: its passes are not drawn", code=name, why=profile)
+        )
         return
     if code == 70.0 or profile is None:
         return  # G70: its profile's blocks come next, as the evaluator runs them
@@ -564,38 +633,31 @@ def _profile_cycle(
         block.go(kind, end, centre, clockwise, cycle=name)
 
 
-def _profile_legs(
-    block: _Block, code: float, values: Mapping[str, Value], profile: Sequence[ProfileBlock]
-) -> list[stock_removal.Leg]:
-    modal = block.modal
-    name = f"G{code:g}"
-    start = modal.position
-    if "X" not in start or "Z" not in start:
-        block.note(f"{name}'s start point is not known: its passes are not drawn")
-        return []
-    allowance: list[float] = []  # Δu (a diameter), Δw
-    for address in "UW":
-        v = _word(values, address)
-        if isinstance(v, Unknown):
-            block.note(f"{name}'s finishing allowance {address} is not known: not drawn")
-            return []
-        allowance.append(v or 0.0)
-    # The profile, from the start point: the ns block's move to A', then A' to B.
-    scratch = PathModal(modal.lathe, dict(start), True, modal.plane, modal.inch, modal.motion)
+def _profile_contour(
+    block: _Block, name: str, scratch: PathModal, profile: Sequence[ProfileBlock]
+) -> tuple[str, list[stock_removal.Segment]] | None:
+    """How a G70-G73 profile is approached (``rapid``, ``feed``) and its contour from A' to B;
+    None, with the block's note why, when it cannot be drawn."""
     approach: str | None = None
     contour: list[stock_removal.Segment] = []
     for n, (words, codes) in enumerate(profile):
         refused = next((g for g in codes if g in NOT_IN_PROFILE), None)
         if refused is not None:
             block.note(
-                f"{name}'s profile commands G{refused:g}, which a profile may not hold "
-                "(the control stops with an alarm): its passes are not drawn"
+                tr(
+                    "{code}'s profile commands G{refused:g}, which a profile may not hold "
+                    "(the control stops with an alarm): its passes are not drawn",
+                    code=name,
+                    refused=refused,
+                )
             )
-            return []
+            return None
         steps, lost = block_steps(scratch, words, codes)
         if any(axes for axes, _ in lost) or "X" not in scratch.position:
-            block.note(f"{name}'s profile goes where the analysis cannot follow: not drawn")
-            return []
+            block.note(
+                tr("{code}'s profile goes where the analysis cannot follow: not drawn", code=name)
+            )
+            return None
         for kind, s, e, centre, clockwise, _record, _cycle in steps:
             if n == 0:
                 approach = kind
@@ -605,24 +667,60 @@ def _profile_legs(
             approach = "rapid" if scratch.motion == 0.0 else "feed"
     if approach not in ("rapid", "feed"):
         block.note(
-            f"{name}'s profile does not begin with G00 or G01 (the control stops with an "
-            "alarm): its passes are not drawn"
+            tr(
+                "{code}'s profile does not begin with G00 or G01 (the control stops with an "
+                "alarm): its passes are not drawn",
+                code=name,
+            )
         )
-        return []
+        return None
     if not contour:
-        block.note(f"{name}'s profile makes no move after its first block: not drawn")
+        block.note(tr("{code}'s profile makes no move after its first block: not drawn", code=name))
+        return None
+    return approach, contour
+
+
+def _profile_legs(
+    block: _Block, code: float, values: Mapping[str, Value], profile: Sequence[ProfileBlock]
+) -> list[stock_removal.Leg]:
+    modal = block.modal
+    name = f"G{code:g}"
+    start = modal.position
+    if "X" not in start or "Z" not in start:
+        block.note(tr("{code}'s start point is not known: its passes are not drawn", code=name))
         return []
+    allowance: list[float] = []  # Δu (a diameter), Δw
+    for address in "UW":
+        v = _word(values, address)
+        if isinstance(v, Unknown):
+            block.note(
+                tr(
+                    "{code}'s finishing allowance {address} is not known: not drawn",
+                    code=name,
+                    address=address,
+                )
+            )
+            return []
+        allowance.append(v or 0.0)
+    # The profile, from the start point: the ns block's move to A', then A' to B.
+    scratch = PathModal(modal.lathe, dict(start), True, modal.plane, modal.inch, modal.motion)
+    read = _profile_contour(block, name, scratch, profile)
+    if read is None:
+        return []
+    approach, contour = read
     if code == 73.0:
         escape_x, escape_z, divisions = modal.pattern
         if escape_x is None or escape_z is None or divisions is None:
             block.note(
-                "G73's escape or number of divisions is a parameter's (5135-5137), no "
-                "G73 U W R block gives it: its passes are not drawn"
+                tr(
+                    "G73's escape or number of divisions is a parameter's (5135-5137), no "
+                    "G73 U W R block gives it: its passes are not drawn"
+                )
             )
             return []
         count = min(stock_removal.MAX_LAYERS, round(divisions))
         if count < 1:
-            block.note("G73's number of divisions is less than 1: not drawn")
+            block.note(tr("G73's number of divisions is less than 1: not drawn"))
             return []
         return stock_removal.pattern(
             start, approach, contour, escape_x, escape_z, count, allowance[0], allowance[1], modal.q
@@ -631,34 +729,49 @@ def _profile_legs(
     first = profile[0][0]
     if any(a in first for a in (("X", "U") if facing else ("Z", "W"))):
         block.note(
-            f"{name}'s profile begins with a block that names {'X' if facing else 'Z'} too: "
-            "type II (pockets), type II profile not drawn"
+            tr(
+                "{code}'s profile begins with a block that names {axis} too: type II "
+                "(pockets), type II profile not drawn",
+                code=name,
+                axis="X" if facing else "Z",
+            )
         )
         return []
     if not stock_removal.monotonic(contour):
         block.note(
-            f"{name}'s profile is not monotonic in X and Z, as type I needs (the control "
-            "stops with an alarm, PS0064 or PS0329, unverified): not drawn"
+            tr(
+                "{code}'s profile is not monotonic in X and Z, as type I needs (the control "
+                "stops with an alarm, PS0064 or PS0329, unverified): not drawn",
+                code=name,
+            )
         )
         return []
     # One-block form (Series 10/11 program format, parameter 0001#1 FCV): D is Δd.
     depth = _word(values, "D")
     if isinstance(depth, Unknown):
-        block.note(f"{name}'s depth of cut D is not known: its passes are not drawn")
+        block.note(tr("{code}'s depth of cut D is not known: its passes are not drawn", code=name))
         return []
     depth_of_cut = abs(depth) if isinstance(depth, float) else modal.depth_of_cut
     if depth_of_cut is None or depth_of_cut == 0.0:
         block.note(
-            f"{name}'s depth of cut is parameter 5132's, no {name} {'W' if facing else 'U'} R "
-            "block gives it: its passes are not drawn"
+            tr(
+                "{code}'s depth of cut is parameter 5132's, no {code} {address} R block gives "
+                "it: its passes are not drawn",
+                code=name,
+                address="W" if facing else "U",
+            )
         )
         return []
     escape = modal.escape
     if escape is None:
         escape = ESCAPE_MM / (25.4 if modal.inch else 1.0)
         block.note(
-            f"{name}'s escape e is parameter 5133's, not in the program: drawn as "
-            f"{escape:g} (unverified)"
+            tr(
+                "{code}'s escape e is parameter 5133's, not in the program: drawn as "
+                "{escape:g} (unverified)",
+                code=name,
+                escape=escape,
+            )
         )
     legs, short = stock_removal.layers(
         start,
@@ -672,7 +785,13 @@ def _profile_legs(
         modal.q,
     )
     if short:
-        block.note(f"{name} has more than {stock_removal.MAX_LAYERS} layers: cut short")
+        block.note(
+            tr(
+                "{code} has more than {layers} layers: cut short",
+                code=name,
+                layers=stock_removal.MAX_LAYERS,
+            )
+        )
     return legs
 
 
@@ -700,7 +819,9 @@ def _modal_motion(block: _Block, code: float, values: Mapping[str, Value]) -> No
         if centre is None:
             # Drawn straight, and said so when the start was known.
             if all(a in modal.position for a in end):
-                block.note(f"G{code:02g}'s centre is not known: drawn as a straight move")
+                block.note(
+                    tr("G{code:02g}'s centre is not known: drawn as a straight move", code=code)
+                )
             block.go("feed", end)
         else:
             block.go("arc", end, {a: modal.q(v) for a, v in centre.items()}, clockwise)
@@ -744,7 +865,7 @@ def _end_by_angle(block: _Block, values: Mapping[str, Value], end: Point) -> Non
         )
     if found is None:
         if end.pop(missing, None) is not None:
-            block.lost.append(((missing,), "the angle ,A does not give the end of the move"))
+            block.lost.append(((missing,), tr("the angle ,A does not give the end of the move")))
         return
     end[missing] = modal.q(found)
 
@@ -774,7 +895,12 @@ def _lathe_cycle(block: _Block, code: float, values: Mapping[str, Value]) -> Non
     x, z, taper = words.get("X"), words.get("Z"), words.get("R", 0.0)
     x0, z0 = start.get("X"), start.get("Z")
     if x is None or z is None or x0 is None or z0 is None or math.isnan(taper):
-        block.note(f"{name}'s start point or end point is not known: the cycle is not drawn")
+        block.note(
+            tr(
+                "{code}'s start point or end point is not known: the cycle is not drawn",
+                code=name,
+            )
+        )
         return
     cut: MoveKind = "thread" if code == 92.0 else "feed"
     out: MoveKind = "rapid" if code == 92.0 else "feed"
@@ -802,7 +928,7 @@ def _g76(block: _Block, values: Mapping[str, Value], passes: Sequence[float | No
     end, _ = _targets(block, values)
     z, x0, z0 = end.get("Z"), start.get("X"), start.get("Z")
     if z is None or x0 is None or z0 is None or any(p is None for p in passes):
-        block.note("G76's start point or end point is not known: its passes are not drawn")
+        block.note(tr("G76's start point or end point is not known: its passes are not drawn"))
         return
     taper = values.get("R")
     i = taper if isinstance(taper, float) else 0.0
@@ -845,7 +971,7 @@ def _drill(block: _Block, values: Mapping[str, Value]) -> None:
     r, z = words.get("R"), words.get("Z")
     flat = {a: v for a, v in values.items() if a in ("X", "Y")}
     if r is None or z is None or initial is None:
-        block.lose(("Z",), f"{name}'s R point, Z or initial level is not known")
+        block.lose(("Z",), tr("{code}'s R point, Z or initial level is not known", code=name))
         end, _ = _targets(block, flat)
         block.go("rapid", end, cycle=name)
         return
@@ -895,26 +1021,92 @@ class Recorder:
     follows where the tool is (for ``#5001``-``#5003``, see :meth:`block_end`): no move is
     kept."""
 
-    __slots__ = ("_finishing", "_seen", "_unplaced", "keep", "modal", "toolpath")
+    __slots__ = (
+        "_finishing",
+        "_seen",
+        "_tool",
+        "_unplaced",
+        "keep",
+        "modal",
+        "timed_codes",
+        "toolpath",
+    )
 
-    def __init__(self, lathe: bool, keep: bool = True) -> None:
+    def __init__(
+        self, lathe: bool, keep: bool = True, timed_codes: frozenset[float] = frozenset()
+    ) -> None:
         self.toolpath = Toolpath(lathe=lathe)
         self.modal = PathModal(lathe)
         self.keep = keep
+        self.timed_codes = timed_codes  # the M codes whose blocks are timed events
+        self._tool: float | None = None  # a lathe's tool the last T selected, in this run
         self._seen = 0  # motion records before the block
         self._unplaced: set[str] = set(self.modal.axes)
         # A G70 under way: its start point, its motion record, line, program and document.
         self._finishing: tuple[Point, int, int, str, str] | None = None
 
-    def begin_run(self, motions: int, lathe: bool | None = None) -> None:
-        """A new run (an entry program, on a lathe or a mill): where the machine stands is
-        not known again."""
+    def begin_run(
+        self, motions: int, lathe: bool | None = None, entry: tuple[str, int, str] = ("", -1, "")
+    ) -> None:
+        """A new run (an entry program, on a lathe or a mill; ``entry``: its document, first
+        line and name): where the machine stands and its tool are not known again."""
         self.modal = PathModal(self.modal.lathe if lathe is None else lathe)
         self._unplaced = set(self.modal.axes)
+        self._tool = None
         path = self.toolpath
         path.runs.append((len(path.moves), len(path.lost)))
+        path.starts.append(RunStart(*entry, len(path.moves), len(path.events), motions))
         self._seen = motions
         self._finishing = None
+
+    def timed(
+        self,
+        where: tuple[str, str, int, int],
+        values: Mapping[str, Value],
+        g_codes: Sequence[float],
+        m_codes: Sequence[float],
+        motions: int,
+    ) -> None:
+        """The timed events of the block just run (``where``: its program, document, line and
+        program's first line): a G04's dwell, a tool change, the M codes of ``timed_codes``.
+        A lathe's T changes the tool when it selects another than the run's last T (the tool
+        of a four-digit Txxyy is xx, 0i-TF "Tool function"; the first T of a run counts, the
+        turret's place before it not being known); a mill's M06 changes it."""
+        if not self.keep:
+            return
+        program, uri, line, program_line = where
+        events = self.toolpath.events
+        at = len(self.toolpath.moves)
+        if 4.0 in g_codes:
+            seconds = dwell_seconds(values)
+            if seconds is not None:
+                events.append(
+                    TimedEvent("dwell", line, program, uri, program_line, at, motions, seconds)
+                )
+        if self.modal.lathe:
+            t = values.get("T")
+            if type(t) is float and t > 0.0:
+                tool = t // 100.0 if t >= 100.0 else t
+                if tool and tool != self._tool:
+                    self._tool = tool
+                    events.append(
+                        TimedEvent(
+                            "tool change", line, program, uri, program_line, at, motions, 0.0, tool
+                        )
+                    )
+        for m in m_codes:
+            if m == 6.0 and not self.modal.lathe:
+                t = values.get("T")
+                tool = t if type(t) is float else 0.0
+                events.append(
+                    TimedEvent(
+                        "tool change", line, program, uri, program_line, at, motions, 0.0, tool
+                    )
+                )
+            if m in self.timed_codes:
+                events.append(
+                    TimedEvent("M code", line, program, uri, program_line, at, motions, 0.0, m)
+                )
 
     def block_end(self, axis: int) -> float | None:
         """Where the last block sent axis number ``axis`` (1 for #5001): the programmed

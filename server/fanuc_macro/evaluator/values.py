@@ -14,6 +14,8 @@ from dataclasses import dataclass
 from enum import Enum
 from types import MappingProxyType
 
+from ..translation import tr
+
 
 @dataclass(frozen=True, slots=True)
 class Unknown:
@@ -23,10 +25,10 @@ class Unknown:
 
     def describe(self) -> str:
         if not self.deps:
-            return "unknown"
+            return tr("unknown")
         names = ", ".join(f"#{n}" for n in sorted(self.deps)[:6])
         more = "..." if len(self.deps) > 6 else ""
-        return f"depends on {names}{more}"
+        return tr("depends on {variables}{more}", variables=names, more=more)
 
 
 Value = float | Unknown | None
@@ -132,7 +134,10 @@ def f_tan(x: float) -> float:
         raise MacroAlarm(
             "PS0112",
             AlarmKind.ZERO_DIVIDE,
-            f"TAN[{fmt(x)}]: the tangent of {fmt(x)} degrees is infinite (ZERO DIVIDE)",
+            tr(
+                "TAN[{argument}]: the tangent of {argument} degrees is infinite (ZERO DIVIDE)",
+                argument=fmt(x),
+            ),
             x,
         )
     return math.sin(math.radians(x)) / c
@@ -141,7 +146,10 @@ def f_tan(x: float) -> float:
 def f_asin(x: float) -> float:
     if not -1.0 <= x <= 1.0:
         raise MacroAlarm(
-            "PS0119", AlarmKind.ASIN_RANGE, f"ASIN argument {fmt(x)} is outside [-1, 1]", x
+            "PS0119",
+            AlarmKind.ASIN_RANGE,
+            tr("ASIN argument {argument} is outside [-1, 1]", argument=fmt(x)),
+            x,
         )
     return math.degrees(math.asin(x))
 
@@ -149,7 +157,10 @@ def f_asin(x: float) -> float:
 def f_acos(x: float) -> float:
     if not -1.0 <= x <= 1.0:
         raise MacroAlarm(
-            "PS0119", AlarmKind.ACOS_RANGE, f"ACOS argument {fmt(x)} is outside [-1, 1]", x
+            "PS0119",
+            AlarmKind.ACOS_RANGE,
+            tr("ACOS argument {argument} is outside [-1, 1]", argument=fmt(x)),
+            x,
         )
     return math.degrees(math.acos(x))
 
@@ -162,21 +173,29 @@ def f_atan(x: float) -> float:
 
 def f_atan2(a: float, b: float) -> float:
     if a == 0.0 and b == 0.0:
-        raise MacroAlarm("PS0119", AlarmKind.ATAN_ZERO, "ATAN[0]/[0] has no angle", 0.0)
+        raise MacroAlarm("PS0119", AlarmKind.ATAN_ZERO, tr("ATAN[0]/[0] has no angle"), 0.0)
     return math.degrees(math.atan2(a, b)) % 360.0
 
 
 def f_sqrt(x: float) -> float:
     if x < 0.0:
         raise MacroAlarm(
-            "PS0119", AlarmKind.SQRT_NEGATIVE, f"SQRT argument {fmt(x)} is negative", x
+            "PS0119",
+            AlarmKind.SQRT_NEGATIVE,
+            tr("SQRT argument {argument} is negative", argument=fmt(x)),
+            x,
         )
     return math.sqrt(x)
 
 
 def f_ln(x: float) -> float:
     if x <= 0.0:
-        raise MacroAlarm("PS0119", AlarmKind.LN_DOMAIN, f"LN argument {fmt(x)} is not positive", x)
+        raise MacroAlarm(
+            "PS0119",
+            AlarmKind.LN_DOMAIN,
+            tr("LN argument {argument} is not positive", argument=fmt(x)),
+            x,
+        )
     return math.log(x)
 
 
@@ -184,7 +203,9 @@ def f_exp(x: float) -> float:
     try:
         return math.exp(x)
     except OverflowError:
-        raise MacroAlarm("PS0111", AlarmKind.OVERFLOW, f"EXP[{fmt(x)}] overflows", x) from None
+        raise MacroAlarm(
+            "PS0111", AlarmKind.OVERFLOW, tr("EXP[{argument}] overflows", argument=fmt(x)), x
+        ) from None
 
 
 def f_round(x: float) -> float:
@@ -208,14 +229,24 @@ def f_abs(x: float) -> float:
 def f_bin(x: float) -> float:
     """BCD to binary."""
     if x < 0:
-        raise MacroAlarm("PS0119", AlarmKind.BIN_RANGE, f"BIN argument {fmt(x)} is negative", x)
+        raise MacroAlarm(
+            "PS0119",
+            AlarmKind.BIN_RANGE,
+            tr("BIN argument {argument} is negative", argument=fmt(x)),
+            x,
+        )
     n = int(x)
     result = 0
     scale = 1
     while n:
         digit = n & 0xF
         if digit > 9:
-            raise MacroAlarm("PS0119", AlarmKind.BIN_RANGE, f"BIN argument {fmt(x)} is not BCD", x)
+            raise MacroAlarm(
+                "PS0119",
+                AlarmKind.BIN_RANGE,
+                tr("BIN argument {argument} is not BCD", argument=fmt(x)),
+                x,
+            )
         result += digit * scale
         scale *= 10
         n >>= 4
@@ -225,7 +256,12 @@ def f_bin(x: float) -> float:
 def f_bcd(x: float) -> float:
     """Binary to BCD."""
     if x < 0:
-        raise MacroAlarm("PS0119", AlarmKind.BCD_RANGE, f"BCD argument {fmt(x)} is negative", x)
+        raise MacroAlarm(
+            "PS0119",
+            AlarmKind.BCD_RANGE,
+            tr("BCD argument {argument} is negative", argument=fmt(x)),
+            x,
+        )
     n = int(x)
     result = 0
     shift = 0
@@ -237,7 +273,10 @@ def f_bcd(x: float) -> float:
         return float(result)
     except OverflowError:  # 4 bits a digit: past 77 digits the BCD form is no double
         raise MacroAlarm(
-            "PS0111", AlarmKind.OVERFLOW, f"BCD[{fmt(x)}] overflows (CALCULATED DATA OVERFLOW)", x
+            "PS0111",
+            AlarmKind.OVERFLOW,
+            tr("BCD[{argument}] overflows (CALCULATED DATA OVERFLOW)", argument=fmt(x)),
+            x,
         ) from None
 
 
@@ -254,12 +293,19 @@ def f_pow(a: float, b: float) -> float:
         raise MacroAlarm(
             "PS0111",
             AlarmKind.OVERFLOW,
-            f"POW[{fmt(a)},{fmt(b)}] overflows (CALCULATED DATA OVERFLOW)",
+            tr(
+                "POW[{base},{exponent}] overflows (CALCULATED DATA OVERFLOW)",
+                base=fmt(a),
+                exponent=fmt(b),
+            ),
             a,
         ) from None
     except ValueError:
         raise MacroAlarm(
-            "PS0119", AlarmKind.POW_RANGE, f"POW[{fmt(a)},{fmt(b)}] has no real value", a
+            "PS0119",
+            AlarmKind.POW_RANGE,
+            tr("POW[{base},{exponent}] has no real value", base=fmt(a), exponent=fmt(b)),
+            a,
         ) from None
     return result
 
@@ -277,7 +323,10 @@ TWO_ARG: Mapping[str, Callable[[float, float], float]] = MappingProxyType(
 def divide(a: float, b: float) -> float:
     if b == 0.0:
         raise MacroAlarm(
-            "PS0112", AlarmKind.ZERO_DIVIDE, f"division of {fmt(a)} by zero (ZERO DIVIDE)", b
+            "PS0112",
+            AlarmKind.ZERO_DIVIDE,
+            tr("division of {dividend} by zero (ZERO DIVIDE)", dividend=fmt(a)),
+            b,
         )
     return a / b
 
@@ -285,7 +334,12 @@ def divide(a: float, b: float) -> float:
 def modulo(a: float, b: float) -> float:
     ia, ib = int(a), int(b)
     if ib == 0:
-        raise MacroAlarm("PS0112", AlarmKind.ZERO_DIVIDE, f"{fmt(a)} MOD 0 (ZERO DIVIDE)", b)
+        raise MacroAlarm(
+            "PS0112",
+            AlarmKind.ZERO_DIVIDE,
+            tr("{dividend} MOD 0 (ZERO DIVIDE)", dividend=fmt(a)),
+            b,
+        )
     return float(math.fmod(ia, ib))
 
 

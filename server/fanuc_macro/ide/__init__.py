@@ -94,6 +94,7 @@ if TYPE_CHECKING:
     from .toolpath_view import toolpath_view as toolpath_view
     from .trace import Trace as Trace
     from .trace import TraceMotion as TraceMotion
+    from .trace import cycle_time_text as cycle_time_text
     from .trace import motion_text as motion_text
     from .trace import trace as trace
     from .trace_view import TraceView as TraceView
@@ -164,6 +165,7 @@ PUBLIC: MappingProxyType[str, str] = MappingProxyType(
         "toolpath_view": "toolpath_view",
         "Trace": "trace",
         "TraceMotion": "trace",
+        "cycle_time_text": "trace",
         "motion_text": "trace",
         "trace": "trace",
         "TraceView": "trace_view",

@@ -22,6 +22,7 @@ from ..threads.cross_section import NO_CHAIN, describe_cut, thread_chains
 from ..threads.identify import describe as describe_thread
 from ..threads.identify import module_meanings
 from ..translation import Text, joined, tr
+from .cycle_times import MODEL_NOTE, program_time
 from .data import Hover, Range
 from .locate import Hit, assignments_in, goto_target, number_of
 from .navigation import block_call
@@ -294,6 +295,10 @@ def hover_program(view: View, number: int, line: int | None = None, diagnosed: b
         parts[-1] = tr("{where} · no O line: the number is the file name's", where=parts[-1])
     if key == view.key and line == header:
         parts.append(machine_text(view.config))
+        timed = program_time(view, program)
+        if timed is not None:
+            title, lines = timed
+            parts.append(_time_text(title, lines))
     callers: list[str] = []
     for c_key, (_, c_index) in {**view.workspace, view.key: (view.doc, view.index)}.items():
         for c_program in c_index.programs:
@@ -343,6 +348,21 @@ def hover_program(view: View, number: int, line: int | None = None, diagnosed: b
         if stopped is not None:
             parts.append(tr("{stop}.", stop=_capital(stopped)))
     return joined("\n\n", parts)
+
+
+def _time_text(title: str, lines: str) -> str:
+    """The O line's cycle time in a sentence: the time, its parts in brackets, the model."""
+    if not lines:
+        return tr("{time}. {note}", time=_capital(title), note=MODEL_NOTE)
+    # The parts, one a line: said one after another (each translated when it is a Text).
+    items = (
+        [str(p) if not isinstance(p, str) else p for p in lines.params.values()]
+        if isinstance(lines, Text)
+        else lines.split("\n")
+    )
+    return tr(
+        "{time} ({parts}). {note}", time=_capital(title), parts=joined(", ", items), note=MODEL_NOTE
+    )
 
 
 def _cycle_text(cycle: VendorCycle) -> str:

@@ -1,6 +1,6 @@
-"""Code lenses over each O line: who calls the program across the workspace, and what the
+"""Code lenses over each O line: who calls the program across the workspace, what the
 analysed runs did there (how often it was entered, the threads it cut: their cuts and
-depths)."""
+depths), and its cycle time."""
 
 from __future__ import annotations
 
@@ -9,6 +9,7 @@ from dataclasses import dataclass
 
 from ..program.index import Program
 from ..translation import joined, tr, tr_n
+from .cycle_times import MODEL_NOTE, program_time
 from .data import Location, Range
 from .values import times
 from .view import View
@@ -120,6 +121,15 @@ def _runs_lens(view: View, program: Program, header: int, where: Range) -> CodeL
     return CodeLens(where, joined(" · ", parts), tooltip)
 
 
+def _time_lens(view: View, program: Program, where: Range) -> CodeLens | None:
+    """The program's cycle time (``cycle time 6 min 12.4 s``), its parts in the tooltip."""
+    timed = program_time(view, program)
+    if timed is None:
+        return None
+    title, parts = timed
+    return CodeLens(where, title, joined("\n\n", (parts, MODEL_NOTE)) if parts else MODEL_NOTE)
+
+
 def code_lenses(view: View) -> list[CodeLens]:
     """The lenses of every program with an O line, in document order."""
     out: list[CodeLens] = []
@@ -137,6 +147,7 @@ def code_lenses(view: View) -> list[CodeLens]:
         for lens in (
             _callers_lens(view, program, where, callers),
             _runs_lens(view, program, header, where),
+            _time_lens(view, program, where),
         ):
             if lens is not None:
                 out.append(lens)

@@ -18,7 +18,7 @@ from ..diagnostics import Diagnostic, Fix, Related
 from ..translation import LOCALES, Text, has_translation, render, translate
 from ..translation import locale_of as _locale_of
 
-__all__ = ["LOCALES", "Catalogue", "catalogue", "locale_of"]
+__all__ = ("LOCALES", "Catalogue", "catalogue", "locale_of")
 
 
 def locale_of(name: str | None) -> str:

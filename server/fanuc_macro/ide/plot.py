@@ -41,10 +41,12 @@ from typing import NamedTuple
 from xml.sax.saxutils import escape, quoteattr
 
 from ..config import Config
+from ..evaluator.cycle_time import cycle_time, minutes_seconds
 from ..evaluator.facts import Motion
 from ..evaluator.toolpath import MAX_MOVES, UNKNOWN_START, LostTrack, Move, Plane, Toolpath
 from ..evaluator.values import fmt_address
 from ..program.index import ProgramIndex
+from ..program.machine_kind import machine_config
 from ..syntax.parser import quiet_gc
 from ..syntax.tree import Document
 from ..threads.cross_section import NO_CHAIN, class_limits, thread_chains, thread_cuts
@@ -973,9 +975,9 @@ _LEGEND_LABELS: Mapping[str, str] = MappingProxyType(
 )
 
 
-def _legend(entries: Sequence[str], top: float) -> tuple[list[str], float]:
-    """The legend's rows from ``top`` (the first row's baseline), wrapped to the width; the
-    baseline of its last row."""
+def _legend(entries: Sequence[str], top: float, timed: str = "") -> tuple[list[str], float]:
+    """The legend's rows from ``top`` (the first row's baseline), wrapped to the width, with
+    the cycle time ``timed`` last; the baseline of its last row."""
     out = ['<g class="legend">']
     x, y = MARGIN_LEFT, top
     for entry in entries:
@@ -988,6 +990,10 @@ def _legend(entries: Sequence[str], top: float) -> tuple[list[str], float]:
             f"{_text(x + _SAMPLE + 6, y, label)}</g>"
         )
         x += width + _LEGEND_GAP
+    if timed:
+        if x > MARGIN_LEFT and x + text_width(timed) > WIDTH - MARGIN_RIGHT:
+            x, y = MARGIN_LEFT, y + LINE_HEIGHT + 4
+        out.append(f'<g data-legend="cycle-time">{_text(x, y, timed)}</g>')
     out.append("</g>")
     return out, y
 
@@ -1091,13 +1097,15 @@ def backplot(
     title: str = "",
     main_uri: str = "",
     stop: PlotNote | None = None,
+    timed: str = "",
 ) -> Backplot:
     """The drawing of a toolpath (in ``plane``, else the one ``choose_plane`` gives), the
-    threads' pass maps after it, and what it leaves out; ``stop``: why the run ended early.
+    threads' pass maps after it, and what it leaves out; ``stop``: why the run ended early;
+    ``timed``: the cycle time, as the legend's last entry says it.
 
     Raises :class:`NothingToPlot` when no move can be placed in the plane."""
     with quiet_gc():  # 200,000 moves' strings and no cycles: the collector would only rescan
-        return _backplot(toolpath, plane, passes, title, main_uri, stop)
+        return _backplot(toolpath, plane, passes, title, main_uri, stop, timed)
 
 
 def _backplot(
@@ -1107,6 +1115,7 @@ def _backplot(
     title: str,
     main_uri: str,
     stop: PlotNote | None,
+    timed: str = "",
 ) -> Backplot:
     plane_reason = None
     if plane is None:
@@ -1130,7 +1139,7 @@ def _backplot(
     units = "inch" if toolpath.inch else "mm"
     places = _lost_places(toolpath, across, up)
     arrows = _arrows(drawn, scale)
-    legend, legend_low = _legend(_legend_entries(drawn, arrows, places), 46.0)
+    legend, legend_low = _legend(_legend_entries(drawn, arrows, places), 46.0, timed)
     top = legend_low + 16
     low = top + (v_range[1] - v_range[0]) * scale
     frame = _Frame(h_range[0], v_range[1], scale, left, top)
@@ -1575,14 +1584,17 @@ def run_plot(
     others: Sequence[tuple[str, Document, ProgramIndex]] = (),
     config: Config | None = None,
     entry: int | None = None,
-) -> tuple[Toolpath, PlotNote | None]:
-    """``run_toolpath``, and why the run stopped early when it did (the drawing ends there).
+) -> tuple[Toolpath, PlotNote | None, str]:
+    """``run_toolpath``, why the run stopped early when it did (the drawing ends there), and
+    its cycle time as the legend says it (``cycle time 10 min 1.3 s``).
 
     Raises :class:`NothingToPlot` when the run makes no move."""
     facts = run_with_toolpath(uri, doc, index, others, config, entry)
     toolpath = facts.toolpath
     if toolpath is None or not toolpath.moves:
         raise NothingToPlot("the program makes no move: nothing to plot")
+    timed = cycle_time(facts, machine_config(config or Config(), doc, index))
+    text = "" if timed is None else f"cycle time {minutes_seconds(timed.total.total)}"
     stop = None
     if facts.stopped == "budget":
         stop = PlotNote("the run stopped when the analysis's step budget ran out", ())
@@ -1590,4 +1602,4 @@ def run_plot(
         stop = PlotNote(
             f"the run stopped after {facts.time_limit:g} s (the analysis's time limit)", ()
         )
-    return toolpath, stop
+    return toolpath, stop, text

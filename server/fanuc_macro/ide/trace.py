@@ -10,6 +10,7 @@ from typing import TypedDict
 
 from ..config import Config
 from ..evaluator import Facts, evaluate
+from ..evaluator.cycle_time import Breakdown, CycleTime, cycle_time, minutes_seconds
 from ..evaluator.toolpath import LostTrack, Move, Toolpath
 from ..evaluator.values import Value, fmt, fmt_address
 from ..program.index import ProgramIndex
@@ -60,6 +61,7 @@ class TraceMotion(_TraceMotionRequired, total=False):
     centre: Point
     moves: list[TraceMove]
     cycle: str
+    clock: float  # the cycle time when the block begins, seconds (evaluator/cycle_time.py)
 
 
 class _LostTrackRequired(TypedDict):
@@ -145,6 +147,32 @@ class TraceThread(_TraceThreadRequired, total=False):
     why_not: str
 
 
+class _TraceRunTimeRequired(TypedDict):
+    program: str
+    line: int  # the O line's, 1-based
+    seconds: float
+    text: str  # "6 min 12.4 s"
+    parts: dict[str, float]  # seconds by part: cutting, threading, rapid, dwell, ...
+    tool_changes: int
+    untimed_moves: int  # moves whose F or spindle speed the run does not know
+
+
+class TraceRunTime(_TraceRunTimeRequired, total=False):
+    """The cycle time of one run (an entry program); ``path`` when in another file."""
+
+    path: str
+
+
+class TraceCycleTime(TypedDict):
+    """The cycle time of every run together, and of each (:mod:`..evaluator.cycle_time`)."""
+
+    seconds: float
+    text: str
+    parts: dict[str, float]
+    untimed_moves: int
+    runs: list[TraceRunTime]
+
+
 class TraceSummary(TypedDict):
     motions: int
     by_code: dict[str, int]
@@ -154,6 +182,7 @@ class TraceSummary(TypedDict):
     findings: list[TraceFinding]
     read_in_part: list[ReadInPart]
     threads: list[TraceThread]
+    cycle_time: TraceCycleTime
 
 
 class Trace(TypedDict):
@@ -206,6 +235,8 @@ def trace(
     path = facts.toolpath
     assert path is not None
     by_motion = _moves_by_motion(path)
+    timed = cycle_time(facts, machine_config(config or Config(), doc, index))
+    assert timed is not None
     motions: list[TraceMotion] = []
     for i, m in enumerate(facts.motions):
         record: TraceMotion = {
@@ -237,6 +268,7 @@ def trace(
             here = _point(path.standing.get(i, {}))
             record["start"] = here
             record["end"] = here
+        record["clock"] = _seconds(timed.so_far(i))
         motions.append(record)
     codes = Counter(m.shown for m in facts.motions)
     findings: list[TraceFinding] = [
@@ -262,8 +294,57 @@ def trace(
             "findings": findings,
             "read_in_part": _read_in_part(uri, doc, others),
             "threads": _threads(uri, doc, index, facts),
+            "cycle_time": _cycle_time(uri, timed),
         },
     }
+
+
+def _seconds(seconds: float) -> float:
+    """Seconds to the millisecond: what the trace prints and compares."""
+    return round(seconds, 3)
+
+
+def _parts(breakdown: Breakdown) -> dict[str, float]:
+    return {part: _seconds(s) for part, s in breakdown.parts().items()}
+
+
+def _cycle_time(uri: str, timed: CycleTime) -> TraceCycleTime:
+    runs: list[TraceRunTime] = []
+    for run in timed.runs:
+        record: TraceRunTime = {
+            "program": run.program,
+            "line": run.program_line + 1,
+            "seconds": _seconds(run.seconds),
+            "text": minutes_seconds(run.seconds),
+            "parts": _parts(run.breakdown),
+            "tool_changes": run.tool_changes,
+            "untimed_moves": run.untimed,
+        }
+        if run.uri != uri:
+            record["path"] = run.uri
+        runs.append(record)
+    return {
+        "seconds": _seconds(timed.total.total),
+        "text": minutes_seconds(timed.total.total),
+        "parts": _parts(timed.total),
+        "untimed_moves": timed.untimed,
+        "runs": runs,
+    }
+
+
+def cycle_time_text(summary: TraceSummary) -> str:
+    """The trace's line of the cycle time: ``cycle time 10 min 1.3 s (cutting 11.4 s,
+    threading 9 min 18.0 s, rapid 29.9 s, tool change 2.0 s)``, the parts that took time, and
+    the moves it could not time."""
+    timed = summary["cycle_time"]
+    parts = ", ".join(
+        f"{part} {minutes_seconds(seconds)}" for part, seconds in timed["parts"].items() if seconds
+    )
+    text = f"cycle time {timed['text']}" + (f" ({parts})" if parts else "")
+    untimed = timed["untimed_moves"]
+    if untimed:
+        text += f"; {untimed} move{'' if untimed == 1 else 's'} not timed (F or speed not known)"
+    return text
 
 
 def _threads(uri: str, doc: Document, index: ProgramIndex, facts: Facts) -> list[TraceThread]:

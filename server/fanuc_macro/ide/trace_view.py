@@ -1,5 +1,6 @@
 """The trace view's text: a header, one row per motion block (where it is, its code and words,
-where the tool goes, the spindle speed and the feed in force), the values the
+where the tool goes, the spindle speed and the feed in force, the cycle time when it
+begins), the values the
 block read under its row, a canned cycle's moves, where the path is not known, and the
 summary.  Each row of a block says which line of which file it leads to, for the editor's
 links and Go to Definition.  The columns fit beside a program (``MAX_COLUMN``), and the
@@ -271,6 +272,15 @@ def _feed(m: Mapping[str, Any]) -> str:
     return "-" if feed is None else _word("F", feed)
 
 
+def _clock(m: Mapping[str, Any]) -> str:
+    """The cycle time when the block begins, minutes and seconds to 0.1 s (``6:12.4``)."""
+    clock = m.get("clock")
+    if not isinstance(clock, int | float) or isinstance(clock, bool):
+        return "-"
+    minutes, tenths = divmod(round(clock * 10.0), 600)
+    return f"{minutes}:{tenths // 10:02d}.{tenths % 10}"
+
+
 # The row's columns: a title and its cell.  The block's F is its own column, not a word.
 _COLUMNS: tuple[tuple[str, Callable[[Mapping[str, Any]], str]], ...] = (
     (tr("block"), _block),
@@ -279,6 +289,7 @@ _COLUMNS: tuple[tuple[str, Callable[[Mapping[str, Any]], str]], ...] = (
     (tr("to"), _to),
     ("S", _spindle),
     ("F", _feed),
+    (tr("time"), _clock),
 )
 
 

@@ -160,12 +160,13 @@ TAG = MappingProxyType(
 )
 
 
-def rule_url(code: str) -> str:
-    """The section of docs/rules.md that documents ``code``."""
+def rule_url(code: str, locale: str = "en") -> str:
+    """The section of docs/rules.md that documents ``code`` (of docs/rules.zh-cn.md for a
+    Chinese reader)."""
     # Imported here: the server answers initialize before it loads the analysis.
     from ..rules_doc import rule_url as url
 
-    return url(code)
+    return url(code, locale)
 
 
 def _json_safe(data: dict[str, object]) -> dict[str, object]:
@@ -183,13 +184,18 @@ Resolver = Callable[[str], "tuple[str, Lines] | None"]
 
 
 def to_lsp_diagnostic(
-    diag: Diagnostic, key: str, uri: str, lines: Lines, resolve: Resolver | None = None
+    diag: Diagnostic,
+    key: str,
+    uri: str,
+    lines: Lines,
+    resolve: Resolver | None = None,
+    locale: str = "en",
 ) -> types.Diagnostic:
     """One package diagnostic in the protocol's terms.
 
     ``key`` is the document's name in the package, ``uri`` the client's name for it. A related
     place in another document is converted with that document's lines and client URI, which
-    ``resolve`` gives for a package key.
+    ``resolve`` gives for a package key. The rule's link is to the page in ``locale``.
     """
     related: list[types.DiagnosticRelatedInformation] = []
     for r in diag.related:
@@ -214,7 +220,7 @@ def to_lsp_diagnostic(
         message=diag.message,
         severity=SEVERITY.get(diag.severity, types.DiagnosticSeverity.Warning),
         code=diag.code,
-        code_description=types.CodeDescription(href=rule_url(diag.code)),
+        code_description=types.CodeDescription(href=rule_url(diag.code, locale)),
         source=SOURCE,
         related_information=related or None,
         tags=tags,
@@ -238,13 +244,14 @@ class ConvertedDiagnostics:
         uri: str,
         lines: Lines,
         resolve: Resolver | None = None,
+        locale: str = "en",
     ) -> list[types.Diagnostic]:
         kept: dict[object, types.Diagnostic] = {}
         out: list[types.Diagnostic] = []
         for diag in diags:
             if any(r.uri is not None and r.uri != key for r in diag.related):
                 # A place in another document: its lines are not this one's to compare.
-                out.append(to_lsp_diagnostic(diag, key, uri, lines, resolve))
+                out.append(to_lsp_diagnostic(diag, key, uri, lines, resolve, locale))
                 continue
             # What the converted form depends on: the diagnostic (its data apart, which it
             # does not compare), the lines its ranges are on, the client's name and units.
@@ -257,10 +264,11 @@ class ConvertedDiagnostics:
                 tuple(text(r.line) for r in diag.related),
                 uri,
                 lines.codec.encoding,
+                locale,
             )
             converted = self._last.get(identity)
             if converted is None:
-                converted = to_lsp_diagnostic(diag, key, uri, lines, resolve)
+                converted = to_lsp_diagnostic(diag, key, uri, lines, resolve, locale)
             kept[identity] = converted
             out.append(converted)
         self._last = kept

@@ -468,8 +468,14 @@ class Engine:
                 raise RuntimeError("fault injected for testing")
             analysis = self._analyse(key, job.token, job.others)
             converted = self._converted.setdefault(key, ConvertedDiagnostics())
+            chosen = self.catalogue
             diagnostics = converted.convert(
-                self.catalogue.localised(analysis.diagnostics), key, text.uri, lines, self._resolve
+                chosen.localised(analysis.diagnostics),
+                key,
+                text.uri,
+                lines,
+                self._resolve,
+                chosen.locale,
             )
         except Exception as err:  # logged and shown; the server goes on with other work
             self.report(f"fanuc-macro: the analysis of {text.uri} failed: {err!r}", err)

@@ -8,6 +8,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from ..translation import tr
+
 # The page that cites each paper in full, under a heading of its own (``Paper.anchor``).
 PAPERS_URL = "https://github.com/fanuc-macro/fanuc-macro/blob/main/docs/papers.md"
 
@@ -34,7 +36,7 @@ class Paper:
     @property
     def by(self) -> str:
         """``Deng Ronggang's paper``: for a message, where the title would be too long."""
-        return f"{self.authors_short}'s paper"
+        return tr("{authors}'s paper", authors=self.authors_short)
 
     @property
     def short(self) -> str:

@@ -48,9 +48,9 @@ class VendorCycle:
 
 
 INSPECTION_PLUS = "Renishaw Inspection Plus"
-TOOL_SETTING = tr("Renishaw tool setting")
-_MANUAL_IP = tr("Renishaw Inspection Plus programming manual H-2000-6031 / H-2000-6222")
-_MANUAL_TS = tr("Renishaw tool setting software (manual number unverified)")
+TOOL_SETTING = "Renishaw tool setting"
+_MANUAL_IP = "Renishaw Inspection Plus programming manual H-2000-6031 / H-2000-6222"
+_MANUAL_TS = "Renishaw tool setting software (manual number unverified)"
 
 # The letters most measuring cycles of Inspection Plus share: [CPS], but E and U ([IP],
 # unverified).
@@ -152,11 +152,11 @@ _CYCLES = (
     VendorCycle(
         9819,
         INSPECTION_PLUS,
-        "bores or bosses on a pitch circle (PCD)",
+        tr("bores or bosses on a pitch circle (PCD)"),
         (
             ("A", tr("angle of the first feature")),
             ("B", tr("number of features")),
-            ("C", "the pitch circle's diameter"),
+            ("C", tr("the pitch circle's diameter")),
             ("D", tr("the features' diameter")),
             ("K", tr("the depth to measure bores at")),
             ("Z", tr("the depth to measure bosses at")),
@@ -268,4 +268,10 @@ def manual_of(cycle: VendorCycle) -> str:
 
 def describe(cycle: VendorCycle) -> str:
     """One line naming a cycle: ``O9814, Renishaw Inspection Plus: bore or boss measurement``."""
-    return f"O{cycle.number}, {cycle.package}: {cycle.name}"
+    # The package is a product's name, the same in every language.
+    return tr(
+        "O{number}, {product_text}: {name}",
+        number=cycle.number,
+        product_text=cycle.package,
+        name=cycle.name,
+    )

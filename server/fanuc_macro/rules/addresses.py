@@ -28,6 +28,7 @@ from ..evaluator.facts import (
 from ..program.custom_calls import unset_m_calls
 from ..syntax.marks import constant_value
 from ..syntax.tree import Assign, Var, Word
+from ..translation import tr
 from .context import RuleContext
 
 FAMILY = "addresses"
@@ -165,13 +166,29 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
             origin = _last_assignment(ctx, f.line, n)
             if origin is not None:
                 line, text = origin
-                message += f" (#{n} set at line {line + 1}: {text})"
+                message = tr(
+                    "{finding} (#{variable} set at line {line}: {assignment_text})",
+                    finding=message,
+                    variable=n,
+                    line=line + 1,
+                    assignment_text=text,
+                )
                 related.append(
-                    Related(line, 0, len(ctx.doc.blocks[line].text), f"#{n} is set here")
+                    Related(
+                        line,
+                        0,
+                        len(ctx.doc.blocks[line].text),
+                        tr("#{variable} is set here", variable=n),
+                    )
                 )
                 hint = _likely_meant(ctx, f.line, word.address)
                 if hint:
-                    message += f"; did you mean {word.address}{hint}?"
+                    message = tr(
+                        "{finding}; did you mean {address}{variable}?",
+                        finding=message,
+                        address=word.address,
+                        variable=hint,
+                    )
                     fixes = _use_meant(ctx, f.line, word, hint)
         yield make(rule, message, f.line, f.column, f.end_column, related=related, fixes=fixes)
 
@@ -227,18 +244,29 @@ def _feed_not_set(ctx: RuleContext) -> Iterator[Diagnostic]:
         cuts = program.lines
         line = cuts[0]
         text = ctx.doc.blocks[line].text
-        more = ""
         if program.count > 1:
-            later = line_list(cuts[1:])  # the first few: SHOWN_CUTS is more than it shows
-            more = f"; {program.count - 1} more cuts run without F after it (lines {later})"
+            message = tr(
+                "{cut}: the feed is what an earlier program left, or 0 after power-on (alarm "
+                "PS0011 FEED ZERO); give F in this block or before it; {count} more cuts run "
+                "without F after it (lines {lines})",
+                cut=program.message,
+                count=program.count - 1,
+                lines=line_list(cuts[1:]),  # the first few: SHOWN_CUTS is more than it shows
+            )
+        else:
+            message = tr(
+                "{cut}: the feed is what an earlier program left, or 0 after power-on (alarm "
+                "PS0011 FEED ZERO); give F in this block or before it",
+                cut=program.message,
+            )
+        related = tr("a cut without F")
         yield make(
             MB603,
-            f"{program.message}: the feed is what an earlier program left, or 0 after power-on "
-            f"(alarm PS0011 FEED ZERO); give F in this block or before it{more}",
+            message,
             line,
             len(text) - len(text.lstrip()),
             len(text.rstrip()),
-            related=[Related(n, 0, 0, "a cut without F") for n in cuts[1:20]],
+            related=[Related(n, 0, 0, related) for n in cuts[1:20]],
         )
 
 
@@ -287,28 +315,45 @@ def _feed_zero(ctx: RuleContext) -> Iterator[Diagnostic]:
         text = ctx.doc.blocks[f.line].text
         word = _word_in_block(ctx, f.line, "F")
         if word is None:
-            where = "the modal F, commanded 0 before this block"
+            where: str = tr("the modal F, commanded 0 before this block")
             start, end = len(text) - len(text.lstrip()), len(text.rstrip())
         else:
-            where = f"{text[word.span.start : word.span.end]} in this block"
-            if constant_value(word.value) is None:
-                where += " gives 0"
-                value = word.value
-                if isinstance(value, Var) and value.number is not None:
-                    assigned = _last_assignment(ctx, f.line, int(value.number))
-                    if assigned is not None:
-                        where += (
-                            f" (#{value.number:g} set at line {assigned[0] + 1}: {assigned[1]})"
-                        )
+            where = _zero_word(ctx, f.line, word)
             start, end = word.span.start, word.span.end
-        yield make(
-            MB604,
-            f"{f.message}, {where}: the control stops at this block; give the "
-            + ("lead" if f.lead else "feed"),
-            f.line,
-            start,
-            end,
+        message = (
+            tr(
+                "{finding}, {where}: the control stops at this block; give the lead",
+                finding=f.message,
+                where=where,
+            )
+            if f.lead
+            else tr(
+                "{finding}, {where}: the control stops at this block; give the feed",
+                finding=f.message,
+                where=where,
+            )
         )
+        yield make(MB604, message, f.line, start, end)
+
+
+def _zero_word(ctx: RuleContext, line: int, word: Word) -> str:
+    """MB604: where the 0 of the block's F word comes from."""
+    word_text = ctx.doc.blocks[line].text[word.span.start : word.span.end]
+    if constant_value(word.value) is not None:
+        return tr("{word_text} in this block", word_text=word_text)
+    value = word.value
+    if isinstance(value, Var) and value.number is not None:
+        assigned = _last_assignment(ctx, line, int(value.number))
+        if assigned is not None:
+            return tr(
+                "{word_text} in this block gives 0 (#{variable:g} set at line {line}: "
+                "{assignment_text})",
+                word_text=word_text,
+                variable=value.number,
+                line=assigned[0] + 1,
+                assignment_text=assigned[1],
+            )
+    return tr("{word_text} in this block gives 0", word_text=word_text)
 
 
 def _block_words(ctx: RuleContext, line: int) -> Iterator[Word]:
@@ -372,7 +417,14 @@ def _use_meant(ctx: RuleContext, line: int, word: Word, hint: str) -> tuple[Fix,
     span = word.value.span
     return (
         Fix(
-            f"Use {word.address}{hint} (#{hint[1:]} is set to {value:g} at line {origin[0] + 1})",
+            tr(
+                "Use {address}{variable} (#{number} is set to {value:g} at line {line})",
+                address=word.address,
+                variable=hint,
+                number=hint[1:],
+                value=value,
+                line=origin[0] + 1,
+            ),
             (FixEdit(line, span.start, line, span.end, hint),),
             preferred=True,
         ),

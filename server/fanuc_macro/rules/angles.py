@@ -56,6 +56,7 @@ from ..syntax.tree import (
 )
 from ..syntax.walk import subexpressions, top_expressions
 from ..threads.linear import expr_text
+from ..translation import tr
 from .context import RuleContext, line_statements
 
 FAMILY = "math-domain"
@@ -341,7 +342,7 @@ def _program_angles(
                 increments.setdefault(n, set()).add(sign * summary.first)
         inverse.update(said.inverse)
         for n in said.pi_bounds:
-            turns.setdefault(n, "the loop's bound is written with π")
+            turns.setdefault(n, tr("the loop's bound is written with π"))
         bounds = list(said.number_bounds)
         for n, m in said.variable_bounds:
             summary = reads.get((at, m))
@@ -350,7 +351,7 @@ def _program_angles(
         for n, bound in bounds:
             name = None if n in turns else _turn(bound)
             if name is not None:
-                turns[n] = f"the loop's bound {bound:.6g} is {name}"
+                turns[n] = tr("the loop's bound {bound:.6g} is {turn}", bound=bound, turn=name)
     return {
         n: _Angle(frozenset(increments.get(n, ())), n in pi, n in inverse, turns.get(n))
         for n in set(increments) | pi | inverse | set(turns)
@@ -456,29 +457,50 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
             step = abs(typed) if typed is not None else sweep / (summary.count - 1)
             if step >= MAX_STEP:
                 continue  # steps of a degree and more
+            sign: str
             if angle.pi:
-                sign = "a π in its assignments"
+                sign = tr("a π in its assignments")
             elif angle.turn is not None:
                 sign = angle.turn
             elif typed is not None and _typed_conversion(typed):
-                sign = f"the step {abs(typed):.6g} is typed as a radian conversion, not degrees"
+                sign = tr(
+                    "the step {step:.6g} is typed as a radian conversion, not degrees",
+                    step=abs(typed),
+                )
             else:
                 continue  # as likely small angles in degrees: quiet
             name = text.split("[", 1)[0]
             last = high if rising else low
             signed = step if rising else -step
-            in_degrees = (
-                f"{_show(math.degrees(first))}° in steps of {_show(math.degrees(signed), 3)}° "
-                f"to {_show(math.degrees(last))}°"
+            in_degrees = tr(
+                "{first}° in steps of {step}° to {last}°",
+                first=_show(math.degrees(first)),
+                step=_show(math.degrees(signed), 3),
+                last=_show(math.degrees(last)),
             )
             results = [_degrees_function(name, v) for v in (low, high)]
             yield make(
                 MB504,
-                f"{text} gets #{number} from {_show(first)} in steps of {_show(signed)} to "
-                f"{_show(last)} ({summary.count} times), a sweep of {_show(sweep)}: radians "
-                f"({in_degrees}; {sign}), but {name} takes degrees, so the sweep is "
-                f"{sweep:.3g}° and {name} stays between {min(results):.3g} and "
-                f"{max(results):.3g}; write the angles in degrees (or multiply by 57.29578)",
+                tr(
+                    "{call_text} gets #{variable} from {first} in steps of {step} to "
+                    "{last} ({count} times), a sweep of {sweep}: radians "
+                    "({in_degrees}; {sign}), but {function} takes degrees, so the sweep is "
+                    "{sweep_degrees:.3g}° and {function} stays between {low:.3g} and "
+                    "{high:.3g}; write the angles in degrees (or multiply by 57.29578)",
+                    call_text=text,
+                    variable=number,
+                    first=_show(first),
+                    step=_show(signed),
+                    last=_show(last),
+                    count=summary.count,
+                    sweep=_show(sweep),
+                    in_degrees=in_degrees,
+                    sign=sign,
+                    function=name,
+                    sweep_degrees=sweep,
+                    low=min(results),
+                    high=max(results),
+                ),
                 line,
                 span.start,
                 span.end,

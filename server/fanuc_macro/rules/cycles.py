@@ -19,6 +19,7 @@ from ..evaluator.facts import Motion, ThreadCycleFault
 from ..threads.identify import Thread
 from ..threads.jobs import motion_positions
 from ..threads.module_shape import D1_FACTOR
+from ..translation import tr
 from .context import RuleContext
 from .threading import EPS, mm, thread_related, width
 
@@ -136,7 +137,10 @@ def _report(ctx: RuleContext, m: Motion, message: str, related: list[Related]) -
     """At the block that put the tool at the start point (the line to fix), else the cycle."""
     line = m.line
     if m.start_line is not None and m.start_uri == ctx.doc.uri:
-        related = [Related(m.line, 0, 0, f"the {m.shown} that starts there"), *related]
+        related = [
+            Related(m.line, 0, 0, tr("the {code} that starts there", code=m.shown)),
+            *related,
+        ]
         line = m.start_line
     return make(MB813, message, line, 0, width(ctx, line), related=related)
 
@@ -164,21 +168,34 @@ def _thread_start(ctx: RuleContext, thread: Thread) -> Iterator[Diagnostic]:
     m, shallowest = found
     start = m.start_x
     assert start is not None
-    side = "inside" if internal else "outside"
-    where = (
-        f"the {'bore' if internal else 'crest'} of {thread.name}, about X{mm(crest, m.inch)}"
-        if crest is not None
-        else f"its shallowest pass X{mm(shallowest, m.inch)}"
+    if crest is None:
+        where = tr("its shallowest pass X{x}", x=mm(shallowest, m.inch))
+    elif internal:
+        where = tr("the bore of {thread}, about X{x}", thread=thread.name, x=mm(crest, m.inch))
+    else:
+        where = tr("the crest of {thread}, about X{x}", thread=thread.name, x=mm(crest, m.inch))
+    said = {
+        "code": m.shown,
+        "start": mm(start, m.inch),
+        "reason": thread.job.side_reason or tr("its designation"),
+        "where": where,
+    }
+    message = (
+        tr(
+            "{code} starts at X{start}, but the thread is cut from the inside ({reason}): the "
+            "start point must lie beyond {where}; from X{start} the cycle retracts into the "
+            "thread after each pass and the return in Z crosses it",
+            **said,
+        )
+        if internal
+        else tr(
+            "{code} starts at X{start}, but the thread is cut from the outside ({reason}): the "
+            "start point must lie beyond {where}; from X{start} the cycle retracts into the "
+            "thread after each pass and the return in Z crosses it",
+            **said,
+        )
     )
-    yield _report(
-        ctx,
-        m,
-        f"{m.shown} starts at X{mm(start, m.inch)}, but the thread is cut from the {side} "
-        f"({thread.job.side_reason or 'its designation'}): the start point must lie beyond "
-        f"{where}; from X{mm(start, m.inch)} the cycle retracts into the thread after each pass "
-        f"and the return in Z crosses it",
-        thread_related(thread),
-    )
+    yield _report(ctx, m, message, thread_related(thread))
 
 
 def _wrong_start(
@@ -243,16 +260,31 @@ def _series_start(ctx: RuleContext, series: _Series) -> Iterator[Diagnostic]:
         assert start is not None and value is not None
         wrong = start < first - EPS if towards_minus else start > first + EPS
         if wrong:
-            what = "facing" if series.code == "G94" else "turning"
-            yield _report(
-                ctx,
-                m,
-                f"{m.shown} starts at {axis}{mm(start, m.inch)}, on the material's side of its "
-                f"first pass {axis}{mm(first, m.inch)}: the {what} passes go towards {axis}"
-                f"{'-' if towards_minus else '+'}, so the start point must lie beyond the "
-                f"first pass; from there the cycle returns through the part",
-                [],
+            said = {
+                "code": m.shown,
+                "axis": axis,
+                "start": mm(start, m.inch),
+                "first": mm(first, m.inch),
+                "sign": "-" if towards_minus else "+",
+            }
+            message = (
+                tr(
+                    "{code} starts at {axis}{start}, on the material's side of its first pass "
+                    "{axis}{first}: the facing passes go towards {axis}{sign}, so the start "
+                    "point must lie beyond the first pass; from there the cycle returns through "
+                    "the part",
+                    **said,
+                )
+                if series.code == "G94"
+                else tr(
+                    "{code} starts at {axis}{start}, on the material's side of its first pass "
+                    "{axis}{first}: the turning passes go towards {axis}{sign}, so the start "
+                    "point must lie beyond the first pass; from there the cycle returns through "
+                    "the part",
+                    **said,
+                )
             )
+            yield _report(ctx, m, message, [])
             return
 
 

@@ -33,6 +33,7 @@ from ..syntax.tree import (
     Word,
 )
 from ..syntax.walk import all_line_variables, line_variables
+from ..translation import Text, tr, tr_n
 from .context import LineFinding
 
 FAMILY = "dialect"
@@ -177,26 +178,38 @@ def _check_line(parsed: ParsedLine) -> Iterator[LineFinding]:
     problem = parsed.problem
     if problem is not None and problem.dialect is not None:
         yield LineFinding(
-            "MB002", f"{problem.dialect}: {problem.message}", problem.span.start, problem.span.end
+            "MB002",
+            tr("{dialect}: {message}", dialect=problem.dialect, message=problem.message),
+            problem.span.start,
+            problem.span.end,
         )
     for statement, statement_variables in zip(
         statements_of(parsed.statement), line_variables(parsed), strict=True
     ):
         span = statement.span
         if isinstance(statement, IfNc):
-            form = "IF [...] THEN <NC words>" if statement.has_then else "IF [...] <NC words>"
             yield LineFinding(
                 "MB002",
-                f"Haas: '{form}' is not FANUC; FANUC's IF takes GOTO n, or THEN "
-                "with one macro statement (alarm PS0125)",
+                tr(
+                    "Haas: 'IF [...] THEN <NC words>' is not FANUC; FANUC's IF takes GOTO n, or "
+                    "THEN with one macro statement (alarm PS0125)"
+                )
+                if statement.has_then
+                else tr(
+                    "Haas: 'IF [...] <NC words>' is not FANUC; FANUC's IF takes GOTO n, or THEN "
+                    "with one macro statement (alarm PS0125)"
+                ),
                 span.start,
                 span.end,
             )
         elif isinstance(statement, BlockIf):
             yield LineFinding(
                 "MB002",
-                f"Haas NGC: block {statement.keyword} (IF ... THEN / ELSE / ENDIF "
-                "on their own lines) is not FANUC 0i/16i/30i; use IF [...] GOTO n",
+                tr(
+                    "Haas NGC: block {keyword} (IF ... THEN / ELSE / ENDIF on their own lines) "
+                    "is not FANUC 0i/16i/30i; use IF [...] GOTO n",
+                    keyword=statement.keyword,
+                ),
                 span.start,
                 span.end,
             )
@@ -206,7 +219,9 @@ def _check_line(parsed: ParsedLine) -> Iterator[LineFinding]:
             c = statement.cond
             yield LineFinding(
                 "MB002",
-                "Haas NGC: a bare value as a condition is not FANUC; compare it, e.g. [#1 NE 0]",
+                tr(
+                    "Haas NGC: a bare value as a condition is not FANUC; compare it, e.g. [#1 NE 0]"
+                ),
                 c.span.start,
                 c.span.end,
             )
@@ -234,8 +249,11 @@ def _variable_finding(parsed: ParsedLine, var: Var) -> LineFinding | None:
         written = parsed.text[var.span.start + 1 : var.span.end].strip()
         return LineFinding(
             "MB002",
-            f"Haas NGC: #{written} (a variable number with a decimal part) is not FANUC "
-            "(alarm PS0115)",
+            tr(
+                "Haas NGC: #{number_text} (a variable number with a decimal part) is not FANUC "
+                "(alarm PS0115)",
+                number_text=written,
+            ),
             var.span.start,
             var.span.end,
         )
@@ -243,8 +261,12 @@ def _variable_finding(parsed: ParsedLine, var: Var) -> LineFinding | None:
         n = int(number)
         return LineFinding(
             "MB002",
-            f"Haas NGC: #{n} reads Haas setting {n - 20000} (#20000-#29999 are the "
-            "settings); FANUC has no settings variables (alarm PS0115 on most controls)",
+            tr(
+                "Haas NGC: #{number} reads Haas setting {setting} (#20000-#29999 are the "
+                "settings); FANUC has no settings variables (alarm PS0115 on most controls)",
+                number=n,
+                setting=n - 20000,
+            ),
             var.span.start,
             var.span.end,
         )
@@ -283,8 +305,10 @@ def _code_findings(
         if word.address == "M" and code == 98.0 and has_h and not has_p:
             yield LineFinding(
                 "MB002",
-                "Mitsubishi/Citizen: M98 H<n> (a call to a sequence "
-                "number) is not FANUC; FANUC's M98 takes P<program>",
+                tr(
+                    "Mitsubishi/Citizen: M98 H<n> (a call to a sequence "
+                    "number) is not FANUC; FANUC's M98 takes P<program>"
+                ),
                 word.span.start,
                 word.span.end,
             )
@@ -292,7 +316,7 @@ def _code_findings(
         if word.address == "M" and code == 97.0 and has_p:
             yield LineFinding(
                 "MB002",
-                "Haas: M97 (local subroutine at an N number) is not FANUC; use M98 P<program>",
+                tr("Haas: M97 (local subroutine at an N number) is not FANUC; use M98 P<program>"),
                 word.span.start,
                 word.span.end,
             )
@@ -301,7 +325,7 @@ def _code_findings(
             yield LineFinding("MB002", haas, word.span.start, word.span.end)
 
 
-def _haas_code(address: str, value: float | None, has_p: bool) -> str | None:
+def _haas_code(address: str, value: float | None, has_p: bool) -> Text | None:
     """Haas-only G and M codes (Haas mill operator's manual 96-8000 and the reference's 7:
     G103 look-ahead, G154 P work offsets, M109 user input; [S HAAS], [C jpaullee]). FANUC has
     none of them as standard: an unknown G code raises PS0010 IMPROPER G-CODE, unless a
@@ -309,18 +333,18 @@ def _haas_code(address: str, value: float | None, has_p: bool) -> str | None:
     of parameters 3411-3432 (macro-b.md 7, [M FANUC-16iTB-buf]). #20000-#29999 as Haas NGC
     settings: macro-b.md 2.1 [C], unverified against Haas's manual."""
     if address == "G" and value == 103.0:
-        return (
+        return tr(
             "Haas: G103 (block look-ahead limit) is not FANUC: FANUC raises PS0010 IMPROPER "
             "G-CODE (unless a parameter makes G103 a macro call); FANUC stops look-ahead with "
             "an M code that suppresses buffering (parameters 3411-3432)"
         )
     if address == "G" and value == 154.0 and has_p:
-        return (
+        return tr(
             "Haas: G154 P<n> (additional work offsets) is not FANUC (PS0010 IMPROPER G-CODE); "
             "FANUC selects them with G54.1 P<n>"
         )
     if address == "M" and value == 109.0 and has_p:
-        return (
+        return tr(
             "Haas: M109 P<n> (interactive input of a character into #n) is not FANUC; on FANUC "
             "M109 is whatever the machine builder made it"
         )
@@ -357,7 +381,7 @@ MIN_REJECTED = 5
 # A file with a program number is meant for FANUC: only three blocks in four make it another's
 # (an editor's template behind an O line; the fixtures' collection of syntax errors: 18 of 34).
 NEARLY_ALL_REJECTED = 0.75
-UNRECOGNISED = "another control (its dialect not recognised)"
+UNRECOGNISED = tr("another control (its dialect not recognised)")
 
 
 def unrecognised_dialect(doc: Document, rejected: list[int]) -> dialects.FileDialect | None:
@@ -372,7 +396,7 @@ def unrecognised_dialect(doc: Document, rejected: list[int]) -> dialects.FileDia
     )
     if len(rejected) < (NEARLY_ALL_REJECTED if numbered else MOSTLY_REJECTED) * len(lines):
         return None
-    mark = f"{len(rejected)} of its {len(lines)} blocks"
+    mark = tr("{count} of its {total} blocks", count=len(rejected), total=len(lines))
     return dialects.FileDialect(UNRECOGNISED, mark, rejected[0])
 
 
@@ -409,7 +433,7 @@ def _named_dialect(finding: LineFinding) -> str | None:
 
 # Controls whose comments run from ';' to the end of the line (LinuxCNC, Mach3, Fagor, Light
 # Machines' proLIGHT): on FANUC ';' ends the block, and words after it are the next block's.
-SEMICOLON_COMMENTS = "a control whose comments follow ';' (LinuxCNC, Mach3, Fagor, proLIGHT)"
+SEMICOLON_COMMENTS = tr("a control whose comments follow ';' (LinuxCNC, Mach3, Fagor, proLIGHT)")
 # Macro B's words: after ';' they are a FANUC block, not a comment.
 _MACRO_WORDS = frozenset(KEYWORDS) | frozenset(FUNCTIONS)
 _WORD = re.compile(r"[A-Za-z]{3,}")
@@ -444,11 +468,15 @@ def dialect_of_blocks(
     name, lines = max(counts.items(), key=lambda item: (len(item[1]), -item[1][0]))
     if len(local_calls) >= MIN_LOCAL_CALLS and name == "Haas":
         return dialects.FileDialect(
-            name, f"{len(local_calls)} local subroutine calls M97 P<n>, the first", local_calls[0]
+            name,
+            tr("{count} local subroutine calls M97 P<n>, the first", count=len(local_calls)),
+            local_calls[0],
         )
     if len(lines) < MIN_DIALECT_BLOCKS:
         return None
-    return dialects.FileDialect(name, f"{len(lines)} blocks in its forms, the first", lines[0])
+    return dialects.FileDialect(
+        name, tr("{count} blocks in its forms, the first", count=len(lines)), lines[0]
+    )
 
 
 def foreign_dialect(doc: Document) -> dialects.FileDialect | None:
@@ -492,19 +520,20 @@ def _foreign_message(foreign: dialects.FileDialect, parsed: ParsedLine, first: L
     """The message of a rejected block in a file of another control's dialect."""
     problem = parsed.problem
     if problem is not None and problem.dialect == foreign.name:
-        return f"{foreign.name}: {problem.message}"
-    where = f"{foreign.mark} on line {foreign.line + 1}"
+        return tr("{dialect}: {message}", dialect=foreign.name, message=problem.message)
     if first.code == "MB005":
-        what = "';' ends the block on FANUC, and the comment after it is read as program text"
+        what = tr("';' ends the block on FANUC, and the comment after it is read as program text")
     elif problem is not None and problem.dialect in (None, dialects.NOT_FANUC):
-        what = f"FANUC rejects this block ({problem.message})"
+        what = tr("FANUC rejects this block ({problem})", problem=problem.message)
     else:  # a form of yet another dialect, or a Haas-looking statement: this file's own
-        what = "FANUC rejects this block"
-    return f"{foreign.name} program ({where}): {what}"
-
-
-def _blocks(n: int) -> str:
-    return "1 of its blocks is" if n == 1 else f"{n} of its blocks are"
+        what = tr("FANUC rejects this block")
+    return tr(
+        "{dialect} program ({mark} on line {line}): {what}",
+        dialect=foreign.name,
+        mark=foreign.mark,
+        line=foreign.line + 1,
+        what=what,
+    )
 
 
 def fold_foreign_file(
@@ -531,18 +560,29 @@ def fold_foreign_file(
     if not rejected:
         return kept_blocks, None
     shown = ", ".join(str(r.line + 1) for r in rejected[:8])
-    more = f" and {len(rejected) - 8} more" if len(rejected) > 8 else ""
-    where = f"line{'s' if len(rejected) > 1 else ''} {shown}{more}"
+    if len(rejected) > 8:
+        shown = tr("{lines} and {more} more", lines=shown, more=len(rejected) - 8)
+    where = tr_n("line {lines}", "lines {lines}", len(rejected), lines=shown)
     if foreign.name == UNRECOGNISED:
-        message = (
-            f"not a FANUC program: {foreign.mark} are in forms FANUC rejects ({where}), in the "
-            "dialect of another control, not recognised; not reported one by one"
+        message = tr(
+            "not a FANUC program: {mark} are in forms FANUC rejects ({where}), in the dialect of "
+            "another control, not recognised; not reported one by one",
+            mark=foreign.mark,
+            where=where,
         )
     else:
-        message = (
-            f"a program written for {foreign.name} ({foreign.mark} on line {foreign.line + 1}): "
-            f"FANUC cannot run it as written; {_blocks(len(rejected))} in forms FANUC rejects "
-            f"({where}), not reported one by one"
+        message = tr_n(
+            "a program written for {dialect} ({mark} on line {line}): FANUC cannot run it as "
+            "written; {count} of its blocks is in forms FANUC rejects ({where}), not reported "
+            "one by one",
+            "a program written for {dialect} ({mark} on line {line}): FANUC cannot run it as "
+            "written; {count} of its blocks are in forms FANUC rejects ({where}), not reported "
+            "one by one",
+            len(rejected),
+            dialect=foreign.name,
+            mark=foreign.mark,
+            line=foreign.line + 1,
+            where=where,
         )
     end = len(first_text.rstrip())
     # Of a control named by its marks, a statement about the file, not a mistake in it: it

@@ -46,6 +46,7 @@ from ..syntax.walk import (
     plain_variables,
     top_expressions,
 )
+from ..translation import tr, tr_n
 from .context import LineFinding, RuleContext
 
 FAMILY = "expressions"
@@ -133,8 +134,11 @@ def _check_line(parsed: ParsedLine) -> Iterator[LineFinding]:
             if depth > MAX_BRACKET_NESTING:
                 yield LineFinding(
                     "MB301",
-                    f"brackets nested {depth} deep; FANUC allows "
-                    f"{MAX_BRACKET_NESTING} (alarm PS0118)",
+                    tr(
+                        "brackets nested {depth} deep; FANUC allows {allowed} (alarm PS0118)",
+                        depth=depth,
+                        allowed=MAX_BRACKET_NESTING,
+                    ),
                     expr.span.start,
                     expr.span.end,
                 )
@@ -198,11 +202,15 @@ def _read_only_target(assign: Assign) -> list[LineFinding]:
     if not kind.read_only:
         return []
     target = assign.target
-    what = "#0 is always vacant" if number == 0 else kind.meaning
+    what = tr("#0 is always vacant") if number == 0 else kind.meaning
     return [
         LineFinding(
             "MB304",
-            f"#{int(number)} is read-only ({what}); writing it raises alarm PS0116",
+            tr(
+                "#{number} is read-only ({meaning}); writing it raises alarm PS0116",
+                number=int(number),
+                meaning=what,
+            ),
             target.span.start,
             target.span.end,
         )
@@ -252,8 +260,11 @@ def _no_such_variable(var: Var) -> LineFinding | None:
         return None
     return LineFinding(
         "MB302",
-        f"#{number} does not exist on a FANUC control (alarm "
-        "PS0115): locals are #1-#33, commons #100-#199 and #500-#999",
+        tr(
+            "#{number} does not exist on a FANUC control (alarm "
+            "PS0115): locals are #1-#33, commons #100-#199 and #500-#999",
+            number=number,
+        ),
         var.span.start,
         var.span.end,
     )
@@ -277,8 +288,14 @@ def fold_missing_variables(
     out = list(blocks)
     for name, lines in repeated.items():
         others = [blocks[n][0] + 1 for n in lines[1:]]
-        shown = ", ".join(map(str, others[:8])) + (
-            f" and {len(others) - 8} more" if len(others) > 8 else ""
+        shown = (
+            tr(
+                "{lines} and {more} more",
+                lines=", ".join(map(str, others[:8])),
+                more=len(others) - 8,
+            )
+            if len(others) > 8
+            else ", ".join(map(str, others))
         )
         first = lines[0]
         line, parsed, findings = out[first]
@@ -288,8 +305,19 @@ def fold_missing_variables(
                 if any(k.code == "MB302" and k.message.startswith(name + " ") for k in kept):
                     continue  # a second use on the same line
                 f = f._replace(
-                    message=f"{f.message}; {name} is used on {len(others)} more "
-                    f"line{'s' if len(others) > 1 else ''} ({shown}), not reported one by one"
+                    message=tr(
+                        "{message}; {more}",
+                        message=f.message,
+                        more=tr_n(
+                            "{variable} is used on {count} more line ({lines}), not "
+                            "reported one by one",
+                            "{variable} is used on {count} more lines ({lines}), not "
+                            "reported one by one",
+                            len(others),
+                            variable=name,
+                            lines=shown,
+                        ),
+                    )
                 )
             kept.append(f)
         out[first] = (line, parsed, tuple(kept))
@@ -375,22 +403,32 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
     numbers = sorted({u[1] for u in uses})
     shown = ", ".join(f"#{n}" for n in numbers[:6]) + (", ..." if len(numbers) > 6 else "")
     if len(uses) == 1:
-        where = "its only use in this file"
+        where = tr("its only use in this file")
     else:
-        where = (
-            f"the first of {len(uses)} uses of #200-#499 in this file, lines {line + 1}-"
-            f"{last + 1} ({shown})"
+        where = tr(
+            "the first of {count} uses of #200-#499 in this file, lines {first}-{last} "
+            "({variables})",
+            count=len(uses),
+            first=line + 1,
+            last=last + 1,
+            variables=shown,
         )
     yield make(
         MB303,
-        f"#{number} is {where}: these common variables exist only with the extended common "
-        "variable option (0i-F / 30i); without it each use stops with alarm PS0115. If the "
-        "machine has the option, say so (setting fanuc-macro.machine.extendedCommons, "
-        "--extended-commons)",
+        tr(
+            "#{number} is {where}: these common variables exist only with the extended common "
+            "variable option (0i-F / 30i); without it each use stops with alarm PS0115. If the "
+            "machine has the option, say so (setting fanuc-macro.machine.extendedCommons, "
+            "--extended-commons)",
+            number=number,
+            where=where,
+        ),
         line,
         start,
         end,
-        related=[Related(last, uses[-1][2], uses[-1][3], "the last use")] if last != line else [],
+        related=[Related(last, uses[-1][2], uses[-1][3], tr("the last use"))]
+        if last != line
+        else [],
     )
 
 
@@ -493,14 +531,17 @@ def logic_fixes(text: str, found: LogicOperand) -> list[tuple[str, str]]:
                 for p in parts
             ]
             fixes.append(
-                (f"compare each operand on its own, joined by {op}", f" {op} ".join(pieces))
+                (
+                    tr("compare each operand on its own, joined by {operator}", operator=op),
+                    f" {op} ".join(pieces),
+                )
             )
     start = compare.span.start
     explicit = text[start : compare.span.end]
     for node in sorted(found.nodes, key=lambda n: n.span.start, reverse=True):
         a, b = node.span.start - start, node.span.end - start
         explicit = explicit[:a] + "[" + explicit[a:b] + "]" + explicit[b:]
-    fixes.append(("bracket it as the control reads it", explicit.strip()))
+    fixes.append((tr("bracket it as the control reads it"), explicit.strip()))
     return fixes
 
 
@@ -520,7 +561,11 @@ def logic_quick_fixes(text: str, found: LogicOperand, before: int) -> tuple[Fix,
         if acceptable_fix(text[:start] + rewritten + text[end:], before):
             fixes.append(
                 Fix(
-                    f"Bracket the condition: {rewritten} ({what})",
+                    tr(
+                        "Bracket the condition: {condition_text} ({what})",
+                        condition_text=rewritten,
+                        what=what,
+                    ),
                     (FixEdit(0, start, 0, end, rewritten),),
                     preferred=i == 0,
                 )
@@ -599,10 +644,23 @@ def _logic_finding(text: str, found: LogicOperand, fixes: tuple[Fix, ...]) -> Li
     written = " ".join(_source(text, compare).split())
     rewrites = logic_fixes(text, found)
     read_as = rewrites[-1][1]
-    message = (
-        f"'{written}' is read [{read_as}]: {node.op} binds tighter than {compare.op} and works "
-        "bit by bit on the integer values"
-    )
     if len(rewrites) > 1:
-        message += f"; to test each operand, write [{rewrites[0][1]}]"
+        message = tr(
+            "'{condition_text}' is read [{read_text}]: {logic} binds tighter than {compare} and "
+            "works bit by bit on the integer values; to test each operand, write [{fixed_text}]",
+            condition_text=written,
+            read_text=read_as,
+            logic=node.op,
+            compare=compare.op,
+            fixed_text=rewrites[0][1],
+        )
+    else:
+        message = tr(
+            "'{condition_text}' is read [{read_text}]: {logic} binds tighter than {compare} and "
+            "works bit by bit on the integer values",
+            condition_text=written,
+            read_text=read_as,
+            logic=node.op,
+            compare=compare.op,
+        )
     return LineFinding("MB305", message, compare.span.start, compare.span.end, fixes)

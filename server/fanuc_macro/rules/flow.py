@@ -48,6 +48,7 @@ from ..syntax.tree import (
     ParsedLine,
     While,
 )
+from ..translation import tr, tr_n
 from .context import Changes, RuleContext, Seen
 
 FAMILY = "flow"
@@ -397,10 +398,14 @@ def _counters_never_started(ctx: RuleContext) -> Iterator[Diagnostic]:
                 span = ctx.doc.blocks[loop.do_line].text.rstrip()
                 yield make(
                     MB711,
-                    f"the loop counts its turns in #{n} (line {update + 1} adds to it), and no "
-                    f"block sets #{n} to a start value: a common variable keeps its value from "
-                    "the last run or call, so the loop goes on from there, and runs no turn "
-                    "once it is past its end",
+                    tr(
+                        "the loop counts its turns in #{variable} (line {line} adds to it), and "
+                        "no block sets #{variable} to a start value: a common variable keeps its "
+                        "value from the last run or call, so the loop goes on from there, and "
+                        "runs no turn once it is past its end",
+                        variable=n,
+                        line=update + 1,
+                    ),
                     loop.do_line,
                     0,
                     len(span),
@@ -752,7 +757,6 @@ def _conditions_at(
             continue
         if not _decided_by_the_program(ctx, facts, first_writes, line):
             continue
-        outcome = "true" if jc.taken else "false"
         effect = _effect(statement, jc.taken > 0)
         c = statement.cond.span
         found.append(
@@ -760,8 +764,25 @@ def _conditions_at(
                 line,
                 make(
                     MB701,
-                    f"condition is always {outcome} for the values that reach it "
-                    f"({total} time{'s' if total > 1 else ''}): {effect}",
+                    (
+                        tr_n(
+                            "condition is always true for the values that reach it "
+                            "({count} time): {effect}",
+                            "condition is always true for the values that reach it "
+                            "({count} times): {effect}",
+                            total,
+                            effect=effect,
+                        )
+                        if jc.taken
+                        else tr_n(
+                            "condition is always false for the values that reach it "
+                            "({count} time): {effect}",
+                            "condition is always false for the values that reach it "
+                            "({count} times): {effect}",
+                            total,
+                            effect=effect,
+                        )
+                    ),
                     line,
                     c.start,
                     c.end,
@@ -1032,8 +1053,11 @@ def _segment_diagnostic(s: _Segment, program_name: str) -> Diagnostic:
     if s.kind == DEAD:
         return make(
             MB702,
-            f"{_blocks(s.size)} never executed ({_lines(s.first, s.end)}): no path of the "
-            "analysed runs reaches them",
+            tr(
+                "{block_count} never executed ({lines}): no path of the analysed runs reaches them",
+                block_count=_blocks(s.size),
+                lines=_lines(s.first, s.end),
+            ),
             s.first,
             0,
             s.width,
@@ -1041,11 +1065,20 @@ def _segment_diagnostic(s: _Segment, program_name: str) -> Diagnostic:
         )
     return make(
         MB709,
-        f"{_blocks(s.size)} reached only by a sequence number search "
-        f"({_lines(s.first, s.end)}, from {s.labels}): no run of "
-        f"{program_name} comes here past the {s.stop} "
-        f"of line {s.stop_line + 1}; an operator restarting at "
-        f"{s.labels.split(', ')[0]} runs them",
+        tr(
+            "{block_count} reached only by a sequence number search "
+            "({lines}, from {labels}): no run of "
+            "{program} comes here past the {stop} "
+            "of line {line}; an operator restarting at "
+            "{label} runs them",
+            block_count=_blocks(s.size),
+            lines=_lines(s.first, s.end),
+            labels=s.labels,
+            program=program_name,
+            stop=s.stop,
+            line=s.stop_line + 1,
+            label=s.labels.split(", ")[0],
+        ),
         s.first,
         0,
         s.width,
@@ -1096,10 +1129,10 @@ def _decided_by_the_program(
 
 def _effect(statement: IfGoto | IfThen | While, taken: bool) -> str:
     if isinstance(statement, IfGoto):
-        return "the GOTO is always taken" if taken else "the GOTO is never taken"
+        return tr("the GOTO is always taken") if taken else tr("the GOTO is never taken")
     if isinstance(statement, IfThen):
-        return "the assignment always runs" if taken else "the assignment never runs"
-    return "the loop body never runs" if not taken else "the loop always repeats"
+        return tr("the assignment always runs") if taken else tr("the assignment never runs")
+    return tr("the loop body never runs") if not taken else tr("the loop always repeats")
 
 
 def _is_constant(statement: IfGoto | Goto) -> bool:
@@ -1281,18 +1314,22 @@ def _count(ctx: RuleContext, first: int, last: int) -> int:
 
 
 def _blocks(n: int) -> str:
-    return f"{n} block{'s' if n > 1 else ''}"
+    return tr_n("{count} block", "{count} blocks", n)
 
 
 def _lines(first: int, last: int) -> str:
-    return f"line {first + 1}" if first == last else f"lines {first + 1}-{last + 1}"
+    if first == last:
+        return tr("line {line}", line=first + 1)
+    return tr("lines {first}-{last}", first=first + 1, last=last + 1)
 
 
 def _labels(ctx: RuleContext, first: int, last: int) -> str:
     """The N numbers a search may start at in a restart segment (and one just before it)."""
     lines = range(_label_line(ctx, first), last + 1)
     seqs = [f"N{seq}" for ln in lines if (seq := ctx.doc.blocks[ln].parsed.seq) is not None]
-    return ", ".join(seqs[:4]) + (f" and {len(seqs) - 4} more" if len(seqs) > 4 else "")
+    if len(seqs) > 4:
+        return tr("{labels} and {more} more", labels=", ".join(seqs[:4]), more=len(seqs) - 4)
+    return ", ".join(seqs)
 
 
 def _label_line(ctx: RuleContext, first: int) -> int:
@@ -1373,9 +1410,16 @@ def _after_end(
         count = _count(ctx, first, end)
         yield make(
             MB710,
-            f"{_blocks(count)} after the {end_code} of {program.display_name} (line "
-            f"{end_line + 1}) can never run ({_lines(first, end)}): no N number starts "
-            "them, so neither a jump nor a sequence number search reaches them",
+            tr(
+                "{block_count} after the {end_code} of {program} (line "
+                "{line}) can never run ({lines}): no N number starts "
+                "them, so neither a jump nor a sequence number search reaches them",
+                block_count=_blocks(count),
+                end_code=end_code,
+                program=program.display_name,
+                line=end_line + 1,
+                lines=_lines(first, end),
+            ),
             first,
             0,
             len(blocks[end].text),

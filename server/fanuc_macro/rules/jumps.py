@@ -22,6 +22,7 @@ from ..syntax.marks import constant_value
 from ..syntax.parser import statements_of
 from ..syntax.tree import Assign, IfGoto, IfThen, NcStatement, ParsedLine, Var, While
 from ..syntax.walk import cond_exprs, subexpressions
+from ..translation import tr
 from .context import RuleContext
 
 FAMILY = "jumps"
@@ -177,7 +178,10 @@ def _check(ctx: RuleContext, found: list[Diagnostic]) -> bool:
                     add(
                         make(
                             MB104,
-                            f"GOTO target {jump.constant:g} is not a whole number (alarm PS0128)",
+                            tr(
+                                "GOTO target {target:g} is not a whole number (alarm PS0128)",
+                                target=jump.constant,
+                            ),
                             jump.line,
                             ts.start,
                             ts.end,
@@ -188,7 +192,10 @@ def _check(ctx: RuleContext, found: list[Diagnostic]) -> bool:
                 add(
                     make(
                         MB104,
-                        f"GOTO target {jump.target} is outside 1-99999 (alarm PS0128)",
+                        tr(
+                            "GOTO target {target} is outside 1-99999 (alarm PS0128)",
+                            target=jump.target,
+                        ),
                         jump.line,
                         ts.start,
                         ts.end,
@@ -203,8 +210,12 @@ def _check(ctx: RuleContext, found: list[Diagnostic]) -> bool:
                 add(
                     make(
                         MB101,
-                        f"GOTO {jump.target}: no N{jump.target} in {name} (alarm "
-                        "PS0128 when the jump is taken)",
+                        tr(
+                            "GOTO {target}: no N{target} in {program} (alarm "
+                            "PS0128 when the jump is taken)",
+                            target=jump.target,
+                            program=name,
+                        ),
                         jump.line,
                         ts.start,
                         ts.end,
@@ -226,13 +237,18 @@ def _check(ctx: RuleContext, found: list[Diagnostic]) -> bool:
                     add(
                         make(
                             MB103,
-                            f"GOTO {jump.target} jumps into the DO{loop.loop_id:g} "
-                            f"loop of line {loop.do_line + 1} from outside it; FANUC forbids "
-                            "branching into a loop",
+                            tr(
+                                "GOTO {target} jumps into the DO{loop_id:g} "
+                                "loop of line {line} from outside it; FANUC forbids "
+                                "branching into a loop",
+                                target=jump.target,
+                                loop_id=loop.loop_id,
+                                line=loop.do_line + 1,
+                            ),
                             jump.line,
                             ts.start,
                             ts.end,
-                            related=[Related(loop.do_line, 0, 0, "the loop starts here")],
+                            related=[Related(loop.do_line, 0, 0, tr("the loop starts here"))],
                         )
                     )
                     break
@@ -261,8 +277,12 @@ def _nearest_label(program: Program, jump: Jump) -> tuple[Fix, ...]:
     ts = jump.target_span
     return (
         Fix(
-            f"Change GOTO {jump.target} to GOTO {number} (the nearest label, N{number} at "
-            f"line {line + 1})",
+            tr(
+                "Change GOTO {target} to GOTO {label} (the nearest label, N{label} at line {line})",
+                target=jump.target,
+                label=number,
+                line=line + 1,
+            ),
             (FixEdit(jump.line, ts.start, jump.line, ts.end, str(number)),),
         ),
     )
@@ -449,38 +469,56 @@ def _duplicate_lands_wrong(
         return None  # either copy runs the same blocks to the same end
     if lands != meant:
         if after:
-            why = (
+            why = tr(
                 "the control searches forward from the GOTO first and takes the first "
-                f"N{seq} it meets"
+                "N{label} it meets",
+                label=seq,
             )
             if loop_var == -1:
-                back = f"the N{seq} of this block, which the jump loops on"
+                back = tr("the N{label} of this block, which the jump loops on", label=seq)
             else:
-                back = (
-                    f"the N{seq} of line {meant + 1}, which this loop goes back to (#{loop_var}, "
-                    f"which it tests, changes from line {meant + 1} to the jump)"
+                back = tr(
+                    "the N{label} of line {line}, which this loop goes back to (#{variable}, "
+                    "which it tests, changes from line {line} to the jump)",
+                    label=seq,
+                    line=meant + 1,
+                    variable=loop_var,
                 )
         else:
-            why = (
-                f"with no N{seq} after the GOTO, the control searches from the head of "
-                f"{name} and takes the first"
+            why = tr(
+                "with no N{label} after the GOTO, the control searches from the head of "
+                "{program} and takes the first",
+                label=seq,
+                program=name,
             )
-            back = f"the nearest N{seq} before it, line {meant + 1}"
+            back = tr("the nearest N{label} before it, line {line}", label=seq, line=meant + 1)
         all_lines = ", ".join(str(ln + 1) for ln in lines)  # only for a message: it is long
-        message = (
-            f"GOTO {seq} lands on the N{seq} of line {lands + 1}, not on {back}: {why} "
-            f"(N{seq} stands {len(lines)} times in {name}: lines {all_lines})"
+        message = tr(
+            "GOTO {label} lands on the N{label} of line {line}, not on {meant}: {why} "
+            "(N{label} stands {count} times in {program}: lines {lines})",
+            label=seq,
+            line=lands + 1,
+            meant=back,
+            why=why,
+            count=len(lines),
+            program=name,
+            lines=all_lines,
         )
     elif _dead(ctx, program, lands) and not _dead(ctx, program, jump.line):
         others = ", ".join(str(ln + 1) for ln in lines if ln != lands)
-        message = (
-            f"GOTO {seq} lands on the N{seq} of line {lands + 1}, in blocks that no run of the "
-            f"analysis executes, while N{seq} also stands at line {others}: an old copy left "
-            f"in {name} catches the jump, which the control sends to the first N{seq} after it"
+        message = tr(
+            "GOTO {label} lands on the N{label} of line {line}, in blocks that no run of the "
+            "analysis executes, while N{label} also stands at line {others}: an old copy left "
+            "in {program} catches the jump, which the control sends to the first N{label} "
+            "after it",
+            label=seq,
+            line=lands + 1,
+            others=others,
+            program=name,
         )
     else:
         return None
-    related = [Related(lands, 0, 0, "the control lands here")]
+    related = [Related(lands, 0, 0, tr("the control lands here"))]
     if meant != lands:
-        related.append(Related(meant, 0, 0, f"the N{seq} the text suggests"))
+        related.append(Related(meant, 0, 0, tr("the N{label} the text suggests", label=seq)))
     return make(MB102, message, jump.line, ts.start, ts.end, related=related)

@@ -19,6 +19,7 @@ from ..program.index import Program
 from ..syntax.marks import constant_value
 from ..syntax.parser import statements_of
 from ..syntax.tree import Block, NcStatement
+from ..translation import tr
 from .context import RuleContext
 
 FAMILY = "loops"
@@ -69,7 +70,7 @@ def _insert_end(ctx: RuleContext, program: Program, line: int, n: str) -> Fix:
             (ln for ln in range(line, end) if blocks[ln].statement is not None), default=line
         )
         edit = FixEdit.insert(last, len(blocks[last].text), f"\nEND{n}")
-    return Fix(f"Insert END{n} to close DO{n}", (edit,), preferred=True)
+    return Fix(tr("Insert END{loop_id} to close DO{loop_id}", loop_id=n), (edit,), preferred=True)
 
 
 def _ends_program(block: Block) -> bool:
@@ -260,7 +261,11 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
             if p.kind == "no-end":
                 yield make(
                     MB201,
-                    f"DO{n} has no END{n} in {name} (alarm PS0124)",
+                    tr(
+                        "DO{loop_id} has no END{loop_id} in {program} (alarm PS0124)",
+                        loop_id=n,
+                        program=name,
+                    ),
                     p.line,
                     p.span.start,
                     p.span.end,
@@ -270,7 +275,11 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
             elif p.kind == "no-do":
                 yield make(
                     MB202,
-                    f"END{n} closes no open DO{n} in {name} (alarm PS0126)",
+                    tr(
+                        "END{loop_id} closes no open DO{loop_id} in {program} (alarm PS0126)",
+                        loop_id=n,
+                        program=name,
+                    ),
                     p.line,
                     p.span.start,
                     p.span.end,
@@ -278,7 +287,7 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
             elif p.kind == "bad-id":
                 yield make(
                     MB203,
-                    f"loop number {n} is outside 1-3 (alarm PS0126)",
+                    tr("loop number {loop_id} is outside 1-3 (alarm PS0126)", loop_id=n),
                     p.line,
                     p.span.start,
                     p.span.end,
@@ -287,11 +296,11 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
                 related = (
                     []
                     if p.other_line is None
-                    else [Related(p.other_line, 0, 0, "outermost loop starts here")]
+                    else [Related(p.other_line, 0, 0, tr("outermost loop starts here"))]
                 )
                 yield make(
                     MB204,
-                    f"DO{n} is a fourth nested loop; FANUC nests at most three",
+                    tr("DO{loop_id} is a fourth nested loop; FANUC nests at most three", loop_id=n),
                     p.line,
                     p.span.start,
                     p.span.end,
@@ -301,12 +310,16 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
                 related = (
                     []
                     if p.other_line is None
-                    else [Related(p.other_line, 0, 0, "inner loop opened here is still open")]
+                    else [Related(p.other_line, 0, 0, tr("inner loop opened here is still open"))]
                 )
                 yield make(
                     MB205,
-                    f"END{n} closes DO{n} while a loop opened inside it (line "
-                    f"{(p.other_line or 0) + 1}) is still open: loop ranges cross",
+                    tr(
+                        "END{loop_id} closes DO{loop_id} while a loop opened inside it (line "
+                        "{line}) is still open: loop ranges cross",
+                        loop_id=n,
+                        line=(p.other_line or 0) + 1,
+                    ),
                     p.line,
                     p.span.start,
                     p.span.end,

@@ -20,6 +20,7 @@ from ..line_maps import LineMap
 from ..program.knowledge import FUNCTIONS, KEYWORDS
 from ..syntax.parser import MAX_DIGITS
 from ..syntax.tree import ParsedLine, ProgramStart
+from ..translation import Text, joined, tr, tr_n
 from .context import LineFinding, RuleContext
 
 FAMILY = "reading"
@@ -212,20 +213,43 @@ def _after_end_of_record(ctx: RuleContext) -> Iterator[Diagnostic]:
         after = end
         held = [n for n in range(first, end) if _holds_block(blocks[n].parsed)]
         landing = _jumps_into(ctx, first, end)
-        where = f"line {first + 1}" if len(held) == 1 else f"lines {first + 1}-{held[-1] + 1}"
-        text = (
-            f"{len(held)} block{'s' if len(held) != 1 else ''} after the '%' on line "
-            f"{mark + 1}, which ends the file's data ({where}): the control never reads "
-            f"{'them' if len(held) != 1 else 'it'} in"
+        where = (
+            tr("line {line}", line=first + 1)
+            if len(held) == 1
+            else tr("lines {first}-{last}", first=first + 1, last=held[-1] + 1)
+        )
+        text: Text = tr_n(
+            "{count} block after the '%' on line {mark}, which ends the file's data ({where}): "
+            "the control never reads it in",
+            "{count} blocks after the '%' on line {mark}, which ends the file's data ({where}): "
+            "the control never reads them in",
+            len(held),
+            mark=mark + 1,
+            where=where,
         )
         if landing:
-            shown = landing[:3] + ([f"{len(landing) - 3} more"] if len(landing) > 3 else [])
-            names = ", ".join(shown[:-1]) + (" and " if len(shown) > 1 else "") + shown[-1]
-            text += (
-                f"; {names} {'jumps' if len(landing) == 1 else 'jump'} to a sequence number "
-                "there, which the control does not find (alarm PS0060)"
+            text = tr(
+                "{message}; {more}",
+                message=text,
+                more=tr_n(
+                    "{jumps} jumps to a sequence number there, which the control does not find "
+                    "(alarm PS0060)",
+                    "{jumps} jump to a sequence number there, which the control does not find "
+                    "(alarm PS0060)",
+                    len(landing),
+                    jumps=_listed(landing),
+                ),
             )
         yield make(MB014, text, first, 0, len(blocks[first].text.rstrip()))
+
+
+def _listed(landing: list[Text]) -> Text:
+    """The first three jumps, "A, B and C", "A, B, C and 2 more"."""
+    if len(landing) == 1:
+        return landing[0]
+    if len(landing) > 3:
+        return tr("{jumps} and {more} more", jumps=joined(", ", landing[:3]), more=len(landing) - 3)
+    return tr("{jumps} and {last}", jumps=joined(", ", landing[:-1]), last=landing[-1])
 
 
 def _programs_not_loaded(ctx: RuleContext, mark: int, first: int) -> Iterator[Diagnostic]:
@@ -241,17 +265,25 @@ def _programs_not_loaded(ctx: RuleContext, mark: int, first: int) -> Iterator[Di
         if call.program in numbers
     ]
     names = ", ".join(p.display_name for p in after)
-    text = (
-        f"{names} {'stands' if len(after) == 1 else 'stand'} after the '%' on line {mark + 1}, "
-        "which ends the file's data, and no '%' closes "
-        f"{'it' if len(after) == 1 else 'them'}: the control never reads "
-        f"{'it' if len(after) == 1 else 'them'} in"
+    text: Text = tr_n(
+        "{programs} stands after the '%' on line {mark}, which ends the file's data, and no "
+        "'%' closes it: the control never reads it in",
+        "{programs} stand after the '%' on line {mark}, which ends the file's data, and no "
+        "'%' closes them: the control never reads them in",
+        len(after),
+        programs=names,
+        mark=mark + 1,
     )
     if calls:
         call, callee = calls[0]
-        text += (
-            f"; {call.kind} P{callee.number} on line {call.line + 1} calls "
-            f"{callee.display_name}, which the control does not find (alarm PS0078)"
+        text = tr(
+            "{message}; {call} P{number} on line {line} calls {program}, which the control "
+            "does not find (alarm PS0078)",
+            message=text,
+            call=call.kind,
+            number=callee.number,
+            line=call.line + 1,
+            program=callee.display_name,
         )
     blocks = ctx.doc.blocks
     yield make(MB014, text, first, 0, len(blocks[first].text.rstrip()))
@@ -261,17 +293,19 @@ def _holds_block(parsed: ParsedLine) -> bool:
     return not parsed.tape_mark and (parsed.statement is not None or parsed.seq is not None)
 
 
-def _jumps_into(ctx: RuleContext, first: int, end: int) -> list[str]:
+def _jumps_into(ctx: RuleContext, first: int, end: int) -> list[Text]:
     """The jumps from outside lines ``first``-``end`` (exclusive) to a label inside: "GOTO 10
     (line 4)"."""
-    found: list[str] = []
+    found: list[Text] = []
     for program in ctx.index.programs:
         for jump in program.jumps:
             if jump.target is None or first <= jump.line < end:
                 continue
             target = program.label_line(jump.target, jump.line)
             if target is not None and first <= target < end:
-                found.append(f"GOTO {jump.target} (line {jump.line + 1})")
+                found.append(
+                    tr("GOTO {target} (line {line})", target=jump.target, line=jump.line + 1)
+                )
     return found
 
 
@@ -358,11 +392,20 @@ def _encoding(ctx: RuleContext, note: str) -> Diagnostic:
         shown = text[col:end]
         return make(
             MB007,
-            f"{note}; the first non-ASCII text is {shown!r} on line {block.line + 1}",
+            tr(
+                "{note}; the first non-ASCII text is {shown_text} on line {line}",
+                note=note,
+                shown_text=repr(shown),
+                line=block.line + 1,
+            ),
             0,
             0,
             0,
-            related=[Related(block.line, col, end, f"non-ASCII text {shown!r}")],
+            related=[
+                Related(
+                    block.line, col, end, tr("non-ASCII text {shown_text}", shown_text=repr(shown))
+                )
+            ],
         )
     return make(MB007, note, 0, 0, 0)
 
@@ -424,10 +467,13 @@ def _no_program_number(ctx: RuleContext) -> Iterator[Diagnostic]:
         text = ctx.doc.blocks[line].parsed.text
         yield make(
             MB010,
-            f"program number {program.number} taken from the file name "
-            f"{program.named_by_file!r} (the file has no O line): calls of "
-            f"O{program.number:04d} reach it here, and on the control it must be stored as "
-            f"O{program.number:04d}",
+            tr(
+                "program number {number} taken from the file name {file_text} (the file has no "
+                "O line): calls of O{number:04d} reach it here, and on the control it must be "
+                "stored as O{number:04d}",
+                number=program.number,
+                file_text=repr(program.named_by_file),
+            ),
             line,
             0,
             len(text.rstrip()),
@@ -445,10 +491,13 @@ def _no_program_number(ctx: RuleContext) -> Iterator[Diagnostic]:
             code = parsed.text.strip()
             yield make(
                 MB010,
-                f"the program starts here ({code[:30]!r}) without an O number: a control "
-                "stores programs under their O number, so loading this file into memory "
-                "needs a number keyed in (or fails), and a file of several programs cannot "
-                "be told apart",
+                tr(
+                    "the program starts here ({program_text}) without an O number: a control "
+                    "stores programs under their O number, so loading this file into memory "
+                    "needs a number keyed in (or fails), and a file of several programs cannot "
+                    "be told apart",
+                    program_text=repr(code[:30]),
+                ),
                 block.line,
                 0,
                 len(parsed.text.rstrip()),
@@ -780,8 +829,12 @@ def _check_line(parsed: ParsedLine) -> Iterator[LineFinding]:
         if col is not None:
             yield LineFinding(
                 "MB006",
-                f"lowercase {parsed.text[col]!r} at column {col + 1}: FANUC program text is "
-                "uppercase; the control may reject it",
+                tr(
+                    "lowercase {letter_text} at column {column}: FANUC program text is "
+                    "uppercase; the control may reject it",
+                    letter_text=repr(parsed.text[col]),
+                    column=col + 1,
+                ),
                 col,
                 col + 1,
             )
@@ -791,7 +844,7 @@ def _close_comment(text: str) -> Fix:
     """MB004: ``)`` at the end of the line, before its trailing blanks: the comment runs to
     the line's end, so that is where its text ends."""
     return Fix(
-        "Close the comment with ')' at the end of the line",
+        tr("Close the comment with ')' at the end of the line"),
         (FixEdit.insert(0, len(text.rstrip()), ")"),),
         preferred=True,
         safe=True,  # the control reads the comment to the line's end already
@@ -808,7 +861,7 @@ def _unnest_comment(text: str, start: int, end: int) -> tuple[Fix, ...]:
     flat = inner.replace("(", "").replace(")", "")
     return (
         Fix(
-            "Remove the parentheses nested in the comment",
+            tr("Remove the parentheses nested in the comment"),
             (FixEdit(0, start, 0, end, f"({flat})"),),
             preferred=True,
             safe=True,  # comment text only: what was meant as comment becomes one
@@ -866,16 +919,18 @@ def _tape_mark_not_alone(parsed: ParsedLine) -> LineFinding:
     words = code.strip().rstrip(";").strip()
     before = not text[:mark].replace(";", "").strip()
     if before:
-        why = (
-            f"the control skips what follows '%' up to the end of the line, so {words!r} is "
-            "not read: put '%' on a line of its own"
+        message = tr(
+            "'%' shares its line with {words_text}: the control skips what follows '%' up to "
+            "the end of the line, so {words_text} is not read: put '%' on a line of its own",
+            words_text=repr(words),
         )
     else:
-        why = (
-            f"'%' ends the data where it stands, and {words!r} before it has no end of block "
-            "of its own: put '%' on a line of its own"
+        message = tr(
+            "'%' shares its line with {words_text}: '%' ends the data where it stands, and "
+            "{words_text} before it has no end of block of its own: put '%' on a line of its own",
+            words_text=repr(words),
         )
-    return LineFinding("MB009", f"'%' shares its line with {words!r}: {why}", mark, mark + 1)
+    return LineFinding("MB009", message, mark, mark + 1)
 
 
 def _outside(parsed: ParsedLine, col: int) -> bool:
@@ -935,7 +990,16 @@ LOWERCASE_LINES = 5
 def fold_lowercase(blocks: list[LineFindings]) -> list[LineFindings]:
     """More than :data:`LOWERCASE_LINES` lines with lowercase (MB006): the first keeps one
     MB006 that counts and names the others, whose own MB006 is not given."""
-    return _fold_repeated(blocks, lambda f: f.code == "MB006", "have lowercase", LOWERCASE_LINES)
+    return _fold_repeated(
+        blocks,
+        lambda f: f.code == "MB006",
+        lambda count, lines: tr(
+            "{count} more lines have lowercase (lines {lines}), not reported one by one",
+            count=count,
+            lines=lines,
+        ),
+        LOWERCASE_LINES,
+    )
 
 
 # A number of more digits than any FANUC takes (the parser's MAX_DIGITS): CAM output for a
@@ -949,23 +1013,30 @@ def fold_long_numbers(blocks: list[LineFindings]) -> list[LineFindings]:
     return _fold_repeated(
         blocks,
         lambda f: f.code == "MB001" and _LONG_NUMBER in f.message,
-        f"have numbers of more than {MAX_DIGITS} digits (written for a control that takes them)",
+        lambda count, lines: tr(
+            "{count} more lines have numbers of more than {digits} digits (written for a "
+            "control that takes them) (lines {lines}), not reported one by one",
+            count=count,
+            digits=MAX_DIGITS,
+            lines=lines,
+        ),
         LOWERCASE_LINES,
     )
 
 
 def _fold_repeated(
-    blocks: list[LineFindings], match: Callable[[LineFinding], bool], what: str, most: int
+    blocks: list[LineFindings],
+    match: Callable[[LineFinding], bool],
+    what: Callable[[int, str], Text],
+    most: int,
 ) -> list[LineFindings]:
     """One mistake on more than ``most`` lines: the first line's finding counts and names the
-    others, whose own is not given (they "``what``")."""
+    others, whose own is not given (``what`` says so, from their count and their lines)."""
     hit = [n for n, (_, _, findings) in enumerate(blocks) if any(match(f) for f in findings)]
     if len(hit) <= most:
         return blocks
     others = [blocks[n][0] + 1 for n in hit[1:]]
-    shown = ", ".join(map(str, others[:8])) + (
-        f" and {len(others) - 8} more" if len(others) > 8 else ""
-    )
+    shown = _line_numbers(others)
     out = list(blocks)
     line, parsed, findings = blocks[hit[0]]
     out[hit[0]] = (
@@ -973,8 +1044,7 @@ def _fold_repeated(
         parsed,
         tuple(
             f._replace(
-                message=f"{f.message}; {len(others)} more lines {what} (lines {shown}), not "
-                "reported one by one"
+                message=tr("{message}; {more}", message=f.message, more=what(len(others), shown))
             )
             if match(f)
             else f
@@ -1005,21 +1075,20 @@ def fold_elisions(blocks: list[LineFindings]) -> list[LineFindings]:
         return blocks
     out = list(blocks)
     others = [blocks[n][0] + 1 for n in dots[1:]]
-    shown = ", ".join(map(str, others[:8])) + (
-        f" and {len(others) - 8} more" if len(others) > 8 else ""
-    )
-    rest = (
-        f"; {len(others)} more such line{'s' if len(others) > 1 else ''} ({shown}) not "
-        "reported one by one"
-        if others
-        else ""
-    )
     line, parsed, findings = blocks[dots[0]]
     start = len(parsed.text) - len(parsed.text.lstrip())
-    message = (
+    message = tr(
         "a line of dots, which an excerpt puts for blocks it leaves out: the control rejects "
-        f"it and stops with an alarm here{rest}"
+        "it and stops with an alarm here"
     )
+    if others:
+        message = tr_n(
+            "{message}; {count} more such line ({lines}) not reported one by one",
+            "{message}; {count} more such lines ({lines}) not reported one by one",
+            len(others),
+            message=message,
+            lines=_line_numbers(others),
+        )
     first = LineFinding("MB001", message, start, len(parsed.text.rstrip()))
     out[dots[0]] = (line, parsed, (first, *(f for f in findings if f.code != "MB001")))
     for n in dots[1:]:
@@ -1028,19 +1097,32 @@ def fold_elisions(blocks: list[LineFindings]) -> list[LineFindings]:
     return [b for b in out if b[2]]
 
 
+def _line_numbers(lines: list[int]) -> str:
+    """The first eight line numbers, and how many more."""
+    if len(lines) > 8:
+        return tr(
+            "{lines} and {more} more", lines=", ".join(map(str, lines[:8])), more=len(lines) - 8
+        )
+    return ", ".join(map(str, lines))
+
+
 def _first_of_run(opened: int, run: list[LineFindings]) -> LineFindings:
     line, parsed, _ = run[0]
     shown = parsed.text.strip()
     shown = shown if len(shown) <= 30 else shown[:27] + "..."
-    rest = (
-        f"; lines {line + 2}-{run[-1][0] + 1} go on with it too"
-        if len(run) > 2
-        else (f"; line {line + 2} goes on with it too" if len(run) == 2 else "")
-    )
-    message = (
-        f"line {line + 1} goes on with the comment opened on line {opened + 1} without its "
-        f"'(': the control ends a comment at the end of its block, reads {shown!r} as a block "
-        f"and stops with an alarm here{rest}; put each line of the comment in ( )"
+    rest: str = ""
+    if len(run) > 2:
+        rest = tr("; lines {first}-{last} go on with it too", first=line + 2, last=run[-1][0] + 1)
+    elif len(run) == 2:
+        rest = tr("; line {line} goes on with it too", line=line + 2)
+    message = tr(
+        "line {line} goes on with the comment opened on line {opened} without its '(': the "
+        "control ends a comment at the end of its block, reads {block} as a block and stops "
+        "with an alarm here{rest}; put each line of the comment in ( )",
+        line=line + 1,
+        opened=opened + 1,
+        block=repr(shown),
+        rest=rest,
     )
     end = len(parsed.text.rstrip())
     first = LineFinding("MB001", message, len(parsed.text) - len(parsed.text.lstrip()), end)

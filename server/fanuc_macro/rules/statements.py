@@ -48,6 +48,7 @@ from ..syntax.tree import (
     Var,
     Word,
 )
+from ..translation import Text, tr, tr_n
 from .context import LineFinding, RuleContext
 
 FAMILY = "statements"
@@ -107,13 +108,16 @@ SCALED_ARGUMENTS = frozenset("ABCIJKQRUVWXYZ")
 _RESIDENT_RANGES = ((8000, 8999, "NE8"), (9000, 9999, "NE9"))
 
 
-def resident_range(number: int) -> str | None:
+def resident_range(number: int) -> Text | None:
     """The protected range ``number`` is in, as a message names it; None outside them."""
     for low, high, bit in _RESIDENT_RANGES:
         if low <= number <= high:
-            return (
-                f"O{low}-O{high} holds the control's resident programs (parameter 3202 {bit} "
-                "locks their editing)"
+            return tr(
+                "O{low}-O{high} holds the control's resident programs (parameter 3202 {bit} "
+                "locks their editing)",
+                low=low,
+                high=high,
+                bit=bit,
             )
     return None
 
@@ -157,9 +161,12 @@ def check_line(parsed: ParsedLine) -> Iterable[LineFinding]:
     return (
         LineFinding(
             "MB401",
-            f"macro statement {parsed.text[m.start : m.end]!r} in the same block as NC "
-            f"words {parsed.text[n.start : n.end]!r}: FANUC raises PS0127; put "
-            "them in separate blocks",
+            tr(
+                "macro statement {macro_text} in the same block as NC words {nc_text}: FANUC "
+                "raises PS0127; put them in separate blocks",
+                macro_text=repr(parsed.text[m.start : m.end]),
+                nc_text=repr(parsed.text[n.start : n.end]),
+            ),
             m.start,
             m.end,
         ),
@@ -287,7 +294,7 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
                     continue
                 yield make(
                     MB405,
-                    f"{call.kind} without P: no program to call",
+                    tr("{call} without P: no program to call", call=call.kind),
                     line,
                     span.start,
                     span.end,
@@ -308,7 +315,11 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
                 at = l_word.span if l_word is not None else span
                 yield make(
                     MB405,
-                    f"{call.kind} repeat count {call.repeat} is outside 1-9999",
+                    tr(
+                        "{call} repeat count {count} is outside 1-9999",
+                        call=call.kind,
+                        count=call.repeat,
+                    ),
                     line,
                     at.start,
                     at.end,
@@ -319,8 +330,12 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
                 ):
                     yield make(
                         MB402,
-                        f"{word.address} cannot be a {call.kind} argument; "
-                        "arguments are A-Z except G, L, N, O, P",
+                        tr(
+                            "{address} cannot be a {call} argument; "
+                            "arguments are A-Z except G, L, N, O, P",
+                            address=word.address,
+                            call=call.kind,
+                        ),
                         line,
                         word.span.start,
                         word.span.end,
@@ -334,10 +349,15 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
                     value = word.value.value
                     yield make(
                         MB404,
-                        f"argument {word.address}{word.value.text} has no decimal "
-                        f"point: the macro receives {value:g} x the least input "
-                        f"increment (e.g. {value / 1000:g} on IS-B), not {value:g}; write "
-                        f"{word.address}{word.value.text}.",
+                        tr(
+                            "argument {address}{value_text} has no decimal point: the macro "
+                            "receives {value:g} x the least input increment (e.g. {is_b:g} on "
+                            "IS-B), not {value:g}; write {address}{value_text}.",
+                            address=word.address,
+                            value_text=word.value.text,
+                            value=value,
+                            is_b=value / 1000,
+                        ),
                         line,
                         word.span.start,
                         word.span.end,
@@ -361,8 +381,12 @@ def _internal_call(program: Program, call: IndexCall, q_word: Word) -> Iterator[
     number = f"{q:g}"
     yield make(
         MB405,
-        f"M98 Q{number} calls N{number} of {program.display_name}, which has none (alarm "
-        "PS0078 SEQUENCE NUMBER NOT FOUND)",
+        tr(
+            "M98 Q{number} calls N{number} of {program}, which has none (alarm "
+            "PS0078 SEQUENCE NUMBER NOT FOUND)",
+            number=number,
+            program=program.display_name,
+        ),
         call.line,
         q_word.span.start,
         q_word.span.end,
@@ -373,7 +397,7 @@ def _decimal_point(line: int, address: str, value: Num) -> Fix:
     """MB404: ``.`` right after the argument's digits (``A10`` becomes ``A10.``), the value
     the programmer wrote, in the address's units."""
     return Fix(
-        f"Add the decimal point: {address}{value.text}.",
+        tr("Add the decimal point: {address}{value_text}.", address=address, value_text=value.text),
         (FixEdit.insert(line, value.span.end, "."),),
         preferred=True,
     )
@@ -501,34 +525,48 @@ def _missing_programs(
     """MB403 once per missing program, at its first call, with the others as related places."""
     if ctx.doc.unread_from is not None:
         return  # the programs may be in the part of this file the analysis does not read
-    where = "this file" if ctx.workspace_programs is None else "the workspace"
+    where = tr("this file") if ctx.workspace_programs is None else tr("the workspace")
     for number, calls in missing.items():
         first = calls[0]
         span = first.program_span
         assert span is not None
-        more = ""
-        if len(calls) > 1:
-            also = line_list([c.line for c in calls[1:]])
-            more = f"; it is called {len(calls)} times in all (also at lines {also})"
         cycle = known_cycle(number)
         protected = resident_range(number)
         if cycle is not None:
             code = MB408
-            message = (
-                f"{first.kind} calls {describe(cycle)}; a cycle kept on the control, not in "
-                f"{where}: the analysis does not follow it{more}"
+            message = tr(
+                "{call} calls {cycle}; a cycle kept on the control, not in {where}: the "
+                "analysis does not follow it",
+                call=first.kind,
+                cycle=describe(cycle),
+                where=where,
             )
         elif protected is not None:
             code = MB410
-            message = (
-                f"{first.kind} calls O{number:04d}, which is not in {where}: {protected}; "
-                f"the call needs it in the control's memory (alarm PS0076 if not){more}"
+            message = tr(
+                "{call} calls O{number:04d}, which is not in {where}: {protected}; the call "
+                "needs it in the control's memory (alarm PS0076 if not)",
+                call=first.kind,
+                number=number,
+                where=where,
+                protected=protected,
             )
         else:
             code = MB403
-            message = (
-                f"{first.kind} calls O{number:04d}, which is not in {where} (alarm PS0076 if "
-                f"it is not in the control's memory){more}"
+            message = tr(
+                "{call} calls O{number:04d}, which is not in {where} (alarm PS0076 if it is not "
+                "in the control's memory)",
+                call=first.kind,
+                number=number,
+                where=where,
+            )
+        if len(calls) > 1:
+            also = line_list([c.line for c in calls[1:]])
+            message = tr(
+                "{message}; it is called {count} times in all (also at lines {lines})",
+                message=message,
+                count=len(calls),
+                lines=also,
             )
         yield make(
             code,
@@ -537,7 +575,8 @@ def _missing_programs(
             span.start,
             span.end,
             related=[
-                Related(c.line, 0, 0, f"O{number:04d} called again here") for c in calls[1:20]
+                Related(c.line, 0, 0, tr("O{number:04d} called again here", number=number))
+                for c in calls[1:20]
             ],
             data={"program": number},
         )
@@ -580,10 +619,13 @@ def _m_calls_not_set_up(ctx: RuleContext) -> Iterator[Diagnostic]:
         code = f"M{value:g}"
         yield make(
             MB409,
-            f"{code} with P and argument words reads as a macro call through an M code, which "
-            "the settings do not set up: name the program the control's parameter (6080-6089) "
-            f'makes it call, one of O9020-O9029, in machine.customCalls ({{"{code}": 9022}}, '
-            f"--custom-call {code}=9022)",
+            tr(
+                "{code} with P and argument words reads as a macro call through an M code, which "
+                "the settings do not set up: name the program the control's parameter "
+                "(6080-6089) makes it call, one of O9020-O9029, in machine.customCalls "
+                '({{"{code}": 9022}}, --custom-call {code}=9022)',
+                code=code,
+            ),
             line,
             start,
             end,
@@ -713,10 +755,14 @@ def check_programs(ctx: RuleContext) -> Iterator[Diagnostic]:
             if call.kind in ("G66", "G66.1") and not (g67_lines and g67_lines[-1] > call.line):
                 yield make(
                     MB406,
-                    f"{call.kind} at line {call.line + 1} has no G67 after it in "
-                    f"{program.display_name}: every later block that moves an axis calls the "
-                    "macro again, to the end of the program (FANUC: G66 and G67 pair in one "
-                    "program)",
+                    tr(
+                        "{call} at line {line} has no G67 after it in {program}: every later "
+                        "block that moves an axis calls the macro again, to the end of the "
+                        "program (FANUC: G66 and G67 pair in one program)",
+                        call=call.kind,
+                        line=call.line + 1,
+                        program=program.display_name,
+                    ),
                     call.line,
                     call.span.start,
                     call.span.end,
@@ -823,10 +869,15 @@ def _not_ended(
         start, end = (span.start, span.end) if span is not None else (0, 0)
         return make(
             MB407,
-            f"{following.display_name} starts here while {name} (line "
-            f"{program.first_line + 1}) has no M30, M02 or M99: in the control's memory "
-            f"{name} ends at line {last_statement + 1} without an end, and the blocks from "
-            f"here on are another program",
+            tr(
+                "{following} starts here while {program} (line {line}) has no M30, M02 or M99: "
+                "in the control's memory {program} ends at line {last} without an end, and the "
+                "blocks from here on are another program",
+                following=following.display_name,
+                program=name,
+                line=program.first_line + 1,
+                last=last_statement + 1,
+            ),
             line,
             start,
             end,
@@ -834,18 +885,21 @@ def _not_ended(
     text = ctx.doc.blocks[last_statement].parsed.text
     if callers:
         caller, kind, call_line = callers[0]
-        why = (
-            f"it is called with {kind} from {caller} (line {call_line + 1}), and without M99 "
-            f"the control never returns there"
+        why = tr(
+            "it is called with {call} from {caller} (line {line}), and without M99 the control "
+            "never returns there",
+            call=kind,
+            caller=caller,
+            line=call_line + 1,
         )
     else:
-        why = (
+        why = tr(
             "as a subprogram or macro it never returns to its caller, and as a main program "
             "it leaves the end to the '%'; add M99 or M30"
         )
     return make(
         MB407,
-        f"{name} ends at this block without M30, M02 or M99: {why}",
+        tr("{program} ends at this block without M30, M02 or M99: {why}", program=name, why=why),
         last_statement,
         0,
         len(text.rstrip()),
@@ -923,20 +977,36 @@ def _arguments_not_used(ctx: RuleContext) -> Iterator[Diagnostic]:
             numbers = argument_numbers([w.address for w in words])
             given = {n for n in numbers if n is not None}
             wanted = [n for n in use.read_first if n not in given]
-            also = ""
+            also: Text | None = None
             if wanted:
                 names = ", ".join(local_name(n) for n in wanted[:4])
-                more = " and more" if len(wanted) > 4 else ""
-                also = f"; it reads {names}{more}, which this call does not pass"
+                also = (
+                    tr(
+                        "it reads {variables} and more, which this call does not pass",
+                        variables=names,
+                    )
+                    if len(wanted) > 4
+                    else tr("it reads {variables}, which this call does not pass", variables=names)
+                )
             for word, n in zip(words, numbers, strict=True):
                 if n is None or n in use.used:
                     continue
                 written = ctx.doc.blocks[call.line].text[word.span.start : word.span.end]
-                fate = f"sets #{n} before it reads it" if n in use.named else f"never uses #{n}"
+                fate = (
+                    tr("sets #{number} before it reads it", number=n)
+                    if n in use.named
+                    else tr("never uses #{number}", number=n)
+                )
+                lost = tr(
+                    "{word_text} gives #{number} to {program}, which {fate}: the value is lost",
+                    word_text=written.strip(),
+                    number=n,
+                    program=callee.display_name,
+                    fate=fate,
+                )
                 yield make(
                     MB411,
-                    f"{written.strip()} gives #{n} to {callee.display_name}, which {fate}: the "
-                    f"value is lost{also}",
+                    lost if also is None else tr("{message}; {more}", message=lost, more=also),
                     call.line,
                     word.span.start,
                     word.span.end,
@@ -1019,13 +1089,19 @@ def _subprogram_arguments(ctx: RuleContext) -> Iterator[Diagnostic]:
         text = ctx.doc.blocks[call.line].text
         words = " ".join(text[w.span.start : w.span.end].strip() for w, _ in meant)
         locals_ = ", ".join(f"#{n} ({w.address})" for w, n in meant)
-        one = len(meant) == 1
         yield make(
             MB412,
-            f"{words} {'is no argument' if one else 'are no arguments'}: M98 passes none, "
-            f"and {callee.display_name} reads {locals_} before setting "
-            f"{'it' if one else 'them'}, vacant here; G65 P{call.program} passes "
-            f"{'it' if one else 'them'}",
+            tr_n(
+                "{words_text} is no argument: M98 passes none, and {program} reads {variables} "
+                "before setting it, vacant here; G65 P{number} passes it",
+                "{words_text} are no arguments: M98 passes none, and {program} reads "
+                "{variables} before setting them, vacant here; G65 P{number} passes them",
+                len(meant),
+                words_text=words,
+                program=callee.display_name,
+                variables=locals_,
+                number=call.program,
+            ),
             call.line,
             meant[0][0].span.start,
             meant[-1][0].span.end,
@@ -1091,13 +1167,31 @@ def _subprogram_sets_callers_local(ctx: RuleContext) -> Iterator[Diagnostic]:
         counted = _counted_across(program, uses, call.line)
         for n in sorted(own & counted.keys()):
             sets = next(u.line for u in callee_uses if u.sets == n)
-            where = "" if doc is ctx.doc else " of its file"
             yield make(
                 MB413,
-                f"M98 P{call.program} shares this program's locals, and "
-                f"{callee.display_name} sets #{n} on line {sets + 1}{where}, which this "
-                f"program counts with on line {counted[n] + 1}: after the call #{n} holds "
-                f"{callee.display_name}'s value; G65 gives the subprogram locals of its own",
+                tr(
+                    "M98 P{number} shares this program's locals, and {program} sets #{variable} "
+                    "on line {line}, which this program counts with on line {counted}: after the "
+                    "call #{variable} holds {program}'s value; G65 gives the subprogram locals "
+                    "of its own",
+                    number=call.program,
+                    program=callee.display_name,
+                    variable=n,
+                    line=sets + 1,
+                    counted=counted[n] + 1,
+                )
+                if doc is ctx.doc
+                else tr(
+                    "M98 P{number} shares this program's locals, and {program} sets #{variable} "
+                    "on line {line} of its file, which this program counts with on line "
+                    "{counted}: after the call #{variable} holds {program}'s value; G65 gives "
+                    "the subprogram locals of its own",
+                    number=call.program,
+                    program=callee.display_name,
+                    variable=n,
+                    line=sets + 1,
+                    counted=counted[n] + 1,
+                ),
                 call.line,
                 call.span.start,
                 call.span.end,

@@ -28,6 +28,7 @@ from ..diagnostics import (
     suppression_in,
 )
 from ..syntax.tree import ParsedLine
+from ..translation import tr
 
 FAMILY = "suppression"
 
@@ -126,23 +127,34 @@ class Hidden:
             yield from _unused_scope(scope, judged)
         for line, mark, ended in self.ends:
             if not ended:
-                yield _unused(line, mark, "ends no ignore-start before it", remove=True)
+                yield _unused(line, mark, tr("ends no ignore-start before it"), remove=True)
 
 
 def _unused_scope(scope: _Scope, judged: frozenset[str] | None) -> Iterator[Diagnostic]:
     mark, line = scope.mark, scope.line
-    where = {LINE: "on this line", FILE: "in this file", START: "up to its ignore-end"}[mark.where]
+    where = {
+        LINE: tr("on this line"),
+        FILE: tr("in this file"),
+        START: tr("up to its ignore-end"),
+    }[mark.where]
     if not mark.codes:
         if not scope.hid:
-            yield _unused(line, mark, f"hides nothing {where}: no diagnostic is there", True)
+            told = tr("hides nothing {where}: no diagnostic is there", where=where)
+            yield _unused(line, mark, told, True)
         return
     idle = sorted(c for c in mark.codes - scope.hid if judged is None or c in judged)
     if not idle:
         return
     remove = len(idle) == len(mark.codes)
     what = ", ".join(idle)
-    told = f"hides nothing {where}: no {what} is reported there" + (
-        "" if remove else f"; take {what} out of it"
+    told = (
+        tr("hides nothing {where}: no {codes} is reported there", where=where, codes=what)
+        if remove
+        else tr(
+            "hides nothing {where}: no {codes} is reported there; take {codes} out of it",
+            where=where,
+            codes=what,
+        )
     )
     yield _unused(line, mark, told, remove)
 
@@ -188,7 +200,7 @@ def _unused(line: int, mark: Mark, told: str, remove: bool) -> Diagnostic:
     fixes = (
         (
             Fix(
-                "Remove the suppression comment",
+                tr("Remove the suppression comment"),
                 (FixEdit(line, mark.column, line, mark.end_column, ""),),
                 True,
                 True,
@@ -197,4 +209,5 @@ def _unused(line: int, mark: Mark, told: str, remove: bool) -> Diagnostic:
         if remove
         else ()
     )
-    return make(MB015, f"{comment} {told}", line, mark.column, mark.end_column, fixes=fixes)
+    message = tr("{comment} {told}", comment=comment, told=told)
+    return make(MB015, message, line, mark.column, mark.end_column, fixes=fixes)

@@ -25,6 +25,7 @@ from ..threads.cross_section import (
 )
 from ..threads.identify import Thread
 from ..threads.module_shape import word
+from ..translation import tr
 from .context import RuleContext
 from .threading import distance, mm, thread_related, width
 
@@ -160,17 +161,30 @@ def _past_profile(ctx: RuleContext, thread: Thread, before: Sequence[Motion]) ->
     reach, m = worst
     finish = passes[0]
     assert m.x is not None
-    where = f" (start Z{mm(m.start_z)})" if m.start_z is not None else ""
+    roughing_pass = (
+        tr("{code} at X{x} (start Z{z})", code=m.shown, x=mm(m.x), z=mm(m.start_z))
+        if m.start_z is not None
+        else tr("{code} at X{x}", code=m.shown, x=mm(m.x))
+    )
     return make(
         MB824,
-        f"the roughing {m.shown} at X{mm(m.x)}{where} reaches "
-        f"{distance(reach, m.inch)} (radius) past the profile the {len(passes)} finishing "
-        f"passes from line {finish.line + 1} trace with the tool radius {radius:g}: it cuts "
-        "metal the finished groove keeps",
+        tr(
+            "the roughing {roughing_pass} reaches {reach} (radius) past the profile the {count} "
+            "finishing passes from line {line} trace with the tool radius {radius:g}: it cuts "
+            "metal the finished groove keeps",
+            roughing_pass=roughing_pass,
+            reach=distance(reach, m.inch),
+            count=len(passes),
+            line=finish.line + 1,
+            radius=radius,
+        ),
         m.line,
         0,
         width(ctx, m.line),
-        related=[Related(finish.line, 0, 0, "the first finishing pass"), *thread_related(thread)],
+        related=[
+            Related(finish.line, 0, 0, tr("the first finishing pass")),
+            *thread_related(thread),
+        ],
     )
 
 

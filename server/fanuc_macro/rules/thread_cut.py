@@ -29,6 +29,8 @@ from ..threads.cross_section import (
     thread_cuts,
 )
 from ..threads.identify import Thread
+from ..threads.module_shape import in_turn
+from ..translation import tr
 from .context import RuleContext
 from .thread_lead import starts_missing
 from .threading import (
@@ -161,21 +163,28 @@ def _pitch_diameter(
     # The pitch diameter moves as the deepest X does (the V's flanks): this X reaches the middle.
     target = m.x - (cut_d2 - middle)
     gauge = (
-        "too shallow: its GO gauge does not go"
+        tr("too shallow: its GO gauge does not go")
         if verdict.side == "tight"
-        else "cut too wide: its NO-GO gauge goes"
+        else tr("cut too wide: its NO-GO gauge goes")
     )
     angle = m.tool_angle if m.code == "G76" else None
     line = depth_line(m)
-    fix = f"about X{target:.3f} reaches the middle of the class ({middle:.3f})"
+    fix = tr(
+        "about X{target:.3f} reaches the middle of the class ({middle:.3f})",
+        target=target,
+        middle=middle,
+    )
     wide = cut.past_the_flank() if verdict.side == "loose" else None
     if verdict.side == "loose" and angle is not None and angle > METRIC_ANGLE:
         # The cycle steps each pass along a flank steeper than the thread's: the passes
         # before the last cut past its flank.
-        fix = (
-            f"G76's tool angle a = {angle:g}° steps the passes along a {angle / 2:g}° flank, "
-            f"the thread's is {METRIC_ANGLE / 2:g}°: the passes before the last cut past "
-            "its flank; give the cycle a = 60"
+        fix = tr(
+            "G76's tool angle a = {angle:g}° steps the passes along a {flank:g}° flank, the "
+            "thread's is {thread_flank:g}°: the passes before the last cut past its flank; give "
+            "the cycle a = 60",
+            angle=angle,
+            flank=angle / 2,
+            thread_flank=METRIC_ANGLE / 2,
         )
         line = _g76_first_block(ctx, m.line, m.program_line) or m.line
     elif wide is not None and wide[1] > EPS:
@@ -183,20 +192,46 @@ def _pitch_diameter(
         shifted = thread.job.passes[wide[0].index]
         apart = abs(wide[0].place - cut.cuts[-1].place) % cut.lead
         apart = min(apart, cut.lead - apart)
-        fix = (
-            f"{pass_name(thread, wide[0].index, shifted)} starts {apart:.3f} mm along the lead "
-            f"from the deepest pass, more than its depth allows: its flank lies {wide[1]:.3f} "
-            "mm (radius) past the finished one"
+        fix = tr(
+            "{pass_name} starts {apart:.3f} mm along the lead from the deepest pass, more than "
+            "its depth allows: its flank lies {past:.3f} mm (radius) past the finished one",
+            pass_name=pass_name(thread, wide[0].index, shifted),
+            apart=apart,
+            past=wide[1],
         )
         line = depth_line(shifted)
+    said = {
+        "diameters": _diameters(verdict),
+        "off": abs(cut_d2 - limit),
+        "which": which,
+        "limit": limit,
+        "thread": thread.name,
+        "tolerance_class": _class_part(thread),
+        "gauge": gauge,
+        "pass_name": pass_name(thread, deciding.index, m),
+        "x": mm(m.x),
+        "fix": fix,
+        "nose": _tool_text(thread, verdict),
+        "source": thread.known_from(),
+    }
+    message = (
+        tr(
+            "the passes cut a pitch diameter of {diameters}, {off:.3f} mm above {which} "
+            "{limit:.3f} of {thread} ({tolerance_class}): the thread is {gauge}; {pass_name} at "
+            "X{x} finishes the flanks, and {fix}; {nose}; thread known from {source}",
+            **said,
+        )
+        if cut_d2 > limit
+        else tr(
+            "the passes cut a pitch diameter of {diameters}, {off:.3f} mm below {which} "
+            "{limit:.3f} of {thread} ({tolerance_class}): the thread is {gauge}; {pass_name} at "
+            "X{x} finishes the flanks, and {fix}; {nose}; thread known from {source}",
+            **said,
+        )
+    )
     yield make(
         MB817,
-        f"the passes cut a pitch diameter of {_diameters(verdict)}, "
-        f"{abs(cut_d2 - limit):.3f} mm {'above' if cut_d2 > limit else 'below'} {which} "
-        f"{limit:.3f} of {thread.name} ({_class_part(thread)}): the thread is {gauge}; "
-        f"{pass_name(thread, deciding.index, m)} at X{mm(m.x)} finishes the flanks, and "
-        f"{fix}; "
-        f"{_tool_text(thread, verdict)}; thread known from {thread.known_from()}",
+        message,
         line,
         0,
         width(ctx, line),
@@ -236,22 +271,24 @@ def _g76_first_block(ctx: RuleContext, line: int, program_line: int) -> int | No
 def _class_part(thread: Thread) -> str:
     if thread.class_exact:
         return thread.class_text()
-    return "its class not known: the limit every class keeps"
+    return tr("its class not known: the limit every class keeps")
 
 
 def _diameters(verdict: PitchVerdict) -> str:
     if verdict.greatest - verdict.least < 0.0005:
         return f"{verdict.least:.3f}"
-    return f"{verdict.least:.3f} to {verdict.greatest:.3f}"
+    return tr("{least:.3f} to {greatest:.3f}", least=verdict.least, greatest=verdict.greatest)
 
 
 def _tool_text(thread: Thread, verdict: PitchVerdict) -> str:
     radii = [c.tool.nose_radius for c in verdict.cuts]
     if thread.nose_radius is not None:
-        return f"with the tool's nose radius {radii[0]:.4g}"
-    return (
-        f"for any nose radius from {min(radii):.4g} to {max(radii):.4g} "
-        "(ISO 965-1's range: the program does not give it)"
+        return tr("with the tool's nose radius {radius:.4g}", radius=radii[0])
+    return tr(
+        "for any nose radius from {low:.4g} to {high:.4g} (ISO 965-1's range: the program does "
+        "not give it)",
+        low=min(radii),
+        high=max(radii),
     )
 
 
@@ -310,29 +347,47 @@ def _in_the_air(ctx: RuleContext, thread: Thread, cuts: list[CrossSection]) -> I
     # The passes' X where the blank is read (a taper thread's in the frame of its cone).
     x_first, x_last = 2.0 * air[0].tip, 2.0 * air[-1].tip
     outside = abs(x_first - blank) / 2.0
-    where = "inside the bore" if internal else "outside the blank"
-    cause = ""
-    if first.code == "G76":
-        cause = (
-            f"; G76's thread height P starts the cycle {outside:.3f} mm (radius) {where}: "
-            "P is more than the thread's height"
-        )
+    where = tr("inside the bore") if internal else tr("outside the blank")
     surface = thread.surface
     if surface is not None and x_first != first.x:
-        at = f" at Z{mm(surface.z)}"
-        passes_text = f"X{mm(x_first)} to X{mm(x_last)}{at}"
-        source = f"the cone turned at line {surface.line + 1}"
+        z = mm(surface.z)
+        passes_said = tr("X{first} to X{last} at Z{z}", first=mm(x_first), last=mm(x_last), z=z)
+        blank_said: str = tr("X{x} at Z{z}", x=mm(blank), z=z)
+        source: str = tr("the cone turned at line {line}", line=surface.line + 1)
     else:
-        at = ""
-        passes_text = (
-            f"{pass_name(thread, air[0].index, first)} at X{mm(first.x)} to "
-            f"{pass_name(thread, air[-1].index, last)} at X{mm(last.x)}"
+        passes_said = tr(
+            "{first_pass} at X{first} to {last_pass} at X{last}",
+            first_pass=pass_name(thread, air[0].index, first),
+            first=mm(first.x),
+            last_pass=pass_name(thread, air[-1].index, last),
+            last=mm(last.x),
         )
+        blank_said = f"X{mm(blank)}"
         source = blank_source(thread)
+    parts = [
+        tr(
+            "the first {count} of {total} passes ({passes}) are {where} {blank} ({source}) and "
+            "cut nothing",
+            count=len(air),
+            total=len(cut.cuts),
+            passes=passes_said,
+            where=where,
+            blank=blank_said,
+            source=source,
+        )
+    ]
+    if first.code == "G76":
+        parts.append(
+            tr(
+                "G76's thread height P starts the cycle {outside:.3f} mm (radius) {where}: P is "
+                "more than the thread's height",
+                outside=outside,
+                where=where,
+            )
+        )
     yield make(
         MB818,
-        f"the first {len(air)} of {len(cut.cuts)} passes ({passes_text}) are {where} "
-        f"X{mm(blank)}{at} ({source}) and cut nothing{cause}",
+        in_turn(parts),
         depth_line(first),
         0,
         width(ctx, depth_line(first)),
@@ -400,27 +455,54 @@ def _pass_area(ctx: RuleContext, thread: Thread, cuts: list[CrossSection]) -> It
         return
     assert m.x is not None
     before = sum(c.area for c in cuts[0].cuts if c.index < index) / max(total, 1e-12)
-    context = "its first pass" if index == 0 else f"after passes that removed {before:.0%}"
-    cause = ""
+    context = (
+        tr("its first pass")
+        if index == 0
+        else tr("after passes that removed {before:.0%}", before=before)
+    )
+    parts = [
+        tr(
+            "{pass_name} at X{x} removes {area:.3f} mm² in one pass, {share:.0%} of the "
+            "{total:.3f} mm² the thread's {count} passes remove ({context}): the insert takes "
+            "most of the profile at once",
+            pass_name=pass_name(thread, index, m),
+            x=mm(m.x),
+            area=area,
+            share=share,
+            total=total,
+            count=len(cuts[0].cuts),
+            context=context,
+        )
+    ]
     line = depth_line(m)
     if m.code == "G76" and index == 0:
-        cause = (
-            "; G76's first depth Q is not less than its height P less the finishing "
-            "allowance, so the cycle cuts that whole depth first"
+        parts.append(
+            tr(
+                "G76's first depth Q is not less than its height P less the finishing "
+                "allowance, so the cycle cuts that whole depth first"
+            )
         )
     elif m.code == "G76" and m.finishing:
         first_block = _g76_first_block(ctx, m.line, m.program_line)
-        where = f" (line {first_block + 1})" if first_block is not None else ""
-        cause = (
-            f"; it is the cycle's finishing pass: the finishing allowance R of its first "
-            f"block{where} leaves that much to it"
-        )
+        if first_block is None:
+            parts.append(
+                tr(
+                    "it is the cycle's finishing pass: the finishing allowance R of its first "
+                    "block leaves that much to it"
+                )
+            )
+        else:
+            parts.append(
+                tr(
+                    "it is the cycle's finishing pass: the finishing allowance R of its first "
+                    "block (line {line}) leaves that much to it",
+                    line=first_block + 1,
+                )
+            )
         line = depth_line(m) if first_block is None else first_block
     yield make(
         MB819,
-        f"{pass_name(thread, index, m)} at X{mm(m.x)} removes {area:.3f} mm² in one pass, "
-        f"{share:.0%} of the {total:.3f} mm² the thread's {len(cuts[0].cuts)} passes "
-        f"remove ({context}): the insert takes most of the profile at once{cause}",
+        in_turn(parts),
         line,
         0,
         width(ctx, line),
@@ -484,17 +566,37 @@ def _under_g96(ctx: RuleContext, thread: Thread) -> Iterator[Diagnostic]:
     deepest = thread.job.deepest(bool(thread.internal)) if thread.internal is not None else None
     last = deepest if deepest in passes else passes[-1]
     assert first.surface_speed is not None and first.x is not None and last.x is not None
-    unit = "ft/min" if first.inch else "m/min"
     clamp = first.speed_clamp
-    clamp_text = (
-        "" if clamp is None or math.isinf(clamp) else f", within the G50 clamp S{fmt(clamp)}"
+    said = {
+        "code": first.shown,
+        "speed": fmt(first.surface_speed),
+        "unit": "ft/min" if first.inch else "m/min",
+        "rpm_first": _rpm(first),
+        "x_first": mm(first.x),
+        "rpm_last": _rpm(last),
+        "x_last": mm(last.x),
+    }
+    message = (
+        tr(
+            "{code} cuts the thread under G96 S{speed} ({unit}): the spindle speed follows X, "
+            "{rpm_first:,.0f} rpm at X{x_first} and {rpm_last:,.0f} rpm at X{x_last}, so each "
+            "pass starts at another speed and may not follow the helix of the one before; cut "
+            "threads in G97",
+            **said,
+        )
+        if clamp is None or math.isinf(clamp)
+        else tr(
+            "{code} cuts the thread under G96 S{speed} ({unit}): the spindle speed follows X, "
+            "{rpm_first:,.0f} rpm at X{x_first} and {rpm_last:,.0f} rpm at X{x_last}, within the "
+            "G50 clamp S{clamp}, so each pass starts at another speed and may not follow the "
+            "helix of the one before; cut threads in G97",
+            clamp=fmt(clamp),
+            **said,
+        )
     )
     yield make(
         MB820,
-        f"{first.shown} cuts the thread under G96 S{fmt(first.surface_speed)} ({unit}): the "
-        f"spindle speed follows X, {_rpm(first):,.0f} rpm at X{mm(first.x)} and "
-        f"{_rpm(last):,.0f} rpm at X{mm(last.x)}{clamp_text}, so each pass starts at another "
-        "speed and may not follow the helix of the one before; cut threads in G97",
+        message,
         first.line,
         0,
         width(ctx, first.line),

@@ -15,6 +15,7 @@ from ..evaluator.facts import Motion
 from ..evaluator.values import fmt
 from ..threads.identify import Thread
 from ..threads.jobs import ThreadJob
+from ..translation import tr
 from .context import RuleContext
 from .threading import in_program_unit, thread_related, width
 
@@ -92,14 +93,25 @@ def _feed_limit(ctx: RuleContext, job: ThreadJob) -> Iterator[Diagnostic]:
     feed = m.rpm * pitch
     unit = "inch/min" if inch else "mm/min"
     shown = (
-        f"{limit:.1f} inch/min ({fmt(ctx.config.max_threading_feed)} mm/min)"
+        tr(
+            "{limit:.1f} inch/min ({limit_mm} mm/min)",
+            limit=limit,
+            limit_mm=fmt(ctx.config.max_threading_feed),
+        )
         if inch
         else f"{fmt(limit)} mm/min"
     )
     yield make(
         MB807,
-        f"S{fmt(m.rpm)} x lead F{fmt(pitch)} = {fmt(feed)} {unit}, above the machine's "
-        f"threading feed limit {shown}",
+        tr(
+            "S{speed} x lead F{lead} = {feed} {unit}, above the machine's threading feed limit "
+            "{limit}",
+            speed=fmt(m.rpm),
+            lead=fmt(pitch),
+            feed=fmt(feed),
+            unit=unit,
+            limit=shown,
+        ),
         m.line,
         0,
         width(ctx, m.line),
@@ -158,8 +170,14 @@ def _mixed_feed(ctx: RuleContext, thread: Thread) -> Iterator[Diagnostic]:
     for m in others:
         yield make(
             MB812,
-            f"this {m.shown} cuts with F{m.words['F']:g}, the other {count} passes of the same "
-            f"thread with F{usual:g}: it cuts another helix across the thread's flanks",
+            tr(
+                "this {code} cuts with F{feed:g}, the other {count} passes of the same thread "
+                "with F{usual:g}: it cuts another helix across the thread's flanks",
+                code=m.shown,
+                feed=m.words["F"],
+                count=count,
+                usual=usual,
+            ),
             m.line,
             0,
             width(ctx, m.line),
@@ -237,20 +255,40 @@ def _lead(ctx: RuleContext, thread: Thread) -> Iterator[Diagnostic]:
     pitch = thread.pitch
     assert pitch is not None
     starts = (
-        f"pitch {pitch:g} and {thread.starts} starts"
+        tr("pitch {pitch:g} and {count} starts", pitch=pitch, count=thread.starts)
         if thread.starts > 1
-        else f"pitch {pitch:g} and one start"
+        else tr("pitch {pitch:g} and one start", pitch=pitch)
     )
+    hint = None
     if thread.starts == 1 and abs(lead - 2 * pitch) < 1e-6:
-        hint = ": a lead for two starts, or the lead typed where the pitch belongs"
+        hint = tr("a lead for two starts, or the lead typed where the pitch belongs")
     elif thread.starts > 1 and abs(lead - pitch) < 1e-6:
-        hint = ": the pitch typed where the lead belongs (F is the lead)"
-    else:
-        hint = ""
+        hint = tr("the pitch typed where the lead belongs (F is the lead)")
+    said = {
+        "code": m.shown,
+        "lead": lead,
+        "thread": thread.name,
+        "starts": starts,
+        "want": want,
+        "source": thread.known_from(),
+    }
+    message = (
+        tr(
+            "{code} cuts with F{lead:g}, but {thread} has {starts}: its lead, the F to cut with, "
+            "is {want:g}; thread known from {source}",
+            **said,
+        )
+        if hint is None
+        else tr(
+            "{code} cuts with F{lead:g}, but {thread} has {starts}: its lead, the F to cut with, "
+            "is {want:g}: {hint}; thread known from {source}",
+            hint=hint,
+            **said,
+        )
+    )
     yield make(
         MB810,
-        f"{m.shown} cuts with F{lead:g}, but {thread.name} has {starts}: its lead, the F to "
-        f"cut with, is {want:g}{hint}; thread known from {thread.known_from()}",
+        message,
         m.line,
         0,
         width(ctx, m.line),
@@ -352,11 +390,18 @@ def _starts(ctx: RuleContext, thread: Thread) -> Iterator[Diagnostic]:
     first = thread.job.passes[0]
     yield make(
         MB811,
-        f"{thread.name} has {thread.starts} starts, but its {len(thread.job.passes)} passes "
-        f"all start around one place along the lead {lead:g}: only one start is cut; cut the "
-        f"next start shifted by the "
-        f"pitch {thread.pitch:g} in Z (or with Q{round(360000 / thread.starts)}, the start "
-        f"angle); thread known from {thread.known_from()}",
+        tr(
+            "{thread} has {starts} starts, but its {count} passes all start around one place "
+            "along the lead {lead:g}: only one start is cut; cut the next start shifted by the "
+            "pitch {pitch:g} in Z (or with Q{angle}, the start angle); thread known from {source}",
+            thread=thread.name,
+            starts=thread.starts,
+            count=len(thread.job.passes),
+            lead=lead,
+            pitch=thread.pitch,
+            angle=round(360000 / thread.starts),
+            source=thread.known_from(),
+        ),
         first.line,
         0,
         width(ctx, first.line),

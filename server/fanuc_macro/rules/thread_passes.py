@@ -9,7 +9,8 @@ infeed) are not a repeat; the same pass again at the full depth is a spring pass
 from __future__ import annotations
 
 from collections import Counter
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
+from functools import partial
 from itertools import pairwise
 
 from ..diagnostics import Diagnostic, Related, RuleDoc, RuleInfo, Severity, make
@@ -20,6 +21,7 @@ from ..syntax.walk import subexpressions
 from ..threads.identify import Thread
 from ..threads.linear import expr_text
 from ..threads.module_shape import assignment, word, writes_of
+from ..translation import Text, tr
 from .context import RuleContext
 from .threading import EPS, distance, in_program_unit, mm, pass_name, width
 
@@ -121,20 +123,30 @@ def _growing(ctx: RuleContext, thread: Thread, internal: bool) -> Iterator[Diagn
             if step <= limit + EPS:
                 continue
         if code == "MB803":
-            message = (
-                f"{pass_name(thread, i, m)} at X{mm(m.x, inch)} is {distance(-step, inch)} "
-                f"shallower than the pass before (X{mm(previous.x, inch)}): the depth should "
-                "grow pass after pass"
+            message = tr(
+                "{pass_name} at X{x} is {step} shallower than the pass before (X{before}): the "
+                "depth should grow pass after pass",
+                pass_name=pass_name(thread, i, m),
+                x=mm(m.x, inch),
+                step=distance(-step, inch),
+                before=mm(previous.x, inch),
             )
         else:
             maximum = (
-                f"{limit:.4f} inch ({ctx.config.max_depth_per_pass:g} mm)"
+                tr(
+                    "{limit:.4f} inch ({limit_mm:g} mm)",
+                    limit=limit,
+                    limit_mm=ctx.config.max_depth_per_pass,
+                )
                 if inch
                 else f"{limit:g} mm"
             )
-            message = (
-                f"{pass_name(thread, i, m)} takes {distance(step, inch)} (radius) in one pass, "
-                f"above the maximum {maximum} per pass"
+            message = tr(
+                "{pass_name} takes {step} (radius) in one pass, above the maximum {maximum} per "
+                "pass",
+                pass_name=pass_name(thread, i, m),
+                step=distance(step, inch),
+                maximum=maximum,
             )
         yield make(MB803 if code == MB803.code else MB804, message, m.line, 0, width(ctx, m.line))
 
@@ -249,26 +261,48 @@ def _repeated(ctx: RuleContext, thread: Thread, internal: bool) -> Iterator[Diag
     passes, kind, i, usual = found
     m, before = passes[i], passes[i - 1]
     assert m.x is not None and before.x is not None
+    said: dict[str, object] = {
+        "pass_name": pass_name(thread, i, m),
+        "x": mm(m.x, m.inch),
+        "line": m.line + 1,
+    }
     if kind == "repeat":
-        yield _pass_finding(
-            ctx,
-            thread,
-            m,
-            f"{pass_name(thread, i, m)} at X{mm(m.x, m.inch)} (line {m.line + 1}) repeats "
-            f"{pass_name(thread, i - 1, before)} before the full depth: that depth is cut twice",
-            " and one depth of the sequence is never cut; ",
-        )
+        said["before_pass"] = pass_name(thread, i - 1, before)
+        yield _pass_finding(ctx, thread, m, partial(_repeat_message, said))
         return
     sign = -1.0 if internal else 1.0
-    yield _pass_finding(
-        ctx,
-        thread,
-        m,
-        f"{pass_name(thread, i, m)} at X{mm(m.x, m.inch)} (line {m.line + 1}) takes twice "
-        f"the program's step of {distance(usual, m.inch)}: "
-        f"X{mm(before.x - sign * 2.0 * usual, m.inch)} "
-        "is never cut",
-        "; ",
+    said["step"] = distance(usual, m.inch)
+    said["skipped"] = mm(before.x - sign * 2.0 * usual, m.inch)
+    yield _pass_finding(ctx, thread, m, partial(_skip_message, said))
+
+
+def _repeat_message(said: dict[str, object], cause: str) -> Text:
+    if not cause:
+        return tr(
+            "{pass_name} at X{x} (line {line}) repeats {before_pass} before the full depth: "
+            "that depth is cut twice",
+            **said,
+        )
+    return tr(
+        "{pass_name} at X{x} (line {line}) repeats {before_pass} before the full depth: that "
+        "depth is cut twice and one depth of the sequence is never cut; {cause}",
+        cause=cause,
+        **said,
+    )
+
+
+def _skip_message(said: dict[str, object], cause: str) -> Text:
+    if not cause:
+        return tr(
+            "{pass_name} at X{x} (line {line}) takes twice the program's step of {step}: "
+            "X{skipped} is never cut",
+            **said,
+        )
+    return tr(
+        "{pass_name} at X{x} (line {line}) takes twice the program's step of {step}: "
+        "X{skipped} is never cut; {cause}",
+        cause=cause,
+        **said,
     )
 
 
@@ -352,13 +386,13 @@ repeat every pass on purpose, and `G32` single cuts.
 
 
 def _pass_finding(
-    ctx: RuleContext, thread: Thread, m: Motion, what: str, before_cause: str
+    ctx: RuleContext, thread: Thread, m: Motion, said: Callable[[str], Text]
 ) -> Diagnostic:
     """MB814 at the rounding that causes it when there is one (the line to fix), else at the
-    pass."""
+    pass; ``said`` makes the message with the cause (or "")."""
     cause, fix_line, related = _rounding_cause(ctx, thread, m)
     line = m.line if fix_line is None else fix_line
-    message = what + (f"{before_cause}{cause}" if cause else "")
+    message = said(cause)
     return make(MB814, message, line, 0, width(ctx, line), related=related)
 
 
@@ -399,23 +433,40 @@ def _rounding_cause(
     x_expr = word(ctx.doc, m.line, "X")
     if facts is None or program is None or x_expr is None:
         return "", None, []
-    here = Related(m.line, 0, 0, f"the {m.shown} pass it repeats or skips")
+    here = Related(m.line, 0, 0, tr("the {code} pass it repeats or skips", code=m.shown))
     for line, call in _roundings_feeding(ctx, facts, program, m.line, x_expr):
         text = expr_text(call)
         seen = facts.roundings.get(line)
         if seen is not None:
+            said = {
+                "call_text": text,
+                "line": line + 1,
+                "result": seen.result,
+                "argument": seen.argument,
+                "whole": round(seen.argument),
+                "argument_text": expr_text(call.args[0]),
+            }
             why = (
-                f"{text} at line {line + 1} gave {seen.result:g} for {seen.argument!r}, a hair "
-                f"{'under' if seen.function == 'FIX' else 'over'} {round(seen.argument):g}: "
-                "the steps it is computed from do not add up exactly in floating point; "
-                f"ROUND[{expr_text(call.args[0])}] gives the whole number meant"
+                tr(
+                    "{call_text} at line {line} gave {result:g} for {argument!r}, a hair under "
+                    "{whole:g}: the steps it is computed from do not add up exactly in floating "
+                    "point; ROUND[{argument_text}] gives the whole number meant",
+                    **said,
+                )
+                if seen.function == "FIX"
+                else tr(
+                    "{call_text} at line {line} gave {result:g} for {argument!r}, a hair over "
+                    "{whole:g}: the steps it is computed from do not add up exactly in floating "
+                    "point; ROUND[{argument_text}] gives the whole number meant",
+                    **said,
+                )
             )
             return why, line, [here]
         if call.name in ("FIX", "FUP", "ROUND"):
             return (
-                f"the X comes through {text} at line {line + 1}",
+                tr("the X comes through {call_text} at line {line}", call_text=text, line=line + 1),
                 None,
-                [Related(line, 0, 0, f"{text} rounds the pass's depth")],
+                [Related(line, 0, 0, tr("{call_text} rounds the pass's depth", call_text=text))],
             )
     return "", None, []
 
@@ -517,12 +568,19 @@ def _reversed(ctx: RuleContext, thread: Thread) -> Iterator[Diagnostic]:
         overlap = min(high, max(m.z, m.start_z)) - max(low, min(m.z, m.start_z))
         if not inside or overlap <= 0.0:
             continue
-        way = "+Z" if forward else "−Z"
         yield make(
             MB822,
-            f"{m.shown} runs from Z{mm(m.start_z)} to Z{mm(m.z)} at X{mm(m.x)}, inside the "
-            f"thread the other {count} passes cut towards {way}: fed back along it, the tool "
-            "cuts across the flanks (a retract before the return left out?)",
+            tr(
+                "{code} runs from Z{start} to Z{end} at X{x}, inside the thread the other {count} "
+                "passes cut towards {way}: fed back along it, the tool cuts across the flanks (a "
+                "retract before the return left out?)",
+                code=m.shown,
+                start=mm(m.start_z),
+                end=mm(m.z),
+                x=mm(m.x),
+                count=count,
+                way="+Z" if forward else "−Z",
+            ),
             m.line,
             0,
             width(ctx, m.line),

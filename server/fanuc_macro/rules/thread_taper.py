@@ -17,6 +17,7 @@ from ..threads.identify import Thread
 from ..threads.pipe import PipeThread
 from ..threads.surface import Line, cone_line, motion_key, thread_line
 from ..threads.surface import tapered as cuts_a_cone
+from ..translation import Text, tr
 from .context import RuleContext
 from .thread_cut import depth_line
 from .threading import mm, thread_related, width
@@ -160,28 +161,45 @@ def _against_cone(ctx: RuleContext, thread: Thread, motions: Sequence[Motion]) -
             continue
         word = taper_pass.words.get("R")
         if a * b < 0.0:
-            verdict = "the thread tapers the other way" + (
-                "; R's sign is wrong" if word is not None else ""
+            verdict = (
+                tr("the thread tapers the other way")
+                if word is None
+                else tr("the thread tapers the other way; R's sign is wrong")
             )
         elif abs(a / b) > SAME_TAPER or abs(b / a) > SAME_TAPER:
-            verdict = (
-                f"the thread's taper is {abs(a / b):.2g} times the cone's: one end is cut "
-                "deeper than the other"
+            verdict = tr(
+                "the thread's taper is {ratio:.2g} times the cone's: one end is cut deeper than "
+                "the other",
+                ratio=abs(a / b),
             )
         else:
             continue
         what = f"{taper_pass.shown} R{fmt(word)}" if word is not None else taper_pass.shown
         return make(
             MB821,
-            f"{what} cuts the thread from X{mm(cut.x0)} at Z{mm(cut.z0)} to X{mm(cut.x1)} at "
-            f"Z{mm(cut.z1)} ({_per_length(a)}), but the cone turned for it at line "
-            f"{m.line + 1} runs from X{mm(cone.x0)} at Z{mm(cone.z0)} to X{mm(cone.x1)} at "
-            f"Z{mm(cone.z1)} ({_per_length(b)}): {verdict}",
+            tr(
+                "{cut_code} cuts the thread from X{x0} at Z{z0} to X{x1} at Z{z1} "
+                "({thread_taper}), but the cone turned for it at line {line} runs from X{cone_x0} "
+                "at Z{cone_z0} to X{cone_x1} at Z{cone_z1} ({cone_taper}): {verdict}",
+                cut_code=what,
+                x0=mm(cut.x0),
+                z0=mm(cut.z0),
+                x1=mm(cut.x1),
+                z1=mm(cut.z1),
+                thread_taper=_per_length(a),
+                line=m.line + 1,
+                cone_x0=mm(cone.x0),
+                cone_z0=mm(cone.z0),
+                cone_x1=mm(cone.x1),
+                cone_z1=mm(cone.z1),
+                cone_taper=_per_length(b),
+                verdict=verdict,
+            ),
             taper_pass.line,
             0,
             width(ctx, taper_pass.line),
             related=[
-                Related(m.line, 0, 0, "the cone the thread is cut on"),
+                Related(m.line, 0, 0, tr("the cone the thread is cut on")),
                 *thread_related(thread),
             ],
         )
@@ -191,7 +209,11 @@ def _against_cone(ctx: RuleContext, thread: Thread, motions: Sequence[Motion]) -
 def _per_length(slope: float) -> str:
     """A taper as the diameter's change per unit of Z towards -Z."""
     grows = -slope
-    return f"diameter {'+' if grows > 0 else '−'}{abs(grows):.4f} per unit towards −Z"
+    return tr(
+        "diameter {sign}{rate:.4f} per unit towards −Z",
+        sign="+" if grows > 0 else "−",
+        rate=abs(grows),
+    )
 
 
 MB823_DOC = RuleDoc(
@@ -253,47 +275,65 @@ def _against_designation(ctx: RuleContext, thread: Thread, pipe: PipeThread) -> 
     # The slope the designation asks for: the small end towards +Z, the free end (external:
     # the diameter grows towards -Z, dx/dz < 0; internal the other way).
     wanted = pipe.taper * (1.0 if internal else -1.0)
-    cut = (
-        f"the thread's deepest pass ({m.shown}, line {m.line + 1}) runs from X{mm(line.x0)} "
-        f"at Z{mm(line.z0)} to X{mm(line.x1)} at Z{mm(line.z1)}"
+    cut = tr(
+        "the thread's deepest pass ({code}, line {line}) runs from X{x0} at Z{z0} to X{x1} at "
+        "Z{z1}",
+        code=m.shown,
+        line=m.line + 1,
+        x0=mm(line.x0),
+        z0=mm(line.z0),
+        x1=mm(line.x1),
+        z1=mm(line.z1),
     )
     word = m.words.get("R")
-    r_text = f" R{fmt(word)}" if word is not None else ""
-    expected_r = wanted * (m.start_z - m.z) / 2.0
+    expected_r = fmt(round(wanted * (m.start_z - m.z) / 2.0, 3))
     if pipe.taper == 0.0:
         if slope == 0.0:
             return None
         verdict = (
-            f"{pipe.name} is a parallel thread, but{r_text} tapers it {_ratio(slope)} on the "
-            "diameter"
+            tr(
+                "{pipe} is a parallel thread, but tapers it {ratio} on the diameter",
+                pipe=pipe.name,
+                ratio=_ratio(slope),
+            )
+            if word is None
+            else tr(
+                "{pipe} is a parallel thread, but R{r} tapers it {ratio} on the diameter",
+                pipe=pipe.name,
+                r=fmt(word),
+                ratio=_ratio(slope),
+            )
         )
     elif slope == 0.0:
-        verdict = (
-            f"{pipe.name} tapers 1:16 on the diameter, but the passes are parallel: the taper R "
-            f"is missing (R{fmt(round(expected_r, 3))} over this cut)"
+        verdict = tr(
+            "{pipe} tapers 1:16 on the diameter, but the passes are parallel: the taper R is "
+            "missing (R{r} over this cut)",
+            pipe=pipe.name,
+            r=expected_r,
         )
     elif not 1.0 / SAME_TAPER <= abs(slope / wanted) <= SAME_TAPER:
+        said = {"ratio": _ratio(slope), "times": abs(slope / wanted), "pipe": pipe.name}
         verdict = (
-            f"a taper of {_ratio(slope)} on the diameter, {abs(slope / wanted):.2g} times "
-            f"{pipe.name}'s 1:16"
+            tr("a taper of {ratio} on the diameter, {times:.2g} times {pipe}'s 1:16", **said)
+            if word is None
+            else tr(
+                "a taper of {ratio} on the diameter, {times:.2g} times {pipe}'s 1:16 (R is a "
+                "radius: R{r} over this cut)",
+                r=expected_r,
+                **said,
+            )
         )
-        if word is not None:
-            verdict += f" (R is a radius: R{fmt(round(expected_r, 3))} over this cut)"
     elif towards_minus and slope * wanted < 0.0:
-        side = "an internal" if internal else "an external"
-        verdict = (
-            f"its diameter {'grows' if slope < 0.0 else 'shrinks'} towards −Z, but {pipe.name} "
-            f"is {side} taper whose small end is the pipe's end, at +Z"
-        )
+        verdict = _wrong_way(pipe, slope < 0.0, bool(internal))
         if word is not None:
-            verdict += f": R's sign is wrong (R{fmt(round(expected_r, 3))})"
+            verdict = tr("{verdict}: R's sign is wrong (R{r})", verdict=verdict, r=expected_r)
     else:
         return None
     # Said at the first pass that gives the taper (or would): where R is first written.
     where = depth_line(tapering[0])
     return make(
         MB823,
-        f"{cut}: {verdict}",
+        tr("{cut}: {verdict}", cut=cut, verdict=verdict),
         where,
         0,
         width(ctx, where),
@@ -301,5 +341,32 @@ def _against_designation(ctx: RuleContext, thread: Thread, pipe: PipeThread) -> 
     )
 
 
+def _wrong_way(pipe: PipeThread, grows: bool, internal: bool) -> Text:
+    """A taper pipe thread whose diameter changes the wrong way along -Z."""
+    if grows and internal:
+        return tr(
+            "its diameter grows towards −Z, but {pipe} is an internal taper whose small end is "
+            "the pipe's end, at +Z",
+            pipe=pipe.name,
+        )
+    if grows:
+        return tr(
+            "its diameter grows towards −Z, but {pipe} is an external taper whose small end is "
+            "the pipe's end, at +Z",
+            pipe=pipe.name,
+        )
+    if internal:
+        return tr(
+            "its diameter shrinks towards −Z, but {pipe} is an internal taper whose small end "
+            "is the pipe's end, at +Z",
+            pipe=pipe.name,
+        )
+    return tr(
+        "its diameter shrinks towards −Z, but {pipe} is an external taper whose small end is "
+        "the pipe's end, at +Z",
+        pipe=pipe.name,
+    )
+
+
 def _ratio(slope: float) -> str:
-    return f"1:{1.0 / abs(slope):.3g}" if slope else "none"
+    return f"1:{1.0 / abs(slope):.3g}" if slope else tr("none")

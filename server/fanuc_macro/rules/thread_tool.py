@@ -12,6 +12,7 @@ from collections.abc import Iterator
 from ..diagnostics import Diagnostic, Related, RuleDoc, RuleInfo, Severity, make
 from ..threads.geometry import SIN60
 from ..threads.module_shape import fitting_radii, written_value
+from ..translation import tr
 from .context import RuleContext
 from .threading import thread_related, width
 
@@ -99,14 +100,34 @@ def _nose_radius(ctx: RuleContext) -> Iterator[Diagnostic]:
         if inside:
             continue
         reported.add(line)
-        kind = "internal" if thread.internal else "external"
-        share = f"{r / pitch:.3f}P"
+        said = {
+            "radius": r,
+            "share": r / pitch,
+            "reason": thread.nose_reason,
+            "low": low,
+            "high": high,
+            "pitch": pitch,
+            "thread": thread.name,
+            "source": thread.known_from(),
+        }
+        message = (
+            tr(
+                "nose radius {radius:.4g} = {share:.3f}P ({reason}) is outside "
+                "{low:.4g}–{high:.4g} allowed for an internal thread of pitch {pitch:g} (0 to "
+                "0.072P); thread {thread} known from {source}",
+                **said,
+            )
+            if thread.internal
+            else tr(
+                "nose radius {radius:.4g} = {share:.3f}P ({reason}) is outside "
+                "{low:.4g}–{high:.4g} allowed for an external thread of pitch {pitch:g} (0.125P "
+                "to 0.144P); thread {thread} known from {source}",
+                **said,
+            )
+        )
         yield make(
             MB805,
-            f"nose radius {r:.4g} = {share} ({thread.nose_reason}) is outside "
-            f"{low:.4g}–{high:.4g} allowed for an {kind} thread of pitch {pitch:g} "
-            f"({'0 to 0.072P' if thread.internal else '0.125P to 0.144P'}); thread "
-            f"{thread.name} known from {thread.known_from()}",
+            message,
             line,
             0,
             width(ctx, line),
@@ -158,7 +179,7 @@ def _fitting(ctx: RuleContext) -> Iterator[Diagnostic]:
             tool, groove = shape.tool, shape.groove
             tool_line = shape.tool_line
             names = (f"#{shape.tool_var}", f"#{shape.groove_var}")
-            related = [Related(shape.line, 0, 0, "the tool path's tangency angle, r/(R − r)")]
+            related = [Related(shape.line, 0, 0, tr("the tool path's tangency angle, r/(R − r)"))]
         else:
             if roles is None:
                 roles = ctx.roles()
@@ -175,14 +196,21 @@ def _fitting(ctx: RuleContext) -> Iterator[Diagnostic]:
             )
             tool, groove = written_value(facts, tool_line), written_value(facts, groove_line)
             names = (f"#{tool_var}", f"#{groove_var}")
-            related = [Related(groove_line, 0, 0, "the groove radius")]
+            related = [Related(groove_line, 0, 0, tr("the groove radius"))]
         if tool is None or groove is None or tool_line is None or tool < groove:
             continue
         yield make(
             MB806,
-            f"tool radius {names[0]} = {tool:g} is not smaller than the groove radius "
-            f"{names[1]} = {groove:g}: the fitting method moves the tool centre on an arc of "
-            f"R − r = {groove - tool:g}, which needs r < R",
+            tr(
+                "tool radius {tool_var} = {tool:g} is not smaller than the groove radius "
+                "{groove_var} = {groove:g}: the fitting method moves the tool centre on an arc "
+                "of R − r = {difference:g}, which needs r < R",
+                tool_var=names[0],
+                tool=tool,
+                groove_var=names[1],
+                groove=groove,
+                difference=groove - tool,
+            ),
             tool_line,
             0,
             width(ctx, tool_line),

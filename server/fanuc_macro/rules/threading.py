@@ -19,7 +19,8 @@ from ..program.papers import DENG_MOLYBDENUM
 from ..threads.cross_section import pitch_verdict
 from ..threads.geometry import SIN60
 from ..threads.identify import Thread
-from ..threads.module_shape import D1_FACTOR, writes_in_document
+from ..threads.module_shape import D1_FACTOR, in_turn, writes_in_document
+from ..translation import tr
 from .context import RuleContext
 
 FAMILY = "threading"
@@ -53,7 +54,7 @@ MM_PER_INCH = 25.4
 
 def distance(value: float, inch: bool = False) -> str:
     """A distance in the program's unit, to its least increment: "0.120 mm", "0.0047 inch"."""
-    return f"{value:.4f} inch" if inch else f"{value:.3f} mm"
+    return tr("{value:.4f} inch", value=value) if inch else tr("{value:.3f} mm", value=value)
 
 
 def in_program_unit(millimetres: float, inch: bool) -> float:
@@ -68,12 +69,12 @@ def width(ctx: RuleContext, line: int) -> int:
 def pass_name(thread: Thread, index: int, m: Motion) -> str:
     """``G92 pass 12`` (a G76's own pass number: ``G76 pass 3``)."""
     number = m.cycle_pass or index + 1
-    return f"{m.shown} pass {number}"
+    return tr("{code} pass {number}", code=m.shown, number=number)
 
 
 def thread_related(thread: Thread) -> list[Related]:
     return [
-        Related(e.line, 0, 0, f"thread known from {e.text}")
+        Related(e.line, 0, 0, tr("thread known from {source}", source=e.text))
         for e in thread.evidence
         if e.line is not None
     ][:3]
@@ -185,7 +186,11 @@ def _root_checks(ctx: RuleContext, thread: Thread) -> Iterator[Diagnostic]:
                 module.height_line,
                 0,
                 0,
-                f"the height #{module.height_var} = {module.height:.4f} the passes are cut to",
+                tr(
+                    "the height #{var} = {height:.4f} the passes are cut to",
+                    var=module.height_var,
+                    height=module.height,
+                ),
             )
         )
     passes = thread.job.passes
@@ -198,9 +203,17 @@ def _root_checks(ctx: RuleContext, thread: Thread) -> Iterator[Diagnostic]:
         past = sign * (root - m.x) / 2.0
         yield make(
             MB801,
-            f"{pass_name(thread, i, m)} at X{mm(m.x)} is {past:.3f} mm (radius) past the "
-            f"root X{mm(root)} of {thread.name} ({thread.limit_text()}); thread known "
-            f"from {thread.known_from()}",
+            tr(
+                "{pass_name} at X{x} is {past:.3f} mm (radius) past the root X{root} of "
+                "{thread} ({limit}); thread known from {source}",
+                pass_name=pass_name(thread, i, m),
+                x=mm(m.x),
+                past=past,
+                root=mm(root),
+                thread=thread.name,
+                limit=thread.limit_text(),
+                source=thread.known_from(),
+            ),
             m.line,
             0,
             width(ctx, m.line),
@@ -214,9 +227,17 @@ def _root_checks(ctx: RuleContext, thread: Thread) -> Iterator[Diagnostic]:
     if depth > full + EPS:
         yield make(
             MB802,
-            f"first {first.shown} pass at X{mm(first.x)} is {depth:.3f} mm deep (radius), more "
-            f"than the whole height {full:.3f} of {thread.name} (crest X{mm(crest)}, root "
-            f"X{mm(root)})",
+            tr(
+                "first {code} pass at X{x} is {depth:.3f} mm deep (radius), more than the whole "
+                "height {full:.3f} of {thread} (crest X{crest}, root X{root})",
+                code=first.shown,
+                x=mm(first.x),
+                depth=depth,
+                full=full,
+                thread=thread.name,
+                crest=mm(crest),
+                root=mm(root),
+            ),
             first.line,
             0,
             width(ctx, first.line),
@@ -341,7 +362,11 @@ def _height_check(ctx: RuleContext, thread: Thread) -> Iterator[Diagnostic]:
         return
     k = "6H/8" if thread.internal else "7H/8"
     r = thread.nose_radius
-    r_text = f"nose radius {r:.4g}" if r is not None else "the theoretical nose radius"
+    tool = (
+        tr("nose radius {radius:.4g}", radius=r)
+        if r is not None
+        else tr("the theoretical nose radius")
+    )
     cause = _formula_cause(thread)
     line = module.height_line
     related = thread_related(thread)
@@ -355,22 +380,56 @@ def _height_check(ctx: RuleContext, thread: Thread) -> Iterator[Diagnostic]:
             writes = writes_in_document(facts, input_var, value) if facts is not None else []
             if writes:
                 related = [
-                    Related(module.height_line, 0, 0, f"#{module.height_var} computed here"),
+                    Related(
+                        module.height_line,
+                        0,
+                        0,
+                        tr("#{var} computed here", var=module.height_var),
+                    ),
                     *related,
                 ]
                 line = writes[-1]
-    how = "deeper" if difference > 0 else "shallower"
     formula = f"{k} − r + EI/2 + TD2/4" if thread.internal else f"{k} − r + es/2 + Td2/4"
     low, high = verdict.limits
     cut = verdict.least if (verdict.side == "tight") != bool(thread.internal) else verdict.greatest
-    effect = f"; the passes cut a pitch diameter of {cut:.3f}, outside {low:.3f}–{high:.3f}"
+    said: dict[str, object] = {
+        "var": module.height_var,
+        "height": module.height,
+        "difference": abs(difference),
+        "expected": expected,
+        "thread": thread.name,
+        "nose": tool,
+        "formula": formula,
+        "cut": cut,
+        "low": low,
+        "high": high,
+    }
+    height = (
+        tr(
+            "thread height #{var} = {height:.4f} (radius) is {difference:.3f} mm deeper than "
+            "the {expected:.4f} that {thread} needs with {nose} ({formula}); the passes cut a "
+            "pitch diameter of {cut:.3f}, outside {low:.3f}–{high:.3f}",
+            **said,
+        )
+        if difference > 0
+        else tr(
+            "thread height #{var} = {height:.4f} (radius) is {difference:.3f} mm shallower "
+            "than the {expected:.4f} that {thread} needs with {nose} ({formula}); the passes "
+            "cut a pitch diameter of {cut:.3f}, outside {low:.3f}–{high:.3f}",
+            **said,
+        )
+    )
+    source = thread.known_from()
     yield make(
         MB808,
-        f"thread height #{module.height_var} = {module.height:.4f} (radius) is "
-        f"{abs(difference):.3f} mm {how} than the {expected:.4f} that {thread.name} needs "
-        f"with {r_text} ({formula}){effect}"
-        + (f" ({cause})" if cause else "")
-        + f"; thread known from {thread.known_from()}",
+        tr(
+            "{height} ({cause}); thread known from {source}",
+            height=height,
+            cause=cause,
+            source=source,
+        )
+        if cause
+        else tr("{height}; thread known from {source}", height=height, source=source),
         line,
         0,
         width(ctx, line),
@@ -392,7 +451,15 @@ def _input_cause(thread: Thread) -> tuple[str, int] | None:
             continue
         value = module.inputs.get(var)
         if value is not None and abs(abs(value) - want) > c.tolerance / 4.0:
-            return f"#{var} = {value:g} where {thread.name}'s {name} is {want:g}", var
+            said = tr(
+                "#{var} = {value:g} where {thread}'s {name} is {want:g}",
+                var=var,
+                value=value,
+                thread=thread.name,
+                name=name,
+                want=want,
+            )
+            return said, var
     return None
 
 
@@ -407,11 +474,23 @@ def _formula_cause(thread: Thread) -> str:
         k = (6.0 if thread.internal else 7.0) / 8.0 * SIN60
         got = form.coefficient(module.pitch_var)
         if abs(got - k) > 1e-4:
-            causes.append(f"#{module.pitch_var} (P) is taken ×{got:.4g} where {k:.4g} belongs")
+            causes.append(
+                tr(
+                    "#{var} (P) is taken ×{got:.4g} where {want:.4g} belongs",
+                    var=module.pitch_var,
+                    got=got,
+                    want=k,
+                )
+            )
         value = module.pitch
         if value is not None and abs(value - thread.pitch) > 1e-6:
             causes.append(
-                f"#{module.pitch_var} = {value:g} is the lead, the pitch is {thread.pitch:g}"
+                tr(
+                    "#{var} = {value:g} is the lead, the pitch is {pitch:g}",
+                    var=module.pitch_var,
+                    value=value,
+                    pitch=thread.pitch,
+                )
             )
     for var, want, name in (
         (thread.deviation_var, 0.5, "es/2" if not thread.internal else "EI/2"),
@@ -422,8 +501,15 @@ def _formula_cause(thread: Thread) -> str:
             continue
         got = form.coefficient(var)
         if abs(got - want) > 1e-6:
-            causes.append(f"#{var} is taken ×{got:.4g} where the formula has {name}")
-    return "; ".join(causes)
+            causes.append(
+                tr(
+                    "#{var} is taken ×{got:.4g} where the formula has {term}",
+                    var=var,
+                    got=got,
+                    term=name,
+                )
+            )
+    return in_turn(causes)
 
 
 MB809_DOC = RuleDoc(
@@ -492,14 +578,24 @@ def _deviation_sign(ctx: RuleContext, thread: Thread) -> Iterator[Diagnostic]:
     shallower = abs(2.0 * coefficient * value)
     yield make(
         MB809,
-        f"#{var} = {value:g} enters the height #{module.height_var} as {name} with its sign, "
-        f"but the module adds {name} as a magnitude ({DENG_MOLYBDENUM.by}, table 2: 0.048 for es = "
-        f"−0.048): the thread comes out {shallower:.3f} mm (radius) shallower than "
-        f"{thread.name} needs; enter {abs(value):g}",
+        tr(
+            "#{var} = {value:g} enters the height #{height_var} as {name} with its sign, but the "
+            "module adds {name} as a magnitude ({paper}, table 2: 0.048 for es = −0.048): the "
+            "thread comes out {shallower:.3f} mm (radius) shallower than {thread} needs; enter "
+            "{magnitude:g}",
+            var=var,
+            value=value,
+            height_var=module.height_var,
+            name=name,
+            paper=DENG_MOLYBDENUM.by,
+            shallower=shallower,
+            thread=thread.name,
+            magnitude=abs(value),
+        ),
         line,
         0,
         width(ctx, line),
         related=[]
         if module.height_line is None
-        else [Related(module.height_line, 0, 0, f"#{var} added to the height here")],
+        else [Related(module.height_line, 0, 0, tr("#{var} added to the height here", var=var))],
     )

@@ -15,6 +15,7 @@ from ..syntax.marks import constant_value
 from ..syntax.parser import statements_of
 from ..syntax.tree import Assign, Compare, Cond, IfGoto, IfThen, Logic, Num, ParsedLine, Var
 from ..syntax.walk import subexpressions, top_expressions
+from ..translation import tr, tr_n
 from .context import RuleContext, Seen
 
 FAMILY = "variable-use"
@@ -182,9 +183,13 @@ def check(ctx: RuleContext) -> Iterator[Diagnostic]:
             span = _var_span(ctx, line, n)
             yield make(
                 MB901,
-                f"#{n} is read while vacant: {program.display_name} never "
-                f"sets it and no caller passes it (a vacant local counts as 0 in "
-                "arithmetic, and omits the word in an address)",
+                tr(
+                    "#{number} is read while vacant: {program} never sets it and no caller "
+                    "passes it (a vacant local counts as 0 in arithmetic, and omits the word in "
+                    "an address)",
+                    number=n,
+                    program=program.display_name,
+                ),
                 line,
                 span[0],
                 span[1],
@@ -315,17 +320,28 @@ def _assumed_arguments(ctx: RuleContext, facts: DocumentFacts) -> Iterator[Diagn
         if not read_first:
             continue
         names = [local_name(n) for n, _line in read_first]
-        shown = ", ".join(names[:8]) + (f" and {len(names) - 8} more" if len(names) > 8 else "")
-        one = len(names) == 1
+        shown = (
+            tr("{names} and {more} more", names=", ".join(names[:8]), more=len(names) - 8)
+            if len(names) > 8
+            else ", ".join(names)
+        )
         number, line = read_first[0]
         start, end = _var_span(ctx, line, number)
         yield make(
             MB904,
-            f"{program.display_name} ends with M30 or M02 but reads {shown} before setting "
-            f"{'it' if one else 'them'}: it is analysed as a macro called with "
-            f"{'an argument' if one else 'arguments'} of unknown value; run from cycle start "
-            f"as a main program, {'it is' if one else 'they are'} vacant (0 in arithmetic, "
-            "the word left out of an address)",
+            tr_n(
+                "{program} ends with M30 or M02 but reads {variables} before setting it: it is "
+                "analysed as a macro called with an argument of unknown value; run from cycle "
+                "start as a main program, it is vacant (0 in arithmetic, the word left out of "
+                "an address)",
+                "{program} ends with M30 or M02 but reads {variables} before setting them: it is "
+                "analysed as a macro called with arguments of unknown value; run from cycle "
+                "start as a main program, they are vacant (0 in arithmetic, the word left out "
+                "of an address)",
+                len(names),
+                program=program.display_name,
+                variables=shown,
+            ),
             line,
             start,
             end,
@@ -394,14 +410,37 @@ def _zero_tests_of_arguments(ctx: RuleContext) -> Iterator[Diagnostic]:
                 if alarm is None:
                     continue
                 letter = ARGUMENT_LETTER.get(n)
-                missing = f"with no {letter} in the call" if letter is not None else "not given"
-                outcome = "false" if op == "EQ" else "true"
-                which = "its alarm" if alarm == line else f"the alarm on line {alarm + 1}"
+                missing = (
+                    tr("with no {letter} in the call", letter=letter)
+                    if letter is not None
+                    else tr("not given")
+                )
+                which = (
+                    tr("its alarm")
+                    if alarm == line
+                    else tr("the alarm on line {line}", line=alarm + 1)
+                )
                 yield make(
                     MB905,
-                    f"[#{n} {op} 0] is {outcome} for a vacant #{n}: {missing}, the check "
-                    f"passes and {which} is not raised (a vacant variable differs from 0 in EQ "
-                    f"and NE); [#{n} EQ #0] tests for a missing argument",
+                    tr(
+                        "[#{number} {op} 0] is false for a vacant #{number}: {missing}, the "
+                        "check passes and {which} is not raised (a vacant variable differs from "
+                        "0 in EQ and NE); [#{number} EQ #0] tests for a missing argument",
+                        number=n,
+                        op=op,
+                        missing=missing,
+                        which=which,
+                    )
+                    if op == "EQ"
+                    else tr(
+                        "[#{number} {op} 0] is true for a vacant #{number}: {missing}, the "
+                        "check passes and {which} is not raised (a vacant variable differs from "
+                        "0 in EQ and NE); [#{number} EQ #0] tests for a missing argument",
+                        number=n,
+                        op=op,
+                        missing=missing,
+                        which=which,
+                    ),
                     line,
                     start,
                     end,

@@ -15,6 +15,7 @@ from dataclasses import dataclass
 from types import MappingProxyType
 
 # What the analysis reads: defined apart, for the settings (re-exported here).
+from ..translation import tr
 from .limits import MAX_LINE_LENGTH as MAX_LINE_LENGTH
 from .limits import READ_WHOLE as READ_WHOLE
 from .limits import ReadLimits as ReadLimits
@@ -60,20 +61,24 @@ def not_text_reason(data: bytes) -> str | None:
     control bytes, in its first 8,000 bytes (after a punched tape's leader of NULs, the blank
     tape that carries only feed holes); a UTF-16 or UTF-32 byte order mark."""
     if data.startswith((codecs.BOM_UTF32_LE, codecs.BOM_UTF32_BE)):
-        return "it is UTF-32 text (save it as UTF-8 or ASCII)"
+        return tr("it is UTF-32 text (save it as UTF-8 or ASCII)")
     if data.startswith((codecs.BOM_UTF16_LE, codecs.BOM_UTF16_BE)):
-        return "it is UTF-16 text (save it as UTF-8 or ASCII)"
+        return tr("it is UTF-16 text (save it as UTF-8 or ASCII)")
     start, end = tape_leader_bounds(data)
     sample = data[start : min(end, start + _SNIFF)]
     nul = sample.find(0)
     if nul >= 0:
-        return (
-            f"it holds NUL bytes (the first at byte {start + nul + 1}): a binary file, or "
-            "text saved as UTF-16"
+        return tr(
+            "it holds NUL bytes (the first at byte {byte}): a binary file, or text saved as UTF-16",
+            byte=start + nul + 1,
         )
     controls = len(sample) - len(sample.translate(None, _CONTROL_BYTES))
     if controls > len(sample) * _BINARY_SHARE:
-        return f"{controls} of its first {len(sample):,} bytes are control codes: a binary file"
+        return tr(
+            "{controls} of its first {size:,} bytes are control codes: a binary file",
+            controls=controls,
+            size=len(sample),
+        )
     return None
 
 
@@ -217,7 +222,11 @@ def decode_bytes(data: bytes) -> DecodedText:
     """
     reason = not_text_reason(data)
     if reason is not None:
-        return DecodedText("", BINARY, f"not a program text: {reason}; the file is not analysed")
+        return DecodedText(
+            "",
+            BINARY,
+            tr("not a program text: {reason}; the file is not analysed", reason=reason),
+        )
     start, end = tape_leader_bounds(data)
     if (start, end) != (0, len(data)):
         # The NULs of a punched tape's leader and trailer are read as spaces: blank, as the
@@ -242,9 +251,14 @@ def decode_bytes(data: bytes) -> DecodedText:
         return DecodedText(
             "\n".join(texts),
             encoding,
-            f"file mixes encodings: {_lines(utf8)} in UTF-8, {_lines(foreign)} in {name}; "
-            "each line is read in its own, but an editor or a transfer program reads the file "
-            "in one and shows the other lines garbled",
+            tr(
+                "file mixes encodings: {utf8_lines} in UTF-8, {other_lines} in {encoding}; each "
+                "line is read in its own, but an editor or a transfer program reads the file in "
+                "one and shows the other lines garbled",
+                utf8_lines=_lines(utf8),
+                other_lines=_lines(foreign),
+                encoding=name,
+            ),
         )
     text = data.decode(encoding)
     if best.clear:
@@ -252,9 +266,14 @@ def decode_bytes(data: bytes) -> DecodedText:
     return DecodedText(
         text,
         encoding,
-        f"file is not UTF-8 and its encoding is unclear: read as {_NAMES[encoding]}, in which "
-        f"{best.unusual} of its {best.non_ascii} non-ASCII characters are seldom written; if "
-        "its comments show garbled, the file is in another encoding",
+        tr(
+            "file is not UTF-8 and its encoding is unclear: read as {encoding}, in which "
+            "{unusual} of its {non_ascii} non-ASCII characters are seldom written; if its "
+            "comments show garbled, the file is in another encoding",
+            encoding=_NAMES[encoding],
+            unusual=best.unusual,
+            non_ascii=best.non_ascii,
+        ),
     )
 
 
@@ -271,19 +290,22 @@ def _utf8_rather(line: bytes, encoding: str) -> bool:
 def _lines(numbers: list[int]) -> str:
     """'line 3' or '4 lines (the first: line 3)', 1-based."""
     if len(numbers) == 1:
-        return f"line {numbers[0] + 1}"
-    return f"{len(numbers)} lines (the first: line {numbers[0] + 1})"
+        return tr("line {line}", line=numbers[0] + 1)
+    return tr("{count} lines (the first: line {line})", count=len(numbers), line=numbers[0] + 1)
 
 
 def _unreadable_note(lines: list[bytes], foreign: list[int]) -> str:
-    tried = "UTF-8, GB18030, Shift-JIS or Windows-1252"
     for n in foreign:
         if all(_reading(lines[n], e) is None for e in _LEGACY):
-            where = f"line {n + 1} holds bytes that none of them reads"
+            where = tr("line {line} holds bytes that none of them reads", line=n + 1)
             break
     else:
-        where = "its lines are in more than one of them"
-    return f"file is not text in {tried} ({where}); read as Latin-1, byte for byte"
+        where = tr("its lines are in more than one of them")
+    return tr(
+        "file is not text in UTF-8, GB18030, Shift-JIS or Windows-1252 ({where}); read as "
+        "Latin-1, byte for byte",
+        where=where,
+    )
 
 
 def split_lines(text: str) -> list[str]:
@@ -362,7 +384,7 @@ def _cut_comments(line: str) -> LineCode:
                 notes.append(
                     LineNote(
                         "unclosed-comment",
-                        "comment opened with '(' is not closed with ')' on this line",
+                        tr("comment opened with '(' is not closed with ')' on this line"),
                         shared_span(i, n),
                     )
                 )
@@ -381,9 +403,13 @@ def _cut_comments(line: str) -> LineCode:
                     notes.append(
                         LineNote(
                             "nested-comment",
-                            "parentheses nested in a comment: FANUC ends the comment at the "
-                            f"first ')' (column {close + 1}) and reads "
-                            f"{line[close + 1 : end + 1]!r} as program text",
+                            tr(
+                                "parentheses nested in a comment: FANUC ends the comment at "
+                                "the first ')' (column {column}) and reads {program_text} as "
+                                "program text",
+                                column=close + 1,
+                                program_text=repr(line[close + 1 : end + 1]),
+                            ),
                             shared_span(i, end + 1),
                         )
                     )
@@ -410,7 +436,10 @@ def _cut_comments(line: str) -> LineCode:
             notes.append(
                 LineNote(
                     "text-after-eob",
-                    f"text after the end of block ';': {line[i + 1 : tail_end].strip()!r}",
+                    tr(
+                        "text after the end of block ';': {program_text}",
+                        program_text=repr(line[i + 1 : tail_end].strip()),
+                    ),
                     shared_span(i + 1, tail_end),
                 )
             )

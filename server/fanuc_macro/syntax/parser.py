@@ -27,6 +27,7 @@ from typing import TYPE_CHECKING, Any, cast
 from ..cancel import READING, SLICE, CancelToken, raise_if_cancelled
 from ..database import TableKey, current
 from ..lazy_regex import LazyPattern
+from ..translation import Text, joined, tr
 from . import dialects, grammar_tables
 from .diff import Diff
 from .fast_statements import fast_statement
@@ -171,7 +172,13 @@ def _to_float(text: str) -> float:
     if " " in text or "\t" in text:
         text = text.replace(" ", "").replace("\t", "")
     if len(text) > MAX_DIGITS and sum(ch.isdigit() for ch in text) > MAX_DIGITS:
-        raise ValueError(f"the number {text[:16]}... has more than {MAX_DIGITS} digits")
+        raise ValueError(
+            tr(
+                "the number {number_text}... has more than {digits} digits",
+                number_text=text[:16],
+                digits=MAX_DIGITS,
+            )
+        )
     return float(text)
 
 
@@ -668,8 +675,12 @@ def _too_long(text: str, limit: int) -> ParsedLine:
         skip = seq = seq_span = None
     note = LineNote(
         "too-long",
-        f"this block is {len(text)} characters long, more than the {limit} the analysis reads "
-        "(setting fanuc-macro.analysis.maxLineLength, --max-line-length): it is not analysed",
+        tr(
+            "this block is {length} characters long, more than the {limit} the analysis reads "
+            "(setting fanuc-macro.analysis.maxLineLength, --max-line-length): it is not analysed",
+            length=len(text),
+            limit=limit,
+        ),
         Span(limit, len(text)),
     )
     return ParsedLine(
@@ -679,18 +690,20 @@ def _too_long(text: str, limit: int) -> ParsedLine:
 
 def _too_deep(statement: Statement, depth: int) -> LineNote:
     brackets = max((bracket_depth(e) for e in top_expressions(statement)), default=0)
-    alarm = (
-        f"; its brackets nest {brackets} deep, and the control stops with alarm PS0118 past 5"
-        if brackets > 5
-        else ""
+    message = tr(
+        "the block nests {depth} levels deep (each operator, sign, bracket, function and "
+        "AND/OR is a level), more than the {most} the analysis follows: it is not analysed",
+        depth=depth,
+        most=MAX_EXPRESSION_DEPTH,
     )
-    return LineNote(
-        "too-deep",
-        f"the block nests {depth} levels deep (each operator, sign, bracket, function and "
-        f"AND/OR is a level), more than the {MAX_EXPRESSION_DEPTH} the analysis follows: it is "
-        f"not analysed{alarm}",
-        statement.span,
-    )
+    if brackets > 5:
+        message = tr(
+            "{message}; its brackets nest {brackets} deep, and the control stops with alarm "
+            "PS0118 past 5",
+            message=message,
+            brackets=brackets,
+        )
+    return LineNote("too-deep", message, statement.span)
 
 
 # What a line's code parses to, apart from its comments: (made by the fast paths, block
@@ -863,9 +876,7 @@ class BlockParser:
                 try:
                     fast = _fast_parse(code)
                 except ValueError as err:  # a number too long to be one
-                    problem = SyntaxProblem(
-                        f"cannot read a number: {err}", Span(0, len(text.rstrip()))
-                    )
+                    problem = SyntaxProblem(_unreadable_number(err), Span(0, len(text.rstrip())))
                     return _line(text, cut, None, None, None, None, problem, has_lower)
                 if fast is not None:
                     return (True, *fast)
@@ -897,7 +908,7 @@ class BlockParser:
             problem = _describe(code, err, text)
             return _line(text, cut, None, None, None, None, problem, has_lower)
         except (ValueError, OverflowError) as err:  # a number too long to be one
-            problem = SyntaxProblem(f"cannot read a number: {err}", Span(0, len(text.rstrip())))
+            problem = SyntaxProblem(_unreadable_number(err), Span(0, len(text.rstrip())))
             return _line(text, cut, None, None, None, None, problem, has_lower)
         skip: int | None = None
         seq: int | None = None
@@ -926,12 +937,18 @@ class BlockParser:
             return [parse(line, max_line_length) for line in lines]
 
 
+def _unreadable_number(err: Exception) -> Text:
+    """MB001 for a number the reader cannot take (too many digits)."""
+    reason = err.args[0] if err.args and isinstance(err.args[0], Text) else str(err)
+    return tr("cannot read a number: {reason}", reason=reason)
+
+
 _TOKEN_NAMES: Mapping[str, str] = MappingProxyType(
     {
-        "NUMBER": "a number",
-        "SIGNED_NUMBER": "a number",
-        "ADDRESS": "an address letter",
-        "COMMA_ADDRESS": "an address letter",  # ",C" ",R" ",A": said once with the others
+        "NUMBER": tr("a number"),
+        "SIGNED_NUMBER": tr("a number"),
+        "ADDRESS": tr("an address letter"),
+        "COMMA_ADDRESS": tr("an address letter"),  # ",C" ",R" ",A": said once with the others
         "LSQB": "'['",
         "RSQB": "']'",
         "EQUAL": "'='",
@@ -941,10 +958,10 @@ _TOKEN_NAMES: Mapping[str, str] = MappingProxyType(
         "PLUS": "'+'",
         "COMMA": "','",
         "COLON": "':'",
-        "FUNC": "a function",
-        "ADD_OP": "an operator",
-        "MUL_OP": "an operator",
-        "$END": "end of block",
+        "FUNC": tr("a function"),
+        "ADD_OP": tr("an operator"),
+        "MUL_OP": tr("an operator"),
+        "$END": tr("end of block"),
     }
 )
 
@@ -987,7 +1004,12 @@ def _describe(code: str, err: UnexpectedInput, text: str | None = None) -> Synta
     if misspelt is not None:
         name, name_col, keyword = misspelt
         return SyntaxProblem(
-            f"{name!r} at column {name_col + 1} is no FANUC word: {keyword}?",
+            tr(
+                "{word_text} at column {column} is no FANUC word: {keyword}?",
+                word_text=repr(name),
+                column=name_col + 1,
+                keyword=keyword,
+            ),
             Span(name_col, name_col + len(name)),
             expected,
         )
@@ -995,8 +1017,11 @@ def _describe(code: str, err: UnexpectedInput, text: str | None = None) -> Synta
     if unknown is not None:
         name, name_col = unknown
         return SyntaxProblem(
-            f"unknown function {name!r}: FANUC has SIN COS TAN ASIN ACOS ATAN SQRT ABS ROUND FIX "
-            "FUP LN EXP POW ADP BIN BCD",
+            tr(
+                "unknown function {function_text}: FANUC has SIN COS TAN ASIN ACOS ATAN SQRT ABS "
+                "ROUND FIX FUP LN EXP POW ADP BIN BCD",
+                function_text=repr(name),
+            ),
             Span(name_col, name_col + len(name)),
             expected,
             None,
@@ -1009,10 +1034,16 @@ def _describe(code: str, err: UnexpectedInput, text: str | None = None) -> Synta
     weak = dialects.recognise_weak(code)
     if weak is not None:  # PLAIN (""): a syntax error, no dialect
         return SyntaxProblem(weak.message, span, expected, weak.name or None)
-    shown = found if found == "end of block" else repr(found)
-    message = f"unexpected {shown} at column {col + 1}"
+    if found == "end of block":
+        message = tr("unexpected end of block at column {column}", column=col + 1)
+    else:
+        message = tr(
+            "unexpected {found_text} at column {column}", found_text=repr(found), column=col + 1
+        )
     if expected:
-        message += "; expected " + ", ".join(expected[:8])
+        message = tr(
+            "{message}; expected {expected}", message=message, expected=joined(", ", expected[:8])
+        )
     return SyntaxProblem(message, span, expected, None)
 
 
@@ -1043,61 +1074,167 @@ _LETTERS = LazyPattern(r"[A-Z]+", re.I)
 _CONDITION = LazyPattern(r"^\s*(N\d+\s*)?(IF|WHILE|WH)\s*\[", re.I)
 
 
+def _non_ascii_mistake(code: str, col: int) -> tuple[str, Span | None] | None:
+    """A character FANUC does not read: a full-width letter, any other non-ASCII."""
+    ch = code[col : col + 1]
+    if not ch or ord(ch) <= 127:
+        return None
+    plain = unicodedata.normalize("NFKC", ch)
+    if plain != ch and plain.isascii():
+        name = unicodedata.name(ch, "")
+        described = (
+            tr("full-width {char_text}", char_text=repr(ch))
+            if name.startswith("FULLWIDTH") or not name
+            else tr("{name_text} {char_text}", name_text=name.lower(), char_text=repr(ch))
+        )
+        return (
+            tr(
+                "{character} (U+{code:04X}) at column {column}: FANUC reads ASCII program "
+                "text only; write {plain_text}",
+                character=described,
+                code=ord(ch),
+                column=col + 1,
+                plain_text=repr(plain),
+            ),
+            Span(col, col + 1),
+        )
+    return (
+        tr(
+            "{char_text} (U+{code:04X}) at column {column}: FANUC reads ASCII program text only",
+            char_text=repr(ch),
+            code=ord(ch),
+            column=col + 1,
+        ),
+        Span(col, col + 1),
+    )
+
+
+def _bracket_mistake(
+    code: str, col: int, found: str, expected: tuple[str, ...]
+) -> tuple[bool, tuple[str, Span | None] | None]:
+    """A bracket left open or closing nothing, or a comparison written as another language
+    does: (whether the block's mistake is decided here, the mistake)."""
+    depth, open_col = _depth_before(code, len(code) if found == "end of block" else col)
+    if found == "end of block" or found.upper() in ("DO", "GOTO", "THEN"):
+        if depth > 0 and open_col is not None:
+            return True, (
+                tr(
+                    "'[' at column {column} is not closed before the end of the block",
+                    column=open_col + 1,
+                )
+                if found == "end of block"
+                else tr(
+                    "'[' at column {column} is not closed before {found_text}",
+                    column=open_col + 1,
+                    found_text=repr(found),
+                ),
+                Span(open_col, open_col + 1),
+            )
+        if found == "end of block" and "'='" in expected and re.fullmatch(r"\s*#\s*\d+\s*", code):
+            written = code.strip()
+            return True, (
+                tr(
+                    "a variable alone is no block: {variable}=<value> assigns it, and an address "
+                    "letter before it (X{variable}) makes it a word",
+                    variable=written,
+                ),
+                None,
+            )
+        return True, None
+    if found == "]" and depth <= 0:
+        return True, (tr("']' at column {column} closes no '['", column=col + 1), None)
+    if depth > 0:
+        if _CONDITION.match(code):
+            if found == "=":
+                if "<>" in code:
+                    return True, (
+                        tr(
+                            "'=' at column {column} is no comparison on FANUC: write EQ (and "
+                            "'<>' for NE)",
+                            column=col + 1,
+                        ),
+                        None,
+                    )
+                return True, (
+                    tr(
+                        "'=' at column {column} is no comparison on FANUC: write EQ", column=col + 1
+                    ),
+                    None,
+                )
+            if found == "<" and code[col : col + 2] == "<>":
+                return True, (
+                    tr(
+                        "'<>' at column {column} is no comparison on FANUC: write NE",
+                        column=col + 1,
+                    ),
+                    None,
+                )
+        return True, None
+    return False, None
+
+
+def _number_without_address(
+    code: str, col: int, found: str, before: str
+) -> tuple[str, Span | None]:
+    """A number typed where a word begins: the letter O as the digit 0, a G left out."""
+    at_head = _BLOCK_HEAD.fullmatch(before) is not None
+    if at_head and found.startswith("0") and len(found) >= 2:
+        if not code[col + len(found) :].strip():
+            return (
+                tr(
+                    "{number_text} at column {column} has no address letter: the letter O "
+                    "typed as the digit 0? A program number is written O{digits}",
+                    number_text=repr(found),
+                    column=col + 1,
+                    digits=found[1:],
+                ),
+                None,
+            )
+        return (
+            tr(
+                "{number_text} at column {column} has no address letter (G{digits} meant, "
+                "or the letter O typed as the digit 0?)",
+                number_text=repr(found),
+                column=col + 1,
+                digits=found,
+            ),
+            None,
+        )
+    return (
+        tr(
+            "the number {number_text} at column {column} has no address letter",
+            number_text=repr(found),
+            column=col + 1,
+        ),
+        None,
+    )
+
+
 def _typing_mistake(
     code: str, col: int, found: str, expected: tuple[str, ...]
 ) -> tuple[str, Span | None] | None:
     """What FANUC rejects in blocks typed wrong: a full-width letter, a decimal comma, a number
     without its address, an expression outside brackets, an unclosed '['."""
-    ch = code[col : col + 1]
-    if ch and ord(ch) > 127:
-        plain = unicodedata.normalize("NFKC", ch)
-        if plain != ch and plain.isascii():
-            name = unicodedata.name(ch, "")
-            kind = "full-width" if name.startswith("FULLWIDTH") or not name else name.lower()
-            return (
-                f"{kind} {ch!r} (U+{ord(ch):04X}) at column {col + 1}: FANUC reads ASCII "
-                f"program text only; write {plain!r}",
-                Span(col, col + 1),
-            )
-        return (
-            f"{ch!r} (U+{ord(ch):04X}) at column {col + 1}: FANUC reads ASCII program text only",
-            Span(col, col + 1),
-        )
-    depth, open_col = _depth_before(code, len(code) if found == "end of block" else col)
+    mistake = _non_ascii_mistake(code, col)
+    if mistake is not None:
+        return mistake
+    decided, mistake = _bracket_mistake(code, col, found, expected)
+    if decided:
+        return mistake
     before = code[:col].rstrip()
-    if found == "end of block" or found.upper() in ("DO", "GOTO", "THEN"):
-        if depth > 0 and open_col is not None:
-            return (
-                f"'[' at column {open_col + 1} is not closed before "
-                f"{'the end of the block' if found == 'end of block' else repr(found)}",
-                Span(open_col, open_col + 1),
-            )
-        if found == "end of block" and "'='" in expected and re.fullmatch(r"\s*#\s*\d+\s*", code):
-            written = code.strip()
-            return (
-                f"a variable alone is no block: {written}=<value> assigns it, and an address "
-                f"letter before it (X{written}) makes it a word",
-                None,
-            )
-        return None
-    if found == "]" and depth <= 0:
-        return f"']' at column {col + 1} closes no '['", None
-    if depth > 0:
-        if _CONDITION.match(code):
-            if found == "=":
-                rest = " (and '<>' for NE)" if "<>" in code else ""
-                return f"'=' at column {col + 1} is no comparison on FANUC: write EQ{rest}", None
-            if found == "<" and code[col : col + 2] == "<>":
-                return f"'<>' at column {col + 1} is no comparison on FANUC: write NE", None
-        return None
     if found == "," and before[-1:].isdigit():
         word = _WORD_BEFORE.search(code[:col])
         value = word.group(2).replace(" ", "") if word else before.split()[-1]
         tail = _NUMBER_TEXT.match(code, col + 1)
         digits = tail.group(0) if tail else ""
         return (
-            f"',' at column {col + 1} in {value + ',' + digits!r}: FANUC's decimal point is '.'; "
-            f"write {value + '.' + digits}",
+            tr(
+                "',' at column {column} in {number_text}: FANUC's decimal point is '.'; write "
+                "{fixed_text}",
+                column=col + 1,
+                number_text=repr(value + "," + digits),
+                fixed_text=value + "." + digits,
+            ),
             None,
         )
     if (
@@ -1108,15 +1245,26 @@ def _typing_mistake(
     ):
         word = _WORD_BEFORE.search(code[:col])
         value = word.group(2).replace(" ", "") if word else before.split()[-1]
-        return f"a second decimal point at column {col + 1}, in {value + found!r}", None
+        return (
+            tr(
+                "a second decimal point at column {column}, in {number_text}",
+                column=col + 1,
+                number_text=repr(value + found),
+            ),
+            None,
+        )
     if found[:1] in "*/+-" and _WORD_BEFORE.search(code[:col]):
         word = _WORD_BEFORE.search(code[:col])
         assert word is not None
         letter = word.group(1).upper()
         expression = _expression_from(code, word.start(2))
         return (
-            f"an expression after an address must be in brackets on FANUC: write "
-            f"{letter}[{expression}], not {letter}{expression}",
+            tr(
+                "an expression after an address must be in brackets on FANUC: write "
+                "{letter}[{expression_text}], not {letter}{expression_text}",
+                letter=letter,
+                expression_text=expression,
+            ),
             None,
         )
     name = found.upper()
@@ -1125,36 +1273,37 @@ def _typing_mistake(
         if address is not None and address.group(0).strip():
             letter = address.group(1).upper()
             return (
-                f"a function after an address must be in brackets on FANUC: write "
-                f"{letter}[{name}[...]], not {letter}{name}[...]",
+                tr(
+                    "a function after an address must be in brackets on FANUC: write "
+                    "{letter}[{function}[...]], not {letter}{function}[...]",
+                    letter=letter,
+                    function=name,
+                ),
                 None,
             )
         return (
-            f"{name}[...] at column {col + 1} has no address letter: a value needs one "
-            f"(X[{name}[...]]), or an assignment (#1={name}[...])",
+            tr(
+                "{function}[...] at column {column} has no address letter: a value needs one "
+                "(X[{function}[...]]), or an assignment (#1={function}[...])",
+                function=name,
+                column=col + 1,
+            ),
             None,
         )
     if _NUMBER_TEXT.fullmatch(found) and found.strip("."):
-        at_head = _BLOCK_HEAD.fullmatch(before) is not None
-        if at_head and found.startswith("0") and len(found) >= 2:
-            if not code[col + len(found) :].strip():
-                return (
-                    f"{found!r} at column {col + 1} has no address letter: the letter O typed "
-                    f"as the digit 0? A program number is written O{found[1:]}",
-                    None,
-                )
-            return (
-                f"{found!r} at column {col + 1} has no address letter (G{found} meant, or the "
-                "letter O typed as the digit 0?)",
-                None,
-            )
-        return f"the number {found!r} at column {col + 1} has no address letter", None
+        return _number_without_address(code, col, found, before)
     if found[:1].isalpha() and _ADDRESS_BEFORE.search(code[:col]):
         address = _ADDRESS_BEFORE.search(code[:col])
         assert address is not None
         return (
-            f"address {address.group(1).upper()} at column {address.start(1) + 1} has no value "
-            f"(found {found!r} at column {col + 1})",
+            tr(
+                "address {address} at column {address_column} has no value (found {found_text} "
+                "at column {column})",
+                address=address.group(1).upper(),
+                address_column=address.start(1) + 1,
+                found_text=repr(found),
+                column=col + 1,
+            ),
             None,
         )
     return None
@@ -1450,15 +1599,24 @@ def _lines_read(text: str, lines: list[str], limits: ReadLimits) -> int:
 
 def _unread_note(text: str, lines: list[str], read: int, limits: ReadLimits) -> str:
     if limits.max_blocks is not None and read == limits.max_blocks:
-        size = f"{len(lines)} blocks, more than the {limits.max_blocks}"
-        setting = "maxBlocks, --max-blocks"
-    else:
-        size = f"{len(text)} characters, more than the {limits.max_characters}"
-        setting = "maxFileSize, --max-file-size"
-    return (
-        f"analysed the first {read} blocks of {len(lines)}: the document has {size} the "
-        f"analysis reads (setting fanuc-macro.analysis.{setting}); the blocks from line "
-        f"{read + 1} on are not checked"
+        return tr(
+            "analysed the first {read} blocks of {count}: the document has {count} blocks, more "
+            "than the {most} the analysis reads (setting fanuc-macro.analysis.maxBlocks, "
+            "--max-blocks); the blocks from line {line} on are not checked",
+            read=read,
+            count=len(lines),
+            most=limits.max_blocks,
+            line=read + 1,
+        )
+    return tr(
+        "analysed the first {read} blocks of {count}: the document has {size} characters, more "
+        "than the {most} the analysis reads (setting fanuc-macro.analysis.maxFileSize, "
+        "--max-file-size); the blocks from line {line} on are not checked",
+        read=read,
+        count=len(lines),
+        size=len(text),
+        most=limits.max_characters,
+        line=read + 1,
     )
 
 

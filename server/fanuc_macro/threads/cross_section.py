@@ -37,6 +37,7 @@ from ..database import TableKey
 from ..database import current as current_database
 from ..evaluator.facts import Motion
 from ..program.index import ProgramIndex
+from ..translation import tr
 from .geometry import nose_radius_range
 from .identify import Thread
 from .module_shape import D1_FACTOR
@@ -729,13 +730,15 @@ def blank_source(thread: Thread) -> str:
     """Where the blank of :func:`thread_cuts` comes from, for a message."""
     surface = thread.surface
     if surface is not None:
+        line = surface.line + 1
         if thread.job.taper is not None:
-            return f"the cone turned at line {surface.line + 1}, at Z{surface.z:.4g}"
-        what = "bore" if thread.internal or thread.job.internal else "diameter"
-        return f"the {what} turned at line {surface.line + 1}"
+            return tr("the cone turned at line {line}, at Z{z:.4g}", line=line, z=surface.z)
+        if thread.internal or thread.job.internal:
+            return tr("the bore turned at line {line}", line=line)
+        return tr("the diameter turned at line {line}", line=line)
     if thread.internal:
-        return f"basic minor diameter D1 of {thread.name}"
-    return f"{thread.name}'s major diameter"
+        return tr("basic minor diameter D1 of {thread}", thread=thread.name)
+    return tr("{thread}'s major diameter", thread=thread.name)
 
 
 def thread_cuts(thread: Thread, before: Sequence[Motion] = ()) -> list[CrossSection]:

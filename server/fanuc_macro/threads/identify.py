@@ -38,11 +38,19 @@ from ..per_line import PerLine
 from ..program.index import Program, ProgramIndex
 from ..program.meanings import Meaning, program_is_internal, variable_roles
 from ..syntax.tree import Document, ParsedLine
+from ..translation import tr, tr_n
 from .designation import SideUndecided, ThreadDesignation, parse_designation
 from .geometry import SIN60
 from .iso965 import PitchClass, loosest_pitch_class, pitch_classes
 from .jobs import ThreadJob, thread_jobs
-from .module_shape import D1_FACTOR, ModuleShape, fitting_radii, module_shape, written_value
+from .module_shape import (
+    D1_FACTOR,
+    ModuleShape,
+    fitting_radii,
+    in_turn,
+    module_shape,
+    written_value,
+)
 from .pipe import PipeThread, pipe_threads
 from .surface import SurfaceWanted, TurnedSurface, turned_surfaces
 
@@ -210,7 +218,7 @@ class Thread:
         if self.pipe is not None:
             return self.pipe.text
         if self.major is None or self.pitch is None:
-            return "the thread"
+            return tr("the thread")
         return f"M{self.major:g}x{self.pitch:g}"
 
     @property
@@ -261,16 +269,18 @@ class Thread:
             return ""
         if self.pitch_class.position == "?":
             return (
-                "the program's own es and Td2"
+                tr("the program's own es and Td2")
                 if not self.internal
-                else ("the program's own EI and TD2")
+                else tr("the program's own EI and TD2")
             )
         if self.class_exact:
             return self.pitch_class.name
-        return f"any class (the loosest, {self.pitch_class.name})"
+        return tr(
+            "any class (the loosest, {tolerance_class})", tolerance_class=self.pitch_class.name
+        )
 
     def known_from(self) -> str:
-        return "; ".join(e.text for e in self.evidence)
+        return in_turn([e.text for e in self.evidence])
 
     def limit_text(self) -> str:
         """How the root was worked out, for a message."""
@@ -281,12 +291,18 @@ class Thread:
         which = "D2 max" if self.internal else "d2 min"
         limit = band[1] if self.internal else band[0]
         if self.nose_radius is not None:
-            tool = f"the tool's nose radius {r:.4g}"
+            tool = tr("with the tool's nose radius {radius:.4g}", radius=r)
         elif self.internal:
-            tool = "a sharp tool"
+            tool = tr("with a sharp tool")
         else:
-            tool = f"the least root radius 0.125P = {r:.4g}"
-        return f"{which} {limit:.3f} of {self.class_text()}, with {tool}"
+            tool = tr("with the least root radius 0.125P = {radius:.4g}", radius=r)
+        return tr(
+            "{which} {limit:.3f} of {tolerance_class}, {nose}",
+            which=which,
+            limit=limit,
+            tolerance_class=self.class_text(),
+            nose=tool,
+        )
 
 
 def _thread_line(parsed: ParsedLine) -> LineThreadWords | None:
@@ -458,13 +474,25 @@ def _class_from_inputs(thread: Thread, shape: ModuleShape) -> tuple[PitchClass, 
     tol_name = "TD2" if thread.internal else "Td2"
     for c in pitch_classes(thread.major, thread.pitch, internal=thread.internal):
         if abs(abs(es) - abs(c.deviation)) < 5e-4 and abs(tol - c.tolerance) < 5e-4:
-            reason = f"its es {es:g} (#{es_var}) and {tol_name} {tol:g} (#{tol_var})"
+            reason = tr(
+                "its es {es:g} (#{es_var}) and {tol_name} {tol:g} (#{tol_var})",
+                es=es,
+                es_var=es_var,
+                tol_name=tol_name,
+                tol=tol,
+                tol_var=tol_var,
+            )
             return c, reason
     # The module enters es as a magnitude (seed paper 000, table 2); EI is positive anyway.
     signed = abs(es) if thread.internal else -abs(es)
-    reason = (
-        f"the module's own es {es:g} (#{es_var}) and {tol_name} {tol:g} (#{tol_var}), which "
-        "no ISO 965-1 class has"
+    reason = tr(
+        "the module's own es {es:g} (#{es_var}) and {tol_name} {tol:g} (#{tol_var}), which "
+        "no ISO 965-1 class has",
+        es=es,
+        es_var=es_var,
+        tol_name=tol_name,
+        tol=tol,
+        tol_var=tol_var,
     )
     return PitchClass("?", 0, signed, tol), reason
 
@@ -487,14 +515,16 @@ def _mm(value: float) -> str:
 def _describe_cuts(job: ThreadJob) -> str:
     xs = job.xs
     lead = job.lead
-    feed = f" at F{lead:g}" if lead is not None else ""
+    cutting = job.shown if lead is None else tr("{code} at F{feed:g}", code=job.shown, feed=lead)
     count = len(job.passes)
-    passes = f"{count} pass" + ("" if count == 1 else "es")
+    passes: str = tr_n("{count} pass", "{count} passes", count)
     if xs and xs[0] != xs[-1]:
-        where = f" X{_mm(xs[0])} to X{_mm(xs[-1])}"
-    else:
-        where = f" at X{_mm(xs[0])}" if xs else ""
-    return f"the cuts ({job.shown}{feed}, {passes}{where})"
+        passes = tr(
+            "{passes} X{first} to X{last}", passes=passes, first=_mm(xs[0]), last=_mm(xs[-1])
+        )
+    elif xs:
+        passes = tr("{passes} at X{x}", passes=passes, x=_mm(xs[0]))
+    return tr("the cuts ({cutting}, {passes})", cutting=cutting, passes=passes)
 
 
 def identify(
@@ -601,7 +631,7 @@ def _read_pipe(thread: Thread, words: _ProgramWords) -> None:
         _off, thread.pipe, thread.pipe_line = best
         if thread.internal is None and best[1].internal is not None:
             thread.internal = best[1].internal
-        thread.evidence.append(Evidence(f"{best[1].name} in the comments", best[2]))
+        thread.evidence.append(Evidence(tr("{pipe} in the comments", pipe=best[1].name), best[2]))
 
 
 def _read_designation(
@@ -617,7 +647,7 @@ def _read_designation(
         said = program_is_internal(doc, job.program_line, end)
         if said is not None:
             thread.internal = said
-            thread.evidence.append(Evidence("the program's first comments", job.program_line))
+            thread.evidence.append(Evidence(tr("the program's first comments"), job.program_line))
             chosen = _choose_designation(found, job, said)
     if chosen is None:
         return None
@@ -628,7 +658,14 @@ def _read_designation(
     thread.major, thread.pitch, thread.starts = des.nominal_diameter, des.pitch, des.starts
     thread.pitch_source = "designation"
     thread.evidence.append(
-        Evidence(f"the designation {where.text} at line {where.line + 1}", where.line)
+        Evidence(
+            tr(
+                "the designation {designation_text} at line {line}",
+                designation_text=where.text,
+                line=where.line + 1,
+            ),
+            where.line,
+        )
     )
     tabulated = next(
         (
@@ -641,9 +678,9 @@ def _read_designation(
     if tabulated is not None:
         thread.pitch_class, thread.class_exact = tabulated, True
         thread.class_reason = (
-            "the designation, whose class is not written: 6g / 6H by ISO 965-1"
+            tr("the designation, whose class is not written: 6g / 6H by ISO 965-1")
             if des.class_omitted
-            else "the designation"
+            else tr("the designation")
         )
     return chosen
 
@@ -670,7 +707,9 @@ def _read_module(
         thread.evidence.append(Evidence(shape.describe(), shape.height_line))
     if shape.radius is not None:
         thread.nose_radius, thread.nose_line = shape.radius, shape.radius_line
-        thread.nose_reason = f"#{shape.radius_var}, the radius {shape.radius_how}"
+        thread.nose_reason = tr(
+            "#{var}, the radius {how}", var=shape.radius_var, how=shape.radius_how
+        )
     return pitch_is_lead
 
 
@@ -688,7 +727,7 @@ def _read_assignment_comments(
         if major is not None:
             thread.major = major[0]
             thread.evidence.append(
-                Evidence(f"the nominal diameter at line {major[1] + 1}", major[1])
+                Evidence(tr("the nominal diameter at line {line}", line=major[1] + 1), major[1])
             )
             if pitch is not None:
                 thread.pitch, thread.pitch_source = pitch[0], "comment"
@@ -698,7 +737,7 @@ def _read_assignment_comments(
         nose = _role_value(roles, facts, first, "nose_radius")
         if nose is not None:
             thread.nose_radius, thread.nose_line = nose
-            thread.nose_reason = f"named by the comment at line {nose[1] + 1}"
+            thread.nose_reason = tr("named by the comment at line {line}", line=nose[1] + 1)
     return pitch_is_lead
 
 
@@ -712,7 +751,14 @@ def _read_starts(thread: Thread, words: _ProgramWords, pitch_is_lead: bool) -> N
     if pitch_is_lead and thread.pitch is not None:
         thread.pitch /= thread.starts
     thread.evidence.append(
-        Evidence(f"{thread.starts} starts, by the comment at line {starts[1] + 1}", starts[1])
+        Evidence(
+            tr(
+                "{count} starts, by the comment at line {line}",
+                count=thread.starts,
+                line=starts[1] + 1,
+            ),
+            starts[1],
+        )
     )
 
 
@@ -732,7 +778,11 @@ def _read_tolerance_class(thread: Thread) -> None:
                 Evidence(
                     thread.class_reason
                     if thread.pitch_class.position == "?"
-                    else f"class {thread.class_text()} from {thread.class_reason}"
+                    else tr(
+                        "class {tolerance_class} from {reason}",
+                        tolerance_class=thread.class_text(),
+                        reason=thread.class_reason,
+                    )
                 )
             )
     if thread.pitch_class is None and thread.major is not None and thread.pitch is not None:
@@ -744,7 +794,7 @@ def _read_tolerance_class(thread: Thread) -> None:
             loosest = None
         if loosest is not None:
             thread.pitch_class = loosest
-            thread.class_reason = "no class is known: the loosest of ISO 965-1 stands in"
+            thread.class_reason = tr("no class is known: the loosest of ISO 965-1 stands in")
 
 
 def _unsupported(

@@ -24,6 +24,7 @@ from ..database import TableKey
 from ..database import current as current_database
 from ..evaluator.facts import Motion, same_value
 from ..line_maps import Diff, Kept
+from ..translation import tr
 
 R = TypeVar("R")
 
@@ -228,12 +229,13 @@ def _side_of_cuts(job: ThreadJob) -> tuple[bool | None, str]:
                 inward = late < early
                 return (
                     not inward,
-                    "the passes go "
-                    + ("deeper towards the axis" if inward else "deeper away from the axis"),
+                    tr("the passes go deeper towards the axis")
+                    if inward
+                    else tr("the passes go deeper away from the axis"),
                 )
         start = job.passes[0].start_x
         if start is not None and start != xs[0]:
-            return start < xs[0], f"the cycle starts at X{start:g}, on the {_side(start, xs[0])}"
+            return start < xs[0], _side(start, xs[0])
         return None, ""
     # Single cuts: each is left by a retract away from the material.
     votes = Counter(
@@ -244,12 +246,17 @@ def _side_of_cuts(job: ThreadJob) -> tuple[bool | None, str]:
     if votes:
         outward, count = votes.most_common(1)[0]
         if count * 2 > sum(votes.values()):
-            return not outward, "each cut retracts " + ("outwards" if outward else "inwards")
+            return not outward, (
+                tr("each cut retracts outwards") if outward else tr("each cut retracts inwards")
+            )
     return None, ""
 
 
 def _side(start: float, x: float) -> str:
-    return "outside of the cut" if start > x else "axis side of the cut"
+    """Where the cycle starts, for a message."""
+    if start > x:
+        return tr("the cycle starts at X{start:g}, on the outside of the cut", start=start)
+    return tr("the cycle starts at X{start:g}, on the axis side of the cut", start=start)
 
 
 def thread_jobs(motions: Sequence[Motion], uri: str) -> list[ThreadJob]:

@@ -14,7 +14,7 @@ minor diameter plus twice it). That shape names the variables:
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 
 from ..evaluator.facts import DocumentFacts, RunValues
@@ -35,6 +35,7 @@ from ..syntax.tree import (
     Var,
 )
 from ..syntax.walk import subexpressions, top_expressions
+from ..translation import tr
 from .geometry import SIN60, TAN30
 from .jobs import ThreadJob
 from .linear import Linear, linear_form
@@ -58,17 +59,36 @@ class ModuleShape:
     radius_var: int | None = None
     radius: float | None = None
     radius_line: int | None = None
-    radius_how: str = ""
+    radius_how: str = ""  # a message's words: how the formulas use the radius
     inputs: dict[int, float] = field(default_factory=dict)  # other terms of the height
     x_text: str = ""  # the deepest pass's X, as written
 
     def describe(self) -> str:
-        parts = [f"last pass X[{self.x_text}]"]
+        parts: list[str] = [tr("last pass X[{x_text}]", x_text=self.x_text)]
         if self.major_var is not None and self.major is not None:
-            parts.append(f"#{self.major_var} = {self.major:g} the nominal diameter")
+            parts.append(
+                tr("#{var} = {value:g} the nominal diameter", var=self.major_var, value=self.major)
+            )
         if self.pitch_var is not None and self.pitch is not None:
             parts.append(f"F#{self.pitch_var} = {self.pitch:g}")
-        return f"the module's formulas ({', '.join(parts)})"
+        return tr("the module's formulas ({parts})", parts=listed(parts))
+
+
+def in_turn(parts: Sequence[str]) -> str:
+    """Parts of a message one after another, between semicolons (said in the user's
+    language: a Chinese semicolon in Chinese)."""
+    said = parts[0] if parts else ""
+    for part in parts[1:]:
+        said = tr("{earlier}; {later}", earlier=said, later=part)
+    return said
+
+
+def listed(parts: Sequence[str]) -> str:
+    """Parts of a message one after another, between commas (as :func:`in_turn`)."""
+    said = parts[0] if parts else ""
+    for part in parts[1:]:
+        said = tr("{earlier}, {later}", earlier=said, later=part)
+    return said
 
 
 def word(doc: Document, line: int, address: str) -> Expr | None:
@@ -288,13 +308,13 @@ def _find_height_formula(
     radius = next((n for n in candidates if n in offsets), None)
     if radius is None and len(candidates) == 1:
         radius = candidates[0]
-    how = "the height subtracts"
+    how = tr("the height subtracts")
     if radius is None:
         in_use = [n for n in offsets if n != shape.pitch_var and n != shape.height_var]
         if len(in_use) == 1:
-            radius, how = in_use[0], "the side step offsets by r·tan30°"
+            radius, how = in_use[0], tr("the side step offsets by r·tan30°")
     elif radius in offsets:
-        how = "the height subtracts and the side step offsets by r·tan30°"
+        how = tr("the height subtracts and the side step offsets by r·tan30°")
     if radius is not None:
         shape.radius_var = radius
         shape.radius = value_at(shape.height_line, radius)
