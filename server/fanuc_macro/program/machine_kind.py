@@ -150,6 +150,26 @@ def _four_digit_t(words_text: str) -> bool:
     return any(t[:2] != "00" for t in _FOUR_DIGIT_T.findall(words_text))
 
 
+# The marks a line may show, made once: a line's marks are kept for every line.
+_M06_MARK = (MILL, tr("M06 (tool change)"))
+_TOOL_LENGTH_MARK = (MILL, tr("G43/G44 H (tool length compensation)"))
+_Y_MARK = (MILL, tr("a Y axis word"))
+_DRILLING_MARK = (MILL, tr("a drilling cycle a lathe does not have (G81, G82, G86, G73 Z)"))
+_CUTTER_COMPENSATION_MARK = (MILL, tr("G41/G42 D (cutter compensation with an offset number)"))
+_G96_MARK = (LATHE, tr("G96 (constant surface speed)"))
+_G50_MARK = (LATHE, tr("G50 with S, X or Z (spindle clamp, coordinate system)"))
+_UW_MARK = (LATHE, tr("a U or W word (incremental X or Z)"))
+_PROFILE_CYCLE_MARK = (LATHE, tr("a multiple repetitive cycle (G70-G73 with P and Q)"))
+_G76_FIRST_MARK = (LATHE, tr("G76's first block (threading cycle parameters)"))
+_G32_MARK = (LATHE, tr("G32 (threading)"))
+_G77_TO_G79_MARK = (
+    LATHE,
+    tr("G77, G78 or G79 with X or Z (a lathe cycle of G code system B or C)"),
+)
+_G92_F_MARK = (LATHE, tr("G92 with F (threading cycle)"))
+_FOUR_DIGIT_T_MARK = (LATHE, tr("a four-digit T (tool and offset number)"))
+
+
 def _line_marks(parsed: ParsedLine) -> tuple[tuple[str, str], ...] | None:
     """The machine marks of one line: (machine, what) pairs; None for most lines."""
     statement = parsed.statement
@@ -189,41 +209,39 @@ def _line_marks(parsed: ParsedLine) -> tuple[tuple[str, str], ...] | None:
         return _word_marks(letters, four_digit_t)
     marks: list[tuple[str, str]] = []
     if 6.0 in m:
-        marks.append((MILL, tr("M06 (tool change)")))
+        marks.append(_M06_MARK)
     if not g.isdisjoint({43.0, 44.0}) and "H" in letters:
-        marks.append((MILL, tr("G43/G44 H (tool length compensation)")))
+        marks.append(_TOOL_LENGTH_MARK)
     if 91.0 in g:
         marks.append((MILL, G91_MARK))
     if "Y" in letters:
-        marks.append((MILL, tr("a Y axis word")))
+        marks.append(_Y_MARK)
     if not g.isdisjoint({81.0, 82.0, 86.0}) or (73.0 in g and "Z" in letters):
-        marks.append((MILL, tr("a drilling cycle a lathe does not have (G81, G82, G86, G73 Z)")))
+        marks.append(_DRILLING_MARK)
     if 90.0 in g and (not g.isdisjoint(_MOVES) or letters.isdisjoint("XZUW")):
         marks.append((MILL, G90_MARK))
     if not g.isdisjoint({41.0, 42.0}) and "D" in letters:
-        marks.append((MILL, tr("G41/G42 D (cutter compensation with an offset number)")))
+        marks.append(_CUTTER_COMPENSATION_MARK)
     if 96.0 in g:
-        marks.append((LATHE, tr("G96 (constant surface speed)")))
+        marks.append(_G96_MARK)
     if 50.0 in g and not letters.isdisjoint("SXZ"):
-        marks.append((LATHE, tr("G50 with S, X or Z (spindle clamp, coordinate system)")))
+        marks.append(_G50_MARK)
     if not letters.isdisjoint("UW"):
-        marks.append((LATHE, tr("a U or W word (incremental X or Z)")))
+        marks.append(_UW_MARK)
     # With P and Q only: a bare G70/G71 is inch/metric input on other controls (ISO dialects,
     # Heidenhain, Fagor); the cycles' first blocks have U or W, marks of their own.
     if not g.isdisjoint({70.0, 71.0, 72.0, 73.0}) and {"P", "Q"} <= letters:
-        marks.append((LATHE, tr("a multiple repetitive cycle (G70-G73 with P and Q)")))
+        marks.append(_PROFILE_CYCLE_MARK)
     if 76.0 in g and letters.isdisjoint("XYZ"):
-        marks.append((LATHE, tr("G76's first block (threading cycle parameters)")))
+        marks.append(_G76_FIRST_MARK)
     if 32.0 in g:
-        marks.append((LATHE, tr("G32 (threading)")))
+        marks.append(_G32_MARK)
     if not g.isdisjoint({77.0, 78.0, 79.0}) and not letters.isdisjoint("XZUW"):
-        marks.append(
-            (LATHE, tr("G77, G78 or G79 with X or Z (a lathe cycle of G code system B or C)"))
-        )
+        marks.append(_G77_TO_G79_MARK)
     if 92.0 in g and "F" in letters:
-        marks.append((LATHE, tr("G92 with F (threading cycle)")))
+        marks.append(_G92_F_MARK)
     if 6.0 not in m and four_digit_t:
-        marks.append((LATHE, tr("a four-digit T (tool and offset number)")))
+        marks.append(_FOUR_DIGIT_T_MARK)
     return tuple(marks) or None
 
 
