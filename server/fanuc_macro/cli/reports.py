@@ -14,6 +14,8 @@ from typing import Any, TextIO
 from .. import __version__
 from ..analysis import RULES
 from ..rules_doc import rule_url
+from ..translation import tr
+from .language import said
 
 SARIF_SCHEMA = "https://json.schemastore.org/sarif-2.1.0.json"
 HOMEPAGE = "https://github.com/fanuc-macro/fanuc-macro"
@@ -162,12 +164,25 @@ def use_colour(choice: str, out: TextIO) -> bool:
     return out.isatty()
 
 
-def text_line(path: str, finding: dict[str, Any], colour: bool) -> str:
+# The severities as the text form says them (the JSON forms keep the English names).
+SEVERITY_WORDS = MappingProxyType(
+    {
+        "error": tr("error"),
+        "warning": tr("warning"),
+        "information": tr("information"),
+        "hint": tr("hint"),
+    }
+)
+
+
+def text_line(path: str, finding: dict[str, Any], colour: bool, message: str | None = None) -> str:
     """``PATH:LINE:COLUMN: CODE severity message``, the place bold and the code in its
-    severity's colour when ``colour``."""
+    severity's colour when ``colour``; the severity and the message (``message``, else the
+    finding's) in the command line's language."""
     place = f"{path}:{finding['line']}:{finding['column']}:"
-    head = f"{finding['code']} {finding['severity']}"
+    head = f"{finding['code']} {said(SEVERITY_WORDS[finding['severity']])}"
     if colour:
         place = f"\x1b[1m{place}\x1b[0m"
         head = f"\x1b[{_STYLES[finding['severity']]}m{head}\x1b[0m"
-    return f"{place} {head} {finding['message']}\n"
+    shown = said(finding["message"]) if message is None else message
+    return f"{place} {head} {shown}\n"

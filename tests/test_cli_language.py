@@ -1,0 +1,385 @@
+"""The command line in the user's language: ``--lang``, else LC_ALL, LC_MESSAGES and LANG.
+
+In Chinese, ``check``'s text form says every rule's fixture with no English sentence (those
+whose messages are not converted yet are listed in ``ENGLISH_LEFT``, and each is checked to
+still need its place there), every command's ``--help`` is Chinese, and a run's cached results
+are never said in another run's language. With ``LANG=C`` the output is the English of the
+JSON form, byte for byte.
+"""
+
+from __future__ import annotations
+
+import functools
+import json
+import os
+import re
+import sqlite3
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from fanuc_macro.cli.language import chosen_locale, wrapped
+from test_translation_fixtures import ENGLISH, english_in
+
+ROOT = Path(__file__).resolve().parent.parent
+FIXTURES = ROOT / "tests" / "fixtures" / "rules"
+FIXTURE_NAMES = sorted(p.name for p in FIXTURES.glob("MB*.nc"))
+COMMANDS = (
+    "check",
+    "trace",
+    "plot",
+    "hover",
+    "definition",
+    "rule",
+    "config",
+    "thread",
+    "arc-thread",
+    "drum-groove",
+    "format",
+)
+LOCALE_VARIABLES = ("LANGUAGE", "LC_ALL", "LC_MESSAGES", "LANG")
+
+# The fixtures whose findings the command line still says partly in English: their messages
+# are made outside cli/ and not converted yet (tests/test_translation_fixtures.py says which
+# texts). Each is expected to fail below; one that passes must leave this set.
+ENGLISH_LEFT = frozenset(
+    {
+        "MB001_syntax-error.nc",
+        "MB001_syntax-error_excerpt.nc",
+        "MB001_syntax-error_long-numbers.nc",
+        "MB002_not-fanuc_cnc-simulator.nc",
+        "MB002_not-fanuc_haas.nc",
+        "MB002_not-fanuc_okuma.nc",
+        "MB002_not-fanuc_other.nc",
+        "MB002_not-fanuc_own-variables.nc",
+        "MB002_not-fanuc_philips.nc",
+        "MB002_not-fanuc_semicolon-comments.nc",
+        "MB002_not-fanuc_wire-edm.nc",
+        "MB003_nested-comment.nc",
+        "MB004_unclosed-comment.nc",
+        "MB005_text-after-eob.nc",
+        "MB006_lowercase.nc",
+        "MB006_lowercase_whole-file.nc",
+        "MB007_encoding.nc",
+        "MB007_encoding_gb18030.nc",
+        "MB007_encoding_unclear.nc",
+        "MB007_encoding_unreadable.nc",
+        "MB008_unknown-function.nc",
+        "MB009_tape-mark-not-alone.nc",
+        "MB010_no-program-number.nc",
+        "MB012_expression-too-deep.nc",
+        "MB013_file-too-large.nc",
+        "MB014_after-end-of-record.nc",
+        "MB015_unused-suppression.nc",
+        "MB101_goto-missing-label.nc",
+        "MB102_duplicate-label.nc",
+        "MB103_goto-into-loop.nc",
+        "MB201_do-without-end.nc",
+        "MB202_end-without-do.nc",
+        "MB203_loop-number.nc",
+        "MB204_loop-too-deep.nc",
+        "MB205_loops-crossed.nc",
+        "MB301_bracket-nesting.nc",
+        "MB302_no-such-variable.nc",
+        "MB302_no-such-variable_repeated.nc",
+        "MB303_extended-common.nc",
+        "MB304_write-read-only.nc",
+        "MB305_logic-operand-unbracketed.nc",
+        "MB401_nc-and-macro.nc",
+        "MB402_g65-argument-letter.nc",
+        "MB403_call-target-missing.nc",
+        "MB403_call-target-missing_on-control.nc",
+        "MB404_argument-without-decimal-point.nc",
+        "MB405_repeat-count.nc",
+        "MB405_repeat-count_internal-call.nc",
+        "MB406_modal-call-not-cancelled.nc",
+        "MB407_program-not-ended.nc",
+        "MB407_program-not-ended_last-call.nc",
+        "MB408_vendor-cycle-on-control.nc",
+        "MB409_m-code-call-not-set-up.nc",
+        "MB409_m-code-call-not-set-up_configured.nc",
+        "MB410_resident-program-range.nc",
+        "MB411_argument-not-used.nc",
+        "MB412_m98-argument.nc",
+        "MB413_m98-sets-callers-local.nc",
+        "MB501_math-domain.nc",
+        "MB502_zero-divide.nc",
+        "MB502_zero-divide_block-delete.nc",
+        "MB503_macro-alarm-reached.nc",
+        "MB504_trig-radians.nc",
+        "MB601_address-not-integer.nc",
+        "MB601_address-not-integer_cycle-depth.nc",
+        "MB601_address-not-integer_macro-call-arguments.nc",
+        "MB601_address-not-integer_suggested.nc",
+        "MB602_address-out-of-range.nc",
+        "MB603_feed-not-set.nc",
+        "MB603_feed-not-set_cam.nc",
+        "MB604_feed-zero.nc",
+        "MB605_feed-unit.nc",
+        "MB606_g30-p.nc",
+        "MB607_t-code-in-block.nc",
+        "MB608_corner-refused.nc",
+        "MB608_corner-refused_thread.nc",
+        "MB611_feed-spindle-stopped.nc",
+        "MB612_speed-not-clamped.nc",
+        "MB613_length-offset-other-tool.nc",
+        "MB613_length-offset-other-tool_first-tool.nc",
+        "MB614_tool-without-length-offset.nc",
+        "MB615_skip-before-g31.nc",
+        "MB621_arc-radius-short.nc",
+        "MB622_arc-end-off-circle.nc",
+        "MB622_arc-end-off-circle_lathe.nc",
+        "MB623_arc-without-centre.nc",
+        "MB631_compensation-on-arc.nc",
+        "MB632_compensation-plane-change.nc",
+        "MB633_compensation-left-on.nc",
+        "MB634_skip-in-compensation.nc",
+        "MB641_peck-without-q.nc",
+        "MB642_return-in-drilling-cycle.nc",
+        "MB643_move-before-rigid-tap.nc",
+        "MB651_profile-label-missing.nc",
+        "MB652_profile-not-monotone.nc",
+        "MB653_profile-p-q-missing.nc",
+        "MB654_profile-first-move.nc",
+        "MB655_roughing-cycle-data.nc",
+        "MB656_profile-past-start.nc",
+        "MB657_profile-last-corner.nc",
+        "MB701_condition-constant.nc",
+        "MB702_never-executed.nc",
+        "MB702_never-executed_block-delete.nc",
+        "MB703_endless-loop.nc",
+        "MB704_jump-fails.nc",
+        "MB705_call-nesting.nc",
+        "MB706_call-target-unknown.nc",
+        "MB707_waits-for-outside.nc",
+        "MB708_long-loop.nc",
+        "MB709_restart-point.nc",
+        "MB710_dead-after-end.nc",
+        "MB711_loop-runs-no-turn.nc",
+        "MB801_thread-past-root.nc",
+        "MB802_thread-first-depth.nc",
+        "MB803_thread-depth-not-growing.nc",
+        "MB803_thread-depth-not-growing_inch.nc",
+        "MB803_thread-depth-not-growing_re-chase.nc",
+        "MB804_thread-pass-too-deep.nc",
+        "MB804_thread-pass-too-deep_inch.nc",
+        "MB805_nose-radius-range.nc",
+        "MB806_fitting-tool-radius.nc",
+        "MB807_threading-feed.nc",
+        "MB808_thread-height.nc",
+        "MB809_deviation-sign.nc",
+        "MB810_thread-lead.nc",
+        "MB811_multi-start-shift.nc",
+        "MB812_thread-feed-mixed.nc",
+        "MB813_cycle-start-side.nc",
+        "MB814_thread-pass-repeated.nc",
+        "MB815_g76-tool-angle.nc",
+        "MB816_g76-depths.nc",
+        "MB817_thread-pitch-diameter.nc",
+        "MB818_thread-passes-in-air.nc",
+        "MB819_thread-pass-area.nc",
+        "MB820_thread-under-g96.nc",
+        "MB821_thread-taper-cone.nc",
+        "MB822_thread-pass-reversed.nc",
+        "MB823_thread-taper-designation.nc",
+        "MB824_thread-roughing-past-profile.nc",
+        "MB901_vacant-local-read.nc",
+        "MB902_indirect-write-read-only.nc",
+        "MB903_indirect-no-such-variable.nc",
+        "MB904_arguments-assumed.nc",
+        "MB905_vacant-compared-with-zero.nc",
+    }
+)
+
+
+def _environment(**variables: str) -> dict[str, str]:
+    env = {k: v for k, v in os.environ.items() if k not in LOCALE_VARIABLES}
+    env.update({"PYTHONPATH": str(ROOT / "server"), "FANUC_MACRO_CHECK_CACHE": "0"})
+    env.update(variables)
+    return env
+
+
+def _cli(*args: str, **variables: str) -> subprocess.CompletedProcess[str]:
+    return subprocess.run(
+        [sys.executable, "-m", "fanuc_macro.cli", *args],
+        capture_output=True,
+        text=True,
+        encoding="utf-8",
+        env=_environment(**variables),
+        cwd=ROOT,
+        check=False,
+        timeout=600,
+    )
+
+
+def test_the_language_is_chosen_as_gettext_does() -> None:
+    env = {"LANG": "zh_CN.UTF-8"}
+    assert chosen_locale([], env) == "zh-cn"
+    assert chosen_locale([], {}) == "en"
+    assert chosen_locale([], {"LC_ALL": "C", "LANG": "zh_CN.UTF-8"}) == "en"
+    assert chosen_locale([], {"LC_ALL": "", "LC_MESSAGES": "zh_CN", "LANG": "C"}) == "zh-cn"
+    assert chosen_locale([], {"LANG": "POSIX"}) == "en"
+    assert chosen_locale(["--lang", "en", "check"], env) == "en"
+    assert chosen_locale(["check", "--lang=zh-cn", "a.nc"], {}) == "zh-cn"
+    assert chosen_locale(["--lang", "auto", "check"], env) == "zh-cn"
+    assert chosen_locale(["check", "--", "--lang", "en"], env) == "zh-cn"  # a path after --
+
+
+def test_chinese_is_wrapped_by_its_width() -> None:
+    lines = wrapped("程序段" * 20 + "，zh_CN.UTF-8 和 LANG", 24)
+    columns = [len(line.encode("gbk")) for line in lines]  # GBK: two bytes a character
+    assert columns == [24, 24, 24, 24, 26, 19]  # the comma stays on its line
+    assert lines[-1] == "zh_CN.UTF-8 和 LANG"  # a word is not broken
+
+
+@functools.cache
+def _chinese_check(how: str) -> dict[str, list[str]]:
+    """What ``check`` says of every fixture in Chinese (``how``: by LANG or by --lang), by
+    fixture: each line without its ``PATH:LINE:COLUMN:`` place."""
+    if how == "LANG":
+        done = _cli("check", "--no-cache", str(FIXTURES), LANG="zh_CN.UTF-8")
+    else:
+        done = _cli("check", "--lang", "zh-cn", "--no-cache", str(FIXTURES), LANG="C")
+    assert done.returncode in (0, 1), done.stderr
+    said: dict[str, list[str]] = {name: [] for name in FIXTURE_NAMES}
+    for line in done.stdout.splitlines():
+        path, _line, _column, rest = line.split(":", 3)
+        said.setdefault(Path(path).name, []).append(rest.strip())
+    assert list(english_in(done.stderr.strip())) == [], done.stderr  # the summary
+    return said
+
+
+@pytest.mark.parametrize("how", ["LANG", "--lang"])
+@pytest.mark.parametrize(
+    "name",
+    [
+        pytest.param(
+            name,
+            marks=pytest.mark.xfail(
+                name in ENGLISH_LEFT,
+                reason="messages made outside cli/ not yet said in Chinese",
+                strict=True,
+            ),
+        )
+        for name in FIXTURE_NAMES
+    ],
+)
+def test_check_says_a_fixture_in_chinese(name: str, how: str) -> None:
+    lines = _chinese_check(how)[name]
+    english = [line for line in lines if ENGLISH.search(line)]
+    assert not english, f"{name}: English left: {english}"
+
+
+def test_the_fixtures_left_in_english_are_fixtures() -> None:
+    assert set(ENGLISH_LEFT) <= set(FIXTURE_NAMES)
+
+
+# In a help text: option names, the choices of an option, hyphenated and dotted names (rules,
+# commands, settings), names in capitals (PATH, LINE) and the usage block are not sentences.
+_NAMES = re.compile(
+    r"--?[\w-]+|\{[^}]*\}|\[[^]]*\]|\b\w+(?:-\w+)+\b|\w+(?:\.\w+)+|\b[A-Z][A-Z_]+\b"
+)
+
+
+def _english_of_help(text: str) -> list[str]:
+    found = []
+    usage = True
+    for line in text.splitlines():
+        if usage:
+            usage = bool(line.strip())
+            continue
+        if re.match(r"^  \S", line):  # an option or a command, then its help after spaces
+            line = re.split(r"\s{2,}", line.strip(), maxsplit=1)[1:2] or [""]
+            line = line[0]
+        line = _NAMES.sub(" ", line)
+        if ENGLISH.search(line):
+            found.append(line)
+    return found
+
+
+@pytest.mark.parametrize("command", [None, *COMMANDS])
+def test_help_is_chinese(command: str | None) -> None:
+    args = ["--help"] if command is None else [command, "--help"]
+    done = _cli(*args, LANG="zh_CN.UTF-8")
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.startswith("用法：")
+    assert "显示此帮助信息并退出" in done.stdout
+    assert _english_of_help(done.stdout) == []
+    assert _cli("--lang", "zh-cn", *args, LANG="C").stdout == done.stdout
+
+
+def test_usage_errors_are_chinese() -> None:
+    done = _cli("check", "--format", "nope", "a.nc", LANG="zh_CN.UTF-8")
+    assert done.returncode == 2
+    assert "无效的选择" in done.stderr and "错误" in done.stderr
+    missing = _cli("check", "no-such-file.nc", LANG="zh_CN.UTF-8")
+    assert missing.returncode == 2
+    assert "没有该文件或文件夹：no-such-file.nc" in missing.stderr
+    rule = _cli("rule", "MB9999", LANG="zh_CN.UTF-8")
+    assert rule.returncode == 2 and "未知的规则" in rule.stderr
+
+
+def _english_lines(done: subprocess.CompletedProcess[str]) -> list[str]:
+    """``check``'s text form made from its JSON form's English, as it was before languages."""
+    records = json.loads(done.stdout)
+    return [
+        f"{r['path']}:{r['line']}:{r['column']}: {r['code']} {r['severity']} {r['message']}"
+        for r in records
+    ]
+
+
+def test_the_c_locale_is_the_english_of_before() -> None:
+    c = _cli("check", "--no-cache", str(FIXTURES), LANG="C")
+    assert c.stdout.splitlines() == _english_lines(
+        _cli("check", "--no-cache", "--format", "json", str(FIXTURES), LANG="zh_CN.UTF-8")
+    )
+    assert re.fullmatch(
+        r"fanuc-macro: \d+ files checked, 0 skipped, \d+ errors, \d+ warnings, "
+        r"\d+ information, \d+ hints\n",
+        c.stderr,
+    )
+    for same in (
+        _cli("check", "--no-cache", str(FIXTURES)),  # no locale at all
+        _cli("check", "--no-cache", "--lang", "en", str(FIXTURES), LANG="zh_CN.UTF-8"),
+        _cli("check", "--no-cache", str(FIXTURES), LC_ALL="POSIX", LANG="zh_CN.UTF-8"),
+    ):
+        assert (same.stdout, same.stderr, same.returncode) == (c.stdout, c.stderr, c.returncode)
+
+
+def test_the_json_forms_stay_english() -> None:
+    english = _cli("check", "--format", "sarif", "--no-cache", str(FIXTURES), LANG="C")
+    chinese = _cli("check", "--format", "sarif", "--no-cache", str(FIXTURES), LANG="zh_CN.UTF-8")
+    assert chinese.stdout == english.stdout
+    assert "检查了" in chinese.stderr  # the summary is for the person
+
+
+def _rows(cache: Path) -> int:
+    with sqlite3.connect(cache / "check-results.sqlite3") as db:
+        return int(db.execute("SELECT COUNT(*) FROM results").fetchone()[0])
+
+
+def test_the_cache_keeps_each_language_apart(tmp_path: Path) -> None:
+    folder = tmp_path / "programs"
+    folder.mkdir()
+    for path in sorted(FIXTURES.glob("MB*.nc"))[:12]:
+        (folder / path.name).write_bytes(path.read_bytes())
+    cache = str(tmp_path / "cache")
+    fresh_chinese = _cli("check", "--no-cache", str(folder), LANG="zh_CN.UTF-8")
+    fresh_english = _cli("check", "--no-cache", str(folder), LANG="C")
+    assert fresh_chinese.stdout != fresh_english.stdout
+    runs = [
+        ("zh_CN.UTF-8", fresh_chinese),
+        ("C", fresh_english),  # the Chinese run's results are kept: not these
+        ("zh_CN.UTF-8", fresh_chinese),  # from the cache, in Chinese
+        ("C", fresh_english),
+    ]
+    rows = []
+    for lang, expected in runs:
+        done = _cli("check", str(folder), LANG=lang, FANUC_MACRO_CHECK_CACHE=cache)
+        assert done.stdout == expected.stdout, lang
+        assert done.stderr == expected.stderr, lang
+        rows.append(_rows(tmp_path / "cache"))
+    kept = rows[0]
+    assert kept > 0 and rows == [kept, 2 * kept, 2 * kept, 2 * kept]  # once in each language
