@@ -16,6 +16,7 @@ import re
 import sqlite3
 import subprocess
 import sys
+from collections import Counter
 from pathlib import Path
 
 import pytest
@@ -383,3 +384,26 @@ def test_the_cache_keeps_each_language_apart(tmp_path: Path) -> None:
         rows.append(_rows(tmp_path / "cache"))
     kept = rows[0]
     assert kept > 0 and rows == [kept, 2 * kept, 2 * kept, 2 * kept]  # once in each language
+
+
+def test_lang_before_the_command_leaves_with_paths_spread() -> None:
+    from fanuc_macro.cli import build_parser, spread_with_paths
+
+    words = ["--lang", "zh-cn", "hover", "--with", "lib", "subs.nc", "p.nc", "3", "5"]
+    spread = spread_with_paths(build_parser(), words)
+    assert spread == [*words[:5], "--with", "subs.nc", "p.nc", "3", "5"]
+
+
+def test_a_run_in_chinese_leaves_the_process_in_english(
+    capsys: pytest.CaptureFixture[str],
+) -> None:
+    from fanuc_macro.cli import main
+    from fanuc_macro.cli.check_command import summary_line
+    from fanuc_macro.cli.language import current
+
+    assert main(["--lang", "zh-cn", "check", "no-such-file.nc"]) == 2
+    assert "没有该文件或文件夹" in capsys.readouterr().err
+    assert current() == "en"
+    assert summary_line(1, [], Counter()) == (
+        "fanuc-macro: 1 file checked, 0 skipped, 0 errors, 0 warnings"
+    )
