@@ -27,19 +27,16 @@ from test_translation_fixtures import ENGLISH, english_in
 ROOT = Path(__file__).resolve().parent.parent
 FIXTURES = ROOT / "tests" / "fixtures" / "rules"
 FIXTURE_NAMES = sorted(p.name for p in FIXTURES.glob("MB*.nc"))
-COMMANDS = (
-    "check",
-    "trace",
-    "plot",
-    "hover",
-    "definition",
-    "rule",
-    "config",
-    "thread",
-    "arc-thread",
-    "drum-groove",
-    "format",
-)
+
+
+def _commands() -> tuple[str, ...]:
+    from fanuc_macro.cli import build_parser
+
+    parser = build_parser()
+    return tuple(parser._subparsers._group_actions[0].choices)  # type: ignore[union-attr]
+
+
+COMMANDS = _commands()
 LOCALE_VARIABLES = ("LANGUAGE", "LC_ALL", "LC_MESSAGES", "LANG")
 
 # The fixtures whose findings the command line still says partly in English: their messages

@@ -10,9 +10,9 @@ install_code_cache("cli")
 
 import argparse
 import sys
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from pathlib import Path
-from typing import TYPE_CHECKING, TextIO
+from typing import Any, TextIO
 
 from .. import __version__
 from ..analysis import RULES, analyse, log_failure
@@ -52,9 +52,6 @@ from .language import (
 from .plot_command import add_plot_command
 from .streams import STDIN, read_stdin, tolerate_unencodable
 from .thread import add_thread_command
-
-if TYPE_CHECKING:
-    from ..ide.trace import Trace
 
 EXIT_OK = 0
 EXIT_ERRORS = 1  # check: findings; hover, definition: nothing there; format --check: changes
@@ -496,7 +493,7 @@ def cmd_trace(args: argparse.Namespace) -> int:
     return EXIT_OK
 
 
-def _write_trace_summary(result: Trace, out: TextIO) -> None:
+def _write_trace_summary(result: Mapping[str, Any], out: TextIO) -> None:
     """The lines after the motions of ``trace``'s text form."""
     summary = result["summary"]
     by_code = listed(f"{k} {v}" for k, v in summary["by_code"].items())
