@@ -510,7 +510,7 @@ def _write_trace_summary(result: Mapping[str, Any], out: TextIO) -> None:
     )
     from ..ide import cycle_time_text
 
-    out.write(cycle_time_text(summary) + "\n")
+    out.write(said(cycle_time_text(summary)) + "\n")
     if summary["stopped"]:
         why = said(summary.get("stop_message") or summary["stopped"])
         out.write(said(tr("stopped early: {why}", why=why)) + "\n")

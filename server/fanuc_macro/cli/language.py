@@ -122,12 +122,13 @@ def width_of(text: str) -> int:
 
 
 _CLOSING = frozenset("，。；：、）》」』！？")  # never first on a line
+_OPENING = frozenset("（《「『“")  # never last on a line
 
 
 def wrapped(text: str, width: int) -> list[str]:
     """``text``'s words in lines of ``width`` columns at most, as textwrap does for English,
     where a Chinese or Japanese text may break between any two characters (not before its
-    closing punctuation), and a character takes two columns."""
+    closing punctuation, nor after its opening), and a character takes two columns."""
     tokens: list[str] = []  # a space, a wide character, or a word of the others
     after_word = False
     for char in " ".join(text.split()):
@@ -141,8 +142,10 @@ def wrapped(text: str, width: int) -> list[str]:
     line = ""
     for token in tokens:
         if line and width_of(line.rstrip() + token) > width and token not in _CLOSING:
-            lines.append(line.rstrip())
-            line = ""
+            kept = line.rstrip()
+            carried = kept[-1] if kept[-1] in _OPENING and len(kept) > 1 else ""
+            lines.append(kept[: len(kept) - len(carried)])
+            line = carried
         if line or token != " ":
             line += token
     if line.strip():
