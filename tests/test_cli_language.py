@@ -397,3 +397,22 @@ def test_a_run_in_chinese_leaves_the_process_in_english(
     assert summary_line(1, [], Counter()) == (
         "fanuc-macro: 1 file checked, 0 skipped, 0 errors, 0 warnings"
     )
+
+
+def test_the_commands_own_notes_are_chinese() -> None:
+    drum = _cli("drum-groove", "--pitch", "10", LANG="zh_CN.UTF-8")
+    assert drum.returncode == 0, drum.stderr
+    assert drum.stderr.splitlines()[0].startswith("鼓形：R")
+    assert [line for line in drum.stderr.splitlines() if ENGLISH.search(line)] == []
+    formatted = _cli("format", "--check", str(FIXTURES / "MB006_lowercase.nc"), LANG="zh_CN.UTF-8")
+    assert (
+        formatted.stderr.splitlines()[-1] == "fanuc-macro：1 个文件需要重新格式化，0 个已是格式化的"
+    )
+    traced = _cli("trace", str(FIXTURES / "MB104_goto-bad-target.nc"), LANG="zh_CN.UTF-8")
+    assert re.search(r"^\d+ 次运动（.*）；执行了 \d+ 个程序段$", traced.stdout, re.M), traced.stdout
+    thread = _cli("thread", "M50x3-5g6g", "--length", "30", "--spring-passes", "x", LANG="C")
+    chinese = _cli(
+        "--lang", "zh-cn", "thread", "M50x3-5g6g", "--length", "30", "--spring-passes", "x"
+    )
+    assert "a whole number is needed, not x" in thread.stderr
+    assert "需要整数，而不是 x" in chinese.stderr
