@@ -228,7 +228,7 @@ def test_chinese_is_wrapped_by_its_width() -> None:
 @functools.cache
 def _chinese_check(how: str) -> dict[str, list[str]]:
     """What ``check`` says of every fixture in Chinese (``how``: by LANG or by --lang), by
-    fixture: each line without its ``PATH:LINE:COLUMN:`` place."""
+    fixture: each line's message, without its place, code and severity keyword."""
     if how == "LANG":
         done = _cli("check", "--no-cache", str(FIXTURES), LANG="zh_CN.UTF-8")
     else:
@@ -237,7 +237,8 @@ def _chinese_check(how: str) -> dict[str, list[str]]:
     said: dict[str, list[str]] = {name: [] for name in FIXTURE_NAMES}
     for line in done.stdout.splitlines():
         path, _line, _column, rest = line.split(":", 3)
-        said.setdefault(Path(path).name, []).append(rest.strip())
+        _code, _severity, message = rest.strip().split(" ", 2)  # the keyword stays English
+        said.setdefault(Path(path).name, []).append(message)
     assert list(english_in(done.stderr.strip())) == [], done.stderr  # the summary
     return said
 
@@ -416,3 +417,19 @@ def test_the_commands_own_notes_are_chinese() -> None:
     )
     assert "a whole number is needed, not x" in thread.stderr
     assert "需要整数，而不是 x" in chinese.stderr
+
+
+def test_the_editors_check_task_reads_the_chinese_text_form() -> None:
+    manifest = json.loads((ROOT / "package.json").read_text("utf-8"))
+    (matcher,) = [
+        m for m in manifest["contributes"]["problemMatchers"] if m["name"] == "fanuc-macro"
+    ]
+    pattern = re.compile(matcher["pattern"]["regexp"])
+    paths = [str(p) for p in sorted(FIXTURES.glob("MB1*.nc"))]
+    english = _cli("check", "--no-cache", *paths, LANG="C").stdout.splitlines()
+    chinese = _cli("check", "--no-cache", *paths, LANG="zh_CN.UTF-8").stdout.splitlines()
+    assert len(chinese) == len(english) > 0
+    for said, before in zip(chinese, english, strict=True):
+        found, was = pattern.match(said), pattern.match(before)
+        assert found is not None and was is not None, said
+        assert found.groups()[:5] == was.groups()[:5]  # the place, the code and the severity

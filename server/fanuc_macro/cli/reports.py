@@ -164,7 +164,9 @@ def use_colour(choice: str, out: TextIO) -> bool:
     return out.isatty()
 
 
-# The severities as the text form says them (the JSON forms keep the English names).
+# The severities said in words (``rule``'s documentation). The text form of ``check`` keeps
+# the English keyword, as the code, whatever the language: the editor's check task finds the
+# findings in it by that keyword (package.json's problem matcher), and so may other tools.
 SEVERITY_WORDS = MappingProxyType(
     {
         "error": tr("error"),
@@ -177,10 +179,10 @@ SEVERITY_WORDS = MappingProxyType(
 
 def text_line(path: str, finding: dict[str, Any], colour: bool, message: str | None = None) -> str:
     """``PATH:LINE:COLUMN: CODE severity message``, the place bold and the code in its
-    severity's colour when ``colour``; the severity and the message (``message``, else the
-    finding's) in the command line's language."""
+    severity's colour when ``colour``; the message (``message``, else the finding's) in the
+    command line's language, the severity its keyword (see ``SEVERITY_WORDS``)."""
     place = f"{path}:{finding['line']}:{finding['column']}:"
-    head = f"{finding['code']} {said(SEVERITY_WORDS[finding['severity']])}"
+    head = f"{finding['code']} {finding['severity']}"
     if colour:
         place = f"\x1b[1m{place}\x1b[0m"
         head = f"\x1b[{_STYLES[finding['severity']]}m{head}\x1b[0m"
