@@ -27,7 +27,7 @@ if TYPE_CHECKING:
     from .check_cache import CheckCache
 from ..translation import tr, tr_n
 from .configuration import ConfigResolver
-from .language import current, listed, said, said_error
+from .language import current, listed, said, said_error, use
 from .reports import github, junit, sarif, statistics, text_line, use_colour
 from .streams import STDIN, read_stdin, writes_unicode
 
@@ -504,7 +504,7 @@ def _check_archive(
 
 # What the processes of a parallel check work from: set before they are forked, so that each
 # inherits it (the files' bytes, the caches of the lines read for the links).
-_FORKED: tuple[Workspace, _Archive] | None = None
+_FORKED: tuple[Workspace, _Archive, str] | None = None
 
 
 def _analysed(
@@ -524,7 +524,9 @@ def _analysed(
         return
     import multiprocessing as mp
 
-    _FORKED = (workspace, archive)
+    # The language too: a process the pool starts in place of another is forked from its
+    # thread, whose context does not hold the run's language (language.py).
+    _FORKED = (workspace, archive, current())
     try:
         # Each process is replaced after a few chunks: what it copied of the parent's pages
         # (an object read is an object written, its reference count) and its own caches go
@@ -542,7 +544,8 @@ def _analysed(
 
 def _check_forked(key: str) -> _Checked:
     assert _FORKED is not None
-    workspace, archive = _FORKED
+    workspace, archive, locale = _FORKED
+    use(locale)
     return _check_in(workspace, archive, key)
 
 

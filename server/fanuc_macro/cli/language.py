@@ -6,7 +6,7 @@ English), read by :func:`..translation.locale_of`.
 Every text the command line writes for a person is a :func:`..translation.tr` said with
 :func:`said`; the forms other programs read (JSON, SARIF, GitHub annotations, JUnit XML) stay
 English. A command runs in one language, chosen once in ``main``: :func:`use` sets it (a
-context variable, which a check's forked processes inherit).
+context variable; a check's processes are told it, check_command._FORKED).
 
 argparse says its own words ("usage:", "options", "show this help message and exit", its
 errors) through the module-level ``_`` and ``ngettext`` it imports from gettext, which look in
@@ -30,7 +30,7 @@ OPTION = "--lang"
 AUTO = "auto"
 ENVIRONMENT = ("LC_ALL", "LC_MESSAGES", "LANG")  # gettext's order (LANGUAGE aside)
 
-# The language of this run: set once by ``main`` (a check's forked processes inherit it).
+# The language of this run: set once by ``main`` (and in each process of a parallel check).
 _LOCALE: contextvars.ContextVar[str] = contextvars.ContextVar("cli_locale", default="en")
 
 
