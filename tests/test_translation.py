@@ -125,10 +125,11 @@ def test_the_glossary_has_the_papers_terms() -> None:
     assert glossary_terms_missing("with {tool} at {lead}", "以 {tool}", 1) == []
 
 
-def test_the_translations_say_the_glossarys_terms() -> None:
+@pytest.mark.parametrize(("directory", "column"), [("zh_CN", 1), ("ja", 2)])
+def test_the_translations_say_the_glossarys_terms(directory: str, column: int) -> None:
     wrong = []
-    for message_id, forms in entries("zh_CN", "messages").items():
-        missing = glossary_terms_missing(message_id, forms[0], 1)
+    for message_id, forms in entries(directory, "messages").items():
+        missing = glossary_terms_missing(message_id, forms[0], column)
         if missing:
             wrong.append((message_id, missing))
     assert not wrong, f"{len(wrong)} translations without the glossary's terms: {wrong[:5]}"

@@ -10,20 +10,34 @@ export const RULES_URL = 'https://github.com/fanuc-macro/fanuc-macro/blob/main/d
 /** The page in the extension's folder. */
 export const RULES_DOC_PATH = ['docs', 'rules.md'] as const;
 
+/** The pages in other languages beside it (PAGES in rules_doc.py): the server links a Chinese
+ * client's diagnostics to docs/rules.zh-cn.md, with the same anchors. */
+export const RULES_PAGES = ['rules.md', 'rules.zh-cn.md'] as const;
+export type RulesPage = (typeof RULES_PAGES)[number];
+
+/** The page and section a link to one of the rules pages names, or undefined for another link. */
+export function ruleLinkOf(href: string): { page: RulesPage; anchor: string } | undefined {
+  const hash = href.indexOf('#');
+  const url = hash < 0 ? href : href.slice(0, hash);
+  const base = RULES_URL.slice(0, RULES_URL.length - 'rules.md'.length);
+  const page = RULES_PAGES.find((name) => url === base + name);
+  if (page === undefined) return undefined;
+  const anchor = hash < 0 ? '' : decodeURIComponent(href.slice(hash + 1));
+  return /^[a-z0-9-]*$/.test(anchor) ? { page, anchor } : undefined;
+}
+
 export const OPEN_RULE_COMMAND = 'fanuc-macro.openRuleDocumentation';
 
 /** The section a link to the rules page names (`mb601-m-not-integer`), or undefined for another link. */
 export function ruleAnchorOf(href: string): string | undefined {
-  const hash = href.indexOf('#');
-  const page = hash < 0 ? href : href.slice(0, hash);
-  if (page !== RULES_URL) return undefined;
-  const anchor = hash < 0 ? '' : decodeURIComponent(href.slice(hash + 1));
-  return /^[a-z0-9-]*$/.test(anchor) ? anchor : undefined;
+  return ruleLinkOf(href)?.anchor;
 }
 
-/** The command URI that opens the shipped page at `anchor` (arguments as a JSON array). */
-export function ruleCommandUri(anchor: string): string {
-  return `command:${OPEN_RULE_COMMAND}?${encodeURIComponent(JSON.stringify([anchor]))}`;
+/** The command URI that opens the shipped `page` at `anchor` (arguments as a JSON array; the
+ * English page's link has the anchor alone). */
+export function ruleCommandUri(anchor: string, page: RulesPage = 'rules.md'): string {
+  const args = page === 'rules.md' ? [anchor] : [anchor, page];
+  return `command:${OPEN_RULE_COMMAND}?${encodeURIComponent(JSON.stringify(args))}`;
 }
 
 /** A heading's anchor as GitHub makes it: lower case, punctuation dropped, spaces to hyphens. */

@@ -1,7 +1,7 @@
 // Opens the rules' documentation shipped with the extension at a rule's section, read-only
 // (a document of its own scheme), and points the diagnostics' code links at it (ruleDocs.ts).
 import * as vscode from 'vscode';
-import { OPEN_RULE_COMMAND, RULES_DOC_PATH, headingLine, ruleAnchorOf, ruleCommandUri } from './ruleDocs';
+import { OPEN_RULE_COMMAND, RULES_PAGES, type RulesPage, headingLine, ruleCommandUri, ruleLinkOf } from './ruleDocs';
 
 export const RULES_SCHEME = 'fanuc-macro-docs';
 
@@ -9,9 +9,9 @@ export const RULES_SCHEME = 'fanuc-macro-docs';
 export function linkToShippedDocs(diagnostic: vscode.Diagnostic): vscode.Diagnostic {
   const code = diagnostic.code;
   if (typeof code !== 'object' || code === null || !('target' in code)) return diagnostic;
-  const anchor = ruleAnchorOf(code.target.toString(true));
-  if (anchor === undefined) return diagnostic;
-  diagnostic.code = { value: code.value, target: vscode.Uri.parse(ruleCommandUri(anchor)) };
+  const link = ruleLinkOf(code.target.toString(true));
+  if (link === undefined) return diagnostic;
+  diagnostic.code = { value: code.value, target: vscode.Uri.parse(ruleCommandUri(link.anchor, link.page)) };
   return diagnostic;
 }
 
@@ -21,20 +21,22 @@ export class RuleDocs implements vscode.TextDocumentContentProvider {
   register(): vscode.Disposable[] {
     return [
       vscode.workspace.registerTextDocumentContentProvider(RULES_SCHEME, this),
-      vscode.commands.registerCommand(OPEN_RULE_COMMAND, (anchor: unknown) =>
-        this.open(typeof anchor === 'string' ? anchor : ''),
+      vscode.commands.registerCommand(OPEN_RULE_COMMAND, (anchor: unknown, page: unknown) =>
+        this.open(typeof anchor === 'string' ? anchor : '', shippedPage(page)),
       ),
     ];
   }
 
-  async provideTextDocumentContent(): Promise<string> {
-    const bytes = await vscode.workspace.fs.readFile(vscode.Uri.joinPath(this.extensionUri, ...RULES_DOC_PATH));
+  async provideTextDocumentContent(uri: vscode.Uri): Promise<string> {
+    const page = shippedPage(uri.path.slice(1));
+    const bytes = await vscode.workspace.fs.readFile(vscode.Uri.joinPath(this.extensionUri, 'docs', page));
     return new TextDecoder('utf-8').decode(bytes);
   }
 
-  /** The page, its section `anchor` at the top of the editor. */
-  async open(anchor: string): Promise<vscode.TextEditor> {
-    const uri = vscode.Uri.from({ scheme: RULES_SCHEME, path: '/rules.md' });
+  /** The page (English, or the page in the server's language), its section `anchor` at the top
+   * of the editor. */
+  async open(anchor: string, page: RulesPage = 'rules.md'): Promise<vscode.TextEditor> {
+    const uri = vscode.Uri.from({ scheme: RULES_SCHEME, path: `/${page}` });
     const document = await vscode.workspace.openTextDocument(uri);
     const line = Math.max(0, headingLine(document.getText(), anchor));
     const start = new vscode.Position(line, 0);
@@ -45,4 +47,9 @@ export class RuleDocs implements vscode.TextDocumentContentProvider {
     editor.revealRange(new vscode.Range(start, start), vscode.TextEditorRevealType.AtTop);
     return editor;
   }
+}
+
+/** One of the shipped pages, by name; the English page for anything else. */
+function shippedPage(name: unknown): RulesPage {
+  return RULES_PAGES.find((page) => page === name) ?? 'rules.md';
 }

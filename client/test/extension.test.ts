@@ -118,9 +118,10 @@ describe('extension', { skip: process.platform === 'win32' }, () => {
     // A document of the trace's own scheme and language (read-only: a content provider's).
     const opened = fake.recorded.openedDocuments[0];
     assert.equal(opened?.language, 'fanuc-macro-trace');
-    // The row: its block, code, words, where the tool goes, S and F; the values under it.
-    assert.match(opened?.content ?? '', /^O3331 line 23 +G92 +X49\.816 W-60\. +X51\. Z5\.964 +- +3\.\n {4}#100=50\. #9=0\.092058049$/m);
-    assert.match(opened?.content ?? '', /^block +code +words +to +S +F$/m);
+    // The row: its block, code, words, where the tool goes, S, F and the time it starts at
+    // (none: the motion has no clock); the values under it.
+    assert.match(opened?.content ?? '', /^O3331 line 23 +G92 +X49\.816 W-60\. +X51\. Z5\.964 +- +3\. +-\n {4}#100=50\. #9=0\.092058049$/m);
+    assert.match(opened?.content ?? '', /^block +code +words +to +S +F +time$/m);
     assert.match(opened?.content ?? '', /Summary\n {2}passes: 1/);
     assert.deepEqual(fake.recorded.shownDocuments[0]?.options, {
       viewColumn: fake.ViewColumn.Beside,

@@ -2,7 +2,7 @@ import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { describe, it } from 'node:test';
-import { RULES_URL, headingAnchor, headingLine, ruleAnchorOf, ruleCommandUri } from '../src/ruleDocs';
+import { RULES_URL, headingAnchor, headingLine, ruleAnchorOf, ruleCommandUri, ruleLinkOf } from '../src/ruleDocs';
 
 const root = process.cwd();
 const rulesDoc = readFileSync(join(root, 'docs', 'rules.md'), 'utf8');
@@ -17,6 +17,23 @@ describe('rule documentation links', () => {
     assert.equal(ruleAnchorOf(RULES_URL), '');
     assert.equal(ruleAnchorOf('https://example.com/docs/rules.md#mb601'), undefined);
     assert.equal(ruleAnchorOf(`${RULES_URL}#"><script>`), undefined);
+  });
+
+  it('open the Chinese page where the server links to it, at the same section', () => {
+    const chinese = RULES_URL.replace(/rules\.md$/, 'rules.zh-cn.md');
+    assert.deepEqual(ruleLinkOf(`${chinese}#mb101-goto-missing-label`), {
+      page: 'rules.zh-cn.md',
+      anchor: 'mb101-goto-missing-label',
+    });
+    assert.equal(ruleLinkOf(RULES_URL.replace(/rules\.md$/, 'rules.de.md')), undefined);
+    const uri = ruleCommandUri('mb101-goto-missing-label', 'rules.zh-cn.md');
+    const query = uri.slice(uri.indexOf('?') + 1);
+    assert.deepEqual(JSON.parse(decodeURIComponent(query)), ['mb101-goto-missing-label', 'rules.zh-cn.md']);
+    // The Chinese page has every rule's heading, with the English page's anchors.
+    const zh = readFileSync(join(root, 'docs', 'rules.zh-cn.md'), 'utf8');
+    for (const [, text] of rulesDoc.matchAll(/^## ((MB\d{3}) (\S+))$/gm)) {
+      assert.ok(headingLine(zh, headingAnchor(text ?? '')) >= 0, text);
+    }
   });
 
   it('become a command URI with the anchor as its JSON argument', () => {

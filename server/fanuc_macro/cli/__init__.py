@@ -10,8 +10,9 @@ install_code_cache("cli")
 
 import argparse
 import sys
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from pathlib import Path
+from typing import Any, TextIO
 
 from .. import __version__
 from ..analysis import RULES, analyse, log_failure
@@ -32,9 +33,22 @@ from ..program_files import (
     TOOL_MARKERS,
     find_programs,
 )
+from ..translation import tr
 from ..workspace import Workspace
 from .format_command import add_format_command
 from .generators import add_generator_commands
+from .language import (
+    AUTO,
+    OPTION,
+    argparse_in,
+    chosen_locale,
+    current,
+    listed,
+    said,
+    use,
+    wide_help,
+    wrapped,
+)
 from .plot_command import add_plot_command
 from .streams import STDIN, read_stdin, tolerate_unencodable
 from .thread import add_thread_command
@@ -55,7 +69,9 @@ def collect_files(paths: Sequence[str]) -> list[Path]:
     is a usage error."""
     found = find_programs(paths)
     if found.missing:
-        raise UsageError(f"fanuc-macro: no such file or directory: {found.missing[0]}")
+        raise UsageError(
+            said(tr("fanuc-macro: no such file or directory: {path}", path=found.missing[0]))
+        )
     return found.programs
 
 
@@ -63,9 +79,17 @@ def one_program_file(command: str, raw: str) -> Path:
     """The FILE of ``trace``, ``plot``, ``hover`` and ``definition``: one file, not a folder."""
     path = Path(raw)
     if path.is_dir():
-        raise UsageError(f"fanuc-macro: {command} takes one program file; {raw} is a folder")
+        raise UsageError(
+            said(
+                tr(
+                    "fanuc-macro: {command} takes one program file; {path} is a folder",
+                    command=command,
+                    path=raw,
+                )
+            )
+        )
     if not path.is_file():
-        raise UsageError(f"fanuc-macro: no such file: {raw}")
+        raise UsageError(said(tr("fanuc-macro: no such file: {path}", path=raw)))
     return path
 
 
@@ -91,7 +115,9 @@ def _anchor(args: argparse.Namespace, path: str | None) -> Path | None:
 def _custom_call_option(text: str) -> tuple[str, str]:
     code, sep, program = text.partition("=")
     if not sep or not code.strip() or not program.strip():
-        raise argparse.ArgumentTypeError(f"not CODE=PROGRAM (M165=9022): {text!r}")
+        raise argparse.ArgumentTypeError(
+            said(tr("not CODE=PROGRAM (M165=9022): {given!r}", given=text))
+        )
     return code.strip(), program.strip()
 
 
@@ -118,12 +144,19 @@ def _rule_codes(text: str) -> frozenset[str]:
     unknown = [c for c in codes if c not in RULES]
     if len(unknown) == 1:
         raise argparse.ArgumentTypeError(
-            f"unknown rule code {unknown[0]!r}: the nearest known one is "
-            f"{_nearest_rule(unknown[0])}"
+            said(
+                tr(
+                    "unknown rule code {code!r}: the nearest known one is {nearest}",
+                    code=unknown[0],
+                    nearest=_nearest_rule(unknown[0]),
+                )
+            )
         )
     if unknown:
-        shown = ", ".join(f"{c!r} (nearest: {_nearest_rule(c)})" for c in unknown)
-        raise argparse.ArgumentTypeError(f"unknown rule codes {shown}")
+        shown = listed(
+            tr("{code!r} (nearest: {nearest})", code=c, nearest=_nearest_rule(c)) for c in unknown
+        )
+        raise argparse.ArgumentTypeError(said(tr("unknown rule codes {codes}", codes=shown)))
     return frozenset(codes)
 
 
@@ -137,8 +170,14 @@ def _rule_selectors(text: str) -> tuple[str, ...]:
         selector = rule_selector(item)
         if selector is None:
             raise argparse.ArgumentTypeError(
-                f"{item!r} is not a rule's code or name, a prefix of codes or ALL: the nearest "
-                f"known rule is {_nearest_rule(item.upper())}"
+                said(
+                    tr(
+                        "{given!r} is not a rule's code or name, a prefix of codes or ALL: the "
+                        "nearest known rule is {nearest}",
+                        given=item,
+                        nearest=_nearest_rule(item.upper()),
+                    )
+                )
             )
         found.append(selector)
     return tuple(found)
@@ -149,10 +188,18 @@ def _severity_option(text: str) -> tuple[str, str]:
     code, sep, level = text.partition("=")
     levels = [s.value for s in Severity]
     if not sep or level.strip().lower() not in levels:
-        raise argparse.ArgumentTypeError(f"not RULE=LEVEL with LEVEL one of {levels}: {text!r}")
+        raise argparse.ArgumentTypeError(
+            said(
+                tr(
+                    "not RULE=LEVEL with LEVEL one of {levels}: {given!r}",
+                    levels=levels,
+                    given=text,
+                )
+            )
+        )
     rules = _rule_codes(code)
     if len(rules) != 1:
-        raise argparse.ArgumentTypeError(f"one rule before '=': {text!r}")
+        raise argparse.ArgumentTypeError(said(tr("one rule before '=': {given!r}", given=text)))
     return next(iter(rules)), level.strip().lower()
 
 
@@ -185,7 +232,13 @@ def _controller(text: str) -> str:
         if controller.lower() == text.strip().lower():
             return controller
     raise argparse.ArgumentTypeError(
-        f"unknown controller {text!r} (choose from {', '.join(CONTROLLERS)})"
+        said(
+            tr(
+                "unknown controller {given!r} (choose from {controllers})",
+                given=text,
+                controllers=", ".join(CONTROLLERS),
+            )
+        )
     )
 
 
@@ -195,7 +248,9 @@ def _count(text: str) -> int:
     except ValueError:
         value = -1
     if value < 0:
-        raise argparse.ArgumentTypeError(f"not a whole number from 0: {text!r}")
+        raise argparse.ArgumentTypeError(
+            said(tr("not a whole number from 0: {given!r}", given=text))
+        )
     return value
 
 
@@ -205,7 +260,9 @@ def _whole(text: str) -> int:
     except ValueError:
         value = 0
     if value <= 0:
-        raise argparse.ArgumentTypeError(f"not a positive whole number: {text!r}")
+        raise argparse.ArgumentTypeError(
+            said(tr("not a positive whole number: {given!r}", given=text))
+        )
     return value
 
 
@@ -216,31 +273,56 @@ def _add_analysis_options(parser: argparse.ArgumentParser) -> None:
         "--max-line-length",
         type=_whole,
         metavar="CHARS",
-        help=f"a longer block is not analysed (MB011; default {default.max_line_length})",
+        help=said(
+            tr(
+                "a longer block is not analysed (MB011; default {chars})",
+                chars=default.max_line_length,
+            )
+        ),
     )
     parser.add_argument(
         "--max-blocks",
         type=_whole,
         metavar="N",
-        help=f"blocks of a file the analysis reads (MB013; default {default.max_blocks:,})",
+        help=said(
+            tr(
+                "blocks of a file the analysis reads (MB013; default {blocks:,})",
+                blocks=default.max_blocks,
+            )
+        ),
     )
     parser.add_argument(
         "--max-file-size",
         type=_whole,
         metavar="CHARS",
-        help=f"characters of a file the analysis reads (MB013; default {default.max_file_size:,})",
+        help=said(
+            tr(
+                "characters of a file the analysis reads (MB013; default {chars:,})",
+                chars=default.max_file_size,
+            )
+        ),
     )
     parser.add_argument(
         "--step-budget",
         type=_whole,
         metavar="BLOCKS",
-        help=f"blocks one run of a program may execute (default {default.step_budget:,})",
+        help=said(
+            tr(
+                "blocks one run of a program may execute (default {blocks:,})",
+                blocks=default.step_budget,
+            )
+        ),
     )
     parser.add_argument(
         "--time-limit",
         type=_positive,
         metavar="SECONDS",
-        help=f"the safety net of a slow or busy machine (default {default.time_limit:g} s)",
+        help=said(
+            tr(
+                "the safety net of a slow or busy machine (default {seconds:g} s)",
+                seconds=default.time_limit,
+            )
+        ),
     )
 
 
@@ -250,7 +332,7 @@ def _positive(text: str) -> float:
     except ValueError:
         value = 0.0
     if not value > 0 or value == NOT_SET:
-        raise argparse.ArgumentTypeError(f"not a positive number: {text!r}")
+        raise argparse.ArgumentTypeError(said(tr("not a positive number: {given!r}", given=text)))
     return value
 
 
@@ -261,45 +343,61 @@ def _add_machine_options(parser: argparse.ArgumentParser) -> None:
         "--max-spindle-speed",
         type=_positive,
         metavar="RPM",
-        help="the machine's maximum spindle speed (MB602); not checked when not given",
+        help=said(tr("the machine's maximum spindle speed (MB602); not checked when not given")),
     )
     parser.add_argument(
         "--max-threading-feed",
         type=_positive,
         metavar="MM_PER_MIN",
-        help="the machine's largest feed while threading, S x lead (MB807); not checked when "
-        "not given",
+        help=said(
+            tr(
+                "the machine's largest feed while threading, S x lead (MB807); not checked when "
+                "not given"
+            )
+        ),
     )
     parser.add_argument(
         "--extended-commons",
         action="store_true",
         default=None,
-        help="the machine has the extended common variables #200-#499 (no MB303)",
+        help=said(tr("the machine has the extended common variables #200-#499 (no MB303)")),
     )
     parser.add_argument(
         "--custom-call",
         action="append",
         type=_custom_call_option,
         metavar="CODE=PROGRAM",
-        help="a code the control's parameters make call a program, e.g. M165=9022, G100=9010, "
-        "T=9000 (repeatable)",
+        help=said(
+            tr(
+                "a code the control's parameters make call a program, e.g. M165=9022, G100=9010, "
+                "T=9000 (repeatable)"
+            )
+        ),
     )
     parser.add_argument(
         "--g-code-system",
         type=str.upper,
         choices=G_CODE_SYSTEMS,
         metavar="{A,B,C}",
-        help="the lathe's G code system (parameters GSB, GSC): in B and C, G90/G91 are absolute "
-        "and incremental, G77/G78/G79 (C: G20/G21/G24) the turning, threading and facing "
-        "cycles, G92 the coordinate system setting; default A",
+        help=said(
+            tr(
+                "the lathe's G code system (parameters GSB, GSC): in B and C, G90/G91 are absolute "
+                "and incremental, G77/G78/G79 (C: G20/G21/G24) the turning, threading and facing "
+                "cycles, G92 the coordinate system setting; default A"
+            )
+        ),
     )
     parser.add_argument(
         "--on-control",
         action="append",
         type=_on_control_option,
         metavar="PROGRAMS",
-        help="programs kept on the control, not beside the files: numbers or ranges, e.g. "
-        "O9000-O9999 (repeatable, or a comma list); their calls are not reported missing",
+        help=said(
+            tr(
+                "programs kept on the control, not beside the files: numbers or ranges, e.g. "
+                "O9000-O9999 (repeatable, or a comma list); their calls are not reported missing"
+            )
+        ),
     )
 
 
@@ -320,21 +418,29 @@ def read_one(command: str, workspace: Workspace, raw: str, stdin_name: str | Non
     else:
         if stdin_name is not None:
             raise UsageError(
-                f"fanuc-macro: --stdin-filename names standard input: give - as FILE, not {raw}"
+                said(
+                    tr(
+                        "fanuc-macro: --stdin-filename names standard input: give - as FILE, "
+                        "not {path}",
+                        path=raw,
+                    )
+                )
             )
         path = one_program_file(command, raw)
         key = str(path)
         workspace.add_bytes(key, path.read_bytes())
     reason = workspace.not_text(key)
     if reason is not None:
-        raise UsageError(f"fanuc-macro: {raw}: {reason}")
+        raise UsageError(f"fanuc-macro: {raw}: {said(reason)}")
     return key
 
 
 def _program_number(text: str) -> int:
     digits = text.upper().lstrip("O")
     if not digits.isdigit():
-        raise argparse.ArgumentTypeError(f"not a program number: {text!r} (write O4009 or 4009)")
+        raise argparse.ArgumentTypeError(
+            said(tr("not a program number: {given!r} (write O4009 or 4009)", given=text))
+        )
     return int(digits)
 
 
@@ -349,13 +455,23 @@ def read_with_files(workspace: Workspace, paths: Sequence[str] | None, key: str)
 def _traced_workspace(args: argparse.Namespace) -> tuple[Config, Workspace, str]:
     """The file of ``trace`` or ``plot`` and the ``--with`` files it calls, read; its URI."""
     if args.command == "plot" and args.file == STDIN and not getattr(args, "output", None):
-        raise UsageError("fanuc-macro: plot of standard input: say where the SVG goes (-o)")
+        raise UsageError(
+            said(tr("fanuc-macro: plot of standard input: say where the SVG goes (-o)"))
+        )
     config = _config(args, args.file)
     workspace = Workspace(config)
     uri = read_one(args.command, workspace, args.file, args.stdin_filename)
     read_with_files(workspace, args.with_files, uri)
     if args.entry is not None and workspace.find_program(args.entry) is None:
-        raise UsageError(f"fanuc-macro: no program O{args.entry:04d} in {args.file}")
+        raise UsageError(
+            said(
+                tr(
+                    "fanuc-macro: no program O{program:04d} in {path}",
+                    program=args.entry,
+                    path=args.file,
+                )
+            )
+        )
     return config, workspace, uri
 
 
@@ -372,25 +488,50 @@ def cmd_trace(args: argparse.Namespace) -> int:
         out.write("\n")
         return EXIT_OK
     for m in result["motions"]:
-        out.write(motion_text(m) + "\n")
+        out.write(said(motion_text(m)) + "\n")
+    _write_trace_summary(result, out)
+    return EXIT_OK
+
+
+def _write_trace_summary(result: Mapping[str, Any], out: TextIO) -> None:
+    """The lines after the motions of ``trace``'s text form."""
     summary = result["summary"]
-    by_code = ", ".join(f"{k} {v}" for k, v in summary["by_code"].items())
+    by_code = listed(f"{k} {v}" for k, v in summary["by_code"].items())
     out.write(
-        f"{summary['motions']} motions ({by_code}); {summary['blocks_executed']} blocks executed\n"
+        said(
+            tr(
+                "{motions} motions ({by_code}); {blocks} blocks executed",
+                motions=summary["motions"],
+                by_code=by_code,
+                blocks=summary["blocks_executed"],
+            )
+        )
+        + "\n"
     )
     from ..ide import cycle_time_text
 
-    out.write(cycle_time_text(summary) + "\n")
+    out.write(said(cycle_time_text(summary)) + "\n")
     if summary["stopped"]:
-        out.write(f"stopped early: {summary.get('stop_message') or summary['stopped']}\n")
+        why = said(summary.get("stop_message") or summary["stopped"])
+        out.write(said(tr("stopped early: {why}", why=why)) + "\n")
     for part in summary["read_in_part"]:
-        where = f"{part['path']}: read" if "path" in part else "read"
-        out.write(f"{where} only up to line {part['last_line_read']}: {part['message']}\n")
+        last, message = part["last_line_read"], said(part["message"])
+        if "path" in part:
+            line = tr(
+                "{path}: read only up to line {line}: {why}",
+                path=part["path"],
+                line=last,
+                why=message,
+            )
+        else:
+            line = tr("read only up to line {line}: {why}", line=last, why=message)
+        out.write(said(line) + "\n")
     if result["toolpath"]["truncated"]:
-        out.write(f"the toolpath keeps the first {result['toolpath']['moves']:,} moves only\n")
+        moves = result["toolpath"]["moves"]
+        out.write(said(tr("the toolpath keeps the first {moves:,} moves only", moves=moves)) + "\n")
     for f in summary["findings"]:
-        out.write(f"line {f['line']}: {f['message']}\n")
-    return EXIT_OK
+        out.write(said(tr("line {line}: {message}", line=f["line"], message=said(f["message"]))))
+        out.write("\n")
 
 
 def cmd_hover(args: argparse.Namespace) -> int:
@@ -415,17 +556,24 @@ def _add_place_command(
     command = sub.add_parser(
         name,
         parents=[logs],
-        help=f"print {what} at LINE COLUMN of FILE (1-based, as editors show them; "
-        "exit status 1 when there is none)",
+        help=said(
+            tr(
+                "print {what} at LINE COLUMN of FILE (1-based, as editors show them; "
+                "exit status 1 when there is none)",
+                what=what,
+            )
+        ),
     )
-    command.add_argument("file", metavar="FILE", help="the program file; - for standard input")
-    command.add_argument("line", type=_whole, metavar="LINE", help="the line, from 1")
     command.add_argument(
-        "column", type=_whole, metavar="COLUMN", help="the column in characters, from 1"
+        "file", metavar="FILE", help=said(tr("the program file; - for standard input"))
+    )
+    command.add_argument("line", type=_whole, metavar="LINE", help=said(tr("the line, from 1")))
+    command.add_argument(
+        "column", type=_whole, metavar="COLUMN", help=said(tr("the column in characters, from 1"))
     )
     _add_with_option(command)
     _add_stdin_filename_option(command)
-    _add_format_option(command, "the answer as text (default) or as JSON")
+    _add_format_option(command, tr("the answer as text (default) or as JSON"))
     _add_rule_options(command)
     _add_machine_options(command)
     _add_analysis_options(command)
@@ -433,7 +581,7 @@ def _add_place_command(
 
 
 def _add_format_option(parser: argparse.ArgumentParser, what: str) -> None:
-    parser.add_argument("--format", choices=("text", "json"), default="text", help=what)
+    parser.add_argument("--format", choices=("text", "json"), default="text", help=said(what))
 
 
 def _add_rule_options(parser: argparse.ArgumentParser) -> None:
@@ -443,8 +591,12 @@ def _add_rule_options(parser: argparse.ArgumentParser) -> None:
         "--controller",
         type=_controller,
         choices=CONTROLLERS,
-        help="the control the programs are for, in any case; the default, 0i-F, reads each "
-        "file as a lathe (0i-TF) or a mill (0i-MF) as its codes show",
+        help=said(
+            tr(
+                "the control the programs are for, in any case; the default, 0i-F, reads each "
+                "file as a lathe (0i-TF) or a mill (0i-MF) as its codes show"
+            )
+        ),
     )
     parser.add_argument(
         "--ignore",
@@ -453,31 +605,43 @@ def _add_rule_options(parser: argparse.ArgumentParser) -> None:
         type=_rule_codes,
         action="append",
         metavar="RULES",
-        help="comma-separated rules to skip, by code or name in any case, e.g. "
-        "MB006,tape-mark-not-alone (docs/rules.md lists them); may be repeated",
+        help=said(
+            tr(
+                "comma-separated rules to skip, by code or name in any case, e.g. "
+                "MB006,tape-mark-not-alone (docs/rules.md lists them); may be repeated"
+            )
+        ),
     )
     parser.add_argument(
         "--select",
         type=_rule_selectors,
         action="append",
         metavar="RULES",
-        help="report only these rules: codes, names, prefixes of codes (MB6) or ALL, "
-        "comma-separated; replaces the configuration file's select",
+        help=said(
+            tr(
+                "report only these rules: codes, names, prefixes of codes (MB6) or ALL, "
+                "comma-separated; replaces the configuration file's select"
+            )
+        ),
     )
     parser.add_argument(
         "--extend-select",
         type=_rule_selectors,
         action="append",
         metavar="RULES",
-        help="report these rules too, besides those selected",
+        help=said(tr("report these rules too, besides those selected")),
     )
     parser.add_argument(
         "--severity",
         type=_severity_option,
         action="append",
         metavar="RULE=LEVEL",
-        help="report a rule at another severity: error, warning, information or hint, e.g. "
-        "MB403=information (repeatable)",
+        help=said(
+            tr(
+                "report a rule at another severity: error, warning, information or hint, e.g. "
+                "MB403=information (repeatable)"
+            )
+        ),
     )
     _add_config_options(parser)
 
@@ -486,14 +650,19 @@ def _add_config_options(parser: argparse.ArgumentParser) -> None:
     parser.add_argument(
         "--config",
         metavar="PATH",
-        help="the configuration file to use (default: the fanuc-macro.toml, or pyproject.toml "
-        "with [tool.fanuc-macro], nearest each file, looking up from its folder); the options "
-        "given here win over it",
+        help=said(
+            tr(
+                "the configuration file to use (default: the fanuc-macro.toml, or pyproject.toml "
+                "with {table}, nearest each file, looking up from its folder); the "
+                "options given here win over it",
+                table="[tool.fanuc-macro]",  # a name, not the glossary's tool
+            )
+        ),
     )
     parser.add_argument(
         "--isolated",
         action="store_true",
-        help="read no configuration file: the options given here and the defaults only",
+        help=said(tr("read no configuration file: the options given here and the defaults only")),
     )
 
 
@@ -505,13 +674,42 @@ def cmd_rule(args: argparse.Namespace) -> int:
     code = _rule_code(args.rule)
     if code not in RULES:
         raise UsageError(
-            f"fanuc-macro: unknown rule {args.rule!r}: the nearest known one is "
-            f"{_nearest_rule(code)}"
+            said(
+                tr(
+                    "fanuc-macro: unknown rule {given!r}: the nearest known one is {nearest}",
+                    given=args.rule,
+                    nearest=_nearest_rule(code),
+                )
+            )
         )
     out = sys.stdout
-    out.write(section(RULES[code], RULE_DOCS[code]).rstrip("\n") + "\n")
+    text = section(RULES[code], RULE_DOCS[code]) if current() == "en" else _said_section(code)
+    out.write(text.rstrip("\n") + "\n")
     out.write(f"\n{rule_url(code)}\n")
     return EXIT_OK
+
+
+def _said_section(code: str) -> str:
+    """``rules_doc.section`` in the command line's language, from the catalogue of the
+    documentation (domain ``rules_doc``; a text without a translation stays English)."""
+    from ..analysis import RULE_DOCS
+    from ..rules_doc import PARTS, part_texts
+    from ..translation import translate
+    from .reports import SEVERITY_WORDS
+
+    info, doc, locale = RULES[code], RULE_DOCS[code], current()
+    severity = said(SEVERITY_WORDS[info.severity.value])
+    if doc.severity_note:
+        severity += f"; {translate(doc.severity_note, locale, 'rules_doc')}"
+    label = translate("Severity:", locale, "rules_doc")
+    lines = [f"## {info.code} {info.name}", "", f"**{label}** {severity}", ""]
+    texts = part_texts(doc)
+    for name, english_label in PARTS:
+        text = translate(texts[name], locale, "rules_doc")
+        heading = translate(english_label, locale, "rules_doc")
+        lines.append(f"**{heading}**" + ("\n\n" if text.startswith("```") else " ") + text)
+        lines.append("")
+    return "\n".join(lines)
 
 
 def cmd_config(args: argparse.Namespace) -> int:
@@ -526,9 +724,13 @@ def _add_with_option(parser: argparse.ArgumentParser) -> None:
         dest="with_files",
         action="append",
         metavar="PATH",
-        help="a file or folder with programs it calls; repeat it for more (--with lib "
-        "--with subs.nc), or give several after FILE (--with lib subs.nc); anywhere among "
-        "the arguments",
+        help=said(
+            tr(
+                "a file or folder with programs it calls; repeat it for more (--with lib "
+                "--with subs.nc), or give several after FILE (--with lib subs.nc); anywhere among "
+                "the arguments"
+            )
+        ),
     )
 
 
@@ -536,8 +738,12 @@ def _add_stdin_filename_option(parser: argparse.ArgumentParser) -> None:
     parser.add_argument(
         "--stdin-filename",
         metavar="NAME",
-        help="the name of the file standard input (-) holds: shown in messages, and its "
-        "program number when it has no O line (O1234.nc)",
+        help=said(
+            tr(
+                "the name of the file standard input (-) holds: shown in messages, and its "
+                "program number when it has no O line (O1234.nc)"
+            )
+        ),
     )
 
 
@@ -545,9 +751,11 @@ def _add_run_options(parser: argparse.ArgumentParser) -> None:
     """What ``trace`` and ``plot`` run: a file, where to start, the files it calls, the
     machine."""
     parser.add_argument(
-        "file", metavar="FILE", help="the program file to run; - for standard input"
+        "file", metavar="FILE", help=said(tr("the program file to run; - for standard input"))
     )
-    parser.add_argument("--entry", type=_program_number, help="program to start from, e.g. O4009")
+    parser.add_argument(
+        "--entry", type=_program_number, help=said(tr("program to start from, e.g. O4009"))
+    )
     _add_with_option(parser)
     _add_stdin_filename_option(parser)
     _add_rule_options(parser)
@@ -555,7 +763,8 @@ def _add_run_options(parser: argparse.ArgumentParser) -> None:
     _add_analysis_options(parser)
 
 
-EXIT_STATUS_HELP = """\
+EXIT_STATUS_HELP = tr(
+    """\
 exit status:
   0  done: no finding at or above --fail-on (check), nothing to reformat (format --check)
   1  check: a finding at or above --fail-on (default: an error), or more warnings than
@@ -565,6 +774,7 @@ exit status:
      without programs, a file that cannot be read or is not a program text (check
      still checks the other paths)
   3  an internal error of fanuc-macro: a bug, please report it"""
+)
 
 
 def _walk_help() -> str:
@@ -573,35 +783,56 @@ def _walk_help() -> str:
     import textwrap
 
     def item(text: str) -> str:
+        if current() != "en":  # Chinese and Japanese characters take two columns each
+            lines = wrapped(said(text), 83)
+            return "\n".join(["  " + lines[0], *("     " + line for line in lines[1:])])
         return textwrap.fill(
             text, 88, initial_indent="  ", subsequent_indent="     ", break_on_hyphens=False
         )
 
     skipped = [*sorted(SKIPPED_FOLDERS), *(f"*{s}" for s in TOOL_FOLDER_SUFFIXES)]
+    markers = said(tr(" or ")).join(TOOL_MARKERS)
     walk = [
-        item(f"by extension, in any case: {' '.join(sorted(PROGRAM_SUFFIXES))}"),
         item(
-            f"by content, for {' '.join(sorted(SNIFFED_SUFFIXES))} and files with no "
-            "extension: a first line that is %, O1234, O<NAME>, :1234 or an NC block, and "
-            "most of the first lines NC blocks (a file with no extension named O1234 is a "
-            "program too); the other text files are skipped and counted in the summary"
+            tr(
+                "by extension, in any case: {suffixes}",
+                suffixes=" ".join(sorted(PROGRAM_SUFFIXES)),
+            )
         ),
         item(
-            f"skipped: hidden files and folders, {', '.join(skipped)}, any folder holding "
-            f"{' or '.join(TOOL_MARKERS)}, and what --exclude matches"
+            tr(
+                "by content, for {suffixes} and files with no extension: a first line that is "
+                "%, O1234, O<NAME>, :1234 or an NC block, and most of the first lines NC blocks "
+                "(a file with no extension named O1234 is a program too); the other text files "
+                "are skipped and counted in the summary",
+                suffixes=" ".join(sorted(SNIFFED_SUFFIXES)),
+            )
+        ),
+        item(
+            tr(
+                "skipped: hidden files and folders, {folders}, any folder holding {markers}, "
+                "and what --exclude matches",
+                folders=listed(skipped),
+                markers=markers,
+            )
         ),
     ]
     return "\n".join(
         [
-            "a folder is walked for programs:",
+            said(tr("a folder is walked for programs:")),
             *walk,
-            "a file named on the command line is checked whatever it is.",
+            said(tr("a file named on the command line is checked whatever it is.")),
             "",
-            "a summary goes to standard error, after the findings (-q: none):",
-            "  fanuc-macro: 12 files checked, 2 skipped (not programs: notes.txt, a/b.txt),",
-            "  1 error, 5 warnings",
+            said(
+                tr(
+                    "a summary goes to standard error, after the findings (-q: none):\n"
+                    "  fanuc-macro: 12 files checked, 2 skipped (not programs: notes.txt, "
+                    "a/b.txt),\n"
+                    "  1 error, 5 warnings"
+                )
+            ),
             "",
-            EXIT_STATUS_HELP,
+            said(EXIT_STATUS_HELP),
         ]
     )
 
@@ -612,7 +843,7 @@ def _add_check_command(
     check = sub.add_parser(
         "check",
         parents=[logs],
-        help="report problems in programs (files or folders)",
+        help=said(tr("report problems in programs (files or folders)")),
         epilog=_walk_help(),
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
@@ -620,86 +851,72 @@ def _add_check_command(
         "paths",
         nargs="+",
         metavar="PATH",
-        help="program files (- for standard input), or folders whose programs are checked "
-        "together (which files: below)",
+        help=said(
+            tr(
+                "program files (- for standard input), or folders whose programs are checked "
+                "together (which files: below)"
+            )
+        ),
     )
     check.add_argument(
         "--format",
         choices=("text", "json", "sarif", "github", "junit"),
         default="text",
-        help="text: one line PATH:LINE:COLUMN: CODE severity message each (default); json: a "
-        "list; sarif: SARIF 2.1.0 for code scanning; github: GitHub Actions annotations; "
-        "junit: JUnit XML, a test case per file",
+        help=said(
+            tr(
+                "text: one line PATH:LINE:COLUMN: CODE severity message each (default); json: a "
+                "list; sarif: SARIF 2.1.0 for code scanning; github: GitHub Actions annotations; "
+                "junit: JUnit XML, a test case per file"
+            )
+        ),
     )
     check.add_argument(
         "--fix",
         action="store_true",
-        help="apply the fixes the rules mark safe (they mend only the mistake, e.g. close a "
-        "comment) to the files, then check them as fixed",
+        help=said(
+            tr(
+                "apply the fixes the rules mark safe (they mend only the mistake, e.g. close a "
+                "comment) to the files, then check them as fixed"
+            )
+        ),
     )
     check.add_argument(
         "--unsafe-fixes",
         action="store_true",
-        help="with --fix or --diff, the other fixes too (they change what the program does, "
-        "as the message suggests)",
+        help=said(
+            tr(
+                "with --fix or --diff, the other fixes too (they change what the program does, "
+                "as the message suggests)"
+            )
+        ),
     )
     check.add_argument(
         "--diff",
         action="store_true",
-        help="print the changes --fix would make, as diff -u, and write nothing; exit status "
-        "1 when there is one",
+        help=said(
+            tr(
+                "print the changes --fix would make, as diff -u, and write nothing; exit status "
+                "1 when there is one"
+            )
+        ),
     )
     check.add_argument(
         "--statistics",
         action="store_true",
-        help="a count of the findings of each rule, the most first, instead of the findings "
-        "(beside the other forms, on standard error)",
+        help=said(
+            tr(
+                "a count of the findings of each rule, the most first, instead of the findings "
+                "(beside the other forms, on standard error)"
+            )
+        ),
     )
     check.add_argument(
         "--color",
         choices=("auto", "always", "never"),
         default="auto",
-        help="colour the text form: auto (default) on a terminal unless NO_COLOR is set",
+        help=said(tr("colour the text form: auto (default) on a terminal unless NO_COLOR is set")),
     )
-    check.add_argument(
-        "--exclude",
-        action="append",
-        metavar="GLOB",
-        help="skip what matches in the folders walked: a name anywhere (*.bak, old) or, "
-        "with a /, a path from the folder walked (old/*.nc); may be repeated; a file named "
-        "on the command line is checked all the same",
-    )
-    check.add_argument(
-        "--fail-on",
-        choices=[s.value for s in Severity],
-        default=Severity.ERROR.value,
-        help="the least severe finding that makes the exit status 1 (default error)",
-    )
-    check.add_argument(
-        "--max-warnings",
-        type=_count,
-        metavar="N",
-        help="exit status 1 also when there are more than N warnings",
-    )
-    check.add_argument(
-        "--quiet", "-q", action="store_true", help="no summary line on standard error"
-    )
-    check.add_argument(
-        "--jobs",
-        "-j",
-        type=_count,
-        metavar="N",
-        help="check the files in N processes (default: one per core; 1: in this one); the "
-        "output is the same in any case",
-    )
-    check.add_argument(
-        "--no-cache",
-        action="store_true",
-        help="analyse every file again: by default the findings of a file whose text, "
-        "settings and related files did not change are taken from the last run's (kept under "
-        "the user's cache directory; FANUC_MACRO_CHECK_CACHE=0 turns it off, another value "
-        "names the directory)",
-    )
+    _add_check_run_options(check)
     _add_stdin_filename_option(check)
     _add_rule_options(check)
     _add_machine_options(check)
@@ -707,58 +924,133 @@ def _add_check_command(
     check.set_defaults(func=cmd_check)
 
 
+def _add_check_run_options(check: argparse.ArgumentParser) -> None:
+    """What a check reads, when it fails, what it says on standard error, how it runs."""
+    check.add_argument(
+        "--exclude",
+        action="append",
+        metavar="GLOB",
+        help=said(
+            tr(
+                "skip what matches in the folders walked: a name anywhere (*.bak, old) or, "
+                "with a /, a path from the folder walked (old/*.nc); may be repeated; a file named "
+                "on the command line is checked all the same"
+            )
+        ),
+    )
+    check.add_argument(
+        "--fail-on",
+        choices=[s.value for s in Severity],
+        default=Severity.ERROR.value,
+        help=said(tr("the least severe finding that makes the exit status 1 (default error)")),
+    )
+    check.add_argument(
+        "--max-warnings",
+        type=_count,
+        metavar="N",
+        help=said(tr("exit status 1 also when there are more than N warnings")),
+    )
+    check.add_argument(
+        "--quiet", "-q", action="store_true", help=said(tr("no summary line on standard error"))
+    )
+    check.add_argument(
+        "--jobs",
+        "-j",
+        type=_count,
+        metavar="N",
+        help=said(
+            tr(
+                "check the files in N processes (default: one per core; 1: in this one); the "
+                "output is the same in any case"
+            )
+        ),
+    )
+    check.add_argument(
+        "--no-cache",
+        action="store_true",
+        help=said(
+            tr(
+                "analyse every file again: by default the findings of a file whose text, "
+                "settings and related files did not change are taken from the last run's (kept "
+                "under the user's cache directory; FANUC_MACRO_CHECK_CACHE=0 turns it off, another "
+                "value names the directory)"
+            )
+        ),
+    )
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="fanuc-macro",
-        description="Check FANUC Custom Macro B programs.",
-        epilog=EXIT_STATUS_HELP,
+        description=said(tr("Check FANUC Custom Macro B programs.")),
+        epilog=said(EXIT_STATUS_HELP),
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
-    parser.add_argument("--version", action="version", version=f"fanuc-macro {__version__}")
+    parser.add_argument(
+        "--version",
+        action="version",
+        version=f"fanuc-macro {__version__}",
+        help=said(tr("show program's version number and exit")),
+    )
+    _add_language_option(parser, AUTO)
     sub = parser.add_subparsers(dest="command", required=True)
     # How the analyser's own failures (MB000) are told: by default one line in the output.
     logs = argparse.ArgumentParser(add_help=False)
     logs.add_argument(
         "--verbose",
         action="store_true",
-        help="print the traceback of an internal error; check also says which machine, lathe "
-        "or mill, each file is read as and why",
+        help=said(
+            tr(
+                "print the traceback of an internal error; check also says which machine, lathe "
+                "or mill, each file is read as and why"
+            )
+        ),
     )
-    logs.add_argument("--log-file", metavar="PATH", help="write the analyser's log to this file")
+    logs.add_argument(
+        "--log-file", metavar="PATH", help=said(tr("write the analyser's log to this file"))
+    )
 
     _add_check_command(sub, logs)
 
-    tr = sub.add_parser("trace", parents=[logs], help="print the motion blocks a program executes")
-    _add_run_options(tr)
-    _add_format_option(tr, "one line a motion and a summary (default), or JSON")
-    tr.set_defaults(func=cmd_trace)
+    trace_command = sub.add_parser(
+        "trace", parents=[logs], help=said(tr("print the motion blocks a program executes"))
+    )
+    _add_run_options(trace_command)
+    _add_format_option(trace_command, tr("one line a motion and a summary (default), or JSON"))
+    trace_command.set_defaults(func=cmd_trace)
 
     add_plot_command(sub, logs)
 
-    _add_place_command(sub, logs, "hover", "the hover text (markdown)").set_defaults(func=cmd_hover)
+    _add_place_command(sub, logs, "hover", tr("the hover text (markdown)")).set_defaults(
+        func=cmd_hover
+    )
     _add_place_command(
-        sub, logs, "definition", "where what is there is defined (PATH:LINE:COLUMN)"
+        sub, logs, "definition", tr("where what is there is defined (PATH:LINE:COLUMN)")
     ).set_defaults(func=cmd_definition)
 
-    rule = sub.add_parser("rule", help="print a rule's documentation (what, why, example, fix)")
-    rule.add_argument("rule", metavar="RULE", help="its code or name, e.g. MB601")
+    rule = sub.add_parser(
+        "rule", help=said(tr("print a rule's documentation (what, why, example, fix)"))
+    )
+    rule.add_argument("rule", metavar="RULE", help=said(tr("its code or name, e.g. MB601")))
     rule.set_defaults(func=cmd_rule)
 
     config = sub.add_parser(
         "config",
-        help="print the settings a program is checked with, and where each value comes from",
+        help=said(
+            tr("print the settings a program is checked with, and where each value comes from")
+        ),
     )
     config.add_argument(
         "path",
         nargs="?",
         metavar="PATH",
-        help="a program file or folder (default: the current folder)",
+        help=said(tr("a program file or folder (default: the current folder)")),
     )
     config.add_argument(
         "--format",
         choices=("text", "json", "schema"),
         default="text",
-        help="text (default), JSON, or the configuration file's JSON Schema",
+        help=said(tr("text (default), JSON, or the configuration file's JSON Schema")),
     )
     _add_rule_options(config)
     _add_machine_options(config)
@@ -768,7 +1060,27 @@ def build_parser() -> argparse.ArgumentParser:
     add_thread_command(sub)
     add_generator_commands(sub)
     add_format_command(sub)
+    for command in sub.choices.values():  # --lang after the command's name too
+        _add_language_option(command, argparse.SUPPRESS)
     return parser
+
+
+def _add_language_option(parser: argparse.ArgumentParser, default: str) -> None:
+    """``--lang``: read by ``main`` before the parser is built (its help is in the language
+    chosen); here so that argparse takes it, before or after the command's name."""
+    parser.add_argument(
+        OPTION,
+        metavar="LOCALE",
+        default=default,
+        help=said(
+            tr(
+                "the language of the messages and help: zh-cn (Chinese), en, or auto (the "
+                "default): the first of LC_ALL, LC_MESSAGES and LANG that is set, e.g. "
+                "zh_CN.UTF-8; C and POSIX are English. The JSON, SARIF, GitHub and JUnit "
+                "forms of check stay in English"
+            )
+        ),
+    )
 
 
 def _log_to(verbose: bool, log_file: str | None) -> Callable[[], None] | None:
@@ -810,11 +1122,13 @@ def _command_parser(
     """Where the command's name is in ``argv``, and its parser."""
     for action in parser._actions:
         if isinstance(action, argparse._SubParsersAction):
+            after_option = False
             for i, token in enumerate(argv):
                 if token in action.choices:
                     return i, action.choices[token]
-                if not token.startswith("-"):
+                if not token.startswith("-") and not after_option:
                     return None
+                after_option = token == OPTION  # --lang LOCALE before the command
     return None
 
 
@@ -884,31 +1198,44 @@ def spread_with_paths(parser: argparse.ArgumentParser, argv: Sequence[str]) -> l
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    parser = build_parser()
-    tolerate_unencodable()
+    words = list(sys.argv[1:] if argv is None else argv)
+    locale = chosen_locale(words)
+    use(locale)  # before the parser is built: its help is said in the language
     try:
-        args = parser.parse_args(spread_with_paths(parser, sys.argv[1:] if argv is None else argv))
-    except SystemExit as exc:  # argparse exits 2 on a usage problem, 0 for --help
-        return int(exc.code or 0)
+        return _run(words, locale)
+    finally:
+        use("en")  # main() may run again in the same process (tests do), as may other callers
+
+
+def _run(words: list[str], locale: str) -> int:
+    tolerate_unencodable()
+    with argparse_in(locale):
+        parser = build_parser()
+        if locale != "en":
+            wide_help(parser)
+        try:
+            args = parser.parse_args(spread_with_paths(parser, words))
+        except SystemExit as exc:  # argparse exits 2 on a usage problem, 0 for --help
+            return int(exc.code or 0)
     tolerate_unencodable(args.command)
     stop_logging = _log_to(getattr(args, "verbose", False), getattr(args, "log_file", None))
     try:
         result: int = args.func(args)
         return result
     except UsageError as err:
-        sys.stderr.write(f"{err}\n")
+        sys.stderr.write(f"{err}\n")  # said where it was raised
         return EXIT_USAGE
     except BrokenPipeError:
         return EXIT_OK
     except Exception as err:  # the analyser's bug: one line here, the traceback in the log
         log_failure(__name__, "fanuc-macro %s failed", args.command)
-        message = f"internal error: {err!r}; {REPORT_INTERNAL_ERROR}"
+        message = tr("internal error: {error!r}; {report}", error=err, report=REPORT_INTERNAL_ERROR)
         if getattr(args, "format", "text") == "json":
             import json
 
-            json.dump({"error": message}, sys.stdout, ensure_ascii=False, indent=1)
+            json.dump({"error": str(message)}, sys.stdout, ensure_ascii=False, indent=1)
             sys.stdout.write("\n")
-        sys.stderr.write(f"fanuc-macro: {message}\n")
+        sys.stderr.write(f"fanuc-macro: {said(message)}\n")
         return EXIT_INTERNAL
     finally:
         save_code_cache()

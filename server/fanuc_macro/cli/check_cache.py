@@ -5,7 +5,8 @@ and calls.
 
 Everything is keyed by content, never by a file's time: the digest of the file's bytes, of
 each related file's name and bytes (in the order the analysis takes them, which decides the
-first definition of a number), of the workspace's program numbers, of the settings, and of
+first definition of a number), of the workspace's program numbers, of the settings and the
+language the messages are said in (a result keeps them said, for the text form), and of
 this package's own files (their names, sizes and times: an edited checkout is another tool).
 Two tables in one SQLite file under the user's cache directory (:mod:`..code_cache`): a
 file's links (the numbers it defines and calls) by its digest, and a file's findings by the
@@ -82,8 +83,12 @@ class CheckCache:
         self._new_results: dict[str, str] = {}
 
     @classmethod
-    def open(cls, config: Config, directory: Path | None = None) -> CheckCache | None:
-        """The cache for runs with ``config``, or None when it is off or cannot be opened."""
+    def open(
+        cls, config: Config, locale: str = "en", directory: Path | None = None
+    ) -> CheckCache | None:
+        """The cache for runs with ``config`` in ``locale``, or None when it is off or cannot be
+        opened. A result keeps the messages said in the run's language, so the language is
+        part of its key: a run in Chinese never reads a result kept by a run in English."""
         chosen = os.environ.get(ENVIRONMENT, "")
         if chosen in ("0", "off", "false", "no"):
             return None
@@ -102,7 +107,7 @@ class CheckCache:
             )
         except (OSError, sqlite3.Error):
             return None
-        run_key = digest(f"{tool_fingerprint()}\n{settings_fingerprint(config)}".encode())
+        run_key = digest(f"{tool_fingerprint()}\n{settings_fingerprint(config)}\n{locale}".encode())
         return cls(connection, run_key)
 
     def links(self, data_digest: str) -> DocumentLinks | None:

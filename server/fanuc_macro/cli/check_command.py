@@ -25,7 +25,9 @@ from ..workspace import DocumentLinks, Workspace, graph_of_links, related_in_gra
 
 if TYPE_CHECKING:
     from .check_cache import CheckCache
+from ..translation import tr, tr_n
 from .configuration import ConfigResolver
+from .language import current, listed, said, said_error, use
 from .reports import github, junit, sarif, statistics, text_line, use_colour
 from .streams import STDIN, read_stdin, writes_unicode
 
@@ -55,29 +57,34 @@ def as_json(path: str, d: Diagnostic) -> dict[str, object]:
     }
 
 
-def _plural(count: int, word: str, plural: str | None = None) -> str:
-    return f"{count} {word if count == 1 else plural or word + 's'}"
-
-
 def summary_line(checked: int, not_programs: Sequence[str], counts: Counter[Severity]) -> str:
     """``fanuc-macro: 12 files checked, 3 skipped (not programs: a.txt, b.txt, c.txt, +1 more),
     2 errors, 5 warnings``, and ``, N information`` and ``, N hints`` when there are any."""
-    skipped = f"{len(not_programs)} skipped"
-    if not_programs:
-        shown = ", ".join(not_programs[:SHOWN_NOT_PROGRAMS])
-        more = len(not_programs) - SHOWN_NOT_PROGRAMS
-        skipped += f" (not programs: {shown}{f', +{more} more' if more > 0 else ''})"
+    skipped = len(not_programs)
+    shown = listed(not_programs[:SHOWN_NOT_PROGRAMS])
+    more = skipped - SHOWN_NOT_PROGRAMS
+    if more > 0:
+        skipped_part = tr(
+            "{count} skipped (not programs: {names}, +{more} more)",
+            count=skipped,
+            names=shown,
+            more=more,
+        )
+    elif not_programs:
+        skipped_part = tr("{count} skipped (not programs: {names})", count=skipped, names=shown)
+    else:
+        skipped_part = tr("{count} skipped", count=skipped)
     parts = [
-        f"{_plural(checked, 'file')} checked",
-        skipped,
-        _plural(counts[Severity.ERROR], "error"),
-        _plural(counts[Severity.WARNING], "warning"),
+        tr_n("{count} file checked", "{count} files checked", checked),
+        skipped_part,
+        tr_n("{count} error", "{count} errors", counts[Severity.ERROR]),
+        tr_n("{count} warning", "{count} warnings", counts[Severity.WARNING]),
     ]
     if counts[Severity.INFORMATION]:
-        parts.append(f"{counts[Severity.INFORMATION]} information")
+        parts.append(tr("{count} information", count=counts[Severity.INFORMATION]))
     if counts[Severity.HINT]:
-        parts.append(_plural(counts[Severity.HINT], "hint"))
-    return "fanuc-macro: " + ", ".join(parts)
+        parts.append(tr_n("{count} hint", "{count} hints", counts[Severity.HINT]))
+    return said(tr("fanuc-macro: {summary}", summary=listed(parts)))
 
 
 def exit_status(
@@ -122,21 +129,24 @@ def cmd_check(args: argparse.Namespace) -> int:
     paths: list[str] = args.paths
     stdin_name: str | None = args.stdin_filename
     if paths.count(STDIN) > 1:
-        err.write("fanuc-macro: standard input (-) can be checked once\n")
+        err.write(said(tr("fanuc-macro: standard input (-) can be checked once")) + "\n")
         return EXIT_USAGE
     if stdin_name is not None and STDIN not in paths:
-        err.write("fanuc-macro: --stdin-filename names standard input: give - among the paths\n")
+        err.write(
+            said(tr("fanuc-macro: --stdin-filename names standard input: give - among the paths"))
+            + "\n"
+        )
         return EXIT_USAGE
     resolver = ConfigResolver(args)
     try:
         found = _found(paths, args.exclude or (), resolver)
     except ConfigFileError as error:
-        err.write(f"fanuc-macro: {error}\n")
+        err.write(f"fanuc-macro: {said_error(error)}\n")
         return EXIT_USAGE
     for raw in found.missing:
-        err.write(f"fanuc-macro: no such file or directory: {raw}\n")
+        err.write(said(tr("fanuc-macro: no such file or directory: {path}", path=raw)) + "\n")
     for folder in found.empty:
-        err.write(f"fanuc-macro: no programs found in {folder}\n")
+        err.write(said(tr("fanuc-macro: no programs found in {path}", path=folder)) + "\n")
     usage_problem = bool(found.missing or found.empty)
 
     datas: list[tuple[str, bytes]] = []
@@ -149,7 +159,9 @@ def cmd_check(args: argparse.Namespace) -> int:
         try:
             datas.append((key, path.read_bytes()))
         except OSError as error:
-            err.write(f"fanuc-macro: cannot read {path}: {error.strerror or error}\n")
+            why = error.strerror or str(error)
+            err.write(said(tr("fanuc-macro: cannot read {path}: {why}", path=path, why=why)))
+            err.write("\n")
             usage_problem = True
 
     records: list[dict[str, Any]] = []
@@ -162,11 +174,12 @@ def cmd_check(args: argparse.Namespace) -> int:
     try:
         groups = _by_configuration(datas, resolver)
     except ConfigFileError as error:
-        err.write(f"fanuc-macro: {error}\n")
+        err.write(f"fanuc-macro: {said_error(error)}\n")
         return EXIT_USAGE
     if args.fix or args.diff:
         if STDIN in paths:
-            err.write("fanuc-macro: --fix and --diff take files, not standard input\n")
+            err.write(said(tr("fanuc-macro: --fix and --diff take files, not standard input")))
+            err.write("\n")
             return EXIT_USAGE
         fixed = _fixed(datas, groups, args.unsafe_fixes)
         if args.diff:
@@ -177,14 +190,14 @@ def cmd_check(args: argparse.Namespace) -> int:
             err.write(f"{checked.key}: {checked.stopped}\n")
         if args.verbose and checked.machine is not None:
             err.write(f"{checked.key}: {checked.machine}\n")
-        for finding in checked.findings:
+        for n, finding in enumerate(checked.findings):
             severity = Severity(finding["severity"])
             counts[severity] += 1
             internal_error |= finding["code"] == INTERNAL_ERROR
             if as_records:
                 records.append({"path": checked.key, **finding})
             else:
-                out.write(text_line(checked.key, finding, colour))
+                out.write(text_line(checked.key, finding, colour, checked.message(n)))
     _write_records(args, records, [key for key, _data in datas], out, colour)
     out.flush()  # the findings before the summary, when both go to one terminal
     if not args.quiet:
@@ -236,7 +249,16 @@ def _show_diff(datas: list[tuple[str, bytes]], fixed: dict[str, Fixed]) -> int:
         if after is not None:
             sys.stdout.write(unified_diff(key, data, after))
             changed += 1
-    sys.stderr.write(f"fanuc-macro: {_plural(changed, 'file')} would be changed\n")
+    sys.stderr.write(
+        said(
+            tr_n(
+                "fanuc-macro: {count} file would be changed",
+                "fanuc-macro: {count} files would be changed",
+                changed,
+            )
+        )
+        + "\n"
+    )
     return 1 if changed else 0
 
 
@@ -249,15 +271,26 @@ def _write_fixed(
     for key, data in datas:
         result = fixed[key]
         if result.refused:
-            err.write(f"fanuc-macro: {key}: not fixed: {result.refused}\n")
+            refused = said(result.refused)
+            err.write(said(tr("fanuc-macro: {path}: not fixed: {why}", path=key, why=refused)))
+            err.write("\n")
         if result.data is not None:
             Path(key).write_bytes(result.data)
             applied += result.applied
             files += 1
             data = result.data
         out.append((key, data))
+    in_files = tr_n("{count} file", "{count} files", files)
     err.write(
-        f"fanuc-macro: {_plural(applied, 'fix', 'fixes')} applied in {_plural(files, 'file')}\n"
+        said(
+            tr_n(
+                "fanuc-macro: {count} fix applied in {files}",
+                "fanuc-macro: {count} fixes applied in {files}",
+                applied,
+                files=in_files,
+            )
+        )
+        + "\n"
     )
     return out
 
@@ -312,12 +345,20 @@ def _write_records(
 @dataclass(frozen=True, slots=True)
 class _Checked:
     """One file's check: the safety net's stop, the machine it was read as, and its findings
-    as :func:`as_json` gives them but for the path (the form they are kept in between runs)."""
+    as :func:`as_json` gives them but for the path (the form they are kept in between runs);
+    the first two and the findings' messages (``messages``; None: English, the findings'
+    own) said in the run's language, as the text form shows them. The JSON forms keep the
+    findings' English."""
 
     key: str
     stopped: str | None
     machine: str | None
     findings: list[dict[str, Any]]
+    messages: list[str] | None = None
+
+    def message(self, n: int) -> str:
+        """The message of the ``n``th finding in the run's language."""
+        return str(self.findings[n]["message"] if self.messages is None else self.messages[n])
 
     @property
     def keepable(self) -> bool:
@@ -325,12 +366,13 @@ class _Checked:
         return self.stopped is None and all(f["code"] != INTERNAL_ERROR for f in self.findings)
 
     def kept(self) -> list[object]:
-        return [self.stopped, self.machine, self.findings]
+        """What the cache keeps, under a key of the run's language (check_cache.py)."""
+        return [self.stopped, self.machine, self.findings, self.messages]
 
     @classmethod
     def from_kept(cls, key: str, value: list[Any]) -> _Checked:
-        stopped, machine, findings = value
-        return cls(key, stopped, machine, findings)
+        stopped, machine, findings, messages = value
+        return cls(key, stopped, machine, findings, messages)
 
 
 # Fewer files than this are checked in one process and without the cache: starting other
@@ -368,7 +410,7 @@ def _check_files(
     if len(datas) >= PARALLEL_FROM and not args.no_cache:
         from .check_cache import CheckCache
 
-        cache = CheckCache.open(config)
+        cache = CheckCache.open(config, current())
     if cache is None and jobs < 2:
         for key, data in datas:
             workspace.add_bytes(key, data)
@@ -462,7 +504,7 @@ def _check_archive(
 
 # What the processes of a parallel check work from: set before they are forked, so that each
 # inherits it (the files' bytes, the caches of the lines read for the links).
-_FORKED: tuple[Workspace, _Archive] | None = None
+_FORKED: tuple[Workspace, _Archive, str] | None = None
 
 
 def _analysed(
@@ -482,7 +524,9 @@ def _analysed(
         return
     import multiprocessing as mp
 
-    _FORKED = (workspace, archive)
+    # The language too: a process the pool starts in place of another is forked from its
+    # thread, whose context does not hold the run's language (language.py).
+    _FORKED = (workspace, archive, current())
     try:
         # Each process is replaced after a few chunks: what it copied of the parent's pages
         # (an object read is an object written, its reference count) and its own caches go
@@ -500,7 +544,8 @@ def _analysed(
 
 def _check_forked(key: str) -> _Checked:
     assert _FORKED is not None
-    workspace, archive = _FORKED
+    workspace, archive, locale = _FORKED
+    use(locale)
     return _check_in(workspace, archive, key)
 
 
@@ -531,8 +576,18 @@ def _check_one(workspace: Workspace, key: str, programs: frozenset[int]) -> _Che
     for d in analysis.diagnostics:
         record = as_json(key, d)
         del record["path"]
+        record["message"] = str(record["message"])  # English, as a cached one is
         findings.append(record)
-    return _Checked(key, stopped, machine, findings)
+    messages = None
+    if current() != "en":
+        messages = [said(d.message) for d in analysis.diagnostics]
+    return _Checked(
+        key,
+        None if stopped is None else said(stopped),
+        None if machine is None else said(machine),
+        findings,
+        messages,
+    )
 
 
 __all__ = ("as_json", "cmd_check", "exit_status", "format_text", "summary_line")

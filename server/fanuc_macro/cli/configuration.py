@@ -26,6 +26,8 @@ from ..config_file import (
     setting_of,
     shown,
 )
+from ..translation import tr
+from .language import said, said_error
 
 DEFAULT = "default"
 
@@ -83,7 +85,7 @@ class ConfigResolver:
             loaded = load_config_file(file) if file is not None else FileSettings()
             found = self._by_file[file] = _resolve(loaded, self._args)
             for problem in found.config.setting_problems:
-                print(f"fanuc-macro: {problem}", file=sys.stderr)
+                print(f"fanuc-macro: {said(problem)}", file=sys.stderr)
         return found
 
 
@@ -153,11 +155,11 @@ def config_or_exit(resolver: ConfigResolver, path: Path | None) -> Config:
     try:
         return resolver.for_path(path).config
     except ConfigFileError as error:
-        raise SystemExit(_usage(str(error))) from None
+        raise SystemExit(_usage(said_error(error))) from None
 
 
 def _usage(message: str) -> int:
-    print(f"fanuc-macro: {message}", file=sys.stderr)
+    print(f"fanuc-macro: {said(message)}", file=sys.stderr)
     return 2
 
 
@@ -172,7 +174,7 @@ def print_config(args: argparse.Namespace, anchor: Path | None) -> int:
     try:
         resolved = ConfigResolver(args).for_path(anchor)
     except ConfigFileError as error:
-        return _usage(str(error))
+        return _usage(said_error(error))
     values = {key.dotted: _value(resolved, key) for key in KEYS}
     origins = resolved.origins
     shown_files = [shown(f) for f in resolved.files]
@@ -190,7 +192,8 @@ def print_config(args: argparse.Namespace, anchor: Path | None) -> int:
         )
         out.write("\n")
         return 0
-    out.write(f"# configuration files: {', '.join(shown_files) if shown_files else 'none'}\n")
+    files = ", ".join(shown_files) if shown_files else said(tr("none"))
+    out.write(said(tr("# configuration files: {files}", files=files)) + "\n")
     section = ""
     for key in KEYS:
         if key.section != section:
@@ -198,10 +201,18 @@ def print_config(args: argparse.Namespace, anchor: Path | None) -> int:
             out.write(f"[{section}]\n")
         origin = origins[key.dotted]
         if values[key.dotted] is None:  # no TOML value says "not set"
-            out.write(f"# {key.name}: not set, not checked  # {origin}\n")
+            out.write(said(tr("# {key}: not set, not checked", key=key.name)))
+            out.write(f"  # {_origin(origin)}\n")
         else:
-            out.write(f"{key.name} = {_toml(values[key.dotted])}  # {origin}\n")
+            out.write(f"{key.name} = {_toml(values[key.dotted])}  # {_origin(origin)}\n")
     return 0
+
+
+def _origin(origin: str) -> str:
+    """Where a value comes from, in the text form: a file, options, or the default."""
+    if origin == DEFAULT:
+        return said(tr("default"))
+    return said(tr(" and ")).join(origin.split(" and "))
 
 
 def _value(resolved: Resolved, key: Key) -> Any:

@@ -10,8 +10,10 @@ import sys
 
 from ..config import Config
 from ..ide import Location, View, definition, hover
+from ..translation import tr
 from ..workspace import Workspace
 from . import EXIT_ERRORS, EXIT_OK, read_one, read_with_files
+from .language import said
 from .streams import writes_unicode
 
 
@@ -39,7 +41,8 @@ def _place(location: Location) -> dict[str, object]:
 
 
 def _nothing(args: argparse.Namespace) -> None:
-    sys.stderr.write(f"fanuc-macro: nothing there: {args.file}:{args.line}:{args.column}\n")
+    place = f"{args.file}:{args.line}:{args.column}"
+    sys.stderr.write(said(tr("fanuc-macro: nothing there: {place}", place=place)) + "\n")
 
 
 def _dump(value: object) -> None:
@@ -57,7 +60,7 @@ def cmd_hover(args: argparse.Namespace, config: Config) -> int:
             else {**_place(Location(view.key, found.range)), "markdown": found.markdown}
         )
     elif found is not None:
-        sys.stdout.write(found.markdown + "\n")
+        sys.stdout.write(said(found.markdown) + "\n")
     else:
         _nothing(args)
     return EXIT_OK if found is not None else EXIT_ERRORS

@@ -6,6 +6,9 @@ import argparse
 import sys
 from pathlib import Path
 
+from ..translation import tr
+from .language import listed, said, said_error
+
 EXIT_OK = 0
 EXIT_NOTHING_TO_PLOT = 2
 
@@ -40,7 +43,7 @@ def cmd_plot(args: argparse.Namespace) -> int:
             timed=timed,
         )
     except NothingToPlot as err:
-        sys.stderr.write(f"fanuc-macro: {args.file}: {err}\n")
+        sys.stderr.write(f"fanuc-macro: {args.file}: {said_error(err)}\n")
         return EXIT_NOTHING_TO_PLOT
     output = args.output or Path(args.file).with_suffix(".svg").name
     if output == "-":
@@ -50,19 +53,30 @@ def cmd_plot(args: argparse.Namespace) -> int:
     stderr = sys.stderr
     if drawing.plane_reason is not None:
         # A mill's program read as a lathe's is the usual way to get here.
-        hint = " (a mill's program? --controller 0i-MF)" if toolpath.lathe else ""
-        stderr.write(f"{args.file}: {drawing.plane_reason}{hint}; --plane chooses the view\n")
+        if toolpath.lathe:
+            reason = tr(
+                "{path}: {why} (a mill's program? --controller 0i-MF); --plane chooses the view",
+                path=args.file,
+                why=said(drawing.plane_reason),
+            )
+        else:
+            reason = tr(
+                "{path}: {why}; --plane chooses the view",
+                path=args.file,
+                why=said(drawing.plane_reason),
+            )
+        stderr.write(said(reason) + "\n")
     # One line for each cause of what the drawing leaves out, at the first block it happened.
     for note in drawing.notes:
         if note.sites:
             where, line = note.sites[0]
-            stderr.write(f"{where or uri}:{line + 1}: {note.text(uri, first_site=False)}\n")
+            stderr.write(f"{where or uri}:{line + 1}: {said(note.text(uri, first_site=False))}\n")
         else:
-            stderr.write(f"{args.file}: {note.text(uri)}\n")
+            stderr.write(f"{args.file}: {said(note.text(uri))}\n")
     kinds = Counter(m.kind for m in toolpath.moves)
-    counts = ", ".join(f"{kind} {n}" for kind, n in sorted(kinds.items()))
-    shown = "standard output" if output == "-" else output
-    stderr.write(f"{shown}: {drawing.summary(counts)}\n")
+    counts = listed(f"{kind} {n}" for kind, n in sorted(kinds.items()))
+    shown = said(tr("standard output")) if output == "-" else output
+    stderr.write(f"{shown}: {said(drawing.summary(counts))}\n")
     return EXIT_OK
 
 
@@ -72,19 +86,27 @@ def add_plot_command(
     from . import _add_run_options
 
     command = sub.add_parser(
-        "plot", parents=[logs], help="draw the toolpath a program cuts, as SVG (a backplot)"
+        "plot",
+        parents=[logs],
+        help=said(tr("draw the toolpath a program cuts, as SVG (a backplot)")),
     )
     _add_run_options(command)
     command.add_argument(
         "--plane",
         choices=("XZ", "XY", "YZ"),
-        help="the view (default: XZ on a lathe, Z across and X up; XY on a mill; a path that "
-        "makes no move there is drawn in the plane it goes furthest in)",
+        help=said(
+            tr(
+                "the view (default: XZ on a lathe, Z across and X up; XY on a mill; a path that "
+                "makes no move there is drawn in the plane it goes furthest in)"
+            )
+        ),
     )
     command.add_argument(
         "--output",
         "-o",
         metavar="PATH",
-        help="where the SVG goes (default: FILE's name with .svg, here; - for standard output)",
+        help=said(
+            tr("where the SVG goes (default: FILE's name with .svg, here; - for standard output)")
+        ),
     )
     command.set_defaults(func=cmd_plot)

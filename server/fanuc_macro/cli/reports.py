@@ -14,6 +14,8 @@ from typing import Any, TextIO
 from .. import __version__
 from ..analysis import RULES
 from ..rules_doc import rule_url
+from ..translation import tr
+from .language import said
 
 SARIF_SCHEMA = "https://json.schemastore.org/sarif-2.1.0.json"
 HOMEPAGE = "https://github.com/fanuc-macro/fanuc-macro"
@@ -162,12 +164,27 @@ def use_colour(choice: str, out: TextIO) -> bool:
     return out.isatty()
 
 
-def text_line(path: str, finding: dict[str, Any], colour: bool) -> str:
+# The severities said in words (``rule``'s documentation). The text form of ``check`` keeps
+# the English keyword, as the code, whatever the language: the editor's check task finds the
+# findings in it by that keyword (package.json's problem matcher), and so may other tools.
+SEVERITY_WORDS = MappingProxyType(
+    {
+        "error": tr("error"),
+        "warning": tr("warning"),
+        "information": tr("information"),
+        "hint": tr("hint"),
+    }
+)
+
+
+def text_line(path: str, finding: dict[str, Any], colour: bool, message: str | None = None) -> str:
     """``PATH:LINE:COLUMN: CODE severity message``, the place bold and the code in its
-    severity's colour when ``colour``."""
+    severity's colour when ``colour``; the message (``message``, else the finding's) in the
+    command line's language, the severity its keyword (see ``SEVERITY_WORDS``)."""
     place = f"{path}:{finding['line']}:{finding['column']}:"
     head = f"{finding['code']} {finding['severity']}"
     if colour:
         place = f"\x1b[1m{place}\x1b[0m"
         head = f"\x1b[{_STYLES[finding['severity']]}m{head}\x1b[0m"
-    return f"{place} {head} {finding['message']}\n"
+    shown = said(finding["message"]) if message is None else message
+    return f"{place} {head} {shown}\n"
