@@ -56,6 +56,9 @@ def test_a_text_is_said_in_the_users_language() -> None:
     assert render(tr(template), "zh-cn") == chinese[template][0]
     assert render(tr(template), "zh-tw") == chinese[template][0]  # falls back
     assert render(tr(template), "en") == template
+    listed = joined(", ", [tr(template), tr(template)])
+    assert render(listed, "zh-cn") == f"{chinese[template][0]}，{chinese[template][0]}"
+    assert render(joined("\n", [tr(template), "x"]), "zh-cn") == f"{chinese[template][0]}\nx"
     missing = tr("a text {value} no catalogue has", value=1.5)
     assert render(missing, "zh-cn") == "a text 1.5 no catalogue has"
     assert render("a plain str", "zh-cn") == "a plain str"

@@ -18,6 +18,7 @@ English, message by message.
 from __future__ import annotations
 
 import gettext
+import re
 from collections.abc import Callable, Iterable, Mapping
 from importlib import resources
 from types import MappingProxyType
@@ -103,7 +104,7 @@ def tr_n(singular: str, plural: str, count: int, /, **params: object) -> Text:
 
 def joined(separator: str, parts: Iterable[str]) -> str:
     """Parts said one after another: a :class:`Text` when any part is one, so each part is
-    translated; the separator is punctuation, the same in every language."""
+    translated; a list's ", " and "; " are said as the language writes them (Chinese "，")."""
     items = list(parts)
     if not any(isinstance(p, Text) for p in items):
         return separator.join(items)
@@ -117,7 +118,22 @@ def render(text: str, locale: str, domain: str = "messages") -> str:
     way; English (the text itself) where no translation is written."""
     if not isinstance(text, Text) or locale == "en":
         return str(text)
-    return _fill(_translated(text, locale, domain), text.params, (locale, domain))
+    template = _translated(text, locale, domain)
+    if template is text.template and _JOINED.fullmatch(template):
+        for english, said in _SEPARATORS.get(locale, {}).items():
+            template = template.replace("}" + english + "{", "}" + said + "{")
+    return _fill(template, text.params, (locale, domain))
+
+
+# The punctuation between the parts of :func:`joined`, as each language writes a list.
+_SEPARATORS: Mapping[str, Mapping[str, str]] = MappingProxyType(
+    {
+        "zh-cn": MappingProxyType({", ": "，", "; ": "；"}),
+        "zh-tw": MappingProxyType({", ": "，", "; ": "；"}),
+        "ja": MappingProxyType({", ": "、", "; ": "；"}),
+    }
+)
+_JOINED = re.compile(r"\{p0\}(?:(?:, |; )\{p\d+\})*")
 
 
 def translate(message_id: str, locale: str, domain: str = "messages") -> str:

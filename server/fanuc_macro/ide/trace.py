@@ -5,12 +5,13 @@ from __future__ import annotations
 
 import math
 from collections import Counter
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
+from types import MappingProxyType
 from typing import TypedDict
 
 from ..config import Config
 from ..evaluator import Facts, evaluate
-from ..evaluator.cycle_time import Breakdown, CycleTime, cycle_time, minutes_seconds
+from ..evaluator.cycle_time import PART_NAMES, Breakdown, CycleTime, cycle_time, minutes_seconds
 from ..evaluator.toolpath import LostTrack, Move, Toolpath
 from ..evaluator.values import Value, fmt, fmt_address
 from ..program.index import ProgramIndex
@@ -18,7 +19,12 @@ from ..program.machine_kind import machine_config
 from ..syntax.tree import Document
 from ..threads.cross_section import NO_CHAIN, cut_summary, thread_chains
 from ..threads.identify import identify
-from ..translation import tr
+from ..translation import joined, tr, tr_n
+
+# A move's kind as a user reads it (the trace's JSON keeps the kind's own name).
+MOVE_NAMES: Mapping[str, str] = MappingProxyType(
+    {"rapid": tr("rapid"), "feed": tr("feed"), "thread": tr("thread"), "arc": tr("arc")}
+)
 
 # The trace is sent to the editor and written by ``trace --format json`` as it is: TypedDicts,
 # built in the order their keys are written. A key a record may lack is in a ``total=False``
@@ -337,14 +343,23 @@ def cycle_time_text(summary: TraceSummary) -> str:
     threading 9 min 18.0 s, rapid 29.9 s, tool change 2.0 s)``, the parts that took time, and
     the moves it could not time."""
     timed = summary["cycle_time"]
-    parts = ", ".join(
-        f"{part} {minutes_seconds(seconds)}" for part, seconds in timed["parts"].items() if seconds
-    )
-    text = f"cycle time {timed['text']}" + (f" ({parts})" if parts else "")
+    parts = [
+        tr("{part} {time}", part=PART_NAMES.get(part, part), time=minutes_seconds(seconds))
+        for part, seconds in timed["parts"].items()
+        if seconds
+    ]
+    total = tr("cycle time {time}", time=timed["text"])
+    if parts:
+        total = tr("{total} ({parts})", total=total, parts=joined(", ", parts))
     untimed = timed["untimed_moves"]
     if untimed:
-        text += f"; {untimed} move{'' if untimed == 1 else 's'} not timed (F or speed not known)"
-    return text
+        not_timed = tr_n(
+            "{count} move not timed (F or speed not known)",
+            "{count} moves not timed (F or speed not known)",
+            untimed,
+        )
+        return tr("{total}; {not_timed}", total=total, not_timed=not_timed)
+    return total
 
 
 def _threads(uri: str, doc: Document, index: ProgramIndex, facts: Facts) -> list[TraceThread]:
@@ -467,14 +482,34 @@ def motion_text(motion: TraceMotion) -> str:
     """One motion of a trace as the command line prints it: program, line, code, its words at
     the control's precision, where it goes from and to, and a cycle's moves."""
     words = " ".join(f"{k}{fmt_address(v)}" for k, v in motion["words"].items())
-    text = f"{motion['program']:<6} line {motion['line']:<5} {motion['code']:<4} {words}"
+    parts: list[str] = [
+        tr(
+            "{program:<6} line {line:<5} {code:<4} {words_text}",
+            program=motion["program"],
+            line=motion["line"],
+            code=motion["code"],
+            words_text=words,
+        )
+    ]
     if "start" in motion:
-        text += f"  [{position_text(motion['start'])} -> {position_text(motion['end'])}]"
+        parts.append(f"  [{position_text(motion['start'])} -> {position_text(motion['end'])}]")
     if "centre" in motion:
-        text += f" centre {position_text(motion['centre'])}"
+        parts.append(tr(" centre {position}", position=position_text(motion["centre"])))
     moves = motion.get("moves")
     if moves:
-        cycle = f"{motion['cycle']} " if "cycle" in motion else ""
-        steps = ", ".join(f"{m['kind']} {position_text(m['end'])}" for m in moves)
-        text += f" {cycle}moves: {steps}"
-    return text
+        steps = joined(
+            ", ",
+            [
+                tr(
+                    "{kind} {position}",
+                    kind=MOVE_NAMES.get(m["kind"], m["kind"]),
+                    position=position_text(m["end"]),
+                )
+                for m in moves
+            ],
+        )
+        if "cycle" in motion:
+            parts.append(tr(" {cycle} moves: {steps}", cycle=motion["cycle"], steps=steps))
+        else:
+            parts.append(tr(" moves: {steps}", steps=steps))
+    return joined("", parts)

@@ -15,6 +15,7 @@ import unicodedata
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from textwrap import wrap
+from types import MappingProxyType
 from typing import TYPE_CHECKING, Any
 
 from ..evaluator.values import fmt, fmt_address
@@ -152,41 +153,43 @@ def summary_lines(summary: Any, indent: str = "  ", locale: str = "en") -> list[
 
 # The summary's keys (``trace --format json`` writes them as they are) in words, for a user
 # who reads another language than English.
-SUMMARY_KEYS: Mapping[str, str] = {
-    "motions": tr("motions"),
-    "by_code": tr("by code"),
-    "blocks_executed": tr("blocks executed"),
-    "stopped": tr("stopped"),
-    "stop_message": tr("why it stopped"),
-    "findings": tr("findings"),
-    "read_in_part": tr("files read in part"),
-    "threads": tr("threads"),
-    "line": tr("line"),
-    "kind": tr("kind"),
-    "message": tr("message"),
-    "last_line_read": tr("last line read"),
-    "program": tr("program"),
-    "code": tr("code"),
-    "passes": tr("passes"),
-    "lead": tr("lead"),
-    "side": tr("side"),
-    "thread": tr("thread"),
-    "identified": tr("identified"),
-    "known_from": tr("known from"),
-    "pitch_diameter": tr("pitch diameter"),
-    "root_diameter": tr("root diameter"),
-    "crest_diameter": tr("crest diameter"),
-    "nose_radius": tr("nose radius"),
-    "nose_radius_known": tr("nose radius known"),
-    "limits": tr("limits"),
-    "verdict": tr("verdict"),
-    "area": tr("area"),
-    "largest_pass": tr("largest pass"),
-    "index": tr("index"),
-    "passes_in_air": tr("passes in the air"),
-    "blank": tr("blank"),
-    "blank_from": tr("blank from"),
-}
+SUMMARY_KEYS: Mapping[str, str] = MappingProxyType(
+    {
+        "motions": tr("motions"),
+        "by_code": tr("by code"),
+        "blocks_executed": tr("blocks executed"),
+        "stopped": tr("stopped"),
+        "stop_message": tr("why it stopped"),
+        "findings": tr("findings"),
+        "read_in_part": tr("files read in part"),
+        "threads": tr("threads"),
+        "line": tr("line"),
+        "kind": tr("kind"),
+        "message": tr("message"),
+        "last_line_read": tr("last line read"),
+        "program": tr("program"),
+        "code": tr("code"),
+        "passes": tr("passes"),
+        "lead": tr("lead"),
+        "side": tr("side"),
+        "thread": tr("thread"),
+        "identified": tr("identified"),
+        "known_from": tr("known from"),
+        "pitch_diameter": tr("pitch diameter"),
+        "root_diameter": tr("root diameter"),
+        "crest_diameter": tr("crest diameter"),
+        "nose_radius": tr("nose radius"),
+        "nose_radius_known": tr("nose radius known"),
+        "limits": tr("limits"),
+        "verdict": tr("verdict"),
+        "area": tr("area"),
+        "largest_pass": tr("largest pass"),
+        "index": tr("index"),
+        "passes_in_air": tr("passes in the air"),
+        "blank": tr("blank"),
+        "blank_from": tr("blank from"),
+    }
+)
 
 
 def _source_line(line: Any) -> int | None:

@@ -29,9 +29,10 @@ neither (a macro of arithmetic alone).
 from __future__ import annotations
 
 import re
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from collections.abc import Set as AbstractSet
 from dataclasses import dataclass, replace
+from types import MappingProxyType
 
 from ..config import SYSTEM_A, Config
 from ..database import Derived
@@ -46,7 +47,7 @@ from .knowledge import G_CODES
 LATHE = "lathe"
 MILL = "mill"
 # The machines in a sentence, in the user's language.
-_MACHINE_WORD = {LATHE: tr("lathe"), MILL: tr("mill")}
+_MACHINE_WORD: Mapping[str, str] = MappingProxyType({LATHE: tr("lathe"), MILL: tr("mill")})
 
 # Words that make a block a call or a setting whose letters are arguments or data, not axes.
 _NOT_AXES_G = frozenset({4.0, 10.0, 65.0, 66.0, 66.1})
