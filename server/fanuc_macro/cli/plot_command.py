@@ -7,7 +7,7 @@ import sys
 from pathlib import Path
 
 from ..translation import tr
-from .language import listed, said, said_error
+from .language import current, listed, said, said_error
 
 EXIT_OK = 0
 EXIT_NOTHING_TO_PLOT = 2
@@ -17,6 +17,7 @@ def cmd_plot(args: argparse.Namespace) -> int:
     from collections import Counter
 
     from ..ide import NothingToPlot, backplot, pass_maps, run_plot
+    from ..ide.trace import MOVE_NAMES
     from . import _traced_workspace
 
     config, workspace, uri = _traced_workspace(args)
@@ -41,6 +42,7 @@ def cmd_plot(args: argparse.Namespace) -> int:
             main_uri=uri,
             stop=stop,
             timed=timed,
+            locale=current(),
         )
     except NothingToPlot as err:
         sys.stderr.write(f"fanuc-macro: {args.file}: {said_error(err)}\n")
@@ -74,7 +76,7 @@ def cmd_plot(args: argparse.Namespace) -> int:
         else:
             stderr.write(f"{args.file}: {said(note.text(uri))}\n")
     kinds = Counter(m.kind for m in toolpath.moves)
-    counts = listed(f"{kind} {n}" for kind, n in sorted(kinds.items()))
+    counts = listed(f"{said(MOVE_NAMES.get(kind, kind))} {n}" for kind, n in sorted(kinds.items()))
     shown = said(tr("standard output")) if output == "-" else output
     stderr.write(f"{shown}: {said(drawing.summary(counts))}\n")
     return EXIT_OK

@@ -31,6 +31,7 @@ is a pure function of the toolpath and the threads: the same program gives the s
 
 from __future__ import annotations
 
+import contextvars
 import math
 import unicodedata
 from bisect import bisect_right
@@ -51,6 +52,7 @@ from ..syntax.parser import quiet_gc
 from ..syntax.tree import Document
 from ..threads.cross_section import NO_CHAIN, class_limits, thread_chains, thread_cuts
 from ..threads.identify import Thread
+from ..translation import joined, render, tr, tr_n
 from .trace import run_with_toolpath
 
 # The drawing's size in SVG user units (pixels): the path is fitted into a box this wide (less
@@ -100,7 +102,7 @@ STYLE = (
 
 # What the legend calls each kind of move.
 KIND_NAMES: Mapping[str, str] = MappingProxyType(
-    {"rapid": "rapid", "feed": "feed", "arc": "arc", "thread": "threading"}
+    {"rapid": tr("rapid"), "feed": tr("feed"), "arc": tr("arc"), "thread": tr("threading")}
 )
 
 # Which axes are across and up in each view, as machinists draw them: a lathe's XZ view has Z
@@ -133,6 +135,18 @@ class NothingToPlot(Exception):
 
 # ---- text ------------------------------------------------------------------------------------
 
+# The language the drawing being made speaks: set by ``backplot`` for the drawing's making.
+_LOCALE: contextvars.ContextVar[str] = contextvars.ContextVar("plot_locale", default="en")
+
+
+def _say(text: str) -> str:
+    """``text`` in the language of the drawing being made."""
+    return render(text, _LOCALE.get())
+
+
+def _wide(char: str) -> bool:
+    return unicodedata.east_asian_width(char) in "WF"
+
 
 def text_width(text: str, size: float = FONT_SIZE, bold: bool = False) -> float:
     """A generous estimate of the width of ``text`` in pixels: 0.62 em a character (sans-serif
@@ -160,6 +174,8 @@ def shorten(text: str, width: float, size: float = FONT_SIZE, bold: bool = False
 def wrap(text: str, width: float, size: float = FONT_SIZE) -> list[str]:
     """``text`` in lines no wider than ``width``, broken between words (a word wider than a line
     is shortened)."""
+    if any(_wide(c) for c in text):
+        return _wrap_wide(text, width, size)
     lines: list[str] = []
     line = ""
     for word in text.split():
@@ -170,6 +186,46 @@ def wrap(text: str, width: float, size: float = FONT_SIZE) -> list[str]:
         line = candidate
     if line:
         lines.append(line)
+    return [shorten(line, width, size) for line in lines]
+
+
+_CLOSING = frozenset("，。；：、）》」』！？")  # never first on a line
+_OPENING = frozenset("（《「『“")  # never last on a line
+
+
+def _wrap_wide(text: str, width: float, size: float) -> list[str]:
+    """``wrap`` for a Chinese or Japanese text: a line may break between any two of its
+    characters (not before closing punctuation nor after opening), or at a space."""
+    tokens: list[str] = []  # a space, or a wide character or a word, with its punctuation
+    after_word = False
+    opening = ""
+    for char in " ".join(text.split()):
+        if char in _CLOSING and tokens and tokens[-1] != " " and not opening:
+            tokens[-1] += char
+            after_word = False
+            continue
+        if char in _OPENING:
+            opening += char
+            continue
+        word = char != " " and not _wide(char)
+        if word and after_word and not opening:
+            tokens[-1] += char
+        else:
+            tokens.append(opening + char)
+            opening = ""
+        after_word = word
+    if opening:
+        tokens.append(opening)
+    lines: list[str] = []
+    line = ""
+    for token in tokens:
+        if line.strip() and token != " " and text_width(line.rstrip() + token, size) > width:
+            lines.append(line.rstrip())
+            line = ""
+        if line or token != " ":
+            line += token
+    if line.strip():
+        lines.append(line.rstrip())
     return [shorten(line, width, size) for line in lines]
 
 
@@ -223,24 +279,27 @@ class PlotNote:
         """The note in one line: ``line 12: <reason>: 3 moves not drawn (also lines 40, 88)``,
         the site's file named when it is not ``main_uri``; without the first site when
         ``first_site`` is false (a caller that puts it in front)."""
-        out = []
-        if first_site and self.sites:
-            out.append(f"{_site(self.sites[0], main_uri)}: ")
-        out.append(self.reason)
+        text: str = self.reason
         if self.hidden:
-            out.append(f": {_count(self.hidden, 'move')} not drawn")
+            text = tr(
+                "{reason}: {moves} not drawn",
+                reason=text,
+                moves=tr_n("{count} move", "{count} moves", self.hidden),
+            )
         more = self.sites[1:]
         if more:
             shown = _sites(more[:MAX_SITES], main_uri)
             if len(more) > MAX_SITES:
-                shown += f" and {len(more) - MAX_SITES} more"
-            out.append(f" (also {shown})")
-        return "".join(out)
+                shown = tr("{sites} and {more} more", sites=shown, more=len(more) - MAX_SITES)
+            text = tr("{note} (also {sites})", note=text, sites=shown)
+        if first_site and self.sites:
+            text = tr("{site}: {note}", site=_site(self.sites[0], main_uri), note=text)
+        return text
 
 
 def _site(site: tuple[str, int], main_uri: str) -> str:
     uri, line = site
-    return f"line {line + 1}" if not uri or uri == main_uri else f"{uri}:{line + 1}"
+    return tr("line {line}", line=line + 1) if not uri or uri == main_uri else f"{uri}:{line + 1}"
 
 
 def _sites(sites: Sequence[tuple[str, int]], main_uri: str) -> str:
@@ -248,16 +307,16 @@ def _sites(sites: Sequence[tuple[str, int]], main_uri: str) -> str:
     ``main_uri``."""
     if all(not uri or uri == main_uri for uri, _ in sites):
         lines = [str(line + 1) for _, line in sites]
-        return f"line {lines[0]}" if len(lines) == 1 else f"lines {_and(lines)}"
+        if len(lines) == 1:
+            return tr("line {line}", line=lines[0])
+        return tr("lines {lines}", lines=_and(lines))
     return _and([_site(site, main_uri) for site in sites])
 
 
-def _count(n: int, what: str) -> str:
-    return f"{n} {what}" if n == 1 else f"{n} {what}s"
-
-
 def _and(items: Sequence[str]) -> str:
-    return items[0] if len(items) == 1 else f"{', '.join(items[:-1])} and {items[-1]}"
+    if len(items) == 1:
+        return items[0]
+    return tr("{items} and {last}", items=joined(", ", items[:-1]), last=items[-1])
 
 
 @dataclass(frozen=True, slots=True)
@@ -279,21 +338,38 @@ class Backplot:
     def summary(self, counts: str = "") -> str:
         """``1010 of 1011 moves drawn in XZ (counts)``, and why the others are not when it is
         that the start is not known."""
-        text = f"{self.drawn} of {self.total} moves drawn in {self.plane}"
+        text: str = tr(
+            "{drawn} of {total} moves drawn in {plane}",
+            drawn=self.drawn,
+            total=self.total,
+            plane=self.plane,
+        )
         if counts:
-            text += f" ({counts})"
+            text = tr("{summary} ({counts})", summary=text, counts=counts)
         if self.before_start:
-            text += f"; {_start_text(self.before_start, self.start_axes, moves=False)}"
+            why = _start_text(self.before_start, self.start_axes, moves=False)
+            text = tr("{summary}; {why}", summary=text, why=why)
         return text
 
 
 def _start_text(count: int, axes: Sequence[str], moves: bool = True) -> str:
     """Why ``count`` moves are not drawn: they start where the tool stood when the run began."""
-    what = _count(count, "move") if moves else str(count)
-    they = "it starts" if count == 1 else "they start"
-    return (
-        f"{what} not drawn: {they} before the first absolute {_and(axes)} (the tool's place at"
-        " the start is not known)"
+    if moves:
+        return tr_n(
+            "{count} move not drawn: it starts before the first absolute {axes} (the tool's"
+            " place at the start is not known)",
+            "{count} moves not drawn: they start before the first absolute {axes} (the tool's"
+            " place at the start is not known)",
+            count,
+            axes=_and(axes),
+        )
+    return tr_n(
+        "{count} not drawn: it starts before the first absolute {axes} (the tool's place at"
+        " the start is not known)",
+        "{count} not drawn: they start before the first absolute {axes} (the tool's place at"
+        " the start is not known)",
+        count,
+        axes=_and(axes),
     )
 
 
@@ -434,7 +510,7 @@ def _extent(toolpath: Toolpath, plane: Plane, any_move: bool = False) -> tuple[i
     return count, length
 
 
-_LATHE_VIEW = "a lathe's usual view"
+_LATHE_VIEW = tr("a lathe's usual view")
 
 
 def choose_plane(toolpath: Toolpath) -> tuple[Plane, str | None]:
@@ -451,8 +527,11 @@ def choose_plane(toolpath: Toolpath) -> tuple[Plane, str | None]:
         # mill's program read as a lathe's goes further in X-Y.
         xz, xy = _extent(toolpath, "XZ")[1], _extent(toolpath, "XY")[1]
         if xy > xz:
-            went = "goes further in XY than" if xz else "makes no move"
-            return "XY", f"drawn in XY: the path {went} in XZ, {_LATHE_VIEW}"
+            if xz:
+                return "XY", tr(
+                    "drawn in XY: the path goes further in XY than in XZ, {view}", view=_LATHE_VIEW
+                )
+            return "XY", tr("drawn in XY: the path makes no move in XZ, {view}", view=_LATHE_VIEW)
         return "XZ", None
     if _extent(toolpath, usual, any_move=True)[1]:
         return usual, None
@@ -461,16 +540,24 @@ def choose_plane(toolpath: Toolpath) -> tuple[Plane, str | None]:
     placed = [plane for plane in order if extents[plane][0]]
     if not placed:
         raise NothingToPlot(
-            "no move of the trace has a known place in two axes: nothing to plot in XY, XZ or YZ"
+            tr(
+                "no move of the trace has a known place in two axes: nothing to plot in XY, XZ"
+                " or YZ"
+            )
         )
     # max() keeps the first of equals: the machine's order breaks a tie.
     best = max(moving, key=lambda plane: extents[plane][1]) if moving else placed[0]
     if best == usual:
         return usual, None
-    view = _LATHE_VIEW if toolpath.lathe else "a mill's usual view"
-    reason = f"drawn in {best}: the path makes no move in {usual}, {view}"
+    view = _LATHE_VIEW if toolpath.lathe else tr("a mill's usual view")
+    reason = tr(
+        "drawn in {plane}: the path makes no move in {usual}, {view}",
+        plane=best,
+        usual=usual,
+        view=view,
+    )
     if len(moving) > 1:
-        reason += f"; it goes furthest in {best}"
+        reason = tr("{reason}; it goes furthest in {plane}", reason=reason, plane=best)
     return best, reason
 
 
@@ -478,11 +565,20 @@ def _nothing_in(toolpath: Toolpath, view: Plane, across: str, up: str) -> Nothin
     """The error of a view asked for that has no move, naming the planes that have some."""
     others = [p for p in _PLANES[toolpath.lathe] if p != view and _extent(toolpath, p)[0]]
     if others:
-        where = f"the path has moves in {_and(others)} (--plane {others[0]})"
+        where = tr(
+            "the path has moves in {planes} (--plane {plane})", planes=_and(others), plane=others[0]
+        )
     else:
-        where = "no move has a known place in any plane"
+        where = tr("no move has a known place in any plane")
     return NothingToPlot(
-        f"no move of the trace has a known {across} and {up}: nothing to plot in {view}; {where}"
+        tr(
+            "no move of the trace has a known {across} and {up}: nothing to plot in {view};"
+            " {where}",
+            across=across,
+            up=up,
+            view=view,
+            where=where,
+        )
     )
 
 
@@ -575,7 +671,10 @@ def _fit_step(
 def _axis_titles(axis: str, toolpath: Toolpath, units: str) -> list[str]:
     """An axis's title, and shorter ones for a short axis."""
     if toolpath.lathe and axis == "X":
-        return [f"X ({units}): a diameter, drawn as a radius", f"X ({units}, diameter)"]
+        return [
+            _say(tr("X ({units}): a diameter, drawn as a radius", units=units)),
+            _say(tr("X ({units}, diameter)", units=units)),
+        ]
     return [f"{axis} ({units})"]
 
 
@@ -882,15 +981,17 @@ def _marks(
     first, last = drawn[0], drawn[-1]
     sx, sy = first.points[0]
     ex, ey = last.points[-1]
+    start = escape(_say(tr("start: line {line}", line=first.move.line + 1)))
+    end = escape(_say(tr("end: line {line}", line=last.move.line + 1)))
     out.append(
         f'<circle class="start" data-mark="start"{_link(first.move, main_uri)}'
         f' cx="{_num(frame.x(sx))}" cy="{_num(frame.y(sy))}" r="5.5">'
-        f"<title>start: line {first.move.line + 1}</title></circle>"
+        f"<title>{start}</title></circle>"
     )
     out.append(
         f'<rect class="end" data-mark="end"{_link(last.move, main_uri)}'
         f' x="{_num(frame.x(ex) - 4)}" y="{_num(frame.y(ey) - 4)}" width="8" height="8">'
-        f"<title>end: line {last.move.line + 1}</title></rect>"
+        f"<title>{end}</title></rect>"
     )
     out.append("</g>")
     return out
@@ -924,8 +1025,16 @@ def _lost_marks(
     out = ['<g class="lost-track">']
     for lost, where in places:
         path = f" data-path={quoteattr(lost.uri)}" if lost.uri and lost.uri != main_uri else ""
-        axes = f"{', '.join(lost.axes)} unknown: " if lost.axes else ""
-        reason = escape(f"line {lost.line + 1}: {axes}{lost.reason}")
+        if lost.axes:
+            said = tr(
+                "line {line}: {axes} unknown: {reason}",
+                line=lost.line + 1,
+                axes=", ".join(lost.axes),
+                reason=lost.reason,
+            )
+        else:
+            said = tr("line {line}: {reason}", line=lost.line + 1, reason=lost.reason)
+        reason = escape(_say(said))
         if where is None:
             out.append(f'<desc data-kind="lost" data-line="{lost.line + 1}"{path}>{reason}</desc>')
             continue
@@ -967,10 +1076,10 @@ def _legend_sample(entry: str, x: float, y: float) -> str:
 _LEGEND_LABELS: Mapping[str, str] = MappingProxyType(
     {
         **KIND_NAMES,
-        "start": "start",
-        "end": "end",
-        "direction": "direction of travel",
-        "lost": "lost track (hover: why)",
+        "start": tr("start"),
+        "end": tr("end"),
+        "direction": tr("direction of travel"),
+        "lost": tr("lost track (hover: why)"),
     }
 )
 
@@ -981,7 +1090,7 @@ def _legend(entries: Sequence[str], top: float, timed: str = "") -> tuple[list[s
     out = ['<g class="legend">']
     x, y = MARGIN_LEFT, top
     for entry in entries:
-        label = _LEGEND_LABELS[entry]
+        label = _say(_LEGEND_LABELS[entry])
         width = _SAMPLE + 6 + text_width(label)
         if x > MARGIN_LEFT and x + width > WIDTH - MARGIN_RIGHT:
             x, y = MARGIN_LEFT, y + LINE_HEIGHT + 4
@@ -991,6 +1100,7 @@ def _legend(entries: Sequence[str], top: float, timed: str = "") -> tuple[list[s
         )
         x += width + _LEGEND_GAP
     if timed:
+        timed = _say(timed)
         if x > MARGIN_LEFT and x + text_width(timed) > WIDTH - MARGIN_RIGHT:
             x, y = MARGIN_LEFT, y + LINE_HEIGHT + 4
         out.append(f'<g data-legend="cycle-time">{_text(x, y, timed)}</g>')
@@ -1064,7 +1174,13 @@ def _run_notes(toolpath: Toolpath, stop: PlotNote | None) -> list[PlotNote]:
     notes = []
     if toolpath.truncated:
         notes.append(
-            PlotNote(f"the run makes more than {MAX_MOVES:,} moves: those after are not drawn", ())
+            PlotNote(
+                tr(
+                    "the run makes more than {moves:,} moves: those after are not drawn",
+                    moves=MAX_MOVES,
+                ),
+                (),
+            )
         )
     if stop is not None:
         notes.append(stop)
@@ -1083,11 +1199,13 @@ def plot_svg(
     passes: Sequence[PassMap] = (),
     title: str = "",
     main_uri: str = "",
+    locale: str = "en",
 ) -> str:
-    """The SVG document of a toolpath, and of the threads' pass maps after it.
+    """The SVG document of a toolpath, and of the threads' pass maps after it, its texts in
+    ``locale``.
 
     Raises :class:`NothingToPlot` when no move can be placed in the plane."""
-    return backplot(toolpath, plane, passes, title, main_uri).svg
+    return backplot(toolpath, plane, passes, title, main_uri, locale=locale).svg
 
 
 def backplot(
@@ -1098,14 +1216,20 @@ def backplot(
     main_uri: str = "",
     stop: PlotNote | None = None,
     timed: str = "",
+    locale: str = "en",
 ) -> Backplot:
     """The drawing of a toolpath (in ``plane``, else the one ``choose_plane`` gives), the
     threads' pass maps after it, and what it leaves out; ``stop``: why the run ended early;
-    ``timed``: the cycle time, as the legend's last entry says it.
+    ``timed``: the cycle time, as the legend's last entry says it; the drawing's texts are
+    said in ``locale`` (the ``Backplot``'s other texts are :class:`..translation.Text`).
 
     Raises :class:`NothingToPlot` when no move can be placed in the plane."""
-    with quiet_gc():  # 200,000 moves' strings and no cycles: the collector would only rescan
-        return _backplot(toolpath, plane, passes, title, main_uri, stop, timed)
+    token = _LOCALE.set(locale)
+    try:
+        with quiet_gc():  # 200,000 moves' strings and no cycles: the collector would only rescan
+            return _backplot(toolpath, plane, passes, title, main_uri, stop, timed)
+    finally:
+        _LOCALE.reset(token)
 
 
 def _backplot(
@@ -1147,12 +1271,19 @@ def _backplot(
     note_texts = [
         line
         for text in (*note_texts, *(n.text(main_uri) for n in notes))
-        for line in wrap(text, _BOX_WIDTH)
+        for line in wrap(_say(text), _BOX_WIDTH)
     ]
     height = low + MARGIN_BOTTOM + (len(note_texts) * LINE_HEIGHT + 10 if note_texts else 0)
-    suffix = f" ({view}, {len(drawn)} of {len(toolpath.moves)} moves drawn)"
+    suffix = _say(
+        tr(
+            " ({view}, {drawn} of {total} moves drawn)",
+            view=view,
+            drawn=len(drawn),
+            total=len(toolpath.moves),
+        )
+    )
     name = shorten(
-        title or "Toolpath",
+        title or _say(tr("Toolpath")),
         _BOX_WIDTH - text_width(suffix, TITLE_SIZE, bold=True),
         TITLE_SIZE,
         bold=True,
@@ -1261,8 +1392,14 @@ def _add_pass_maps(body: list[str], passes: Sequence[PassMap], height: float, un
             + _text(
                 MARGIN_LEFT,
                 total_height + 20,
-                f"{more} more threads: their pass maps are not drawn (the first"
-                f" {MAX_PASS_MAPS} are)",
+                _say(
+                    tr(
+                        "{more} more threads: their pass maps are not drawn (the first {first}"
+                        " are)",
+                        more=more,
+                        first=MAX_PASS_MAPS,
+                    )
+                ),
             )
             + "</g>"
         )
@@ -1281,7 +1418,7 @@ _CAPTION_LINE = 15.0
 
 
 def _passes(n: int) -> str:
-    return "1 pass" if n == 1 else f"{n} passes"
+    return tr_n("{count} pass", "{count} passes", n)
 
 
 def _depth_labels(deepest: float, pixels: float) -> tuple[float, list[tuple[float, str]]]:
@@ -1401,8 +1538,16 @@ def _pass_map_view(pass_map: PassMap, top: float, units: str = "mm") -> tuple[li
     count = len(pass_map.passes)
     panels = _pass_panels(pass_map, top)
     left, y0, base = panels.left, panels.y0, panels.base
-    side = "internal" if pass_map.internal else "external"
-    title = f"{pass_map.program}: {pass_map.name}, {side}, {_passes(count)}"
+    side = tr("internal") if pass_map.internal else tr("external")
+    title = _say(
+        tr(
+            "{program}: {thread}, {side}, {passes}",
+            program=pass_map.program,
+            thread=pass_map.name,
+            side=side,
+            passes=_passes(count),
+        )
+    )
     out = [
         f'<g class="view" data-view="passes" data-program={quoteattr(pass_map.program)}'
         f' data-passes="{count}">',
@@ -1535,29 +1680,51 @@ def _pass_map_captions(
     """The two panels' captions, wrapped to the panels' width."""
     count = len(pass_map.passes)
     basic = panels.basic
-    measured = "the major diameter" if pass_map.major is not None else "the first pass"
+    measured = tr("the major diameter") if pass_map.major is not None else tr("the first pass")
     where = _passes(count)
     if n_places < count:
-        where += f" at {n_places} places (passes at one place are one dot)"
-    groove = f", shaded the basic groove (5H/8 = {_tick(basic)})" if basic is not None else ""
-    infeed = (
-        f"Infeed: a dot at the tool's tip for each pass ({where}), lines for its 60° flanks"
-        f"{groove}; down: depth ({units}, radius, from {measured}); across: Z about the middle"
-        " of the passes' starts"
-    )
-    if pass_map.cut and pass_map.cut_pass is not None and pass_map.major is not None:
-        which = "D2" if pass_map.internal else "d2"
-        infeed += (
-            f"; blue: the groove the passes cut, over one lead about the deepest pass"
-            f" (the cross-section), dashed: the class's {which} limits"
+        where = tr(
+            "{passes} at {places} places (passes at one place are one dot)",
+            passes=where,
+            places=n_places,
         )
-    chart = (
-        f"Depth of each pass ({units}, radius, from {measured}): {_count(count, 'bar')};"
-        f" darker: how much deeper it cuts than the passes before (at most {_tick(largest)})"
+    if basic is not None:
+        infeed = tr(
+            "Infeed: a dot at the tool's tip for each pass ({where}), lines for its 60° flanks,"
+            " shaded the basic groove (5H/8 = {basic}); down: depth ({units}, radius, from"
+            " {measured}); across: Z about the middle of the passes' starts",
+            where=where,
+            basic=_tick(basic),
+            units=units,
+            measured=measured,
+        )
+    else:
+        infeed = tr(
+            "Infeed: a dot at the tool's tip for each pass ({where}), lines for its 60° flanks;"
+            " down: depth ({units}, radius, from {measured}); across: Z about the middle of the"
+            " passes' starts",
+            where=where,
+            units=units,
+            measured=measured,
+        )
+    if pass_map.cut and pass_map.cut_pass is not None and pass_map.major is not None:
+        infeed = tr(
+            "{infeed}; blue: the groove the passes cut, over one lead about the deepest pass"
+            " (the cross-section), dashed: the class's {which} limits",
+            infeed=infeed,
+            which="D2" if pass_map.internal else "d2",
+        )
+    chart = tr(
+        "Depth of each pass ({units}, radius, from {measured}): {bars}; darker: how much"
+        " deeper it cuts than the passes before (at most {largest})",
+        units=units,
+        measured=measured,
+        bars=tr_n("{count} bar", "{count} bars", count),
+        largest=_tick(largest),
     )
     if flat:
-        chart += f"; {_passes(flat)} at depth 0: a flat mark"
-    return wrap(infeed, panels.panel_w), wrap(chart, panels.panel_w)
+        chart = tr("{chart}; {passes} at depth 0: a flat mark", chart=chart, passes=_passes(flat))
+    return wrap(_say(infeed), panels.panel_w), wrap(_say(chart), panels.panel_w)
 
 
 # ---- the run ---------------------------------------------------------------------------------
@@ -1592,14 +1759,20 @@ def run_plot(
     facts = run_with_toolpath(uri, doc, index, others, config, entry)
     toolpath = facts.toolpath
     if toolpath is None or not toolpath.moves:
-        raise NothingToPlot("the program makes no move: nothing to plot")
+        raise NothingToPlot(tr("the program makes no move: nothing to plot"))
     timed = cycle_time(facts, machine_config(config or Config(), doc, index))
-    text = "" if timed is None else f"cycle time {minutes_seconds(timed.total.total)}"
+    text: str = (
+        "" if timed is None else tr("cycle time {time}", time=minutes_seconds(timed.total.total))
+    )
     stop = None
     if facts.stopped == "budget":
-        stop = PlotNote("the run stopped when the analysis's step budget ran out", ())
+        stop = PlotNote(tr("the run stopped when the analysis's step budget ran out"), ())
     elif facts.stopped == "time":
         stop = PlotNote(
-            f"the run stopped after {facts.time_limit:g} s (the analysis's time limit)", ()
+            tr(
+                "the run stopped after {seconds:g} s (the analysis's time limit)",
+                seconds=facts.time_limit,
+            ),
+            (),
         )
     return toolpath, stop, text
