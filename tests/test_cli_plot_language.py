@@ -58,6 +58,7 @@ def test_plot_in_chinese_says_no_english_sentence(tmp_path: Path, seed: str) -> 
     read = _read(svg)
     assert read and any("\u4e00" <= c <= "\u9fff" for text in read for c in text)
     assert [t for t in read if ENGLISH.search(t)] == []
+    assert not any("…" in t for t in read)  # each caption's line fits: none is cut short
     assert [line for line in chinese.stderr.splitlines() if ENGLISH.search(line)] == []
     # The same drawing, said otherwise; LANG says the same as --lang; English as it was.
     assert _elements(svg) == _elements(english_svg)

@@ -189,7 +189,8 @@ def wrap(text: str, width: float, size: float = FONT_SIZE) -> list[str]:
     return [shorten(line, width, size) for line in lines]
 
 
-_CLOSING = frozenset("，。；：、）》」』！？")  # never first on a line
+# Never first on a line: closing punctuation, the long vowel mark and small kana.
+_CLOSING = frozenset("，。；：、）》」』！？ーぁぃぅぇぉっゃゅょァィゥェォッャュョ")
 _OPENING = frozenset("（《「『“")  # never last on a line
 
 
@@ -219,7 +220,7 @@ def _wrap_wide(text: str, width: float, size: float) -> list[str]:
     lines: list[str] = []
     line = ""
     for token in tokens:
-        if line.strip() and token != " " and text_width(line.rstrip() + token, size) > width:
+        if line.strip() and token != " " and text_width(line + token, size) > width:
             lines.append(line.rstrip())
             line = ""
         if line or token != " ":
