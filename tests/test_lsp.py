@@ -73,6 +73,7 @@ async def start(
     folder: Path | None = SEEDS,
     options: dict[str, Any] | None = None,
     capabilities: types.ClientCapabilities = CAPABILITIES,
+    locale: str | None = None,
 ) -> None:
     settings = {"analysis": {"debounceMs": 20}, **(options or {})}
     await asyncio.wait_for(
@@ -86,6 +87,7 @@ async def start(
                     else None
                 ),
                 initialization_options=settings,
+                locale=locale,
             )
         ),
         WAIT,

@@ -9,7 +9,7 @@ import asyncio
 from lsprotocol import types
 from pytest_lsp import LanguageClient
 
-from test_lsp import CAPABILITIES, SEEDS, WAIT, client, diagnostics, edit, open_text
+from test_lsp import WAIT, client, diagnostics, edit, hover, open_text, start
 from test_lsp_editor_commands import run
 from test_translation_fixtures import english_in
 
@@ -39,32 +39,8 @@ def english(*texts: str | None) -> list[str]:
     return [found for text in texts if text for found in english_in(text)]
 
 
-async def hover(client: LanguageClient, uri: str, line: int, character: int) -> str:
-    found = await asyncio.wait_for(
-        client.text_document_hover_async(
-            types.HoverParams(
-                text_document=types.TextDocumentIdentifier(uri=uri),
-                position=types.Position(line=line, character=character),
-            )
-        ),
-        WAIT,
-    )
-    assert found is not None and isinstance(found.contents, types.MarkupContent)
-    return found.contents.value
-
-
 async def test_the_editors_words_are_said_in_chinese(client: LanguageClient) -> None:
-    await asyncio.wait_for(
-        client.initialize_session(
-            types.InitializeParams(
-                capabilities=CAPABILITIES,
-                root_uri=SEEDS.as_uri(),
-                locale="zh-cn",
-                initialization_options={"analysis": {"debounceMs": 20}},
-            )
-        ),
-        WAIT,
-    )
+    await start(client, locale="zh-cn")
     uri = "untitled:chinese.nc"
     open_text(client, uri, TEXT)
     found = await diagnostics(client, uri, lambda d: any(x.code == "MB601" for x in d))

@@ -3,7 +3,6 @@ client's locale (or the `language` setting) over stdio."""
 
 from __future__ import annotations
 
-import asyncio
 from collections.abc import Sequence
 
 from lsprotocol import types
@@ -11,7 +10,7 @@ from pytest_lsp import LanguageClient
 
 from fanuc_macro.analysis import RULES
 from fanuc_macro.ide.messages import catalogue, locale_of
-from test_lsp import CAPABILITIES, SEEDS, WAIT, client, diagnostics, open_seed
+from test_lsp import client, diagnostics, open_seed, start
 
 __all__ = ["client"]
 
@@ -55,17 +54,7 @@ def mb601(found: Sequence[types.Diagnostic]) -> str:
 
 
 async def test_the_server_speaks_the_clients_locale(client: LanguageClient) -> None:
-    await asyncio.wait_for(
-        client.initialize_session(
-            types.InitializeParams(
-                capabilities=CAPABILITIES,
-                root_uri=SEEDS.as_uri(),
-                locale="zh-cn",
-                initialization_options={"analysis": {"debounceMs": 20}},
-            )
-        ),
-        WAIT,
-    )
+    await start(client, locale="zh-cn")
     uri = open_seed(client, "o2_arc_thread_roughing.nc")
     found = await diagnostics(client, uri, lambda d: any(x.code == "MB601" for x in d))
     chinese = mb601(found)

@@ -10,7 +10,6 @@ server links a Chinese reader's diagnostics to it.
 
 from __future__ import annotations
 
-import asyncio
 import re
 import subprocess
 import sys
@@ -22,7 +21,7 @@ from pytest_lsp import LanguageClient
 
 from fanuc_macro.analysis import RULE_DOCS, RULES
 from fanuc_macro.rules_doc import PARTS, part_texts, render, rule_url, untranslated_parts
-from test_lsp import CAPABILITIES, SEEDS, WAIT, client, diagnostics, open_seed
+from test_lsp import client, diagnostics, open_seed, start
 
 __all__ = ["client"]
 
@@ -127,17 +126,7 @@ def test_a_chinese_reader_is_linked_to_the_chinese_page() -> None:
 async def test_the_server_links_a_chinese_clients_diagnostics_to_the_chinese_page(
     client: LanguageClient,
 ) -> None:
-    await asyncio.wait_for(
-        client.initialize_session(
-            types.InitializeParams(
-                capabilities=CAPABILITIES,
-                root_uri=SEEDS.as_uri(),
-                locale="zh-cn",
-                initialization_options={"analysis": {"debounceMs": 20}},
-            )
-        ),
-        WAIT,
-    )
+    await start(client, locale="zh-cn")
     uri = open_seed(client, "o2_arc_thread_roughing.nc")
     found = await diagnostics(client, uri, lambda d: any(x.code == "MB601" for x in d))
     for diag in found:
