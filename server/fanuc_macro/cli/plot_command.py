@@ -16,8 +16,7 @@ EXIT_NOTHING_TO_PLOT = 2
 def cmd_plot(args: argparse.Namespace) -> int:
     from collections import Counter
 
-    from ..ide import NothingToPlot, backplot, pass_maps, run_plot
-    from ..ide.trace import MOVE_NAMES
+    from ..ide import MOVE_NAMES, NothingToPlot, backplot, pass_maps, run_plot
     from . import _traced_workspace
 
     config, workspace, uri = _traced_workspace(args)

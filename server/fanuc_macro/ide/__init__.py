@@ -92,6 +92,7 @@ if TYPE_CHECKING:
     from .toolpath_view import NoToolpathView as NoToolpathView
     from .toolpath_view import ToolpathViewData as ToolpathViewData
     from .toolpath_view import toolpath_view as toolpath_view
+    from .trace import MOVE_NAMES as MOVE_NAMES
     from .trace import Trace as Trace
     from .trace import TraceMotion as TraceMotion
     from .trace import cycle_time_text as cycle_time_text
@@ -166,6 +167,7 @@ PUBLIC: MappingProxyType[str, str] = MappingProxyType(
         "Trace": "trace",
         "TraceMotion": "trace",
         "cycle_time_text": "trace",
+        "MOVE_NAMES": "trace",
         "motion_text": "trace",
         "trace": "trace",
         "TraceView": "trace_view",
