@@ -73,12 +73,12 @@ class DapClient(StdioProcess):
         launch: dict[str, Any],
         breakpoints: dict[str, list[dict[str, Any]]] | None = None,
         filters: list[str] | None = None,
+        locale: str | None = None,
     ) -> dict[str, Any]:
-        """initialize, launch, the breakpoints, configurationDone: the initialize body."""
-        caps = self.ok(
-            "initialize",
-            {"adapterID": "fanuc-macro", "linesStartAt1": True, "columnsStartAt1": True},
-        )
+        """initialize (in the client's ``locale``), launch, the breakpoints,
+        configurationDone: the initialize body."""
+        initialize = {"adapterID": "fanuc-macro", "linesStartAt1": True, "columnsStartAt1": True}
+        caps = self.ok("initialize", initialize | ({"locale": locale} if locale else {}))
         self.ok("launch", launch)
         self.event("initialized")
         for path, bps in (breakpoints or {}).items():

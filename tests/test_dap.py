@@ -300,6 +300,30 @@ def test_the_endless_loop_can_be_paused(dap: DapClient) -> None:
     dap.event("terminated")
 
 
+def test_a_chinese_client_is_answered_in_chinese(dap: DapClient) -> None:
+    from test_translation_fixtures import ENGLISH
+
+    g92 = line_of(SEED, "G92")
+    caps = dap.start({"program": str(SEED)}, {str(SEED): [{"line": g92}]}, locale="zh-CN")
+    labels = [f["label"] for f in caps["exceptionBreakpointFilters"]]
+    assert labels[0] == "报警（#3000、PS0112 除零等）"
+    stop = dap.stopped()
+    assert stop["description"] == "断点"
+    scopes = dap.ok("scopes", {"frameId": 1})["scopes"]
+    names = [s["name"] for s in scopes]
+    assert names == ["O4009 的局部变量 #1-#33", "公共变量", "系统变量", "模态状态"]
+    modal = {
+        v["name"]: v["value"]
+        for v in dap.ok("variables", {"variablesReference": scopes[3]["variablesReference"]})[
+            "variables"
+        ]
+    }
+    # The same state as in English (test above), its names and units said in Chinese.
+    assert modal["G 代码组 01"] == "G01" and modal["单位"] == "公制（G21）"
+    assert modal["至此加工时间"] == "4.5 秒"
+    assert not [text for text in [*labels, *names, *modal, *modal.values()] if ENGLISH.search(text)]
+
+
 def test_a_run_past_the_budget_ends_with_a_message(dap: DapClient) -> None:
     if not WHILE_LOOP.exists():
         pytest.skip("the corpus is not beside the repository")

@@ -31,6 +31,7 @@ from ..debugger import (
     read_launch,
 )
 from ..framing import Reader, WireError
+from ..translation import locale_of, render
 from .wire import Writer
 
 THREAD_ID = 1  # the control runs one path: one thread
@@ -43,6 +44,8 @@ class Adapter(Listener):
         self.session: Session | None = None
         self.lines_start_at_1 = True
         self.columns_start_at_1 = True
+        # The language of what the adapter says: the client's (DAP initialize "locale").
+        self.locale = "en"
         # Breakpoints and filters sent before the launch are kept for it.
         self._early_breakpoints: dict[str, list[tuple[int, str, str, str]]] = {}
         self._early_filters: list[str] | None = None
@@ -152,6 +155,11 @@ class Adapter(Listener):
             message["body"] = body
         self.writer.send(message)
 
+    def _said(self, text: str) -> str:
+        """A text of the debugger in the client's language (numbers and program text as they
+        are)."""
+        return render(text, self.locale)
+
     def _session(self) -> Session:
         if self.session is None:
             raise DebugError("no program is launched")
@@ -175,6 +183,8 @@ class Adapter(Listener):
     def initialize(self, args: dict[str, Any]) -> dict[str, Any]:
         self.lines_start_at_1 = args.get("linesStartAt1", True) is not False
         self.columns_start_at_1 = args.get("columnsStartAt1", True) is not False
+        given = args.get("locale")
+        self.locale = locale_of(given if isinstance(given, str) else None)
         return {
             "supportsConfigurationDoneRequest": True,
             "supportsConditionalBreakpoints": True,
@@ -186,7 +196,7 @@ class Adapter(Listener):
             "supportsTerminateRequest": True,
             "supportsExceptionInfoRequest": True,
             "exceptionBreakpointFilters": [
-                {"filter": name, "label": label, "default": on}
+                {"filter": name, "label": self._said(label), "default": on}
                 for name, label, on in EXCEPTION_FILTERS
             ],
         }
@@ -286,7 +296,7 @@ class Adapter(Listener):
         return {
             "scopes": [
                 {
-                    "name": s.name,
+                    "name": self._said(s.name),
                     "variablesReference": s.reference,
                     "namedVariables": s.count,
                     "expensive": s.expensive,
@@ -300,7 +310,11 @@ class Adapter(Listener):
         found = self._session().variables(int(args.get("variablesReference", 0)))
         out = []
         for v in found:
-            item: dict[str, Any] = {"name": v.name, "value": v.value, "variablesReference": 0}
+            item: dict[str, Any] = {
+                "name": self._said(v.name),
+                "value": self._said(v.value),
+                "variablesReference": 0,
+            }
             if v.evaluate_name:
                 item["evaluateName"] = v.evaluate_name
             if v.read_only:
@@ -382,25 +396,32 @@ class Adapter(Listener):
         stop = self._last_stop
         if stop is None or stop.reason != "exception":
             raise DebugError("the program did not stop on an alarm or a message")
-        return {"exceptionId": stop.exception, "description": stop.text, "breakMode": "always"}
+        return {
+            "exceptionId": stop.exception,
+            "description": self._said(stop.text),
+            "breakMode": "always",
+        }
 
     # ---- the session's news (from the run thread) --------------------------------------------
     def stopped(self, stop: Stop) -> None:
         self._last_stop = stop
         body: dict[str, Any] = {
             "reason": stop.reason,
-            "description": stop.description,
+            "description": self._said(stop.description),
             "threadId": THREAD_ID,
             "allThreadsStopped": True,
         }
         if stop.text:
-            body["text"] = stop.text
+            body["text"] = self._said(stop.text)
         if stop.breakpoints:
             body["hitBreakpointIds"] = list(stop.breakpoints)
         self.event("stopped", body)
 
     def output(self, output: Output) -> None:
-        body: dict[str, Any] = {"category": output.category, "output": output.text + "\n"}
+        body: dict[str, Any] = {
+            "category": output.category,
+            "output": self._said(output.text) + "\n",
+        }
         if output.key is not None:
             body["source"] = self._source(output.key)
             if output.line is not None:
@@ -410,7 +431,10 @@ class Adapter(Listener):
     def ended(self, ended: Ended) -> None:
         self.event(
             "output",
-            {"category": "console" if ended.normal else "stderr", "output": ended.message + "\n"},
+            {
+                "category": "console" if ended.normal else "stderr",
+                "output": self._said(ended.message) + "\n",
+            },
         )
         self.event("exited", {"exitCode": 0 if ended.normal else 1})
         self._say_terminated()

@@ -7,15 +7,16 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 from ..evaluator.compiler import CondEvaluator
+from ..translation import tr
 
 # The exception breakpoints a user can turn on and off (DAP exceptionBreakpointFilters).
 ALARM_FILTER = "alarm"  # #3000 and the PS alarms the evaluator raises
 MESSAGE_FILTER = "message"  # #3006: the control stops with a message
 PROGRAM_STOP_FILTER = "programStop"  # M00, and M01 with the optional stop switch on
 EXCEPTION_FILTERS: tuple[tuple[str, str, bool], ...] = (
-    (ALARM_FILTER, "Alarms (#3000, PS0112 zero divide, ...)", True),
-    (MESSAGE_FILTER, "Stop with message (#3006)", True),
-    (PROGRAM_STOP_FILTER, "Program stop (M00, M01)", False),
+    (ALARM_FILTER, tr("Alarms (#3000, PS0112 zero divide, ...)"), True),
+    (MESSAGE_FILTER, tr("Stop with message (#3006)"), True),
+    (PROGRAM_STOP_FILTER, tr("Program stop (M00, M01)"), False),
 )
 
 

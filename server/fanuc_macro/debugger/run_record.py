@@ -13,6 +13,7 @@ from ..evaluator.values import MacroAlarm, Unknown, Value
 from ..program.g_code_systems import ABSOLUTE, INCREMENTAL, system_a_code
 from ..program.knowledge import modal_group
 from ..syntax.tree import Print
+from ..translation import tr
 from .answers import MESSAGE_FILTER, PROGRAM_STOP_FILTER
 from .breakpoints import Say
 from .expressions import Probe, dprnt_line
@@ -65,7 +66,11 @@ class RunRecord:
                 # The control stops after the block and shows its comment (FANUC custom macro,
                 # "#3006 stop with message").
                 text = block_comment(act, line)
-                self.pending_stop = (MESSAGE_FILTER, "Stop with message (#3006)", text or "#3006")
+                self.pending_stop = (
+                    MESSAGE_FILTER,
+                    tr("Stop with message (#3006)"),
+                    text or "#3006",
+                )
         elif kind in (K_IFGOTO, K_IFTHEN, K_WHILE) and cl.cond is not None:
             self._note_condition(act, cl, line, say)
         elif kind == K_OTHER and isinstance(cl.node, Print) and cl.node.keyword == "DPRNT":
@@ -95,12 +100,16 @@ class RunRecord:
                     tool = v
         if 0.0 in m_codes or 1.0 in m_codes:
             code = "M00" if 0.0 in m_codes else "M01"
-            what = "program stop" if code == "M00" else "optional stop"
+            said = (
+                tr("{code} program stop", code=code)
+                if code == "M00"
+                else tr("{code} optional stop", code=code)
+            )
             text = block_comment(act, line)
             self.pending_stop = (
                 PROGRAM_STOP_FILTER,
-                f"Program stop ({code})",
-                f"{code} {what}" + (f": {text}" if text else ""),
+                tr("Program stop ({code})", code=code),
+                tr("{stop}: {comment}", stop=said, comment=text) if text else said,
             )
         lathe = act.machine.lathe
         system = act.machine.config.g_code_system if lathe else SYSTEM_A

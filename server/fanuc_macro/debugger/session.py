@@ -21,6 +21,7 @@ from ..evaluator.toolpath import Recorder
 from ..evaluator.values import Value
 from ..ide import Precision
 from ..program.machine_kind import machine_config
+from ..translation import tr, tr_n
 from ..workspace import Workspace, is_program_file
 from .answers import (
     ALARM_FILTER,
@@ -265,16 +266,16 @@ class Session:
         if self._first:
             self._first = False
             if self.launch.stop_on_entry and stop is None:
-                stop = Stop("entry", f"{act.ctx.name} starts")
+                stop = Stop("entry", tr("{program} starts", program=act.ctx.name))
         if stop is None and self._pause:
-            stop = Stop("pause", "Paused")
+            stop = Stop("pause", tr("Paused"))
         if stop is None and hit:
-            stop = Stop("breakpoint", "Breakpoint", breakpoints=tuple(hit))
+            stop = Stop("breakpoint", tr("Breakpoint"), breakpoints=tuple(hit))
         if stop is None and self._step is not None:
             how, depth = self._step
             here = _depth(act)
             if how == "in" or (how == "over" and here <= depth) or (how == "out" and here < depth):
-                stop = Stop("step", "Step")
+                stop = Stop("step", tr("Step"))
         return stop
 
     def alarm(self, act: Activation, line: int, message: str) -> None:
@@ -286,7 +287,7 @@ class Session:
             if text:
                 message = f"{message}: {text}"
         if ALARM_FILTER in self.filters:
-            self._wait(act, line, Stop("exception", "Alarm", message, exception=ALARM_FILTER))
+            self._wait(act, line, Stop("exception", tr("Alarm"), message, exception=ALARM_FILTER))
 
     def _wait(self, act: Activation, line: int, stop: Stop) -> None:
         with self._lock:
@@ -415,38 +416,42 @@ def _ending(why: str, entry: ProgramContext, machine: Machine, where: str) -> En
     """The run's end in a sentence, from the machine's reason; ``where`` the block it stopped
     at (" at line 12 of O1000"), or ""."""
     blocks = machine.steps
-    done = f"after {blocks:,} blocks"
+    done = tr_n("after {count:,} block", "after {count:,} blocks", blocks)
+    name = entry.name
     if why == "end of program":
-        return Ended(f"{entry.name} ended {done}.", True, blocks)
+        return Ended(tr("{program} ended {done}.", program=name, done=done), True, blocks)
     if why == "end":
-        return Ended(f"{entry.name} ran to its end {done}.", True, blocks)
+        return Ended(tr("{program} ran to its end {done}.", program=name, done=done), True, blocks)
     if why == "alarm":
-        return Ended(f"The run stopped on an alarm {done}.", False, blocks)
+        return Ended(tr("The run stopped on an alarm {done}.", done=done), False, blocks)
     if why == "budget":
-        return Ended(
-            f"The run stopped {done}: the step budget of {machine.budget:,} blocks "
-            "ran out (launch 'stepBudget', setting fanuc-macro.analysis.stepBudget); a "
-            "program that goes on this long is likely looping forever.",
-            False,
-            blocks,
+        budget = tr(
+            "The run stopped {done}: the step budget of {budget:,} blocks ran out (launch "
+            "'stepBudget', setting fanuc-macro.analysis.stepBudget); a program that goes on "
+            "this long is likely looping forever.",
+            done=done,
+            budget=machine.budget,
         )
+        return Ended(budget, False, blocks)
     if why == "unknown jump":
-        return Ended(
-            f"The run stopped{where}: a GOTO to a number the analysis cannot compute "
-            "(it depends on a value set outside the program).",
-            False,
-            blocks,
+        jump = tr(
+            "The run stopped{where}: a GOTO to a number the analysis cannot compute (it "
+            "depends on a value set outside the program).",
+            where=where,
         )
+        return Ended(jump, False, blocks)
     if why == "unread":
-        return Ended(
-            f"The run stopped {done}: the program goes on past the part of the file "
-            "that is read (MB013).",
-            False,
-            blocks,
+        unread = tr(
+            "The run stopped {done}: the program goes on past the part of the file that is "
+            "read (MB013).",
+            done=done,
         )
+        return Ended(unread, False, blocks)
     if why == "no END":
-        return Ended(f"The run stopped{where}: a WHILE without its END.", False, blocks)
-    return Ended(f"The run stopped {done} ({why}).", False, blocks)
+        return Ended(
+            tr("The run stopped{where}: a WHILE without its END.", where=where), False, blocks
+        )
+    return Ended(tr("The run stopped {done} ({why}).", done=done, why=why), False, blocks)
 
 
 def _depth(act: Activation) -> int:

@@ -13,6 +13,7 @@ from ..evaluator.machine import Activation
 from ..evaluator.values import MacroAlarm, Value
 from ..program.knowledge import code_name
 from ..program.variables import ARGUMENT_VARIABLES, classify
+from ..translation import tr
 from .answers import DebugError, FrameInfo, ScopeInfo, VariableInfo
 from .expressions import Probe, parse_assignment, parse_condition, parse_expression, read_variable
 from .run_record import RunRecord
@@ -83,12 +84,16 @@ class StopView:
         owner = act
         while owner.caller is not None and owner.macro_level == owner.caller.macro_level:
             owner = owner.caller
-        locals_ = "Locals #1-#33" + ("" if owner is act else f" of {owner.ctx.name}")
+        locals_ = (
+            tr("Locals #1-#33")
+            if owner is act
+            else tr("Locals #1-#33 of {program}", program=owner.ctx.name)
+        )
         return [
             ScopeInfo(locals_, base + 1, 33),
-            ScopeInfo("Common variables", base + 2, len(commons)),
-            ScopeInfo("System variables", base + 3, len(system)),
-            ScopeInfo("Modal state", base + 4, len(self._modal(act))),
+            ScopeInfo(tr("Common variables"), base + 2, len(commons)),
+            ScopeInfo(tr("System variables"), base + 3, len(system)),
+            ScopeInfo(tr("Modal state"), base + 4, len(self._modal(act))),
         ]
 
     def _system_numbers(self, act: Activation) -> list[int]:
@@ -116,7 +121,11 @@ class StopView:
             out = []
             for n in numbers:
                 kind = classify(n)
-                name = f"#{n}" if scope == 2 else f"#{n} ({kind.meaning})"
+                name = (
+                    f"#{n}"
+                    if scope == 2
+                    else tr("#{number} ({meaning})", number=n, meaning=kind.meaning)
+                )
                 out.append(
                     VariableInfo(
                         name,
@@ -137,19 +146,25 @@ class StopView:
         show = self.show
         out: list[VariableInfo] = [
             VariableInfo(
-                f"G group {group}", code_name("G", groups[group]), kind="modal", read_only=True
+                tr("G group {group}", group=group),
+                code_name("G", groups[group]),
+                kind="modal",
+                read_only=True,
             )
             for group in sorted(groups)
         ]
         if modal.motion is not None and "01" not in groups:
             out.append(
                 VariableInfo(
-                    "G group 01", code_name("G", modal.motion), kind="modal", read_only=True
+                    tr("G group {group}", group="01"),
+                    code_name("G", modal.motion),
+                    kind="modal",
+                    read_only=True,
                 )
             )
         out.sort(key=lambda v: v.name)
-        unit = "inch (G20)" if modal.inch else "mm (G21)"
-        out.append(VariableInfo("unit", unit, kind="modal", read_only=True))
+        unit = tr("inch (G20)") if modal.inch else tr("mm (G21)")
+        out.append(VariableInfo(tr("unit"), unit, kind="modal", read_only=True))
         out.append(VariableInfo("F", show(modal.feed), kind="modal", read_only=True))
         speed = show(modal.speed)
         if modal.constant_surface_speed:
@@ -160,14 +175,15 @@ class StopView:
         timed = cycle_time(machine.facts, machine.config)  # what ran before the stopped block
         if timed is not None:
             elapsed = minutes_seconds(timed.total.total)
-            out.append(VariableInfo("cycle time so far", elapsed, kind="modal", read_only=True))
+            so_far = tr("cycle time so far")
+            out.append(VariableInfo(so_far, elapsed, kind="modal", read_only=True))
         for axis in sorted(modal.position):
             out.append(VariableInfo(axis, show(modal.position[axis]), kind="modal", read_only=True))
         for callee, _args, _repeat in modal.modal_calls:
             out.append(
                 VariableInfo(
-                    "G66 in force",
-                    callee.name if callee else "a program not in these files",
+                    tr("G66 in force"),
+                    callee.name if callee else tr("a program not in these files"),
                     kind="modal",
                     read_only=True,
                 )
