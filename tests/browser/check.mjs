@@ -784,7 +784,8 @@ async function checkTrace() {
 
 // The trace view's header is not program text: its title and the hint under it have none of
 // the colours a row's G code and addresses have (the hint's "F12" is no F word). Its columns,
-// S and F among them, fit beside the program, and the values a block read are under its row.
+// S, F and the time a block starts at among them, fit beside the program, and the values a
+// block read are under its row.
 // The 1400-pixel window is narrower than a programmer's screen: the side bar is closed for
 // this check, as the two editors then share what a 1920-pixel screen gives them with it open.
 async function checkTraceLayout() {
@@ -830,7 +831,7 @@ async function checkTraceLayout() {
     }
     const coloured = [...seen.title, ...seen.hint].filter((c) => program.has(c));
     if (coloured.length > 0) throw new Error(`the header has a program text's colour ${coloured[0]}: ${JSON.stringify(seen)}`);
-    if (seen.columns.join(' ') !== 'block code words to S F') throw new Error(`columns ${seen.columns.join(' ')}`);
+    if (seen.columns.join(' ') !== 'block code words to S F time') throw new Error(`columns ${seen.columns.join(' ')}`);
     if (seen.width === 0 || seen.width > seen.room + 1) throw new Error(`the rows are ${seen.width}px wide beside ${seen.room}px of editor`);
     record('trace layout', true,
       `header ${seen.title[0]} / ${seen.hint[0]}, program text ${[...program].join(' ')}; columns ${seen.columns.join(' ')}; ${Math.round(seen.width)} of ${Math.round(seen.room)} px`);
